@@ -1,0 +1,155 @@
+"""The analysis: mechanism in, :class:`~mobility.result.Result` out.
+
+Data flow: model -> topology (series/parallel tree, cached per graph) ->
+joint twists in normalised coordinates (cached per mechanism) -> screw systems
+of the tree -> canonical forms -> result in the global frame.
+
+Examples
+--------
+>>> import mobility
+>>> from mobility.model import Joint, Mechanism
+>>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+>>> m = Mechanism("four-bar", "ground", "coupler", (
+...     R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "coupler", (1, 2, 0)),
+...     R("C", "coupler", "rocker", (4, 2.5, 0)), R("D", "rocker", "ground", (5, 0, 0))))
+>>> r = analyze(m)
+>>> r.dof, r.pattern, r.mobility, r.gruebler_kutzbach, r.redundant_constraints
+(1, '1R', 1, -2, 3)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .canonical import CanonicalForm, canonical_form
+from .joint_screws import JointScrews, Normalisation, joint_screws
+from .model import WORLD, Mechanism
+from .result import LimbSystem, Margin, Result, ScrewAxis, pattern_of
+from .screw_systems import Margin as MarginCollector
+from .screw_systems import SystemValue, evaluate
+from .screws import adjoint, span_and_reciprocal
+from .tolerance import DEFAULT_TOLERANCE, Tolerance
+from .topology import Parallel, Topology, decompose, describe, joints_of
+
+__all__ = ["analyze", "gruebler_kutzbach"]
+
+
+def gruebler_kutzbach(mechanism: Mechanism) -> int:
+    """The Grübler–Kutzbach count ``6 (n - 1 - j) + sum f`` of the whole mechanism.
+
+    Examples
+    --------
+    >>> from mobility.model import Joint, Mechanism
+    >>> gruebler_kutzbach(Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(1, 0, 0)),)))
+    1
+    """
+    return 6 * (len(mechanism.links) - 1 - len(mechanism.joints)) + mechanism.freedom_count
+
+
+def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Result:
+    """Analyse the mobility of ``mechanism`` at its pose.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        From :func:`mobility.load` or built in code.
+    tol : Tolerance
+        Rank-decision policy (relative, dimensionless).
+
+    Returns
+    -------
+    Result
+        Frozen; screws in the global frame and the mechanism's length unit.
+    """
+    topology = decompose(mechanism)
+    screws = joint_screws(mechanism)
+    collector = MarginCollector()
+    root = evaluate(topology.root, screws, tol, collector)
+    detached = sum(evaluate(node, screws, tol, collector).mobility for node in topology.detached)
+    mobility = root.mobility + detached
+    everything = span_and_reciprocal(screws.twists, tol)
+    gk = gruebler_kutzbach(mechanism)
+    norm = screws.normalisation
+
+    twist_form = canonical_form(root.basis, screws.reference, tol)
+    wrench_form = canonical_form(root.wrenches, screws.reference, tol)
+    collector.add(twist_form.decision)
+    collector.add(wrench_form.decision)
+    translations, rotations, twists = _world_form(twist_form, norm, ("rotation", "helical"), tol)
+    couples, forces, wrenches = _world_form(wrench_form, norm, ("force", "wrench"), tol)
+
+    margin = Margin(
+        collector.smallest_kept,
+        collector.largest_dropped,
+        collector.smallest_kept < tol.near_singular,
+        collector.largest_dropped > tol.inexact,
+    )
+    warnings = []
+    if margin.near_singular:
+        warnings.append(
+            f"near-singular pose: a direction counted as free has relative singular value {margin.smallest_kept:.2e} "
+            f"(below {tol.near_singular:.0e}); a small change of pose may change the count"
+        )
+    if margin.inexact:
+        warnings.append(
+            f"inexact geometry: a direction counted as blocked has relative singular value {margin.largest_dropped:.2e} "
+            f"(above round-off, below the rank threshold {tol.rank:.0e}); check that the special geometry is exact"
+        )
+    return Result(
+        name=mechanism.name,
+        dof=root.dim,
+        pattern=pattern_of(translations.shape[0], len(rotations)),
+        translations=translations,
+        rotations=rotations,
+        twists=twists,
+        wrenches=wrenches,
+        couples=couples,
+        forces=forces,
+        mobility=mobility,
+        gruebler_kutzbach=gk,
+        redundant_constraints=mobility - gk,
+        idle_dof=mobility - root.dim,
+        loops=topology.loop_count,
+        links=topology.link_count,
+        joints=len(mechanism.joints),
+        joint_freedoms=mechanism.freedom_count,
+        common_constraints=6 - everything.dim,
+        structure=describe(topology.root),
+        margin=margin,
+        warnings=tuple(warnings),
+        limbs=_limbs(mechanism, topology, root, screws),
+        length_unit=mechanism.length_unit,
+        length_scale=norm.length + float(np.linalg.norm(norm.centre)),
+    )
+
+
+def _world_form(form: CanonicalForm, norm: Normalisation, kinds: tuple[str, str], tol: Tolerance) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+    """Free vectors, screw axes and basis rows of a canonical form, in global coordinates."""
+    free = form.free.T.copy()
+    axes = tuple(
+        ScrewAxis(p.axis, norm.point_to_world(p.point), 0.0 if abs(p.pitch) <= tol.rank else p.pitch * norm.length, kinds[abs(p.pitch) > tol.rank])
+        for p in form.screws
+    )
+    rows = [np.concatenate([np.zeros(3), f]) for f in free]
+    rows += [np.concatenate([a.axis, np.cross(a.point, a.axis) + a.pitch * a.axis]) for a in axes]
+    basis = np.array(rows).reshape(-1, 6)
+    for arr in (free, basis):
+        arr.setflags(write=False)
+    return free.reshape(-1, 3), axes, basis
+
+
+def _limbs(mechanism: Mechanism, topology: Topology, root: SystemValue, screws: JointScrews) -> tuple[LimbSystem, ...]:
+    """Twist and wrench systems of each branch of a top-level parallel connection, in its own frame."""
+    if not isinstance(topology.root, Parallel):
+        return ()
+    to_world = screws.normalisation.matrix_to_world()
+    out = []
+    for node, value in zip(topology.root.children, root.children):  # a parallel node keeps every child's value
+        frames = {mechanism.joints[i].frame for i in joints_of(node)}
+        frame = frames.pop() if len(frames) == 1 else WORLD
+        tf = mechanism.frame_transform(frame).inverse()
+        to_local = adjoint(tf.rotation, tf.translation) @ to_world
+        tw = (to_local @ value.basis).T
+        wr = (to_local @ value.wrenches).T
+        out.append(LimbSystem(describe(node), frame, value.dim, value.idle, tw, wr))
+    return tuple(out)

@@ -1,0 +1,68 @@
+"""The ``mobility`` command line.
+
+Each subcommand lives in its own module of this package with a
+``register(subparsers)`` function that adds its parser and sets ``run``:
+a function ``run(args) -> int`` (the exit status).  The command line only
+parses arguments and formats results.
+
+Exit status: 0 success, 1 a check failed, 2 bad input (one line naming file,
+line and key on stderr, never a traceback), 3 an internal error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+import traceback
+from typing import Sequence
+
+from ..errors import MobilityError
+
+__all__ = ["main", "build_parser", "COMMANDS"]
+
+COMMANDS: tuple[str, ...] = ("analyze",)
+"""Subcommand modules, in the order ``mobility --help`` lists them."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line, exit 2
+        self.print_usage(sys.stderr)
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser with every registered subcommand."""
+    from .. import __version__
+
+    parser = _Parser(prog="mobility", description="Mobility analysis of mechanisms by screw theory.")
+    parser.add_argument("--version", action="version", version=f"mobility {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show a traceback on internal errors")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+    for name in COMMANDS:
+        importlib.import_module(f"{__name__}.{name.replace('-', '_')}").register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args.run(args) or 0)
+    except MobilityError as exc:
+        print(f"mobility: {exc}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:
+        return 0
+    except Exception as exc:  # an internal error: one line unless --debug
+        if args.debug:
+            traceback.print_exc()
+        else:
+            print(f"mobility: internal error ({type(exc).__name__}: {exc}); rerun with --debug and please report it", file=sys.stderr)
+        return 3
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,36 @@
+"""``mobility analyze FILE``: the report of one mechanism."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..analysis import analyze
+from ..loader import load
+from ..report import json_report, text_report
+from ..tolerance import Tolerance
+
+FORMATS = {"text": lambda r, a: text_report(r, limbs=a.limbs), "json": lambda r, a: json_report(r)}
+"""Output formats: name -> function(result, args) -> str (other modules may add)."""
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("analyze", help="DOF, pattern, directions and constraints of a mechanism's end effector")
+    p.add_argument("file", help="mechanism file (YAML)")
+    p.add_argument("--json", action="store_true", help="print one JSON object (same as --format json)")
+    p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output format (default: text)")
+    p.add_argument("--limbs", action="store_true", help="also show each limb's twists and constraints in its own frame")
+    p.add_argument("--tol", type=float, default=Tolerance().rank, help="relative rank threshold (default: %(default)g)")
+    p.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    base = Tolerance()
+    if not (base.inexact <= args.tol < base.near_singular):
+        print(f"mobility analyze: error: --tol must lie in [{base.inexact:g}, {base.near_singular:g})", file=sys.stderr)
+        return 2
+    mechanism = load(args.file)
+    result = analyze(mechanism, tol=Tolerance(rank=args.tol))
+    fmt = "json" if args.json else args.format
+    print(FORMATS[fmt](result, args))
+    return 0

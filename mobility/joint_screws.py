@@ -1,0 +1,153 @@
+"""Joint twists of a mechanism, in the normalised coordinates of the tolerance policy.
+
+:func:`joint_screws` turns every elementary freedom of every joint (global
+frame) into a unit twist column, after moving the origin to the mechanism's
+centre ``c`` and dividing lengths by its characteristic length ``L`` (see
+:mod:`mobility.tolerance`).  :class:`Normalisation` maps screws back to the
+global frame and the file's length unit.
+
+Examples
+--------
+>>> from mobility.model import Joint, Mechanism
+>>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(0, 0, 5)),))
+>>> js = joint_screws(m)
+>>> js.twists[:, 0].tolist()
+[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+"""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+
+from .model import Mechanism
+from .tolerance import characteristic_scale
+from .transforms import skew
+
+__all__ = ["Normalisation", "JointScrews", "joint_screws", "per_object_cache"]
+
+
+@dataclass(frozen=True)
+class Normalisation:
+    """Normalised coordinates: origin at ``centre``, lengths divided by ``length``.
+
+    A screw ``[a; b]`` (twist ``[w; v]`` or wrench ``[f; m]``) in global
+    coordinates becomes ``[a; (b - centre x a) / length]``.
+    """
+
+    centre: np.ndarray
+    length: float
+
+    def to_world(self, screws: np.ndarray) -> np.ndarray:
+        """Map screws (columns) from normalised to global coordinates."""
+        s = np.asarray(screws, dtype=float).reshape(6, -1)
+        out = np.empty_like(s)
+        out[:3] = s[:3]
+        out[3:] = self.length * s[3:] + np.cross(self.centre, s[:3], axis=0)
+        return out
+
+    def from_world(self, screws: np.ndarray) -> np.ndarray:
+        """Map screws (columns) from global to normalised coordinates."""
+        s = np.asarray(screws, dtype=float).reshape(6, -1)
+        out = np.empty_like(s)
+        out[:3] = s[:3]
+        out[3:] = (s[3:] - np.cross(self.centre, s[:3], axis=0)) / self.length
+        return out
+
+    def point_to_world(self, p: np.ndarray) -> np.ndarray:
+        """Map a point from normalised to global coordinates."""
+        return self.centre + self.length * np.asarray(p, dtype=float)
+
+    def point_from_world(self, p: np.ndarray) -> np.ndarray:
+        """Map a point from global to normalised coordinates."""
+        return (np.asarray(p, dtype=float) - self.centre) / self.length
+
+    def matrix_to_world(self) -> np.ndarray:
+        """The 6x6 matrix of :meth:`to_world`."""
+        m = np.eye(6)
+        m[3:, 3:] *= self.length
+        m[3:, :3] = skew(self.centre)
+        return m
+
+
+@dataclass(frozen=True)
+class JointScrews:
+    """All joint twists of a mechanism as one matrix.
+
+    Attributes
+    ----------
+    twists : ndarray, shape (6, n)
+        Unit twist columns in normalised coordinates, joint after joint, each
+        joint's freedoms in the order of :meth:`~mobility.model.Joint.freedoms`.
+    offsets : ndarray, shape (J + 1,)
+        Columns of joint ``j`` are ``offsets[j]:offsets[j+1]``.
+    normalisation : Normalisation
+    reference : ndarray, shape (3,)
+        Reference point in normalised coordinates: the centroid of the points
+        of the joints on the end effector (the mechanism's centre if none).
+        Canonical axes are given through the point nearest to it.
+    """
+
+    twists: np.ndarray
+    offsets: np.ndarray
+    normalisation: Normalisation
+    reference: np.ndarray
+
+    def of_joint(self, index: int) -> np.ndarray:
+        """Twist columns of joint ``index``."""
+        return self.twists[:, self.offsets[index] : self.offsets[index + 1]]
+
+
+_caches: dict[int, dict[str, Any]] = {}
+
+
+def per_object_cache(obj: object, key: str, factory: Callable[[], Any]) -> Any:
+    """Compute ``factory()`` once per live object ``obj`` and key.
+
+    Frozen descriptions (mechanisms) are looked up by identity, which costs
+    nothing, unlike hashing them; the entry goes when the object does.
+    """
+    oid = id(obj)
+    entry = _caches.get(oid)
+    if entry is None:
+        entry = _caches[oid] = {}
+        weakref.finalize(obj, _caches.pop, oid, None)
+    if key not in entry:
+        entry[key] = factory()
+    return entry[key]
+
+
+def joint_screws(mechanism: Mechanism) -> JointScrews:
+    """Unit joint twists of ``mechanism`` in normalised coordinates (cached per mechanism)."""
+    return per_object_cache(mechanism, "joint_screws", lambda: _build(mechanism))
+
+
+def _build(mechanism: Mechanism) -> JointScrews:
+    kinds, axes, points, pitches, offsets = [], [], [], [], [0]
+    ee_points = []
+    for j in mechanism.world_joints:
+        for f in j.freedoms():
+            kinds.append(f.kind)
+            axes.append(f.axis)
+            points.append(f.point)
+            pitches.append(f.pitch)
+        offsets.append(len(kinds))
+        if mechanism.end_effector in j.links and j.point is not None:
+            ee_points.append(j.point)
+    axes_a = np.array(axes, dtype=float)
+    points_a = np.array(points, dtype=float)
+    pitch_a = np.array(pitches, dtype=float)
+    is_p = np.array([k == "P" for k in kinds])
+    located = [j.point for j in mechanism.world_joints if j.point is not None]
+    centre, length = characteristic_scale(np.array(located, dtype=float).reshape(-1, 3), pitch_a[pitch_a != 0.0])
+    norm = Normalisation(centre, length)
+    w = np.where(is_p[:, None], 0.0, axes_a)
+    v = np.where(is_p[:, None], axes_a, (np.cross(points_a - centre, axes_a) + pitch_a[:, None] * axes_a) / length)
+    tw = np.concatenate([w, v], axis=1).T
+    tw = tw / np.linalg.norm(tw, axis=0)
+    reference = norm.point_from_world(np.mean(ee_points, axis=0)) if ee_points else np.zeros(3)
+    tw.setflags(write=False)
+    return JointScrews(tw, np.array(offsets), norm, reference)

@@ -1,0 +1,236 @@
+"""Screw algebra in Plücker ray coordinates.
+
+Conventions (stated once, pinned by ``tests/test_screws.py``):
+
+* a twist is ``[w; v]`` with ``v = p x w + h w`` (angular part first);
+* a wrench is ``[f; m]`` with ``m = p x f + h f``;
+* the reciprocal product is ``a o b = a_w . b_v + a_v . b_w``, i.e.
+  ``a @ SWAP @ b`` with ``SWAP = [[0, I], [I, 0]]``; a wrench does no work on a
+  twist exactly when their reciprocal product is zero;
+* a frame at origin ``t`` with rotation ``R`` maps both twists and wrenches by
+  the same 6x6 adjoint ``[[R, 0], [skew(t) R, R]]``.
+
+A *screw system* is a linear subspace of R^6, kept as a 6 x r matrix whose
+columns are an orthonormal basis (in the coordinates where it was computed).
+One SVD of the stacked screws gives both the span and its reciprocal system,
+because the reciprocal of ``span(T)`` is ``SWAP @ (span(T))^perp``.
+
+Nothing here knows about files or mechanisms.
+
+Examples
+--------
+>>> import numpy as np
+>>> rz = revolute_twist(axis=[0, 0, 1], point=[1, 0, 0])
+>>> rz.tolist()
+[0.0, 0.0, 1.0, 0.0, -1.0, 0.0]
+>>> sys = span_and_reciprocal(rz[:, None])
+>>> sys.basis.shape[1], sys.reciprocal.shape[1]
+(1, 5)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
+from .transforms import skew
+
+__all__ = [
+    "SWAP",
+    "revolute_twist",
+    "prismatic_twist",
+    "helical_twist",
+    "reciprocal_product",
+    "adjoint",
+    "ScrewSpan",
+    "span_and_reciprocal",
+    "reciprocal_system",
+    "intersection",
+    "same_subspace",
+    "free_vector_subspace",
+]
+
+SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+"""The 6x6 matrix of the reciprocal product: ``a o b = a @ SWAP @ b``."""
+
+
+def revolute_twist(axis: np.ndarray, point: np.ndarray) -> np.ndarray:
+    """Unit twist of a rotation about the line through ``point`` along ``axis``: ``[s; p x s]``."""
+    s = np.asarray(axis, dtype=float)
+    return np.concatenate([s, np.cross(np.asarray(point, dtype=float), s)])
+
+
+def prismatic_twist(axis: np.ndarray) -> np.ndarray:
+    """Unit twist of a translation along ``axis``: ``[0; s]``."""
+    return np.concatenate([np.zeros(3), np.asarray(axis, dtype=float)])
+
+
+def helical_twist(axis: np.ndarray, point: np.ndarray, pitch: float) -> np.ndarray:
+    """Unit twist of a screw motion: ``[s; p x s + h s]`` (pitch ``h`` in length per radian)."""
+    s = np.asarray(axis, dtype=float)
+    return np.concatenate([s, np.cross(np.asarray(point, dtype=float), s) + pitch * s])
+
+
+def reciprocal_product(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Reciprocal product ``a_w . b_v + a_v . b_w`` of screws (columns of 6 x n arrays broadcast).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> force_x_through_origin = np.array([1.0, 0, 0, 0, 0, 0])
+    >>> float(reciprocal_product(force_x_through_origin, prismatic_twist([1.0, 0, 0])))
+    1.0
+    """
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    return np.sum(a[:3] * b[3:], axis=0) + np.sum(a[3:] * b[:3], axis=0)
+
+
+def adjoint(rotation: np.ndarray, translation: np.ndarray) -> np.ndarray:
+    """The 6x6 matrix ``[[R, 0], [skew(t) R, R]]`` moving twists or wrenches to a parent frame.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> local = revolute_twist([0, 0, 1], [0, 0, 0])
+    >>> moved = adjoint(np.eye(3), np.array([1.0, 0, 0])) @ local
+    >>> bool(np.allclose(moved, revolute_twist([0, 0, 1], [1, 0, 0])))
+    True
+    """
+    R = np.asarray(rotation, dtype=float)
+    out = np.zeros((6, 6))
+    out[:3, :3] = R
+    out[3:, 3:] = R
+    out[3:, :3] = skew(translation) @ R
+    return out
+
+
+@dataclass(frozen=True)
+class ScrewSpan:
+    """A screw system and its reciprocal, from one SVD.
+
+    Attributes
+    ----------
+    basis : ndarray, shape (6, r)
+        Orthonormal basis of the span.
+    reciprocal : ndarray, shape (6, 6 - r)
+        Basis of the reciprocal system (orthonormal up to the swap).
+    decision : RankDecision
+        The rank decision with its margin.
+    """
+
+    basis: np.ndarray
+    reciprocal: np.ndarray
+    decision: RankDecision
+
+    @property
+    def dim(self) -> int:
+        """Dimension of the span."""
+        return self.decision.rank
+
+
+def span_and_reciprocal(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> ScrewSpan:
+    """Span of the columns of ``screws`` and the reciprocal system, by one SVD.
+
+    Parameters
+    ----------
+    screws : ndarray, shape (6, n)
+        Screws as columns (``n`` may be 0).
+    tol : Tolerance
+        The rank policy.
+
+    Returns
+    -------
+    ScrewSpan
+    """
+    m = np.asarray(screws, dtype=float).reshape(6, -1)
+    if m.shape[1] == 0:
+        return ScrewSpan(np.zeros((6, 0)), np.eye(6), RankDecision(0))
+    u, s, _ = np.linalg.svd(m, full_matrices=True)
+    d = decide_rank(s, tol)
+    return ScrewSpan(u[:, : d.rank], SWAP @ u[:, d.rank :], d)
+
+
+def reciprocal_system(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
+    """Basis of the screws reciprocal to every column of ``screws``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> planar = np.stack([prismatic_twist([1, 0, 0]), prismatic_twist([0, 1, 0]),
+    ...                    revolute_twist([0, 0, 1], [0, 0, 0])], axis=1)
+    >>> w = reciprocal_system(planar)
+    >>> w.shape[1], bool(np.allclose(reciprocal_product(w, planar[:, [0]]), 0))
+    (3, True)
+    """
+    return span_and_reciprocal(screws, tol).reciprocal
+
+
+def intersection(a: np.ndarray, b: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
+    """Basis of ``span(a) ∩ span(b)``: the reciprocal of the union of their reciprocals."""
+    union = np.hstack([reciprocal_system(a, tol), reciprocal_system(b, tol)])
+    return reciprocal_system(union, tol)
+
+
+def same_subspace(a: np.ndarray, b: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
+    """True when the columns of ``a`` and ``b`` span the same subspace.
+
+    Subspaces are compared as subspaces: equal ranks, and stacking them adds
+    no dimension.  Works for any row count (screws, 3-vectors).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> same_subspace(np.array([[1.0, 0], [0, 1], [0, 0]]), np.array([[1.0], [1.0], [0.0]]))
+    False
+    """
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    if a.shape[0] != b.shape[0]:
+        return False
+
+    def rank(m: np.ndarray) -> int:
+        return decide_rank(np.linalg.svd(m, compute_uv=False), tol).rank if m.size else 0
+
+    return rank(a) == rank(b) == rank(np.hstack([a, b]))
+
+
+def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[np.ndarray, np.ndarray, RankDecision]:
+    """Split an orthonormal screw basis into its free-vector part and the rest.
+
+    For a twist system the free vectors are the pure translations ``[0; v]``;
+    for a wrench system, the pure couples ``[0; m]``.
+
+    Parameters
+    ----------
+    basis : ndarray, shape (6, d)
+        Orthonormal basis of the system.
+
+    Returns
+    -------
+    free : ndarray, shape (3, k)
+        Orthonormal basis of the free vectors (the ``v`` parts).
+    coefficients : ndarray, shape (d, d - k)
+        Coefficients (orthonormal columns) of a complement of the free part:
+        ``basis @ coefficients`` are screws with independent directions.
+    decision : RankDecision
+        Rank decision on the direction part (its margin tells how close a
+        screw is to becoming a free vector).
+    """
+    d = basis.shape[1]
+    if d == 0:
+        return np.zeros((3, 0)), np.zeros((0, 0)), RankDecision(0)
+    _, s, vt = np.linalg.svd(basis[:3], full_matrices=True)
+    # Orthonormal basis: singular values are at most 1, so the threshold is absolute.
+    dec = decide_rank(np.concatenate([[1.0], s]) if s.size else np.array([1.0]), tol)
+    r = dec.rank - 1
+    decision = RankDecision(r, dec.smallest_kept if r else 1.0, dec.largest_dropped)
+    null = vt[r:].T  # coefficients of the pure free vectors
+    if null.shape[1]:
+        fu, fs, _ = np.linalg.svd(basis[3:] @ null, full_matrices=False)
+        free = fu[:, : null.shape[1]]
+    else:
+        free = np.zeros((3, 0))
+    return free, vt[:r].T, decision
