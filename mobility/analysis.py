@@ -27,7 +27,7 @@ from .model import WORLD, Mechanism
 from .result import LimbSystem, Margin, Result, ScrewAxis, pattern_of
 from .screw_systems import Margin as MarginCollector
 from .screw_systems import SystemValue, evaluate
-from .screws import adjoint, span_and_reciprocal
+from .screws import span_and_reciprocal
 from .tolerance import DEFAULT_TOLERANCE, Tolerance
 from .topology import Parallel, Topology, decompose, describe, joints_of
 
@@ -117,7 +117,7 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
         structure=describe(topology.root),
         margin=margin,
         warnings=tuple(warnings),
-        limbs=_limbs(mechanism, topology, root, screws),
+        limbs=_limbs(mechanism, topology, root, screws, tol),
         length_unit=mechanism.length_unit,
         length_scale=norm.length + float(np.linalg.norm(norm.centre)),
     )
@@ -138,18 +138,28 @@ def _world_form(form: CanonicalForm, norm: Normalisation, kinds: tuple[str, str]
     return free.reshape(-1, 3), axes, basis
 
 
-def _limbs(mechanism: Mechanism, topology: Topology, root: SystemValue, screws: JointScrews) -> tuple[LimbSystem, ...]:
-    """Twist and wrench systems of each branch of a top-level parallel connection, in its own frame."""
+def _limbs(mechanism: Mechanism, topology: Topology, root: SystemValue, screws: JointScrews, tol: Tolerance) -> tuple[LimbSystem, ...]:
+    """Twist and wrench systems of each branch of a top-level parallel connection, in its own frame.
+
+    The normalised coordinates of a frame at ``(R, t)`` differ from the global
+    ones by the rotation ``diag(R.T, R.T)`` only (the centre moves with the
+    frame), so the canonical form is computed there directly.
+    """
     if not isinstance(topology.root, Parallel):
         return ()
-    to_world = screws.normalisation.matrix_to_world()
+    norm = screws.normalisation
     out = []
     for node, value in zip(topology.root.children, root.children):  # a parallel node keeps every child's value
         frames = {mechanism.joints[i].frame for i in joints_of(node)}
         frame = frames.pop() if len(frames) == 1 else WORLD
-        tf = mechanism.frame_transform(frame).inverse()
-        to_local = adjoint(tf.rotation, tf.translation) @ to_world
-        tw = (to_local @ value.basis).T
-        wr = (to_local @ value.wrenches).T
-        out.append(LimbSystem(describe(node), frame, value.dim, value.idle, tw, wr))
+        tf = mechanism.frame_transform(frame)
+        rt = tf.rotation.T
+        local = Normalisation(rt @ (norm.centre - tf.translation), norm.length)
+        rot6 = np.kron(np.eye(2), rt)
+        reference = rt @ screws.reference
+        tform = canonical_form(rot6 @ value.basis, reference, tol)
+        wform = canonical_form(rot6 @ value.wrenches, reference, tol)
+        translations, rotations, twists = _world_form(tform, local, ("rotation", "helical"), tol)
+        couples, forces, wrenches = _world_form(wform, local, ("force", "wrench"), tol)
+        out.append(LimbSystem(describe(node), frame, value.dim, value.idle, translations, rotations, twists, couples, forces, wrenches))
     return tuple(out)

@@ -84,11 +84,13 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
     )
     out += [f"  warning: {w}" for w in result.warnings]
     if limbs and result.limbs:
-        out.append("  limbs (screws [w; v] / [f; m] in each limb's frame):")
+        out.append("  limbs (each in its own frame):")
         for i, limb in enumerate(result.limbs):
-            out.append(f"    limb {i + 1}: {limb.structure}  frame {limb.frame}  DOF {limb.dof}  idle {limb.idle_dof}")
-            out += [f"      twist   {fmt_vector(t, s)}" for t in limb.twists]
-            out += [f"      wrench  {fmt_vector(w, s)}" for w in limb.wrenches]
+            out.append(f"    limb {i + 1}: {limb.structure}   frame: {limb.frame}   DOF {limb.dof}   idle {limb.idle_dof}")
+            out += [f"      translation {fmt_vector(t)}" for t in limb.translations]
+            out += [f"      {a.kind} about {fmt_vector(a.axis)} through {fmt_vector(a.point, s)}" + ("" if a.pitch == 0 else f" pitch {fmt_number(a.pitch, s)}") for a in limb.rotations]
+            out += [f"      constraint couple about {fmt_vector(c)}" for c in limb.couples]
+            out += [f"      constraint {f.kind} along {fmt_vector(f.axis)} through {fmt_vector(f.point, s)}" + ("" if f.pitch == 0 else f" pitch {fmt_number(f.pitch, s)}") for f in limb.forces]
     return "\n".join(out)
 
 

@@ -93,15 +93,19 @@ class Margin:
 class LimbSystem:
     """Twist and constraint systems of one limb (a branch of the top parallel connection).
 
-    Screws are rows, written in ``frame`` (the frame all the limb's joints are
-    written in, else ``world``).
+    Everything is written in ``frame`` (the frame all the limb's joints are
+    written in, else ``world``), in the same canonical form as :class:`Result`.
     """
 
     structure: str
     frame: str
     dof: int
     idle_dof: int
+    translations: np.ndarray
+    rotations: tuple[ScrewAxis, ...]
     twists: np.ndarray
+    couples: np.ndarray
+    forces: tuple[ScrewAxis, ...]
     wrenches: np.ndarray
 
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
@@ -111,7 +115,10 @@ class LimbSystem:
             "frame": self.frame,
             "dof": self.dof,
             "idle_dof": self.idle_dof,
+            "translations": [_clean(t) for t in self.translations],
+            "rotations": [r.to_dict(scale) for r in self.rotations],
             "twists": [_clean(t, scale) for t in self.twists],
+            "constraints": {"couples": [_clean(c) for c in self.couples], "forces": [f.to_dict(scale) for f in self.forces]},
             "wrenches": [_clean(w, scale) for w in self.wrenches],
         }
 
