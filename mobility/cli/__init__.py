@@ -1,8 +1,9 @@
 """The ``mobility`` command line.
 
-Each subcommand lives in its own module of this package with a
-``register(subparsers)`` function that adds its parser and sets ``run``:
-a function ``run(args) -> int`` (the exit status).  The command line only
+Each subcommand lives in its own module of this package, found automatically:
+a module with a ``register(subparsers)`` function that adds its parser and
+sets ``run`` (a function ``run(args) -> int`` returning the exit status), and
+an ``ORDER`` number placing it in ``mobility --help``.  The command line only
 parses arguments and formats results.
 
 Exit status: 0 success, 1 a check failed, 2 bad input (one line naming file,
@@ -13,16 +14,20 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import pkgutil
 import sys
 import traceback
 from typing import Sequence
 
 from ..errors import MobilityError
 
-__all__ = ["main", "build_parser", "COMMANDS"]
+__all__ = ["main", "build_parser", "command_modules"]
 
-COMMANDS: tuple[str, ...] = ("analyze",)
-"""Subcommand modules, in the order ``mobility --help`` lists them."""
+
+def command_modules() -> list:
+    """The subcommand modules of this package, in ``ORDER``."""
+    mods = [importlib.import_module(f"{__name__}.{info.name}") for info in pkgutil.iter_modules(__path__) if not info.name.startswith("_")]
+    return sorted((m for m in mods if hasattr(m, "register")), key=lambda m: (getattr(m, "ORDER", 100), m.__name__))
 
 
 class _Parser(argparse.ArgumentParser):
@@ -40,8 +45,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--debug", action="store_true", help="show a traceback on internal errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
-    for name in COMMANDS:
-        importlib.import_module(f"{__name__}.{name.replace('-', '_')}").register(sub)
+    for module in command_modules():
+        module.register(sub)
     return parser
 
 

@@ -10,6 +10,8 @@ from ..loader import load
 from ..report import json_report, text_report
 from ..tolerance import Tolerance
 
+ORDER = 10
+
 FORMATS = {"text": lambda r, a: text_report(r, limbs=a.limbs), "json": lambda r, a: json_report(r)}
 """Output formats: name -> function(result, args) -> str (other modules may add)."""
 
