@@ -8,11 +8,16 @@ import sys
 from ..analysis import analyze
 from ..loader import load
 from ..report import json_report, text_report
+from ..report_markdown import markdown_report
 from ..tolerance import Tolerance
 
 ORDER = 10
 
-FORMATS = {"text": lambda r, a: text_report(r, limbs=a.limbs), "json": lambda r, a: json_report(r)}
+FORMATS = {
+    "text": lambda r, a: text_report(r, limbs=a.limbs),
+    "json": lambda r, a: json_report(r),
+    "md": lambda r, a: markdown_report(r),
+}
 """Output formats: name -> function(result, args) -> str (other modules may add)."""
 
 
