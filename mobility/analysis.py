@@ -27,7 +27,7 @@ from .model import WORLD, Mechanism
 from .result import LimbSystem, Margin, Result, ScrewAxis, pattern_of
 from .screw_systems import Margin as MarginCollector
 from .screw_systems import SystemValue, evaluate
-from .screws import span_and_reciprocal
+from .screws import free_vector_subspace, span_and_reciprocal
 from .tolerance import DEFAULT_TOLERANCE, Tolerance
 from .topology import Parallel, Topology, decompose, describe, joints_of
 
@@ -60,6 +60,8 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
     -------
     Result
         Frozen; screws in the global frame and the mechanism's length unit.
+        The counts are computed here; directions, limb systems and common
+        constraints on first access.
     """
     topology = decompose(mechanism)
     screws = joint_screws(mechanism)
@@ -67,17 +69,9 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
     root = evaluate(topology.root, screws, tol, collector)
     detached = sum(evaluate(node, screws, tol, collector).mobility for node in topology.detached)
     mobility = root.mobility + detached
-    everything = span_and_reciprocal(screws.twists, tol)
+    rotational = free_vector_subspace(root.basis, tol, coefficients=False)
+    collector.add(rotational)
     gk = gruebler_kutzbach(mechanism)
-    norm = screws.normalisation
-
-    twist_form = canonical_form(root.basis, screws.reference, tol)
-    wrench_form = canonical_form(root.wrenches, screws.reference, tol)
-    collector.add(twist_form.decision)
-    collector.add(wrench_form.decision)
-    translations, rotations, twists = _world_form(twist_form, norm, ("rotation", "helical"), tol)
-    couples, forces, wrenches = _world_form(wrench_form, norm, ("force", "wrench"), tol)
-
     margin = Margin(
         collector.smallest_kept,
         collector.largest_dropped,
@@ -95,16 +89,11 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
             f"inexact geometry: a direction counted as blocked has relative singular value {margin.largest_dropped:.2e} "
             f"(above round-off, below the rank threshold {tol.rank:.0e}); check that the special geometry is exact"
         )
+    norm = screws.normalisation
     return Result(
         name=mechanism.name,
         dof=root.dim,
-        pattern=pattern_of(translations.shape[0], len(rotations)),
-        translations=translations,
-        rotations=rotations,
-        twists=twists,
-        wrenches=wrenches,
-        couples=couples,
-        forces=forces,
+        pattern=pattern_of(root.dim - rotational.rank, rotational.rank),
         mobility=mobility,
         gruebler_kutzbach=gk,
         redundant_constraints=mobility - gk,
@@ -113,18 +102,65 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
         links=topology.link_count,
         joints=len(mechanism.joints),
         joint_freedoms=mechanism.freedom_count,
-        common_constraints=6 - everything.dim,
-        structure=describe(topology.root),
+        structure=topology.structure,
         margin=margin,
         warnings=tuple(warnings),
-        limbs=_limbs(mechanism, topology, root, screws, tol),
         length_unit=mechanism.length_unit,
-        length_scale=norm.length + float(np.linalg.norm(norm.centre)),
+        length_scale=norm.size,
+        detail=_Detail(mechanism, topology, screws, root, tol),
     )
 
 
+class _Detail:
+    """The lazily computed parts of a result: canonical forms, limbs, common constraints."""
+
+    def __init__(self, mechanism: Mechanism, topology: Topology, screws: JointScrews, root: SystemValue, tol: Tolerance) -> None:
+        self.mechanism = mechanism
+        self.topology = topology
+        self.screws = screws
+        self.root = root
+        self.tol = tol
+
+    def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+        form = canonical_form(self.root.basis, self.screws.reference, self.tol)
+        return _world_form(form, self.screws.normalisation, ("rotation", "helical"), self.tol)
+
+    def wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+        form = canonical_form(self.root.wrenches, self.screws.reference, self.tol)
+        return _world_form(form, self.screws.normalisation, ("force", "wrench"), self.tol)
+
+    def common_constraints(self) -> int:
+        return 6 - span_and_reciprocal(self.screws.twists, self.tol).dim
+
+    def limbs(self) -> tuple[LimbSystem, ...]:
+        """Each branch of a top-level parallel connection, in its own frame.
+
+        The normalised coordinates of a frame at ``(R, t)`` differ from the
+        global ones by the rotation ``diag(R.T, R.T)`` only (the centre moves
+        with the frame), so the canonical form is computed there directly.
+        """
+        if not isinstance(self.topology.root, Parallel):
+            return ()
+        norm, tol = self.screws.normalisation, self.tol
+        out = []
+        for node, value in zip(self.topology.root.children, self.root.children):  # a parallel node keeps every child's value
+            frames = {self.mechanism.joints[i].frame for i in joints_of(node)}
+            frame = frames.pop() if len(frames) == 1 else WORLD
+            tf = self.mechanism.frame_transform(frame)
+            rt = tf.rotation.T
+            local = Normalisation(rt @ (norm.centre - tf.translation), norm.length)
+            rot6 = np.kron(np.eye(2), rt)
+            reference = rt @ self.screws.reference
+            tform = canonical_form(rot6 @ value.basis, reference, tol)
+            wform = canonical_form(rot6 @ value.wrenches, reference, tol)
+            translations, rotations, twists = _world_form(tform, local, ("rotation", "helical"), tol)
+            couples, forces, wrenches = _world_form(wform, local, ("force", "wrench"), tol)
+            out.append(LimbSystem(describe(node), frame, value.dim, value.idle, translations, rotations, twists, couples, forces, wrenches))
+        return tuple(out)
+
+
 def _world_form(form: CanonicalForm, norm: Normalisation, kinds: tuple[str, str], tol: Tolerance) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
-    """Free vectors, screw axes and basis rows of a canonical form, in global coordinates."""
+    """Free vectors, screw axes and basis rows of a canonical form, in the coordinates of ``norm``."""
     free = form.free.T.copy()
     axes = tuple(
         ScrewAxis(p.axis, norm.point_to_world(p.point), 0.0 if abs(p.pitch) <= tol.rank else p.pitch * norm.length, kinds[abs(p.pitch) > tol.rank])
@@ -136,30 +172,3 @@ def _world_form(form: CanonicalForm, norm: Normalisation, kinds: tuple[str, str]
     for arr in (free, basis):
         arr.setflags(write=False)
     return free.reshape(-1, 3), axes, basis
-
-
-def _limbs(mechanism: Mechanism, topology: Topology, root: SystemValue, screws: JointScrews, tol: Tolerance) -> tuple[LimbSystem, ...]:
-    """Twist and wrench systems of each branch of a top-level parallel connection, in its own frame.
-
-    The normalised coordinates of a frame at ``(R, t)`` differ from the global
-    ones by the rotation ``diag(R.T, R.T)`` only (the centre moves with the
-    frame), so the canonical form is computed there directly.
-    """
-    if not isinstance(topology.root, Parallel):
-        return ()
-    norm = screws.normalisation
-    out = []
-    for node, value in zip(topology.root.children, root.children):  # a parallel node keeps every child's value
-        frames = {mechanism.joints[i].frame for i in joints_of(node)}
-        frame = frames.pop() if len(frames) == 1 else WORLD
-        tf = mechanism.frame_transform(frame)
-        rt = tf.rotation.T
-        local = Normalisation(rt @ (norm.centre - tf.translation), norm.length)
-        rot6 = np.kron(np.eye(2), rt)
-        reference = rt @ screws.reference
-        tform = canonical_form(rot6 @ value.basis, reference, tol)
-        wform = canonical_form(rot6 @ value.wrenches, reference, tol)
-        translations, rotations, twists = _world_form(tform, local, ("rotation", "helical"), tol)
-        couples, forces, wrenches = _world_form(wform, local, ("force", "wrench"), tol)
-        out.append(LimbSystem(describe(node), frame, value.dim, value.idle, translations, rotations, twists, couples, forces, wrenches))
-    return tuple(out)

@@ -49,6 +49,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .linalg import svd
 from .screws import free_vector_subspace
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance
 
@@ -151,12 +152,12 @@ def canonical_form(basis: np.ndarray, reference: np.ndarray, tol: Tolerance = DE
     bv = screws[3:] - np.cross(reference, bw, axis=0)
     if free.shape[1]:
         bv = bv - free @ (free.T @ bv)
-    u, s, vt = np.linalg.svd(bw, full_matrices=False)
+    u, s, vt = svd(bw)
     qw = u[:, :r]
     a = (bv @ vt.T[:, :r]) / s[:r]  # v = a @ (qw.T w) for w in span(qw)
     if free.shape[1]:
         # Directions orthogonal to every free vector: null space of free.T @ qw.
-        _, gs, gvt = np.linalg.svd(free.T @ qw, full_matrices=True)
+        _, gs, gvt = svd(free.T @ qw)
         k = int(np.count_nonzero(gs > tol.rank))
         perp, rest = gvt[k:].T, gvt[:k].T
     else:

@@ -41,6 +41,11 @@ class Normalisation:
     centre: np.ndarray
     length: float
 
+    @property
+    def size(self) -> float:
+        """A length for rounding output: ``length + |centre|``."""
+        return self.length + float(np.sqrt(self.centre @ self.centre))
+
     def to_world(self, screws: np.ndarray) -> np.ndarray:
         """Map screws (columns) from normalised to global coordinates."""
         s = np.asarray(screws, dtype=float).reshape(6, -1)
@@ -89,16 +94,19 @@ class JointScrews:
         Reference point in normalised coordinates: the centroid of the points
         of the joints on the end effector (the mechanism's centre if none).
         Canonical axes are given through the point nearest to it.
+    columns : tuple of ndarray
+        ``columns[j]`` is the view of ``twists`` holding joint ``j``'s columns.
     """
 
     twists: np.ndarray
     offsets: np.ndarray
     normalisation: Normalisation
     reference: np.ndarray
+    columns: tuple[np.ndarray, ...]
 
     def of_joint(self, index: int) -> np.ndarray:
         """Twist columns of joint ``index``."""
-        return self.twists[:, self.offsets[index] : self.offsets[index + 1]]
+        return self.columns[index]
 
 
 _caches: dict[int, dict[str, Any]] = {}
@@ -150,4 +158,5 @@ def _build(mechanism: Mechanism) -> JointScrews:
     tw = tw / np.linalg.norm(tw, axis=0)
     reference = norm.point_from_world(np.mean(ee_points, axis=0)) if ee_points else np.zeros(3)
     tw.setflags(write=False)
-    return JointScrews(tw, np.array(offsets), norm, reference)
+    columns = tuple(tw[:, offsets[j] : offsets[j + 1]] for j in range(len(offsets) - 1))
+    return JointScrews(tw, np.array(offsets), norm, reference, columns)

@@ -33,6 +33,7 @@ import networkx as nx
 import numpy as np
 
 from .joint_screws import joint_screws
+from .linalg import svd
 from .model import Mechanism
 from .screws import span_and_reciprocal
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
@@ -105,7 +106,7 @@ def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE) -> Lo
         rows.append(k)
     jacobian = np.vstack(rows) if rows else np.zeros((0, n))
     if rows:
-        _, s, vt = np.linalg.svd(jacobian, full_matrices=True)
+        _, s, vt = svd(jacobian)
         decision = decide_rank(s, tol)
         rates = vt[decision.rank :].T
     else:

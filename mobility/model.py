@@ -439,7 +439,7 @@ class Mechanism:
         """Link names, in order of first appearance."""
         return tuple(dict.fromkeys(name for j in self.joints for name in j.links))
 
-    @property
+    @cached_property
     def freedom_count(self) -> int:
         """Sum of the joints' DOF."""
         return sum(j.dof for j in self.joints)

@@ -9,11 +9,12 @@ the whole-mechanism numbers).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from functools import cached_property
+from typing import Any, Protocol
 
 import numpy as np
 
-__all__ = ["ScrewAxis", "Margin", "LimbSystem", "Result", "pattern_of"]
+__all__ = ["ScrewAxis", "Margin", "LimbSystem", "Result", "ResultDetail", "pattern_of"]
 
 
 def pattern_of(translations: int, rotations: int) -> str:
@@ -123,9 +124,25 @@ class LimbSystem:
         }
 
 
+class ResultDetail(Protocol):
+    """What a :class:`Result` computes its lazy parts from (provided by the analysis)."""
+
+    def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]: ...
+
+    def wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]: ...
+
+    def limbs(self) -> tuple[LimbSystem, ...]: ...
+
+    def common_constraints(self) -> int: ...
+
+
 @dataclass(frozen=True, eq=False)
 class Result:
     """What :func:`mobility.analyze` finds.
+
+    The counts are computed by the analysis; the directions (canonical forms),
+    limb systems and common constraints are computed on first access and then
+    kept (the result never changes).
 
     Attributes
     ----------
@@ -134,19 +151,6 @@ class Result:
         End-effector DOF at this pose.
     pattern : str
         ``{nT}T{nR}R``, e.g. ``"1T2R"``.
-    translations : ndarray, shape (nT, 3)
-        Orthonormal basis of the pure-translation subspace.
-    rotations : tuple of ScrewAxis
-        One per rotational DOF: principal screws (see :mod:`mobility.canonical`);
-        ``kind`` is ``"rotation"`` (pitch 0) or ``"helical"``.
-    twists : ndarray, shape (dof, 6)
-        Basis of the end-effector twist system (translations then rotations).
-    wrenches : ndarray, shape (6 - dof, 6)
-        Basis of the constraint wrench system on the end effector (couples then forces).
-    couples : ndarray, shape (k, 3)
-        Orthonormal basis of the pure couples among the constraint wrenches.
-    forces : tuple of ScrewAxis
-        Principal constraint wrenches; ``kind`` ``"force"`` (pitch 0) or ``"wrench"``.
     mobility : int
         DOF of the whole mechanism (idle motions included).
     gruebler_kutzbach : int
@@ -159,27 +163,35 @@ class Result:
         Independent loops ``j - n + 1``.
     links, joints, joint_freedoms : int
         Counts of the joint graph.
-    common_constraints : int
-        Wrenches reciprocal to every joint twist (3 for a planar mechanism).
     structure : str
         The series/parallel decomposition.
     margin : Margin
     warnings : tuple of str
-    limbs : tuple of LimbSystem
     length_unit : str
     length_scale : float
-        Characteristic length of the mechanism (for rounding output).
+        Characteristic size of the mechanism (for rounding output).
+    translations : ndarray, shape (nT, 3)
+        Orthonormal basis of the pure-translation subspace.
+    rotations : tuple of ScrewAxis
+        One per rotational DOF (see :mod:`mobility.canonical`); ``kind`` is
+        ``"rotation"`` (pitch 0) or ``"helical"``.
+    twists : ndarray, shape (dof, 6)
+        Basis of the end-effector twist system (translations then rotations).
+    wrenches : ndarray, shape (6 - dof, 6)
+        Basis of the constraint wrench system on the end effector (couples then forces).
+    couples : ndarray, shape (k, 3)
+        Orthonormal basis of the pure couples among the constraint wrenches.
+    forces : tuple of ScrewAxis
+        The other constraint wrenches; ``kind`` ``"force"`` (pitch 0) or ``"wrench"``.
+    limbs : tuple of LimbSystem
+        Each branch of a top-level parallel connection, in its own frame.
+    common_constraints : int
+        Wrenches reciprocal to every joint twist (3 for a planar mechanism).
     """
 
     name: str
     dof: int
     pattern: str
-    translations: np.ndarray
-    rotations: tuple[ScrewAxis, ...]
-    twists: np.ndarray
-    wrenches: np.ndarray
-    couples: np.ndarray
-    forces: tuple[ScrewAxis, ...]
     mobility: int
     gruebler_kutzbach: int
     redundant_constraints: int
@@ -188,19 +200,65 @@ class Result:
     links: int
     joints: int
     joint_freedoms: int
-    common_constraints: int
     structure: str
     margin: Margin
-    warnings: tuple[str, ...] = ()
-    limbs: tuple[LimbSystem, ...] = ()
-    length_unit: str = ""
-    length_scale: float = 1.0
-    extra: dict[str, Any] = field(default_factory=dict)
+    warnings: tuple[str, ...]
+    length_unit: str
+    length_scale: float
+    detail: ResultDetail = field(repr=False)
+
+    @cached_property
+    def _twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+        return self.detail.twist_form()
+
+    @cached_property
+    def _wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+        return self.detail.wrench_form()
+
+    @property
+    def translations(self) -> np.ndarray:
+        """Orthonormal basis (rows) of the pure-translation subspace."""
+        return self._twist_form[0]
+
+    @property
+    def rotations(self) -> tuple[ScrewAxis, ...]:
+        """One screw axis per rotational DOF."""
+        return self._twist_form[1]
+
+    @property
+    def twists(self) -> np.ndarray:
+        """Basis (rows ``[w; v]``) of the end-effector twist system."""
+        return self._twist_form[2]
+
+    @property
+    def couples(self) -> np.ndarray:
+        """Orthonormal basis (rows) of the pure constraint couples."""
+        return self._wrench_form[0]
+
+    @property
+    def forces(self) -> tuple[ScrewAxis, ...]:
+        """The constraint wrenches that are not pure couples, as axes."""
+        return self._wrench_form[1]
+
+    @property
+    def wrenches(self) -> np.ndarray:
+        """Basis (rows ``[f; m]``) of the constraint wrench system."""
+        return self._wrench_form[2]
+
+    @cached_property
+    def limbs(self) -> tuple[LimbSystem, ...]:
+        """Twist and constraint systems of each limb, in its own frame."""
+        return self.detail.limbs()
+
+    @cached_property
+    def common_constraints(self) -> int:
+        """Number of independent wrenches reciprocal to every joint twist."""
+        return self.detail.common_constraints()
 
     @property
     def translation_count(self) -> int:
         """Number of independent pure translations (nT)."""
-        return self.translations.shape[0]
+        return int(self.pattern.split("T")[0]) if "T" in self.pattern else 0
 
     @property
     def gruebler_kutzbach_explanation(self) -> str:
@@ -253,5 +311,4 @@ class Result:
             "warnings": list(self.warnings),
             "limbs": [limb.to_dict(s) for limb in self.limbs],
             "length_unit": self.length_unit,
-            **self.extra,
         }

@@ -34,11 +34,13 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from .joint_screws import JointScrews
-from .screws import span_and_reciprocal
+from .linalg import svd
+from .screws import SWAP_ROWS
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
 from .topology import Bridge, JointNode, Node, Parallel, Series
 
@@ -60,8 +62,7 @@ class Margin:
             self.largest_dropped = d.largest_dropped
 
 
-@dataclass(frozen=True)
-class SystemValue:
+class SystemValue(NamedTuple):
     """Twist system of a node, in normalised coordinates.
 
     Attributes
@@ -73,7 +74,7 @@ class SystemValue:
     idle : int
         Motions inside the node that leave its two end links still.
     children : tuple of SystemValue
-        Values of the children (for limb reports).
+        Values of the composite children (every child for a parallel node).
     """
 
     basis: np.ndarray
@@ -89,7 +90,15 @@ class SystemValue:
     @property
     def mobility(self) -> int:
         """Mobility of the network with one end link fixed."""
-        return self.dim + self.idle
+        return self.basis.shape[1] + self.idle
+
+
+def _span(m: np.ndarray, tol: Tolerance, margin: Margin) -> tuple[np.ndarray, np.ndarray]:
+    """Orthonormal basis of the column span of ``m`` and its reciprocal system (one SVD)."""
+    u, s, _ = svd(m)
+    d = decide_rank(s, tol)
+    margin.add(d)
+    return u[:, : d.rank], u[SWAP_ROWS, d.rank :]
 
 
 def evaluate(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLERANCE, margin: Margin | None = None) -> SystemValue:
@@ -106,30 +115,29 @@ def evaluate(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLERANCE
     margin : Margin, optional
         Collects the margins of every rank decision made.
     """
-    margin = margin if margin is not None else Margin()
+    if margin is None:
+        margin = Margin()
     if isinstance(node, JointNode):
-        sp = span_and_reciprocal(screws.of_joint(node.index), tol)
-        margin.add(sp.decision)
-        return SystemValue(sp.basis, sp.reciprocal, 0)
+        basis, wrenches = _span(screws.of_joint(node.index), tol, margin)
+        return SystemValue(basis, wrenches, 0)
     if isinstance(node, Series):
         columns, idle, values = [], 0, []
+        joint_columns = screws.columns
         for child in node.children:
-            if isinstance(child, JointNode):
-                columns.append(screws.of_joint(child.index))
+            if type(child) is JointNode:
+                columns.append(joint_columns[child.index])
             else:
                 v = evaluate(child, screws, tol, margin)
                 values.append(v)
                 columns.append(v.basis)
                 idle += v.idle
-        stacked = np.hstack(columns)
-        sp = span_and_reciprocal(stacked, tol)
-        margin.add(sp.decision)
-        return SystemValue(sp.basis, sp.reciprocal, idle + stacked.shape[1] - sp.dim, tuple(values))
+        stacked = np.concatenate(columns, axis=1)
+        basis, wrenches = _span(stacked, tol, margin)
+        return SystemValue(basis, wrenches, idle + stacked.shape[1] - basis.shape[1], tuple(values))
     if isinstance(node, Parallel):
         values = [evaluate(child, screws, tol, margin) for child in node.children]
-        wr = span_and_reciprocal(np.hstack([v.wrenches for v in values]), tol)
-        margin.add(wr.decision)
-        return SystemValue(wr.reciprocal, wr.basis, sum(v.idle for v in values), tuple(values))
+        wrenches, basis = _span(np.concatenate([v.wrenches for v in values], axis=1), tol, margin)
+        return SystemValue(basis, wrenches, sum(v.idle for v in values), tuple(values))
     return _bridge(node, screws, tol, margin)
 
 
@@ -159,13 +167,12 @@ def _bridge(node: Bridge, screws: JointScrews, tol: Tolerance, margin: Margin) -
             a[r, col_of[u] : col_of[u] + 6] -= np.eye(6)
         a[r, c : c + b.shape[1]] = -b
         c += b.shape[1]
-    _, s, vt = np.linalg.svd(a, full_matrices=True)
+    _, s, vt = svd(a)
     d = decide_rank(s, tol)
     margin.add(d)
     solutions = vt[d.rank :].T
     target = solutions[col_of[node.target] : col_of[node.target] + 6]
-    sp = span_and_reciprocal(target, tol)
-    margin.add(sp.decision)
-    idle = sum(v.idle for v in values if v is not None) + solutions.shape[1] - sp.dim
-    return SystemValue(sp.basis, sp.reciprocal, idle, tuple(v for v in values if v is not None))
+    basis, wrenches = _span(target, tol, margin)
+    idle = sum(v.idle for v in values if v is not None) + solutions.shape[1] - basis.shape[1]
+    return SystemValue(basis, wrenches, idle, tuple(v for v in values if v is not None))
 

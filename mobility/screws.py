@@ -34,11 +34,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .linalg import singular_values, svd
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
 from .transforms import skew
 
 __all__ = [
     "SWAP",
+    "SWAP_ROWS",
     "revolute_twist",
     "prismatic_twist",
     "helical_twist",
@@ -54,6 +56,9 @@ __all__ = [
 
 SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
 """The 6x6 matrix of the reciprocal product: ``a o b = a @ SWAP @ b``."""
+
+SWAP_ROWS = np.array([3, 4, 5, 0, 1, 2])
+"""Row order with ``SWAP @ x == x[SWAP_ROWS]`` (cheaper than the product)."""
 
 
 def revolute_twist(axis: np.ndarray, point: np.ndarray) -> np.ndarray:
@@ -145,12 +150,12 @@ def span_and_reciprocal(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) 
     -------
     ScrewSpan
     """
-    m = np.asarray(screws, dtype=float).reshape(6, -1)
+    m = screws if isinstance(screws, np.ndarray) and screws.ndim == 2 else np.asarray(screws, dtype=float).reshape(6, -1)
     if m.shape[1] == 0:
         return ScrewSpan(np.zeros((6, 0)), np.eye(6), RankDecision(0))
-    u, s, _ = np.linalg.svd(m, full_matrices=True)
+    u, s, _ = svd(m)
     d = decide_rank(s, tol)
-    return ScrewSpan(u[:, : d.rank], SWAP @ u[:, d.rank :], d)
+    return ScrewSpan(u[:, : d.rank], u[SWAP_ROWS, d.rank :], d)
 
 
 def reciprocal_system(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
@@ -192,12 +197,12 @@ def same_subspace(a: np.ndarray, b: np.ndarray, tol: Tolerance = DEFAULT_TOLERAN
         return False
 
     def rank(m: np.ndarray) -> int:
-        return decide_rank(np.linalg.svd(m, compute_uv=False), tol).rank if m.size else 0
+        return decide_rank(singular_values(m), tol).rank
 
     return rank(a) == rank(b) == rank(np.hstack([a, b]))
 
 
-def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[np.ndarray, np.ndarray, RankDecision]:
+def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, *, coefficients: bool = True):
     """Split an orthonormal screw basis into its free-vector part and the rest.
 
     For a twist system the free vectors are the pure translations ``[0; v]``;
@@ -207,6 +212,8 @@ def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) 
     ----------
     basis : ndarray, shape (6, d)
         Orthonormal basis of the system.
+    coefficients : bool
+        When false, only the rank decision is computed and returned.
 
     Returns
     -------
@@ -216,21 +223,39 @@ def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) 
         Coefficients (orthonormal columns) of a complement of the free part:
         ``basis @ coefficients`` are screws with independent directions.
     decision : RankDecision
-        Rank decision on the direction part (its margin tells how close a
-        screw is to becoming a free vector).
+        Rank decision on the direction part: its rank is ``d - k`` and its
+        margin tells how close a screw is to becoming a free vector.  The
+        basis is orthonormal, so singular values are at most 1 and the
+        threshold is absolute.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> cyl = np.stack([revolute_twist([0, 0, 1], [1, 0, 0]), prismatic_twist([0, 0, 1])], axis=1)
+    >>> free_vector_subspace(span_and_reciprocal(cyl).basis, coefficients=False).rank
+    1
     """
     d = basis.shape[1]
+    if not coefficients:
+        if d == 0:
+            return RankDecision(0)
+        return _direction_rank(singular_values(basis[:3]), tol)
     if d == 0:
         return np.zeros((3, 0)), np.zeros((0, 0)), RankDecision(0)
-    _, s, vt = np.linalg.svd(basis[:3], full_matrices=True)
-    # Orthonormal basis: singular values are at most 1, so the threshold is absolute.
-    dec = decide_rank(np.concatenate([[1.0], s]) if s.size else np.array([1.0]), tol)
-    r = dec.rank - 1
-    decision = RankDecision(r, dec.smallest_kept if r else 1.0, dec.largest_dropped)
+    _, s, vt = svd(basis[:3])
+    decision = _direction_rank(s, tol)
+    r = decision.rank
     null = vt[r:].T  # coefficients of the pure free vectors
     if null.shape[1]:
-        fu, fs, _ = np.linalg.svd(basis[3:] @ null, full_matrices=False)
+        fu, _, _ = svd(basis[3:] @ null)
         free = fu[:, : null.shape[1]]
     else:
         free = np.zeros((3, 0))
     return free, vt[:r].T, decision
+
+
+def _direction_rank(s: np.ndarray, tol: Tolerance) -> RankDecision:
+    """Rank decision on the singular values of the direction part of an orthonormal basis."""
+    dec = decide_rank(np.concatenate([[1.0], s]), tol)  # 1.0 pins the scale: the threshold is absolute
+    r = dec.rank - 1
+    return RankDecision(r, dec.smallest_kept if r else 1.0, dec.largest_dropped)

@@ -103,14 +103,16 @@ def decide_rank(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE)
     -------
     RankDecision
     """
-    s = np.asarray(singular_values, dtype=float)
-    if s.size == 0:
+    s = singular_values.tolist() if isinstance(singular_values, np.ndarray) else list(singular_values)
+    if not s:
         return RankDecision(0)
-    top = float(s[0])
-    scale = max(top, 1.0)
-    rank = int(np.count_nonzero(s > tol.rank * scale))
-    kept = float(s[rank - 1]) / scale if rank else 1.0
-    dropped = float(s[rank]) / scale if rank < s.size else 0.0
+    scale = s[0] if s[0] > 1.0 else 1.0
+    threshold = tol.rank * scale
+    rank = 0
+    while rank < len(s) and s[rank] > threshold:  # decreasing order
+        rank += 1
+    kept = s[rank - 1] / scale if rank else 1.0
+    dropped = s[rank] / scale if rank < len(s) else 0.0
     return RankDecision(rank, kept, dropped)
 
 

@@ -97,12 +97,15 @@ class Topology:
         Number of links, ground included.
     loop_count : int
         Number of independent loops, ``joints - links + 1``.
+    structure : str
+        :func:`describe` of the root.
     """
 
     root: Node
     detached: tuple[Node, ...]
     link_count: int
     loop_count: int
+    structure: str
 
 
 def describe(node: Node) -> str:
@@ -155,7 +158,7 @@ def _decompose(signature: tuple[tuple[str, tuple[str, str]], ...], ground: str, 
             a, b = block_edges[0][0], block_edges[0][1]
             detached.append(_reduce(block_edges, a, b))
     assert root is not None
-    return Topology(root, tuple(detached), len(links), len(edges) - len(links) + 1)
+    return Topology(root, tuple(detached), len(links), len(edges) - len(links) + 1, describe(root))
 
 
 def _blocks(edges: list[tuple[str, str, JointNode]], s: str, t: str) -> list[tuple[list[tuple[str, str, JointNode]], bool]]:

@@ -1,0 +1,176 @@
+"""Mechanisms built in code for the tests, and a seeded random-mechanism generator."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mobility.model import Frame, Joint, Mechanism
+from mobility.transforms import Transform, rotation_from_axis_angle
+
+
+def unit(v) -> tuple[float, float, float]:
+    v = np.asarray(v, dtype=float)
+    return tuple(v / np.linalg.norm(v))
+
+
+def four_bar(points=((0, 0, 0), (1, 2, 0), (4, 2.5, 0), (5, 0, 0))) -> Mechanism:
+    """Planar four-bar (the spec's example by default)."""
+    a, b, c, d = points
+    z = (0, 0, 1)
+    return Mechanism(
+        "four-bar",
+        "ground",
+        "coupler",
+        (
+            Joint("A", "R", ("ground", "crank"), axis=z, point=a),
+            Joint("B", "R", ("crank", "coupler"), axis=z, point=b),
+            Joint("C", "R", ("coupler", "rocker"), axis=z, point=c),
+            Joint("D", "R", ("rocker", "ground"), axis=z, point=d),
+        ),
+    )
+
+
+def three_prs(heights=(0.5, 0.5, 0.5), rb=1.0, rp=0.5, leg=1.0) -> Mechanism:
+    """3-PRS: vertical sliders at radius rb, R axes tangent, S joints at radius rp.
+
+    With equal heights the platform is at its symmetric pose.  With unequal
+    heights the S centres are placed consistently with rigid legs: the S point
+    of leg i lies in the plane of its R joint (radial-vertical plane) at leg
+    length ``leg`` from the R axis; the platform is not required to be an
+    equilateral triangle here (a different, still valid 3-PRS).
+    """
+    joints = []
+    for i in range(3):
+        th = 2 * np.pi * i / 3
+        e = np.array([np.cos(th), np.sin(th), 0.0])
+        t = np.array([-np.sin(th), np.cos(th), 0.0])
+        r_point = rb * e + np.array([0, 0, heights[i]])
+        dz = np.sqrt(leg**2 - (rb - rp) ** 2)
+        s_point = rp * e + np.array([0, 0, heights[i] + dz])
+        joints += [
+            Joint(f"P{i + 1}", "P", ("base", f"slider{i + 1}"), axis=(0, 0, 1)),
+            Joint(f"R{i + 1}", "R", (f"slider{i + 1}", f"leg{i + 1}"), axis=tuple(t), point=tuple(r_point)),
+            Joint(f"S{i + 1}", "S", (f"leg{i + 1}", "platform"), point=tuple(s_point)),
+        ]
+    return Mechanism("3-PRS", "base", "platform", tuple(joints))
+
+
+def six_ups(rb=1.0, rp=0.6, h=1.2) -> Mechanism:
+    """Stewart platform with U-P-S legs, 6 DOF."""
+    joints = []
+    for k in range(6):
+        pair, side = divmod(k, 2)
+        ab = np.radians(120 * pair + (-15 if side == 0 else 15))
+        ap = np.radians(120 * pair + (-45 if side == 0 else 45))
+        b = np.array([rb * np.cos(ab), rb * np.sin(ab), 0.0])
+        p = np.array([rp * np.cos(ap), rp * np.sin(ap), h])
+        joints += [
+            Joint(f"U{k + 1}", "U", ("base", f"cyl{k + 1}"), point=tuple(b), axes=((1, 0, 0), (0, 1, 0))),
+            Joint(f"P{k + 1}", "P", (f"cyl{k + 1}", f"rod{k + 1}"), axis=tuple(p - b)),
+            Joint(f"S{k + 1}", "S", (f"rod{k + 1}", "platform"), point=tuple(p)),
+        ]
+    return Mechanism("6-UPS", "base", "platform", tuple(joints))
+
+
+def transformed(m: Mechanism, tf: Transform, scale: float = 1.0) -> Mechanism:
+    """``m`` with every joint moved rigidly by ``tf`` after scaling lengths by ``scale``."""
+    joints = []
+    for j in m.world_joints:
+        changes = {}
+        if j.point is not None:
+            changes["point"] = tuple(tf.apply_point(np.asarray(j.point) * scale))
+        if j.axis is not None:
+            changes["axis"] = tuple(tf.apply_vector(j.axis))
+        if j.normal is not None:
+            changes["normal"] = tuple(tf.apply_vector(j.normal))
+        if j.axes is not None:
+            changes["axes"] = tuple(tuple(tf.apply_vector(a)) for a in j.axes)
+        if j.pitch is not None:
+            changes["pitch"] = j.pitch * scale
+        joints.append(Joint(j.name, j.type, j.links, **{**_geometry(j), **changes}))
+    return m.replace(joints=tuple(joints), frames=())
+
+
+def _geometry(j: Joint) -> dict:
+    return {k: getattr(j, k) for k in ("axis", "point", "pitch", "axes", "normal") if getattr(j, k) is not None}
+
+
+def random_rotation(rng: np.random.Generator) -> np.ndarray:
+    axis = rng.normal(size=3)
+    return rotation_from_axis_angle(axis / np.linalg.norm(axis), rng.uniform(-np.pi, np.pi))
+
+
+def random_joint(rng: np.random.Generator, name: str, links: tuple[str, str], special: bool) -> Joint:
+    """A random joint; with ``special``, directions and points come from a small set (paradox-prone)."""
+    jtype = rng.choice(list("RRRPPHCUSE"))
+    if special:
+        axis = [(0, 0, 1), (1, 0, 0), (0, 1, 0)][rng.integers(3)]
+        point = tuple(float(x) for x in rng.integers(-2, 3, size=3))
+    else:
+        axis = unit(rng.normal(size=3))
+        point = tuple(rng.uniform(-2, 2, size=3))
+    if jtype in "R":
+        return Joint(name, "R", links, axis=axis, point=point)
+    if jtype == "P":
+        return Joint(name, "P", links, axis=axis)
+    if jtype == "H":
+        return Joint(name, "H", links, axis=axis, point=point, pitch=float(rng.uniform(-0.5, 0.5)))
+    if jtype == "C":
+        return Joint(name, "C", links, axis=axis, point=point)
+    if jtype == "U":
+        a2 = unit(np.cross(axis, rng.normal(size=3))) if not special else [(1, 0, 0), (0, 1, 0), (0, 0, 1)][(int(np.argmax(np.abs(axis))) + 1) % 3]
+        return Joint(name, "U", links, point=point, axes=(axis, a2))
+    if jtype == "S":
+        return Joint(name, "S", links, point=point)
+    return Joint(name, "E", links, normal=axis, point=point)
+
+
+def random_mechanism(seed: int, *, bridge: bool | None = None) -> Mechanism:
+    """A random mechanism: 1-4 limbs of 1-5 joints between ground and end effector.
+
+    Half the seeds use special geometry (axes along x, y, z, integer points),
+    which produces the parallel and intersecting axes of paradox mechanisms.
+    Some add a tie link between two limbs (a graph that is not series-parallel)
+    or a chain hanging off a limb.
+    """
+    rng = np.random.default_rng(seed)
+    special = bool(rng.integers(2))
+    joints: list[Joint] = []
+    limbs = int(rng.integers(1, 5))
+    inner: list[list[str]] = []
+    for k in range(limbs):
+        n = int(rng.integers(1, 6))
+        chain = ["ground"] + [f"l{k}_{i}" for i in range(n - 1)] + ["ee"]
+        inner.append(chain[1:-1])
+        for i in range(n):
+            joints.append(random_joint(rng, f"J{k}_{i}", (chain[i], chain[i + 1]), special))
+    with_bridge = bridge if bridge is not None else bool(rng.integers(3) == 0)
+    candidates = [limb for limb in inner if limb]
+    if with_bridge and len(candidates) >= 2:
+        a = candidates[0][int(rng.integers(len(candidates[0])))]
+        b = candidates[1][int(rng.integers(len(candidates[1])))]
+        joints.append(random_joint(rng, "T1", (a, "tie"), special))
+        joints.append(random_joint(rng, "T2", ("tie", b), special))
+    if rng.integers(4) == 0 and candidates:
+        a = candidates[0][0]
+        joints.append(random_joint(rng, "D1", (a, "dangling"), special))
+    order = rng.permutation(len(joints))
+    return Mechanism(f"random-{seed}", "ground", "ee", tuple(joints[i] for i in order))
+
+
+def with_frame_wrapper(m: Mechanism, tf: Transform) -> Mechanism:
+    """``m`` with every joint written in a frame placed at ``tf`` (same world geometry moved by tf)."""
+    frame = Frame("moved", tuple(tf.translation), tuple(map(tuple, tf.rotation)))
+    joints = tuple(Joint(j.name, j.type, j.links, frame="moved", **_geometry(j)) for j in m.world_joints)
+    return m.replace(joints=joints, frames=(frame,))
+
+
+def normalised(m: Mechanism, screws_rows: np.ndarray) -> np.ndarray:
+    """Screws given as rows in global coordinates, as columns in ``m``'s normalised coordinates.
+
+    Subspaces of screws must be compared there: in file units a screw system
+    mixes lengths and directions, and no tolerance fits every unit.
+    """
+    from mobility.joint_screws import joint_screws
+
+    return joint_screws(m).normalisation.from_world(np.asarray(screws_rows).T)

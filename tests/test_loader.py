@@ -1,0 +1,212 @@
+"""The loader: the whole v1 format, our extensions, and one clear line for every bad input."""
+
+import math
+import textwrap
+
+import numpy as np
+import pytest
+
+import mobility
+from mobility.errors import MechanismError, MechanismFileError
+from mobility.expressions import evaluate
+
+HEAD = """\
+name: test
+ground: g
+end_effector: e
+"""
+
+
+def load_text(write_yaml, body: str):
+    return mobility.load(write_yaml(HEAD + textwrap.dedent(body)))
+
+
+def error_of(write_yaml, body: str, head: str = HEAD) -> MechanismFileError:
+    path = write_yaml(head + textwrap.dedent(body))
+    with pytest.raises(MechanismFileError) as info:
+        mobility.load(path)
+    err = info.value
+    assert err.file == str(path)
+    assert "\n" not in str(err)
+    return err
+
+
+def test_every_joint_type_loads_with_its_freedoms(write_yaml):
+    m = load_text(
+        write_yaml,
+        """\
+        joints:
+          - {name: R1, type: R, links: [g, a], axis: [0, 0, 2], point: [1, 0, 0]}
+          - {name: P1, type: P, links: [a, b], axis: [1, 1, 0]}
+          - {name: H1, type: H, links: [b, c], axis: [0, 0, 1], point: [0, 0, 0], pitch: 0.1}
+          - {name: C1, type: C, links: [c, d], axis: [1, 0, 0], point: [0, 1, 0]}
+          - {name: U1, type: U, links: [d, f], point: [0, 0, 1], axes: [[1, 0, 0], [0, 1, 0]]}
+          - {name: S1, type: S, links: [f, h], point: [1, 1, 1]}
+          - {name: E1, type: E, links: [h, e], normal: [0, 0, 3]}
+        """,
+    )
+    assert [j.dof for j in m.joints] == [1, 1, 1, 2, 2, 3, 3]
+    assert m.joints[0].axis == (0.0, 0.0, 1.0)
+    assert m.joints[1].axis == pytest.approx((math.sqrt(0.5), math.sqrt(0.5), 0.0))
+    assert m.joints[6].normal == (0.0, 0.0, 1.0)
+    assert m.freedom_count == 13
+    kinds = [f.kind for j in m.joints for f in j.freedoms()]
+    assert kinds == ["R", "P", "H", "R", "P", "R", "R", "R", "R", "R", "P", "P", "R"]
+
+
+def test_frames_with_parent_chains_and_degrees(write_yaml):
+    m = load_text(
+        write_yaml,
+        """\
+        frames:
+          base: {origin: [1, 0, 0], rpy: [0, 0, 90]}
+          leg: {origin: [0, 2, 0], parent: base}
+        joints:
+          - {name: R1, type: R, links: [g, e], axis: [1, 0, 0], point: [1, 0, 0], frame: leg}
+        """,
+    )
+    j = m.world_joints[0]
+    # leg origin in world: base maps (0, 2, 0) to (1, 0, 0) + Rz(90) (0, 2, 0) = (-1, 0, 0); point (1, 0, 0) of leg -> (-1, 1, 0)
+    assert np.allclose(j.point, (-1, 1, 0))
+    assert np.allclose(j.axis, (0, 1, 0))
+    assert m.joints[0].frame == "leg"
+
+
+def test_radians_and_axis_angle_frames(write_yaml):
+    m = load_text(
+        write_yaml,
+        """\
+        units: {angle: rad, length: mm}
+        frames:
+          f: {axis: [0, 0, 1], angle: 1.5707963267948966}
+        joints:
+          - {name: P1, type: P, links: [g, e], axis: [1, 0, 0], frame: f}
+        """,
+    )
+    assert np.allclose(m.world_joints[0].axis, (0, 1, 0))
+    assert m.length_unit == "mm"
+
+
+def test_parameters_expressions_and_limb_patterns(write_yaml):
+    m = load_text(
+        write_yaml,
+        """\
+        parameters:
+          r: 2
+          h: "r * sqrt(2)"
+        limbs:
+          - copies: 3
+            frame: {name: "leg{i+1}", rpy: [0, 0, "120*i"]}
+            joints:
+              - {name: "R{i+1}", type: R, links: [g, "l{i+1}"], axis: [0, 1, 0], point: [r, 0, 0]}
+              - {name: "S{i+1}", type: S, links: ["l{i+1}", e], point: ["r/2", 0, h]}
+        """,
+    )
+    assert [j.name for j in m.joints] == ["R1", "S1", "R2", "S2", "R3", "S3"]
+    assert [j.frame for j in m.joints[::2]] == ["leg1", "leg2", "leg3"]
+    assert np.allclose(m.world_joints[2].point, (2 * math.cos(2 * math.pi / 3), 2 * math.sin(2 * math.pi / 3), 0))
+    assert m.world_joints[1].point[2] == pytest.approx(2 * math.sqrt(2))
+
+
+def test_expected_block(write_yaml):
+    m = load_text(
+        write_yaml,
+        """\
+        joints:
+          - {name: P1, type: P, links: [g, e], axis: [0, 0, 1]}
+        expected: {dof: 1, pattern: 1T, translations: [[0, 0, 1]], mobility: 1}
+        """,
+    )
+    assert m.expected.dof == 1 and m.expected.pattern == "1T" and m.expected.mobility == 1
+    assert m.expected.translations == ((0.0, 0.0, 1.0),)
+
+
+@pytest.mark.parametrize(
+    "body, line, key, words",
+    [
+        ("joints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0, 1]}\n", 5, "joints[0].point", "missing"),
+        ("joints:\n  - {name: A, type: Q, links: [g, e], axis: [0, 0, 1]}\n", 5, "joints[0].type", "unknown joint type 'Q'"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 1]}\n", 5, "joints[0].axis", "expected a list of 3 numbers, got 2"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 0]}\n", 5, "joints[0].axis", "non-zero"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, .nan, 1]}\n", 5, "joints[0].axis[1]", "finite"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, x, 1]}\n", 5, "joints[0].axis[1]", "unknown name 'x'"),
+        ("joints:\n  - {name: A, type: U, links: [g, e], point: [0, 0, 0], axes: [[1, 0, 0], [2, 0, 0]]}\n", 5, "joints[0].axes", "parallel"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\n  - {name: A, type: P, links: [g, e], axis: [1, 0, 0]}\n", 6, "joints[1].name", "duplicate joint name 'A'"),
+        ("joints:\n  - {name: A, type: P, links: [g, g], axis: [0, 0, 1]}\n  - {name: B, type: P, links: [g, e], axis: [0, 0, 1]}\n", 5, "joints[0].links", "two different links"),
+        ("frames:\n  a: {parent: b}\n  b: {parent: a}\njoints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1], frame: a}\n", 5, "frames.a.parent", "cycle"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1], frame: nowhere}\n", 5, "joints[0].frame", "unknown frame 'nowhere'"),
+        ("joints:\n  - {name: A, type: P, links: [g, x], axis: [0, 0, 1]}\n  - {name: B, type: P, links: [y, e], axis: [0, 0, 1]}\n", 3, "end_effector", "not connected to the ground"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1], pointt: 3}\n", 5, "joints[0].pointt", "did you mean 'point'"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\nexpected: {dof: -1}\n", 6, "expected.dof", "non-negative integer"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\nexpected: {pattern: 2X}\n", 6, "expected.pattern", "pattern"),
+        ("joints: {name: A}\n", 4, "joints", "list of joints"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\nunits: {angle: grad}\n", 6, "units.angle", "deg or rad"),
+        ("joints:\n  - {name: A, type: P, links: [g, e], axis: \"1/0\"}\n", 5, "joints[0].axis", "a list of 3 numbers"),
+        ("joints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0, 1], point: [\"1/0\", 0, 0]}\n", 5, "joints[0].point[0]", "division by zero"),
+        ("joints:\n  - {name: A, type: S, links: [g, e], point: [0, 0, 0], axis: [0, 0, 1]}\n", 5, "joints[0].axis", "not a field of a joint of type S"),
+    ],
+)
+def test_bad_input_names_file_line_key(write_yaml, body, line, key, words):
+    err = error_of(write_yaml, body)
+    assert err.line == line, str(err)
+    assert err.key == key, str(err)
+    assert words in err.message, str(err)
+    assert str(err).startswith(f"{err.file}:{line}: {key}: ")
+
+
+def test_missing_required_key(write_yaml):
+    err = error_of(write_yaml, "joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\n", head="name: t\nground: g\n")
+    assert err.message == "missing required key 'end_effector'"
+    assert err.line == 1
+
+
+def test_yaml_syntax_error_has_its_line(write_yaml):
+    err = error_of(write_yaml, "joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1]\n  - oops\n")
+    assert "YAML syntax error" in err.message
+    assert err.line in (6, 7)
+
+
+def test_duplicate_yaml_keys_are_errors(write_yaml):
+    err = error_of(write_yaml, "joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\nground: h\n")
+    assert err.key == "ground" and err.message == "duplicate key" and err.line == 6
+
+
+def test_limb_template_errors_point_at_the_template(write_yaml):
+    err = error_of(
+        write_yaml,
+        "limbs:\n  - copies: 2\n    joints:\n      - {name: \"R{i}\", type: R, links: [g, e], axis: [0, 0, 0], point: [0, 0, 0]}\n",
+    )
+    assert err.key == "limbs[0].joints[0].axis" and err.line == 7
+    err = error_of(write_yaml, "limbs:\n  - copies: 2\n    joints:\n      - {name: R, type: P, links: [g, e], axis: [0, 0, 1]}\n")
+    assert "duplicate joint name 'R'" in err.message and err.line == 7
+
+
+def test_missing_file_and_directory(tmp_path):
+    with pytest.raises(MechanismFileError, match="no such file"):
+        mobility.load(tmp_path / "absent.yaml")
+    with pytest.raises(MechanismFileError, match="is a directory"):
+        mobility.load(tmp_path)
+
+
+def test_empty_file(write_yaml):
+    with pytest.raises(MechanismFileError, match="the file is empty"):
+        mobility.load(write_yaml(""))
+
+
+def test_model_errors_in_code_name_the_key():
+    with pytest.raises(MechanismError) as info:
+        mobility.Joint("A", "R", ("a", "b"), axis=(0, 0, 1))
+    assert info.value.key == "point"
+    with pytest.raises(MechanismError) as info:
+        mobility.Mechanism("m", "g", "g", (mobility.Joint("A", "P", ("g", "e"), axis=(0, 0, 1)),))
+    assert info.value.key == "end_effector"
+
+
+def test_expressions_are_safe_and_clear():
+    assert evaluate("2 ** 3 % 5 - -1", {}) == 4.0
+    assert evaluate("atan2d(1, 1)", {}) == pytest.approx(45.0)
+    for bad in ("__import__('os').system('true')", "a.b", "[1][0]", "lambda: 1", "x if 1 else 2"):
+        with pytest.raises(ValueError):
+            evaluate(bad, {"a": 1.0})
+    with pytest.raises(ValueError, match="math domain error"):
+        evaluate("sqrt(-1)", {})
