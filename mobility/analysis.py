@@ -29,6 +29,7 @@ from .screw_systems import Margin as MarginCollector
 from .screw_systems import SystemValue, evaluate
 from .screws import free_vector_subspace, span_and_reciprocal
 from .tolerance import DEFAULT_TOLERANCE, Tolerance
+from .transforms import cross
 from .topology import Parallel, Topology, decompose, describe, joints_of
 
 __all__ = ["analyze", "gruebler_kutzbach"]
@@ -167,7 +168,7 @@ def _world_form(form: CanonicalForm, norm: Normalisation, kinds: tuple[str, str]
         for p in form.screws
     )
     rows = [np.concatenate([np.zeros(3), f]) for f in free]
-    rows += [np.concatenate([a.axis, np.cross(a.point, a.axis) + a.pitch * a.axis]) for a in axes]
+    rows += [np.concatenate([a.axis, cross(a.point, a.axis) + a.pitch * a.axis]) for a in axes]
     basis = np.array(rows).reshape(-1, 6)
     for arr in (free, basis):
         arr.setflags(write=False)

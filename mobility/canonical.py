@@ -51,6 +51,7 @@ import numpy as np
 
 from .linalg import svd
 from .screws import free_vector_subspace
+from .transforms import cross
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance
 
 __all__ = ["PrincipalScrew", "CanonicalForm", "canonical_form", "readable_basis"]
@@ -66,7 +67,7 @@ class PrincipalScrew:
 
     def screw(self) -> np.ndarray:
         """The unit screw ``[s; p x s + h s]``."""
-        return np.concatenate([self.axis, np.cross(self.point, self.axis) + self.pitch * self.axis])
+        return np.concatenate([self.axis, cross(self.point, self.axis) + self.pitch * self.axis])
 
 
 @dataclass(frozen=True)
@@ -79,7 +80,10 @@ class CanonicalForm:
 
 
 def _dominant(v: np.ndarray) -> int:
-    return int(np.argmax(np.abs(v) > np.max(np.abs(v)) - 1e-9))
+    """Index of the first component of (nearly) largest magnitude."""
+    mags = [abs(x) for x in v.tolist()]
+    top = max(mags) - 1e-9
+    return next(i for i, m in enumerate(mags) if m > top)
 
 
 def _signed(v: np.ndarray) -> np.ndarray:
@@ -111,15 +115,15 @@ def readable_basis(q: np.ndarray) -> np.ndarray:
     n, m = q.shape
     if m == 0:
         return q
-    cands = q @ q.T
+    resid = q @ q.T  # the projections of the coordinate axes
     basis: list[np.ndarray] = []
     for _ in range(m):
-        resid = cands.copy()
-        for b in basis:
-            resid -= np.outer(b, b @ resid)
-        norms = np.linalg.norm(resid, axis=0)
-        k = int(np.argmax(norms > norms.max() - 1e-12))
-        basis.append(_signed(resid[:, k] / norms[k]))
+        norms = np.sqrt(np.einsum("ij,ij->j", resid, resid)).tolist()
+        top = max(norms) - 1e-12
+        k = next(i for i, x in enumerate(norms) if x > top)
+        b = _signed(resid[:, k] / norms[k])
+        basis.append(b)
+        resid = resid - np.outer(b, b @ resid)
     basis.sort(key=_dominant)
     return np.stack(basis, axis=1)
 
@@ -149,7 +153,7 @@ def canonical_form(basis: np.ndarray, reference: np.ndarray, tol: Tolerance = DE
         return CanonicalForm(free, (), decision)
     screws = basis @ coef
     bw = screws[:3]
-    bv = screws[3:] - np.cross(reference, bw, axis=0)
+    bv = screws[3:] - cross(reference[:, None], bw)
     if free.shape[1]:
         bv = bv - free @ (free.T @ bv)
     u, s, vt = svd(bw)
@@ -175,13 +179,13 @@ def canonical_form(basis: np.ndarray, reference: np.ndarray, tol: Tolerance = DE
             directions = readable_basis(cluster) if stop - start > 1 else np.stack([_signed(cluster[:, 0])], axis=1)
             for w in directions.T:
                 v = a @ (qw.T @ w)
-                out.append(PrincipalScrew(w, reference + np.cross(w, v), float(w @ v)))
+                out.append(PrincipalScrew(w, reference + cross(w, v), float(w @ v)))
             start = stop
     if rest.shape[1]:
         for w in readable_basis(qw @ rest).T:
             v = a @ (qw.T @ w)
             along = free @ (free.T @ w)
             v = v - (w @ v) / (along @ along) * along  # a free vector cancels the pitch
-            out.append(PrincipalScrew(w, reference + np.cross(w, v), 0.0))
+            out.append(PrincipalScrew(w, reference + cross(w, v), 0.0))
     out.sort(key=lambda p: (abs(p.pitch) > tol.rank, _dominant(p.axis)))
     return CanonicalForm(free, tuple(out), decision)

@@ -25,7 +25,7 @@ import numpy as np
 
 from .model import Mechanism
 from .tolerance import characteristic_scale
-from .transforms import skew
+from .transforms import cross, skew
 
 __all__ = ["Normalisation", "JointScrews", "joint_screws", "per_object_cache"]
 
@@ -51,7 +51,7 @@ class Normalisation:
         s = np.asarray(screws, dtype=float).reshape(6, -1)
         out = np.empty_like(s)
         out[:3] = s[:3]
-        out[3:] = self.length * s[3:] + np.cross(self.centre, s[:3], axis=0)
+        out[3:] = self.length * s[3:] + cross(self.centre[:, None], s[:3])
         return out
 
     def from_world(self, screws: np.ndarray) -> np.ndarray:
@@ -59,7 +59,7 @@ class Normalisation:
         s = np.asarray(screws, dtype=float).reshape(6, -1)
         out = np.empty_like(s)
         out[:3] = s[:3]
-        out[3:] = (s[3:] - np.cross(self.centre, s[:3], axis=0)) / self.length
+        out[3:] = (s[3:] - cross(self.centre[:, None], s[:3])) / self.length
         return out
 
     def point_to_world(self, p: np.ndarray) -> np.ndarray:
@@ -134,29 +134,18 @@ def joint_screws(mechanism: Mechanism) -> JointScrews:
 
 
 def _build(mechanism: Mechanism) -> JointScrews:
-    kinds, axes, points, pitches, offsets = [], [], [], [], [0]
-    ee_points = []
-    for j in mechanism.world_joints:
-        for f in j.freedoms():
-            kinds.append(f.kind)
-            axes.append(f.axis)
-            points.append(f.point)
-            pitches.append(f.pitch)
-        offsets.append(len(kinds))
-        if mechanism.end_effector in j.links and j.point is not None:
-            ee_points.append(j.point)
-    axes_a = np.array(axes, dtype=float)
-    points_a = np.array(points, dtype=float)
-    pitch_a = np.array(pitches, dtype=float)
-    is_p = np.array([k == "P" for k in kinds])
-    located = [j.point for j in mechanism.world_joints if j.point is not None]
-    centre, length = characteristic_scale(np.array(located, dtype=float).reshape(-1, 3), pitch_a[pitch_a != 0.0])
-    norm = Normalisation(centre, length)
-    w = np.where(is_p[:, None], 0.0, axes_a)
-    v = np.where(is_p[:, None], axes_a, (np.cross(points_a - centre, axes_a) + pitch_a[:, None] * axes_a) / length)
-    tw = np.concatenate([w, v], axis=1).T
-    tw = tw / np.linalg.norm(tw, axis=0)
-    reference = norm.point_from_world(np.mean(ee_points, axis=0)) if ee_points else np.zeros(3)
+    table = mechanism.freedom_table
+    pitches = table.pitches
+    centre, length = characteristic_scale(table.located, pitches[pitches != 0.0])
+    axes = table.axes
+    moment = (cross((table.points - centre).T, axes.T).T + pitches[:, None] * axes) / length
+    p = table.prismatic[:, None]
+    tw = np.concatenate([np.where(p, 0.0, axes), np.where(p, axes, moment)], axis=1).T
+    tw /= np.sqrt(np.einsum("ij,ij->j", tw, tw))
     tw.setflags(write=False)
+    norm = Normalisation(centre, length)
+    ee = table.end_effector_points
+    reference = (ee.mean(axis=0) - centre) / length if len(ee) else np.zeros(3)
+    offsets = table.offsets
     columns = tuple(tw[:, offsets[j] : offsets[j + 1]] for j in range(len(offsets) - 1))
     return JointScrews(tw, np.array(offsets), norm, reference, columns)

@@ -43,6 +43,7 @@ __all__ = [
     "JOINT_TYPES",
     "JOINT_DOF",
     "Freedom",
+    "FreedomTable",
     "Joint",
     "Frame",
     "Expected",
@@ -298,6 +299,34 @@ class Frame:
         return Transform(np.array(self.rotation), np.array(self.origin))
 
 
+@dataclass(frozen=True, eq=False)
+class FreedomTable:
+    """The elementary freedoms of every joint, in the global frame, as arrays.
+
+    Row ``k`` is one freedom (see :class:`Freedom`); joint ``j`` owns rows
+    ``offsets[j]:offsets[j + 1]``.
+
+    Attributes
+    ----------
+    prismatic : ndarray of bool, shape (n,)
+    axes, points : ndarray, shape (n, 3)
+    pitches : ndarray, shape (n,)
+    offsets : tuple of int
+    located : ndarray, shape (k, 3)
+        The points of the joints that have one (all but P and point-less E).
+    end_effector_points : ndarray, shape (m, 3)
+        The points of the located joints on the end effector.
+    """
+
+    prismatic: np.ndarray
+    axes: np.ndarray
+    points: np.ndarray
+    pitches: np.ndarray
+    offsets: tuple[int, ...]
+    located: np.ndarray
+    end_effector_points: np.ndarray
+
+
 EXPECTED_KEYS: dict[str, str] = {
     "dof": "end-effector DOF (integer >= 0)",
     "pattern": 'motion pattern such as "1T2R"',
@@ -478,6 +507,26 @@ class Mechanism:
         frame name stays available in :attr:`joints`.
         """
         return tuple(j if j.frame == WORLD else j.transformed(self.frame_transform(j.frame)) for j in self.joints)
+
+    @cached_property
+    def freedom_table(self) -> FreedomTable:
+        """Every joint's elementary freedoms in the global frame, as arrays (computed once)."""
+        prismatic, axes, points, pitches, offsets = [], [], [], [], [0]
+        for j in self.world_joints:
+            for f in j.freedoms():
+                prismatic.append(f.kind == "P")
+                axes.append(f.axis)
+                points.append(f.point)
+                pitches.append(f.pitch)
+            offsets.append(len(axes))
+        located = [j.point for j in self.world_joints if j.point is not None]
+        ee = [j.point for j in self.world_joints if j.point is not None and self.end_effector in j.links]
+        arrays = [np.array(prismatic), np.array(axes, dtype=float), np.array(points, dtype=float), np.array(pitches, dtype=float),
+                  np.array(located, dtype=float).reshape(-1, 3), np.array(ee, dtype=float).reshape(-1, 3)]
+        for a in arrays:
+            a.setflags(write=False)
+        p, ax, pt, h, loc, eep = arrays
+        return FreedomTable(p, ax, pt, h, tuple(offsets), loc, eep)
 
     def replace(self, **changes: Any) -> "Mechanism":
         """A copy with some fields changed (validated again)."""

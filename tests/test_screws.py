@@ -111,3 +111,13 @@ def test_rpy_convention_is_z_y_x_fixed_axes():
     ry = np.array([[np.cos(pitch), 0, np.sin(pitch)], [0, 1, 0], [-np.sin(pitch), 0, np.cos(pitch)]])
     rz = np.array([[np.cos(yaw), -np.sin(yaw), 0], [np.sin(yaw), np.cos(yaw), 0], [0, 0, 1]])
     assert np.allclose(rotation_from_rpy((roll, pitch, yaw)), rz @ ry @ rx)
+
+
+def test_cross_equals_numpy_cross():
+    from mobility.transforms import cross
+
+    rng = np.random.default_rng(7)
+    a, b = rng.normal(size=(2, 3, 5))
+    assert np.allclose(cross(a, b), np.cross(a, b, axis=0))
+    assert np.allclose(cross(a[:, 0], b[:, 0]), np.cross(a[:, 0], b[:, 0]))
+    assert np.allclose(cross(a[:, :1], b), np.cross(a[:, :1], b, axis=0))

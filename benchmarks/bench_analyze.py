@@ -1,0 +1,93 @@
+"""Analyses per second for every bundled mechanism, the two routes side by side.
+
+Run:  python benchmarks/bench_analyze.py [--number N] [--repeat R] [--markdown]
+
+For each mechanism (loaded once) it times
+
+* ``analyze``: :func:`mobility.analyze` with the joint twists rebuilt from the
+  model every call (nothing of a previous analysis reused except the
+  structural decomposition, which depends on the joint graph only);
+* ``analyze+`` the same plus the canonical directions (translations,
+  rotations, constraint wrenches), which :class:`mobility.Result` computes on
+  first access;
+* ``loop closure``: the independent route of :mod:`mobility.loop_closure`
+  (one constraint Jacobian of the whole graph), the baseline of the ratio.
+
+Times are CPU time of this process (``time.process_time``, so other busy
+processes on a shared machine count less than in wall time), the minimum over
+``repeat`` runs of ``number`` calls.  Ratios are against the loop-closure route
+measured in the same run, so they hold across machines better than the times.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+import mobility
+from mobility import joint_screws as js_module
+from mobility.loop_closure import loop_closure
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def best_time(fn, number: int, repeat: int) -> float:
+    """Minimum over ``repeat`` runs of the mean time of ``number`` calls, in seconds."""
+    best = float("inf")
+    for _ in range(repeat):
+        start = time.process_time()
+        for _ in range(number):
+            fn()
+        best = min(best, (time.process_time() - start) / number)
+    return best
+
+
+def fresh(m: mobility.Mechanism):
+    """A call that analyses ``m`` with its joint twists rebuilt (the per-mechanism cache dropped)."""
+
+    def call():
+        js_module._caches.pop(id(m), None)
+        return mobility.analyze(m)
+
+    return call
+
+
+def with_directions(m: mobility.Mechanism):
+    def call():
+        js_module._caches.pop(id(m), None)
+        r = mobility.analyze(m)
+        return r.rotations, r.forces
+
+    return call
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--number", type=int, default=200)
+    parser.add_argument("--repeat", type=int, default=7)
+    parser.add_argument("--markdown", action="store_true", help="print a Markdown table")
+    parser.add_argument("files", nargs="*", help="mechanism files (default: mechanisms/*.yaml)")
+    args = parser.parse_args()
+    files = [Path(f) for f in args.files] or sorted((ROOT / "mechanisms").glob("*.yaml"))
+    rows = []
+    for path in files:
+        m = mobility.load(path)
+        r = mobility.analyze(m)
+        t_an = best_time(fresh(m), args.number, args.repeat)
+        t_dir = best_time(with_directions(m), max(1, args.number // 2), args.repeat)
+        t_lc = best_time(lambda: (js_module._caches.pop(id(m), None), loop_closure(m)), max(1, args.number // 2), args.repeat)
+        rows.append((path.stem, len(m.joints), r.pattern, t_an, t_dir, t_lc))
+    if args.markdown:
+        print("| mechanism | joints | pattern | analyze (µs) | analyses/s | + directions (µs) | loop closure (µs) | loop closure / analyze |")
+        print("|---|---:|---|---:|---:|---:|---:|---:|")
+        for name, j, pat, a, d, lc in rows:
+            print(f"| {name} | {j} | {pat} | {a * 1e6:.0f} | {1 / a:,.0f} | {d * 1e6:.0f} | {lc * 1e6:.0f} | {lc / a:.1f}× |")
+    else:
+        print(f"{'mechanism':28s} {'joints':>6s} {'pattern':>8s} {'analyze µs':>11s} {'per s':>8s} {'+dirs µs':>9s} {'loop µs':>8s} {'ratio':>6s}")
+        for name, j, pat, a, d, lc in rows:
+            print(f"{name:28s} {j:6d} {pat:>8s} {a * 1e6:11.0f} {1 / a:8,.0f} {d * 1e6:9.0f} {lc * 1e6:8.0f} {lc / a:5.1f}x")
+
+
+if __name__ == "__main__":
+    main()
