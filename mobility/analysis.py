@@ -108,8 +108,14 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
         warnings=tuple(warnings),
         length_unit=mechanism.length_unit,
         length_scale=norm.size,
+        reference_point=_frozen(norm.point_to_world(screws.reference)),
         detail=_Detail(mechanism, topology, screws, root, tol),
     )
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a.setflags(write=False)
+    return a
 
 
 class _Detail:

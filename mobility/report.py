@@ -57,7 +57,7 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
         out.append("  translations (orthonormal basis):")
         out += [f"    T{i + 1}  {fmt_vector(t)}" for i, t in enumerate(result.translations)]
     if result.rotations:
-        out.append("  rotations (principal screws, axis through the point nearest the end effector's centre):")
+        out.append(f"  rotations (axis through its point nearest the end effector's centre {fmt_vector(result.reference_point, s)}):")
         out += [_axis_line(f"R{i + 1}", a, s, unit) for i, a in enumerate(result.rotations)]
     if result.dof == 0:
         out.append("  the end effector cannot move (at first order)")

@@ -170,6 +170,10 @@ class Result:
     length_unit : str
     length_scale : float
         Characteristic size of the mechanism (for rounding output).
+    reference_point : ndarray, shape (3,)
+        The end effector's centre (centroid of its joints' points): axes are
+        reported through their point nearest to it, so an axis away from it
+        (or a non-zero pitch) shows how rotating moves this point.
     translations : ndarray, shape (nT, 3)
         Orthonormal basis of the pure-translation subspace.
     rotations : tuple of ScrewAxis
@@ -205,6 +209,7 @@ class Result:
     warnings: tuple[str, ...]
     length_unit: str
     length_scale: float
+    reference_point: np.ndarray
     detail: ResultDetail = field(repr=False)
 
     @cached_property
@@ -311,4 +316,5 @@ class Result:
             "warnings": list(self.warnings),
             "limbs": [limb.to_dict(s) for limb in self.limbs],
             "length_unit": self.length_unit,
+            "reference_point": _clean(self.reference_point, s),
         }
