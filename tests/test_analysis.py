@@ -204,3 +204,43 @@ def test_inexact_geometry_is_reported():
     # a parallelogram typed with a tiny error: the count is still given, with a warning
     r = mobility.analyze(four_bar(points=((0, 0, 0), (1, 2, 0), (4, 2, 0), (3, 1e-10, 0))))
     assert r.margin.inexact and any("inexact geometry" in w for w in r.warnings)
+
+
+def test_limb_frames_match_the_adjoint_route():
+    """Joints written in a limb frame: twists built in the frame and moved by the adjoint
+    (the seed method's route) equal the twists of the joints mapped to the world frame."""
+    from mobility.joint_screws import joint_screws
+    from mobility.screws import adjoint
+
+    m = mobility.loads(
+        """
+name: frames
+ground: g
+end_effector: e
+frames:
+  base: {origin: [10, -3, 2], rpy: [10, 20, 30]}
+  leg: {origin: [1, 2, 3], rpy: [0, 45, 120], parent: base}
+joints:
+  - {name: A, type: R, links: [g, a], axis: [0, 1, 0], point: [1, 0, 0.5], frame: leg}
+  - {name: B, type: H, links: [a, b], axis: [1, 1, 0], point: [0, 2, 0], pitch: 0.3, frame: leg}
+  - {name: C, type: U, links: [b, c], point: [0, 0, 1], axes: [[1, 0, 0], [0, 0, 1]], frame: base}
+  - {name: D, type: P, links: [c, e], axis: [0, 0, 1], frame: leg}
+"""
+    )
+    js = joint_screws(m)
+    world_twists = js.normalisation.to_world(js.twists)
+    col = 0
+    for j in m.joints:
+        tf = m.frame_transform(j.frame)
+        ad = adjoint(tf.rotation, tf.translation)
+        for f in j.freedoms():  # in the joint's own frame
+            if f.kind == "P":
+                t = np.concatenate([np.zeros(3), f.axis])
+            else:
+                t = np.concatenate([f.axis, np.cross(f.point, f.axis) + f.pitch * np.asarray(f.axis)])
+            moved = ad @ t
+            scale = np.linalg.norm(moved[:3]) or np.linalg.norm(moved[3:])
+            got = world_twists[:, col]
+            assert np.allclose(moved / scale, got / (np.linalg.norm(got[:3]) or np.linalg.norm(got[3:]))), j.name
+            col += 1
+    assert col == js.twists.shape[1]
