@@ -1,0 +1,59 @@
+"""``mobility plot FILE -o out.png``: a picture of the mechanism and its freedoms, or of its joint graph."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..analysis import analyze
+from ..loader import load
+from ..tolerance import Tolerance
+
+ORDER = 30
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "plot",
+        help="draw the mechanism with its end effector's freedoms (or its joint graph) to PNG, SVG or PDF",
+        description="Draw the mechanism at its pose with the end effector's freedoms: arrows for translations, "
+        "axis lines with a rotation mark for rotations (pitch written where non-zero). Needs matplotlib "
+        "(pip install 'mobility[plot]').",
+    )
+    p.add_argument("file", help="mechanism file (YAML)")
+    p.add_argument("-o", "--output", required=True, help="picture to write; the type follows the suffix: .png, .svg or .pdf")
+    p.add_argument("--constraints", action="store_true", help="also draw the constraint wrenches (force lines, couples)")
+    p.add_argument("--graph", action="store_true", help="draw the joint graph and its series/parallel tree instead")
+    p.add_argument("--views", type=int, default=2, choices=(1, 2, 3), help="number of viewpoints (default: %(default)s)")
+    p.add_argument("--no-labels", action="store_true", help="leave out the joint names")
+    p.add_argument("--dpi", type=int, default=150, help="resolution of a PNG (default: %(default)s)")
+    p.add_argument("--tol", type=float, default=Tolerance().rank, help="relative rank threshold (default: %(default)g)")
+    p.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..plotting import FORMATS, PlotFormatError, plot_graph, plot_mechanism, save_figure
+
+    base = Tolerance()
+    if not (base.inexact <= args.tol < base.near_singular):
+        print(f"mobility plot: error: --tol must lie in [{base.inexact:g}, {base.near_singular:g})", file=sys.stderr)
+        return 2
+    if not args.output.lower().endswith(FORMATS):  # before any work
+        raise PlotFormatError(f"{args.output}: cannot tell the picture type; expected a name ending in {', '.join(FORMATS)}")
+    if args.graph and args.constraints:
+        print("mobility plot: error: --constraints draws on the mechanism, not on the --graph picture", file=sys.stderr)
+        return 2
+    mechanism = load(args.file)
+    tol = Tolerance(rank=args.tol)
+    result = analyze(mechanism, tol=tol)
+    if args.graph:
+        fig = plot_graph(mechanism, result, tol=tol)
+    else:
+        fig = plot_mechanism(mechanism, result, constraints=args.constraints, views=args.views, labels=not args.no_labels, tol=tol)
+    try:
+        path = save_figure(fig, args.output, dpi=args.dpi)
+    except OSError as exc:
+        print(f"mobility plot: error: cannot write {args.output}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+    print(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern})")
+    return 0
