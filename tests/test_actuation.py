@@ -1,0 +1,471 @@
+"""Actuation spaces of rigid mechanisms (mobility.actuation, mobility actuation).
+
+The 3-RPS case is that of Li, Shan, Yu and Ke, "Actuation Spaces Synthesis of
+Lower-Mobility Parallel Mechanisms Based on Screw Theory" (Chin. J. Mech. Eng.,
+2021).  Poses are set through the file's parameters (platform height h, tilt
+theta about a horizontal axis at azimuth phi); the tests recompute the
+platform geometry from the pose independently and check every leg length
+against the paper's prismatic range, 120-195 mm.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mobility
+from mobility.actuation import (
+    REDUNDANT,
+    SINGULAR,
+    VALID,
+    check_actuation,
+    check_over_poses,
+    combination_type,
+    enumerate_actuations,
+    lock_joints,
+    locked_dof,
+)
+from mobility.cli import main
+from mobility.errors import MechanismError
+from mobility.joint_screws import joint_screws
+from mobility.model import Joint, Mechanism
+from mobility.screws import reciprocal_product, same_subspace
+from mobility.transforms import rotation_from_axis_angle
+
+ROOT = Path(__file__).resolve().parents[1]
+RPS_FILE = ROOT / "mechanisms" / "actuation_3rps.yaml"
+RPS_TEXT = RPS_FILE.read_text(encoding="utf-8")
+A, B = 92.38, 57.74
+STROKE = (120.0, 195.0)
+
+
+def rps(h: float, phi: float = 0.0, theta: float = 0.0, text: str = RPS_TEXT) -> Mechanism:
+    """The 3-RPS file at another pose (its parameters h, phi, theta replaced)."""
+    for key, value in (("h", h), ("phi", phi), ("theta", theta)):
+        text, n = re.subn(rf"\n  {key}: [^\n]*", f"\n  {key}: {float(value)!r}", text, count=1)
+        assert n == 1
+    return mobility.loads(text, file=f"3-RPS h={h:g} phi={phi:g} theta={theta:g}")
+
+
+def platform_points(h: float, phi: float, theta: float) -> np.ndarray:
+    """Spherical-joint centres from the pose, by rotating the platform (independent of the file)."""
+    ph, th = np.radians(phi), np.radians(theta)
+    rot = rotation_from_axis_angle(np.array([-np.sin(ph), np.cos(ph), 0.0]), th)
+    centre = np.array([-(B / 2) * (1 - np.cos(th)) * np.cos(2 * ph), (B / 2) * (1 - np.cos(th)) * np.sin(2 * ph), h])
+    g = np.radians([0.0, 120.0, 240.0])
+    return centre + (rot @ (B * np.stack([np.cos(g), np.sin(g), np.zeros(3)]))).T
+
+
+def legs(m: Mechanism) -> np.ndarray:
+    w = {j.name: j for j in m.world_joints}
+    return np.array([np.linalg.norm(np.subtract(w[f"S{i}"].point, w[f"R{i}"].point)) for i in (1, 2, 3)])
+
+
+def workspace_poses() -> list[Mechanism]:
+    """Poses across the prismatic range: the full vertical stroke and tilts up to 5 degrees."""
+    h_min = np.sqrt(STROKE[0] ** 2 - (A - B) ** 2) + 0.5
+    h_max = np.sqrt(STROKE[1] ** 2 - (A - B) ** 2) - 0.5
+    out = [rps(h) for h in np.linspace(h_min, h_max, 5)]
+    for h, phi, theta in [(130, 0, 5), (150, 45, 5), (150, 200, 3), (170, 100, 5), (185, 290, 4), (125, 330, 4)]:
+        out.append(rps(h, phi, theta))
+    return out
+
+
+POSES = workspace_poses()
+
+
+# ---------------------------------------------------------------------------
+# the mechanism file
+# ---------------------------------------------------------------------------
+
+
+def test_rps_file_matches_its_expected_block_and_marks_the_prismatic_joints():
+    m = mobility.load(RPS_FILE)
+    r = mobility.analyze(m)
+    assert (r.dof, r.pattern, r.mobility) == (m.expected.dof, m.expected.pattern, m.expected.mobility) == (3, "1T2R", 3)
+    assert [j.name for j in m.joints if j.actuated] == ["P1", "P2", "P3"]
+    assert "Li, Shan, Yu and Ke" in m.description and "92.38" in m.description
+
+
+@pytest.mark.parametrize("h, phi, theta", [(150, 0, 0), (140, 30, 10), (170, 250, 7), (125, 100, 12)])
+def test_closed_form_pose_puts_each_spherical_joint_where_the_rotated_platform_does(h, phi, theta):
+    m = rps(h, phi, theta)
+    w = {j.name: j for j in m.world_joints}
+    points = platform_points(h, phi, theta)
+    for i in range(3):
+        assert np.allclose(w[f"S{i + 1}"].point, points[i], atol=1e-9)
+        leg = points[i] - np.array(w[f"R{i + 1}"].point)
+        assert np.allclose(w[f"P{i + 1}"].axis, leg / np.linalg.norm(leg), atol=1e-12)
+        assert abs(np.dot(w[f"R{i + 1}"].axis, leg)) < 1e-9  # each leg stays in the plane of its limb
+
+
+def test_workspace_poses_span_the_paper_stroke():
+    lengths = np.concatenate([legs(m) for m in POSES])
+    assert lengths.min() >= STROKE[0] and lengths.max() <= STROKE[1]
+    assert lengths.min() < STROKE[0] + 1 and lengths.max() > STROKE[1] - 1
+
+
+# ---------------------------------------------------------------------------
+# actuation wrenches
+# ---------------------------------------------------------------------------
+
+
+def _line_distance(point: np.ndarray, line_point: np.ndarray, direction: np.ndarray) -> float:
+    return float(np.linalg.norm(np.cross(np.subtract(point, line_point), direction)))
+
+
+def test_rps_actuation_wrenches_are_the_leg_force_and_the_normal_force_through_the_sphere_centre():
+    m = rps(160, 70, 8)
+    w = {j.name: j for j in m.world_joints}
+    check = check_actuation(m, ["R1", "P2", "R3"])
+    for inp in check.inputs:
+        i = inp.name[1]
+        b = np.array(w[f"S{i}"].point)
+        leg = b - np.array(w[f"R{i}"].point)
+        leg /= np.linalg.norm(leg)
+        assert inp.axis.kind == "force" and inp.axis.pitch == 0.0
+        assert _line_distance(b, inp.axis.point, inp.axis.axis) < 1e-9 * 160  # through the S centre
+        if inp.kind == "P":
+            assert abs(abs(inp.axis.axis @ leg) - 1) < 1e-12  # along the leg
+        else:
+            assert abs(inp.axis.axis @ leg) < 1e-12  # normal to the leg
+            assert abs(inp.axis.axis @ np.array(w[f"R{i}"].axis)) < 1e-12  # in the plane of the limb
+
+
+def test_actuation_wrench_is_reciprocal_to_the_other_twists_of_its_limb_but_not_to_its_own():
+    m = rps(140, 20, 6)
+    twists = {j.name: np.stack([_twist(f) for f in j.freedoms()], axis=1) for j in m.world_joints}
+    check = check_actuation(m, ["R1", "R2", "R3", "P1", "P2", "P3"])
+    def size(w: np.ndarray, t: np.ndarray) -> np.ndarray:  # magnitude of the two terms of w o t
+        return np.linalg.norm(w[:3]) * np.linalg.norm(t[3:], axis=0) + np.linalg.norm(w[3:]) * np.linalg.norm(t[:3], axis=0)
+
+    for inp in check.inputs:
+        limb = inp.name[1]
+        others = np.hstack([twists[n + limb] for n in "RPS" if n + limb != inp.name])
+        own = twists[inp.name]
+        assert np.all(np.abs(reciprocal_product(inp.wrench[:, None], others)) < 1e-12 * size(inp.wrench, others))
+        assert np.all(np.abs(reciprocal_product(inp.wrench[:, None], own)) > 0.1 * size(inp.wrench, own))
+    assert check.verdict == REDUNDANT
+
+
+def _twist(f) -> np.ndarray:
+    s = np.asarray(f.axis)
+    if f.kind == "P":
+        return np.concatenate([np.zeros(3), s])
+    return np.concatenate([s, np.cross(f.point, s) + f.pitch * s])
+
+
+# ---------------------------------------------------------------------------
+# the paper's result, and the second route
+# ---------------------------------------------------------------------------
+
+
+def test_rps_all_four_combination_types_are_valid_across_the_prismatic_range():
+    found = enumerate_actuations(POSES[0], poses=POSES[1:])
+    assert len(found.poses) == len(POSES)
+    assert [(g.type, g.valid, g.total) for g in found.groups] == [("3R", 1, 1), ("2R1P", 3, 3), ("1R2P", 3, 3), ("3P", 1, 1)]
+    assert all(c.verdict == VALID and c.valid_poses == len(POSES) for c in found.combinations)
+    assert all(c.conditioning > 0.01 for c in found.combinations)
+    # ranked by the worst-pose conditioning
+    assert [c.conditioning for c in found.combinations] == sorted((c.conditioning for c in found.combinations), reverse=True)
+
+
+def test_conditioning_is_the_same_for_3R_and_3P_at_the_symmetric_home_pose():
+    # At h, theta = 0 every twist of the platform moves the sphere centres vertically,
+    # so both input maps are the same matrix up to one factor per limb type.
+    m = rps(150)
+    k3r = check_actuation(m, ["R1", "R2", "R3"]).conditioning
+    k3p = check_actuation(m, ["P1", "P2", "P3"]).conditioning
+    assert k3r == pytest.approx(k3p, rel=1e-9)
+    assert check_actuation(m, ["R1", "P2", "P3"]).conditioning < 0.5 * k3p
+
+
+@pytest.mark.parametrize("pose", [POSES[0], POSES[4], POSES[7]], ids=["stroke-start", "stroke-end", "tilted"])
+def test_locking_valid_inputs_immobilises_the_platform_and_only_then(pose):
+    found = enumerate_actuations(pose, mode="any")  # any 3 of the 6 one-freedom joints
+    assert len(found.combinations) == 20
+    if pose is not POSES[7]:
+        # At the untilted poses, R and P of one limb fix its sphere centre, about which the
+        # other limbs leave a rotation when the third limb has no input.
+        assert {c.verdict for c in found.combinations} == {VALID, SINGULAR}
+    for c in found.combinations:
+        assert (locked_dof(pose, c.inputs) == 0) == (c.verdict == VALID), c.inputs
+
+
+def test_locking_fewer_inputs_leaves_the_missing_freedoms():
+    m = POSES[6]
+    assert locked_dof(m, []) == 3
+    assert locked_dof(m, ["P1"]) == 2
+    assert locked_dof(m, ["R2", "P3"]) == 1
+    check = check_actuation(m, ["R2", "P3"])
+    assert check.verdict == SINGULAR and check.rank == 5 and check.uncontrolled_twists.shape == (1, 6)
+
+
+def _det_3r(m: Mechanism) -> float:
+    """Determinant of the constraint forces and the R-actuation forces, from the raw geometry."""
+    w = {j.name: j for j in m.world_joints}
+    cols = []
+    for i in (1, 2, 3):
+        u = np.array(w[f"R{i}"].axis)
+        a, b = np.array(w[f"R{i}"].point), np.array(w[f"S{i}"].point)
+        n = np.cross((b - a) / np.linalg.norm(b - a), u)
+        cols += [np.concatenate([d, np.cross(b / 100.0, d)]) for d in (u, n)]
+    return float(np.linalg.det(np.array(cols).T))
+
+
+SINGULAR_H, SINGULAR_PHI = 124.8, 174.7
+
+
+@functools.lru_cache(maxsize=1)
+def singular_theta() -> float:
+    """Tilt where the 3R choice is actuation-singular at (SINGULAR_H, SINGULAR_PHI), by bisection."""
+    lo, hi = 10.0, 20.0
+    sign_lo = np.sign(_det_3r(rps(SINGULAR_H, SINGULAR_PHI, lo)))
+    assert sign_lo != np.sign(_det_3r(rps(SINGULAR_H, SINGULAR_PHI, hi)))
+    for _ in range(55):
+        mid = 0.5 * (lo + hi)
+        if np.sign(_det_3r(rps(SINGULAR_H, SINGULAR_PHI, mid))) == sign_lo:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def test_3R_has_an_actuation_singularity_inside_the_stroke_when_the_platform_tilts():
+    # Not in the paper: tilting about 15 degrees at h = 124.8 mm, with every leg inside
+    # 120-195 mm, the three R inputs lose control of one screw motion of the platform.
+    h, phi, theta = SINGULAR_H, SINGULAR_PHI, singular_theta()
+    m = rps(h, phi, theta)
+    assert STROKE[0] < legs(m).min() and legs(m).max() < STROKE[1]
+    check = check_actuation(m, ["R1", "R2", "R3"])
+    assert check.verdict == SINGULAR and check.rank == 5 and check.conditioning == 0.0
+    (lost,) = check.uncontrolled_twists
+    norm = joint_screws(m).normalisation
+    platform = norm.from_world(mobility.analyze(m).twists.T)
+    assert same_subspace(np.hstack([platform, norm.from_world(lost)]), platform)  # a motion the platform has
+    wrenches = np.vstack([check.constraint_wrenches] + [i.wrench for i in check.inputs])
+    assert np.abs(reciprocal_product(wrenches.T, lost[:, None])).max() < 1e-8 * np.abs(wrenches).max() * np.abs(lost).max()
+    assert locked_dof(m, ["R1", "R2", "R3"]) == 1  # the second route agrees
+    for nearby in (theta - 1.0, theta + 1.0):
+        near = rps(h, phi, nearby)
+        assert check_actuation(near, ["R1", "R2", "R3"]).verdict == VALID
+        assert locked_dof(near, ["R1", "R2", "R3"]) == 0
+    assert check_actuation(m, ["P1", "P2", "P3"]).verdict == VALID
+
+
+def test_enumeration_reports_the_pose_where_a_combination_fails():
+    bad = rps(SINGULAR_H, SINGULAR_PHI, singular_theta())
+    found = enumerate_actuations(POSES[0], poses=[POSES[3], bad])
+    by_inputs = {c.inputs: c for c in found.combinations}
+    r3 = by_inputs[("R1", "R2", "R3")]
+    assert r3.verdict == SINGULAR and r3.failures == ((2, SINGULAR),) and r3.valid_poses == 2
+    assert found.combinations[-1] is r3
+    assert [g for g in found.groups if g.type == "3R"][0].valid == 0
+
+
+# ---------------------------------------------------------------------------
+# other mechanisms and verdicts
+# ---------------------------------------------------------------------------
+
+
+def _slides() -> Mechanism:
+    """A carriage on a slide along x, also held by a limb of two slides (x then y)."""
+    P = lambda n, a, b, axis: Joint(n, "P", (a, b), axis=axis, point=(0, 0, 0))  # noqa: E731
+    return Mechanism(
+        "two-limb slide",
+        "ground",
+        "carriage",
+        (
+            P("Px1", "ground", "carriage", (1, 0, 0)),
+            P("Px2", "ground", "block", (1, 0, 0)),
+            P("Py2", "block", "carriage", (0, 1, 0)),
+        ),
+    )
+
+
+def test_an_input_whose_wrench_lies_in_the_constraint_space_is_invalid():
+    m = _slides()
+    check = check_actuation(m, ["Py2"])
+    assert check.dof == 1 and check.verdict == SINGULAR
+    (inp,) = check.inputs
+    assert inp.in_constraint_space and "constraint space" in inp.note
+    assert np.allclose(inp.axis.axis, [0, 1, 0])  # a force along y: the first limb already holds it
+    assert np.allclose(check.uncontrolled_translations, [[1, 0, 0]]) and not check.uncontrolled_rotations
+    assert locked_dof(m, ["Py2"]) == 1
+    assert check_actuation(m, ["Px2"]).verdict == VALID and locked_dof(m, ["Px2"]) == 0
+
+
+def test_a_joint_whose_motion_its_limb_already_has_cannot_be_driven():
+    m = _slides()
+    m = m.replace(joints=m.joints[:2] + (Joint("Px3", "P", ("block", "carriage"), axis=(1, 0, 0)),))
+    check = check_actuation(m, ["Px3"])
+    assert check.verdict == SINGULAR and check.inputs[0].wrench is None
+    assert "other joints of its limb" in check.inputs[0].note
+    assert locked_dof(m, ["Px3"]) == 1
+
+
+def _four_bar() -> Mechanism:
+    R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)  # noqa: E731
+    return Mechanism(
+        "four-bar",
+        "ground",
+        "coupler",
+        (R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "coupler", (1, 2, 0)), R("C", "coupler", "rocker", (4, 2.5, 0)), R("D", "rocker", "ground", (5, 0, 0))),
+    )
+
+
+def test_four_bar_every_single_input_is_valid_two_are_redundant():
+    m = _four_bar()
+    found = enumerate_actuations(m, mode="any")
+    assert sorted(c.inputs for c in found.combinations) == [("A",), ("B",), ("C",), ("D",)]
+    assert all(c.verdict == VALID and c.conditioning == 1.0 for c in found.combinations)  # one input: G is 1x1
+    assert all(locked_dof(m, c.inputs) == 0 for c in found.combinations)
+    pair = enumerate_actuations(m, mode="any", k=2)
+    assert {c.verdict for c in pair.combinations} == {REDUNDANT} and len(pair.combinations) == 6
+    assert "none can be valid" in " ".join(pair.warnings)
+
+
+def test_four_bar_input_at_a_dead_centre_is_singular():
+    # Crank A and coupler in line: the crank's actuation wrench (a force along the coupler)
+    # passes through A, so the crank cannot move the coupler.
+    R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)  # noqa: E731
+    m = Mechanism("four-bar at dead centre", "ground", "coupler", (
+        R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "coupler", (1, 0, 0)),
+        R("C", "coupler", "rocker", (3, 0, 0)), R("D", "rocker", "ground", (3, 2, 0))))
+    assert check_actuation(m, ["D"]).verdict == SINGULAR  # C, B, A in line: the rocker's force along CB passes through A
+    assert locked_dof(m, ["D"]) == 1
+    assert check_actuation(m, ["B"]).verdict == VALID and locked_dof(m, ["B"]) == 0
+
+
+def test_serial_arm_is_one_limb():
+    R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)  # noqa: E731
+    arm = Mechanism("planar RR", "g", "hand", (R("A", "g", "upper", (0, 0, 0)), R("B", "upper", "hand", (1, 0, 0))))
+    assert check_actuation(arm, ["A", "B"]).verdict == VALID
+    one = check_actuation(arm, ["A"])
+    assert one.verdict == SINGULAR and len(one.uncontrolled_rotations) == 1
+    assert np.allclose(one.uncontrolled_rotations[0].point[:2], [1, 0])  # the hand still turns about B
+    assert [i.limb for i in one.inputs] == [0]
+
+
+def test_unknown_joint_is_a_mechanism_error():
+    with pytest.raises(MechanismError, match="unknown joint 'Q9'"):
+        check_actuation(_four_bar(), ["Q9"])
+    with pytest.raises(MechanismError, match="not a pose"):
+        check_over_poses(_four_bar(), ["A"], [_slides()])
+
+
+def test_lock_joints_merges_links_and_drops_joints_left_inside_one_body():
+    m = _four_bar()
+    locked = lock_joints(m, ["B", "C"])  # crank, coupler and rocker become one body, named after the end effector
+    assert [(j.name, j.links) for j in locked.joints] == [("A", ("ground", "coupler")), ("D", ("coupler", "ground"))]
+    assert locked_dof(m, ["B", "C"]) == 0 and locked_dof(m, ["C"]) == 0
+    assert lock_joints(m, ["A", "B"]) is None  # coupler welded to the ground
+    assert locked_dof(m, ["A", "B"]) == 0
+
+
+def test_combination_type_follows_the_paper():
+    assert combination_type("RRR") == "3R"
+    assert combination_type("PRR") == "2R1P"
+    assert combination_type("PPR") == "1R2P"
+    assert combination_type("HPR") == "1R1P1H"
+
+
+# ---------------------------------------------------------------------------
+# invariance
+# ---------------------------------------------------------------------------
+
+
+def _moved(m: Mechanism, scale: float, rot: np.ndarray, shift: np.ndarray) -> Mechanism:
+    from dataclasses import replace
+
+    out = []
+    for j in m.world_joints:
+        changes = {}
+        if j.axis is not None:
+            changes["axis"] = tuple(rot @ j.axis)
+        if j.point is not None:
+            changes["point"] = tuple(scale * (rot @ j.point) + shift)
+        out.append(replace(j, **changes))
+    return m.replace(joints=tuple(out), frames=())
+
+
+def test_verdicts_and_conditioning_do_not_depend_on_unit_or_placement():
+    rot = rotation_from_axis_angle(np.array([1.0, 2.0, 3.0]) / np.sqrt(14), 0.7)
+    shift = np.array([3000.0, -500.0, 1200.0])
+    for m in (POSES[0], POSES[7], POSES[9]):
+        moved = _moved(m, 1000.0, rot, shift)
+        for combo in (["P1", "P2", "P3"], ["R1", "P2", "R3"], ["R1", "R2"]):
+            a, b = check_actuation(m, combo), check_actuation(moved, combo)
+            assert a.verdict == b.verdict and a.rank == b.rank
+            assert a.conditioning == pytest.approx(b.conditioning, rel=1e-9, abs=1e-12)
+            for ia, ib in zip(a.inputs, b.inputs):
+                assert np.allclose(rot @ ia.axis.axis, ib.axis.axis, atol=1e-9)
+                assert _line_distance(1000.0 * (rot @ ia.axis.point) + shift, ib.axis.point, ib.axis.axis) < 1e-6
+
+
+# ---------------------------------------------------------------------------
+# poses from the user, and from the sampler when it exists
+# ---------------------------------------------------------------------------
+
+
+def test_sampled_poses_are_used_when_the_sampler_exists_and_reported_missing_otherwise():
+    found = enumerate_actuations(POSES[0], samples=2, seed=1)
+    try:
+        from mobility.finite import sample_poses  # noqa: F401
+    except ImportError:
+        assert len(found.poses) == 1 and "pose sampling is not available" in found.warnings[0]
+    else:
+        assert len(found.poses) == 3 and found.poses[1] == "sampled pose 1"
+
+
+# ---------------------------------------------------------------------------
+# command line
+# ---------------------------------------------------------------------------
+
+
+def test_cli_report_of_the_marked_inputs(capsys):
+    assert main(["actuation", str(RPS_FILE)]) == 0
+    out = capsys.readouterr().out
+    assert "inputs: P1, P2, P3 (3 for 3 DOF)" in out and "verdict: VALID" in out and "kappa" in out
+    assert main(["actuation", str(RPS_FILE), "--inputs", "R1,R2"]) == 1
+    out = capsys.readouterr().out
+    assert "ACTUATION-SINGULAR" in out and "uncontrolled directions" in out
+
+
+def test_cli_enumerate_with_listed_poses_and_json(tmp_path, capsys):
+    pose_file = tmp_path / "tilted.yaml"
+    text = RPS_TEXT
+    for key, value in (("h", 170), ("phi", 100), ("theta", 5)):
+        text = re.sub(rf"\n  {key}: [^\n]*", f"\n  {key}: {value}", text, count=1)
+    pose_file.write_text(text, encoding="utf-8")
+    assert main(["actuation", str(RPS_FILE), "--enumerate", "--pose", str(pose_file), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["poses"] == ["given pose", str(pose_file)]
+    assert {g["type"]: (g["valid"], g["total"]) for g in data["groups"]} == {"3R": (1, 1), "2R1P": (3, 3), "1R2P": (3, 3), "3P": (1, 1)}
+    assert main(["actuation", str(RPS_FILE), "--enumerate"]) == 0
+    text_out = capsys.readouterr().out
+    assert "3R" in text_out and "1R2P" in text_out and "best: P1 P2 P3 (3P)" in text_out
+
+
+def test_cli_json_of_one_choice(capsys):
+    assert main(["actuation", str(RPS_FILE), "--json", "--inputs", "R1,P2,R3"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["verdict"] == "valid" and data["kind"] == "rigid" and data["dof"] == 3
+    assert [i["name"] for i in data["inputs"]] == ["R1", "P2", "R3"]
+    assert len(data["constraints"]["wrenches"]) == 3
+
+
+def test_cli_bad_input_is_one_line_with_status_2(tmp_path, capsys):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(RPS_TEXT.replace("actuated: true", "actuated: yes please"), encoding="utf-8")
+    assert main(["actuation", str(bad)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "bad.yaml:" in err and "actuated" in err
+    assert main(["actuation", str(RPS_FILE), "--inputs", "Z1"]) == 2
+    assert "unknown joint 'Z1'" in capsys.readouterr().err
+    assert main(["actuation", str(tmp_path / "missing.yaml")]) == 2
