@@ -111,6 +111,33 @@ def _matplotlib() -> Any:
     return matplotlib
 
 
+_FIGURE_CLASS: list[type] = []
+
+
+def _figure_class() -> type:
+    """A :class:`matplotlib.figure.Figure` that shows itself in Jupyter (made on first use).
+
+    The figures are built without :mod:`matplotlib.pyplot`, so no backend
+    registers a display hook for them; ``_repr_png_`` lets IPython show one
+    left as a cell's value whatever the backend.
+    """
+    if not _FIGURE_CLASS:
+        from matplotlib.figure import Figure
+
+        class MobilityFigure(Figure):
+            """A figure of :mod:`mobility.plotting`; displays itself as PNG in Jupyter."""
+
+            def _repr_png_(self) -> bytes:
+                import io
+
+                buf = io.BytesIO()
+                self.savefig(buf, format="png", dpi=90, facecolor="white")
+                return buf.getvalue()
+
+        _FIGURE_CLASS.append(MobilityFigure)
+    return _FIGURE_CLASS[0]
+
+
 # ---------------------------------------------------------------------------
 # geometry of the drawing (no matplotlib)
 
@@ -599,7 +626,6 @@ def plot_mechanism(
         When matplotlib is not installed.
     """
     _matplotlib()
-    from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
 
     from .analysis import analyze
@@ -639,7 +665,7 @@ def plot_mechanism(
     half = 0.5 * float(np.max(hi - lo)) * 1.08 + 0.02 * size
 
     nv = len(view_list)
-    fig = Figure(figsize=figsize or (6.2 * nv, 6.6), layout=None)
+    fig = _figure_class()(figsize=figsize or (6.2 * nv, 6.6))
     head = 0.045 * size
     for k, (elev, azim) in enumerate(view_list):
         ax = fig.add_subplot(1, nv, k + 1, projection="3d")
@@ -814,7 +840,6 @@ def plot_graph(
     """
     _matplotlib()
     import networkx as nx
-    from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
 
     from .analysis import analyze
@@ -854,7 +879,7 @@ def plot_graph(
     width_nodes = max(sum(1 for x in depth.values() if x == d) for d in set(depth.values()))
     leaves = len(joints_of(topo.root)) + sum(len(joints_of(d)) for d in topo.detached)
     w = max(10.0, min(26.0, 3.2 + 0.55 * max(leaves, 2 * width_nodes)))
-    fig = Figure(figsize=figsize or (w, 6.4))
+    fig = _figure_class()(figsize=figsize or (w, 6.4))
     ax_g = fig.add_axes((0.01, 0.08, 0.40, 0.82))
     ax_t = fig.add_axes((0.43, 0.08, 0.56, 0.82))
     node_color = ["#bdbdbd" if x == mechanism.ground else "#ffb74d" if x == mechanism.end_effector else "#e3f2fd" for x in g.nodes]

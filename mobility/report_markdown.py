@@ -135,7 +135,7 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
         out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}/rad"], _freedom_rows(result)))
         out.append("")
         out.append("Translations: an orthonormal basis of the pure translations. Rotations: principal screws, each axis "
-                   "given through its point nearest the end effector's centre.")
+                   f"given through its point nearest the end effector's centre {fmt_vector(result.reference_point, s)}.")
     else:
         out.append("None.")
     out.append("")
