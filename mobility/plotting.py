@@ -52,6 +52,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import textwrap
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Sequence
@@ -720,9 +721,11 @@ def plot_mechanism(
             handles.append(Line2D([], [], color=COLORS["force"], lw=1.6, label="constraint force W"))
         if sc["couples"]:
             handles.append(Line2D([], [], color=COLORS["couple"], lw=1.8, ls="--", label="constraint couple C"))
-        fig.legend(handles=handles, loc="lower center", ncol=min(len(handles), 7), frameon=False, fontsize=8.5)
+        width = fig.get_figwidth()
+        fig.legend(handles=handles, loc="lower center", ncol=max(2, min(len(handles), int(width / 1.75))), frameon=False, fontsize=8.5)
     unit = f", lengths in {r.length_unit}" if r.length_unit else ""
-    fig.suptitle(title if title is not None else f"{r.name}: end effector {r.dof} DOF ({r.pattern}), mobility {r.mobility}{unit}", fontsize=11)
+    text = title if title is not None else f"{r.name}: end effector {r.dof} DOF ({r.pattern}), mobility {r.mobility}{unit}"
+    fig.suptitle(textwrap.fill(text, width=max(40, int(fig.get_figwidth() * 10.5))), fontsize=11)
     fig.subplots_adjust(left=0.0, right=1.0, top=0.9, bottom=0.1 if legend else 0.02, wspace=0.0)
     return fig
 
