@@ -114,8 +114,17 @@ EXPECTED_VALIDATORS: dict[str, Callable[[Any, str], Any]] = {
     "redundant_constraints": _expected_int,
     "idle_dof": _expected_int,
     "gruebler_kutzbach": lambda v, k: _expected_int(v, k, signed=True),
+    "full_cycle_dof": _expected_int,
+    "full_cycle_mobility": _expected_int,
+    "finite_verdict": lambda v, k: _expected_choice(v, k, ("full-cycle", "instantaneous-only", "cannot-move", "bifurcation")),
 }
 """Validators of the ``expected`` keys (other modules may register more)."""
+
+
+def _expected_choice(value: Any, key: str, choices: tuple[str, ...]) -> str:
+    if value not in choices:
+        raise MechanismError(key, f"expected one of {', '.join(choices)}, got {value!r}")
+    return value
 
 
 class _Reader:

@@ -335,6 +335,9 @@ EXPECTED_KEYS: dict[str, str] = {
     "redundant_constraints": "number of redundant constraints (integer >= 0)",
     "idle_dof": "number of idle DOF (integer >= 0)",
     "gruebler_kutzbach": "Grübler-Kutzbach count (integer)",
+    "full_cycle_dof": "end-effector DOF along the finite motion from this pose (integer >= 0; mobility analyze --finite)",
+    "full_cycle_mobility": "DOF of the whole mechanism along the finite motion (integer >= 0; mobility analyze --finite)",
+    "finite_verdict": "full-cycle, instantaneous-only, cannot-move or bifurcation (mobility analyze --finite)",
 }
 """Keys an ``expected`` block may hold, with what each means."""
 

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 
 from ..analysis import analyze
+from ..finite import finite_mobility, finite_report
 from ..loader import load
 from ..report import json_report, text_report
 from ..report_markdown import markdown_report
@@ -28,6 +30,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output format (default: text)")
     p.add_argument("--limbs", action="store_true", help="also show each limb's twists and constraints in its own frame")
     p.add_argument("--tol", type=float, default=Tolerance().rank, help="relative rank threshold (default: %(default)g)")
+    p.add_argument("--finite", action="store_true", help="also move the mechanism: is the freedom full-cycle or instantaneous only?")
     p.set_defaults(run=run)
 
 
@@ -39,5 +42,20 @@ def run(args: argparse.Namespace) -> int:
     mechanism = load(args.file)
     result = analyze(mechanism, tol=Tolerance(rank=args.tol))
     fmt = "json" if args.json else args.format
-    print(FORMATS[fmt](result, args))
+    text = FORMATS[fmt](result, args)
+    if args.finite:
+        text = _with_finite(text, fmt, finite_mobility(mechanism, tol=Tolerance(rank=args.tol)))
+    print(text)
     return 0
+
+
+def _with_finite(text: str, fmt: str, finite) -> str:
+    """Add the finite-motion answer to a report: a ``finite`` key in JSON, a section otherwise."""
+    if fmt == "json":
+        data = json.loads(text)
+        data["finite"] = finite.to_dict()
+        return json.dumps(data, indent=2, ensure_ascii=False)
+    section = finite_report(finite)
+    if fmt == "md":
+        return text.rstrip("\n") + "\n\n## Finite motion\n\n```\n" + section + "\n```\n"
+    return text + "\n" + section
