@@ -648,31 +648,36 @@ def check_force_lines(
         spaces._constraint_n,
         norm,
         reference,
-        actuation_tolerance(spaces.threshold, tol),
+        actuation_tolerance(spaces, tol),
         warnings,
         mechanism.length_unit,
     )
 
 
-def actuation_tolerance(threshold: float, tol: Tolerance = DEFAULT_TOLERANCE) -> Tolerance:
-    """The rank policy of a flexure's actuation check: relative tolerance ``threshold``.
+def actuation_tolerance(spaces: "FlexureSpaces", tol: Tolerance = DEFAULT_TOLERANCE) -> Tolerance:
+    """The rank policy of a flexure's actuation check, from the gap between its eigenvalue clusters.
 
     The freedom and constraint spaces of a real flexure (finite stiffness in
-    every direction) differ from the ideal ones (infinitely compliant,
-    infinitely stiff) by relative amounts of the order of the compliance
-    ratio between the two eigenvalue clusters; a force through the ideal
-    centre of a three-rod flexure is off its computed constraint space by
-    about that much.  Rank decisions on those spaces therefore count relative
-    singular values up to the compliance threshold as zero (a tighter
-    tolerance would call every choice valid), and warn below three times it.
+    every direction) are those of an ideal one (infinitely compliant and
+    infinitely stiff directions) only up to relative amounts of the order of
+    ``eps``, the ratio of the relative compliances either side of the
+    threshold (the three-rod flexure's constraint forces meet ``0.6 eps L``
+    away from the point where the rod axes meet).  Rank decisions on those
+    spaces therefore count relative singular values up to ``eps`` as zero
+    (the same for every threshold inside the gap), bounded to
+    ``[tol.rank, 0.1]``, and warn below ten times that.
 
     Examples
     --------
-    >>> t = actuation_tolerance(0.01)
-    >>> t.rank, t.near_singular
-    (0.01, 0.03)
+    >>> from types import SimpleNamespace
+    >>> t = actuation_tolerance(SimpleNamespace(gap=(0.8, 0.0008)))
+    >>> round(t.rank, 6), round(t.near_singular, 6)
+    (0.001, 0.01)
     """
-    return Tolerance(rank=threshold, near_singular=min(0.9, 3.0 * threshold), inexact=min(tol.inexact, threshold))
+    above, below = spaces.gap
+    eps = below / above if above > 0 else 1.0
+    rank = min(max(eps, tol.rank), 0.1)
+    return Tolerance(rank=rank, near_singular=min(10.0 * rank, 0.5), inexact=min(tol.inexact, rank))
 
 
 def _reference(mechanism: FlexureMechanism, norm: Normalisation) -> np.ndarray:
@@ -745,7 +750,7 @@ def enumerate_force_lines(mechanism: FlexureMechanism, k: int | None = None, *, 
     if math.comb(len(cands), k) > MAX_COMBINATIONS:
         raise ValueError(f"{math.comb(len(cands), k)} combinations to try (more than {MAX_COMBINATIONS}); choose a smaller k")
     norm = spaces._norm
-    atol = actuation_tolerance(spaces.threshold, tol)
+    atol = actuation_tolerance(spaces, tol)
     wrench = {a.name: _unit(norm.from_world(a.wrench())[:, 0]) for a in cands}
     found = []
     for combo in itertools.combinations(cands, k):
