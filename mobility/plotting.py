@@ -465,6 +465,8 @@ def _draw_link(ax: Any, name: str, pts: np.ndarray, role: str, size: float) -> N
 
 def _joint_symbols(ax: Any, m: Mechanism, sk: Sketch, labels: bool) -> None:
     """One scatter per joint type, small axis segments, names."""
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
     size = sk.size
     joints = m.world_joints
     for t, style in JOINT_STYLE.items():
@@ -474,25 +476,32 @@ def _joint_symbols(ax: Any, m: Mechanism, sk: Sketch, labels: bool) -> None:
         p = sk.points[idx]
         edge = "white" if t == "S" else "black"
         ax.scatter(*p.T, marker=style["marker"], s=style["s"], facecolors=style["facecolor"], edgecolors=edge, linewidths=1.0, depthshade=False, zorder=5, gid=f"mobility:joints:{t}")
+    # the small axis segments of every joint in two collections (thin axes, thick rails): one artist each
+    axes_segs: list[np.ndarray] = []
+    rails: list[np.ndarray] = []
     for i, j in enumerate(joints):
         x = sk.points[i]
-        gid = f"mobility:joint-axis:{j.name}"
         if j.type in ("R", "H", "C"):
             a = np.asarray(j.axis)
-            ax.plot(*np.stack([x - 0.06 * size * a, x + 0.06 * size * a]).T, color="black", lw=1.2, gid=gid)
+            axes_segs.append(np.stack([x - 0.06 * size * a, x + 0.06 * size * a]))
         if j.type in ("P", "C"):
             a = np.asarray(j.axis)
-            ax.plot(*np.stack([x - 0.07 * size * a, x + 0.07 * size * a]).T, color="#b8860b", lw=5.0, alpha=0.55, gid=gid + ":rail", solid_capstyle="butt")
+            rails.append(np.stack([x - 0.07 * size * a, x + 0.07 * size * a]))
         if j.type == "H":
-            ax.plot(*_helix(x, np.asarray(j.axis), 0.025 * size, 0.1 * size).T, color="#2e7d32", lw=0.9, gid=gid + ":helix")
+            axes_segs.append(_helix(x, np.asarray(j.axis), 0.025 * size, 0.1 * size))
         if j.type == "U":
-            for k, a in enumerate(j.axes):
-                a = np.asarray(a)
-                ax.plot(*np.stack([x - 0.06 * size * a, x + 0.06 * size * a]).T, color="black", lw=1.2, gid=f"{gid}:{k}")
+            axes_segs += [np.stack([x - 0.06 * size * np.asarray(a), x + 0.06 * size * np.asarray(a)]) for a in j.axes]
         if j.type == "E":
             e1, e2 = _perpendiculars(np.asarray(j.normal))
-            sq = np.array([x + 0.05 * size * (s1 * e1 + s2 * e2) for s1, s2 in ((1, 1), (-1, 1), (-1, -1), (1, -1), (1, 1))])
-            ax.plot(*sq.T, color="#bf360c", lw=1.0, gid=gid + ":plane")
+            axes_segs.append(np.array([x + 0.05 * size * (s1 * e1 + s2 * e2) for s1, s2 in ((1, 1), (-1, 1), (-1, -1), (1, -1), (1, 1))]))
+    if axes_segs:
+        coll = Line3DCollection(axes_segs, colors="black", linewidths=1.1)
+        coll.set_gid("mobility:joint-axes")
+        ax.add_collection3d(coll)
+    if rails:
+        coll = Line3DCollection(rails, colors="#b8860b", linewidths=5.0, alpha=0.55, capstyle="butt")
+        coll.set_gid("mobility:joint-rails")
+        ax.add_collection3d(coll)
     if labels and len(joints) <= 40:
         off = 0.025 * size
         for i, name in enumerate(sk.names):

@@ -133,7 +133,10 @@ def residual_from_span(screw: np.ndarray, basis: np.ndarray) -> float:
     return float(np.linalg.norm(s - basis @ (basis.T @ s))) if basis.size else float(np.linalg.norm(s))
 
 
-def pixels(fig) -> np.ndarray:
+def pixels(fig, first_only: bool = False) -> np.ndarray:
+    """The figure rendered by Agg at a low resolution (only its first axes when asked: 3D drawing is slow)."""
+    for ax in fig.axes[1:]:
+        ax.set_visible(not first_only)
     canvas = FigureCanvasAgg(fig)
     fig.set_dpi(45)
     canvas.draw()
@@ -219,7 +222,7 @@ def test_drawn_freedoms_and_constraints_match_the_loop_closure_route(source):
             spread = np.ptp(sk.points[list(idx)], axis=0).max()
             if spread > 1e-6 * sk.size:
                 assert f"mobility:link:{link}" in gids, link
-    img = pixels(fig)
+    img = pixels(fig, first_only=True)
     assert (img.min(axis=-1) < 200).mean() > 0.01, "picture is blank"
     assert (near_colour(img, COLORS["translation"]) > 0) == bool(free.shape[1])
     assert near_colour(img, COLORS["end_effector"]) > 0
