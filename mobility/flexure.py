@@ -508,10 +508,9 @@ class FlexureSpaces:
         }
 
 
-def _normalised_q(mechanism: FlexureMechanism) -> tuple[np.ndarray, Normalisation]:
-    """``Q = SWAP C`` in normalised coordinates (document length unit), symmetrised."""
+def _normalised_q(mechanism: FlexureMechanism, c: np.ndarray) -> tuple[np.ndarray, Normalisation]:
+    """``Q = SWAP C`` in normalised coordinates (document length unit), symmetrised, from ``C`` (SI)."""
     norm = mechanism.normalisation()
-    c = compliance_matrix(mechanism)
     metres = mechanism.metres
     # C maps SI wrenches to SI twists; n(x) = [x1; (x2 - c x x1) / L] with c, L in metres.
     n = np.eye(6)
@@ -546,7 +545,8 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
         threshold = mechanism.threshold if mechanism.threshold is not None else DEFAULT_THRESHOLD
     if not (0.0 < threshold < 1.0):
         raise ValueError(f"threshold must lie between 0 and 1, got {threshold!r}")
-    q, norm = _normalised_q(mechanism)
+    compliance = compliance_matrix(mechanism)
+    q, norm = _normalised_q(mechanism, compliance)
     values, vectors = np.linalg.eigh(q)
     order = np.argsort(values)[::-1]
     values, vectors = values[order], vectors[:, order]
@@ -582,7 +582,7 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
         constraint_forces=cf,
         constraint_wrenches=crows,
         gap=(above, below),
-        compliance=compliance_matrix(mechanism),
+        compliance=compliance,
         length=norm.length,
         length_unit=mechanism.length_unit,
         warnings=tuple(warnings),

@@ -352,6 +352,17 @@ def test_serial_arm_is_one_limb():
     assert [i.limb for i in one.inputs] == [0]
 
 
+def test_each_freedom_of_an_actuated_universal_joint_is_one_input():
+    u = Joint("U", "U", ("g", "arm"), point=(0, 0, 0), axes=((0, 0, 1), (0, 1, 0)))
+    tip = Joint("P", "P", ("arm", "hand"), axis=(1, 0, 0))
+    m = Mechanism("UP arm", "g", "hand", (u, tip))
+    check = check_actuation(m, ["U"])
+    assert [i.name for i in check.inputs] == ["U.0", "U.1"]
+    assert check.verdict == SINGULAR and np.allclose(np.abs(check.uncontrolled_translations), [[1, 0, 0]])
+    assert check_actuation(m, ["U", "P"]).verdict == VALID and locked_dof(m, ["U", "P"]) == 0
+    assert locked_dof(m, ["U"]) == 1
+
+
 def test_unknown_joint_is_a_mechanism_error():
     with pytest.raises(MechanismError, match="unknown joint 'Q9'"):
         check_actuation(_four_bar(), ["Q9"])
