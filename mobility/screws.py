@@ -79,7 +79,11 @@ def helical_twist(axis: np.ndarray, point: np.ndarray, pitch: float) -> np.ndarr
 
 
 def reciprocal_product(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Reciprocal product ``a_w . b_v + a_v . b_w`` of screws (columns of 6 x n arrays broadcast).
+    """Reciprocal product ``a_w . b_v + a_v . b_w`` of screws stored as columns.
+
+    ``a`` and ``b`` are shape ``(6,)`` (one screw) or ``(6, n)`` (``n`` screws);
+    a single screw is paired with every column of the other argument, two
+    ``(6, n)`` arrays column by column (further axes broadcast as numpy does).
 
     Examples
     --------
@@ -87,9 +91,15 @@ def reciprocal_product(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     >>> force_x_through_origin = np.array([1.0, 0, 0, 0, 0, 0])
     >>> float(reciprocal_product(force_x_through_origin, prismatic_twist([1.0, 0, 0])))
     1.0
+    >>> reciprocal_product(force_x_through_origin, np.eye(6)[:, 3:]).tolist()
+    [1.0, 0.0, 0.0]
     """
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float)
+    if a.ndim == 1 and b.ndim > 1:
+        a = a.reshape((6,) + (1,) * (b.ndim - 1))
+    elif b.ndim == 1 and a.ndim > 1:
+        b = b.reshape((6,) + (1,) * (a.ndim - 1))
     return np.sum(a[:3] * b[3:], axis=0) + np.sum(a[3:] * b[:3], axis=0)
 
 

@@ -121,3 +121,16 @@ def test_cross_equals_numpy_cross():
     assert np.allclose(cross(a, b), np.cross(a, b, axis=0))
     assert np.allclose(cross(a[:, 0], b[:, 0]), np.cross(a[:, 0], b[:, 0]))
     assert np.allclose(cross(a[:, :1], b), np.cross(a[:, :1], b, axis=0))
+
+
+def test_reciprocal_product_pairs_one_screw_with_every_column():
+    rng = np.random.default_rng(0)
+    a = rng.normal(size=6)
+    for n in (1, 3, 6):
+        b = rng.normal(size=(6, n))
+        expected = a @ SWAP @ b
+        assert np.allclose(reciprocal_product(a, b), expected)
+        assert np.allclose(reciprocal_product(b, a), expected)
+        assert np.allclose(reciprocal_product(a[:, None], b), expected)
+    c, d = rng.normal(size=(2, 6, 4))
+    assert np.allclose(reciprocal_product(c, d), np.einsum("ij,ik,kj->j", c, SWAP, d))
