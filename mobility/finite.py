@@ -68,7 +68,6 @@ from typing import Any
 
 import numpy as np
 from scipy.linalg import qr
-from scipy.optimize import least_squares
 
 from .analysis import analyze
 from .kinematics import CLOSURE_TOLERANCE, Kinematics, kinematics
@@ -445,6 +444,8 @@ def _second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator
     compared with how fast the loops open in general; geometry that is special
     only to ``inexact`` is allowed forms of that relative size.
     """
+    from scipy.optimize import least_squares  # slow to import; needed only here
+
     jac = kin.jacobian(np.zeros(kin.variable_count))
     n = kin.variable_count
     k = tangent.shape[1]

@@ -7,7 +7,6 @@ import json
 import sys
 
 from ..analysis import analyze
-from ..finite import finite_mobility, finite_report
 from ..loader import load
 from ..report import json_report, text_report
 from ..report_markdown import markdown_report
@@ -44,6 +43,8 @@ def run(args: argparse.Namespace) -> int:
     fmt = "json" if args.json else args.format
     text = FORMATS[fmt](result, args)
     if args.finite:
+        from ..finite import finite_mobility  # scipy.optimize is slow to import: only when asked
+
         text = _with_finite(text, fmt, finite_mobility(mechanism, tol=Tolerance(rank=args.tol)))
     print(text)
     return 0
@@ -55,6 +56,8 @@ def _with_finite(text: str, fmt: str, finite) -> str:
         data = json.loads(text)
         data["finite"] = finite.to_dict()
         return json.dumps(data, indent=2, ensure_ascii=False)
+    from ..finite import finite_report
+
     section = finite_report(finite)
     if fmt == "md":
         return text.rstrip("\n") + "\n\n## Finite motion\n\n```\n" + section + "\n```\n"
