@@ -629,16 +629,20 @@ def finite_mobility(
     worst = max((p.residuals[-1] for p in probes if p.moved), default=0.0)
     if not branches:
         smallest = min((p.residuals[0] for p in probes), default=float("nan"))
-        order2 = ""
         if second is not None and second.obstructed:
             order2 = (
                 f" The second-order test agrees: no first-order motion keeps the {second.cokernel} dependent loop equation(s) "
                 f"closed to second order (least violation {second.least_violation:.2e} relative)."
             )
+        elif second is not None:
+            order2 = " Some directions pass the second-order test, yet no move along them closes: the obstruction is of higher order."
+        else:
+            order2 = ""
         text = (
             f"The screw route finds {k} first-order motion(s) (end-effector DOF {instant.dof}), but none is a finite motion: "
-            f"in {tried} directions, Newton cannot re-close the loops even at step {steps[0]:g} "
-            f"(smallest residual left {smallest:.2e}, tolerance {CLOSURE_TOLERANCE:.0e}).{order2} The pose cannot move at all."
+            f"in {tried} directions, Newton does not re-close the loops at every step {', '.join(f'{h:g}' for h in steps)} "
+            f"(smallest residual left at step {steps[0]:g}: {smallest:.2e}; closed means below {CLOSURE_TOLERANCE:.0e}).{order2} "
+            "The pose cannot move at all."
         )
         return FiniteMobility(verdict="cannot-move", explanation=text, full_cycle_dof=0, full_cycle_pattern="0", full_cycle_mobility=0,
                               branches=(), probes=probes, second_order=second, warnings=tuple(warnings), **common)
@@ -673,14 +677,12 @@ def finite_mobility(
         )
     else:
         verdict = "instantaneous-only"
-        lost = k - top.dimension
         text = (
-            f"The finite motion has {top.dimension} freedom(s) of the {k} first-order ones "
-            f"({lost} infinitesimal only) and end-effector DOF {top.dof} ({top.pattern}) instead of {instant.dof} ({instant.pattern}): "
-            f"{numbers}; {summary}."
+            f"The finite motion has {top.dimension} of the {k} first-order freedom(s) and end-effector DOF {top.dof} "
+            f"({top.pattern}) instead of {instant.dof} ({instant.pattern}): {numbers}; {summary}."
         )
-        if second is not None:
-            text += f" Second order: {second.directions.shape[1]} direction line(s) pass; the moves slide onto the branch."
+        if second is not None and second.directions.shape[1]:
+            text += f" Second order: {second.directions.shape[1]} direction line(s) pass."
     if verdict != "bifurcation" and len(patterns) > 1:
         warnings.append("branches of equal DOF with different patterns")
     return FiniteMobility(
