@@ -60,7 +60,7 @@ True
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from dataclasses import replace as _replace
 
 import networkx as nx
@@ -68,7 +68,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from .joint_screws import Normalisation, joint_screws, per_object_cache
-from .model import WORLD, Joint, Mechanism
+from .model import WORLD, Mechanism
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
 from .transforms import skew
 
@@ -305,14 +305,14 @@ class Kinematics:
     kinds: tuple[str, ...]
     tree: tuple[int, ...]
     chords: tuple[int, ...]
-    _paths: dict
-    _loops: tuple
-    _points: np.ndarray
-    _axes: np.ndarray
-    _pitches: np.ndarray
-    _skews: np.ndarray
-    _skews2: np.ndarray
-    _prismatic: np.ndarray
+    _paths: dict = field(repr=False)
+    _loops: tuple = field(repr=False)
+    _points: np.ndarray = field(repr=False)
+    _axes: np.ndarray = field(repr=False)
+    _pitches: np.ndarray = field(repr=False)
+    _skews: np.ndarray = field(repr=False)
+    _skews2: np.ndarray = field(repr=False)
+    _prismatic: np.ndarray = field(repr=False)
 
     @property
     def variable_count(self) -> int:
