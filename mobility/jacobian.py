@@ -160,7 +160,7 @@ class ParallelModel:
                     cols.append(np.concatenate([(skew @ t[:3, :3]).ravel(), (cross(w, t[:3, 3]) + v) / length]))
                 return np.array(cols).T
 
-            sol = least_squares(residual, x0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            sol = least_squares(residual, x0, jac=jac, method="lm", x_scale="jac", xtol=1e-15, ftol=1e-15, gtol=1e-15)
             if float(np.linalg.norm(sol.fun)) > 1e-9:
                 raise AnalysisError(f"limb {k + 1} cannot reach the platform displacement (residual {np.linalg.norm(sol.fun):.2e})")
             out.append(sol.x)

@@ -74,6 +74,7 @@ __all__ = [
     "LimbStructure",
     "SynthesisResult",
     "synthesize",
+    "generates",
     "TABLE_1_2T3R",
     "SynthesisError",
     "assemble_pkm",
@@ -690,6 +691,29 @@ def synthesize(
     )
 
 
+def generates(pattern: MotionPattern, joints: Sequence[ScrewJoint], *, samples: int = 3, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
+    """Whether the chain's set of finite motions equals the pattern (rank route).
+
+    True when every motion of the chain lies in the pattern (``G1 △ L △ G2``
+    has the pattern's dimension) and the chain's motion has that dimension.
+
+    Examples
+    --------
+    >>> p = named_pattern("2T3R")
+    >>> S = [ScrewJoint("R", e) for e in ((1, 0, 0), (0, 1, 0), (0, 0, 1))]          # three R through O
+    >>> P1, P2 = ScrewJoint("P", (1, 0, 0)), ScrewJoint("P", (0, 1, 0))
+    >>> generates(p, S + [P1, P2]), generates(p, [P1, P2] + S)                      # SP1P2 yes; P1P2S no
+    (True, False)
+    """
+    if len(pattern.factors) > 2:
+        raise SynthesisError("the rank route needs a pattern of one or two factors (M = G1 △ G2)")
+    chain = tuple(joints)
+    rng = np.random.default_rng(seed)
+    dim = pattern.dim
+    outer = _generic_rank(pattern.factors[0].generators() + chain + pattern.factors[-1].generators(), rng, samples, pattern.length, tol)
+    return outer == dim and _generic_rank(chain, rng, samples, pattern.length, tol) == dim
+
+
 def _groups(seq: Sequence[CandidateJoint], plane: tuple[str, ...]) -> list[tuple[str, list[CandidateJoint]]]:
     """Split a joint sequence into named groups: runs of R through one point (S, U), Rc, P1, P2..."""
     out: list[tuple[str, list[CandidateJoint]]] = []
@@ -802,11 +826,12 @@ def assemble_pkm(
     ``height/4``...  (for a machine, synthesize with ``s1`` vertical, e.g.
     ``directions=((0, 0, 1), (0, 1, 0))``).  The 6-DOF limbs are ``UPS`` (U on
     the base with a vertical and a tangential axis, S on the platform) or
-    ``SPRR`` (S on the base, then two R on the platform along the tangent and
-    the vertical), attached at ``base_radius`` in the plane through ``O``
+    ``SPRR`` (S on the base, then two R on the platform, the first horizontal
+    and normal to the leg, the second vertical: each R normal to the axis
+    before it, so the limb reaches every orientation), attached at ``base_radius`` in the plane through ``O``
     normal to z and, turned by ``twist_deg``, at ``platform_radius`` and
     ``height``.  Every 6-DOF limb's P is actuated, and so is the first P of
-    the synthesized limb (its last R if it has none).
+    the synthesized limb (its last R if it has none; none if it has neither).
 
     Raises
     ------
@@ -841,7 +866,7 @@ def assemble_pkm(
         break
     else:
         raise SynthesisError(f"every realisation of {structure} is singular at its home pose (all joint values zero) with these points")
-    acted = next((j for j in joints if j.type == "P"), None) or next(j for j in reversed(joints) if j.type == "R")
+    acted = next((j for j in joints if j.type == "P"), None) or next((j for j in reversed(joints) if j.type == "R"), None)
     joints = [Joint(j.name, j.type, j.links, j.axis, j.point, j.pitch, j.axes, j.normal, j.frame, j is acted) for j in joints]
     for i in range(copies):
         phi = math.radians(45.0 + 360.0 * i / copies)
@@ -849,7 +874,8 @@ def assemble_pkm(
         a = origin + np.array([base_radius * math.cos(phi), base_radius * math.sin(phi), 0.0])
         b = origin + np.array([platform_radius * math.cos(psi), platform_radius * math.sin(psi), height])
         tangent_a = np.array([-math.sin(phi), math.cos(phi), 0.0])
-        tangent_b = np.array([-math.sin(psi), math.cos(psi), 0.0])
+        across = np.cross(b - a, [0.0, 0.0, 1.0])
+        across /= np.linalg.norm(across)
         up = np.array([0.0, 0.0, 1.0])
         k = i + 1
         if other == "UPS":
@@ -862,7 +888,7 @@ def assemble_pkm(
             joints += [
                 Joint(f"S{k}", "S", ("base", f"L{k}a"), point=tuple(a)),
                 Joint(f"P{k}", "P", (f"L{k}a", f"L{k}b"), axis=tuple(b - a), actuated=True),
-                Joint(f"R{k}a", "R", (f"L{k}b", f"L{k}c"), axis=tuple(tangent_b), point=tuple(b)),
+                Joint(f"R{k}a", "R", (f"L{k}b", f"L{k}c"), axis=tuple(across), point=tuple(b)),
                 Joint(f"R{k}b", "R", (f"L{k}c", "platform"), axis=tuple(up), point=tuple(b)),
             ]
     return Mechanism(name or f"{found.name}-{copies}({other})", "base", "platform", tuple(joints))
@@ -939,27 +965,42 @@ def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: 
 def pkm_document(result: SynthesisResult, structure: str, *, other: str = "UPS", **geometry: Any) -> tuple[Mechanism, str]:
     """A PKM assembled by :func:`assemble_pkm`, analysed, and its mechanism file text.
 
-    The ``expected`` block holds what :func:`mobility.analyze` finds for the
-    assembled PKM (DOF, pattern, mobility), so the file is a regression check.
+    The ``expected`` block comes from the synthesis (DOF and pattern of the
+    pattern, mobility the Grübler-Kutzbach count), and :func:`mobility.analyze`
+    must agree before the text is returned.
+
+    Raises
+    ------
+    SynthesisError
+        When the limb cannot be assembled at its home pose, or the analyzer
+        disagrees with the expected values.
 
     Returns
     -------
     mechanism : Mechanism
     text : str
     """
-    from .analysis import analyze  # a producer of models may call the analysis; nothing below imports this module
+    from .analysis import analyze, gruebler_kutzbach  # a producer of models may call the analysis; nothing below imports this module
 
     mechanism = assemble_pkm(result, structure, other=other, **geometry)
-    r = analyze(mechanism)
     found = result.structure(structure)
+    # Expected from the synthesis, not from the analyzer: the limb's finite motions are the pattern, and the
+    # 6-DOF limbs add no constraint, so the platform moves in the pattern; with no redundant constraint the
+    # mobility is the Grübler-Kutzbach count.
+    pattern_text = result.pattern.name
+    expected = {"dof": result.pattern.dim, "pattern": pattern_text, "mobility": gruebler_kutzbach(mechanism)}
+    r = analyze(mechanism)
+    if (r.dof, r.pattern, r.mobility) != (expected["dof"], expected["pattern"], expected["mobility"]):
+        raise SynthesisError(f"{structure}: the analyzer finds {r.dof} DOF {r.pattern}, mobility {r.mobility} for the assembled PKM, not {expected}")
     table = " It is one of the seven 5-DOF limbs of Table 1 of that paper." if found.in_table_1 else " It is not in Table 1 of that paper; the enumeration found it."
     description = (
-        f"A {r.dof}-DOF parallel mechanism of one {found.name} limb and {mechanism.name.split('-', 1)[1]} limbs, "
+        f"A {expected['dof']}-DOF parallel mechanism of one {found.name} limb and {mechanism.name.split('-', 1)[1]} limbs, "
         f"assembled by mobility.synthesis.assemble_pkm from the type synthesis of the {result.pattern.name} pattern "
         f"({result.pattern.description}) after T. Sun, S. Yang, T. Huang, J. S. Dai, 'A Finite and Instantaneous Screw "
         f"Based Approach for Topology Design and Kinematic Analysis of 5-Axis Parallel Kinematic Machines', Chinese "
         f"Journal of Mechanical Engineering 31:44 (2018).{table} Conditions of the limb: {'; '.join(found.conditions)}. "
-        f"Dimensions are illustrative (mm). Expected values: computed by mobility.analyze at this pose."
+        f"Dimensions are illustrative (mm). Expected: the limb's finite motions are the {pattern_text} pattern and the "
+        f"6-DOF limbs add no constraint, so the platform has {expected['dof']} DOF, {pattern_text}; the mobility is the "
+        f"Grübler-Kutzbach count (no redundant constraint)."
     )
-    expected = {"dof": r.dof, "pattern": r.pattern, "mobility": r.mobility}
     return mechanism, mechanism_to_yaml(mechanism, description=description, expected=expected)

@@ -1,0 +1,223 @@
+"""Jacobians by differentiating finite screws (Eq. 26), checked against finite differences and the analyzer."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import mobility
+from mobility.cli import main
+from mobility.errors import AnalysisError, MechanismError
+from mobility.jacobian import jacobian, parallel_model, wrench_axis
+from mobility.screws import SWAP, reciprocal_product, same_subspace
+
+from conftest import MECHANISMS
+
+METROM = MECHANISMS / "metrom.yaml"
+
+
+@pytest.fixture(scope="module")
+def metrom():
+    return mobility.load(METROM)
+
+
+@pytest.fixture(scope="module")
+def model(metrom):
+    return parallel_model(metrom)
+
+
+def force_line(direction, point):
+    d = np.asarray(direction, float)
+    return np.concatenate([d, np.cross(point, d)])[:, None]
+
+
+def test_metrom_at_home(metrom):
+    jac = jacobian(metrom)
+    result = mobility.analyze(metrom)
+    assert jac.dof == result.dof == 5
+    assert jac.actuated == ("P0", "P1", "P2", "P3", "P4")
+    assert not jac.singular and jac.matrix.shape == (6, 6)
+    # the constraint: a force through O along s1 x s2 (s1 = z the SPR leg, s2 = y: -x)
+    assert same_subspace(jac.constraint_wrenches.T, force_line([-1, 0, 0], [0, 0, 0]))
+    kind, d, p, h = wrench_axis(jac.constraint_wrenches[0])
+    assert kind == "force" and np.allclose(np.abs(d), [1, 0, 0]) and np.allclose(p, 0, atol=1e-9)
+    # the analyzer's systems, compared as subspaces
+    assert same_subspace(jac.constraint_wrenches.T, result.wrenches.T)
+    assert same_subspace(jac.platform_twists.T, result.twists.T)
+    assert same_subspace(jac.twist_map, result.twists.T)
+    # the actuation wrench of a P leg is the force along the leg
+    for label, w in zip(jac.actuated[1:], jac.actuation_wrenches[1:]):
+        joint = metrom.joint(label)
+        assert same_subspace(w[:, None], force_line(joint.axis, metrom.joint("S" + label[1:]).point))
+    assert same_subspace(jac.actuation_wrenches[0][:, None], force_line([0, 0, 1], [0, 0, 0]))
+    # J maps the twist per unit rate of each input to that unit rate and nothing else
+    assert np.allclose(jac.matrix @ jac.twist_map, np.eye(6)[:, :5], atol=1e-9)
+
+
+def random_pose(model, seed):
+    """A pose reached by moving the SPR limb's joints; the other limbs follow by inverse kinematics."""
+    rng = np.random.default_rng(seed)
+    spr = model.chains[0].limb
+    q0 = np.concatenate([rng.uniform(-0.3, 0.3, 3), [rng.uniform(-80, 80)], [rng.uniform(-0.3, 0.3)]])
+    q = model.assemble(spr.transform(q0))
+    assert np.allclose(q[0], q0, atol=1e-7)
+    return q
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_metrom_away_from_home_against_the_analyzer(model, seed):
+    q = random_pose(model, seed)
+    jac = jacobian(model, q)
+    moved = model.mechanism_at(q)
+    result = mobility.analyze(moved)
+    assert (result.dof, result.pattern) == (jac.dof, "2T3R") == (5, "2T3R")
+    assert same_subspace(jac.constraint_wrenches.T, result.wrenches.T)
+    assert same_subspace(jac.platform_twists.T, result.twists.T)
+    # the constraint is still a force through O, along the moved s1 x s2 (the axis of the SPR limb's R)
+    r_axis = model.chains[0].limb.moved(q[0]).joints[-1].axis
+    assert same_subspace(jac.constraint_wrenches.T, force_line(r_axis, [0, 0, 0]))
+    # and the same Jacobian is found by taking the moved mechanism as a new home
+    again = jacobian(moved)
+    assert np.allclose(again.matrix, jac.matrix, atol=1e-8 * np.abs(jac.matrix).max())
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_metrom_jacobian_against_finite_differences_of_the_finite_model(model, seed):
+    """Move the SPR limb's joints by ±h, re-solve the other limbs, difference the actuated joints."""
+    q = random_pose(model, seed)
+    jac = jacobian(model, q)
+    rng = np.random.default_rng(100 + seed)
+    spr = model.chains[0].limb
+    delta = rng.normal(size=5)
+    h = 1e-5
+    plus = model.assemble(spr.transform(q[0] + h * delta), start=q)
+    minus = model.assemble(spr.transform(q[0] - h * delta), start=q)
+    rates = np.array([(plus[c][p] - minus[c][p]) / (2 * h) for c, p in model.actuated])
+    twist = spr.twists(q[0]) @ delta  # Eq. 26 for the SPR limb
+    # the twist itself against the matrix finite difference
+    tp, tm, t0 = spr.transform(q[0] + h * delta), spr.transform(q[0] - h * delta), spr.transform(q[0])
+    x = (tp - tm) / (2 * h) @ np.linalg.inv(t0)
+    assert np.allclose(twist, np.concatenate([[x[2, 1], x[0, 2], x[1, 0]], x[:3, 3]]), rtol=1e-6, atol=1e-6)
+    predicted = jac.matrix @ twist
+    assert np.allclose(predicted[:5], rates, rtol=1e-5, atol=1e-5 * np.abs(rates).max())
+    assert abs(predicted[5]) < 1e-9 * np.abs(jac.matrix[5]).max() * np.abs(twist).max()
+    # and the forward map gives the twist back from the rates
+    assert np.allclose(jac.twist_map @ rates, twist, rtol=1e-4, atol=1e-6 * np.abs(twist).max())
+
+
+def test_actuation_wrench_products(model):
+    q = random_pose(model, 5)
+    jac = jacobian(model, q)
+    for w, (c, p) in zip(jac.actuation_wrenches, model.actuated):
+        t = jac.limb_twists[c]
+        assert math.isclose(float(reciprocal_product(w, t[:, p])), 1.0, rel_tol=1e-9)
+        others = np.delete(t, p, axis=1)
+        assert np.allclose(reciprocal_product(w[:, None], others), 0.0, atol=1e-9 * np.abs(t).max())
+    assert np.allclose(jac.matrix[:5], (SWAP @ jac.actuation_wrenches.T).T)
+
+
+@pytest.mark.parametrize("path", sorted(MECHANISMS.glob("pkm_*.yaml")), ids=lambda p: p.name)
+def test_table_1_pkms_jacobian_matches_the_analyzer(path):
+    m = mobility.load(path)
+    jac = jacobian(m)
+    result = mobility.analyze(m)
+    assert jac.dof == 5 and not jac.singular
+    assert same_subspace(jac.constraint_wrenches.T, result.wrenches.T)
+    assert same_subspace(jac.platform_twists.T, result.twists.T)
+
+
+def test_symmetric_layout_is_an_actuation_singularity():
+    from mobility.synthesis import assemble_pkm, named_pattern, synthesize
+
+    res = synthesize(named_pattern("2T3R", directions=((0, 0, 1), (0, 1, 0))), joints=5, verify_samples=0, generic_points=1)
+    m = assemble_pkm(res, "SP1Rc", other="SPRR", twist_pattern=(1, 1, 1, 1))
+    jac = jacobian(m)
+    assert jac.singular and jac.rank == 5 and jac.twist_map is None
+    assert mobility.analyze(m).dof == 5  # the platform still has 5 DOF: only the actuation fails
+
+
+def test_errors(metrom):
+    with pytest.raises(MechanismError):
+        jacobian(metrom, actuated=["nope"])
+    with pytest.raises(MechanismError):
+        jacobian(metrom.replace(joints=tuple(j if not j.actuated else j.__class__(j.name, j.type, j.links, j.axis) for j in metrom.joints)))
+    tie = mobility.loads(
+        """
+name: tie
+ground: g
+end_effector: e
+joints:
+  - {name: A, type: R, links: [g, a], axis: [0, 0, 1], point: [0, 0, 0], actuated: true}
+  - {name: B, type: R, links: [a, e], axis: [0, 0, 1], point: [1, 0, 0]}
+  - {name: C, type: R, links: [a, b], axis: [0, 0, 1], point: [0, 1, 0]}
+  - {name: D, type: R, links: [b, e], axis: [0, 0, 1], point: [1, 1, 0]}
+"""
+    )
+    with pytest.raises(MechanismError):
+        jacobian(tie)
+    model = parallel_model(metrom)
+    q = list(model.home())
+    q[1] = q[1] + 0.1
+    with pytest.raises(AnalysisError):
+        jacobian(model, q)
+
+
+def test_reversed_joints_and_multi_dof_inputs():
+    """A limb written from the platform side and a U named by freedom: same twists as written forward."""
+    fwd = mobility.loads(
+        """
+name: arm
+ground: g
+end_effector: e
+joints:
+  - {name: U, type: U, links: [g, a], point: [0, 0, 0], axes: [[0, 0, 1], [0, 1, 0]]}
+  - {name: P, type: P, links: [a, e], axis: [1, 0, 0]}
+"""
+    )
+    rev = mobility.loads(
+        """
+name: arm reversed
+ground: g
+end_effector: e
+joints:
+  - {name: P, type: P, links: [e, a], axis: [-1, 0, 0]}
+  - {name: U, type: U, links: [a, g], point: [0, 0, 0], axes: [[0, 1, 0], [0, 0, 1]]}
+"""
+    )
+    a = jacobian(fwd, actuated=["U.1", "U.2", "P"])
+    b = jacobian(rev, actuated=["U.1", "U.2", "P"])
+    assert a.dof == b.dof == 3
+    assert same_subspace(a.platform_twists.T, b.platform_twists.T)
+    model = parallel_model(rev, actuated=["P"])
+    q = [np.array([0.3, 0.4, -0.2])]  # chain order: P, then U's freedoms reversed
+    moved = model.mechanism_at(q)
+    assert same_subspace(jacobian(moved, actuated=["P"]).platform_twists.T, mobility.analyze(moved).twists.T)
+
+
+# -- command line ----------------------------------------------------------------------------
+
+
+def test_cli_jacobian(capsys):
+    assert main(["jacobian", str(METROM)]) == 0
+    out = capsys.readouterr().out
+    assert "platform DOF: 5" in out and "force   along [-1, 0, 0]  through [0, 0, 0]" in out
+    assert main(["jacobian", str(METROM), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["dof"] == 5 and len(data["matrix"]) == 6 and data["constraint_axes"][0]["kind"] == "force"
+    assert main(["jacobian", str(METROM), "--actuated", "P0,P1,P2,P3"]) == 1  # 4 inputs for 5 DOF: not square
+    capsys.readouterr()
+    assert main(["jacobian", str(METROM), "--actuated", "P0,Q"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "metrom.yaml" in err and "'Q'" in err
+
+
+def test_cli_synthesize(capsys, tmp_path):
+    assert main(["synthesize", "2T3R", "--joints", "2", "--verify", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "U " in out and "P1P2" in out
+    assert main(["synthesize", "3R", "--json", "--write", str(tmp_path)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [s["name"] for s in data["structures"]] == ["S"]
+    assert main(["synthesize", "9T"]) == 2
+    assert capsys.readouterr().err.count("\n") == 1

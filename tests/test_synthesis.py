@@ -1,0 +1,204 @@
+"""Type synthesis of limbs for the 2T3R pattern (Table 1 of Sun et al. 2018) and assembled PKMs.
+
+The enumeration runs once per module (about 8 s on an idle 2-core machine: 5-joint limbs, every
+candidate, both routes; see the module docstring of mobility.synthesis);
+every check compares its answer with a second route: least-squares fits of
+sampled finite motions, the analyzer, or an independent explanation of why a
+limb qualifies.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import mobility
+from mobility.finite_screws import Limb, ScrewJoint
+from mobility.screws import same_subspace
+from mobility.transforms import Transform, rotation_from_rpy
+from mobility.synthesis import (
+    TABLE_1_2T3R,
+    SynthesisError,
+    assemble_pkm,
+    generates,
+    mechanism_to_yaml,
+    named_pattern,
+    pkm_document,
+    synthesize,
+)
+
+from conftest import MECHANISMS
+
+MACHINE = dict(directions=((0, 0, 1), (0, 1, 0)))  # s1 vertical: the leg of a machine
+
+
+@pytest.fixture(scope="module")
+def result():
+    return synthesize(named_pattern("2T3R", **MACHINE), seed=0, verify_samples=1)
+
+
+def names(res):
+    return {s.name for s in res.structures}
+
+
+def test_table_1_is_reproduced(result):
+    assert set(TABLE_1_2T3R) <= names(result)
+    for s in result.structures:
+        assert s.in_table_1 == (s.name in TABLE_1_2T3R)
+    assert result.verified_samples == result.sequences  # every kept sequence passed the sample route
+
+
+def test_table_1_direction_conditions(result):
+    """Rc axes along s1 x s2, P in the plane of s1 and s2, S and U centred at O (the paper's conditions)."""
+    c = np.cross(result.directions["s1"], result.directions["s2"])
+    plane = np.array([result.directions["s1"], result.directions["s2"]])
+    for name in TABLE_1_2T3R:
+        for seq in result.structure(name).realizations:
+            for cand in seq:
+                axis = np.array(cand.joint.axis)
+                if cand.joint.kind == "P":
+                    assert abs(axis @ c) < 1e-12
+                    assert np.linalg.matrix_rank(np.vstack([plane, axis]), tol=1e-9) == 2
+                elif cand.point != "O":  # an R off O: an Rc
+                    assert np.allclose(np.abs(axis), np.abs(c))
+    for name in ("SP1P2", "SRcRc", "SP1Rc", "SRcP1"):
+        assert result.structure(name).groups[0] == "S"
+    for name in ("UP1P2Rc", "UP1RcP2", "UP1RcRc"):
+        assert result.structure(name).groups[0] == "U"
+
+
+def test_every_limb_found_fits_the_pattern_by_least_squares(result):
+    """Second route, with fresh random motions (seed differs from the synthesis)."""
+    pattern = result.pattern
+    rng = np.random.default_rng(12345)
+    for s in result.structures:
+        limb = Limb(tuple(c.joint for c in s.realizations[-1]))
+        q = rng.uniform(-math.pi, math.pi, len(limb))
+        q[[j.kind == "P" for j in limb.joints]] *= pattern.length / math.pi
+        _, residual = pattern.fit(limb.transform(q), seed=1)
+        assert residual < 1e-9, s.name
+
+
+def test_rank_route_agrees_with_sample_route_on_random_chains(result):
+    """Random 5-joint chains from the candidates: the rank route's verdict against sampled fits and dimension."""
+    rng = np.random.default_rng(7)
+    pattern = result.pattern
+    alphabet = [c.joint for c in result.alphabet]
+    verdicts = []
+    for _ in range(16):
+        chain = [alphabet[k] for k in rng.integers(len(alphabet), size=5)]
+        rank_says = generates(pattern, chain, seed=3)
+        limb = Limb(tuple(chain))
+        motions = [limb.transform(rng.uniform(-2.5, 2.5, 5)) for _ in range(2)]
+        inside = all(pattern.contains(m, seed=2) for m in motions)
+        full = np.linalg.matrix_rank(limb.twists(rng.uniform(-2.5, 2.5, 5)), tol=1e-8) == 5
+        assert rank_says == (inside and full)
+        verdicts.append(rank_says)
+    assert not all(verdicts)  # the sample contains chains that fail
+
+
+def test_translations_before_the_rotations_are_rejected(result):
+    """P1P2S (rotations about a point carried by the slides) is another 2T3R set, not this pattern."""
+    assert not any(n.startswith("P") for n in names(result))
+    pattern = result.pattern
+    s, s1, s2 = ([ScrewJoint("R", e) for e in np.eye(3)], ScrewJoint("P", (0, 0, 1)), ScrewJoint("P", (0, 1, 0)))
+    limb = Limb((s1, s2, *s))
+    assert not generates(pattern, limb.joints)
+    assert not pattern.contains(limb.transform([100.0, -50.0, 0.4, -0.3, 0.2]))
+    assert {c.label for c in result.rejected_joints} >= {"P[c]"}
+
+
+def _explained(seq, groups):
+    """Why a limb outside Table 1 still has the 2T3R motion, from its joints alone.
+
+    (a) a U directly followed by an Rc: Rot(c through g) = Rot(c through O) then a translation in
+        the plane, so the three rotations are those of an S at O followed by the plane motion;
+    (b) a P next to an R through O along the P's own direction: they commute, so the R joins the
+        rotations about O and the P the translations.
+    """
+    if any(a == "U" and b == "Rc" for a, b in zip(groups, groups[1:])):
+        return True
+    for a, b in zip(seq, seq[1:]):
+        pair = {a.joint.kind, b.joint.kind}
+        if pair == {"P", "R"} and a.direction == b.direction and "O" in (a.point, b.point):
+            return True
+    return False
+
+
+def test_further_limbs_are_explained(result):
+    extras = [s for s in result.structures if not s.in_table_1]
+    assert extras, "the enumeration finds more than Table 1"
+    for s in extras:
+        assert any(_explained(seq, s.groups) for seq in s.realizations), s.name
+    assert {"URcP1P2", "URcP1Rc", "URcRcP1", "URcRcRc"} <= names(result)
+
+
+def test_synthesis_does_not_depend_on_placement_or_on_the_plane_basis():
+    """3-joint limbs of 2T3R: same types for a moved O and a non-orthogonal s1, s2."""
+    a = synthesize(named_pattern("2T3R"), joints=3, verify_samples=1)
+    b = synthesize(named_pattern("2T3R", point=(3.0, -2.0, 7.0), directions=((1, 1, 0.5), (-0.2, 1, 1))), joints=3, verify_samples=1, seed=5)
+    assert names(a) == names(b)
+    assert "S" in names(a) and "UP1" in names(a) and "P1P2S" not in names(a)
+
+
+def test_other_patterns():
+    """3T: every 3-joint limb of P joints along independent directions; 3R: three R through O."""
+    three_t = synthesize("3T", verify_samples=1)
+    assert names(three_t) == {"P1P2P3"}
+    three_r = synthesize("3R", verify_samples=1)
+    assert names(three_r) == {"S"}
+    planar = synthesize("2T1R", verify_samples=1)
+    assert {"P1P2Ra1", "Ra1Ra1Ra1", "P1Ra1P2"} <= names(planar)
+
+
+def test_pattern_errors():
+    with pytest.raises(SynthesisError):
+        named_pattern("7T")
+    with pytest.raises(SynthesisError):
+        synthesize("2T3R", joints=0)
+
+
+# -- assembly ------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", TABLE_1_2T3R)
+def test_assembled_pkms_have_5_dof_2t3r(result, name):
+    m = assemble_pkm(result, name)
+    r = mobility.analyze(m)
+    assert (r.dof, r.pattern, r.idle_dof) == (5, "2T3R", 0)
+    # the constraint: a force through O along s1 x s2
+    c = np.cross(result.directions["s1"], result.directions["s2"])
+    assert same_subspace(r.wrenches.T, np.concatenate([c, np.zeros(3)])[:, None])
+    text = mechanism_to_yaml(m)
+    back = mobility.loads(text)
+    assert [j.name for j in back.joints] == [j.name for j in m.joints]
+    assert all(np.allclose(a.point or 0, b.point or 0) and a.actuated == b.actuated for a, b in zip(back.joints, m.joints))
+
+
+def test_metrom_is_spr_4sprr(result):
+    m = assemble_pkm(result, "SP1Rc", other="SPRR")
+    assert [j.type for j in m.joints[:3]] == ["S", "P", "R"]
+    assert mobility.analyze(m).pattern == "2T3R"
+
+
+def test_a_limb_singular_at_home_is_not_assembled(result):
+    with pytest.raises(SynthesisError):
+        assemble_pkm(result, "UP1U")
+
+
+def test_pkm_document_expected_block(result):
+    m, text = pkm_document(result, "UP1RcRc")
+    assert "expected: {dof: 5, pattern: 2T3R, mobility: 5}" in text
+    assert mobility.loads(text).expected.dof == 5
+
+
+@pytest.mark.parametrize("path", sorted(MECHANISMS.glob("pkm_*.yaml")) + [MECHANISMS / "metrom.yaml"], ids=lambda p: p.name)
+def test_mechanism_files(path):
+    m = mobility.load(path)
+    r = mobility.analyze(m)
+    assert (r.dof, r.pattern, r.mobility) == (m.expected.dof, m.expected.pattern, m.expected.mobility) == (5, "2T3R", 5)
+    # moved rigidly: same answer (tolerance policy)
+    moved = mobility.analyze(
+        m.replace(joints=tuple(j.transformed(Transform(rotation_from_rpy((0.3, -0.2, 1.0)), np.array([5.0, -7.0, 2.0]))) for j in m.world_joints))
+    )
+    assert (moved.dof, moved.pattern) == (5, "2T3R")
