@@ -319,6 +319,18 @@ class FiniteMobility:
         """Freedoms of the whole mechanism that are infinitesimal only (``instantaneous - full-cycle`` mobility)."""
         return max(0, self.instantaneous_mobility - self.full_cycle_mobility)
 
+    def expected_values(self) -> dict[str, Any]:
+        """The values that an ``expected`` block's finite keys are compared with.
+
+        Examples
+        --------
+        >>> from mobility.model import Joint, Mechanism
+        >>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(1, 0, 0)),))
+        >>> finite_mobility(m).expected_values()
+        {'full_cycle_dof': 1, 'full_cycle_mobility': 1, 'finite_verdict': 'full-cycle'}
+        """
+        return {"full_cycle_dof": self.full_cycle_dof, "full_cycle_mobility": self.full_cycle_mobility, "finite_verdict": self.verdict}
+
     def to_dict(self) -> dict[str, Any]:
         """JSON form (the ``finite`` object of ``mobility analyze --finite --json``)."""
         return {

@@ -419,12 +419,11 @@ def test_our_library_files_carry_finite_expectations():
 def test_library_file_meets_its_finite_expectations(path):
     m = mobility.load(path)
     f = finite_mobility(m)
-    extra = m.expected.extra
-    assert f.verdict == extra["finite_verdict"]
-    if "full_cycle_dof" in extra:
-        assert f.full_cycle_dof == extra["full_cycle_dof"]
-    if "full_cycle_mobility" in extra:
-        assert f.full_cycle_mobility == extra["full_cycle_mobility"]
+    values = f.expected_values()
+    for key, expected in m.expected.extra.items():
+        if key in values:
+            assert values[key] == expected, key
+    assert f.verdict == m.expected.extra["finite_verdict"]
     assert f.instantaneous_dof == m.expected.dof
 
 
@@ -458,6 +457,12 @@ def test_cli_analyze_finite_text_and_json(capsys):
     assert len(data["finite"]["branches"]) == 2
     assert main(["analyze", path]) == 0
     assert "verdict" not in capsys.readouterr().out  # only on request
+
+
+def test_cli_analyze_finite_markdown(capsys):
+    assert main(["analyze", str(MECHANISMS / "four_bar_flat.yaml"), "--finite", "--format", "md"]) == 0
+    out = capsys.readouterr().out
+    assert "## Finite motion" in out and "verdict: cannot-move" in out
 
 
 def test_finite_report_names_the_obstruction():
