@@ -238,9 +238,9 @@ class MotionPattern:
 
     @property
     def length(self) -> float:
-        """Characteristic length: RMS size of the points, 1 when they coincide."""
+        """Characteristic length: RMS distance of the points from their centroid; 1 (unit) for a single point."""
         pts = np.array(self.points or [(0.0, 0.0, 0.0)])
-        return characteristic_scale(pts)[1] if len(pts) > 1 else max(1.0, float(np.linalg.norm(pts[0])))
+        return characteristic_scale(pts)[1] if len(pts) > 1 else 1.0
 
     def directions(self) -> tuple[tuple[str, Vector], ...]:
         """The pattern's direction set with labels.
