@@ -194,6 +194,12 @@ class Branch:
         Indices (in :attr:`FiniteMobility.probes`) of the moves that reached it.
     local : tuple of Probe
         The moves made from the nearby pose.
+    source : str
+        Where ``dof``, ``pattern`` and ``tangent`` come from: ``"nearby pose"``
+        (the screw route at a regular pose of the branch), ``"second-order forms"``
+        (the common null space of the second-order forms at the given pose,
+        for a branch along which a freedom is infinitesimal everywhere), or
+        ``"moves (approximate)"``.
     """
 
     dimension: int
@@ -206,10 +212,12 @@ class Branch:
     distance: float
     probes: tuple[int, ...]
     local: tuple[Probe, ...]
+    source: str = "nearby pose"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
         return {
+            "source": self.source,
             "dimension": self.dimension,
             "dof": self.dof,
             "pattern": self.pattern,
@@ -242,12 +250,37 @@ class SecondOrder:
     directions : ndarray, shape (n, c)
         Unit joint-rate directions that pass (one per line found); empty when
         every form vanishes identically (every first-order motion passes).
+    basis : ndarray, shape (n, k)
+        The orthonormal basis of the first-order motions the forms are written in.
+    forms : ndarray, shape (cokernel, k, k)
+        The forms ``u @ forms[c] @ u`` in that basis, relative to the whole
+        second-order term.
+    zero : float
+        Below this a form's value counts as zero.
     """
 
     cokernel: int
     obstructed: bool
     least_violation: float
     directions: np.ndarray
+    basis: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    forms: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 0)))
+    zero: float = _SECOND_ORDER_ZERO
+
+    def isotropic_kernel(self) -> np.ndarray:
+        """Joint-rate basis of the first-order motions on which every form vanishes with all its polarisations.
+
+        The common null space of the forms: where the forms are semidefinite
+        (a freedom infinitesimal along a whole branch, ``x^2 = 0``), it is the
+        tangent space of the branch, exactly.
+        """
+        k = self.basis.shape[1]
+        if self.forms.shape[0] == 0:
+            return self.basis
+        stacked = self.forms.reshape(-1, k)
+        _, s, vt = np.linalg.svd(stacked, full_matrices=True)
+        rank = int(np.count_nonzero(s > self.zero * max(1.0, float(s[0]) if s.size else 1.0)))
+        return self.basis @ vt[rank:].T
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
@@ -420,6 +453,7 @@ def _probe(
     *,
     inexact: float = 0.0,
     first_order: bool = True,
+    nearby_tol: Tolerance | None = None,
 ) -> Probe:
     """Move from ``q0`` along ``d`` with each step (smallest first), re-closing the loops."""
     offset = float(np.linalg.norm(q0))  # distance of the start from the given pose
@@ -444,7 +478,7 @@ def _probe(
         return Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), False, achieved)
     mobility = dof = margin = tangent = None
     if first_order and reached is not None:
-        mobility, tangent, margin, dof, _ = _first_order(kin, reached, tol)
+        mobility, tangent, margin, dof, _ = _first_order(kin, reached, nearby_tol or tol)
     return Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), True, achieved, reached, mobility, dof, margin, tangent)
 
 
@@ -469,7 +503,7 @@ def _second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator
     forms = kin.second_order_forms(cokernel) if cokernel.shape[1] else np.zeros((0, n, n))
     reduced = np.einsum("ia,cij,jb->cab", tangent, forms, tangent) / max(scale, 1e-300)
     if float(np.abs(reduced).max(initial=0.0)) <= zero:  # every first-order motion passes
-        return SecondOrder(cokernel.shape[1], False, 0.0, np.zeros((n, 0)))
+        return SecondOrder(cokernel.shape[1], False, 0.0, np.zeros((n, 0)), tangent, np.zeros((0, k, k)), zero)
     c = reduced.shape[0]
     pad = max(0, k - c - 1)  # Levenberg-Marquardt wants as many residuals as unknowns
 
@@ -493,7 +527,7 @@ def _second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator
         if value <= zero and all(abs(float(x @ y)) < 0.999 for y in found):
             found.append(x)
     directions = tangent @ np.array(found).T if found else np.zeros((n, 0))
-    return SecondOrder(cokernel.shape[1], not found, 0.0 if found else least, directions)
+    return SecondOrder(cokernel.shape[1], not found, 0.0 if found else least, directions, tangent, reduced, zero)
 
 
 def _same_subspace(a: np.ndarray, b: np.ndarray) -> bool:
@@ -512,6 +546,32 @@ def _rank_of_moves(chords: list[np.ndarray]) -> tuple[int, np.ndarray]:
     u, s, _ = np.linalg.svd(m, full_matrices=False)
     r = int(np.count_nonzero(s > _MOVING_RANK * s[0]))
     return r, u[:, :r]
+
+
+def _tangent_from_second_order(second: SecondOrder | None, chords: list[np.ndarray], dim: int) -> tuple[np.ndarray | None, str]:
+    """The exact tangent of a branch at the given pose, if the second-order forms single it out.
+
+    It is the common null space of the forms when that has the branch's
+    dimension and holds the moves that reached the branch (to their O(step)).
+    """
+    if second is None or second.forms.shape[0] == 0:
+        return None, ""
+    kernel = second.isotropic_kernel()
+    if kernel.shape[1] != dim or not chords:
+        return None, ""
+    off = max(float(np.linalg.norm(c - kernel @ (kernel.T @ c))) for c in chords)
+    return (kernel, "second-order forms") if off < _MOVING_RANK else (None, "")
+
+
+def _describe(b: Branch) -> str:
+    """One branch in words, with the numbers behind it."""
+    text = f"dimension {b.dimension}, end-effector DOF {b.dof} ({b.pattern})"
+    if b.source == "nearby pose":
+        return text + f"; at a pose {b.distance:.3g} away on it, first-order mobility {b.mobility_nearby} and DOF {b.analysis.dof} ({b.analysis.pattern})"
+    text += f", from the {b.source} at the given pose" if b.source == "second-order forms" else f", from the {b.source}"
+    if b.mobility_nearby > b.dimension:
+        text += f"; at a pose {b.distance:.3g} away on it the first-order mobility is still {b.mobility_nearby} (a freedom infinitesimal all along)"
+    return text
 
 
 def _pattern(twists: np.ndarray, tol: Tolerance) -> tuple[int, str]:
@@ -593,7 +653,11 @@ def finite_mobility(
     if second is not None:
         for d in second.directions.T[:k]:
             candidates += [("second-order", d), ("second-order", -d)]
-    probes = tuple(_probe(kin, q0, source, d, steps, probe_step, tol, inexact=inexact) for source, d in candidates)
+    # A pose reached by Newton is exact only to ~sqrt(residual) along a freedom that is infinitesimal
+    # everywhere (x^2 = 0), which leaves singular values ~1e-7 that are not real; a pose a probe step
+    # from a singular one has its smallest singular value ~ step.  Nearby poses are judged in between.
+    nearby_tol = Tolerance(rank=max(tol.rank, 1e-3 * probe_step), near_singular=max(tol.near_singular, 1e-2 * probe_step), inexact=tol.inexact)
+    probes = tuple(_probe(kin, q0, source, d, steps, probe_step, tol, inexact=inexact, nearby_tol=nearby_tol) for source, d in candidates)
     moved = [i for i, p in enumerate(probes) if p.moved]
 
     # group the nearby poses by their tangent spaces
@@ -629,12 +693,20 @@ def finite_mobility(
         moved_mechanism = kin.mechanism_at(rep.q)
         nearby = analyze(moved_mechanism, tol=tol)
         if dim == m1:
-            tangent = n1
+            # a regular point of its branch: the screw route there gives the branch's DOF and pattern
+            tangent, source = n1, "nearby pose"
             dof, pattern = nearby.dof, nearby.pattern
         else:
-            tangent = np.linalg.qr(n1 @ (n1.T @ moves))[0] if dim else np.zeros((n, 0))
-            dof, pattern = _pattern(kin.end_effector_jacobian(rep.q) @ tangent, tol)
-        branches.append(Branch(dim, dof, pattern, m1, nearby, tangent, rep.q, float(np.linalg.norm(rep.q)), tuple(sorted(g["probes"])), local))
+            # fewer moves than first-order motions along the whole branch: its tangent at the given
+            # pose is where the second-order forms vanish identically, when they single it out
+            tangent, source = _tangent_from_second_order(second, [probes[i].achieved for i in g["probes"]], dim)
+            if tangent is not None:
+                dof, pattern = _pattern(kin.end_effector_jacobian(q0) @ tangent, tol)  # exact, at the given pose
+            else:
+                tangent, source = np.linalg.qr(n1 @ (n1.T @ moves))[0] if dim else np.zeros((n, 0)), "moves (approximate)"
+                dof, pattern = _pattern(kin.end_effector_jacobian(rep.q) @ tangent, nearby_tol)
+                warnings.append(f"the pattern of a branch of dimension {dim} comes from finite moves only (approximate)")
+        branches.append(Branch(dim, dof, pattern, m1, nearby, tangent, rep.q, float(np.linalg.norm(rep.q)), tuple(sorted(g["probes"])), local, source))
     branches = [b for b in branches if b.dimension > 0]
     branches.sort(key=lambda b: (-b.dimension, -b.dof))
     tried = len(probes)
@@ -662,11 +734,7 @@ def finite_mobility(
     top = branches[0]
     full_dof = max(b.dof for b in branches)
     patterns = list(dict.fromkeys(b.pattern for b in branches if b.dof == full_dof))
-    summary = "; ".join(
-        f"branch {i + 1}: dimension {b.dimension}, end-effector DOF {b.dof} ({b.pattern}); at a pose {b.distance:.3g} away on it, "
-        f"first-order mobility {b.mobility_nearby} and DOF {b.analysis.dof} ({b.analysis.pattern})"
-        for i, b in enumerate(branches)
-    )
+    summary = "; ".join(f"branch {i + 1}: {_describe(b)}" for i, b in enumerate(branches))
     numbers = (
         f"{len(moved)} of {tried} directions moved at steps {', '.join(f'{h:g}' for h in steps)} "
         f"(loops re-closed to {worst:.1e} or better)"
@@ -818,10 +886,7 @@ def finite_report(f: FiniteMobility) -> str:
             text = "every first-order motion survives"
         out.append(f"  second order: {so.cokernel} dependent loop equation(s); {text}")
     for i, b in enumerate(f.branches):
-        out.append(
-            f"  branch {i + 1}: dimension {b.dimension}, DOF {b.dof} ({b.pattern}); at {b.distance:.3g} from the pose: "
-            f"mobility {b.mobility_nearby}, DOF {b.analysis.dof} ({b.analysis.pattern}), margin {b.analysis.margin.smallest_kept:.2e}"
-        )
+        out.append(f"  branch {i + 1}: {_describe(b)}")
     out.append("  " + f.explanation)
     out += [f"  warning: {w}" for w in f.warnings]
     return "\n".join(out)

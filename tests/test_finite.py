@@ -305,6 +305,19 @@ def test_a_freedom_infinitesimal_at_every_pose_is_instantaneous_only():
     assert (f.verdict, f.full_cycle_mobility, f.full_cycle_dof, f.full_cycle_pattern) == ("instantaneous-only", 1, 1, "1R")
     assert len(f.branches) == 1
     assert 0 < f.moved < len(f.probes)  # moves along the straight chain's sideways freedom fail
+    # the branch's tangent is exact: the carrier's turn about O (joint O alone), where the forms vanish
+    branch = f.branches[0]
+    assert branch.source == "second-order forms" and branch.mobility_nearby == 2
+    assert abs(abs(float(branch.tangent[0, 0])) - 1.0) < 1e-12
+
+
+def test_library_4puu_singular_gains_an_instantaneous_rotation_only():
+    path = MECHANISMS / "4puu_singular.yaml"
+    if not path.exists():
+        pytest.skip("4puu_singular.yaml is not in the library yet")
+    f = finite_mobility(mobility.load(path))
+    assert (f.instantaneous_dof, f.instantaneous_pattern) == (4, "3T1R")
+    assert (f.verdict, f.full_cycle_dof, f.full_cycle_pattern, f.instantaneous_only_dof) == ("instantaneous-only", 3, "3T", 1)
 
 
 # ---------------------------------------------------------------------------
