@@ -734,8 +734,10 @@ def plot_mechanism(
         fig.legend(handles=handles, loc="lower center", ncol=max(2, min(len(handles), int(width / 1.75))), frameon=False, fontsize=8.5)
     unit = f", lengths in {r.length_unit}" if r.length_unit else ""
     text = title if title is not None else f"{r.name}: end effector {r.dof} DOF ({r.pattern}), mobility {r.mobility}{unit}"
-    fig.suptitle(textwrap.fill(text, width=max(40, int(fig.get_figwidth() * 10.5))), fontsize=11)
-    fig.subplots_adjust(left=0.0, right=1.0, top=0.9, bottom=0.1 if legend else 0.02, wspace=0.0)
+    wrapped = textwrap.fill(text, width=max(40, int(fig.get_figwidth() * 10.5)))
+    fig.suptitle(wrapped, fontsize=11)
+    top = 0.9 - 0.22 * wrapped.count("\n") / fig.get_figheight()  # room for a title on several lines
+    fig.subplots_adjust(left=0.0, right=1.0, top=top, bottom=0.1 if legend else 0.02, wspace=0.0)
     return fig
 
 
