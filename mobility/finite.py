@@ -27,17 +27,21 @@ kinematics of :mod:`mobility.kinematics`:
    remove.
 4. **Nearby poses.**  At the pose reached with the middle step, the loop
    Jacobian again gives the first-order mobility ``m1`` and tangent space
-   ``N1``.  Poses whose tangent spaces agree belong to the same branch; poses
-   that are still as singular as the given one (``m1 = k``, e.g. moved along a
-   singular surface) do not tell branches apart and are set aside when others
-   exist.
+   ``N1`` (rank threshold ``1e-3`` times the step: Newton pins a freedom that
+   is infinitesimal everywhere only to ``sqrt(residual)``, leaving spurious
+   singular values far below the step).  Poses whose tangent spaces agree
+   belong to the same branch; poses that are still as singular as the given
+   one (``m1 = k``, e.g. moved along a singular surface) do not tell branches
+   apart and are set aside when others exist.
 5. **Branch dimension.**  From one pose of each branch, the same moves are
    made again along ``N1``: the number of independent directions that really
    move is the branch's finite mobility (it can be below ``m1`` where a
    freedom is infinitesimal everywhere).  The branch's end-effector DOF and
    pattern come from :func:`mobility.analyze` at that nearby pose (the screw
-   route, so two routes meet), or from the moves themselves when they are
-   fewer than ``m1``.
+   route, so two routes meet); when the moves are fewer than ``m1``, from the
+   branch's exact tangent at the given pose, the common null space of the
+   second-order forms (approximated from the moves if the forms do not
+   single it out, with a warning).
 6. **Verdict.**  ``full-cycle`` (one branch with every instantaneous freedom;
    also a pose with no instantaneous freedom, nothing to follow),
    ``instantaneous-only`` (one branch, of lower dimension or end-effector DOF),
@@ -103,7 +107,7 @@ _MOVING_RANK = 0.2
 relative to the largest, exceeds this (moves are unit chords, exact to O(step))."""
 
 _SECOND_ORDER_ZERO = 1e-8
-"""A second-order form counts as zero below this, relative to its largest entry."""
+"""A second-order form counts as zero below this, relative to the whole second-order term."""
 
 
 @dataclass(frozen=True, eq=False)
