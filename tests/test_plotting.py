@@ -357,6 +357,12 @@ def test_cli_refuses_an_unknown_picture_type(tmp_path, capsys):
     assert err.count("\n") == 1 and "x.jpg" in err and ".png" in err
     with pytest.raises(PlotFormatError):
         save_figure(plot_graph(mobility.loads(RPS)), tmp_path / "y.gif")
+    flexure = ROOT / "examples" / "flexure" / "three_rod.yaml"
+    if flexure.exists():  # a flexure document is named as such, not reported as a bad mechanism file
+        assert main(["plot", str(flexure), "-o", str(tmp_path / "f.png")]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "flexure document" in err
+        assert not (tmp_path / "f.png").exists()
 
 
 def test_missing_matplotlib_is_one_line_with_the_install_hint(tmp_path, capsys, monkeypatch):

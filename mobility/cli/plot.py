@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from ..analysis import analyze
+from ..errors import MechanismFileError
 from ..loader import load
 from ..tolerance import Tolerance
 
@@ -31,6 +33,18 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(run=run)
 
 
+def _is_flexure(path: str) -> bool:
+    """Whether ``path`` holds a flexure document (read again only to explain a load error)."""
+    from ..flexure_loader import is_flexure_document
+    from ..yaml_source import parse_yaml
+
+    try:
+        data, _ = parse_yaml(Path(path).read_text(encoding="utf-8"), path)
+    except (OSError, UnicodeDecodeError, MechanismFileError):
+        return False
+    return is_flexure_document(data)
+
+
 def run(args: argparse.Namespace) -> int:
     from ..plotting import FORMATS, PlotFormatError, plot_graph, plot_mechanism, save_figure
 
@@ -43,7 +57,12 @@ def run(args: argparse.Namespace) -> int:
     if args.graph and args.constraints:
         print("mobility plot: error: --constraints draws on the mechanism, not on the --graph picture", file=sys.stderr)
         return 2
-    mechanism = load(args.file)
+    try:
+        mechanism = load(args.file)
+    except MechanismFileError:
+        if _is_flexure(args.file):
+            raise PlotFormatError(f"{args.file}: a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures") from None
+        raise
     tol = Tolerance(rank=args.tol)
     result = analyze(mechanism, tol=tol)
     if args.graph:
