@@ -311,6 +311,18 @@ def test_a_freedom_infinitesimal_at_every_pose_is_instantaneous_only():
     assert abs(abs(float(branch.tangent[0, 0])) - 1.0) < 1e-12
 
 
+def test_library_3upu_singular_changes_operation_mode():
+    path = MECHANISMS / "3upu_singular.yaml"
+    if not path.exists():
+        pytest.skip("3upu_singular.yaml is not in the library yet")
+    m = mobility.load(path)
+    f = finite_mobility(m)
+    assert (f.instantaneous_dof, f.instantaneous_pattern) == (4, "3T1R")
+    assert (f.verdict, f.full_cycle_dof, f.instantaneous_only_dof) == ("bifurcation", 3, 1)
+    assert sorted(b.pattern for b in f.branches) == ["3R", "3T"]
+    assert [_platform_rotation(m, b.q) > 1e-4 for b in f.branches] == [b.pattern != "3T" for b in f.branches]
+
+
 def test_library_4puu_singular_gains_an_instantaneous_rotation_only():
     path = MECHANISMS / "4puu_singular.yaml"
     if not path.exists():
