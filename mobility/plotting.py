@@ -463,8 +463,8 @@ def _draw_link(ax: Any, name: str, pts: np.ndarray, role: str, size: float) -> N
             ax.plot(*np.stack([c, u[k]]).T, color=color, lw=lw, gid=gid if k == 0 else gid + ":spoke", solid_capstyle="round")
 
 
-def _joint_symbols(ax: Any, m: Mechanism, sk: Sketch, labels: bool) -> None:
-    """One scatter per joint type, small axis segments, names."""
+def _joint_symbols(ax: Any, m: Mechanism, sk: Sketch, labels: bool, view: tuple[float, float]) -> None:
+    """One scatter per joint type, small axis segments, names (beside each joint on the screen of ``view``)."""
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     size = sk.size
@@ -503,7 +503,8 @@ def _joint_symbols(ax: Any, m: Mechanism, sk: Sketch, labels: bool) -> None:
         coll.set_gid("mobility:joint-rails")
         ax.add_collection3d(coll)
     if labels and len(joints) <= 40:
-        off = 0.025 * size
+        _, sx, sy = _view_axes(*view)
+        off = 0.03 * size * (0.8 * sx + 0.6 * sy)  # up and to the right on the screen, whatever the view
         for i, name in enumerate(sk.names):
             ax.text(*(sk.points[i] + off), name, fontsize=6.5, color="#263238", gid=f"mobility:joint-label:{name}", zorder=1e4)
 
@@ -534,7 +535,7 @@ def _farthest(options: Sequence[np.ndarray], occupied: list[np.ndarray]) -> int:
     return int(np.argmax(np.round(gaps, 9)))  # rounding: ties go to the first option
 
 
-def _scene(m: Mechanism, r: Result, sk: Sketch, constraints: bool) -> dict[str, Any]:
+def _scene(m: Mechanism, r: Result, sk: Sketch, constraints: bool, eyes: np.ndarray | None = None) -> dict[str, Any]:
     """Where the freedoms and constraints of the end effector are drawn (no drawing).
 
     Free vectors (translations, couples) are drawn at the end effector's
@@ -542,6 +543,8 @@ def _scene(m: Mechanism, r: Result, sk: Sketch, constraints: bool) -> dict[str, 
     (which end of an axis carries the rotation mark, which way a force arrow
     points, on which side a couple stands), the place farthest from what is
     already drawn is taken, so marks and labels do not fall on each other.
+    With ``eyes`` (view directions, once chosen), a couple stands aside in a
+    direction every view shows, not one seen end-on.
     """
     size = sk.size
     c = sk.end_effector_centre
@@ -574,17 +577,24 @@ def _scene(m: Mechanism, r: Result, sk: Sketch, constraints: bool) -> dict[str, 
             p = np.asarray(f.point, dtype=float)
             d = np.asarray(f.axis, dtype=float)
             # shorter than a rotation axis, so both show where they share a line
-            tips = [p + 0.28 * size * d, p - 0.28 * size * d]
-            k = _farthest([t[None] for t in tips], points)
-            out["forces"].append((tips[1 - k], tips[k], f.pitch))
-            points.append(tips[k][None])
-            lines.append(_segment_samples(tips[1 - k], tips[k]))
+            # the arrowhead (and label) at either end, the line a little shorter or longer: clear of marks and joints
+            options = [(sg, k) for k in (0.28, 0.2, 0.36) for sg in (1.0, -1.0)]
+            tips = [np.stack([p + sg * k * size * d, p + sg * (k + 0.06) * size * d]) for sg, k in options]
+            sg, k = options[_farthest(tips, points)]
+            start, tip = p - sg * k * size * d, p + sg * k * size * d
+            out["forces"].append((start, tip, f.pitch))
+            points.append(np.stack([tip, tip + 0.06 * size * sg * d]))
+            lines.append(_segment_samples(start, tip))
         for cp in r.couples:
             cp = np.asarray(cp, dtype=float)
             e1, e2 = _perpendiculars(cp)
-            bases = [c + 0.22 * size * (math.cos(k * math.pi / 4) * e1 + math.sin(k * math.pi / 4) * e2) for k in range(8)]
-            segs = [_segment_samples(b - 0.5 * arrow * cp, b + 0.5 * arrow * cp) for b in bases]
-            k = _farthest(segs, points + lines)
+            offsets = [math.cos(k * math.pi / 4) * e1 + math.sin(k * math.pi / 4) * e2 for k in range(8)]
+            segs = [_segment_samples(c + 0.25 * size * e - 0.5 * arrow * cp, c + 0.25 * size * e + 0.5 * arrow * cp) for e in offsets]
+            occupied = np.concatenate([o.reshape(-1, 3) for o in points + lines])
+            clearance = [float(np.min(np.linalg.norm(sg[:, None, :] - occupied[None], axis=2))) / size for sg in segs]
+            seen = [1.0 if eyes is None else float(np.min(np.sqrt(np.maximum(0.0, 1.0 - (eyes @ e) ** 2)))) for e in offsets]
+            # enough clearance first (beyond 15 % of the scene it no longer matters), then visibility in every view
+            k = int(np.argmax([round(4.0 * min(cl, 0.15) + sn, 9) for cl, sn in zip(clearance, seen)]))
             out["couples"].append((segs[k][0], segs[k][-1]))
             points.append(segs[k][[0, -1]])
             lines.append(segs[k])
@@ -668,6 +678,8 @@ def plot_mechanism(
         view_list = choose_views(important_pts, np.concatenate([dirs, dirs, np.array(link_dirs).reshape(-1, 3)]), size, views)
     else:
         view_list = [(float(e), float(a)) for e, a in views]
+    if sc["couples"]:  # place the couples again, now that the views are known
+        sc = _scene(mechanism, r, sk, constraints, eyes=np.array([_view_axes(e, a)[0] for e, a in view_list]))
 
     extent_pts = np.concatenate([important_pts, sk.points])
     lo, hi = extent_pts.min(axis=0), extent_pts.max(axis=0)
@@ -691,7 +703,7 @@ def plot_mechanism(
         for link, idx in sk.link_joints.items():
             role = "ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"
             _draw_link(ax, link, sk.points[list(idx)], role, size)
-        _joint_symbols(ax, mechanism, sk, labels)
+        _joint_symbols(ax, mechanism, sk, labels, (elev, azim))
         ax.scatter(*sk.end_effector_centre, marker="x", s=30, color=COLORS["end_effector"], depthshade=False, gid="mobility:end-effector-centre")
         for i, (s, e) in enumerate(sc["translations"]):
             _arrow(ax, s, e, COLORS["translation"], f"mobility:translation:{i}", head=head, lw=2.4)
