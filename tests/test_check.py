@@ -1,0 +1,230 @@
+"""`mobility check`: the library passes; mismatches, missing blocks and bad input give the right exit status."""
+
+import json
+
+import pytest
+from conftest import MECHANISMS
+
+import mobility
+from mobility import check as check_module
+from mobility.check import COMPARATORS, check_file, check_mechanism, check_paths, mechanism_files
+from mobility.cli import main
+from mobility.pytest_plugin import assert_mechanism_passes, mechanism_test_cases, mechanism_tests, MechanismCheckFailed
+
+pytest_plugins = ["pytester"]
+
+PLANAR = """\
+name: planar 3-RRR
+ground: base
+end_effector: platform
+joints:
+  - {name: A1, type: R, links: [base, p1], axis: [0, 0, 1], point: [4, 0, 0]}
+  - {name: B1, type: R, links: [p1, d1], axis: [0, 0, 1], point: [3, 2, 0]}
+  - {name: C1, type: R, links: [d1, platform], axis: [0, 0, 1], point: [1, 0.3, 0]}
+  - {name: A2, type: R, links: [base, p2], axis: [0, 0, 1], point: [-2, 3.5, 0]}
+  - {name: B2, type: R, links: [p2, d2], axis: [0, 0, 1], point: [-3, 1, 0]}
+  - {name: C2, type: R, links: [d2, platform], axis: [0, 0, 1], point: [-0.5, 0.8, 0]}
+"""
+
+
+def run(capsys, *args):
+    status = main([str(a) for a in args])
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+@pytest.fixture(scope="module")
+def library_report():
+    return check_paths([MECHANISMS])
+
+
+def test_every_library_file_passes(library_report):
+    assert len(library_report.results) >= 25
+    failing = [f"{r.path}: {r.status}: {r.message}" for r in library_report.results if not r.ok]
+    assert failing == []
+    assert library_report.exit_status == 0
+
+
+def test_folders_are_expanded_recursively_and_sorted(tmp_path):
+    (tmp_path / "b").mkdir()
+    (tmp_path / "a" / "deep").mkdir(parents=True)
+    for rel in ("b/z.yaml", "a/deep/y.yml", "a/x.yaml", "a/notes.txt"):
+        (tmp_path / rel).write_text(PLANAR)
+    shown = [s for s, _, _ in mechanism_files([tmp_path])]
+    assert shown == [str(tmp_path / p) for p in ("a/deep/y.yml", "a/x.yaml", "b/z.yaml")]
+
+
+def test_cli_table_for_the_library(capsys):
+    status, out, err = run(capsys, "check", MECHANISMS / "bennett.yaml", MECHANISMS / "3prs.yaml")
+    assert status == 0 and err == ""
+    lines = out.splitlines()
+    assert lines[0].split() == ["file", "G-K", "M", "DOF", "pattern", "expected", "verdict"]
+    row = next(line for line in lines if "bennett" in line).split()
+    assert row[1:5] == ["-2", "1", "1", "1R"] and "pass" in row
+    assert lines[-1] == "2 passed, 0 failed, 0 without expected block, 0 errors"
+
+
+def test_a_mismatch_fails_with_exit_1(write_yaml, capsys):
+    text = (MECHANISMS / "bennett.yaml").read_text().replace("  dof: 1\n", "  dof: 2\n")
+    status, out, _ = run(capsys, "check", write_yaml(text, "bennett_wrong.yaml"))
+    assert status == 1
+    assert "FAIL: dof 1 (expected 2)" in out
+    assert "0 passed, 1 failed" in out
+
+
+def test_each_expected_key_is_compared(write_yaml):
+    base = (MECHANISMS / "delta.yaml").read_text()
+    for old, new in [
+        ("pattern: 3T\n", "pattern: 2T1R\n"),
+        ("mobility: 9\n", "mobility: 3\n"),
+        ("idle_dof: 6\n", "idle_dof: 0\n"),
+        ("gruebler_kutzbach: 9\n", "gruebler_kutzbach: 3\n"),
+        ("redundant_constraints: 0\n", "redundant_constraints: 1\n"),
+        ("translations: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\n", "translations: [[1, 0, 0], [0, 1, 0]]\n"),
+    ]:
+        assert old in base
+        result = check_file(write_yaml(base.replace(old, new)))
+        assert result.status == "fail", old
+        assert [c.key for c in result.mismatches] == [old.split(":")[0]]
+
+
+def test_translations_are_compared_as_subspaces(write_yaml):
+    def status(translations):
+        return check_file(write_yaml(PLANAR + f"expected: {{dof: 3, translations: {translations}}}\n")).status
+
+    assert status("[[1, 1, 0], [1, -1, 0]]") == "pass"  # another basis of the xy-plane
+    assert status("[[0, 5, 0], [3, 0, 0]]") == "pass"  # any length, any order
+    assert status("[[1, 0, 0], [0, 0, 1]]") == "fail"  # another plane
+    assert status("[[1, 0, 0]]") == "fail"  # a line inside the plane is not the plane
+    assert status("[]") == "fail"
+    zero = check_file(write_yaml(PLANAR + "expected: {translations: [[0, 0, 0]]}\n"))
+    assert zero.status == "fail" and "zero vector" in zero.message
+
+
+def test_no_translation_is_written_as_an_empty_list():
+    assert check_file(MECHANISMS / "agile_eye.yaml").ok
+    eye = mobility.load(MECHANISMS / "agile_eye.yaml")
+    wrong = check_mechanism(eye.replace(expected=mobility.Expected(translations=((0.0, 0.0, 1.0),))))
+    assert wrong.status == "fail"
+
+
+def test_a_file_without_expected_block_is_not_a_pass(write_yaml, capsys):
+    status, out, _ = run(capsys, "check", write_yaml(PLANAR))
+    assert status == 1
+    assert "no expected block" in out
+    assert check_file(write_yaml(PLANAR)).status == "missing"
+
+
+def test_bad_input_gives_exit_2_and_its_one_line_error(write_yaml, capsys):
+    bad = write_yaml(PLANAR.replace("axis: [0, 0, 1], point: [4, 0, 0]", "axis: [0, 1], point: [4, 0, 0]"), "bad.yaml")
+    wrong = write_yaml((MECHANISMS / "bennett.yaml").read_text().replace("  dof: 1\n", "  dof: 2\n"), "wrong.yaml")
+    status, out, err = run(capsys, "check", bad, wrong, MECHANISMS / "sarrus.yaml")
+    assert status == 2  # bad input wins over the mismatch
+    assert f"ERROR: {bad}:5: joints[0].axis: expected a list of 3 numbers, got 2" in out
+    assert "FAIL" in out and "1 passed, 1 failed, 0 without expected block, 1 error" in out
+    assert err == "" and "Traceback" not in out
+
+
+@pytest.mark.parametrize("make", [lambda tmp: tmp / "missing.yaml", lambda tmp: tmp])
+def test_missing_paths_and_empty_folders_are_bad_input(tmp_path, capsys, make):
+    status, out, _ = run(capsys, "check", make(tmp_path))
+    assert status == 2
+    assert "ERROR" in out
+
+
+def test_an_internal_error_is_reported_per_file_with_exit_3(monkeypatch):
+    def broken(*args, **kwargs):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(check_module, "analyze", broken)
+    report = check_paths([MECHANISMS / "sarrus.yaml", MECHANISMS / "missing.yaml"])
+    assert [r.status for r in report.results] == ["error", "error"]
+    assert report.results[0].internal and "RuntimeError: boom" in report.results[0].message
+    assert report.exit_status == 3
+
+
+def test_a_key_without_comparator_is_never_a_silent_pass():
+    m = mobility.load(MECHANISMS / "sarrus.yaml")
+    result = check_mechanism(m.replace(expected=mobility.Expected(dof=1, extra={"stiffness": 3})))
+    assert result.status == "fail"
+    assert result.mismatches[0].key == "stiffness" and "no comparator" in result.message
+    assert "stiffness" not in COMPARATORS
+
+
+def test_finite_keys_are_compared(write_yaml):
+    text = (MECHANISMS / "bennett.yaml").read_text()
+    assert "finite_verdict: full-cycle" in text and check_file(MECHANISMS / "bennett.yaml").ok
+    wrong = check_file(write_yaml(text.replace("finite_verdict: full-cycle", "finite_verdict: cannot-move").replace("full_cycle_dof: 1", "full_cycle_dof: 0")))
+    assert [c.describe() for c in wrong.mismatches] == ["full_cycle_dof 1 (expected 0)", "finite_verdict full-cycle (expected cannot-move)"]
+
+
+def test_json_output(write_yaml, capsys):
+    wrong = write_yaml((MECHANISMS / "sarrus.yaml").read_text().replace("pattern: 1T\n", "pattern: 1R\n"), "w.yaml")
+    status, out, _ = run(capsys, "check", MECHANISMS / "bennett.yaml", wrong, "--json")
+    data = json.loads(out)
+    assert status == data["exit_status"] == 1
+    assert data["summary"] == {"pass": 1, "fail": 1, "missing": 0, "error": 0, "total": 2}
+    first, second = data["results"]
+    assert (first["status"], first["name"], first["found"]["dof"], first["found"]["gruebler_kutzbach"]) == ("pass", "Bennett 4R linkage", 1, -2)
+    assert all(c["ok"] for c in first["comparisons"])
+    bad = [c for c in second["comparisons"] if not c["ok"]]
+    assert bad == [{"key": "pattern", "expected": "1R", "actual": "1T", "ok": False, "note": ""}]
+    assert second["found"]["translations"] == [[0.0, 0.0, 1.0]]
+
+
+def test_tolerance_option_is_validated(capsys):
+    status, _, err = run(capsys, "check", MECHANISMS / "sarrus.yaml", "--tol", "0.5")
+    assert status == 2 and "--tol" in err
+
+
+# --- the same check in a user's pytest suite -------------------------------------------------
+
+
+def test_mechanism_test_cases_one_per_file(tmp_path):
+    (tmp_path / "m").mkdir()
+    (tmp_path / "m" / "one.yaml").write_text(PLANAR)
+    cases = mechanism_test_cases(tmp_path / "m", tmp_path / "nothing")
+    assert [c.values[0] for c in cases] == [str(tmp_path / "m" / "one.yaml"), str(tmp_path / "nothing")]
+    with pytest.raises(MechanismCheckFailed, match="no expected block"):
+        assert_mechanism_passes(cases[0].values[0])
+    with pytest.raises(MechanismCheckFailed, match="no such file or folder"):
+        assert_mechanism_passes(cases[1].values[0])
+    assert [r.name for r in assert_mechanism_passes(MECHANISMS / "bennett.yaml")] == ["Bennett 4R linkage"]
+
+
+def _user_project(pytester):
+    folder = pytester.mkdir("designs")
+    for stem in ("bennett", "sarrus"):
+        (folder / f"{stem}.yaml").write_text((MECHANISMS / f"{stem}.yaml").read_text())
+    wrong = (MECHANISMS / "rssr.yaml").read_text().replace("  mobility: 2\n", "  mobility: 1\n")
+    (folder / "rssr_wrong.yaml").write_text(wrong)
+    return folder
+
+
+def test_one_line_in_a_user_test_module(pytester):
+    _user_project(pytester)
+    pytester.makepyfile(test_designs="from mobility.pytest_plugin import mechanism_tests\n\ntest_designs = mechanism_tests('designs')\n")
+    result = pytester.runpytest_inprocess("-p", "no:cacheprovider", "test_designs.py")
+    result.assert_outcomes(passed=2, failed=1)
+    result.stdout.fnmatch_lines(["*test_designs?designs/rssr_wrong.yaml?*", "*mobility 2 (expected 1)*"])
+
+
+def test_plugin_collects_mechanism_files_as_tests(pytester):
+    _user_project(pytester)
+    pytester.makepyfile(test_other="def test_other():\n    pass\n")
+    result = pytester.runpytest_inprocess("-p", "mobility.pytest_plugin", "-p", "no:cacheprovider", "--mobility-check", "designs", "test_other.py")
+    result.assert_outcomes(passed=3, failed=1)
+    result.stdout.fnmatch_lines(["*designs/rssr_wrong.yaml::check*"])
+
+
+def test_plugin_is_inert_unless_configured(pytester):
+    _user_project(pytester)
+    result = pytester.runpytest_inprocess("-p", "mobility.pytest_plugin", "-p", "no:cacheprovider", "designs")
+    result.assert_outcomes()
+
+
+def test_mechanism_tests_returns_a_parametrized_test():
+    test = mechanism_tests(MECHANISMS / "bennett.yaml", MECHANISMS / "sarrus.yaml")
+    marks = [m for m in test.pytestmark if m.name == "parametrize"]
+    assert [p.id for p in marks[0].args[1]] == [str(MECHANISMS / "bennett.yaml"), str(MECHANISMS / "sarrus.yaml")]
+    test(str(MECHANISMS / "bennett.yaml"))  # passes silently
