@@ -138,7 +138,7 @@ def pixels(fig, first_only: bool = False) -> np.ndarray:
     for ax in fig.axes[1:]:
         ax.set_visible(not first_only)
     canvas = FigureCanvasAgg(fig)
-    fig.set_dpi(45)
+    fig.set_dpi(30)
     canvas.draw()
     return np.asarray(canvas.buffer_rgba())[..., :3].astype(int)
 
