@@ -19,12 +19,12 @@ its ``expected`` block, has none, or cannot be read):
        def test_my_designs(path):
            assert_mechanism_passes(path)
 
-2. **As a pytest plugin** that collects mechanism files as test items: load
-   it with ``-p mobility.pytest_plugin`` (or ``pytest_plugins =
-   ["mobility.pytest_plugin"]`` in the root ``conftest.py``) and say where the
-   files are, on the command line (``--mobility-check mechanisms/``) or in the
-   ini file (``mobility_check = mechanisms``).  Without one of those it
-   collects nothing, so it is harmless when installed.
+2. **As a pytest plugin** that collects mechanism files as test items: it is
+   registered with pytest when :mod:`mobility` is installed (entry point
+   ``pytest11``); say where the files are, on the command line
+   (``--mobility-check mechanisms/``) or in the ini file
+   (``mobility_check = mechanisms``).  Without one of those it collects
+   nothing, so it is harmless.
 
 Examples
 --------

@@ -212,14 +212,14 @@ def test_one_line_in_a_user_test_module(pytester):
 def test_plugin_collects_mechanism_files_as_tests(pytester):
     _user_project(pytester)
     pytester.makepyfile(test_other="def test_other():\n    pass\n")
-    result = pytester.runpytest_inprocess("-p", "mobility.pytest_plugin", "-p", "no:cacheprovider", "--mobility-check", "designs", "test_other.py")
+    result = pytester.runpytest_inprocess("-p", "no:cacheprovider", "--mobility-check", "designs", "test_other.py")
     result.assert_outcomes(passed=3, failed=1)
     result.stdout.fnmatch_lines(["*designs/rssr_wrong.yaml::check*"])
 
 
 def test_plugin_is_inert_unless_configured(pytester):
     _user_project(pytester)
-    result = pytester.runpytest_inprocess("-p", "mobility.pytest_plugin", "-p", "no:cacheprovider", "designs")
+    result = pytester.runpytest_inprocess("-p", "no:cacheprovider", "designs")
     result.assert_outcomes()
 
 
