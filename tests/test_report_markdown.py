@@ -111,14 +111,15 @@ def test_tables_read_back_give_the_analysis(source):
     assert sum(row["kind"] == "translation" for row in free) == r.translation_count
     assert sum(row["kind"] == "couple" for row in cons) == len(r.couples)
     norm = joint_screws(m).normalisation
+    closure = loop_closure(m)  # the independent route
     if r.dof:
         printed = norm.from_world(screw_rows(free, f"point on axis{unit}", f"pitch{unit}/rad").T)
         # second route: the end-effector twists of the loop-closure Jacobian
-        assert np.max(subspace_angles(printed, loop_closure(m).end_effector_twists)) < 1e-4
+        assert np.max(subspace_angles(printed, closure.end_effector_twists)) < 1e-4
     if r.dof < 6:
         printed_w = norm.from_world(screw_rows(cons, f"point on axis{unit}", f"pitch{unit}").T)
         # reciprocal to every end-effector twist (swap the halves for the reciprocal product)
-        lc = loop_closure(m).end_effector_twists
+        lc = closure.end_effector_twists
         swapped = np.vstack([printed_w[3:], printed_w[:3]])
         assert np.max(np.abs(swapped.T @ lc)) < 1e-4 if lc.size else True
         assert np.linalg.matrix_rank(printed_w, tol=1e-4) == 6 - r.dof
@@ -127,7 +128,7 @@ def test_tables_read_back_give_the_analysis(source):
     assert whole["joints"] == len(m.joints)
     assert whole["joint freedoms"] == sum(j.dof for j in m.joints)
     assert whole["Grübler–Kutzbach count"] == 6 * (len(m.links) - 1 - len(m.joints)) + sum(j.dof for j in m.joints)
-    assert whole["mobility (screw theory)"] == loop_closure(m).mobility
+    assert whole["mobility (screw theory)"] == closure.mobility
     assert whole["redundant constraints"] == whole["mobility (screw theory)"] - whole["Grübler–Kutzbach count"]
     assert whole["idle DOF (end effector still)"] == whole["mobility (screw theory)"] - r.dof
     assert f"`{r.structure}`" in text
