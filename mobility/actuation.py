@@ -73,7 +73,7 @@ from typing import Any, Iterable, Sequence
 
 import numpy as np
 
-from .canonical import canonical_form
+from .analysis import screw_system_in_frame
 from .errors import MechanismError
 from .joint_screws import JointScrews, Normalisation, joint_screws
 from .linalg import singular_values, svd
@@ -398,19 +398,6 @@ class Enumeration:
 # ---------------------------------------------------------------------------
 
 
-def _world_form(basis: np.ndarray, norm: Normalisation, reference: np.ndarray, kinds: tuple[str, str], tol: Tolerance) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
-    """Free vectors (k, 3), screw axes and basis rows (global frame) of a normalised screw system."""
-    form = canonical_form(basis, reference, tol)
-    free = form.free.T.copy().reshape(-1, 3)
-    axes = tuple(
-        ScrewAxis(p.axis, norm.point_to_world(p.point), 0.0 if abs(p.pitch) <= tol.rank else p.pitch * norm.length, kinds[abs(p.pitch) > tol.rank])
-        for p in form.screws
-    )
-    rows = [np.concatenate([np.zeros(3), f]) for f in free]
-    rows += [np.concatenate([a.axis, np.cross(a.point, a.axis) + a.pitch * a.axis]) for a in axes]
-    return free, axes, np.array(rows, dtype=float).reshape(-1, 6)
-
-
 def _wrench_axis(wrench_n: np.ndarray, norm: Normalisation, reference: np.ndarray, tol: Tolerance) -> tuple[np.ndarray, ScrewAxis]:
     """A normalised wrench as a global wrench (``|f| = 1``, or ``|m| = 1`` for a couple) and its line."""
     f, m = wrench_n[:3], wrench_n[3:]
@@ -532,9 +519,9 @@ def _build_check(
             note = note or "its actuation wrench lies in the constraint space: it cannot move the end effector"
         out_inputs.append(ActuationInput(label, jkind, limb, world, axis, flag, note))
     dof = twists.shape[1]
-    ctr, cax, crows = _world_form(constraints, norm, reference, ("force", "wrench"), tol)
+    ctr, cax, crows = screw_system_in_frame(constraints, norm, reference, ("force", "wrench"), tol)
     pattern = _pattern(twists, tol)
-    ut, ur, urows = _world_form(a.uncontrolled, norm, reference, ("rotation", "helical"), tol)
+    ut, ur, urows = screw_system_in_frame(a.uncontrolled, norm, reference, ("rotation", "helical"), tol)
     warns = list(warnings)
     if a.verdict != SINGULAR and a.decision.smallest_kept < tol.near_singular:
         warns.append(

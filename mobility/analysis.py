@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .canonical import CanonicalForm, canonical_form
+from .canonical import canonical_form
 from .joint_screws import JointScrews, Normalisation, joint_screws
 from .model import WORLD, Mechanism
 from .result import LimbSystem, Margin, Result, ScrewAxis, pattern_of
@@ -32,7 +32,7 @@ from .tolerance import DEFAULT_TOLERANCE, Tolerance
 from .transforms import cross
 from .topology import Parallel, Topology, decompose, describe, joints_of
 
-__all__ = ["analyze", "gruebler_kutzbach"]
+__all__ = ["analyze", "gruebler_kutzbach", "screw_system_in_frame"]
 
 
 def gruebler_kutzbach(mechanism: Mechanism) -> int:
@@ -129,12 +129,10 @@ class _Detail:
         self.tol = tol
 
     def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
-        form = canonical_form(self.root.basis, self.screws.reference, self.tol)
-        return _world_form(form, self.screws.normalisation, ("rotation", "helical"), self.tol)
+        return screw_system_in_frame(self.root.basis, self.screws.normalisation, self.screws.reference, ("rotation", "helical"), self.tol)
 
     def wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
-        form = canonical_form(self.root.wrenches, self.screws.reference, self.tol)
-        return _world_form(form, self.screws.normalisation, ("force", "wrench"), self.tol)
+        return screw_system_in_frame(self.root.wrenches, self.screws.normalisation, self.screws.reference, ("force", "wrench"), self.tol)
 
     def common_constraints(self) -> int:
         return 6 - span_and_reciprocal(self.screws.twists, self.tol).dim
@@ -158,24 +156,44 @@ class _Detail:
             local = Normalisation(rt @ (norm.centre - tf.translation), norm.length)
             rot6 = np.kron(np.eye(2), rt)
             reference = rt @ self.screws.reference
-            tform = canonical_form(rot6 @ value.basis, reference, tol)
-            wform = canonical_form(rot6 @ value.wrenches, reference, tol)
-            translations, rotations, twists = _world_form(tform, local, ("rotation", "helical"), tol)
-            couples, forces, wrenches = _world_form(wform, local, ("force", "wrench"), tol)
+            translations, rotations, twists = screw_system_in_frame(rot6 @ value.basis, local, reference, ("rotation", "helical"), tol)
+            couples, forces, wrenches = screw_system_in_frame(rot6 @ value.wrenches, local, reference, ("force", "wrench"), tol)
             out.append(LimbSystem(describe(node), frame, value.dim, value.idle, translations, rotations, twists, couples, forces, wrenches))
         return tuple(out)
 
 
-def _world_form(form: CanonicalForm, norm: Normalisation, kinds: tuple[str, str], tol: Tolerance) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
-    """Free vectors, screw axes and basis rows of a canonical form, in the coordinates of ``norm``."""
-    free = form.free.T.copy()
+def screw_system_in_frame(basis: np.ndarray, norm: Normalisation, reference: np.ndarray, kinds: tuple[str, str], tol: Tolerance) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+    """Canonical form of a normalised screw system, written in the coordinates of ``norm``.
+
+    Parameters
+    ----------
+    basis : ndarray, shape (6, d)
+        Orthonormal basis of a twist or wrench system in normalised coordinates.
+    norm : Normalisation
+        Maps normalised coordinates to the frame and unit wanted.
+    reference : ndarray, shape (3,)
+        Reference point (normalised coordinates), see :mod:`mobility.canonical`.
+    kinds : (str, str)
+        Names of a screw without and with pitch (``("rotation", "helical")``
+        for twists, ``("force", "wrench")`` for wrenches).
+
+    Returns
+    -------
+    free : ndarray, shape (k, 3)
+        The free vectors (translations or couples), read-only.
+    axes : tuple of ScrewAxis
+    rows : ndarray, shape (d, 6)
+        A basis of the system: free vectors, then the axes' unit screws.
+    """
+    form = canonical_form(basis, reference, tol)
+    free = form.free.T.copy().reshape(-1, 3)
     axes = tuple(
         ScrewAxis(p.axis, norm.point_to_world(p.point), 0.0 if abs(p.pitch) <= tol.rank else p.pitch * norm.length, kinds[abs(p.pitch) > tol.rank])
         for p in form.screws
     )
     rows = [np.concatenate([np.zeros(3), f]) for f in free]
     rows += [np.concatenate([a.axis, cross(a.point, a.axis) + a.pitch * a.axis]) for a in axes]
-    basis = np.array(rows).reshape(-1, 6)
-    for arr in (free, basis):
+    basis_rows = np.array(rows, dtype=float).reshape(-1, 6)
+    for arr in (free, basis_rows):
         arr.setflags(write=False)
-    return free.reshape(-1, 3), axes, basis
+    return free, axes, basis_rows

@@ -82,8 +82,8 @@ from .actuation import (
     _plain,
     _axis_dict,
     _rank_combinations,
-    _world_form,
 )
+from .analysis import screw_system_in_frame
 from .errors import MechanismError
 from .joint_screws import Normalisation
 from .result import ScrewAxis, pattern_of
@@ -557,8 +557,8 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
     freedom_n = vectors[SWAP_ROWS][:, free]
     constraint_n = vectors[:, ~free]
     reference = _reference(mechanism, norm)
-    ft, fr, frows = _world_form(freedom_n, norm, reference, ("rotation", "helical"), tol)
-    cc, cf, crows = _world_form(constraint_n, norm, reference, ("force", "wrench"), tol)
+    ft, fr, frows = screw_system_in_frame(freedom_n, norm, reference, ("rotation", "helical"), tol)
+    cc, cf, crows = screw_system_in_frame(constraint_n, norm, reference, ("force", "wrench"), tol)
     rot = free_vector_subspace(freedom_n, tol, coefficients=False).rank
     above = float(rel[dof - 1]) if dof else 1.0
     below = float(rel[dof]) if dof < 6 else 0.0

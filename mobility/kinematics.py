@@ -63,13 +63,14 @@ import math
 from dataclasses import dataclass, field
 from dataclasses import replace as _replace
 
-import networkx as nx
+
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from .joint_screws import Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
+from .topology import spanning_tree
 from .transforms import skew
 
 __all__ = [
@@ -631,14 +632,8 @@ def _build(mechanism: Mechanism) -> Kinematics:
     twists.setflags(write=False)
     skews = np.array([skew(a) for a in axes_a]).reshape(n, 3, 3)
 
-    # spanning tree from the ground (breadth-first), as in mobility.loop_closure
-    graph = nx.Graph()
-    for index, joint in enumerate(mechanism.joints):
-        a, b = joint.links
-        if graph.has_edge(a, b):
-            graph[a][b]["joints"].append(index)
-        else:
-            graph.add_edge(a, b, joints=[index])
+    # the spanning tree from the ground that mobility.loop_closure uses
+    tree_edges, chords = spanning_tree(mechanism)
 
     def joint_factors(index: int, forward: bool) -> tuple[Factor, ...]:
         lo, hi = offsets[index], offsets[index + 1]
@@ -649,14 +644,10 @@ def _build(mechanism: Mechanism) -> Kinematics:
     paths: dict[str, tuple[Factor, ...]] = {mechanism.ground: ()}
     joint_paths: dict[str, tuple[int, ...]] = {mechanism.ground: ()}
     tree: list[int] = []
-    for parent, child in nx.bfs_edges(graph, mechanism.ground):
-        index = graph[parent][child]["joints"][0]
-        tree.append(index)
-        forward = mechanism.joints[index].links == (parent, child)
-        paths[child] = paths[parent] + joint_factors(index, forward)
-        joint_paths[child] = joint_paths[parent] + (index,)
-    tree_set = set(tree)
-    chords = tuple(i for i in range(len(mechanism.joints)) if i not in tree_set)
+    for edge in tree_edges:
+        tree.append(edge.joint)
+        paths[edge.child] = paths[edge.parent] + joint_factors(edge.joint, edge.forward)
+        joint_paths[edge.child] = joint_paths[edge.parent] + (edge.joint,)
     loops = []
     for index in chords:
         a, b = mechanism.joints[index].links

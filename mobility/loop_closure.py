@@ -29,7 +29,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import networkx as nx
 import numpy as np
 
 from .joint_screws import joint_screws
@@ -37,6 +36,7 @@ from .linalg import svd
 from .model import Mechanism
 from .screws import span_and_reciprocal
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
+from .topology import spanning_tree
 
 __all__ = ["LoopClosure", "loop_closure"]
 
@@ -78,28 +78,16 @@ def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE) -> Lo
     """Loop-closure Jacobian of the whole mechanism, its rank and the end effector's twists."""
     screws = joint_screws(mechanism)
     n = screws.twists.shape[1]
-    graph = nx.Graph()
-    for index, joint in enumerate(mechanism.joints):
-        a, b = joint.links
-        if graph.has_edge(a, b):
-            graph[a][b]["joints"].append(index)
-        else:
-            graph.add_edge(a, b, joints=[index])
+    tree, chords = spanning_tree(mechanism)
     path_map: dict[str, np.ndarray] = {mechanism.ground: np.zeros((6, n))}
-    tree_joints: set[int] = set()
-    for parent, child in nx.bfs_edges(graph, mechanism.ground):
-        index = graph[parent][child]["joints"][0]
-        tree_joints.add(index)
-        sign = 1.0 if mechanism.joints[index].links == (parent, child) else -1.0
-        p = path_map[parent].copy()
-        lo, hi = screws.offsets[index], screws.offsets[index + 1]
-        p[:, lo:hi] += sign * screws.twists[:, lo:hi]
-        path_map[child] = p
+    for edge in tree:
+        p = path_map[edge.parent].copy()
+        lo, hi = screws.offsets[edge.joint], screws.offsets[edge.joint + 1]
+        p[:, lo:hi] += (1.0 if edge.forward else -1.0) * screws.twists[:, lo:hi]
+        path_map[edge.child] = p
     rows = []
-    for index, joint in enumerate(mechanism.joints):
-        if index in tree_joints:
-            continue
-        a, b = joint.links
+    for index in chords:
+        a, b = mechanism.joints[index].links
         k = path_map[b] - path_map[a]
         lo, hi = screws.offsets[index], screws.offsets[index + 1]
         k[:, lo:hi] -= screws.twists[:, lo:hi]

@@ -40,7 +40,7 @@ import networkx as nx
 
 from .model import Mechanism
 
-__all__ = ["JointNode", "Series", "Parallel", "Bridge", "Node", "Topology", "decompose", "describe", "joints_of"]
+__all__ = ["JointNode", "Series", "Parallel", "Bridge", "Node", "Topology", "TreeEdge", "decompose", "describe", "joints_of", "spanning_tree"]
 
 
 @dataclass(frozen=True)
@@ -106,6 +106,58 @@ class Topology:
     link_count: int
     loop_count: int
     structure: str
+
+
+@dataclass(frozen=True)
+class TreeEdge:
+    """A joint of a spanning tree, met going away from the ground.
+
+    ``forward`` is true when the joint is written from ``parent`` to ``child``
+    (``links == (parent, child)``), so its twists carry the child's motion
+    relative to the parent with a plus sign.
+    """
+
+    parent: str
+    child: str
+    joint: int
+    forward: bool
+
+
+def spanning_tree(mechanism: Mechanism) -> tuple[tuple[TreeEdge, ...], tuple[int, ...]]:
+    """A breadth-first spanning tree of the joint graph from the ground, and its chords.
+
+    Several joints between the same two links are a loop: the first one
+    written is in the tree, the others are chords.
+
+    Returns
+    -------
+    tree : tuple of TreeEdge
+        In breadth-first order (a parent always comes before its children).
+    chords : tuple of int
+        Indices of the joints off the tree, in file order; each closes one
+        independent loop.
+
+    Examples
+    --------
+    >>> from mobility.model import Joint, Mechanism
+    >>> R = lambda n, a, b: Joint(n, "R", (a, b), axis=(0, 0, 1), point=(0, 0, 0))
+    >>> tree, chords = spanning_tree(Mechanism("m", "g", "e", (R("A", "g", "e"), R("B", "e", "g"))))
+    >>> [(t.parent, t.child, t.joint, t.forward) for t in tree], chords
+    ([('g', 'e', 0, True)], (1,))
+    """
+    graph = nx.Graph()
+    for index, joint in enumerate(mechanism.joints):
+        a, b = joint.links
+        if graph.has_edge(a, b):
+            graph[a][b]["joints"].append(index)
+        else:
+            graph.add_edge(a, b, joints=[index])
+    tree = []
+    for parent, child in nx.bfs_edges(graph, mechanism.ground):
+        index = graph[parent][child]["joints"][0]
+        tree.append(TreeEdge(parent, child, index, mechanism.joints[index].links == (parent, child)))
+    in_tree = {t.joint for t in tree}
+    return tuple(tree), tuple(i for i in range(len(mechanism.joints)) if i not in in_tree)
 
 
 def describe(node: Node) -> str:

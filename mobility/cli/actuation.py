@@ -32,6 +32,7 @@ from ..loader import load, loads
 from ..report import fmt_number, fmt_vector
 from ..result import ScrewAxis
 from ..tolerance import Tolerance
+from ._options import add_tolerance_option, tolerance_from
 from ..yaml_source import parse_yaml
 
 ORDER = 30
@@ -54,23 +55,20 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--step", type=float, default=0.1, help="step passed to the pose sampler (default: %(default)g)")
     p.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
     p.add_argument("--threshold", type=float, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
-    p.add_argument("--tol", type=float, default=Tolerance().rank, help="relative rank threshold (default: %(default)g)")
+    add_tolerance_option(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    base = Tolerance()
-    if not (base.inexact <= args.tol < base.near_singular):
-        print(f"mobility actuation: error: --tol must lie in [{base.inexact:g}, {base.near_singular:g})", file=sys.stderr)
-        return 2
+    tol = tolerance_from(args)
     if args.threshold is not None and not (0.0 < args.threshold < 1.0):
         print("mobility actuation: error: --threshold must lie between 0 and 1", file=sys.stderr)
         return 2
     if args.samples < 0 or (args.k is not None and args.k < 0):
         print("mobility actuation: error: --samples and --k must not be negative", file=sys.stderr)
         return 2
-    tol = Tolerance(rank=args.tol)
+    tol = tol
     text = _read(args.file)
     data, _ = parse_yaml(text, args.file)
     names = [n.strip() for n in args.inputs.split(",") if n.strip()] if args.inputs is not None else None

@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
 from ..analysis import analyze
 from ..loader import load
 from ..report import json_report, text_report
 from ..report_markdown import markdown_report
-from ..tolerance import Tolerance
+from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 10
 
@@ -28,24 +27,21 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object (same as --format json)")
     p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output format (default: text)")
     p.add_argument("--limbs", action="store_true", help="also show each limb's twists and constraints in its own frame")
-    p.add_argument("--tol", type=float, default=Tolerance().rank, help="relative rank threshold (default: %(default)g)")
+    add_tolerance_option(p)
     p.add_argument("--finite", action="store_true", help="also move the mechanism: is the freedom full-cycle or instantaneous only?")
     p.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    base = Tolerance()
-    if not (base.inexact <= args.tol < base.near_singular):
-        print(f"mobility analyze: error: --tol must lie in [{base.inexact:g}, {base.near_singular:g})", file=sys.stderr)
-        return 2
+    tol = tolerance_from(args)
     mechanism = load(args.file)
-    result = analyze(mechanism, tol=Tolerance(rank=args.tol))
+    result = analyze(mechanism, tol=tol)
     fmt = "json" if args.json else args.format
     text = FORMATS[fmt](result, args)
     if args.finite:
         from ..finite import finite_mobility  # scipy.optimize is slow to import: only when asked
 
-        text = _with_finite(text, fmt, finite_mobility(mechanism, tol=Tolerance(rank=args.tol)))
+        text = _with_finite(text, fmt, finite_mobility(mechanism, tol=tol))
     print(text)
     return 0
 

@@ -12,10 +12,9 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
 from ..check import CheckReport, CheckResult, check_paths
-from ..tolerance import Tolerance
+from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 20
 
@@ -35,16 +34,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("paths", nargs="+", metavar="PATH", help="mechanism files or folders")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
-    p.add_argument("--tol", type=float, default=Tolerance().rank, help="relative rank threshold (default: %(default)g)")
+    add_tolerance_option(p)
     p.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    base = Tolerance()
-    if not (base.inexact <= args.tol < base.near_singular):
-        print(f"mobility check: error: --tol must lie in [{base.inexact:g}, {base.near_singular:g})", file=sys.stderr)
-        return 2
-    report = check_paths(args.paths, tol=Tolerance(rank=args.tol))
+    tol = tolerance_from(args)
+    report = check_paths(args.paths, tol=tol)
     print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else table(report))
     return report.exit_status
 

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 
 import numpy as np
 
@@ -18,7 +17,7 @@ from ..errors import MechanismError, MechanismFileError
 from ..jacobian import JacobianResult, jacobian, wrench_axis
 from ..loader import load
 from ..report import fmt_number, fmt_vector
-from ..tolerance import Tolerance
+from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 45
 
@@ -33,19 +32,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("file", help="mechanism file (YAML) whose limbs are serial chains")
     p.add_argument("--actuated", default=None, metavar="A,B,...", help="actuated joints (default: those marked actuated: true); NAME.k picks the k-th freedom of a multi-DOF joint")
     p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--tol", type=float, default=Tolerance().rank, help="relative rank threshold (default: %(default)g)")
+    add_tolerance_option(p)
     p.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    base = Tolerance()
-    if not (base.inexact <= args.tol < base.near_singular):
-        print(f"mobility jacobian: error: --tol must lie in [{base.inexact:g}, {base.near_singular:g})", file=sys.stderr)
-        return 2
+    tol = tolerance_from(args)
     mechanism = load(args.file)
     names = None if args.actuated is None else [n.strip() for n in args.actuated.split(",") if n.strip()]
     try:
-        result = jacobian(mechanism, actuated=names, tol=Tolerance(rank=args.tol))
+        result = jacobian(mechanism, actuated=names, tol=tol)
     except MechanismError as exc:
         if isinstance(exc, MechanismFileError):
             raise

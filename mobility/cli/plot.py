@@ -9,7 +9,7 @@ from pathlib import Path
 from ..analysis import analyze
 from ..errors import MechanismFileError
 from ..loader import load
-from ..tolerance import Tolerance
+from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 30
 
@@ -29,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--views", type=int, default=2, choices=(1, 2, 3), help="number of viewpoints (default: %(default)s)")
     p.add_argument("--no-labels", action="store_true", help="leave out the joint names")
     p.add_argument("--dpi", type=int, default=150, help="resolution of a PNG (default: %(default)s)")
-    p.add_argument("--tol", type=float, default=Tolerance().rank, help="relative rank threshold (default: %(default)g)")
+    add_tolerance_option(p)
     p.set_defaults(run=run)
 
 
@@ -48,10 +48,7 @@ def _is_flexure(path: str) -> bool:
 def run(args: argparse.Namespace) -> int:
     from ..plotting import FORMATS, PlotFormatError, plot_graph, plot_mechanism, save_figure
 
-    base = Tolerance()
-    if not (base.inexact <= args.tol < base.near_singular):
-        print(f"mobility plot: error: --tol must lie in [{base.inexact:g}, {base.near_singular:g})", file=sys.stderr)
-        return 2
+    tol = tolerance_from(args)
     if not args.output.lower().endswith(FORMATS):  # before any work
         raise PlotFormatError(f"{args.output}: cannot tell the picture type; expected a name ending in {', '.join(FORMATS)}")
     if args.graph and args.constraints:
@@ -63,7 +60,6 @@ def run(args: argparse.Namespace) -> int:
         if _is_flexure(args.file):
             raise PlotFormatError(f"{args.file}: a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures") from None
         raise
-    tol = Tolerance(rank=args.tol)
     result = analyze(mechanism, tol=tol)
     if args.graph:
         fig = plot_graph(mechanism, result, tol=tol)
