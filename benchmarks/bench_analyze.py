@@ -47,7 +47,7 @@ def fresh(m: mobility.Mechanism):
     """A call that analyses ``m`` with its joint twists rebuilt (the per-mechanism cache dropped)."""
 
     def call():
-        js_module._caches.pop(id(m), None)
+        js_module.clear_cache(m)
         return mobility.analyze(m)
 
     return call
@@ -55,7 +55,7 @@ def fresh(m: mobility.Mechanism):
 
 def with_directions(m: mobility.Mechanism):
     def call():
-        js_module._caches.pop(id(m), None)
+        js_module.clear_cache(m)
         r = mobility.analyze(m)
         return r.rotations, r.forces
 
@@ -76,7 +76,7 @@ def main() -> None:
         r = mobility.analyze(m)
         t_an = best_time(fresh(m), args.number, args.repeat)
         t_dir = best_time(with_directions(m), max(1, args.number // 2), args.repeat)
-        t_lc = best_time(lambda: (js_module._caches.pop(id(m), None), loop_closure(m)), max(1, args.number // 2), args.repeat)
+        t_lc = best_time(lambda: (js_module.clear_cache(m), loop_closure(m)), max(1, args.number // 2), args.repeat)
         rows.append((path.stem, len(m.joints), r.pattern, t_an, t_dir, t_lc))
     if args.markdown:
         print("| mechanism | joints | pattern | analyze (µs) | analyses/s | + directions (µs) | loop closure (µs) | loop closure / analyze |")

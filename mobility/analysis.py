@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from .canonical import canonical_form
-from .joint_screws import JointScrews, Normalisation, joint_screws
+from .joint_screws import JointScrews, Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism
 from .result import LimbSystem, Margin, Result, ScrewAxis, pattern_of
 from .screw_systems import Margin as MarginCollector
@@ -64,7 +64,7 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
         The counts are computed here; directions, limb systems and common
         constraints on first access.
     """
-    topology = decompose(mechanism)
+    topology = per_object_cache(mechanism, "topology", lambda: decompose(mechanism))
     screws = joint_screws(mechanism)
     collector = MarginCollector()
     root = evaluate(topology.root, screws, tol, collector)
@@ -108,14 +108,9 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
         warnings=tuple(warnings),
         length_unit=mechanism.length_unit,
         length_scale=norm.size,
-        reference_point=_frozen(norm.point_to_world(screws.reference)),
+        reference_point=screws.reference_in_world,
         detail=_Detail(mechanism, topology, screws, root, tol),
     )
-
-
-def _frozen(a: np.ndarray) -> np.ndarray:
-    a.setflags(write=False)
-    return a
 
 
 class _Detail:

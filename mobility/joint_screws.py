@@ -17,8 +17,8 @@ Examples
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, Callable
 
 import numpy as np
@@ -27,10 +27,10 @@ from .model import Mechanism
 from .tolerance import characteristic_scale
 from .transforms import cross, skew
 
-__all__ = ["Normalisation", "JointScrews", "joint_screws", "per_object_cache"]
+__all__ = ["Normalisation", "JointScrews", "joint_screws", "per_object_cache", "clear_cache"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Normalisation:
     """Normalised coordinates: origin at ``centre``, lengths divided by ``length``.
 
@@ -41,7 +41,7 @@ class Normalisation:
     centre: np.ndarray
     length: float
 
-    @property
+    @cached_property
     def size(self) -> float:
         """A length for rounding output: ``length + |centre|``."""
         return self.length + float(np.sqrt(self.centre @ self.centre))
@@ -96,6 +96,8 @@ class JointScrews:
         Canonical axes are given through the point nearest to it.
     columns : tuple of ndarray
         ``columns[j]`` is the view of ``twists`` holding joint ``j``'s columns.
+    reference_in_world : ndarray, shape (3,)
+        The reference point in the global frame and the file's unit.
     """
 
     twists: np.ndarray
@@ -103,29 +105,35 @@ class JointScrews:
     normalisation: Normalisation
     reference: np.ndarray
     columns: tuple[np.ndarray, ...]
+    reference_in_world: np.ndarray
 
     def of_joint(self, index: int) -> np.ndarray:
         """Twist columns of joint ``index``."""
         return self.columns[index]
 
 
-_caches: dict[int, dict[str, Any]] = {}
+_CACHE_ATTRIBUTE = "_mobility_cache"
 
 
 def per_object_cache(obj: object, key: str, factory: Callable[[], Any]) -> Any:
-    """Compute ``factory()`` once per live object ``obj`` and key.
+    """Compute ``factory()`` once per object ``obj`` and key.
 
-    Frozen descriptions (mechanisms) are looked up by identity, which costs
-    nothing, unlike hashing them; the entry goes when the object does.
+    The values are kept in the object's own ``__dict__`` (as
+    :func:`functools.cached_property` does, which works on frozen dataclasses
+    too), so they live and die with it and cost one dictionary look-up, unlike
+    hashing a large frozen description.
     """
-    oid = id(obj)
-    entry = _caches.get(oid)
-    if entry is None:
-        entry = _caches[oid] = {}
-        weakref.finalize(obj, _caches.pop, oid, None)
-    if key not in entry:
-        entry[key] = factory()
-    return entry[key]
+    cache = vars(obj).get(_CACHE_ATTRIBUTE)
+    if cache is None:
+        cache = vars(obj)[_CACHE_ATTRIBUTE] = {}
+    if key not in cache:
+        cache[key] = factory()
+    return cache[key]
+
+
+def clear_cache(obj: object) -> None:
+    """Forget what :func:`per_object_cache` computed for ``obj`` (for benchmarks)."""
+    vars(obj).pop(_CACHE_ATTRIBUTE, None)
 
 
 def joint_screws(mechanism: Mechanism) -> JointScrews:
@@ -141,11 +149,13 @@ def _build(mechanism: Mechanism) -> JointScrews:
     moment = (cross((table.points - centre).T, axes.T).T + pitches[:, None] * axes) / length
     p = table.prismatic[:, None]
     tw = np.concatenate([np.where(p, 0.0, axes), np.where(p, axes, moment)], axis=1).T
-    tw /= np.sqrt(np.einsum("ij,ij->j", tw, tw))
+    tw /= np.sqrt(np.einsum("ij,ij->j", tw, tw))  # unit columns
     tw.setflags(write=False)
     norm = Normalisation(centre, length)
     ee = table.end_effector_points
-    reference = (ee.mean(axis=0) - centre) / length if len(ee) else np.zeros(3)
+    reference = (ee.sum(axis=0) / len(ee) - centre) / length if len(ee) else np.zeros(3)
     offsets = table.offsets
     columns = tuple(tw[:, offsets[j] : offsets[j + 1]] for j in range(len(offsets) - 1))
-    return JointScrews(tw, np.array(offsets), norm, reference, columns)
+    reference_in_world = norm.point_to_world(reference)
+    reference_in_world.setflags(write=False)
+    return JointScrews(tw, np.array(offsets), norm, reference, columns, reference_in_world)

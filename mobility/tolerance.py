@@ -28,6 +28,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -68,8 +69,7 @@ class Tolerance:
 DEFAULT_TOLERANCE = Tolerance()
 
 
-@dataclass(frozen=True)
-class RankDecision:
+class RankDecision(NamedTuple):
     """The outcome of one rank decision.
 
     Attributes
@@ -145,13 +145,15 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) 
     ([0.0, 0.0, 0.0], 1.0)
     """
     pts = np.asarray(points, dtype=float).reshape(-1, 3)
-    if len(pts) == 0:
+    n = len(pts)
+    if n == 0:
         centre = np.zeros(3)
         radius = 0.0
     else:
-        centre = pts.mean(axis=0)
-        radius = float(np.sqrt(np.mean(np.sum((pts - centre) ** 2, axis=1))))
-    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.max(np.abs(lengths)))
+        centre = pts.sum(axis=0) / n
+        d = pts - centre
+        radius = float(np.sqrt(np.einsum("ij,ij->", d, d) / n))
+    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
     if radius > 0.0 and radius >= 1e-9 * other:
         return centre, radius
     if other > 0.0:
