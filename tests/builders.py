@@ -8,6 +8,24 @@ from mobility.model import Frame, Joint, Mechanism
 from mobility.transforms import Transform, rotation_from_axis_angle
 
 
+THREE_RPS_YAML = """
+name: 3-RPS
+ground: base
+end_effector: platform
+units: {length: mm}
+parameters: {rb: 200, rp: 100, h: 150}
+limbs:
+  - copies: 3
+    joints:
+      - {name: "R{i+1}", type: R, links: [base, "leg{i+1}"], axis: ["-sind(120*i)", "cosd(120*i)", 0],
+         point: ["rb*cosd(120*i)", "rb*sind(120*i)", 0]}
+      - {name: "P{i+1}", type: P, links: ["leg{i+1}", "rod{i+1}"],
+         axis: ["(rp-rb)*cosd(120*i)", "(rp-rb)*sind(120*i)", "h"]}
+      - {name: "S{i+1}", type: S, links: ["rod{i+1}", platform], point: ["rp*cosd(120*i)", "rp*sind(120*i)", "h"]}
+"""
+"""A 3-RPS written with a limb pattern (R tangent at the base, P along the leg, S on the platform)."""
+
+
 def unit(v) -> tuple[float, float, float]:
     v = np.asarray(v, dtype=float)
     return tuple(v / np.linalg.norm(v))

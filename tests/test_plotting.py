@@ -22,6 +22,7 @@ import pytest
 matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 
+from builders import THREE_RPS_YAML  # noqa: E402
 from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 
 import mobility  # noqa: E402
@@ -44,21 +45,7 @@ from mobility.topology import JointNode, Parallel, Series, decompose  # noqa: E4
 ROOT = Path(__file__).resolve().parent.parent
 BUNDLED = sorted((ROOT / "mechanisms").glob("*.yaml"))
 
-RPS = """
-name: 3-RPS
-ground: base
-end_effector: platform
-units: {length: mm}
-parameters: {rb: 200, rp: 100, h: 150}
-limbs:
-  - copies: 3
-    joints:
-      - {name: "R{i+1}", type: R, links: [base, "leg{i+1}"], axis: ["-sind(120*i)", "cosd(120*i)", 0],
-         point: ["rb*cosd(120*i)", "rb*sind(120*i)", 0]}
-      - {name: "P{i+1}", type: P, links: ["leg{i+1}", "rod{i+1}"],
-         axis: ["(rp-rb)*cosd(120*i)", "(rp-rb)*sind(120*i)", "h"]}
-      - {name: "S{i+1}", type: S, links: ["rod{i+1}", platform], point: ["rp*cosd(120*i)", "rp*sind(120*i)", "h"]}
-"""
+RPS = THREE_RPS_YAML
 
 SCREW_ARM = """
 name: helical, cylindrical and universal

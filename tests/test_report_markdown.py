@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from builders import THREE_RPS_YAML
 from scipy.linalg import subspace_angles
 
 import mobility
@@ -17,21 +18,7 @@ from mobility.report_markdown import markdown_report, markdown_table, md_escape
 
 MECHANISMS = sorted((Path(__file__).resolve().parent.parent / "mechanisms").glob("*.yaml"))
 
-RPS = """
-name: 3-RPS | test
-ground: base
-end_effector: platform
-units: {length: mm}
-parameters: {rb: 200, rp: 100, h: 150}
-limbs:
-  - copies: 3
-    joints:
-      - {name: "R{i+1}", type: R, links: [base, "leg{i+1}"], axis: ["-sind(120*i)", "cosd(120*i)", 0],
-         point: ["rb*cosd(120*i)", "rb*sind(120*i)", 0]}
-      - {name: "P{i+1}", type: P, links: ["leg{i+1}", "rod{i+1}"],
-         axis: ["(rp-rb)*cosd(120*i)", "(rp-rb)*sind(120*i)", "h"]}
-      - {name: "S{i+1}", type: S, links: ["rod{i+1}", platform], point: ["rp*cosd(120*i)", "rp*sind(120*i)", "h"]}
-"""
+RPS = THREE_RPS_YAML.replace("name: 3-RPS\n", "name: 3-RPS | test\n", 1)
 
 SCREW = """
 name: nut
