@@ -48,12 +48,12 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from .errors import MechanismError, MechanismFileError
+from .errors import MechanismError
 from .flexure import LENGTH_UNITS, MODULUS_UNITS, FlexureMechanism, ForceLine, Material, Rod
 from .loader import _kind, _parse_key, _Reader
 from .model import WORLD, Frame
 from .transforms import Transform
-from .yaml_source import KeyPath, parse_yaml
+from .yaml_source import KeyPath, parse_yaml, read_text
 
 __all__ = ["load_flexure", "loads_flexure", "is_flexure_document", "FLEXURE_KEYS", "ELEMENT_KEYS", "ACTUATOR_KEYS", "ELEMENT_TYPES"]
 
@@ -78,14 +78,7 @@ def load_flexure(path: str | Path) -> FlexureMechanism:
     MechanismFileError
         When the file cannot be read or breaks the format.
     """
-    name = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise MechanismFileError("", "no such file", file=name) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise MechanismFileError("", f"cannot read: {exc}", file=name) from None
-    return loads_flexure(text, file=name)
+    return loads_flexure(read_text(path), file=str(path))
 
 
 def loads_flexure(text: str, file: str = "<string>") -> FlexureMechanism:

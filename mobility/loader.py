@@ -46,7 +46,7 @@ from .errors import MechanismError, MechanismFileError
 from .expressions import evaluate
 from .model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Expected, Frame, Joint, Mechanism
 from .transforms import rotation_from_axis_angle, rotation_from_rpy
-from .yaml_source import KeyPath, Positions, format_key, parse_yaml
+from .yaml_source import KeyPath, Positions, format_key, parse_yaml, read_text
 
 __all__ = ["load", "loads", "TOP_LEVEL_KEYS", "JOINT_KEYS", "EXPECTED_VALIDATORS"]
 
@@ -77,16 +77,7 @@ def load(path: str | Path) -> Mechanism:
         When the file cannot be read or breaks the format; the message names
         file, line, key and what was expected.
     """
-    name = str(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise MechanismFileError("", "no such file", file=name) from None
-    except IsADirectoryError:
-        raise MechanismFileError("", "is a directory, expected a mechanism file", file=name) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise MechanismFileError("", f"cannot read: {exc}", file=name) from None
-    return loads(text, file=name)
+    return loads(read_text(path), file=str(path))
 
 
 def loads(text: str, file: str = "<string>") -> Mechanism:

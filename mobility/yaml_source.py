@@ -15,13 +15,14 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import yaml
 
 from .errors import MechanismFileError
 
-__all__ = ["KeyPath", "Positions", "format_key", "parse_yaml"]
+__all__ = ["KeyPath", "Positions", "format_key", "parse_yaml", "read_text"]
 
 KeyPath = tuple[str | int, ...]
 
@@ -77,6 +78,25 @@ def _construct(node: yaml.Node, path: KeyPath, pos: Positions, file: str, loader
     if isinstance(node, yaml.SequenceNode):
         return [_construct(item, path + (i,), pos, file, loader) for i, item in enumerate(node.value)]
     return loader.construct_object(node, deep=True)
+
+
+def read_text(path: str | Path) -> str:
+    """The text of a document file.
+
+    Raises
+    ------
+    MechanismFileError
+        One line naming the file: missing, a directory, or unreadable.
+    """
+    name = str(path)
+    try:
+        return Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise MechanismFileError("", "no such file", file=name) from None
+    except IsADirectoryError:
+        raise MechanismFileError("", "is a directory, expected a mechanism file", file=name) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise MechanismFileError("", f"cannot read: {exc}", file=name) from None
 
 
 def parse_yaml(text: str, file: str = "<string>") -> tuple[Any, Positions]:

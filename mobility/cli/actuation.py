@@ -21,7 +21,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from pathlib import Path
 from typing import Any
 
 from ..actuation import VALID, ActuationCheck, Enumeration, check_actuation, check_over_poses, enumerate_actuations
@@ -32,8 +31,8 @@ from ..loader import load, loads
 from ..report import fmt_number, fmt_vector
 from ..result import ScrewAxis
 from ..tolerance import Tolerance
+from ..yaml_source import parse_yaml, read_text
 from ._options import add_tolerance_option, tolerance_from
-from ..yaml_source import parse_yaml
 
 ORDER = 30
 
@@ -69,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
         print("mobility actuation: error: --samples and --k must not be negative", file=sys.stderr)
         return 2
     tol = tol
-    text = _read(args.file)
+    text = read_text(args.file)
     data, _ = parse_yaml(text, args.file)
     names = [n.strip() for n in args.inputs.split(",") if n.strip()] if args.inputs is not None else None
     if is_flexure_document(data):
@@ -118,17 +117,6 @@ def _run_flexure(args: argparse.Namespace, mechanism: Any, names: list[str] | No
     payload = {"spaces": spaces.to_dict(), "actuation": check.to_dict()}
     _emit(args, payload, lambda: spaces_text(spaces) + "\n" + check_text(check, []))
     return 0 if check.valid else 1
-
-
-def _read(path: str) -> str:
-    try:
-        return Path(path).read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise MechanismFileError("", "no such file", file=path) from None
-    except IsADirectoryError:
-        raise MechanismFileError("", "is a directory, expected a mechanism file", file=path) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise MechanismFileError("", f"cannot read: {exc}", file=path) from None
 
 
 def _emit(args: argparse.Namespace, payload: dict[str, Any], text: Any) -> None:
