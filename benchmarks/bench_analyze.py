@@ -14,7 +14,7 @@ For each mechanism (loaded once) it times
 * ``+ directions``: ``rebuilt`` plus the canonical directions (translations,
   rotations, constraint wrenches), which :class:`mobility.Result` computes on
   first access;
-* ``loop closure``: the independent route of :mod:`mobility.loop_closure`
+* ``loop closure``: the independent route of :mod:`mobility.core.loop_closure`
   (one constraint Jacobian of the whole graph, its twist table rebuilt too),
   the baseline of the ratio.
 
@@ -31,8 +31,8 @@ import time
 from pathlib import Path
 
 import mobility
-from mobility import joint_screws as js_module
-from mobility.loop_closure import loop_closure
+from mobility.core import joint_screws as js_module
+from mobility.core.loop_closure import loop_closure
 
 ROOT = Path(__file__).resolve().parent.parent
 

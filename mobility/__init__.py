@@ -29,36 +29,36 @@ one of their names, so ``import mobility`` stays light:
 from importlib import import_module
 from typing import Any
 
-from .analysis import analyze, gruebler_kutzbach
+from .core.analysis import analyze, gruebler_kutzbach
 from .errors import AnalysisError, MechanismError, MechanismFileError, MobilityError
-from .loader import load, loads
-from .loop_closure import LoopClosure, loop_closure
-from .model import Expected, Frame, Joint, Mechanism
-from .result import LimbSystem, Margin, Result, ScrewAxis
-from .tolerance import DEFAULT_TOLERANCE, Tolerance
+from .io.loader import load, loads
+from .core.loop_closure import LoopClosure, loop_closure
+from .core.model import Expected, Frame, Joint, Mechanism
+from .core.result import LimbSystem, Margin, Result, ScrewAxis
+from .core.tolerance import DEFAULT_TOLERANCE, Tolerance
 
 __version__ = "0.1.0"
 
 _LAZY = {
     # regression checks (mobility check)
-    "check_mechanism": "check", "check_file": "check", "check_paths": "check",
-    "CheckResult": "check", "CheckReport": "check", "Comparison": "check",
+    "check_mechanism": "testing", "check_file": "testing", "check_paths": "testing",
+    "CheckResult": "testing", "CheckReport": "testing", "Comparison": "testing",
     # instantaneous vs full-cycle mobility
-    "finite_mobility": "finite", "FiniteMobility": "finite", "sample_poses": "finite",
+    "finite_mobility": "finite", "FiniteMobility": "finite", "sample_poses": "core.kinematics",
     # actuation spaces
     "check_actuation": "actuation", "enumerate_actuations": "actuation", "locked_dof": "actuation",
     "ActuationCheck": "actuation", "Enumeration": "actuation",
     # flexures
-    "load_flexure": "flexure_loader", "loads_flexure": "flexure_loader",
+    "load_flexure": "flexure", "loads_flexure": "flexure",
     "flexure_spaces": "flexure", "check_force_lines": "flexure", "FlexureMechanism": "flexure",
     # finite screws, type synthesis, Jacobians
-    "FiniteScrew": "finite_screws", "finite_screw": "finite_screws", "triangle_product": "finite_screws",
-    "HalfTurnError": "finite_screws", "Limb": "finite_screws", "ScrewJoint": "finite_screws",
+    "FiniteScrew": "core.finite_screws", "finite_screw": "core.finite_screws", "triangle_product": "core.finite_screws",
+    "HalfTurnError": "errors", "Limb": "core.finite_screws", "ScrewJoint": "core.finite_screws",
     "synthesize": "synthesis", "named_pattern": "synthesis", "MotionPattern": "synthesis", "assemble_pkm": "synthesis",
-    "jacobian": "jacobian", "parallel_model": "jacobian",
+    "jacobian": "jacobians", "parallel_model": "jacobians",
     # pictures and Markdown
-    "plot_mechanism": "plotting", "plot_graph": "plotting", "save_figure": "plotting",
-    "markdown_report": "report_markdown",
+    "plot_mechanism": "report.plotting", "plot_graph": "report.plotting", "save_figure": "report.plotting",
+    "markdown_report": "report.markdown",
 }
 
 __all__ = [

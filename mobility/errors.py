@@ -1,9 +1,22 @@
-"""The error hierarchy.
+"""The error hierarchy: every error class of the package is defined here.
 
-Every error the package raises on purpose derives from :class:`MobilityError`.
-Errors about a mechanism description are also :class:`ValueError`, and carry
-where the problem is (file, line, key path) and what was expected, so the
-command line can print one line and exit with status 2.
+Every error the package raises on purpose derives from :class:`MobilityError`;
+the command line prints its message on one line and exits with status 2.
+Each concrete error is also the builtin it refines (``ValueError``,
+``ImportError``, ``ArithmeticError``), so code written against the builtins
+keeps working.
+
+* :class:`MechanismError` -- a mechanism description is invalid;
+  :class:`MechanismFileError` adds the file and line.
+* :class:`MechanismCheckFailed` -- a file did not pass ``mobility check``
+  (raised by the pytest helpers).
+* :class:`RequestError` -- an argument of a function or an option of the
+  command line is out of its range (:class:`SynthesisError`,
+  :class:`PlotFormatError` name two kinds).
+* :class:`AnalysisError` -- an analysis could not be carried out.
+* :class:`HalfTurnError` -- a half-turn has no finite quasi-vector.
+* :class:`MissingExtraError` -- an optional extra is not installed; the
+  message is the ``pip install`` line (:class:`PlottingUnavailableError`).
 
 Examples
 --------
@@ -13,6 +26,8 @@ Examples
 'arm.yaml:7: joints[2].axis: expected 3 numbers, got 2'
 >>> isinstance(err, ValueError)
 True
+>>> str(MissingExtraError("plotting", "matplotlib", "plot"))
+"plotting needs matplotlib, which is not installed: pip install 'mobility[plot]'"
 """
 
 from __future__ import annotations
@@ -21,7 +36,14 @@ __all__ = [
     "MobilityError",
     "MechanismError",
     "MechanismFileError",
+    "MechanismCheckFailed",
+    "RequestError",
+    "SynthesisError",
+    "PlotFormatError",
     "AnalysisError",
+    "HalfTurnError",
+    "MissingExtraError",
+    "PlottingUnavailableError",
 ]
 
 
@@ -82,5 +104,59 @@ class MechanismFileError(MechanismError):
         return f"{where}: {super()._format()}"
 
 
+class MechanismCheckFailed(MobilityError, AssertionError):
+    """A mechanism file did not pass its regression check (the message says why)."""
+
+
+class RequestError(MobilityError, ValueError):
+    """An argument of a function, or an option of the command line, is out of its range."""
+
+
+class SynthesisError(RequestError):
+    """A motion pattern or a synthesis request is invalid."""
+
+
+class PlotFormatError(RequestError):
+    """An output file name whose type cannot be written."""
+
+
 class AnalysisError(MobilityError):
-    """An analysis could not be carried out (e.g. a Newton re-closure failed)."""
+    """An analysis could not be carried out (e.g. a decomposition did not converge)."""
+
+
+class HalfTurnError(MobilityError, ArithmeticError):
+    """A half-turn (``θ = π``) has no finite quasi-vector: ``2 tan(θ/2)`` is infinite.
+
+    Use :class:`~mobility.core.finite_screws.FiniteScrew` (homogeneous form),
+    which represents half-turns exactly.
+    """
+
+
+class MissingExtraError(MobilityError, ImportError):
+    """A feature needs an optional extra that is not installed.
+
+    Parameters
+    ----------
+    feature : str
+        What was asked for (``"plotting"``).
+    package : str
+        The package that is missing (``"matplotlib"``).
+    extra : str
+        The extra of :mod:`mobility` that installs it (``"plot"``).
+    detail : str
+        More about what failed to import, if anything.
+    """
+
+    def __init__(self, feature: str, package: str, extra: str, detail: str = "") -> None:
+        self.feature = feature
+        self.package = package
+        self.extra = extra
+        more = f" ({detail})" if detail else ""
+        super().__init__(f"{feature} needs {package}, which is not installed{more}: pip install 'mobility[{extra}]'")
+
+
+class PlottingUnavailableError(MissingExtraError):
+    """matplotlib is not installed; the message says how to install it."""
+
+    def __init__(self, detail: str = "") -> None:
+        super().__init__("plotting", "matplotlib", "plot", detail)

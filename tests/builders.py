@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from mobility.model import Frame, Joint, Mechanism
-from mobility.transforms import Transform, rotation_from_axis_angle
+from mobility.core.model import Frame, Joint, Mechanism
+from mobility.core.transforms import Transform, rotation_from_axis_angle
 
 
 THREE_RPS_YAML = """
@@ -189,6 +189,6 @@ def normalised(m: Mechanism, screws_rows: np.ndarray) -> np.ndarray:
     Subspaces of screws must be compared there: in file units a screw system
     mixes lengths and directions, and no tolerance fits every unit.
     """
-    from mobility.joint_screws import joint_screws
+    from mobility.core.joint_screws import joint_screws
 
     return joint_screws(m).normalisation.from_world(np.asarray(screws_rows).T)

@@ -1,4 +1,4 @@
-"""Actuation spaces of rigid mechanisms (mobility.actuation, mobility actuation).
+"""Actuation spaces of rigid mechanisms (mobility.actuation.actuation, mobility actuation).
 
 The 3-RPS case is that of Li, Shan, Yu and Ke, "Actuation Spaces Synthesis of
 Lower-Mobility Parallel Mechanisms Based on Screw Theory" (Chin. J. Mech. Eng.,
@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import mobility
-from mobility.actuation import (
+from mobility.actuation.actuation import (
     REDUNDANT,
     SINGULAR,
     VALID,
@@ -32,10 +32,10 @@ from mobility.actuation import (
 )
 from mobility.cli import main
 from mobility.errors import MechanismError
-from mobility.joint_screws import joint_screws
-from mobility.model import Joint, Mechanism
-from mobility.screws import reciprocal_product, same_subspace
-from mobility.transforms import rotation_from_axis_angle
+from mobility.core.joint_screws import joint_screws
+from mobility.core.model import Joint, Mechanism
+from mobility.core.screws import reciprocal_product, same_subspace
+from mobility.core.transforms import rotation_from_axis_angle
 
 ROOT = Path(__file__).resolve().parents[1]
 RPS_FILE = ROOT / "mechanisms" / "actuation_3rps.yaml"
@@ -425,7 +425,7 @@ def test_verdicts_and_conditioning_do_not_depend_on_unit_or_placement():
 
 
 def test_sampled_poses_keep_the_rps_types_valid_and_agree_with_locking():
-    from mobility.finite import sample_poses
+    from mobility.core.kinematics import sample_poses
 
     m = mobility.load(RPS_FILE)
     sampled = sample_poses(m, 4, seed=3)
@@ -440,7 +440,7 @@ def test_sampled_poses_keep_the_rps_types_valid_and_agree_with_locking():
 
 
 def test_four_bar_sampled_poses_agree_with_locking():
-    from mobility.finite import sample_poses
+    from mobility.core.kinematics import sample_poses
 
     m = _four_bar()
     for pose in sample_poses(m, 4, step=0.3, seed=0):
@@ -448,14 +448,6 @@ def test_four_bar_sampled_poses_agree_with_locking():
             for c in enumerate_actuations(pose, mode="any", k=k).combinations:
                 assert c.verdict == (VALID if k == 1 else REDUNDANT)
                 assert locked_dof(pose, c.inputs) == 0
-
-
-def test_missing_sampler_is_reported(monkeypatch):
-    import mobility.actuation as act
-
-    monkeypatch.setattr(act, "_sampled_poses", lambda *a, **k: None)
-    found = act.enumerate_actuations(POSES[0], samples=3)
-    assert found.poses == ("given pose",) and "pose sampling is not available" in found.warnings[0]
 
 
 # ---------------------------------------------------------------------------

@@ -5,8 +5,8 @@ import pytest
 from builders import four_bar, six_ups, three_prs
 
 import mobility
-from mobility.model import Joint, Mechanism
-from mobility.screws import same_subspace
+from mobility.core.model import Joint, Mechanism
+from mobility.core.screws import same_subspace
 
 Z = (0, 0, 1)
 
@@ -209,8 +209,8 @@ def test_inexact_geometry_is_reported():
 def test_limb_frames_match_the_adjoint_route():
     """Joints written in a limb frame: twists built in the frame and moved by the adjoint
     (the seed method's route) equal the twists of the joints mapped to the world frame."""
-    from mobility.joint_screws import joint_screws
-    from mobility.screws import adjoint
+    from mobility.core.joint_screws import joint_screws
+    from mobility.core.screws import adjoint
 
     m = mobility.loads(
         """

@@ -6,10 +6,11 @@ import pytest
 from conftest import MECHANISMS
 
 import mobility
-from mobility import check as check_module
-from mobility.check import COMPARATORS, check_file, check_mechanism, check_paths, mechanism_files
+from mobility.testing import check as check_module
+from mobility.testing.check import COMPARATORS, check_file, check_mechanism, check_paths, mechanism_files
 from mobility.cli import main
-from mobility.pytest_plugin import assert_mechanism_passes, mechanism_test_cases, mechanism_tests, MechanismCheckFailed
+from mobility.errors import MechanismCheckFailed
+from mobility.testing.pytest_plugin import assert_mechanism_passes, mechanism_test_cases, mechanism_tests
 
 pytest_plugins = ["pytester"]
 
@@ -203,7 +204,7 @@ def _user_project(pytester):
 
 def test_one_line_in_a_user_test_module(pytester):
     _user_project(pytester)
-    pytester.makepyfile(test_designs="from mobility.pytest_plugin import mechanism_tests\n\ntest_designs = mechanism_tests('designs')\n")
+    pytester.makepyfile(test_designs="from mobility.testing.pytest_plugin import mechanism_tests\n\ntest_designs = mechanism_tests('designs')\n")
     result = pytester.runpytest_inprocess("-p", "no:cacheprovider", "test_designs.py")
     result.assert_outcomes(passed=2, failed=1)
     result.stdout.fnmatch_lines(["*test_designs?designs/rssr_wrong.yaml?*", "*mobility 2 (expected 1)*"])

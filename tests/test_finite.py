@@ -1,4 +1,4 @@
-"""Instantaneous or full-cycle mobility (mobility.finite).
+"""Instantaneous or full-cycle mobility (mobility.finite.full_cycle).
 
 The cases of the issue, built in code (and from the library files where they
 exist), each checked against what is known independently: the literature, a
@@ -18,10 +18,11 @@ from builders import transformed
 import mobility
 from mobility.cli import main
 from mobility.errors import MechanismFileError
-from mobility.finite import VERDICTS, finite_mobility, finite_report, sample_poses
-from mobility.kinematics import displacement_log, kinematics
-from mobility.model import Joint, Mechanism
-from mobility.transforms import Transform, rotation_from_axis_angle
+from mobility.core.kinematics import sample_poses
+from mobility.finite.full_cycle import VERDICTS, finite_mobility, finite_report
+from mobility.core.kinematics import displacement_log, kinematics
+from mobility.core.model import Joint, Mechanism
+from mobility.core.transforms import Transform, rotation_from_axis_angle
 
 MECHANISMS = Path(__file__).resolve().parent.parent / "mechanisms"
 

@@ -8,13 +8,14 @@ import math
 
 import numpy as np
 import pytest
+
+from mobility.errors import HalfTurnError
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.linalg import expm
 
-from mobility.finite_screws import (
+from mobility.core.finite_screws import (
     FiniteScrew,
-    HalfTurnError,
     Limb,
     ScrewJoint,
     finite_screw,
@@ -23,8 +24,8 @@ from mobility.finite_screws import (
     triangle_product,
     twist_from_finite_screw_rate,
 )
-from mobility.screws import prismatic_twist, revolute_twist
-from mobility.transforms import rotation_from_axis_angle, skew
+from mobility.core.screws import prismatic_twist, revolute_twist
+from mobility.core.transforms import rotation_from_axis_angle, skew
 
 FAST = settings(max_examples=40, deadline=None)
 

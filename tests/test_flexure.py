@@ -17,10 +17,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mobility.actuation import SINGULAR, VALID
+from mobility.actuation.actuation import SINGULAR, VALID
 from mobility.cli import main
 from mobility.errors import MechanismFileError
-from mobility.flexure import (
+from mobility.flexure.spaces import (
     FlexureMechanism,
     ForceLine,
     Material,
@@ -32,10 +32,10 @@ from mobility.flexure import (
     line_set_type,
     rod_compliance,
 )
-from mobility.flexure_loader import load_flexure, loads_flexure
-from mobility.screws import SWAP, adjoint, same_subspace
-from mobility.tolerance import Tolerance
-from mobility.transforms import rotation_from_axis_angle
+from mobility.flexure.loader import load_flexure, loads_flexure
+from mobility.core.screws import SWAP, adjoint, same_subspace
+from mobility.core.tolerance import Tolerance
+from mobility.core.transforms import rotation_from_axis_angle
 
 ROOT = Path(__file__).resolve().parents[1]
 FILE = ROOT / "examples" / "flexure" / "three_rod.yaml"

@@ -9,8 +9,8 @@ import pytest
 import mobility
 from mobility.cli import main
 from mobility.errors import AnalysisError, MechanismError
-from mobility.jacobian import jacobian, parallel_model, wrench_axis
-from mobility.screws import SWAP, reciprocal_product, same_subspace
+from mobility.jacobians.jacobian import jacobian, parallel_model, wrench_axis
+from mobility.core.screws import SWAP, reciprocal_product, same_subspace
 
 from conftest import MECHANISMS
 
@@ -128,7 +128,7 @@ def test_table_1_pkms_jacobian_matches_the_analyzer(path):
 
 
 def test_symmetric_layout_is_an_actuation_singularity():
-    from mobility.synthesis import assemble_pkm, named_pattern, synthesize
+    from mobility.synthesis.synthesis import assemble_pkm, named_pattern, synthesize
 
     res = synthesize(named_pattern("2T3R", directions=((0, 0, 1), (0, 1, 0))), joints=5, verify_samples=0, generic_points=1)
     m = assemble_pkm(res, "SP1Rc", other="SPRR", twist_pattern=(1, 1, 1, 1))

@@ -1,8 +1,8 @@
-"""Finite kinematics (mobility.kinematics): exponentials, forward kinematics, loop closure, re-closure.
+"""Finite kinematics (mobility.core.kinematics): exponentials, forward kinematics, loop closure, re-closure.
 
 Each piece is checked by a second route: scipy's matrix exponential for the
 closed forms, finite differences for the Jacobians, the loop-closure route of
-mobility.loop_closure for the equations at the given pose, and the rigid
+mobility.core.loop_closure for the equations at the given pose, and the rigid
 invariants of every link (not the residual) for the closure of moved poses.
 """
 
@@ -14,10 +14,10 @@ from builders import six_ups, transformed
 from scipy.linalg import expm
 from test_finite import bennett, folded_parallelogram, puu4, rigidity_gap, tsai_3upu
 
-from mobility.kinematics import CLOSURE_TOLERANCE, _dexp, bracket, displacement_log, kinematics, twist_exp, twist_matrix
-from mobility.loop_closure import loop_closure
-from mobility.model import Joint, Mechanism
-from mobility.transforms import Transform, rotation_from_axis_angle
+from mobility.core.kinematics import CLOSURE_TOLERANCE, _dexp, bracket, displacement_log, kinematics, twist_exp, twist_matrix
+from mobility.core.loop_closure import loop_closure
+from mobility.core.model import Joint, Mechanism
+from mobility.core.transforms import Transform, rotation_from_axis_angle
 
 
 def mixed_joints() -> Mechanism:

@@ -15,8 +15,8 @@ import pytest
 from conftest import MECHANISMS
 
 import mobility
-from mobility.loop_closure import loop_closure
-from mobility.screws import free_vector_subspace, same_subspace
+from mobility.core.loop_closure import loop_closure
+from mobility.core.screws import free_vector_subspace, same_subspace
 
 LIBRARY = (
     "3crr", "3prs", "3prs_tilted", "3rps", "3upu_singular", "4puu", "4puu_singular", "6sps", "6ups",

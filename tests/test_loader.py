@@ -8,7 +8,7 @@ import pytest
 
 import mobility
 from mobility.errors import MechanismError, MechanismFileError
-from mobility.expressions import evaluate
+from mobility.io.expressions import evaluate
 
 HEAD = """\
 name: test

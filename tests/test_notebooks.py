@@ -76,6 +76,6 @@ def test_every_notebook_runs_and_shows_pictures():
 
 
 def test_private_import_detector():
-    assert _only_public_api("from mobility.plotting import _scene") == ["from mobility.plotting import _scene"]
+    assert _only_public_api("from mobility.report.plotting import _scene") == ["from mobility.report.plotting import _scene"]
     assert _only_public_api("import mobility._x as y") == ["import mobility._x as y"]
-    assert _only_public_api("from mobility.plotting import plot_mechanism, save_figure") == []
+    assert _only_public_api("from mobility.report.plotting import plot_mechanism, save_figure") == []

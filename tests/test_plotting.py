@@ -1,7 +1,7 @@
 """Pictures: every bundled mechanism is drawn, and what is drawn is read back from the artists.
 
 The freedoms and constraints drawn on the end effector are compared with the
-loop-closure route (:func:`mobility.loop_closure.loop_closure`), not with the
+loop-closure route (:func:`mobility.core.loop_closure.loop_closure`), not with the
 analysis that produced them: translation arrows must span the pure
 translations of the end effector's twist system, each rotation axis (with its
 written pitch) must be a twist of it, each force line and couple must be
@@ -19,6 +19,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from mobility.errors import PlotFormatError, PlottingUnavailableError
+
 matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 
@@ -27,20 +29,18 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 
 import mobility  # noqa: E402
 from mobility.cli import main  # noqa: E402
-from mobility.joint_screws import joint_screws  # noqa: E402
-from mobility.loop_closure import loop_closure  # noqa: E402
-from mobility.plotting import (  # noqa: E402
+from mobility.core.joint_screws import joint_screws  # noqa: E402
+from mobility.core.loop_closure import loop_closure  # noqa: E402
+from mobility.report.plotting import (  # noqa: E402
     COLORS,
-    PlotFormatError,
-    PlottingUnavailableError,
     choose_views,
     plot_graph,
     plot_mechanism,
     save_figure,
     sketch,
 )
-from mobility.screws import free_vector_subspace  # noqa: E402
-from mobility.topology import JointNode, Parallel, Series, decompose  # noqa: E402
+from mobility.core.screws import free_vector_subspace  # noqa: E402
+from mobility.core.topology import JointNode, Parallel, Series, decompose  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 BUNDLED = sorted((ROOT / "mechanisms").glob("*.yaml"))
@@ -377,7 +377,7 @@ class Block:
         if name.split('.')[0] in ('matplotlib', 'mpl_toolkits'):
             raise ImportError(f"No module named {{name!r}}", name=name)
 sys.meta_path.insert(0, Block())
-import mobility, mobility.plotting, mobility.report_markdown
+import mobility, mobility.report.plotting, mobility.report.markdown
 from mobility.cli import main
 assert main(['analyze', {str(src)!r}, '--format', 'md']) == 0
 assert 'matplotlib' not in sys.modules

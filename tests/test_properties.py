@@ -6,9 +6,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import mobility
-from mobility.model import Joint
-from mobility.screws import adjoint, same_subspace
-from mobility.transforms import Transform
+from mobility.core.model import Joint
+from mobility.core.screws import adjoint, same_subspace
+from mobility.core.transforms import Transform
 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 seeds = st.integers(min_value=0, max_value=10_000)

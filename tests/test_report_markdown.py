@@ -12,9 +12,9 @@ from scipy.linalg import subspace_angles
 
 import mobility
 from mobility.cli import main
-from mobility.joint_screws import joint_screws
-from mobility.loop_closure import loop_closure
-from mobility.report_markdown import markdown_report, markdown_table, md_escape
+from mobility.core.joint_screws import joint_screws
+from mobility.core.loop_closure import loop_closure
+from mobility.report.markdown import markdown_report, markdown_table, md_escape
 
 MECHANISMS = sorted((Path(__file__).resolve().parent.parent / "mechanisms").glob("*.yaml"))
 

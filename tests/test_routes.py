@@ -7,11 +7,11 @@ import pytest
 from builders import four_bar, normalised, random_mechanism, six_ups, three_prs
 
 import mobility
-from mobility.joint_screws import joint_screws
-from mobility.loop_closure import loop_closure
-from mobility.screw_systems import evaluate
-from mobility.screws import same_subspace
-from mobility.topology import Bridge, decompose
+from mobility.core.joint_screws import joint_screws
+from mobility.core.loop_closure import loop_closure
+from mobility.core.screw_systems import evaluate
+from mobility.core.screws import same_subspace
+from mobility.core.topology import Bridge, decompose
 
 MECHANISMS = sorted((Path(__file__).resolve().parent.parent / "mechanisms").glob("**/*.yaml"))
 

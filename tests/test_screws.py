@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from builders import random_rotation
 
-from mobility.screws import (
+from mobility.core.screws import (
     SWAP,
     SWAP_ROWS,
     adjoint,
@@ -18,7 +18,7 @@ from mobility.screws import (
     same_subspace,
     span_and_reciprocal,
 )
-from mobility.transforms import rotation_from_rpy, skew
+from mobility.core.transforms import rotation_from_rpy, skew
 
 
 def test_twist_convention_angular_part_first():
@@ -114,7 +114,7 @@ def test_rpy_convention_is_z_y_x_fixed_axes():
 
 
 def test_cross_equals_numpy_cross():
-    from mobility.transforms import cross
+    from mobility.core.transforms import cross
 
     rng = np.random.default_rng(7)
     a, b = rng.normal(size=(2, 3, 5))

@@ -1,7 +1,7 @@
 """Type synthesis of limbs for the 2T3R pattern (Table 1 of Sun et al. 2018) and assembled PKMs.
 
 The enumeration runs once per module (about 8 s on an idle 2-core machine: 5-joint limbs, every
-candidate, both routes; see the module docstring of mobility.synthesis);
+candidate, both routes; see the module docstring of mobility.synthesis.synthesis);
 every check compares its answer with a second route: least-squares fits of
 sampled finite motions, the analyzer, or an independent explanation of why a
 limb qualifies.
@@ -12,16 +12,18 @@ import math
 import numpy as np
 import pytest
 
+from mobility.io.writer import mechanism_to_yaml
+
+from mobility.errors import SynthesisError
+
 import mobility
-from mobility.finite_screws import Limb, ScrewJoint
-from mobility.screws import same_subspace
-from mobility.transforms import Transform, rotation_from_rpy
-from mobility.synthesis import (
+from mobility.core.finite_screws import Limb, ScrewJoint
+from mobility.core.screws import same_subspace
+from mobility.core.transforms import Transform, rotation_from_rpy
+from mobility.synthesis.synthesis import (
     TABLE_1_2T3R,
-    SynthesisError,
     assemble_pkm,
     generates,
-    mechanism_to_yaml,
     named_pattern,
     pkm_document,
     synthesize,

@@ -2,8 +2,8 @@
 
 from builders import random_mechanism, three_prs
 
-from mobility.model import Joint, Mechanism
-from mobility.topology import Bridge, JointNode, Parallel, Series, decompose, describe, joints_of
+from mobility.core.model import Joint, Mechanism
+from mobility.core.topology import Bridge, JointNode, Parallel, Series, decompose, describe, joints_of
 
 
 def R(name, a, b):

@@ -4,14 +4,10 @@ from __future__ import annotations
 
 import argparse
 
-from ..errors import MobilityError
-from ..tolerance import Tolerance
+from ..core.tolerance import Tolerance
+from ..errors import RequestError
 
-__all__ = ["UsageError", "add_tolerance_option", "tolerance_from"]
-
-
-class UsageError(MobilityError, ValueError):
-    """A command-line option has a value out of its range (exit status 2)."""
+__all__ = ["add_tolerance_option", "tolerance_from"]
 
 
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
@@ -20,14 +16,14 @@ def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
 
 
 def tolerance_from(args: argparse.Namespace) -> Tolerance:
-    """The :class:`~mobility.tolerance.Tolerance` asked for by ``--tol``.
+    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol``.
 
     Raises
     ------
-    UsageError
+    RequestError
         When the value lies outside ``[inexact, near_singular)`` of the policy.
     """
     base = Tolerance()
     if not (base.inexact <= args.tol < base.near_singular):
-        raise UsageError(f"--tol must lie in [{base.inexact:g}, {base.near_singular:g}), got {args.tol:g}")
+        raise RequestError(f"--tol must lie in [{base.inexact:g}, {base.near_singular:g}), got {args.tol:g}")
     return Tolerance(rank=args.tol)

@@ -23,15 +23,15 @@ import json
 import sys
 from typing import Any
 
-from ..actuation import VALID, ActuationCheck, Enumeration, check_actuation, check_over_poses, enumerate_actuations
+from ..actuation.actuation import VALID, ActuationCheck, Enumeration, check_actuation, check_over_poses, enumerate_actuations
 from ..errors import MechanismFileError
-from ..flexure import FlexureSpaces, check_force_lines, enumerate_force_lines, flexure_spaces
-from ..flexure_loader import is_flexure_document, loads_flexure
-from ..loader import load, loads
-from ..report import fmt_number, fmt_vector
-from ..result import ScrewAxis
-from ..tolerance import Tolerance
-from ..yaml_source import parse_yaml, read_text
+from ..flexure.spaces import FlexureSpaces, check_force_lines, enumerate_force_lines, flexure_spaces
+from ..flexure.loader import is_flexure_document, loads_flexure
+from ..io.loader import load, loads
+from ..report.text import fmt_number, fmt_vector
+from ..core.result import ScrewAxis
+from ..core.tolerance import Tolerance
+from ..io.yaml_source import parse_yaml, read_text
 from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 30
@@ -50,7 +50,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--k", type=int, default=None, help="inputs per combination with --mode any (default: the DOF)")
     p.add_argument("--inputs", default=None, help="comma-separated joint (or actuator) names to check instead of those marked actuated")
     p.add_argument("--pose", action="append", default=[], metavar="FILE", help="another pose of the same mechanism (repeatable)")
-    p.add_argument("--samples", type=int, default=0, help="also check N poses reached by moving the mechanism (needs mobility.finite)")
+    p.add_argument("--samples", type=int, default=0, help="also check N poses reached by moving the mechanism (needs mobility.finite.full_cycle)")
     p.add_argument("--step", type=float, default=0.1, help="step passed to the pose sampler (default: %(default)g)")
     p.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
     p.add_argument("--threshold", type=float, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
@@ -91,13 +91,10 @@ def run(args: argparse.Namespace) -> int:
     check = check_actuation(mechanism, names, tol=tol)
     extra = check_over_poses(mechanism, names, [load(p) for p in args.pose], tol=tol) if args.pose else ()
     if args.samples:
-        from ..actuation import _sampled_poses
+        from ..core.kinematics import sample_poses
 
-        sampled = _sampled_poses(mechanism, args.samples, args.step, args.seed)
-        if sampled is None:
-            print("mobility actuation: warning: pose sampling is not available (no mobility.finite.sample_poses)", file=sys.stderr)
-        else:
-            extra = tuple(extra) + check_over_poses(mechanism, names, sampled, tol=tol)
+        sampled = sample_poses(mechanism, args.samples, step=args.step, seed=args.seed)
+        extra = tuple(extra) + check_over_poses(mechanism, names, sampled, tol=tol)
     labels = list(args.pose) + [f"sampled pose {i + 1}" for i in range(len(extra) - len(args.pose))]
     payload = check.to_dict()
     if extra:

@@ -5,10 +5,10 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..analysis import analyze
-from ..loader import load
-from ..report import json_report, text_report
-from ..report_markdown import markdown_report
+from ..core.analysis import analyze
+from ..io.loader import load
+from ..report.text import json_report, text_report
+from ..report.markdown import markdown_report
 from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 10
@@ -39,7 +39,7 @@ def run(args: argparse.Namespace) -> int:
     fmt = "json" if args.json else args.format
     text = FORMATS[fmt](result, args)
     if args.finite:
-        from ..finite import finite_mobility  # scipy.optimize is slow to import: only when asked
+        from ..finite.full_cycle import finite_mobility  # scipy.optimize is slow to import: only when asked
 
         text = _with_finite(text, fmt, finite_mobility(mechanism, tol=tol))
     print(text)
@@ -52,7 +52,7 @@ def _with_finite(text: str, fmt: str, finite) -> str:
         data = json.loads(text)
         data["finite"] = finite.to_dict()
         return json.dumps(data, indent=2, ensure_ascii=False)
-    from ..finite import finite_report
+    from ..finite.full_cycle import finite_report
 
     section = finite_report(finite)
     if fmt == "md":

@@ -13,7 +13,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..check import CheckReport, CheckResult, check_paths
+from ..testing.check import CheckReport, CheckResult, check_paths
 from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 20

@@ -14,9 +14,9 @@ import json
 import numpy as np
 
 from ..errors import MechanismError, MechanismFileError
-from ..jacobian import JacobianResult, jacobian, wrench_axis
-from ..loader import load
-from ..report import fmt_number, fmt_vector
+from ..jacobians.jacobian import JacobianResult, jacobian, wrench_axis
+from ..io.loader import load
+from ..report.text import fmt_number, fmt_vector
 from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 45

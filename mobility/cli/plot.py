@@ -6,9 +6,9 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..analysis import analyze
+from ..core.analysis import analyze
 from ..errors import MechanismFileError
-from ..loader import load
+from ..io.loader import load
 from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 30
@@ -35,8 +35,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def _is_flexure(path: str) -> bool:
     """Whether ``path`` holds a flexure document (read again only to explain a load error)."""
-    from ..flexure_loader import is_flexure_document
-    from ..yaml_source import parse_yaml
+    from ..flexure.loader import is_flexure_document
+    from ..io.yaml_source import parse_yaml
 
     try:
         data, _ = parse_yaml(Path(path).read_text(encoding="utf-8"), path)
@@ -46,7 +46,8 @@ def _is_flexure(path: str) -> bool:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..plotting import FORMATS, PlotFormatError, plot_graph, plot_mechanism, save_figure
+    from ..errors import PlotFormatError
+    from ..report.plotting import FORMATS, plot_graph, plot_mechanism, save_figure
 
     tol = tolerance_from(args)
     if not args.output.lower().endswith(FORMATS):  # before any work

@@ -16,8 +16,9 @@ import json
 import sys
 from pathlib import Path
 
-from ..report import fmt_vector
-from ..synthesis import PATTERNS, SynthesisError, SynthesisResult, TABLE_1_2T3R, named_pattern, pkm_document, synthesize
+from ..errors import SynthesisError
+from ..report.text import fmt_vector
+from ..synthesis.synthesis import PATTERNS, SynthesisResult, TABLE_1_2T3R, named_pattern, pkm_document, synthesize
 
 ORDER = 50
 

@@ -1,0 +1,194 @@
+"""The analysis: mechanism in, :class:`~mobility.core.result.Result` out.
+
+Data flow: model -> topology (series/parallel tree, cached per graph) ->
+joint twists in normalised coordinates (cached per mechanism) -> screw systems
+of the tree -> canonical forms -> result in the global frame.
+
+Examples
+--------
+>>> import mobility
+>>> from mobility.core.model import Joint, Mechanism
+>>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+>>> m = Mechanism("four-bar", "ground", "coupler", (
+...     R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "coupler", (1, 2, 0)),
+...     R("C", "coupler", "rocker", (4, 2.5, 0)), R("D", "rocker", "ground", (5, 0, 0))))
+>>> r = analyze(m)
+>>> r.dof, r.pattern, r.mobility, r.gruebler_kutzbach, r.redundant_constraints
+(1, '1R', 1, -2, 3)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .canonical import canonical_form
+from .joint_screws import JointScrews, Normalisation, joint_screws, per_object_cache
+from .model import WORLD, Mechanism
+from .result import LimbSystem, Margin, Result, ScrewAxis, pattern_of
+from .screw_systems import Margin as MarginCollector
+from .screw_systems import SystemValue, evaluate
+from .screws import free_vector_subspace, span_and_reciprocal
+from .tolerance import DEFAULT_TOLERANCE, Tolerance
+from .transforms import cross
+from .topology import Parallel, Topology, decompose, describe, joints_of
+
+__all__ = ["analyze", "gruebler_kutzbach", "screw_system_in_frame"]
+
+
+def gruebler_kutzbach(mechanism: Mechanism) -> int:
+    """The Grübler–Kutzbach count ``6 (n - 1 - j) + sum f`` of the whole mechanism.
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> gruebler_kutzbach(Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(1, 0, 0)),)))
+    1
+    """
+    return 6 * (len(mechanism.links) - 1 - len(mechanism.joints)) + mechanism.freedom_count
+
+
+def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Result:
+    """Analyse the mobility of ``mechanism`` at its pose.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        From :func:`mobility.load` or built in code.
+    tol : Tolerance
+        Rank-decision policy (relative, dimensionless).
+
+    Returns
+    -------
+    Result
+        Frozen; screws in the global frame and the mechanism's length unit.
+        The counts are computed here; directions, limb systems and common
+        constraints on first access.
+    """
+    topology = per_object_cache(mechanism, "topology", lambda: decompose(mechanism))
+    screws = joint_screws(mechanism)
+    collector = MarginCollector()
+    root = evaluate(topology.root, screws, tol, collector)
+    detached = sum(evaluate(node, screws, tol, collector).mobility for node in topology.detached)
+    mobility = root.mobility + detached
+    rotational = free_vector_subspace(root.basis, tol, coefficients=False)
+    collector.add(rotational)
+    gk = gruebler_kutzbach(mechanism)
+    margin = Margin(
+        collector.smallest_kept,
+        collector.largest_dropped,
+        collector.smallest_kept < tol.near_singular,
+        collector.largest_dropped > tol.inexact,
+    )
+    warnings = []
+    if margin.near_singular:
+        warnings.append(
+            f"near-singular pose: a direction counted as free has relative singular value {margin.smallest_kept:.2e} "
+            f"(below {tol.near_singular:.0e}); a small change of pose may change the count"
+        )
+    if margin.inexact:
+        warnings.append(
+            f"inexact geometry: a direction counted as blocked has relative singular value {margin.largest_dropped:.2e} "
+            f"(above round-off, below the rank threshold {tol.rank:.0e}); check that the special geometry is exact"
+        )
+    norm = screws.normalisation
+    return Result(
+        name=mechanism.name,
+        dof=root.dim,
+        pattern=pattern_of(root.dim - rotational.rank, rotational.rank),
+        mobility=mobility,
+        gruebler_kutzbach=gk,
+        redundant_constraints=mobility - gk,
+        idle_dof=mobility - root.dim,
+        loops=topology.loop_count,
+        links=topology.link_count,
+        joints=len(mechanism.joints),
+        joint_freedoms=mechanism.freedom_count,
+        structure=topology.structure,
+        margin=margin,
+        warnings=tuple(warnings),
+        length_unit=mechanism.length_unit,
+        length_scale=norm.size,
+        reference_point=screws.reference_in_world,
+        detail=_Detail(mechanism, topology, screws, root, tol),
+    )
+
+
+class _Detail:
+    """The lazily computed parts of a result: canonical forms, limbs, common constraints."""
+
+    def __init__(self, mechanism: Mechanism, topology: Topology, screws: JointScrews, root: SystemValue, tol: Tolerance) -> None:
+        self.mechanism = mechanism
+        self.topology = topology
+        self.screws = screws
+        self.root = root
+        self.tol = tol
+
+    def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+        return screw_system_in_frame(self.root.basis, self.screws.normalisation, self.screws.reference, ("rotation", "helical"), self.tol)
+
+    def wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+        return screw_system_in_frame(self.root.wrenches, self.screws.normalisation, self.screws.reference, ("force", "wrench"), self.tol)
+
+    def common_constraints(self) -> int:
+        return 6 - span_and_reciprocal(self.screws.twists, self.tol).dim
+
+    def limbs(self) -> tuple[LimbSystem, ...]:
+        """Each branch of a top-level parallel connection, in its own frame.
+
+        The normalised coordinates of a frame at ``(R, t)`` differ from the
+        global ones by the rotation ``diag(R.T, R.T)`` only (the centre moves
+        with the frame), so the canonical form is computed there directly.
+        """
+        if not isinstance(self.topology.root, Parallel):
+            return ()
+        norm, tol = self.screws.normalisation, self.tol
+        out = []
+        for node, value in zip(self.topology.root.children, self.root.children):  # a parallel node keeps every child's value
+            frames = {self.mechanism.joints[i].frame for i in joints_of(node)}
+            frame = frames.pop() if len(frames) == 1 else WORLD
+            tf = self.mechanism.frame_transform(frame)
+            rt = tf.rotation.T
+            local = Normalisation(rt @ (norm.centre - tf.translation), norm.length)
+            rot6 = np.kron(np.eye(2), rt)
+            reference = rt @ self.screws.reference
+            translations, rotations, twists = screw_system_in_frame(rot6 @ value.basis, local, reference, ("rotation", "helical"), tol)
+            couples, forces, wrenches = screw_system_in_frame(rot6 @ value.wrenches, local, reference, ("force", "wrench"), tol)
+            out.append(LimbSystem(describe(node), frame, value.dim, value.idle, translations, rotations, twists, couples, forces, wrenches))
+        return tuple(out)
+
+
+def screw_system_in_frame(basis: np.ndarray, norm: Normalisation, reference: np.ndarray, kinds: tuple[str, str], tol: Tolerance) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+    """Canonical form of a normalised screw system, written in the coordinates of ``norm``.
+
+    Parameters
+    ----------
+    basis : ndarray, shape (6, d)
+        Orthonormal basis of a twist or wrench system in normalised coordinates.
+    norm : Normalisation
+        Maps normalised coordinates to the frame and unit wanted.
+    reference : ndarray, shape (3,)
+        Reference point (normalised coordinates), see :mod:`mobility.core.canonical`.
+    kinds : (str, str)
+        Names of a screw without and with pitch (``("rotation", "helical")``
+        for twists, ``("force", "wrench")`` for wrenches).
+
+    Returns
+    -------
+    free : ndarray, shape (k, 3)
+        The free vectors (translations or couples), read-only.
+    axes : tuple of ScrewAxis
+    rows : ndarray, shape (d, 6)
+        A basis of the system: free vectors, then the axes' unit screws.
+    """
+    form = canonical_form(basis, reference, tol)
+    free = form.free.T.copy().reshape(-1, 3)
+    axes = tuple(
+        ScrewAxis(p.axis, norm.point_to_world(p.point), 0.0 if abs(p.pitch) <= tol.rank else p.pitch * norm.length, kinds[abs(p.pitch) > tol.rank])
+        for p in form.screws
+    )
+    rows = [np.concatenate([np.zeros(3), f]) for f in free]
+    rows += [np.concatenate([a.axis, cross(a.point, a.axis) + a.pitch * a.axis]) for a in axes]
+    basis_rows = np.array(rows, dtype=float).reshape(-1, 6)
+    for arr in (free, basis_rows):
+        arr.setflags(write=False)
+    return free, axes, basis_rows

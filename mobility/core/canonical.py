@@ -1,0 +1,191 @@
+"""Canonical, readable bases of screw systems: free vectors and principal screws.
+
+A twist system splits into its pure translations (free vectors ``[0; v]``) and
+screws with independent rotation directions; a wrench system, likewise, into
+pure couples and force screws.  The canonical form used everywhere:
+
+1. **free part**: an orthonormal basis of the free vectors, chosen as close to
+   the coordinate axes as the subspace allows (so ``z`` comes out as
+   ``[0, 0, 1]``, not a rotated copy);
+2. **screw part**: for each direction ``w`` of the remaining directions ``W``
+   there is one screw of the system modulo free vectors.  Its representative
+   is the one for which the *reference point* moves (for twists; for wrenches:
+   the moment there) orthogonally to every free vector: the free part is
+   removed at the reference point.
+
+   * Directions orthogonal to every free vector (``W ∩ F⊥``) have an
+     *intrinsic* pitch ``h(w) = w . v / |w|^2`` (adding a free vector cannot
+     change it).  It is a quadratic form on those directions; its eigenvectors
+     are the **principal screws** and its eigenvalues their pitches (Hunt's
+     principal screws).
+   * Every other direction can be given pitch 0 by adding the free vector
+     along its projection on the free subspace; these are reported as pure
+     rotations (pure forces), along axes chosen close to the coordinate axes.
+
+   Where pitches are equal (e.g. all rotations about one point), axes are
+   again chosen close to the coordinate axes.  Each axis is reported through
+   its point nearest the reference point; the offset of that point from the
+   reference point is the parasitic (coupled) motion of the reference point.
+
+The reference point is a property of the mechanism (the centroid of the joint
+points on the end effector), so the form follows the mechanism under rigid
+motion and scaling.
+
+Examples
+--------
+>>> import numpy as np
+>>> from mobility.core.screws import revolute_twist, prismatic_twist, span_and_reciprocal
+>>> cyl = np.stack([revolute_twist([0, 0, 1], [1, 0, 0]), prismatic_twist([0, 0, 1])], axis=1)
+>>> form = canonical_form(span_and_reciprocal(cyl).basis, np.zeros(3))
+>>> form.free.T.round(12).tolist()
+[[0.0, 0.0, 1.0]]
+>>> [(a.axis.round(12).tolist(), a.point.round(12).tolist(), round(a.pitch, 12)) for a in form.screws]
+[([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 0.0)]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .linalg import svd
+from .screws import free_vector_subspace
+from .transforms import cross
+from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance
+
+__all__ = ["PrincipalScrew", "CanonicalForm", "canonical_form", "readable_basis"]
+
+
+@dataclass(frozen=True)
+class PrincipalScrew:
+    """A screw axis: unit ``axis``, a ``point`` on it, and its ``pitch`` (length per radian)."""
+
+    axis: np.ndarray
+    point: np.ndarray
+    pitch: float
+
+    def screw(self) -> np.ndarray:
+        """The unit screw ``[s; p x s + h s]``."""
+        return np.concatenate([self.axis, cross(self.point, self.axis) + self.pitch * self.axis])
+
+
+@dataclass(frozen=True)
+class CanonicalForm:
+    """Free vectors (3 x k, orthonormal columns) and principal screws of a screw system."""
+
+    free: np.ndarray
+    screws: tuple[PrincipalScrew, ...]
+    decision: RankDecision
+
+
+def _dominant(v: np.ndarray) -> int:
+    """Index of the first component of (nearly) largest magnitude."""
+    mags = [abs(x) for x in v.tolist()]
+    top = max(mags) - 1e-9
+    return next(i for i, m in enumerate(mags) if m > top)
+
+
+def _signed(v: np.ndarray) -> np.ndarray:
+    """Flip ``v`` so that its first component of largest magnitude is positive."""
+    return -v if v[_dominant(v)] < 0 else v
+
+
+def readable_basis(q: np.ndarray) -> np.ndarray:
+    """An orthonormal basis of ``span(q)`` made of the projections of coordinate axes.
+
+    Parameters
+    ----------
+    q : ndarray, shape (n, m)
+        Orthonormal columns.
+
+    Returns
+    -------
+    ndarray, shape (n, m)
+        Greedy Gram-Schmidt of the projected axes, largest first, each with its
+        largest component positive, ordered by that component's index.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> c = np.sqrt(0.5)
+    >>> (readable_basis(np.array([[c, c], [c, -c], [0, 0]])).round(12) + 0.0).tolist()
+    [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]
+    """
+    n, m = q.shape
+    if m == 0:
+        return q
+    resid = q @ q.T  # the projections of the coordinate axes
+    basis: list[np.ndarray] = []
+    for _ in range(m):
+        norms = np.sqrt(np.einsum("ij,ij->j", resid, resid)).tolist()
+        top = max(norms) - 1e-12
+        k = next(i for i, x in enumerate(norms) if x > top)
+        b = _signed(resid[:, k] / norms[k])
+        basis.append(b)
+        resid = resid - np.outer(b, b @ resid)
+    basis.sort(key=_dominant)
+    return np.stack(basis, axis=1)
+
+
+def canonical_form(basis: np.ndarray, reference: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> CanonicalForm:
+    """Free vectors and principal screws of the system spanned by ``basis``.
+
+    Parameters
+    ----------
+    basis : ndarray, shape (6, d)
+        Orthonormal basis of a twist (or wrench) system.
+    reference : ndarray, shape (3,)
+        Reference point (same coordinates as ``basis``).
+    tol : Tolerance
+        The rank policy (also used to group equal pitches).
+
+    Returns
+    -------
+    CanonicalForm
+        Points are on each axis, nearest to ``reference``; pitches are in the
+        length unit of ``basis``.
+    """
+    free, coef, decision = free_vector_subspace(basis, tol)
+    free = readable_basis(free)
+    r = coef.shape[1]
+    if r == 0:
+        return CanonicalForm(free, (), decision)
+    screws = basis @ coef
+    bw = screws[:3]
+    bv = screws[3:] - cross(reference[:, None], bw)
+    if free.shape[1]:
+        bv = bv - free @ (free.T @ bv)
+    u, s, vt = svd(bw)
+    qw = u[:, :r]
+    a = (bv @ vt.T[:, :r]) / s[:r]  # v = a @ (qw.T w) for w in span(qw)
+    if free.shape[1]:
+        # Directions orthogonal to every free vector: null space of free.T @ qw.
+        _, gs, gvt = svd(free.T @ qw)
+        k = int(np.count_nonzero(gs > tol.rank))
+        perp, rest = gvt[k:].T, gvt[:k].T
+    else:
+        perp, rest = np.eye(r), np.zeros((r, 0))
+    out: list[PrincipalScrew] = []
+    if perp.shape[1]:
+        m = perp.T @ qw.T @ a @ perp  # pitch form on W ∩ F⊥
+        pitches, vecs = np.linalg.eigh(0.5 * (m + m.T))
+        start = 0
+        while start < len(pitches):
+            stop = start + 1
+            while stop < len(pitches) and abs(pitches[stop] - pitches[start]) <= tol.near_singular * max(1.0, abs(pitches[start])):
+                stop += 1
+            cluster = qw @ perp @ vecs[:, start:stop]
+            directions = readable_basis(cluster) if stop - start > 1 else np.stack([_signed(cluster[:, 0])], axis=1)
+            for w in directions.T:
+                v = a @ (qw.T @ w)
+                out.append(PrincipalScrew(w, reference + cross(w, v), float(w @ v)))
+            start = stop
+    if rest.shape[1]:
+        for w in readable_basis(qw @ rest).T:
+            v = a @ (qw.T @ w)
+            along = free @ (free.T @ w)
+            v = v - (w @ v) / (along @ along) * along  # a free vector cancels the pitch
+            out.append(PrincipalScrew(w, reference + cross(w, v), 0.0))
+    out.sort(key=lambda p: (abs(p.pitch) > tol.rank, _dominant(p.axis)))
+    return CanonicalForm(free, tuple(out), decision)

@@ -1,0 +1,613 @@
+"""Finite screws: rigid displacements in the quasi-vector form of Huang, Dai and Sun.
+
+A rigid displacement that rotates by ``θ`` about the line through ``r`` along
+the unit vector ``s`` and translates by ``t`` along it has the *finite screw*
+
+    ``S_f = 2 tan(θ/2) [s; r × s] + t [0; s]``                  (6-vector)
+
+written like a twist, angular part first: ``S_f = [w; v]``.  At ``θ → 0`` it
+becomes ``θ [s; r × s] + t [0; s]``, so the derivative of a finite screw at
+the identity is the instantaneous twist ``[ω; v]`` of :mod:`mobility.core.screws`
+(Eq. 5 of Sun et al., 2018): one convention for both.
+
+Conventions (stated once, pinned by ``tests/test_finite_screws.py``)
+--------------------------------------------------------------------
+* **Triangle product order.**  ``S_a △ S_b`` is *displacement b followed by
+  displacement a*, both described in the fixed frame, so its 4x4 matrix is
+  ``T_a @ T_b``: the later displacement stands on the left, as in function
+  composition, the matrix product, the product of exponentials and the way
+  Dai and Huang write the product.  :func:`triangle_product` ``(a, b, c)`` is
+  ``a △ b △ c`` (``c`` first).  In closed form, with ``d = 1 - wa·wb/4``::
+
+      w = (wa + wb + ½ wa × wb) / d
+      v = (va + vb + ½ (wa × vb + va × wb) - ¼ (wa·va) wb - ¼ (wb·vb) wa) / d
+
+  The inverse of ``S_f`` is ``-S_f``.
+* **A limb** (Eq. 7): the finite screw of a serial chain is the triangle
+  product of its joints' finite screws, *the joint next to the base on the
+  left*, each joint written with its axis in the initial (home) configuration
+  of the chain, in the fixed frame: ``S_f = S_1(q1) △ S_2(q2) △ ... △ S_n(qn)``.
+  The joint at the end effector acts first, so every axis it and the joints
+  before it in time move has not moved yet: that is why home axes are right.
+* **Half-turns.**  At ``θ = π`` the factor ``2 tan(θ/2)`` is infinite: the
+  quasi-vector exists for every displacement except the half-turns.  Each
+  displacement is therefore also kept in homogeneous form, the 8 numbers of its
+  unit dual quaternion ``(q, q0)`` (:class:`FiniteScrew`), from which
+  ``S_f = 2 [vec q; vec q0] / scal q``: the quasi-vector is that 8-vector read
+  in projective coordinates, and ``scal q = cos(θ/2)`` is zero exactly at a
+  half-turn.  The triangle product in this form is the dual-quaternion product,
+  bilinear and free of division, so it is exact for half-turns; only reading
+  off ``S_f`` divides, and :attr:`FiniteScrew.vector` raises
+  :class:`HalfTurnError` when ``cos(θ/2)`` is within round-off of zero (no
+  digit of ``tan(θ/2)`` would be right).  The closed form above raises the same
+  error when its result is a half-turn (``d = 0``).
+* Derivative mapping (Eq. 5 at any pose): a path ``S_f(τ)`` has the spatial
+  twist ``$ = d/dΔ [S_f(τ+Δ) △ (-S_f(τ))]`` at ``Δ = 0``, which is
+  :func:`twist_from_finite_screw_rate`; at ``S_f = 0`` it is the identity map.
+
+Nothing here knows about files or mechanisms.
+
+References
+----------
+T. Sun, S. Yang, T. Huang, J. S. Dai, "A finite and instantaneous screw based
+approach for topology design and kinematic analysis of 5-axis parallel kinematic
+machines", Chinese Journal of Mechanical Engineering 31:44 (2018).
+J. S. Dai, "An historical review of the theoretical development of rigid body
+displacements from Rodrigues parameters to the finite twist", Mechanism and
+Machine Theory 41 (2006) 41-52.
+
+Examples
+--------
+>>> import numpy as np
+>>> quarter = finite_screw([0, 0, 1], [1, 0, 0], np.pi / 2)        # 90° about a z-line through (1, 0, 0)
+>>> np.round(quarter, 12) + 0.0
+array([ 0.,  0.,  2.,  0., -2.,  0.])
+>>> slide = finite_screw([1, 0, 0], [0, 0, 0], 0.0, translation=3.0)
+>>> both = triangle_product(quarter, slide)                         # slide first, then the rotation
+>>> bool(np.allclose(transform_from_finite_screw(both),
+...                  transform_from_finite_screw(quarter) @ transform_from_finite_screw(slide)))
+True
+>>> FiniteScrew.from_parameters([0, 0, 1], [0, 0, 0], np.pi).is_half_turn
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import reduce
+from typing import Iterable, Sequence
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from ..errors import HalfTurnError
+from .transforms import cross
+
+__all__ = [
+    "finite_screw",
+    "finite_screw_from_transform",
+    "transform_from_finite_screw",
+    "triangle_product",
+    "twist_from_finite_screw_rate",
+    "FiniteScrew",
+    "ScrewJoint",
+    "Limb",
+]
+
+_ROUND_OFF = 64 * np.finfo(float).eps
+"""``cos(θ/2)`` at or below this counts as a half-turn: ``tan(θ/2)`` would have no correct digit."""
+
+
+def _unit(v: Iterable[float], what: str) -> np.ndarray:
+    a = np.asarray(v, dtype=float).reshape(3)
+    n = float(np.linalg.norm(a))
+    if not np.isfinite(n) or n == 0.0:
+        raise ValueError(f"{what}: expected a non-zero finite direction, got {a.tolist()}")
+    return a / n
+
+
+def _screw(s: Sequence[float]) -> np.ndarray:
+    a = np.asarray(s, dtype=float)
+    if a.shape != (6,):
+        raise ValueError(f"expected a 6-vector [w; v], got shape {a.shape}")
+    return a
+
+
+def finite_screw(axis: Iterable[float], point: Iterable[float], angle: float, translation: float = 0.0) -> np.ndarray:
+    """The finite screw ``2 tan(θ/2) [s; r × s] + t [0; s]`` of a screw displacement.
+
+    Parameters
+    ----------
+    axis : 3-vector
+        Direction ``s`` of the screw axis (normalised here).
+    point : 3-vector
+        A point ``r`` on the axis.
+    angle : float
+        Rotation ``θ`` about the axis, radians (right-hand rule about ``s``).
+    translation : float
+        Translation ``t`` along ``s`` (length).
+
+    Returns
+    -------
+    ndarray, shape (6,)
+        ``[w; v]``.
+
+    Raises
+    ------
+    HalfTurnError
+        When ``θ`` is an odd multiple of ``π``.
+
+    Examples
+    --------
+    >>> finite_screw([0, 0, 2], [0, 0, 0], 0.0, 1.5).tolist()
+    [0.0, 0.0, 0.0, 0.0, 0.0, 1.5]
+    """
+    return FiniteScrew.from_parameters(axis, point, angle, translation).vector
+
+
+def transform_from_finite_screw(screw: Sequence[float]) -> np.ndarray:
+    """The 4x4 homogeneous matrix of the displacement with finite screw ``[w; v]``.
+
+    This is the Cayley map of SE(3): ``R = (I - [w]/2)^-1 (I + [w]/2)`` and
+    ``p = (I - [w]/2)^-1 v``, defined for every finite quasi-vector.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> T = transform_from_finite_screw([0, 0, 2, 0, 0, 0])          # 2 tan(45°) about z
+    >>> np.round(T[:3, :3] @ [1, 0, 0], 12) + 0.0
+    array([0., 1., 0.])
+    """
+    s = _screw(screw)
+    w, v = s[:3], s[3:]
+    half = 0.5 * np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+    inv = np.linalg.inv(np.eye(3) - half)
+    out = np.eye(4)
+    out[:3, :3] = inv @ (np.eye(3) + half)
+    out[:3, 3] = inv @ v
+    return out
+
+
+def finite_screw_from_transform(matrix: np.ndarray) -> np.ndarray:
+    """The finite screw of the displacement given as a 4x4 homogeneous matrix.
+
+    Raises
+    ------
+    HalfTurnError
+        When the rotation is a half-turn (no finite quasi-vector).
+    ValueError
+        When ``matrix`` is not a rigid displacement.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> S = np.array([0.1, -0.4, 0.3, 1.0, 2.0, -0.5])
+    >>> bool(np.allclose(finite_screw_from_transform(transform_from_finite_screw(S)), S))
+    True
+    """
+    return FiniteScrew.from_transform(matrix).vector
+
+
+def triangle_product(*screws: Sequence[float]) -> np.ndarray:
+    """The screw triangle product ``S_1 △ S_2 △ ... △ S_k`` of finite screws (``S_k`` acts first).
+
+    ``S_a △ S_b`` is displacement ``b`` followed by displacement ``a`` (fixed
+    frame), i.e. the matrix ``T_a @ T_b``; closed form in the module docstring.
+
+    Raises
+    ------
+    HalfTurnError
+        When a partial product is a half-turn; compose :class:`FiniteScrew`
+        objects instead, which never divide.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> S = np.array([0.2, 0.0, -0.6, 0.3, 1.0, 0.0])
+    >>> bool(np.allclose(triangle_product(S, -S), 0.0))                  # -S is the inverse
+    True
+    """
+    if not screws:
+        return np.zeros(6)
+    return reduce(_triangle2, (_screw(s) for s in screws))
+
+
+def _triangle2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    wa, va, wb, vb = a[:3], a[3:], b[:3], b[3:]
+    d = 1.0 - 0.25 * float(wa @ wb)
+    # scal q of the product, relative to the unit dual quaternions: d / sqrt((1 + |wa|²/4)(1 + |wb|²/4))
+    if abs(d) <= _ROUND_OFF * np.sqrt((1.0 + 0.25 * wa @ wa) * (1.0 + 0.25 * wb @ wb)):
+        raise HalfTurnError("the triangle product is a half-turn (1 - wa·wb/4 = 0): it has no finite quasi-vector; use FiniteScrew")
+    w = wa + wb + 0.5 * cross(wa, wb)
+    v = va + vb + 0.5 * (cross(wa, vb) + cross(va, wb)) - 0.25 * float(wa @ va) * wb - 0.25 * float(wb @ vb) * wa
+    return np.concatenate([w, v]) / d
+
+
+def twist_from_finite_screw_rate(screw: Sequence[float], rate: Sequence[float]) -> np.ndarray:
+    """The instantaneous twist ``[ω; v]`` of a motion whose finite screw is ``S`` with derivative ``dS``.
+
+    The twist is ``d/dΔ [S(τ+Δ) △ (-S(τ))]`` at ``Δ = 0`` (spatial twist,
+    fixed frame).  With ``S = [w; v]``, ``dS = [dw; dv]`` and ``k = 1 + w·w/4``::
+
+        ω = (dw + ½ w × dw) / k
+        v = (dv + ½ (v × dw + w × dv) + ¼ (v·dw + w·dv) w - ¼ (w·v) dw) / k
+
+    At ``S = 0`` this is ``[ω; v] = dS`` (Eq. 5 of Sun et al.).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rate = np.array([0.0, 0.0, 1.0, 0.0, -1.0, 0.0])                # d/dθ of 2tan(θ/2)[z; (1,0,0) × z] at 0
+    >>> twist_from_finite_screw_rate(np.zeros(6), rate).tolist()
+    [0.0, 0.0, 1.0, 0.0, -1.0, 0.0]
+    """
+    s = _screw(screw)
+    ds = _screw(rate)
+    w, v, dw, dv = s[:3], s[3:], ds[:3], ds[3:]
+    k = 1.0 + 0.25 * float(w @ w)
+    omega = dw + 0.5 * cross(w, dw)
+    vel = dv + 0.5 * (cross(v, dw) + cross(w, dv)) + 0.25 * float(v @ dw + w @ dv) * w - 0.25 * float(w @ v) * dw
+    return np.concatenate([omega, vel]) / k
+
+
+# -- homogeneous form (unit dual quaternions) ---------------------------------
+
+
+def _qmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Quaternion product, scalar first."""
+    a0, a1, a2, a3 = a
+    b0, b1, b2, b3 = b
+    return np.array(
+        [
+            a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
+            a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
+            a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
+            a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
+        ]
+    )
+
+
+def _dqmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Dual-quaternion product of 8-vectors ``(q, q0)``."""
+    return np.concatenate([_qmul(a[:4], b[:4]), _qmul(a[:4], b[4:]) + _qmul(a[4:], b[:4])])
+
+
+def _conj(q: np.ndarray) -> np.ndarray:
+    return np.concatenate([q[:1], -q[1:]])
+
+
+def _canonical(h: np.ndarray) -> np.ndarray:
+    """Unit dual quaternion with the sign fixed (``h`` and ``-h`` are the same displacement)."""
+    h = h / np.linalg.norm(h[:4])
+    key = h[0] if abs(h[0]) > _ROUND_OFF else h[1:4][np.argmax(np.abs(h[1:4]))]
+    return -h if key < 0 else h
+
+
+@dataclass(frozen=True, eq=False)
+class FiniteScrew:
+    """A rigid displacement in homogeneous finite-screw form (exact for half-turns).
+
+    Holds the unit dual quaternion ``(q, q0)`` (8 numbers, scalar parts first,
+    sign fixed); the finite screw is ``2 [vec q; vec q0] / scal q``.  Build it
+    with :meth:`from_vector`, :meth:`from_parameters`, :meth:`from_transform`
+    or :meth:`identity`; compose with :meth:`triangle`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> half = FiniteScrew.from_parameters([0, 0, 1], [1, 0, 0], np.pi)    # half-turn about a z-line
+    >>> twice = half.triangle(half)                                        # a full turn: the identity
+    >>> bool(np.allclose(twice.vector, 0.0))
+    True
+    >>> half.vector
+    Traceback (most recent call last):
+    ...
+    mobility.errors.HalfTurnError: half-turn: 2 tan(θ/2) is infinite, the displacement has no finite quasi-vector
+    """
+
+    homogeneous: np.ndarray = field(repr=False)
+
+    def __post_init__(self) -> None:
+        h = np.asarray(self.homogeneous, dtype=float).reshape(8)
+        if not np.all(np.isfinite(h)) or np.linalg.norm(h[:4]) == 0.0:
+            raise ValueError("a finite screw needs a non-zero finite rotation quaternion")
+        h = _canonical(h)
+        h.setflags(write=False)
+        object.__setattr__(self, "homogeneous", h)
+
+    # -- construction -----------------------------------------------------
+    @staticmethod
+    def identity() -> "FiniteScrew":
+        """The identity displacement (``S_f = 0``)."""
+        return FiniteScrew(np.array([1.0, 0, 0, 0, 0, 0, 0, 0]))
+
+    @staticmethod
+    def from_vector(screw: Sequence[float]) -> "FiniteScrew":
+        """From a quasi-vector ``[w; v]`` (any finite 6-vector is a displacement)."""
+        s = _screw(screw)
+        w, v = s[:3], s[3:]
+        return FiniteScrew(np.concatenate([[1.0], 0.5 * w, [-0.25 * float(w @ v)], 0.5 * v]))
+
+    @staticmethod
+    def from_parameters(axis: Iterable[float], point: Iterable[float], angle: float, translation: float = 0.0) -> "FiniteScrew":
+        """Rotation ``angle`` about the line through ``point`` along ``axis``, translation ``translation`` along it."""
+        s = _unit(axis, "axis")
+        r = np.asarray(point, dtype=float).reshape(3)
+        c, sn = np.cos(0.5 * float(angle)), np.sin(0.5 * float(angle))
+        t = float(translation)
+        q = np.concatenate([[c], sn * s])
+        q0 = np.concatenate([[-0.5 * t * sn], 0.5 * t * c * s + sn * cross(r, s)])
+        return FiniteScrew(np.concatenate([q, q0]))
+
+    @staticmethod
+    def from_transform(matrix: np.ndarray) -> "FiniteScrew":
+        """From a 4x4 homogeneous matrix of a rigid displacement.
+
+        Raises
+        ------
+        ValueError
+            When the matrix is not a proper rigid displacement.
+        """
+        m = np.asarray(matrix, dtype=float)
+        if m.shape != (4, 4) or not np.all(np.isfinite(m)):
+            raise ValueError("expected a 4x4 matrix of finite numbers")
+        rot = m[:3, :3]
+        if not np.allclose(rot @ rot.T, np.eye(3), atol=1e-9) or np.linalg.det(rot) < 0 or not np.allclose(m[3], [0, 0, 0, 1]):
+            raise ValueError("expected a rigid displacement (rotation block orthonormal, det +1, last row [0, 0, 0, 1])")
+        x, y, z, w = Rotation.from_matrix(rot).as_quat()
+        q = np.array([w, x, y, z])
+        q0 = 0.5 * _qmul(np.concatenate([[0.0], m[:3, 3]]), q)
+        return FiniteScrew(np.concatenate([q, q0]))
+
+    # -- reading ------------------------------------------------------------
+    @property
+    def is_half_turn(self) -> bool:
+        """True when ``cos(θ/2)`` is within round-off of zero."""
+        return bool(abs(self.homogeneous[0]) <= _ROUND_OFF)
+
+    @property
+    def vector(self) -> np.ndarray:
+        """The quasi-vector ``[w; v] = 2 tan(θ/2) [s; r × s] + t [0; s]``.
+
+        Raises
+        ------
+        HalfTurnError
+            At a half-turn.
+        """
+        h = self.homogeneous
+        if self.is_half_turn:
+            raise HalfTurnError("half-turn: 2 tan(θ/2) is infinite, the displacement has no finite quasi-vector")
+        return 2.0 * np.concatenate([h[1:4], h[5:8]]) / h[0]
+
+    @property
+    def direction(self) -> np.ndarray:
+        """``2 [vec q; vec q0]``: the quasi-vector times ``cos(θ/2)``, finite everywhere.
+
+        At a half-turn this is ``2 [s; r × s]``, the line of the half-turn.
+        """
+        h = self.homogeneous
+        return 2.0 * np.concatenate([h[1:4], h[5:8]])
+
+    def transform(self) -> np.ndarray:
+        """The 4x4 homogeneous matrix."""
+        h = self.homogeneous
+        q, q0 = h[:4], h[4:]
+        out = np.eye(4)
+        out[:3, :3] = Rotation.from_quat([q[1], q[2], q[3], q[0]]).as_matrix()
+        out[:3, 3] = 2.0 * _qmul(q0, _conj(q))[1:]
+        return out
+
+    def parameters(self) -> tuple[np.ndarray, np.ndarray, float, float]:
+        """Screw parameters ``(axis, point, angle, translation)``, ``angle`` in ``[0, π]``.
+
+        ``point`` is the point of the axis nearest the origin.  A pure
+        translation has ``angle = 0``, its direction as ``axis`` and the origin
+        as ``point``; the identity has axis ``[0, 0, 1]`` and zero translation.
+        """
+        h = self.homogeneous
+        q, q0 = h[:4], h[4:]
+        sn = float(np.linalg.norm(q[1:]))
+        angle = 2.0 * float(np.arctan2(sn, q[0]))
+        if sn <= _ROUND_OFF:
+            p = 2.0 * _qmul(q0, _conj(q))[1:]
+            t = float(np.linalg.norm(p))
+            axis = p / t if t > 0 else np.array([0.0, 0.0, 1.0])
+            return axis, np.zeros(3), 0.0, t
+        s = q[1:] / sn
+        c = float(q[0])
+        t = -2.0 * float(q0[0]) / sn
+        moment = (q0[1:] - 0.5 * t * c * s) / sn
+        return s, cross(s, moment), angle, t
+
+    # -- algebra ------------------------------------------------------------
+    def triangle(self, other: "FiniteScrew") -> "FiniteScrew":
+        """``self △ other``: ``other`` first, then ``self`` (matrix ``T_self @ T_other``)."""
+        return FiniteScrew(_dqmul(self.homogeneous, other.homogeneous))
+
+    def inverse(self) -> "FiniteScrew":
+        """The inverse displacement (``-S_f`` in quasi-vector form)."""
+        h = self.homogeneous
+        return FiniteScrew(np.concatenate([_conj(h[:4]), _conj(h[4:])]))
+
+    def isclose(self, other: "FiniteScrew", *, atol: float = 1e-9) -> bool:
+        """Whether two finite screws are the same displacement (dual quaternions equal up to sign)."""
+        a, b = self.homogeneous, other.homogeneous
+        return bool(np.allclose(a, b, atol=atol) or np.allclose(a, -b, atol=atol))
+
+
+# -- joints and limbs ------------------------------------------------------------
+
+
+_KINDS = ("R", "P", "H")
+
+
+@dataclass(frozen=True)
+class ScrewJoint:
+    """A one-DOF joint of a serial chain, in the chain's initial configuration (fixed frame).
+
+    Parameters
+    ----------
+    kind : {"R", "P", "H"}
+        Revolute (value: angle), prismatic (value: length along ``axis``) or
+        helical (value: angle; translation ``pitch * angle``).
+    axis : 3-vector
+        Direction, normalised here.
+    point : 3-vector
+        A point of the axis (ignored for ``P``).
+    pitch : float
+        Length per radian (``H`` only).
+    label : str
+        A name for reports (e.g. the source joint's name).
+    """
+
+    kind: str
+    axis: tuple[float, float, float]
+    point: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    pitch: float = 0.0
+    label: str = ""
+
+    def __post_init__(self) -> None:
+        if self.kind not in _KINDS:
+            raise ValueError(f"kind: expected one of {', '.join(_KINDS)}, got {self.kind!r}")
+        object.__setattr__(self, "axis", tuple(float(x) for x in _unit(self.axis, "axis")))
+        pt = np.asarray(self.point, dtype=float).reshape(3)
+        if self.kind == "P":
+            pt = np.zeros(3)
+        object.__setattr__(self, "point", tuple(float(x) for x in pt))
+        object.__setattr__(self, "pitch", float(self.pitch) if self.kind == "H" else 0.0)
+
+    def finite_screw(self, value: float) -> FiniteScrew:
+        """Finite screw of the joint displaced by ``value`` (homogeneous form)."""
+        if self.kind == "P":
+            return FiniteScrew.from_parameters(self.axis, self.point, 0.0, value)
+        return FiniteScrew.from_parameters(self.axis, self.point, value, self.pitch * value)
+
+    def twist(self) -> np.ndarray:
+        """Unit twist ``[s; r × s + h s]`` (``[0; s]`` for ``P``) in the initial configuration."""
+        s = np.asarray(self.axis)
+        if self.kind == "P":
+            return np.concatenate([np.zeros(3), s])
+        return np.concatenate([s, cross(np.asarray(self.point), s) + self.pitch * s])
+
+    def moved(self, matrix: np.ndarray) -> "ScrewJoint":
+        """The same joint carried by the rigid displacement ``matrix`` (4x4)."""
+        m = np.asarray(matrix, dtype=float)
+        return ScrewJoint(self.kind, tuple(m[:3, :3] @ self.axis), tuple(m[:3, :3] @ self.point + m[:3, 3]), self.pitch, self.label)
+
+
+def _pure(twist: np.ndarray) -> np.ndarray:
+    """The pure dual quaternion ``(0, w) + ε (0, v)`` of a twist ``[w; v]``."""
+    return np.concatenate([[0.0], twist[:3], [0.0], twist[3:]])
+
+
+@dataclass(frozen=True)
+class Limb:
+    """A serial chain of one-DOF joints, base first, in its initial configuration.
+
+    Its finite screw is Eq. 7, ``S_f(q) = S_1(q1) △ S_2(q2) △ ... △ S_n(qn)``
+    (:meth:`finite_screw`); the twist of its end is the derivative of that
+    finite screw (:meth:`twists`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> arm = Limb((ScrewJoint("R", (0, 0, 1)), ScrewJoint("P", (1, 0, 0))))   # R about z, then a slide along x
+    >>> T = arm.transform([np.pi / 2, 2.0])
+    >>> np.round(T[:3, 3], 12) + 0.0                                       # the slide turned with the R
+    array([0., 2., 0.])
+    """
+
+    joints: tuple[ScrewJoint, ...]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "joints", tuple(self.joints))
+        if not all(isinstance(j, ScrewJoint) for j in self.joints):
+            raise ValueError("a limb is a sequence of ScrewJoint")
+
+    def __len__(self) -> int:
+        return len(self.joints)
+
+    def _values(self, q: Sequence[float] | None) -> np.ndarray:
+        values = np.zeros(len(self.joints)) if q is None else np.asarray(q, dtype=float).reshape(-1)
+        if values.shape != (len(self.joints),):
+            raise ValueError(f"expected {len(self.joints)} joint values, got {values.shape[0]}")
+        return values
+
+    def factors(self, q: Sequence[float] | None = None) -> list[FiniteScrew]:
+        """The joints' finite screws ``S_j(q_j)``, base first."""
+        return [j.finite_screw(x) for j, x in zip(self.joints, self._values(q))]
+
+    def finite_screw(self, q: Sequence[float] | None = None) -> FiniteScrew:
+        """``S_1(q1) △ S_2(q2) △ ... △ S_n(qn)`` (Eq. 7), homogeneous form."""
+        return reduce(FiniteScrew.triangle, self.factors(q), FiniteScrew.identity())
+
+    def transform(self, q: Sequence[float] | None = None) -> np.ndarray:
+        """4x4 displacement of the chain's end."""
+        return self.finite_screw(q).transform()
+
+    def _raw_rates(self, q: Sequence[float] | None) -> tuple[np.ndarray, np.ndarray]:
+        """The dual-quaternion product ``H = H_1 ... H_n`` and its partial derivatives (8 x n).
+
+        By the product rule on the bilinear form, with ``dH_j/dq_j = ½ ξ_j H_j``
+        (``H_j(q) = exp(q ξ_j / 2)``, ``ξ_j`` the joint's unit twist as a pure
+        dual quaternion).  No sign is fixed: the quasi-vector and the twist do
+        not depend on the sign of ``H``.
+        """
+        factors = [f.homogeneous for f in self.factors(q)]
+        one = np.array([1.0, 0, 0, 0, 0, 0, 0, 0])
+        left = [one]
+        for f in factors:
+            left.append(_dqmul(left[-1], f))
+        right = [one]
+        for f in reversed(factors):
+            right.append(_dqmul(f, right[-1]))
+        right = right[::-1]  # right[j] = H_j ... H_n (0-based)
+        rates = np.empty((8, len(factors)))
+        for j, (joint, f) in enumerate(zip(self.joints, factors)):
+            rates[:, j] = _dqmul(_dqmul(left[j], 0.5 * _dqmul(_pure(joint.twist()), f)), right[j + 1])
+        return left[-1], rates
+
+    def finite_screw_rates(self, q: Sequence[float] | None = None) -> np.ndarray:
+        """Partial derivatives ``∂S_f/∂q_j`` of the quasi-vector (6 x n).
+
+        Raises
+        ------
+        HalfTurnError
+            When the chain's displacement is a half-turn (the quasi-vector is infinite).
+        """
+        return _quasi_vector_rates(*self._raw_rates(q))[1]
+
+    def twists(self, q: Sequence[float] | None = None) -> np.ndarray:
+        """Joint twists at pose ``q`` (6 x n), as the derivative of the limb's finite screw.
+
+        Column ``j`` is :func:`twist_from_finite_screw_rate` ``(S_f, ∂S_f/∂q_j)``
+        (Eqs. 5 and 26).  At a half-turn, where the quasi-vector is infinite,
+        the same derivative is taken in homogeneous form: ``2 vec(dH H*)``.
+        """
+        h, dh = self._raw_rates(q)
+        n = dh.shape[1]
+        if abs(h[0]) <= _ROUND_OFF * np.linalg.norm(h[:4]):
+            hc = np.concatenate([_conj(h[:4]), _conj(h[4:])]) / float(h[:4] @ h[:4])
+            prods = [_dqmul(dh[:, j], hc) for j in range(n)]
+            return np.stack([2.0 * np.concatenate([p[1:4], p[5:8]]) for p in prods], axis=1).reshape(6, n)
+        s, d = _quasi_vector_rates(h, dh)
+        return np.stack([twist_from_finite_screw_rate(s, d[:, j]) for j in range(n)], axis=1).reshape(6, n)
+
+    def moved(self, q: Sequence[float]) -> "Limb":
+        """The same chain with pose ``q`` taken as its new initial configuration (axes carried along)."""
+        values = self._values(q)
+        out = []
+        acc = np.eye(4)
+        for joint, x in zip(self.joints, values):
+            out.append(joint.moved(acc))
+            acc = acc @ joint.finite_screw(x).transform()
+        return Limb(tuple(out))
+
+
+def _quasi_vector_rates(h: np.ndarray, dh: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Quasi-vector ``2 [vec q; vec q0] / scal q`` of a dual quaternion and its derivatives (quotient rule)."""
+    if abs(h[0]) <= _ROUND_OFF * np.linalg.norm(h[:4]):
+        raise HalfTurnError("the chain's displacement is a half-turn: its quasi-vector and derivatives are infinite")
+    vec = 2.0 * np.concatenate([h[1:4], h[5:8]])
+    dvec = 2.0 * np.concatenate([dh[1:4], dh[5:8]])
+    return vec / h[0], dvec / h[0] - np.outer(vec, dh[0]) / h[0] ** 2

@@ -1,0 +1,161 @@
+"""Joint twists of a mechanism, in the normalised coordinates of the tolerance policy.
+
+:func:`joint_screws` turns every elementary freedom of every joint (global
+frame) into a unit twist column, after moving the origin to the mechanism's
+centre ``c`` and dividing lengths by its characteristic length ``L`` (see
+:mod:`mobility.core.tolerance`).  :class:`Normalisation` maps screws back to the
+global frame and the file's length unit.
+
+Examples
+--------
+>>> from mobility.core.model import Joint, Mechanism
+>>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(0, 0, 5)),))
+>>> js = joint_screws(m)
+>>> js.twists[:, 0].tolist()
+[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any, Callable
+
+import numpy as np
+
+from .model import Mechanism
+from .tolerance import characteristic_scale
+from .transforms import cross, skew
+
+__all__ = ["Normalisation", "JointScrews", "joint_screws", "per_object_cache", "clear_cache"]
+
+
+@dataclass(frozen=True, eq=False)
+class Normalisation:
+    """Normalised coordinates: origin at ``centre``, lengths divided by ``length``.
+
+    A screw ``[a; b]`` (twist ``[w; v]`` or wrench ``[f; m]``) in global
+    coordinates becomes ``[a; (b - centre x a) / length]``.
+    """
+
+    centre: np.ndarray
+    length: float
+
+    @cached_property
+    def size(self) -> float:
+        """A length for rounding output: ``length + |centre|``."""
+        return self.length + float(np.sqrt(self.centre @ self.centre))
+
+    def to_world(self, screws: np.ndarray) -> np.ndarray:
+        """Map screws (columns) from normalised to global coordinates."""
+        s = np.asarray(screws, dtype=float).reshape(6, -1)
+        out = np.empty_like(s)
+        out[:3] = s[:3]
+        out[3:] = self.length * s[3:] + cross(self.centre[:, None], s[:3])
+        return out
+
+    def from_world(self, screws: np.ndarray) -> np.ndarray:
+        """Map screws (columns) from global to normalised coordinates."""
+        s = np.asarray(screws, dtype=float).reshape(6, -1)
+        out = np.empty_like(s)
+        out[:3] = s[:3]
+        out[3:] = (s[3:] - cross(self.centre[:, None], s[:3])) / self.length
+        return out
+
+    def point_to_world(self, p: np.ndarray) -> np.ndarray:
+        """Map a point from normalised to global coordinates."""
+        return self.centre + self.length * np.asarray(p, dtype=float)
+
+    def point_from_world(self, p: np.ndarray) -> np.ndarray:
+        """Map a point from global to normalised coordinates."""
+        return (np.asarray(p, dtype=float) - self.centre) / self.length
+
+    def matrix_to_world(self) -> np.ndarray:
+        """The 6x6 matrix of :meth:`to_world`."""
+        m = np.eye(6)
+        m[3:, 3:] *= self.length
+        m[3:, :3] = skew(self.centre)
+        return m
+
+
+@dataclass(frozen=True)
+class JointScrews:
+    """All joint twists of a mechanism as one matrix.
+
+    Attributes
+    ----------
+    twists : ndarray, shape (6, n)
+        Unit twist columns in normalised coordinates, joint after joint, each
+        joint's freedoms in the order of :meth:`~mobility.core.model.Joint.freedoms`.
+    offsets : ndarray, shape (J + 1,)
+        Columns of joint ``j`` are ``offsets[j]:offsets[j+1]``.
+    normalisation : Normalisation
+    reference : ndarray, shape (3,)
+        Reference point in normalised coordinates: the centroid of the points
+        of the joints on the end effector (the mechanism's centre if none).
+        Canonical axes are given through the point nearest to it.
+    columns : tuple of ndarray
+        ``columns[j]`` is the view of ``twists`` holding joint ``j``'s columns.
+    reference_in_world : ndarray, shape (3,)
+        The reference point in the global frame and the file's unit.
+    """
+
+    twists: np.ndarray
+    offsets: np.ndarray
+    normalisation: Normalisation
+    reference: np.ndarray
+    columns: tuple[np.ndarray, ...]
+    reference_in_world: np.ndarray
+
+    def of_joint(self, index: int) -> np.ndarray:
+        """Twist columns of joint ``index``."""
+        return self.columns[index]
+
+
+_CACHE_ATTRIBUTE = "_mobility_cache"
+
+
+def per_object_cache(obj: object, key: str, factory: Callable[[], Any]) -> Any:
+    """Compute ``factory()`` once per object ``obj`` and key.
+
+    The values are kept in the object's own ``__dict__`` (as
+    :func:`functools.cached_property` does, which works on frozen dataclasses
+    too), so they live and die with it and cost one dictionary look-up, unlike
+    hashing a large frozen description.
+    """
+    cache = vars(obj).get(_CACHE_ATTRIBUTE)
+    if cache is None:
+        cache = vars(obj)[_CACHE_ATTRIBUTE] = {}
+    if key not in cache:
+        cache[key] = factory()
+    return cache[key]
+
+
+def clear_cache(obj: object) -> None:
+    """Forget what :func:`per_object_cache` computed for ``obj`` (for benchmarks)."""
+    vars(obj).pop(_CACHE_ATTRIBUTE, None)
+
+
+def joint_screws(mechanism: Mechanism) -> JointScrews:
+    """Unit joint twists of ``mechanism`` in normalised coordinates (cached per mechanism)."""
+    return per_object_cache(mechanism, "joint_screws", lambda: _build(mechanism))
+
+
+def _build(mechanism: Mechanism) -> JointScrews:
+    table = mechanism.freedom_table
+    pitches = table.pitches
+    centre, length = characteristic_scale(table.located, pitches[pitches != 0.0])
+    axes = table.axes
+    moment = (cross((table.points - centre).T, axes.T).T + pitches[:, None] * axes) / length
+    p = table.prismatic[:, None]
+    tw = np.concatenate([np.where(p, 0.0, axes), np.where(p, axes, moment)], axis=1).T
+    tw /= np.sqrt(np.einsum("ij,ij->j", tw, tw))  # unit columns
+    tw.setflags(write=False)
+    norm = Normalisation(centre, length)
+    ee = table.end_effector_points
+    reference = (ee.sum(axis=0) / len(ee) - centre) / length if len(ee) else np.zeros(3)
+    offsets = table.offsets
+    columns = tuple(tw[:, offsets[j] : offsets[j + 1]] for j in range(len(offsets) - 1))
+    reference_in_world = norm.point_to_world(reference)
+    reference_in_world.setflags(write=False)
+    return JointScrews(tw, np.array(offsets), norm, reference, columns, reference_in_world)

@@ -1,0 +1,750 @@
+"""Finite motion of a mechanism: joint variables, forward kinematics and loop closure.
+
+The screw route (:func:`mobility.analyze`) answers at one pose.  This module
+moves the mechanism: it is the finite counterpart of
+:mod:`mobility.core.loop_closure`, on the same spanning tree of the joint graph.
+
+* **Joint variables** ``q``: one per elementary freedom
+  (:meth:`~mobility.core.model.Joint.freedoms`), in the order of
+  :func:`~mobility.core.joint_screws.joint_screws` (joint after joint); ``q = 0`` is
+  the given pose.  Rotations are in radians, translations in units of the
+  mechanism's characteristic length ``L`` (see :mod:`mobility.core.tolerance`), so
+  every number here is dimensionless and does not change when the file is
+  scaled or moved rigidly.
+* **Finite motion of a joint** (``links[1]`` relative to ``links[0]``): the
+  product of exponentials of its freedoms, ``exp(q1 x1) exp(q2 x2) ...``,
+  in the order of the freedoms (``U``: the axis on ``links[0]``'s side first;
+  ``S``: rotations about x, y, z; ``E``: two translations, then the rotation).
+  Twists ``x_i`` are taken at the given pose, in normalised coordinates.
+* **Forward kinematics** along a breadth-first spanning tree from the ground:
+  the displacement ``g_L`` of each link (a 4x4 homogeneous matrix mapping the
+  link's points from the given pose to the moved one, normalised coordinates)
+  is the product of the joint motions on its tree path.
+* **Loop closure**: each joint off the tree (a *chord*, from ``a`` to ``b``)
+  closes one loop, ``g_a E_c(q_c) g_b^-1 = I``.  The residual of the loop is
+  the matrix logarithm of that product, a twist ``[w; v]`` (6 numbers; the
+  common part of the two tree paths cancels).  Its Jacobian is the
+  right-trivialised loop Jacobian (the joint twists at the moved pose, the
+  same equations as :mod:`mobility.core.loop_closure`) corrected by the inverse
+  of the differential of the exponential, so it is the exact derivative.
+* **Re-closure**: Gauss–Newton with minimum-norm steps (least squares) from a
+  guess, optionally with extra linear equations ``A q = b`` (used to fix the
+  progress along a direction).
+* **Moved mechanism**: :meth:`Kinematics.mechanism_at` builds a new
+  :class:`~mobility.core.model.Mechanism` at the pose ``q``: each joint's geometry
+  is carried by the link it belongs to (a ``U`` joint's first axis by
+  ``links[0]``, its second by ``links[1]``; every other field by
+  ``links[0]``), written in the global frame.
+
+Examples
+--------
+>>> import numpy as np
+>>> from mobility.core.model import Joint, Mechanism
+>>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+>>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
+...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
+>>> kin = kinematics(m)
+>>> kin.variable_count, kin.chords
+(4, (2,))
+>>> float(np.abs(kin.residual(np.zeros(4))).max())
+0.0
+>>> guess = 0.05 * kin.tangent_space(np.zeros(4))[:, 0]
+>>> closed = kin.close(guess)
+>>> closed.converged, closed.residual < 1e-12
+(True, True)
+>>> moved = kin.mechanism_at(closed.q)
+>>> bool(np.isclose(np.linalg.norm(np.subtract(moved.joints[1].point, moved.joints[0].point)), np.sqrt(5)))
+True
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from dataclasses import replace as _replace
+
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from .joint_screws import Normalisation, joint_screws, per_object_cache
+from .model import WORLD, Mechanism
+from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
+from .topology import spanning_tree
+from .transforms import skew
+
+__all__ = [
+    "Factor",
+    "Closure",
+    "Kinematics",
+    "kinematics",
+    "twist_matrix",
+    "twist_exp",
+    "displacement_log",
+    "bracket",
+    "CLOSURE_TOLERANCE",
+    "sample_poses",
+]
+
+CLOSURE_TOLERANCE = 1e-12
+"""A loop counts as closed when every residual component (radians, or lengths
+over ``L``) is at most this; Newton reaches it in a few steps from a good guess."""
+
+
+# ---------------------------------------------------------------------------
+# SE(3) helpers, in [w; v] coordinates (angular part first)
+# ---------------------------------------------------------------------------
+
+
+def twist_matrix(twist: np.ndarray) -> np.ndarray:
+    """The 4x4 matrix ``[[skew(w), v], [0, 0]]`` of a twist ``[w; v]``.
+
+    Examples
+    --------
+    >>> twist_matrix([0, 0, 1, 1, 0, 0])[:3].tolist()
+    [[0.0, -1.0, 0.0, 1.0], [1.0, 0.0, -0.0, 0.0], [-0.0, 0.0, 0.0, 0.0]]
+    """
+    x = np.asarray(twist, dtype=float)
+    out = np.zeros((4, 4))
+    out[:3, :3] = skew(x[:3])
+    out[:3, 3] = x[3:]
+    return out
+
+
+def twist_exp(twist: np.ndarray) -> np.ndarray:
+    """The displacement ``exp(twist)`` as a 4x4 homogeneous matrix.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> g = twist_exp([0, 0, np.pi / 2, 0, 0, 0])   # quarter turn about z through the origin
+    >>> np.round(g[:3, :3] @ [1, 0, 0], 12).tolist()
+    [0.0, 1.0, 0.0]
+    """
+    x = np.asarray(twist, dtype=float)
+    theta = float(np.linalg.norm(x[:3]))
+    a, _, _, _ = _coefficients(theta)
+    k = skew(x[:3])
+    out = np.eye(4)
+    out[:3, :3] = np.eye(3) + float(np.sinc(theta / np.pi)) * k + a * (k @ k)
+    out[:3, 3] = _so3_left_jacobian(x[:3]) @ x[3:]
+    return out
+
+
+def _coefficients(theta: float) -> tuple[float, float, float, float]:
+    """``(1 - cos t)/t^2, (t - sin t)/t^3, (t^2 + 2 cos t - 2)/(2 t^4), (2 t - 3 sin t + t cos t)/(2 t^5)``.
+
+    Their Taylor series below ``t = 1`` (no cancellation), the closed forms above.
+    """
+    if theta < 1.0:
+        t2 = theta * theta
+        a = b = c = d = 0.0
+        power = 1.0
+        for m in range(8):
+            sign = power if m % 2 == 0 else -power
+            a += sign / math.factorial(2 * m + 2)
+            b += sign / math.factorial(2 * m + 3)
+            c += sign / math.factorial(2 * m + 4)
+            d += sign * (m + 1) / math.factorial(2 * m + 5)
+            power *= t2
+        return a, b, c, d
+    s, co = math.sin(theta), math.cos(theta)
+    return (
+        (1.0 - co) / theta**2,
+        (theta - s) / theta**3,
+        (theta**2 + 2.0 * co - 2.0) / (2.0 * theta**4),
+        (2.0 * theta - 3.0 * s + theta * co) / (2.0 * theta**5),
+    )
+
+
+def _so3_left_jacobian(w: np.ndarray) -> np.ndarray:
+    """``sum_k skew(w)^k / (k+1)! = I + A skew(w) + B skew(w)^2``."""
+    a, b, _, _ = _coefficients(float(np.linalg.norm(w)))
+    k = skew(w)
+    return np.eye(3) + a * k + b * (k @ k)
+
+
+def _rotation_log(rot: np.ndarray) -> np.ndarray:
+    """Rotation vector of a rotation matrix (closed form away from a half turn, else scipy)."""
+    axis2 = np.array([rot[2, 1] - rot[1, 2], rot[0, 2] - rot[2, 0], rot[1, 0] - rot[0, 1]])  # 2 sin(t) u
+    sine2 = float(np.linalg.norm(axis2))
+    theta = float(np.arctan2(0.5 * sine2, 0.5 * (np.trace(rot) - 1.0)))
+    if theta > 3.0:
+        return Rotation.from_matrix(rot).as_rotvec()
+    return axis2 / (2.0 * float(np.sinc(theta / np.pi)))
+
+
+def displacement_log(g: np.ndarray) -> np.ndarray:
+    """The twist ``[w; v]`` with ``exp(twist) = g`` (rotation angle below pi).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.array([0.1, -0.2, 0.3, 1.0, 2.0, -0.5])
+    >>> bool(np.allclose(displacement_log(twist_exp(x)), x))
+    True
+    """
+    g = np.asarray(g, dtype=float)
+    w = _rotation_log(g[:3, :3])
+    v = np.linalg.solve(_so3_left_jacobian(w), g[:3, 3])
+    return np.concatenate([w, v])
+
+
+def bracket(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Lie bracket of twists ``[a, b]`` (the twist of ``A B - B A`` for their matrices).
+
+    Examples
+    --------
+    >>> bracket([1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0]).tolist()
+    [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]
+    """
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    return np.concatenate([np.cross(a[:3], b[:3]), np.cross(a[:3], b[3:]) - np.cross(b[:3], a[3:])])
+
+
+def _ad(x: np.ndarray) -> np.ndarray:
+    """The 6x6 matrix of ``y -> [x, y]``."""
+    out = np.zeros((6, 6))
+    out[:3, :3] = skew(x[:3])
+    out[3:, 3:] = skew(x[:3])
+    out[3:, :3] = skew(x[3:])
+    return out
+
+
+def _dexp(x: np.ndarray) -> np.ndarray:
+    """``sum_k ad(x)^k / (k+1)!``, so that ``d exp(x) exp(-x) = dexp(x) dx`` (closed form).
+
+    In ``[w; v]`` order it is ``[[J, 0], [Q, J]]`` with ``J`` the left Jacobian
+    of SO(3) and ``Q`` the series ``sum_k sum_(i+j=k-1) W^i V W^j / (k+1)!``
+    summed in closed form (Barfoot and Furgale, IEEE T-RO 2014, eq. 102).
+    """
+    x = np.asarray(x, dtype=float)
+    a, b, c, d = _coefficients(float(np.linalg.norm(x[:3])))
+    w, v = skew(x[:3]), skew(x[3:])
+    ww, wv, vw, wvw = w @ w, w @ v, v @ w, w @ v @ w
+    jac = np.eye(3) + a * w + b * ww
+    q = 0.5 * v + b * (wv + vw + wvw) + c * (ww @ v + v @ ww - 3.0 * wvw) + d * (wvw @ w + w @ wvw)
+    out = np.zeros((6, 6))
+    out[:3, :3] = jac
+    out[3:, 3:] = jac
+    out[3:, :3] = q
+    return out
+
+
+# ---------------------------------------------------------------------------
+# The model
+# ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Factor:
+    """One factor ``exp(sign * q[variable] * twist)`` of a product of exponentials."""
+
+    variable: int
+    sign: float
+
+
+@dataclass(frozen=True, eq=False)
+class Closure:
+    """Outcome of one re-closure (:meth:`Kinematics.close`).
+
+    Attributes
+    ----------
+    q : ndarray
+        Joint variables reached (the best iterate).
+    residual : float
+        Largest absolute loop residual (and extra-equation error) there,
+        dimensionless.
+    iterations : int
+        Newton steps taken.
+    converged : bool
+        ``residual <= tol``.
+    history : tuple of float
+        The residual before each step (for diagnostics).
+    """
+
+    q: np.ndarray
+    residual: float
+    iterations: int
+    converged: bool
+    history: tuple[float, ...] = ()
+
+
+@dataclass(frozen=True, eq=False)
+class Kinematics:
+    """Product-of-exponentials model of a mechanism at its given pose (``q = 0``).
+
+    Build it with :func:`kinematics`.  All twists and displacements are in the
+    normalised coordinates of the tolerance policy (origin at the mechanism's
+    centre, lengths over ``L``).
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+        The mechanism at ``q = 0``.
+    normalisation : Normalisation
+        Centre and length ``L`` of the normalised coordinates.
+    twists : ndarray, shape (6, n)
+        The twist of each freedom at the given pose, unit angular part for a
+        rotation (unit linear part for a translation), so ``q`` is an angle
+        or a length over ``L``.
+    offsets : ndarray, shape (J + 1,)
+        Variables of joint ``j`` are ``offsets[j]:offsets[j+1]``.
+    kinds : tuple of str
+        ``"R"``, ``"P"`` or ``"H"`` for each variable.
+    tree : tuple of int
+        Indices of the joints of the spanning tree.
+    chords : tuple of int
+        Indices of the joints closing one loop each, in the order of the
+        residual's 6-blocks.
+    """
+
+    mechanism: Mechanism
+    normalisation: Normalisation
+    twists: np.ndarray
+    offsets: np.ndarray
+    kinds: tuple[str, ...]
+    tree: tuple[int, ...]
+    chords: tuple[int, ...]
+    _paths: dict = field(repr=False)
+    _loops: tuple = field(repr=False)
+    _points: np.ndarray = field(repr=False)
+    _axes: np.ndarray = field(repr=False)
+    _pitches: np.ndarray = field(repr=False)
+    _skews: np.ndarray = field(repr=False)
+    _skews2: np.ndarray = field(repr=False)
+    _prismatic: np.ndarray = field(repr=False)
+
+    @property
+    def variable_count(self) -> int:
+        """Number of joint variables ``n`` (the sum of the joints' DOF)."""
+        return self.twists.shape[1]
+
+    @property
+    def loop_count(self) -> int:
+        """Number of independent loops (chords)."""
+        return len(self.chords)
+
+    def variables_of(self, joint: int | str) -> slice:
+        """Slice of ``q`` holding the variables of a joint (index or name)."""
+        index = joint if isinstance(joint, int) else [j.name for j in self.mechanism.joints].index(joint)
+        return slice(int(self.offsets[index]), int(self.offsets[index + 1]))
+
+    # -- products of exponentials -------------------------------------------
+    def _factor_exps(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``exp(q_i x_i)`` and its inverse for every variable, each of shape ``(n, 4, 4)`` (Rodrigues, vectorised)."""
+        q = np.asarray(q, dtype=float)
+        sin, one_minus_cos = np.sin(q), 1.0 - np.cos(q)
+        rot = np.eye(3) + sin[:, None, None] * self._skews + one_minus_cos[:, None, None] * self._skews2
+        rot[self._prismatic] = np.eye(3)
+        p = self._points
+        shift = p - np.einsum("nij,nj->ni", rot, p) + (self._pitches * q)[:, None] * self._axes
+        shift[self._prismatic] = q[self._prismatic, None] * self._axes[self._prismatic]
+        exps = np.zeros((len(q), 4, 4))
+        exps[:, 3, 3] = 1.0
+        exps[:, :3, :3] = rot
+        exps[:, :3, 3] = shift
+        inverses = exps.copy()
+        inverses[:, :3, :3] = rot.transpose(0, 2, 1)
+        inverses[:, :3, 3] = -np.einsum("nji,nj->ni", rot, shift)
+        return exps, inverses
+
+    @staticmethod
+    def _product(factors: tuple[Factor, ...], exps: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+        g = np.eye(4)
+        forward, backward = exps
+        for f in factors:
+            g = g @ (forward[f.variable] if f.sign > 0 else backward[f.variable])
+        return g
+
+    def _check(self, q: np.ndarray) -> np.ndarray:
+        q = np.asarray(q, dtype=float).reshape(-1)
+        if q.shape != (self.variable_count,):
+            raise ValueError(f"expected {self.variable_count} joint variables, got {q.size}")
+        return q
+
+    def link_displacements(self, q: np.ndarray) -> dict[str, np.ndarray]:
+        """Displacement ``g_L`` (4x4, normalised coordinates) of every link at ``q``.
+
+        ``g_L`` maps a point of link ``L`` at the given pose to where it is at
+        ``q`` (the ground's is the identity).
+        """
+        q = self._check(q)
+        exps = self._factor_exps(q)
+        return {link: self._product(path, exps) for link, path in self._paths.items()}
+
+    def loop_displacements(self, q: np.ndarray) -> list[np.ndarray]:
+        """For each chord ``c`` from ``a`` to ``b``: ``g_a E_c(q_c) g_b^-1`` (identity when closed)."""
+        q = self._check(q)
+        exps = self._factor_exps(q)
+        return [self._product(loop, exps) for loop in self._loops]
+
+    def residual(self, q: np.ndarray) -> np.ndarray:
+        """Loop-closure residual at ``q``: the logarithm of each loop product, stacked (``6 * loops``)."""
+        if not self._loops:
+            self._check(q)
+            return np.zeros(0)
+        return np.concatenate([displacement_log(g) for g in self.loop_displacements(q)])
+
+    def _spatial(self, factors: tuple[Factor, ...], exps: tuple[np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+        """Product ``G`` of ``factors`` and its right-trivialised derivative ``(dG G^-1)`` per variable."""
+        cols = np.zeros((6, self.variable_count))
+        if not factors:
+            return np.eye(4), cols
+        forward, backward = exps
+        before = np.empty((len(factors), 4, 4))
+        g = np.eye(4)
+        for i, f in enumerate(factors):
+            before[i] = g
+            g = g @ (forward[f.variable] if f.sign > 0 else backward[f.variable])
+        variables = [f.variable for f in factors]  # each variable at most once in a path or loop
+        x = self.twists[:, variables].T * np.array([f.sign for f in factors])[:, None]
+        rot, shift = before[:, :3, :3], before[:, :3, 3]
+        w = np.einsum("mij,mj->mi", rot, x[:, :3])
+        v = np.cross(shift, w) + np.einsum("mij,mj->mi", rot, x[:, 3:])
+        cols[:, variables] = np.concatenate([w, v], axis=1).T
+        return g, cols
+
+    def loop_jacobian(self, q: np.ndarray) -> np.ndarray:
+        """Right-trivialised loop Jacobian at ``q``: rows ``(dL L^-1)`` of each loop product ``L``.
+
+        At a closed pose these are the loop-closure equations of
+        :mod:`mobility.core.loop_closure` written with the joint twists at the moved
+        pose (up to the sign and the column scaling of unit twists).
+        """
+        q = self._check(q)
+        exps = self._factor_exps(q)
+        rows = [self._spatial(loop, exps)[1] for loop in self._loops]
+        return np.vstack(rows) if rows else np.zeros((0, self.variable_count))
+
+    def jacobian(self, q: np.ndarray) -> np.ndarray:
+        """Exact derivative of :meth:`residual` at ``q``, shape ``(6 * loops, n)``."""
+        return self.linearize(q)[1]
+
+    def linearize(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`residual` and :meth:`jacobian` at ``q``, computed together."""
+        q = self._check(q)
+        if not self._loops:
+            return np.zeros(0), np.zeros((0, self.variable_count))
+        exps = self._factor_exps(q)
+        residuals, rows = [], []
+        for loop in self._loops:
+            g, cols = self._spatial(loop, exps)
+            r = displacement_log(g)
+            residuals.append(r)
+            rows.append(np.linalg.solve(_dexp(r), cols))
+        return np.concatenate(residuals), np.vstack(rows)
+
+    def end_effector_jacobian(self, q: np.ndarray) -> np.ndarray:
+        """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q``."""
+        q = self._check(q)
+        exps = self._factor_exps(q)
+        return self._spatial(self._paths[self.mechanism.end_effector], exps)[1]
+
+    # -- first-order and second-order structure ------------------------------
+    def rank_decision(self, q: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[RankDecision, np.ndarray]:
+        """Rank of the loop Jacobian at ``q`` (unit-norm columns, the tolerance policy) and its null space.
+
+        Returns the decision and an orthonormal basis (``n x mobility``, in
+        the metric of ``q``) of the joint rates that close every loop to first
+        order.
+        """
+        jac = self.loop_jacobian(q)
+        n = self.variable_count
+        if jac.shape[0] == 0:
+            return RankDecision(0), np.eye(n)
+        norms = np.linalg.norm(self.twists, axis=0)
+        _, s, vt = np.linalg.svd(jac / norms, full_matrices=True)
+        decision = decide_rank(s, tol)
+        null = vt[decision.rank :].T / norms[:, None]  # back to rates of q
+        if null.shape[1]:
+            null = np.linalg.qr(null)[0]
+        return decision, null
+
+    def tangent_space(self, q: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
+        """Orthonormal basis of the first-order motions at ``q`` (null space of the loop Jacobian)."""
+        return self.rank_decision(q, tol)[1]
+
+    def second_order_forms(self, cokernel: np.ndarray) -> np.ndarray:
+        """Second derivative of the residual at ``q = 0`` along a direction, projected on ``cokernel``.
+
+        For a direction ``d`` of joint rates, ``r(t d) = t J d + t^2/2 B(d, d) + O(t^3)``
+        with ``B(d, d) = sum_{i<j} [a_i, a_j]`` over the factors of each loop
+        (``a_i = sign_i d_(var i) x_i``, Baker–Campbell–Hausdorff).  Returns the
+        symmetric matrices ``M_k`` with ``w_k . B(d, d) = d @ M_k @ d`` for each
+        column ``w_k`` of ``cokernel`` (shape ``(6 * loops, c)``), as an array
+        ``(c, n, n)``.  A first-order motion ``d`` extends to second order only
+        if every ``d @ M_k @ d`` vanishes (``w_k`` spanning the left null space
+        of the Jacobian).
+        """
+        n = self.variable_count
+        cokernel = np.asarray(cokernel, dtype=float).reshape(6 * self.loop_count, -1)
+        out = np.zeros((cokernel.shape[1], n, n))
+        for index, loop in enumerate(self._loops):
+            w = cokernel[6 * index : 6 * index + 6]  # (6, c)
+            if not np.any(w):
+                continue
+            xs = [f.sign * self.twists[:, f.variable] for f in loop]
+            for i in range(len(loop)):
+                for j in range(i + 1, len(loop)):
+                    b = bracket(xs[i], xs[j]) @ w  # (c,)
+                    vi, vj = loop[i].variable, loop[j].variable
+                    out[:, vi, vj] += 0.5 * b
+                    out[:, vj, vi] += 0.5 * b
+        return out
+
+    # -- re-closure ------------------------------------------------------------
+    def close(
+        self,
+        q: np.ndarray,
+        *,
+        constraints: tuple[np.ndarray, np.ndarray] | None = None,
+        tol: float = CLOSURE_TOLERANCE,
+        max_iter: int = 40,
+        max_move: float | None = None,
+    ) -> Closure:
+        """Re-close every loop by Gauss–Newton with minimum-norm steps, starting from ``q``.
+
+        Parameters
+        ----------
+        q : ndarray
+            Starting joint variables (e.g. the given pose plus a step).
+        constraints : (A, b), optional
+            Extra linear equations ``A q = b`` solved together with the loops
+            (e.g. the progress along a direction).
+        tol : float
+            Closed when every residual component is at most ``tol``
+            (dimensionless).
+        max_iter : int
+            Newton steps at most.
+        max_move : float, optional
+            Give up when the iterate goes farther than this from the start
+            (it would reach another assembly, not the nearby one).
+
+        Returns
+        -------
+        Closure
+            ``converged`` tells whether it closed; never raises for a failure
+            to close (the caller decides what that means).
+        """
+        q = self._check(q).copy()
+        start = q.copy()
+        if constraints is None:
+            a = np.zeros((0, self.variable_count))
+            b = np.zeros(0)
+        else:
+            a = np.asarray(constraints[0], dtype=float).reshape(-1, self.variable_count)
+            b = np.asarray(constraints[1], dtype=float).reshape(-1)
+        best_q, best_err = q.copy(), np.inf
+        history: list[float] = []
+        stalled = 0
+        polish = 0
+        for iteration in range(max_iter + 1):
+            r, jac = self.linearize(q)
+            f = np.concatenate([r, a @ q - b])
+            err = float(np.max(np.abs(f))) if f.size else 0.0
+            history.append(err)
+            improved = err < 0.5 * best_err
+            if err < best_err:
+                stalled = 0 if improved else stalled + 1
+                best_q, best_err = q.copy(), err
+            else:
+                stalled += 1
+            if best_err <= tol:
+                # closed; polish while Newton still gains (a small residual near a
+                # singular pose can leave the pose itself off by residual / sigma_min)
+                polish += 1
+                if not improved or polish > 3 or err == 0.0:
+                    break
+            if iteration == max_iter or stalled >= 6:
+                break
+            step = np.linalg.lstsq(np.vstack([jac, a]), -f, rcond=1e-12)[0]
+            q = q + step
+            if not np.all(np.isfinite(q)) or (max_move is not None and np.linalg.norm(q - start) > max_move):
+                break
+        return Closure(best_q, best_err, len(history) - 1, best_err <= tol, tuple(history))
+
+    # -- the moved mechanism -------------------------------------------------------
+    def mechanism_at(self, q: np.ndarray) -> Mechanism:
+        """The mechanism at the pose ``q``, joints written in the global frame.
+
+        Each joint's geometry is carried by the link it belongs to (see the
+        module docstring); names, types, links and ``actuated`` flags are kept,
+        named frames are dropped (they describe the given pose) and so is the
+        ``expected`` block (it describes the given pose too).
+        """
+        g = self.link_displacements(q)
+        norm = self.normalisation
+        joints = []
+        for joint in self.mechanism.world_joints:
+            ga, gb = g[joint.links[0]], g[joint.links[1]]
+
+            def point(p: tuple[float, float, float] | None, disp: np.ndarray = ga) -> tuple[float, ...] | None:
+                if p is None:
+                    return None
+                pn = norm.point_from_world(np.asarray(p))
+                return tuple(float(x) for x in norm.point_to_world(disp[:3, :3] @ pn + disp[:3, 3]))
+
+            def direction(d: tuple[float, float, float] | None, disp: np.ndarray = ga) -> tuple[float, ...] | None:
+                return None if d is None else tuple(float(x) for x in disp[:3, :3] @ np.asarray(d))
+
+            changes: dict = {"frame": WORLD, "point": point(joint.point), "axis": direction(joint.axis), "normal": direction(joint.normal)}
+            if joint.axes is not None:
+                changes["axes"] = (direction(joint.axes[0], ga), direction(joint.axes[1], gb))
+            joints.append(_replace(joint, **changes))
+        return self.mechanism.replace(joints=tuple(joints), frames=(), expected=None)
+
+
+def kinematics(mechanism: Mechanism) -> Kinematics:
+    """The product-of-exponentials model of ``mechanism`` at its pose (cached per mechanism).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+
+    Returns
+    -------
+    Kinematics
+    """
+    return per_object_cache(mechanism, "kinematics", lambda: _build(mechanism))
+
+
+def _build(mechanism: Mechanism) -> Kinematics:
+    norm = joint_screws(mechanism).normalisation
+    kinds, axes, points, pitches, offsets = [], [], [], [], [0]
+    for joint in mechanism.world_joints:
+        for f in joint.freedoms():
+            kinds.append(f.kind)
+            axes.append(np.asarray(f.axis, dtype=float))
+            points.append(norm.point_from_world(np.asarray(f.point, dtype=float)))
+            pitches.append(f.pitch / norm.length)
+        offsets.append(len(kinds))
+    n = len(kinds)
+    axes_a = np.array(axes, dtype=float).reshape(n, 3)
+    points_a = np.array(points, dtype=float).reshape(n, 3)
+    pitch_a = np.array(pitches, dtype=float)
+    is_p = np.array([k == "P" for k in kinds], dtype=bool)
+    points_a[is_p] = 0.0
+    pitch_a[~np.array([k == "H" for k in kinds], dtype=bool)] = 0.0
+    w = np.where(is_p[:, None], 0.0, axes_a)
+    v = np.where(is_p[:, None], axes_a, np.cross(points_a, axes_a) + pitch_a[:, None] * axes_a)
+    twists = np.concatenate([w, v], axis=1).T.copy()
+    twists.setflags(write=False)
+    skews = np.array([skew(a) for a in axes_a]).reshape(n, 3, 3)
+
+    # the spanning tree from the ground that mobility.core.loop_closure uses
+    tree_edges, chords = spanning_tree(mechanism)
+
+    def joint_factors(index: int, forward: bool) -> tuple[Factor, ...]:
+        lo, hi = offsets[index], offsets[index + 1]
+        if forward:
+            return tuple(Factor(v, 1.0) for v in range(lo, hi))
+        return tuple(Factor(v, -1.0) for v in reversed(range(lo, hi)))
+
+    paths: dict[str, tuple[Factor, ...]] = {mechanism.ground: ()}
+    joint_paths: dict[str, tuple[int, ...]] = {mechanism.ground: ()}
+    tree: list[int] = []
+    for edge in tree_edges:
+        tree.append(edge.joint)
+        paths[edge.child] = paths[edge.parent] + joint_factors(edge.joint, edge.forward)
+        joint_paths[edge.child] = joint_paths[edge.parent] + (edge.joint,)
+    loops = []
+    for index in chords:
+        a, b = mechanism.joints[index].links
+        pa, pb = joint_paths[a], joint_paths[b]
+        common = 0
+        while common < min(len(pa), len(pb)) and pa[common] == pb[common]:
+            common += 1
+        skip_a = sum(offsets[j + 1] - offsets[j] for j in pa[:common])
+        skip_b = sum(offsets[j + 1] - offsets[j] for j in pb[:common])
+        inverse_b = tuple(Factor(f.variable, -f.sign) for f in reversed(paths[b][skip_b:]))
+        loops.append(paths[a][skip_a:] + joint_factors(index, True) + inverse_b)
+    return Kinematics(
+        mechanism=mechanism,
+        normalisation=norm,
+        twists=twists,
+        offsets=np.array(offsets),
+        kinds=tuple(kinds),
+        tree=tuple(sorted(tree)),
+        chords=chords,
+        _paths=paths,
+        _loops=tuple(tuple(loop) for loop in loops),
+        _points=points_a,
+        _axes=axes_a,
+        _pitches=pitch_a,
+        _skews=skews,
+        _skews2=skews @ skews,
+        _prismatic=is_p,
+    )
+
+
+def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: int = 0) -> list[Mechanism]:
+    """Assembled poses reached by moving ``mechanism`` from its given pose.
+
+    A seeded random exploration: each new pose starts from one already
+    reached (the given one included), moves ``step`` along a random
+    first-order motion there and re-closes every loop by Newton; a move that
+    does not close is retried with half the step (down to ``step / 8``) and
+    another direction.  Each accepted pose is rebuilt as a
+    :class:`~mobility.core.model.Mechanism` (joints in the global frame) and the
+    next moves start from it, so the parametrisation never degenerates.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    count : int
+        Number of poses wanted.
+    step : float
+        Joint-space distance of each move (radians; lengths over the
+        characteristic length), so the same for a scaled or moved file.
+    seed : int
+        Seed of the random directions.
+
+    Returns
+    -------
+    list of Mechanism
+        Up to ``count`` poses, each closed to round-off; fewer (possibly none)
+        when the mechanism cannot move from where it is.
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+    >>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
+    ...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
+    >>> poses = sample_poses(m, 3, step=0.2, seed=1)
+    >>> len(poses), [p.joints[0].point for p in poses] == [m.joints[0].point] * 3
+    (3, True)
+    """
+    if count < 0:
+        raise ValueError("count must be non-negative")
+    if step <= 0.0:
+        raise ValueError("step must be positive")
+    rng = np.random.default_rng(seed)
+    reached: list[Mechanism] = [mechanism]
+    out: list[Mechanism] = []
+    failures = 0
+    while len(out) < count and failures < 20 * max(count, 1):
+        start = reached[int(rng.integers(len(reached)))]
+        kin = kinematics(start)
+        _, null = kin.rank_decision(np.zeros(kin.variable_count))
+        if null.shape[1] == 0:
+            if start is mechanism:
+                break  # nothing moves from the given pose
+            failures += 1
+            continue
+        u = rng.standard_normal(null.shape[1])
+        d = null @ (u / np.linalg.norm(u))
+        h = step
+        while h >= step / 8.0:
+            closure = kin.close(h * d, constraints=(d[None, :], np.array([h])), max_move=10.0 * h)
+            if closure.converged:
+                moved = kin.mechanism_at(closure.q)
+                reached.append(moved)
+                out.append(moved)
+                break
+            h /= 2.0
+        else:
+            failures += 1
+    return out

@@ -1,0 +1,536 @@
+"""The mechanism model: links, joints and frames, as a frozen description.
+
+A :class:`Mechanism` is only a description (no computed answers): a name, the
+ground and end-effector links, joints (edges of the joint graph, links being
+its nodes) and named frames.  It validates itself on construction and raises
+:class:`~mobility.errors.MechanismError` with the key path of the problem.
+
+Joint geometry may be written in any named frame; :meth:`Mechanism.world_joints`
+gives the same joints in the global frame ``world``.  Each joint type is a set
+of elementary freedoms (:meth:`Joint.freedoms`): rotations about lines,
+translations along directions, screw motions.
+
+Examples
+--------
+>>> four_bar = Mechanism(
+...     name="four-bar", ground="ground", end_effector="coupler",
+...     joints=(
+...         Joint("A", "R", ("ground", "crank"), axis=(0, 0, 1), point=(0, 0, 0)),
+...         Joint("B", "R", ("crank", "coupler"), axis=(0, 0, 1), point=(1, 2, 0)),
+...         Joint("C", "R", ("coupler", "rocker"), axis=(0, 0, 1), point=(4, 2.5, 0)),
+...         Joint("D", "R", ("rocker", "ground"), axis=(0, 0, 1), point=(5, 0, 0)),
+...     ))
+>>> four_bar.links
+('ground', 'crank', 'coupler', 'rocker')
+>>> four_bar.freedom_count
+4
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+from types import MappingProxyType
+from typing import Any, Iterable, Mapping
+
+import numpy as np
+
+from ..errors import MechanismError
+from .transforms import Transform, rotation_from_rpy
+
+__all__ = [
+    "JOINT_TYPES",
+    "JOINT_DOF",
+    "Freedom",
+    "FreedomTable",
+    "Joint",
+    "Frame",
+    "Expected",
+    "Mechanism",
+    "WORLD",
+]
+
+WORLD = "world"
+"""Name of the global frame."""
+
+JOINT_DOF: Mapping[str, int] = MappingProxyType({"R": 1, "P": 1, "H": 1, "C": 2, "U": 2, "S": 3, "E": 3})
+"""Degrees of freedom of each joint type."""
+
+JOINT_TYPES: Mapping[str, str] = MappingProxyType(
+    {
+        "R": "revolute",
+        "P": "prismatic",
+        "H": "helical",
+        "C": "cylindrical",
+        "U": "universal",
+        "S": "spherical",
+        "E": "planar",
+    }
+)
+"""Joint type letters and their names."""
+
+# Geometry fields each joint type requires, and those it may also carry.
+_REQUIRED: Mapping[str, tuple[str, ...]] = {
+    "R": ("axis", "point"),
+    "P": ("axis",),
+    "H": ("axis", "point", "pitch"),
+    "C": ("axis", "point"),
+    "U": ("point", "axes"),
+    "S": ("point",),
+    "E": ("normal",),
+}
+_OPTIONAL: Mapping[str, tuple[str, ...]] = {"P": ("point",), "E": ("point",)}
+
+Vector = tuple[float, float, float]
+
+
+def _vector(value: Any, key: str, *, direction: bool = False) -> Vector:
+    """Validate a 3-vector of finite numbers; normalise it if it is a direction."""
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise MechanismError(key, f"expected a list of 3 numbers, got {value!r}") from None
+    if arr.shape != (3,):
+        n = arr.size if arr.ndim == 1 else "a nested list"
+        raise MechanismError(key, f"expected a list of 3 numbers, got {n}")
+    if not np.all(np.isfinite(arr)):
+        raise MechanismError(key, f"expected 3 finite numbers, got {value!r}")
+    if direction:
+        norm = float(np.linalg.norm(arr))
+        if norm == 0.0 or not math.isfinite(norm):
+            raise MechanismError(key, "expected a non-zero direction, got [0, 0, 0]")
+        if norm < 1e-12 * float(np.max(np.abs(arr))) or norm < 1e-300:
+            raise MechanismError(key, f"direction {value!r} is too small to normalise")
+        arr = arr / norm
+    return (float(arr[0]), float(arr[1]), float(arr[2]))
+
+
+@dataclass(frozen=True)
+class Freedom:
+    """One elementary freedom of a joint: a screw motion about a line.
+
+    ``kind`` is ``"R"`` (rotation about the line through ``point`` along
+    ``axis``), ``"P"`` (translation along ``axis``; ``point`` unused) or ``"H"``
+    (rotation with translation ``pitch`` per radian along the axis).
+    """
+
+    kind: str
+    axis: Vector
+    point: Vector = (0.0, 0.0, 0.0)
+    pitch: float = 0.0
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A joint: an edge of the joint graph between two links.
+
+    Parameters
+    ----------
+    name : str
+        Unique name.
+    type : str
+        One of ``R P H C U S E`` (see :data:`JOINT_TYPES`).
+    links : tuple of two str
+        The links it joins; its motion is that of ``links[1]`` relative to
+        ``links[0]``.
+    axis, point, pitch, axes, normal
+        Geometry, as the type requires (see the file format), written in
+        ``frame``.  Directions are normalised on construction.
+    frame : str
+        Name of the frame the geometry is written in (default ``"world"``).
+    actuated : bool
+        Whether the joint is driven (used by the actuation analysis).
+    """
+
+    name: str
+    type: str
+    links: tuple[str, str]
+    axis: Vector | None = None
+    point: Vector | None = None
+    pitch: float | None = None
+    axes: tuple[Vector, Vector] | None = None
+    normal: Vector | None = None
+    frame: str = WORLD
+    actuated: bool = False
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name:
+            raise MechanismError("name", f"expected a non-empty string, got {self.name!r}")
+        if self.type not in JOINT_DOF:
+            raise MechanismError("type", f"unknown joint type {self.type!r}; expected one of {', '.join(JOINT_DOF)}")
+        links = tuple(self.links) if isinstance(self.links, (list, tuple)) else None
+        if links is None or len(links) != 2 or not all(isinstance(x, str) and x for x in links):
+            raise MechanismError("links", f"expected two link names, got {self.links!r}")
+        if links[0] == links[1]:
+            raise MechanismError("links", f"a joint must join two different links, got {links[0]!r} twice")
+        object.__setattr__(self, "links", links)
+        need = _REQUIRED[self.type]
+        allowed = set(need) | set(_OPTIONAL.get(self.type, ()))
+        for key in ("axis", "point", "pitch", "axes", "normal"):
+            value = getattr(self, key)
+            if key in need and value is None:
+                raise MechanismError(key, f"missing; a joint of type {self.type} needs {', '.join(need)}")
+            if key not in allowed and value is not None:
+                raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {', '.join(need)})")
+        if self.axis is not None:
+            object.__setattr__(self, "axis", _vector(self.axis, "axis", direction=True))
+        if self.normal is not None:
+            object.__setattr__(self, "normal", _vector(self.normal, "normal", direction=True))
+        if self.point is not None:
+            object.__setattr__(self, "point", _vector(self.point, "point"))
+        if self.pitch is not None:
+            try:
+                pitch = float(self.pitch)
+            except (TypeError, ValueError):
+                raise MechanismError("pitch", f"expected a number, got {self.pitch!r}") from None
+            if not math.isfinite(pitch):
+                raise MechanismError("pitch", f"expected a finite number, got {self.pitch!r}")
+            object.__setattr__(self, "pitch", pitch)
+        if self.axes is not None:
+            if not isinstance(self.axes, (list, tuple)) or len(self.axes) != 2:
+                raise MechanismError("axes", "expected two directions [a1, a2]")
+            a1 = _vector(self.axes[0], "axes[0]", direction=True)
+            a2 = _vector(self.axes[1], "axes[1]", direction=True)
+            sine = float(np.linalg.norm(np.cross(a1, a2)))
+            if sine < 1e-9:
+                raise MechanismError("axes", "the two axes of a U joint must not be parallel")
+            object.__setattr__(self, "axes", (a1, a2))
+        if not isinstance(self.frame, str) or not self.frame:
+            raise MechanismError("frame", f"expected a frame name, got {self.frame!r}")
+        if not isinstance(self.actuated, bool):
+            raise MechanismError("actuated", f"expected true or false, got {self.actuated!r}")
+
+    @property
+    def dof(self) -> int:
+        """Degrees of freedom of the joint."""
+        return JOINT_DOF[self.type]
+
+    def freedoms(self) -> tuple[Freedom, ...]:
+        """The joint's elementary freedoms, in its own frame.
+
+        Examples
+        --------
+        >>> [f.kind for f in Joint("c", "C", ("a", "b"), axis=(0, 0, 1), point=(0, 0, 0)).freedoms()]
+        ['R', 'P']
+        """
+        t = self.type
+        if t == "R":
+            return (Freedom("R", self.axis, self.point),)
+        if t == "P":
+            return (Freedom("P", self.axis),)
+        if t == "H":
+            return (Freedom("H", self.axis, self.point, self.pitch),)
+        if t == "C":
+            return (Freedom("R", self.axis, self.point), Freedom("P", self.axis))
+        if t == "U":
+            return (Freedom("R", self.axes[0], self.point), Freedom("R", self.axes[1], self.point))
+        if t == "S":
+            return tuple(Freedom("R", e, self.point) for e in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)))
+        # E: two translations in the plane, one rotation about the normal.
+        n = np.asarray(self.normal)
+        u1 = np.cross(n, np.eye(3)[int(np.argmin(np.abs(n)))])
+        u1 /= np.linalg.norm(u1)
+        u2 = np.cross(n, u1)
+        p = self.point if self.point is not None else (0.0, 0.0, 0.0)
+        return (Freedom("P", tuple(u1)), Freedom("P", tuple(u2)), Freedom("R", self.normal, p))
+
+    def transformed(self, tf: Transform, frame: str = WORLD) -> "Joint":
+        """The same joint with its geometry mapped by ``tf`` and written in ``frame``."""
+        changes: dict[str, Any] = {"frame": frame}
+        if self.axis is not None:
+            changes["axis"] = tuple(tf.apply_vector(self.axis))
+        if self.normal is not None:
+            changes["normal"] = tuple(tf.apply_vector(self.normal))
+        if self.point is not None:
+            changes["point"] = tuple(tf.apply_point(self.point))
+        if self.axes is not None:
+            changes["axes"] = tuple(tuple(tf.apply_vector(a)) for a in self.axes)
+        return replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class Frame:
+    """A named frame: ``x_parent = rotation @ x_frame + origin``.
+
+    Parameters
+    ----------
+    name : str
+    origin : 3-vector
+    rotation : 3x3 nested tuples (a rotation matrix)
+    parent : str
+        Name of the parent frame (default ``"world"``).
+    """
+
+    name: str
+    origin: Vector = (0.0, 0.0, 0.0)
+    rotation: tuple[Vector, Vector, Vector] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    parent: str = WORLD
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name:
+            raise MechanismError("name", f"expected a frame name, got {self.name!r}")
+        object.__setattr__(self, "origin", _vector(self.origin, "origin"))
+        rot = np.asarray(self.rotation, dtype=float)
+        if rot.shape != (3, 3) or not np.all(np.isfinite(rot)):
+            raise MechanismError("rotation", "expected a 3x3 matrix of finite numbers")
+        if not np.allclose(rot @ rot.T, np.eye(3), atol=1e-9) or np.linalg.det(rot) < 0:
+            raise MechanismError("rotation", "expected a proper rotation matrix")
+        object.__setattr__(self, "rotation", tuple(tuple(float(x) for x in row) for row in rot))
+        if not isinstance(self.parent, str) or not self.parent:
+            raise MechanismError("parent", f"expected a frame name, got {self.parent!r}")
+
+    @staticmethod
+    def from_rpy(name: str, origin: Iterable[float] = (0, 0, 0), rpy: Iterable[float] = (0, 0, 0), parent: str = WORLD) -> "Frame":
+        """A frame from roll-pitch-yaw angles in radians (``R = Rz(y) Ry(p) Rx(r)``).
+
+        Examples
+        --------
+        >>> f = Frame.from_rpy("leg", (1, 0, 0), (0, 0, 3.141592653589793 / 2))
+        >>> [round(float(x), 12) + 0.0 for x in f.transform.apply_point((1, 0, 0))]
+        [1.0, 1.0, 0.0]
+        """
+        rpy = _vector(tuple(rpy), "rpy")
+        return Frame(name, tuple(origin), tuple(map(tuple, rotation_from_rpy(rpy))), parent)
+
+    @property
+    def transform(self) -> Transform:
+        """The transform from this frame to its parent."""
+        return Transform(np.array(self.rotation), np.array(self.origin))
+
+
+@dataclass(frozen=True, eq=False)
+class FreedomTable:
+    """The elementary freedoms of every joint, in the global frame, as arrays.
+
+    Row ``k`` is one freedom (see :class:`Freedom`); joint ``j`` owns rows
+    ``offsets[j]:offsets[j + 1]``.
+
+    Attributes
+    ----------
+    prismatic : ndarray of bool, shape (n,)
+    axes, points : ndarray, shape (n, 3)
+    pitches : ndarray, shape (n,)
+    offsets : tuple of int
+    located : ndarray, shape (k, 3)
+        The points of the joints that have one (all but P and point-less E).
+    end_effector_points : ndarray, shape (m, 3)
+        The points of the located joints on the end effector.
+    """
+
+    prismatic: np.ndarray
+    axes: np.ndarray
+    points: np.ndarray
+    pitches: np.ndarray
+    offsets: tuple[int, ...]
+    located: np.ndarray
+    end_effector_points: np.ndarray
+
+
+EXPECTED_KEYS: dict[str, str] = {
+    "dof": "end-effector DOF (integer >= 0)",
+    "pattern": 'motion pattern such as "1T2R"',
+    "translations": "basis of the translation subspace (list of 3-vectors)",
+    "mobility": "DOF of the whole mechanism (integer >= 0)",
+    "redundant_constraints": "number of redundant constraints (integer >= 0)",
+    "idle_dof": "number of idle DOF (integer >= 0)",
+    "gruebler_kutzbach": "Grübler-Kutzbach count (integer)",
+    "full_cycle_dof": "end-effector DOF along the finite motion from this pose (integer >= 0; mobility analyze --finite)",
+    "full_cycle_mobility": "DOF of the whole mechanism along the finite motion (integer >= 0; mobility analyze --finite)",
+    "finite_verdict": "full-cycle, instantaneous-only, cannot-move or bifurcation (mobility analyze --finite)",
+}
+"""Keys an ``expected`` block may hold, with what each means."""
+
+
+@dataclass(frozen=True)
+class Expected:
+    """What a regression check compares an analysis against (all optional)."""
+
+    dof: int | None = None
+    pattern: str | None = None
+    translations: tuple[Vector, ...] | None = None
+    mobility: int | None = None
+    redundant_constraints: int | None = None
+    idle_dof: int | None = None
+    gruebler_kutzbach: int | None = None
+    extra: Mapping[str, Any] = field(default_factory=dict)
+
+    def items(self) -> list[tuple[str, Any]]:
+        """The expectations that are set, as ``(key, value)`` pairs."""
+        out = [(k, getattr(self, k)) for k in EXPECTED_KEYS if hasattr(self, k) and getattr(self, k) is not None]
+        out.extend((k, v) for k, v in self.extra.items() if v is not None)
+        return out
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """A mechanism: a joint graph with geometry at one pose.
+
+    Parameters
+    ----------
+    name : str
+    ground : str
+        The fixed link.
+    end_effector : str
+        The link whose freedom is reported.
+    joints : tuple of Joint
+        At least one.
+    frames : tuple of Frame
+        Named frames the joints may be written in.
+    description : str
+    length_unit : str
+        A label only (results do not depend on the unit).
+    expected : Expected or None
+    source : str
+        Where it came from (a file path), for messages.
+
+    Raises
+    ------
+    MechanismError
+        On duplicate names, unknown or cyclic frames, unknown ground or end
+        effector, or links not connected to the ground.
+    """
+
+    name: str
+    ground: str
+    end_effector: str
+    joints: tuple[Joint, ...]
+    frames: tuple[Frame, ...] = ()
+    description: str = ""
+    length_unit: str = ""
+    expected: Expected | None = None
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "joints", tuple(self.joints))
+        object.__setattr__(self, "frames", tuple(self.frames))
+        for key in ("name", "ground", "end_effector"):
+            value = getattr(self, key)
+            if not isinstance(value, str) or not value:
+                raise MechanismError(key, f"expected a non-empty string, got {value!r}")
+        if not self.joints:
+            raise MechanismError("joints", "expected at least one joint")
+        seen: dict[str, int] = {}
+        for i, j in enumerate(self.joints):
+            if not isinstance(j, Joint):
+                raise MechanismError(f"joints[{i}]", f"expected a Joint, got {type(j).__name__}")
+            if j.name in seen:
+                raise MechanismError(f"joints[{i}].name", f"duplicate joint name {j.name!r} (first used by joints[{seen[j.name]}])")
+            seen[j.name] = i
+        frame_index: dict[str, int] = {}
+        for i, f in enumerate(self.frames):
+            if f.name == WORLD:
+                raise MechanismError(f"frames.{f.name}", f"the name {WORLD!r} is reserved for the global frame")
+            if f.name in frame_index:
+                raise MechanismError(f"frames.{f.name}", "duplicate frame name")
+            frame_index[f.name] = i
+        for f in self.frames:
+            if f.parent != WORLD and f.parent not in frame_index:
+                raise MechanismError(f"frames.{f.name}.parent", f"unknown frame {f.parent!r}; expected {WORLD!r} or one of: {', '.join(frame_index) or '(none)'}")
+        for f in self.frames:  # cycles among parents
+            chain = [f.name]
+            cur = f
+            while cur.parent != WORLD:
+                if cur.parent in chain:
+                    raise MechanismError(f"frames.{f.name}.parent", "cycle among frame parents: " + " -> ".join(chain + [cur.parent]))
+                chain.append(cur.parent)
+                cur = self.frames[frame_index[cur.parent]]
+        for i, j in enumerate(self.joints):
+            if j.frame != WORLD and j.frame not in frame_index:
+                raise MechanismError(f"joints[{i}].frame", f"unknown frame {j.frame!r}; expected {WORLD!r} or one of: {', '.join(frame_index) or '(none)'}")
+        links = self.links
+        if self.ground not in links:
+            raise MechanismError("ground", f"link {self.ground!r} is not joined by any joint")
+        if self.end_effector not in links:
+            raise MechanismError("end_effector", f"link {self.end_effector!r} is not joined by any joint")
+        if self.end_effector == self.ground:
+            raise MechanismError("end_effector", "the end effector must differ from the ground")
+        unreached = self._links_not_connected_to_ground()
+        if self.end_effector in unreached:
+            raise MechanismError("end_effector", f"link {self.end_effector!r} is not connected to the ground {self.ground!r} through joints")
+        if unreached:
+            raise MechanismError("joints", f"links not connected to the ground {self.ground!r}: {', '.join(sorted(unreached))}")
+
+    def _links_not_connected_to_ground(self) -> set[str]:
+        neighbours: dict[str, set[str]] = {}
+        for j in self.joints:
+            a, b = j.links
+            neighbours.setdefault(a, set()).add(b)
+            neighbours.setdefault(b, set()).add(a)
+        seen = {self.ground}
+        todo = [self.ground]
+        while todo:
+            for n in neighbours[todo.pop()]:
+                if n not in seen:
+                    seen.add(n)
+                    todo.append(n)
+        return set(neighbours) - seen
+
+    @cached_property
+    def links(self) -> tuple[str, ...]:
+        """Link names, in order of first appearance."""
+        return tuple(dict.fromkeys(name for j in self.joints for name in j.links))
+
+    @cached_property
+    def freedom_count(self) -> int:
+        """Sum of the joints' DOF."""
+        return sum(j.dof for j in self.joints)
+
+    def joint(self, name: str) -> Joint:
+        """The joint called ``name``."""
+        for j in self.joints:
+            if j.name == name:
+                return j
+        raise KeyError(name)
+
+    def frame_transform(self, name: str) -> Transform:
+        """Transform from frame ``name`` to the global frame."""
+        return self._frame_transforms[name]
+
+    @cached_property
+    def _frame_transforms(self) -> dict[str, Transform]:
+        by_name = {f.name: f for f in self.frames}
+        out: dict[str, Transform] = {WORLD: Transform.identity()}
+
+        def resolve(name: str) -> Transform:
+            if name not in out:
+                f = by_name[name]
+                out[name] = resolve(f.parent).compose(f.transform)
+            return out[name]
+
+        for f in self.frames:
+            resolve(f.name)
+        return out
+
+    @cached_property
+    def world_joints(self) -> tuple[Joint, ...]:
+        """The joints with their geometry in the global frame.
+
+        The ``frame`` of each returned joint is ``"world"``; the original
+        frame name stays available in :attr:`joints`.
+        """
+        return tuple(j if j.frame == WORLD else j.transformed(self.frame_transform(j.frame)) for j in self.joints)
+
+    @cached_property
+    def freedom_table(self) -> FreedomTable:
+        """Every joint's elementary freedoms in the global frame, as arrays (computed once)."""
+        prismatic, axes, points, pitches, offsets = [], [], [], [], [0]
+        for j in self.world_joints:
+            for f in j.freedoms():
+                prismatic.append(f.kind == "P")
+                axes.append(f.axis)
+                points.append(f.point)
+                pitches.append(f.pitch)
+            offsets.append(len(axes))
+        located = [j.point for j in self.world_joints if j.point is not None]
+        ee = [j.point for j in self.world_joints if j.point is not None and self.end_effector in j.links]
+        arrays = [np.array(prismatic), np.array(axes, dtype=float), np.array(points, dtype=float), np.array(pitches, dtype=float),
+                  np.array(located, dtype=float).reshape(-1, 3), np.array(ee, dtype=float).reshape(-1, 3)]
+        for a in arrays:
+            a.setflags(write=False)
+        p, ax, pt, h, loc, eep = arrays
+        return FreedomTable(p, ax, pt, h, tuple(offsets), loc, eep)
+
+    def replace(self, **changes: Any) -> "Mechanism":
+        """A copy with some fields changed (validated again)."""
+        return replace(self, **changes)

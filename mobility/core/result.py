@@ -1,0 +1,316 @@
+"""Frozen results of an analysis.
+
+A :class:`Result` holds only answers, in the global frame and the file's
+length unit.  Screws are rows: ``twists[i] = [w; v]``, ``wrenches[i] = [f; m]``.
+:meth:`Result.to_dict` gives the JSON form (keys of the file-format spec plus
+the whole-mechanism numbers).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any, Protocol
+
+import numpy as np
+
+from .tolerance import clean_numbers
+
+__all__ = ["ScrewAxis", "Margin", "LimbSystem", "Result", "ResultDetail", "pattern_of"]
+
+
+def pattern_of(translations: int, rotations: int) -> str:
+    """The motion pattern ``{nT}T{nR}R``, a zero part dropped; ``"0"`` for no motion.
+
+    Examples
+    --------
+    >>> pattern_of(1, 2), pattern_of(3, 0), pattern_of(0, 0)
+    ('1T2R', '3T', '0')
+    """
+    text = (f"{translations}T" if translations else "") + (f"{rotations}R" if rotations else "")
+    return text or "0"
+
+
+@dataclass(frozen=True, eq=False)
+class ScrewAxis:
+    """A screw axis in the global frame.
+
+    For a twist: a rotation about ``axis`` through ``point`` with ``pitch``
+    (length per radian) of translation along it; for a wrench: a force along
+    ``axis`` with a couple ``pitch`` times it.
+    """
+
+    axis: np.ndarray
+    point: np.ndarray
+    pitch: float
+    kind: str
+
+    def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
+        """JSON form: axis, point, pitch, kind."""
+        return {
+            "axis": clean_numbers(self.axis),
+            "point": clean_numbers(self.point, scale),
+            "pitch": clean_numbers(self.pitch, scale),
+            "kind": self.kind,
+        }
+
+
+@dataclass(frozen=True)
+class Margin:
+    """How far the rank decisions of an analysis were from changing.
+
+    Attributes
+    ----------
+    smallest_kept : float
+        Smallest singular value counted as non-zero, relative to the largest
+        of its matrix (normalised coordinates).  Small: near a singularity.
+    largest_dropped : float
+        Largest singular value counted as zero, relative.  Well above round-off:
+        the geometry is only approximately special.
+    near_singular : bool
+    inexact : bool
+    """
+
+    smallest_kept: float
+    largest_dropped: float
+    near_singular: bool
+    inexact: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form."""
+        return {
+            "smallest_kept": self.smallest_kept,
+            "largest_dropped": self.largest_dropped,
+            "near_singular": self.near_singular,
+            "inexact": self.inexact,
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class LimbSystem:
+    """Twist and constraint systems of one limb (a branch of the top parallel connection).
+
+    Everything is written in ``frame`` (the frame all the limb's joints are
+    written in, else ``world``), in the same canonical form as :class:`Result`.
+    """
+
+    structure: str
+    frame: str
+    dof: int
+    idle_dof: int
+    translations: np.ndarray
+    rotations: tuple[ScrewAxis, ...]
+    twists: np.ndarray
+    couples: np.ndarray
+    forces: tuple[ScrewAxis, ...]
+    wrenches: np.ndarray
+
+    def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
+        """JSON form."""
+        return {
+            "structure": self.structure,
+            "frame": self.frame,
+            "dof": self.dof,
+            "idle_dof": self.idle_dof,
+            "translations": [clean_numbers(t) for t in self.translations],
+            "rotations": [r.to_dict(scale) for r in self.rotations],
+            "twists": [clean_numbers(t, scale) for t in self.twists],
+            "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(scale) for f in self.forces]},
+            "wrenches": [clean_numbers(w, scale) for w in self.wrenches],
+        }
+
+
+class ResultDetail(Protocol):
+    """What a :class:`Result` computes its lazy parts from (provided by the analysis)."""
+
+    def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]: ...
+
+    def wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]: ...
+
+    def limbs(self) -> tuple[LimbSystem, ...]: ...
+
+    def common_constraints(self) -> int: ...
+
+
+@dataclass(frozen=True, eq=False)
+class Result:
+    """What :func:`mobility.analyze` finds.
+
+    The counts are computed by the analysis; the directions (canonical forms),
+    limb systems and common constraints are computed on first access and then
+    kept (the result never changes).
+
+    Attributes
+    ----------
+    name : str
+    dof : int
+        End-effector DOF at this pose.
+    pattern : str
+        ``{nT}T{nR}R``, e.g. ``"1T2R"``.
+    mobility : int
+        DOF of the whole mechanism (idle motions included).
+    gruebler_kutzbach : int
+        ``6 (n - 1 - j) + sum f``.
+    redundant_constraints : int
+        ``mobility - gruebler_kutzbach``: loop-closure equations that repeat others.
+    idle_dof : int
+        ``mobility - dof``: motions that leave the end effector still.
+    loops : int
+        Independent loops ``j - n + 1``.
+    links, joints, joint_freedoms : int
+        Counts of the joint graph.
+    structure : str
+        The series/parallel decomposition.
+    margin : Margin
+    warnings : tuple of str
+    length_unit : str
+    length_scale : float
+        Characteristic size of the mechanism (for rounding output).
+    reference_point : ndarray, shape (3,)
+        The end effector's centre (centroid of its joints' points): axes are
+        reported through their point nearest to it, so an axis away from it
+        (or a non-zero pitch) shows how rotating moves this point.
+    translations : ndarray, shape (nT, 3)
+        Orthonormal basis of the pure-translation subspace.
+    rotations : tuple of ScrewAxis
+        One per rotational DOF (see :mod:`mobility.core.canonical`); ``kind`` is
+        ``"rotation"`` (pitch 0) or ``"helical"``.
+    twists : ndarray, shape (dof, 6)
+        Basis of the end-effector twist system (translations then rotations).
+    wrenches : ndarray, shape (6 - dof, 6)
+        Basis of the constraint wrench system on the end effector (couples then forces).
+    couples : ndarray, shape (k, 3)
+        Orthonormal basis of the pure couples among the constraint wrenches.
+    forces : tuple of ScrewAxis
+        The other constraint wrenches; ``kind`` ``"force"`` (pitch 0) or ``"wrench"``.
+    limbs : tuple of LimbSystem
+        Each branch of a top-level parallel connection, in its own frame.
+    common_constraints : int
+        Wrenches reciprocal to every joint twist (3 for a planar mechanism).
+    """
+
+    name: str
+    dof: int
+    pattern: str
+    mobility: int
+    gruebler_kutzbach: int
+    redundant_constraints: int
+    idle_dof: int
+    loops: int
+    links: int
+    joints: int
+    joint_freedoms: int
+    structure: str
+    margin: Margin
+    warnings: tuple[str, ...]
+    length_unit: str
+    length_scale: float
+    reference_point: np.ndarray
+    detail: ResultDetail = field(repr=False)
+
+    @cached_property
+    def _twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+        return self.detail.twist_form()
+
+    @cached_property
+    def _wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
+        return self.detail.wrench_form()
+
+    @property
+    def translations(self) -> np.ndarray:
+        """Orthonormal basis (rows) of the pure-translation subspace."""
+        return self._twist_form[0]
+
+    @property
+    def rotations(self) -> tuple[ScrewAxis, ...]:
+        """One screw axis per rotational DOF."""
+        return self._twist_form[1]
+
+    @property
+    def twists(self) -> np.ndarray:
+        """Basis (rows ``[w; v]``) of the end-effector twist system."""
+        return self._twist_form[2]
+
+    @property
+    def couples(self) -> np.ndarray:
+        """Orthonormal basis (rows) of the pure constraint couples."""
+        return self._wrench_form[0]
+
+    @property
+    def forces(self) -> tuple[ScrewAxis, ...]:
+        """The constraint wrenches that are not pure couples, as axes."""
+        return self._wrench_form[1]
+
+    @property
+    def wrenches(self) -> np.ndarray:
+        """Basis (rows ``[f; m]``) of the constraint wrench system."""
+        return self._wrench_form[2]
+
+    @cached_property
+    def limbs(self) -> tuple[LimbSystem, ...]:
+        """Twist and constraint systems of each limb, in its own frame."""
+        return self.detail.limbs()
+
+    @cached_property
+    def common_constraints(self) -> int:
+        """Number of independent wrenches reciprocal to every joint twist."""
+        return self.detail.common_constraints()
+
+    @property
+    def translation_count(self) -> int:
+        """Number of independent pure translations (nT)."""
+        return int(self.pattern.split("T")[0]) if "T" in self.pattern else 0
+
+    @property
+    def gruebler_kutzbach_explanation(self) -> str:
+        """Why the Grübler–Kutzbach count differs from the mobility (empty when it does not)."""
+        if self.redundant_constraints == 0:
+            return ""
+        rank = self.joint_freedoms - self.mobility
+        text = (
+            f"Grübler–Kutzbach assumes each of the {self.loops} independent loop(s) imposes 6 independent "
+            f"constraints ({6 * self.loops} in all); the loop-closure equations have rank {rank}, so "
+            f"{self.redundant_constraints} constraint(s) are redundant and the mobility is "
+            f"{self.gruebler_kutzbach} + {self.redundant_constraints} = {self.mobility}."
+        )
+        common = self.common_constraints * self.loops
+        if common:
+            kind = {3: " (every joint moves in one plane or about one point)"}.get(self.common_constraints, "")
+            text += (
+                f" {common} of them come from {self.common_constraints} wrench(es) reciprocal to every joint twist"
+                f"{kind}: each loop loses {self.common_constraints} equation(s)."
+            )
+        rest = self.redundant_constraints - common
+        if rest > 0:
+            text += f" {rest} come from the special geometry of the loops (parallel or intersecting axes, repeated constraints of parallel limbs)."
+        return text
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON form: the spec's Result keys plus the whole-mechanism numbers."""
+        s = self.length_scale
+        return {
+            "name": self.name,
+            "dof": self.dof,
+            "pattern": self.pattern,
+            "translations": [clean_numbers(t) for t in self.translations],
+            "rotations": [r.to_dict(s) for r in self.rotations],
+            "twists": [clean_numbers(t, s) for t in self.twists],
+            "wrenches": [clean_numbers(w, s) for w in self.wrenches],
+            "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(s) for f in self.forces]},
+            "mobility": self.mobility,
+            "gruebler_kutzbach": self.gruebler_kutzbach,
+            "redundant_constraints": self.redundant_constraints,
+            "idle_dof": self.idle_dof,
+            "loops": self.loops,
+            "links": self.links,
+            "joints": self.joints,
+            "joint_freedoms": self.joint_freedoms,
+            "common_constraints": self.common_constraints,
+            "gruebler_kutzbach_explanation": self.gruebler_kutzbach_explanation,
+            "structure": self.structure,
+            "margin": self.margin.to_dict(),
+            "warnings": list(self.warnings),
+            "limbs": [limb.to_dict(s) for limb in self.limbs],
+            "length_unit": self.length_unit,
+            "reference_point": clean_numbers(self.reference_point, s),
+        }

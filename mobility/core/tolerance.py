@@ -1,0 +1,211 @@
+"""The one tolerance policy of the package.
+
+Every rank decision in :mod:`mobility` goes through :func:`decide_rank`, on
+matrices written in *normalised coordinates*: lengths divided by the
+mechanism's characteristic length ``L`` and measured from its centre ``c``
+(see :func:`characteristic_scale`).  Screws in those coordinates do not
+change when the file is scaled (every length times ``k``, so ``L`` too) or
+when the whole mechanism is moved rigidly (``c`` moves with it, and a
+rotation of both blocks of a screw leaves singular values unchanged).  A
+singular value counts when it exceeds ``rtol`` times the largest one (and
+``rtol`` in absolute terms, since every column has unit norm, so the largest
+singular value is at least one for a non-empty matrix).
+
+Each decision also records its *margin*: the smallest kept and the largest
+dropped singular value relative to the largest.  A small kept value means the
+pose is close to a singularity where the rank would drop; a dropped value well
+above round-off means the geometry is only nearly special (e.g. coordinates
+typed with few digits).  Both are reported, never hidden.
+
+Examples
+--------
+>>> import numpy as np
+
+from ..errors import RequestError
+>>> d = decide_rank(np.array([2.0, 1.0, 1e-15]))
+>>> d.rank, d.smallest_kept, d.largest_dropped
+(2, 0.5, 5e-16)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, NamedTuple
+
+import numpy as np
+
+__all__ = [
+    "Tolerance",
+    "DEFAULT_TOLERANCE",
+    "RankDecision",
+    "decide_rank",
+    "characteristic_scale",
+    "clean_numbers",
+]
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """Every threshold of the package, all relative and dimensionless.
+
+    Parameters
+    ----------
+    rank : float
+        A singular value counts when ``s > rank * max(s_max, 1)``.
+    near_singular : float
+        A kept singular value below ``near_singular * s_max`` marks the pose as
+        near-singular (a warning; the count is still given).
+    inexact : float
+        A dropped singular value above ``inexact * s_max`` marks the geometry
+        as only approximately special (a warning).
+    closure : float
+        A pose is assembled when every loop closes to this residual
+        (rotations in radians, lengths over the characteristic length).
+    round_off : float
+        Numbers below ``round_off`` times their scale are shown as 0
+        (:func:`clean_numbers`).
+    """
+
+    rank: float = 1e-8
+    near_singular: float = 1e-5
+    inexact: float = 1e-11
+    closure: float = 1e-12
+    round_off: float = 1e-12
+
+    def __post_init__(self) -> None:
+        if not (0.0 < self.inexact <= self.rank < self.near_singular < 1.0):
+            raise RequestError("tolerances must satisfy 0 < inexact <= rank < near_singular < 1")
+        if not (0.0 < self.closure < 1.0 and 0.0 < self.round_off < 1.0):
+            raise RequestError("the closure and round-off tolerances must lie between 0 and 1")
+
+
+DEFAULT_TOLERANCE = Tolerance()
+
+
+class RankDecision(NamedTuple):
+    """The outcome of one rank decision.
+
+    Attributes
+    ----------
+    rank : int
+        Number of singular values kept.
+    smallest_kept : float
+        Smallest kept singular value over the largest one (1.0 when nothing is
+        kept, i.e. no risk of losing rank).
+    largest_dropped : float
+        Largest dropped singular value over the largest one (0.0 when nothing
+        is dropped).
+    """
+
+    rank: int
+    smallest_kept: float = 1.0
+    largest_dropped: float = 0.0
+
+
+def decide_rank(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecision:
+    """Decide the numerical rank from singular values sorted in decreasing order.
+
+    Parameters
+    ----------
+    singular_values : ndarray
+        Singular values in decreasing order, as returned by :func:`numpy.linalg.svd`.
+    tol : Tolerance
+        The policy.
+
+    Returns
+    -------
+    RankDecision
+    """
+    s = singular_values.tolist() if isinstance(singular_values, np.ndarray) else list(singular_values)
+    if not s:
+        return RankDecision(0)
+    scale = s[0] if s[0] > 1.0 else 1.0
+    threshold = tol.rank * scale
+    rank = 0
+    while rank < len(s) and s[rank] > threshold:  # decreasing order
+        rank += 1
+    kept = s[rank - 1] / scale if rank else 1.0
+    dropped = s[rank] / scale if rank < len(s) else 0.0
+    return RankDecision(rank, kept, dropped)
+
+
+def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+    """Centre and characteristic length of a mechanism.
+
+    The centre is the centroid of the joint points; the length is the RMS
+    distance of those points from it, or, when all points coincide, the
+    largest other length given (helical pitches); 1.0 when there is none.
+    Both follow the mechanism under scaling and rigid motion, which is what
+    makes the rank decisions invariant.
+
+    Parameters
+    ----------
+    points : ndarray, shape (n, 3)
+        Joint points in the global frame.
+    lengths : ndarray, optional
+        Other lengths of the mechanism (absolute values are used).
+
+    Returns
+    -------
+    centre : ndarray, shape (3,)
+    length : float
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> c, L = characteristic_scale(np.array([[1.0, 0, 0], [-1.0, 0, 0]]))
+    >>> c.tolist(), L
+    ([0.0, 0.0, 0.0], 1.0)
+    """
+    pts = np.asarray(points, dtype=float).reshape(-1, 3)
+    n = len(pts)
+    if n == 0:
+        centre = np.zeros(3)
+        radius = 0.0
+    else:
+        centre = pts.sum(axis=0) / n
+        d = pts - centre
+        radius = float(np.sqrt(np.einsum("ij,ij->", d, d) / n))
+    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
+    if radius > 0.0 and radius >= 1e-9 * other:
+        return centre, radius
+    if other > 0.0:
+        return centre, other
+    return centre, 1.0
+
+
+def clean_numbers(value: Any, scale: float = 1.0, tol: Tolerance = DEFAULT_TOLERANCE) -> Any:
+    """A JSON-ready copy of ``value`` with round-off shown as 0: the one rule for every number shown.
+
+    Arrays, tuples and lists become lists, numpy scalars Python numbers; a
+    float whose size is below ``tol.round_off * scale`` becomes ``0.0`` (and
+    ``-0.0`` becomes ``0.0``).  Anything else is returned unchanged.
+
+    Parameters
+    ----------
+    value : float, array, list or tuple (nested)
+    scale : float
+        The size that round-off is relative to (a length scale for points,
+        1 for unit directions).
+    tol : Tolerance
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> clean_numbers(np.array([1.0, -1e-17, 2.5]))
+    [1.0, 0.0, 2.5]
+    >>> clean_numbers((3e-10, [np.float64(-0.0)]), scale=1000.0)
+    [0.0, [0.0]]
+    """
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind != "f":
+            return value.tolist()
+        return (np.where(np.abs(value) < tol.round_off * scale, 0.0, value) + 0.0).tolist()
+    if isinstance(value, (list, tuple)):
+        return [clean_numbers(v, scale, tol) for v in value]
+    if isinstance(value, (float, np.floating)):
+        x = float(value)
+        return 0.0 if abs(x) < tol.round_off * scale else x
+    if isinstance(value, np.generic):
+        return value.item()
+    return value

@@ -1,0 +1,258 @@
+"""Read flexure documents (YAML) into :class:`~mobility.flexure.spaces.FlexureMechanism` objects.
+
+A flexure document describes bodies joined by flexure elements instead of
+joints (the format is in ``docs/actuation.md``)::
+
+    name: one wire
+    units: {length: mm, modulus: GPa}
+    ground: base
+    end_effector: stage
+    materials:
+      steel: {E: 200, nu: 0.3}
+    elements:
+      - {name: w1, type: rod, bodies: [base, stage], point: [0, 0, 0], axis: [0, 0, 1],
+         length: 100, radius: 1, material: steel}
+    actuators:
+      - {name: a1, point: [0, 0, 100], direction: [1, 0, 0], actuated: true}
+
+It shares ``parameters`` (named numbers and expressions), ``frames`` and the
+angle unit with mechanism files, and gives bad input the same one-line
+``file:line: key: what was expected`` errors.  A document is a flexure
+document when it has the top-level key ``elements``
+(:func:`is_flexure_document`).
+
+Examples
+--------
+>>> text = '''
+... name: one wire
+... units: {length: mm, modulus: GPa}
+... ground: base
+... end_effector: stage
+... materials: {steel: {E: 200, nu: 0.3}}
+... elements:
+...   - {name: w1, type: rod, bodies: [base, stage], axis: [0, 0, 1], length: 100, radius: 1, material: steel}
+... '''
+>>> m = loads_flexure(text)
+>>> m.elements[0].material.E, m.length_unit
+(200000000000.0, 'mm')
+>>> loads_flexure(text.replace("radius: 1,", "radius: -1,"), file="wire.yaml")
+Traceback (most recent call last):
+...
+mobility.errors.MechanismFileError: wire.yaml:8: elements[0].radius: expected a positive number, got -1.0
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+from ..errors import MechanismError
+from .spaces import LENGTH_UNITS, MODULUS_UNITS, FlexureMechanism, ForceLine, Material, Rod
+from ..io.reader import DocumentReader, describe_value, parse_key
+from ..core.model import WORLD, Frame
+from ..core.transforms import Transform
+from ..io.yaml_source import KeyPath, parse_yaml, read_text
+
+__all__ = ["load_flexure", "loads_flexure", "is_flexure_document", "FLEXURE_KEYS", "ELEMENT_KEYS", "ACTUATOR_KEYS", "ELEMENT_TYPES"]
+
+FLEXURE_KEYS = ("name", "description", "units", "parameters", "frames", "ground", "end_effector", "materials", "elements", "actuators", "threshold")
+ELEMENT_KEYS = ("name", "type", "bodies", "frame", "point", "axis", "length", "radius", "material")
+ACTUATOR_KEYS = ("name", "frame", "point", "direction", "actuated")
+MATERIAL_KEYS = ("E", "nu")
+ELEMENT_TYPES = ("rod",)
+"""Flexure element types: ``rod`` (a slender rod of circular section, a wire flexure)."""
+
+
+def is_flexure_document(data: Any) -> bool:
+    """True when parsed YAML ``data`` is a flexure document (it has ``elements``)."""
+    return isinstance(data, dict) and "elements" in data
+
+
+def load_flexure(path: str | Path) -> FlexureMechanism:
+    """Load a flexure document.
+
+    Raises
+    ------
+    MechanismFileError
+        When the file cannot be read or breaks the format.
+    """
+    return loads_flexure(read_text(path), file=str(path))
+
+
+def loads_flexure(text: str, file: str = "<string>") -> FlexureMechanism:
+    """Load a flexure document from YAML text (see :func:`load_flexure`)."""
+    data, positions = parse_yaml(text, file)
+    return _FlexureReader(file, positions).document(data)
+
+
+class _FlexureReader(DocumentReader):
+    """The mechanism reader's helpers (numbers, vectors, frames, errors) for flexure documents."""
+
+    def document(self, data: Any) -> FlexureMechanism:
+        if data is None:
+            raise self.fail((), "the file is empty; expected a mapping with name, ground, end_effector and elements")
+        doc = self.mapping(data, (), "a flexure document")
+        self.check_keys(doc, FLEXURE_KEYS, (), "a flexure document")
+        for key in ("name", "ground", "end_effector", "elements"):
+            if key not in doc:
+                raise self.fail((), f"missing required key {key!r}")
+        name = self.string(str(doc["name"]) if isinstance(doc["name"], (int, float)) else doc["name"], ("name",))
+        description = doc.get("description", "")
+        if not isinstance(description, str):
+            raise self.fail(("description",), f"expected a string, got {describe_value(description)}")
+        length_unit, modulus = self.flexure_units(doc.get("units"))
+        self.parameters(doc.get("parameters"))
+        transforms = self.resolve_frames(self.frames(doc.get("frames")))
+        materials = self.materials(doc.get("materials"), modulus)
+        elements = self.elements(doc["elements"], transforms, materials, modulus)
+        actuators = self.actuators(doc.get("actuators"), transforms)
+        threshold = None
+        if "threshold" in doc:
+            threshold = self.number(doc["threshold"], ("threshold",))
+            if not (0.0 < threshold < 1.0):
+                raise self.fail(("threshold",), f"expected a relative compliance between 0 and 1, got {threshold!r}")
+        try:
+            return FlexureMechanism(
+                name=name,
+                ground=self.string(doc["ground"], ("ground",)),
+                end_effector=self.string(doc["end_effector"], ("end_effector",)),
+                elements=tuple(elements),
+                actuators=tuple(actuators),
+                description=description,
+                length_unit=length_unit,
+                threshold=threshold,
+                source=self.file,
+            )
+        except MechanismError as exc:
+            raise self.fail(parse_key(exc.key), exc.message) from None
+
+    def flexure_units(self, value: Any) -> tuple[str, float]:
+        if value is None:
+            return "m", 1.0
+        units = self.mapping(value, ("units",), "units")
+        self.check_keys(units, ("angle", "length", "modulus"), ("units",), "units")
+        self.units({k: v for k, v in units.items() if k == "angle"})
+        length = units.get("length", "m")
+        if length not in LENGTH_UNITS:
+            raise self.fail(("units", "length"), f"expected one of {', '.join(LENGTH_UNITS)} (a flexure's compliance needs a real unit), got {length!r}")
+        modulus = units.get("modulus", "Pa")
+        if modulus not in MODULUS_UNITS:
+            raise self.fail(("units", "modulus"), f"expected one of {', '.join(MODULUS_UNITS)}, got {modulus!r}")
+        return length, MODULUS_UNITS[modulus]
+
+    def resolve_frames(self, frames: list[Frame]) -> dict[str, Transform]:
+        by_name = {f.name: f for f in frames}
+        out: dict[str, Transform] = {WORLD: Transform.identity()}
+
+        def resolve(name: str, chain: tuple[str, ...]) -> Transform:
+            if name in out:
+                return out[name]
+            if name in chain:
+                raise self.fail(("frames", chain[0], "parent"), "cycle among frame parents: " + " -> ".join(chain + (name,)))
+            f = by_name[name]
+            if f.parent != WORLD and f.parent not in by_name:
+                raise self.fail(("frames", name, "parent"), f"unknown frame {f.parent!r}; expected {WORLD!r} or one of: {', '.join(by_name)}")
+            out[name] = resolve(f.parent, chain + (name,)).compose(f.transform)
+            return out[name]
+
+        for f in frames:
+            resolve(f.name, ())
+        return out
+
+    def frame_of(self, data: Mapping[str, Any], path: KeyPath, transforms: Mapping[str, Transform]) -> Transform:
+        frame = data.get("frame", WORLD)
+        if not isinstance(frame, str) or frame not in transforms:
+            raise self.fail(path + ("frame",), f"unknown frame {frame!r}; expected {WORLD!r} or one of: {', '.join(k for k in transforms if k != WORLD) or '(none)'}")
+        return transforms[frame]
+
+    def material(self, raw: Any, path: KeyPath, modulus: float) -> Material:
+        data = self.mapping(raw, path, "a material with E and nu")
+        self.check_keys(data, MATERIAL_KEYS, path, "a material")
+        for key in MATERIAL_KEYS:
+            if key not in data:
+                raise self.fail(path, f"missing required key {key!r} of a material")
+        e = self.number(data["E"], path + ("E",))
+        nu = self.number(data["nu"], path + ("nu",))
+        try:
+            return Material(str(path[-1]), e * modulus, nu)
+        except MechanismError as exc:
+            raise self.fail(path + (exc.key,), exc.message) from None
+
+    def materials(self, value: Any, modulus: float) -> dict[str, Material]:
+        if value is None:
+            return {}
+        data = self.mapping(value, ("materials",), "material names to {E, nu}")
+        return {str(k): self.material(v, ("materials", k), modulus) for k, v in data.items()}
+
+    def elements(self, value: Any, transforms: Mapping[str, Transform], materials: Mapping[str, Material], modulus: float) -> list[Rod]:
+        if not isinstance(value, list) or not value:
+            raise self.fail(("elements",), f"expected a non-empty list of flexure elements, got {describe_value(value)}")
+        out = []
+        for i, raw in enumerate(value):
+            path: KeyPath = ("elements", i)
+            data = self.mapping(raw, path, "a flexure element with name, type, bodies and geometry")
+            self.check_keys(data, ELEMENT_KEYS, path, "a flexure element")
+            for key in ("name", "type", "bodies", "length", "radius", "material"):
+                if key not in data:
+                    raise self.fail(path, f"missing required key {key!r} of a flexure element")
+            if data["type"] not in ELEMENT_TYPES:
+                raise self.fail(path + ("type",), f"unknown flexure element type {data['type']!r}; expected one of: {', '.join(ELEMENT_TYPES)}")
+            bodies = data["bodies"]
+            if not isinstance(bodies, list) or len(bodies) != 2 or not all(isinstance(b, (str, int)) for b in bodies):
+                raise self.fail(path + ("bodies",), f"expected two body names [a, b], got {describe_value(bodies)}")
+            tf = self.frame_of(data, path, transforms)
+            point = self.vector(data["point"], path + ("point",)) if "point" in data else (0.0, 0.0, 0.0)
+            axis = self.vector(data["axis"], path + ("axis",)) if "axis" in data else (0.0, 0.0, 1.0)
+            if not np.any(axis):
+                raise self.fail(path + ("axis",), "expected a non-zero direction, got [0, 0, 0]")
+            mat = data["material"]
+            if isinstance(mat, str):
+                if mat not in materials:
+                    raise self.fail(path + ("material",), f"unknown material {mat!r}; expected one of: {', '.join(materials) or '(none: add a materials section)'} or an inline {{E, nu}}")
+                material = materials[mat]
+            else:
+                material = self.material(mat, path + ("material",), modulus)
+            try:
+                out.append(
+                    Rod(
+                        self.string(str(data["name"]), path + ("name",)),
+                        (str(bodies[0]), str(bodies[1])),
+                        tuple(tf.apply_point(point)),
+                        tuple(tf.apply_vector(axis)),
+                        self.number(data["length"], path + ("length",)),
+                        self.number(data["radius"], path + ("radius",)),
+                        material,
+                    )
+                )
+            except MechanismError as exc:
+                raise self.fail(path + parse_key(exc.key), exc.message) from None
+        return out
+
+    def actuators(self, value: Any, transforms: Mapping[str, Transform]) -> list[ForceLine]:
+        if value is None:
+            return []
+        if not isinstance(value, list):
+            raise self.fail(("actuators",), f"expected a list of force lines, got {describe_value(value)}")
+        out = []
+        for i, raw in enumerate(value):
+            path: KeyPath = ("actuators", i)
+            data = self.mapping(raw, path, "a force line with name, point and direction")
+            self.check_keys(data, ACTUATOR_KEYS, path, "a linear actuator")
+            for key in ("name", "point", "direction"):
+                if key not in data:
+                    raise self.fail(path, f"missing required key {key!r} of a linear actuator")
+            tf = self.frame_of(data, path, transforms)
+            point = self.vector(data["point"], path + ("point",))
+            direction = self.vector(data["direction"], path + ("direction",))
+            if not np.any(direction):
+                raise self.fail(path + ("direction",), "expected a non-zero direction, got [0, 0, 0]")
+            actuated = data.get("actuated", False)
+            if not isinstance(actuated, bool):
+                raise self.fail(path + ("actuated",), f"expected true or false, got {actuated!r}")
+            try:
+                out.append(ForceLine(self.string(str(data["name"]), path + ("name",)), tuple(tf.apply_point(point)), tuple(tf.apply_vector(direction)), actuated))
+            except MechanismError as exc:
+                raise self.fail(path + parse_key(exc.key), exc.message) from None
+        return out

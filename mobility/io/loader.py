@@ -1,0 +1,281 @@
+"""Read mechanism files (YAML) into :class:`~mobility.core.model.Mechanism` objects.
+
+Implements version 1 of the file format (``docs/file-format.md``) and three
+extensions that never change the meaning of a version-1 file:
+
+* ``parameters``: named numbers, each a number or an expression over the
+  parameters above it; any number field may then be an expression string
+  (see :mod:`mobility.io.expressions`);
+* ``limbs``: a block of joints repeated ``copies`` times, with the copy index
+  available in expressions and ``{...}`` substitutions in names, and an
+  optional frame per copy;
+* joint types may also be written by name (``revolute`` for ``R``...), frames
+  may be given by ``axis`` and ``angle`` instead of ``rpy``, and a joint may
+  carry ``actuated: true``.
+
+Every error names the file, the line, the key and what was expected.  The
+loader knows nothing of screws.
+
+Examples
+--------
+>>> text = '''
+... name: slider
+... ground: g
+... end_effector: s
+... joints:
+...   - {name: P1, type: P, links: [g, s], axis: [0, 0, 2]}
+... '''
+>>> m = loads(text)
+>>> m.joints[0].axis
+(0.0, 0.0, 1.0)
+>>> loads(text.replace("[0, 0, 2]", "[0, 2]"), file="slider.yaml")
+Traceback (most recent call last):
+...
+mobility.errors.MechanismFileError: slider.yaml:6: joints[0].axis: expected a list of 3 numbers, got 2
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any, Callable, Mapping
+
+from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Expected, Frame, Joint, Mechanism
+from ..errors import MechanismError
+from .reader import NAME_RE, DocumentReader, describe_value, parse_key
+from .yaml_source import KeyPath, format_key, parse_yaml, read_text
+
+__all__ = ["load", "loads", "TOP_LEVEL_KEYS", "JOINT_KEYS", "EXPECTED_VALIDATORS"]
+
+TOP_LEVEL_KEYS = ("name", "description", "ground", "end_effector", "units", "frames", "joints", "expected", "parameters", "limbs")
+JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes", "normal", "actuated")
+LIMB_KEYS = ("copies", "index", "frame", "joints")
+_TYPE_NAMES = {name: letter for letter, name in JOINT_TYPES.items()}
+_SUBST_RE = re.compile(r"\{([^{}]*)\}")
+
+
+def load(path: str | Path) -> Mechanism:
+    """Load a mechanism file.
+
+    Parameters
+    ----------
+    path : str or Path
+        A YAML file following the format.
+
+    Returns
+    -------
+    Mechanism
+
+    Raises
+    ------
+    MechanismFileError
+        When the file cannot be read or breaks the format; the message names
+        file, line, key and what was expected.
+    """
+    return loads(read_text(path), file=str(path))
+
+
+def loads(text: str, file: str = "<string>") -> Mechanism:
+    """Load a mechanism from YAML text (see :func:`load`)."""
+    data, positions = parse_yaml(text, file)
+    return _MechanismReader(file, positions).mechanism(data)
+
+
+def _expected_int(value: Any, key: str, *, signed: bool = False) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or (not signed and value < 0):
+        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {value!r}")
+    return value
+
+
+def _expected_pattern(value: Any, key: str) -> str:
+    if not isinstance(value, str) or not re.fullmatch(r"0|([1-6]T)?([1-6]R)?", value) or not value:
+        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0", got {value!r}')
+    return value
+
+
+EXPECTED_VALIDATORS: dict[str, Callable[[Any, str], Any]] = {
+    "dof": _expected_int,
+    "pattern": _expected_pattern,
+    "mobility": _expected_int,
+    "redundant_constraints": _expected_int,
+    "idle_dof": _expected_int,
+    "gruebler_kutzbach": lambda v, k: _expected_int(v, k, signed=True),
+    "full_cycle_dof": _expected_int,
+    "full_cycle_mobility": _expected_int,
+    "finite_verdict": lambda v, k: _expected_choice(v, k, ("full-cycle", "instantaneous-only", "cannot-move", "bifurcation")),
+}
+"""Validators of the ``expected`` keys (other modules may register more)."""
+
+
+def _expected_choice(value: Any, key: str, choices: tuple[str, ...]) -> str:
+    if value not in choices:
+        raise MechanismError(key, f"expected one of {', '.join(choices)}, got {value!r}")
+    return value
+
+
+class _MechanismReader(DocumentReader):
+    """Turns a parsed mechanism document into a Mechanism, translating every error to file:line: key."""
+
+    # -- document ---------------------------------------------------------
+    def mechanism(self, data: Any) -> Mechanism:
+        if data is None:
+            raise self.fail((), "the file is empty; expected a mapping with name, ground, end_effector and joints")
+        doc = self.mapping(data, (), "a mechanism")
+        self.check_keys(doc, TOP_LEVEL_KEYS, (), "a mechanism")
+        for key in ("name", "ground", "end_effector"):
+            if key not in doc:
+                raise self.fail((), f"missing required key {key!r}")
+        if "joints" not in doc and "limbs" not in doc:
+            raise self.fail((), "missing required key 'joints'")
+        name = self.string(str(doc["name"]) if isinstance(doc["name"], (int, float)) else doc["name"], ("name",))
+        description = doc.get("description", "")
+        if not isinstance(description, str):
+            raise self.fail(("description",), f"expected a string, got {describe_value(description)}")
+        length_unit = self.units(doc.get("units"))
+        self.parameters(doc.get("parameters"))
+        frames = self.frames(doc.get("frames"))
+        joints, sources = self.joints(doc.get("joints", []), ("joints",), {}, None)
+        limb_frames, limb_joints, limb_sources = self.limbs(doc.get("limbs"))
+        frames += limb_frames
+        joints += limb_joints
+        sources += limb_sources
+        if not joints:
+            raise self.fail(("joints",), "expected at least one joint")
+        expected = self.expected(doc["expected"]) if "expected" in doc else None
+        try:
+            return Mechanism(
+                name=name,
+                ground=self.string(doc["ground"], ("ground",)),
+                end_effector=self.string(doc["end_effector"], ("end_effector",)),
+                joints=tuple(joints),
+                frames=tuple(frames),
+                description=description,
+                length_unit=length_unit,
+                expected=expected,
+                source=self.file,
+            )
+        except MechanismError as exc:
+            raise self.fail(self.source_path(exc.key, sources), exc.message) from None
+
+    def source_path(self, key: str, sources: list[KeyPath]) -> KeyPath:
+        """Key path in the file of a model error key such as ``joints[4].name``."""
+        path = parse_key(key)
+        if len(path) >= 2 and path[0] == "joints" and isinstance(path[1], int) and path[1] < len(sources):
+            return sources[path[1]] + path[2:]
+        return path
+
+    def joints(self, value: Any, path: KeyPath, names: Mapping[str, float], default_frame: str | None, subst: Callable[[str, KeyPath], str] | None = None) -> tuple[list[Joint], list[KeyPath]]:
+        if not isinstance(value, list):
+            raise self.fail(path, f"expected a list of joints, got {describe_value(value)}")
+        out, sources = [], []
+        for i, raw in enumerate(value):
+            out.append(self.joint(raw, path + (i,), names, default_frame, subst))
+            sources.append(path + (i,))
+        return out, sources
+
+    def joint(self, raw: Any, path: KeyPath, extra_names: Mapping[str, float], default_frame: str | None, subst: Callable[[str, KeyPath], str] | None) -> Joint:
+        data = self.mapping(raw, path, "a joint with name, type, links and geometry")
+        self.check_keys(data, JOINT_KEYS, path, "a joint")
+        for key in ("name", "type", "links"):
+            if key not in data:
+                raise self.fail(path, f"missing required key {key!r} of a joint")
+        names = {**self.names, **extra_names}
+        text = subst or (lambda s, p: s)
+        name = text(self.string(str(data["name"]) if isinstance(data["name"], (int, float)) else data["name"], path + ("name",)), path + ("name",))
+        jtype = data["type"]
+        if isinstance(jtype, str) and jtype.lower() in _TYPE_NAMES:
+            jtype = _TYPE_NAMES[jtype.lower()]
+        if jtype not in JOINT_DOF:
+            raise self.fail(path + ("type",), f"unknown joint type {jtype!r}; expected one of {', '.join(JOINT_DOF)} (or revolute, prismatic, helical, cylindrical, universal, spherical, planar)")
+        links = data["links"]
+        if not isinstance(links, list) or len(links) != 2 or not all(isinstance(x, (str, int)) for x in links):
+            raise self.fail(path + ("links",), f"expected two link names [a, b], got {describe_value(links)}")
+        links = tuple(text(str(x), path + ("links", k)) for k, x in enumerate(links))
+        fields: dict[str, Any] = {}
+        for key in ("axis", "point", "normal"):
+            if key in data:
+                fields[key] = self.vector(data[key], path + (key,), names)
+        if "pitch" in data:
+            fields["pitch"] = self.number(data["pitch"], path + ("pitch",), names)
+        if "axes" in data:
+            axes = data["axes"]
+            if not isinstance(axes, list) or len(axes) != 2:
+                raise self.fail(path + ("axes",), f"expected two directions [a1, a2], got {describe_value(axes)}")
+            fields["axes"] = tuple(self.vector(a, path + ("axes", k), names) for k, a in enumerate(axes))
+        frame = data.get("frame", default_frame or WORLD)
+        if not isinstance(frame, str):
+            raise self.fail(path + ("frame",), f"expected a frame name, got {describe_value(frame)}")
+        actuated = data.get("actuated", False)
+        if not isinstance(actuated, bool):
+            raise self.fail(path + ("actuated",), f"expected true or false, got {actuated!r}")
+        try:
+            return Joint(name, jtype, links, frame=text(frame, path + ("frame",)), actuated=actuated, **fields)
+        except MechanismError as exc:
+            raise self.fail(path + parse_key(exc.key), exc.message) from None
+
+    def limbs(self, value: Any) -> tuple[list[Frame], list[Joint], list[KeyPath]]:
+        frames: list[Frame] = []
+        joints: list[Joint] = []
+        sources: list[KeyPath] = []
+        if value is None:
+            return frames, joints, sources
+        if not isinstance(value, list):
+            raise self.fail(("limbs",), f"expected a list of limb patterns, got {describe_value(value)}")
+        for k, raw in enumerate(value):
+            path: KeyPath = ("limbs", k)
+            limb = self.mapping(raw, path, "a limb pattern with copies and joints")
+            self.check_keys(limb, LIMB_KEYS, path, "a limb pattern")
+            copies = limb.get("copies")
+            if isinstance(copies, bool) or not isinstance(copies, int) or copies < 1:
+                raise self.fail(path + ("copies",), f"expected a positive integer, got {copies!r}")
+            index = limb.get("index", "i")
+            if not isinstance(index, str) or not NAME_RE.match(index):
+                raise self.fail(path + ("index",), f"expected a variable name, got {index!r}")
+            if "joints" not in limb:
+                raise self.fail(path, "missing required key 'joints' of a limb pattern")
+            for i in range(copies):
+                local = {index: float(i)}
+
+                def subst(s: str, p: KeyPath, local: dict[str, float] = local) -> str:
+                    def one(m: re.Match[str]) -> str:
+                        v = self.number(m.group(1), p, {**self.names, **local})
+                        return str(int(v)) if v == int(v) else repr(v)
+
+                    return _SUBST_RE.sub(one, s)
+
+                frame_name = None
+                if "frame" in limb:
+                    fdata = self.mapping(limb["frame"], path + ("frame",), "a frame")
+                    frame_name = subst(str(fdata.get("name", f"limb{k}_{{{index}}}")), path + ("frame", "name"))
+                    parent = fdata.get("parent")
+                    fdata = {**fdata, **({"parent": subst(parent, path + ("frame", "parent"))} if isinstance(parent, str) else {})}
+                    fdata.pop("name", None)
+                    frames.append(self.frame(frame_name, fdata, path + ("frame",), {**self.names, **local}))
+                js, src = self.joints(limb["joints"], path + ("joints",), local, frame_name, subst)
+                joints += js
+                sources += src
+        return frames, joints, sources
+
+    def expected(self, value: Any) -> Expected:
+        path: KeyPath = ("expected",)
+        data = self.mapping(value, path, "expected results")
+        self.check_keys(data, tuple(EXPECTED_KEYS), path, "the expected block")
+        fields: dict[str, Any] = {}
+        extra: dict[str, Any] = {}
+        for key, raw in data.items():
+            kpath = path + (key,)
+            if key == "translations":
+                if not isinstance(raw, list):
+                    raise self.fail(kpath, f"expected a list of 3-vectors, got {describe_value(raw)}")
+                fields[key] = tuple(self.vector(v, kpath + (i,)) for i, v in enumerate(raw))
+                continue
+            validator = EXPECTED_VALIDATORS.get(key)
+            try:
+                parsed = validator(raw, format_key(kpath)) if validator else raw
+            except MechanismError as exc:
+                raise self.fail(kpath, exc.message) from None
+            if key in Expected.__dataclass_fields__:
+                fields[key] = parsed
+            else:
+                extra[key] = parsed
+        return Expected(**fields, extra=extra)

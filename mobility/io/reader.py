@@ -1,0 +1,185 @@
+"""Reading a parsed YAML document with one-line errors: the part every document loader shares.
+
+:class:`DocumentReader` turns values of a parsed document into numbers,
+vectors, names, units, parameters and frames, and every error into a
+:class:`~mobility.errors.MechanismFileError` naming the file, the line and
+the key.  The mechanism loader (:mod:`mobility.io.loader`) and the flexure
+loader build on it.
+
+Examples
+--------
+>>> from mobility.io.yaml_source import parse_yaml
+>>> data, positions = parse_yaml("parameters: {a: 2}\\npoint: [a, 1, 0]\\n", "p.yaml")
+>>> r = DocumentReader("p.yaml", positions)
+>>> r.parameters(data["parameters"])
+>>> r.vector(data["point"], ("point",))
+(2.0, 1.0, 0.0)
+>>> r.vector([1, 2], ("point",))
+Traceback (most recent call last):
+...
+mobility.errors.MechanismFileError: p.yaml:2: point: expected a list of 3 numbers, got 2
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from typing import Any, Mapping
+
+from ..core.model import WORLD, Frame
+from ..core.transforms import rotation_from_axis_angle, rotation_from_rpy
+from ..errors import MechanismError, MechanismFileError
+from .expressions import evaluate
+from .yaml_source import KeyPath, Positions, format_key
+
+__all__ = ["DocumentReader", "describe_value", "parse_key", "NAME_RE", "FRAME_KEYS"]
+
+FRAME_KEYS = ("origin", "rpy", "axis", "angle", "parent")
+NAME_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+
+
+class DocumentReader:
+    """Reads the values of one parsed document; every error names file, line and key.
+
+    Parameters
+    ----------
+    file : str
+        The file name used in messages.
+    positions : Positions
+        Lines of the keys, from :func:`~mobility.io.yaml_source.parse_yaml`.
+    """
+
+    def __init__(self, file: str, positions: Positions) -> None:
+        self.file = file
+        self.pos = positions
+        self.names: dict[str, float] = {}
+        self.angle_scale = math.pi / 180.0
+
+    # -- errors -----------------------------------------------------------
+    def fail(self, path: KeyPath, message: str) -> MechanismFileError:
+        return MechanismFileError(format_key(path), message, file=self.file, line=self.pos.line(path))
+
+    def check_keys(self, mapping: Mapping[str, Any], allowed: tuple[str, ...], path: KeyPath, what: str) -> None:
+        for key in mapping:
+            if key not in allowed:
+                close = difflib.get_close_matches(str(key), allowed, n=1)
+                hint = f" (did you mean {close[0]!r}?)" if close else ""
+                raise self.fail(path + (key,), f"unknown key in {what}{hint}; expected one of: {', '.join(allowed)}")
+
+    def mapping(self, value: Any, path: KeyPath, what: str) -> Mapping[str, Any]:
+        if not isinstance(value, dict):
+            raise self.fail(path, f"expected a mapping ({what}), got {describe_value(value)}")
+        return value
+
+    # -- scalars ----------------------------------------------------------
+    def number(self, value: Any, path: KeyPath, names: Mapping[str, float] | None = None) -> float:
+        if isinstance(value, bool):
+            raise self.fail(path, f"expected a number, got {value!r}")
+        if isinstance(value, (int, float)):
+            if not math.isfinite(value):
+                raise self.fail(path, f"expected a finite number, got {value!r}")
+            return float(value)
+        if isinstance(value, str):
+            try:
+                return evaluate(value, self.names if names is None else names)
+            except ValueError as exc:
+                raise self.fail(path, str(exc)) from None
+        raise self.fail(path, f"expected a number or an expression, got {describe_value(value)}")
+
+    def vector(self, value: Any, path: KeyPath, names: Mapping[str, float] | None = None) -> tuple[float, float, float]:
+        if not isinstance(value, list):
+            raise self.fail(path, f"expected a list of 3 numbers, got {describe_value(value)}")
+        if len(value) != 3:
+            raise self.fail(path, f"expected a list of 3 numbers, got {len(value)}")
+        x, y, z = (self.number(v, path + (i,), names) for i, v in enumerate(value))
+        return (x, y, z)
+
+    def string(self, value: Any, path: KeyPath) -> str:
+        if not isinstance(value, str) or not value.strip():
+            raise self.fail(path, f"expected a non-empty string, got {describe_value(value)}")
+        return value
+
+    def units(self, value: Any) -> str:
+        if value is None:
+            return ""
+        units = self.mapping(value, ("units",), "units")
+        self.check_keys(units, ("angle", "length"), ("units",), "units")
+        angle = units.get("angle", "deg")
+        if angle in ("deg", "degree", "degrees"):
+            self.angle_scale = math.pi / 180.0
+        elif angle in ("rad", "radian", "radians"):
+            self.angle_scale = 1.0
+        else:
+            raise self.fail(("units", "angle"), f"expected deg or rad, got {angle!r}")
+        length = units.get("length", "")
+        if not isinstance(length, str):
+            raise self.fail(("units", "length"), f"expected a unit label such as mm, got {describe_value(length)}")
+        return length
+
+    def parameters(self, value: Any) -> None:
+        if value is None:
+            return
+        params = self.mapping(value, ("parameters",), "parameter names to numbers or expressions")
+        for key, raw in params.items():
+            if not NAME_RE.match(key) or key in ("pi", "tau", "e"):
+                raise self.fail(("parameters", key), "expected a parameter name (letters, digits, _; not pi, tau or e)")
+            self.names[key] = self.number(raw, ("parameters", key))
+
+    def frames(self, value: Any) -> list[Frame]:
+        if value is None:
+            return []
+        frames = self.mapping(value, ("frames",), "frame names to frames")
+        return [self.frame(str(fname), fdata, ("frames", fname), self.names) for fname, fdata in frames.items()]
+
+    def frame(self, name: str, data: Any, path: KeyPath, names: Mapping[str, float]) -> Frame:
+        fdata = self.mapping(data if data is not None else {}, path, "a frame with origin, rpy, parent")
+        self.check_keys(fdata, FRAME_KEYS + (("name",) if path[0] == "limbs" else ()), path, "a frame")
+        origin = self.vector(fdata["origin"], path + ("origin",), names) if "origin" in fdata else (0.0, 0.0, 0.0)
+        if "rpy" in fdata and ("axis" in fdata or "angle" in fdata):
+            raise self.fail(path, "give either rpy or axis and angle, not both")
+        if "rpy" in fdata:
+            rpy = self.vector(fdata["rpy"], path + ("rpy",), names)
+            rotation = rotation_from_rpy(tuple(a * self.angle_scale for a in rpy))
+        elif "axis" in fdata or "angle" in fdata:
+            if "axis" not in fdata or "angle" not in fdata:
+                raise self.fail(path, "a rotation by axis and angle needs both keys")
+            axis = self.vector(fdata["axis"], path + ("axis",), names)
+            norm = math.sqrt(sum(a * a for a in axis))
+            if norm == 0.0:
+                raise self.fail(path + ("axis",), "expected a non-zero direction, got [0, 0, 0]")
+            rotation = rotation_from_axis_angle([a / norm for a in axis], self.number(fdata["angle"], path + ("angle",), names) * self.angle_scale)
+        else:
+            rotation = rotation_from_rpy((0.0, 0.0, 0.0))
+        parent = fdata.get("parent", WORLD)
+        if not isinstance(parent, str):
+            raise self.fail(path + ("parent",), f"expected a frame name, got {describe_value(parent)}")
+        try:
+            return Frame(name, origin, tuple(map(tuple, rotation)), parent)
+        except MechanismError as exc:
+            raise self.fail(path + tuple(parse_key(exc.key)), exc.message) from None
+
+
+def describe_value(value: Any) -> str:
+    """Describe a parsed YAML value for an error message."""
+    if value is None:
+        return "nothing"
+    if isinstance(value, bool):
+        return f"{value!r}".lower()
+    if isinstance(value, (int, float)):
+        return f"the number {value!r}"
+    if isinstance(value, str):
+        return f"the string {value!r}"
+    if isinstance(value, list):
+        return f"a list of {len(value)}"
+    if isinstance(value, dict):
+        return "a mapping"
+    return type(value).__name__
+
+
+def parse_key(key: str) -> KeyPath:
+    """Parse ``joints[3].axes[0]`` into ``("joints", 3, "axes", 0)``."""
+    out: list[str | int] = []
+    for part in re.finditer(r"([^.\[\]]+)|\[(\d+)\]", key):
+        out.append(int(part.group(2)) if part.group(2) is not None else part.group(1))
+    return tuple(out)

@@ -1,0 +1,114 @@
+"""Writing a mechanism file: a :class:`~mobility.core.model.Mechanism` out as YAML text.
+
+The text follows version 1 of the format (plus ``actuated``), one joint per
+line in flow style, every joint in the global frame, and loads back with
+:func:`mobility.loads` to the same joints.  Used by ``mobility convert`` and by
+the type synthesis to write the mechanisms it assembles.
+
+Examples
+--------
+>>> from mobility.core.model import Joint, Mechanism
+>>> import mobility
+>>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(0, 0, 1), actuated=True),))
+>>> print(mechanism_to_yaml(m, expected={"dof": 1, "pattern": "1T"}))
+name: slide
+ground: g
+end_effector: s
+joints:
+  - {name: p, type: P, links: [g, s], axis: [0, 0, 1], actuated: true}
+expected: {dof: 1, pattern: 1T}
+<BLANKLINE>
+>>> mobility.loads(mechanism_to_yaml(m)).joints[0].actuated
+True
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from typing import Any, Iterable
+
+import yaml
+
+from ..core.model import Mechanism
+
+__all__ = ["mechanism_to_yaml", "yaml_scalar"]
+
+_PLAIN = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.\-()+/ ]*[A-Za-z0-9_.)]|[A-Za-z_]")
+
+
+def yaml_scalar(value: Any) -> str:
+    """A name or number written so that YAML reads it back unchanged.
+
+    Examples
+    --------
+    >>> yaml_scalar("crank"), yaml_scalar("2T3R"), yaml_scalar("on"), yaml_scalar("1.5"), yaml_scalar("a: b"), yaml_scalar(0.5)
+    ('crank', '2T3R', '"on"', '"1.5"', '"a: b"', '0.5')
+    """
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return _number(value)
+    text = str(value)
+    if _PLAIN.fullmatch(text) and yaml.safe_load(text) == text:  # not read as a number, boolean or null
+        return text
+    return json.dumps(text, ensure_ascii=False)  # a JSON string is a YAML double-quoted scalar
+
+
+def _number(x: float) -> str:
+    x = float(x)
+    if abs(x) < 1e-12:
+        return "0"
+    return f"{x:.12g}"
+
+
+def _vector(v: Iterable[float]) -> str:
+    return "[" + ", ".join(_number(x) for x in v) + "]"
+
+
+def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: dict[str, Any] | None = None) -> str:
+    """A mechanism file for ``mechanism``, its joints written in the global frame.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    description : str
+        Written as a folded ``description`` block.
+    expected : dict, optional
+        Written as the ``expected`` block (``mobility check`` compares with it).
+
+    Returns
+    -------
+    str
+    """
+    lines = [f"name: {yaml_scalar(mechanism.name)}"]
+    if description:
+        lines.append("description: >")
+        line = " "
+        for word in description.split():
+            if len(line) + len(word) > 100:
+                lines.append(line.rstrip())
+                line = " "
+            line += " " + word
+        lines.append(line.rstrip())
+    if mechanism.length_unit:
+        lines.append(f"units: {{length: {yaml_scalar(mechanism.length_unit)}}}")
+    lines += [f"ground: {yaml_scalar(mechanism.ground)}", f"end_effector: {yaml_scalar(mechanism.end_effector)}", "joints:"]
+    for j in mechanism.world_joints:
+        fields = [f"name: {yaml_scalar(j.name)}", f"type: {j.type}", f"links: [{yaml_scalar(j.links[0])}, {yaml_scalar(j.links[1])}]"]
+        if j.axis is not None:
+            fields.append(f"axis: {_vector(j.axis)}")
+        if j.axes is not None:
+            fields.append(f"axes: [{_vector(j.axes[0])}, {_vector(j.axes[1])}]")
+        if j.point is not None and j.type != "P":
+            fields.append(f"point: {_vector(j.point)}")
+        if j.pitch is not None:
+            fields.append(f"pitch: {_number(j.pitch)}")
+        if j.normal is not None:
+            fields.append(f"normal: {_vector(j.normal)}")
+        if j.actuated:
+            fields.append("actuated: true")
+        lines.append("  - {" + ", ".join(fields) + "}")
+    if expected:
+        lines.append("expected: {" + ", ".join(f"{k}: {yaml_scalar(v)}" for k, v in expected.items()) + "}")
+    return "\n".join(lines) + "\n"

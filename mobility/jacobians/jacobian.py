@@ -1,0 +1,536 @@
+"""Jacobians of parallel mechanisms by differentiating finite screws (Eq. 26 of Sun et al., 2018).
+
+A parallel mechanism whose limbs are serial chains from the ground to the end
+effector (the platform) has one finite screw per limb, the triangle product of
+its joints' finite screws (Eq. 7, :class:`mobility.core.finite_screws.Limb`); at an
+assembled pose they are all the platform's finite screw ``S_f``.
+Differentiating limb ``i``'s product gives the platform twist (Eq. 26)
+
+    ``$_p = Σ_j q'_ij $_ij``,   ``$_ij = twist_from_finite_screw_rate(S_f, ∂S_f/∂q_ij)``
+
+so ``$_ij`` is the twist of joint ``j`` of limb ``i`` at the pose.  Then
+
+* the **constraint wrenches** of limb ``i`` are reciprocal to all its ``$_ij``;
+  those of the platform are their union, and the platform's twist system is
+  its reciprocal (for METROM: one force through ``O`` along ``s1 × s2``);
+* the **actuation wrench** of an actuated joint ``(i, j)`` is reciprocal to the
+  limb's other twists but not to ``$_ij``; it is defined up to the limb's
+  constraint wrenches and the one reported is orthogonal to them (normalised
+  coordinates).  Scaled so that ``W ∘ $_ij = 1``, the reciprocal product with
+  the platform twist is the actuated rate: ``W ∘ $_p = q'_ij``;
+* the **Jacobian** stacks both: ``J $_p = [q'_a; 0]``, rows ``(SWAP W)^T``;
+  when it is square and regular, the first columns of ``J^-1`` are the
+  platform twists per unit actuated rate.
+
+Rank decisions follow :mod:`mobility.core.tolerance` (normalised coordinates at the
+pose); results are in the global frame and the mechanism's length unit.
+
+Examples
+--------
+>>> import mobility
+>>> m = mobility.loads('''
+... name: planar RR arm
+... ground: g
+... end_effector: hand
+... joints:
+...   - {name: A, type: R, links: [g, upper], axis: [0, 0, 1], point: [0, 0, 0], actuated: true}
+...   - {name: B, type: R, links: [upper, hand], axis: [0, 0, 1], point: [1, 0, 0], actuated: true}
+... ''')
+>>> jac = jacobian(m)
+>>> jac.dof, jac.matrix.shape, jac.singular
+(2, (6, 6), False)
+>>> (jac.twist_map[:, 1].round(12) + 0.0).tolist()        # unit rate of B: rotation about z through (1, 0, 0)
+[0.0, 0.0, 1.0, 0.0, -1.0, 0.0]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Sequence
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ..errors import AnalysisError, MechanismError
+from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
+from ..errors import HalfTurnError
+from ..core.joint_screws import Normalisation
+from ..core.model import Joint, Mechanism
+from ..core.screws import SWAP, reciprocal_product, reciprocal_system, span_and_reciprocal
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale, decide_rank
+from ..core.transforms import cross
+
+__all__ = ["Chain", "ParallelModel", "JacobianResult", "parallel_model", "jacobian", "wrench_axis"]
+
+
+@dataclass(frozen=True)
+class Chain:
+    """One limb as a serial chain of one-DOF freedoms, from the ground to the platform.
+
+    Attributes
+    ----------
+    limb : Limb
+        The freedoms as :class:`~mobility.core.finite_screws.ScrewJoint` in the
+        mechanism's pose (its home), global frame.  A joint met from its
+        ``links[1]`` side has its freedoms in reverse order with their axes
+        reversed, so every chain variable is the joint's own variable.
+    joints : tuple of int
+        Index in :attr:`Mechanism.joints` of each freedom's joint.
+    freedoms : tuple of int
+        Index of each freedom within its joint.
+    forward : tuple of bool
+        Whether each freedom's joint is met from its ``links[0]`` side.
+    """
+
+    limb: Limb
+    joints: tuple[int, ...]
+    freedoms: tuple[int, ...]
+    forward: tuple[bool, ...]
+
+
+@dataclass(frozen=True)
+class ParallelModel:
+    """A mechanism as parallel serial chains, with its actuated freedoms.
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+    chains : tuple of Chain
+    actuated : tuple of (int, int)
+        ``(chain, position in the chain)`` of each actuated freedom.
+    labels : tuple of str
+        Name of each actuated freedom (the joint name; ``name.k`` for the k-th
+        freedom of a multi-DOF joint).
+    """
+
+    mechanism: Mechanism
+    chains: tuple[Chain, ...]
+    actuated: tuple[tuple[int, int], ...]
+    labels: tuple[str, ...]
+
+    def home(self) -> tuple[np.ndarray, ...]:
+        """Joint values of the mechanism's own pose (all zero)."""
+        return tuple(np.zeros(len(c.limb)) for c in self.chains)
+
+    def platform(self, q: Sequence[np.ndarray] | None = None) -> FiniteScrew:
+        """The platform's finite screw at ``q`` (from the first chain)."""
+        values = self.home() if q is None else q
+        return self.chains[0].limb.finite_screw(values[0])
+
+    def closure_error(self, q: Sequence[np.ndarray]) -> float:
+        """Largest difference between the chains' platform displacements (entries of ``[R; p / L]``)."""
+        length = self.length
+        mats = [c.limb.transform(v) for c, v in zip(self.chains, q)]
+        return max(max(float(np.max(np.abs(m[:3, :3] - mats[0][:3, :3]))), float(np.max(np.abs(m[:3, 3] - mats[0][:3, 3]))) / length) for m in mats)
+
+    @property
+    def length(self) -> float:
+        """Characteristic length of the mechanism (RMS distance of the joint points from their centroid)."""
+        pts = [j.point for c in self.chains for j in c.limb.joints if j.kind != "P"]
+        return characteristic_scale(np.array(pts, dtype=float).reshape(-1, 3))[1]
+
+    def assemble(self, displacement: np.ndarray, start: Sequence[np.ndarray] | None = None) -> tuple[np.ndarray, ...]:
+        """Joint values of every chain putting the platform at ``displacement`` (4x4): inverse kinematics.
+
+        Each chain is solved by :func:`scipy.optimize.least_squares` on the
+        entries of ``[R; p / L]`` with the chain's twists as Jacobian, from
+        ``start`` (default: the home pose).
+
+        Raises
+        ------
+        AnalysisError
+            When a chain cannot reach the displacement.
+        """
+        target = np.asarray(displacement, dtype=float)
+        length = self.length
+        out = []
+        for k, chain in enumerate(self.chains):
+            limb = chain.limb
+            x0 = np.zeros(len(limb)) if start is None else np.asarray(start[k], dtype=float)
+
+            def residual(x: np.ndarray, limb: Limb = limb) -> np.ndarray:
+                t = limb.transform(x)
+                return np.concatenate([(t[:3, :3] - target[:3, :3]).ravel(), (t[:3, 3] - target[:3, 3]) / length])
+
+            def jac(x: np.ndarray, limb: Limb = limb) -> np.ndarray:
+                t = limb.transform(x)
+                tw = limb.twists(x)
+                cols = []
+                for w, v in zip(tw[:3].T, tw[3:].T):
+                    skew = np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+                    cols.append(np.concatenate([(skew @ t[:3, :3]).ravel(), (cross(w, t[:3, 3]) + v) / length]))
+                return np.array(cols).T
+
+            sol = least_squares(residual, x0, jac=jac, method="lm", x_scale="jac", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            if float(np.linalg.norm(sol.fun)) > 1e-9:
+                raise AnalysisError(f"limb {k + 1} cannot reach the platform displacement (residual {np.linalg.norm(sol.fun):.2e})")
+            out.append(sol.x)
+        return tuple(out)
+
+    def mechanism_at(self, q: Sequence[np.ndarray]) -> Mechanism:
+        """The mechanism with its joints moved to pose ``q`` (a new home), global frame.
+
+        Raises
+        ------
+        AnalysisError
+            When the chains do not close at ``q``.
+        """
+        if self.closure_error(q) > 1e-8:
+            raise AnalysisError("the limbs do not close at this pose (solve it with ParallelModel.assemble)")
+        world = self.mechanism.world_joints
+        moved: dict[int, Joint] = {}
+        for chain, values in zip(self.chains, q):
+            acc = np.eye(4)
+            pos = 0
+            while pos < len(chain.joints):
+                index = chain.joints[pos]
+                span = [p for p in range(pos, len(chain.joints)) if chain.joints[p] == index]
+                joint = world[index]
+                moved[index] = _moved_joint(joint, acc, chain, span, values)
+                for p in span:
+                    acc = acc @ chain.limb.joints[p].finite_screw(values[p]).transform()
+                pos = span[-1] + 1
+        joints = tuple(moved.get(i, j) for i, j in enumerate(world))
+        return self.mechanism.replace(joints=joints, frames=())
+
+
+def _moved_joint(joint: Joint, acc: np.ndarray, chain: Chain, span: Sequence[int], values: np.ndarray) -> Joint:
+    """A joint carried by the displacement ``acc`` of the link it is mounted on (U: second axis by the first too)."""
+    rot, pos = acc[:3, :3], acc[:3, 3]
+    fields: dict[str, Any] = {}
+    if joint.axis is not None:
+        fields["axis"] = tuple(rot @ joint.axis)
+    if joint.point is not None:
+        fields["point"] = tuple(rot @ joint.point + pos)
+    if joint.normal is not None:
+        fields["normal"] = tuple(rot @ joint.normal)
+    if joint.axes is not None:
+        first = chain.limb.joints[span[0]].finite_screw(values[span[0]]).transform()[:3, :3]
+        a1, a2 = (np.asarray(a) for a in joint.axes)
+        if chain.forward[span[0]]:
+            fields["axes"] = (tuple(rot @ a1), tuple(rot @ first @ a2))
+        else:
+            fields["axes"] = (tuple(rot @ first @ a1), tuple(rot @ a2))
+    return Joint(joint.name, joint.type, joint.links, frame="world", actuated=joint.actuated, pitch=joint.pitch, **fields)
+
+
+def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) -> ParallelModel:
+    """Split a mechanism into serial chains from the ground to the end effector.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        Every link other than the ground and the end effector must have
+        exactly two joints (limbs are serial chains).
+    actuated : sequence of str, optional
+        Names of the actuated joints (``name.k`` picks the k-th freedom of a
+        multi-DOF joint, from 1); default: the joints marked ``actuated``.
+
+    Raises
+    ------
+    MechanismError
+        When the mechanism is not a set of serial limbs, or an actuated name
+        is unknown or missing.
+    """
+    world = mechanism.world_joints
+    incident: dict[str, list[int]] = {}
+    for i, j in enumerate(world):
+        for link in j.links:
+            incident.setdefault(link, []).append(i)
+    for link, js in incident.items():
+        if link not in (mechanism.ground, mechanism.end_effector) and len(js) != 2:
+            names = ", ".join(world[i].name for i in js)
+            raise MechanismError("joints", f"link {link!r} has {len(js)} joints ({names}); the Jacobian needs limbs that are serial chains from {mechanism.ground!r} to {mechanism.end_effector!r}")
+    chains = []
+    for first in incident[mechanism.ground]:
+        link, index = mechanism.ground, first
+        screw_joints: list[ScrewJoint] = []
+        jidx: list[int] = []
+        fidx: list[int] = []
+        fwd: list[bool] = []
+        seen: set[int] = set()
+        while True:
+            if index in seen:  # pragma: no cover - guarded by the degree check
+                raise MechanismError("joints", "a limb runs in a loop")
+            seen.add(index)
+            joint = world[index]
+            forward = joint.links[0] == link
+            freedoms = list(enumerate(joint.freedoms()))
+            if not forward:
+                freedoms.reverse()
+            for k, f in freedoms:
+                axis = np.asarray(f.axis) if forward else -np.asarray(f.axis)
+                screw_joints.append(ScrewJoint(f.kind, tuple(axis), f.point, f.pitch, f"{joint.name}.{k + 1}" if joint.dof > 1 else joint.name))
+                jidx.append(index)
+                fidx.append(k)
+                fwd.append(forward)
+            link = joint.links[1] if forward else joint.links[0]
+            if link == mechanism.end_effector:
+                break
+            if link == mechanism.ground:
+                raise MechanismError("joints", f"joint {joint.name!r} closes a loop back to the ground without reaching {mechanism.end_effector!r}")
+            index = next(i for i in incident[link] if i != index)
+        chains.append(Chain(Limb(tuple(screw_joints)), tuple(jidx), tuple(fidx), tuple(fwd)))
+    if not chains:
+        raise MechanismError("joints", f"no joint on the ground {mechanism.ground!r}")
+    names = [j.name for j in mechanism.joints if j.actuated] if actuated is None else list(actuated)
+    if not names:
+        raise MechanismError("joints", "no actuated joint: mark joints with 'actuated: true' or name them (--actuated A,B,...)")
+    act: list[tuple[int, int]] = []
+    labels: list[str] = []
+    by_name = {j.name: i for i, j in enumerate(mechanism.joints)}
+    for name in names:
+        base, _, sub = name.partition(".")
+        if base not in by_name:
+            raise MechanismError("actuated", f"unknown joint {base!r}; expected one of {', '.join(by_name)}")
+        index = by_name[base]
+        joint = mechanism.joints[index]
+        ks = range(joint.dof) if not sub else [int(sub) - 1] if sub.isdigit() and 1 <= int(sub) <= joint.dof else None
+        if ks is None:
+            raise MechanismError("actuated", f"{name!r}: joint {base!r} has freedoms 1..{joint.dof}")
+        for k in ks:
+            where = [(c, p) for c, chain in enumerate(chains) for p, (ji, fi) in enumerate(zip(chain.joints, chain.freedoms)) if ji == index and fi == k]
+            if not where:
+                raise MechanismError("actuated", f"joint {base!r} is on no limb from {mechanism.ground!r} to {mechanism.end_effector!r}")
+            act.append(where[0])
+            labels.append(f"{base}.{k + 1}" if joint.dof > 1 else base)
+    return ParallelModel(mechanism, tuple(chains), tuple(act), tuple(labels))
+
+
+def wrench_axis(wrench: np.ndarray) -> tuple[str, np.ndarray, np.ndarray, float]:
+    """Kind, unit direction, point nearest the origin and pitch of a wrench ``[f; m]``.
+
+    Examples
+    --------
+    >>> kind, d, p, h = wrench_axis([0.0, 0, 2, 0, -2, 0])      # a force along z through (1, 0, 0)
+    >>> kind, d.tolist(), p.tolist(), h
+    ('force', [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 0.0)
+    """
+    w = np.asarray(wrench, dtype=float)
+    f, m = w[:3], w[3:]
+    nf = float(np.linalg.norm(f))
+    if nf <= 1e-12 * max(1.0, float(np.linalg.norm(m))):
+        return "couple", m / np.linalg.norm(m), np.zeros(3), 0.0
+    pitch = float(f @ m) / nf**2
+    point = cross(f, m) / nf**2
+    pitch = 0.0 if abs(pitch) <= 1e-12 * max(1.0, float(np.linalg.norm(point))) else pitch
+    return ("force" if pitch == 0.0 else "wrench"), f / nf, point + 0.0, pitch
+
+
+@dataclass(frozen=True, eq=False)
+class JacobianResult:
+    """The Jacobian of a parallel mechanism at one pose (global frame, the mechanism's units).
+
+    Attributes
+    ----------
+    name : str
+    actuated : tuple of str
+        Labels of the actuated freedoms (rows of ``matrix``, in order).
+    dof : int
+        Platform DOF: 6 minus the rank of the constraint wrenches.
+    matrix : ndarray, shape (a + c, 6)
+        ``J``: ``J @ $_p = [q'_a; 0]`` for any platform twist ``$_p = [ω; v]``;
+        rows are ``(SWAP W)^T`` of the actuation wrenches (scaled to unit
+        product with their joint's twist) then of the constraint wrenches.
+    actuation_wrenches : ndarray, shape (a, 6)
+        Rows ``[f; m]``.
+    constraint_wrenches : ndarray, shape (c, 6)
+        A basis (rows ``[f; m]``, force parts of unit length) of the platform's constraint system.
+    platform_twists : ndarray, shape (dof, 6)
+        A basis of the platform's twist system (rows ``[ω; v]``).
+    twist_map : ndarray or None, shape (6, a)
+        Platform twist per unit actuated rate (first ``a`` columns of
+        ``J^-1``); ``None`` when ``J`` is not square or is singular.
+    rank : int
+        Rank of ``J`` (normalised coordinates).
+    condition : float
+        Condition number of ``J`` in normalised coordinates (``inf`` if singular).
+    singular : bool
+        ``J`` is not square and regular.
+    limb_twists : tuple of ndarray
+        Per limb, the joint twists ``$_ij`` (6 x n_i), derivatives of its finite screw.
+    transform : ndarray, shape (4, 4)
+        The platform's displacement from the mechanism's own pose.
+    finite_screw : ndarray or None
+        Its finite screw ``[w; v]`` (``None`` at a half-turn).
+    """
+
+    name: str
+    actuated: tuple[str, ...]
+    dof: int
+    matrix: np.ndarray
+    actuation_wrenches: np.ndarray
+    constraint_wrenches: np.ndarray
+    platform_twists: np.ndarray
+    twist_map: np.ndarray | None
+    rank: int
+    condition: float
+    singular: bool
+    limb_twists: tuple[np.ndarray, ...] = field(repr=False)
+    transform: np.ndarray = field(repr=False)
+    finite_screw: np.ndarray | None = field(repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form."""
+
+        def clean(a: np.ndarray | None) -> Any:
+            if a is None:
+                return None
+            arr = np.where(np.abs(a) < 1e-12 * max(1.0, float(np.max(np.abs(a))) if a.size else 1.0), 0.0, a)
+            return (arr + 0.0).tolist()
+
+        def axes(rows: np.ndarray) -> list[dict[str, Any]]:
+            out = []
+            for r in rows:
+                kind, d, p, h = wrench_axis(r)
+                out.append({"kind": kind, "axis": clean(d), "point": clean(p), "pitch": h})
+            return out
+
+        return {
+            "name": self.name,
+            "actuated": list(self.actuated),
+            "dof": self.dof,
+            "matrix": clean(self.matrix),
+            "actuation_wrenches": clean(self.actuation_wrenches),
+            "actuation_axes": axes(self.actuation_wrenches),
+            "constraint_wrenches": clean(self.constraint_wrenches),
+            "constraint_axes": axes(self.constraint_wrenches),
+            "platform_twists": clean(self.platform_twists),
+            "twist_map": clean(self.twist_map),
+            "rank": self.rank,
+            "condition": self.condition if np.isfinite(self.condition) else None,
+            "singular": self.singular,
+            "finite_screw": clean(self.finite_screw),
+        }
+
+
+def jacobian(
+    mechanism: Mechanism | ParallelModel,
+    q: Sequence[np.ndarray] | None = None,
+    *,
+    actuated: Sequence[str] | None = None,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+) -> JacobianResult:
+    """The Jacobian of a parallel mechanism by differentiating its limbs' finite screws.
+
+    Parameters
+    ----------
+    mechanism : Mechanism or ParallelModel
+    q : sequence of arrays, optional
+        Joint values per limb (an assembled pose, e.g. from
+        :meth:`ParallelModel.assemble`); default: the mechanism's own pose.
+    actuated : sequence of str, optional
+        Actuated joint names (default: those marked ``actuated``); only used
+        when ``mechanism`` is a :class:`Mechanism`.
+    tol : Tolerance
+
+    Returns
+    -------
+    JacobianResult
+
+    Raises
+    ------
+    MechanismError
+        Not a set of serial limbs, or no/unknown actuated joints.
+    AnalysisError
+        The limbs do not close at ``q``, or an actuated joint cannot move the
+        platform on its own at this pose (no actuation wrench).
+    """
+    model = mechanism if isinstance(mechanism, ParallelModel) else parallel_model(mechanism, actuated)
+    values = model.home() if q is None else tuple(np.asarray(v, dtype=float) for v in q)
+    if len(values) != len(model.chains) or any(len(v) != len(c.limb) for v, c in zip(values, model.chains)):
+        raise AnalysisError("q: expected one array of joint values per limb, as many as the limb's freedoms")
+    if q is not None and model.closure_error(values) > 1e-8:
+        raise AnalysisError("the limbs do not close at this pose (solve it with ParallelModel.assemble)")
+    moved_points = [j.point for c, v in zip(model.chains, values) for j in c.limb.moved(v).joints if j.kind != "P"]
+    centre, length = characteristic_scale(np.array(moved_points, dtype=float).reshape(-1, 3))
+    norm = Normalisation(centre, length)
+    limb_twists = tuple(c.limb.twists(v) for c, v in zip(model.chains, values))  # Eq. 26: derivatives of S_f
+    # Normalised coordinates as in mobility.core.joint_screws: a P joint's unit rate is one characteristic length per unit time.
+    limb_n = [norm.from_world(t) * np.array([length if j.kind == "P" else 1.0 for j in c.limb.joints]) for t, c in zip(limb_twists, model.chains)]
+    limb_constraints = [reciprocal_system(t, tol) for t in limb_n]
+    constraint_span = span_and_reciprocal(np.hstack(limb_constraints), tol)
+    constraints_n = constraint_span.basis
+    twists_n = constraint_span.reciprocal  # twists reciprocal to every constraint: the platform's twist system
+    rows_n, wrenches_w = [], []
+    for label, (c, p) in zip(model.labels, model.actuated):
+        t = limb_n[c]
+        passive = np.delete(t, p, axis=1)
+        recip = reciprocal_system(passive, tol)
+        # Orthogonal to the limb's constraints in coordinates centred where the limb meets the platform
+        # (for an SPR limb: the force along the leg, not a mix with the constraint force).
+        shift = _shift(norm.point_from_world(_meeting_point(model.chains[c], values[c])))
+        own = shift @ limb_constraints[c]
+        own = np.linalg.qr(own)[0] if own.shape[1] else own
+        moved = shift @ recip
+        resid = moved - own @ (own.T @ moved) if own.shape[1] else moved
+        u, s, _ = np.linalg.svd(resid)
+        u = np.linalg.solve(shift, u)
+        gain = float(reciprocal_product(u[:, 0], t[:, p])) if s.size and s[0] > tol.rank else 0.0
+        if abs(gain) <= tol.rank:
+            raise AnalysisError(f"actuated joint {label} cannot move the platform on its own at this pose (its limb's other joints give the same motion)")
+        w_n = u[:, 0] / gain
+        rows_n.append(SWAP @ w_n)
+        w_world = norm.to_world(w_n)[:, 0]
+        w_world = w_world / float(reciprocal_product(w_world, limb_twists[c][:, p]))
+        wrenches_w.append(w_world)
+    rows_n += [SWAP @ w for w in constraints_n.T]
+    j_n = np.array(rows_n).reshape(-1, 6)
+    sv = np.linalg.svd(j_n, compute_uv=False)
+    rank = decide_rank(sv, tol).rank
+    square = j_n.shape[0] == 6
+    singular = not (square and rank == 6)
+    constraints_w = norm.to_world(constraints_n).T
+    constraints_w = np.array([_unit_wrench(w) for w in constraints_w]).reshape(-1, 6)
+    act_w = np.array(wrenches_w).reshape(-1, 6)
+    matrix = np.vstack([(SWAP @ act_w.T).T, (SWAP @ constraints_w.T).T]) if act_w.size or constraints_w.size else np.zeros((0, 6))
+    twist_map = None if singular else np.linalg.solve(matrix, np.eye(6)[:, : len(wrenches_w)])
+    twists_w = norm.to_world(twists_n).T
+    screw = model.platform(values)
+    try:
+        fs = screw.vector
+    except HalfTurnError:
+        fs = None
+    for arr in (matrix, act_w, constraints_w, twists_w):
+        arr.setflags(write=False)
+    return JacobianResult(
+        model.mechanism.name,
+        model.labels,
+        6 - constraints_n.shape[1],
+        matrix,
+        act_w,
+        constraints_w,
+        twists_w.reshape(-1, 6),
+        twist_map,
+        rank,
+        float(sv[0] / sv[-1]) if not singular and sv[-1] > 0 else float("inf"),
+        singular,
+        limb_twists,
+        screw.transform(),
+        fs,
+    )
+
+
+def _unit_wrench(w: np.ndarray) -> np.ndarray:
+    """A wrench scaled to a unit force part (a couple to a unit moment)."""
+    nf = float(np.linalg.norm(w[:3]))
+    if nf > 1e-12 * max(1.0, float(np.linalg.norm(w[3:]))):
+        return w / nf
+    return w / float(np.linalg.norm(w[3:]))
+
+
+def _shift(point: np.ndarray) -> np.ndarray:
+    """6x6 map of screw coordinates to coordinates with their origin at ``point``: ``[a; b] -> [a; b - point x a]``."""
+    m = np.eye(6)
+    x, y, z = point
+    m[3:, :3] = -np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return m
+
+
+def _meeting_point(chain: Chain, values: np.ndarray) -> np.ndarray:
+    """Where the limb meets the platform at the pose: the point of its last joint that has one."""
+    moved = chain.limb.moved(values)
+    for joint in reversed(moved.joints):
+        if joint.kind != "P":
+            return np.asarray(joint.point)
+    return np.zeros(3)

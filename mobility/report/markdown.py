@@ -1,0 +1,181 @@
+"""A Markdown report of a :class:`~mobility.core.result.Result` (``mobility analyze --format md``).
+
+Tables that paste into a paper, a README or an issue: the end effector's
+freedoms, its constraint wrenches, the whole-mechanism counts (Grübler–Kutzbach
+beside the screw-theory mobility, with the reason they differ) and, for a
+parallel mechanism, one row per limb.  Only formatting happens here.
+
+Examples
+--------
+>>> import mobility
+>>> m = mobility.loads('''
+... name: slider
+... ground: g
+... end_effector: s
+... joints:
+...   - {name: P1, type: P, links: [g, s], axis: [0, 0, 1]}
+... ''')
+>>> text = markdown_report(mobility.analyze(m))
+>>> print(text.splitlines()[0])
+# slider
+>>> "| T1 | translation | [0, 0, 1] |" in text
+True
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, Sequence
+
+from .text import fmt_number, fmt_vector
+from ..core.result import Result, ScrewAxis
+
+__all__ = ["markdown_report", "markdown_table", "md_escape"]
+
+
+def md_escape(text: str) -> str:
+    """Make ``text`` safe inside a Markdown table cell (pipes escaped, no line breaks).
+
+    Examples
+    --------
+    >>> md_escape("a|b\\nc")
+    'a\\\\|b c'
+    """
+    return str(text).replace("\\", "\\\\").replace("|", "\\|").replace("\r", " ").replace("\n", " ")
+
+
+def markdown_table(header: Sequence[str], rows: Iterable[Sequence[object]], align: str | None = None) -> str:
+    """A GitHub-flavoured Markdown table.
+
+    Parameters
+    ----------
+    header : sequence of str
+    rows : iterable of sequences
+        Cells, converted with ``str`` and escaped.
+    align : str, optional
+        One letter per column: ``l``, ``r`` or ``c`` (default all left).
+
+    Examples
+    --------
+    >>> print(markdown_table(["a", "b"], [[1, "x|y"]], align="rl"))
+    | a | b |
+    |--:|:--|
+    | 1 | x\\|y |
+    """
+    header = [md_escape(h) for h in header]
+    align = align or "l" * len(header)
+    if len(align) != len(header):
+        raise ValueError(f"align has {len(align)} letters for {len(header)} columns")
+    rule = {"l": ":--", "r": "--:", "c": ":-:"}
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join(rule[a] for a in align) + "|"]
+    for row in rows:
+        cells = [md_escape(c) for c in row]
+        if len(cells) != len(header):
+            raise ValueError(f"a row has {len(cells)} cells for {len(header)} columns")
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def _pitch(a: ScrewAxis, scale: float) -> str:
+    return "0" if a.pitch == 0 else fmt_number(a.pitch, scale)
+
+
+def _unit(result: Result) -> str:
+    return f" ({result.length_unit})" if result.length_unit else ""
+
+
+def _freedom_rows(result: Result) -> list[list[str]]:
+    s = result.length_scale
+    rows = [[f"T{i + 1}", "translation", fmt_vector(t), "", ""] for i, t in enumerate(result.translations)]
+    rows += [[f"R{i + 1}", a.kind, fmt_vector(a.axis), fmt_vector(a.point, s), _pitch(a, s)] for i, a in enumerate(result.rotations)]
+    return rows
+
+
+def _constraint_rows(result: Result) -> list[list[str]]:
+    s = result.length_scale
+    rows = [[f"C{i + 1}", "couple", fmt_vector(c), "", ""] for i, c in enumerate(result.couples)]
+    k = len(rows)
+    rows += [[f"W{k + i + 1}", f.kind, fmt_vector(f.axis), fmt_vector(f.point, s), _pitch(f, s)] for i, f in enumerate(result.forces)]
+    return rows
+
+
+def _screw_list(axes: Sequence[ScrewAxis], scale: float) -> str:
+    parts = []
+    for a in axes:
+        text = f"{a.kind} {fmt_vector(a.axis)} through {fmt_vector(a.point, scale)}"
+        if a.pitch != 0:
+            text += f" pitch {fmt_number(a.pitch, scale)}"
+        parts.append(text)
+    return "; ".join(parts)
+
+
+def markdown_report(result: Result, *, limbs: bool = True) -> str:
+    """The analysis as Markdown: a summary, then tables.
+
+    Parameters
+    ----------
+    result : Result
+        From :func:`mobility.analyze`.
+    limbs : bool
+        Add the table of limbs (each in its own frame) when the mechanism has some.
+
+    Returns
+    -------
+    str
+        Markdown text, ending without a newline.
+    """
+    s = result.length_scale
+    unit = _unit(result)
+    out = [f"# {md_escape(result.name)}", ""]
+    moving = "cannot move (at first order)" if result.dof == 0 else f"has **{result.dof}** DOF, motion pattern **{result.pattern}**"
+    out.append(f"The end effector {moving}; the whole mechanism has mobility **{result.mobility}**.")
+    out.append("")
+    out.append(f"## Freedoms of the end effector ({result.dof})")
+    out.append("")
+    if result.dof:
+        out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}/rad"], _freedom_rows(result)))
+        out.append("")
+        out.append("Translations: an orthonormal basis of the pure translations. Rotations: principal screws, each axis "
+                   f"given through its point nearest the end effector's centre {fmt_vector(result.reference_point, s)}.")
+    else:
+        out.append("None.")
+    out.append("")
+    out.append(f"## Constraint wrenches on the end effector ({6 - result.dof})")
+    out.append("")
+    rows = _constraint_rows(result)
+    out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}"], rows) if rows else "None: the end effector is free.")
+    out.append("")
+    out.append("## Whole mechanism")
+    out.append("")
+    counts = [
+        ["links (ground included)", "n", result.links],
+        ["joints", "j", result.joints],
+        ["joint freedoms", "Σf", result.joint_freedoms],
+        ["independent loops", "j − n + 1", result.loops],
+        ["Grübler–Kutzbach count", "6(n − 1 − j) + Σf", result.gruebler_kutzbach],
+        ["mobility (screw theory)", "M", result.mobility],
+        ["redundant constraints", "M − G–K", result.redundant_constraints],
+        ["wrenches common to every joint", "", result.common_constraints],
+        ["idle DOF (end effector still)", "M − DOF", result.idle_dof],
+    ]
+    out.append(markdown_table(["quantity", "formula", "value"], counts, align="llr"))
+    if result.gruebler_kutzbach_explanation:
+        out += ["", f"Why Grübler–Kutzbach differs: {result.gruebler_kutzbach_explanation}"]
+    out += ["", f"Structure (series/parallel decomposition): `{result.structure}`"]
+    if limbs and result.limbs:
+        out += ["", f"## Limbs ({len(result.limbs)}), each in its own frame", ""]
+        limb_rows = []
+        for i, limb in enumerate(result.limbs):
+            free = "; ".join([f"translation {fmt_vector(t)}" for t in limb.translations] + ([_screw_list(limb.rotations, s)] if limb.rotations else []))
+            cons = "; ".join([f"couple {fmt_vector(c)}" for c in limb.couples] + ([_screw_list(limb.forces, s)] if limb.forces else []))
+            limb_rows.append([i + 1, f"`{limb.structure}`", limb.frame, limb.dof, limb.idle_dof, free or "none", cons or "none"])
+        out.append(markdown_table(["limb", "structure", "frame", "DOF", "idle", "freedoms", "constraint wrenches"], limb_rows, align="rllrrll"))
+    out += [
+        "",
+        f"Rank margin: smallest kept singular value {result.margin.smallest_kept:.2e}, "
+        f"largest dropped {result.margin.largest_dropped:.2e} (relative).",
+    ]
+    if result.warnings:
+        out.append("")
+        out += [f"> **Warning:** {w}" for w in result.warnings]
+    return "\n".join(out)
+

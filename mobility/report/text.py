@@ -1,0 +1,99 @@
+"""Human-readable and JSON reports of a :class:`~mobility.core.result.Result`.
+
+Only formatting: no analysis happens here.
+
+Examples
+--------
+>>> fmt_number(1.23456789e-17), fmt_number(-0.5), fmt_number(1500.0)
+('0', '-0.5', '1500')
+>>> fmt_vector([0.0, 0.70710678118, -0.70710678118])
+'[0, 0.707107, -0.707107]'
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import numpy as np
+
+from ..core.result import Result, ScrewAxis
+
+__all__ = ["fmt_number", "fmt_vector", "text_report", "json_report"]
+
+
+def fmt_number(x: float, scale: float = 1.0, digits: int = 6) -> str:
+    """A number with ``digits`` significant digits; round-off (below 1e-9 of ``scale``) shown as 0."""
+    x = float(x)
+    if abs(x) < 1e-9 * max(scale, 1e-300):
+        return "0"
+    text = f"{x:.{digits}g}"
+    return "0" if text in ("-0", "0") else text
+
+
+def fmt_vector(v: Any, scale: float = 1.0) -> str:
+    """A vector as ``[a, b, c]``."""
+    return "[" + ", ".join(fmt_number(x, scale) for x in np.asarray(v, dtype=float)) + "]"
+
+
+def _axis_line(label: str, a: ScrewAxis, scale: float, unit: str) -> str:
+    pitch = "0" if a.pitch == 0 else f"{fmt_number(a.pitch, scale)}{(' ' + unit) if unit else ''}/rad"
+    return f"    {label:<3} axis {fmt_vector(a.axis)}  through {fmt_vector(a.point, scale)}  pitch {pitch}  ({a.kind})"
+
+
+def text_report(result: Result, *, limbs: bool = False) -> str:
+    """The report printed by ``mobility analyze``.
+
+    Parameters
+    ----------
+    result : Result
+    limbs : bool
+        Also list each limb's twists and constraint wrenches in the limb's frame.
+    """
+    s = result.length_scale
+    unit = result.length_unit
+    out = [result.name, f"  end-effector DOF: {result.dof}   pattern: {result.pattern}"]
+    if result.translation_count:
+        out.append("  translations (orthonormal basis):")
+        out += [f"    T{i + 1}  {fmt_vector(t)}" for i, t in enumerate(result.translations)]
+    if result.rotations:
+        out.append(f"  rotations (axis through its point nearest the end effector's centre {fmt_vector(result.reference_point, s)}):")
+        out += [_axis_line(f"R{i + 1}", a, s, unit) for i, a in enumerate(result.rotations)]
+    if result.dof == 0:
+        out.append("  the end effector cannot move (at first order)")
+    out.append(f"  constraint wrenches on the end effector: {6 - result.dof}")
+    out += [f"    C{i + 1}  couple about {fmt_vector(c)}" for i, c in enumerate(result.couples)]
+    k = len(result.couples)
+    for i, f in enumerate(result.forces):
+        pitch = "" if f.pitch == 0 else f"  with couple pitch {fmt_number(f.pitch, s)}"
+        out.append(f"    W{k + i + 1}  {f.kind} along {fmt_vector(f.axis)} through {fmt_vector(f.point, s)}{pitch}")
+    out.append("  whole mechanism:")
+    out.append(f"    mobility M = {result.mobility}   (Grübler–Kutzbach count: {result.gruebler_kutzbach})")
+    out.append(
+        f"    redundant constraints: {result.redundant_constraints}   idle DOF: {result.idle_dof}   "
+        f"loops: {result.loops}   links: {result.links}   joints: {result.joints} ({result.joint_freedoms} freedoms)"
+    )
+    if result.gruebler_kutzbach_explanation:
+        out.append("    why G–K differs: " + result.gruebler_kutzbach_explanation)
+    if result.idle_dof:
+        out.append(f"    idle DOF: {result.idle_dof} motion(s) of the joints leave the end effector still (e.g. the spin of an S–S rod)")
+    out.append(f"  structure: {result.structure}")
+    out.append(
+        f"  margin: smallest kept singular value {result.margin.smallest_kept:.2e}, "
+        f"largest dropped {result.margin.largest_dropped:.2e} (relative)"
+    )
+    out += [f"  warning: {w}" for w in result.warnings]
+    if limbs and result.limbs:
+        out.append("  limbs (each in its own frame):")
+        for i, limb in enumerate(result.limbs):
+            out.append(f"    limb {i + 1}: {limb.structure}   frame: {limb.frame}   DOF {limb.dof}   idle {limb.idle_dof}")
+            out += [f"      translation {fmt_vector(t)}" for t in limb.translations]
+            out += [f"      {a.kind} about {fmt_vector(a.axis)} through {fmt_vector(a.point, s)}" + ("" if a.pitch == 0 else f" pitch {fmt_number(a.pitch, s)}") for a in limb.rotations]
+            out += [f"      constraint couple about {fmt_vector(c)}" for c in limb.couples]
+            out += [f"      constraint {f.kind} along {fmt_vector(f.axis)} through {fmt_vector(f.point, s)}" + ("" if f.pitch == 0 else f" pitch {fmt_number(f.pitch, s)}") for f in limb.forces]
+    return "\n".join(out)
+
+
+def json_report(result: Result) -> str:
+    """The result as one JSON object (``mobility analyze --json``)."""
+    return json.dumps(result.to_dict(), indent=2, ensure_ascii=False)

@@ -1,0 +1,428 @@
+"""Regression checks: analyse mechanisms and compare with their ``expected`` blocks.
+
+A mechanism file may carry an ``expected`` block (see ``docs/file-format.md``).
+:func:`check_file` loads and analyses one file and compares every key of that
+block with the analysis; :func:`check_paths` does it for files and folders
+(every ``*.yaml``/``*.yml`` inside, recursively, sorted) and gathers the
+results in a :class:`CheckReport`, whose :attr:`~CheckReport.exit_status` is
+what ``mobility check`` returns.
+
+How each key is compared:
+
+* ``dof``, ``pattern``, ``mobility``, ``redundant_constraints``, ``idle_dof``,
+  ``gruebler_kutzbach``: equality with the :class:`~mobility.core.result.Result`;
+* ``translations``: as subspaces (same dimension, and stacking the expected
+  and found bases adds no dimension), with the rank policy of
+  :mod:`mobility.core.tolerance`; an empty list means "no translation";
+* ``full_cycle_dof``, ``full_cycle_mobility``, ``finite_verdict``: equality
+  with :func:`mobility.finite.full_cycle.finite_mobility`, computed only when one of them
+  is present (it costs more than the screw analysis).
+
+Other modules may add keys to :data:`COMPARATORS`.  A key of the block that no
+comparator knows is reported as a mismatch, never silently passed.
+
+Each checked file ends in one of four statuses: ``"pass"``, ``"fail"`` (a key
+disagrees), ``"missing"`` (no ``expected`` block: not a pass) and ``"error"``
+(the file cannot be read or analysed; its one-line message is kept).
+
+Examples
+--------
+>>> import mobility
+>>> m = mobility.loads('''
+... name: slide
+... ground: g
+... end_effector: s
+... joints: [{name: p, type: P, links: [g, s], axis: [1, 0, 0]}]
+... expected: {dof: 1, pattern: 1T, translations: [[2, 0, 0]], mobility: 1}
+... ''')
+>>> c = check_mechanism(m)
+>>> c.status, [x.key for x in c.comparisons]
+('pass', ['dof', 'pattern', 'translations', 'mobility'])
+>>> check_mechanism(m.replace(expected=mobility.Expected(dof=2))).mismatches[0].describe()
+'dof 1 (expected 2)'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import Any, Callable, Iterable, Sequence
+
+import numpy as np
+
+from ..core.analysis import analyze
+from ..errors import MobilityError
+from ..io.loader import load
+from ..core.model import Mechanism
+from ..core.result import Result
+from ..core.screws import same_subspace
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+
+__all__ = [
+    "Comparison",
+    "CheckResult",
+    "CheckReport",
+    "COMPARATORS",
+    "STATUSES",
+    "check_mechanism",
+    "check_file",
+    "check_paths",
+    "mechanism_files",
+]
+
+STATUSES = ("pass", "fail", "missing", "error")
+"""The statuses of a checked file, in the order the summary lists them."""
+
+MECHANISM_SUFFIXES = (".yaml", ".yml")
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """One key of an ``expected`` block compared with what the analysis found.
+
+    Attributes
+    ----------
+    key : str
+    expected : Any
+        The value in the file (translations as a list of 3-lists).
+    actual : Any
+        What was found, in the same form (``None`` when nothing could be found).
+    ok : bool
+    note : str
+        Why a comparison failed when the values alone do not say it.
+    """
+
+    key: str
+    expected: Any
+    actual: Any
+    ok: bool
+    note: str = ""
+
+    def describe(self) -> str:
+        """``key actual (expected value)``, e.g. ``'dof 4 (expected 3)'``."""
+        if self.note:
+            return f"{self.key}: {self.note}"
+        return f"{self.key} {_short(self.actual)} (expected {_short(self.expected)})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form."""
+        return {"key": self.key, "expected": _plain(self.expected), "actual": _plain(self.actual), "ok": self.ok, "note": self.note}
+
+
+@dataclass(frozen=True, eq=False)
+class CheckResult:
+    """The check of one mechanism (usually one file).
+
+    Attributes
+    ----------
+    path : str
+        The file as given (empty for a mechanism built in code).
+    name : str
+        The mechanism's name (empty when the file could not be read).
+    status : str
+        ``"pass"``, ``"fail"``, ``"missing"`` or ``"error"``.
+    comparisons : tuple of Comparison
+        One per key of the ``expected`` block, in the block's order.
+    result : Result or None
+        The analysis (``None`` on error).
+    error : str
+        The one-line error message, when ``status == "error"``.
+    internal : bool
+        True when the error is a defect of :mod:`mobility` rather than bad
+        input (exit status 3 instead of 2).
+    """
+
+    path: str
+    name: str
+    status: str
+    comparisons: tuple[Comparison, ...] = ()
+    result: Result | None = None
+    error: str = ""
+    internal: bool = False
+
+    @property
+    def ok(self) -> bool:
+        """True when the file passed."""
+        return self.status == "pass"
+
+    @property
+    def mismatches(self) -> tuple[Comparison, ...]:
+        """The comparisons that failed."""
+        return tuple(c for c in self.comparisons if not c.ok)
+
+    @property
+    def message(self) -> str:
+        """One line saying why the file did not pass (empty when it passed)."""
+        if self.status == "fail":
+            return "; ".join(c.describe() for c in self.mismatches)
+        if self.status == "missing":
+            return "no expected block"
+        if self.status == "error":
+            return self.error
+        return ""
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form (one entry of ``mobility check --json``)."""
+        r = self.result
+        return {
+            "path": self.path,
+            "name": self.name,
+            "status": self.status,
+            "message": self.message,
+            "found": None if r is None else {
+                "dof": r.dof,
+                "pattern": r.pattern,
+                "mobility": r.mobility,
+                "gruebler_kutzbach": r.gruebler_kutzbach,
+                "redundant_constraints": r.redundant_constraints,
+                "idle_dof": r.idle_dof,
+                "translations": _plain(r.translations),
+            },
+            "comparisons": [c.to_dict() for c in self.comparisons],
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class CheckReport:
+    """The checks of several files, with the exit status of ``mobility check``.
+
+    Attributes
+    ----------
+    results : tuple of CheckResult
+        In the order the files were given (folders expanded, sorted).
+    """
+
+    results: tuple[CheckResult, ...]
+
+    def count(self, status: str) -> int:
+        """Number of files with ``status``."""
+        return sum(r.status == status for r in self.results)
+
+    @property
+    def ok(self) -> bool:
+        """True when every file passed (and there was at least one)."""
+        return bool(self.results) and all(r.ok for r in self.results)
+
+    @property
+    def exit_status(self) -> int:
+        """3 if a check met an internal error, else 2 if any input was bad, else 1
+        if any file failed or had no ``expected`` block, else 0."""
+        if any(r.status == "error" and r.internal for r in self.results):
+            return 3
+        if any(r.status == "error" for r in self.results):
+            return 2
+        return 0 if self.ok else 1
+
+    def summary(self) -> str:
+        """``'40 passed, 1 failed, 0 without expected block, 0 errors'``."""
+        errors = self.count("error")
+        return (
+            f"{self.count('pass')} passed, {self.count('fail')} failed, "
+            f"{self.count('missing')} without expected block, {errors} error{'' if errors == 1 else 's'}"
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form of ``mobility check --json``."""
+        return {
+            "results": [r.to_dict() for r in self.results],
+            "summary": {s: self.count(s) for s in STATUSES} | {"total": len(self.results)},
+            "exit_status": self.exit_status,
+        }
+
+
+class _Subject:
+    """A mechanism with its analyses computed on demand (the finite one is costly)."""
+
+    def __init__(self, mechanism: Mechanism, tol: Tolerance) -> None:
+        self.mechanism = mechanism
+        self.tol = tol
+
+    @cached_property
+    def result(self) -> Result:
+        return analyze(self.mechanism, tol=self.tol)
+
+    @cached_property
+    def finite(self) -> dict[str, Any]:
+        from ..finite.full_cycle import finite_mobility  # imported on demand: it pulls in scipy.optimize
+
+        return finite_mobility(self.mechanism, tol=self.tol).expected_values()
+
+
+Comparator = Callable[[_Subject, Any], Comparison]
+"""``comparator(subject, expected_value) -> Comparison``."""
+
+
+def _equal(key: str, attribute: str | None = None) -> Comparator:
+    def compare(subject: _Subject, expected: Any) -> Comparison:
+        actual = getattr(subject.result, attribute or key)
+        return Comparison(key, expected, actual, actual == expected)
+
+    return compare
+
+
+def _finite(key: str) -> Comparator:
+    def compare(subject: _Subject, expected: Any) -> Comparison:
+        actual = subject.finite[key]
+        return Comparison(key, expected, actual, actual == expected)
+
+    return compare
+
+
+def _translations(subject: _Subject, expected: Any) -> Comparison:
+    found = subject.result.translations
+    rows = np.asarray(expected, dtype=float).reshape(-1, 3)
+    norms = np.linalg.norm(rows, axis=1)
+    actual = _plain(found)
+    if np.any(norms == 0.0):
+        return Comparison("translations", rows.tolist(), actual, False, "an expected translation is the zero vector")
+    unit = rows / norms[:, None]
+    if len(unit) == 0 or len(found) == 0:
+        ok = len(found) == 0 and len(unit) == 0
+    else:
+        ok = same_subspace(unit.T, found.T, subject.tol)
+    note = "" if ok else f"found the span of {_short(actual)}, expected the span of {_short(rows.tolist())}"
+    return Comparison("translations", rows.tolist(), actual, ok, note)
+
+
+COMPARATORS: dict[str, Comparator] = {
+    "dof": _equal("dof"),
+    "pattern": _equal("pattern"),
+    "translations": _translations,
+    "mobility": _equal("mobility"),
+    "redundant_constraints": _equal("redundant_constraints"),
+    "idle_dof": _equal("idle_dof"),
+    "gruebler_kutzbach": _equal("gruebler_kutzbach"),
+    "full_cycle_dof": _finite("full_cycle_dof"),
+    "full_cycle_mobility": _finite("full_cycle_mobility"),
+    "finite_verdict": _finite("finite_verdict"),
+}
+"""How each ``expected`` key is compared (other modules may register more)."""
+
+
+def check_mechanism(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE, path: str = "") -> CheckResult:
+    """Analyse ``mechanism`` and compare it with its ``expected`` block.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    tol : Tolerance
+        Rank policy of the analysis and of the subspace comparisons.
+    path : str
+        Where the mechanism came from, for the report.
+
+    Returns
+    -------
+    CheckResult
+        Status ``"missing"`` when the mechanism has no ``expected`` block
+        (it is still analysed).
+
+    Raises
+    ------
+    MobilityError
+        When the analysis itself fails (:func:`check_file` turns it into an
+        ``"error"`` result).
+    """
+    subject = _Subject(mechanism, tol)
+    expected = mechanism.expected
+    items = expected.items() if expected is not None else []
+    if not items:
+        return CheckResult(path, mechanism.name, "missing", (), subject.result)
+    comparisons = []
+    for key, value in items:
+        comparator = COMPARATORS.get(key)
+        if comparator is None:
+            comparisons.append(Comparison(key, value, None, False, "no comparator knows this key"))
+        else:
+            comparisons.append(comparator(subject, value))
+    status = "pass" if all(c.ok for c in comparisons) else "fail"
+    return CheckResult(path, mechanism.name, status, tuple(comparisons), subject.result)
+
+
+def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE) -> CheckResult:
+    """Load, analyse and check one mechanism file; never raises on a bad file.
+
+    Returns
+    -------
+    CheckResult
+        Status ``"error"`` with the one-line message (file, line, key) when
+        the file cannot be read or analysed.
+
+    Examples
+    --------
+    >>> check_file("no/such/file.yaml").message
+    'no/such/file.yaml: no such file'
+    """
+    name = str(path)
+    try:
+        mechanism = load(path)
+        return check_mechanism(mechanism, tol=tol, path=name)
+    except MobilityError as exc:
+        return CheckResult(name, "", "error", error=str(exc))
+    except Exception as exc:  # a defect of the package: report it, keep checking the other files
+        return CheckResult(name, "", "error", error=f"internal error ({type(exc).__name__}: {exc})", internal=True)
+
+
+def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None, str]]:
+    """Expand ``paths`` into mechanism files.
+
+    Returns
+    -------
+    list of (shown, path, problem)
+        ``shown`` is the name to report; ``path`` is ``None`` when ``problem``
+        says why nothing can be checked there (no such path, empty folder).
+        Folders give every ``*.yaml``/``*.yml`` file inside, recursively,
+        sorted by path.
+    """
+    out: list[tuple[str, Path | None, str]] = []
+    for raw in paths:
+        p = Path(raw)
+        if p.is_dir():
+            found = sorted(f for f in p.rglob("*") if f.suffix in MECHANISM_SUFFIXES and f.is_file())
+            if not found:
+                out.append((str(raw), None, f"{raw}: no *.yaml mechanism file in this folder"))
+            out.extend((str(f), f, "") for f in found)
+        elif p.exists():
+            out.append((str(raw), p, ""))
+        else:
+            out.append((str(raw), None, f"{raw}: no such file or folder"))
+    return out
+
+
+def check_paths(paths: Sequence[str | Path], *, tol: Tolerance = DEFAULT_TOLERANCE) -> CheckReport:
+    """Check every mechanism file given or found in the folders given.
+
+    Examples
+    --------
+    >>> report = check_paths(["no/such/folder"])
+    >>> report.exit_status, report.results[0].message
+    (2, 'no/such/folder: no such file or folder')
+    """
+    results = []
+    for shown, path, problem in mechanism_files(paths):
+        if path is None:
+            results.append(CheckResult(shown, "", "error", error=problem))
+        else:
+            results.append(check_file(path, tol=tol))
+    return CheckReport(tuple(results))
+
+
+def _plain(value: Any) -> Any:
+    """JSON-ready copy (arrays to lists, tuples to lists; round-off below 1e-12 shown as 0)."""
+    if isinstance(value, np.ndarray):
+        return (np.where(np.abs(value) < 1e-12, 0.0, value) + 0.0).tolist() if value.dtype.kind == "f" else value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def _short(value: Any) -> str:
+    """A compact text form: vectors with 6 significant digits."""
+    value = _plain(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(_short(v) for v in value) + "]"
+    if isinstance(value, float):
+        return "0" if abs(value) < 1e-12 else f"{value:.6g}"
+    return str(value)

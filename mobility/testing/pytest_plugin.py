@@ -1,0 +1,192 @@
+"""Check mechanism files from a pytest suite.
+
+Two ways, both running :func:`mobility.testing.check.check_file` on each file (one
+test per file, named after it; a file fails its test when it disagrees with
+its ``expected`` block, has none, or cannot be read):
+
+1. **One line in a test module** (no plugin needed)::
+
+       from mobility.testing.pytest_plugin import mechanism_tests
+
+       test_mechanisms = mechanism_tests("mechanisms/")
+
+   Paths are files or folders (every ``*.yaml``/``*.yml`` inside, recursively),
+   relative to the current directory unless absolute.  For your own test
+   function, :func:`mechanism_test_cases` gives the parameters and
+   :func:`assert_mechanism_passes` the assertion::
+
+       @pytest.mark.parametrize("path", mechanism_test_cases("mechanisms/"))
+       def test_my_designs(path):
+           assert_mechanism_passes(path)
+
+2. **As a pytest plugin** that collects mechanism files as test items: it is
+   registered with pytest when :mod:`mobility` is installed (entry point
+   ``pytest11``); say where the files are, on the command line
+   (``--mobility-check mechanisms/``) or in the ini file
+   (``mobility_check = mechanisms``).  Without one of those it collects
+   nothing, so it is harmless.
+
+Examples
+--------
+>>> cases = mechanism_test_cases("no/such/folder")
+>>> [c.id for c in cases]
+['no/such/folder']
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Callable, Iterator
+
+import pytest
+
+from .check import CheckResult, check_file, check_paths, mechanism_files
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..errors import MechanismCheckFailed
+
+__all__ = [
+    "MechanismCheckFailed",
+    "mechanism_test_cases",
+    "mechanism_tests",
+    "assert_mechanism_passes",
+    "failure_text",
+]
+
+
+def failure_text(result: CheckResult) -> str:
+    """The lines explaining why ``result`` did not pass (empty when it passed)."""
+    if result.ok:
+        return ""
+    if result.status == "error":
+        return result.message if result.message.startswith(result.path) else f"{result.path}: {result.message}"
+    head = f"{result.path} ({result.name})"
+    if result.status == "fail":
+        return "\n".join([f"{head} disagrees with its expected block:"] + [f"  {c.describe()}" for c in result.mismatches])
+    return f"{head}: no expected block"
+
+
+def assert_mechanism_passes(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[CheckResult, ...]:
+    """Check a mechanism file (or every file of a folder); raise :class:`MechanismCheckFailed` unless all pass.
+
+    A missing path or a folder without mechanism files fails too.
+
+    Returns
+    -------
+    tuple of CheckResult
+        The passing results.
+    """
+    report = check_paths([path], tol=tol)
+    failed = [r for r in report.results if not r.ok]
+    if failed:
+        raise MechanismCheckFailed("\n".join(failure_text(r) for r in failed))
+    return report.results
+
+
+def mechanism_test_cases(*paths: str | Path) -> list[Any]:
+    """``pytest.param`` objects, one per mechanism file found under ``paths``.
+
+    A path that gives no file (missing, or a folder without mechanism files)
+    still yields one case, which then fails with the reason: a misspelt path
+    cannot pass silently.
+    """
+    cases = []
+    for shown, path, _problem in mechanism_files(paths):
+        target = path if path is not None else shown
+        cases.append(pytest.param(str(target), id=_test_id(shown)))
+    return cases
+
+
+def mechanism_tests(*paths: str | Path, tol: Tolerance = DEFAULT_TOLERANCE) -> Callable[[str], None]:
+    """A parametrized test function checking every mechanism file under ``paths``.
+
+    Assign it to a name starting with ``test`` in a test module::
+
+        test_mechanisms = mechanism_tests("mechanisms/")
+    """
+
+    @pytest.mark.parametrize("mechanism_path", mechanism_test_cases(*paths))
+    def test_mechanism_file(mechanism_path: str) -> None:
+        try:
+            assert_mechanism_passes(mechanism_path, tol=tol)
+        except MechanismCheckFailed as exc:
+            message = str(exc)
+        else:
+            return
+        pytest.fail(message, pytrace=False)
+
+    return test_mechanism_file
+
+
+def _test_id(shown: str) -> str:
+    return shown.replace("\\", "/")
+
+
+# ---------------------------------------------------------------------------
+# pytest plugin hooks (active only when loaded as a plugin and configured)
+# ---------------------------------------------------------------------------
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    group = parser.getgroup("mobility", "mechanism files checked against their expected blocks")
+    group.addoption(
+        "--mobility-check",
+        action="append",
+        default=[],
+        metavar="PATH",
+        help="collect the mechanism files under PATH as tests (repeatable)",
+    )
+    parser.addini("mobility_check", "mechanism files or folders collected as tests", type="paths", default=[])
+
+
+def _roots(config: pytest.Config) -> list[Path]:
+    cached = getattr(config, "_mobility_check_roots", None)
+    if cached is None:
+        given = [Path(p) for p in config.getoption("mobility_check") or []] + [Path(p) for p in config.getini("mobility_check")]
+        cached = [p.resolve() for p in given]
+        config._mobility_check_roots = cached  # type: ignore[attr-defined]
+    return cached
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Add the configured mechanism folders to what pytest collects, unless already covered."""
+    roots = _roots(config)
+    if not roots:
+        return
+    args = [Path(str(a).split("::")[0]).resolve() for a in config.args]
+    for root in roots:
+        if not any(root == a or a in root.parents for a in args):
+            config.args.append(str(root))
+
+
+def pytest_collect_file(file_path: Path, parent: pytest.Collector) -> pytest.Collector | None:
+    if file_path.suffix not in (".yaml", ".yml"):
+        return None
+    roots = _roots(parent.config)
+    path = file_path.resolve()
+    if any(path == r or r in path.parents for r in roots):
+        return MechanismFile.from_parent(parent, path=file_path)
+    return None
+
+
+class MechanismFile(pytest.File):
+    """A mechanism file collected by the plugin: one test item."""
+
+    def collect(self) -> Iterator["MechanismItem"]:
+        yield MechanismItem.from_parent(self, name="check")
+
+
+class MechanismItem(pytest.Item):
+    """The check of one mechanism file against its ``expected`` block."""
+
+    def runtest(self) -> None:
+        result = check_file(self.path)
+        if not result.ok:
+            raise MechanismCheckFailed(failure_text(result))
+
+    def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> str:
+        if isinstance(excinfo.value, MechanismCheckFailed):
+            return str(excinfo.value)
+        return super().repr_failure(excinfo, style=style)
+
+    def reportinfo(self) -> tuple[Path, int | None, str]:
+        return self.path, None, f"mobility check {self.path.name}"
