@@ -14,21 +14,10 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from .screws import pattern_of
 from .tolerance import clean_numbers
 
 __all__ = ["ScrewAxis", "Margin", "LimbSystem", "Result", "ResultDetail", "pattern_of"]
-
-
-def pattern_of(translations: int, rotations: int) -> str:
-    """The motion pattern ``{nT}T{nR}R``, a zero part dropped; ``"0"`` for no motion.
-
-    Examples
-    --------
-    >>> pattern_of(1, 2), pattern_of(3, 0), pattern_of(0, 0)
-    ('1T2R', '3T', '0')
-    """
-    text = (f"{translations}T" if translations else "") + (f"{rotations}R" if rotations else "")
-    return text or "0"
 
 
 @dataclass(frozen=True, eq=False)

@@ -52,6 +52,8 @@ __all__ = [
     "intersection",
     "same_subspace",
     "free_vector_subspace",
+    "pattern_of",
+    "motion_pattern",
 ]
 
 SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
@@ -262,6 +264,35 @@ def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, 
     else:
         free = np.zeros((3, 0))
     return free, vt[:r].T, decision
+
+
+def pattern_of(translations: int, rotations: int) -> str:
+    """The motion pattern ``{nT}T{nR}R``, a zero part dropped; ``"0"`` for no motion.
+
+    Examples
+    --------
+    >>> pattern_of(1, 2), pattern_of(3, 0), pattern_of(0, 0)
+    ('1T2R', '3T', '0')
+    """
+    text = (f"{translations}T" if translations else "") + (f"{rotations}R" if rotations else "")
+    return text or "0"
+
+
+def motion_pattern(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> str:
+    """The motion pattern of an orthonormal twist basis: pure translations, then rotational freedoms.
+
+    ``nT`` is the dimension of the pure translations in the span, ``nR`` the
+    rest; the one rule used by the analysis and every feature.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> cyl = np.stack([revolute_twist([0, 0, 1], [1, 0, 0]), prismatic_twist([0, 0, 1])], axis=1)
+    >>> motion_pattern(span_and_reciprocal(cyl).basis)
+    '1T1R'
+    """
+    rotations = free_vector_subspace(basis, tol, coefficients=False).rank
+    return pattern_of(basis.shape[1] - rotations, rotations)
 
 
 def _direction_rank(s: np.ndarray, tol: Tolerance) -> RankDecision:
