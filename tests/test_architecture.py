@@ -30,7 +30,7 @@ ALLOWED = {
     "synthesis": "errors core io",
     "jacobians": "errors core",
     "sweeps": "errors core actuation",
-    "report": "errors core finite actuation flexure synthesis jacobians sweeps",
+    "report": "errors core finite actuation flexure synthesis jacobians sweeps testing",
     "view": "errors core report sweeps",
     "testing": "errors core io finite",
     "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps report view testing",

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from mobility.errors import HalfTurnError
+from mobility.errors import HalfTurnError, MechanismError, RequestError
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.linalg import expm
@@ -25,6 +25,7 @@ from mobility.core.finite_screws import (
     twist_from_finite_screw_rate,
 )
 from mobility.core.screws import prismatic_twist, revolute_twist
+from mobility.core.tolerance import Tolerance
 from mobility.core.transforms import rotation_from_axis_angle, skew
 
 FAST = settings(max_examples=40, deadline=None)
@@ -100,7 +101,7 @@ def test_triangle_product_is_b_then_a_as_the_matrix_product(a1, p1, th1, t1, a2,
     assert np.allclose(transform_from_finite_screw(got), ta @ tb, atol=1e-7)
     assert np.allclose(got, finite_screw_from_transform(ta @ tb), rtol=1e-7, atol=1e-7)
     # the homogeneous form composes the same way
-    assert FiniteScrew.from_vector(sa).triangle(FiniteScrew.from_vector(sb)).isclose(both, atol=1e-9)
+    assert FiniteScrew.from_vector(sa).triangle(FiniteScrew.from_vector(sb)).isclose(both, tol=Tolerance(rank=1e-9))
 
 
 @FAST
@@ -263,3 +264,50 @@ def test_moved_limb_has_the_twists_of_the_pose_at_its_home():
     limb = random_limb(rng, "RRPRR")
     q = rng.uniform(-2, 2, len(limb))
     assert np.allclose(limb.moved(q).twists(), limb.twists(q), atol=1e-9)
+
+
+# -- bad arguments and descriptions, thresholds from the policy -----------------------------
+
+
+def test_bad_arguments_raise_request_errors_and_bad_joints_mechanism_errors():
+    with pytest.raises(RequestError):
+        finite_screw([0, 0, 0], [0, 0, 0], 1.0)  # no direction
+    with pytest.raises(RequestError):
+        triangle_product([1.0, 2.0, 3.0])  # not a 6-vector
+    with pytest.raises(RequestError):
+        transform_from_finite_screw(np.zeros(5))
+    with pytest.raises(RequestError):
+        FiniteScrew(np.zeros(8))
+    with pytest.raises(RequestError):
+        FiniteScrew.from_transform(np.diag([1.0, 1.0, -1.0, 1.0]))  # a reflection
+    with pytest.raises(RequestError):
+        Limb((ScrewJoint("R", (0, 0, 1)),)).transform([0.1, 0.2])  # two values for one joint
+    with pytest.raises(MechanismError) as bad_kind:
+        ScrewJoint("X", (0, 0, 1))
+    assert bad_kind.value.key == "kind"
+    with pytest.raises(MechanismError) as bad_axis:
+        ScrewJoint("R", (0, 0))
+    assert bad_axis.value.key == "axis"
+    with pytest.raises(MechanismError):
+        Limb(("R",))
+
+
+def test_a_matrix_is_a_rotation_to_the_rank_tolerance():
+    m = matrix_of([1, 2, 3], [0.5, 0, 1], 0.7)
+    nearly = m.copy()
+    nearly[0, 0] += 1e-12  # round-off: read as the displacement
+    assert FiniteScrew.from_transform(nearly).isclose(FiniteScrew.from_transform(m))
+    sloppy = m.copy()
+    sloppy[0, 0] += 1e-6  # not a rotation by the default policy, one by a looser one
+    with pytest.raises(RequestError):
+        FiniteScrew.from_transform(sloppy)
+    loose = Tolerance(rank=5e-6, near_singular=1e-4)
+    assert FiniteScrew.from_transform(sloppy, loose).isclose(FiniteScrew.from_transform(m), tol=loose)
+
+
+def test_isclose_compares_lengths_over_a_length():
+    a = FiniteScrew.from_parameters([0, 0, 1], [1000.0, 0, 0], 0.5)
+    b = FiniteScrew.from_parameters([0, 0, 1], [1000.0 + 1e-7, 0, 0], 0.5)  # 1e-7 mm off, on a 1000 mm part
+    assert not a.isclose(b)  # in the unit of the numbers: 2.5e-8 apart
+    assert a.isclose(b, length=1000.0)
+    assert a.isclose(FiniteScrew(-a.homogeneous))  # the sign of a dual quaternion is no displacement

@@ -8,8 +8,9 @@ import pytest
 
 import mobility
 from mobility.cli import main
-from mobility.errors import AnalysisError, MechanismError
-from mobility.jacobians.jacobian import jacobian, parallel_model, wrench_axis
+from mobility.errors import AnalysisError, MechanismError, RequestError
+from mobility.jacobians import jacobian, parallel_model, wrench_axis
+from mobility.report.jacobian import jacobian_json, jacobian_text
 from mobility.core.screws import SWAP, reciprocal_product, same_subspace
 
 from conftest import MECHANISMS
@@ -128,7 +129,7 @@ def test_table_1_pkms_jacobian_matches_the_analyzer(path):
 
 
 def test_symmetric_layout_is_an_actuation_singularity():
-    from mobility.synthesis.synthesis import assemble_pkm, named_pattern, synthesize
+    from mobility.synthesis import assemble_pkm, named_pattern, synthesize
 
     res = synthesize(named_pattern("2T3R", directions=((0, 0, 1), (0, 1, 0))), joints=5, verify_samples=0, generic_points=1)
     m = assemble_pkm(res, "SP1Rc", other="SPRR", twist_pattern=(1, 1, 1, 1))
@@ -221,3 +222,51 @@ def test_cli_synthesize(capsys, tmp_path):
     assert [s["name"] for s in data["structures"]] == ["S"]
     assert main(["synthesize", "9T"]) == 2
     assert capsys.readouterr().err.count("\n") == 1
+
+
+# -- pieces: closure by the policy, wrench axes, the report ---------------------------------
+
+
+def test_closure_is_decided_by_the_policy(model):
+    q = random_pose(model, 6)
+    assert model.closure_error(q) <= mobility.DEFAULT_TOLERANCE.closure
+    off = [v.copy() for v in q]
+    off[1][0] += 1e-9  # one joint of another limb: the limbs no longer meet, by about 1e-9
+    assert 1e-10 < model.closure_error(off) < 1e-8
+    with pytest.raises(AnalysisError):
+        model.mechanism_at(off)
+    with pytest.raises(AnalysisError):
+        jacobian(model, off)
+    loose = mobility.Tolerance(closure=1e-6)
+    assert jacobian(model, off, tol=loose).dof == 5
+    assert mobility.analyze(model.mechanism_at(off, tol=loose)).dof == 5
+    with pytest.raises(RequestError):
+        jacobian(model, q[:-1])  # one limb's values missing
+
+
+def test_wrench_axis_against_the_screw_written_from_its_parts():
+    rng = np.random.default_rng(2)
+    for _ in range(5):
+        d = rng.normal(size=3)
+        d /= np.linalg.norm(d)
+        p = rng.normal(size=3) * 100
+        p -= (p @ d) * d  # the point nearest the origin
+        h = rng.normal()
+        w = 3.0 * np.concatenate([d, np.cross(p, d) + h * d])
+        kind, dd, pp, hh = wrench_axis(w)
+        assert kind == "wrench" and np.allclose(dd, d) and np.allclose(pp, p) and math.isclose(hh, h)
+    assert wrench_axis(np.array([0.0, 0, 0, 0, 2, 0]))[:2][0] == "couple"
+    assert wrench_axis(np.array([1e-14, 0, 0, 0, 2, 0]))[0] == "couple"  # a force at round-off next to the moment
+    assert wrench_axis(np.array([1e-6, 0, 0, 0, 2, 0]))[0] == "force"
+
+
+def test_jacobian_report_is_what_the_cli_prints(metrom, capsys):
+    jac = jacobian(metrom)
+    text = jacobian_text(jac, metrom.length_unit)
+    assert main(["jacobian", str(METROM)]) == 0
+    assert capsys.readouterr().out == text + "\n"
+    lines = text.splitlines()
+    assert lines[0] == metrom.name and "    C1  force   along [-1, 0, 0]  through [0, 0, 0]" in lines
+    assert json.loads(jacobian_json(jac)) == jac.to_dict() | {"condition": jac.condition}
+    square_not = jacobian(metrom, actuated=["P0", "P1", "P2", "P3"])
+    assert "J is singular (not square)" in jacobian_text(square_not)

@@ -1,33 +1,39 @@
 """Type synthesis of limbs for the 2T3R pattern (Table 1 of Sun et al. 2018) and assembled PKMs.
 
 The enumeration runs once per module (about 8 s on an idle 2-core machine: 5-joint limbs, every
-candidate, both routes; see the module docstring of mobility.synthesis.synthesis);
+candidate, both routes; see the module docstring of mobility.synthesis.enumeration);
 every check compares its answer with a second route: least-squares fits of
 sampled finite motions, the analyzer, or an independent explanation of why a
 limb qualifies.
 """
 
+import json
 import math
 
 import numpy as np
 import pytest
 
-from mobility.io.writer import mechanism_to_yaml
-
-from mobility.errors import SynthesisError
-
 import mobility
 from mobility.core.finite_screws import Limb, ScrewJoint
 from mobility.core.screws import same_subspace
+from mobility.core.tolerance import Tolerance
 from mobility.core.transforms import Transform, rotation_from_rpy
-from mobility.synthesis.synthesis import (
+from mobility.errors import RequestError, SynthesisError
+from mobility.io.writer import mechanism_to_yaml
+from mobility.report.synthesis import synthesis_json, synthesis_text, written_files_text
+from mobility.synthesis import (
     TABLE_1_2T3R,
+    CandidateJoint,
+    PatternFactor,
     assemble_pkm,
     generates,
     named_pattern,
     pkm_document,
     synthesize,
+    write_pkm_files,
 )
+from mobility.synthesis.generic_rank import chain_twists, generic_rank
+from mobility.synthesis.limb_types import joint_groups, limb_types
 
 from conftest import MECHANISMS
 
@@ -204,3 +210,120 @@ def test_mechanism_files(path):
         m.replace(joints=tuple(j.transformed(Transform(rotation_from_rpy((0.3, -0.2, 1.0)), np.array([5.0, -7.0, 2.0]))) for j in m.world_joints))
     )
     assert (moved.dof, moved.pattern) == (5, "2T3R")
+
+
+# -- the pieces of the synthesis, each against a second route --------------------------------
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_batch_chain_twists_are_the_limbs_derivatives(seed):
+    """chain_twists (many poses at once, by carried axes) equals Limb.twists (derivative of the finite screw)."""
+    rng = np.random.default_rng(seed)
+    joints = tuple(ScrewJoint(k, rng.normal(size=3), rng.normal(size=3), pitch=0.4) for k in "RPHRRP")
+    q = rng.uniform(-3, 3, (4, len(joints)))
+    batch = chain_twists(joints, q)
+    for k in range(len(q)):
+        assert np.allclose(batch[k], Limb(joints).twists(q[k]), atol=1e-9)
+
+
+def test_generic_rank_counts_the_dimension_of_the_motion():
+    rng = np.random.default_rng(0)
+    spherical = [ScrewJoint("R", e) for e in np.eye(3)]
+    # three R through a point: 3; two parallel R axes and a P normal to them: 3 (planar); P twice along x: 1
+    planar = [ScrewJoint("R", (0, 0, 1)), ScrewJoint("R", (0, 0, 1), (1, 0, 0)), ScrewJoint("P", (1, 0, 0))]
+    assert generic_rank(spherical, rng, 3, 1.0) == 3
+    assert generic_rank(planar, rng, 3, 1.0) == 3
+    assert generic_rank([ScrewJoint("P", (1, 0, 0))] * 2, rng, 3, 1.0) == 1
+    # the same chain scaled by 1000 (lengths over L = 1000): the same rank
+    big = [ScrewJoint("R", (0, 0, 1)), ScrewJoint("R", (0, 0, 1), (1000, 0, 0)), ScrewJoint("P", (1, 0, 0))]
+    assert generic_rank(big, rng, 3, 1000.0) == 3
+
+
+def test_membership_is_decided_by_the_closure_tolerance():
+    """A motion of the pattern moved off it by 1e-9 of its length along c is out; with a looser closure it is in."""
+    pattern = named_pattern("2T3R", point=(0, 0, 0), directions=((0, 0, 1), (0, 1, 0)))
+    motion = pattern.transform(np.array([0.2, -0.1, 0.3, 1.5, -0.7]))
+    assert pattern.contains(motion)
+    off = motion.copy()
+    off[0, 3] += 1e-9 * pattern.length  # along c = s1 x s2 = -x: no motion of the pattern reaches it
+    assert not pattern.contains(off)
+    assert pattern.contains(off, tol=Tolerance(closure=1e-6))
+    _, residual = pattern.fit(off)
+    assert 0.5e-9 < residual < 2e-9  # the fit's residual is the offset, in units of the pattern's length
+
+
+def test_pattern_factors_and_points():
+    f = PatternFactor("translations", directions=((2, 0, 0), (0, 3, 0)))
+    assert f.dim == 2 and f.directions == ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+    assert np.allclose(f.transform(np.array([1.0, 2.0]))[:3, 3], [1, 2, 0])
+    with pytest.raises(SynthesisError):
+        PatternFactor("translations", directions=((1, 0, 0), (2, 0, 0)))  # dependent
+    with pytest.raises(SynthesisError):
+        PatternFactor("spin")
+    with pytest.raises(SynthesisError):
+        PatternFactor("rotation", (0, 0, 0), ((0, 0, 0),))  # a zero direction
+    # a point given by two factors is one point of the pattern; the direction set completes space
+    schoenflies = named_pattern("3T1R", point=(1, 2, 3))
+    assert schoenflies.points == ((1.0, 2.0, 3.0),)
+    assert [label for label, _ in named_pattern("3R").directions()] == ["x", "y", "z"]
+    with pytest.raises(SynthesisError):
+        named_pattern("3T1R", directions=((1, 0, 0),))
+    with pytest.raises(SynthesisError):
+        named_pattern("2T3R", point=(1, 2))
+
+
+def test_request_errors():
+    with pytest.raises(SynthesisError):
+        synthesize("3R", samples=0)
+    with pytest.raises(SynthesisError):
+        synthesize("3R", verify_samples=-1)
+    with pytest.raises(SynthesisError):
+        generates(named_pattern("3R"), [ScrewJoint("R", (0, 0, 1))], samples=0)
+    res = synthesize("3R", verify_samples=0)
+    with pytest.raises(SynthesisError, match="found: S"):
+        res.structure("SS")
+    with pytest.raises(SynthesisError):
+        assemble_pkm(res, "S", other="RRR")
+
+
+def test_limb_types_group_and_name_joint_sequences():
+    """The names of the groups, against the sequences written by hand."""
+    R = lambda d, e, p="O": CandidateJoint(ScrewJoint("R", e), d, p)  # noqa: E731
+    P = lambda d, e: CandidateJoint(ScrewJoint("P", e), d)  # noqa: E731
+    x, y, z = np.eye(3)
+    s = (R("s1", x), R("s2", y), R("c", z))
+    seqs = [s + (P("s1", x), P("s2", y)), s + (P("s2", y), P("s1", x)), (R("s1", x), R("c", z), P("s1", x), R("c", z, "g1"), R("c", z, "g2"))]
+    types = limb_types(seqs, "2T3R", ("s1", "s2"))
+    assert [t.name for t in types] == ["SP1P2", "UP1RcRc"]
+    assert [len(t.realizations) for t in types] == [2, 1]
+    assert types[0].in_table_1 and types[1].in_table_1
+    assert types[0].conditions == ("S: three R through O", "P1: along s1 or s2", "P2: along s1 or s2")
+    assert types[1].to_dict()["realizations"] == [["R[s1@O]", "R[c@O]", "P[s1]", "R[c@g1]", "R[c@g2]"]]
+    assert [g for g, _ in joint_groups((P("c", z),), ("s1", "s2"))] == ["Pc"]
+
+
+def test_write_pkm_files(tmp_path):
+    res = synthesize("3R", verify_samples=0)
+    written, skipped = write_pkm_files(res, tmp_path / "new", other="SPRR")
+    assert skipped == () and [p.split("/")[-1] for p in written] == ["pkm_s_4sprr.yaml"]
+    back = mobility.load(written[0])
+    r = mobility.analyze(back)
+    assert (r.dof, r.pattern) == (back.expected.dof, back.expected.pattern) == (3, "3R")
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    with pytest.raises(RequestError):
+        write_pkm_files(res, blocker / "sub")
+
+
+def test_synthesis_reports():
+    res = synthesize("3R", verify_samples=1)
+    text = synthesis_text(res)
+    assert text.splitlines()[0] == "3R: rotations about the fixed point O"
+    assert "limb types of 3 one-DOF joints whose finite motions are the pattern: 1 (12 joint sequences)" in text
+    assert "    S  " in text and "S: three R through O" in text
+    data = json.loads(synthesis_json(res, ["a.yaml"], ["X: singular"]))
+    assert data["written"] == ["a.yaml"] and data["skipped"] == ["X: singular"] and data["structures"][0]["name"] == "S"
+    assert written_files_text("d", ["d/a.yaml"], ["X: why"]).splitlines() == [
+        "wrote 1 mechanism files to d; not assembled (singular at the home pose): 1",
+        "  X: why",
+    ]

@@ -12,13 +12,11 @@ input.
 from __future__ import annotations
 
 import argparse
-import json
 import sys
-from pathlib import Path
 
 from ..errors import SynthesisError
-from ..report.text import fmt_vector
-from ..synthesis.synthesis import PATTERNS, SynthesisResult, TABLE_1_2T3R, named_pattern, pkm_document, synthesize
+from ..report.synthesis import synthesis_json, synthesis_text, written_files_text
+from ..synthesis import PATTERNS, named_pattern, synthesize, write_pkm_files
 
 ORDER = 50
 
@@ -60,50 +58,11 @@ def run(args: argparse.Namespace) -> int:
     directions = None if args.directions is None else [_vector(d, "--directions") for d in args.directions.split(";")]
     pattern = named_pattern(args.pattern, point=_vector(args.point, "--point"), directions=directions)
     result = synthesize(pattern, joints=args.joints, samples=args.samples, verify_samples=args.verify, seed=args.seed)
-    written: list[str] = []
-    skipped: list[str] = []
-    if args.write:
-        folder = Path(args.write)
-        folder.mkdir(parents=True, exist_ok=True)
-        for s in result.structures:
-            try:
-                _, text = pkm_document(result, s.name, other=args.other)
-            except SynthesisError as exc:
-                skipped.append(f"{s.name}: {exc}")
-                continue
-            path = folder / f"pkm_{s.name.lower()}_4{args.other.lower()}.yaml"
-            path.write_text(text, encoding="utf-8")
-            written.append(str(path))
+    written, skipped = write_pkm_files(result, args.write, other=args.other) if args.write else ((), ())
     if args.json:
-        data = result.to_dict()
-        data["written"] = written
-        data["skipped"] = skipped
-        print(json.dumps(data, indent=2))
+        print(synthesis_json(result, written, skipped))
     else:
-        print(text_report(result))
+        print(synthesis_text(result))
         if args.write:
-            print(f"wrote {len(written)} mechanism files to {args.write}" + (f"; not assembled (singular at the home pose): {len(skipped)}" if skipped else ""))
-            for line in skipped:
-                print(f"  {line}")
+            print(written_files_text(args.write, written, skipped))
     return 0 if result.structures else 1
-
-
-def text_report(result: SynthesisResult) -> str:
-    """The report printed by ``mobility synthesize``."""
-    p = result.pattern
-    out = [f"{p.name}: {p.description}", f"  dimension {p.dim}; S_f = " + " △ ".join(f.describe() for f in p.factors)]
-    out.append("  directions: " + ", ".join(f"{k} = {fmt_vector(v)}" for k, v in result.directions.items()))
-    out.append("  points: " + ", ".join(f"{k} = {fmt_vector(v)}" for k, v in result.points.items() if not k.startswith("g")) + (", g1.. generic" if any(k.startswith("g") for k in result.points) else ""))
-    out.append("  candidate joints: " + " ".join(c.label for c in result.alphabet))
-    if result.rejected_joints:
-        out.append("  rejected alone (their own motion leaves the pattern): " + " ".join(c.label for c in result.rejected_joints))
-    out.append(f"  limb types of {result.joints} one-DOF joints whose finite motions are the pattern: {len(result.structures)} ({result.sequences} joint sequences)")
-    width = max((len(s.name) for s in result.structures), default=4)
-    for s in result.structures:
-        mark = "Table 1" if s.in_table_1 else "       "
-        out.append(f"    {s.name:<{width}}  {mark}  {len(s.realizations):>3} seq.  " + "; ".join(s.conditions))
-    if p.name == "2T3R" and result.joints == 5:
-        found = [n for n in TABLE_1_2T3R if any(s.name == n for s in result.structures)]
-        out.append(f"  Table 1 of Sun et al. (2018): {len(found)} of {len(TABLE_1_2T3R)} found; further limb types: {sum(1 for s in result.structures if not s.in_table_1)}")
-    out.append(f"  search: {result.candidates_tested} rank tests; {result.verified_samples} sampled finite motions fitted by the pattern to round-off; {result.seconds:.1f} s")
-    return "\n".join(out)

@@ -40,12 +40,23 @@ Conventions (stated once, pinned by ``tests/test_finite_screws.py``)
   off ``S_f`` divides, and :attr:`FiniteScrew.vector` raises
   :class:`HalfTurnError` when ``cos(θ/2)`` is within round-off of zero (no
   digit of ``tan(θ/2)`` would be right).  The closed form above raises the same
-  error when its result is a half-turn (``d = 0``).
+  error when its result is a half-turn (``d = 0``).  "Within round-off" is a
+  fact of the arithmetic, not a choice of the tolerance policy
+  (:data:`QUATERNION_ROUND_OFF`); the one threshold here that is a choice, how far
+  a matrix may be from a rotation to be read as one, comes from
+  :class:`~mobility.core.tolerance.Tolerance`.
 * Derivative mapping (Eq. 5 at any pose): a path ``S_f(τ)`` has the spatial
   twist ``$ = d/dΔ [S_f(τ+Δ) △ (-S_f(τ))]`` at ``Δ = 0``, which is
   :func:`twist_from_finite_screw_rate`; at ``S_f = 0`` it is the identity map.
 
-Nothing here knows about files or mechanisms.
+One module, longer than most, because it is one concept that reads better
+whole: the quasi-vector, its homogeneous form and the chains composed from
+them share the dual-quaternion arithmetic, and a chain's twists are the
+derivatives of that arithmetic.
+
+Nothing here knows about files or mechanisms.  Bad arguments raise
+:class:`~mobility.errors.RequestError`; a bad joint or limb description,
+:class:`~mobility.errors.MechanismError`.
 
 References
 ----------
@@ -80,8 +91,9 @@ from typing import Iterable, Sequence
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from ..errors import HalfTurnError
-from .transforms import cross
+from ..errors import HalfTurnError, MechanismError, RequestError
+from .tolerance import DEFAULT_TOLERANCE, Tolerance
+from .transforms import cross, skew
 
 __all__ = [
     "finite_screw",
@@ -92,24 +104,48 @@ __all__ = [
     "FiniteScrew",
     "ScrewJoint",
     "Limb",
+    "QUATERNION_ROUND_OFF",
 ]
 
-_ROUND_OFF = 64 * np.finfo(float).eps
-"""``cos(θ/2)`` at or below this counts as a half-turn: ``tan(θ/2)`` would have no correct digit."""
+QUATERNION_ROUND_OFF = 64 * np.finfo(float).eps
+"""A component of a unit quaternion at or below this is round-off.
+
+``cos(θ/2)`` that small is a half-turn (``tan(θ/2)`` would have no correct
+digit), ``sin(θ/2)`` that small no rotation at all.  This is a fact of double
+precision arithmetic on numbers of size one (64 units in the last place), not a
+choice of the tolerance policy: it says which digits a computation can deliver,
+not which geometry counts as special, so it is not a field of
+:class:`~mobility.core.tolerance.Tolerance`.
+"""
+
+
+def _unit_or_none(v: Iterable[float]) -> np.ndarray | None:
+    """``v`` scaled to unit length; ``None`` when it is not three finite numbers or is zero."""
+    try:
+        a = np.asarray(v, dtype=float).reshape(3)
+    except (TypeError, ValueError):
+        return None
+    n = float(np.linalg.norm(a))
+    return a / n if np.isfinite(n) and n > 0.0 else None
 
 
 def _unit(v: Iterable[float], what: str) -> np.ndarray:
-    a = np.asarray(v, dtype=float).reshape(3)
-    n = float(np.linalg.norm(a))
-    if not np.isfinite(n) or n == 0.0:
-        raise ValueError(f"{what}: expected a non-zero finite direction, got {a.tolist()}")
-    return a / n
+    """``v`` as a unit vector; :class:`~mobility.errors.RequestError` naming ``what`` otherwise."""
+    a = _unit_or_none(v)
+    if a is None:
+        raise RequestError(f"{what}: expected a non-zero finite direction of 3 numbers, got {_shown(v)}")
+    return a
+
+
+def _shown(v: object) -> str:
+    """A value as the error messages show it (a list for arrays)."""
+    return str(v.tolist()) if isinstance(v, np.ndarray) else repr(v)
 
 
 def _screw(s: Sequence[float]) -> np.ndarray:
     a = np.asarray(s, dtype=float)
     if a.shape != (6,):
-        raise ValueError(f"expected a 6-vector [w; v], got shape {a.shape}")
+        raise RequestError(f"expected a 6-vector [w; v], got shape {a.shape}")
     return a
 
 
@@ -160,7 +196,7 @@ def transform_from_finite_screw(screw: Sequence[float]) -> np.ndarray:
     """
     s = _screw(screw)
     w, v = s[:3], s[3:]
-    half = 0.5 * np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+    half = 0.5 * skew(w)
     inv = np.linalg.inv(np.eye(3) - half)
     out = np.eye(4)
     out[:3, :3] = inv @ (np.eye(3) + half)
@@ -168,14 +204,21 @@ def transform_from_finite_screw(screw: Sequence[float]) -> np.ndarray:
     return out
 
 
-def finite_screw_from_transform(matrix: np.ndarray) -> np.ndarray:
+def finite_screw_from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
     """The finite screw of the displacement given as a 4x4 homogeneous matrix.
+
+    Parameters
+    ----------
+    matrix : ndarray, shape (4, 4)
+    tol : Tolerance
+        How far from a rigid displacement the matrix may be (see
+        :meth:`FiniteScrew.from_transform`).
 
     Raises
     ------
     HalfTurnError
         When the rotation is a half-turn (no finite quasi-vector).
-    ValueError
+    RequestError
         When ``matrix`` is not a rigid displacement.
 
     Examples
@@ -185,7 +228,7 @@ def finite_screw_from_transform(matrix: np.ndarray) -> np.ndarray:
     >>> bool(np.allclose(finite_screw_from_transform(transform_from_finite_screw(S)), S))
     True
     """
-    return FiniteScrew.from_transform(matrix).vector
+    return FiniteScrew.from_transform(matrix, tol).vector
 
 
 def triangle_product(*screws: Sequence[float]) -> np.ndarray:
@@ -216,7 +259,7 @@ def _triangle2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     wa, va, wb, vb = a[:3], a[3:], b[:3], b[3:]
     d = 1.0 - 0.25 * float(wa @ wb)
     # scal q of the product, relative to the unit dual quaternions: d / sqrt((1 + |wa|²/4)(1 + |wb|²/4))
-    if abs(d) <= _ROUND_OFF * np.sqrt((1.0 + 0.25 * wa @ wa) * (1.0 + 0.25 * wb @ wb)):
+    if abs(d) <= QUATERNION_ROUND_OFF * np.sqrt((1.0 + 0.25 * wa @ wa) * (1.0 + 0.25 * wb @ wb)):
         raise HalfTurnError("the triangle product is a half-turn (1 - wa·wb/4 = 0): it has no finite quasi-vector; use FiniteScrew")
     w = wa + wb + 0.5 * cross(wa, wb)
     v = va + vb + 0.5 * (cross(wa, vb) + cross(va, wb)) - 0.25 * float(wa @ va) * wb - 0.25 * float(wb @ vb) * wa
@@ -279,7 +322,7 @@ def _conj(q: np.ndarray) -> np.ndarray:
 def _canonical(h: np.ndarray) -> np.ndarray:
     """Unit dual quaternion with the sign fixed (``h`` and ``-h`` are the same displacement)."""
     h = h / np.linalg.norm(h[:4])
-    key = h[0] if abs(h[0]) > _ROUND_OFF else h[1:4][np.argmax(np.abs(h[1:4]))]
+    key = h[0] if abs(h[0]) > QUATERNION_ROUND_OFF else h[1:4][np.argmax(np.abs(h[1:4]))]
     return -h if key < 0 else h
 
 
@@ -310,7 +353,7 @@ class FiniteScrew:
     def __post_init__(self) -> None:
         h = np.asarray(self.homogeneous, dtype=float).reshape(8)
         if not np.all(np.isfinite(h)) or np.linalg.norm(h[:4]) == 0.0:
-            raise ValueError("a finite screw needs a non-zero finite rotation quaternion")
+            raise RequestError("a finite screw needs a non-zero finite rotation quaternion")
         h = _canonical(h)
         h.setflags(write=False)
         object.__setattr__(self, "homogeneous", h)
@@ -340,20 +383,26 @@ class FiniteScrew:
         return FiniteScrew(np.concatenate([q, q0]))
 
     @staticmethod
-    def from_transform(matrix: np.ndarray) -> "FiniteScrew":
+    def from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> "FiniteScrew":
         """From a 4x4 homogeneous matrix of a rigid displacement.
+
+        The matrix is read as a rigid displacement when ``R Rᵀ`` differs from
+        the identity, and the last row from ``[0, 0, 0, 1]``, by at most
+        ``tol.rank`` in every entry (dimensionless numbers: the policy's
+        threshold for what counts as non-zero) and ``det R > 0``.
 
         Raises
         ------
-        ValueError
+        RequestError
             When the matrix is not a proper rigid displacement.
         """
         m = np.asarray(matrix, dtype=float)
         if m.shape != (4, 4) or not np.all(np.isfinite(m)):
-            raise ValueError("expected a 4x4 matrix of finite numbers")
+            raise RequestError("expected a 4x4 matrix of finite numbers")
         rot = m[:3, :3]
-        if not np.allclose(rot @ rot.T, np.eye(3), atol=1e-9) or np.linalg.det(rot) < 0 or not np.allclose(m[3], [0, 0, 0, 1]):
-            raise ValueError("expected a rigid displacement (rotation block orthonormal, det +1, last row [0, 0, 0, 1])")
+        off = max(float(np.max(np.abs(rot @ rot.T - np.eye(3)))), float(np.max(np.abs(m[3] - [0.0, 0.0, 0.0, 1.0]))))
+        if off > tol.rank or np.linalg.det(rot) < 0:
+            raise RequestError("expected a rigid displacement (rotation block orthonormal, det +1, last row [0, 0, 0, 1])")
         x, y, z, w = Rotation.from_matrix(rot).as_quat()
         q = np.array([w, x, y, z])
         q0 = 0.5 * _qmul(np.concatenate([[0.0], m[:3, 3]]), q)
@@ -363,7 +412,7 @@ class FiniteScrew:
     @property
     def is_half_turn(self) -> bool:
         """True when ``cos(θ/2)`` is within round-off of zero."""
-        return bool(abs(self.homogeneous[0]) <= _ROUND_OFF)
+        return bool(abs(self.homogeneous[0]) <= QUATERNION_ROUND_OFF)
 
     @property
     def vector(self) -> np.ndarray:
@@ -408,7 +457,7 @@ class FiniteScrew:
         q, q0 = h[:4], h[4:]
         sn = float(np.linalg.norm(q[1:]))
         angle = 2.0 * float(np.arctan2(sn, q[0]))
-        if sn <= _ROUND_OFF:
+        if sn <= QUATERNION_ROUND_OFF:
             p = 2.0 * _qmul(q0, _conj(q))[1:]
             t = float(np.linalg.norm(p))
             axis = p / t if t > 0 else np.array([0.0, 0.0, 1.0])
@@ -429,10 +478,24 @@ class FiniteScrew:
         h = self.homogeneous
         return FiniteScrew(np.concatenate([_conj(h[:4]), _conj(h[4:])]))
 
-    def isclose(self, other: "FiniteScrew", *, atol: float = 1e-9) -> bool:
-        """Whether two finite screws are the same displacement (dual quaternions equal up to sign)."""
-        a, b = self.homogeneous, other.homogeneous
-        return bool(np.allclose(a, b, atol=atol) or np.allclose(a, -b, atol=atol))
+    def isclose(self, other: "FiniteScrew", *, length: float = 1.0, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
+        """Whether two finite screws are the same displacement (dual quaternions equal up to sign).
+
+        The unit dual quaternions are compared entry by entry, their dual parts
+        (a length) divided by ``length``; equal means no entry differs by more
+        than ``tol.rank``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> a = FiniteScrew.from_parameters([0, 0, 1], [1, 0, 0], 0.5)
+        >>> b = FiniteScrew.from_transform(a.transform())
+        >>> a.isclose(b), a.isclose(FiniteScrew.from_parameters([0, 0, 1], [1, 1e-6, 0], 0.5))
+        (True, False)
+        """
+        scale = np.concatenate([np.ones(4), np.full(4, 1.0 / length)])
+        a, b = self.homogeneous * scale, other.homogeneous * scale
+        return bool(min(np.max(np.abs(a - b)), np.max(np.abs(a + b))) <= tol.rank)
 
 
 # -- joints and limbs ------------------------------------------------------------
@@ -468,9 +531,15 @@ class ScrewJoint:
 
     def __post_init__(self) -> None:
         if self.kind not in _KINDS:
-            raise ValueError(f"kind: expected one of {', '.join(_KINDS)}, got {self.kind!r}")
-        object.__setattr__(self, "axis", tuple(float(x) for x in _unit(self.axis, "axis")))
-        pt = np.asarray(self.point, dtype=float).reshape(3)
+            raise MechanismError("kind", f"expected one of {', '.join(_KINDS)}, got {self.kind!r}")
+        axis = _unit_or_none(self.axis)
+        if axis is None:
+            raise MechanismError("axis", f"expected a non-zero finite direction of 3 numbers, got {_shown(self.axis)}")
+        object.__setattr__(self, "axis", tuple(float(x) for x in axis))
+        try:
+            pt = np.asarray(self.point, dtype=float).reshape(3)
+        except (TypeError, ValueError):
+            raise MechanismError("point", f"expected 3 numbers, got {_shown(self.point)}") from None
         if self.kind == "P":
             pt = np.zeros(3)
         object.__setattr__(self, "point", tuple(float(x) for x in pt))
@@ -522,7 +591,7 @@ class Limb:
     def __post_init__(self) -> None:
         object.__setattr__(self, "joints", tuple(self.joints))
         if not all(isinstance(j, ScrewJoint) for j in self.joints):
-            raise ValueError("a limb is a sequence of ScrewJoint")
+            raise MechanismError("joints", "a limb is a sequence of ScrewJoint")
 
     def __len__(self) -> int:
         return len(self.joints)
@@ -530,7 +599,7 @@ class Limb:
     def _values(self, q: Sequence[float] | None) -> np.ndarray:
         values = np.zeros(len(self.joints)) if q is None else np.asarray(q, dtype=float).reshape(-1)
         if values.shape != (len(self.joints),):
-            raise ValueError(f"expected {len(self.joints)} joint values, got {values.shape[0]}")
+            raise RequestError(f"expected {len(self.joints)} joint values, got {values.size}")
         return values
 
     def factors(self, q: Sequence[float] | None = None) -> list[FiniteScrew]:
@@ -586,7 +655,7 @@ class Limb:
         """
         h, dh = self._raw_rates(q)
         n = dh.shape[1]
-        if abs(h[0]) <= _ROUND_OFF * np.linalg.norm(h[:4]):
+        if abs(h[0]) <= QUATERNION_ROUND_OFF * np.linalg.norm(h[:4]):
             hc = np.concatenate([_conj(h[:4]), _conj(h[4:])]) / float(h[:4] @ h[:4])
             prods = [_dqmul(dh[:, j], hc) for j in range(n)]
             return np.stack([2.0 * np.concatenate([p[1:4], p[5:8]]) for p in prods], axis=1).reshape(6, n)
@@ -606,7 +675,7 @@ class Limb:
 
 def _quasi_vector_rates(h: np.ndarray, dh: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Quasi-vector ``2 [vec q; vec q0] / scal q`` of a dual quaternion and its derivatives (quotient rule)."""
-    if abs(h[0]) <= _ROUND_OFF * np.linalg.norm(h[:4]):
+    if abs(h[0]) <= QUATERNION_ROUND_OFF * np.linalg.norm(h[:4]):
         raise HalfTurnError("the chain's displacement is a half-turn: its quasi-vector and derivatives are infinite")
     vec = 2.0 * np.concatenate([h[1:4], h[5:8]])
     dvec = 2.0 * np.concatenate([dh[1:4], dh[5:8]])

@@ -23,7 +23,11 @@ so ``$_ij`` is the twist of joint ``j`` of limb ``i`` at the pose.  Then
   platform twists per unit actuated rate.
 
 Rank decisions follow :mod:`mobility.core.tolerance` (normalised coordinates at the
-pose); results are in the global frame and the mechanism's length unit.
+pose), and so does every other threshold: a pose closes when the limbs agree to
+``Tolerance.closure`` (entries of ``[R; p / L]``), and a wrench whose force is
+round-off next to its moment (``Tolerance.round_off``) is a couple.  Results are
+in the global frame and the mechanism's length unit.  :mod:`mobility.report.jacobian`
+formats them for people.
 
 Examples
 --------
@@ -51,16 +55,23 @@ from typing import Any, Sequence
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..errors import AnalysisError, MechanismError
 from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
-from ..errors import HalfTurnError
 from ..core.joint_screws import Normalisation
 from ..core.model import Joint, Mechanism
-from ..core.screws import SWAP, reciprocal_product, reciprocal_system, span_and_reciprocal
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale, decide_rank
-from ..core.transforms import cross
+from ..core.screws import SWAP, adjoint, reciprocal_product, reciprocal_system, span_and_reciprocal
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale, clean_numbers, decide_rank
+from ..core.transforms import cross, skew
+from ..errors import AnalysisError, HalfTurnError, MechanismError, RequestError
 
 __all__ = ["Chain", "ParallelModel", "JacobianResult", "parallel_model", "jacobian", "wrench_axis"]
+
+_SOLVER_STOP = 1e-15
+"""``xtol``, ``ftol`` and ``gtol`` of the inverse kinematics: iterate until round-off.
+
+Not a tolerance of the policy: it only asks the solver to stop where double
+precision stops improving; whether a limb reached the platform is decided on
+the residual with ``Tolerance.closure``.
+"""
 
 
 @dataclass(frozen=True)
@@ -118,7 +129,10 @@ class ParallelModel:
         return self.chains[0].limb.finite_screw(values[0])
 
     def closure_error(self, q: Sequence[np.ndarray]) -> float:
-        """Largest difference between the chains' platform displacements (entries of ``[R; p / L]``)."""
+        """Largest difference between the chains' platform displacements (entries of ``[R; p / L]``).
+
+        The limbs close at ``q`` when it is at most ``Tolerance.closure``.
+        """
         length = self.length
         mats = [c.limb.transform(v) for c, v in zip(self.chains, q)]
         return max(max(float(np.max(np.abs(m[:3, :3] - mats[0][:3, :3]))), float(np.max(np.abs(m[:3, 3] - mats[0][:3, 3]))) / length) for m in mats)
@@ -129,12 +143,14 @@ class ParallelModel:
         pts = [j.point for c in self.chains for j in c.limb.joints if j.kind != "P"]
         return characteristic_scale(np.array(pts, dtype=float).reshape(-1, 3))[1]
 
-    def assemble(self, displacement: np.ndarray, start: Sequence[np.ndarray] | None = None) -> tuple[np.ndarray, ...]:
+    def assemble(self, displacement: np.ndarray, start: Sequence[np.ndarray] | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[np.ndarray, ...]:
         """Joint values of every chain putting the platform at ``displacement`` (4x4): inverse kinematics.
 
         Each chain is solved by :func:`scipy.optimize.least_squares` on the
         entries of ``[R; p / L]`` with the chain's twists as Jacobian, from
-        ``start`` (default: the home pose).
+        ``start`` (default: the home pose).  A chain reaches the displacement
+        when no entry of its residual exceeds half of ``tol.closure``, so that
+        any two chains agree to ``tol.closure`` (:meth:`closure_error`).
 
         Raises
         ------
@@ -157,25 +173,24 @@ class ParallelModel:
                 tw = limb.twists(x)
                 cols = []
                 for w, v in zip(tw[:3].T, tw[3:].T):
-                    skew = np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
-                    cols.append(np.concatenate([(skew @ t[:3, :3]).ravel(), (cross(w, t[:3, 3]) + v) / length]))
+                    cols.append(np.concatenate([(skew(w) @ t[:3, :3]).ravel(), (cross(w, t[:3, 3]) + v) / length]))
                 return np.array(cols).T
 
-            sol = least_squares(residual, x0, jac=jac, method="lm", x_scale="jac", xtol=1e-15, ftol=1e-15, gtol=1e-15)
-            if float(np.linalg.norm(sol.fun)) > 1e-9:
+            sol = least_squares(residual, x0, jac=jac, method="lm", x_scale="jac", xtol=_SOLVER_STOP, ftol=_SOLVER_STOP, gtol=_SOLVER_STOP)
+            if float(np.max(np.abs(sol.fun))) > 0.5 * tol.closure:
                 raise AnalysisError(f"limb {k + 1} cannot reach the platform displacement (residual {np.linalg.norm(sol.fun):.2e})")
             out.append(sol.x)
         return tuple(out)
 
-    def mechanism_at(self, q: Sequence[np.ndarray]) -> Mechanism:
+    def mechanism_at(self, q: Sequence[np.ndarray], *, tol: Tolerance = DEFAULT_TOLERANCE) -> Mechanism:
         """The mechanism with its joints moved to pose ``q`` (a new home), global frame.
 
         Raises
         ------
         AnalysisError
-            When the chains do not close at ``q``.
+            When the chains do not close at ``q`` (to ``tol.closure``).
         """
-        if self.closure_error(q) > 1e-8:
+        if self.closure_error(q) > tol.closure:
             raise AnalysisError("the limbs do not close at this pose (solve it with ParallelModel.assemble)")
         world = self.mechanism.world_joints
         moved: dict[int, Joint] = {}
@@ -297,23 +312,35 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
     return ParallelModel(mechanism, tuple(chains), tuple(act), tuple(labels))
 
 
-def wrench_axis(wrench: np.ndarray) -> tuple[str, np.ndarray, np.ndarray, float]:
+def _is_couple(wrench: np.ndarray, tol: Tolerance) -> bool:
+    """Whether the force part of ``[f; m]`` is round-off next to its moment: a pure couple."""
+    return float(np.linalg.norm(wrench[:3])) <= tol.round_off * max(1.0, float(np.linalg.norm(wrench[3:])))
+
+
+def wrench_axis(wrench: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[str, np.ndarray, np.ndarray, float]:
     """Kind, unit direction, point nearest the origin and pitch of a wrench ``[f; m]``.
+
+    The direction keeps the sign of the force (unlike the canonical bases of
+    :mod:`mobility.core.canonical`, which choose signs for reading).  A force
+    part at round-off next to the moment (``tol.round_off``) makes a couple; a
+    pitch at round-off next to the distance of the axis makes a pure force.
 
     Examples
     --------
     >>> kind, d, p, h = wrench_axis([0.0, 0, 2, 0, -2, 0])      # a force along z through (1, 0, 0)
     >>> kind, d.tolist(), p.tolist(), h
     ('force', [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 0.0)
+    >>> wrench_axis([0.0, 0, 0, 0, 0, -3])[:2]                    # a couple about -z
+    ('couple', array([ 0.,  0., -1.]))
     """
     w = np.asarray(wrench, dtype=float)
     f, m = w[:3], w[3:]
-    nf = float(np.linalg.norm(f))
-    if nf <= 1e-12 * max(1.0, float(np.linalg.norm(m))):
+    if _is_couple(w, tol):
         return "couple", m / np.linalg.norm(m), np.zeros(3), 0.0
+    nf = float(np.linalg.norm(f))
     pitch = float(f @ m) / nf**2
     point = cross(f, m) / nf**2
-    pitch = 0.0 if abs(pitch) <= 1e-12 * max(1.0, float(np.linalg.norm(point))) else pitch
+    pitch = 0.0 if abs(pitch) <= tol.round_off * max(1.0, float(np.linalg.norm(point))) else pitch
     return ("force" if pitch == 0.0 else "wrench"), f / nf, point + 0.0, pitch
 
 
@@ -376,8 +403,7 @@ class JacobianResult:
         def clean(a: np.ndarray | None) -> Any:
             if a is None:
                 return None
-            arr = np.where(np.abs(a) < 1e-12 * max(1.0, float(np.max(np.abs(a))) if a.size else 1.0), 0.0, a)
-            return (arr + 0.0).tolist()
+            return clean_numbers(np.asarray(a, dtype=float), max(1.0, float(np.max(np.abs(a))) if a.size else 1.0))
 
         def axes(rows: np.ndarray) -> list[dict[str, Any]]:
             out = []
@@ -439,8 +465,8 @@ def jacobian(
     model = mechanism if isinstance(mechanism, ParallelModel) else parallel_model(mechanism, actuated)
     values = model.home() if q is None else tuple(np.asarray(v, dtype=float) for v in q)
     if len(values) != len(model.chains) or any(len(v) != len(c.limb) for v, c in zip(values, model.chains)):
-        raise AnalysisError("q: expected one array of joint values per limb, as many as the limb's freedoms")
-    if q is not None and model.closure_error(values) > 1e-8:
+        raise RequestError("q: expected one array of joint values per limb, as many as the limb's freedoms")
+    if q is not None and model.closure_error(values) > tol.closure:
         raise AnalysisError("the limbs do not close at this pose (solve it with ParallelModel.assemble)")
     moved_points = [j.point for c, v in zip(model.chains, values) for j in c.limb.moved(v).joints if j.kind != "P"]
     centre, length = characteristic_scale(np.array(moved_points, dtype=float).reshape(-1, 3))
@@ -459,13 +485,14 @@ def jacobian(
         recip = reciprocal_system(passive, tol)
         # Orthogonal to the limb's constraints in coordinates centred where the limb meets the platform
         # (for an SPR limb: the force along the leg, not a mix with the constraint force).
-        shift = _shift(norm.point_from_world(_meeting_point(model.chains[c], values[c])))
+        meeting = norm.point_from_world(_meeting_point(model.chains[c], values[c]))
+        shift = adjoint(np.eye(3), -meeting)  # screw coordinates about the meeting point: [a; b - meeting x a]
         own = shift @ limb_constraints[c]
         own = np.linalg.qr(own)[0] if own.shape[1] else own
         moved = shift @ recip
         resid = moved - own @ (own.T @ moved) if own.shape[1] else moved
         u, s, _ = np.linalg.svd(resid)
-        u = np.linalg.solve(shift, u)
+        u = adjoint(np.eye(3), meeting) @ u  # back about the origin
         gain = float(reciprocal_product(u[:, 0], t[:, p])) if s.size and s[0] > tol.rank else 0.0
         if abs(gain) <= tol.rank:
             raise AnalysisError(f"actuated joint {label} cannot move the platform on its own at this pose (its limb's other joints give the same motion)")
@@ -481,7 +508,7 @@ def jacobian(
     square = j_n.shape[0] == 6
     singular = not (square and rank == 6)
     constraints_w = norm.to_world(constraints_n).T
-    constraints_w = np.array([_unit_wrench(w) for w in constraints_w]).reshape(-1, 6)
+    constraints_w = np.array([_unit_wrench(w, tol) for w in constraints_w]).reshape(-1, 6)
     act_w = np.array(wrenches_w).reshape(-1, 6)
     matrix = np.vstack([(SWAP @ act_w.T).T, (SWAP @ constraints_w.T).T]) if act_w.size or constraints_w.size else np.zeros((0, 6))
     twist_map = None if singular else np.linalg.solve(matrix, np.eye(6)[:, : len(wrenches_w)])
@@ -511,20 +538,9 @@ def jacobian(
     )
 
 
-def _unit_wrench(w: np.ndarray) -> np.ndarray:
+def _unit_wrench(w: np.ndarray, tol: Tolerance) -> np.ndarray:
     """A wrench scaled to a unit force part (a couple to a unit moment)."""
-    nf = float(np.linalg.norm(w[:3]))
-    if nf > 1e-12 * max(1.0, float(np.linalg.norm(w[3:]))):
-        return w / nf
-    return w / float(np.linalg.norm(w[3:]))
-
-
-def _shift(point: np.ndarray) -> np.ndarray:
-    """6x6 map of screw coordinates to coordinates with their origin at ``point``: ``[a; b] -> [a; b - point x a]``."""
-    m = np.eye(6)
-    x, y, z = point
-    m[3:, :3] = -np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return m
+    return w / float(np.linalg.norm(w[3:] if _is_couple(w, tol) else w[:3]))
 
 
 def _meeting_point(chain: Chain, values: np.ndarray) -> np.ndarray:

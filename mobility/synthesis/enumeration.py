@@ -1,0 +1,301 @@
+"""Type synthesis of limbs by finite screws: which serial chains generate a motion pattern?
+
+:func:`synthesize` enumerates serial chains of ``R`` and ``P`` joints whose
+directions come from the pattern's direction set (its translation directions
+and their cross products, :meth:`~mobility.synthesis.patterns.MotionPattern.directions`),
+whose ``R`` axes pass through the pattern's points or through generic points,
+in every order (so every permutation and every replacement the paper uses,
+such as an ``S`` by three ``R`` through ``O``, a ``U`` by two, or a translation
+by a rotation about a parallel axis, is among the candidates; none is written
+in).  It keeps the chains whose set of finite motions *equals* the pattern:
+every motion of the chain lies in the pattern, and the chain's motion has the
+pattern's dimension.  Two routes decide it:
+
+1. **rank route (prunes the search).**  For a pattern ``M = G1 △ G2`` made of
+   two subgroups (one factor: ``G1 = G2``), a chain ``L`` (which contains the
+   identity) lies in ``M`` exactly when ``G1 △ L △ G2`` has the dimension of
+   ``M``: that set contains ``M`` (take ``L`` at its identity) and lies in
+   ``G1 M G2 = M`` when ``L ⊂ M``; conversely equal dimension makes the two
+   irreducible images coincide.  Dimensions are generic ranks of the twists
+   (derivatives of the chain's finite screw) at random seeded joint values
+   (:mod:`mobility.synthesis.generic_rank`), decided by
+   :func:`mobility.core.tolerance.decide_rank`.  Every prefix of a valid chain
+   is valid too (set the later joints to zero), which prunes the search.
+2. **sample route (confirms every chain kept).**  Random finite motions of the
+   chain (angles in ``(-π, π)``, slides across the pattern's size) are fitted
+   by the pattern's finite screw with :func:`scipy.optimize.least_squares`;
+   each must fit to the closure tolerance
+   (:meth:`~mobility.synthesis.patterns.MotionPattern.contains`).
+
+The sequences kept are grouped into limb types named as in the paper
+(:mod:`mobility.synthesis.limb_types`).
+
+Examples
+--------
+>>> from mobility.synthesis.patterns import named_pattern
+>>> result = synthesize(named_pattern("2T3R"), joints=2, verify_samples=1)      # the 2-joint chains in 2T3R
+>>> sorted(s.name for s in result.structures)         # Rs1: an R along s1 through O
+['P1P2', 'P1Rc', 'P1Rs1', 'P1Rs2', 'RcP1', 'RcRc', 'Rs1P1', 'Rs1Rc', 'Rs2P1', 'Rs2Rc', 'U']
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any, Sequence
+
+import numpy as np
+
+from ..core.finite_screws import Limb, ScrewJoint
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..errors import AnalysisError, SynthesisError
+from .generic_rank import generic_rank, sample_joint_values
+from .limb_types import CandidateJoint, SynthesizedLimb, limb_types
+from .patterns import MotionPattern, Vector, named_pattern
+
+__all__ = ["SynthesisResult", "candidate_joints", "synthesize", "generates"]
+
+
+@dataclass(frozen=True)
+class SynthesisResult:
+    """What :func:`synthesize` finds (frozen).
+
+    Attributes
+    ----------
+    pattern : MotionPattern
+    joints : int
+        Number of one-DOF joints per limb.
+    alphabet : tuple of CandidateJoint
+        The candidate joints that survived the single-joint test.
+    rejected_joints : tuple of CandidateJoint
+        Candidates whose own motion already leaves the pattern.
+    structures : tuple of SynthesizedLimb
+        Limb types found, in order of first discovery.
+    sequences : int
+        Joint sequences kept.
+    candidates_tested : int
+        Rank tests made during the search.
+    verified_samples : int
+        Finite motions fitted by the pattern (sample route), all to the closure tolerance.
+    seconds : float
+        Wall time of the search and the verification.
+    points : dict
+        Label -> point used (``O``, ``g1``...).
+    directions : dict
+        Label -> direction used (``s1``, ``s2``, ``c``...).
+    """
+
+    pattern: MotionPattern
+    joints: int
+    alphabet: tuple[CandidateJoint, ...]
+    rejected_joints: tuple[CandidateJoint, ...]
+    structures: tuple[SynthesizedLimb, ...]
+    sequences: int
+    candidates_tested: int
+    verified_samples: int
+    seconds: float
+    points: dict[str, Vector] = field(default_factory=dict)
+    directions: dict[str, Vector] = field(default_factory=dict)
+
+    def structure(self, name: str) -> SynthesizedLimb:
+        """The limb type called ``name``.
+
+        Raises
+        ------
+        SynthesisError
+            When no limb type of that name was found.
+        """
+        for s in self.structures:
+            if s.name == name:
+                return s
+        found = ", ".join(s.name for s in self.structures) or "none"
+        raise SynthesisError(f"no limb type {name!r} in the synthesis of {self.pattern.name} with {self.joints} joints; found: {found}")
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form."""
+        return {
+            "pattern": self.pattern.name,
+            "description": self.pattern.description,
+            "factors": [f.describe() for f in self.pattern.factors],
+            "dim": self.pattern.dim,
+            "joints": self.joints,
+            "points": {k: list(v) for k, v in self.points.items()},
+            "directions": {k: list(v) for k, v in self.directions.items()},
+            "alphabet": [c.label for c in self.alphabet],
+            "rejected_joints": [c.label for c in self.rejected_joints],
+            "structures": [s.to_dict() for s in self.structures],
+            "sequences": self.sequences,
+            "candidates_tested": self.candidates_tested,
+            "verified_samples": self.verified_samples,
+            "seconds": self.seconds,
+        }
+
+
+def candidate_joints(pattern: MotionPattern, generic_points: int, rng: np.random.Generator) -> tuple[list[CandidateJoint], dict[str, Vector], dict[str, Vector]]:
+    """R joints along every direction of the set through every point, P joints along every direction.
+
+    The points are the pattern's (``O``, ``O2``...) and ``generic_points``
+    random ones (``g1, g2...``) within the pattern's length of their centre.
+
+    Returns
+    -------
+    candidates : list of CandidateJoint
+    points : dict
+        Label -> point.
+    directions : dict
+        Label -> direction.
+    """
+    directions = pattern.directions()
+    points: list[tuple[str, Vector]] = []
+    for i, p in enumerate(pattern.points):
+        points.append(("O" if i == 0 else f"O{i + 1}", p))
+    centre = np.mean([p for _, p in points], axis=0) if points else np.zeros(3)
+    length = pattern.length
+    for k in range(generic_points):
+        g = centre + length * rng.uniform(-1.0, 1.0, 3)
+        points.append((f"g{k + 1}", (float(g[0]), float(g[1]), float(g[2]))))
+    out = [CandidateJoint(ScrewJoint("R", d, p), dl, pl) for pl, p in points for dl, d in directions]
+    out += [CandidateJoint(ScrewJoint("P", d), dl) for dl, d in directions]
+    return out, dict(points), dict(directions)
+
+
+def synthesize(
+    pattern: MotionPattern | str,
+    *,
+    joints: int | None = None,
+    generic_points: int | None = None,
+    samples: int = 3,
+    verify_samples: int = 2,
+    seed: int = 0,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+) -> SynthesisResult:
+    """Enumerate the limbs of R and P joints whose finite motions are the pattern.
+
+    Parameters
+    ----------
+    pattern : MotionPattern or str
+        A pattern or a name of :data:`~mobility.synthesis.patterns.PATTERNS` (default geometry).
+    joints : int, optional
+        One-DOF joints per limb (default: the pattern's dimension).
+    generic_points : int, optional
+        Generic points for R axes off the pattern's points (default: ``joints``).
+    samples : int
+        Random poses per generic-rank decision (at least 1).
+    verify_samples : int
+        Random finite motions of each kept joint sequence fitted by the pattern
+        (the sample route); 0 skips it.
+    seed : int
+        Seed of every random choice (generic points, poses, fit starts).
+    tol : Tolerance
+        Rank policy, and the closure tolerance of the sample route.
+
+    Returns
+    -------
+    SynthesisResult
+
+    Raises
+    ------
+    SynthesisError
+        For a pattern with more than two factors (the rank route needs
+        ``M = G1 △ G2``), a joint count below 1, fewer than one sample per
+        rank decision or a negative number of verified samples.
+    AnalysisError
+        When the two routes disagree on a chain (the sample route finds a
+        motion outside the pattern): the rank decisions were too close to call.
+    """
+    start = time.perf_counter()
+    if isinstance(pattern, str):
+        pattern = named_pattern(pattern)
+    if len(pattern.factors) > 2:
+        raise SynthesisError("synthesize needs a pattern of one or two factors (M = G1 △ G2)")
+    if samples < 1 or verify_samples < 0:
+        raise SynthesisError(f"samples must be at least 1 and verify_samples not negative, got {samples} and {verify_samples}")
+    dim = pattern.dim
+    n = dim if joints is None else int(joints)
+    if n < 1:
+        raise SynthesisError(f"joints: expected at least 1, got {n}")
+    rng = np.random.default_rng(seed)
+    candidates, points, directions = candidate_joints(pattern, n if generic_points is None else generic_points, rng)
+    outer_left = pattern.factors[0].generators()
+    outer_right = pattern.factors[-1].generators()
+    length = pattern.length
+    tested = 0
+
+    def inside(chain: tuple[ScrewJoint, ...]) -> bool:
+        nonlocal tested
+        tested += 1
+        return generic_rank(outer_left + chain + outer_right, rng, samples, length, tol) == dim
+
+    def independent(chain: tuple[ScrewJoint, ...]) -> bool:
+        return generic_rank(chain, rng, samples, length, tol) == len(chain)
+
+    alphabet = [c for c in candidates if inside((c.joint,))]
+    rejected = [c for c in candidates if c not in alphabet]
+    found: list[tuple[CandidateJoint, ...]] = []
+
+    def generic_index(label: str) -> int:
+        return int(label[1:]) if label.startswith("g") else 0
+
+    def extend(prefix: tuple[CandidateJoint, ...], used_generic: int) -> None:
+        if len(prefix) == n:
+            found.append(prefix)
+            return
+        for c in alphabet:
+            g = generic_index(c.point)
+            if g > used_generic + 1:  # generic points are interchangeable: use them in order
+                continue
+            chain = tuple(x.joint for x in prefix) + (c.joint,)
+            if not independent(chain) or not inside(chain):
+                continue
+            extend(prefix + (c,), max(used_generic, g))
+
+    extend((), 0)
+    if n == dim:
+        found = [f for f in found if generic_rank(tuple(x.joint for x in f), rng, samples, length, tol) == dim]
+    verified = 0
+    for seq in found if verify_samples > 0 else ():
+        limb = Limb(tuple(x.joint for x in seq))
+        for q in sample_joint_values(limb.joints, rng, verify_samples, length):
+            if not pattern.contains(limb.transform(q), seed=seed, tol=tol):
+                raise AnalysisError(f"the rank route and the sample route disagree on {' '.join(x.label for x in seq)}: a rank decision was too close to call")
+            verified += 1
+    plane = tuple(f"s{i + 1}" for i in range(len(pattern.translation_directions)))
+    return SynthesisResult(
+        pattern,
+        n,
+        tuple(alphabet),
+        tuple(rejected),
+        limb_types(found, pattern.name, plane),
+        len(found),
+        tested,
+        verified,
+        time.perf_counter() - start,
+        points,
+        directions,
+    )
+
+
+def generates(pattern: MotionPattern, joints: Sequence[ScrewJoint], *, samples: int = 3, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
+    """Whether the chain's set of finite motions equals the pattern (rank route).
+
+    True when every motion of the chain lies in the pattern (``G1 △ L △ G2``
+    has the pattern's dimension) and the chain's motion has that dimension.
+
+    Examples
+    --------
+    >>> from mobility.synthesis.patterns import named_pattern
+    >>> p = named_pattern("2T3R")
+    >>> S = [ScrewJoint("R", e) for e in ((1, 0, 0), (0, 1, 0), (0, 0, 1))]          # three R through O
+    >>> P1, P2 = ScrewJoint("P", (1, 0, 0)), ScrewJoint("P", (0, 1, 0))
+    >>> generates(p, S + [P1, P2]), generates(p, [P1, P2] + S)                      # SP1P2 yes; P1P2S no
+    (True, False)
+    """
+    if len(pattern.factors) > 2:
+        raise SynthesisError("the rank route needs a pattern of one or two factors (M = G1 △ G2)")
+    if samples < 1:
+        raise SynthesisError(f"samples must be at least 1, got {samples}")
+    chain = tuple(joints)
+    rng = np.random.default_rng(seed)
+    dim = pattern.dim
+    outer = generic_rank(pattern.factors[0].generators() + chain + pattern.factors[-1].generators(), rng, samples, pattern.length, tol)
+    return outer == dim and generic_rank(chain, rng, samples, pattern.length, tol) == dim

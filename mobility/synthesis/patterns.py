@@ -1,0 +1,386 @@
+"""Motion patterns: sets of finite motions written as triangle products of finite-screw factors.
+
+A *motion pattern* is a set of finite motions ``S_f = F_1 △ F_2 △ ... △ F_k``
+(``F_k`` acts first; see :mod:`mobility.core.finite_screws` for the order), each
+factor a subgroup of displacements (:class:`PatternFactor`): every rotation
+about a point, the rotations about a line, or the translations along a span.
+The 2T3R pattern of Sun et al. (2018) is two translations in the plane of
+``s1, s2`` followed by three rotations about a fixed point ``O``,
+
+    ``S_f = 2 tan(θ/2) [s; O × s]  △  t [0; u],   u ∈ span(s1, s2)``.
+
+:data:`PATTERNS` names the patterns the command line knows; any product of
+factors can be built in code.  :meth:`MotionPattern.fit` finds the pattern's
+motion nearest a displacement by least squares, and
+:meth:`MotionPattern.contains` decides membership with the closure tolerance
+of :mod:`mobility.core.tolerance`.
+
+Examples
+--------
+>>> import numpy as np
+>>> pattern = named_pattern("2T3R")
+>>> pattern.dim, [f.kind for f in pattern.factors]
+(5, ['rotations', 'translations'])
+>>> [label for label, _ in pattern.directions()]              # s1 × s2 is called c
+['s1', 's2', 'c']
+>>> tilt_then_slide = pattern.transform(np.array([0.0, 0.3, 0.0, 2.0, -1.0]))
+>>> pattern.contains(tilt_then_slide)
+True
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any, Iterable, Sequence
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ..core.finite_screws import FiniteScrew, ScrewJoint
+from ..core.linalg import singular_values
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale, decide_rank
+from ..core.transforms import rotation_from_axis_angle
+from ..errors import SynthesisError
+from .generic_rank import generic_rank
+
+__all__ = ["Vector", "PatternFactor", "MotionPattern", "PATTERNS", "named_pattern"]
+
+Vector = tuple[float, float, float]
+
+_FACTOR_KINDS = ("rotations", "rotation", "translations")
+
+_SOLVER_STOP = 1e-15
+"""``xtol``, ``ftol`` and ``gtol`` of the least-squares solves: iterate until round-off.
+
+Not a tolerance of the policy: it only asks the solver to stop where double
+precision stops improving; whether the result fits is decided on the residual
+with ``Tolerance.closure``.
+"""
+
+
+def _vec(v: Iterable[float], what: str = "point") -> Vector:
+    try:
+        a = np.asarray(v, dtype=float).reshape(3)
+    except (TypeError, ValueError):
+        raise SynthesisError(f"{what}: expected 3 numbers, got {v!r}") from None
+    if not np.all(np.isfinite(a)):
+        raise SynthesisError(f"{what}: expected 3 finite numbers, got {a.tolist()}")
+    return (float(a[0]), float(a[1]), float(a[2]))
+
+
+def _unit(v: Iterable[float]) -> np.ndarray:
+    a = np.array(_vec(v, "direction"))
+    n = float(np.linalg.norm(a))
+    if n == 0.0:
+        raise SynthesisError(f"expected a non-zero finite direction, got {a.tolist()}")
+    return a / n
+
+
+def _direction_rank(directions: Sequence[Iterable[float]], tol: Tolerance = DEFAULT_TOLERANCE) -> int:
+    """Rank of a set of unit directions, by the policy (the largest singular value is at least 1)."""
+    return decide_rank(singular_values(np.array(directions, dtype=float).reshape(-1, 3)), tol).rank
+
+
+@dataclass(frozen=True)
+class PatternFactor:
+    """One finite-screw factor of a motion pattern: a subgroup of displacements.
+
+    Parameters
+    ----------
+    kind : {"rotations", "rotation", "translations"}
+        ``rotations``: every rotation about ``point`` (``2 tan(θ/2) [s; point × s]``
+        for any ``s``, 3 parameters: a rotation vector); ``rotation``: rotations
+        about the line through ``point`` along ``directions[0]``; ``translations``:
+        ``t [0; u]`` for every ``u`` in the span of ``directions``.
+    point : 3-vector
+    directions : tuple of 3-vectors
+
+    Raises
+    ------
+    SynthesisError
+        For an unknown kind, a wrong number of directions or dependent ones.
+
+    Examples
+    --------
+    >>> PatternFactor("translations", directions=((2, 0, 0), (0, 1, 0))).describe()
+    'translations along (1, 0, 0), (0, 1, 0)'
+    """
+
+    kind: str
+    point: Vector = (0.0, 0.0, 0.0)
+    directions: tuple[Vector, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.kind not in _FACTOR_KINDS:
+            raise SynthesisError(f"factor kind: expected one of {', '.join(_FACTOR_KINDS)}, got {self.kind!r}")
+        object.__setattr__(self, "point", _vec(self.point))
+        dirs = tuple(_vec(_unit(d)) for d in self.directions)
+        object.__setattr__(self, "directions", dirs)
+        need = {"rotations": (0, 0), "rotation": (1, 1), "translations": (1, 3)}[self.kind]
+        if not need[0] <= len(dirs) <= need[1]:
+            raise SynthesisError(f"a {self.kind} factor takes {need[0]}..{need[1]} directions, got {len(dirs)}")
+        if dirs and _direction_rank(dirs) < len(dirs):
+            raise SynthesisError("the directions of a translations factor must be independent")
+
+    @property
+    def dim(self) -> int:
+        """Number of parameters (the factor's dimension)."""
+        return {"rotations": 3, "rotation": 1, "translations": len(self.directions)}[self.kind]
+
+    def generators(self) -> tuple[ScrewJoint, ...]:
+        """One-DOF joints whose chain generates the factor (three R through ``point`` for ``rotations``)."""
+        if self.kind == "rotations":
+            return tuple(ScrewJoint("R", tuple(e), self.point) for e in np.eye(3))
+        if self.kind == "rotation":
+            return (ScrewJoint("R", self.directions[0], self.point),)
+        return tuple(ScrewJoint("P", d) for d in self.directions)
+
+    def transform(self, x: np.ndarray) -> np.ndarray:
+        """4x4 displacement of the factor at parameters ``x`` (shape ``(dim,)``)."""
+        out = np.eye(4)
+        if self.kind == "translations":
+            out[:3, 3] = np.array(self.directions).T @ x
+            return out
+        if self.kind == "rotations":
+            angle = float(np.linalg.norm(x))
+            rot = rotation_from_axis_angle(x / angle, angle) if angle > 0 else np.eye(3)
+        else:
+            rot = rotation_from_axis_angle(np.array(self.directions[0]), float(x[0]))
+        out[:3, :3] = rot
+        out[:3, 3] = np.asarray(self.point) - rot @ self.point
+        return out
+
+    def finite_screw(self, x: np.ndarray) -> FiniteScrew:
+        """The factor's finite screw at parameters ``x`` (homogeneous form)."""
+        if self.kind == "translations":
+            t = np.array(self.directions).T @ x
+            n = float(np.linalg.norm(t))
+            return FiniteScrew.from_parameters(t / n, (0, 0, 0), 0.0, n) if n > 0 else FiniteScrew.identity()
+        if self.kind == "rotations":
+            angle = float(np.linalg.norm(x))
+            return FiniteScrew.from_parameters(x / angle, self.point, angle) if angle > 0 else FiniteScrew.identity()
+        return FiniteScrew.from_parameters(self.directions[0], self.point, float(x[0]))
+
+    def describe(self) -> str:
+        """A short text, e.g. ``"rotations about the point (0, 0, 0)"``."""
+
+        def fmt(v: Vector) -> str:
+            return "(" + ", ".join(f"{c:g}" for c in v) + ")"
+
+        if self.kind == "rotations":
+            return f"rotations about the point {fmt(self.point)}"
+        if self.kind == "rotation":
+            return f"rotations about the line through {fmt(self.point)} along {fmt(self.directions[0])}"
+        return "translations along " + ", ".join(fmt(d) for d in self.directions)
+
+
+@dataclass(frozen=True)
+class MotionPattern:
+    """A set of finite motions ``S_f = F_1 △ F_2 △ ... △ F_k`` (``F_k`` acts first).
+
+    Parameters
+    ----------
+    name : str
+    factors : tuple of PatternFactor
+    description : str
+    """
+
+    name: str
+    factors: tuple[PatternFactor, ...]
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "factors", tuple(self.factors))
+        if not self.factors:
+            raise SynthesisError("a motion pattern needs at least one factor")
+
+    @property
+    def parameter_count(self) -> int:
+        """Sum of the factors' dimensions."""
+        return sum(f.dim for f in self.factors)
+
+    @cached_property
+    def dim(self) -> int:
+        """Dimension of the set of motions (generic rank of its generators)."""
+        return generic_rank(self.generators(), np.random.default_rng(0), 3, self.length)
+
+    def generators(self) -> tuple[ScrewJoint, ...]:
+        """The factors' generators, in product order."""
+        return tuple(j for f in self.factors for j in f.generators())
+
+    @property
+    def points(self) -> tuple[Vector, ...]:
+        """The pattern's points (rotation centres and axis points), each given once."""
+        pts: list[Vector] = []
+        for f in self.factors:
+            if f.kind != "translations" and f.point not in pts:
+                pts.append(f.point)
+        return tuple(pts)
+
+    @property
+    def translation_directions(self) -> tuple[Vector, ...]:
+        """Directions of the translation factors."""
+        return tuple(d for f in self.factors if f.kind == "translations" for d in f.directions)
+
+    @property
+    def length(self) -> float:
+        """Characteristic length: RMS distance of the points from their centroid; 1 (unit) for a single point."""
+        pts = np.array(self.points or [(0.0, 0.0, 0.0)])
+        return characteristic_scale(pts)[1] if len(pts) > 1 else 1.0
+
+    def directions(self) -> tuple[tuple[str, Vector], ...]:
+        """The pattern's direction set with labels.
+
+        The translation directions (``s1, s2, ...``) and the directions of
+        rotation factors (``a1, ...``), then the normalised cross products of
+        every pair (``c`` for ``s1 × s2``, else ``c1, c2, ...``), then, if they
+        do not span space, the coordinate axes that complete them.  A direction
+        parallel to one already in the set is left out; "parallel" and "span"
+        are rank decisions of the tolerance policy.
+        """
+        out: list[tuple[str, Vector]] = []
+
+        def add(label: str, d: np.ndarray) -> None:
+            d = _unit(d)
+            if all(_direction_rank([v, d]) == 2 for _, v in out):
+                out.append((label, _vec(d)))
+
+        for i, d in enumerate(self.translation_directions):
+            add(f"s{i + 1}", np.array(d))
+        rot = [f.directions[0] for f in self.factors if f.kind == "rotation"]
+        for i, d in enumerate(rot):
+            add(f"a{i + 1}", np.array(d))
+        base = [np.array(v) for _, v in out]
+        crosses = [np.cross(a, b) for i, a in enumerate(base) for b in base[i + 1 :] if _direction_rank([a, b]) == 2]
+        for i, c in enumerate(crosses):
+            add("c" if len(crosses) == 1 else f"c{i + 1}", c)
+        for label, e in zip("xyz", np.eye(3)):
+            if _direction_rank([v for _, v in out] + [e]) > len(out):
+                add(label, e)
+        return tuple(out)
+
+    def transform(self, x: np.ndarray) -> np.ndarray:
+        """4x4 displacement at parameters ``x`` (the factors' parameters, concatenated)."""
+        out = np.eye(4)
+        k = 0
+        for f in self.factors:
+            out = out @ f.transform(np.asarray(x[k : k + f.dim], dtype=float))
+            k += f.dim
+        return out
+
+    def finite_screw(self, x: np.ndarray) -> FiniteScrew:
+        """``F_1(x_1) △ F_2(x_2) △ ...`` (homogeneous form)."""
+        out = FiniteScrew.identity()
+        k = 0
+        for f in self.factors:
+            out = out.triangle(f.finite_screw(np.asarray(x[k : k + f.dim], dtype=float)))
+            k += f.dim
+        return out
+
+    def fit(self, matrix: np.ndarray, *, starts: int = 6, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[np.ndarray, float]:
+        """Parameters of the pattern's motion nearest ``matrix`` and the residual.
+
+        Least squares (:func:`scipy.optimize.least_squares`) on the entries of
+        ``[R; p / L]``, from the identity and then random seeded starts until
+        the residual is within ``tol.closure``.
+
+        Returns
+        -------
+        x : ndarray
+        residual : float
+            Euclidean norm of the residual (0 for a motion of the pattern).
+        """
+        target = np.asarray(matrix, dtype=float)
+        scale = 1.0 / self.length
+
+        def residual(x: np.ndarray) -> np.ndarray:
+            t = self.transform(x)
+            return np.concatenate([(t[:3, :3] - target[:3, :3]).ravel(), scale * (t[:3, 3] - target[:3, 3])])
+
+        rng = np.random.default_rng(seed)
+        best_x, best_r = np.zeros(self.parameter_count), math.inf
+        for k in range(max(1, starts)):
+            x0 = np.zeros(self.parameter_count) if k == 0 else rng.uniform(-math.pi, math.pi, self.parameter_count)
+            sol = least_squares(residual, x0, method="lm", xtol=_SOLVER_STOP, ftol=_SOLVER_STOP, gtol=_SOLVER_STOP)
+            r = float(np.linalg.norm(sol.fun))
+            if r < best_r:
+                best_x, best_r = sol.x, r
+            if best_r <= tol.closure:
+                break
+        return best_x, best_r
+
+    def contains(self, matrix: np.ndarray, *, starts: int = 6, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
+        """Whether the displacement ``matrix`` belongs to the pattern: it fits to ``tol.closure``.
+
+        The residual is that of :meth:`fit` (entries of ``[R; p / L]``: radians
+        and lengths over the pattern's length), the same measure as a loop
+        closure, so the policy's closure tolerance decides.
+        """
+        return self.fit(matrix, starts=starts, seed=seed, tol=tol)[1] <= tol.closure
+
+
+def _pattern_2t3r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0))) -> MotionPattern:
+    return MotionPattern(
+        "2T3R",
+        (PatternFactor("rotations", point), PatternFactor("translations", directions=tuple(directions)[:2])),
+        "two translations in the plane of s1, s2, followed by three rotations about the fixed point O "
+        "(Sun et al. 2018): S_f = 2tan(θ/2)[s; O×s] △ t[0; u], u in span(s1, s2)",
+    )
+
+
+def _pattern_3t(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0), (0, 0, 1))) -> MotionPattern:
+    return MotionPattern("3T", (PatternFactor("translations", directions=tuple(directions)[:3]),), "spatial translations")
+
+
+def _pattern_3r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ()) -> MotionPattern:
+    return MotionPattern("3R", (PatternFactor("rotations", point),), "rotations about the fixed point O")
+
+
+def _pattern_2t1r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0))) -> MotionPattern:
+    d = [_unit(v) for v in tuple(directions)[:2]]
+    if len(d) < 2:
+        raise SynthesisError(f"the 2T1R pattern needs two directions, got {len(d)}")
+    return MotionPattern(
+        "2T1R",
+        (PatternFactor("translations", directions=tuple(_vec(v) for v in d)), PatternFactor("rotation", point, (_vec(np.cross(d[0], d[1]), "s1 × s2"),))),
+        "planar motion: rotation about an axis along s1 × s2 through O, followed by translations in the plane of s1, s2",
+    )
+
+
+def _pattern_3t1r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0), (0, 0, 1))) -> MotionPattern:
+    d = tuple(directions)[:3]
+    if len(d) < 3:
+        raise SynthesisError(f"the 3T1R pattern needs three directions, got {len(d)}")
+    return MotionPattern(
+        "3T1R",
+        (PatternFactor("translations", directions=d), PatternFactor("rotation", point, (_vec(d[2]),))),
+        "Schoenflies motion: rotation about an axis along s3 through O, followed by spatial translations",
+    )
+
+
+PATTERNS = {"2T3R": _pattern_2t3r, "3T": _pattern_3t, "3R": _pattern_3r, "2T1R": _pattern_2t1r, "3T1R": _pattern_3t1r}
+"""Named motion patterns: name -> function(point, directions) -> MotionPattern."""
+
+
+def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), directions: Sequence[Iterable[float]] | None = None) -> MotionPattern:
+    """A named motion pattern (see :data:`PATTERNS`) at ``point`` with the given directions.
+
+    Raises
+    ------
+    SynthesisError
+        For an unknown name or bad geometry.
+
+    Examples
+    --------
+    >>> named_pattern("3t1r", point=(0, 0, 5)).factors[1].describe()
+    'rotations about the line through (0, 0, 5) along (0, 0, 1)'
+    """
+    key = name.strip().upper()
+    if key not in PATTERNS:
+        raise SynthesisError(f"unknown motion pattern {name!r}; expected one of {', '.join(PATTERNS)}")
+    kwargs: dict[str, Any] = {"point": _vec(point)}
+    if directions is not None:
+        kwargs["directions"] = tuple(_vec(_unit(d)) for d in directions)
+    return PATTERNS[key](**kwargs)
