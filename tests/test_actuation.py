@@ -1,4 +1,4 @@
-"""Actuation spaces of rigid mechanisms (mobility.actuation.actuation, mobility actuation).
+"""Actuation spaces of rigid mechanisms (mobility.actuation, mobility actuation).
 
 The 3-RPS case is that of Li, Shan, Yu and Ke, "Actuation Spaces Synthesis of
 Lower-Mobility Parallel Mechanisms Based on Screw Theory" (Chin. J. Mech. Eng.,
@@ -17,12 +17,17 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import mobility
-from mobility.actuation.actuation import (
+from mobility.actuation import (
+    MAX_COMBINATIONS,
     REDUNDANT,
     SINGULAR,
     VALID,
+    RigidPose,
+    assess_wrenches,
     check_actuation,
     check_over_poses,
     combination_type,
@@ -31,7 +36,8 @@ from mobility.actuation.actuation import (
     locked_dof,
 )
 from mobility.cli import main
-from mobility.errors import MechanismError
+from mobility.core.screws import SWAP_ROWS
+from mobility.errors import MechanismError, RequestError
 from mobility.core.joint_screws import joint_screws
 from mobility.core.model import Joint, Mechanism
 from mobility.core.screws import reciprocal_product, same_subspace
@@ -387,6 +393,81 @@ def test_combination_type_follows_the_paper():
 
 
 # ---------------------------------------------------------------------------
+# the shared algebra: representatives, and what an enumeration refuses
+# ---------------------------------------------------------------------------
+
+
+@functools.lru_cache(maxsize=1)
+def _tilted_pose() -> RigidPose:
+    return RigidPose(POSES[7])
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.floats(-3.0, 3.0), min_size=3, max_size=3), st.lists(st.floats(0.2, 5.0), min_size=3, max_size=3))
+def test_conditioning_does_not_depend_on_the_representative_of_an_actuation_wrench(shifts, scales):
+    # An actuation wrench is defined up to its limb's constraint wrenches (reciprocal to every
+    # twist of the limb) and a positive factor: G, hence kappa, must not see either.
+    pose = _tilted_pose()
+    index = {j.name: i for i, j in enumerate(pose.mechanism.joints)}
+    spaces = pose.spaces
+    base, moved = [], []
+    for name, shift, scale in zip(["R1", "P2", "R3"], shifts, scales):
+        joint = index[name]
+        a, rate, _ = pose.wrench(joint, 0)
+        limb_constraints = pose.limbs[pose.limb_of[joint]][1].wrenches
+        other = scale * a + limb_constraints @ np.full(limb_constraints.shape[1], shift)
+        twist = pose.screws.twists[:, pose.screws.offsets[joint]]
+        if name[0] == "R":
+            twist = twist / np.linalg.norm(twist[:3])  # unit angular rate (a P column has unit rate already)
+        other_rate = float(other[SWAP_ROWS] @ twist)
+        assert other_rate == pytest.approx(scale * rate, rel=1e-9)  # the limb's constraints do no work on its joint
+        base.append((a, rate))
+        moved.append((other / np.linalg.norm(other), other_rate / np.linalg.norm(other)))
+    a = assess_wrenches([w for w, _ in base], [r for _, r in base], spaces.twists, spaces.constraints)
+    b = assess_wrenches([w for w, _ in moved], [r for _, r in moved], spaces.twists, spaces.constraints)
+    assert a.verdict == b.verdict == VALID
+    assert b.conditioning == pytest.approx(a.conditioning, rel=1e-9)
+    assert a.conditioning == pytest.approx(check_actuation(POSES[7], ["R1", "P2", "R3"]).conditioning, rel=1e-12)
+
+
+def _serial_arm(n: int) -> Mechanism:
+    """A spatial serial arm of ``n`` revolute joints (6 DOF for n >= 6)."""
+    links = ["base"] + [f"l{i}" for i in range(1, n)] + ["hand"]
+    axes = [(0, 0, 1), (0, 1, 0), (1, 0, 0)]
+    return Mechanism(f"{n}R arm", "base", "hand", tuple(
+        Joint(f"J{i}", "R", (links[i], links[i + 1]), axis=axes[i % 3], point=(0.1 * i, 0.05 * i * i, 0.02 * i)) for i in range(n)))
+
+
+def test_enumeration_refuses_too_many_combinations_and_bad_requests():
+    arm = _serial_arm(25)
+    with pytest.raises(RequestError, match=r"^177100 combinations to try \(more than 20000\)"):
+        enumerate_actuations(arm, mode="any")  # C(25, 6)
+    assert MAX_COMBINATIONS == 20000 and isinstance(RequestError("x"), ValueError)
+    assert len(enumerate_actuations(arm, mode="any", k=2).combinations) == 300  # C(25, 2) is allowed
+    with pytest.raises(RequestError, match="mode must be 'limb' or 'any'"):
+        enumerate_actuations(_four_bar(), mode="every")
+    with pytest.raises(RequestError, match="k must be non-negative"):
+        enumerate_actuations(_four_bar(), mode="any", k=-1)
+    with pytest.raises(MechanismError, match="unknown joint 'Q9'"):
+        lock_joints(_four_bar(), ["A", "Q9"])
+
+
+def test_cli_bad_requests_are_one_line_with_status_2(tmp_path, capsys):
+    lines = ["name: 25R arm", "ground: l0", "end_effector: l25", "joints:"]
+    lines += [f"  - {{name: J{i}, type: R, links: [l{i}, l{i + 1}], axis: {['[0, 0, 1]', '[0, 1, 0]', '[1, 0, 0]'][i % 3]}, point: [{0.1 * i}, {0.05 * i * i}, 0]}}" for i in range(25)]
+    arm = tmp_path / "arm.yaml"
+    arm.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    for argv, message in (
+        (["actuation", str(arm), "--enumerate", "--mode", "any"], "mobility: 177100 combinations to try"),
+        (["actuation", str(RPS_FILE), "--k", "-1"], "mobility: --samples and --k must not be negative"),
+        (["actuation", str(RPS_FILE), "--pose", str(ROOT / "mechanisms" / "3prs.yaml")], "is not a pose of"),
+    ):
+        assert main(argv) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and message in err and "Traceback" not in err, argv
+
+
+# ---------------------------------------------------------------------------
 # invariance
 # ---------------------------------------------------------------------------
 
@@ -477,6 +558,20 @@ def test_cli_enumerate_with_listed_poses_and_json(tmp_path, capsys):
     assert main(["actuation", str(RPS_FILE), "--enumerate"]) == 0
     text_out = capsys.readouterr().out
     assert "3R" in text_out and "1R2P" in text_out and "best: P1 P2 P3 (3P)" in text_out
+
+
+def test_cli_one_choice_at_a_further_pose(tmp_path, capsys):
+    pose_file = tmp_path / "tilted.yaml"
+    text = RPS_TEXT
+    for key, value in (("h", SINGULAR_H), ("phi", SINGULAR_PHI), ("theta", singular_theta())):
+        text = re.sub(rf"\n  {key}: [^\n]*", f"\n  {key}: {value!r}", text, count=1)
+    pose_file.write_text(text, encoding="utf-8")
+    assert main(["actuation", str(RPS_FILE), "--inputs", "R1,R2,R3", "--pose", str(pose_file), "--json"]) == 1
+    data = json.loads(capsys.readouterr().out)
+    assert data["verdict"] == VALID and [(p["pose"], p["verdict"], p["conditioning"]) for p in data["poses"]] == [(str(pose_file), SINGULAR, 0.0)]
+    assert main(["actuation", str(RPS_FILE), "--pose", str(pose_file)]) == 0  # P1 P2 P3 stay valid there
+    out = capsys.readouterr().out
+    assert "other poses: 1 of 1 valid" in out and f"{pose_file}: valid, kappa" in out
 
 
 def test_cli_json_of_one_choice(capsys):

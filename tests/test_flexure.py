@@ -17,10 +17,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mobility.actuation.actuation import SINGULAR, VALID
+from mobility.actuation import SINGULAR, VALID
 from mobility.cli import main
-from mobility.errors import MechanismFileError
-from mobility.flexure.spaces import (
+from mobility.errors import MechanismError, MechanismFileError, RequestError
+from mobility.flexure import (
     FlexureMechanism,
     ForceLine,
     Material,
@@ -30,9 +30,11 @@ from mobility.flexure.spaces import (
     enumerate_force_lines,
     flexure_spaces,
     line_set_type,
+    load_flexure,
+    loads_flexure,
+    normalised_energy_form,
     rod_compliance,
 )
-from mobility.flexure.loader import load_flexure, loads_flexure
 from mobility.core.screws import SWAP, adjoint, same_subspace
 from mobility.core.tolerance import Tolerance
 from mobility.core.transforms import rotation_from_axis_angle
@@ -391,6 +393,54 @@ def test_a_body_held_by_nothing_is_an_error():
     text += "  - {name: w3, type: rod, bodies: [flag, pole], axis: [0, 0, 1], length: 10, radius: 1, material: steel}\n"
     with pytest.raises(MechanismFileError, match="w.yaml:7: elements: bodies not connected to the ground 'base': flag, pole"):
         loads_flexure(text, file="w.yaml")
+
+
+@pytest.mark.parametrize(
+    "build, key",
+    [
+        (lambda: Rod("w", ("g", "s"), "abc", (0, 0, 1), 0.1, 0.001, ALU), "point"),
+        (lambda: Rod("w", ("g", "s"), (0, 0, 0), (0, 0, 1), 0.1, 0.001, "aluminium"), "material"),
+        (lambda: Rod("w", ("g", "s"), (0, 0, 0), (0, 0, 1), "long", 0.001, ALU), "length"),
+        (lambda: Material("m", 70e9, "soft"), "nu"),
+        (lambda: ForceLine("f", (0, 0, 0), (0, 0, 0)), "direction"),
+        (lambda: FlexureMechanism("m", "g", "s", (Rod("w", ("g", "s"), (0, 0, 0), (0, 0, 1), 0.1, 0.001, ALU),), threshold="x"), "threshold"),
+    ],
+)
+def test_bad_descriptions_in_code_are_mechanism_errors_naming_the_key(build, key):
+    with pytest.raises(MechanismError) as info:
+        build()
+    assert info.value.key == key
+
+
+def test_bad_requests_are_request_errors(flexure):
+    for threshold in (0.0, 1.5):
+        with pytest.raises(RequestError, match="threshold must lie between 0 and 1"):
+            flexure_spaces(flexure, threshold)
+    with pytest.raises(RequestError, match="k must be non-negative"):
+        enumerate_force_lines(flexure, -1)
+    with pytest.raises(MechanismError, match="unknown actuator 'z9'"):
+        check_force_lines(flexure, ["t1", "z9"])
+
+
+def test_normalised_energy_form_is_the_compliance_seen_from_the_centre_in_units_of_L(flexure):
+    # Second route: move the compliance to the centre c by the adjoint and scale lengths by L,
+    # then compare with the function's Q = SWAP N C N^-1.
+    c = compliance_matrix(flexure)
+    q, norm = normalised_energy_form(flexure, c)
+    centre, length = norm.centre * 1e-3, norm.length * 1e-3  # the document is in mm, C in SI
+    to_centre = adjoint(np.eye(3), -centre)  # screw coordinates about the origin -> about c
+    scale = np.diag([1.0, 1, 1, 1 / length, 1 / length, 1 / length])
+    expected = SWAP @ scale @ to_centre @ c @ np.linalg.inv(to_centre) @ np.linalg.inv(scale)
+    assert np.allclose(q, expected, rtol=1e-9, atol=1e-12 * np.abs(expected).max())
+    assert np.allclose(q, q.T, rtol=0, atol=1e-12 * np.abs(q).max())
+    values = np.sort(np.linalg.eigvalsh(q))[::-1]
+    assert np.allclose(values / values[0], flexure_spaces(flexure).eigenvalues, rtol=1e-9, atol=1e-15)
+
+
+def test_cli_bad_threshold_is_one_line_with_status_2(capsys):
+    assert main(["actuation", str(FILE), "--threshold", "1.5"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == "mobility: --threshold must lie between 0 and 1"
 
 
 def test_cli_flexure_report_json_and_enumeration(capsys):

@@ -1,10 +1,86 @@
-"""Actuation spaces of rigid mechanisms: are the chosen input joints a valid actuation?
+"""Actuation spaces: which inputs may drive a mechanism, and how well.
 
-:func:`check_actuation` gives the actuation wrenches of the joints marked
-``actuated`` and the verdict (valid, actuation-singular, redundant);
-:func:`enumerate_actuations` lists every valid choice of inputs.
+The method is that of Li, Shan, Yu and Ke, "Actuation Spaces Synthesis of
+Lower-Mobility Parallel Mechanisms Based on Screw Theory" (Chinese Journal of
+Mechanical Engineering, 2021): a choice of inputs is valid when its actuation
+wrenches are linearly independent of the constraint wrenches of the end
+effector, so that the two together span all six dimensions.
+
+Modules, in the order data flows:
+
+``results``
+    the frozen answers (:class:`ActuationCheck`, :class:`Enumeration`, ...)
+    and the verdicts ``valid``, ``actuation-singular``, ``redundant``.
+``assessment``
+    the algebra shared with flexures: the verdict, the uncontrolled
+    directions and the actuation conditioning ``kappa`` of a set of actuation
+    wrenches against the end effector's twist and constraint systems.
+``ranking``
+    combinations of inputs: type (``2R1P``), verdict over poses, ranking.
+``rigid_pose``
+    the actuation wrench of each joint freedom of a rigid mechanism at a pose.
+``rigid``
+    :func:`check_actuation`, :func:`check_over_poses`,
+    :func:`enumerate_actuations`.
+``locking``
+    the independent second route: :func:`lock_joints`, :func:`locked_dof`.
+
+Flexure mechanisms (:mod:`mobility.flexure`) use ``assessment`` and
+``ranking`` with linear actuators as inputs.
+
+Examples
+--------
+>>> from mobility.core.model import Joint, Mechanism
+>>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p, actuated=(n == "A"))
+>>> m = Mechanism("four-bar", "ground", "coupler", (
+...     R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "coupler", (1, 2, 0)),
+...     R("C", "coupler", "rocker", (4, 2.5, 0)), R("D", "rocker", "ground", (5, 0, 0))))
+>>> check = check_actuation(m)
+>>> check.verdict, check.dof, [i.name for i in check.inputs]
+('valid', 1, ['A'])
+>>> check_actuation(m, ["A", "D"]).verdict
+'redundant'
+>>> locked_dof(m, ["A"]), locked_dof(m, [])
+(0, 1)
 """
 
-from .actuation import ActuationCheck, Enumeration, check_actuation, enumerate_actuations, locked_dof
+from .assessment import Assessment, EndEffectorSpaces, InputWrench, assess_inputs, assess_wrenches
+from .locking import lock_joints, locked_dof
+from .ranking import MAX_COMBINATIONS, combination_type, combinations_count, combine_poses, limit_combinations, rank_combinations
+from .results import REDUNDANT, SINGULAR, VALID, VERDICTS, ActuationCheck, ActuationInput, Combination, Enumeration, TypeGroup
+from .rigid import ENUMERATION_MODES, check_actuation, check_over_poses, enumerate_actuations
+from .rigid_pose import RigidPose
 
-__all__ = ["check_actuation", "enumerate_actuations", "locked_dof", "ActuationCheck", "Enumeration"]
+__all__ = [
+    # the rigid route
+    "check_actuation",
+    "check_over_poses",
+    "enumerate_actuations",
+    "ENUMERATION_MODES",
+    "RigidPose",
+    # the second route
+    "lock_joints",
+    "locked_dof",
+    # results
+    "VALID",
+    "SINGULAR",
+    "REDUNDANT",
+    "VERDICTS",
+    "ActuationCheck",
+    "ActuationInput",
+    "Combination",
+    "TypeGroup",
+    "Enumeration",
+    # the shared algebra
+    "EndEffectorSpaces",
+    "InputWrench",
+    "Assessment",
+    "assess_wrenches",
+    "assess_inputs",
+    "MAX_COMBINATIONS",
+    "combination_type",
+    "combinations_count",
+    "limit_combinations",
+    "combine_poses",
+    "rank_combinations",
+]

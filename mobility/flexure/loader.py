@@ -1,4 +1,4 @@
-"""Read flexure documents (YAML) into :class:`~mobility.flexure.spaces.FlexureMechanism` objects.
+"""Read flexure documents (YAML) into :class:`~mobility.flexure.model.FlexureMechanism` objects.
 
 A flexure document describes bodies joined by flexure elements instead of
 joints (the format is in ``docs/actuation.md``)::
@@ -49,7 +49,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from ..errors import MechanismError
-from .spaces import LENGTH_UNITS, MODULUS_UNITS, FlexureMechanism, ForceLine, Material, Rod
+from .model import LENGTH_UNITS, MODULUS_UNITS, FlexureMechanism, ForceLine, Material, Rod
 from ..io.reader import DocumentReader, describe_value, parse_key
 from ..core.model import WORLD, Frame
 from ..core.transforms import Transform

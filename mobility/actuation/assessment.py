@@ -1,0 +1,323 @@
+"""The actuation-space algebra shared by rigid and flexure mechanisms: verdict and conditioning.
+
+Everything here is in the normalised coordinates of
+:mod:`mobility.core.tolerance`; results are reported in the global frame.
+
+* **verdict** of a choice of ``n`` inputs for an end effector of ``d`` DOF,
+  from the rank ``r`` of the actuation and constraint wrenches together (one
+  rank decision of the tolerance policy):
+
+  - ``valid``: ``r = 6`` and ``n = d``;
+  - ``actuation-singular``: ``r < 6``: with the inputs locked, the end
+    effector can still move along ``6 - r`` directions, the twists reciprocal
+    to all those wrenches (reported as the *uncontrolled* directions);
+  - ``redundant``: ``r = 6`` and ``n > d`` (more inputs than DOF; they must be
+    coordinated or they fight each other).
+* **actuation conditioning** ``kappa``: the inverse condition number
+  ``s_min / s_max`` of the ``n x d`` map ``G`` from the end effector's twists
+  to the input rates, ``G[i, k] = (a_i o t_k) / (a_i o $_i)``, where ``t_k`` is
+  an orthonormal basis of the end effector's twist system, ``a_i`` the
+  actuation wrench and ``$_i`` the input's twist with unit rate (its *rate*
+  ``a_i o $_i`` is given with the wrench).  ``G`` does not depend on which
+  representative of ``a_i`` is taken, nor on the unit of length or the
+  placement of the mechanism (normalised coordinates).  ``kappa`` is 0 at an
+  actuation singularity and 1 when a unit twist of the end effector in any
+  direction needs the same input speed.
+
+:func:`assess_wrenches` gives the verdict of bare wrenches (fast, for
+enumerations); :func:`assess_inputs` the full :class:`ActuationCheck` of named
+inputs.
+
+Examples
+--------
+A slider along ``x``: its constraint wrenches are every wrench without a
+force along ``x``.
+
+>>> import numpy as np
+>>> twists = np.eye(6)[:, [3]]                   # the twist [0; e_x]
+>>> constraints = np.eye(6)[:, [1, 2, 3, 4, 5]]  # f_y, f_z and every couple
+>>> a = assess_wrenches([np.eye(6)[0]], [1.0], twists, constraints)  # a force along x
+>>> a.verdict, a.decision.rank, a.conditioning
+('valid', 6, 1.0)
+>>> b = assess_wrenches([np.eye(6)[1]], [1.0], twists, constraints)  # a force along y
+>>> b.verdict, b.in_constraint, b.uncontrolled.shape
+('actuation-singular', (True,), (6, 1))
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from ..core.analysis import screw_system_in_frame
+from ..core.joint_screws import Normalisation
+from ..core.linalg import singular_values, svd
+from ..core.result import ScrewAxis
+from ..core.screws import SWAP_ROWS, motion_pattern
+from ..core.tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
+from .results import REDUNDANT, SINGULAR, VALID, ActuationCheck, ActuationInput
+
+__all__ = ["EndEffectorSpaces", "InputWrench", "Assessment", "assess_wrenches", "assess_inputs"]
+
+
+@dataclass(frozen=True, eq=False)
+class EndEffectorSpaces:
+    """The end effector's twist and constraint systems, normalised, with the coordinates to report them in.
+
+    Attributes
+    ----------
+    twists : ndarray, shape (6, d)
+        Orthonormal basis of its twist (freedom) system, normalised coordinates.
+    constraints : ndarray, shape (6, 6 - d)
+        Orthonormal basis of its constraint wrench system.
+    normalisation : Normalisation
+        From normalised coordinates to the global frame and the document's unit.
+    reference : ndarray, shape (3,)
+        Reference point (normalised): reported axes pass through their point
+        nearest to it.
+    """
+
+    twists: np.ndarray
+    constraints: np.ndarray
+    normalisation: Normalisation
+    reference: np.ndarray
+
+    @property
+    def dof(self) -> int:
+        """Dimension of the twist system."""
+        return int(self.twists.shape[1])
+
+
+@dataclass(frozen=True, eq=False)
+class InputWrench:
+    """One input and its actuation wrench, before assessment.
+
+    Attributes
+    ----------
+    name : str
+    kind : str
+        Joint type letter, or ``"F"`` for a linear actuator.
+    limb : int or None
+    wrench : ndarray, shape (6,) or None
+        Unit actuation wrench, normalised coordinates; ``None`` when there is none.
+    rate : float
+        ``a o $`` of the input's twist at unit rate (1 for a force line whose
+        wrench has unit force).
+    note : str
+        Why there is no wrench, if there is none.
+    """
+
+    name: str
+    kind: str
+    limb: int | None
+    wrench: np.ndarray | None
+    rate: float = 1.0
+    note: str = ""
+
+
+@dataclass(frozen=True, eq=False)
+class Assessment:
+    """The verdict on a set of actuation wrenches (normalised coordinates).
+
+    Attributes
+    ----------
+    verdict : str
+    decision : RankDecision
+        Of the actuation and constraint wrenches together.
+    uncontrolled : ndarray, shape (6, 6 - rank)
+        Basis of the twists still free with every input locked (columns).
+    conditioning : float
+        ``kappa``; 0 when actuation-singular.
+    in_constraint : tuple of bool
+        Per input: it has no wrench, or its wrench lies in the constraint space.
+    """
+
+    verdict: str
+    decision: RankDecision
+    uncontrolled: np.ndarray
+    conditioning: float
+    in_constraint: tuple[bool, ...]
+
+
+def assess_wrenches(
+    wrenches: Sequence[np.ndarray | None],
+    rates: Sequence[float],
+    twists: np.ndarray,
+    constraints: np.ndarray,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+) -> Assessment:
+    """Verdict and conditioning of a choice of inputs from its actuation wrenches.
+
+    Parameters
+    ----------
+    wrenches : sequence of (6,) arrays or None
+        Unit actuation wrenches (normalised); ``None`` for an input that has none.
+    rates : sequence of float
+        ``a o $`` of each input, in the order of ``wrenches`` (ignored where
+        the wrench is ``None``).
+    twists : ndarray, shape (6, d)
+        Orthonormal basis of the end effector's twist (freedom) system.
+    constraints : ndarray, shape (6, 6 - d)
+        Orthonormal basis of its constraint wrench system.
+    tol : Tolerance
+
+    Returns
+    -------
+    Assessment
+    """
+    dof = twists.shape[1]
+    present = [(w, r) for w, r in zip(wrenches, rates) if w is not None]
+    stack = np.concatenate([constraints] + [w[:, None] for w, _ in present], axis=1)
+    if stack.shape[1]:
+        u, s, _ = svd(stack)
+        decision = decide_rank(s, tol)
+        uncontrolled = u[SWAP_ROWS, decision.rank :]
+    else:
+        decision = RankDecision(0)
+        uncontrolled = np.eye(6)
+    in_constraint = tuple(w is None or _lies_in(w, constraints, tol) for w in wrenches)
+    n = len(wrenches)
+    if decision.rank < 6:
+        verdict = SINGULAR
+    elif n > dof:
+        verdict = REDUNDANT
+    else:
+        verdict = VALID
+    conditioning = 0.0
+    if verdict != SINGULAR:
+        conditioning = 1.0 if dof == 0 else _conditioning(present, twists)
+    return Assessment(verdict, decision, uncontrolled, conditioning, in_constraint)
+
+
+def _lies_in(wrench: np.ndarray, constraints: np.ndarray, tol: Tolerance) -> bool:
+    """Whether a unit wrench lies in the span of an orthonormal basis (its part outside is negligible)."""
+    rest = wrench - constraints @ (constraints.T @ wrench)
+    return decide_rank(np.array([1.0, float(np.linalg.norm(rest))]), tol).rank < 2
+
+
+def _conditioning(present: Sequence[tuple[np.ndarray, float]], twists: np.ndarray) -> float:
+    """``s_min / s_max`` of ``G[i, k] = (a_i o t_k) / (a_i o $_i)``."""
+    dof = twists.shape[1]
+    g = np.array([(w[SWAP_ROWS] @ twists) / r for w, r in present]).reshape(-1, dof)
+    sv = singular_values(g)
+    return float(sv[dof - 1] / sv[0]) if sv.size >= dof and sv[0] > 0 else 0.0
+
+
+def assess_inputs(
+    name: str,
+    kind: str,
+    inputs: Sequence[InputWrench],
+    spaces: EndEffectorSpaces,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+    *,
+    warnings: Sequence[str] = (),
+    length_unit: str = "",
+) -> ActuationCheck:
+    """The full verdict on named inputs, written in the global frame (rigid and flexure alike).
+
+    Parameters
+    ----------
+    name : str
+        The mechanism's name.
+    kind : str
+        ``"rigid"`` or ``"flexure"``.
+    inputs : sequence of InputWrench
+    spaces : EndEffectorSpaces
+    tol : Tolerance
+    warnings : sequence of str
+        Warnings to report before those of the assessment.
+    length_unit : str
+
+    Returns
+    -------
+    ActuationCheck
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from mobility.core.joint_screws import Normalisation
+    >>> slider = EndEffectorSpaces(np.eye(6)[:, [3]], np.eye(6)[:, 1:], Normalisation(np.zeros(3), 1.0), np.zeros(3))
+    >>> check = assess_inputs("slider", "rigid", [InputWrench("P", "P", 0, np.eye(6)[0])], slider)
+    >>> check.verdict, check.pattern, check.inputs[0].axis.kind
+    ('valid', '1T', 'force')
+    """
+    a = assess_wrenches([i.wrench for i in inputs], [i.rate for i in inputs], spaces.twists, spaces.constraints, tol)
+    norm, reference = spaces.normalisation, spaces.reference
+    out_inputs = []
+    useless = []
+    for i, flag in zip(inputs, a.in_constraint):
+        if i.wrench is None:
+            out_inputs.append(ActuationInput(i.name, i.kind, i.limb, None, None, True, i.note))
+            useless.append(i.name)
+            continue
+        world, axis = _wrench_in_world(i.wrench, norm, reference, tol)
+        note = i.note
+        if flag:
+            useless.append(i.name)
+            note = note or "its actuation wrench lies in the constraint space: it cannot move the end effector"
+        out_inputs.append(ActuationInput(i.name, i.kind, i.limb, world, axis, flag, note))
+    dof = spaces.dof
+    couples, forces, constraint_rows = screw_system_in_frame(spaces.constraints, norm, reference, ("force", "wrench"), tol)
+    translations, rotations, twist_rows = screw_system_in_frame(a.uncontrolled, norm, reference, ("rotation", "helical"), tol)
+    warns = list(warnings)
+    if a.verdict != SINGULAR and a.decision.smallest_kept < tol.near_singular:
+        warns.append(
+            f"near an actuation singularity: relative singular value {a.decision.smallest_kept:.2e} of the actuation and constraint wrenches"
+        )
+    return ActuationCheck(
+        name=name,
+        kind=kind,
+        dof=dof,
+        pattern=motion_pattern(spaces.twists, tol),
+        inputs=tuple(out_inputs),
+        constraint_couples=couples,
+        constraint_forces=forces,
+        constraint_wrenches=constraint_rows,
+        verdict=a.verdict,
+        rank=a.decision.rank,
+        uncontrolled_translations=translations,
+        uncontrolled_rotations=rotations,
+        uncontrolled_twists=twist_rows,
+        margin=a.decision,
+        conditioning=a.conditioning,
+        explanation=_explanation(a.verdict, len(inputs), dof, a.decision.rank, useless),
+        warnings=tuple(warns),
+        length_unit=length_unit,
+        length_scale=norm.size,
+    )
+
+
+def _wrench_in_world(wrench_n: np.ndarray, norm: Normalisation, reference: np.ndarray, tol: Tolerance) -> tuple[np.ndarray, ScrewAxis]:
+    """A normalised wrench as a global wrench (``|f| = 1``, or ``|m| = 1`` for a couple) and its line."""
+    f, m = wrench_n[:3], wrench_n[3:]
+    nf = float(np.linalg.norm(f))
+    if nf <= tol.rank * float(np.linalg.norm(wrench_n)):
+        c = m / np.linalg.norm(m)
+        return np.concatenate([np.zeros(3), c]), ScrewAxis(c, norm.point_to_world(reference), 0.0, "couple")
+    f, m = f / nf, m / nf
+    pitch = float(f @ m)
+    moment = m - np.cross(reference, f)  # moment about the reference point
+    point = reference + np.cross(f, moment)
+    pitch = 0.0 if abs(pitch) <= tol.rank else pitch
+    axis = ScrewAxis(f, norm.point_to_world(point), pitch * norm.length, "force" if pitch == 0.0 else "wrench")
+    world = norm.to_world(np.concatenate([f, m]))[:, 0]
+    return world, axis
+
+
+def _explanation(verdict: str, n: int, dof: int, rank: int, useless: Sequence[str]) -> str:
+    """One sentence on a verdict."""
+    if verdict == VALID:
+        return (
+            f"the {n} actuation wrench(es) and the {6 - dof} constraint wrench(es) span all six dimensions: "
+            "with the inputs locked the end effector cannot move"
+        )
+    if verdict == REDUNDANT:
+        return f"{n} inputs for {dof} DOF: {n - dof} more than needed (they must be coordinated or they fight each other)"
+    text = f"actuation and constraint wrenches span only {rank} of 6 dimensions: with the inputs locked the end effector can still move along {6 - rank} direction(s)"
+    if n < dof:
+        text += f" (fewer inputs, {n}, than DOF, {dof})"
+    if useless:
+        text += "; useless input(s): " + ", ".join(useless)
+    return text

@@ -1,0 +1,99 @@
+"""The second route to an actuation verdict: lock the inputs, count what is left.
+
+Locking the chosen joints (:func:`lock_joints`: each removed, its two links
+merged) leaves the end effector with 0 DOF by loop closure
+(:func:`locked_dof`) exactly when the actuation and constraint wrenches span
+six dimensions.  It shares nothing with :mod:`mobility.actuation.assessment`
+but the model, which is what makes it a check.
+
+Examples
+--------
+>>> from mobility.core.model import Joint, Mechanism
+>>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+>>> m = Mechanism("four-bar", "ground", "coupler", (
+...     R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "coupler", (1, 2, 0)),
+...     R("C", "coupler", "rocker", (4, 2.5, 0)), R("D", "rocker", "ground", (5, 0, 0))))
+>>> locked_dof(m, ["A"]), locked_dof(m, [])
+(0, 1)
+>>> [(j.name, j.links) for j in lock_joints(m, ["B", "C"]).joints]
+[('A', ('ground', 'coupler')), ('D', ('coupler', 'ground'))]
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Iterable
+
+from ..core.loop_closure import loop_closure
+from ..core.model import Mechanism
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..errors import MechanismError
+
+__all__ = ["lock_joints", "locked_dof"]
+
+
+def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
+    """The mechanism with the named joints made rigid: each removed, its two links merged.
+
+    Joints left joining a link to itself (their links were merged through
+    other locked joints) are removed too: they cannot move.  A merged body
+    keeps the name of the ground or the end effector when it holds one.
+
+    Returns
+    -------
+    Mechanism or None
+        ``None`` when the end effector is merged with the ground (it cannot move).
+
+    Raises
+    ------
+    MechanismError
+        When a name is not a joint of the mechanism.
+    """
+    names = set(names)
+    unknown = sorted(names - {j.name for j in mechanism.joints})
+    if unknown:
+        raise MechanismError("actuated", f"unknown joint {unknown[0]!r}")
+    parent: dict[str, str] = {}
+
+    def find(x: str) -> str:
+        while parent.get(x, x) != x:
+            x = parent[x]
+        return x
+
+    keep = (mechanism.ground, mechanism.end_effector)
+    for j in mechanism.joints:
+        if j.name in names:
+            a, b = find(j.links[0]), find(j.links[1])
+            if a != b:
+                if b in keep and a not in keep:
+                    a, b = b, a
+                if a == mechanism.end_effector and b == mechanism.ground:
+                    a, b = b, a
+                parent[b] = a
+    if find(mechanism.end_effector) == find(mechanism.ground):
+        return None
+    joints = []
+    for j in mechanism.joints:
+        if j.name in names:
+            continue
+        links = (find(j.links[0]), find(j.links[1]))
+        if links[0] != links[1]:
+            joints.append(j if links == j.links else replace(j, links=links))
+    return mechanism.replace(joints=tuple(joints), expected=None)
+
+
+def locked_dof(mechanism: Mechanism, names: Iterable[str], *, tol: Tolerance = DEFAULT_TOLERANCE) -> int:
+    """DOF of the end effector with the named joints locked, by loop closure (an independent route).
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> m = Mechanism("RR arm", "g", "hand", (Joint("A", "R", ("g", "arm"), axis=(0, 0, 1), point=(0, 0, 0)),
+    ...                                      Joint("B", "R", ("arm", "hand"), axis=(0, 0, 1), point=(1, 0, 0))))
+    >>> locked_dof(m, []), locked_dof(m, ["A"]), locked_dof(m, ["A", "B"])
+    (2, 1, 0)
+    """
+    locked = lock_joints(mechanism, names)
+    if locked is None:
+        return 0
+    return int(loop_closure(locked, tol).end_effector_twists.shape[1])

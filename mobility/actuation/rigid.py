@@ -1,0 +1,205 @@
+"""Actuation of rigid mechanisms: one choice of actuated joints, or every choice, over poses.
+
+:func:`check_actuation` gives the verdict on the joints marked ``actuated``
+(or named) at the mechanism's pose, :func:`check_over_poses` the same at
+further poses, and :func:`enumerate_actuations` assesses every combination
+of one-freedom joints over several poses and ranks them.  The actuation
+wrenches come from :class:`~mobility.actuation.rigid_pose.RigidPose`, the
+verdicts from :mod:`mobility.actuation.assessment`.
+
+Examples
+--------
+>>> from mobility.core.model import Joint, Mechanism
+>>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+>>> arm = Mechanism("RR arm", "g", "hand", (R("A", "g", "upper", (0, 0, 0)), R("B", "upper", "hand", (1, 0, 0))))
+>>> check_actuation(arm, ["A", "B"]).verdict, check_actuation(arm, ["A"]).verdict
+('valid', 'actuation-singular')
+>>> [(c.inputs, c.type, c.verdict) for c in enumerate_actuations(arm, mode="any").combinations]
+[(('A', 'B'), '2R', 'valid')]
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from ..core.kinematics import sample_poses
+from ..core.model import Mechanism
+from ..core.screws import motion_pattern
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.topology import joints_of
+from ..errors import MechanismError, RequestError
+from .assessment import Assessment, InputWrench, assess_inputs, assess_wrenches
+from .ranking import combination_type, combinations_count, combine_poses, limit_combinations, rank_combinations
+from .results import ActuationCheck, Enumeration
+from .rigid_pose import RigidPose
+
+__all__ = ["check_actuation", "check_over_poses", "enumerate_actuations", "ENUMERATION_MODES"]
+
+ENUMERATION_MODES = ("limb", "any")
+"""``"limb"``: one joint in each limb (the paper's enumeration); ``"any"``: any ``k`` candidates."""
+
+
+def check_actuation(mechanism: Mechanism, actuated: Sequence[str] | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> ActuationCheck:
+    """Assess one choice of actuated joints at the mechanism's pose.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    actuated : sequence of str, optional
+        Joint names; default: the joints marked ``actuated: true``.  Every
+        freedom of a multi-DOF joint is one input.
+    tol : Tolerance
+
+    Returns
+    -------
+    ActuationCheck
+
+    Raises
+    ------
+    MechanismError
+        When a name is not a joint of the mechanism.
+    """
+    names = _actuated_names(mechanism, actuated)
+    warnings = [] if names else ["no joint is actuated (mark joints with `actuated: true`, or name them)"]
+    return _assess_at(RigidPose(mechanism, tol), names, warnings)
+
+
+def check_over_poses(mechanism: Mechanism, actuated: Sequence[str] | None, poses: Sequence[Mechanism], *, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[ActuationCheck, ...]:
+    """:func:`check_actuation` of one choice at several poses of the same mechanism.
+
+    Each pose must have the same joints (names, types, links), ground and end
+    effector; only the geometry differs.
+
+    Raises
+    ------
+    MechanismError
+        When a pose is not one of ``mechanism``, or a name is not a joint.
+    """
+    names = _actuated_names(mechanism, actuated)
+    out = []
+    for i, pose in enumerate(poses):
+        _require_same_mechanism(mechanism, pose, pose.source or f"pose {i}")
+        out.append(_assess_at(RigidPose(pose, tol), names))
+    return tuple(out)
+
+
+def enumerate_actuations(
+    mechanism: Mechanism,
+    *,
+    mode: str = "limb",
+    k: int | None = None,
+    poses: Sequence[Mechanism] = (),
+    samples: int = 0,
+    step: float = 0.1,
+    seed: int = 0,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+) -> Enumeration:
+    """Assess every combination of inputs over several poses, and rank the valid ones.
+
+    Candidate inputs are the joints with one freedom (R, P, H) on a path
+    between the ground and the end effector.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        The given pose (pose 0).
+    mode : {"limb", "any"}
+        ``"limb"``: one joint in each limb (the paper's enumeration);
+        ``"any"``: any ``k`` candidates.
+    k : int, optional
+        Inputs per combination in ``"any"`` mode (default: the DOF).
+    poses : sequence of Mechanism
+        Further poses of the same mechanism (listed by the user).
+    samples : int
+        Further poses reached by moving the mechanism, from
+        :func:`mobility.core.kinematics.sample_poses` (with ``step`` and ``seed``).
+    tol : Tolerance
+
+    Returns
+    -------
+    Enumeration
+
+    Raises
+    ------
+    RequestError
+        On an unknown mode, a negative ``k``, or more than
+        :data:`~mobility.actuation.ranking.MAX_COMBINATIONS` combinations.
+    MechanismError
+        When a pose is not one of ``mechanism``.
+    """
+    if mode not in ENUMERATION_MODES:
+        raise RequestError(f"mode must be 'limb' or 'any', got {mode!r}")
+    warnings: list[str] = []
+    first = RigidPose(mechanism, tol)
+    dof = first.spaces.dof
+    pose_list: list[tuple[str, Mechanism]] = [("given pose", mechanism)]
+    for i, p in enumerate(poses):
+        label = p.source or f"pose {i + 1}"
+        _require_same_mechanism(mechanism, p, label)
+        pose_list.append((label, p))
+    if samples:
+        sampled = sample_poses(mechanism, samples, step=step, seed=seed)
+        pose_list += [(f"sampled pose {i + 1}", p) for i, p in enumerate(sampled)]
+    candidates = [[j for j in joints_of(node) if mechanism.joints[j].dof == 1] for node, _ in first.limbs]
+    if mode == "limb":
+        k = len(first.limbs)
+        warnings += [f"limb {i + 1} has no one-freedom joint to actuate" for i, c in enumerate(candidates) if not c]
+        limit_combinations(int(np.prod([len(c) for c in candidates])), "choose a smaller k or mode 'limb'")
+        combos: Iterable[tuple[int, ...]] = itertools.product(*candidates)
+    else:
+        flat = sorted(j for c in candidates for j in c)
+        k = dof if k is None else int(k)
+        combinations_count(len(flat), k, "choose a smaller k or mode 'limb'")
+        combos = itertools.combinations(flat, k)
+    if k != dof:
+        warnings.append(f"{k} inputs per combination for {dof} DOF: none can be valid ({'redundant' if k > dof else 'too few'})")
+    combos = [tuple(c) for c in combos]
+    states = [first] + [RigidPose(p, tol) for _, p in pose_list[1:]]
+    per_combo: list[list[Assessment]] = [[] for _ in combos]
+    for index, state in enumerate(states):
+        spaces = state.spaces
+        if spaces.dof != dof:
+            warnings.append(f"the end effector has {spaces.dof} DOF at pose {index} ({pose_list[index][0]}), {dof} at the given pose")
+        for c, found in zip(combos, per_combo):
+            got = [state.wrench(j, 0) for j in c]
+            found.append(assess_wrenches([g[0] for g in got], [g[1] for g in got], spaces.twists, spaces.constraints, tol))
+    joints = mechanism.joints
+    results = [combine_poses(tuple(joints[j].name for j in c), combination_type(joints[j].type for j in c), f) for c, f in zip(combos, per_combo)]
+    ranked, groups = rank_combinations(results)
+    pattern = motion_pattern(first.spaces.twists, tol)
+    return Enumeration(mechanism.name, "rigid", dof, pattern, mode, k, ranked, groups, tuple(label for label, _ in pose_list), tuple(warnings))
+
+
+def _actuated_names(mechanism: Mechanism, actuated: Sequence[str] | None) -> list[str]:
+    return [j.name for j in mechanism.joints if j.actuated] if actuated is None else list(actuated)
+
+
+def _inputs_of(pose: RigidPose, names: Sequence[str]) -> list[InputWrench]:
+    """An :class:`InputWrench` for every freedom of the named joints."""
+    joints = pose.mechanism.joints
+    index = {j.name: i for i, j in enumerate(joints)}
+    out = []
+    for name in names:
+        if name not in index:
+            raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {', '.join(index)}")
+        j = joints[index[name]]
+        out += [pose.input_wrench(index[name], k, name if j.dof == 1 else f"{name}.{k}") for k in range(j.dof)]
+    return out
+
+
+def _assess_at(pose: RigidPose, names: Sequence[str], warnings: Sequence[str] = ()) -> ActuationCheck:
+    m = pose.mechanism
+    return assess_inputs(m.name, "rigid", _inputs_of(pose, names), pose.spaces, pose.tol, warnings=warnings, length_unit=m.length_unit)
+
+
+def _require_same_mechanism(reference: Mechanism, pose: Mechanism, label: str) -> None:
+    """Refuse a pose whose joints (names, types, links), ground or end effector differ."""
+
+    def signature(m: Mechanism) -> tuple:
+        return (m.ground, m.end_effector, tuple((j.name, j.type, j.links) for j in m.joints))
+
+    if signature(pose) != signature(reference):
+        raise MechanismError("poses", f"{label} is not a pose of {reference.name!r}: its joints, links, ground or end effector differ")

@@ -1,0 +1,152 @@
+"""Actuation wrenches of the joints of a rigid mechanism at one pose.
+
+* **limb**: a branch of the top-level parallel connection between ground and
+  end effector (:func:`mobility.core.topology.decompose`); a mechanism that is
+  not a parallel connection is one limb.
+* **actuation wrench** of an actuated freedom (one per freedom of an actuated
+  joint): a wrench reciprocal to every *other* twist of its limb but not to
+  its own.  It is defined up to the limb's own constraint wrenches; the one
+  given is orthogonal to them in coordinates centred where the limb meets the
+  end effector (for an RPS limb: the force along the leg for P, the force
+  through the S centre normal to the leg in the leg's plane for R).  When the
+  limb's other joints already produce the joint's motion, there is none: the
+  joint cannot be driven on its own.
+* its **rate** ``a o $``: ``$`` is the joint's twist at unit angular speed
+  for R and H, at unit speed of one characteristic length ``L`` for P.
+
+Examples
+--------
+>>> from mobility.core.model import Joint, Mechanism
+>>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+>>> arm = Mechanism("RR arm", "g", "hand", (R("A", "g", "upper", (0, 0, 0)), R("B", "upper", "hand", (1, 0, 0))))
+>>> pose = RigidPose(arm)
+>>> len(pose.limbs), pose.spaces.dof
+(1, 2)
+>>> a = pose.input_wrench(0, 0, "A")   # driving A: a force through B, normal to the arm
+>>> f, m = pose.spaces.normalisation.to_world(a.wrench)[:, 0].reshape(2, 3)
+>>> [round(float(x), 6) + 0.0 for x in f / f[1]], [round(float(x), 6) + 0.0 for x in m / f[1]], a.note
+([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], '')
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from functools import cached_property
+
+import numpy as np
+
+from ..core.joint_screws import JointScrews, joint_screws
+from ..core.linalg import svd
+from ..core.model import Mechanism
+from ..core.screw_systems import SystemValue, evaluate_node
+from ..core.screws import SWAP_ROWS, adjoint
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank
+from ..core.topology import Node, Parallel, Topology, decompose, joints_of
+from .assessment import EndEffectorSpaces, InputWrench
+
+__all__ = ["RigidPose"]
+
+_NOT_ON_A_PATH = "not on a path between the ground and the end effector"
+_DRIVEN_BY_OTHERS = "its motion is produced by the other joints of its limb: it cannot be driven on its own"
+
+
+class RigidPose:
+    """What one pose of a rigid mechanism needs for actuation assessments, computed once.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    tol : Tolerance
+
+    Attributes
+    ----------
+    topology : Topology
+    screws : JointScrews
+    root : SystemValue
+        The end effector's twist system (normalised).
+    limbs : list of (Node, SystemValue)
+        Each limb and its twist system.
+    limb_of : dict of int to int
+        The limb of each joint on a path between ground and end effector.
+    """
+
+    def __init__(self, mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE) -> None:
+        self.mechanism = mechanism
+        self.tol = tol
+        self.topology: Topology = decompose(mechanism)
+        self.screws: JointScrews = joint_screws(mechanism)
+        self.root: SystemValue = evaluate_node(self.topology.root, self.screws, tol)
+        root = self.topology.root
+        if isinstance(root, Parallel):
+            self.limbs: list[tuple[Node, SystemValue]] = list(zip(root.children, self.root.children))
+        else:
+            self.limbs = [(root, self.root)]
+        self.limb_of: dict[int, int] = {j: k for k, (node, _) in enumerate(self.limbs) for j in joints_of(node)}
+        self._attachments: dict[int, np.ndarray] = {}
+        self._wrenches: dict[tuple[int, int], tuple[np.ndarray | None, float, str]] = {}
+
+    @cached_property
+    def spaces(self) -> EndEffectorSpaces:
+        """The end effector's twist and constraint systems."""
+        return EndEffectorSpaces(self.root.basis, self.root.wrenches, self.screws.normalisation, self.screws.reference)
+
+    def attachment(self, limb: int) -> np.ndarray:
+        """Normalised centroid of the points of the limb's joints on the end effector."""
+        if limb not in self._attachments:
+            node = self.limbs[limb][0]
+            ee = self.mechanism.end_effector
+            world = self.mechanism.world_joints
+            pts = [world[j].point for j in joints_of(node) if ee in world[j].links and world[j].point is not None]
+            norm = self.screws.normalisation
+            self._attachments[limb] = norm.point_from_world(np.mean(pts, axis=0)) if pts else self.screws.reference
+        return self._attachments[limb]
+
+    def wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str]:
+        """Unit actuation wrench (normalised) of one freedom of a joint, its rate ``a o $``, and a note."""
+        key = (joint, freedom)
+        if key not in self._wrenches:
+            self._wrenches[key] = self._actuation_wrench(joint, freedom)
+        return self._wrenches[key]
+
+    def input_wrench(self, joint: int, freedom: int, label: str) -> InputWrench:
+        """The :class:`InputWrench` of one freedom of a joint, named ``label``."""
+        wrench, rate, note = self.wrench(joint, freedom)
+        return InputWrench(label, self.mechanism.joints[joint].type, self.limb_of.get(joint), wrench, rate, note)
+
+    def _actuation_wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str]:
+        if joint not in self.limb_of:
+            return None, 1.0, _NOT_ON_A_PATH
+        limb = self.limb_of[joint]
+        node, value = self.limbs[limb]
+        col = int(self.screws.offsets[joint]) + freedom
+        others = evaluate_node(node, _with_freedom_locked(self.screws, col), self.tol)
+        p = self.attachment(limb)
+        to_attachment = adjoint(np.eye(3), -p)  # [a; b] -> [a; b - p x a]
+        own = value.wrenches
+        w_other = to_attachment @ others.wrenches
+        if own.shape[1]:
+            q, _ = np.linalg.qr(to_attachment @ own)
+            w_other = w_other - q @ (q.T @ w_other)
+        if w_other.shape[1] == 0:
+            return None, 1.0, _DRIVEN_BY_OTHERS
+        u, s, _ = svd(w_other)
+        if decide_rank(s, self.tol).rank == 0:
+            return None, 1.0, _DRIVEN_BY_OTHERS
+        a = np.linalg.solve(to_attachment, u[:, 0])
+        a /= np.linalg.norm(a)
+        twist = self.screws.twists[:, col]
+        wn = float(np.linalg.norm(twist[:3]))
+        if wn > self.tol.rank:
+            twist = twist / wn  # unit angular rate (R, H); P columns are already unit linear rate
+        rate = float(a[SWAP_ROWS] @ twist)
+        if rate < 0:
+            a, rate = -a, -rate
+        return a, rate, ""
+
+
+def _with_freedom_locked(screws: JointScrews, col: int) -> JointScrews:
+    """The same joint twists with column ``col`` set to zero (that freedom locked)."""
+    masked = screws.twists.copy()
+    masked[:, col] = 0.0
+    o = screws.offsets
+    return replace(screws, twists=masked, columns=tuple(masked[:, o[j] : o[j + 1]] for j in range(len(o) - 1)))
