@@ -1,0 +1,102 @@
+"""Loop closures a robot description cannot express: ``--close A B`` pairs and a side file.
+
+A URDF is a tree, so a closed loop (a four-bar, the rods of a legged robot's
+leg) is written as a tree plus the places where it closes.  Two ways are
+accepted, for URDF and MJCF alike:
+
+* **closing frames**: ``--close A B`` names two bodies (links) whose origins
+  coincide at the pose, the usual convention of robot files that mark where
+  a loop closes; they are joined by a spherical joint at the origin of ``A``
+  (a note gives the distance between the two origins);
+* **a side file** in the project's format: a YAML mapping whose ``joints`` are
+  joints as in a mechanism file, their ``links`` being body names of the
+  robot; a joint's ``frame`` may name a body, whose frame at the pose its
+  geometry is then written in (default: the global frame)::
+
+      # closures of four_bar.urdf
+      joints:
+        - {name: C, type: R, links: [coupler, rocker], axis: [0, 0, 1], point: [3, 0.5, 0], frame: coupler}
+
+Errors name the file, the line and the key.
+
+Examples
+--------
+>>> from mobility.io.robot_tree import Body, RobotTree, TreeJoint
+>>> tree = RobotTree("two arms", "t.urdf", "URDF", bodies=(
+...     Body("base", None), Body("a", "base", origin=(1, 0, 0)), Body("b", "base", origin=(1, 0, 0))))
+>>> closed = with_close_pairs(tree, [("a", "b")])
+>>> [(c.joint.type, c.joint.links, c.joint.point) for c in closed.closures]
+[('S', ('a', 'b'), (1.0, 0.0, 0.0))]
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Iterable
+
+import numpy as np
+
+from ..core.model import WORLD, Joint
+from ..core.transforms import Transform
+from ..errors import MechanismFileError
+from .loader import _MechanismReader
+from .robot_tree import Closure, RobotTree
+from .yaml_source import parse_yaml, read_text
+
+__all__ = ["with_close_pairs", "with_closures_file", "CLOSURES_KEYS"]
+
+CLOSURES_KEYS = ("description", "joints")
+"""Keys of a closures side file."""
+
+
+def with_close_pairs(tree: RobotTree, pairs: Iterable[tuple[str, str]]) -> RobotTree:
+    """The tree with a spherical joint at the origin of ``A`` for each pair ``(A, B)``.
+
+    Raises
+    ------
+    MechanismFileError
+        When a name is not a body of the tree (key ``close``).
+    """
+    closures, notes = [], []
+    for a, b in pairs:
+        first, second = tree.body(a, "close"), tree.body(b, "close")
+        if first.name == second.name:
+            raise MechanismFileError("close", f"expected two different bodies, got {a!r} twice", file=tree.file)
+        gap = float(np.linalg.norm(np.subtract(first.origin, second.origin)))
+        name = f"close_{a}_{b}"
+        closures.append(Closure(Joint(name, "S", (a, b), point=first.origin), "--close"))
+        notes.append(f"--close {a} {b}: spherical joint {name} at the origin of {a}; the origin of {b} is {gap:.3g} {tree.length_unit} from it")
+    return tree.with_closures(closures, notes=notes)
+
+
+def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
+    """The tree with the closing joints of a side file (see the module docstring).
+
+    Raises
+    ------
+    MechanismFileError
+        On a malformed file, an unknown body or frame, or bad joint geometry;
+        the message names the side file, the line and the key.
+    """
+    file = str(path)
+    data, positions = parse_yaml(read_text(path), file)
+    reader = _MechanismReader(file, positions)
+    doc = reader.mapping(data, (), "closing joints: a mapping with joints")
+    reader.check_keys(doc, CLOSURES_KEYS, (), "a closures file")
+    if "joints" not in doc:
+        raise reader.fail((), "missing required key 'joints'")
+    joints, sources = reader.joints(doc["joints"], ("joints",), {}, None)
+    bodies = {b.name: b for b in tree.bodies}
+    closures = []
+    for joint, source in zip(joints, sources):
+        for k, link in enumerate(joint.links):
+            if link not in bodies:
+                known = ", ".join(list(bodies)[:12])
+                raise reader.fail(source + ("links", k), f"no body named {link!r} in {Path(tree.file).name}; expected one of: {known}")
+        if joint.frame != WORLD:
+            if joint.frame not in bodies:
+                raise reader.fail(source + ("frame",), f"unknown frame {joint.frame!r}; expected {WORLD!r} or a body of {Path(tree.file).name}")
+            body = bodies[joint.frame]
+            joint = joint.transformed(Transform(np.array(body.rotation), np.array(body.origin)))
+        closures.append(Closure(joint, "closing joint", positions.line(source), file))
+    return tree.with_closures(closures, notes=[f"{len(closures)} closing joint(s) from {file}"])

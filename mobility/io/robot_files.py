@@ -1,0 +1,138 @@
+"""Robot description files (MJCF, URDF): recognise them and read them into a mechanism.
+
+:func:`robot_format` tells a robot description from a mechanism file (YAML)
+by its extension or, failing that, by its first element (``<mujoco>`` for
+MJCF, ``<robot>`` for URDF).  :func:`read_robot` reads one -- MJCF through
+MuJoCo (:mod:`mobility.io.mjcf`), URDF with the standard library
+(:mod:`mobility.io.urdf`) -- adds the loop closures asked for
+(:mod:`mobility.io.closures`) and builds the mechanism
+(:mod:`mobility.io.robot_tree`), returning it with the notes of the reading.
+:func:`mobility.load` uses it for such files.
+
+Examples
+--------
+>>> import tempfile, os
+>>> text = '''<robot name="slider">
+...   <link name="rail"/> <link name="carriage"/>
+...   <joint name="slide" type="prismatic">
+...     <parent link="rail"/> <child link="carriage"/> <axis xyz="0 0 2"/>
+...   </joint>
+... </robot>'''
+>>> with tempfile.NamedTemporaryFile("w", suffix=".urdf", delete=False) as f:
+...     _ = f.write(text)
+>>> robot_format(f.name)
+'urdf'
+>>> robot = read_robot(f.name)
+>>> m = robot.mechanism
+>>> m.ground, m.end_effector, m.joints[0].type, m.joints[0].axis
+('rail', 'carriage', 'P', (0.0, 0.0, 1.0))
+>>> robot.notes
+('end effector: carriage (the body farthest from the ground rail; choose another with --end-effector)',)
+>>> os.unlink(f.name)
+"""
+
+from __future__ import annotations
+
+from dataclasses import fields, replace
+from pathlib import Path
+from typing import Any
+
+from ..core.model import Mechanism
+from ..errors import RequestError
+from .closures import with_close_pairs, with_closures_file
+from .robot_tree import ImportedRobot, RobotOptions, build_mechanism
+from .xml_source import read_xml, root_tag
+
+__all__ = ["robot_format", "is_robot_file", "read_robot", "load_robot", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
+
+ROBOT_SUFFIXES = {".urdf": "urdf", ".mjcf": "mjcf", ".xml": None}
+"""Extensions of robot description files (``.xml``: MJCF or URDF, by its first element)."""
+
+_ROOTS = {"mujoco": "mjcf", "robot": "urdf"}
+
+
+def robot_format(path: str | Path) -> str | None:
+    """``"mjcf"``, ``"urdf"``, or ``None`` for a file that is not a robot description.
+
+    A ``.urdf`` or ``.mjcf`` extension decides; otherwise the first XML
+    element does (``<mujoco>``, ``<robot>``).  YAML files are never read.
+    """
+    suffix = Path(path).suffix.lower()
+    if suffix in (".yaml", ".yml"):
+        return None
+    if ROBOT_SUFFIXES.get(suffix):
+        return ROBOT_SUFFIXES[suffix]
+    return _ROOTS.get(root_tag(path) or "")
+
+
+def is_robot_file(path: str | Path) -> bool:
+    """Whether ``path`` is to be read as a robot description: an XML extension or XML content."""
+    suffix = Path(path).suffix.lower()
+    if suffix in (".yaml", ".yml"):
+        return False
+    return suffix in ROBOT_SUFFIXES or root_tag(path) is not None
+
+
+def read_robot(path: str | Path, options: RobotOptions | None = None, **option_values: Any) -> ImportedRobot:
+    """Read an MJCF or URDF file into a mechanism, with the notes of the reading.
+
+    Parameters
+    ----------
+    path : str or Path
+    options : RobotOptions, optional
+    **option_values
+        Fields of :class:`~mobility.io.robot_tree.RobotOptions` (``ground``,
+        ``end_effector``, ``floating``, ``ignore_unsupported``, ``close``,
+        ``closures``), overriding ``options``.
+
+    Returns
+    -------
+    ImportedRobot
+
+    Raises
+    ------
+    MechanismFileError
+        When the file is not MJCF or URDF, or cannot be read (one line naming
+        file, line and element).
+    MissingExtraError
+        For an MJCF file when the ``mujoco`` package is not installed.
+    RequestError
+        For an unknown option.
+    """
+    options = _options(options, option_values)
+    fmt = robot_format(path)
+    if fmt == "mjcf":
+        from .mjcf import read_mjcf  # imports mujoco only when asked
+
+        tree = read_mjcf(path)
+    elif fmt == "urdf":
+        from .urdf import read_urdf
+
+        tree = read_urdf(path)
+    else:
+        doc = read_xml(path)  # a file that cannot be read, or malformed XML, says so here
+        raise doc.fail(doc.root, doc.root.tag, "not a robot description; expected MJCF (<mujoco>) or URDF (<robot>), or a mechanism file (.yaml)")
+    if options.close:
+        tree = with_close_pairs(tree, options.close)
+    if options.closures:
+        tree = with_closures_file(tree, options.closures)
+    return build_mechanism(tree, options)
+
+
+def load_robot(path: str | Path, **option_values: Any) -> Mechanism:
+    """The mechanism of an MJCF or URDF file (see :func:`read_robot`; the notes are dropped)."""
+    given = sorted(k for k, v in option_values.items() if v not in (None, False, (), []))
+    if given and not is_robot_file(path):
+        raise RequestError(f"{', '.join(given)}: options of robot description files (MJCF, URDF), not of the mechanism file {path}")
+    return read_robot(path, **option_values).mechanism
+
+
+def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptions:
+    known = {f.name for f in fields(RobotOptions)}
+    unknown = sorted(set(values) - known)
+    if unknown:
+        raise RequestError(f"unknown option {unknown[0]!r} for a robot description; expected one of: {', '.join(sorted(known))}")
+    values = dict(values)
+    if "close" in values:
+        values["close"] = tuple(tuple(pair) for pair in values["close"] or ())
+    return replace(options or RobotOptions(), **values)

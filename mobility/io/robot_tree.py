@@ -1,0 +1,440 @@
+"""A robot description as a tree of bodies, and the joint graph it makes.
+
+Robot description files (MJCF, URDF) describe a *tree*: each body hangs from
+its parent body by zero, one or several joints, and loops are closed apart
+(MJCF ``<connect>`` equalities, a side file of closing joints for URDF).  The
+readers of those formats (:mod:`mobility.io.mjcf`, :mod:`mobility.io.urdf`)
+each produce a :class:`RobotTree` -- bodies with their pose, joints with their
+geometry in the global frame at the reference pose, closing joints, welds --
+and :func:`build_mechanism` turns it into a
+:class:`~mobility.core.model.Mechanism`, the same way for both formats:
+
+* a body with no joint to its parent (URDF ``fixed``, an MJCF body without
+  joints) and bodies joined by a weld form one rigid link, named after its
+  body nearest the root (or after the body named as ground or end effector);
+* a body with several joints (MJCF allows it) hangs by a chain of joints
+  through virtual links named ``body/joint``;
+* ``hinge`` is R, ``slide`` P, ``ball`` S, ``planar`` E; a ``free`` (or URDF
+  ``floating``) joint is treated as fixed unless ``floating=True``, when it
+  becomes three P joints along x, y, z and an S joint;
+* a closing joint (an MJCF ``connect`` is a spherical joint at its anchor)
+  joins the links of its two bodies;
+* the ground is the root body unless named; the end effector, unless named,
+  is the body farthest from the ground (in joints), the last one in file
+  order when several are as far.
+
+Elements the model cannot express (a coupling of joints, a tendon
+constraint) are listed in :attr:`RobotTree.unsupported`; each is an error of
+one line unless ``ignore_unsupported=True``, when it is left out and said so
+in a note.  Nothing is dropped silently: every choice made for the user
+comes back in :attr:`ImportedRobot.notes`.
+
+Examples
+--------
+>>> tree = RobotTree("pendulum", "p.urdf", "URDF", bodies=(
+...     Body("base", None), Body("arm", "base"), Body("tip", "arm")), joints=(
+...     TreeJoint("swing", "hinge", "arm", point=(0, 0, 1), axis=(0, 1, 0)),))
+>>> robot = build_mechanism(tree)
+>>> m = robot.mechanism
+>>> m.ground, m.end_effector, [(j.name, j.type, j.links) for j in m.joints]
+('base', 'arm', [('swing', 'R', ('base', 'arm'))])
+>>> build_mechanism(tree, RobotOptions(end_effector="tip")).mechanism.end_effector
+'tip'
+>>> build_mechanism(tree, RobotOptions(ground="bse"))
+Traceback (most recent call last):
+...
+mobility.errors.MechanismFileError: p.urdf: ground: no body named 'bse' (did you mean 'base'?); expected one of: base, arm, tip
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections import deque
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Iterable
+
+import numpy as np
+
+from ..core.model import Joint, Mechanism
+from ..errors import MechanismError, MechanismFileError
+
+__all__ = [
+    "Body",
+    "TreeJoint",
+    "Closure",
+    "Weld",
+    "Unsupported",
+    "RobotTree",
+    "RobotOptions",
+    "ImportedRobot",
+    "build_mechanism",
+    "JOINT_KINDS",
+    "rotation_tuple",
+    "vector_tuple",
+]
+
+Vector = tuple[float, float, float]
+Rotation = tuple[Vector, Vector, Vector]
+IDENTITY: Rotation = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+JOINT_KINDS = {"hinge": "R", "slide": "P", "ball": "S", "planar": "E", "free": "free"}
+"""Joint kinds of a tree, and the joint type each becomes (``free``: 3 P + S, or fixed)."""
+
+IGNORE_HINT = "pass --ignore-unsupported (ignore_unsupported=True) to leave it out"
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid body of the description, with its pose at the reference configuration.
+
+    ``x_world = rotation @ x_body + origin``; ``parent`` is ``None`` for the root.
+    """
+
+    name: str
+    parent: str | None
+    origin: Vector = (0.0, 0.0, 0.0)
+    rotation: Rotation = IDENTITY
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class TreeJoint:
+    """A joint moving ``body`` relative to its parent body, geometry in the global frame.
+
+    ``kind`` is one of :data:`JOINT_KINDS`; ``axis`` is the hinge or slide
+    direction, or the normal of a planar joint; ``point`` the anchor.
+    """
+
+    name: str
+    kind: str
+    body: str
+    point: Vector
+    axis: Vector | None = None
+    actuated: bool = False
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Closure:
+    """A joint closing a loop: its ``links`` are two body names, its geometry in the global frame."""
+
+    joint: Joint
+    what: str
+    line: int | None = None
+    file: str | None = None
+
+
+@dataclass(frozen=True)
+class Weld:
+    """Two bodies held rigidly together (MJCF ``<weld>``, ``--close A B --weld``)."""
+
+    name: str
+    bodies: tuple[str, str]
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Unsupported:
+    """An element the joint-graph model cannot express: ``key`` names it, ``message`` says why."""
+
+    key: str
+    message: str
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class RobotTree:
+    """A robot description read from a file: bodies, joints, closures, at one pose.
+
+    Attributes
+    ----------
+    name : str
+    file : str
+        The file, for messages.
+    format : str
+        ``"MJCF"`` or ``"URDF"``.
+    bodies : tuple of Body
+        Root first; every parent before its children.
+    joints : tuple of TreeJoint
+        In file order (the order of a body's joints is root-to-body).
+    closures, welds, unsupported
+        See :class:`Closure`, :class:`Weld`, :class:`Unsupported`.
+    notes : tuple of str
+        What the reader wants the user to know.
+    pose : str
+        The configuration the geometry is taken at (for the description).
+    length_unit : str
+    """
+
+    name: str
+    file: str
+    format: str
+    bodies: tuple[Body, ...]
+    joints: tuple[TreeJoint, ...] = ()
+    closures: tuple[Closure, ...] = ()
+    welds: tuple[Weld, ...] = ()
+    unsupported: tuple[Unsupported, ...] = ()
+    notes: tuple[str, ...] = ()
+    pose: str = "all joint positions zero"
+    length_unit: str = "m"
+
+    def body(self, name: str, key: str) -> Body:
+        """The body called ``name``; an error naming ``key`` and the close matches otherwise."""
+        for b in self.bodies:
+            if b.name == name:
+                return b
+        names = [b.name for b in self.bodies]
+        close = difflib.get_close_matches(name, names, n=1)
+        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        shown = ", ".join(names[:12]) + (f", ... ({len(names)} bodies)" if len(names) > 12 else "")
+        raise MechanismFileError(key, f"no body named {name!r}{hint}; expected one of: {shown}", file=self.file)
+
+    def with_closures(self, closures: Iterable[Closure], welds: Iterable[Weld] = (), notes: Iterable[str] = ()) -> "RobotTree":
+        """The same tree with more closing joints, welds and notes."""
+        return replace(self, closures=self.closures + tuple(closures), welds=self.welds + tuple(welds), notes=self.notes + tuple(notes))
+
+
+@dataclass(frozen=True)
+class RobotOptions:
+    """How to read a robot description file.
+
+    Parameters
+    ----------
+    ground, end_effector : str, optional
+        Body names (defaults: the root body; the body farthest from the ground).
+    floating : bool
+        Keep the six freedoms of free / floating joints (default: fixed).
+    ignore_unsupported : bool
+        Leave out elements the model cannot express (with a note) instead of
+        failing.
+    close : tuple of (str, str)
+        Pairs of bodies (links) whose origins coincide, joined by a spherical
+        joint there: the common way to close a loop a URDF cannot express.
+    closures : str, optional
+        A side file of closing joints in the project's format (see
+        :mod:`mobility.io.closures`).
+    """
+
+    ground: str | None = None
+    end_effector: str | None = None
+    floating: bool = False
+    ignore_unsupported: bool = False
+    close: tuple[tuple[str, str], ...] = ()
+    closures: str | None = None
+
+
+@dataclass(frozen=True)
+class ImportedRobot:
+    """A mechanism read from a robot description, with the notes of its reading."""
+
+    mechanism: Mechanism
+    notes: tuple[str, ...] = ()
+    format: str = ""
+
+
+@dataclass
+class _Groups:
+    """Union-find of bodies into rigid links."""
+
+    parent: dict[str, str] = field(default_factory=dict)
+
+    def find(self, name: str) -> str:
+        root = name
+        while self.parent[root] != root:
+            root = self.parent[root]
+        while self.parent[name] != root:
+            self.parent[name], name = root, self.parent[name]
+        return root
+
+    def union(self, a: str, b: str) -> None:
+        ra, rb = self.find(a), self.find(b)
+        if ra != rb:
+            self.parent[rb] = ra
+
+
+def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> ImportedRobot:
+    """The mechanism of a robot tree (see the module docstring for the rules).
+
+    Parameters
+    ----------
+    tree : RobotTree
+    options : RobotOptions, optional
+
+    Returns
+    -------
+    ImportedRobot
+
+    Raises
+    ------
+    MechanismFileError
+        On an unsupported element (unless ``ignore_unsupported``), an unknown
+        ground or end-effector body, or a mechanism with nothing to move.
+    """
+    options = options or RobotOptions()
+    notes = list(tree.notes)
+    for item in tree.unsupported:
+        if not options.ignore_unsupported:
+            raise MechanismFileError(item.key, f"{item.message}; {IGNORE_HINT}", file=tree.file, line=item.line)
+        notes.append(f"left out {item.key}{_at(item.line)}: {item.message}")
+
+    ground_body = tree.body(options.ground, "ground").name if options.ground else tree.bodies[0].name
+    ee_body = tree.body(options.end_effector, "end_effector").name if options.end_effector else None
+    groups = _rigid_groups(tree, options, notes)
+    names = _group_names(tree, groups, [n for n in (ground_body, ee_body) if n])
+
+    def link(body: str) -> str:
+        """The name of the rigid link ``body`` belongs to."""
+        return names[groups.find(body)]
+
+
+    joints: list[Joint] = []
+    used: set[str] = set()
+    link_names = set(names.values())
+    by_body: dict[str, list[TreeJoint]] = {}
+    for j in tree.joints:
+        if j.kind == "free" and not options.floating:
+            continue
+        by_body.setdefault(j.body, []).append(j)
+    parents = {b.name: b.parent for b in tree.bodies}
+    for body, chain in by_body.items():
+        start, end = link(parents[body]), link(body)
+        if len(chain) == 1 and start == end and chain[0].kind != "free":
+            notes.append(f"joint {chain[0].name}{_at(chain[0].line)} cannot move: welds hold {body} to {start}; left out")
+            continue
+        here = start
+        for k, j in enumerate(chain):
+            there = end if k == len(chain) - 1 else _unique(f"{body}/{j.name}", link_names)
+            joints += _model_joints(tree, j, here, there, used, link_names)
+            here = there
+
+    for c in tree.closures:
+        a, b = (link(n) for n in c.joint.links)
+        if a == b:
+            notes.append(f"{c.what} {c.joint.name}{_at(c.line)} joins two bodies of one rigid link ({a}): it constrains nothing; left out")
+            continue
+        try:
+            joints.append(replace(c.joint, name=_unique(c.joint.name, used), links=(a, b)))
+        except MechanismError as exc:
+            raise MechanismFileError(c.joint.name, exc.message, file=c.file or tree.file, line=c.line) from None
+
+    if not joints:
+        raise MechanismFileError("", f"no joint can move: every body of {tree.name!r} is rigidly attached to {link(ground_body)} (free joints count as fixed unless --floating)", file=tree.file)
+    ground = link(ground_body)
+    if ee_body is None:
+        end_effector = _farthest_link(tree, joints, ground, link)
+        notes.append(f"end effector: {end_effector} (the body farthest from the ground {ground}; choose another with --end-effector)")
+    else:
+        end_effector = link(ee_body)
+        if end_effector == ground:
+            raise MechanismFileError("end_effector", f"body {ee_body!r} is rigidly attached to the ground {ground!r} (no joint between them); expected a body that can move", file=tree.file)
+    for role, body in (("ground", ground_body if options.ground else None), ("end effector", ee_body)):
+        members = [b.name for b in tree.bodies if body and b.name != body and groups.find(b.name) == groups.find(body)]
+        if members:
+            notes.append(f"{role} {body} is one rigid link with {', '.join(members[:6])}{' ...' if len(members) > 6 else ''}")
+    description = f"Imported from the {tree.format} file {Path(tree.file).name} at the pose: {tree.pose}."
+    try:
+        mechanism = Mechanism(name=tree.name, ground=ground, end_effector=end_effector, joints=tuple(joints),
+                              description=description, length_unit=tree.length_unit, source=tree.file)
+    except MechanismError as exc:
+        raise MechanismFileError(exc.key, exc.message, file=tree.file) from None
+    return ImportedRobot(mechanism, tuple(notes), tree.format)
+
+
+def _at(line: int | None) -> str:
+    return f" (line {line})" if line is not None else ""
+
+
+def _unique(name: str, used: set[str]) -> str:
+    out, k = name, 2
+    while out in used:
+        out, k = f"{name}~{k}", k + 1
+    used.add(out)
+    return out
+
+
+def _rigid_groups(tree: RobotTree, options: RobotOptions, notes: list[str]) -> _Groups:
+    groups = _Groups({b.name: b.name for b in tree.bodies})
+    moving = {j.body for j in tree.joints if j.kind != "free" or options.floating}
+    for j in tree.joints:
+        if j.kind == "free" and not options.floating:
+            notes.append(f"free joint {j.name}{_at(j.line)} of body {j.body} treated as fixed (use --floating to keep its 6 freedoms)")
+    for b in tree.bodies:
+        if b.parent is not None and b.name not in moving:
+            groups.union(b.parent, b.name)
+    for w in tree.welds:
+        if groups.find(w.bodies[0]) != groups.find(w.bodies[1]):
+            notes.append(f"weld {w.name}{_at(w.line)} makes {w.bodies[0]} and {w.bodies[1]} one rigid link")
+        groups.union(*w.bodies)
+    return groups
+
+
+def _group_names(tree: RobotTree, groups: _Groups, preferred: list[str]) -> dict[str, str]:
+    """Name each rigid link after a preferred body in it, else its body nearest the root."""
+    names: dict[str, str] = {}
+    for name in preferred:
+        names.setdefault(groups.find(name), name)
+    for b in tree.bodies:  # parents come first: the first member met is nearest the root
+        names.setdefault(groups.find(b.name), b.name)
+    return names
+
+
+def _model_joints(tree: RobotTree, j: TreeJoint, a: str, b: str, used: set[str], link_names: set[str]) -> list[Joint]:
+    """The model joints of one tree joint from link ``a`` to link ``b`` (a free joint: P, P, P, S)."""
+    try:
+        kind = JOINT_KINDS[j.kind]
+        if kind == "free":
+            out, here = [], a
+            for axis, letter in zip(np.eye(3), "xyz"):
+                there = _unique(f"{j.body}/{j.name}.{letter}", link_names)
+                out.append(Joint(_unique(f"{j.name}.{letter}", used), "P", (here, there), axis=tuple(axis), actuated=j.actuated))
+                here = there
+            out.append(Joint(_unique(j.name, used), "S", (here, b), point=j.point, actuated=j.actuated))
+            return out
+        name = _unique(j.name, used)
+        if kind == "R":
+            return [Joint(name, "R", (a, b), axis=j.axis, point=j.point, actuated=j.actuated)]
+        if kind == "P":
+            return [Joint(name, "P", (a, b), axis=j.axis, point=j.point, actuated=j.actuated)]
+        if kind == "S":
+            return [Joint(name, "S", (a, b), point=j.point, actuated=j.actuated)]
+        return [Joint(name, "E", (a, b), normal=j.axis, point=j.point, actuated=j.actuated)]
+    except MechanismError as exc:
+        raise MechanismFileError(f"joint[{j.name}]", exc.message if not exc.key else f"{exc.key}: {exc.message}", file=tree.file, line=j.line) from None
+
+
+def _farthest_link(tree: RobotTree, joints: list[Joint], ground: str, link) -> str:
+    """The body's link farthest (in joints) from the ground; the last in file order among ties."""
+    neighbours: dict[str, set[str]] = {}
+    for j in joints:
+        neighbours.setdefault(j.links[0], set()).add(j.links[1])
+        neighbours.setdefault(j.links[1], set()).add(j.links[0])
+    distance = {ground: 0}
+    todo = deque([ground])
+    while todo:
+        here = todo.popleft()
+        for n in sorted(neighbours.get(here, ())):
+            if n not in distance:
+                distance[n] = distance[here] + 1
+                todo.append(n)
+    best, best_distance = ground, 0
+    for b in tree.bodies:
+        d = distance.get(link(b.name), -1)
+        if d >= best_distance and d > 0:
+            best, best_distance = link(b.name), d
+    return best
+
+
+def rotation_tuple(matrix: np.ndarray) -> Rotation:
+    """A 3x3 array as nested tuples of floats (for :class:`Body`)."""
+    m = np.asarray(matrix, dtype=float).reshape(3, 3)
+    return tuple(tuple(float(x) for x in row) for row in m)  # type: ignore[return-value]
+
+
+def vector_tuple(v: Iterable[float]) -> Vector:
+    """A 3-vector as a tuple of floats, checked finite."""
+    x, y, z = (float(a) for a in v)
+    if not all(math.isfinite(a) for a in (x, y, z)):
+        raise MechanismError("", f"expected finite numbers, got {(x, y, z)!r}")
+    return (x, y, z)

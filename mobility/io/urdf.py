@@ -1,0 +1,202 @@
+"""Read URDF files: links and joints at the zero pose.
+
+A URDF is a tree of links joined by joints; each joint's ``<origin>`` places
+the child link's frame in the parent link's frame (``xyz``, and ``rpy`` with
+``R = Rz(yaw) Ry(pitch) Rx(roll)``), and its ``<axis>`` (default ``1 0 0``) is
+written in the child frame.  At the zero pose (every joint position 0) the
+child frame is the parent frame composed with the origin.
+
+* ``revolute`` and ``continuous`` joints are R, ``prismatic`` P, ``planar``
+  E (normal = axis), ``floating`` a free joint (fixed unless ``--floating``),
+  ``fixed`` joins its two links into one rigid link;
+* a joint named in a ``<transmission>`` is marked actuated;
+* a ``<mimic>`` joint couples two joints, which the model cannot express:
+  an error of one line, or with ``ignore_unsupported`` a note (each joint then
+  counts as free);
+* a URDF cannot express a closed loop: close loops with ``--close A B`` or a
+  side file (:mod:`mobility.io.closures`).
+
+The file is parsed with the standard library's XML parser: URDF kinematics
+is a handful of elements and attributes, so no extra package is needed (a
+URDF library would bring meshes and their dependencies), and every error
+names its line.  Geometry (``<visual>``, ``<collision>``, meshes) is not read.
+
+Examples
+--------
+>>> from mobility.io.robot_tree import build_mechanism
+>>> import tempfile, os
+>>> text = '''<robot name="arm">
+...   <link name="base"/> <link name="upper"/>
+...   <joint name="shoulder" type="revolute">
+...     <parent link="base"/> <child link="upper"/>
+...     <origin xyz="0 0 1" rpy="1.5707963267948966 0 0"/> <axis xyz="0 0 1"/>
+...   </joint>
+... </robot>'''
+>>> with tempfile.NamedTemporaryFile("w", suffix=".urdf", delete=False) as f:
+...     _ = f.write(text)
+>>> j = build_mechanism(read_urdf(f.name)).mechanism.joints[0]
+>>> j.type, [round(x, 12) + 0.0 for x in j.axis], j.point
+('R', [0.0, -1.0, 0.0], (0.0, 0.0, 1.0))
+>>> os.unlink(f.name)
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from collections import deque
+from pathlib import Path
+
+import numpy as np
+
+from ..core.transforms import Transform, rotation_from_rpy
+from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, rotation_tuple, vector_tuple
+from .xml_source import XmlDocument, read_xml
+
+__all__ = ["read_urdf", "URDF_JOINT_KINDS"]
+
+URDF_JOINT_KINDS = {"revolute": "hinge", "continuous": "hinge", "prismatic": "slide", "planar": "planar", "floating": "free", "fixed": None}
+"""URDF joint types and the tree joint kind each becomes (``fixed``: none, the links merge)."""
+
+
+def read_urdf(path: str | Path) -> RobotTree:
+    """Read a URDF file into a :class:`~mobility.io.robot_tree.RobotTree` at the zero pose.
+
+    Raises
+    ------
+    MechanismFileError
+        On malformed XML, a xacro file, a missing or unknown link, a link with
+        two parents, no root or several, bad numbers, or an unknown joint
+        type; the message names the line.
+    """
+    return _UrdfReader(read_xml(path)).tree()
+
+
+class _UrdfReader:
+    def __init__(self, doc: XmlDocument) -> None:
+        self.doc = doc
+
+    def fail(self, element: ET.Element | None, key: str, message: str) -> Exception:
+        return self.doc.fail(element, key, message)
+
+    def tree(self) -> RobotTree:
+        root = self.doc.root
+        if any(el.tag.startswith("xacro:") for el in root.iter()):
+            raise self.fail(root, root.tag, "a xacro file; expected a URDF: expand it first (xacro robot.urdf.xacro > robot.urdf)")
+        if root.tag != "robot":
+            raise self.fail(root, root.tag, "not a URDF file; expected the root element <robot>")
+        links = self.links(root)
+        joints = [self.joint(el, links) for el in root.findall("joint")]
+        parent_joint: dict[str, dict] = {}
+        for j in joints:
+            if j["child"] in parent_joint:
+                first = parent_joint[j["child"]]["name"]
+                raise self.fail(j["element"], f"joint[{j['name']}]/child", f"link {j['child']!r} already has the parent joint {first!r}; expected a tree (close loops with --close or a closures file)")
+            parent_joint[j["child"]] = j
+        roots = [name for name in links if name not in parent_joint]
+        if len(roots) != 1:
+            what = "no root link (the joints form a cycle)" if not roots else f"several root links ({', '.join(roots[:6])})"
+            raise self.fail(root, "robot", f"{what}; expected one link that is no joint's child")
+        order, poses = self.poses(roots[0], joints)
+        unreached = [name for name in links if name not in poses]
+        if unreached:
+            raise self.fail(links[unreached[0]], f"link[{unreached[0]}]", "not reached from the root link: the joints form a cycle; expected a tree")
+        bodies = tuple(Body(name, parent_joint[name]["parent"] if name in parent_joint else None, vector_tuple(poses[name].translation),
+                            rotation_tuple(poses[name].rotation), self.doc.line(links[name])) for name in order)
+        actuated = self.transmissions(root, {j["name"] for j in joints})
+        tree_joints, unsupported = [], []
+        for j in joints:
+            if j["mimic"] is not None:
+                unsupported.append(Unsupported(f"joint[{j['name']}]/mimic", f"joint {j['name']!r} mimics joint {j['mimic']!r} (a coupling of joints) is not supported; expected independent joints", self.doc.line(j["element"].find("mimic"))))
+            kind = URDF_JOINT_KINDS[j["type"]]
+            if kind is None:
+                continue
+            frame = poses[j["child"]]
+            axis = None if kind == "free" else vector_tuple(frame.apply_vector(j["axis"]))
+            tree_joints.append(TreeJoint(j["name"], kind, j["child"], vector_tuple(frame.translation), axis, j["name"] in actuated, self.doc.line(j["element"])))
+        name = root.get("name") or Path(self.doc.file).stem
+        return RobotTree(name, self.doc.file, "URDF", bodies, tuple(tree_joints), unsupported=tuple(unsupported))
+
+    def links(self, root: ET.Element) -> dict[str, ET.Element]:
+        links: dict[str, ET.Element] = {}
+        for el in root.findall("link"):
+            name = el.get("name")
+            if not name:
+                raise self.fail(el, "link", "missing attribute name; expected <link name=\"...\">")
+            if name in links:
+                raise self.fail(el, f"link[{name}]", f"duplicate link name (first on line {self.doc.line(links[name])})")
+            links[name] = el
+        if not links:
+            raise self.fail(root, "robot", "no <link>; expected links joined by joints")
+        return links
+
+    def joint(self, el: ET.Element, links: dict[str, ET.Element]) -> dict:
+        name = el.get("name")
+        if not name:
+            raise self.fail(el, "joint", "missing attribute name; expected <joint name=\"...\" type=\"...\">")
+        key = f"joint[{name}]"
+        jtype = el.get("type")
+        if jtype not in URDF_JOINT_KINDS:
+            raise self.fail(el, f"{key}/@type", f"unknown joint type {jtype!r}; expected one of {', '.join(URDF_JOINT_KINDS)}")
+        ends = {}
+        for end in ("parent", "child"):
+            sub = el.find(end)
+            link = sub.get("link") if sub is not None else None
+            if not link:
+                raise self.fail(sub if sub is not None else el, f"{key}/{end}", f"missing; expected <{end} link=\"...\">")
+            if link not in links:
+                raise self.fail(sub, f"{key}/{end}", f"unknown link {link!r}; expected a <link> of this robot")
+            ends[end] = link
+        if ends["parent"] == ends["child"]:
+            raise self.fail(el, key, f"parent and child are the same link {ends['parent']!r}")
+        origin = el.find("origin")
+        xyz = self.numbers(origin, "xyz", f"{key}/origin/@xyz", (0.0, 0.0, 0.0))
+        rpy = self.numbers(origin, "rpy", f"{key}/origin/@rpy", (0.0, 0.0, 0.0))
+        axis = self.numbers(el.find("axis"), "xyz", f"{key}/axis/@xyz", (1.0, 0.0, 0.0))
+        if URDF_JOINT_KINDS[jtype] not in (None, "free") and math.hypot(*axis) == 0.0:
+            raise self.fail(el.find("axis"), f"{key}/axis/@xyz", "expected a non-zero direction, got 0 0 0")
+        mimic = el.find("mimic")
+        if mimic is not None and not mimic.get("joint"):
+            raise self.fail(mimic, f"{key}/mimic", "missing attribute joint; expected <mimic joint=\"...\">")
+        return {"name": name, "type": jtype, "element": el, "parent": ends["parent"], "child": ends["child"],
+                "origin": Transform(rotation_from_rpy(rpy), np.array(xyz)), "axis": np.array(axis) / (math.hypot(*axis) or 1.0),
+                "mimic": mimic.get("joint") if mimic is not None else None}
+
+    def numbers(self, el: ET.Element | None, attribute: str, key: str, default: tuple[float, float, float]) -> tuple[float, float, float]:
+        if el is None or el.get(attribute) is None:
+            return default
+        text = el.get(attribute, "")
+        try:
+            values = [float(x) for x in text.split()]
+        except ValueError:
+            values = []
+        if len(values) != 3 or not all(math.isfinite(v) for v in values):
+            raise self.fail(el, key, f"expected 3 numbers, got {text!r}")
+        return (values[0], values[1], values[2])
+
+    def poses(self, root_link: str, joints: list[dict]) -> tuple[list[str], dict[str, Transform]]:
+        """Links from the root (parents first, file order among siblings) and their frames at the zero pose."""
+        children: dict[str, list[dict]] = {}
+        for j in joints:
+            children.setdefault(j["parent"], []).append(j)
+        poses = {root_link: Transform.identity()}
+        order = [root_link]
+        todo = deque([root_link])
+        while todo:
+            here = todo.popleft()
+            for j in children.get(here, []):
+                if j["child"] not in poses:
+                    poses[j["child"]] = poses[here].compose(j["origin"])
+                    order.append(j["child"])
+                    todo.append(j["child"])
+        return order, poses
+
+    def transmissions(self, root: ET.Element, joint_names: set[str]) -> set[str]:
+        out: set[str] = set()
+        for t in root.findall("transmission"):
+            for j in t.findall("joint"):
+                name = j.get("name")
+                if name not in joint_names:
+                    raise self.fail(j, f"transmission[{t.get('name', '')}]/joint", f"unknown joint {name!r}; expected a <joint> of this robot")
+                out.add(name)
+        return out

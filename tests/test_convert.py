@@ -1,0 +1,97 @@
+"""``mobility convert`` and the robot-file options of ``mobility analyze``: the command line end to end."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mobility
+from mobility.cli import main
+from mobility.io.robot_files import read_robot
+
+DATA = Path(__file__).parent / "data" / "robots"
+HAND = DATA / "hand"
+
+
+def run(capsys, *args):
+    status = main([str(a) for a in args])
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def same_joints(a: mobility.Mechanism, b: mobility.Mechanism) -> None:
+    assert (a.ground, a.end_effector) == (b.ground, b.end_effector)
+    assert len(a.joints) == len(b.joints)
+    for x, y in zip(a.world_joints, b.world_joints):
+        assert (x.name, x.type, x.links, x.actuated) == (y.name, y.type, y.links, y.actuated)
+        for key in ("axis", "point", "normal"):
+            u, v = getattr(x, key), getattr(y, key)
+            assert (u is None) == (v is None) or x.type == "P", key  # a P joint's point is not written
+            if u is not None and v is not None:
+                assert np.allclose(u, v, atol=1e-11), (x.name, key)
+
+
+@pytest.mark.parametrize("source, options", [
+    (HAND / "3rps.xml", ["--end-effector", "platform"]),
+    (HAND / "four_bar.urdf", ["--closures", HAND / "four_bar_closures.yaml", "--end-effector", "coupler"]),
+    (DATA / "rtb_data" / "puma560_robot.urdf", []),
+])
+def test_convert_writes_a_file_that_loads_to_the_same_mechanism(tmp_path, capsys, source, options):
+    out_file = tmp_path / "converted.yaml"
+    status, out, err = run(capsys, "convert", source, "-o", out_file, *options)
+    assert status == 0 and out == ""
+    assert err.splitlines()[-1].startswith(f"mobility: wrote {out_file} (")
+    converted = mobility.load(out_file)
+    keyword = {"--end-effector": "end_effector", "--closures": "closures"}
+    given = {keyword[k]: str(v) for k, v in zip(options[::2], options[1::2])}
+    same_joints(converted, read_robot(source, **given).mechanism)
+    a, b = mobility.analyze(converted), mobility.analyze(mobility.load(source, **given))
+    assert (a.dof, a.pattern, a.mobility) == (b.dof, b.pattern, b.mobility)
+    assert converted.length_unit == "m" and "Imported from the" in converted.description
+
+
+def test_convert_with_expected_passes_mobility_check(tmp_path, capsys):
+    out_file = tmp_path / "four_bar.yaml"
+    status, _, err = run(capsys, "convert", HAND / "four_bar.xml", "-o", out_file, "--expected")
+    assert status == 0 and "mobility: note: end effector: coupler" in err
+    text = out_file.read_text()
+    assert "expected: {dof: 1, pattern: 1R, mobility: 1}" in text
+    assert "actuated: true" in text  # the motor on A
+    status, out, _ = run(capsys, "check", out_file)
+    assert status == 0 and "pass" in out.lower()
+
+
+def test_convert_prints_to_stdout_and_notes_to_stderr(capsys):
+    status, out, err = run(capsys, "convert", HAND / "four_bar.urdf", "--close", "coupler_tip", "rocker_tip", "--end-effector", "coupler")
+    assert status == 0
+    assert out.startswith("name: four-bar\n") and "{name: close_coupler_tip_rocker_tip, type: S, links: [coupler, rocker], point: [4, 2.5, 0]}" in out
+    assert all(line.startswith("mobility: note: ") for line in err.splitlines())
+
+
+def test_analyze_a_robot_file_with_options(capsys):
+    status, out, err = run(capsys, "analyze", HAND / "3rps.xml", "--end-effector", "platform", "--json")
+    data = json.loads(out)
+    assert status == 0 and (data["dof"], data["pattern"], data["mobility"]) == (3, "1T2R", 3)
+    assert err == ""  # the end effector was named: nothing to note
+    status, out, err = run(capsys, "analyze", HAND / "four_bar.xml")
+    assert status == 0 and "pattern: 1R" in out and err.startswith("mobility: note: end effector: coupler")
+
+
+@pytest.mark.parametrize("args, message", [
+    (["analyze", HAND / "four_bar.xml", "--ground", "rockr"], "four_bar.xml: ground: no body named 'rockr' (did you mean 'rocker'?)"),
+    (["convert", HAND / "four_bar.urdf", "--close", "crank", "tip"], "four_bar.urdf: close: no body named 'tip'"),
+    (["analyze", Path(__file__).parent.parent / "mechanisms" / "four_bar.yaml", "--floating"], "floating: options of robot description files (MJCF, URDF)"),
+    (["convert", DATA / "robosuite" / "xarm7_gripper.xml"], "xarm7_gripper.xml:20: default: MuJoCo cannot compile it"),
+])
+def test_bad_input_is_one_line_and_exit_2(capsys, args, message):
+    status, out, err = run(capsys, *args)
+    assert status == 2 and out == ""
+    assert len(err.splitlines()) == 1 and message in err and err.startswith("mobility: ")
+
+
+def test_unwritable_output_is_one_line(tmp_path, capsys):
+    status, _, err = run(capsys, "convert", HAND / "four_bar.xml", "-o", tmp_path / "no" / "such" / "dir.yaml")
+    assert status == 2 and "dir.yaml: --output: cannot write the file" in err and len(err.strip().splitlines()) == 2

@@ -1,0 +1,273 @@
+"""URDF import (standard-library parser), cross-checked by MuJoCo's own URDF compiler.
+
+The second route: MuJoCo compiles the same URDF (visuals and collisions
+removed, a placeholder inertia on each link, static bodies kept), and its
+joint axes and anchors at ``qpos0``, its body Jacobians and -- for a loop
+closed in the side file or by ``--close`` -- a ``connect`` equality added
+through ``MjSpec`` give the same joints, mobility and twist system.
+Published model: the Puma 560 URDF of rtb-data 2.0.0 (MIT), kept unchanged
+under ``tests/data/robots/rtb_data``.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import mobility
+from mobility.errors import MechanismFileError, RequestError
+from mobility.io.robot_files import read_robot
+from test_mjcf import MujocoRoute, assert_agrees_with_mujoco, same_subspace
+
+DATA = Path(__file__).parent / "data" / "robots"
+HAND = DATA / "hand"
+PUMA = DATA / "rtb_data" / "puma560_robot.urdf"
+
+
+def mujoco_from_urdf(text: str, connect: tuple[str, str, tuple[float, float, float]] | None = None):
+    """MuJoCo's model and data at qpos0 of a URDF, optionally with a connect (body1, body2, anchor in body1)."""
+    root = ET.fromstring(text)
+    for link in root.iter("link"):
+        for tag in ("visual", "collision", "inertial"):
+            for el in link.findall(tag):
+                link.remove(el)
+        inertial = ET.SubElement(link, "inertial")
+        ET.SubElement(inertial, "mass", value="1")
+        ET.SubElement(inertial, "inertia", ixx="1", iyy="1", izz="1", ixy="0", ixz="0", iyz="0")
+    ET.SubElement(ET.SubElement(root, "mujoco"), "compiler", fusestatic="false")
+    spec = mujoco.MjSpec.from_string(ET.tostring(root, encoding="unicode"))
+    if connect:
+        eq = spec.add_equality()
+        eq.type, eq.objtype, eq.name1, eq.name2 = mujoco.mjtEq.mjEQ_CONNECT, mujoco.mjtObj.mjOBJ_BODY, connect[0], connect[1]
+        eq.data[:3] = connect[2]
+    model = spec.compile()
+    model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
+    model.opt.jacobian = int(mujoco.mjtJacobian.mjJAC_DENSE)
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    return model, data
+
+
+def joint_geometry(model, data) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    return {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j): (data.xaxis[j].copy(), data.xanchor[j].copy()) for j in range(model.njnt)}
+
+
+def write(tmp_path: Path, text: str, name: str = "robot.urdf") -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+# -- the published serial arm -----------------------------------------------------------------
+
+def test_puma560_joints_are_those_mujoco_compiles():
+    robot = read_robot(PUMA)
+    m = robot.mechanism
+    assert (m.ground, m.end_effector) == ("link1", "link7")
+    model, data = mujoco_from_urdf(PUMA.read_text())
+    theirs = joint_geometry(model, data)
+    assert [j.name for j in m.joints] == list(theirs) == ["j1", "j2", "j3", "j4", "j5", "j6"]
+    for j in m.joints:
+        axis, anchor = theirs[j.name]
+        assert np.allclose(j.axis, axis, atol=1e-12) and np.allclose(j.point, anchor, atol=1e-12), j.name
+    r = mobility.analyze(m)
+    assert (r.mobility, r.dof) == (6, 5)  # at the zero pose the wrist is singular: j4 and j6 are coaxial
+    route = assert_agrees_with_mujoco(robot, model, data)
+    assert route.dof == 5
+    assert abs(float(np.dot(m.joint("j4").axis, m.joint("j6").axis))) == pytest.approx(1.0)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(["revolute", "continuous", "prismatic"]),
+                          st.tuples(*[st.floats(-2, 2, allow_subnormal=False)] * 3), st.tuples(*[st.floats(-math.pi, math.pi, allow_subnormal=False)] * 3),
+                          st.tuples(*[st.floats(-1, 1, allow_subnormal=False)] * 3).filter(lambda a: math.hypot(*a) > 0.1)),
+                min_size=1, max_size=4))
+def test_origins_rpy_and_axes_agree_with_mujoco(chain):
+    LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
+    links = "".join(f'<link name="l{i}"/>' for i in range(len(chain) + 1))
+    joints = "".join(
+        f'<joint name="j{i}" type="{kind}"><parent link="l{i}"/><child link="l{i + 1}"/>'
+        f'<origin xyz="{" ".join(map(repr, xyz))}" rpy="{" ".join(map(repr, rpy))}"/><axis xyz="{" ".join(map(repr, axis))}"/>'
+        f'{LIMIT if kind != "continuous" else ""}</joint>'
+        for i, (kind, xyz, rpy, axis) in enumerate(chain))
+    text = f'<robot name="chain">{links}{joints}</robot>'
+    path = Path(_tmp()) / "chain.urdf"
+    path.write_text(text)
+    robot = read_robot(path)
+    model, data = mujoco_from_urdf(text)
+    theirs = joint_geometry(model, data)
+    for j in robot.mechanism.joints:
+        axis, anchor = theirs[j.name]
+        assert np.allclose(j.axis, axis, atol=1e-9)
+        if j.type == "R":
+            assert np.allclose(j.point, anchor, atol=1e-9)
+    assert_agrees_with_mujoco(robot, model, data)
+
+
+# -- loops: closing frames and a side file ----------------------------------------------------
+
+def test_four_bar_closed_by_closing_frames():
+    robot = read_robot(HAND / "four_bar.urdf", close=[("coupler_tip", "rocker_tip")], end_effector="coupler")
+    m = robot.mechanism
+    assert [(j.name, j.type, j.links) for j in m.joints] == [
+        ("A", "R", ("ground", "crank")), ("B", "R", ("crank", "coupler")), ("D", "R", ("ground", "rocker")),
+        ("close_coupler_tip_rocker_tip", "S", ("coupler", "rocker"))]
+    assert m.joint("close_coupler_tip_rocker_tip").point == pytest.approx((4, 2.5, 0))
+    assert m.joint("A").actuated and not m.joint("D").actuated  # named in a <transmission>
+    assert any("the origin of rocker_tip is" in n for n in robot.notes)
+    r = mobility.analyze(m)
+    assert (r.dof, r.pattern, r.mobility) == (1, "1R", 1)
+    same_loop_in_mjcf = mobility.analyze(mobility.load(HAND / "four_bar.xml"))
+    assert same_subspace(r.twists, same_loop_in_mjcf.twists) < 1e-9
+    model, data = mujoco_from_urdf((HAND / "four_bar.urdf").read_text(), connect=("coupler", "rocker", (3, 0.5, 0)))
+    assert_agrees_with_mujoco(robot, model, data)
+
+
+def test_four_bar_closed_by_a_side_file():
+    robot = read_robot(HAND / "four_bar.urdf", closures=str(HAND / "four_bar_closures.yaml"), end_effector="coupler")
+    c = robot.mechanism.joint("C")
+    assert (c.type, c.links) == ("R", ("coupler", "rocker"))
+    assert c.point == pytest.approx((4, 2.5, 0)) and c.axis == pytest.approx((0, 0, 1))
+    r = mobility.analyze(robot.mechanism)
+    assert (r.dof, r.pattern, r.mobility, r.gruebler_kutzbach) == (1, "1R", 1, -2)
+    model, data = mujoco_from_urdf((HAND / "four_bar.urdf").read_text(), connect=("coupler", "rocker", (3, 0.5, 0)))
+    assert MujocoRoute(model, data, "coupler").mobility == r.mobility
+
+
+def test_open_tree_without_its_closure():
+    r = mobility.analyze(mobility.load(HAND / "four_bar.urdf"))
+    assert r.mobility == 3  # three independent joints: the loop is not closed
+
+
+# -- joint types ------------------------------------------------------------------------------
+
+PLANAR_AND_FLOATING = """<robot name="table">
+  <link name="table"/> <link name="puck"/> <link name="drone"/>
+  <joint name="slide" type="planar"><parent link="table"/><child link="puck"/><origin xyz="0 0 1"/><axis xyz="0 0 1"/></joint>
+  <joint name="fly" type="floating"><parent link="table"/><child link="drone"/><origin xyz="2 0 3"/></joint>
+</robot>"""
+
+
+def test_planar_and_floating_joints(tmp_path):
+    path = write(tmp_path, PLANAR_AND_FLOATING)
+    robot = read_robot(path, end_effector="puck")
+    assert [(j.name, j.type) for j in robot.mechanism.joints] == [("slide", "E")]
+    assert robot.mechanism.joint("slide").normal == (0.0, 0.0, 1.0)
+    assert "free joint fly (line 4) of body drone treated as fixed (use --floating to keep its 6 freedoms)" in robot.notes
+    assert mobility.analyze(robot.mechanism).pattern == "2T1R"
+    floating = read_robot(path, end_effector="drone", floating=True).mechanism
+    assert [j.type for j in floating.joints] == ["E", "P", "P", "P", "S"]
+    assert floating.joint("fly").point == (2.0, 0.0, 3.0)
+    r = mobility.analyze(floating)
+    assert (r.dof, r.pattern, r.mobility) == (6, "3T3R", 9)
+
+
+MIMIC = """<robot name="gripper">
+  <link name="palm"/> <link name="left"/> <link name="right"/>
+  <joint name="l" type="prismatic"><parent link="palm"/><child link="left"/><axis xyz="0 1 0"/></joint>
+  <joint name="r" type="prismatic"><parent link="palm"/><child link="right"/><axis xyz="0 -1 0"/>
+    <mimic joint="l" multiplier="1"/>
+  </joint>
+</robot>"""
+
+
+def test_mimic_is_reported_not_ignored(tmp_path):
+    path = write(tmp_path, MIMIC)
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(path)
+    assert str(err.value) == (f"{path}:5: joint[r]/mimic: joint 'r' mimics joint 'l' (a coupling of joints) is not supported; "
+                              "expected independent joints; pass --ignore-unsupported (ignore_unsupported=True) to leave it out")
+    robot = read_robot(path, ignore_unsupported=True)
+    assert any(n.startswith("left out joint[r]/mimic (line 5)") for n in robot.notes)
+    assert mobility.analyze(robot.mechanism).mobility == 2
+
+
+# -- bad input --------------------------------------------------------------------------------
+
+J = '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>'
+
+
+@pytest.mark.parametrize("text, expected", [
+    ('<robot name="r">\n<link name="a">\n</robot>', r":3: malformed XML: mismatched tag"),
+    ('<robot name="r" xmlns:xacro="x">\n<xacro:property name="l" value="1"/>\n</robot>', r":1: robot: a xacro file; expected a URDF: expand it first"),
+    ('<sdf version="1.6"/>', r":1: sdf: not a URDF file; expected the root element <robot>"),
+    ('<robot name="r">\n<link name="a"/>\n<joint name="j" type="revolute">\n<parent link="a"/><child link="c"/></joint>\n</robot>',
+     r":4: joint\[j\]/child: unknown link 'c'; expected a <link> of this robot"),
+    ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J + '\n<joint name="k" type="fixed"><parent link="a"/><child link="b"/></joint>\n</robot>',
+     r":4: joint\[k\]/child: link 'b' already has the parent joint 'j'; expected a tree"),
+    ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J + '\n<joint name="k" type="fixed"><parent link="b"/><child link="a"/></joint>\n</robot>',
+     r":1: robot: no root link \(the joints form a cycle\)"),
+    ('<robot name="r">\n<link name="a"/><link name="b"/><link name="c"/>\n' + J + '\n</robot>', r":1: robot: several root links \(a, c\)"),
+    ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J.replace('<axis', '<origin xyz="1 2"/><axis') + '\n</robot>',
+     r":3: joint\[j\]/origin/@xyz: expected 3 numbers, got '1 2'"),
+    ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J.replace('type="revolute"', 'type="hinge"') + '\n</robot>',
+     r":3: joint\[j\]/@type: unknown joint type 'hinge'; expected one of revolute, continuous, prismatic, planar, floating, fixed"),
+    ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J.replace('0 0 1', '0 0 0') + '\n</robot>',
+     r":3: joint\[j\]/axis/@xyz: expected a non-zero direction"),
+    ('<robot name="r">\n<link name="a"/>\n<link name="a"/>\n</robot>', r":3: link\[a\]: duplicate link name \(first on line 2\)"),
+    ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J + '\n<transmission name="t">\n<joint name="q"/>\n</transmission>\n</robot>',
+     r":5: transmission\[t\]/joint: unknown joint 'q'"),
+    ('<robot name="r">\n<link name="a"/>\n</robot>', r": no joint can move"),
+])
+def test_bad_urdf_is_one_line(tmp_path, text, expected):
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(write(tmp_path, text))
+    assert "\n" not in str(err.value)
+    assert re.search(expected, str(err.value)), str(err.value)
+
+
+@pytest.mark.parametrize("side, expected", [
+    ("joints:\n  - {name: C, type: S, links: [coupler, rockr], point: [0, 0, 0]}\n", r"closures\.yaml:2: joints\[0\]\.links\[1\]: no body named 'rockr' in four_bar\.urdf"),
+    ("joints:\n  - {name: C, type: S, links: [coupler, rocker], point: [0, 0, 0], frame: tip}\n", r"closures\.yaml:2: joints\[0\]\.frame: unknown frame 'tip'; expected 'world' or a body of four_bar\.urdf"),
+    ("joint:\n  - {name: C}\n", r"closures\.yaml:1: joint: unknown key in a closures file \(did you mean 'joints'\?\)"),
+    ("description: nothing\n", r"closures\.yaml:1: missing required key 'joints'"),
+    ("joints:\n  - {name: C, type: R, links: [coupler, rocker], point: [0, 0, 0]}\n", r"closures\.yaml:2: joints\[0\]\.axis: missing"),
+])
+def test_bad_side_file_is_one_line(tmp_path, side, expected):
+    path = write(tmp_path, side, "closures.yaml")
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(HAND / "four_bar.urdf", closures=str(path))
+    assert re.search(expected, str(err.value)), str(err.value)
+
+
+def test_an_xml_file_of_another_kind_is_one_line(tmp_path):
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(write(tmp_path, '<?xml version="1.0"?>\n<sdf version="1.6"/>', "world.xml"))
+    assert str(err.value).endswith("world.xml:2: sdf: not a robot description; expected MJCF (<mujoco>) or URDF (<robot>), or a mechanism file (.yaml)")
+
+
+def test_bad_close_pairs_and_options():
+    with pytest.raises(MechanismFileError, match=r"four_bar\.urdf: close: no body named 'couplr_tip' \(did you mean 'coupler_tip'\?\); expected one of: ground, "):
+        read_robot(HAND / "four_bar.urdf", close=[("couplr_tip", "rocker_tip")])
+    with pytest.raises(MechanismFileError, match="close: expected two different bodies, got 'crank' twice"):
+        read_robot(HAND / "four_bar.urdf", close=[("crank", "crank")])
+    with pytest.raises(RequestError, match="unknown option 'grund'"):
+        read_robot(HAND / "four_bar.urdf", grund="ground")
+    with pytest.raises(RequestError, match="ground: options of robot description files"):
+        mobility.load(Path(__file__).parent.parent / "mechanisms" / "four_bar.yaml", ground="ground")
+
+
+_DIRS: list = []
+
+
+def _tmp() -> str:
+    import tempfile
+
+    if not _DIRS:
+        _DIRS.append(tempfile.TemporaryDirectory())
+    return _DIRS[0].name
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _cleanup():
+    yield
+    for d in _DIRS:
+        d.cleanup()
