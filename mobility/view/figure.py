@@ -1,0 +1,168 @@
+"""The scenes of :mod:`mobility.view.scene` as a plotly figure (a plain dict, JSON-ready).
+
+Each glyph becomes up to four traces sharing a legend group (its line, its
+solid parts, its markers, its label), so that one click on its legend entry
+switches the whole glyph; each layer has its own legend (``legend`` for the
+mechanism, ``legend2`` for the freedoms, ``legend3`` for the constraints)
+whose title, clicked, switches the whole layer.  Every trace carries
+``meta = {"layer", "key", "frame"}`` so that programs and tests can read the
+page back.
+
+Several poses (frames) are all in the figure, one pose visible at a time; a
+slider shows one pose after the other and writes its pattern and rank margin
+in the title.  The axes are equal (a cube around every pose) so that
+directions read true and the scene does not jump between poses.
+
+The figure is built as a dict, without the plotting library; plotly only
+validates it (:class:`plotly.graph_objects.Figure`) or writes it
+(:mod:`mobility.view.page`).
+
+Examples
+--------
+>>> import mobility
+>>> from mobility.view.scene import build_scene
+>>> m = mobility.load("mechanisms/four_bar.yaml")
+>>> r = mobility.analyze(m)
+>>> fig = figure_dict([(build_scene(m, r), r, "")])
+>>> sorted({t["meta"]["key"] for t in fig["data"] if t["meta"]["layer"] == "freedoms"})
+['R1']
+>>> fig["layout"]["legend2"]["title"]["text"]
+'<b>freedoms (1)</b>'
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Sequence
+
+import numpy as np
+
+from ..core.result import Result
+from ..errors import RequestError
+from .describe import margin_text, pose_title
+from .scene import Glyph, Scene, viewpoint
+
+__all__ = ["figure_dict", "LEGENDS", "ELEMENT_ID"]
+
+LEGENDS = {"mechanism": "legend", "freedoms": "legend2", "constraints": "legend3"}
+"""The legend of each layer."""
+
+ELEMENT_ID = "mobility-view"
+"""The id of the element that holds the figure in a page."""
+
+_BACKGROUND = "#ffffff"
+_AXIS = "#b0bec5"
+_JOINT_AXES = "#37474f"
+
+
+def _coords(points: np.ndarray) -> dict[str, list[float | None]]:
+    """x, y, z lists with 7 significant digits (NaN, a break in a line, as None)."""
+    out: dict[str, list[float | None]] = {}
+    for name, column in zip("xyz", np.asarray(points, dtype=float).reshape(-1, 3).T):
+        out[name] = [None if math.isnan(v) else float(f"{v:.7g}") for v in column]
+    return out
+
+
+def _glyph_traces(g: Glyph, frame: int, visible: bool) -> list[dict[str, Any]]:
+    """The traces of one glyph; the first one carries its legend entry."""
+    common = {
+        "legend": LEGENDS[g.layer],
+        "legendgroup": g.key,
+        "name": g.name,
+        "visible": visible,
+        "meta": {"layer": g.layer, "key": g.key, "frame": frame},
+    }
+    traces: list[dict[str, Any]] = []
+    if len(g.points):  # first, so that a joint's legend entry shows its marker
+        outline = "#263238" if g.kind == "joint" else g.color
+        traces.append({"type": "scatter3d", "mode": "markers", **_coords(g.points),
+                       "marker": {"symbol": g.symbol, "size": 7 if g.kind == "joint" else 5, "color": g.color, "line": {"color": outline, "width": 2}},
+                       "hoverinfo": "text", "hovertext": list(g.point_hover)})
+    if len(g.path):
+        color = _JOINT_AXES if g.kind == "joint" else g.color
+        traces.append({"type": "scatter3d", "mode": "lines", **_coords(g.path), "line": {"color": color, "width": g.width},
+                       "hoverinfo": "text", "hovertext": g.hover, "connectgaps": False})
+    if g.mesh is not None:
+        v, f = g.mesh.vertices, g.mesh.faces
+        traces.append({"type": "mesh3d", **_coords(v), "i": f[:, 0].tolist(), "j": f[:, 1].tolist(), "k": f[:, 2].tolist(),
+                       "color": g.color, "opacity": g.opacity, "flatshading": True, "hoverinfo": "text", "hovertext": g.hover,
+                       "lighting": {"ambient": 0.65, "diffuse": 0.6, "specular": 0.1}})
+    if g.label:
+        traces.append({"type": "scatter3d", "mode": "text", **_coords(g.label_at[None]), "text": [g.label],
+                       "textfont": {"color": g.color, "size": 13}, "hoverinfo": "text", "hovertext": g.hover})
+    for k, t in enumerate(traces):
+        t.update(common)
+        t["showlegend"] = k == 0
+    return traces
+
+
+def _camera(elev_azim: tuple[float, float]) -> dict[str, Any]:
+    elev, azim = (math.radians(x) for x in elev_azim)
+    eye = 1.6 * np.array([math.cos(elev) * math.cos(azim), math.cos(elev) * math.sin(azim), math.sin(elev)])
+    return {"eye": dict(zip("xyz", (round(float(x), 4) for x in eye))), "up": {"x": 0, "y": 0, "z": 1},
+            "projection": {"type": "orthographic"}}
+
+
+def _title(result: Result, label: str, frames: int) -> str:
+    return f"{pose_title(result, label)}<br><sup>{margin_text(result)}" + ("" if frames == 1 else "  ·  use the slider to walk through the poses") + "</sup>"
+
+
+def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 720) -> dict[str, Any]:
+    """The plotly figure of one or several poses.
+
+    Parameters
+    ----------
+    frames : sequence of (Scene, Result, str)
+        Each pose's scene, its analysis and its label (shown on the slider).
+    height : int
+        Pixels.
+
+    Returns
+    -------
+    dict
+        ``{"data": [...], "layout": {...}}``, JSON-serialisable.
+    """
+    if not frames:
+        raise RequestError("a view needs at least one pose")
+    data: list[dict[str, Any]] = []
+    owner: list[int] = []
+    for k, (scene, _, _) in enumerate(frames):
+        for g in scene.glyphs:
+            traces = _glyph_traces(g, k, k == 0)
+            data += traces
+            owner += [k] * len(traces)
+    lower = np.min([s.lower for s, _, _ in frames], axis=0)
+    upper = np.max([s.upper for s, _, _ in frames], axis=0)
+    mid, half = 0.5 * (lower + upper), 0.55 * float(np.max(upper - lower))
+    unit = frames[0][1].length_unit
+    axis = {
+        name: {"range": [float(f"{mid[i] - half:.7g}"), float(f"{mid[i] + half:.7g}")], "title": {"text": f"{name} ({unit})" if unit else name},
+               "backgroundcolor": _BACKGROUND, "gridcolor": "#eceff1", "zerolinecolor": _AXIS, "showspikes": False}
+        for i, name in enumerate("xyz")
+    }
+    first_scene, first_result, first_label = frames[0]
+    legend_rows = {"legend": 0.135, "legend2": 0.09, "legend3": 0.045}
+    layout: dict[str, Any] = {
+        "title": {"text": _title(first_result, first_label, len(frames)), "x": 0.01, "xanchor": "left", "font": {"size": 16}},
+        "height": height,
+        "margin": {"l": 10, "r": 10, "t": 70, "b": 10},
+        "paper_bgcolor": _BACKGROUND,
+        "uirevision": "mobility",
+        "scene": {**{f"{n}axis": a for n, a in axis.items()}, "aspectmode": "manual", "aspectratio": {"x": 1.35, "y": 1.35, "z": 1.35}, "camera": _camera(viewpoint(first_scene)),
+                  "domain": {"x": [0.0, 1.0], "y": [0.2 if len(frames) > 1 else 0.15, 1.0]}},
+    }
+    counts = {"mechanism": "", "freedoms": f" ({first_result.dof})", "constraints": f" ({6 - first_result.dof})"}
+    for layer, name in LEGENDS.items():
+        layout[name] = {
+            "title": {"text": f"<b>{layer}{counts[layer] if len(frames) == 1 else ''}</b>", "side": "left"},
+            "orientation": "h", "x": 0.0, "xanchor": "left", "y": legend_rows[name] + (0.07 if len(frames) > 1 else 0.0), "yanchor": "top",
+            "groupclick": "togglegroup", "titleclick": "toggle", "titledoubleclick": "toggleothers", "bgcolor": "rgba(255,255,255,0.8)",
+        }
+    if len(frames) > 1:
+        steps = []
+        for k, (_, result, label) in enumerate(frames):
+            steps.append({"label": label or str(k + 1), "method": "update",
+                          "args": [{"visible": [o == k for o in owner]}, {"title.text": _title(result, label, len(frames))}]})
+        layout["sliders"] = [{"active": 0, "steps": steps, "x": 0.02, "len": 0.96, "y": 0.08, "yanchor": "top",
+                              "currentvalue": {"prefix": "pose: ", "font": {"size": 13}}, "pad": {"t": 0, "b": 0}}]
+    return {"data": data, "layout": layout}

@@ -1,0 +1,149 @@
+"""Shapes of the 3D view as plain arrays: arrowheads, arcs, helices, plates.
+
+No plotting library here: every shape is points in the global frame (a
+polyline, pieces separated by a row of NaN, as plotting libraries draw them)
+or a triangle :class:`Mesh`.
+
+Examples
+--------
+>>> import numpy as np
+>>> head = cone(np.array([0.0, 0, 1]), np.array([0.0, 0, 1]), 0.2, 0.05)
+>>> head.vertices[0].tolist(), head.vertices.shape, head.faces.shape
+([0.0, 0.0, 1.0], (14, 3), (24, 3))
+>>> pieces(np.zeros((2, 3)), np.ones((2, 3))).shape   # two segments, one NaN row between
+(5, 3)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Mesh", "perpendiculars", "cone", "segment", "pieces", "arc", "helix", "plate"]
+
+
+@dataclass(frozen=True, eq=False)
+class Mesh:
+    """Triangles: ``vertices`` (n, 3) and ``faces`` (m, 3), indices into the vertices."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+
+    @staticmethod
+    def merged(*meshes: "Mesh") -> "Mesh":
+        """One mesh holding all of ``meshes``."""
+        vertices, faces, offset = [], [], 0
+        for m in meshes:
+            vertices.append(m.vertices)
+            faces.append(m.faces + offset)
+            offset += len(m.vertices)
+        return Mesh(np.concatenate(vertices).reshape(-1, 3), np.concatenate(faces).reshape(-1, 3).astype(int))
+
+
+def perpendiculars(direction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two unit vectors ``e1, e2`` such that ``(d, e1, e2)`` is a right-handed orthonormal frame.
+
+    Examples
+    --------
+    >>> e1, e2 = perpendiculars(np.array([0.0, 0.0, 2.0]))
+    >>> np.round([e1 @ e2, np.cross(e1, e2)[2]], 12).tolist()
+    [0.0, 1.0]
+    """
+    d = np.asarray(direction, dtype=float)
+    d = d / np.linalg.norm(d)
+    helper = int(np.argmin(np.round(np.abs(d), 6)))  # the axis most across d; round-off does not change the choice
+    e1 = np.cross(d, np.eye(3)[helper])
+    e1 /= np.linalg.norm(e1)
+    return e1, np.cross(d, e1)
+
+
+def cone(tip: np.ndarray, direction: np.ndarray, length: float, radius: float, sides: int = 12) -> Mesh:
+    """A closed cone (an arrowhead) with its tip at ``tip``, pointing along ``direction``.
+
+    Vertex 0 is the tip, then the ring of the base, then the centre of the base.
+    """
+    d = np.asarray(direction, dtype=float)
+    d = d / np.linalg.norm(d)
+    e1, e2 = perpendiculars(d)
+    base = tip - length * d
+    t = np.linspace(0.0, 2.0 * math.pi, sides, endpoint=False)
+    ring = base + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
+    vertices = np.vstack([tip, ring, base])
+    k = np.arange(sides)
+    side = np.stack([np.zeros(sides, dtype=int), 1 + k, 1 + (k + 1) % sides], axis=1)
+    bottom = np.stack([np.full(sides, sides + 1), 1 + (k + 1) % sides, 1 + k], axis=1)
+    return Mesh(vertices, np.vstack([side, bottom]))
+
+
+def segment(start: np.ndarray, end: np.ndarray, samples: int = 9) -> np.ndarray:
+    """Points from ``start`` to ``end`` (both included), so that a hover finds the line anywhere along it."""
+    return np.asarray(start, dtype=float) + np.linspace(0.0, 1.0, samples)[:, None] * (np.asarray(end, dtype=float) - start)
+
+
+def pieces(*polylines: np.ndarray) -> np.ndarray:
+    """Polylines joined into one array, a row of NaN between two (a break in the drawn line)."""
+    gap = np.full((1, 3), np.nan)
+    out: list[np.ndarray] = []
+    for p in polylines:
+        if out:
+            out.append(gap)
+        out.append(np.asarray(p, dtype=float).reshape(-1, 3))
+    return np.concatenate(out) if out else np.zeros((0, 3))
+
+
+def arc(centre: np.ndarray, axis: np.ndarray, radius: float, turn: float = 1.5 * math.pi, samples: int = 33) -> tuple[np.ndarray, np.ndarray]:
+    """A circular arc about ``axis`` at ``centre`` in the right-hand sense; returns (points, unit tangent at the end)."""
+    e1, e2 = perpendiculars(axis)
+    t = np.linspace(0.0, turn, samples)
+    points = centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
+    return points, -math.sin(turn) * e1 + math.cos(turn) * e2
+
+
+def helix(centre: np.ndarray, axis: np.ndarray, radius: float, length: float, turns: float = 2.0, samples: int = 61) -> np.ndarray:
+    """A right-handed helix of ``turns`` turns about ``axis``, ``length`` long, centred at ``centre``."""
+    e1, e2 = perpendiculars(axis)
+    d = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    t = np.linspace(0.0, 2.0 * math.pi * turns, samples)
+    s = np.linspace(-0.5, 0.5, samples) * length
+    return centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2) + s[:, None] * d
+
+
+def plate(points: np.ndarray, *, flatness: float = 0.05) -> Mesh | None:
+    """A flat convex plate over ``points`` (a fan of triangles over their convex hull in their plane).
+
+    ``None`` when the points are not nearly coplanar (third singular value
+    above ``flatness`` times the first) or are nearly collinear: such a link is
+    better drawn as bars.
+
+    Examples
+    --------
+    >>> square = np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, 0]])
+    >>> p = plate(square)
+    >>> len(p.vertices), len(p.faces)   # the hull's four corners, two triangles
+    (4, 2)
+    >>> plate(np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0]])) is None
+    True
+    """
+    from scipy.spatial import ConvexHull, QhullError
+
+    p = np.asarray(points, dtype=float).reshape(-1, 3)
+    if len(p) < 3:
+        return None
+    c = p.mean(axis=0)
+    _, sv, vt = np.linalg.svd(p - c)
+    if sv[1] <= flatness * sv[0] or (len(sv) > 2 and sv[2] > flatness * sv[0]):
+        return None
+    try:
+        hull = ConvexHull((p - c) @ vt[:2].T)
+    except QhullError:  # pragma: no cover - collinear after all
+        return None
+    order = list(hull.vertices)  # around the hull; made independent of the plane's axes:
+    order = order[order.index(min(order)):] + order[: order.index(min(order))]  # from the first point given,
+    if len(order) > 2 and order[1] > order[-1]:  # towards its lower-numbered neighbour
+        order = order[:1] + order[:0:-1]
+    ring = p[order]
+    n = len(ring)
+    faces = np.stack([np.zeros(n - 2, dtype=int), np.arange(1, n - 1), np.arange(2, n)], axis=1)
+    return Mesh(ring, faces)

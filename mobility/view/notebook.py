@@ -1,0 +1,76 @@
+"""Jupyter shows a :class:`~mobility.core.result.Result` (and a sweep result) as its interactive 3D view.
+
+The core knows nothing of views, so :class:`Result` has no display method of
+its own; instead ``import mobility`` calls :func:`register_display` when it
+runs inside IPython, which registers :func:`result_mimebundle` with IPython's
+mime-bundle formatter.  A rich front end (a notebook kernel) then gets
+plotly's own display of the view and the text report as plain text; a
+terminal gets the text report.  Without plotly the text report is shown
+with the one-line install hint.  A sweep result (:func:`mobility.sweep`) is
+shown the same way, as a slider through up to :data:`NOTEBOOK_POSES` of its
+poses (:func:`mobility.view.sweep.sweep_view`), with its text summary.
+
+Nothing here imports plotly or IPython until it is used.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..core.result import Result
+from ..report.text import text_report
+
+__all__ = ["result_mimebundle", "sweep_mimebundle", "register_display", "NOTEBOOK_POSES"]
+
+NOTEBOOK_POSES = 60
+"""Poses of a sweep shown in a notebook's slider (each is analysed again to be drawn)."""
+
+
+def result_mimebundle(result: Result, *, rich: bool = True) -> dict[str, Any]:
+    """The display of ``result``: the view of its mechanism (``rich``) with the text report as plain text.
+
+    The mechanism is the one the result was computed from (kept by the
+    analysis); a result that does not carry it is shown as text.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> r = mobility.analyze(mobility.load("mechanisms/four_bar.yaml"))
+    >>> bundle = result_mimebundle(r, rich=False)
+    >>> list(bundle), bundle["text/plain"].splitlines()[1]
+    (['text/plain'], '  end-effector DOF: 1   pattern: 1R')
+    """
+    mechanism = getattr(result.detail, "mechanism", None)
+    if not rich or mechanism is None:
+        return {"text/plain": text_report(result)}
+    from .views import mechanism_view
+
+    return mechanism_view(mechanism, result)._repr_mimebundle_()
+
+
+def sweep_mimebundle(sweep: Any, *, rich: bool = True) -> dict[str, Any]:
+    """The display of a sweep result: a slider through its poses (``rich``), its text summary as plain text."""
+    from ..report.sweep import sweep_summary
+
+    text = sweep_summary(sweep)
+    if not rich:
+        return {"text/plain": text}
+    from .sweep import sweep_view
+
+    bundle = sweep_view(sweep, max_poses=NOTEBOOK_POSES)._repr_mimebundle_()
+    hint = bundle["text/plain"].splitlines()[-1] if len(bundle) == 1 else ""  # without plotly: the install line
+    bundle["text/plain"] = f"{text}\n{hint}" if hint.startswith("(") else text
+    return bundle
+
+
+def register_display(shell: Any) -> None:
+    """Make IPython ``shell`` display every :class:`Result` and sweep result as its view.
+
+    Rich when the shell's front end shows HTML (a notebook), plain text
+    otherwise (a terminal).  The sweep result's class is named, not imported,
+    so the sweeps package loads only when a sweep is made.
+    """
+    formatter = shell.display_formatter
+    rich = "text/html" in getattr(formatter, "active_types", ())
+    formatter.mimebundle_formatter.for_type(Result, lambda r: result_mimebundle(r, rich=rich))
+    formatter.mimebundle_formatter.for_type_by_name("mobility.sweeps.result", "SweepResult", lambda s: sweep_mimebundle(s, rich=rich))

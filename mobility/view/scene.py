@@ -1,0 +1,347 @@
+"""What the 3D view draws for one pose, as plain data: glyphs in three layers.
+
+:func:`build_scene` turns a mechanism and its :class:`~mobility.core.result.Result`
+into :class:`Glyph` objects, each one thing a person points at:
+
+``mechanism`` layer
+    the ground, the end effector and the other links (bars between two
+    joints, translucent plates over three or more), one glyph per joint type
+    (markers with the joints' axes), the end effector's centre;
+``freedoms`` layer
+    ``T1..`` translation arrows from the end effector's centre, ``R1..``
+    rotation axes through their points with a circular arrow (a helix too
+    when the pitch is not zero);
+``constraints`` layer
+    ``C1..`` constraint couples (double-headed arrows beside the centre) and
+    ``W..`` constraint forces (lines through their points, with an arrowhead;
+    a small circular arrow too when the wrench has a pitch), numbered as in
+    the text report.
+
+Where each joint is drawn and the size of the scene come from the pictures'
+:func:`mobility.report.plotting.sketch`, so the view and the PNG agree; every
+size of a glyph is a fraction of that size, so a file in metres and the same
+in millimetres look the same.  :func:`viewpoint` chooses where to look from
+with the pictures' :func:`~mobility.report.plotting.choose_views` (no freedom
+seen end-on).
+
+Examples
+--------
+>>> import mobility
+>>> m = mobility.loads('''
+... name: R-P arm
+... ground: g
+... end_effector: hand
+... joints:
+...   - {name: R1, type: R, links: [g, arm], axis: [0, 0, 1], point: [0, 0, 0]}
+...   - {name: P1, type: P, links: [arm, hand], axis: [1, 0, 0]}
+...   - {name: R2, type: R, links: [hand, tool], axis: [1, 0, 0], point: [2, 0, 0]}
+... ''')
+>>> s = build_scene(m, mobility.analyze(m))
+>>> [g.key for g in s.layer("freedoms")], [g.key for g in s.layer("constraints")]
+(['T1', 'R1'], ['C1', 'C2', 'W3', 'W4'])
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core.model import JOINT_TYPES, Mechanism
+from ..core.result import Result
+from ..report.plotting import COLORS, choose_views, sketch
+from .describe import couple_text, force_text, joint_text, rotation_text, translation_text
+from .geometry import Mesh, arc, cone, helix, perpendiculars, pieces, plate, segment
+
+__all__ = ["LAYERS", "JOINT_SYMBOLS", "Glyph", "Scene", "build_scene", "viewpoint"]
+
+LAYERS = ("mechanism", "freedoms", "constraints")
+"""The layers of the view, each switchable on its own."""
+
+JOINT_SYMBOLS = {
+    "R": ("circle", "#ffffff"),
+    "P": ("square", "#ffe08a"),
+    "H": ("diamond", "#c8e6c9"),
+    "C": ("diamond-open", "#7e57c2"),
+    "U": ("cross", "#1e88e5"),
+    "S": ("circle", "#37474f"),
+    "E": ("square-open", "#f4511e"),
+}
+"""Marker symbol and colour of each joint type (symbols a WebGL 3D scatter can draw)."""
+
+# Sizes of the glyphs, as fractions of the scene's size.
+_ARROW = 0.36
+_HALF_AXIS = 0.45
+_HALF_FORCE = 0.28
+_HEAD = 0.05
+_MARK = 0.055
+_COUPLE_OFFSET = 0.25
+
+
+@dataclass(frozen=True, eq=False)
+class Glyph:
+    """One thing drawn: a link group, a joint type, one freedom or one constraint.
+
+    Attributes
+    ----------
+    key : str
+        Unique in its scene: ``"T1"``, ``"R2"``, ``"C1"``, ``"W3"``,
+        ``"links:ground"``, ``"joints:R"``, ``"end-effector-centre"``.
+    layer : str
+        One of :data:`LAYERS`.
+    kind : str
+        ``translation``, ``rotation``, ``helical``, ``couple``, ``force``,
+        ``wrench``, ``ground``, ``end_effector``, ``link``, ``joint``, ``centre``.
+    name : str
+        The legend's text.
+    color : str
+    path : ndarray, shape (n, 3)
+        Polyline (rows of NaN between pieces); may be empty.
+    width : float
+        Line width of the path, pixels.
+    hover : str
+        Hover text of the path and mesh.
+    mesh : Mesh or None
+        Solid parts (arrowheads, plates).
+    opacity : float
+        Of the mesh.
+    points : ndarray, shape (k, 3)
+        Markers (joints); may be empty.
+    symbol : str
+        Marker symbol.
+    point_hover : tuple of str
+        Hover text of each marker.
+    label : str
+        Written at ``label_at`` (empty: none).
+    label_at : ndarray, shape (3,) or None
+    direction : ndarray, shape (3,) or None
+        The unit direction of a freedom or constraint (its axis, or the
+        direction of a free vector).
+    """
+
+    key: str
+    layer: str
+    kind: str
+    name: str
+    color: str
+    path: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    width: float = 4.0
+    hover: str = ""
+    mesh: Mesh | None = None
+    opacity: float = 1.0
+    points: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    symbol: str = "circle"
+    point_hover: tuple[str, ...] = ()
+    label: str = ""
+    label_at: np.ndarray | None = None
+    direction: np.ndarray | None = None
+
+    def extent(self) -> np.ndarray:
+        """Every point the glyph occupies, shape (n, 3) (for the bounds of the scene)."""
+        parts = [self.path[~np.isnan(self.path).any(axis=1)], self.points]
+        if self.mesh is not None:
+            parts.append(self.mesh.vertices)
+        if self.label_at is not None:
+            parts.append(self.label_at[None])
+        return np.concatenate([p.reshape(-1, 3) for p in parts])
+
+
+@dataclass(frozen=True, eq=False)
+class Scene:
+    """The glyphs of one pose, the centre and size of the scene, the bounds of what is drawn.
+
+    Attributes
+    ----------
+    glyphs : tuple of Glyph
+        Mechanism first, then freedoms (translations, rotations), then
+        constraints (couples, forces).
+    centre : ndarray, shape (3,)
+        The end effector's centre, where free vectors are drawn.
+    size : float
+        Extent of the mechanism (the unit of every glyph's size).
+    lower, upper : ndarray, shape (3,)
+        Bounds of everything drawn.
+    """
+
+    glyphs: tuple[Glyph, ...]
+    centre: np.ndarray
+    size: float
+    lower: np.ndarray
+    upper: np.ndarray
+
+    def layer(self, name: str) -> tuple[Glyph, ...]:
+        """The glyphs of one layer, in drawing order."""
+        return tuple(g for g in self.glyphs if g.layer == name)
+
+
+def build_scene(mechanism: Mechanism, result: Result) -> Scene:
+    """The glyphs of ``mechanism`` at its pose with the freedoms and constraints of ``result``.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    result : Result
+        Its analysis (:func:`mobility.analyze`).
+
+    Returns
+    -------
+    Scene
+        With ``result.dof`` glyphs in the ``freedoms`` layer and
+        ``6 - result.dof`` in the ``constraints`` layer.
+    """
+    sk = sketch(mechanism)
+    size, c = sk.size, sk.end_effector_centre
+    scale, unit = result.length_scale, result.length_unit
+    glyphs = _links(mechanism, sk) + _joints(mechanism, sk, scale, unit)
+    glyphs.append(Glyph("end-effector-centre", "mechanism", "centre", "end-effector centre", COLORS["end_effector"],
+                        points=c[None], symbol="x", point_hover=("end-effector centre",)))
+    head = _HEAD * size
+    for i, t in enumerate(result.translations):
+        tip = c + _ARROW * size * t
+        glyphs.append(Glyph(f"T{i + 1}", "freedoms", "translation", f"T{i + 1} translation", COLORS["translation"],
+                            path=segment(c, tip - head * t), width=7.0, hover=translation_text(i + 1, t),
+                            mesh=cone(tip, t, 2.0 * head, 0.45 * head), label=f"T{i + 1}", label_at=tip + 0.05 * size * t, direction=t))
+    for i, a in enumerate(result.rotations):
+        glyphs.append(_rotation(i, a, size, scale, unit))
+    k = len(result.couples)
+    for i, cp in enumerate(result.couples):
+        glyphs.append(_couple(i, np.asarray(cp, dtype=float), c, size, k))
+    for i, f in enumerate(result.forces):
+        glyphs.append(_force(k + i, f, size, scale, unit))
+    return _framed(tuple(glyphs), c, size)
+
+
+def _links(mechanism: Mechanism, sk) -> list[Glyph]:
+    """The links, grouped by role (one glyph each for the ground, the end effector and the other links)."""
+    roles = {"ground": [], "end_effector": [], "link": []}
+    for link, idx in sk.link_joints.items():
+        role = "ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"
+        roles[role].append((link, _unique(sk.points[list(idx)], 1e-6 * sk.size)))
+    names = {"ground": "ground", "end_effector": "end effector", "link": "links"}
+    widths = {"ground": 9.0, "end_effector": 8.0, "link": 6.0}
+    out = []
+    for role, members in roles.items():
+        lines, meshes = [], []
+        for link, pts in members:
+            if len(pts) < 2:
+                continue
+            body = plate(pts) if len(pts) > 2 else None
+            if body is not None:
+                meshes.append(body)
+                lines.append(np.vstack([body.vertices, body.vertices[:1]]))  # its outline
+                inner = [p for p in pts if np.min(np.linalg.norm(body.vertices - p, axis=1)) > 1e-6 * sk.size]
+                lines += [np.stack([pts.mean(axis=0), p]) for p in inner]
+            elif len(pts) == 2:
+                lines.append(segment(pts[0], pts[1]))
+            else:  # a body in space: a star from its centroid
+                lines += [segment(pts.mean(axis=0), p, 5) for p in pts]
+        if not lines:
+            continue
+        hover = "<br>".join(f"{names[role] if role != 'link' else 'link'} {link}" for link, _ in members[:12])
+        out.append(Glyph(f"links:{role}", "mechanism", role, names[role], COLORS[role], path=pieces(*lines),
+                         width=widths[role], hover=hover, mesh=Mesh.merged(*meshes) if meshes else None, opacity=0.25))
+    return out
+
+
+def _joints(mechanism: Mechanism, sk, scale: float, unit: str) -> list[Glyph]:
+    """One glyph per joint type: a marker at each joint, short lines along its axes."""
+    out = []
+    size = sk.size
+    joints = mechanism.world_joints
+    for jtype, (symbol, color) in JOINT_SYMBOLS.items():
+        idx = [i for i, j in enumerate(joints) if j.type == jtype]
+        if not idx:
+            continue
+        axes = []
+        for i in idx:
+            j, x = joints[i], sk.points[i]
+            directions = [j.axis] if j.axis is not None else list(j.axes or ())
+            axes += [np.stack([x - 0.07 * size * np.asarray(a), x + 0.07 * size * np.asarray(a)]) for a in directions]
+            if j.type == "H":
+                axes.append(helix(x, np.asarray(j.axis), 0.025 * size, 0.12 * size))
+            if j.type == "E":
+                e1, e2 = perpendiculars(np.asarray(j.normal))
+                axes.append(np.array([x + 0.05 * size * (s1 * e1 + s2 * e2) for s1, s2 in ((1, 1), (-1, 1), (-1, -1), (1, -1), (1, 1))]))
+        hover = tuple(joint_text(joints[i], bool(sk.located[i]), scale, unit) for i in idx)
+        out.append(Glyph(f"joints:{jtype}", "mechanism", "joint", f"{jtype} {JOINT_TYPES[jtype]}", color,
+                         path=pieces(*axes), width=3.0, hover=f"{jtype} joint axes", points=sk.points[idx],
+                         symbol=symbol, point_hover=hover))
+    return out
+
+
+def _rotation(i: int, a, size: float, scale: float, unit: str) -> Glyph:
+    """``R<i+1>``: the axis line through its point, a circular arrow near one end (a helix if it has a pitch)."""
+    d = np.asarray(a.axis, dtype=float)
+    p = np.asarray(a.point, dtype=float)
+    side = 1.0 if i % 2 == 0 else -1.0  # alternate ends, so that two axes through one point keep their labels apart
+    start, end = p - side * _HALF_AXIS * size * d, p + side * _HALF_AXIS * size * d
+    ring, tangent = arc(p + side * 0.78 * _HALF_AXIS * size * d, d, _MARK * size)
+    head = cone(ring[-1] + 0.9 * _HEAD * size * tangent, tangent, 1.6 * _HEAD * size, 0.4 * _HEAD * size)
+    parts = [segment(start, end, 15), ring]
+    if a.pitch != 0:
+        parts.append(helix(p, d, 0.03 * size, 0.22 * size))
+    label = f"R{i + 1}" if a.pitch == 0 else f"R{i + 1} h={a.pitch:.3g}"
+    return Glyph(f"R{i + 1}", "freedoms", a.kind, f"R{i + 1} {a.kind}", COLORS["rotation"], path=pieces(*parts), width=5.0,
+                 hover=rotation_text(i + 1, a, scale, unit), mesh=head, label=label, label_at=end + side * 0.06 * size * d, direction=d)
+
+
+def _couple(i: int, direction: np.ndarray, centre: np.ndarray, size: float, count: int) -> Glyph:
+    """``C<i+1>``: a double-headed arrow beside the centre (couples of one result stand apart)."""
+    e1, e2 = perpendiculars(direction)
+    angle = 2.0 * math.pi * i / max(count, 1) + math.pi / 6
+    mid = centre + _COUPLE_OFFSET * size * (math.cos(angle) * e1 + math.sin(angle) * e2)
+    half = 0.5 * _ARROW * size
+    head = _HEAD * size
+    tip = mid + half * direction
+    heads = Mesh.merged(cone(tip, direction, 1.6 * head, 0.4 * head), cone(tip - 1.5 * head * direction, direction, 1.6 * head, 0.4 * head))
+    return Glyph(f"C{i + 1}", "constraints", "couple", f"C{i + 1} couple", COLORS["couple"], path=segment(mid - half * direction, tip - head * direction),
+                 width=5.0, hover=couple_text(i + 1, direction), mesh=heads, label=f"C{i + 1}", label_at=tip + 0.05 * size * direction, direction=direction)
+
+
+def _force(n: int, f, size: float, scale: float, unit: str) -> Glyph:
+    """``W<n+1>``: the force line through its point with an arrowhead (and a circular arrow for a pitch)."""
+    d = np.asarray(f.axis, dtype=float)
+    p = np.asarray(f.point, dtype=float)
+    head = _HEAD * size
+    start, tip = p - _HALF_FORCE * size * d, p + _HALF_FORCE * size * d
+    parts = [segment(start, tip - head * d, 11)]
+    meshes = [cone(tip, d, 1.8 * head, 0.45 * head)]
+    if f.pitch != 0:
+        ring, tangent = arc(p - 0.6 * _HALF_FORCE * size * d, d, 0.8 * _MARK * size)
+        parts.append(ring)
+        meshes.append(cone(ring[-1] + 0.7 * head * tangent, tangent, 1.3 * head, 0.35 * head))
+    label = f"W{n + 1}" if f.pitch == 0 else f"W{n + 1} h={f.pitch:.3g}"
+    return Glyph(f"W{n + 1}", "constraints", f.kind, f"W{n + 1} {f.kind}", COLORS["force"], path=pieces(*parts), width=6.0,
+                 hover=force_text(n + 1, f, scale, unit), mesh=Mesh.merged(*meshes), label=label, label_at=tip + 0.05 * size * d, direction=d)
+
+
+def _unique(points: np.ndarray, eps: float) -> np.ndarray:
+    out: list[np.ndarray] = []
+    for x in points:
+        if all(np.linalg.norm(x - y) > eps for y in out):
+            out.append(x)
+    return np.array(out).reshape(-1, 3)
+
+
+def _framed(glyphs: tuple[Glyph, ...], centre: np.ndarray, size: float) -> Scene:
+    """The scene with the bounds of everything drawn."""
+    everything = np.concatenate([g.extent() for g in glyphs])
+    return Scene(glyphs, centre, size, everything.min(axis=0), everything.max(axis=0))
+
+
+def viewpoint(scene: Scene) -> tuple[float, float]:
+    """Elevation and azimuth (degrees) from which no freedom or constraint is seen end-on and no labels overlap.
+
+    The pictures' :func:`~mobility.report.plotting.choose_views`, given the
+    joints, the labels and the directions of the freedoms and constraints.
+    """
+    important = [scene.centre[None]]
+    directions = []
+    for g in scene.glyphs:
+        if g.layer == "mechanism":
+            important.append(g.points)
+        else:
+            important.append(g.label_at[None])
+            directions.append(g.direction)
+    return choose_views(np.concatenate(important), np.array(directions).reshape(-1, 3), scene.size, count=1)[0]

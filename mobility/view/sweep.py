@@ -1,0 +1,86 @@
+"""The 3D view of a sweep: a slider through its poses, each with its freedoms, pattern and margin.
+
+:func:`sweep_view` turns a :class:`~mobility.sweeps.SweepResult` into the
+frames of :func:`~mobility.view.views.poses_view`: each assembled grid point
+rebuilt as a mechanism (``SweepResult.mechanism_at``) and analysed, labelled by
+its coordinates.  A sweep larger than a page holds is thinned to evenly
+spaced poses, keeping every singular pose the sweep found, so the slider
+passes through each change of pattern.
+
+Only the sweep result's public attributes are used (``size``, ``assembled``,
+``values``, ``singular``, ``mechanism_at``, ``tolerance``, ``axes``); the
+sweeps package is imported only when a sweep is shown.
+
+Examples
+--------
+>>> import mobility
+>>> m = mobility.load("mechanisms/parallelogram.yaml")
+>>> s = mobility.sweep(m, vary={"O1": (0, 120, 3)})   # the crank turned 120 deg: folded
+>>> v = sweep_view(s)
+>>> [f.label for f in v.frames], [f.result.pattern for f in v.frames]
+(['O1=0 deg', 'O1=60 deg', 'O1=120 deg'], ['1T', '1T', '1T1R'])
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..core.analysis import analyze
+from ..errors import RequestError
+from .views import MAX_POSES, View, ViewFrame, poses_view
+
+__all__ = ["sweep_view", "sweep_poses"]
+
+
+def sweep_poses(sweep: Any, max_poses: int = MAX_POSES) -> list[int]:
+    """Indices of the grid points a view shows: every assembled one, or evenly spaced ones and every singular one.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import numpy as np
+    >>> s = SimpleNamespace(size=10, assembled=np.arange(10) != 3, singular=(SimpleNamespace(index=7),))
+    >>> sweep_poses(s, 4)
+    [0, 5, 7, 9]
+    """
+    assembled = np.flatnonzero(np.asarray(sweep.assembled, dtype=bool))
+    if len(assembled) <= max_poses:
+        return assembled.tolist()
+    singular = sorted({int(p.index) for p in sweep.singular})[:max_poses]
+    spaced = assembled[np.round(np.linspace(0, len(assembled) - 1, max_poses - len(singular))).astype(int)] if max_poses > len(singular) else []
+    return sorted(set(singular) | {int(i) for i in spaced})
+
+
+def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
+    """The view of a sweep's poses with a slider (at most ``max_poses`` of them).
+
+    Parameters
+    ----------
+    sweep : SweepResult
+        From :func:`mobility.sweep`.
+    max_poses : int
+
+    Returns
+    -------
+    View
+
+    Raises
+    ------
+    RequestError
+        When ``sweep`` is not a sweep result or no pose of it was assembled.
+    """
+    from ..report.sweep import describe_values  # here: the sweeps package loads only when a sweep is shown
+
+    needed = ("assembled", "values", "singular", "mechanism_at", "tolerance", "axes")
+    if not all(hasattr(sweep, a) for a in needed):
+        raise RequestError(f"expected a sweep result (mobility.sweep), got {type(sweep).__name__}")
+    indices = sweep_poses(sweep, max_poses)
+    if not indices:
+        raise RequestError(f"{sweep.name}: no pose of the sweep was assembled; nothing to show")
+    frames = []
+    for i in indices:
+        mechanism = sweep.mechanism_at(i)
+        frames.append(ViewFrame(mechanism, analyze(mechanism, tol=sweep.tolerance), describe_values(sweep, sweep.values[i])))
+    return poses_view(frames, max_poses=max_poses)

@@ -1,0 +1,209 @@
+"""The interactive 3D view of a mechanism's freedoms and constraints, for a page or a notebook.
+
+:func:`mechanism_view` shows one pose; :func:`poses_view` shows a sequence of
+poses (a list of :class:`ViewFrame`, or of ``(mechanism, result, label)``
+triples, e.g. from :func:`mobility.sample_poses` or a sweep) with a slider
+that walks through them, the pattern and rank margin of each in the title.
+
+A :class:`View` writes itself as one self-contained HTML page
+(:meth:`View.write_html`, works offline) and shows itself in Jupyter through
+plotly's own display (``_repr_mimebundle_``), with the text report as the
+plain-text part, so a front end without plotly shows the text.
+
+Examples
+--------
+>>> import mobility
+>>> m = mobility.load("mechanisms/3prs.yaml")
+>>> v = mechanism_view(m)
+>>> v.frames[0].result.pattern, [g.key for g in v.scenes[0].layer("freedoms")]
+('1T2R', ['T1', 'R1', 'R2'])
+>>> v.answer
+'end effector 3 DOF, pattern 1T2R; mobility 3 (Grübler–Kutzbach count 3)'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import Any, Iterable
+
+from ..core.analysis import analyze
+from ..core.model import Mechanism
+from ..core.result import Result
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..errors import MissingExtraError, RequestError
+from ..report.text import text_report
+from .describe import header_lines, margin_text
+from .figure import figure_dict as build_figure_dict
+from .page import page_html, require_plotly
+from .scene import Scene, build_scene
+
+__all__ = ["ViewFrame", "View", "mechanism_view", "poses_view", "MAX_POSES"]
+
+
+@dataclass(frozen=True, eq=False)
+class ViewFrame:
+    """One pose of a view: the mechanism at that pose, its analysis, and a label for the slider."""
+
+    mechanism: Mechanism
+    result: Result
+    label: str = ""
+
+
+@dataclass(frozen=True, eq=False)
+class View:
+    """An interactive 3D view of one or several poses.
+
+    Attributes
+    ----------
+    frames : tuple of ViewFrame
+    scenes : tuple of Scene
+        What is drawn for each frame (:func:`mobility.view.scene.build_scene`).
+    """
+
+    frames: tuple[ViewFrame, ...]
+    scenes: tuple[Scene, ...]
+
+    @property
+    def name(self) -> str:
+        """The mechanism's name."""
+        return self.frames[0].result.name
+
+    @property
+    def answer(self) -> str:
+        """DOF, pattern and mobility (of the first pose) in one line."""
+        r = self.frames[0].result
+        text = f"end effector {r.dof} DOF, pattern {r.pattern}; mobility {r.mobility} (Grübler–Kutzbach count {r.gruebler_kutzbach})"
+        return text if len(self.frames) == 1 else f"{self.frames[0].label or 'first pose'}: {text}"
+
+    @cached_property
+    def figure_dict(self) -> dict[str, Any]:
+        """The plotly figure as a JSON-ready dict (no plotly needed)."""
+        return build_figure_dict([(s, f.result, f.label) for s, f in zip(self.scenes, self.frames)])
+
+    @property
+    def figure(self) -> Any:
+        """The view as a :class:`plotly.graph_objects.Figure` (validated; needs plotly)."""
+        require_plotly()
+        import plotly.graph_objects as go
+
+        return go.Figure(self.figure_dict)
+
+    def to_html(self) -> str:
+        """The self-contained page (plotly.js inline; nothing fetched from the network)."""
+        lines = header_lines([f.result for f in self.frames], [f.label for f in self.frames])
+        figure = self.figure_dict
+        if len(self.frames) == 1:  # the page's header says it all; several poses keep the title the slider updates
+            layout = {**figure["layout"], "title": {"text": ""}, "margin": {**figure["layout"]["margin"], "t": 10}}
+            figure = {**figure, "layout": layout}
+        return page_html(figure, self.name, self.answer, lines)
+
+    def write_html(self, path: str | Path) -> Path:
+        """Write :meth:`to_html` to ``path``; returns the path.
+
+        Raises
+        ------
+        MissingExtraError
+            When plotly is not installed.
+        RequestError
+            When the file cannot be written (the message says why).
+        """
+        path = Path(path)
+        text = self.to_html()
+        try:
+            path.write_text(text, encoding="utf-8")
+        except OSError as exc:
+            raise RequestError(f"cannot write {path}: {exc.strerror or exc}") from None
+        return path
+
+    def text(self) -> str:
+        """The text form: the text report of one pose, a line per pose for several."""
+        if len(self.frames) == 1:
+            return text_report(self.frames[0].result)
+        results = [f.result for f in self.frames]
+        lines = [self.name, *("  " + x for x in header_lines(results, [f.label for f in self.frames]))]
+        for k, f in enumerate(self.frames):
+            lines.append(f"  {f.label or k + 1}: {f.result.dof} DOF ({f.result.pattern}), mobility {f.result.mobility}, {margin_text(f.result)}")
+        return "\n".join(lines)
+
+    def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, Any]:
+        """Jupyter: plotly's own display of the figure, the text report as plain text."""
+        try:
+            figure = self.figure
+        except MissingExtraError as exc:
+            return {"text/plain": f"{self.text()}\n({exc})"}
+        bundle = figure._repr_mimebundle_(include, exclude)  # plotly's renderers choose the rich forms
+        bundle = bundle[0] if isinstance(bundle, tuple) else dict(bundle)
+        bundle["text/plain"] = self.text()
+        return bundle
+
+    def __repr__(self) -> str:
+        return f"<View of {self.name}: {len(self.frames)} pose(s)>"
+
+
+def mechanism_view(mechanism: Mechanism, result: Result | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> View:
+    """The 3D view of ``mechanism`` at its pose with its end effector's freedoms and constraints.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    result : Result, optional
+        Its analysis; computed with ``tol`` when not given.
+    tol : Tolerance
+
+    Returns
+    -------
+    View
+    """
+    return poses_view([ViewFrame(mechanism, result if result is not None else analyze(mechanism, tol=tol))])
+
+
+MAX_POSES = 200
+"""The most poses one view holds (every pose is in the page; pick a subset of a large sweep)."""
+
+
+def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSES) -> View:
+    """A 3D view of several poses with a slider: each pose's freedoms, constraints, pattern and margin.
+
+    Parameters
+    ----------
+    frames : iterable of ViewFrame or (Mechanism, Result, label)
+        In slider order.
+    max_poses : int
+        Refuse more poses than this: each one is drawn into the page, which
+        grows (about 40 kB a pose) and slows down with every pose.
+
+    Returns
+    -------
+    View
+
+    Raises
+    ------
+    RequestError
+        When there is no frame, more than ``max_poses``, or a frame is not a
+        mechanism with its result.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> m = mobility.load("mechanisms/four_bar.yaml")
+    >>> poses = [m, *mobility.sample_poses(m, 2, step=0.2, seed=1)]
+    >>> v = poses_view([(p, mobility.analyze(p), f"pose {k}") for k, p in enumerate(poses)])
+    >>> len(v.frames), v.figure_dict["layout"]["sliders"][0]["steps"][2]["label"]
+    (3, 'pose 2')
+    """
+    out = []
+    for k, f in enumerate(frames):
+        if not isinstance(f, ViewFrame):
+            if not (isinstance(f, tuple) and len(f) in (2, 3)):
+                raise RequestError(f"frame {k}: expected a ViewFrame or a (mechanism, result, label) tuple, got {type(f).__name__}")
+            f = ViewFrame(*f)
+        if not isinstance(f.mechanism, Mechanism) or not isinstance(f.result, Result):
+            raise RequestError(f"frame {k}: expected a Mechanism and its Result, got {type(f.mechanism).__name__} and {type(f.result).__name__}")
+        out.append(f)
+    if not out:
+        raise RequestError("a view needs at least one pose")
+    if len(out) > max_poses:
+        raise RequestError(f"{len(out)} poses is more than a view holds (max_poses={max_poses}); show a subset, e.g. every k-th pose")
+    return View(tuple(out), tuple(build_scene(f.mechanism, f.result) for f in out))

@@ -1,0 +1,449 @@
+"""The interactive 3D view: scene, figure, page, command line, notebook display, and the page in a real browser.
+
+The browser tests drive Debian's headless Chromium through Playwright
+(``tests/browser.py``); a missing browser fails them.  They check what a
+person sees: the page loads with no console error and fetches nothing from
+the network, the 3D canvas is not blank, it holds as many freedom glyphs as
+the result has DOF and as many constraint glyphs as constraint wrenches, and
+a layer's title switches the layer off (its colour leaves the picture).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import io
+import json
+import re
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import mobility
+from mobility.cli import main
+from mobility.core.loop_closure import loop_closure
+from mobility.errors import MissingExtraError, RequestError
+from mobility.report.text import text_report
+from mobility.view import LAYERS, ViewFrame, build_scene, mechanism_view, poses_view, sweep_view
+from mobility.view.figure import LEGENDS
+from mobility.view.notebook import register_display, result_mimebundle, sweep_mimebundle
+
+from browser import Tab, browser_context
+
+ROOT = Path(__file__).resolve().parent.parent
+MECHANISMS = ROOT / "mechanisms"
+ALL_FILES = sorted(MECHANISMS.glob("*.yaml"))
+BROWSER_FILES = ["3prs_tilted.yaml", "agile_eye.yaml", "four_bar.yaml"]  # a page costs seconds in software WebGL
+NUMBER = r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
+
+
+def _load(name: str):
+    m = mobility.load(MECHANISMS / name)
+    return m, mobility.analyze(m)
+
+
+def _vector(text: str, word: str) -> np.ndarray:
+    found = re.search(rf"{word} \[({NUMBER}), ({NUMBER}), ({NUMBER})\]", text)
+    assert found, f"no '{word} [..]' in {text!r}"
+    return np.array([float(x) for x in found.groups()])
+
+
+def _pitch(text: str, word: str) -> float:
+    found = re.search(rf"{word} ({NUMBER})", text)
+    return float(found.group(1)) if found else 0.0
+
+
+def _screws_from_hover(scene, layer: str) -> np.ndarray:
+    """The screws a person reads in the hover text of a layer (rows [w; v] or [f; m]), as written."""
+    rows = []
+    for g in scene.layer(layer):
+        if g.kind in ("translation", "couple"):
+            rows.append(np.r_[np.zeros(3), _vector(g.hover, "direction" if g.kind == "translation" else "about")])
+        else:
+            d = _vector(g.hover, "axis" if layer == "freedoms" else "along")
+            p = _vector(g.hover, "through")
+            h = _pitch(g.hover, "pitch") if layer == "freedoms" else _pitch(g.hover, "couple pitch")
+            rows.append(np.r_[d, np.cross(p, d) + h * d])
+    return np.array(rows).reshape(-1, 6)
+
+
+# ---------------------------------------------------------------------------
+# the scene: as many glyphs as freedoms and constraints, each where its screw is
+
+
+@pytest.mark.parametrize("path", ALL_FILES, ids=lambda p: p.stem)
+def test_scene_has_one_glyph_per_freedom_and_constraint(path):
+    m = mobility.load(path)
+    r = mobility.analyze(m)
+    scene = build_scene(m, r)
+    freedoms, constraints = scene.layer("freedoms"), scene.layer("constraints")
+    assert len(freedoms) == r.dof == loop_closure(m).end_effector_twists.shape[1]  # the second route agrees
+    assert len(constraints) == 6 - r.dof
+    assert [g.key for g in freedoms] == [f"T{i + 1}" for i in range(r.translation_count)] + [f"R{i + 1}" for i in range(len(r.rotations))]
+    assert {g.layer for g in scene.glyphs} <= set(LAYERS)
+    assert len({g.key for g in scene.glyphs}) == len(scene.glyphs)
+    assert np.all(scene.lower <= scene.upper) and scene.size > 0
+
+
+@pytest.mark.parametrize("name", ["3prs_tilted.yaml", "agile_eye.yaml", "four_bar.yaml", "3upu_singular.yaml", "metrom.yaml"])
+def test_the_numbers_a_person_reads_are_reciprocal_screws(name):
+    """Parsed back from the hover text (6 digits), the freedoms and constraints shown are reciprocal, each of full rank."""
+    m, r = _load(name)
+    scene = build_scene(m, r)
+    twists, wrenches = _screws_from_hover(scene, "freedoms"), _screws_from_hover(scene, "constraints")
+    L = r.length_scale
+    scale = np.diag([1, 1, 1, 1 / L, 1 / L, 1 / L])  # lengths over the mechanism's size: products become unitless
+    t, w = twists @ scale, wrenches @ scale
+    t, w = t / np.linalg.norm(t, axis=1, keepdims=True), w / np.linalg.norm(w, axis=1, keepdims=True)
+    reciprocal = t[:, :3] @ w[:, 3:].T + t[:, 3:] @ w[:, :3].T
+    assert np.max(np.abs(reciprocal), initial=0.0) < 1e-4
+    # of full rank: together they are the twist system and its whole reciprocal
+    assert (np.linalg.matrix_rank(t, tol=1e-4) if len(t) else 0) == r.dof
+    assert (np.linalg.matrix_rank(w, tol=1e-4) if len(w) else 0) == 6 - r.dof
+
+
+def test_glyphs_are_drawn_where_their_screws_are():
+    m, r = _load("3prs_tilted.yaml")
+    scene = build_scene(m, r)
+    by_key = {g.key: g for g in scene.glyphs}
+    for i, a in enumerate(r.rotations):
+        g = by_key[f"R{i + 1}"]
+        axis_points = g.path[:15]  # the first piece: the axis line itself
+        off_axis = np.cross(axis_points - a.point, a.axis)
+        assert np.max(np.linalg.norm(off_axis, axis=1)) < 1e-9 * scene.size
+        assert abs(abs(g.direction @ a.axis) - 1) < 1e-12
+    for i, f in enumerate(r.forces):
+        g = by_key[f"W{len(r.couples) + i + 1}"]
+        tip = g.mesh.vertices[0]  # the arrowhead's tip lies on the force line
+        assert np.linalg.norm(np.cross(tip - f.point, f.axis)) < 1e-9 * scene.size
+    for i, t in enumerate(r.translations):
+        g = by_key[f"T{i + 1}"]
+        shaft = g.path[-1] - g.path[0]
+        assert np.allclose(shaft / np.linalg.norm(shaft), t)
+        assert np.allclose(g.path[0], scene.centre)
+
+
+@settings(max_examples=15, deadline=None)
+@given(scale=st.floats(1e-3, 1e3), shift=st.tuples(*[st.floats(-10.0, 10.0)] * 3))
+def test_a_scaled_and_moved_mechanism_looks_the_same(scale, shift):
+    """Glyph sizes are fractions of the scene: metres or millimetres, here or there, the same picture."""
+    m, r = _load("3prs_tilted.yaml")
+    shift = np.array(shift)
+    moved = m.replace(joints=tuple(
+        dataclasses.replace(j, point=None if j.point is None else tuple(scale * np.asarray(j.point) + scale * shift))
+        for j in m.world_joints), frames=())
+    a, b = build_scene(m, r), build_scene(moved, mobility.analyze(moved))
+    assert [g.key for g in a.glyphs] == [g.key for g in b.glyphs]
+    for ga, gb in zip(a.glyphs, b.glyphs):
+        expected = scale * (ga.extent() + shift)
+        assert np.allclose(gb.extent(), expected, rtol=0, atol=1e-6 * scale * a.size), ga.key
+
+
+# ---------------------------------------------------------------------------
+# the figure, the page
+
+
+def test_figure_traces_carry_layer_key_and_frame_and_plotly_accepts_them():
+    import plotly.graph_objects as go
+
+    m, r = _load("3prs_tilted.yaml")
+    fig = mechanism_view(m, r).figure_dict
+    json.dumps(fig)  # JSON-ready as it is
+    go.Figure(fig)  # plotly validates every attribute
+    keys = {layer: {t["meta"]["key"] for t in fig["data"] if t["meta"]["layer"] == layer} for layer in LAYERS}
+    assert keys["freedoms"] == {"T1", "R1", "R2"} and keys["constraints"] == {"C1", "W2", "W3"}
+    for t in fig["data"]:
+        assert t["legend"] == LEGENDS[t["meta"]["layer"]] and t["legendgroup"] == t["meta"]["key"]
+    assert sum(t["showlegend"] for t in fig["data"]) == len({t["meta"]["key"] for t in fig["data"]})  # one entry per glyph
+    hover = {t["meta"]["key"]: t["hovertext"] for t in fig["data"] if t["type"] == "mesh3d"}
+    assert "pitch -0.921859 mm/rad" in hover["R2"] and "couple pitch 0.921859 mm" in hover["W3"]
+
+
+def test_slider_shows_one_pose_at_a_time():
+    frames = _parallelogram_frames()
+    view = poses_view(frames)
+    fig = view.figure_dict
+    steps = fig["layout"]["sliders"][0]["steps"]
+    assert [s["label"] for s in steps] == [f.label for f in frames]
+    for k, (step, frame) in enumerate(zip(steps, frames)):
+        shown = [t for t, v in zip(fig["data"], step["args"][0]["visible"]) if v]
+        assert {t["meta"]["frame"] for t in shown} == {k}
+        assert len({t["meta"]["key"] for t in shown if t["meta"]["layer"] == "freedoms"}) == frame.result.dof
+        assert frame.result.pattern in step["args"][1]["title.text"]
+    assert [t["visible"] for t in fig["data"]] == [t["meta"]["frame"] == 0 for t in fig["data"]]
+
+
+def test_a_sweep_is_shown_pose_by_pose_with_its_own_answers():
+    m = mobility.load(MECHANISMS / "parallelogram.yaml")
+    sweep = mobility.sweep(m, vary={"O1": (-90, 150, 9)})  # every 30 deg: folded at -60 and 120
+    view = sweep_view(sweep)
+    assert [f.label for f in view.frames] == [f"O1={v:g} deg" for v in range(-90, 151, 30)]
+    # the view analyses each pose again: its answers agree with the batched sweep, pose by pose
+    assert [f.result.dof for f in view.frames] == sweep.dof.tolist() == [1, 2, 1, 1, 1, 1, 1, 2, 1]
+    for scene, frame in zip(view.scenes, view.frames):
+        assert len(scene.layer("freedoms")) == frame.result.dof
+    thinned = sweep_view(mobility.sweep(m, vary={"O1": (-180, 180, 37)}), max_poses=5)
+    assert len(thinned.frames) == 5 and {"O1=-60 deg", "O1=120 deg"} <= {f.label for f in thinned.frames}
+    with pytest.raises(RequestError, match="expected a sweep result"):
+        sweep_view(m)
+
+
+def test_poses_view_refuses_what_is_not_a_pose():
+    m, r = _load("four_bar.yaml")
+    with pytest.raises(RequestError, match="at least one pose"):
+        poses_view([])
+    with pytest.raises(RequestError, match="frame 1: expected a Mechanism and its Result"):
+        poses_view([(m, r, "a"), (r, m, "b")])
+    with pytest.raises(RequestError, match="frame 0: expected a ViewFrame"):
+        poses_view(["four_bar.yaml"])
+    with pytest.raises(RequestError, match="3 poses is more than a view holds"):
+        poses_view([(m, r, "a")] * 3, max_poses=2)
+
+
+def test_page_is_self_contained_and_states_the_answer(tmp_path):
+    m, r = _load("3prs_tilted.yaml")
+    page = mechanism_view(m, r).write_html(tmp_path / "v.html").read_text()
+    assert not re.search(r"""<(script|link|img|iframe)[^>]+(src|href)=["']?(https?:)?//""", page)  # nothing fetched
+    assert "@import" not in page and "<link" not in page
+    assert "end effector 3 DOF, pattern 1T2R; mobility 3 (Grübler–Kutzbach count 3)" in page
+    assert "<title>3-PRS parallel head (Sprint Z3), tilted pose</title>" in page
+    assert len(page.encode()) < 6_000_000
+
+
+def test_page_header_escapes_the_name(tmp_path):
+    m, r = _load("four_bar.yaml")
+    m = m.replace(name="<script>alert(1)</script> & co")
+    page = mechanism_view(m).to_html()
+    assert "<h1>&lt;script&gt;alert(1)&lt;/script&gt; &amp; co</h1>" in page
+
+
+def test_without_plotly_the_view_says_what_to_install(monkeypatch):
+    for name in [n for n in sys.modules if n == "plotly" or n.startswith("plotly.")]:
+        monkeypatch.delitem(sys.modules, name)
+    monkeypatch.setitem(sys.modules, "plotly", None)  # import plotly now raises ImportError
+    m, r = _load("four_bar.yaml")
+    view = mechanism_view(m, r)
+    with pytest.raises(MissingExtraError) as err:
+        view.to_html()
+    assert str(err.value) == "the 3D view needs plotly, which is not installed: pip install 'mobility[view]'"
+    bundle = view._repr_mimebundle_()  # a notebook falls back to text, with the hint
+    assert list(bundle) == ["text/plain"] and "pattern: 1R" in bundle["text/plain"] and "mobility[view]" in bundle["text/plain"]
+    err_out = io.StringIO()
+    monkeypatch.setattr(sys, "stderr", err_out)
+    assert main(["view", str(MECHANISMS / "four_bar.yaml"), "-o", "x.html"]) == 2
+    assert err_out.getvalue() == "mobility: the 3D view needs plotly, which is not installed: pip install 'mobility[view]'\n"
+
+
+# ---------------------------------------------------------------------------
+# the command line
+
+
+def test_cli_writes_the_page(tmp_path, capsys):
+    out = tmp_path / "view.html"
+    assert main(["view", str(MECHANISMS / "agile_eye.yaml"), "-o", str(out)]) == 0
+    said = capsys.readouterr().out
+    assert said.startswith(f"wrote {out}: ") and "3 DOF (3R)" in said
+    assert out.read_text().count('"layer":"freedoms"') >= 3
+
+
+def test_cli_samples_poses_with_a_slider(tmp_path, capsys):
+    out = tmp_path / "view.html"
+    assert main(["view", str(MECHANISMS / "four_bar.yaml"), "-o", str(out), "--samples", "2", "--seed", "3"]) == 0
+    assert "3 poses" in capsys.readouterr().out
+    page = out.read_text()
+    assert '"label":"sampled pose 2"' in page and "use the slider" in page
+
+
+def test_cli_shows_a_sweep_with_a_slider(tmp_path, capsys):
+    out = tmp_path / "sweep.html"
+    assert main(["view", str(MECHANISMS / "parallelogram.yaml"), "-o", str(out), "--vary", "O1=0:120:3"]) == 0
+    assert "3 poses" in capsys.readouterr().out
+    page = out.read_text()
+    assert '"label":"O1=120 deg"' in page and "(1T1R)" in page
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["four_bar.yaml", "-o", "v.html", "--vary", "A=0:1"], "--vary 'A=0:1': expected NAME=START:STOP:COUNT"),
+        (["four_bar.yaml", "-o", "view.png"], "view.png: expected a page name ending in .html"),
+        (["missing.yaml", "-o", "v.html"], "missing.yaml"),
+        (["four_bar.yaml", "-o", "v.html", "--samples", "-1"], "--samples must not be negative"),
+        (["four_bar.yaml", "-o", "no/such/dir/v.html"], "cannot write"),
+        (["four_bar.yaml", "-o", "v.html", "--tol", "0.5"], "--tol must lie in"),
+    ],
+)
+def test_cli_bad_input_is_one_line_and_exit_2(args, message, tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "four_bar.yaml").write_text((MECHANISMS / "four_bar.yaml").read_text())
+    assert main(["view", *args]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and message in err and "Traceback" not in err
+
+
+def test_cli_takes_samples_or_a_sweep_not_both(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["view", "four_bar.yaml", "-o", "v.html", "--vary", "A=0:10:2", "--samples", "2"])
+    assert stop.value.code == 2
+    assert capsys.readouterr().err.splitlines()[-1] == "mobility view: error: argument --samples: not allowed with argument --vary"
+
+
+def test_cli_bad_file_names_file_line_and_key(write_yaml, tmp_path, capsys):
+    path = write_yaml("name: x\nground: g\nend_effector: e\njoints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0], point: [0, 0, 0]}\n")
+    assert main(["view", str(path), "-o", str(tmp_path / "v.html")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"mobility: {path}:5: joints[0].axis") and "\n" not in err
+
+
+# ---------------------------------------------------------------------------
+# Jupyter
+
+
+def test_a_result_shows_itself_as_the_view_in_a_notebook(monkeypatch):
+    import plotly.io as pio
+    from IPython.core.formatters import DisplayFormatter
+
+    monkeypatch.setattr(pio.renderers, "default", "plotly_mimetype")  # what plotly picks in a Jupyter kernel
+    formatter = DisplayFormatter()
+    register_display(SimpleNamespace(display_formatter=formatter))
+    m, r = _load("3prs_tilted.yaml")
+    data, _ = formatter.format(r)
+    fig = data["application/vnd.plotly.v1+json"]
+    freedoms = {t["meta"]["key"] for t in fig["data"] if t["meta"]["layer"] == "freedoms"}
+    assert len(freedoms) == r.dof
+    assert data["text/plain"] == text_report(r)
+    # a terminal shows the text report
+    terminal = DisplayFormatter(active_types=["text/plain"])
+    register_display(SimpleNamespace(display_formatter=terminal))
+    assert terminal.format(r)[0] == {"text/plain": text_report(r)}
+
+
+def test_a_sweep_shows_itself_as_a_slider_in_a_notebook(monkeypatch):
+    import plotly.io as pio
+    from IPython.core.formatters import DisplayFormatter
+
+    from mobility.report.sweep import sweep_summary
+
+    monkeypatch.setattr(pio.renderers, "default", "plotly_mimetype")
+    formatter = DisplayFormatter()
+    register_display(SimpleNamespace(display_formatter=formatter))
+    sweep = mobility.sweep(mobility.load(MECHANISMS / "parallelogram.yaml"), vary={"O1": (0, 120, 3)})
+    data, _ = formatter.format(sweep)
+    steps = data["application/vnd.plotly.v1+json"]["layout"]["sliders"][0]["steps"]
+    assert [s["label"] for s in steps] == ["O1=0 deg", "O1=60 deg", "O1=120 deg"]
+    assert data["text/plain"] == sweep_summary(sweep) == sweep_mimebundle(sweep, rich=False)["text/plain"]
+
+
+def test_a_result_without_its_mechanism_is_shown_as_text():
+    m, r = _load("four_bar.yaml")
+    class WithoutMechanism:  # the analysis's details, less the mechanism
+        def __getattr__(self, name):
+            if name == "mechanism":
+                raise AttributeError(name)
+            return getattr(r.detail, name)
+
+    bare = mobility.Result(**{f: getattr(r, f) for f in r.__dataclass_fields__ if f != "detail"}, detail=WithoutMechanism())
+    assert result_mimebundle(bare) == {"text/plain": text_report(r)}
+
+
+def test_a_notebook_kernel_displays_results_with_plotly():
+    import nbclient
+    import nbformat
+
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(
+        "import mobility\nmobility.analyze(mobility.load('mechanisms/agile_eye.yaml'))")])
+    nbclient.NotebookClient(nb, timeout=120, kernel_name="python3", resources={"metadata": {"path": str(ROOT)}}).execute()
+    (out,) = nb.cells[0].outputs
+    fig = out["data"]["application/vnd.plotly.v1+json"]
+    layers = [t["meta"]["layer"] for t in fig["data"]]
+    assert "freedoms" in layers and "pattern: 3R" in out["data"]["text/plain"]
+    assert len({t["meta"]["key"] for t in fig["data"] if t["meta"]["layer"] == "constraints"}) == 3
+
+
+# ---------------------------------------------------------------------------
+# in a real browser
+
+
+def _parallelogram_frames() -> list[ViewFrame]:
+    m = mobility.load(MECHANISMS / "parallelogram.yaml")
+    poses = [m, *mobility.sample_poses(m, 2, step=0.3, seed=2), mobility.load(MECHANISMS / "parallelogram_change_point.yaml")]
+    labels = ["as in the file", "sampled 1", "sampled 2", "change point"]
+    return [ViewFrame(p, mobility.analyze(p), lab) for p, lab in zip(poses, labels)]
+
+
+@pytest.fixture(scope="module")
+def tab():
+    """One tab of headless Chromium for every page of this module."""
+    try:
+        with browser_context() as context:
+            yield Tab(context)
+    except RuntimeError as exc:  # no browser: a failure, never a skip
+        pytest.fail(str(exc))
+
+
+def _rgb(hex_colour: str) -> np.ndarray:
+    return np.array([int(hex_colour[i:i + 2], 16) for i in (1, 3, 5)], dtype=float)
+
+
+def _pixels(png: bytes) -> np.ndarray:
+    from PIL import Image
+
+    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=float)
+
+
+def _share_of(image: np.ndarray, colour: str, within: float = 40.0) -> float:
+    return float(np.mean(np.linalg.norm(image - _rgb(colour), axis=2) < within))
+
+
+def _layer_colours(scene, layer: str) -> set[str]:
+    return {g.color for g in scene.layer(layer)}
+
+
+@pytest.mark.parametrize("name", BROWSER_FILES)
+def test_page_in_the_browser_shows_one_glyph_per_freedom_and_constraint(tab, name, tmp_path):
+    m, r = _load(name)
+    view = mechanism_view(m, r)
+    page = tab.open(view.write_html(tmp_path / "view.html"))
+    assert page.errors() == []
+    assert [u for u in page.requests if not u.startswith("file:")] == []  # works offline
+    header = page.page.inner_text("header")
+    assert f"end effector {r.dof} DOF, pattern {r.pattern}; mobility {r.mobility}" in header
+    glyphs = page.glyphs()
+    assert len(glyphs["freedoms"]) == r.dof
+    assert len(glyphs["constraints"]) == 6 - r.dof
+    before = _pixels(page.screenshot(scene_only=True))
+    assert np.mean(np.linalg.norm(before - 255.0, axis=2) > 30) > 0.005  # not blank
+    assert max(_share_of(before, c) for c in _layer_colours(view.scenes[0], "freedoms")) > 2e-4
+    # the constraints layer's title switches it off: its glyphs leave the figure, its colours the picture
+    colours = _layer_colours(view.scenes[0], "constraints")
+    shown = {c: _share_of(before, c, 25.0) for c in colours}
+    assert max(shown.values()) > 2e-4
+    page.page.locator("rect.legend3titletoggle").click()
+    page.wait_for_glyphs("constraints", 0)
+    assert len(page.glyphs()["freedoms"]) == r.dof
+    after = _pixels(page.screenshot(scene_only=True))
+    for c in colours:
+        assert _share_of(after, c, 25.0) < 0.2 * shown[c] + 1e-6, c
+    page.page.locator("rect.legend3titletoggle").click()  # and back on
+    page.wait_for_glyphs("constraints", 6 - r.dof)
+
+
+def test_the_slider_walks_through_the_poses_in_the_browser(tab, tmp_path):
+    frames = _parallelogram_frames()
+    assert [f.result.dof for f in frames] == [1, 1, 1, 2]  # the change point gains a freedom
+    page = tab.open(poses_view(frames).write_html(tmp_path / "poses.html"))
+    assert page.errors() == []
+    assert len(page.glyphs()["freedoms"]) == 1
+    rail = page.page.locator(".slider-rail-rect").bounding_box()
+    page.page.mouse.click(rail["x"] + rail["width"] - 1, rail["y"] + rail["height"] / 2)  # the last pose
+    page.wait_for_glyphs("freedoms", 2)
+    assert len(page.glyphs()["constraints"]) == 4
+    title = page.page.evaluate("(id) => document.getElementById(id)._fullLayout.title.text", page.element_id)
+    assert "change point" in title and "(1T1R)" in title and "margin" in title
+    page.page.mouse.click(rail["x"] + 1, rail["y"] + rail["height"] / 2)  # back to the first
+    page.wait_for_glyphs("freedoms", 1)
+    assert len(page.glyphs()["constraints"]) == 5
