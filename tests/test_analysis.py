@@ -7,6 +7,8 @@ from builders import four_bar, six_ups, three_prs
 import mobility
 from mobility.core.model import Joint, Mechanism
 from mobility.core.screws import same_subspace
+from mobility.core.topology import JointNode
+from mobility.errors import RequestError
 
 Z = (0, 0, 1)
 
@@ -244,3 +246,39 @@ joints:
             assert np.allclose(moved / scale, got / (np.linalg.norm(got[:3]) or np.linalg.norm(got[3:]))), j.name
             col += 1
     assert col == js.twists.shape[1]
+
+
+def test_node_systems_give_every_node_of_the_tree_read_only():
+    m = three_prs()
+    r = mobility.analyze(m)
+    systems = r.node_systems
+    root = r.topology.root
+    assert r.topology.structure == r.structure and not r.topology.detached
+    assert systems[root] == (r.dof, r.idle_dof) and systems[root].mobility == r.mobility
+    # each limb (a child of the top parallel connection) as the limb systems report it in its own frame
+    assert [systems[c] for c in root.children] == [(limb.dof, limb.idle_dof) for limb in r.limbs] == [(5, 0)] * 3
+    assert sum(isinstance(n, JointNode) for n in systems) == len(m.joints) and len(systems) == len(m.joints) + 4
+    with pytest.raises(TypeError):
+        systems[root] = (0, 0)
+
+
+def test_detached_networks_have_their_systems_too():
+    z = (0, 0, 1)
+    m = Mechanism("arm with a four-bar hanging off the base", "g", "e", (
+        Joint("A", "R", ("g", "e"), axis=z, point=(0, 0, 0)),
+        Joint("B", "R", ("g", "x"), axis=z, point=(0, 0, 1)),
+        Joint("C", "R", ("x", "y"), axis=z, point=(1, 2, 1)),
+        Joint("D", "R", ("y", "w"), axis=z, point=(4, 2.5, 1)),
+        Joint("E", "R", ("w", "g"), axis=z, point=(5, 0, 1)),
+    ))
+    r = mobility.analyze(m)
+    (detached,) = r.topology.detached
+    assert r.node_systems[detached] == (1, 0) and r.node_systems[r.topology.root] == (1, 0)
+    assert r.mobility == 2
+
+
+def test_an_unknown_joint_name_is_a_request_error():
+    m = four_bar()
+    assert m.joint(m.joints[1].name) is m.joints[1]
+    with pytest.raises(RequestError, match="no joint named 'Z'; the joints are"):
+        m.joint("Z")

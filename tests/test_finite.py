@@ -1,4 +1,4 @@
-"""Instantaneous or full-cycle mobility (mobility.finite.full_cycle).
+"""Instantaneous or full-cycle mobility (mobility.finite).
 
 The cases of the issue, built in code (and from the library files where they
 exist), each checked against what is known independently: the literature, a
@@ -18,11 +18,12 @@ from builders import transformed
 import mobility
 from mobility.cli import main
 from mobility.errors import MechanismFileError
-from mobility.core.kinematics import sample_poses
-from mobility.finite.full_cycle import VERDICTS, finite_mobility, finite_report
-from mobility.core.kinematics import displacement_log, kinematics
+from mobility.core.kinematics import kinematics, sample_poses
+from mobility.errors import RequestError
+from mobility.finite import VERDICTS, finite_mobility
+from mobility.report.finite import finite_report
 from mobility.core.model import Joint, Mechanism
-from mobility.core.transforms import Transform, rotation_from_axis_angle
+from mobility.core.transforms import Transform, displacement_log, rotation_from_axis_angle
 
 MECHANISMS = Path(__file__).resolve().parent.parent / "mechanisms"
 
@@ -376,9 +377,10 @@ def test_results_are_reproducible_for_a_seed():
     assert [p.residuals for p in a.probes] == [p.residuals for p in b.probes]
 
 
-def test_bad_steps_are_refused():
-    with pytest.raises(ValueError):
-        finite_mobility(bennett(), steps=(0.0, 0.01))
+@pytest.mark.parametrize("steps", [(0.0, 0.01), (), (-0.1,), (float("nan"), 0.1), ("a",)])
+def test_bad_steps_are_refused(steps):
+    with pytest.raises(RequestError, match="steps: expected positive numbers"):
+        finite_mobility(bennett(), steps=steps)
 
 
 # ---------------------------------------------------------------------------

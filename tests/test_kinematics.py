@@ -1,4 +1,4 @@
-"""Finite kinematics (mobility.core.kinematics): exponentials, forward kinematics, loop closure, re-closure.
+"""Finite kinematics (mobility.core.kinematics, on the exponential map of mobility.core.transforms): forward kinematics, loop closure, re-closure.
 
 Each piece is checked by a second route: scipy's matrix exponential for the
 closed forms, finite differences for the Jacobians, the loop-closure route of
@@ -14,10 +14,12 @@ from builders import six_ups, transformed
 from scipy.linalg import expm
 from test_finite import bennett, folded_parallelogram, puu4, rigidity_gap, tsai_3upu
 
-from mobility.core.kinematics import CLOSURE_TOLERANCE, _dexp, bracket, displacement_log, kinematics, twist_exp, twist_matrix
+from mobility.core.kinematics import kinematics, sample_poses
 from mobility.core.loop_closure import loop_closure
 from mobility.core.model import Joint, Mechanism
-from mobility.core.transforms import Transform, rotation_from_axis_angle
+from mobility.core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from mobility.errors import RequestError
+from mobility.core.transforms import Transform, bracket, dexp, displacement_log, rotation_from_axis_angle, twist_exp, twist_matrix
 
 
 def mixed_joints() -> Mechanism:
@@ -64,7 +66,7 @@ def test_exp_log_and_dexp_agree_with_scipy(angle):
     ad[3:, :3] = twist_matrix(np.concatenate([x[3:], [0, 0, 0]]))[:3, :3]
     block[:6, :6] = ad
     block[:6, 6:] = np.eye(6)
-    assert np.allclose(_dexp(x), expm(block)[:6, 6:], atol=1e-13)
+    assert np.allclose(dexp(x), expm(block)[:6, 6:], atol=1e-13)
 
 
 def test_bracket_is_the_matrix_commutator():
@@ -173,8 +175,34 @@ def test_close_reports_failure_instead_of_raising():
     # turning the crank while the other three joints are held: impossible
     closure = kin.close(np.array([0.1, 0, 0, 0]), constraints=(np.eye(4), np.array([0.1, 0, 0, 0])))
     assert not closure.converged and closure.residual > 1e-3
-    assert closure.residual >= CLOSURE_TOLERANCE
     assert closure.iterations < 40  # it gives up when Newton stops gaining
+
+
+def test_closure_threshold_is_the_policy_s():
+    kin = kinematics(MECHANISMS["bennett"]())
+    guess = 0.05 * kin.tangent_space(np.zeros(kin.variable_count))[:, 0]
+    strict = kin.close(guess)
+    assert strict.converged and strict.residual <= DEFAULT_TOLERANCE.closure
+    # "closed" means below the policy's closure threshold, whatever it is
+    verdicts = {}
+    for closure in (1e-4, 1e-12, 1e-17, 1e-30):
+        c = kin.close(guess, tol=Tolerance(closure=closure))
+        assert c.converged == (c.residual <= closure)
+        verdicts[closure] = c.converged
+    assert verdicts[1e-4] and verdicts[1e-12] and not verdicts[1e-30]  # floating point never reaches 1e-30
+
+
+def test_bad_arguments_are_request_errors():
+    kin = kinematics(MECHANISMS["bennett"]())
+    with pytest.raises(RequestError, match="expected 4 joint variables, got 3"):
+        kin.residual(np.zeros(3))
+    with pytest.raises(RequestError, match="joint: expected a joint name"):
+        kin.variables_of("no such joint")
+    assert kin.variables_of(kin.mechanism.joints[2].name) == kin.variables_of(2) == slice(2, 3)
+    with pytest.raises(RequestError, match="count"):
+        sample_poses(kin.mechanism, -1)
+    with pytest.raises(RequestError, match="step"):
+        sample_poses(kin.mechanism, 2, step=0.0)
 
 
 def _rigid_motion(seed=4):

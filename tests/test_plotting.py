@@ -39,6 +39,7 @@ from mobility.report.plotting import (  # noqa: E402
     save_figure,
     sketch,
 )
+from mobility.core.result import NodeSystem  # noqa: E402
 from mobility.core.screws import free_vector_subspace  # noqa: E402
 from mobility.core.topology import JointNode, Parallel, Series, decompose  # noqa: E402
 
@@ -273,6 +274,25 @@ def test_graph_picture_shows_every_joint_and_the_tree(source):
     top = [t for t in ax_t.texts if t.get_text().startswith("end effector:")]
     assert len(top) == 1 and top[0].get_text().startswith(f"end effector: {lc.end_effector_twists.shape[1]} DOF")
     assert isinstance(topo.root, Parallel) == any(t.get_text().startswith("∥") and t.get_position() == top[0].xy for t in texts(ax_t, "mobility:tree:"))
+
+
+def test_graph_picture_draws_the_values_the_analysis_found():
+    """The tree is labelled from ``Result.node_systems``: no screw system is evaluated again for the picture."""
+    m = mobility.loads(RPS)
+    r = mobility.analyze(m)
+
+    class Shifted:  # the result, with every node's idle count raised by 7
+        node_systems = {n: NodeSystem(s.dof, s.idle + 7) for n, s in r.node_systems.items()}
+
+        def __getattr__(self, name):
+            return getattr(r, name)
+
+    def labels(result):
+        drawn = texts(plot_graph(m, result).axes[1], "mobility:tree:")
+        return sorted(t.get_text().split("\n")[1] for t in drawn if not t.get_gid().endswith(":joint"))
+
+    assert labels(r) == sorted(f"dim {s.dof}" + (f", idle {s.idle}" if s.idle else "") for n, s in r.node_systems.items() if not isinstance(n, JointNode))
+    assert labels(Shifted()) == sorted(f"dim {s.dof}, idle {s.idle + 7}" for n, s in r.node_systems.items() if not isinstance(n, JointNode))
 
 
 def test_graph_picture_is_not_blank_and_colours_the_limbs():

@@ -14,6 +14,7 @@ import mobility
 from mobility.cli import main
 from mobility.core.joint_screws import joint_screws
 from mobility.core.loop_closure import loop_closure
+from mobility.errors import RequestError
 from mobility.report.markdown import markdown_report, markdown_table, md_escape
 
 MECHANISMS = sorted((Path(__file__).resolve().parent.parent / "mechanisms").glob("*.yaml"))
@@ -151,8 +152,12 @@ def test_name_with_pipe_is_escaped_and_heading_kept():
     text = markdown_report(mobility.analyze(mobility.loads(RPS)))
     assert text.splitlines()[0] == "# 3-RPS \\| test"
     assert md_escape("a|b") == "a\\|b"
-    with pytest.raises(ValueError, match="2 cells for 3 columns"):
+    with pytest.raises(RequestError, match="expected 3 cells in each row, got a row of 2"):
         markdown_table(["a", "b", "c"], [[1, 2]])
+    with pytest.raises(RequestError, match="one letter per column"):
+        markdown_table(["a", "b"], [], align="l")
+    with pytest.raises(RequestError, match="letters l, r or c"):
+        markdown_table(["a", "b"], [], align="lx")
 
 
 def test_cli_format_md_and_json(tmp_path, capsys):

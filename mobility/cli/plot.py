@@ -4,10 +4,9 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 from ..core.analysis import analyze
-from ..errors import MechanismFileError
+from ..errors import MechanismFileError, PlotFormatError
 from ..io.loader import load
 from ._options import add_tolerance_option, tolerance_from
 
@@ -34,19 +33,18 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def _is_flexure(path: str) -> bool:
-    """Whether ``path`` holds a flexure document (read again only to explain a load error)."""
-    from ..flexure.loader import is_flexure_document
-    from ..io.yaml_source import parse_yaml
+    """Whether ``path`` holds a flexure document (read again, within the size limit, only to explain a load error)."""
+    from ..flexure import is_flexure_document
+    from ..io.yaml_source import parse_yaml, read_text
 
     try:
-        data, _ = parse_yaml(Path(path).read_text(encoding="utf-8"), path)
-    except (OSError, UnicodeDecodeError, MechanismFileError):
+        data, _ = parse_yaml(read_text(path), path)
+    except MechanismFileError:
         return False
     return is_flexure_document(data)
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import PlotFormatError
     from ..report.plotting import FORMATS, plot_graph, plot_mechanism, save_figure
 
     tol = tolerance_from(args)

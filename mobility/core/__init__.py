@@ -14,12 +14,14 @@ Modules, in data-flow order (a module imports only those before it):
     the joint graph and its series/parallel tree.
 ``joint_screws``
     a model's joint twists in normalised coordinates.
-``screw_systems``, ``loop_closure``, ``canonical``
-    the series/parallel route, the independent loop-closure route, readable bases.
+``screw_systems``, ``loop_closure``, ``canonical``, ``kinematics``
+    the series/parallel route, the independent loop-closure route, readable
+    bases, and finite motion (joint displacements, loops re-closed by Newton,
+    nearby poses).
 ``result``, ``analysis``
-    the frozen :class:`~mobility.core.result.Result` and :func:`~mobility.core.analysis.analyze`.
-``kinematics``
-    finite motion: joint displacements, loops re-closed by Newton, nearby poses.
+    the frozen :class:`~mobility.core.result.Result` (with the screw system
+    found at every node of the tree, ``node_systems``) and
+    :func:`~mobility.core.analysis.analyze`.
 
 The public names are imported from the modules themselves
 (``from mobility.core.analysis import analyze``); the most used ones are also

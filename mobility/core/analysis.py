@@ -24,13 +24,12 @@ import numpy as np
 from .canonical import canonical_form
 from .joint_screws import JointScrews, Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism
-from .result import LimbSystem, Margin, Result, ScrewAxis, pattern_of
-from .screw_systems import Margin as MarginCollector
-from .screw_systems import SystemValue, evaluate
+from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis, pattern_of
+from .screw_systems import MarginTracker, SystemValue, evaluate_node, subtree_values
 from .screws import free_vector_subspace, span_and_reciprocal
 from .tolerance import DEFAULT_TOLERANCE, Tolerance
 from .transforms import cross
-from .topology import Parallel, Topology, decompose, describe, joints_of
+from .topology import JointNode, Node, Parallel, Topology, decompose, describe, joints_of
 
 __all__ = ["analyze", "gruebler_kutzbach", "screw_system_in_frame"]
 
@@ -66,18 +65,18 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
     """
     topology = per_object_cache(mechanism, "topology", lambda: decompose(mechanism))
     screws = joint_screws(mechanism)
-    collector = MarginCollector()
-    root = evaluate(topology.root, screws, tol, collector)
-    detached = sum(evaluate(node, screws, tol, collector).mobility for node in topology.detached)
-    mobility = root.mobility + detached
+    tracker = MarginTracker()
+    root = evaluate_node(topology.root, screws, tol, tracker)
+    detached = tuple(evaluate_node(node, screws, tol, tracker) for node in topology.detached)
+    mobility = root.mobility + sum(v.mobility for v in detached)
     rotational = free_vector_subspace(root.basis, tol, coefficients=False)
-    collector.add(rotational)
+    tracker.add(rotational)
     gk = gruebler_kutzbach(mechanism)
     margin = Margin(
-        collector.smallest_kept,
-        collector.largest_dropped,
-        collector.smallest_kept < tol.near_singular,
-        collector.largest_dropped > tol.inexact,
+        tracker.smallest_kept,
+        tracker.largest_dropped,
+        tracker.smallest_kept < tol.near_singular,
+        tracker.largest_dropped > tol.inexact,
     )
     warnings = []
     if margin.near_singular:
@@ -109,19 +108,38 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
         length_unit=mechanism.length_unit,
         length_scale=norm.size,
         reference_point=screws.reference_in_world,
-        detail=_Detail(mechanism, topology, screws, root, tol),
+        detail=_Detail(mechanism, topology, screws, root, detached, tol),
     )
 
 
 class _Detail:
-    """The lazily computed parts of a result: canonical forms, limbs, common constraints."""
+    """The lazily computed parts of a result: canonical forms, limbs, common constraints, the tree's systems.
 
-    def __init__(self, mechanism: Mechanism, topology: Topology, screws: JointScrews, root: SystemValue, tol: Tolerance) -> None:
+    It keeps the screw systems the analysis found (the root's, with its
+    children, and each detached network's), so nothing is evaluated twice.
+    """
+
+    def __init__(
+        self, mechanism: Mechanism, topology: Topology, screws: JointScrews, root: SystemValue, detached: tuple[SystemValue, ...], tol: Tolerance
+    ) -> None:
         self.mechanism = mechanism
         self.topology = topology
         self.screws = screws
         self.root = root
+        self.detached = detached
         self.tol = tol
+
+    def node_systems(self) -> dict[Node, NodeSystem]:
+        """DOF and idle count of every node of the tree, read from the values the analysis computed."""
+        out: dict[Node, NodeSystem] = {}
+        for top, value in zip((self.topology.root, *self.topology.detached), (self.root, *self.detached)):
+            for node, v in subtree_values(top, value):
+                if v is None:  # a joint inside a series or a bridge: its twists are independent
+                    assert isinstance(node, JointNode)
+                    out[node] = NodeSystem(self.mechanism.joints[node.index].dof, 0)
+                else:
+                    out[node] = NodeSystem(v.dim, v.idle)
+        return out
 
     def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
         return screw_system_in_frame(self.root.basis, self.screws.normalisation, self.screws.reference, ("rotation", "helical"), self.tol)

@@ -56,6 +56,17 @@ from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance
 
 __all__ = ["PrincipalScrew", "CanonicalForm", "canonical_form", "readable_basis"]
 
+COMPONENT_TIE = 1e-9
+"""Components of a unit vector within this of the largest are a tie, broken by
+the lowest index (x before y before z): a readability choice, far above the
+round-off of unit vectors (~1e-16) so that round-off never decides it.  Not a
+rank decision: no count depends on it."""
+
+NORM_TIE = 1e-12
+"""Projections of coordinate axes whose norms are within this of the largest
+are a tie, broken by the lowest index (the same readability choice, for the
+greedy basis of :func:`readable_basis`)."""
+
 
 @dataclass(frozen=True)
 class PrincipalScrew:
@@ -82,7 +93,7 @@ class CanonicalForm:
 def _dominant(v: np.ndarray) -> int:
     """Index of the first component of (nearly) largest magnitude."""
     mags = [abs(x) for x in v.tolist()]
-    top = max(mags) - 1e-9
+    top = max(mags) - COMPONENT_TIE
     return next(i for i, m in enumerate(mags) if m > top)
 
 
@@ -119,7 +130,7 @@ def readable_basis(q: np.ndarray) -> np.ndarray:
     basis: list[np.ndarray] = []
     for _ in range(m):
         norms = np.sqrt(np.einsum("ij,ij->j", resid, resid)).tolist()
-        top = max(norms) - 1e-12
+        top = max(norms) - NORM_TIE
         k = next(i for i, x in enumerate(norms) if x > top)
         b = _signed(resid[:, k] / norms[k])
         basis.append(b)

@@ -22,7 +22,8 @@ moves the mechanism: it is the finite counterpart of
   is the product of the joint motions on its tree path.
 * **Loop closure**: each joint off the tree (a *chord*, from ``a`` to ``b``)
   closes one loop, ``g_a E_c(q_c) g_b^-1 = I``.  The residual of the loop is
-  the matrix logarithm of that product, a twist ``[w; v]`` (6 numbers; the
+  the matrix logarithm of that product
+  (:func:`~mobility.core.transforms.displacement_log`), a twist ``[w; v]`` (6 numbers; the
   common part of the two tree paths cancels).  Its Jacobian is the
   right-trivialised loop Jacobian (the joint twists at the moved pose, the
   same equations as :mod:`mobility.core.loop_closure`) corrected by the inverse
@@ -59,177 +60,34 @@ True
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from dataclasses import replace as _replace
 
-
 import numpy as np
-from scipy.spatial.transform import Rotation
 
+from ..errors import RequestError
 from .joint_screws import Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
 from .topology import spanning_tree
-from .transforms import skew
+from .transforms import bracket, dexp, displacement_log, skew
+from .transforms import twist_exp  # noqa: F401  (re-exported until mobility.sweeps imports it from core.transforms)
 
 __all__ = [
     "Factor",
     "Closure",
     "Kinematics",
     "kinematics",
-    "twist_matrix",
-    "twist_exp",
-    "displacement_log",
-    "bracket",
-    "CLOSURE_TOLERANCE",
     "sample_poses",
+    "NEWTON_RCOND",
 ]
 
-CLOSURE_TOLERANCE = 1e-12
-"""A loop counts as closed when every residual component (radians, or lengths
-over ``L``) is at most this; Newton reaches it in a few steps from a good guess."""
-
-
-# ---------------------------------------------------------------------------
-# SE(3) helpers, in [w; v] coordinates (angular part first)
-# ---------------------------------------------------------------------------
-
-
-def twist_matrix(twist: np.ndarray) -> np.ndarray:
-    """The 4x4 matrix ``[[skew(w), v], [0, 0]]`` of a twist ``[w; v]``.
-
-    Examples
-    --------
-    >>> twist_matrix([0, 0, 1, 1, 0, 0])[:3].tolist()
-    [[0.0, -1.0, 0.0, 1.0], [1.0, 0.0, -0.0, 0.0], [-0.0, 0.0, 0.0, 0.0]]
-    """
-    x = np.asarray(twist, dtype=float)
-    out = np.zeros((4, 4))
-    out[:3, :3] = skew(x[:3])
-    out[:3, 3] = x[3:]
-    return out
-
-
-def twist_exp(twist: np.ndarray) -> np.ndarray:
-    """The displacement ``exp(twist)`` as a 4x4 homogeneous matrix.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> g = twist_exp([0, 0, np.pi / 2, 0, 0, 0])   # quarter turn about z through the origin
-    >>> np.round(g[:3, :3] @ [1, 0, 0], 12).tolist()
-    [0.0, 1.0, 0.0]
-    """
-    x = np.asarray(twist, dtype=float)
-    theta = float(np.linalg.norm(x[:3]))
-    a, _, _, _ = _coefficients(theta)
-    k = skew(x[:3])
-    out = np.eye(4)
-    out[:3, :3] = np.eye(3) + float(np.sinc(theta / np.pi)) * k + a * (k @ k)
-    out[:3, 3] = _so3_left_jacobian(x[:3]) @ x[3:]
-    return out
-
-
-def _coefficients(theta: float) -> tuple[float, float, float, float]:
-    """``(1 - cos t)/t^2, (t - sin t)/t^3, (t^2 + 2 cos t - 2)/(2 t^4), (2 t - 3 sin t + t cos t)/(2 t^5)``.
-
-    Their Taylor series below ``t = 1`` (no cancellation), the closed forms above.
-    """
-    if theta < 1.0:
-        t2 = theta * theta
-        a = b = c = d = 0.0
-        power = 1.0
-        for m in range(8):
-            sign = power if m % 2 == 0 else -power
-            a += sign / math.factorial(2 * m + 2)
-            b += sign / math.factorial(2 * m + 3)
-            c += sign / math.factorial(2 * m + 4)
-            d += sign * (m + 1) / math.factorial(2 * m + 5)
-            power *= t2
-        return a, b, c, d
-    s, co = math.sin(theta), math.cos(theta)
-    return (
-        (1.0 - co) / theta**2,
-        (theta - s) / theta**3,
-        (theta**2 + 2.0 * co - 2.0) / (2.0 * theta**4),
-        (2.0 * theta - 3.0 * s + theta * co) / (2.0 * theta**5),
-    )
-
-
-def _so3_left_jacobian(w: np.ndarray) -> np.ndarray:
-    """``sum_k skew(w)^k / (k+1)! = I + A skew(w) + B skew(w)^2``."""
-    a, b, _, _ = _coefficients(float(np.linalg.norm(w)))
-    k = skew(w)
-    return np.eye(3) + a * k + b * (k @ k)
-
-
-def _rotation_log(rot: np.ndarray) -> np.ndarray:
-    """Rotation vector of a rotation matrix (closed form away from a half turn, else scipy)."""
-    axis2 = np.array([rot[2, 1] - rot[1, 2], rot[0, 2] - rot[2, 0], rot[1, 0] - rot[0, 1]])  # 2 sin(t) u
-    sine2 = float(np.linalg.norm(axis2))
-    theta = float(np.arctan2(0.5 * sine2, 0.5 * (np.trace(rot) - 1.0)))
-    if theta > 3.0:
-        return Rotation.from_matrix(rot).as_rotvec()
-    return axis2 / (2.0 * float(np.sinc(theta / np.pi)))
-
-
-def displacement_log(g: np.ndarray) -> np.ndarray:
-    """The twist ``[w; v]`` with ``exp(twist) = g`` (rotation angle below pi).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> x = np.array([0.1, -0.2, 0.3, 1.0, 2.0, -0.5])
-    >>> bool(np.allclose(displacement_log(twist_exp(x)), x))
-    True
-    """
-    g = np.asarray(g, dtype=float)
-    w = _rotation_log(g[:3, :3])
-    v = np.linalg.solve(_so3_left_jacobian(w), g[:3, 3])
-    return np.concatenate([w, v])
-
-
-def bracket(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Lie bracket of twists ``[a, b]`` (the twist of ``A B - B A`` for their matrices).
-
-    Examples
-    --------
-    >>> bracket([1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0]).tolist()
-    [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]
-    """
-    a = np.asarray(a, dtype=float)
-    b = np.asarray(b, dtype=float)
-    return np.concatenate([np.cross(a[:3], b[:3]), np.cross(a[:3], b[3:]) - np.cross(b[:3], a[3:])])
-
-
-def _ad(x: np.ndarray) -> np.ndarray:
-    """The 6x6 matrix of ``y -> [x, y]``."""
-    out = np.zeros((6, 6))
-    out[:3, :3] = skew(x[:3])
-    out[3:, 3:] = skew(x[:3])
-    out[3:, :3] = skew(x[3:])
-    return out
-
-
-def _dexp(x: np.ndarray) -> np.ndarray:
-    """``sum_k ad(x)^k / (k+1)!``, so that ``d exp(x) exp(-x) = dexp(x) dx`` (closed form).
-
-    In ``[w; v]`` order it is ``[[J, 0], [Q, J]]`` with ``J`` the left Jacobian
-    of SO(3) and ``Q`` the series ``sum_k sum_(i+j=k-1) W^i V W^j / (k+1)!``
-    summed in closed form (Barfoot and Furgale, IEEE T-RO 2014, eq. 102).
-    """
-    x = np.asarray(x, dtype=float)
-    a, b, c, d = _coefficients(float(np.linalg.norm(x[:3])))
-    w, v = skew(x[:3]), skew(x[3:])
-    ww, wv, vw, wvw = w @ w, w @ v, v @ w, w @ v @ w
-    jac = np.eye(3) + a * w + b * ww
-    q = 0.5 * v + b * (wv + vw + wvw) + c * (ww @ v + v @ ww - 3.0 * wvw) + d * (wvw @ w + w @ wvw)
-    out = np.zeros((6, 6))
-    out[:3, :3] = jac
-    out[3:, 3:] = jac
-    out[3:, :3] = q
-    return out
+NEWTON_RCOND = 1e-12
+"""Singular values of a Newton system below this fraction of the largest are
+ignored when its minimum-norm step is solved (``numpy.linalg.lstsq``'s
+``rcond``): a safeguard of the linear solver a few digits above machine
+precision, not a rank decision (no count depends on it; whether the loops
+closed is judged by :attr:`~mobility.core.tolerance.Tolerance.closure`)."""
 
 
 # ---------------------------------------------------------------------------
@@ -259,7 +117,7 @@ class Closure:
     iterations : int
         Newton steps taken.
     converged : bool
-        ``residual <= tol``.
+        ``residual <= tol.closure``.
     history : tuple of float
         The residual before each step (for diagnostics).
     """
@@ -328,7 +186,13 @@ class Kinematics:
 
     def variables_of(self, joint: int | str) -> slice:
         """Slice of ``q`` holding the variables of a joint (index or name)."""
-        index = joint if isinstance(joint, int) else [j.name for j in self.mechanism.joints].index(joint)
+        names = [j.name for j in self.mechanism.joints]
+        if isinstance(joint, int) and 0 <= joint < len(names):
+            index = joint
+        elif joint in names:
+            index = names.index(joint)
+        else:
+            raise RequestError(f"joint: expected a joint name or an index below {len(names)}, got {joint!r}")
         return slice(int(self.offsets[index]), int(self.offsets[index + 1]))
 
     # -- products of exponentials -------------------------------------------
@@ -361,7 +225,7 @@ class Kinematics:
     def _check(self, q: np.ndarray) -> np.ndarray:
         q = np.asarray(q, dtype=float).reshape(-1)
         if q.shape != (self.variable_count,):
-            raise ValueError(f"expected {self.variable_count} joint variables, got {q.size}")
+            raise RequestError(f"expected {self.variable_count} joint variables, got {q.size}")
         return q
 
     def link_displacements(self, q: np.ndarray) -> dict[str, np.ndarray]:
@@ -433,7 +297,7 @@ class Kinematics:
             g, cols = self._spatial(loop, exps)
             r = displacement_log(g)
             residuals.append(r)
-            rows.append(np.linalg.solve(_dexp(r), cols))
+            rows.append(np.linalg.solve(dexp(r), cols))
         return np.concatenate(residuals), np.vstack(rows)
 
     def end_effector_jacobian(self, q: np.ndarray) -> np.ndarray:
@@ -500,7 +364,7 @@ class Kinematics:
         q: np.ndarray,
         *,
         constraints: tuple[np.ndarray, np.ndarray] | None = None,
-        tol: float = CLOSURE_TOLERANCE,
+        tol: Tolerance = DEFAULT_TOLERANCE,
         max_iter: int = 40,
         max_move: float | None = None,
     ) -> Closure:
@@ -513,9 +377,9 @@ class Kinematics:
         constraints : (A, b), optional
             Extra linear equations ``A q = b`` solved together with the loops
             (e.g. the progress along a direction).
-        tol : float
-            Closed when every residual component is at most ``tol``
-            (dimensionless).
+        tol : Tolerance
+            Closed when every residual component is at most ``tol.closure``
+            (dimensionless: radians, lengths over ``L``).
         max_iter : int
             Newton steps at most.
         max_move : float, optional
@@ -529,6 +393,7 @@ class Kinematics:
             to close (the caller decides what that means).
         """
         q = self._check(q).copy()
+        closed = tol.closure
         start = q.copy()
         if constraints is None:
             a = np.zeros((0, self.variable_count))
@@ -551,7 +416,7 @@ class Kinematics:
                 best_q, best_err = q.copy(), err
             else:
                 stalled += 1
-            if best_err <= tol:
+            if best_err <= closed:
                 # closed; polish while Newton still gains (a small residual near a
                 # singular pose can leave the pose itself off by residual / sigma_min)
                 polish += 1
@@ -559,11 +424,11 @@ class Kinematics:
                     break
             if iteration == max_iter or stalled >= 6:
                 break
-            step = np.linalg.lstsq(np.vstack([jac, a]), -f, rcond=1e-12)[0]
+            step = np.linalg.lstsq(np.vstack([jac, a]), -f, rcond=NEWTON_RCOND)[0]
             q = q + step
             if not np.all(np.isfinite(q)) or (max_move is not None and np.linalg.norm(q - start) > max_move):
                 break
-        return Closure(best_q, best_err, len(history) - 1, best_err <= tol, tuple(history))
+        return Closure(best_q, best_err, len(history) - 1, best_err <= closed, tuple(history))
 
     # -- the moved mechanism -------------------------------------------------------
     def mechanism_at(self, q: np.ndarray) -> Mechanism:
@@ -679,7 +544,7 @@ def _build(mechanism: Mechanism) -> Kinematics:
     )
 
 
-def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: int = 0) -> list[Mechanism]:
+def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> list[Mechanism]:
     """Assembled poses reached by moving ``mechanism`` from its given pose.
 
     A seeded random exploration: each new pose starts from one already
@@ -700,6 +565,8 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: i
         characteristic length), so the same for a scaled or moved file.
     seed : int
         Seed of the random directions.
+    tol : Tolerance
+        The rank policy of the first-order motions and the closure threshold.
 
     Returns
     -------
@@ -710,17 +577,19 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: i
     Examples
     --------
     >>> from mobility.core.model import Joint, Mechanism
-    >>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
-    >>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
-    ...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
-    >>> poses = sample_poses(m, 3, step=0.2, seed=1)
-    >>> len(poses), [p.joints[0].point for p in poses] == [m.joints[0].point] * 3
+    >>> crank_slider = Mechanism("slider-crank", "g", "s", (
+    ...     Joint("A", "R", ("g", "crank"), axis=(0, 0, 1), point=(0, 0, 0)),
+    ...     Joint("B", "R", ("crank", "rod"), axis=(0, 0, 1), point=(1, 1, 0)),
+    ...     Joint("C", "R", ("rod", "s"), axis=(0, 0, 1), point=(3, 0, 0)),
+    ...     Joint("D", "P", ("s", "g"), axis=(1, 0, 0))))
+    >>> poses = sample_poses(crank_slider, 3, step=0.2, seed=1)
+    >>> len(poses), all(p.joints[0].point == (0.0, 0.0, 0.0) and abs(p.joints[2].point[1]) < 1e-12 for p in poses)
     (3, True)
     """
     if count < 0:
-        raise ValueError("count must be non-negative")
-    if step <= 0.0:
-        raise ValueError("step must be positive")
+        raise RequestError(f"count: expected a number of poses >= 0, got {count}")
+    if not step > 0.0:
+        raise RequestError(f"step: expected a positive joint-space distance, got {step}")
     rng = np.random.default_rng(seed)
     reached: list[Mechanism] = [mechanism]
     out: list[Mechanism] = []
@@ -728,7 +597,7 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: i
     while len(out) < count and failures < 20 * max(count, 1):
         start = reached[int(rng.integers(len(reached)))]
         kin = kinematics(start)
-        _, null = kin.rank_decision(np.zeros(kin.variable_count))
+        _, null = kin.rank_decision(np.zeros(kin.variable_count), tol)
         if null.shape[1] == 0:
             if start is mechanism:
                 break  # nothing moves from the given pose
@@ -738,7 +607,7 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: i
         d = null @ (u / np.linalg.norm(u))
         h = step
         while h >= step / 8.0:
-            closure = kin.close(h * d, constraints=(d[None, :], np.array([h])), max_move=10.0 * h)
+            closure = kin.close(h * d, constraints=(d[None, :], np.array([h])), tol=tol, max_move=10.0 * h)
             if closure.converged:
                 moved = kin.mechanism_at(closure.q)
                 reached.append(moved)

@@ -36,7 +36,7 @@ from typing import Any, Iterable, Mapping
 
 import numpy as np
 
-from ..errors import MechanismError
+from ..errors import MechanismError, RequestError
 from .transforms import Transform, rotation_from_rpy
 
 __all__ = [
@@ -69,6 +69,15 @@ JOINT_TYPES: Mapping[str, str] = MappingProxyType(
     }
 )
 """Joint type letters and their names."""
+
+PARALLEL_AXES = 1e-9
+"""The two axes of a U joint are refused as parallel when the sine of their
+angle is below this: the joint would have one freedom, not two.  A check of
+the description (nine digits), not a rank decision of the analysis."""
+
+ORTHONORMAL = 1e-9
+"""A frame's rotation matrix must be orthonormal to this (entries of
+``R R^T - I``): rotations written with ten significant digits pass."""
 
 # Geometry fields each joint type requires, and those it may also carry.
 _REQUIRED: Mapping[str, tuple[str, ...]] = {
@@ -193,7 +202,7 @@ class Joint:
             a1 = _vector(self.axes[0], "axes[0]", direction=True)
             a2 = _vector(self.axes[1], "axes[1]", direction=True)
             sine = float(np.linalg.norm(np.cross(a1, a2)))
-            if sine < 1e-9:
+            if sine < PARALLEL_AXES:
                 raise MechanismError("axes", "the two axes of a U joint must not be parallel")
             object.__setattr__(self, "axes", (a1, a2))
         if not isinstance(self.frame, str) or not self.frame:
@@ -274,7 +283,7 @@ class Frame:
         rot = np.asarray(self.rotation, dtype=float)
         if rot.shape != (3, 3) or not np.all(np.isfinite(rot)):
             raise MechanismError("rotation", "expected a 3x3 matrix of finite numbers")
-        if not np.allclose(rot @ rot.T, np.eye(3), atol=1e-9) or np.linalg.det(rot) < 0:
+        if not np.allclose(rot @ rot.T, np.eye(3), atol=ORTHONORMAL) or np.linalg.det(rot) < 0:
             raise MechanismError("rotation", "expected a proper rotation matrix")
         object.__setattr__(self, "rotation", tuple(tuple(float(x) for x in row) for row in rot))
         if not isinstance(self.parent, str) or not self.parent:
@@ -477,11 +486,17 @@ class Mechanism:
         return sum(j.dof for j in self.joints)
 
     def joint(self, name: str) -> Joint:
-        """The joint called ``name``."""
+        """The joint called ``name``.
+
+        Raises
+        ------
+        RequestError
+            When no joint has that name.
+        """
         for j in self.joints:
             if j.name == name:
                 return j
-        raise KeyError(name)
+        raise RequestError(f"no joint named {name!r}; the joints are {', '.join(j.name for j in self.joints)}")
 
     def frame_transform(self, name: str) -> Transform:
         """Transform from frame ``name`` to the global frame."""

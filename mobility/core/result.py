@@ -10,14 +10,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Protocol
+from types import MappingProxyType
+from typing import Any, Mapping, NamedTuple, Protocol
 
 import numpy as np
 
 from .screws import pattern_of
 from .tolerance import clean_numbers
+from .topology import Node, Topology
 
-__all__ = ["ScrewAxis", "Margin", "LimbSystem", "Result", "ResultDetail", "pattern_of"]
+__all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultDetail", "pattern_of"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -109,8 +111,33 @@ class LimbSystem:
         }
 
 
+class NodeSystem(NamedTuple):
+    """What the analysis found at one node of the series/parallel tree.
+
+    Attributes
+    ----------
+    dof : int
+        Dimension of the twist system of the relative motion of the node's
+        two end links (for a joint: its DOF).
+    idle : int
+        Motions of the joints inside the node that leave those two links still.
+    """
+
+    dof: int
+    idle: int
+
+    @property
+    def mobility(self) -> int:
+        """Mobility of the node's network with one end link fixed: ``dof + idle``."""
+        return self.dof + self.idle
+
+
 class ResultDetail(Protocol):
     """What a :class:`Result` computes its lazy parts from (provided by the analysis)."""
+
+    topology: Topology
+
+    def node_systems(self) -> dict[Node, NodeSystem]: ...
 
     def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]: ...
 
@@ -176,6 +203,12 @@ class Result:
         Each branch of a top-level parallel connection, in its own frame.
     common_constraints : int
         Wrenches reciprocal to every joint twist (3 for a planar mechanism).
+    topology : Topology
+        The series/parallel decomposition the analysis used (``structure``
+        writes its root out).
+    node_systems : mapping of Node to NodeSystem
+        DOF and idle count of every node of ``topology`` (its root, the
+        detached networks and the joints), as the analysis found them.
     """
 
     name: str
@@ -244,6 +277,32 @@ class Result:
     def common_constraints(self) -> int:
         """Number of independent wrenches reciprocal to every joint twist."""
         return self.detail.common_constraints()
+
+    @property
+    def topology(self) -> Topology:
+        """The series/parallel decomposition the analysis used."""
+        return self.detail.topology
+
+    @cached_property
+    def node_systems(self) -> Mapping[Node, NodeSystem]:
+        """DOF and idle count of every node of :attr:`topology`, read-only.
+
+        Examples
+        --------
+        >>> import mobility
+        >>> m = mobility.loads('''
+        ... name: two sliders in series
+        ... ground: g
+        ... end_effector: e
+        ... joints:
+        ...   - {name: P1, type: P, links: [g, x], axis: [1, 0, 0]}
+        ...   - {name: P2, type: P, links: [x, e], axis: [1, 0, 0]}
+        ... ''')
+        >>> r = mobility.analyze(m)
+        >>> r.node_systems[r.topology.root]
+        NodeSystem(dof=1, idle=1)
+        """
+        return MappingProxyType(self.detail.node_systems())
 
     @property
     def translation_count(self) -> int:

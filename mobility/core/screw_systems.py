@@ -26,7 +26,7 @@ Examples
 >>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
 >>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
 ...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
->>> v = evaluate(decompose(m).root, joint_screws(m))
+>>> v = evaluate_node(decompose(m).root, joint_screws(m))
 >>> v.dim, v.idle
 (1, 0)
 """
@@ -34,7 +34,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Iterator, NamedTuple
 
 import numpy as np
 
@@ -44,12 +44,23 @@ from .screws import SWAP_ROWS
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
 from .topology import Bridge, JointNode, Node, Parallel, Series
 
-__all__ = ["SystemValue", "Margin", "evaluate"]
+__all__ = ["SystemValue", "MarginTracker", "evaluate_node", "subtree_values"]
 
 
 @dataclass
-class Margin:
-    """Worst margins over a set of rank decisions (see :class:`~mobility.core.tolerance.RankDecision`)."""
+class MarginTracker:
+    """The worst margins met so far over a series of rank decisions (mutable; see :class:`~mobility.core.tolerance.RankDecision`).
+
+    The analysis turns it into the frozen :class:`~mobility.core.result.Margin` of its result.
+
+    Examples
+    --------
+    >>> from mobility.core.tolerance import RankDecision
+    >>> t = MarginTracker()
+    >>> t.add(RankDecision(2, 0.5, 1e-16)); t.add(RankDecision(1, 0.9, 1e-13))
+    >>> t.smallest_kept, t.largest_dropped
+    (0.5, 1e-13)
+    """
 
     smallest_kept: float = 1.0
     largest_dropped: float = 0.0
@@ -93,7 +104,7 @@ class SystemValue(NamedTuple):
         return self.basis.shape[1] + self.idle
 
 
-def _span(m: np.ndarray, tol: Tolerance, margin: Margin) -> tuple[np.ndarray, np.ndarray]:
+def _span(m: np.ndarray, tol: Tolerance, margin: MarginTracker) -> tuple[np.ndarray, np.ndarray]:
     """Orthonormal basis of the column span of ``m`` and its reciprocal system (one SVD)."""
     u, s, _ = svd(m)
     d = decide_rank(s, tol)
@@ -101,7 +112,7 @@ def _span(m: np.ndarray, tol: Tolerance, margin: Margin) -> tuple[np.ndarray, np
     return u[:, : d.rank], u[SWAP_ROWS, d.rank :]
 
 
-def evaluate(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLERANCE, margin: Margin | None = None) -> SystemValue:
+def evaluate_node(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLERANCE, margin: MarginTracker | None = None) -> SystemValue:
     """Twist system, wrench system and idle count of ``node``.
 
     Parameters
@@ -112,11 +123,11 @@ def evaluate(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLERANCE
         Joint twists of the mechanism.
     tol : Tolerance
         The rank policy.
-    margin : Margin, optional
+    margin : MarginTracker, optional
         Collects the margins of every rank decision made.
     """
     if margin is None:
-        margin = Margin()
+        margin = MarginTracker()
     if isinstance(node, JointNode):
         basis, wrenches = _span(screws.of_joint(node.index), tol, margin)
         return SystemValue(basis, wrenches, 0)
@@ -127,7 +138,7 @@ def evaluate(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLERANCE
             if type(child) is JointNode:
                 columns.append(joint_columns[child.index])
             else:
-                v = evaluate(child, screws, tol, margin)
+                v = evaluate_node(child, screws, tol, margin)
                 values.append(v)
                 columns.append(v.basis)
                 idle += v.idle
@@ -135,13 +146,13 @@ def evaluate(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLERANCE
         basis, wrenches = _span(stacked, tol, margin)
         return SystemValue(basis, wrenches, idle + stacked.shape[1] - basis.shape[1], tuple(values))
     if isinstance(node, Parallel):
-        values = [evaluate(child, screws, tol, margin) for child in node.children]
+        values = [evaluate_node(child, screws, tol, margin) for child in node.children]
         wrenches, basis = _span(np.concatenate([v.wrenches for v in values], axis=1), tol, margin)
         return SystemValue(basis, wrenches, sum(v.idle for v in values), tuple(values))
     return _bridge(node, screws, tol, margin)
 
 
-def _bridge(node: Bridge, screws: JointScrews, tol: Tolerance, margin: Margin) -> SystemValue:
+def _bridge(node: Bridge, screws: JointScrews, tol: Tolerance, margin: MarginTracker) -> SystemValue:
     """Loop closure of a network that does not reduce (incidence form)."""
     values = []
     bases = []
@@ -150,7 +161,7 @@ def _bridge(node: Bridge, screws: JointScrews, tol: Tolerance, margin: Margin) -
             bases.append(screws.of_joint(child.index))
             values.append(None)
         else:
-            v = evaluate(child, screws, tol, margin)
+            v = evaluate_node(child, screws, tol, margin)
             bases.append(v.basis)
             values.append(v)
     inner = [x for x in node.links if x != node.source]
@@ -176,3 +187,35 @@ def _bridge(node: Bridge, screws: JointScrews, tol: Tolerance, margin: Margin) -
     idle = sum(v.idle for v in values if v is not None) + solutions.shape[1] - basis.shape[1]
     return SystemValue(basis, wrenches, idle, tuple(v for v in values if v is not None))
 
+
+def subtree_values(node: Node, value: SystemValue) -> Iterator[tuple[Node, SystemValue | None]]:
+    """Every node of the subtree of ``node`` (parents first) with its value from :func:`evaluate_node`.
+
+    A joint inside a series or a bridge has no value of its own (its twists
+    enter its parent's matrix directly): ``None`` is given for it.
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> from mobility.core.topology import decompose, describe
+    >>> from mobility.core.joint_screws import joint_screws
+    >>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+    >>> m = Mechanism("two limbs", "g", "e", (R("A1", "g", "x", (0, 0, 0)), R("A2", "x", "e", (1, 0, 0)),
+    ...                                      R("B1", "g", "y", (0, 1, 0)), R("B2", "y", "e", (1, 1, 0))))
+    >>> root = decompose(m).root
+    >>> [(describe(n), None if v is None else v.dim) for n, v in subtree_values(root, evaluate_node(root, joint_screws(m)))]
+    [('parallel(series(A1,A2), series(B1,B2))', 1), ('series(A1,A2)', 2), ('A1', None), ('A2', None), ('series(B1,B2)', 2), ('B1', None), ('B2', None)]
+    """
+    stack: list[tuple[Node, SystemValue | None]] = [(node, value)]
+    while stack:
+        n, v = stack.pop()
+        yield n, v
+        if isinstance(n, JointNode):
+            continue
+        children = [c for _, _, c in n.edges] if isinstance(n, Bridge) else list(n.children)
+        if isinstance(n, Parallel):  # a parallel node keeps every child's value
+            paired = list(zip(children, v.children))
+        else:  # series and bridge nodes keep the values of their composite children only
+            values = iter(v.children)
+            paired = [(c, None if isinstance(c, JointNode) else next(values)) for c in children]
+        stack.extend(reversed(paired))

@@ -1,4 +1,4 @@
-"""Rigid transforms: rotations from roll-pitch-yaw or axis-angle, skew matrices.
+"""Rigid transforms: rotations from roll-pitch-yaw or axis-angle, skew matrices, and the exponential map of SE(3).
 
 Conventions (stated once, pinned by tests):
 
@@ -7,6 +7,11 @@ Conventions (stated once, pinned by tests):
   converts degrees.
 * A transform ``(R, t)`` maps coordinates in a child frame to its parent:
   ``x_parent = R @ x_child + t``.
+* Twists are ``[w; v]`` (angular part first); :func:`twist_exp` and
+  :func:`displacement_log` map them to 4x4 displacements and back,
+  :func:`dexp` is the differential of the exponential, :func:`bracket` the Lie
+  bracket (the finite kinematics of :mod:`mobility.core.kinematics` is built
+  on them).
 
 Examples
 --------
@@ -20,7 +25,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import math
+
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 __all__ = [
     "cross",
@@ -28,6 +36,13 @@ __all__ = [
     "rotation_from_rpy",
     "rotation_from_axis_angle",
     "Transform",
+    "twist_matrix",
+    "twist_exp",
+    "displacement_log",
+    "rotation_log",
+    "so3_left_jacobian",
+    "bracket",
+    "dexp",
 ]
 
 
@@ -129,3 +144,142 @@ class Transform:
         m[:3, :3] = self.rotation
         m[:3, 3] = self.translation
         return m
+
+
+# ---------------------------------------------------------------------------
+# the exponential map of SE(3), in [w; v] coordinates (angular part first)
+# ---------------------------------------------------------------------------
+
+
+def twist_matrix(twist: np.ndarray) -> np.ndarray:
+    """The 4x4 matrix ``[[skew(w), v], [0, 0]]`` of a twist ``[w; v]``.
+
+    Examples
+    --------
+    >>> twist_matrix([0, 0, 1, 1, 0, 0])[:3].tolist()
+    [[0.0, -1.0, 0.0, 1.0], [1.0, 0.0, -0.0, 0.0], [-0.0, 0.0, 0.0, 0.0]]
+    """
+    x = np.asarray(twist, dtype=float)
+    out = np.zeros((4, 4))
+    out[:3, :3] = skew(x[:3])
+    out[:3, 3] = x[3:]
+    return out
+
+
+def twist_exp(twist: np.ndarray) -> np.ndarray:
+    """The displacement ``exp(twist)`` as a 4x4 homogeneous matrix.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> g = twist_exp([0, 0, np.pi / 2, 0, 0, 0])   # quarter turn about z through the origin
+    >>> np.round(g[:3, :3] @ [1, 0, 0], 12).tolist()
+    [0.0, 1.0, 0.0]
+    """
+    x = np.asarray(twist, dtype=float)
+    theta = float(np.linalg.norm(x[:3]))
+    a, _, _, _ = _coefficients(theta)
+    k = skew(x[:3])
+    out = np.eye(4)
+    out[:3, :3] = np.eye(3) + float(np.sinc(theta / np.pi)) * k + a * (k @ k)
+    out[:3, 3] = so3_left_jacobian(x[:3]) @ x[3:]
+    return out
+
+
+def _coefficients(theta: float) -> tuple[float, float, float, float]:
+    """``(1 - cos t)/t^2, (t - sin t)/t^3, (t^2 + 2 cos t - 2)/(2 t^4), (2 t - 3 sin t + t cos t)/(2 t^5)``.
+
+    Their Taylor series below ``t = 1`` (no cancellation), the closed forms above.
+    """
+    if theta < 1.0:
+        t2 = theta * theta
+        a = b = c = d = 0.0
+        power = 1.0
+        for m in range(8):
+            sign = power if m % 2 == 0 else -power
+            a += sign / math.factorial(2 * m + 2)
+            b += sign / math.factorial(2 * m + 3)
+            c += sign / math.factorial(2 * m + 4)
+            d += sign * (m + 1) / math.factorial(2 * m + 5)
+            power *= t2
+        return a, b, c, d
+    s, co = math.sin(theta), math.cos(theta)
+    return (
+        (1.0 - co) / theta**2,
+        (theta - s) / theta**3,
+        (theta**2 + 2.0 * co - 2.0) / (2.0 * theta**4),
+        (2.0 * theta - 3.0 * s + theta * co) / (2.0 * theta**5),
+    )
+
+
+def so3_left_jacobian(w: np.ndarray) -> np.ndarray:
+    """The left Jacobian of SO(3), ``sum_k skew(w)^k / (k+1)! = I + A skew(w) + B skew(w)^2``."""
+    a, b, _, _ = _coefficients(float(np.linalg.norm(w)))
+    k = skew(w)
+    return np.eye(3) + a * k + b * (k @ k)
+
+
+def rotation_log(rot: np.ndarray) -> np.ndarray:
+    """Rotation vector of a rotation matrix (closed form away from a half turn, else scipy).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rotation_log(rotation_from_axis_angle(np.array([0.0, 0.6, 0.8]), 0.5)).round(12).tolist()
+    [0.0, 0.3, 0.4]
+    """
+    axis2 = np.array([rot[2, 1] - rot[1, 2], rot[0, 2] - rot[2, 0], rot[1, 0] - rot[0, 1]])  # 2 sin(t) u
+    sine2 = float(np.linalg.norm(axis2))
+    theta = float(np.arctan2(0.5 * sine2, 0.5 * (np.trace(rot) - 1.0)))
+    if theta > 3.0:
+        return Rotation.from_matrix(rot).as_rotvec()
+    return axis2 / (2.0 * float(np.sinc(theta / np.pi)))
+
+
+def displacement_log(g: np.ndarray) -> np.ndarray:
+    """The twist ``[w; v]`` with ``exp(twist) = g`` (rotation angle below pi).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.array([0.1, -0.2, 0.3, 1.0, 2.0, -0.5])
+    >>> bool(np.allclose(displacement_log(twist_exp(x)), x))
+    True
+    """
+    g = np.asarray(g, dtype=float)
+    w = rotation_log(g[:3, :3])
+    v = np.linalg.solve(so3_left_jacobian(w), g[:3, 3])
+    return np.concatenate([w, v])
+
+
+def bracket(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Lie bracket of twists ``[a, b]`` (the twist of ``A B - B A`` for their matrices).
+
+    Examples
+    --------
+    >>> bracket([1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0]).tolist()
+    [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]
+    """
+    a = np.asarray(a, dtype=float)
+    b = np.asarray(b, dtype=float)
+    return np.concatenate([np.cross(a[:3], b[:3]), np.cross(a[:3], b[3:]) - np.cross(b[:3], a[3:])])
+
+
+def dexp(x: np.ndarray) -> np.ndarray:
+    """``sum_k ad(x)^k / (k+1)!``, so that ``d exp(x) exp(-x) = dexp(x) dx`` (closed form).
+
+    In ``[w; v]`` order it is ``[[J, 0], [Q, J]]`` with ``J`` the left Jacobian
+    of SO(3) and ``Q`` the series ``sum_k sum_(i+j=k-1) W^i V W^j / (k+1)!``
+    summed in closed form (Barfoot and Furgale, IEEE T-RO 2014, eq. 102).
+    """
+    x = np.asarray(x, dtype=float)
+    a, b, c, d = _coefficients(float(np.linalg.norm(x[:3])))
+    w, v = skew(x[:3]), skew(x[3:])
+    ww, wv, vw, wvw = w @ w, w @ v, v @ w, w @ v @ w
+    jac = np.eye(3) + a * w + b * ww
+    q = 0.5 * v + b * (wv + vw + wvw) + c * (ww @ v + v @ ww - 3.0 * wvw) + d * (wvw @ w + w @ wvw)
+    out = np.zeros((6, 6))
+    out[:3, :3] = jac
+    out[3:, 3:] = jac
+    out[3:, :3] = q
+    return out

@@ -26,8 +26,9 @@ from __future__ import annotations
 
 from typing import Iterable, Sequence
 
-from .text import fmt_number, fmt_vector
 from ..core.result import Result, ScrewAxis
+from ..errors import RequestError
+from .text import fmt_number, fmt_vector, screw_text
 
 __all__ = ["markdown_report", "markdown_table", "md_escape"]
 
@@ -54,6 +55,12 @@ def markdown_table(header: Sequence[str], rows: Iterable[Sequence[object]], alig
     align : str, optional
         One letter per column: ``l``, ``r`` or ``c`` (default all left).
 
+    Raises
+    ------
+    RequestError
+        When ``align`` is not one of ``l``, ``r``, ``c`` per column, or a
+        row does not have one cell per column.
+
     Examples
     --------
     >>> print(markdown_table(["a", "b"], [[1, "x|y"]], align="rl"))
@@ -64,13 +71,15 @@ def markdown_table(header: Sequence[str], rows: Iterable[Sequence[object]], alig
     header = [md_escape(h) for h in header]
     align = align or "l" * len(header)
     if len(align) != len(header):
-        raise ValueError(f"align has {len(align)} letters for {len(header)} columns")
+        raise RequestError(f"align: expected one letter per column ({len(header)}), got {len(align)}")
     rule = {"l": ":--", "r": "--:", "c": ":-:"}
+    if not set(align) <= set(rule):
+        raise RequestError(f"align: expected letters l, r or c, got {align!r}")
     lines = ["| " + " | ".join(header) + " |", "|" + "|".join(rule[a] for a in align) + "|"]
     for row in rows:
         cells = [md_escape(c) for c in row]
         if len(cells) != len(header):
-            raise ValueError(f"a row has {len(cells)} cells for {len(header)} columns")
+            raise RequestError(f"rows: expected {len(header)} cells in each row, got a row of {len(cells)}")
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
@@ -99,13 +108,7 @@ def _constraint_rows(result: Result) -> list[list[str]]:
 
 
 def _screw_list(axes: Sequence[ScrewAxis], scale: float) -> str:
-    parts = []
-    for a in axes:
-        text = f"{a.kind} {fmt_vector(a.axis)} through {fmt_vector(a.point, scale)}"
-        if a.pitch != 0:
-            text += f" pitch {fmt_number(a.pitch, scale)}"
-        parts.append(text)
-    return "; ".join(parts)
+    return "; ".join(screw_text(a, scale, verb="") for a in axes)
 
 
 def markdown_report(result: Result, *, limbs: bool = True) -> str:

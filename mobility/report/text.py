@@ -18,22 +18,58 @@ from typing import Any
 import numpy as np
 
 from ..core.result import Result, ScrewAxis
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
 
-__all__ = ["fmt_number", "fmt_vector", "text_report", "json_report"]
+__all__ = ["fmt_number", "fmt_vector", "screw_text", "text_report", "json_report"]
 
 
-def fmt_number(x: float, scale: float = 1.0, digits: int = 6) -> str:
-    """A number with ``digits`` significant digits; round-off (below 1e-9 of ``scale``) shown as 0."""
-    x = float(x)
-    if abs(x) < 1e-9 * max(scale, 1e-300):
-        return "0"
-    text = f"{x:.{digits}g}"
+def fmt_number(x: float, scale: float = 1.0, digits: int = 6, tol: Tolerance = DEFAULT_TOLERANCE) -> str:
+    """A number with ``digits`` significant digits; round-off shown as 0 by the one rule, :func:`~mobility.core.tolerance.clean_numbers`.
+
+    Parameters
+    ----------
+    x : float
+    scale : float
+        The size round-off is relative to (the mechanism's length for a point
+        or a pitch, 1 for a unit direction).
+    digits : int
+    tol : Tolerance
+        Its ``round_off`` is the relative size below which a number is 0.
+    """
+    text = f"{clean_numbers(float(x), scale, tol):.{digits}g}"
     return "0" if text in ("-0", "0") else text
 
 
 def fmt_vector(v: Any, scale: float = 1.0) -> str:
     """A vector as ``[a, b, c]``."""
     return "[" + ", ".join(fmt_number(x, scale) for x in np.asarray(v, dtype=float)) + "]"
+
+
+def screw_text(a: ScrewAxis, scale: float = 1.0, *, verb: str = "about", pitch_unit: str = "") -> str:
+    """A screw axis in words: kind, verb, direction, a point, and the pitch when it is not zero.
+
+    Parameters
+    ----------
+    a : ScrewAxis
+    scale : float
+        The mechanism's length (round-off of the point and the pitch is relative to it).
+    verb : str
+        ``"about"`` for a motion, ``"along"`` for a wrench, ``""`` for none.
+    pitch_unit : str
+        Written after the pitch, e.g. ``" mm/rad"``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from mobility.core.result import ScrewAxis
+    >>> screw_text(ScrewAxis(np.array([0, 0, 1.0]), np.array([1.0, 0, 0]), 0.5, "helical"), pitch_unit=" mm/rad")
+    'helical about [0, 0, 1] through [1, 0, 0] pitch 0.5 mm/rad'
+    >>> screw_text(ScrewAxis(np.array([1.0, 0, 0]), np.zeros(3), 0.0, "force"), verb="")
+    'force [1, 0, 0] through [0, 0, 0]'
+    """
+    head = " ".join(part for part in (a.kind, verb, fmt_vector(a.axis)) if part)
+    pitch = "" if a.pitch == 0 else f" pitch {fmt_number(a.pitch, scale)}{pitch_unit}"
+    return f"{head} through {fmt_vector(a.point, scale)}{pitch}"
 
 
 def _axis_line(label: str, a: ScrewAxis, scale: float, unit: str) -> str:
@@ -88,9 +124,9 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
         for i, limb in enumerate(result.limbs):
             out.append(f"    limb {i + 1}: {limb.structure}   frame: {limb.frame}   DOF {limb.dof}   idle {limb.idle_dof}")
             out += [f"      translation {fmt_vector(t)}" for t in limb.translations]
-            out += [f"      {a.kind} about {fmt_vector(a.axis)} through {fmt_vector(a.point, s)}" + ("" if a.pitch == 0 else f" pitch {fmt_number(a.pitch, s)}") for a in limb.rotations]
+            out += [f"      {screw_text(a, s)}" for a in limb.rotations]
             out += [f"      constraint couple about {fmt_vector(c)}" for c in limb.couples]
-            out += [f"      constraint {f.kind} along {fmt_vector(f.axis)} through {fmt_vector(f.point, s)}" + ("" if f.pitch == 0 else f" pitch {fmt_number(f.pitch, s)}") for f in limb.forces]
+            out += [f"      constraint {screw_text(f, s, verb='along')}" for f in limb.forces]
     return "\n".join(out)
 
 

@@ -15,7 +15,7 @@ How each key is compared:
   and found bases adds no dimension), with the rank policy of
   :mod:`mobility.core.tolerance`; an empty list means "no translation";
 * ``full_cycle_dof``, ``full_cycle_mobility``, ``finite_verdict``: equality
-  with :func:`mobility.finite.full_cycle.finite_mobility`, computed only when one of them
+  with :func:`mobility.finite.finite_mobility`, computed only when one of them
   is present (it costs more than the screw analysis).
 
 Other modules may add keys to :data:`COMPARATORS`.  A key of the block that no
@@ -57,7 +57,7 @@ from ..io.loader import load
 from ..core.model import Mechanism
 from ..core.result import Result
 from ..core.screws import same_subspace
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
 
 __all__ = [
     "Comparison",
@@ -107,7 +107,7 @@ class Comparison:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {"key": self.key, "expected": _plain(self.expected), "actual": _plain(self.actual), "ok": self.ok, "note": self.note}
+        return {"key": self.key, "expected": clean_numbers(self.expected), "actual": clean_numbers(self.actual), "ok": self.ok, "note": self.note}
 
 
 @dataclass(frozen=True, eq=False)
@@ -177,7 +177,7 @@ class CheckResult:
                 "gruebler_kutzbach": r.gruebler_kutzbach,
                 "redundant_constraints": r.redundant_constraints,
                 "idle_dof": r.idle_dof,
-                "translations": _plain(r.translations),
+                "translations": clean_numbers(r.translations),
             },
             "comparisons": [c.to_dict() for c in self.comparisons],
         }
@@ -273,7 +273,7 @@ def _translations(subject: _Subject, expected: Any) -> Comparison:
     found = subject.result.translations
     rows = np.asarray(expected, dtype=float).reshape(-1, 3)
     norms = np.linalg.norm(rows, axis=1)
-    actual = _plain(found)
+    actual = clean_numbers(found)
     if np.any(norms == 0.0):
         return Comparison("translations", rows.tolist(), actual, False, "an expected translation is the zero vector")
     unit = rows / norms[:, None]
@@ -407,22 +407,11 @@ def check_paths(paths: Sequence[str | Path], *, tol: Tolerance = DEFAULT_TOLERAN
     return CheckReport(tuple(results))
 
 
-def _plain(value: Any) -> Any:
-    """JSON-ready copy (arrays to lists, tuples to lists; round-off below 1e-12 shown as 0)."""
-    if isinstance(value, np.ndarray):
-        return (np.where(np.abs(value) < 1e-12, 0.0, value) + 0.0).tolist() if value.dtype.kind == "f" else value.tolist()
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
-
-
 def _short(value: Any) -> str:
-    """A compact text form: vectors with 6 significant digits."""
-    value = _plain(value)
+    """A compact text form: vectors with 6 significant digits, round-off shown as 0 (:func:`~mobility.core.tolerance.clean_numbers`)."""
+    value = clean_numbers(value)
     if isinstance(value, list):
         return "[" + ", ".join(_short(v) for v in value) + "]"
     if isinstance(value, float):
-        return "0" if abs(value) < 1e-12 else f"{value:.6g}"
+        return f"{value:.6g}"
     return str(value)

@@ -1,0 +1,161 @@
+"""Probing moves: try to move a mechanism from a pose along a direction, re-closing every loop.
+
+For a direction ``d`` and each step ``h`` of a :class:`MovePlan` (smallest
+first): predict ``q = q0 + h d`` and re-close every loop by Newton with the
+progress fixed, ``d . q = d . q0 + h``
+(:meth:`~mobility.core.kinematics.Kinematics.close`).  The direction *moves*
+when the loops close at every step.  A motion that does not exist leaves a
+residual of order ``h^2`` that Newton cannot remove.  At the pose reached with
+the plan's probe step, the first-order motions are examined again
+(:func:`~mobility.finite.orders.first_order`), which is how branches are told
+apart.
+
+Examples
+--------
+>>> import numpy as np
+>>> from mobility.core.kinematics import kinematics
+>>> from mobility.core.model import Joint, Mechanism
+>>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(1, 0, 0)),))
+>>> plan = MovePlan.at_given_pose(kinematics(m), (1e-3, 1e-2, 5e-2))
+>>> p = probe(plan, np.zeros(1), "basis", np.ones(1))
+>>> p.moved, p.steps, p.mobility
+(True, (0.001, 0.01, 0.05), 1)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..core.kinematics import Kinematics
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from .orders import first_order
+from .parameters import INEXACT_ALLOWANCE, MAX_MOVE, NEARBY_NEAR_SINGULAR, NEARBY_RANK
+from .results import Probe
+
+__all__ = ["MovePlan", "probe", "probe_directions"]
+
+
+@dataclass(frozen=True)
+class MovePlan:
+    """How the moves of one run are made.
+
+    Attributes
+    ----------
+    kinematics : Kinematics
+        The finite model of the mechanism at its given pose (``q = 0``).
+    steps : tuple of float
+        Increasing step sizes (dimensionless).
+    probe_step : float
+        The step at which the pose reached is kept and examined.
+    tol : Tolerance
+        The policy: its ``closure`` is the residual accepted as closed.
+    nearby_tol : Tolerance
+        The rank policy at the poses reached (see
+        :data:`~mobility.finite.parameters.NEARBY_RANK`).
+    inexact : float
+        The largest singular value the rank decision at the given pose dropped
+        (relative): geometry special only to this is treated as exact.
+    """
+
+    kinematics: Kinematics
+    steps: tuple[float, ...]
+    probe_step: float
+    tol: Tolerance
+    nearby_tol: Tolerance
+    inexact: float = 0.0
+
+    @classmethod
+    def at_given_pose(cls, kin: Kinematics, steps: tuple[float, ...], tol: Tolerance = DEFAULT_TOLERANCE, inexact: float = 0.0) -> "MovePlan":
+        """The plan of the moves from the given pose: the probe step is the middle step (or the only one)."""
+        probe_step = steps[len(steps) // 2]
+        nearby = replace(tol, rank=max(tol.rank, NEARBY_RANK * probe_step), near_singular=max(tol.near_singular, NEARBY_NEAR_SINGULAR * probe_step))
+        return cls(kin, steps, probe_step, tol, nearby, inexact)
+
+    def local(self) -> "MovePlan":
+        """The plan of the moves from a nearby pose: the smallest step and half the probe step (the probe step)."""
+        steps = (self.steps[0], self.probe_step / 2.0) if len(self.steps) > 1 else self.steps
+        return replace(self, steps=steps, probe_step=steps[-1])
+
+    def closure_tolerance(self, distance: float) -> Tolerance:
+        """The policy with the residual accepted as closed at ``distance`` (joint space) from the given pose.
+
+        Round-off, or, when the given geometry is special only to ``inexact``,
+        the first-order residual ``~ inexact * distance`` that such geometry
+        leaves: the finite test then treats the geometry as exact, as the rank
+        decision did.  A motion that does not exist leaves a residual of order
+        ``h^2``.
+        """
+        return replace(self.tol, closure=max(self.tol.closure, INEXACT_ALLOWANCE * self.inexact * distance))
+
+
+def probe(plan: MovePlan, q0: np.ndarray, source: str, d: np.ndarray, *, examine: bool = True) -> Probe:
+    """Move from ``q0`` along the unit direction ``d`` with each step of ``plan`` (smallest first).
+
+    Parameters
+    ----------
+    plan : MovePlan
+    q0 : ndarray
+        Joint variables of the start (zeros: the given pose).
+    source : str
+        How ``d`` was chosen (kept in the :class:`~mobility.finite.results.Probe`).
+    d : ndarray
+        Unit joint-rate direction.
+    examine : bool
+        Examine the first-order motions at the pose reached with the probe step.
+
+    Returns
+    -------
+    Probe
+    """
+    kin = plan.kinematics
+    offset = float(np.linalg.norm(q0))  # distance of the start from the given pose
+    residuals, iterations, done = [], [], []
+    achieved = None
+    reached = None
+    for h in plan.steps:
+        target = float(d @ q0) + h
+        closure = kin.close(q0 + h * d, constraints=(d[None, :], np.array([target])), tol=plan.closure_tolerance(offset + h), max_move=MAX_MOVE * h)
+        residuals.append(closure.residual)
+        iterations.append(closure.iterations)
+        done.append(h)
+        if not closure.converged:
+            break
+        chord = closure.q - q0
+        if achieved is None:
+            achieved = chord / np.linalg.norm(chord)
+        if h == plan.probe_step:
+            reached = closure.q
+    moved = len(residuals) == len(plan.steps) and residuals[-1] <= plan.closure_tolerance(offset + plan.steps[-1]).closure
+    if not moved:
+        return Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), False, achieved)
+    if not examine or reached is None:
+        return Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), True, achieved, reached)
+    there = first_order(kin, reached, plan.nearby_tol)
+    return Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), True, achieved, reached, there.mobility, there.dof, there.smallest_kept, there.tangent)
+
+
+def probe_directions(basis: np.ndarray, rng: np.random.Generator, *, randoms: int, pairs: bool) -> list[tuple[str, np.ndarray]]:
+    """Probe directions in the span of ``basis``: ``(source, direction)`` for +-basis, sums of pairs, random combinations.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> [s for s, _ in probe_directions(np.eye(3)[:, :2], np.random.default_rng(0), randoms=1, pairs=True)]
+    ['basis', 'basis', 'basis', 'basis', 'pair', 'pair', 'random']
+    """
+    k = basis.shape[1]
+    out: list[tuple[str, np.ndarray]] = []
+    for i in range(k):
+        out.append(("basis", basis[:, i]))
+        out.append(("basis", -basis[:, i]))
+    if pairs:
+        for i in range(k):
+            for j in range(i + 1, k):
+                for s in (1.0, -1.0):
+                    out.append(("pair", (basis[:, i] + s * basis[:, j]) / np.sqrt(2.0)))
+    for _ in range(randoms):
+        u = rng.standard_normal(k)
+        out.append(("random", basis @ (u / np.linalg.norm(u))))
+    return out

@@ -1,0 +1,101 @@
+"""The finite-motion answer for people: the section printed by ``mobility analyze --finite``.
+
+Only formatting: :func:`mobility.finite.finite_mobility` computes, this
+module writes it as text (:func:`finite_report`) and adds it to a report of
+``mobility analyze`` in any of its formats (:func:`with_finite`).
+
+Examples
+--------
+>>> from mobility.core.model import Joint, Mechanism
+>>> from mobility.finite import finite_mobility
+>>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+>>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
+...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
+>>> print(finite_report(finite_mobility(m)).splitlines()[1])
+  verdict: full-cycle
+"""
+
+from __future__ import annotations
+
+import json
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..finite.results import FiniteMobility, SecondOrder
+
+__all__ = ["finite_report", "with_finite"]
+
+
+def finite_report(f: "FiniteMobility") -> str:
+    """The text section printed by ``mobility analyze --finite``.
+
+    Parameters
+    ----------
+    f : FiniteMobility
+
+    Returns
+    -------
+    str
+        Lines: the verdict, the instantaneous and full-cycle answers, the
+        moves, the second-order test, each branch, the explanation, warnings.
+    """
+    out = [
+        "finite motion (instantaneous or full-cycle):",
+        f"  verdict: {f.verdict}",
+        f"  instantaneous: DOF {f.instantaneous_dof} ({f.instantaneous_pattern}), mobility {f.instantaneous_mobility}"
+        f"   (margin: smallest kept singular value {f.margin.smallest_kept:.2e})",
+        f"  full-cycle:    DOF {f.full_cycle_dof} ({f.full_cycle_pattern}), mobility {f.full_cycle_mobility}",
+    ]
+    if f.instantaneous_only_dof or f.instantaneous_only_mobility:
+        out.append(f"  instantaneous only: {f.instantaneous_only_dof} end-effector DOF, {f.instantaneous_only_mobility} freedom(s) of the mechanism")
+    if f.probes:
+        out.append(
+            f"  moves: {f.moved} of {len(f.probes)} directions re-closed at every step ({', '.join(f'{h:g}' for h in f.steps)}; "
+            f"radians, lengths over the characteristic length)"
+        )
+    if f.second_order is not None:
+        out.append(f"  second order: {f.second_order.cokernel} dependent loop equation(s); {_second_order_text(f.second_order)}")
+    out += [f"  branch {i + 1}: {b.describe()}" for i, b in enumerate(f.branches)]
+    out.append("  " + f.explanation)
+    out += [f"  warning: {w}" for w in f.warnings]
+    return "\n".join(out)
+
+
+def _second_order_text(so: "SecondOrder") -> str:
+    if so.obstructed:
+        return f"obstructed (least violation {so.least_violation:.2e}, relative): no direction survives"
+    if so.directions.shape[1]:
+        return f"{so.directions.shape[1]} direction line(s) survive"
+    return "every first-order motion survives"
+
+
+def with_finite(report: str, fmt: str, finite: "FiniteMobility") -> str:
+    """A report of ``mobility analyze`` with the finite-motion answer added.
+
+    Parameters
+    ----------
+    report : str
+        The report in format ``fmt``.
+    fmt : str
+        ``"json"`` (a ``finite`` key is added to the object), ``"md"`` (a
+        section with the text in a code block); any other (``"text"``): the
+        section appended.
+    finite : FiniteMobility
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> from mobility.finite import finite_mobility
+    >>> f = finite_mobility(Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(1, 0, 0)),)))
+    >>> import json
+    >>> json.loads(with_finite('{"dof": 1}', "json", f))["finite"]["verdict"]
+    'full-cycle'
+    """
+    if fmt == "json":
+        data = json.loads(report)
+        data["finite"] = finite.to_dict()
+        return json.dumps(data, indent=2, ensure_ascii=False)
+    section = finite_report(finite)
+    if fmt == "md":
+        return report.rstrip("\n") + "\n\n## Finite motion\n\n```\n" + section + "\n```\n"
+    return report + "\n" + section

@@ -1,0 +1,81 @@
+"""matplotlib, optional: import it on first use, build figures without pyplot, save them.
+
+matplotlib is an optional extra (``pip install 'mobility[plot]'``): it is
+imported only when a picture is drawn, and
+:class:`~mobility.errors.PlottingUnavailableError` says how to get it when it
+is missing.  Figures are built without :mod:`matplotlib.pyplot` (no global
+state); one left as a notebook cell's value shows itself as PNG.
+"""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from ...errors import PlotFormatError, PlottingUnavailableError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
+
+__all__ = ["FORMATS", "require_matplotlib", "new_figure", "save_figure"]
+
+FORMATS = (".png", ".svg", ".pdf")
+"""File types :func:`save_figure` writes (by suffix)."""
+
+
+def require_matplotlib() -> Any:
+    """Import matplotlib (and the 3D toolkit) or raise :class:`~mobility.errors.PlottingUnavailableError`."""
+    try:
+        import matplotlib
+        import matplotlib.figure  # noqa: F401
+        from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3d projection)
+    except ImportError as exc:
+        missing = exc.name or ""
+        raise PlottingUnavailableError("" if missing.split(".")[0] == "matplotlib" else f"missing module {missing!r}") from None
+    return matplotlib
+
+
+_FIGURE_CLASS: list[type] = []
+
+
+def _figure_class() -> type:
+    """A :class:`matplotlib.figure.Figure` that shows itself in Jupyter (made on first use).
+
+    The figures are built without :mod:`matplotlib.pyplot`, so no backend
+    registers a display hook for them; ``_repr_png_`` lets IPython show one
+    left as a cell's value whatever the backend.
+    """
+    if not _FIGURE_CLASS:
+        from matplotlib.figure import Figure
+
+        class MobilityFigure(Figure):
+            """A figure of :mod:`mobility.report.plotting`; displays itself as PNG in Jupyter."""
+
+            def _repr_png_(self) -> bytes:
+                buf = io.BytesIO()
+                self.savefig(buf, format="png", dpi=90, facecolor="white")
+                return buf.getvalue()
+
+        _FIGURE_CLASS.append(MobilityFigure)
+    return _FIGURE_CLASS[0]
+
+
+def new_figure(figsize: tuple[float, float]) -> "Figure":
+    """An empty figure of ``figsize`` inches (matplotlib must have been imported by :func:`require_matplotlib`)."""
+    return _figure_class()(figsize=figsize)
+
+
+def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
+    """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix).
+
+    Raises
+    ------
+    PlotFormatError
+        For another suffix.
+    """
+    p = Path(path)
+    if p.suffix.lower() not in FORMATS:
+        raise PlotFormatError(f"{p}: cannot write a {p.suffix or 'suffix-less'} file; expected a name ending in {', '.join(FORMATS)}")
+    fig.savefig(p, dpi=dpi, facecolor="white")
+    return p

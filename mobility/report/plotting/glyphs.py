@@ -1,0 +1,161 @@
+"""Drawing primitives of the 3D pictures (matplotlib): arrows, rotation marks, links, joint symbols, the axes triad.
+
+Every artist carries a ``gid`` (``"mobility:link:<name>"``,
+``"mobility:joints:<type>"``, ``"<gid>:head"`` for an arrowhead...), so
+programs and tests can read a picture back.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ...core.model import Mechanism
+from .geometry import SAME_POINT, perpendiculars, unique_points
+from .sketch import Sketch
+from .style import COLORS, JOINT_STYLE
+from .views import view_axes
+
+__all__ = ["cone", "arrow", "rotation_mark", "helix", "draw_link", "draw_joints", "triad", "FLAT"]
+
+FLAT = 0.05
+"""A link whose joints lie within this fraction of its extent from a plane is
+drawn as a plate (from a line: as a bar or a star); a drawing choice."""
+
+
+def cone(ax: Any, tip: np.ndarray, direction: np.ndarray, length: float, color: str, gid: str) -> None:
+    """A solid arrowhead with its tip at ``tip`` pointing along ``direction``."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    d = direction / np.linalg.norm(direction)
+    e1, e2 = perpendiculars(d)
+    base = tip - length * d
+    ring = [base + 0.35 * length * (math.cos(t) * e1 + math.sin(t) * e2) for t in np.linspace(0, 2 * math.pi, 9)[:-1]]
+    faces = [[tip, ring[k], ring[(k + 1) % len(ring)]] for k in range(len(ring))]
+    poly = Poly3DCollection(faces, facecolor=color, edgecolor=color, linewidth=0.3)
+    poly.set_gid(gid)
+    ax.add_collection3d(poly)
+
+
+def arrow(ax: Any, start: np.ndarray, end: np.ndarray, color: str, gid: str, *, head: float, both: bool = False, **kw: Any) -> None:
+    """An arrow from ``start`` to ``end``: a shaft (``Line3D`` with ``gid``) and one or two heads."""
+    d = end - start
+    ax.plot(*np.stack([start, end]).T, color=color, gid=gid, solid_capstyle="butt", **kw)
+    cone(ax, end, d, head, color, gid + ":head")
+    if both:
+        cone(ax, end - 1.6 * head * d / np.linalg.norm(d), d, head, color, gid + ":head2")
+
+
+def rotation_mark(ax: Any, centre: np.ndarray, axis: np.ndarray, radius: float, color: str, gid: str) -> None:
+    """A circular arrow around ``axis`` at ``centre`` (right-hand sense)."""
+    e1, e2 = perpendiculars(axis)
+    t = np.linspace(0.0, 1.5 * math.pi, 40)
+    arc = centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
+    ax.plot(*arc.T, color=color, lw=1.6, gid=gid)
+    tangent = -math.sin(t[-1]) * e1 + math.cos(t[-1]) * e2
+    cone(ax, arc[-1] + 0.35 * radius * tangent, tangent, 0.6 * radius, color, gid + ":head")
+
+
+def helix(centre: np.ndarray, axis: np.ndarray, radius: float, length: float) -> np.ndarray:
+    e1, e2 = perpendiculars(axis)
+    t = np.linspace(0, 4 * math.pi, 60)
+    s = np.linspace(-0.5, 0.5, 60) * length
+    return centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2) + s[:, None] * (axis / np.linalg.norm(axis))
+
+
+def draw_link(ax: Any, name: str, pts: np.ndarray, role: str, size: float) -> None:
+    """A link as a thin body: a bar between two joints, a plate over three or more."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    from scipy.spatial import ConvexHull, QhullError
+
+    color = COLORS.get(role, COLORS["link"])
+    lw = {"ground": 4.0, "end_effector": 3.0}.get(role, 2.6)
+    u = unique_points(pts, SAME_POINT * size)
+    gid = f"mobility:link:{name}"
+    if len(u) < 2:
+        return
+    if len(u) == 2:
+        ax.plot(*u.T, color=color, lw=lw, gid=gid, solid_capstyle="round")
+        return
+    c = u.mean(axis=0)
+    _, sv, vt = np.linalg.svd(u - c)
+    flat = sv[2] <= FLAT * sv[0] if len(sv) > 2 else True
+    if flat and sv[1] > FLAT * sv[0]:
+        uv = (u - c) @ vt[:2].T
+        try:
+            hull = ConvexHull(uv)
+        except QhullError:  # pragma: no cover - collinear after all
+            hull = None
+        if hull is not None:
+            ring = u[hull.vertices]
+            poly = Poly3DCollection([ring], facecolor=color, alpha=0.22 if role != "link" else 0.15, edgecolor=color, linewidth=lw * 0.6)
+            poly.set_gid(gid)
+            ax.add_collection3d(poly)
+            inner = [k for k in range(len(u)) if k not in set(hull.vertices)]
+            for k in inner:
+                ax.plot(*np.stack([c, u[k]]).T, color=color, lw=lw * 0.6, gid=gid + ":spoke")
+            return
+    if not flat or sv[1] <= FLAT * sv[0]:
+        for k in range(len(u)):  # a star from the centroid: a thin 3D body
+            ax.plot(*np.stack([c, u[k]]).T, color=color, lw=lw, gid=gid if k == 0 else gid + ":spoke", solid_capstyle="round")
+
+
+def draw_joints(ax: Any, m: Mechanism, sk: Sketch, labels: bool, view: tuple[float, float]) -> None:
+    """One scatter per joint type, small axis segments, names (beside each joint on the screen of ``view``)."""
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    size = sk.size
+    joints = m.world_joints
+    for t, style in JOINT_STYLE.items():
+        idx = [i for i, jt in enumerate(sk.types) if jt == t]
+        if not idx:
+            continue
+        p = sk.points[idx]
+        edge = "white" if t == "S" else "black"
+        ax.scatter(*p.T, marker=style["marker"], s=style["s"], facecolors=style["facecolor"], edgecolors=edge, linewidths=1.0, depthshade=False, zorder=5, gid=f"mobility:joints:{t}")
+    # the small axis segments of every joint in two collections (thin axes, thick rails): one artist each
+    axes_segs: list[np.ndarray] = []
+    rails: list[np.ndarray] = []
+    for i, j in enumerate(joints):
+        x = sk.points[i]
+        if j.type in ("R", "H", "C"):
+            a = np.asarray(j.axis)
+            axes_segs.append(np.stack([x - 0.06 * size * a, x + 0.06 * size * a]))
+        if j.type in ("P", "C"):
+            a = np.asarray(j.axis)
+            rails.append(np.stack([x - 0.07 * size * a, x + 0.07 * size * a]))
+        if j.type == "H":
+            axes_segs.append(helix(x, np.asarray(j.axis), 0.025 * size, 0.1 * size))
+        if j.type == "U":
+            axes_segs += [np.stack([x - 0.06 * size * np.asarray(a), x + 0.06 * size * np.asarray(a)]) for a in j.axes]
+        if j.type == "E":
+            e1, e2 = perpendiculars(np.asarray(j.normal))
+            axes_segs.append(np.array([x + 0.05 * size * (s1 * e1 + s2 * e2) for s1, s2 in ((1, 1), (-1, 1), (-1, -1), (1, -1), (1, 1))]))
+    if axes_segs:
+        coll = Line3DCollection(axes_segs, colors="black", linewidths=1.1)
+        coll.set_gid("mobility:joint-axes")
+        ax.add_collection3d(coll)
+    if rails:
+        coll = Line3DCollection(rails, colors="#b8860b", linewidths=5.0, alpha=0.55, capstyle="butt")
+        coll.set_gid("mobility:joint-rails")
+        ax.add_collection3d(coll)
+    if labels and len(joints) <= 40:
+        _, sx, sy = view_axes(*view)
+        off = 0.03 * size * (0.8 * sx + 0.6 * sy)  # up and to the right on the screen, whatever the view
+        for i, name in enumerate(sk.names):
+            ax.text(*(sk.points[i] + off), name, fontsize=6.5, color="#263238", gid=f"mobility:joint-label:{name}", zorder=1e4)
+
+
+def triad(ax: Any, elev: float, azim: float) -> None:
+    """The global x, y, z directions as seen in this view, drawn flat in the lower left corner."""
+    _, sx, sy = view_axes(elev, azim)
+    origin = np.array([0.07, 0.07])
+    for e, lab in zip(np.eye(3), "xyz"):
+        tip = origin + 0.07 * np.array([e @ sx, e @ sy])
+        ax.annotate("", xy=tuple(tip), xytext=tuple(origin), xycoords="axes fraction",
+                    arrowprops={"arrowstyle": "-|>", "color": "#78909c", "lw": 1.0, "shrinkA": 0, "shrinkB": 0}, gid=f"mobility:triad:{lab}")
+        if np.hypot(e @ sx, e @ sy) > 0.15:
+            label = origin + 0.095 * np.array([e @ sx, e @ sy])
+            ax.text2D(label[0], label[1], lab, transform=ax.transAxes, fontsize=7.5, color="#546e7a", ha="center", va="center")

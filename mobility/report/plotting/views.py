@@ -1,0 +1,97 @@
+"""Viewpoints where nothing important overlaps (no matplotlib).
+
+Every candidate view ``(elev, azim)`` on a grid is scored by the pairs of
+important points that fall on each other on the screen and by the directions
+seen end-on; :func:`choose_views` takes the best, then the best far enough
+from those chosen.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["view_axes", "view_scores", "choose_views"]
+
+
+def view_axes(elev: Any, azim: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Eye direction and screen x, y of orthographic views (matplotlib's elev/azim, degrees).
+
+    Scalars give 3-vectors; arrays of ``n`` views give arrays of shape (n, 3).
+    """
+    e, a = np.radians(elev), np.radians(azim)
+    eye = np.stack([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)], axis=-1)
+    sx = np.stack([-np.sin(a), np.cos(a), np.zeros_like(a)], axis=-1)
+    return eye, sx, np.cross(eye, sx)
+
+
+def view_scores(elev: np.ndarray, azim: np.ndarray, points: np.ndarray, directions: np.ndarray, size: float) -> np.ndarray:
+    """Badness of each view: important points on top of each other, directions seen end-on."""
+    eye, sx, sy = view_axes(elev, azim)
+    bad = 0.008 * np.abs(elev - 25.0)  # a mild preference for a usual look
+    if len(points) > 1:
+        i, j = np.triu_indices(len(points), 1)
+        d = points[i] - points[j]
+        d3 = np.linalg.norm(d, axis=1)
+        keep = d3 > 0.03 * size
+        if keep.any():
+            d = d[keep]
+            d3 = d3[keep, None]
+            d2 = np.hypot(d @ sx.T, d @ sy.T)  # (pairs, views)
+            bad = bad + np.sum(d2 < 0.04 * size, axis=0)  # points drawn on top of each other
+            bad = bad + np.sum(np.exp(-((d2 / (0.08 * size)) ** 2)) * (d2 < 0.5 * d3), axis=0)
+            bad = bad + 6.0 * (1.0 - np.mean(d2 / d3, axis=0))  # foreshortening: a flat scene seen edge-on
+    if len(directions):
+        seen = np.sqrt(np.maximum(0.0, 1.0 - (directions @ eye.T) ** 2))  # (directions, views)
+        bad = bad + 4.0 * np.sum(seen < 0.35, axis=0) + np.sum(np.maximum(0.0, 0.6 - seen), axis=0)
+    return bad
+
+
+def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count: int = 2, *, separation: float = 60.0) -> list[tuple[float, float]]:
+    """Viewpoints ``(elev, azim)`` in degrees where nothing important overlaps.
+
+    Every candidate view on a grid is scored by the pairs of ``points`` that
+    fall within 4 % of ``size`` of each other on the screen (and softly by
+    pairs brought close), and by the ``directions`` seen nearly end-on.  The
+    best view comes first; each next one is the best at least ``separation``
+    degrees away from those chosen.
+
+    Parameters
+    ----------
+    points : ndarray, shape (n, 3)
+    directions : ndarray, shape (k, 3)
+        Unit directions that must show their length (arrows, axes).
+    size : float
+        Extent of the scene.
+    count : int
+        Number of views.
+    separation : float
+        Smallest angle between two chosen view directions, degrees.
+
+    Returns
+    -------
+    list of (elev, azim)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> # a vertical axis must not be seen from above
+    >>> elev, azim = choose_views(np.zeros((1, 3)), np.array([[0.0, 0, 1]]), 1.0, count=1)[0]
+    >>> elev < 60
+    True
+    """
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    directions = np.asarray(directions, dtype=float).reshape(-1, 3)
+    elev, azim = (g.ravel().astype(float) for g in np.meshgrid([10, 20, 30, 40, 55, 70, 85], np.arange(0, 360, 10), indexing="ij"))
+    scores = np.round(view_scores(elev, azim, points, directions, size), 9)
+    eyes = view_axes(elev, azim)[0]
+    chosen: list[int] = []
+    cos_sep = math.cos(math.radians(separation))
+    for k in np.lexsort((azim, elev, scores)):  # best first; ties to the lower view, then smaller azimuth
+        if all(eyes[k] @ eyes[c] < cos_sep for c in chosen):
+            chosen.append(int(k))
+            if len(chosen) == count:
+                break
+    return [(float(elev[k]), float(azim[k])) for k in chosen]
