@@ -6,6 +6,13 @@ parentheses and the functions of :data:`FUNCTIONS` are allowed; nothing else
 of Python is reachable.  Trigonometric functions take radians; the ``...d``
 variants take or give degrees.
 
+An expression is checked once and turned into a flat program (postfix order,
+:func:`compile_expression`, cached by its text), then run on an explicit
+stack: no recursion grows with the expression, its length and nesting depth
+are bounded (:class:`~mobility.io.limits.Limits`), and every intermediate
+value must be a finite real number (``(-8)**(1/3)`` is complex in Python,
+``exp(1000)`` overflows: both are errors, not silent ``nan``).
+
 Examples
 --------
 >>> evaluate("a * sind(30) + sqrt(b)", {"a": 2.0, "b": 9.0})
@@ -14,16 +21,24 @@ Examples
 Traceback (most recent call last):
 ...
 ValueError: function '__import__' is not allowed; allowed: abs, acos, acosd, asin, asind, atan, atan2, atan2d, atand, cos, cosd, degrees, exp, hypot, log, max, min, radians, sin, sind, sqrt, tan, tand
+>>> evaluate("(-8)**(1/3)", {})
+Traceback (most recent call last):
+...
+ValueError: cannot evaluate '(-8)**(1/3)': a negative number to a fractional power is complex
 """
 
 from __future__ import annotations
 
 import ast
+import keyword
 import math
 import operator
-from typing import Callable, Mapping
+from functools import lru_cache
+from typing import Any, Callable, Mapping
 
-__all__ = ["FUNCTIONS", "CONSTANTS", "evaluate"]
+from .limits import DEFAULT_LIMITS
+
+__all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression"]
 
 FUNCTIONS: Mapping[str, Callable[..., float]] = {
     "abs": abs,
@@ -55,7 +70,10 @@ FUNCTIONS: Mapping[str, Callable[..., float]] = {
 CONSTANTS: Mapping[str, float] = {"pi": math.pi, "tau": math.tau, "e": math.e}
 """Names every expression knows."""
 
-_BINARY = {
+RESERVED_NAMES = frozenset(CONSTANTS) | frozenset(FUNCTIONS)
+"""Names a file may not define (as a parameter or a limb index): the constants and the functions."""
+
+_BINARY: dict[type, Callable[[float, float], Any]] = {
     ast.Add: operator.add,
     ast.Sub: operator.sub,
     ast.Mult: operator.mul,
@@ -63,10 +81,156 @@ _BINARY = {
     ast.Pow: operator.pow,
     ast.Mod: operator.mod,
 }
-_UNARY = {ast.USub: operator.neg, ast.UAdd: operator.pos}
+_UNARY: dict[type, Callable[[float], float]] = {ast.USub: operator.neg, ast.UAdd: operator.pos}
+
+# Instructions of a compiled expression (tuples, so a program is hashable and cacheable).
+_NUMBER, _NAME, _APPLY = 0, 1, 2
+
+Program = tuple[tuple[Any, ...], ...]
+"""A compiled expression: ``(_NUMBER, x)``, ``(_NAME, name)`` or ``(_APPLY, function, arity)``, in postfix order."""
 
 
-def evaluate(text: str, names: Mapping[str, float]) -> float:
+def _children(node: ast.AST, text: str) -> tuple[list[ast.AST], tuple[Any, ...] | None]:
+    """The operands of ``node`` and the instruction it becomes after them (``None``: no instruction)."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not isinstance(node.value, bool):
+        try:
+            value = float(node.value)
+        except OverflowError:
+            raise ValueError(f"a number in {text!r} is too large") from None
+        if not math.isfinite(value):
+            raise ValueError(f"a number in {text!r} is too large (not finite)")
+        return [], (_NUMBER, value)
+    if isinstance(node, ast.Name):
+        return [], (_NAME, node.id)
+    if isinstance(node, ast.BinOp) and type(node.op) in _BINARY:
+        return [node.left, node.right], (_APPLY, _BINARY[type(node.op)], 2)
+    if isinstance(node, ast.UnaryOp) and type(node.op) in _UNARY:
+        return [node.operand], (_APPLY, _UNARY[type(node.op)], 1)
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and not node.keywords:
+        fn = FUNCTIONS.get(node.func.id)
+        if fn is None:
+            raise ValueError(f"function {node.func.id!r} is not allowed; allowed: {', '.join(sorted(FUNCTIONS))}")
+        if any(isinstance(a, ast.Starred) for a in node.args):
+            raise ValueError(f"Starred is not allowed in expression {text!r}")
+        return list(node.args), (_APPLY, fn, len(node.args))
+    raise ValueError(f"{type(node).__name__} is not allowed in expression {text!r}")
+
+
+@lru_cache(maxsize=4096)
+def compile_expression(text: str, max_length: int = DEFAULT_LIMITS.max_expression_length, max_depth: int = DEFAULT_LIMITS.max_expression_depth) -> Program:
+    """Check an expression and turn it into a flat program.
+
+    Parameters
+    ----------
+    text : str
+        The expression.
+    max_length, max_depth : int
+        Its largest length (characters) and nesting depth.
+
+    Returns
+    -------
+    Program
+        The instructions in postfix order (cached by the arguments).
+
+    Raises
+    ------
+    ValueError
+        With a one-line reason: too long, too deep, syntax, or a forbidden
+        construct.
+
+    Examples
+    --------
+    >>> [op[1] for op in compile_expression("2 * a") if op[0] != 2]
+    [2.0, 'a']
+    >>> compile_expression("-" * 20 + "1", max_depth=10)
+    Traceback (most recent call last):
+    ...
+    ValueError: expression '--------------------1' is nested deeper than the limit of 10 levels
+    """
+    source = text.strip()
+    if len(source) > max_length:
+        raise ValueError(f"an expression of {len(source)} characters is longer than the limit of {max_length} (set MOBILITY_MAX_EXPRESSION_LENGTH to raise it)")
+    if source.isidentifier() and not keyword.iskeyword(source):  # a lone name, the commonest expression
+        return ((_NAME, source),)
+    shown = _shown(source)
+    try:
+        tree = ast.parse(source, mode="eval")
+    except SyntaxError as exc:
+        raise ValueError(f"cannot parse expression {shown!r}: {exc.msg}") from None
+    except (RecursionError, MemoryError, ValueError):
+        raise ValueError(f"cannot parse expression {shown!r}: too complex") from None
+    program: list[tuple[Any, ...]] = []
+    # Post-order walk with an explicit stack: (node, depth, instruction once its operands are emitted).
+    pending: list[tuple[ast.AST, int, tuple[Any, ...] | None]] = [(tree.body, 1, None)]
+    while pending:
+        node, depth, done = pending.pop()
+        if done is not None:
+            program.append(done)
+            continue
+        if depth > max_depth:
+            raise ValueError(f"expression {shown!r} is nested deeper than the limit of {max_depth} levels")
+        operands, instruction = _children(node, shown)
+        if instruction is not None:
+            pending.append((node, depth, instruction))
+        pending.extend((child, depth + 1, None) for child in reversed(operands))
+    return tuple(program)
+
+
+def _shown(text: str) -> str:
+    """An expression as an error message shows it (long ones cut)."""
+    text = text.strip()
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _run(program: Program, names: Mapping[str, float], text: str) -> float:
+    if len(program) == 1:  # a lone number or name: nothing to compute
+        kind, item = program[0][0], program[0][1]
+        if kind == _NUMBER:
+            return item
+        value = names.get(item, CONSTANTS.get(item))
+        if value is None:
+            raise _unknown_name(item, text, names)
+        return value
+    stack: list[float] = []
+    for op in program:
+        kind = op[0]
+        if kind == _NUMBER:
+            stack.append(op[1])
+            continue
+        if kind == _NAME:
+            value = names.get(op[1], CONSTANTS.get(op[1]))
+            if value is None:
+                raise _unknown_name(op[1], text, names)
+            stack.append(value)
+            continue
+        arity = op[2]
+        args = stack[len(stack) - arity:]
+        del stack[len(stack) - arity:]
+        try:
+            result = op[1](*args)
+        except (ArithmeticError, TypeError, ValueError) as exc:
+            if isinstance(exc, OverflowError):
+                reason = "the result is too large for a float"
+            elif isinstance(exc, ZeroDivisionError):
+                reason = "division by zero"
+            else:
+                reason = "math domain error" if "math domain error" in str(exc) else str(exc)
+            raise ValueError(f"cannot evaluate {_shown(text)!r}: {reason}") from None
+        if isinstance(result, complex):
+            raise ValueError(f"cannot evaluate {_shown(text)!r}: a negative number to a fractional power is complex")
+        result = float(result)
+        if not math.isfinite(result):
+            raise ValueError(f"expression {_shown(text)!r} is not finite")
+        stack.append(result)
+    return stack[-1]
+
+
+def _unknown_name(name: str, text: str, names: Mapping[str, float]) -> ValueError:
+    known = ", ".join(sorted(names)) or "(none)"
+    return ValueError(f"unknown name {name!r} in {_shown(text)!r}; parameters defined: {known}")
+
+
+def evaluate(text: str, names: Mapping[str, float], *, max_length: int = DEFAULT_LIMITS.max_expression_length, max_depth: int = DEFAULT_LIMITS.max_expression_depth) -> float:
     """Evaluate an arithmetic expression.
 
     Parameters
@@ -75,52 +239,19 @@ def evaluate(text: str, names: Mapping[str, float]) -> float:
         The expression.
     names : mapping
         Values of the parameters it may use (:data:`CONSTANTS` are added).
+    max_length, max_depth : int
+        Bounds on the expression (see :class:`~mobility.io.limits.Limits`).
 
     Returns
     -------
     float
+        A finite number.
 
     Raises
     ------
     ValueError
-        With a one-line reason: syntax, unknown name, forbidden construct,
-        or a math error such as a division by zero.
+        With a one-line reason: syntax, length or depth over the limit,
+        unknown name, forbidden construct, or a math error such as a division
+        by zero, an overflow or a complex value.
     """
-    try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except SyntaxError as exc:
-        raise ValueError(f"cannot parse expression {text!r}: {exc.msg}") from None
-    scope = {**CONSTANTS, **names}
-
-    def ev(node: ast.AST) -> float:
-        if isinstance(node, ast.Expression):
-            return ev(node.body)
-        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not isinstance(node.value, bool):
-            return float(node.value)
-        if isinstance(node, ast.Name):
-            if node.id not in scope:
-                known = ", ".join(sorted(names)) or "(none)"
-                raise ValueError(f"unknown name {node.id!r} in {text!r}; parameters defined: {known}")
-            return float(scope[node.id])
-        if isinstance(node, ast.BinOp) and type(node.op) in _BINARY:
-            return _BINARY[type(node.op)](ev(node.left), ev(node.right))
-        if isinstance(node, ast.UnaryOp) and type(node.op) in _UNARY:
-            return _UNARY[type(node.op)](ev(node.operand))
-        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and not node.keywords:
-            fn = FUNCTIONS.get(node.func.id)
-            if fn is None:
-                raise ValueError(f"function {node.func.id!r} is not allowed; allowed: {', '.join(sorted(FUNCTIONS))}")
-            return float(fn(*(ev(a) for a in node.args)))
-        raise ValueError(f"{type(node).__name__} is not allowed in expression {text!r}")
-
-    try:
-        value = ev(tree)
-    except (ArithmeticError, TypeError) as exc:
-        raise ValueError(f"cannot evaluate {text!r}: {exc}") from None
-    except ValueError as exc:
-        if "math domain error" in str(exc):
-            raise ValueError(f"cannot evaluate {text!r}: math domain error") from None
-        raise
-    if not math.isfinite(value):
-        raise ValueError(f"expression {text!r} is not finite")
-    return value
+    return _run(compile_expression(text, max_length, max_depth), names, text)

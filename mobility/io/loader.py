@@ -14,7 +14,10 @@ extensions that never change the meaning of a version-1 file:
   carry ``actuated: true``.
 
 Every error names the file, the line, the key and what was expected.  The
-loader knows nothing of screws.
+loader knows nothing of screws.  What a document may ask is bounded
+(:class:`~mobility.io.limits.Limits`: size, depth, nodes, limb copies, joints,
+expressions); the joints a ``limbs`` block would create are counted before
+any is built.
 
 Examples
 --------
@@ -42,6 +45,8 @@ from typing import Any, Callable, Mapping
 
 from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Expected, Frame, Joint, Mechanism
 from ..errors import MechanismError
+from .expressions import RESERVED_NAMES
+from .limits import Limits, current_limits
 from .reader import NAME_RE, DocumentReader, describe_value, parse_key
 from .yaml_source import KeyPath, format_key, parse_yaml, read_text
 
@@ -54,13 +59,21 @@ _TYPE_NAMES = {name: letter for letter, name in JOINT_TYPES.items()}
 _SUBST_RE = re.compile(r"\{([^{}]*)\}")
 
 
-def load(path: str | Path) -> Mechanism:
+def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any) -> Mechanism:
     """Load a mechanism file.
 
     Parameters
     ----------
     path : str or Path
-        A YAML file following the format.
+        A YAML file following the format, or a robot description (MJCF,
+        URDF), recognised by extension or content (see
+        :mod:`mobility.io.robot_files`).
+    limits : Limits, optional
+        Bounds on the document (default: :func:`~mobility.io.limits.current_limits`).
+    **robot_options
+        For robot descriptions: ``ground``, ``end_effector``, ``floating``,
+        ``ignore_unsupported``, ``close``, ``closures``
+        (:class:`~mobility.io.robot_tree.RobotOptions`).
 
     Returns
     -------
@@ -72,24 +85,36 @@ def load(path: str | Path) -> Mechanism:
         When the file cannot be read or breaks the format; the message names
         file, line, key and what was expected.
     """
-    return loads(read_text(path), file=str(path))
+    from .robot_files import is_robot_file, load_robot  # robot descriptions are read only when given
+
+    if robot_options or is_robot_file(path):
+        return load_robot(path, **robot_options)
+    limits = current_limits(limits)
+    return loads(read_text(path, limits), file=str(path), limits=limits)
 
 
-def loads(text: str, file: str = "<string>") -> Mechanism:
+def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) -> Mechanism:
     """Load a mechanism from YAML text (see :func:`load`)."""
-    data, positions = parse_yaml(text, file)
-    return _MechanismReader(file, positions).mechanism(data)
+    limits = current_limits(limits)
+    data, positions = parse_yaml(text, file, limits)
+    return _MechanismReader(file, positions, limits).mechanism(data)
+
+
+def _shown(value: Any) -> str:
+    """A value in a message: its ``repr`` when short, else a description (``a list of 300``)."""
+    text = repr(value)
+    return text if len(text) <= 40 else describe_value(value)
 
 
 def _expected_int(value: Any, key: str, *, signed: bool = False) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or (not signed and value < 0):
-        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {value!r}")
+        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {_shown(value)}")
     return value
 
 
 def _expected_pattern(value: Any, key: str) -> str:
     if not isinstance(value, str) or not re.fullmatch(r"0|([1-6]T)?([1-6]R)?", value) or not value:
-        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0", got {value!r}')
+        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0", got {_shown(value)}')
     return value
 
 
@@ -108,8 +133,8 @@ EXPECTED_VALIDATORS: dict[str, Callable[[Any, str], Any]] = {
 
 
 def _expected_choice(value: Any, key: str, choices: tuple[str, ...]) -> str:
-    if value not in choices:
-        raise MechanismError(key, f"expected one of {', '.join(choices)}, got {value!r}")
+    if not isinstance(value, str) or value not in choices:
+        raise MechanismError(key, f"expected one of {', '.join(choices)}, got {_shown(value)}")
     return value
 
 
@@ -127,7 +152,8 @@ class _MechanismReader(DocumentReader):
                 raise self.fail((), f"missing required key {key!r}")
         if "joints" not in doc and "limbs" not in doc:
             raise self.fail((), "missing required key 'joints'")
-        name = self.string(str(doc["name"]) if isinstance(doc["name"], (int, float)) else doc["name"], ("name",))
+        title = doc["name"]
+        name = self.string(str(title) if isinstance(title, (int, float)) and not isinstance(title, bool) else title, ("name",))
         description = doc.get("description", "")
         if not isinstance(description, str):
             raise self.fail(("description",), f"expected a string, got {describe_value(description)}")
@@ -135,8 +161,9 @@ class _MechanismReader(DocumentReader):
         self.parameters(doc.get("parameters"))
         frames = self.frames(doc.get("frames"))
         joints, sources = self.joints(doc.get("joints", []), ("joints",), {}, None)
-        limb_frames, limb_joints, limb_sources = self.limbs(doc.get("limbs"))
+        limb_frames, limb_joints, limb_sources = self.limbs(doc.get("limbs"), len(joints), len(frames))
         frames += limb_frames
+        self.check_frame_chains(frames)
         joints += limb_joints
         sources += limb_sources
         if not joints:
@@ -145,8 +172,8 @@ class _MechanismReader(DocumentReader):
         try:
             return Mechanism(
                 name=name,
-                ground=self.string(doc["ground"], ("ground",)),
-                end_effector=self.string(doc["end_effector"], ("end_effector",)),
+                ground=self.identifier(doc["ground"], ("ground",), "a link name"),
+                end_effector=self.identifier(doc["end_effector"], ("end_effector",), "a link name"),
                 joints=tuple(joints),
                 frames=tuple(frames),
                 description=description,
@@ -167,30 +194,33 @@ class _MechanismReader(DocumentReader):
     def joints(self, value: Any, path: KeyPath, names: Mapping[str, float], default_frame: str | None, subst: Callable[[str, KeyPath], str] | None = None) -> tuple[list[Joint], list[KeyPath]]:
         if not isinstance(value, list):
             raise self.fail(path, f"expected a list of joints, got {describe_value(value)}")
+        if len(value) > self.limits.max_joints:
+            raise self.fail(path, f"{len(value)} joints are more than the limit of {self.limits.max_joints} ({self.limits.hint('max_joints')})")
         out, sources = [], []
         for i, raw in enumerate(value):
             out.append(self.joint(raw, path + (i,), names, default_frame, subst))
             sources.append(path + (i,))
         return out, sources
 
-    def joint(self, raw: Any, path: KeyPath, extra_names: Mapping[str, float], default_frame: str | None, subst: Callable[[str, KeyPath], str] | None) -> Joint:
+    def joint(self, raw: Any, path: KeyPath, names: Mapping[str, float], default_frame: str | None, subst: Callable[[str, KeyPath], str] | None) -> Joint:
         data = self.mapping(raw, path, "a joint with name, type, links and geometry")
         self.check_keys(data, JOINT_KEYS, path, "a joint")
         for key in ("name", "type", "links"):
             if key not in data:
                 raise self.fail(path, f"missing required key {key!r} of a joint")
-        names = {**self.names, **extra_names}
+        names = names or self.names  # a limb copy's names include the parameters
         text = subst or (lambda s, p: s)
-        name = text(self.string(str(data["name"]) if isinstance(data["name"], (int, float)) else data["name"], path + ("name",)), path + ("name",))
+        name = text(self.identifier(data["name"], path + ("name",), "a joint name"), path + ("name",))
         jtype = data["type"]
         if isinstance(jtype, str) and jtype.lower() in _TYPE_NAMES:
             jtype = _TYPE_NAMES[jtype.lower()]
-        if jtype not in JOINT_DOF:
-            raise self.fail(path + ("type",), f"unknown joint type {jtype!r}; expected one of {', '.join(JOINT_DOF)} (or revolute, prismatic, helical, cylindrical, universal, spherical, planar)")
+        if not isinstance(jtype, str) or jtype not in JOINT_DOF:
+            shown = repr(jtype) if isinstance(jtype, str) else describe_value(jtype)
+            raise self.fail(path + ("type",), f"unknown joint type {shown}; expected one of {', '.join(JOINT_DOF)} (or revolute, prismatic, helical, cylindrical, universal, spherical, planar)")
         links = data["links"]
-        if not isinstance(links, list) or len(links) != 2 or not all(isinstance(x, (str, int)) for x in links):
+        if not isinstance(links, list) or len(links) != 2:
             raise self.fail(path + ("links",), f"expected two link names [a, b], got {describe_value(links)}")
-        links = tuple(text(str(x), path + ("links", k)) for k, x in enumerate(links))
+        links = tuple(text(self.identifier(x, path + ("links", k), "a link name"), path + ("links", k)) for k, x in enumerate(links))
         fields: dict[str, Any] = {}
         for key in ("axis", "point", "normal"):
             if key in data:
@@ -202,18 +232,16 @@ class _MechanismReader(DocumentReader):
             if not isinstance(axes, list) or len(axes) != 2:
                 raise self.fail(path + ("axes",), f"expected two directions [a1, a2], got {describe_value(axes)}")
             fields["axes"] = tuple(self.vector(a, path + ("axes", k), names) for k, a in enumerate(axes))
-        frame = data.get("frame", default_frame or WORLD)
-        if not isinstance(frame, str):
-            raise self.fail(path + ("frame",), f"expected a frame name, got {describe_value(frame)}")
+        frame = self.identifier(data.get("frame", default_frame or WORLD), path + ("frame",), "a frame name")
         actuated = data.get("actuated", False)
         if not isinstance(actuated, bool):
-            raise self.fail(path + ("actuated",), f"expected true or false, got {actuated!r}")
+            raise self.fail(path + ("actuated",), f"expected true or false, got {_shown(actuated)}")
         try:
             return Joint(name, jtype, links, frame=text(frame, path + ("frame",)), actuated=actuated, **fields)
         except MechanismError as exc:
             raise self.fail(path + parse_key(exc.key), exc.message) from None
 
-    def limbs(self, value: Any) -> tuple[list[Frame], list[Joint], list[KeyPath]]:
+    def limbs(self, value: Any, joints_before: int = 0, frames_before: int = 0) -> tuple[list[Frame], list[Joint], list[KeyPath]]:
         frames: list[Frame] = []
         joints: list[Joint] = []
         sources: list[KeyPath] = []
@@ -221,40 +249,74 @@ class _MechanismReader(DocumentReader):
             return frames, joints, sources
         if not isinstance(value, list):
             raise self.fail(("limbs",), f"expected a list of limb patterns, got {describe_value(value)}")
-        for k, raw in enumerate(value):
+        patterns = self.limb_patterns(value, joints_before, frames_before)
+        for k, (limb, copies, index) in enumerate(patterns):
             path: KeyPath = ("limbs", k)
-            limb = self.mapping(raw, path, "a limb pattern with copies and joints")
-            self.check_keys(limb, LIMB_KEYS, path, "a limb pattern")
-            copies = limb.get("copies")
-            if isinstance(copies, bool) or not isinstance(copies, int) or copies < 1:
-                raise self.fail(path + ("copies",), f"expected a positive integer, got {copies!r}")
-            index = limb.get("index", "i")
-            if not isinstance(index, str) or not NAME_RE.match(index):
-                raise self.fail(path + ("index",), f"expected a variable name, got {index!r}")
-            if "joints" not in limb:
-                raise self.fail(path, "missing required key 'joints' of a limb pattern")
             for i in range(copies):
                 local = {index: float(i)}
+                scope = {**self.names, **local}
+                written: dict[str, str] = {}  # each {expression} of this copy, as text
 
-                def subst(s: str, p: KeyPath, local: dict[str, float] = local) -> str:
+                def subst(s: str, p: KeyPath, scope: dict[str, float] = scope, written: dict[str, str] = written) -> str:
+                    if "{" not in s:
+                        return s
+
                     def one(m: re.Match[str]) -> str:
-                        v = self.number(m.group(1), p, {**self.names, **local})
-                        return str(int(v)) if v == int(v) else repr(v)
+                        text = written.get(m.group(1))
+                        if text is None:
+                            v = self.number(m.group(1), p, scope)
+                            text = written[m.group(1)] = str(int(v)) if v == int(v) else repr(v)
+                        return text
 
                     return _SUBST_RE.sub(one, s)
 
                 frame_name = None
                 if "frame" in limb:
                     fdata = self.mapping(limb["frame"], path + ("frame",), "a frame")
-                    frame_name = subst(str(fdata.get("name", f"limb{k}_{{{index}}}")), path + ("frame", "name"))
+                    frame_name = subst(self.identifier(fdata.get("name", f"limb{k}_{{{index}}}"), path + ("frame", "name"), "a frame name"), path + ("frame", "name"))
                     parent = fdata.get("parent")
                     fdata = {**fdata, **({"parent": subst(parent, path + ("frame", "parent"))} if isinstance(parent, str) else {})}
                     fdata.pop("name", None)
-                    frames.append(self.frame(frame_name, fdata, path + ("frame",), {**self.names, **local}))
-                js, src = self.joints(limb["joints"], path + ("joints",), local, frame_name, subst)
+                    frames.append(self.frame(frame_name, fdata, path + ("frame",), scope))
+                js, src = self.joints(limb["joints"], path + ("joints",), scope, frame_name, subst)
                 joints += js
                 sources += src
         return frames, joints, sources
+
+    def limb_patterns(self, value: list[Any], joints_before: int, frames_before: int) -> list[tuple[Mapping[str, Any], int, str]]:
+        """Each limb pattern with its copies and index variable, checked, and the copies, joints and frames they make counted."""
+        out = []
+        total, all_copies, frames = joints_before, 0, frames_before
+        lim = self.limits
+        for k, raw in enumerate(value):
+            path: KeyPath = ("limbs", k)
+            limb = self.mapping(raw, path, "a limb pattern with copies and joints")
+            self.check_keys(limb, LIMB_KEYS, path, "a limb pattern")
+            copies = limb.get("copies")
+            if isinstance(copies, bool) or not isinstance(copies, int) or copies < 1:
+                raise self.fail(path + ("copies",), f"expected a positive integer, got {describe_value(copies)}")
+            all_copies += copies
+            if all_copies > lim.max_copies:
+                raise self.fail(path + ("copies",), f"{all_copies} copies of limbs are more than the limit of {lim.max_copies} ({lim.hint('max_copies')})")
+            index = limb.get("index", "i")
+            if not isinstance(index, str) or not NAME_RE.match(index):
+                raise self.fail(path + ("index",), f"expected a variable name, got {_shown(index)}")
+            if index in RESERVED_NAMES:
+                raise self.fail(path + ("index",), f"{index!r} is a constant or a function of the expressions; choose another name for the index")
+            if index in self.names:
+                raise self.fail(path + ("index",), f"{index!r} is already a parameter; choose another name for the index")
+            if "joints" not in limb:
+                raise self.fail(path, "missing required key 'joints' of a limb pattern")
+            if not isinstance(limb["joints"], list):
+                raise self.fail(path + ("joints",), f"expected a list of joints, got {describe_value(limb['joints'])}")
+            total += copies * len(limb["joints"])
+            if total > lim.max_joints:
+                raise self.fail(path + ("copies",), f"the limbs make {total} joints in all, more than the limit of {lim.max_joints} ({lim.hint('max_joints')})")
+            frames += copies if "frame" in limb else 0
+            if frames > lim.max_frames:
+                raise self.fail(path + ("copies",), f"the limbs make {frames} frames in all, more than the limit of {lim.max_frames} ({lim.hint('max_frames')})")
+            out.append((limb, copies, index))
+        return out
 
     def expected(self, value: Any) -> Expected:
         path: KeyPath = ("expected",)

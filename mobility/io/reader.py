@@ -6,6 +6,13 @@ vectors, names, units, parameters and frames, and every error into a
 the key.  The mechanism loader (:mod:`mobility.io.loader`) and the flexure
 loader build on it.
 
+Numbers are checked where they are read: an integer too large for a float,
+an infinite or NaN value, or an expression that overflows or turns complex is
+an error at its key.  Names of links, joints and frames must be strings
+(``links: [g, true]`` is an error, not a link called ``True``), and a
+parameter may not take the name of a constant or a function of the
+expressions (:data:`~mobility.io.expressions.RESERVED_NAMES`).
+
 Examples
 --------
 >>> from mobility.io.yaml_source import parse_yaml
@@ -30,7 +37,8 @@ from typing import Any, Mapping
 from ..core.model import WORLD, Frame
 from ..core.transforms import rotation_from_axis_angle, rotation_from_rpy
 from ..errors import MechanismError, MechanismFileError
-from .expressions import evaluate
+from .expressions import RESERVED_NAMES, evaluate
+from .limits import Limits, current_limits
 from .yaml_source import KeyPath, Positions, format_key
 
 __all__ = ["DocumentReader", "describe_value", "parse_key", "NAME_RE", "FRAME_KEYS"]
@@ -48,11 +56,15 @@ class DocumentReader:
         The file name used in messages.
     positions : Positions
         Lines of the keys, from :func:`~mobility.io.yaml_source.parse_yaml`.
+    limits : Limits, optional
+        Bounds on the document (default: :func:`~mobility.io.limits.current_limits`).
     """
 
-    def __init__(self, file: str, positions: Positions) -> None:
+    def __init__(self, file: str, positions: Positions, limits: Limits | None = None) -> None:
         self.file = file
         self.pos = positions
+        self.limits = current_limits(limits)
+        self.frame_paths: dict[str, KeyPath] = {}
         self.names: dict[str, float] = {}
         self.angle_scale = math.pi / 180.0
 
@@ -76,13 +88,19 @@ class DocumentReader:
     def number(self, value: Any, path: KeyPath, names: Mapping[str, float] | None = None) -> float:
         if isinstance(value, bool):
             raise self.fail(path, f"expected a number, got {value!r}")
-        if isinstance(value, (int, float)):
+        if isinstance(value, float):
             if not math.isfinite(value):
                 raise self.fail(path, f"expected a finite number, got {value!r}")
-            return float(value)
-        if isinstance(value, str):
+            return value
+        if isinstance(value, int):
             try:
-                return evaluate(value, self.names if names is None else names)
+                return float(value)
+            except OverflowError:
+                raise self.fail(path, f"expected a finite number, got {describe_value(value)}, too large for a float") from None
+        if isinstance(value, str):
+            lim = self.limits
+            try:
+                return evaluate(value, self.names if names is None else names, max_length=lim.max_expression_length, max_depth=lim.max_expression_depth)
             except ValueError as exc:
                 raise self.fail(path, str(exc)) from None
         raise self.fail(path, f"expected a number or an expression, got {describe_value(value)}")
@@ -99,6 +117,13 @@ class DocumentReader:
         if not isinstance(value, str) or not value.strip():
             raise self.fail(path, f"expected a non-empty string, got {describe_value(value)}")
         return value
+
+    def identifier(self, value: Any, path: KeyPath, what: str = "a name") -> str:
+        """A name of a link, joint or frame: a non-empty string (a number or ``true`` must be quoted)."""
+        if isinstance(value, str) and value.strip():
+            return value
+        hint = "; write it in quotes if it is a name" if isinstance(value, (bool, int, float)) else ""
+        raise self.fail(path, f"expected {what} (a string), got {describe_value(value)}{hint}")
 
     def units(self, value: Any) -> str:
         if value is None:
@@ -122,18 +147,42 @@ class DocumentReader:
             return
         params = self.mapping(value, ("parameters",), "parameter names to numbers or expressions")
         for key, raw in params.items():
-            if not NAME_RE.match(key) or key in ("pi", "tau", "e"):
-                raise self.fail(("parameters", key), "expected a parameter name (letters, digits, _; not pi, tau or e)")
+            if not NAME_RE.match(key) or key in RESERVED_NAMES:
+                raise self.fail(("parameters", key), "expected a parameter name (letters, digits, _; not pi, tau, e or a function name)")
             self.names[key] = self.number(raw, ("parameters", key))
 
     def frames(self, value: Any) -> list[Frame]:
         if value is None:
             return []
         frames = self.mapping(value, ("frames",), "frame names to frames")
+        if len(frames) > self.limits.max_frames:
+            raise self.fail(("frames",), f"{len(frames)} frames are more than the limit of {self.limits.max_frames} ({self.limits.hint('max_frames')})")
         return [self.frame(str(fname), fdata, ("frames", fname), self.names) for fname, fdata in frames.items()]
+
+    def check_frame_chains(self, frames: list[Frame]) -> None:
+        """Bound the chains of ``parent`` frames by the depth limit (unknown parents and cycles are the model's to report)."""
+        parents = {f.name: f.parent for f in frames}
+        depth: dict[str, int] = {WORLD: 0}
+        limit = self.limits.max_depth
+        for name in parents:
+            chain: list[str] = []
+            current = name
+            while current not in depth and current in parents and current not in chain and len(chain) <= limit:
+                chain.append(current)
+                current = parents[current]
+            too_deep = len(chain) > limit
+            if current in depth:
+                for k, link in enumerate(reversed(chain), start=1):
+                    depth[link] = depth[current] + k
+                too_deep = depth[name] > limit
+            if too_deep:
+                path = self.frame_paths.get(name, ("frames", name)) + ("parent",)
+                raise self.fail(path, f"frames chained through more than the limit of {limit} parents ({self.limits.hint('max_depth')})")
+            # otherwise an unknown parent or a cycle, which the model reports
 
     def frame(self, name: str, data: Any, path: KeyPath, names: Mapping[str, float]) -> Frame:
         fdata = self.mapping(data if data is not None else {}, path, "a frame with origin, rpy, parent")
+        self.frame_paths.setdefault(name, path)
         self.check_keys(fdata, FRAME_KEYS + (("name",) if path[0] == "limbs" else ()), path, "a frame")
         origin = self.vector(fdata["origin"], path + ("origin",), names) if "origin" in fdata else (0.0, 0.0, 0.0)
         if "rpy" in fdata and ("axis" in fdata or "angle" in fdata):
@@ -145,15 +194,13 @@ class DocumentReader:
             if "axis" not in fdata or "angle" not in fdata:
                 raise self.fail(path, "a rotation by axis and angle needs both keys")
             axis = self.vector(fdata["axis"], path + ("axis",), names)
-            norm = math.sqrt(sum(a * a for a in axis))
+            norm = math.hypot(*axis)  # no overflow for large components
             if norm == 0.0:
                 raise self.fail(path + ("axis",), "expected a non-zero direction, got [0, 0, 0]")
             rotation = rotation_from_axis_angle([a / norm for a in axis], self.number(fdata["angle"], path + ("angle",), names) * self.angle_scale)
         else:
             rotation = rotation_from_rpy((0.0, 0.0, 0.0))
-        parent = fdata.get("parent", WORLD)
-        if not isinstance(parent, str):
-            raise self.fail(path + ("parent",), f"expected a frame name, got {describe_value(parent)}")
+        parent = self.identifier(fdata.get("parent", WORLD), path + ("parent",), "a frame name")
         try:
             return Frame(name, origin, tuple(map(tuple, rotation)), parent)
         except MechanismError as exc:
@@ -166,10 +213,12 @@ def describe_value(value: Any) -> str:
         return "nothing"
     if isinstance(value, bool):
         return f"{value!r}".lower()
+    if isinstance(value, int) and len(str(abs(value))) > 20:
+        return f"an integer of {len(str(abs(value)))} digits"
     if isinstance(value, (int, float)):
         return f"the number {value!r}"
     if isinstance(value, str):
-        return f"the string {value!r}"
+        return f"the string {value if len(value) <= 40 else value[:37] + '...'!r}"
     if isinstance(value, list):
         return f"a list of {len(value)}"
     if isinstance(value, dict):

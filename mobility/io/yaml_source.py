@@ -1,30 +1,74 @@
-"""YAML documents with the line of every key, for error messages.
+"""YAML documents with the line of every key, read within bounded time and memory.
 
 :func:`parse_yaml` returns plain Python data (dicts, lists, scalars) and a
 :class:`Positions` table from key paths to 1-based line numbers, so that any
-later error about ``joints[3].axis`` can name its line.  Duplicate keys in a
-mapping are an error (PyYAML would silently keep the last one).
+later error about ``joints[3].axis`` can name its line.
+
+The document is built here from the parser's event stream (libyaml's C parser,
+PyYAML's pure-Python one only when libyaml is absent), in one loop with an
+explicit stack: no recursion grows with the input, and every bound of
+:class:`~mobility.io.limits.Limits` is checked as the nodes arrive, before any
+key is interpreted:
+
+* nesting depth, so a document nested 10,000 levels deep stops at the limit;
+* nodes counted with every alias expanded, so an alias bomb ("billion
+  laughs") stops when its expansion would pass the limit, although the values
+  themselves are shared, as PyYAML shares them;
+* a recursive alias (``&j [*j]``), an undefined alias, a second document, an
+  unknown tag (``!vec [0, 0, 1]``: this format uses plain YAML), a merge key
+  (``<<``), a duplicate key, a collection as a key and a control character
+  are errors.
+
+Mapping keys are kept as the text written (``on:`` is the key ``"on"``, not
+``True``).  Every error is a :class:`~mobility.errors.MechanismFileError`
+with the file, the line and, where there is one, the key.
 
 Examples
 --------
 >>> data, pos = parse_yaml("name: x\\njoints:\\n  - {name: A}\\n", "m.yaml")
 >>> data["joints"][0]["name"], pos.line(("joints", 0, "name"))
 ('A', 3)
+>>> parse_yaml("a: &x [1, 2]\\nb: [*x, *x]\\n", "m.yaml")[0]
+{'a': [1, 2], 'b': [[1, 2], [1, 2]]}
+>>> parse_yaml("a: !vec [0, 0, 1]\\n", "m.yaml")
+Traceback (most recent call last):
+...
+mobility.errors.MechanismFileError: m.yaml:1: a: unsupported YAML tag '!vec'; mechanism files use plain YAML (no tags)
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
 import yaml
 
 from ..errors import MechanismFileError
+from .limits import Limits, current_limits
+
+try:  # libyaml's parser, in C, about 14 times faster than the pure-Python one
+    from yaml import CSafeLoader as _EventSource
+except ImportError:  # pragma: no cover - PyPI's wheels of pyyaml ship libyaml
+    from yaml import SafeLoader as _EventSource  # type: ignore[assignment]
+
+_RESOLVER = yaml.resolver.Resolver()
+"""The implicit tags of YAML 1.1 plain scalars, as PyYAML's safe loader resolves them."""
 
 __all__ = ["KeyPath", "Positions", "format_key", "parse_yaml", "read_text"]
 
 KeyPath = tuple[str | int, ...]
+
+_TAG = "tag:yaml.org,2002:"
+_STR, _MAP, _SEQ, _INT = _TAG + "str", _TAG + "map", _TAG + "seq", _TAG + "int"
+_SCALAR_TAGS = {_STR, _TAG + "int", _TAG + "float", _TAG + "bool", _TAG + "null"}
+"""Tags a scalar may carry explicitly (``!!int 3``); any other tag is an error."""
+_KIND = {_TAG + "int": "an integer", _TAG + "float": "a number", _TAG + "bool": "true or false", _TAG + "timestamp": "a date", _TAG + "null": "null"}
+
+# Characters YAML does not allow in a stream (the complement of its printable set).
+_NOT_PRINTABLE = re.compile("[^\t\n\r\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
 
 
 def format_key(path: KeyPath) -> str:
@@ -46,7 +90,10 @@ def format_key(path: KeyPath) -> str:
 
 @dataclass
 class Positions:
-    """Line numbers of the nodes of a YAML document, by key path."""
+    """Line numbers of the nodes of a YAML document, by key path.
+
+    The content reached through an alias has the line of the alias.
+    """
 
     lines: dict[KeyPath, int] = field(default_factory=dict)
 
@@ -61,65 +108,242 @@ class Positions:
             path = path[:-1]
 
 
-def _construct(node: yaml.Node, path: KeyPath, pos: Positions, file: str, loader: yaml.SafeLoader) -> Any:
-    pos.lines.setdefault(path, node.start_mark.line + 1)
-    if isinstance(node, yaml.MappingNode):
-        out: dict[Any, Any] = {}
-        for key_node, value_node in node.value:
-            key = loader.construct_object(key_node, deep=True)
-            if not isinstance(key, (str, int, float, bool)):
-                raise MechanismFileError(format_key(path), "mapping keys must be plain names", file=file, line=key_node.start_mark.line + 1)
-            key = str(key) if not isinstance(key, str) else key
-            if key in out:
-                raise MechanismFileError(format_key(path + (key,)), "duplicate key", file=file, line=key_node.start_mark.line + 1)
-            pos.lines[path + (key,)] = key_node.start_mark.line + 1
-            out[key] = _construct(value_node, path + (key,), pos, file, loader)
-        return out
-    if isinstance(node, yaml.SequenceNode):
-        return [_construct(item, path + (i,), pos, file, loader) for i, item in enumerate(node.value)]
-    return loader.construct_object(node, deep=True)
-
-
-def read_text(path: str | Path) -> str:
-    """The text of a document file.
+def read_text(path: str | Path, limits: Limits | None = None) -> str:
+    """The text of a document file, read with the size cap of ``limits``.
 
     Raises
     ------
     MechanismFileError
-        One line naming the file: missing, a directory, or unreadable.
+        One line naming the file: missing, a directory, unreadable, larger
+        than the limit, or not UTF-8 (with the line of the first bad byte).
     """
     name = str(path)
+    cap = current_limits(limits).max_file_bytes
     try:
-        return Path(path).read_text(encoding="utf-8")
+        with open(path, "rb") as stream:
+            chunks, size = [], 0
+            while size <= cap:  # in chunks: read(cap + 1) would allocate the whole cap for every file
+                chunk = stream.read(min(1 << 16, cap + 1 - size))
+                if not chunk:
+                    break
+                chunks.append(chunk)
+                size += len(chunk)
+            raw = b"".join(chunks)
     except FileNotFoundError:
         raise MechanismFileError("", "no such file", file=name) from None
     except IsADirectoryError:
         raise MechanismFileError("", "is a directory, expected a mechanism file", file=name) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise MechanismFileError("", f"cannot read: {exc}", file=name) from None
+    except OSError as exc:
+        raise MechanismFileError("", f"cannot read: {exc.strerror or exc}", file=name) from None
+    if len(raw) > cap:
+        raise MechanismFileError("", f"larger than the limit of {cap} bytes for a document (set MOBILITY_MAX_FILE_BYTES to raise it)", file=name)
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        raise MechanismFileError("", f"not UTF-8 text (byte 0x{raw[exc.start]:02x})", file=name, line=line) from None
 
 
-def parse_yaml(text: str, file: str = "<string>") -> tuple[Any, Positions]:
+def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) -> tuple[Any, Positions]:
     """Parse one YAML document, keeping the line of every key.
+
+    Parameters
+    ----------
+    text : str
+        The document.
+    file : str
+        The file name used in messages.
+    limits : Limits, optional
+        Bounds on size, depth and nodes (default: :func:`~mobility.io.limits.current_limits`).
+
+    Returns
+    -------
+    data, positions
+        ``data`` is ``None`` for an empty document.
 
     Raises
     ------
     MechanismFileError
-        On a YAML syntax error (with its line), or a duplicate key.
+        On a YAML syntax error (with its line), a limit passed, or any
+        construct listed in the module docstring.
     """
-    loader = yaml.SafeLoader(text)
+    lim = current_limits(limits)
+    if len(text) > lim.max_file_bytes:
+        raise MechanismFileError("", f"a document of {len(text)} characters is larger than the limit of {lim.max_file_bytes} (set MOBILITY_MAX_FILE_BYTES to raise it)", file=file)
+    bad = _NOT_PRINTABLE.search(text)
+    if bad is not None:
+        line = text.count("\n", 0, bad.start()) + 1
+        raise MechanismFileError("", f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in YAML", file=file, line=line)
+    loader = _EventSource(text)
     try:
-        node = loader.get_single_node()
-        pos = Positions()
-        if node is None:
-            return None, pos
-        return _construct(node, (), pos, file, loader), pos
+        return _Builder(loader, file, lim).document()
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark is not None else None
         what = exc.problem or exc.context or "syntax error"
         raise MechanismFileError("", f"YAML syntax error: {what}", file=file, line=line) from None
     except yaml.YAMLError as exc:
-        raise MechanismFileError("", f"YAML error: {exc}", file=file) from None
+        raise MechanismFileError("", f"YAML error: {' '.join(str(exc).split())}", file=file) from None
     finally:
         loader.dispose()
+
+
+class _Builder:
+    """Builds the values and the positions of one document from its events (one loop, an explicit stack)."""
+
+    def __init__(self, loader: Any, file: str, limits: Limits) -> None:
+        self.loader = loader
+        self.file = file
+        self.limits = limits
+        self.lines: dict[KeyPath, int] = {}
+        self.anchors: dict[str, tuple[Any, int]] = {}  # anchor -> (value, nodes once expanded)
+
+    def fail(self, path: KeyPath, line: int, message: str) -> MechanismFileError:
+        return MechanismFileError(format_key(path), message, file=self.file, line=line)
+
+    def document(self) -> tuple[Any, Positions]:
+        get_event = self.loader.get_event
+        get_event()  # StreamStartEvent
+        event = get_event()
+        if isinstance(event, yaml.StreamEndEvent):
+            return None, Positions(self.lines)
+        value = self.node_tree(get_event)
+        get_event()  # DocumentEndEvent
+        event = get_event()
+        if not isinstance(event, yaml.StreamEndEvent):
+            raise self.fail((), event.start_mark.line + 1, "expected one YAML document, found a second one (a line '---')")
+        return value, Positions(self.lines)
+
+    def node_tree(self, get_event: Any) -> Any:
+        """The value of the document's root node; events are read up to its end."""
+        lines = self.lines
+        max_depth, max_nodes = self.limits.max_depth, self.limits.max_nodes
+        anchors = self.anchors
+        # One frame per open collection: [container, path, nodes so far, anchor, pending key (None: expecting a key), is mapping]
+        stack: list[list[Any]] = []
+        nodes = 0
+        while True:
+            event = get_event()
+            cls = type(event)
+            if cls is yaml.MappingEndEvent or cls is yaml.SequenceEndEvent:
+                container, path, size, anchor, _, _ = stack.pop()
+                if anchor is not None:
+                    anchors[anchor] = (container, size)
+                if not stack:
+                    return container
+                parent = stack[-1]
+                parent[2] += size
+                if parent[5]:
+                    parent[0][parent[4]] = container
+                    parent[4] = None
+                else:
+                    parent[0].append(container)
+                continue
+            line = event.start_mark.line + 1
+            if stack:
+                parent = stack[-1]
+                if parent[5]:
+                    if parent[4] is None:  # this node is a key
+                        parent[4] = self.key(event, parent, line)
+                        parent[2] += 1
+                        nodes += 1
+                        continue
+                    path = parent[1] + (parent[4],)
+                else:
+                    path = parent[1] + (len(parent[0]),)
+                    lines[path] = line
+            else:
+                parent = None
+                path = ()
+                lines[path] = line
+            if cls is yaml.ScalarEvent:
+                value, size = self.scalar(event, path, line), 1
+            elif cls is yaml.AliasEvent:
+                if event.anchor not in anchors:
+                    open_anchor = any(frame[3] == event.anchor for frame in stack)
+                    raise self.fail(path, line, f"recursive alias *{event.anchor} (it refers to a node that contains it)" if open_anchor else f"undefined alias *{event.anchor}")
+                value, size = anchors[event.anchor]
+            else:  # a mapping or a sequence starts
+                is_mapping = cls is yaml.MappingStartEvent
+                self.check_collection_tag(event, path, line, is_mapping)
+                if len(stack) >= max_depth:
+                    raise MechanismFileError(format_key(path[:3]) + "...", f"nested deeper than the limit of {max_depth} levels (set MOBILITY_MAX_DEPTH to raise it)", file=self.file, line=line)
+                nodes += 1
+                stack.append([{} if is_mapping else [], path, 1, event.anchor, None, is_mapping])
+                continue
+            nodes += size
+            if nodes > max_nodes:
+                raise self.fail(path, line, f"the document has more than the limit of {max_nodes} YAML nodes, aliases expanded (set MOBILITY_MAX_NODES to raise it)")
+            if event.anchor is not None:
+                anchors[event.anchor] = (value, size)
+            if parent is None:
+                return value
+            parent[2] += size
+            if parent[5]:
+                parent[0][parent[4]] = value
+                parent[4] = None
+            else:
+                parent[0].append(value)
+
+    def key(self, event: Any, frame: list[Any], line: int) -> str:
+        """The text of a mapping key, checked: a plain scalar, not ``<<``, not already in the mapping."""
+        path = frame[1]
+        if type(event) is not yaml.ScalarEvent:
+            what = "an alias" if type(event) is yaml.AliasEvent else "a collection"
+            raise self.fail(path, line, f"mapping keys must be plain names, got {what}")
+        if event.tag not in (None, "!") and event.tag not in _SCALAR_TAGS:
+            raise self.fail(path, line, _unsupported_tag(event.tag))
+        key = event.value
+        if key == "<<" and event.implicit[0]:
+            raise self.fail(path + (key,), line, "YAML merge keys (<<) are not supported; write the keys out")
+        if key in frame[0]:
+            raise self.fail(path + (key,), line, "duplicate key")
+        self.lines[path + (key,)] = line
+        if event.anchor is not None:
+            self.anchors[event.anchor] = (key, 1)
+        return key
+
+    def scalar(self, event: Any, path: KeyPath, line: int) -> Any:
+        """The value of a scalar: resolved as PyYAML's safe loader does, with every failure an error at its key."""
+        value, tag = event.value, event.tag
+        if tag is None or tag == "!":
+            if not event.implicit[0]:  # quoted, or tagged '!': a string
+                return value
+            tag = _resolve_plain(value)
+            if tag == _STR:
+                return value
+            if tag == _INT and value.isdigit() and (value[0] != "0" or value == "0"):  # the common case, decimal
+                return int(value) if len(value) < 1000 else self.scalar_by_constructor(tag, event, path, line)
+        elif tag not in _SCALAR_TAGS:
+            raise self.fail(path, line, _unsupported_tag(tag))
+        if tag == _STR:
+            return value
+        return self.scalar_by_constructor(tag, event, path, line)
+
+    def scalar_by_constructor(self, tag: str, event: Any, path: KeyPath, line: int) -> Any:
+        value = event.value
+        construct = self.loader.yaml_constructors.get(tag)
+        if construct is None:  # tags of the resolver with no value of their own ('=' and '<<' as values)
+            return value
+        try:
+            return construct(self.loader, yaml.ScalarNode(tag, value, event.start_mark, event.end_mark))
+        except (ValueError, TypeError, AttributeError, OverflowError, KeyError):
+            shown = value if len(value) <= 40 else value[:37] + "..."
+            raise self.fail(path, line, f"cannot read {shown!r} as {_KIND.get(tag, tag)}") from None
+
+    def check_collection_tag(self, event: Any, path: KeyPath, line: int, is_mapping: bool) -> None:
+        tag = event.tag
+        if tag is None or tag == "!" or tag == (_MAP if is_mapping else _SEQ):
+            return
+        raise self.fail(path, line, _unsupported_tag(tag))
+
+
+@lru_cache(maxsize=4096)
+def _resolve_plain(value: str) -> str:
+    """The tag PyYAML's safe loader gives a plain scalar (``'3'`` -> int, ``'yes'`` -> bool, else str)."""
+    return _RESOLVER.resolve(yaml.ScalarNode, value, (True, False))
+
+
+def _unsupported_tag(tag: str) -> str:
+    shown = "!!" + tag[len(_TAG):] if tag.startswith(_TAG) else tag
+    return f"unsupported YAML tag {shown!r}; mechanism files use plain YAML (no tags)"
