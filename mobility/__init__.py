@@ -19,13 +19,17 @@ Load a mechanism file (or build a :class:`Mechanism` in code) and analyse it:
 
 The core (loading, analysis, results) is imported with the package.  The
 features built on it (regression checks, finite motion, actuation, flexures,
-finite screws and synthesis, Jacobians, pictures) are imported on first use of
-one of their names, so ``import mobility`` stays light:
+finite screws and synthesis, Jacobians, pictures, 3D views) are imported on
+first use of one of their names, so ``import mobility`` stays light:
 
 >>> mobility.check_mechanism(m.replace(expected=mobility.Expected(dof=1, pattern="1R"))).status
 'pass'
+
+Inside IPython (a notebook) a :class:`Result` displays itself as its
+interactive 3D view (:mod:`mobility.view`).
 """
 
+import sys
 from importlib import import_module
 from typing import Any
 
@@ -59,6 +63,12 @@ _LAZY = {
     # pictures and Markdown
     "plot_mechanism": "report.plotting", "plot_graph": "report.plotting", "save_figure": "report.plotting",
     "markdown_report": "report.markdown",
+    # sweeps: mobility, singularity and actuation maps over a grid of poses
+    "sweep": "sweeps", "SweepResult": "sweeps",
+    # robot description files (MJCF, URDF): the mechanism with the notes of its reading
+    "read_robot": "io.robot_files",
+    # the interactive 3D view
+    "mechanism_view": "view", "poses_view": "view", "sweep_view": "view", "View": "view", "ViewFrame": "view",
 }
 
 __all__ = [
@@ -97,3 +107,20 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_LAZY))
+
+
+def _display_results_in_ipython() -> None:
+    """Inside IPython, show a :class:`Result` as its interactive 3D view (text in a terminal).
+
+    The core knows nothing of views: the display is registered from here,
+    with IPython's formatter (:func:`mobility.view.notebook.register_display`).
+    """
+    ipython = sys.modules.get("IPython")
+    shell = ipython.get_ipython() if ipython is not None and hasattr(ipython, "get_ipython") else None
+    if shell is not None and hasattr(shell, "display_formatter"):
+        from .view.notebook import register_display
+
+        register_display(shell)
+
+
+_display_results_in_ipython()

@@ -1,7 +1,8 @@
 """Headless Chromium for the tests of the 3D view, driven by Playwright.
 
-The browser is Debian's ``chromium`` (``.ci/run`` installs it); Playwright
-never downloads one.  It starts with a new, empty profile and everything that
+The browser is Debian's ``chromium``: ``.ci/run`` installs it, and so does the
+suite itself when it runs as root on a machine without it; Playwright never
+downloads one.  It starts with a new, empty profile and everything that
 could reach the network switched off (the network is closed here, and a page
 that works offline must not need it).  A missing browser or Playwright is a
 failure, not a skip.
@@ -16,6 +17,7 @@ from __future__ import annotations
 import contextlib
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -47,6 +49,24 @@ def chromium_path() -> str:
     return os.environ.get("MOBILITY_CHROMIUM") or shutil.which("chromium") or "/usr/bin/chromium"
 
 
+def ensure_chromium() -> str:
+    """The Chromium executable, installed from Debian's packages first when it is absent and we may.
+
+    The suite installs the browser it drives: as root on a Debian-like machine
+    (CI, a fresh container) ``apt-get install chromium`` runs once; elsewhere
+    the error says what to install.  Never a skip.
+    """
+    exe = chromium_path()
+    if Path(exe).is_file() or "MOBILITY_CHROMIUM" in os.environ:
+        return exe
+    if hasattr(os, "geteuid") and os.geteuid() == 0 and shutil.which("apt-get"):
+        env = {**os.environ, "DEBIAN_FRONTEND": "noninteractive"}
+        for command in (["apt-get", "update", "-qq"], ["apt-get", "install", "-y", "-qq", "chromium"]):
+            subprocess.run(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=False, timeout=900)
+        exe = chromium_path()
+    return exe
+
+
 @contextlib.contextmanager
 def browser_context(width: int = 1280, height: int = 900) -> Iterator:
     """A Playwright browser context of headless Chromium with a new empty profile; closed on exit.
@@ -60,7 +80,7 @@ def browser_context(width: int = 1280, height: int = 900) -> Iterator:
         from playwright.sync_api import sync_playwright
     except ImportError as exc:
         raise RuntimeError(f"the browser tests need playwright (pip install -e '.[test]'): {exc}") from None
-    exe = chromium_path()
+    exe = ensure_chromium()
     if not Path(exe).is_file():
         raise RuntimeError(f"the browser tests need Chromium at {exe}: apt-get install chromium (or set MOBILITY_CHROMIUM)")
     with tempfile.TemporaryDirectory(prefix="mobility-chromium-") as profile, sync_playwright() as p:

@@ -20,8 +20,6 @@ typed with few digits).  Both are reported, never hidden.
 Examples
 --------
 >>> import numpy as np
-
-from ..errors import RequestError
 >>> d = decide_rank(np.array([2.0, 1.0, 1e-15]))
 >>> d.rank, d.smallest_kept, d.largest_dropped
 (2, 0.5, 5e-16)
@@ -34,6 +32,8 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from ..errors import RequestError
+
 __all__ = [
     "Tolerance",
     "DEFAULT_TOLERANCE",
@@ -41,6 +41,9 @@ __all__ = [
     "decide_rank",
     "characteristic_scale",
     "clean_numbers",
+    "RankDecisions",
+    "decide_ranks",
+    "characteristic_scales",
 ]
 
 
@@ -209,3 +212,101 @@ def clean_numbers(value: Any, scale: float = 1.0, tol: Tolerance = DEFAULT_TOLER
     if isinstance(value, np.generic):
         return value.item()
     return value
+
+
+# ---------------------------------------------------------------------------
+# the same policy over many matrices at once (sweeps)
+# ---------------------------------------------------------------------------
+
+
+class RankDecisions(NamedTuple):
+    """Many rank decisions at once: :class:`RankDecision` with arrays for fields.
+
+    Attributes
+    ----------
+    rank : ndarray of int, shape (N,)
+    smallest_kept : ndarray of float, shape (N,)
+    largest_dropped : ndarray of float, shape (N,)
+    """
+
+    rank: np.ndarray
+    smallest_kept: np.ndarray
+    largest_dropped: np.ndarray
+
+
+def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: np.ndarray | None = None) -> RankDecisions:
+    """:func:`decide_rank` of every row of ``singular_values``, vectorised, with the same semantics.
+
+    Parameters
+    ----------
+    singular_values : ndarray, shape (N, k)
+        Each row in decreasing order (as :func:`numpy.linalg.svd` returns a stack).
+    tol : Tolerance
+    counts : ndarray of int, shape (N,), optional
+        How many leading values of each row are singular values of its
+        matrix; the others (the zero columns added to give every matrix of a
+        stack the same shape) are ignored, as if the row were shorter.
+
+    Returns
+    -------
+    RankDecisions
+        Row ``i`` equals ``decide_rank(singular_values[i, :counts[i]], tol)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> d = decide_ranks(np.array([[2.0, 1.0, 1e-15], [3.0, 0.0, 0.0]]), counts=np.array([3, 1]))
+    >>> d.rank.tolist(), d.smallest_kept.tolist(), d.largest_dropped.tolist()
+    ([2, 1], [0.5, 1.0], [5e-16, 0.0])
+    >>> tuple(decide_rank(np.array([2.0, 1.0, 1e-15]))) == (2, 0.5, 5e-16)
+    True
+    """
+    s = np.asarray(singular_values, dtype=float)
+    n, k = s.shape
+    present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.minimum(np.asarray(counts), k))[:, None]
+    length = present.sum(axis=1)
+    if k == 0:
+        return RankDecisions(np.zeros(n, dtype=int), np.ones(n), np.zeros(n))
+    scale = np.where(s[:, 0] > 1.0, s[:, 0], 1.0)
+    above = (s > (tol.rank * scale)[:, None]) & present
+    rank = np.cumprod(above, axis=1).sum(axis=1)  # leading values above the threshold, as the loop counts them
+    rows = np.arange(n)
+    kept = np.where(rank > 0, s[rows, np.maximum(rank - 1, 0)] / scale, 1.0)
+    dropped = np.where(rank < length, s[rows, np.minimum(rank, k - 1)] / scale, 0.0)
+    return RankDecisions(rank, kept, dropped)
+
+
+def characteristic_scales(points: np.ndarray, lengths: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`characteristic_scale` of many poses of one mechanism at once.
+
+    Parameters
+    ----------
+    points : ndarray, shape (N, n, 3)
+        The joint points of each pose, global frame.
+    lengths : ndarray, optional
+        Other lengths of the mechanism (the same for every pose).
+
+    Returns
+    -------
+    centres : ndarray, shape (N, 3)
+    lengths : ndarray, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> c, L = characteristic_scales(np.array([[[1.0, 0, 0], [-1.0, 0, 0]], [[2.0, 2, 0], [2.0, 2, 0]]]))
+    >>> c.tolist(), L.tolist()
+    ([[0.0, 0.0, 0.0], [2.0, 2.0, 0.0]], [1.0, 1.0])
+    """
+    pts = np.asarray(points, dtype=float)
+    count, n = pts.shape[0], pts.shape[1]
+    if n == 0:
+        centres = np.zeros((count, 3))
+        radius = np.zeros(count)
+    else:
+        centres = pts.sum(axis=1) / n
+        d = pts - centres[:, None, :]
+        radius = np.sqrt(np.einsum("kij,kij->k", d, d) / n)
+    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
+    fallback = other if other > 0.0 else 1.0
+    return centres, np.where((radius > 0.0) & (radius >= 1e-9 * other), radius, fallback)

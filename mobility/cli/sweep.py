@@ -1,0 +1,121 @@
+"""``mobility sweep FILE --vary JOINT=START:STOP:COUNT``: mobility, singularity and actuation maps over a grid.
+
+Each ``--vary`` displaces a joint from its value in the file's pose (degrees
+for R, H, C joints, the file's length unit for P joints) or moves the end
+effector (``x y z`` in length, ``rx ry rz`` in degrees); the grid is the
+product of the ranges.  Prints a short summary (``--format csv`` or ``json``
+for the whole table), ``-o`` writes it to a file, ``--plot`` draws a curve,
+a map or slices.  Exit status: 0 on success, 2 on bad input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..errors import PlotFormatError, RequestError
+from ..io.loader import load
+from ..report.sweep import sweep_csv, sweep_json, sweep_summary
+from ..sweeps import DEFAULT_CHUNK_SIZE, DEFAULT_MAX_POSES, sweep
+from ._options import add_tolerance_option, tolerance_from
+
+ORDER = 35
+
+FORMATS = {"text": sweep_summary, "csv": sweep_csv, "json": sweep_json}
+"""Output formats: name -> function(result) -> str."""
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "sweep",
+        help="mobility, singularities and actuation over a grid of poses (joints or end-effector coordinates varied)",
+        description="Vary joints (or the end effector's pose) over a grid, close every loop at every point, and report "
+        "DOF, pattern, mobility, rank margin and, for actuated joints, the actuation verdict and conditioning; "
+        "the summary names the singular poses and where the answer changes.",
+    )
+    p.add_argument("file", help="mechanism file (YAML)")
+    p.add_argument(
+        "--vary",
+        action="append",
+        required=True,
+        metavar="NAME=START:STOP:COUNT",
+        help="a joint (R/H/C: degrees, P: length) or a pose coordinate x, y, z (length), rx, ry, rz (degrees), "
+        "displaced from the file's pose; COUNT values, both ends included (repeat for a grid)",
+    )
+    p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated)")
+    p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output: a summary (default), the table as CSV, or JSON")
+    p.add_argument("--json", action="store_true", help="same as --format json")
+    p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the output to FILE instead of printing it")
+    p.add_argument("--plot", default=None, metavar="FILE", help="also draw the sweep (.png, .svg or .pdf): a curve, a map, or slices of a 3-D grid")
+    p.add_argument("--max-poses", type=int, default=DEFAULT_MAX_POSES, help="refuse a larger grid (default: %(default)d)")
+    p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE, help="poses per chunk of work (default: %(default)d)")
+    p.add_argument("--workers", type=int, default=None, help="threads in this process (default: the number of CPUs)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS", help="run the chunks on a dask.distributed scheduler (needs mobility[dask])")
+    bar = p.add_mutually_exclusive_group()
+    bar.add_argument("--progress", dest="progress", action="store_true", default=None, help="show a progress bar on stderr (needs mobility[progress])")
+    bar.add_argument("--no-progress", dest="progress", action="store_false", help="never show a progress bar")
+    add_tolerance_option(p)
+    p.set_defaults(run=run)
+
+
+def _progress_wanted(choice: bool | None) -> bool:
+    """An explicit choice, else a bar when stderr is a terminal and tqdm is installed."""
+    if choice is not None:
+        return choice
+    if not sys.stderr.isatty():
+        return False
+    try:
+        import tqdm  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def run(args: argparse.Namespace) -> int:
+    tol = tolerance_from(args)
+    if args.plot is not None:
+        from ..report.sweep_plot import FORMATS as PICTURES
+
+        if not args.plot.lower().endswith(PICTURES):  # before any work
+            raise PlotFormatError(f"--plot {args.plot}: cannot tell the picture type; expected a name ending in {', '.join(PICTURES)}")
+    if args.max_poses < 1:
+        raise RequestError(f"--max-poses must be at least 1, got {args.max_poses}")
+    if args.chunk_size < 1:
+        raise RequestError(f"--chunk-size must be at least 1, got {args.chunk_size}")
+    if args.workers is not None and args.workers < 1:
+        raise RequestError(f"--workers must be at least 1, got {args.workers}")
+    mechanism = load(args.file)
+    inputs = None if args.inputs is None else [n.strip() for n in args.inputs.split(",") if n.strip()]
+    result = sweep(
+        mechanism,
+        args.vary,
+        actuated=inputs,
+        tol=tol,
+        max_poses=args.max_poses,
+        chunk_size=args.chunk_size,
+        scheduler=args.scheduler,
+        workers=args.workers,
+        progress=_progress_wanted(args.progress),
+    )
+    fmt = "json" if args.json else args.format
+    text = FORMATS[fmt](result)
+    if args.output is not None:
+        try:
+            Path(args.output).write_text(text if text.endswith("\n") else text + "\n", encoding="utf-8")
+        except OSError as exc:
+            raise RequestError(f"-o {args.output}: cannot write it ({exc.strerror or exc})") from None
+        print(f"wrote {args.output}: {result.size:,} poses of {result.name} ({fmt})")
+    else:
+        print(text, end="" if text.endswith("\n") else "\n")
+    if args.plot is not None:
+        from ..report.sweep_plot import plot_sweep, save_sweep_figure
+
+        try:
+            path = save_sweep_figure(plot_sweep(result), args.plot)
+        except OSError as exc:
+            raise RequestError(f"--plot {args.plot}: cannot write it ({exc.strerror or exc})") from None
+        note = f"wrote {path}: {'curve' if len(result.axes) == 1 else 'map' if len(result.axes) == 2 else 'slices'} of {result.name}"
+        # a table printed on stdout stays a clean table: the note goes to stderr then
+        print(note, file=sys.stderr if (args.output is None and fmt != "text") else sys.stdout)
+    return 0

@@ -1,0 +1,144 @@
+"""Reports of a :class:`~mobility.sweeps.SweepResult`: a short text summary, CSV and JSON.
+
+Only formatting: the sweep is computed by :func:`mobility.sweep`.
+
+* :func:`sweep_summary`: what ``mobility sweep`` prints: the grid, how many
+  poses were assembled, the poses per answer (DOF, pattern, mobility), the
+  actuation verdicts, the singular poses and where the answer changes;
+* :func:`sweep_csv`: a header row naming each varied coordinate (with its
+  unit), then ``dof``, ``pattern``, ``mobility`` and the other columns of
+  :data:`mobility.sweeps.COLUMNS`; one row per pose, empty cells where a pose
+  is not assembled;
+* :func:`sweep_json`: :meth:`SweepResult.to_dict` as JSON.
+
+Examples
+--------
+>>> import mobility
+>>> r = mobility.sweep(mobility.load("mechanisms/parallelogram.yaml"), ["O1=0:360:5"])
+>>> print(sweep_csv(r).splitlines()[0])
+O1 [deg],dof,pattern,mobility,assembled,residual,smallest_kept,largest_dropped,near_singular,inexact
+>>> sweep_csv(r).splitlines()[2].split(",")[:5]
+['90', '1', '1T', '1', 'true']
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from typing import Any
+
+import numpy as np
+
+from ..sweeps import SweepResult
+from .text import fmt_number
+
+__all__ = ["sweep_summary", "sweep_csv", "sweep_json", "describe_values", "SUMMARY_SINGULAR_LIMIT"]
+
+SUMMARY_SINGULAR_LIMIT = 8
+"""Singular poses and changes listed in the summary (the CSV and JSON have them all)."""
+
+
+def describe_values(result: SweepResult, values: Any) -> str:
+    """``"O1=120 deg, P1=-5 mm"``: coordinate values with their units."""
+    return ", ".join(f"{a.name}={fmt_number(v)}{(' ' + a.unit) if a.unit else ''}" for a, v in zip(result.axes, values))
+
+
+def _range(axis) -> str:
+    unit = f" {axis.unit}" if axis.unit else ""
+    if axis.count == 1:
+        return f"{axis.name} = {fmt_number(axis.start)}{unit}"
+    step = (axis.stop - axis.start) / (axis.count - 1)
+    return f"{axis.name} from {fmt_number(axis.start)} to {fmt_number(axis.stop)}{unit} ({axis.count} values, step {fmt_number(step)})"
+
+
+def sweep_summary(result: SweepResult) -> str:
+    """The text summary printed by ``mobility sweep``."""
+    kind = "pose coordinate" if all(a.kind == "pose" for a in result.axes) else "coordinate"
+    out = [f"{result.name}: sweep of {len(result.axes)} {kind}(s), {result.size:,} poses"]
+    out += [f"  {_range(a)}" for a in result.axes]
+    assembled = int(result.assembled.sum())
+    line = f"  assembled: {assembled:,} of {result.size:,} poses"
+    if assembled:
+        line += f" (largest loop-closure residual {float(result.residual[result.assembled].max()):.1e})"
+    out.append(line)
+    if assembled < result.size:
+        out.append(f"  not assembled: {result.size - assembled:,} poses (no closed pose reached there; see the 'assembled' column)")
+    if not assembled:
+        return "\n".join(out)
+    out.append("  poses per answer (end-effector DOF, pattern, mobility):")
+    for (dof, pattern, mobility), n in result.counts().items():
+        out.append(f"    {n:>9,}  DOF {dof}  {pattern:<6}  mobility {mobility}")
+    if result.actuated:
+        verdicts = ", ".join(f"{v} at {n:,}" for v, n in result.verdict_counts().items())
+        out.append(f"  actuation by {', '.join(result.actuated)}: {verdicts}")
+        finite = result.assembled & np.isfinite(result.conditioning)
+        if finite.any():
+            kappa = result.conditioning[finite]
+            worst = int(np.flatnonzero(finite)[int(np.argmin(kappa))])
+            out.append(
+                f"    conditioning kappa: median {fmt_number(float(np.median(kappa)), digits=3)}, "
+                f"smallest {fmt_number(float(kappa.min()), digits=3)} at {describe_values(result, result.values[worst])}"
+            )
+    margin = result.smallest_kept[result.assembled]
+    worst = int(np.flatnonzero(result.assembled)[int(np.argmin(margin))])
+    near = int(result.near_singular[result.assembled].sum())
+    out.append(f"  rank margin: smallest kept relative singular value {float(margin.min()):.2e} at {describe_values(result, result.values[worst])}; near-singular poses: {near:,}")
+    singular = result.singular
+    if singular:
+        out.append(f"  singular poses ({len(singular):,}):")
+        for p in singular[:SUMMARY_SINGULAR_LIMIT]:
+            out.append(f"    {describe_values(result, p.values)}: {'; '.join(p.reasons)}")
+        if len(singular) > SUMMARY_SINGULAR_LIMIT:
+            out.append(f"    ... and {len(singular) - SUMMARY_SINGULAR_LIMIT:,} more (see --format csv or json)")
+    else:
+        out.append("  singular poses: none on the grid")
+    changes = result.changes
+    classes = result.classes()
+    if len(changes):
+        out.append(f"  the answer changes between {len(changes):,} pair(s) of neighbouring poses:")
+        for a, b, _ in changes[: SUMMARY_SINGULAR_LIMIT // 2]:
+            out.append(f"    {describe_values(result, result.values[a])} ({_answer(classes[a])}) -> {describe_values(result, result.values[b])} ({_answer(classes[b])})")
+        if len(changes) > SUMMARY_SINGULAR_LIMIT // 2:
+            out.append(f"    ... and {len(changes) - SUMMARY_SINGULAR_LIMIT // 2:,} more")
+    return "\n".join(out)
+
+
+def _answer(c: tuple[int, str, int, str] | None) -> str:
+    if c is None:
+        return "not assembled"
+    dof, pattern, mobility, verdict = c
+    return f"DOF {dof} {pattern}, mobility {mobility}" + (f", {verdict}" if verdict else "")
+
+
+def _cell(name: str, value: Any, assembled: bool) -> str:
+    if name in ("dof", "mobility", "pattern", "verdict", "smallest_kept", "largest_dropped", "conditioning", "actuation_margin") and not assembled:
+        return ""
+    if isinstance(value, (bool, np.bool_)):
+        return "true" if value else "false"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        x = float(value)
+        if not np.isfinite(x):
+            return ""
+        return fmt_number(x, digits=6) if name not in ("residual", "smallest_kept", "largest_dropped", "actuation_margin") else (f"{x:.6g}" if x else "0")
+    return str(value)
+
+
+def sweep_csv(result: SweepResult) -> str:
+    """The table as CSV: the varied coordinates (``name [unit]``), then ``dof, pattern, mobility`` and the rest."""
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    labels = {a.name: a.label for a in result.axes}
+    names = result.columns
+    writer.writerow([labels.get(n, n) for n in names])
+    columns = [result.column(n) for n in names]
+    for i, ok in enumerate(result.assembled.tolist()):
+        writer.writerow([_cell(n, c[i], ok) for n, c in zip(names, columns)])
+    return buffer.getvalue()
+
+
+def sweep_json(result: SweepResult) -> str:
+    """:meth:`SweepResult.to_dict` as indented JSON."""
+    return json.dumps(result.to_dict(), indent=1, ensure_ascii=False)

@@ -1,0 +1,40 @@
+"""Sweeps: mobility, singularity and actuation maps across a grid of poses, batched.
+
+:func:`sweep` varies joints (or the end effector's pose coordinates) over a
+grid, closes every loop at every point by continuation, and analyses all the
+poses together with stacked numpy linear algebra: DOF, pattern, mobility, the
+margin of the rank decisions and, for a choice of inputs, the actuation
+verdict and conditioning; the :class:`SweepResult` names the singular poses
+and where the answer changes.  ``mobility sweep`` is its command line.
+
+Modules, in data-flow order:
+
+``grid``
+    the request: coordinates, ranges, units, checked against the mechanism.
+``batch_kinematics``, ``continuation``
+    forward kinematics of many poses; Newton and continuation over the grid.
+``posed_screws``, ``batch_systems``, ``batch_actuation``
+    each pose's joint twists; the series/parallel screw systems, counts and
+    margins; the actuation verdict and conditioning, all stacked.
+``result``, ``runner``
+    :class:`SweepResult`; :func:`sweep` (chunks, threads or dask, progress).
+"""
+
+from .grid import DEFAULT_MAX_POSES, POSE_COORDINATES, GridPlan, SweepAxis, parse_vary, plan_grid
+from .result import COLUMNS, SingularPose, SweepResult
+from .runner import DEFAULT_CHUNK_SIZE, analyse_joint_variables, sweep
+
+__all__ = [
+    "sweep",
+    "analyse_joint_variables",
+    "SweepResult",
+    "SingularPose",
+    "SweepAxis",
+    "GridPlan",
+    "parse_vary",
+    "plan_grid",
+    "COLUMNS",
+    "POSE_COORDINATES",
+    "DEFAULT_MAX_POSES",
+    "DEFAULT_CHUNK_SIZE",
+]

@@ -1,0 +1,217 @@
+"""The actuation verdict and conditioning of one choice of inputs, at many poses at once.
+
+The definitions are those of :mod:`mobility.actuation` (Li, Shan, Yu and Ke,
+2021), re-derived here on stacks of poses:
+
+* the *actuation wrench* of an input (one freedom of an actuated joint) is
+  reciprocal to every other twist of its limb and not to its own: the
+  constraint wrenches of the limb with that freedom locked, less the limb's
+  own constraint wrenches (made orthogonal to them in coordinates centred
+  where the limb meets the end effector), first left singular vector;
+* the *verdict* comes from one rank decision on the end effector's
+  constraint wrenches and the actuation wrenches together: ``valid`` (rank 6,
+  as many inputs as DOF), ``redundant`` (rank 6, more inputs),
+  ``actuation-singular`` (rank below 6);
+* the *conditioning* ``kappa`` is ``s_min / s_max`` of the map from the end
+  effector's twists to the input rates, ``G[i, k] = (a_i o t_k) / (a_i o $_i)``
+  (0 at an actuation singularity).
+
+Each step is the same computation as :func:`mobility.check_actuation` makes
+on that pose, so the verdicts agree (the tests check it on random poses).
+
+Examples
+--------
+>>> import numpy as np
+>>> import mobility
+>>> from mobility.sweeps.batch_kinematics import BatchKinematics
+>>> from mobility.sweeps.posed_screws import posed_screws
+>>> from mobility.sweeps.batch_systems import analyse_poses
+>>> m = mobility.load("mechanisms/actuation_3rps.yaml")
+>>> posed = posed_screws(BatchKinematics(m), np.zeros((1, 15)))
+>>> a = actuation_at_poses(m, posed, analyse_poses(m, posed), actuated_inputs(m))
+>>> a.verdict.tolist(), round(float(a.conditioning[0]), 3), round(mobility.check_actuation(m).conditioning, 3)
+(['valid'], 0.311, 0.311)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from ..core.model import Mechanism
+from ..core.screws import SWAP_ROWS
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_ranks
+from ..core.topology import JointNode, Node, Parallel, Series, decompose, joints_of
+from ..errors import AnalysisError, MechanismError
+from .batch_systems import BatchValue, PoseAnswers, evaluate_batch, span_batch, stacked_svd
+from .posed_screws import PosedScrews
+
+__all__ = ["VALID", "SINGULAR", "REDUNDANT", "ActuationInputs", "actuated_inputs", "BatchActuation", "actuation_at_poses"]
+
+VALID = "valid"
+SINGULAR = "actuation-singular"
+REDUNDANT = "redundant"
+
+
+@dataclass(frozen=True)
+class ActuationInputs:
+    """The inputs of a choice of actuated joints: one per freedom.
+
+    Attributes
+    ----------
+    names : tuple of str
+        The actuated joints, as given.
+    freedoms : tuple of (int, int)
+        ``(joint index, freedom)`` of each input.
+    """
+
+    names: tuple[str, ...]
+    freedoms: tuple[tuple[int, int], ...]
+
+
+def actuated_inputs(mechanism: Mechanism, names: Sequence[str] | None = None) -> ActuationInputs:
+    """The inputs of the named joints (default: those marked ``actuated: true``).
+
+    Raises
+    ------
+    MechanismError
+        When a name is not a joint of the mechanism.
+    """
+    chosen = [j.name for j in mechanism.joints if j.actuated] if names is None else list(names)
+    index = {j.name: i for i, j in enumerate(mechanism.joints)}
+    freedoms = []
+    for name in chosen:
+        if name not in index:
+            raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {', '.join(index)}")
+        freedoms += [(index[name], k) for k in range(mechanism.joints[index[name]].dof)]
+    return ActuationInputs(tuple(chosen), tuple(freedoms))
+
+
+@dataclass(frozen=True, eq=False)
+class BatchActuation:
+    """Verdict and conditioning of one choice of inputs at every pose.
+
+    Attributes
+    ----------
+    verdict : ndarray of str
+    rank : ndarray of int
+        Rank of the constraint and actuation wrenches together.
+    margin : ndarray of float
+        Smallest kept relative singular value of that decision (small: near
+        an actuation singularity).
+    conditioning : ndarray of float
+    """
+
+    verdict: np.ndarray
+    rank: np.ndarray
+    margin: np.ndarray
+    conditioning: np.ndarray
+
+
+def _shift(points: np.ndarray, screws: np.ndarray, sign: float) -> np.ndarray:
+    """``[a; b] -> [a; b - sign * p x a]`` for stacks of screws ``(N, 6, k)`` and points ``(N, 3)``."""
+    out = screws.copy()
+    out[:, 3:] -= sign * np.cross(points[:, :, None], screws[:, :3], axis=1)
+    return out
+
+
+def _singular_values(m: np.ndarray) -> np.ndarray:
+    try:
+        return np.linalg.svd(m, compute_uv=False)
+    except np.linalg.LinAlgError:
+        raise AnalysisError(f"the singular value decomposition of a stack of {m.shape[1]}x{m.shape[2]} matrices did not converge") from None
+
+
+def _locked_limb(node: Node, posed: PosedScrews, col: int, tol: Tolerance) -> BatchValue:
+    """The limb's twist system with freedom ``col`` locked.
+
+    Locking sets the freedom's twist to zero; in a limb that is a series of
+    joints the column is simply left out of the stack (the same span and the
+    same non-zero singular values, one SVD column fewer).
+    """
+    if isinstance(node, Series) and all(type(c) is JointNode for c in node.children):
+        columns = [c for child in node.children for c in range(posed.offsets[child.index], posed.offsets[child.index + 1]) if c != col]
+        basis, wrenches, rank = span_batch(posed.twists[:, :, columns], np.full(posed.twists.shape[0], len(columns)), tol, None)
+        return BatchValue(basis, rank, wrenches, np.zeros_like(rank))
+    locked = posed.twists.copy()
+    locked[:, :, col] = 0.0
+    return evaluate_batch(node, locked, posed.offsets, tol)
+
+
+def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAnswers, inputs: ActuationInputs, tol: Tolerance = DEFAULT_TOLERANCE) -> BatchActuation:
+    """The verdict and conditioning of ``inputs`` at every pose of ``posed``.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    posed : PosedScrews
+    answers : PoseAnswers
+        :func:`~mobility.sweeps.batch_systems.analyse_poses` of the same poses.
+    inputs : ActuationInputs
+    tol : Tolerance
+    """
+    count = posed.twists.shape[0]
+    root = decompose(mechanism).root
+    value = answers.root
+    limbs = list(zip(root.children, value.children)) if isinstance(root, Parallel) else [(root, value)]
+    limb_of = {j: k for k, (node, _) in enumerate(limbs) for j in joints_of(node)}
+    world = mechanism.world_joints
+    ee = mechanism.end_effector
+    wrenches, rates = [], []
+    for joint, freedom in inputs.freedoms:
+        w = np.zeros((count, 6))
+        rate = np.ones(count)
+        if joint in limb_of:
+            node, limb = limbs[limb_of[joint]]
+            col = posed.offsets[joint] + freedom
+            others = _locked_limb(node, posed, col, tol)
+            on_ee = [world[j].name for j in joints_of(node) if ee in world[j].links and world[j].point is not None]
+            if on_ee:
+                attach = posed.normalised(np.mean([posed.points[n] for n in on_ee], axis=0))
+            else:
+                attach = posed.reference
+            w_other = _shift(attach, others.wrenches, 1.0)
+            own_count = 6 - limb.dim
+            if limb.wrenches.shape[2]:
+                q, _ = np.linalg.qr(_shift(attach, limb.wrenches, 1.0))
+                q = q * (np.arange(q.shape[2]) < own_count[:, None])[:, None, :]
+                w_other = w_other - q @ (np.swapaxes(q, 1, 2) @ w_other)
+            other_count = 6 - others.dim
+            if w_other.shape[2]:
+                u, s, _ = stacked_svd(w_other)
+                has = (other_count > 0) & (decide_ranks(s, tol, np.minimum(other_count, 6)).rank > 0)
+                a = _shift(attach, u[:, :, :1], -1.0)[:, :, 0]
+                a /= np.linalg.norm(a, axis=1)[:, None]
+                twist = posed.twists[:, :, col].copy()
+                wn = np.linalg.norm(twist[:, :3], axis=1)
+                twist[wn > tol.rank] /= wn[wn > tol.rank, None]
+                r = np.einsum("ni,ni->n", a[:, SWAP_ROWS], twist)
+                a = np.where((r < 0)[:, None], -a, a)
+                w = np.where(has[:, None], a, 0.0)
+                rate = np.where(has, np.abs(r), 1.0)
+        wrenches.append(w)
+        rates.append(rate)
+    n = len(inputs.freedoms)
+    dof = answers.dof
+    present = np.stack([np.any(w != 0.0, axis=1) for w in wrenches], axis=1) if n else np.zeros((count, 0), dtype=bool)
+    stack = np.concatenate([value.wrenches] + [w[:, :, None] for w in wrenches], axis=2)
+    counts = (6 - dof) + present.sum(axis=1)
+    decision = decide_ranks(_singular_values(stack), tol, np.minimum(counts, 6))
+    verdict = np.where(decision.rank < 6, SINGULAR, np.where(n > dof, REDUNDANT, VALID)).astype(object)
+    conditioning = np.zeros(count)
+    regular = decision.rank == 6
+    conditioning[regular & (dof == 0)] = 1.0
+    if n and value.basis.shape[2]:
+        a = np.stack(wrenches, axis=1)  # (N, n, 6)
+        g = (a[:, :, SWAP_ROWS] @ value.basis) / np.stack(rates, axis=1)[:, :, None]
+        finite = np.all(np.isfinite(g), axis=(1, 2))
+        g[~finite] = 0.0
+        sv = np.linalg.svd(g, compute_uv=False)
+        rows = np.arange(count)
+        d = np.clip(dof - 1, 0, sv.shape[1] - 1)
+        ok = regular & finite & (dof > 0) & (present.sum(axis=1) >= dof) & (sv[:, 0] > 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            conditioning = np.where(ok, sv[rows, d] / sv[:, 0], conditioning)
+    return BatchActuation(verdict, decision.rank, decision.smallest_kept, conditioning)

@@ -1,0 +1,493 @@
+"""Closing every loop at every point of a grid: batched Newton and continuation.
+
+At a grid point the driven coordinates have given values (see
+:mod:`mobility.sweeps.grid`): a driven joint's variable is fixed; a pose
+coordinate is one more equation.  The other variables are solved so that
+every loop closes (:class:`~mobility.sweeps.batch_kinematics.BatchKinematics`):
+Gauss–Newton with minimum-norm steps, batched over poses: the step
+``J^T (J J^T + mu I)^-1 r`` with a damping ``mu`` far below every kept
+singular value, so a rank-deficient Jacobian (at a change point, or the
+dependent rows of a planar loop) still gives the minimum-norm step, and the
+step lies in the row space of ``J``: round-off never drifts a pose along the
+motions the drive leaves free.  A pose is *assembled* when every residual component is
+at most ``Tolerance.closure`` (radians, lengths over the characteristic length).
+
+Continuation: the grid is solved one axis at a time, from the file's pose
+(``q = 0``) outwards.  The *anchor* of an axis is its value nearest the
+file's pose; the anchor point is reached from ``q = 0`` (in steps no longer
+than a grid step); then the first axis is swept from its anchor both ways,
+then every point found is the start of a line along the second axis, and so
+on, each step advancing all lines of an axis at once.  The start of each
+Newton solve is the cubic predictor ``4 q[i-1] - 6 q[i-2] + 4 q[i-3] - q[i-4]``
+(lower orders while fewer points are known: the secant ``2 q[i-1] - q[i-2]``
+after two), which keeps the continuation on its branch through a change
+point and leaves one Newton step to do.  A point that fails is retried in 2 and then 4
+smaller steps from its last assembled neighbour; the points still missing at
+the end are tried again from any assembled neighbour on any axis
+(:func:`fill`), layer after layer.  A point that cannot be assembled stays in
+the grid with ``assembled`` false and its best residual.
+
+Examples
+--------
+>>> import mobility
+>>> from mobility.sweeps.grid import plan_grid
+>>> m = mobility.load("mechanisms/parallelogram.yaml")
+>>> plan = plan_grid(m, ["O1=0:360:13"])
+>>> closure = close_grid(BatchKinematics(m), plan)
+>>> bool(closure.assembled.all()), float(closure.residual.max()) < 1e-12
+(True, True)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from .batch_kinematics import BatchKinematics
+from .grid import GridPlan, SweepAxis
+
+__all__ = ["Drive", "GridClosure", "newton", "close_lines", "close_grid", "fill", "seed_grid", "line_layout"]
+
+MAX_ITERATIONS = 12
+"""Newton steps at most for one solve."""
+
+RETRY_SPLITS = (2, 4)
+"""A failed step is retried in this many smaller steps, in turn."""
+
+DAMPING = 1e-14
+"""Damping of the Newton step, relative to the mean squared row of the Jacobian: far below every kept singular value squared."""
+
+POLISHED = 0.1
+"""A pose whose residual is below this fraction of ``Tolerance.closure`` needs no polishing step."""
+
+EXTRAPOLATION = ((1.0,), (2.0, -1.0), (3.0, -3.0, 1.0), (4.0, -6.0, 4.0, -1.0))
+"""Predictor from the last 1, 2, 3 or 4 points of a line (polynomial extrapolation, error of order 1 to 4 in the step)."""
+
+GIVE_UP = 2
+"""A line stops after this many failures in a row (:func:`fill` takes over from the other axes)."""
+
+HOMOTOPY_STEP = 0.1
+"""Largest step (radians, lengths over the characteristic length) from the file's pose to a grid of one point."""
+
+
+@dataclass(frozen=True)
+class Drive:
+    """How the driven coordinates enter the equations.
+
+    Attributes
+    ----------
+    joints : ndarray of int
+        Axis positions that drive a joint variable, and
+    variables : ndarray of int
+        the variable each drives.
+    pose : ndarray of int
+        Axis positions that are pose coordinates, and
+    components : ndarray of int
+        the component (0..5) each fixes.
+    free : ndarray of bool, shape (n,)
+        The variables solved for.
+    """
+
+    joints: np.ndarray
+    variables: np.ndarray
+    pose: np.ndarray
+    components: np.ndarray
+    free: np.ndarray
+
+    @classmethod
+    def of(cls, axes: tuple[SweepAxis, ...], variable_count: int) -> "Drive":
+        """The drive of a grid's axes."""
+        joints = [i for i, a in enumerate(axes) if a.kind == "joint"]
+        pose = [i for i, a in enumerate(axes) if a.kind == "pose"]
+        free = np.ones(variable_count, dtype=bool)
+        variables = np.array([axes[i].variable for i in joints], dtype=int)
+        free[variables] = False
+        return cls(np.array(joints, dtype=int), variables, np.array(pose, dtype=int), np.array([axes[i].variable for i in pose], dtype=int), free)
+
+    def apply(self, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
+        """``q`` with the driven joint variables set to their targets."""
+        q = np.array(q, dtype=float)
+        if self.joints.size:
+            q[:, self.variables] = targets[:, self.joints]
+        return q
+
+
+def _evaluate(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray):
+    """The loops' and pose equations' residual ``(m, N)``, and the evaluation that gives their Jacobian."""
+    evaluation = bk.evaluate(q, drive.components)
+    values = evaluation.values
+    if drive.pose.size:
+        values[values.shape[0] - drive.pose.size :] -= targets[:, drive.pose].T
+    return values, evaluation
+
+
+def newton(
+    bk: BatchKinematics,
+    drive: Drive,
+    start: np.ndarray,
+    targets: np.ndarray,
+    *,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+    max_move: np.ndarray | float = np.inf,
+    max_iter: int = MAX_ITERATIONS,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Close every loop of many poses by Gauss–Newton with minimum-norm steps.
+
+    Parameters
+    ----------
+    bk : BatchKinematics
+    drive : Drive
+    start : ndarray, shape (N, n)
+        Starting joint variables (the driven ones are overwritten by the targets).
+    targets : ndarray, shape (N, axes)
+        Values of the driven coordinates (internal units).
+    tol : Tolerance
+        ``tol.closure`` is the largest residual component of an assembled pose.
+    max_move : float or ndarray (N,)
+        A solve that wanders farther than this from its start has failed (it
+        would reach another assembly, not the nearby one).
+    max_iter : int
+
+    Returns
+    -------
+    q : ndarray, shape (N, n)
+        The best iterate of each pose.
+    residual : ndarray, shape (N,)
+        Its largest residual component.
+    assembled : ndarray of bool, shape (N,)
+    """
+    q0 = drive.apply(start, targets)
+    count = len(q0)
+    q = q0.copy()
+    best_q, best = q.copy(), np.full(count, np.inf)
+    stalled = np.zeros(count, dtype=int)
+    active = np.arange(count)
+    max_move = np.broadcast_to(np.asarray(max_move, dtype=float), (count,))
+    for iteration in range(max_iter + 1):
+        if active.size == 0:
+            break
+        r, evaluation = _evaluate(bk, drive, q[active], targets[active])
+        err = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(active.size)
+        err = np.where(np.isfinite(err), err, np.inf)
+        better = err < best[active]
+        halved = err < 0.5 * best[active]
+        stalled[active] = np.where(halved, 0, stalled[active] + 1)
+        best_q[active[better]] = q[active[better]]
+        best[active[better]] = err[better]
+        b, st = best[active], stalled[active]
+        # done: near round-off, or closed and no longer gaining (a last step polishes a pose near a singularity)
+        done = (b <= POLISHED * tol.closure) | ((b <= tol.closure) & (st > 0))
+        keep = np.flatnonzero(~done & (st < 4) & (iteration < max_iter) & bool(drive.free.any()) & (r.shape[0] > 0))
+        if keep.size == 0:
+            break
+        jac = evaluation.jacobian(keep)[:, drive.free]
+        active, r = active[keep], r[:, keep]
+        # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
+        # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
+        j = np.ascontiguousarray(np.moveaxis(jac, -1, 0))  # (N, m, free)
+        equations = j.shape[1]
+        gram = j @ j.swapaxes(1, 2)
+        diagonal = gram.reshape(len(gram), -1)[:, :: equations + 1]
+        diagonal += (DAMPING * diagonal.sum(axis=1) / equations + 1e-300)[:, None]
+        step = -(j.swapaxes(1, 2) @ np.linalg.solve(gram, np.ascontiguousarray(r.T)[:, :, None]))[:, :, 0]
+        moved = q[active].copy()
+        moved[:, drive.free] += step
+        finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
+        q[active[finite]] = moved[finite]
+        active = active[finite]
+    return best_q, best, best <= tol.closure
+
+
+def _advance(
+    bk: BatchKinematics,
+    drive: Drive,
+    base_q: np.ndarray,
+    base_t: np.ndarray,
+    predicted: np.ndarray,
+    targets: np.ndarray,
+    tol: Tolerance,
+    retry: bool,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One continuation step from assembled poses ``base_q`` (at ``base_t``) to ``targets``, retried in smaller steps."""
+    span = np.linalg.norm(predicted - base_q, axis=1) + np.linalg.norm(targets - base_t, axis=1)
+    q, err, ok = newton(bk, drive, predicted, targets, tol=tol, max_move=10.0 * span + 0.05)
+    if not retry:
+        return q, err, ok
+    for splits in RETRY_SPLITS:
+        failed = np.flatnonzero(~ok)
+        if failed.size == 0:
+            break
+        cur_q, cur_t = base_q[failed], base_t[failed]
+        good = np.ones(failed.size, dtype=bool)
+        for k in range(1, splits + 1):
+            t = base_t[failed] + (targets[failed] - base_t[failed]) * (k / splits)
+            guess = cur_q + (predicted[failed] - base_q[failed]) / splits
+            step = np.linalg.norm(guess - cur_q, axis=1) + np.linalg.norm(t - cur_t, axis=1)
+            nq, nerr, nok = newton(bk, drive, guess, t, tol=tol, max_move=10.0 * step + 0.05)
+            good &= nok
+            cur_q, cur_t = np.where(nok[:, None], nq, cur_q), t
+            if k == splits:
+                err[failed] = np.where(good, nerr, np.minimum(err[failed], nerr))
+        q[failed[good]] = cur_q[good]
+        ok[failed[good]] = True
+    return q, err, ok
+
+
+def close_lines(
+    bk: BatchKinematics,
+    drive: Drive,
+    start_q: np.ndarray,
+    start_ok: np.ndarray,
+    line_targets: np.ndarray,
+    anchor: int,
+    *,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+    on_step: Callable[[int], None] | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Continuation along many lines at once, from their anchor point outwards.
+
+    Parameters
+    ----------
+    start_q : ndarray, shape (B, n)
+        The assembled pose of each line at its anchor point (if ``start_ok``).
+    start_ok : ndarray of bool, shape (B,)
+    line_targets : ndarray, shape (B, c, axes)
+        Driven values of every point of every line.
+    anchor : int
+        Index of the anchor point on the lines.
+    on_step : callable, optional
+        Called with the number of poses done after each step (progress).
+
+    Returns
+    -------
+    q : ndarray, shape (B, c, n)
+    residual : ndarray, shape (B, c)
+    assembled : ndarray of bool, shape (B, c)
+    """
+    lines, count = line_targets.shape[:2]
+    n = bk.variable_count
+    q = np.zeros((lines, count, n))
+    err = np.full((lines, count), np.inf)
+    ok = np.zeros((lines, count), dtype=bool)
+    q[:, anchor], ok[:, anchor] = start_q, start_ok
+    err[:, anchor] = np.where(start_ok, 0.0, np.inf)
+    if on_step:
+        on_step(lines)
+    for direction in (1, -1):
+        last_q, last_t = start_q.copy(), line_targets[:, anchor].copy()  # the last assembled point of each line
+        last_ok = start_ok.copy()  # is the previous point assembled
+        # the points before the last one, most recent first, and whether each (and all after it) is assembled
+        history = [start_q.copy() for _ in range(len(EXTRAPOLATION) - 1)]
+        known = [np.zeros(lines, dtype=bool) for _ in history]
+        misses = np.where(start_ok, 0, GIVE_UP)  # failures in a row since the last assembled point
+        for i in range(anchor + direction, count if direction > 0 else -1, direction):
+            targets = line_targets[:, i]
+            points = [last_q] + history
+            available = [last_ok] + known
+            predicted = last_q.copy()
+            for order in range(1, len(EXTRAPOLATION)):  # the highest order the assembled points allow
+                use = available[order]
+                if use.any():
+                    predicted[use] = sum(c * p[use] for c, p in zip(EXTRAPOLATION[order], points))
+            for retry, rows in ((True, np.flatnonzero(last_ok)), (False, np.flatnonzero(~last_ok & (misses < GIVE_UP)))):
+                if rows.size:
+                    rq, rerr, rok = _advance(bk, drive, last_q[rows], last_t[rows], predicted[rows], targets[rows], tol, retry=retry)
+                    q[rows, i], err[rows, i], ok[rows, i] = rq, rerr, rok
+            now = ok[:, i]
+            history = [np.where(now[:, None], p, h) for p, h in zip(points[:-1], history)]
+            known = [now & a for a in available[:-1]]
+            last_q = np.where(now[:, None], q[:, i], last_q)
+            last_t = np.where(now[:, None], targets, last_t)
+            last_ok = now
+            misses = np.where(now, 0, misses + 1)
+            if on_step:
+                on_step(lines)
+    return q, err, ok
+
+
+def line_layout(shape: tuple[int, ...], axis: int) -> np.ndarray:
+    """Flat indices of the grid as lines along ``axis``: shape ``(lines, shape[axis])``.
+
+    Examples
+    --------
+    >>> line_layout((2, 3), 1).tolist(), line_layout((2, 3), 0).tolist()
+    ([[0, 1, 2], [3, 4, 5]], [[0, 3], [1, 4], [2, 5]])
+    """
+    flat = np.arange(int(np.prod(shape))).reshape(shape)
+    return np.moveaxis(flat, axis, -1).reshape(-1, shape[axis])
+
+
+def anchors(plan: GridPlan) -> tuple[int, ...]:
+    """Index, on each axis, of the value nearest the file's pose (displacement 0); the first of two as near.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> from mobility.sweeps.grid import plan_grid
+    >>> anchors(plan_grid(mobility.load("mechanisms/3prs.yaml"), ["P1=-11:11:4", "P2=5:20:4"]))
+    (1, 0)
+    """
+    out = []
+    for a in plan.axes:
+        distance = np.abs(a.values)
+        step = abs(a.stop - a.start) / max(a.count - 1, 1)
+        out.append(int(np.flatnonzero(distance <= distance.min() + 1e-9 * step)[0]))  # round-off must not pick between ties
+    return tuple(out)
+
+
+def targets_of(plan: GridPlan, flat: np.ndarray) -> np.ndarray:
+    """Internal driven values of grid points, ``(..., axes)``."""
+    index = np.unravel_index(np.asarray(flat), plan.shape)
+    return np.stack([a.internal[i] for a, i in zip(plan.axes, index)], axis=-1)
+
+
+@dataclass(frozen=True, eq=False)
+class GridClosure:
+    """The closed poses of a grid (flat, C order: the last axis varies fastest).
+
+    Attributes
+    ----------
+    q : ndarray, shape (N, n)
+        Joint variables of each pose (see :mod:`mobility.core.kinematics`).
+    residual : ndarray, shape (N,)
+        Largest loop-closure residual component (dimensionless).
+    assembled : ndarray of bool, shape (N,)
+    """
+
+    q: np.ndarray
+    residual: np.ndarray
+    assembled: np.ndarray
+
+
+def seed_grid(bk: BatchKinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE) -> GridClosure:
+    """Every point whose last coordinate is at its anchor, by continuation (the starts of the last axis's lines).
+
+    Returns a :class:`GridClosure` over the whole grid where only those
+    points are filled (the others: not assembled, residual infinite).
+    """
+    drive = Drive.of(plan.axes, bk.variable_count)
+    shape, size, n = plan.shape, plan.size, bk.variable_count
+    q = np.zeros((size, n))
+    err = np.full(size, np.inf)
+    ok = np.zeros(size, dtype=bool)
+    anchor = anchors(plan)
+    anchor_flat = int(np.ravel_multi_index(anchor, shape))
+    # from the file's pose to the anchor point, in steps no longer than a grid step
+    goal = targets_of(plan, np.array([anchor_flat]))
+    steps = [abs(a.internal[1] - a.internal[0]) if a.count > 1 else HOMOTOPY_STEP for a in plan.axes]
+    pieces = max([0] + [int(np.ceil(abs(g) / s - 1e-9)) for g, s in zip(goal[0], steps) if s > 0])
+    cur_q, cur_t, good, last_err = np.zeros((1, n)), np.zeros((1, len(shape))), np.array([True]), np.zeros(1)
+    for k in range(1, pieces + 1):
+        t = goal * (k / pieces)
+        cur_q, last_err, good = _advance(bk, drive, cur_q, cur_t, cur_q, t, tol, retry=True)
+        cur_t = t
+        if not good[0]:
+            break
+    q[anchor_flat], ok[anchor_flat], err[anchor_flat] = cur_q[0], good[0], last_err[0]
+    for axis in range(len(shape) - 1):
+        layout = line_layout(shape, axis)
+        others = [i for i in range(len(shape)) if i != axis]
+        index = np.unravel_index(layout[:, 0], shape)
+        at_anchor = np.ones(len(layout), dtype=bool)
+        for i in others[axis:]:  # later axes sit at their anchors
+            at_anchor &= index[i] == anchor[i]
+        lines = layout[at_anchor]
+        start = lines[:, anchor[axis]]
+        lq, lerr, lok = close_lines(bk, drive, q[start], ok[start], targets_of(plan, lines), anchor[axis], tol=tol)
+        q[lines], err[lines], ok[lines] = lq, lerr, lok
+    return GridClosure(q, err, ok)
+
+
+def close_grid(
+    bk: BatchKinematics,
+    plan: GridPlan,
+    *,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+    run_lines: Callable | None = None,
+) -> GridClosure:
+    """Close every pose of the grid by continuation, then :func:`fill` what is missing.
+
+    Parameters
+    ----------
+    run_lines : callable, optional
+        ``run_lines(starts_q, starts_ok, lines, anchor) -> (q, residual, ok)``
+        closes the lines of the last axis (default: :func:`close_lines` here,
+        in one batch); :func:`mobility.sweeps.sweep` passes one that cuts them
+        into chunks and runs them where it is told.
+    """
+    seeds = seed_grid(bk, plan, tol=tol)
+    shape = plan.shape
+    last = len(shape) - 1
+    layout = line_layout(shape, last)
+    anchor = anchors(plan)[last]
+    starts = layout[:, anchor]
+    q, err, ok = seeds.q.copy(), seeds.residual.copy(), seeds.assembled.copy()
+    if run_lines is None:
+        drive = Drive.of(plan.axes, bk.variable_count)
+        lq, lerr, lok = close_lines(bk, drive, q[starts], ok[starts], targets_of(plan, layout), anchor, tol=tol)
+    else:
+        lq, lerr, lok = run_lines(q[starts], ok[starts], layout, anchor)
+    q[layout], err[layout], ok[layout] = lq, lerr, lok
+    return fill(bk, plan, GridClosure(q, err, ok), tol=tol)
+
+
+def fill(bk: BatchKinematics, plan: GridPlan, closure: GridClosure, *, tol: Tolerance = DEFAULT_TOLERANCE, max_passes: int | None = None) -> GridClosure:
+    """Try the missing poses again from any assembled neighbour, layer after layer.
+
+    Each pass takes every pose not assembled that has an assembled neighbour
+    (on any axis) it was not yet tried from, and solves it from there (the
+    secant predictor when the neighbour's own neighbour on that axis is
+    assembled too), all in one batch; passes go on while they assemble new poses.
+    """
+    q, err, ok = closure.q.copy(), closure.residual.copy(), closure.assembled.copy()
+    shape = plan.shape
+    drive = Drive.of(plan.axes, bk.variable_count)
+    grid_index = np.arange(plan.size).reshape(shape)
+    tried: set[tuple[int, int]] = set()
+    passes = max_passes if max_passes is not None else sum(shape)
+    for _ in range(passes):
+        missing = ~ok
+        if not missing.any():
+            break
+        pairs = []  # (pose, neighbour, neighbour's neighbour or -1)
+        for axis in range(len(shape)):
+            for direction in (1, -1):
+                src = np.roll(grid_index, direction, axis=axis)  # the neighbour at index - direction
+                valid = np.ones(shape, dtype=bool)
+                edge = [slice(None)] * len(shape)
+                edge[axis] = 0 if direction > 0 else -1
+                valid[tuple(edge)] = False
+                src2 = np.roll(grid_index, 2 * direction, axis=axis)
+                valid2 = valid.copy()
+                edge2 = [slice(None)] * len(shape)
+                edge2[axis] = 1 if direction > 0 else -2
+                if shape[axis] > 1:
+                    valid2[tuple(edge2)] = False
+                sel = valid & missing.reshape(shape) & ok[src].reshape(shape)
+                for pose, nb, nb2, v2 in zip(grid_index[sel], src[sel], src2[sel], valid2[sel]):
+                    if (pose, nb) not in tried:
+                        pairs.append((pose, nb, nb2 if v2 and ok[nb2] else -1))
+        if not pairs:
+            break
+        pairs_a = np.array(pairs, dtype=int)
+        tried.update((int(a), int(b)) for a, b, _ in pairs)
+        poses, nbs, nbs2 = pairs_a[:, 0], pairs_a[:, 1], pairs_a[:, 2]
+        base_q = q[nbs]
+        predicted = np.where((nbs2 >= 0)[:, None], 2.0 * base_q - q[np.maximum(nbs2, 0)], base_q)
+        nq, nerr, nok = _advance(bk, drive, base_q, targets_of(plan, nbs), predicted, targets_of(plan, poses), tol, retry=True)
+        found = False
+        for k in np.argsort(nerr):  # the best attempt at each pose
+            pose = poses[k]
+            if ok[pose]:
+                continue
+            if nok[k]:
+                q[pose], err[pose], ok[pose] = nq[k], nerr[k], True
+                found = True
+            elif nerr[k] < err[pose]:
+                q[pose], err[pose] = nq[k], nerr[k]
+        if not found:
+            break
+    return GridClosure(q, err, ok)

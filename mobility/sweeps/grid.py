@@ -1,0 +1,288 @@
+"""What a sweep varies: the grid of drive values, checked against the mechanism.
+
+A sweep varies *coordinates*, each over ``COUNT`` evenly spaced values from
+``START`` to ``STOP`` (both included; ``COUNT = 1`` is the single value
+``START``); the grid is the product of the ranges, first coordinate slowest.
+A coordinate is
+
+* a **joint**, displaced from its value in the file's pose: the angle of an
+  ``R``, ``H`` or ``C`` joint in degrees (a ``C`` joint's slide stays free), the
+  slide of a ``P`` joint in the file's length unit.  ``S``, ``U`` and ``E``
+  joints have several freedoms and cannot be driven by one number;
+* an **end-effector pose coordinate** (a name that is not a joint's):
+  ``x``, ``y``, ``z``, the displacement of the end effector's reference point
+  (the centroid of the points of the joints on it, as in
+  :attr:`mobility.Result.reference_point`) in the file's length unit, and
+  ``rx``, ``ry``, ``rz``, the rotation vector of the end effector from the
+  file's pose, in degrees; all in the file's global frame.  Pose coordinates
+  drive a parallel mechanism by its platform; joints not driven follow.
+
+Inside, every coordinate is dimensionless as in :mod:`mobility.core.kinematics`:
+angles in radians, lengths over the mechanism's characteristic length.
+
+Examples
+--------
+>>> parse_vary("O1=0:360:361")
+('O1', 0.0, 360.0, 361)
+>>> import mobility
+>>> m = mobility.load("mechanisms/parallelogram.yaml")
+>>> plan = plan_grid(m, ["O1=0:360:361"])
+>>> plan.shape, plan.axes[0].unit, float(plan.axes[0].values[120])
+((361,), 'deg', 120.0)
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Iterable, Mapping, Sequence, Union
+
+import numpy as np
+
+from ..core.joint_screws import joint_screws
+from ..core.kinematics import kinematics
+from ..core.model import Mechanism
+from ..errors import RequestError
+
+__all__ = [
+    "POSE_COORDINATES",
+    "DRIVABLE_JOINTS",
+    "DEFAULT_MAX_POSES",
+    "SweepAxis",
+    "GridPlan",
+    "VarySpec",
+    "parse_vary",
+    "plan_grid",
+]
+
+POSE_COORDINATES = ("x", "y", "z", "rx", "ry", "rz")
+"""End-effector pose coordinates, in the order of their components ``[p; r]``."""
+
+DRIVABLE_JOINTS = ("R", "P", "H", "C")
+"""Joint types a sweep can drive (by one angle or one length)."""
+
+DEFAULT_MAX_POSES = 10_000_000
+"""Largest grid :func:`plan_grid` accepts unless told otherwise."""
+
+VarySpec = Union[str, tuple, Mapping[str, tuple]]
+"""``"NAME=START:STOP:COUNT"``, a tuple ``(name, start, stop, count)``, or a
+mapping ``{name: (start, stop, count)}``."""
+
+_SPEC = re.compile(r"^\s*(?P<name>[^=]+?)\s*=\s*(?P<range>.*)$")
+
+
+@dataclass(frozen=True)
+class SweepAxis:
+    """One varied coordinate of a sweep.
+
+    Attributes
+    ----------
+    name : str
+        The joint's name, or a pose coordinate (``x``, ..., ``rz``).
+    kind : str
+        ``"joint"`` or ``"pose"``.
+    unit : str
+        ``"deg"`` for angles, else the file's length unit (possibly empty).
+    start, stop : float
+        First and last value, as displacements from the file's pose.
+    count : int
+        Number of values, both ends included.
+    variable : int
+        For a joint: the index of its driven variable in
+        :class:`~mobility.core.kinematics.Kinematics` (the first freedom, the
+        rotation of a ``C`` joint); for a pose coordinate: its component
+        (0..5 for x, y, z, rx, ry, rz).
+    scale : float
+        Internal value per unit value (radians per degree, or one over the
+        characteristic length).
+    """
+
+    name: str
+    kind: str
+    unit: str
+    start: float
+    stop: float
+    count: int
+    variable: int
+    scale: float
+
+    @property
+    def values(self) -> np.ndarray:
+        """The ``count`` values in the user's unit."""
+        return np.linspace(self.start, self.stop, self.count) if self.count > 1 else np.array([self.start])
+
+    @property
+    def internal(self) -> np.ndarray:
+        """The values as the solver uses them (radians, lengths over the characteristic length)."""
+        return self.values * self.scale
+
+    @property
+    def label(self) -> str:
+        """``"O1 [deg]"``: the name and the unit, for tables and plots."""
+        return f"{self.name} [{self.unit}]" if self.unit else self.name
+
+    def to_dict(self) -> dict:
+        """JSON form."""
+        return {"name": self.name, "kind": self.kind, "unit": self.unit, "start": self.start, "stop": self.stop, "count": self.count}
+
+
+@dataclass(frozen=True)
+class GridPlan:
+    """The checked request: the axes, in order (the first varies slowest).
+
+    Attributes
+    ----------
+    axes : tuple of SweepAxis
+    length : float
+        The characteristic length of the file's pose (the unit of internal lengths).
+    """
+
+    axes: tuple[SweepAxis, ...]
+    length: float
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Points per axis."""
+        return tuple(a.count for a in self.axes)
+
+    @property
+    def size(self) -> int:
+        """Number of poses of the grid."""
+        return math.prod(self.shape)
+
+    def values_at(self, flat: np.ndarray) -> np.ndarray:
+        """The coordinate values (user units) of grid points given by flat index, shape ``(n, axes)``."""
+        index = np.unravel_index(np.asarray(flat), self.shape)
+        return np.stack([a.values[i] for a, i in zip(self.axes, index)], axis=-1)
+
+
+def parse_vary(spec: str) -> tuple[str, float, float, int]:
+    """Read ``"NAME=START:STOP:COUNT"``.
+
+    Raises
+    ------
+    RequestError
+        When the text does not have that form, a bound is not a finite number
+        or ``COUNT`` is not an integer of at least 1.
+
+    Examples
+    --------
+    >>> parse_vary(" P1 = -20 : 20 : 5 ")
+    ('P1', -20.0, 20.0, 5)
+    >>> parse_vary("P1=0:1:0")
+    Traceback (most recent call last):
+    ...
+    mobility.errors.RequestError: --vary 'P1=0:1:0': COUNT must be at least 1, got 0
+    """
+    where = f"--vary {spec!r}"
+    match = _SPEC.match(spec) if isinstance(spec, str) else None
+    if match is None:
+        raise RequestError(f"{where}: expected NAME=START:STOP:COUNT (e.g. O1=0:360:361)")
+    parts = match["range"].split(":")
+    if len(parts) != 3:
+        raise RequestError(f"{where}: expected NAME=START:STOP:COUNT, got {len(parts)} part(s) after '='")
+    return (match["name"],) + _bounds(where, parts[0], parts[1], parts[2])
+
+
+def _bounds(where: str, start: object, stop: object, count: object) -> tuple[float, float, int]:
+    values = []
+    for label, text in (("START", start), ("STOP", stop)):
+        try:
+            x = float(str(text).strip()) if not isinstance(text, (int, float)) or isinstance(text, bool) else float(text)
+        except ValueError:
+            raise RequestError(f"{where}: {label} must be a number, got {str(text).strip()!r}") from None
+        if isinstance(text, bool) or not math.isfinite(x):
+            raise RequestError(f"{where}: {label} must be a finite number, got {text!r}")
+        values.append(x)
+    try:
+        n = int(str(count).strip()) if not isinstance(count, int) or isinstance(count, bool) else count
+    except ValueError:
+        raise RequestError(f"{where}: COUNT must be an integer, got {str(count).strip()!r}") from None
+    if isinstance(count, bool) or (isinstance(count, float) and count != int(count)):
+        raise RequestError(f"{where}: COUNT must be an integer, got {count!r}")
+    if n < 1:
+        raise RequestError(f"{where}: COUNT must be at least 1, got {n}")
+    return values[0], values[1], n
+
+
+def _requests(vary: VarySpec | Iterable) -> list[tuple[str, float, float, int]]:
+    """Every accepted way of writing the request, as ``(name, start, stop, count)``."""
+    if isinstance(vary, str):
+        return [parse_vary(vary)]
+    if isinstance(vary, Mapping):
+        items: Iterable = [(name, *rng) if isinstance(rng, (tuple, list)) else (name, rng) for name, rng in vary.items()]
+    else:
+        items = vary
+    out = []
+    for item in items:
+        if isinstance(item, str):
+            out.append(parse_vary(item))
+            continue
+        if not isinstance(item, (tuple, list)) or len(item) != 4 or not isinstance(item[0], str):
+            raise RequestError(f"vary: expected NAME=START:STOP:COUNT or (name, start, stop, count), got {item!r}")
+        out.append((item[0],) + _bounds(f"vary {item[0]!r}", *item[1:]))
+    return out
+
+
+def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int = DEFAULT_MAX_POSES) -> GridPlan:
+    """Check a sweep request against ``mechanism`` and give its axes.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    vary : str, sequence or mapping
+        One or more ``"NAME=START:STOP:COUNT"``, ``(name, start, stop, count)``,
+        or ``{name: (start, stop, count)}``.
+    max_poses : int
+        The largest grid accepted.
+
+    Returns
+    -------
+    GridPlan
+
+    Raises
+    ------
+    RequestError
+        An unknown name, a joint that cannot be driven by one number (S, U,
+        E), a coordinate given twice, a bad range, no coordinate at all, or a
+        grid above ``max_poses``.
+    """
+    requests = _requests(vary)
+    if not requests:
+        raise RequestError("vary: give at least one coordinate to vary, NAME=START:STOP:COUNT")
+    source = f" of {mechanism.source}" if mechanism.source else ""
+    names = [j.name for j in mechanism.joints]
+    length = joint_screws(mechanism).normalisation.length
+    offsets = kinematics(mechanism).offsets
+    unit = mechanism.length_unit
+    axes: list[SweepAxis] = []
+    seen: set[str] = set()
+    for name, start, stop, count in requests:
+        where = f"--vary {name}={start:g}:{stop:g}:{count}"
+        if name in seen:
+            raise RequestError(f"{where}: {name} is varied twice")
+        seen.add(name)
+        if name in names:
+            index = names.index(name)
+            joint = mechanism.joints[index]
+            if joint.type not in DRIVABLE_JOINTS:
+                raise RequestError(
+                    f"{where}: {name} is a {joint.type} joint{source}; only R, H, C joints (by their angle, in degrees) "
+                    "and P joints (by their slide) can be swept"
+                )
+            angle = joint.type != "P"
+            axes.append(SweepAxis(name, "joint", "deg" if angle else unit, start, stop, count, int(offsets[index]), math.pi / 180.0 if angle else 1.0 / length))
+        elif name in POSE_COORDINATES:
+            component = POSE_COORDINATES.index(name)
+            angle = component >= 3
+            axes.append(SweepAxis(name, "pose", "deg" if angle else unit, start, stop, count, component, math.pi / 180.0 if angle else 1.0 / length))
+        else:
+            raise RequestError(
+                f"{where}: {name!r} is not a joint{source}; expected one of: {', '.join(names)}, "
+                f"or an end-effector pose coordinate ({', '.join(POSE_COORDINATES)})"
+            )
+    plan = GridPlan(tuple(axes), length)
+    if plan.size > max_poses:
+        raise RequestError(f"the grid has {plan.size:,} poses, more than --max-poses {max_poses:,}; raise --max-poses or use fewer points")
+    return plan

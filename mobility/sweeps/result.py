@@ -1,0 +1,331 @@
+"""The answer of a sweep: one row per grid point, and where the answer changes.
+
+:class:`SweepResult` holds, for every point of the grid (flat, C order: the
+last coordinate varies fastest), whether the pose could be assembled and,
+if so, what :func:`mobility.analyze` says there (DOF, pattern, mobility, the
+margin of its rank decisions) and, when inputs are chosen, what
+:func:`mobility.check_actuation` says (verdict, conditioning).  It also names
+
+* the **regular** answer: the most common ``(dof, pattern, mobility, verdict)``
+  among assembled poses;
+* the **singular poses**: assembled poses where the end effector or the
+  mechanism gains a freedom over the regular answer, or where the inputs
+  become actuation-singular (each with its reasons);
+* the **changes**: pairs of neighbouring grid points (along one axis), both
+  assembled, whose answers differ; a singularity between two grid points
+  shows here even when no grid point falls on it.
+
+Examples
+--------
+>>> import mobility
+>>> r = mobility.sweep(mobility.load("mechanisms/parallelogram.yaml"), ["O1=0:360:13"])
+>>> r.size, r.counts()
+(13, {(1, '1T', 1): 11, (2, '1T1R', 2): 2})
+>>> [p.values for p in r.singular]
+[(120.0,), (300.0,)]
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from ..core.kinematics import kinematics
+from ..core.model import Mechanism
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
+from .batch_actuation import SINGULAR
+from .grid import SweepAxis
+
+__all__ = ["SingularPose", "SweepResult", "COLUMNS"]
+
+COLUMNS = (
+    "dof",
+    "pattern",
+    "mobility",
+    "assembled",
+    "residual",
+    "smallest_kept",
+    "largest_dropped",
+    "near_singular",
+    "inexact",
+    "verdict",
+    "conditioning",
+    "actuation_margin",
+)
+"""Columns of a sweep's table after the varied coordinates (the actuation ones only when inputs are chosen)."""
+
+
+@dataclass(frozen=True)
+class SingularPose:
+    """A grid point where the answer is singular (see the module docstring).
+
+    Attributes
+    ----------
+    index : int
+        Flat index of the grid point.
+    values : tuple of float
+        Its coordinate values (user units).
+    dof, mobility : int
+    pattern : str
+    verdict : str
+        The actuation verdict (empty when no input is chosen).
+    reasons : tuple of str
+    """
+
+    index: int
+    values: tuple[float, ...]
+    dof: int
+    pattern: str
+    mobility: int
+    verdict: str
+    reasons: tuple[str, ...]
+
+    def to_dict(self, names: tuple[str, ...] = ()) -> dict[str, Any]:
+        """JSON form (``names``: the coordinates, to key the values)."""
+        return {
+            "index": self.index,
+            "values": dict(zip(names, self.values)) if names else list(self.values),
+            "dof": self.dof,
+            "pattern": self.pattern,
+            "mobility": self.mobility,
+            "verdict": self.verdict,
+            "reasons": list(self.reasons),
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class SweepResult:
+    """Every pose of a sweep (arrays of length ``N``, the grid flattened in C order).
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+        The mechanism at the file's pose (``q = 0``).
+    axes : tuple of SweepAxis
+        The varied coordinates, first varying slowest.
+    q : ndarray, shape (N, n)
+        Joint variables of each pose (see :mod:`mobility.core.kinematics`;
+        the best attempt where not assembled).
+    assembled : ndarray of bool
+    residual : ndarray of float
+        Largest loop-closure residual component (dimensionless).
+    dof, mobility : ndarray of int
+        -1 where not assembled.
+    pattern : ndarray of str
+        Empty where not assembled.
+    smallest_kept, largest_dropped : ndarray of float
+        The margin of the pose's rank decisions (NaN where not assembled).
+    near_singular, inexact : ndarray of bool
+    actuated : tuple of str
+        The actuated joints (empty: no actuation columns).
+    verdict : ndarray of str
+        Actuation verdict (empty where not assembled or no input chosen).
+    conditioning, actuation_margin : ndarray of float
+        Actuation conditioning ``kappa`` and the margin of the verdict's rank
+        decision (NaN where not assembled or no input chosen).
+    tolerance : Tolerance
+    """
+
+    mechanism: Mechanism
+    axes: tuple[SweepAxis, ...]
+    q: np.ndarray
+    assembled: np.ndarray
+    residual: np.ndarray
+    dof: np.ndarray
+    pattern: np.ndarray
+    mobility: np.ndarray
+    smallest_kept: np.ndarray
+    largest_dropped: np.ndarray
+    near_singular: np.ndarray
+    inexact: np.ndarray
+    actuated: tuple[str, ...] = ()
+    verdict: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=object))
+    conditioning: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    actuation_margin: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    tolerance: Tolerance = DEFAULT_TOLERANCE
+
+    def __post_init__(self) -> None:
+        for value in vars(self).values():
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+
+    # -- the grid ----------------------------------------------------------------
+    @property
+    def name(self) -> str:
+        """The mechanism's name."""
+        return self.mechanism.name
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Points per axis."""
+        return tuple(a.count for a in self.axes)
+
+    @property
+    def size(self) -> int:
+        """Number of poses."""
+        return int(np.prod(self.shape))
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The varied coordinates."""
+        return tuple(a.name for a in self.axes)
+
+    @cached_property
+    def values(self) -> np.ndarray:
+        """Coordinate values of every pose, ``(N, axes)``, user units."""
+        grids = np.meshgrid(*[a.values for a in self.axes], indexing="ij")
+        return np.stack([g.reshape(-1) for g in grids], axis=1)
+
+    def grid(self, column: str) -> np.ndarray:
+        """A column reshaped to the grid's shape (e.g. ``r.grid("conditioning")`` for a map)."""
+        return np.asarray(self.column(column)).reshape(self.shape)
+
+    def column(self, name: str) -> np.ndarray:
+        """A column of the table by name: a coordinate or one of :data:`COLUMNS`."""
+        if name in self.names:
+            return self.values[:, self.names.index(name)]
+        if name in COLUMNS:
+            return getattr(self, name)
+        raise KeyError(f"no column {name!r}; expected one of: {', '.join(self.columns)}")
+
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """The columns of the table: the coordinates, then :data:`COLUMNS` (actuation ones only with inputs)."""
+        own = COLUMNS if self.actuated else COLUMNS[: COLUMNS.index("verdict")]
+        return self.names + own
+
+    # -- what the sweep found ----------------------------------------------------------
+    def classes(self) -> list[tuple[int, str, int, str] | None]:
+        """The answer of each pose as one value ``(dof, pattern, mobility, verdict)`` (None where not assembled)."""
+        verdict = self.verdict.tolist() if self.actuated else [""] * self.size
+        return [
+            (d, p, m, v) if ok else None
+            for d, p, m, v, ok in zip(self.dof.tolist(), self.pattern.tolist(), self.mobility.tolist(), verdict, self.assembled.tolist())
+        ]
+
+    def counts(self) -> dict[tuple[int, str, int], int]:
+        """Assembled poses per ``(dof, pattern, mobility)``, most common first."""
+        found = Counter(zip(self.dof[self.assembled].tolist(), self.pattern[self.assembled].tolist(), self.mobility[self.assembled].tolist()))
+        return dict(sorted(found.items(), key=lambda kv: (-kv[1], kv[0])))
+
+    def verdict_counts(self) -> dict[str, int]:
+        """Assembled poses per actuation verdict (empty without inputs)."""
+        if not self.actuated:
+            return {}
+        found = Counter(self.verdict[self.assembled].tolist())
+        return dict(sorted(found.items(), key=lambda kv: -kv[1]))
+
+    @cached_property
+    def regular(self) -> tuple[int, str, int, str] | None:
+        """The most common answer ``(dof, pattern, mobility, verdict)`` of the assembled poses (None if there is none)."""
+        found = Counter(c for c in self.classes() if c is not None)
+        if not found:
+            return None
+        return sorted(found.items(), key=lambda kv: (-kv[1], kv[0]))[0][0]
+
+    @cached_property
+    def singular(self) -> tuple[SingularPose, ...]:
+        """The singular poses of the grid, in grid order."""
+        regular = self.regular
+        if regular is None:
+            return ()
+        dof0, _, mob0, verdict0 = regular
+        out = []
+        gains = self.assembled & ((self.dof > dof0) | (self.mobility > mob0))
+        lost = self.assembled & (self.verdict == SINGULAR) & (verdict0 != SINGULAR) if self.actuated else np.zeros(self.size, dtype=bool)
+        for i in np.flatnonzero(gains | lost):
+            reasons = []
+            if self.dof[i] > dof0:
+                reasons.append(f"the end effector gains {self.dof[i] - dof0} freedom(s): {self.dof[i]} DOF ({self.pattern[i]})")
+            if self.mobility[i] > mob0:
+                reasons.append(f"the mechanism gains {self.mobility[i] - mob0} freedom(s): mobility {self.mobility[i]}")
+            if lost[i]:
+                reasons.append(f"the inputs {', '.join(self.actuated)} are actuation-singular")
+            verdict = str(self.verdict[i]) if self.actuated else ""
+            out.append(SingularPose(int(i), tuple(float(x) for x in self.values[i]), int(self.dof[i]), str(self.pattern[i]), int(self.mobility[i]), verdict, tuple(reasons)))
+        return tuple(out)
+
+    @cached_property
+    def changes(self) -> np.ndarray:
+        """Neighbouring assembled grid points whose answers differ: rows ``(index a, index b, axis)``, ``a < b``."""
+        classes = self.classes()
+        codes = np.full(self.size, -1)
+        lookup: dict = {}
+        for i, c in enumerate(classes):
+            if c is not None:
+                codes[i] = lookup.setdefault(c, len(lookup))
+        grid = codes.reshape(self.shape)
+        index = np.arange(self.size).reshape(self.shape)
+        rows = []
+        for axis in range(len(self.shape)):
+            a = np.take(grid, range(self.shape[axis] - 1), axis=axis)
+            b = np.take(grid, range(1, self.shape[axis]), axis=axis)
+            ia = np.take(index, range(self.shape[axis] - 1), axis=axis)
+            ib = np.take(index, range(1, self.shape[axis]), axis=axis)
+            differ = (a >= 0) & (b >= 0) & (a != b)
+            rows += [(int(x), int(y), axis) for x, y in zip(ia[differ], ib[differ])]
+        return np.array(sorted(rows), dtype=int).reshape(-1, 3)
+
+    # -- one pose --------------------------------------------------------------------
+    def mechanism_at(self, index: int) -> Mechanism:
+        """The pose of grid point ``index`` (flat) rebuilt as a :class:`~mobility.core.model.Mechanism`."""
+        return kinematics(self.mechanism).mechanism_at(self.q[index])
+
+    def row(self, index: int) -> dict[str, Any]:
+        """One row of the table as a dict (JSON-ready)."""
+        out: dict[str, Any] = {n: float(v) for n, v in zip(self.names, self.values[index])}
+        ok = bool(self.assembled[index])
+        out.update(
+            dof=int(self.dof[index]) if ok else None,
+            pattern=str(self.pattern[index]) if ok else None,
+            mobility=int(self.mobility[index]) if ok else None,
+            assembled=ok,
+            residual=_number(self.residual[index]),
+            smallest_kept=_number(self.smallest_kept[index]),
+            largest_dropped=_number(self.largest_dropped[index]),
+            near_singular=bool(self.near_singular[index]),
+            inexact=bool(self.inexact[index]),
+        )
+        if self.actuated:
+            out.update(verdict=str(self.verdict[index]) if ok else None, conditioning=_number(self.conditioning[index]), actuation_margin=_number(self.actuation_margin[index]))
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form: the request, the summary (counts, regular answer, singular poses, changes) and the table by column."""
+        regular = self.regular
+        table: dict[str, list] = {}
+        for name in self.columns:
+            col = self.column(name)
+            if name in ("dof", "mobility"):
+                table[name] = [int(v) if ok else None for v, ok in zip(col, self.assembled)]
+            elif name in ("pattern", "verdict"):
+                table[name] = [str(v) if ok else None for v, ok in zip(col, self.assembled)]
+            elif name in ("assembled", "near_singular", "inexact"):
+                table[name] = [bool(v) for v in col]
+            else:
+                table[name] = [_number(v) for v in clean_numbers(np.asarray(col, dtype=float))] if name in self.names else [_number(v) for v in col]
+        return {
+            "name": self.name,
+            "coordinates": [a.to_dict() for a in self.axes],
+            "shape": list(self.shape),
+            "poses": self.size,
+            "assembled": int(self.assembled.sum()),
+            "actuated": list(self.actuated),
+            "counts": [{"dof": d, "pattern": p, "mobility": m, "poses": n} for (d, p, m), n in self.counts().items()],
+            "verdicts": self.verdict_counts(),
+            "regular": None if regular is None else {"dof": regular[0], "pattern": regular[1], "mobility": regular[2], "verdict": regular[3] or None},
+            "singular_poses": [p.to_dict(self.names) for p in self.singular],
+            "changes": [{"from": int(a), "to": int(b), "axis": self.names[int(k)]} for a, b, k in self.changes],
+            "tolerance": {"rank": self.tolerance.rank, "near_singular": self.tolerance.near_singular, "closure": self.tolerance.closure},
+            "columns": table,
+        }
+
+
+def _number(x: Any) -> float | None:
+    """A float for JSON (None for NaN or infinity)."""
+    x = float(x)
+    return x if np.isfinite(x) else None

@@ -1,0 +1,377 @@
+"""``mobility.sweep``: close and analyse every pose of a grid, in chunks, where it is told.
+
+The work has two stages, each cut into chunks that run independently:
+
+1. **closure** (:mod:`mobility.sweeps.continuation`): the starts of the lines
+   of the last axis are found in-process; then the lines, cut into chunks, are
+   closed by continuation; then the poses still missing are tried from their
+   neighbours (in-process, on the few that are left);
+2. **analysis**: the assembled poses, cut into chunks, go through
+   :mod:`~mobility.sweeps.posed_screws`, :mod:`~mobility.sweeps.batch_systems`
+   and, when inputs are chosen, :mod:`~mobility.sweeps.batch_actuation`.
+
+Chunks run in this process (on ``workers`` threads: the stacked LAPACK calls
+release the GIL), or on a dask.distributed cluster when a scheduler is given
+(``pip install 'mobility[dask]'``): a ``distributed.Client``, or the address
+of a running scheduler.  Within a chunk the poses are processed in blocks of
+:data:`BLOCK` so that the stacked arrays stay in cache.
+
+Examples
+--------
+>>> import mobility
+>>> r = sweep(mobility.load("mechanisms/3prs.yaml"), ["P1=-20:20:3", "P2=-20:20:3"])
+>>> r.shape, r.counts()
+((3, 3), {(3, '1T2R', 3): 9})
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any, Callable, Iterable, Sequence
+
+import numpy as np
+
+from ..core.joint_screws import joint_screws
+from ..core.model import Mechanism
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..errors import MissingExtraError, RequestError
+from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
+from .batch_kinematics import BatchKinematics
+from .batch_systems import analyse_poses
+from .continuation import Drive, GridClosure, close_lines, fill, line_layout, anchors, seed_grid, targets_of
+from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
+from .posed_screws import posed_screws
+from .result import SweepResult
+
+__all__ = ["sweep", "analyse_joint_variables", "tqdm_progress", "DEFAULT_CHUNK_SIZE", "BLOCK", "Progress"]
+
+DEFAULT_CHUNK_SIZE = 50_000
+"""Poses per chunk (a unit of work sent to a worker)."""
+
+BLOCK = 8192
+"""Poses analysed together inside a chunk (keeps the stacked arrays in cache)."""
+
+Progress = Callable[[str, int, int], None]
+"""``progress(stage, done, total)``: called as chunks finish (stage ``"closing loops"`` or ``"analysing"``)."""
+
+
+@dataclass(frozen=True, eq=False)
+class _Context:
+    """Everything a chunk needs; sent once to each worker."""
+
+    mechanism: Mechanism
+    plan: GridPlan
+    tol: Tolerance
+    inputs: ActuationInputs | None
+
+    @cached_property
+    def bk(self) -> BatchKinematics:
+        return BatchKinematics(self.mechanism, joint_screws(self.mechanism).reference)
+
+    def __getstate__(self) -> dict:
+        state = dict(vars(self))
+        state.pop("bk", None)  # rebuilt where it is used
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        vars(self).update(state)
+
+
+def close_chunk(context: _Context, starts_q: np.ndarray, starts_ok: np.ndarray, lines: np.ndarray, anchor: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Close a chunk of lines of the last axis by continuation (a task)."""
+    drive = Drive.of(context.plan.axes, context.bk.variable_count)
+    return close_lines(context.bk, drive, starts_q, starts_ok, targets_of(context.plan, lines), anchor, tol=context.tol)
+
+
+def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
+    """Analyse a chunk of assembled poses (a task): the columns of the table."""
+    parts = []
+    for start in range(0, len(q), BLOCK):
+        block = q[start : start + BLOCK]
+        posed = posed_screws(context.bk, block)
+        answers = analyse_poses(context.mechanism, posed, context.tol)
+        out = {
+            "dof": answers.dof,
+            "pattern": answers.pattern,
+            "mobility": answers.mobility,
+            "smallest_kept": answers.smallest_kept,
+            "largest_dropped": answers.largest_dropped,
+            "near_singular": answers.near_singular,
+            "inexact": answers.inexact,
+        }
+        if context.inputs is not None:
+            act = actuation_at_poses(context.mechanism, posed, answers, context.inputs, context.tol)
+            out.update(verdict=act.verdict, conditioning=act.conditioning, actuation_margin=act.margin)
+        parts.append(out)
+    if not parts:
+        return {}
+    return {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}
+
+
+def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> dict[str, np.ndarray]:
+    """The sweep's analysis of given poses: the table's columns for joint variables ``q`` ``(N, n)``.
+
+    The poses are taken as they are (no loop closure: ``q`` should close the
+    loops, e.g. rows of :attr:`SweepResult.q`).  Columns: ``dof``,
+    ``pattern``, ``mobility``, ``smallest_kept``, ``largest_dropped``,
+    ``near_singular``, ``inexact`` and, when ``actuated`` names inputs (or
+    the file marks some), ``verdict``, ``conditioning``, ``actuation_margin``.
+
+    Examples
+    --------
+    >>> import numpy as np, mobility
+    >>> m = mobility.load("mechanisms/3prs.yaml")
+    >>> analyse_joint_variables(m, np.zeros((2, 15)))["pattern"].tolist()
+    ['1T2R', '1T2R']
+    """
+    plan = GridPlan((), joint_screws(mechanism).normalisation.length)
+    marked = any(j.actuated for j in mechanism.joints)
+    inputs = actuated_inputs(mechanism, actuated) if (actuated is not None or marked) else None
+    return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs is not None and inputs.freedoms else None), np.asarray(q, dtype=float))
+
+
+class _Runner:
+    """Runs chunks in-process (threads) or on a dask.distributed cluster, reporting progress."""
+
+    def __init__(self, context: _Context, scheduler: Any, workers: int | None, progress: Progress | None) -> None:
+        self.context = context
+        self.progress = progress
+        self.client = None
+        self._owns_client = False
+        if scheduler is not None:
+            try:
+                from dask import distributed
+            except ImportError as exc:
+                raise MissingExtraError("running a sweep on a dask cluster", "dask[distributed]", "dask", str(exc)) from None
+            if isinstance(scheduler, str):
+                try:
+                    self.client = distributed.Client(scheduler, timeout="10s")
+                except (OSError, TimeoutError, ValueError) as exc:
+                    raise RequestError(f"--scheduler {scheduler}: cannot reach a dask scheduler there ({exc})") from None
+                self._owns_client = True
+            else:
+                self.client = scheduler
+            self.workers = max(1, len(self.client.scheduler_info().get("workers", {})))
+            self._context_future = self.client.scatter(context, broadcast=True)
+        else:
+            self.workers = max(1, workers if workers is not None else (os.cpu_count() or 1))
+
+    def close(self) -> None:
+        if self._owns_client and self.client is not None:
+            self.client.close()
+
+    def map(self, stage: str, function: Callable, chunks: Sequence[tuple], weights: Sequence[int]) -> list:
+        """``function(context, *chunk)`` of every chunk, in order."""
+        total = int(sum(weights))
+        done = 0
+        if self.progress:
+            self.progress(stage, 0, total)
+        results: list = [None] * len(chunks)
+        if self.client is not None:
+            from dask import distributed
+
+            futures = [self.client.submit(function, self._context_future, *chunk, pure=False) for chunk in chunks]
+            position = {f.key: i for i, f in enumerate(futures)}
+            for future in distributed.as_completed(futures):
+                i = position[future.key]
+                results[i] = future.result()
+                done += weights[i]
+                if self.progress:
+                    self.progress(stage, done, total)
+            return results
+        if self.workers == 1 or len(chunks) == 1:
+            for i, chunk in enumerate(chunks):
+                results[i] = function(self.context, *chunk)
+                done += weights[i]
+                if self.progress:
+                    self.progress(stage, done, total)
+            return results
+        with ThreadPoolExecutor(self.workers) as pool:
+            futures = {pool.submit(function, self.context, *chunk): i for i, chunk in enumerate(chunks)}
+            from concurrent.futures import as_completed
+
+            for future in as_completed(futures):
+                i = futures[future]
+                results[i] = future.result()
+                done += weights[i]
+                if self.progress:
+                    self.progress(stage, done, total)
+        return results
+
+
+def _split(count: int, pieces: int) -> list[np.ndarray]:
+    return [part for part in np.array_split(np.arange(count), max(1, min(pieces, count))) if part.size]
+
+
+def tqdm_progress() -> Progress:
+    """A progress bar on stderr for each stage (needs tqdm: ``pip install 'mobility[progress]'``).
+
+    Raises
+    ------
+    MissingExtraError
+        When tqdm is not installed.
+    """
+    try:
+        from tqdm import tqdm
+    except ImportError as exc:
+        raise MissingExtraError("a progress bar", "tqdm", "progress", str(exc)) from None
+    bars: dict[str, Any] = {}
+
+    def update(stage: str, done: int, total: int) -> None:
+        bar = bars.get(stage)
+        if bar is None:
+            bar = bars[stage] = tqdm(total=total, desc=stage, unit="pose", file=sys.stderr, leave=False, dynamic_ncols=True)
+        bar.update(done - bar.n)
+        if done >= total:
+            bar.close()
+
+    return update
+
+
+def sweep(
+    mechanism: Mechanism,
+    vary: VarySpec | Iterable,
+    *,
+    actuated: Sequence[str] | None = None,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+    max_poses: int = DEFAULT_MAX_POSES,
+    chunk_size: int = DEFAULT_CHUNK_SIZE,
+    scheduler: Any = None,
+    workers: int | None = None,
+    progress: bool | Progress | None = None,
+) -> SweepResult:
+    """Mobility, singularities and actuation over a grid of poses.
+
+    Each varied coordinate (see :mod:`mobility.sweeps.grid`) takes ``COUNT``
+    evenly spaced values; at every point of the product grid the other joints
+    are solved so that every loop closes (continuation from the file's pose),
+    and the pose is analysed as :func:`mobility.analyze` (and, with inputs,
+    :func:`mobility.check_actuation`) would analyse it rebuilt as a mechanism.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        The mechanism at its given pose (the grid's displacements start there).
+    vary : str, sequence or mapping
+        ``"NAME=START:STOP:COUNT"`` (or several), ``(name, start, stop,
+        count)`` tuples, or ``{name: (start, stop, count)}``: a joint (degrees
+        for R, H, C; the file's length unit for P) or an end-effector pose
+        coordinate ``x y z`` (length) ``rx ry rz`` (degrees).
+    actuated : sequence of str, optional
+        The inputs whose verdict and conditioning are wanted; default: the
+        joints marked ``actuated: true`` (none: no actuation columns).
+    tol : Tolerance
+        The rank policy and the closure tolerance.
+    max_poses : int
+        Refuse a larger grid.
+    chunk_size : int
+        Poses per chunk of work.
+    scheduler : distributed.Client or str, optional
+        Run the chunks on a dask.distributed cluster (a client, or a
+        scheduler's address); default: in this process.
+    workers : int, optional
+        Threads in this process (default: the number of CPUs).
+    progress : bool or callable, optional
+        ``True``: a progress bar on stderr (tqdm); a callable
+        ``progress(stage, done, total)``; default: none.
+
+    Returns
+    -------
+    SweepResult
+
+    Raises
+    ------
+    RequestError
+        A bad request (see :func:`mobility.sweeps.grid.plan_grid`), or a
+        scheduler that cannot be reached.
+    MechanismError
+        An actuated name that is not a joint.
+    MissingExtraError
+        A scheduler without dask, or a progress bar without tqdm.
+    """
+    if not isinstance(mechanism, Mechanism):
+        raise RequestError(f"sweep: expected a Mechanism (from mobility.load), got {type(mechanism).__name__}")
+    if not isinstance(chunk_size, int) or chunk_size < 1:
+        raise RequestError(f"sweep: chunk_size must be a positive integer, got {chunk_size!r}")
+    if workers is not None and (not isinstance(workers, int) or workers < 1):
+        raise RequestError(f"sweep: workers must be a positive integer, got {workers!r}")
+    plan = plan_grid(mechanism, vary, max_poses=max_poses)
+    marked = any(j.actuated for j in mechanism.joints)
+    inputs = actuated_inputs(mechanism, actuated) if (actuated is not None or marked) else None
+    if inputs is not None and not inputs.freedoms:
+        inputs = None
+    report = tqdm_progress() if progress is True else (progress or None)
+    context = _Context(mechanism, plan, tol, inputs)
+    runner = _Runner(context, scheduler, workers, report)
+    try:
+        closure = _close(context, runner, chunk_size)
+        columns = _analyse(context, runner, closure, chunk_size)
+    finally:
+        runner.close()
+    return _result(context, closure, columns)
+
+
+def _close(context: _Context, runner: _Runner, chunk_size: int) -> GridClosure:
+    plan = context.plan
+    seeds = seed_grid(context.bk, plan, tol=context.tol)
+    shape = plan.shape
+    layout = line_layout(shape, len(shape) - 1)
+    anchor = anchors(plan)[-1]
+    starts = layout[:, anchor]
+    q, err, ok = seeds.q.copy(), seeds.residual.copy(), seeds.assembled.copy()
+    pieces = max(math.ceil(plan.size / chunk_size), runner.workers if len(layout) >= 64 * runner.workers else 1)
+    groups = _split(len(layout), pieces)
+    chunks = [(q[starts[g]], ok[starts[g]], layout[g], anchor) for g in groups]
+    for g, (lq, lerr, lok) in zip(groups, runner.map("closing loops", close_chunk, chunks, [layout[g].size for g in groups])):
+        q[layout[g]], err[layout[g]], ok[layout[g]] = lq, lerr, lok
+    return fill(context.bk, plan, GridClosure(q, err, ok), tol=context.tol)
+
+
+def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_size: int) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    rows = np.flatnonzero(closure.assembled)
+    pieces = max(math.ceil(rows.size / chunk_size), runner.workers if rows.size >= 2 * BLOCK * runner.workers else 1)
+    groups = [rows[g] for g in _split(rows.size, pieces)] if rows.size else []
+    results = runner.map("analysing", analyse_chunk, [(closure.q[g],) for g in groups], [g.size for g in groups]) if groups else []
+    columns = {key: np.concatenate([r[key] for r in results]) for key in results[0]} if results else {}
+    return rows, columns
+
+
+def _result(context: _Context, closure: GridClosure, analysed: tuple[np.ndarray, dict[str, np.ndarray]]) -> SweepResult:
+    rows, columns = analysed
+    size = context.plan.size
+
+    def full(key: str, fill_value: Any, dtype: Any) -> np.ndarray:
+        out = np.full(size, fill_value, dtype=dtype)
+        if rows.size:
+            out[rows] = columns[key]
+        return out
+
+    actuation: dict[str, Any] = {}
+    if context.inputs is not None:
+        actuation = dict(
+            actuated=context.inputs.names,
+            verdict=full("verdict", "", object),
+            conditioning=full("conditioning", np.nan, float),
+            actuation_margin=full("actuation_margin", np.nan, float),
+        )
+    return SweepResult(
+        mechanism=context.mechanism,
+        axes=context.plan.axes,
+        q=closure.q,
+        assembled=closure.assembled,
+        residual=closure.residual,
+        dof=full("dof", -1, int),
+        pattern=full("pattern", "", object),
+        mobility=full("mobility", -1, int),
+        smallest_kept=full("smallest_kept", np.nan, float),
+        largest_dropped=full("largest_dropped", np.nan, float),
+        near_singular=full("near_singular", False, bool),
+        inexact=full("inexact", False, bool),
+        tolerance=context.tol,
+        **actuation,
+    )

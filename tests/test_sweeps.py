@@ -1,0 +1,357 @@
+"""Sweeps: every batched answer equals the one-pose routes, and the classic singularities are found.
+
+Each pose a sweep reports is rebuilt as a mechanism
+(:meth:`SweepResult.mechanism_at`, i.e. :meth:`Kinematics.mechanism_at`) and
+checked against :func:`mobility.analyze`, the loop-closure route
+(:func:`mobility.loop_closure`), the single-pose loop residual
+(:meth:`Kinematics.residual`) and :func:`mobility.check_actuation`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import mobility
+from mobility.core.joint_screws import joint_screws
+from mobility.core.kinematics import kinematics
+from mobility.core.tolerance import characteristic_scale, characteristic_scales, decide_rank, decide_ranks
+from mobility.errors import MechanismError, RequestError
+from mobility.sweeps import SweepResult, plan_grid, sweep
+from mobility.sweeps.batch_kinematics import BatchKinematics, displacement_logs, rotation_logs
+from mobility.sweeps.batch_systems import analyse_poses
+from mobility.sweeps.posed_screws import posed_screws
+
+from conftest import MECHANISMS
+
+RNG_SEED = 20240611
+
+
+def load(name: str) -> mobility.Mechanism:
+    return mobility.load(MECHANISMS / f"{name}.yaml")
+
+
+def assert_pose_matches_one_pose_routes(result: SweepResult, i: int) -> None:
+    """Row ``i`` of a sweep against analyze, loop closure, the loop residual and check_actuation of the rebuilt pose."""
+    pose = result.mechanism_at(i)
+    direct = mobility.analyze(pose, tol=result.tolerance)
+    assert (int(result.dof[i]), result.pattern[i], int(result.mobility[i])) == (direct.dof, direct.pattern, direct.mobility)
+    assert bool(result.near_singular[i]) == direct.margin.near_singular
+    assert result.smallest_kept[i] == pytest.approx(direct.margin.smallest_kept, rel=1e-6, abs=1e-12)
+    lc = mobility.loop_closure(pose, result.tolerance)
+    assert (lc.mobility, lc.end_effector_twists.shape[1]) == (direct.mobility, direct.dof)
+    assert np.abs(kinematics(result.mechanism).residual(result.q[i])).max(initial=0.0) <= result.tolerance.closure
+    if result.actuated:
+        check = mobility.check_actuation(pose, list(result.actuated), tol=result.tolerance)
+        assert result.verdict[i] == check.verdict
+        assert result.conditioning[i] == pytest.approx(check.conditioning, rel=1e-6, abs=1e-8)  # round-off grows near a singularity
+
+
+def random_rows(result: SweepResult, count: int, seed: int = RNG_SEED) -> np.ndarray:
+    rows = np.flatnonzero(result.assembled)
+    return np.random.default_rng(seed).choice(rows, size=min(count, rows.size), replace=False)
+
+
+# --- the tolerance policy over stacks --------------------------------------------------------
+
+
+def test_decide_ranks_is_decide_rank_row_by_row():
+    rng = np.random.default_rng(RNG_SEED)
+    s = -np.sort(-np.abs(rng.standard_normal((300, 6))) * 10.0 ** rng.integers(-14, 3, size=(300, 6)), axis=1)
+    s[::7, 2:] = 0.0
+    counts = rng.integers(0, 7, size=300)
+    batch = decide_ranks(s, counts=counts)
+    for row, count, r, kept, dropped in zip(s, counts, *batch):
+        assert tuple(decide_rank(row[:count])) == (r, kept, dropped)
+
+
+def test_characteristic_scales_is_characteristic_scale_pose_by_pose():
+    rng = np.random.default_rng(RNG_SEED)
+    points = rng.standard_normal((20, 5, 3)) * 40.0
+    points[3] = points[3, :1]  # all points at one place: the other length is used
+    centres, lengths = characteristic_scales(points, np.array([2.5]))
+    for p, c, length in zip(points, centres, lengths):
+        c1, l1 = characteristic_scale(p, np.array([2.5]))
+        assert np.allclose(c, c1, rtol=1e-14, atol=1e-12) and length == pytest.approx(l1, rel=1e-14)
+
+
+def test_batched_logs_invert_exponentials():
+    from scipy.spatial.transform import Rotation
+
+    rng = np.random.default_rng(RNG_SEED)
+    axes = rng.standard_normal((50, 3))
+    w = axes / np.linalg.norm(axes, axis=1)[:, None] * rng.choice([1e-9, 0.3, 2.0, 3.0, 3.1], size=(50, 1))
+    assert np.allclose(rotation_logs(Rotation.from_rotvec(w).as_matrix()), w, rtol=1e-9, atol=1e-15)
+    from mobility.core.kinematics import displacement_log, twist_exp
+
+    x = np.concatenate([w, rng.standard_normal((50, 3))], axis=1)
+    g = np.array([twist_exp(t) for t in x])
+    assert np.allclose(displacement_logs(g), [displacement_log(gi) for gi in g], rtol=1e-12, atol=1e-13)
+
+
+# --- the batched kinematics and screw systems against the one-pose ones ------------------------
+
+
+@pytest.mark.parametrize("name", ["3prs", "stephenson_six_bar", "planar_5r", "bennett", "6ups", "xy_sprint_hybrid"])
+def test_batched_analysis_equals_analyze_on_random_closed_poses(name):
+    m = load(name)
+    kin = kinematics(m)
+    rng = np.random.default_rng(RNG_SEED)
+    qs = [np.zeros(kin.variable_count)]
+    _, null = kin.rank_decision(np.zeros(kin.variable_count))
+    for _ in range(5):
+        d = null @ rng.standard_normal(null.shape[1])
+        d *= 0.25 / np.linalg.norm(d)
+        closed = kin.close(d, constraints=(d[None], np.array([d @ d])))
+        if closed.converged:
+            qs.append(closed.q)
+    q = np.array(qs)
+    bk = BatchKinematics(m)
+    assert np.allclose(bk.residual(q), [kin.residual(x) for x in q], atol=1e-13)
+    moved = bk.link_displacements(q)
+    for k, x in enumerate(q):
+        for link, g in kin.link_displacements(x).items():
+            assert np.allclose(moved[link][k], g, atol=1e-13)
+    answers = analyse_poses(m, posed_screws(bk, q))
+    for k, x in enumerate(q):
+        direct = mobility.analyze(kin.mechanism_at(x))
+        assert (answers.dof[k], answers.pattern[k], answers.mobility[k]) == (direct.dof, direct.pattern, direct.mobility)
+        assert answers.smallest_kept[k] == pytest.approx(direct.margin.smallest_kept, rel=1e-6)
+
+
+def test_posed_twists_at_the_given_pose_are_the_joint_screws():
+    for name in ("3prs", "tricept", "h4", "4puu"):
+        m = load(name)
+        posed = posed_screws(BatchKinematics(m), np.zeros((1, kinematics(m).variable_count)))
+        js = joint_screws(m)
+        assert np.allclose(posed.twists[0], js.twists, atol=1e-14)
+        assert np.allclose(posed.centres[0], js.normalisation.centre) and posed.lengths[0] == pytest.approx(js.normalisation.length)
+
+
+# --- what the issue asks the sweeps to find -------------------------------------------------------------
+
+
+def test_parallelogram_full_turn_has_mobility_two_exactly_at_the_folded_poses():
+    m = load("parallelogram")  # crank at phi = 60 deg in the file: folded at phi = 180 and 360
+    r = sweep(m, ["O1=0:360:361"])
+    assert r.assembled.all() and r.residual.max() <= r.tolerance.closure
+    folded = np.flatnonzero(r.mobility == 2)
+    assert r.values[folded, 0].tolist() == [120.0, 300.0]
+    assert set(r.mobility[np.setdiff1d(np.arange(361), folded)].tolist()) == {1}
+    assert [p.values for p in r.singular] == [(120.0,), (300.0,)]
+    assert sorted({(int(a), int(b)) for a, b, _ in r.changes}) == [(119, 120), (120, 121), (299, 300), (300, 301)]
+    for i in (119, 120, 121, 300):
+        assert_pose_matches_one_pose_routes(r, i)
+    # the continuation stays on the parallelogram branch through both change points: cranks parallel
+    for i in (150, 200, 340):
+        pose = r.mechanism_at(i)
+        crank1 = np.subtract(pose.joint("A1").point, pose.joint("O1").point)
+        crank2 = np.subtract(pose.joint("A2").point, pose.joint("O2").point)
+        assert np.allclose(crank1, crank2, atol=1e-9)
+        phi = math.degrees(math.atan2(crank1[1], crank1[0])) % 360.0
+        assert phi == pytest.approx((60.0 + r.values[i, 0]) % 360.0, abs=1e-9)
+
+
+def test_three_prs_stays_three_dof_1t2r_over_a_grid_of_its_sliders():
+    r = sweep(load("3prs"), ["P1=-30:30:7", "P2=-30:30:7", "P3=-30:30:7"])
+    assert r.assembled.all()
+    assert r.counts() == {(3, "1T2R", 3): 343}
+    assert r.verdict_counts() == {"valid": 343} and r.singular == () and len(r.changes) == 0
+    for i in random_rows(r, 8):
+        assert_pose_matches_one_pose_routes(r, i)
+    # the sliders are where the grid put them: P1 = -30 mm is a slide of -30 mm along the guide
+    i = int(np.ravel_multi_index((0, 3, 6), r.shape))
+    pose, given = r.mechanism_at(i), r.mechanism
+    for name, expect in (("R1", -30.0), ("R2", 0.0), ("R3", 30.0)):
+        moved = np.subtract(pose.joint(name).point, given.world_joints[[j.name for j in given.joints].index(name)].point)
+        assert np.allclose(moved, [0.0, 0.0, expect], atol=1e-9)
+
+
+@pytest.mark.parametrize("name, joint, singular", [("4puu_singular", "P1", "3T1R"), ("3upu_singular", "P1", "3T1R")])
+def test_constraint_singular_poses_are_found(name, joint, singular):
+    r = sweep(load(name), [f"{joint}=-20:20:9"])
+    assert r.assembled.all()
+    assert [p.values for p in r.singular] == [(0.0,)]
+    p = r.singular[0]
+    assert (p.dof, p.pattern, p.mobility) == (4, singular, 4)
+    assert "gains 1 freedom" in p.reasons[0]
+    others = np.flatnonzero(r.values[:, 0] != 0.0)
+    assert set(r.dof[others].tolist()) == {3}
+    for i in (int(p.index), int(others[0]), int(others[-1])):
+        assert_pose_matches_one_pose_routes(r, i)
+
+
+def test_three_upu_margin_falls_to_the_singular_pose():
+    r = sweep(load("3upu_singular"), ["P3=-12:12:7"])
+    margin = r.smallest_kept
+    centre = int(np.flatnonzero(r.values[:, 0] == 0.0)[0])
+    assert np.all(np.diff(margin[:centre]) < 0) and np.all(np.diff(margin[centre + 1 :]) > 0)  # the margin shrinks towards it
+
+
+def test_five_bar_map_shows_its_type_two_singularity():
+    m = load("planar_5r")  # distal links at right angles in the file: aligned at P = +-90 deg
+    r = sweep(m, ["A1=-10:30:9", "P=60:100:9"])
+    assert r.actuated == ("A1", "A2")
+    flagged = [p for p in r.singular]
+    assert flagged and all(p.values[1] == 90.0 and p.verdict == "actuation-singular" for p in flagged)
+    assert {v for v, ok, p in zip(r.verdict, r.assembled, r.values[:, 1]) if ok and p != 90.0} == {"valid"}
+    for p in flagged:
+        pose = r.mechanism_at(p.index)
+        check = mobility.check_actuation(pose)
+        assert check.verdict == "actuation-singular" and check.conditioning == 0.0
+        assert mobility.actuation.locked_dof(pose, ["A1", "A2"]) == 1  # second route: inputs locked, the end effector still moves
+        direct = mobility.analyze(pose)
+        assert (direct.dof, direct.mobility) == (2, 2)
+    for i in random_rows(r, 6):
+        assert_pose_matches_one_pose_routes(r, i)
+    kappa = r.grid("conditioning")
+    column = list(r.axes[1].values).index(90.0)
+    assert np.nanmax(kappa[:, column]) == 0.0 and np.nanmin(np.delete(kappa, column, axis=1)) > 0.0
+
+
+def test_pose_coordinates_drive_the_end_effector():
+    m = load("3rps")
+    r = sweep(m, ["z=-20:20:5", "rx=-6:6:3"])
+    assert r.assembled.all() and r.counts() == {(3, "1T2R", 3): 15}
+    given = np.array([j.point for j in m.world_joints if m.end_effector in j.links])
+    for i in random_rows(r, 5):
+        assert_pose_matches_one_pose_routes(r, i)
+        pose = r.mechanism_at(i)
+        moved = np.array([j.point for j in pose.world_joints if m.end_effector in j.links])
+        z, rx = r.values[i]
+        assert (moved.mean(axis=0) - given.mean(axis=0))[2] == pytest.approx(z, abs=1e-9)
+        # the rotation taking the platform's points to their new places (Kabsch), as a rotation vector
+        a, b = given - given.mean(axis=0), moved - moved.mean(axis=0)
+        u, _, vt = np.linalg.svd(b.T @ a)
+        rot = u @ np.diag([1.0, 1.0, np.linalg.det(u @ vt)]) @ vt
+        from scipy.spatial.transform import Rotation
+
+        assert math.degrees(Rotation.from_matrix(rot).as_rotvec()[0]) == pytest.approx(rx, abs=1e-7)
+
+
+def test_unreachable_poses_are_rows_not_assembled():
+    r = sweep(load("planar_5r"), ["A1=-40:40:9", "A2=-40:40:9"])
+    assert not r.assembled.all() and r.assembled.any()
+    missing = np.flatnonzero(~r.assembled)
+    assert (r.dof[missing] == -1).all() and (r.pattern[missing] == "").all() and np.isnan(r.smallest_kept[missing]).all()
+    assert (r.residual[missing] > r.tolerance.closure).all()
+    assert len(r.values) == 81  # never dropped
+    for i in random_rows(r, 4):
+        assert_pose_matches_one_pose_routes(r, i)
+
+
+def test_a_serial_arm_without_loops_is_swept_too():
+    m = load("scara")
+    names = [j.name for j in m.joints if j.type in "RPHC"][:2]
+    r = sweep(m, [f"{names[0]}=0:90:4", f"{names[1]}=-45:45:3"], actuated=[])
+    assert r.assembled.all() and not r.actuated
+    for i in random_rows(r, 4):
+        assert_pose_matches_one_pose_routes(r, i)
+
+
+# --- scale-out, progress -----------------------------------------------------------------------------
+
+
+def test_chunks_and_threads_give_the_same_answers():
+    m = load("3prs")
+    vary = ["P1=-20:20:5", "P2=-20:20:5", "P3=-20:20:4"]
+    one = sweep(m, vary, workers=1, chunk_size=10_000)
+    many = sweep(m, vary, workers=2, chunk_size=7)
+    for name in ("dof", "pattern", "mobility", "assembled", "verdict"):
+        assert np.array_equal(one.column(name), many.column(name))
+    assert np.allclose(one.q, many.q, atol=1e-12) and np.allclose(one.conditioning, many.conditioning, rtol=1e-9)
+
+
+def test_dask_cluster_runs_the_chunks():
+    from dask import distributed
+
+    m = load("3prs")
+    vary = ["P1=-20:20:5", "P2=-20:20:6"]
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        on_dask = sweep(m, vary, scheduler=client, chunk_size=7)
+        by_address = sweep(load("parallelogram"), ["O1=0:360:73"], scheduler=cluster.scheduler_address, chunk_size=20)
+    local = sweep(m, vary)
+    for name in ("assembled", "dof", "pattern", "mobility", "verdict"):
+        assert np.array_equal(on_dask.column(name), local.column(name))
+    assert np.allclose(on_dask.q, local.q, atol=1e-12) and np.allclose(on_dask.conditioning, local.conditioning, rtol=1e-9)
+    assert [p.values for p in by_address.singular] == [(120.0,), (300.0,)]
+
+
+def test_progress_reports_both_stages_to_the_end():
+    seen: list[tuple[str, int, int]] = []
+    sweep(load("parallelogram"), ["O1=0:90:10"], progress=lambda stage, done, total: seen.append((stage, done, total)))
+    stages = [s for s, _, _ in seen]
+    assert stages[0] == "closing loops" and stages[-1] == "analysing"
+    for stage in ("closing loops", "analysing"):
+        last = [x for x in seen if x[0] == stage][-1]
+        assert last[1] == last[2] == 10
+
+
+# --- bad requests --------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "vary, message",
+    [
+        (["Q9=0:1:2"], "'Q9' is not a joint"),
+        (["S1=0:10:3"], "S1 is a S joint"),
+        (["P1=0:10:0"], "COUNT must be at least 1"),
+        (["P1=0:10"], "expected NAME=START:STOP:COUNT"),
+        (["P1=a:10:3"], "START must be a number"),
+        (["P1=0:inf:3"], "STOP must be a finite number"),
+        (["P1=0:1:2.5"], "COUNT must be an integer"),
+        (["P1=0:1:2", "P1=0:1:3"], "P1 is varied twice"),
+        ([], "at least one coordinate"),
+    ],
+)
+def test_bad_requests_are_one_line_errors(vary, message):
+    with pytest.raises(RequestError, match=message) as info:
+        sweep(load("3prs"), vary)
+    assert "\n" not in str(info.value)
+
+
+def test_a_grid_above_the_cap_is_refused_before_any_work():
+    with pytest.raises(RequestError, match="more than --max-poses 1,000"):
+        plan_grid(load("3prs"), ["P1=0:1:11", "P2=0:1:11", "P3=0:1:11"], max_poses=1000)
+    assert plan_grid(load("3prs"), ["P1=0:1:11", "P2=0:1:11", "P3=0:1:11"], max_poses=1331).size == 1331
+
+
+def test_an_unknown_input_is_a_mechanism_error():
+    with pytest.raises(MechanismError, match="unknown joint 'Z'"):
+        sweep(load("3prs"), ["P1=0:1:2"], actuated=["Z"])
+
+
+# --- properties ---------------------------------------------------------------------------------------
+
+
+@settings(max_examples=6, deadline=None)
+@given(scale=st.sampled_from([0.001, 25.4, 1000.0]), count=st.integers(2, 6), reach=st.floats(5.0, 30.0))
+def test_a_sweep_does_not_depend_on_the_length_unit(scale, count, reach):
+    m = load("3rps")  # three legs driven: the pose is determined
+    scaled = m.replace(joints=tuple(j.transformed(_scaling(scale)) for j in m.world_joints))
+    a = sweep(m, [f"P1={-reach}:{reach}:{count}", "P2=-5:5:2", "P3=3:3:1"])
+    b = sweep(scaled, [f"P1={-reach * scale}:{reach * scale}:{count}", f"P2={-5 * scale}:{5 * scale}:2", f"P3={3 * scale}:{3 * scale}:1"])
+    for name in ("assembled", "dof", "pattern", "mobility", "verdict"):
+        assert np.array_equal(a.column(name), b.column(name))
+    assert np.allclose(a.q, b.q, atol=1e-9) and np.allclose(a.conditioning, b.conditioning, rtol=1e-7)
+
+
+def _scaling(k: float):
+    from mobility.core.transforms import Transform
+
+    return Transform(np.eye(3) * k, np.zeros(3))
+
+
+def test_every_way_of_writing_the_request_gives_the_same_grid():
+    m = load("parallelogram")
+    text = sweep(m, "O1=0:360:13")
+    for vary in (["O1=0:360:13"], [("O1", 0, 360, 13)], {"O1": (0, 360, 13)}):
+        other = sweep(m, vary)
+        assert other.axes == text.axes and np.array_equal(other.mobility, text.mobility)
+    assert text.axes[0].values.tolist() == [30.0 * k for k in range(13)] and text.axes[0].label == "O1 [deg]"
+    single = sweep(m, "O1=45:45:1")
+    assert single.size == 1 and single.values.tolist() == [[45.0]]
