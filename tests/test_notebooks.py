@@ -11,12 +11,10 @@ from __future__ import annotations
 import asyncio
 from pathlib import Path
 
-import pytest
-
-nbformat = pytest.importorskip("nbformat")
-nbclient = pytest.importorskip("nbclient")
-pytest.importorskip("ipykernel")
-pytest.importorskip("matplotlib")
+import ipykernel  # noqa: F401  (the notebooks' kernel and pictures: the test extra installs them; a missing one fails, never skips)
+import matplotlib  # noqa: F401
+import nbclient
+import nbformat
 
 NOTEBOOKS = sorted((Path(__file__).resolve().parent.parent / "notebooks").glob("*.ipynb"))
 

@@ -16,12 +16,12 @@ import sys
 from collections import Counter
 from pathlib import Path
 
+import matplotlib
 import numpy as np
 import pytest
 
 from mobility.errors import PlotFormatError, PlottingUnavailableError
 
-matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 
 from builders import THREE_RPS_YAML  # noqa: E402

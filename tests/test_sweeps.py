@@ -20,6 +20,7 @@ import mobility
 from mobility.core.joint_screws import joint_screws
 from mobility.core.kinematics import kinematics
 from mobility.core.tolerance import characteristic_scale, characteristic_scales, decide_rank, decide_ranks
+from mobility.core.transforms import displacement_log, twist_exp
 from mobility.errors import MechanismError, RequestError
 from mobility.sweeps import SweepResult, plan_grid, sweep
 from mobility.sweeps.batch_kinematics import BatchKinematics, displacement_logs, rotation_logs
@@ -86,8 +87,6 @@ def test_batched_logs_invert_exponentials():
     axes = rng.standard_normal((50, 3))
     w = axes / np.linalg.norm(axes, axis=1)[:, None] * rng.choice([1e-9, 0.3, 2.0, 3.0, 3.1], size=(50, 1))
     assert np.allclose(rotation_logs(Rotation.from_rotvec(w).as_matrix()), w, rtol=1e-9, atol=1e-15)
-    from mobility.core.kinematics import displacement_log, twist_exp
-
     x = np.concatenate([w, rng.standard_normal((50, 3))], axis=1)
     g = np.array([twist_exp(t) for t in x])
     assert np.allclose(displacement_logs(g), [displacement_log(gi) for gi in g], rtol=1e-12, atol=1e-13)

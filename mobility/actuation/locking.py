@@ -8,11 +8,8 @@ but the model, which is what makes it a check.
 
 Examples
 --------
->>> from mobility.core.model import Joint, Mechanism
->>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
->>> m = Mechanism("four-bar", "ground", "coupler", (
-...     R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "coupler", (1, 2, 0)),
-...     R("C", "coupler", "rocker", (4, 2.5, 0)), R("D", "rocker", "ground", (5, 0, 0))))
+>>> import mobility
+>>> m = mobility.load("mechanisms/four_bar.yaml")   # the crank A, the coupler B-C, the rocker D
 >>> locked_dof(m, ["A"]), locked_dof(m, [])
 (0, 1)
 >>> [(j.name, j.links) for j in lock_joints(m, ["B", "C"]).joints]

@@ -21,14 +21,13 @@ from __future__ import annotations
 import argparse
 
 from ..actuation import ENUMERATION_MODES, check_actuation, check_over_poses, enumerate_actuations
-from ..core.kinematics import sample_poses
 from ..core.tolerance import Tolerance
 from ..errors import RequestError
 from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines, flexure_spaces, is_flexure_document, loads_flexure
 from ..io.loader import load, loads
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
-from ._options import add_tolerance_option, tolerance_from
+from ._options import add_pose_sampler_options, add_tolerance_option, sampled_poses, tolerance_from
 
 ORDER = 30
 
@@ -46,9 +45,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--k", type=int, default=None, help="inputs per combination with --mode any (default: the DOF)")
     p.add_argument("--inputs", default=None, help="comma-separated joint (or actuator) names to check instead of those marked actuated")
     p.add_argument("--pose", action="append", default=[], metavar="FILE", help="another pose of the same mechanism (repeatable)")
-    p.add_argument("--samples", type=int, default=0, help="also check N poses reached by moving the mechanism (mobility.core.kinematics.sample_poses)")
-    p.add_argument("--step", type=float, default=0.1, help="step passed to the pose sampler (default: %(default)g)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
+    add_pose_sampler_options(p, samples_help="also check N poses reached by moving the mechanism (mobility.core.kinematics.sample_poses)", step=0.1)
     p.add_argument("--threshold", type=float, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
     add_tolerance_option(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
@@ -77,8 +74,7 @@ def run(args: argparse.Namespace) -> int:
     check = check_actuation(mechanism, names, tol=tol)
     extra = check_over_poses(mechanism, names, [load(p) for p in args.pose], tol=tol) if args.pose else ()
     if args.samples:
-        sampled = sample_poses(mechanism, args.samples, step=args.step, seed=args.seed)
-        extra = tuple(extra) + check_over_poses(mechanism, names, sampled, tol=tol)
+        extra = tuple(extra) + check_over_poses(mechanism, names, sampled_poses(args, mechanism), tol=tol)
     labels = list(args.pose) + [f"sampled pose {i + 1}" for i in range(len(extra) - len(args.pose))]
     poses = list(zip(labels, extra))
     print(actuation_json(check, poses) if args.json else actuation_text(check, poses))

@@ -45,11 +45,10 @@ def _is_flexure(path: str) -> bool:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..report.plotting import FORMATS, plot_graph, plot_mechanism, save_figure
+    from ..report.plotting import picture_path, plot_graph, plot_mechanism, save_figure
 
     tol = tolerance_from(args)
-    if not args.output.lower().endswith(FORMATS):  # before any work
-        raise PlotFormatError(f"{args.output}: cannot tell the picture type; expected a name ending in {', '.join(FORMATS)}")
+    picture_path(args.output)  # before any work
     if args.graph and args.constraints:
         print("mobility plot: error: --constraints draws on the mechanism, not on the --graph picture", file=sys.stderr)
         return 2

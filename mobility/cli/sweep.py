@@ -14,8 +14,9 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..errors import PlotFormatError, RequestError
+from ..errors import RequestError
 from ..io.loader import load
+from ..report.plotting import picture_path, save_figure
 from ..report.sweep import sweep_csv, sweep_json, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, DEFAULT_MAX_POSES, sweep
 from ._options import add_tolerance_option, tolerance_from
@@ -75,10 +76,7 @@ def _progress_wanted(choice: bool | None) -> bool:
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if args.plot is not None:
-        from ..report.sweep_plot import FORMATS as PICTURES
-
-        if not args.plot.lower().endswith(PICTURES):  # before any work
-            raise PlotFormatError(f"--plot {args.plot}: cannot tell the picture type; expected a name ending in {', '.join(PICTURES)}")
+        picture_path(args.plot, "--plot ")  # before any work
     if args.max_poses < 1:
         raise RequestError(f"--max-poses must be at least 1, got {args.max_poses}")
     if args.chunk_size < 1:
@@ -109,10 +107,10 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(text, end="" if text.endswith("\n") else "\n")
     if args.plot is not None:
-        from ..report.sweep_plot import plot_sweep, save_sweep_figure
+        from ..report.sweep_plot import plot_sweep
 
         try:
-            path = save_sweep_figure(plot_sweep(result), args.plot)
+            path = save_figure(plot_sweep(result), args.plot)
         except OSError as exc:
             raise RequestError(f"--plot {args.plot}: cannot write it ({exc.strerror or exc})") from None
         note = f"wrote {path}: {'curve' if len(result.axes) == 1 else 'map' if len(result.axes) == 2 else 'slices'} of {result.name}"

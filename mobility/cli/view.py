@@ -10,12 +10,11 @@ from __future__ import annotations
 import argparse
 
 from ..core.analysis import analyze
-from ..core.kinematics import sample_poses
 from ..errors import RequestError
 from ..io.loader import load
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
-from ._options import add_tolerance_option, tolerance_from
+from ._options import add_pose_sampler_options, add_tolerance_option, sampled_poses, tolerance_from
 
 ORDER = 31
 
@@ -32,13 +31,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("file", help="mechanism file (YAML)")
     p.add_argument("-o", "--output", required=True, help="page to write (.html)")
     poses = p.add_mutually_exclusive_group()
-    poses.add_argument("--samples", type=int, default=0, metavar="N",
-                       help="also show N poses reached by moving the mechanism, with a slider (default: %(default)s)")
     poses.add_argument("--vary", action="append", default=[], metavar="NAME=START:STOP:COUNT",
                        help="show the poses of a sweep, as for `mobility sweep` (repeat for a grid), with a slider; "
                        f"at most {MAX_POSES} poses are drawn, evenly spaced, every singular one kept")
-    p.add_argument("--step", type=float, default=0.2, help="step of the pose sampler (default: %(default)g)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
+    add_pose_sampler_options(p, samples_help="also show N poses reached by moving the mechanism, with a slider", step=0.2, samples_group=poses)
     add_tolerance_option(p)
     p.set_defaults(run=run)
 
@@ -47,17 +43,15 @@ def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if not args.output.lower().endswith((".html", ".htm")):
         raise RequestError(f"{args.output}: expected a page name ending in .html")
-    if args.samples < 0 or args.step <= 0:
-        raise RequestError("--samples must not be negative and --step must be positive")
     require_plotly()  # before any work
     mechanism = load(args.file)
+    poses = sampled_poses(args, mechanism)
     result = analyze(mechanism, tol=tol)
     if args.vary:
         from ..sweeps import sweep
 
         view = sweep_view(sweep(mechanism, args.vary, tol=tol))
     elif args.samples:
-        poses = sample_poses(mechanism, args.samples, step=args.step, seed=args.seed)
         frames = [ViewFrame(mechanism, result, "as in the file")]
         frames += [ViewFrame(p, analyze(p, tol=tol), f"sampled pose {k + 1}") for k, p in enumerate(poses)]
         view = poses_view(frames)

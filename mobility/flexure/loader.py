@@ -84,24 +84,15 @@ def load_flexure(path: str | Path) -> FlexureMechanism:
 def loads_flexure(text: str, file: str = "<string>") -> FlexureMechanism:
     """Load a flexure document from YAML text (see :func:`load_flexure`)."""
     data, positions = parse_yaml(text, file)
-    return _FlexureReader(file, positions).document(data)
+    return _FlexureReader(file, positions).flexure_mechanism(data)
 
 
 class _FlexureReader(DocumentReader):
     """The mechanism reader's helpers (numbers, vectors, frames, errors) for flexure documents."""
 
-    def document(self, data: Any) -> FlexureMechanism:
-        if data is None:
-            raise self.fail((), "the file is empty; expected a mapping with name, ground, end_effector and elements")
-        doc = self.mapping(data, (), "a flexure document")
-        self.check_keys(doc, FLEXURE_KEYS, (), "a flexure document")
-        for key in ("name", "ground", "end_effector", "elements"):
-            if key not in doc:
-                raise self.fail((), f"missing required key {key!r}")
-        name = self.string(str(doc["name"]) if isinstance(doc["name"], (int, float)) else doc["name"], ("name",))
-        description = doc.get("description", "")
-        if not isinstance(description, str):
-            raise self.fail(("description",), f"expected a string, got {describe_value(description)}")
+    def flexure_mechanism(self, data: Any) -> FlexureMechanism:
+        doc = self.document(data, "a flexure document", FLEXURE_KEYS, ("name", "ground", "end_effector", "elements"))
+        name, description = self.name_and_description(doc)
         length_unit, modulus = self.flexure_units(doc.get("units"))
         self.parameters(doc.get("parameters"))
         transforms = self.resolve_frames(self.frames(doc.get("frames")))
@@ -168,11 +159,7 @@ class _FlexureReader(DocumentReader):
         return transforms[frame]
 
     def material(self, raw: Any, path: KeyPath, modulus: float) -> Material:
-        data = self.mapping(raw, path, "a material with E and nu")
-        self.check_keys(data, MATERIAL_KEYS, path, "a material")
-        for key in MATERIAL_KEYS:
-            if key not in data:
-                raise self.fail(path, f"missing required key {key!r} of a material")
+        data = self.record(raw, path, "a material", MATERIAL_KEYS, MATERIAL_KEYS, described="a material with E and nu")
         e = self.number(data["E"], path + ("E",))
         nu = self.number(data["nu"], path + ("nu",))
         try:
@@ -192,11 +179,8 @@ class _FlexureReader(DocumentReader):
         out = []
         for i, raw in enumerate(value):
             path: KeyPath = ("elements", i)
-            data = self.mapping(raw, path, "a flexure element with name, type, bodies and geometry")
-            self.check_keys(data, ELEMENT_KEYS, path, "a flexure element")
-            for key in ("name", "type", "bodies", "length", "radius", "material"):
-                if key not in data:
-                    raise self.fail(path, f"missing required key {key!r} of a flexure element")
+            required = ("name", "type", "bodies", "length", "radius", "material")
+            data = self.record(raw, path, "a flexure element", ELEMENT_KEYS, required, described="a flexure element with name, type, bodies and geometry")
             if data["type"] not in ELEMENT_TYPES:
                 raise self.fail(path + ("type",), f"unknown flexure element type {data['type']!r}; expected one of: {', '.join(ELEMENT_TYPES)}")
             bodies = data["bodies"]
@@ -238,11 +222,7 @@ class _FlexureReader(DocumentReader):
         out = []
         for i, raw in enumerate(value):
             path: KeyPath = ("actuators", i)
-            data = self.mapping(raw, path, "a force line with name, point and direction")
-            self.check_keys(data, ACTUATOR_KEYS, path, "a linear actuator")
-            for key in ("name", "point", "direction"):
-                if key not in data:
-                    raise self.fail(path, f"missing required key {key!r} of a linear actuator")
+            data = self.record(raw, path, "a linear actuator", ACTUATOR_KEYS, ("name", "point", "direction"), described="a force line with name, point and direction")
             tf = self.frame_of(data, path, transforms)
             point = self.vector(data["point"], path + ("point",))
             direction = self.vector(data["direction"], path + ("direction",))

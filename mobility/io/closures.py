@@ -81,10 +81,7 @@ def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
     file = str(path)
     data, positions = parse_yaml(read_text(path), file)
     reader = _MechanismReader(file, positions)
-    doc = reader.mapping(data, (), "closing joints: a mapping with joints")
-    reader.check_keys(doc, CLOSURES_KEYS, (), "a closures file")
-    if "joints" not in doc:
-        raise reader.fail((), "missing required key 'joints'")
+    doc = reader.record(data, (), "a closures file", CLOSURES_KEYS, ("joints",), described="closing joints: a mapping with joints")
     joints, sources = reader.joints(doc["joints"], ("joints",), {}, None)
     bodies = {b.name: b for b in tree.bodies}
     closures = []

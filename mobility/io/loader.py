@@ -143,20 +143,8 @@ class _MechanismReader(DocumentReader):
 
     # -- document ---------------------------------------------------------
     def mechanism(self, data: Any) -> Mechanism:
-        if data is None:
-            raise self.fail((), "the file is empty; expected a mapping with name, ground, end_effector and joints")
-        doc = self.mapping(data, (), "a mechanism")
-        self.check_keys(doc, TOP_LEVEL_KEYS, (), "a mechanism")
-        for key in ("name", "ground", "end_effector"):
-            if key not in doc:
-                raise self.fail((), f"missing required key {key!r}")
-        if "joints" not in doc and "limbs" not in doc:
-            raise self.fail((), "missing required key 'joints'")
-        title = doc["name"]
-        name = self.string(str(title) if isinstance(title, (int, float)) and not isinstance(title, bool) else title, ("name",))
-        description = doc.get("description", "")
-        if not isinstance(description, str):
-            raise self.fail(("description",), f"expected a string, got {describe_value(description)}")
+        doc = self.document(data, "a mechanism", TOP_LEVEL_KEYS, ("name", "ground", "end_effector", ("joints", "limbs")))
+        name, description = self.name_and_description(doc)
         length_unit = self.units(doc.get("units"))
         self.parameters(doc.get("parameters"))
         frames = self.frames(doc.get("frames"))
@@ -203,11 +191,7 @@ class _MechanismReader(DocumentReader):
         return out, sources
 
     def joint(self, raw: Any, path: KeyPath, names: Mapping[str, float], default_frame: str | None, subst: Callable[[str, KeyPath], str] | None) -> Joint:
-        data = self.mapping(raw, path, "a joint with name, type, links and geometry")
-        self.check_keys(data, JOINT_KEYS, path, "a joint")
-        for key in ("name", "type", "links"):
-            if key not in data:
-                raise self.fail(path, f"missing required key {key!r} of a joint")
+        data = self.record(raw, path, "a joint", JOINT_KEYS, ("name", "type", "links"), described="a joint with name, type, links and geometry")
         names = names or self.names  # a limb copy's names include the parameters
         text = subst or (lambda s, p: s)
         name = text(self.identifier(data["name"], path + ("name",), "a joint name"), path + ("name",))

@@ -44,6 +44,8 @@ from .yaml_source import KeyPath, Positions, format_key
 __all__ = ["DocumentReader", "describe_value", "parse_key", "NAME_RE", "FRAME_KEYS"]
 
 FRAME_KEYS = ("origin", "rpy", "axis", "angle", "parent")
+Required = tuple[str | tuple[str, ...], ...]
+"""Required keys: each a key, or a tuple of keys of which one is enough."""
 NAME_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 
@@ -83,6 +85,65 @@ class DocumentReader:
         if not isinstance(value, dict):
             raise self.fail(path, f"expected a mapping ({what}), got {describe_value(value)}")
         return value
+
+    def record(self, value: Any, path: KeyPath, what: str, allowed: tuple[str, ...], required: Required = (), *, described: str | None = None) -> Mapping[str, Any]:
+        """A mapping with only ``allowed`` keys and every ``required`` one: a section or an entry of a list.
+
+        Parameters
+        ----------
+        value : Any
+            The parsed value.
+        path : KeyPath
+            Where it stands (``()``: the whole document).
+        what : str
+            What it is, in messages: ``"a joint"``.
+        allowed : tuple of str
+        required : tuple
+            Each a key, or a tuple of keys of which one is enough (the message names the first).
+        described : str, optional
+            What a mapping is expected to hold, when ``value`` is not one (default ``what``).
+
+        Examples
+        --------
+        >>> r = DocumentReader("j.yaml", Positions({}))
+        >>> r.record({"name": "A"}, ("joints", 0), "a joint", ("name", "type"), ("name", "type"))
+        Traceback (most recent call last):
+        ...
+        mobility.errors.MechanismFileError: j.yaml: joints[0]: missing required key 'type' of a joint
+        """
+        data = self.mapping(value, path, described or what)
+        self.check_keys(data, allowed, path, what)
+        for key in required:
+            choices = key if isinstance(key, tuple) else (key,)
+            if not any(k in data for k in choices):
+                raise self.fail(path, f"missing required key {choices[0]!r}" + (f" of {what}" if path else ""))
+        return data
+
+    def document(self, data: Any, what: str, allowed: tuple[str, ...], required: Required) -> Mapping[str, Any]:
+        """The top-level mapping of a document: not empty, only ``allowed`` keys, every ``required`` one (see :meth:`record`).
+
+        Examples
+        --------
+        >>> r = DocumentReader("empty.yaml", Positions({}))
+        >>> r.document(None, "a mechanism", ("name", "joints", "limbs"), ("name", ("joints", "limbs")))
+        Traceback (most recent call last):
+        ...
+        mobility.errors.MechanismFileError: empty.yaml: the file is empty; expected a mapping with name and joints
+        """
+        if data is None:
+            keys = [k[0] if isinstance(k, tuple) else k for k in required]
+            listed = f"{', '.join(keys[:-1])} and {keys[-1]}" if len(keys) > 1 else keys[0]
+            raise self.fail((), f"the file is empty; expected a mapping with {listed}")
+        return self.record(data, (), what, allowed, required)
+
+    def name_and_description(self, doc: Mapping[str, Any]) -> tuple[str, str]:
+        """The document's ``name`` (a number is taken as its text) and its ``description`` (default empty)."""
+        title = doc["name"]
+        name = self.string(str(title) if isinstance(title, (int, float)) and not isinstance(title, bool) else title, ("name",))
+        description = doc.get("description", "")
+        if not isinstance(description, str):
+            raise self.fail(("description",), f"expected a string, got {describe_value(description)}")
+        return name, description
 
     # -- scalars ----------------------------------------------------------
     def number(self, value: Any, path: KeyPath, names: Mapping[str, float] | None = None) -> float:

@@ -188,6 +188,16 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
         loader.dispose()
 
 
+def _add_to(frame: list[Any], value: Any, size: int) -> None:
+    """Put a finished node into the collection of ``frame`` (a stack frame of :meth:`_Builder.node_tree`), counting its nodes."""
+    frame[2] += size
+    if frame[5]:  # a mapping: the value of the pending key
+        frame[0][frame[4]] = value
+        frame[4] = None
+    else:
+        frame[0].append(value)
+
+
 class _Builder:
     """Builds the values and the positions of one document from its events (one loop, an explicit stack)."""
 
@@ -231,13 +241,7 @@ class _Builder:
                     anchors[anchor] = (container, size)
                 if not stack:
                     return container
-                parent = stack[-1]
-                parent[2] += size
-                if parent[5]:
-                    parent[0][parent[4]] = container
-                    parent[4] = None
-                else:
-                    parent[0].append(container)
+                _add_to(stack[-1], container, size)
                 continue
             line = event.start_mark.line + 1
             if stack:
@@ -278,12 +282,7 @@ class _Builder:
                 anchors[event.anchor] = (value, size)
             if parent is None:
                 return value
-            parent[2] += size
-            if parent[5]:
-                parent[0][parent[4]] = value
-                parent[4] = None
-            else:
-                parent[0].append(value)
+            _add_to(parent, value, size)
 
     def key(self, event: Any, frame: list[Any], line: int) -> str:
         """The text of a mapping key, checked: a plain scalar, not ``<<``, not already in the mapping."""

@@ -13,8 +13,14 @@ here writes it.  The command line prints what these return.
     the finite-motion section of ``mobility analyze --finite``.
 ``check``
     the table of ``mobility check``.
-``actuation``, ``synthesis``, ``jacobian``, ``sweep``
-    the reports of the features of the same names.
-``plotting`` (a package), ``sweep_plot``
-    pictures (matplotlib, optional).
+``actuation``, ``synthesis``, ``jacobian``
+    the reports (text and JSON) of the features of the same names.
+``sweep``
+    a sweep's summary, its table as CSV, and JSON.
+``plotting`` (a package)
+    pictures of a mechanism and of its joint graph, and the matplotlib
+    backend (optional, imported on first use) every picture is built and
+    saved with.
+``sweep_plot``
+    pictures of a sweep: a curve, a map or slices.
 """

@@ -35,7 +35,7 @@ from typing import Any, Sequence
 from ..actuation import SINGULAR, VALID, ActuationCheck, Enumeration
 from ..core.result import ScrewAxis
 from ..flexure import FlexureSpaces
-from .text import fmt_number, fmt_vector
+from .text import fmt_number, fmt_vector, screw_text
 
 __all__ = [
     "actuation_text",
@@ -55,18 +55,12 @@ def _line(a: ScrewAxis, scale: float, unit: str) -> str:
     """A wrench's line: ``force along [..] through [..]`` (with its pitch), or a couple."""
     if a.kind == "couple":
         return f"couple about {fmt_vector(a.axis)}"
-    text = f"{a.kind} along {fmt_vector(a.axis)} through {fmt_vector(a.point, scale)}"
-    if a.pitch:
-        text += f" pitch {fmt_number(a.pitch, scale)}{(' ' + unit) if unit else ''}"
-    return text
+    return screw_text(a, scale, verb="along", pitch_unit=f" {unit}" if unit else "")
 
 
 def _motion(a: ScrewAxis, scale: float, unit: str) -> str:
     """A twist's axis: ``rotation about [..] through [..]`` (with its pitch per radian)."""
-    text = f"{a.kind} about {fmt_vector(a.axis)} through {fmt_vector(a.point, scale)}"
-    if a.pitch:
-        text += f" pitch {fmt_number(a.pitch, scale)}{(' ' + unit) if unit else ''}/rad"
-    return text
+    return screw_text(a, scale, verb="about", pitch_unit=f" {unit}/rad" if unit else "/rad")
 
 
 def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:

@@ -8,18 +8,11 @@ parallel mechanism, one row per limb.  Only formatting happens here.
 Examples
 --------
 >>> import mobility
->>> m = mobility.loads('''
-... name: slider
-... ground: g
-... end_effector: s
-... joints:
-...   - {name: P1, type: P, links: [g, s], axis: [0, 0, 1]}
-... ''')
->>> text = markdown_report(mobility.analyze(m))
+>>> text = markdown_report(mobility.analyze(mobility.load("mechanisms/slider_crank.yaml")))
 >>> print(text.splitlines()[0])
-# slider
->>> "| T1 | translation | [0, 0, 1] |" in text
-True
+# slider-crank
+>>> "| T1 | translation | [1, 0, 0] |" in text, "| Grübler–Kutzbach count | 6(n − 1 − j) + Σf | -2 |" in text
+(True, True)
 """
 
 from __future__ import annotations

@@ -12,8 +12,10 @@
   coordinate, the slices holding singular poses first.
 
 matplotlib is optional (``pip install 'mobility[plot]'``); figures are built
-without :mod:`matplotlib.pyplot`.  Every drawn element of an answer carries a
-``gid`` (``"mobility:sweep:curve"``, ``"mobility:sweep:map"``,
+without :mod:`matplotlib.pyplot` by the pictures' backend
+(:mod:`mobility.report.plotting.backend`), and
+:func:`~mobility.report.plotting.save_figure` writes them.  Every drawn
+element of an answer carries a ``gid`` (``"mobility:sweep:curve"``, ``"mobility:sweep:map"``,
 ``"mobility:sweep:regions"``, ``"mobility:sweep:singular"``,
 ``"mobility:sweep:unassembled"``) so that tests can read a picture back.
 
@@ -28,33 +30,21 @@ Examples
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..errors import PlotFormatError, PlottingUnavailableError, RequestError
+from ..errors import RequestError
 from ..sweeps import SweepResult
+from .plotting.backend import new_figure, require_matplotlib
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
-__all__ = ["plot_sweep", "save_sweep_figure", "colour_of", "FORMATS", "MAX_SLICES"]
-
-FORMATS = (".png", ".svg", ".pdf")
-"""Picture types :func:`save_sweep_figure` writes (by file suffix)."""
+__all__ = ["plot_sweep", "colour_of", "MAX_SLICES"]
 
 MAX_SLICES = 6
 """Slices drawn of a 3-D grid."""
-
-
-def _matplotlib() -> Any:
-    try:
-        import matplotlib
-        from matplotlib.figure import Figure
-    except ImportError as exc:
-        raise PlottingUnavailableError(str(exc)) from None
-    return matplotlib, Figure
 
 
 def colour_of(result: SweepResult) -> tuple[np.ndarray, str]:
@@ -95,24 +85,24 @@ def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
     k = len(result.axes)
     if k > 3:
         raise RequestError(f"a sweep of {k} coordinates cannot be drawn; plots show 1 (curve), 2 (map) or 3 (slices)")
-    _, Figure = _matplotlib()
+    require_matplotlib()
     title = result.name if title is None else title
     if k == 1:
-        return _curve(result, Figure, title)
+        return _curve(result, title)
     if k == 2:
-        fig = Figure(figsize=(7.5, 6.0), layout="constrained")
+        fig = new_figure((7.5, 6.0), layout="constrained")
         ax = fig.add_subplot()
         mesh = _map(ax, result, np.arange(result.size).reshape(result.shape), None)
         fig.colorbar(mesh, ax=ax, label=colour_of(result)[1])
         ax.set_title(title)
         return fig
-    return _slices(result, Figure, title)
+    return _slices(result, title)
 
 
-def _curve(result: SweepResult, Figure: Any, title: str) -> "Figure":
+def _curve(result: SweepResult, title: str) -> "Figure":
     axis = result.axes[0]
     x = axis.values
-    fig = Figure(figsize=(8.0, 6.0), layout="constrained")
+    fig = new_figure((8.0, 6.0), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
     ok = result.assembled
     dof = np.where(ok, result.dof, np.nan).astype(float)
@@ -152,8 +142,7 @@ def _map(ax: Any, result: SweepResult, index: np.ndarray, limits: tuple[float, f
     if limits is None:
         finite = z[np.isfinite(z)]
         limits = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
-    matplotlib, _ = _matplotlib()
-    cmap = matplotlib.colormaps["viridis"].with_extremes(bad="0.8")
+    cmap = require_matplotlib().colormaps["viridis"].with_extremes(bad="0.8")
     mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(z).T, shading="nearest", cmap=cmap, vmin=limits[0], vmax=limits[1], gid="mobility:sweep:map")
     missing = ~result.assembled[index]
     if missing.any():
@@ -177,7 +166,7 @@ def _map(ax: Any, result: SweepResult, index: np.ndarray, limits: tuple[float, f
     return mesh
 
 
-def _slices(result: SweepResult, Figure: Any, title: str) -> "Figure":
+def _slices(result: SweepResult, title: str) -> "Figure":
     third = result.axes[2]
     grid = np.arange(result.size).reshape(result.shape)
     on_singular = sorted({int(np.unravel_index(p.index, result.shape)[2]) for p in result.singular})
@@ -189,7 +178,7 @@ def _slices(result: SweepResult, Figure: Any, title: str) -> "Figure":
     limits = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
     columns = min(3, len(chosen))
     rows = int(np.ceil(len(chosen) / columns))
-    fig = Figure(figsize=(4.2 * columns, 3.8 * rows + 0.6), layout="constrained")
+    fig = new_figure((4.2 * columns, 3.8 * rows + 0.6), layout="constrained")
     axes = np.atleast_1d(fig.subplots(rows, columns, squeeze=False)).ravel()
     mesh = None
     for ax, k in zip(axes, chosen):
@@ -202,18 +191,3 @@ def _slices(result: SweepResult, Figure: Any, title: str) -> "Figure":
         fig.colorbar(mesh, ax=axes[: len(chosen)].tolist(), label=label, shrink=0.9)
     fig.suptitle(title)
     return fig
-
-
-def save_sweep_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
-    """Write ``fig`` to ``path`` (type by suffix: PNG, SVG or PDF) and return the path.
-
-    Raises
-    ------
-    PlotFormatError
-        For another suffix.
-    """
-    path = Path(path)
-    if path.suffix.lower() not in FORMATS:
-        raise PlotFormatError(f"{path}: cannot tell the picture type; expected a name ending in {', '.join(FORMATS)}")
-    fig.savefig(path, dpi=dpi)
-    return path

@@ -40,6 +40,7 @@ from typing import Sequence
 
 import numpy as np
 
+from ..actuation import REDUNDANT, SINGULAR, VALID
 from ..core.model import Mechanism
 from ..core.screws import SWAP_ROWS
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_ranks
@@ -48,11 +49,7 @@ from ..errors import AnalysisError, MechanismError
 from .batch_systems import BatchValue, PoseAnswers, evaluate_batch, span_batch, stacked_svd
 from .posed_screws import PosedScrews
 
-__all__ = ["VALID", "SINGULAR", "REDUNDANT", "ActuationInputs", "actuated_inputs", "BatchActuation", "actuation_at_poses"]
-
-VALID = "valid"
-SINGULAR = "actuation-singular"
-REDUNDANT = "redundant"
+__all__ = ["ActuationInputs", "actuated_inputs", "BatchActuation", "actuation_at_poses"]
 
 
 @dataclass(frozen=True)

@@ -149,7 +149,7 @@ def displacement_logs(g: np.ndarray) -> np.ndarray:
     Examples
     --------
     >>> import numpy as np
-    >>> from mobility.core.kinematics import twist_exp
+    >>> from mobility.core.transforms import twist_exp
     >>> x = np.array([[0.1, -0.2, 0.3, 1.0, 2.0, -0.5], [0, 0, 1e-9, 1, 0, 0]])
     >>> bool(np.allclose(displacement_logs(np.array([twist_exp(r) for r in x])), x, rtol=1e-14, atol=1e-15))
     True

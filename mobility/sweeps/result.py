@@ -34,10 +34,10 @@ from typing import Any
 
 import numpy as np
 
+from ..actuation import SINGULAR
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
-from .batch_actuation import SINGULAR
 from .grid import SweepAxis
 
 __all__ = ["SingularPose", "SweepResult", "COLUMNS"]

@@ -8,19 +8,13 @@ per radian; round-off is shown as 0.  Hover text uses ``<br>`` between lines
 Examples
 --------
 >>> import mobility
->>> m = mobility.loads('''
-... name: slider
-... ground: g
-... end_effector: s
-... units: {length: mm}
-... joints:
-...   - {name: P1, type: P, links: [g, s], axis: [1, 0, 0]}
-... ''')
->>> r = mobility.analyze(m)
+>>> r = mobility.analyze(mobility.load("mechanisms/scara.yaml"))
 >>> translation_text(1, r.translations[0])
 'T1 translation<br>direction [1, 0, 0]'
+>>> rotation_text(1, r.rotations[0], r.length_scale, r.length_unit)
+'R1 rotation<br>axis [0, 0, 1]<br>through [560, 300, 250] mm<br>pitch 0'
 >>> pose_title(r)
-'slider: end effector 1 DOF (1T), mobility 1 (Grübler–Kutzbach 1)'
+'SCARA arm (serial Schönflies 3T1R): end effector 4 DOF (3T1R), mobility 4 (Grübler–Kutzbach 4)'
 """
 
 from __future__ import annotations

@@ -2,7 +2,9 @@
 
 No plotting library here: every shape is points in the global frame (a
 polyline, pieces separated by a row of NaN, as plotting libraries draw them)
-or a triangle :class:`Mesh`.
+or a triangle :class:`Mesh`.  The frame about a direction and the points
+along a segment are the pictures' (:mod:`mobility.report.plotting.geometry`),
+so the view and the PNG draw alike.
 
 Examples
 --------
@@ -21,7 +23,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Mesh", "perpendiculars", "cone", "segment", "pieces", "arc", "helix", "plate"]
+from ..report.plotting.geometry import perpendiculars
+
+__all__ = ["Mesh", "cone", "pieces", "arc", "helix", "plate"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -42,23 +46,6 @@ class Mesh:
         return Mesh(np.concatenate(vertices).reshape(-1, 3), np.concatenate(faces).reshape(-1, 3).astype(int))
 
 
-def perpendiculars(direction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two unit vectors ``e1, e2`` such that ``(d, e1, e2)`` is a right-handed orthonormal frame.
-
-    Examples
-    --------
-    >>> e1, e2 = perpendiculars(np.array([0.0, 0.0, 2.0]))
-    >>> np.round([e1 @ e2, np.cross(e1, e2)[2]], 12).tolist()
-    [0.0, 1.0]
-    """
-    d = np.asarray(direction, dtype=float)
-    d = d / np.linalg.norm(d)
-    helper = int(np.argmin(np.round(np.abs(d), 6)))  # the axis most across d; round-off does not change the choice
-    e1 = np.cross(d, np.eye(3)[helper])
-    e1 /= np.linalg.norm(e1)
-    return e1, np.cross(d, e1)
-
-
 def cone(tip: np.ndarray, direction: np.ndarray, length: float, radius: float, sides: int = 12) -> Mesh:
     """A closed cone (an arrowhead) with its tip at ``tip``, pointing along ``direction``.
 
@@ -75,11 +62,6 @@ def cone(tip: np.ndarray, direction: np.ndarray, length: float, radius: float, s
     side = np.stack([np.zeros(sides, dtype=int), 1 + k, 1 + (k + 1) % sides], axis=1)
     bottom = np.stack([np.full(sides, sides + 1), 1 + (k + 1) % sides, 1 + k], axis=1)
     return Mesh(vertices, np.vstack([side, bottom]))
-
-
-def segment(start: np.ndarray, end: np.ndarray, samples: int = 9) -> np.ndarray:
-    """Points from ``start`` to ``end`` (both included), so that a hover finds the line anywhere along it."""
-    return np.asarray(start, dtype=float) + np.linspace(0.0, 1.0, samples)[:, None] * (np.asarray(end, dtype=float) - start)
 
 
 def pieces(*polylines: np.ndarray) -> np.ndarray:

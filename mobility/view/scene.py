@@ -27,18 +27,12 @@ seen end-on).
 Examples
 --------
 >>> import mobility
->>> m = mobility.loads('''
-... name: R-P arm
-... ground: g
-... end_effector: hand
-... joints:
-...   - {name: R1, type: R, links: [g, arm], axis: [0, 0, 1], point: [0, 0, 0]}
-...   - {name: P1, type: P, links: [arm, hand], axis: [1, 0, 0]}
-...   - {name: R2, type: R, links: [hand, tool], axis: [1, 0, 0], point: [2, 0, 0]}
-... ''')
+>>> m = mobility.load("mechanisms/slider_crank.yaml")
 >>> s = build_scene(m, mobility.analyze(m))
+>>> [g.key for g in s.layer("mechanism")]
+['links:ground', 'links:end_effector', 'links:link', 'joints:R', 'joints:P', 'end-effector-centre']
 >>> [g.key for g in s.layer("freedoms")], [g.key for g in s.layer("constraints")]
-(['T1', 'R1'], ['C1', 'C2', 'W3', 'W4'])
+(['T1'], ['C1', 'C2', 'C3', 'W4', 'W5'])
 """
 
 from __future__ import annotations
@@ -51,8 +45,9 @@ import numpy as np
 from ..core.model import JOINT_TYPES, Mechanism
 from ..core.result import Result
 from ..report.plotting import COLORS, choose_views, sketch
+from ..report.plotting.geometry import SAME_POINT, perpendiculars, segment_samples, unique_points
 from .describe import couple_text, force_text, joint_text, rotation_text, translation_text
-from .geometry import Mesh, arc, cone, helix, perpendiculars, pieces, plate, segment
+from .geometry import Mesh, arc, cone, helix, pieces, plate
 
 __all__ = ["LAYERS", "JOINT_SYMBOLS", "Glyph", "Scene", "build_scene", "viewpoint"]
 
@@ -200,7 +195,7 @@ def build_scene(mechanism: Mechanism, result: Result) -> Scene:
     for i, t in enumerate(result.translations):
         tip = c + _ARROW * size * t
         glyphs.append(Glyph(f"T{i + 1}", "freedoms", "translation", f"T{i + 1} translation", COLORS["translation"],
-                            path=segment(c, tip - head * t), width=7.0, hover=translation_text(i + 1, t),
+                            path=segment_samples(c, tip - head * t, 9), width=7.0, hover=translation_text(i + 1, t),
                             mesh=cone(tip, t, 2.0 * head, 0.45 * head), label=f"T{i + 1}", label_at=tip + 0.05 * size * t, direction=t))
     for i, a in enumerate(result.rotations):
         glyphs.append(_rotation(i, a, size, scale, unit))
@@ -217,7 +212,7 @@ def _links(mechanism: Mechanism, sk) -> list[Glyph]:
     roles = {"ground": [], "end_effector": [], "link": []}
     for link, idx in sk.link_joints.items():
         role = "ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"
-        roles[role].append((link, _unique(sk.points[list(idx)], 1e-6 * sk.size)))
+        roles[role].append((link, unique_points(sk.points[list(idx)], SAME_POINT * sk.size)))
     names = {"ground": "ground", "end_effector": "end effector", "link": "links"}
     widths = {"ground": 9.0, "end_effector": 8.0, "link": 6.0}
     out = []
@@ -233,9 +228,9 @@ def _links(mechanism: Mechanism, sk) -> list[Glyph]:
                 inner = [p for p in pts if np.min(np.linalg.norm(body.vertices - p, axis=1)) > 1e-6 * sk.size]
                 lines += [np.stack([pts.mean(axis=0), p]) for p in inner]
             elif len(pts) == 2:
-                lines.append(segment(pts[0], pts[1]))
+                lines.append(segment_samples(pts[0], pts[1], 9))
             else:  # a body in space: a star from its centroid
-                lines += [segment(pts.mean(axis=0), p, 5) for p in pts]
+                lines += [segment_samples(pts.mean(axis=0), p, 5) for p in pts]
         if not lines:
             continue
         hover = "<br>".join(f"{names[role] if role != 'link' else 'link'} {link}" for link, _ in members[:12])
@@ -278,7 +273,7 @@ def _rotation(i: int, a, size: float, scale: float, unit: str) -> Glyph:
     start, end = p - side * _HALF_AXIS * size * d, p + side * _HALF_AXIS * size * d
     ring, tangent = arc(p + side * 0.78 * _HALF_AXIS * size * d, d, _MARK * size)
     head = cone(ring[-1] + 0.9 * _HEAD * size * tangent, tangent, 1.6 * _HEAD * size, 0.4 * _HEAD * size)
-    parts = [segment(start, end, 15), ring]
+    parts = [segment_samples(start, end, 15), ring]
     if a.pitch != 0:
         parts.append(helix(p, d, 0.03 * size, 0.22 * size))
     label = f"R{i + 1}" if a.pitch == 0 else f"R{i + 1} h={a.pitch:.3g}"
@@ -295,7 +290,7 @@ def _couple(i: int, direction: np.ndarray, centre: np.ndarray, size: float, coun
     head = _HEAD * size
     tip = mid + half * direction
     heads = Mesh.merged(cone(tip, direction, 1.6 * head, 0.4 * head), cone(tip - 1.5 * head * direction, direction, 1.6 * head, 0.4 * head))
-    return Glyph(f"C{i + 1}", "constraints", "couple", f"C{i + 1} couple", COLORS["couple"], path=segment(mid - half * direction, tip - head * direction),
+    return Glyph(f"C{i + 1}", "constraints", "couple", f"C{i + 1} couple", COLORS["couple"], path=segment_samples(mid - half * direction, tip - head * direction, 9),
                  width=5.0, hover=couple_text(i + 1, direction), mesh=heads, label=f"C{i + 1}", label_at=tip + 0.05 * size * direction, direction=direction)
 
 
@@ -305,7 +300,7 @@ def _force(n: int, f, size: float, scale: float, unit: str) -> Glyph:
     p = np.asarray(f.point, dtype=float)
     head = _HEAD * size
     start, tip = p - _HALF_FORCE * size * d, p + _HALF_FORCE * size * d
-    parts = [segment(start, tip - head * d, 11)]
+    parts = [segment_samples(start, tip - head * d, 11)]
     meshes = [cone(tip, d, 1.8 * head, 0.45 * head)]
     if f.pitch != 0:
         ring, tangent = arc(p - 0.6 * _HALF_FORCE * size * d, d, 0.8 * _MARK * size)
@@ -314,14 +309,6 @@ def _force(n: int, f, size: float, scale: float, unit: str) -> Glyph:
     label = f"W{n + 1}" if f.pitch == 0 else f"W{n + 1} h={f.pitch:.3g}"
     return Glyph(f"W{n + 1}", "constraints", f.kind, f"W{n + 1} {f.kind}", COLORS["force"], path=pieces(*parts), width=6.0,
                  hover=force_text(n + 1, f, scale, unit), mesh=Mesh.merged(*meshes), label=label, label_at=tip + 0.05 * size * d, direction=d)
-
-
-def _unique(points: np.ndarray, eps: float) -> np.ndarray:
-    out: list[np.ndarray] = []
-    for x in points:
-        if all(np.linalg.norm(x - y) > eps for y in out):
-            out.append(x)
-    return np.array(out).reshape(-1, 3)
 
 
 def _framed(glyphs: tuple[Glyph, ...], centre: np.ndarray, size: float) -> Scene:

@@ -3,7 +3,7 @@
 :func:`plot_mechanism` draws the mechanism in 3D with the answer of
 :func:`mobility.analyze` on its end effector; :func:`plot_graph` draws the
 joint graph beside the series/parallel tree the analysis reduced it to;
-:func:`save_figure` writes either as PNG, SVG or PDF.  matplotlib is optional
+:func:`save_figure` writes either (or a sweep's picture) as PNG, SVG or PDF.  matplotlib is optional
 (``pip install 'mobility[plot]'``), imported only when a picture is drawn.
 
 Modules, each with one job (those marked * need no matplotlib):
@@ -37,7 +37,7 @@ Examples
 [1, 3]
 """
 
-from .backend import FORMATS, save_figure
+from .backend import FORMATS, picture_path, save_figure
 from .graph import plot_graph
 from .mechanism import plot_mechanism
 from .scene import Scene, build_scene
@@ -49,6 +49,7 @@ __all__ = [
     "plot_mechanism",
     "plot_graph",
     "save_figure",
+    "picture_path",
     "FORMATS",
     "Sketch",
     "sketch",

@@ -18,7 +18,7 @@ from ...errors import PlotFormatError, PlottingUnavailableError
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
-__all__ = ["FORMATS", "require_matplotlib", "new_figure", "save_figure"]
+__all__ = ["FORMATS", "require_matplotlib", "new_figure", "picture_path", "save_figure"]
 
 FORMATS = (".png", ".svg", ".pdf")
 """File types :func:`save_figure` writes (by suffix)."""
@@ -61,21 +61,53 @@ def _figure_class() -> type:
     return _FIGURE_CLASS[0]
 
 
-def new_figure(figsize: tuple[float, float]) -> "Figure":
-    """An empty figure of ``figsize`` inches (matplotlib must have been imported by :func:`require_matplotlib`)."""
-    return _figure_class()(figsize=figsize)
+def new_figure(figsize: tuple[float, float], **options: Any) -> "Figure":
+    """An empty figure of ``figsize`` inches (matplotlib must have been imported by :func:`require_matplotlib`).
+
+    ``options`` go to :class:`matplotlib.figure.Figure` (e.g. ``layout="constrained"``).
+    """
+    return _figure_class()(figsize=figsize, **options)
 
 
-def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
-    """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix).
+def picture_path(path: str | Path, what: str = "") -> Path:
+    """``path`` as a :class:`~pathlib.Path`, once its suffix names a type :func:`save_figure` writes.
+
+    A command line calls it before any work, so that a bad name fails at once.
+
+    Parameters
+    ----------
+    path : str or Path
+    what : str
+        Written before the path in the message (e.g. ``"--plot "``).
 
     Raises
     ------
     PlotFormatError
-        For another suffix.
+        For a suffix other than those of :data:`FORMATS`.
+
+    Examples
+    --------
+    >>> picture_path("four_bar.SVG").name
+    'four_bar.SVG'
+    >>> picture_path("out.gif", "--plot ")
+    Traceback (most recent call last):
+    ...
+    mobility.errors.PlotFormatError: --plot out.gif: cannot tell the picture type; expected a name ending in .png, .svg, .pdf
     """
     p = Path(path)
     if p.suffix.lower() not in FORMATS:
-        raise PlotFormatError(f"{p}: cannot write a {p.suffix or 'suffix-less'} file; expected a name ending in {', '.join(FORMATS)}")
+        raise PlotFormatError(f"{what}{path}: cannot tell the picture type; expected a name ending in {', '.join(FORMATS)}")
+    return p
+
+
+def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
+    """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background; returns the path.
+
+    Raises
+    ------
+    PlotFormatError
+        For another suffix (:func:`picture_path`).
+    """
+    p = picture_path(path)
     fig.savefig(p, dpi=dpi, facecolor="white")
     return p

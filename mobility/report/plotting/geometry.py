@@ -6,6 +6,8 @@ Examples
 >>> e1, e2 = perpendiculars(np.array([0.0, 0, 2]))
 >>> float(e1 @ e2), float(e1 @ [0, 0, 1])
 (0.0, 0.0)
+>>> bool(np.array_equal(perpendiculars(np.array([1e-16, 0, 1]))[0], perpendiculars(np.array([0.0, 0, 1]))[0]))
+True
 >>> unique_points(np.array([[0.0, 0, 0], [1e-9, 0, 0], [1, 0, 0]]), 1e-6).shape
 (2, 3)
 """
@@ -22,9 +24,16 @@ resolution (a millionth of the picture), not a tolerance of the analysis."""
 
 
 def perpendiculars(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two unit vectors completing ``d`` to a right-handed orthonormal frame ``(d, e1, e2)``."""
+    """Two unit vectors completing ``d`` to a right-handed orthonormal frame ``(d, e1, e2)``.
+
+    ``e1`` is ``d`` crossed with the coordinate axis most across ``d``, chosen
+    on the components rounded to a millionth (the drawing resolution of
+    :data:`SAME_POINT`), so round-off in ``d`` does not turn the frame: a
+    direction ``[1e-16, 0, 1]`` is drawn as ``[0, 0, 1]`` is.
+    """
+    d = np.asarray(d, dtype=float)
     d = d / np.linalg.norm(d)
-    e1 = np.cross(d, np.eye(3)[int(np.argmin(np.abs(d)))])
+    e1 = np.cross(d, np.eye(3)[int(np.argmin(np.round(np.abs(d), 6)))])
     e1 /= np.linalg.norm(e1)
     return e1, np.cross(d, e1)
 
@@ -39,5 +48,6 @@ def unique_points(p: np.ndarray, eps: float) -> np.ndarray:
 
 
 def segment_samples(start: np.ndarray, end: np.ndarray, n: int = 7) -> np.ndarray:
-    """``n`` points evenly along the segment, both ends included."""
-    return start + np.linspace(0.0, 1.0, n)[:, None] * (end - start)
+    """``n`` points evenly along the segment, both ends included (so that a hover finds the line anywhere along it)."""
+    start = np.asarray(start, dtype=float)
+    return start + np.linspace(0.0, 1.0, n)[:, None] * (np.asarray(end, dtype=float) - start)

@@ -1,0 +1,98 @@
+"""Errors: every class of ``mobility.errors`` is a MobilityError, and the command line turns each into one line and status 2."""
+
+from __future__ import annotations
+
+import inspect
+import sys
+
+import pytest
+
+import mobility.cli.analyze
+import mobility.errors as errors
+from mobility.cli import build_parser, main
+from mobility.core.tolerance import Tolerance
+from mobility.errors import MechanismFileError, MobilityError, PlotFormatError, RequestError, SynthesisError
+
+from conftest import MECHANISMS
+
+ERROR_CLASSES = [obj for obj in vars(errors).values() if inspect.isclass(obj) and issubclass(obj, BaseException) and obj.__module__ == errors.__name__]
+
+# One instance of each class, as the package raises it (a new class needs a line here).
+SAMPLES = {
+    errors.MobilityError: errors.MobilityError("something went wrong"),
+    errors.MechanismError: errors.MechanismError("joints[1].axis", "expected a non-zero direction"),
+    errors.MechanismFileError: errors.MechanismFileError("joints[1].axis", "expected a non-zero direction", file="m.yaml", line=7),
+    errors.MechanismCheckFailed: errors.MechanismCheckFailed("m.yaml: dof: expected 3, found 2"),
+    errors.RequestError: errors.RequestError("--tol must lie in [1e-11, 1e-05), got 2"),
+    errors.SynthesisError: errors.SynthesisError("unknown motion pattern '9X'"),
+    errors.PlotFormatError: errors.PlotFormatError("x.gif: cannot tell the picture type"),
+    errors.AnalysisError: errors.AnalysisError("the decomposition did not converge"),
+    errors.HalfTurnError: errors.HalfTurnError("a half-turn has no finite quasi-vector"),
+    errors.MissingExtraError: errors.MissingExtraError("the 3D view", "plotly", "view"),
+    errors.PlottingUnavailableError: errors.PlottingUnavailableError(),
+}
+
+
+def test_every_error_class_is_a_mobility_error():
+    names = {c.__name__ for c in ERROR_CLASSES}
+    assert {"MobilityError", "MechanismFileError", "RequestError", "MissingExtraError"} <= names  # the scan sees the classes
+    assert [c.__name__ for c in ERROR_CLASSES if not issubclass(c, MobilityError)] == []
+    assert set(errors.__all__) == names
+
+
+def test_every_error_class_has_a_sample():
+    assert set(SAMPLES) == set(ERROR_CLASSES)
+    assert all(type(e) is c for c, e in SAMPLES.items())
+
+
+@pytest.mark.parametrize("cls", ERROR_CLASSES, ids=lambda c: c.__name__)
+def test_the_command_line_prints_each_error_on_one_line_with_status_2(cls, monkeypatch, capsys):
+    error = SAMPLES[cls]
+
+    def run(args):
+        raise error
+
+    monkeypatch.setattr(mobility.cli.analyze, "run", run)
+    assert main(["analyze", str(MECHANISMS / "four_bar.yaml")]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err == f"mobility: {error}\n"
+
+
+def test_a_missing_extra_says_what_to_install(monkeypatch, capsys, tmp_path):
+    monkeypatch.setitem(sys.modules, "plotly.io", None)  # importing it now fails as if plotly were absent
+    assert main(["view", str(MECHANISMS / "four_bar.yaml"), "-o", str(tmp_path / "v.html")]) == 2
+    assert capsys.readouterr().err == "mobility: the 3D view needs plotly, which is not installed: pip install 'mobility[view]'\n"
+    assert not (tmp_path / "v.html").exists()
+
+
+BAD_REQUESTS = [
+    (["analyze", str(MECHANISMS / "four_bar.yaml"), "--tol", "2"], RequestError, "--tol must lie in [1e-11, 1e-05), got 2"),
+    (["synthesize", "9X"], SynthesisError, "unknown motion pattern '9X'"),
+    (["synthesize", "3T", "--point", "1,2"], SynthesisError, "--point: expected three comma-separated numbers, got '1,2'"),
+    (["analyze", "no-such-file.yaml"], MechanismFileError, "no-such-file.yaml: no such file"),
+    (["plot", str(MECHANISMS / "four_bar.yaml"), "-o", "four_bar.gif"], PlotFormatError, "four_bar.gif: cannot tell the picture type"),
+]
+
+
+@pytest.mark.parametrize("argv, cls, message", BAD_REQUESTS, ids=[f"{a[0]}-{c.__name__}" for a, c, _ in BAD_REQUESTS])
+def test_bad_requests_raise_their_class_and_end_in_one_line(argv, cls, message, capsys):
+    args = build_parser().parse_args(argv)
+    with pytest.raises(cls) as raised:  # the route the command line takes raises exactly this kind
+        args.run(args)
+    assert str(raised.value).startswith(message)
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err == f"mobility: {raised.value}\n"
+
+
+def test_a_bad_file_names_file_line_and_key(write_yaml, capsys):
+    path = write_yaml("name: x\nground: g\nend_effector: e\njoints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0, 0], point: [0, 0, 0]}\n")
+    assert main(["analyze", str(path)]) == 2
+    assert capsys.readouterr().err == f"mobility: {path}:5: joints[0].axis: expected a non-zero direction, got [0, 0, 0]\n"
+
+
+@pytest.mark.parametrize("fields", [{"rank": 2.0}, {"rank": 0.0}, {"near_singular": 1e-9}, {"inexact": 1e-6}])
+def test_a_tolerance_out_of_order_is_a_request_error(fields):
+    with pytest.raises(RequestError, match="0 < inexact <= rank < near_singular < 1"):
+        Tolerance(**fields)
