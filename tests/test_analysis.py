@@ -282,3 +282,9 @@ def test_an_unknown_joint_name_is_a_request_error():
     assert m.joint(m.joints[1].name) is m.joints[1]
     with pytest.raises(RequestError, match="no joint named 'Z'; the joints are"):
         m.joint("Z")
+
+
+def test_result_knows_the_mechanism_it_analysed():
+    m = four_bar()
+    r = mobility.analyze(m)
+    assert r.mechanism is m and r.mechanism.joints[r.topology.root.children[0].children[0].index].name == "A"

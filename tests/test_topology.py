@@ -87,3 +87,29 @@ def test_nodes_are_flat():
 
     for seed in range(100):
         check(decompose(random_mechanism(seed)).root)
+
+
+def test_nodes_compare_hash_pickle_and_print_as_values():
+    import pickle
+
+    first = decompose(three_prs()).root
+    built = Parallel(tuple(Series(tuple(JointNode(3 * k + i, f"{n}{k + 1}") for i, n in enumerate("PRS"))) for k in range(3)))
+    assert first == built and hash(first) == hash(built) and first is not built
+    assert built != Parallel(built.children[:2]) and built != Series(built.children)
+    assert pickle.loads(pickle.dumps(built)) == built
+    assert repr(Series((JointNode(0, "A"),))) == "Series(children=(JointNode(index=0, name='A'),))"
+    bridge = Bridge("g", "e", ("g", "e", "a"), (("g", "a", JointNode(0, "A")), ("a", "e", Series((JointNode(1, "B"), JointNode(2, "C"))))))
+    assert repr(bridge) == (
+        "Bridge(source='g', target='e', links=('g', 'e', 'a'), edges=(('g', 'a', JointNode(index=0, name='A')), "
+        "('a', 'e', Series(children=(JointNode(index=1, name='B'), JointNode(index=2, name='C'))))))"
+    )
+    assert describe(bridge) == "bridge(g-a: A, a-e: series(B,C))"
+
+
+def test_a_graph_that_reduces_whole_has_nothing_detached_and_hanging_parts_are_found():
+    # reducible: the decomposition needs no block search
+    t = decompose(mech(R("A", "g", "x"), R("B", "x", "e"), R("C", "g", "e"), R("D", "x", "e")))
+    assert describe(t.root) == "parallel(C, series(A,parallel(B, D)))" and t.detached == ()
+    # a link hanging off the end effector is a detached block, found by the block search
+    t = decompose(mech(R("A", "g", "x"), R("B", "x", "e"), R("C", "g", "e"), R("H", "e", "h")))
+    assert describe(t.root) == "parallel(C, series(A,B))" and [joints_of(n) for n in t.detached] == [[3]]

@@ -8,6 +8,12 @@ parses arguments and formats results.
 
 Exit status: 0 success, 1 a check failed, 2 bad input (one line naming file,
 line and key on stderr, never a traceback), 3 an internal error.
+
+A subcommand module is named after its command (``analyze.py`` registers
+``analyze``), so :func:`main` imports only the module of the command asked
+for: ``mobility analyze`` does not pay for importing the other commands'
+features (scipy.optimize, plotting...).  ``mobility --help``, or a command
+that is not one, builds the whole parser.
 """
 
 from __future__ import annotations
@@ -21,12 +27,17 @@ from typing import Sequence
 
 from ..errors import MobilityError
 
-__all__ = ["main", "build_parser", "command_modules"]
+__all__ = ["main", "build_parser", "command_modules", "command_names"]
 
 
-def command_modules() -> list:
-    """The subcommand modules of this package, in ``ORDER``."""
-    mods = [importlib.import_module(f"{__name__}.{info.name}") for info in pkgutil.iter_modules(__path__) if not info.name.startswith("_")]
+def command_names() -> list[str]:
+    """The names of the subcommand modules of this package (found without importing them)."""
+    return sorted(info.name for info in pkgutil.iter_modules(__path__) if not info.name.startswith("_"))
+
+
+def command_modules(names: Sequence[str] | None = None) -> list:
+    """The subcommand modules of this package (those of ``names`` only, if given), in ``ORDER``."""
+    mods = [importlib.import_module(f"{__name__}.{name}") for name in (command_names() if names is None else names)]
     return sorted((m for m in mods if hasattr(m, "register")), key=lambda m: (getattr(m, "ORDER", 100), m.__name__))
 
 
@@ -36,8 +47,8 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser with every registered subcommand."""
+def build_parser(commands: Sequence[str] | None = None) -> argparse.ArgumentParser:
+    """The argument parser with every registered subcommand (those of ``commands`` only, if given)."""
     from .. import __version__
 
     parser = _Parser(prog="mobility", description="Mobility analysis of mechanisms by screw theory.")
@@ -45,14 +56,25 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--debug", action="store_true", help="show a traceback on internal errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
-    for module in command_modules():
+    for module in command_modules(commands):
         module.register(sub)
     return parser
 
 
+def _command_asked(argv: Sequence[str]) -> list[str] | None:
+    """``[name]`` when the first word of ``argv`` that is not an option names a subcommand module, else None (every module)."""
+    for word in argv:
+        if not word.startswith("-"):
+            return [word] if word in command_names() else None
+        if word in ("-h", "--help"):
+            return None
+    return None
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
-    parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(_command_asked(argv))
     args = parser.parse_args(argv)
     try:
         return int(args.run(args) or 0)

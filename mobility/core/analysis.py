@@ -19,7 +19,11 @@ Examples
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+
+from ..errors import AnalysisError
 
 from .canonical import canonical_form
 from .joint_screws import JointScrews, Normalisation, joint_screws, per_object_cache
@@ -200,13 +204,19 @@ def screw_system_in_frame(basis: np.ndarray, norm: Normalisation, reference: np.
     """
     form = canonical_form(basis, reference, tol)
     free = form.free.T.copy().reshape(-1, 3)
-    axes = tuple(
-        ScrewAxis(p.axis, norm.point_to_world(p.point), 0.0 if abs(p.pitch) <= tol.rank else p.pitch * norm.length, kinds[abs(p.pitch) > tol.rank])
-        for p in form.screws
-    )
-    rows = [np.concatenate([np.zeros(3), f]) for f in free]
-    rows += [np.concatenate([a.axis, cross(a.point, a.axis) + a.pitch * a.axis]) for a in axes]
-    basis_rows = np.array(rows, dtype=float).reshape(-1, 6)
+    with np.errstate(over="ignore", invalid="ignore"):  # checked below: a number too large for a float is refused, never shown
+        axes = tuple(
+            ScrewAxis(p.axis, norm.point_to_world(p.point), 0.0 if abs(p.pitch) <= tol.rank else p.pitch * norm.length, kinds[abs(p.pitch) > tol.rank])
+            for p in form.screws
+        )
+        rows = [np.concatenate([np.zeros(3), f]) for f in free]
+        rows += [np.concatenate([a.axis, cross(a.point, a.axis) + a.pitch * a.axis]) for a in axes]
+        basis_rows = np.array(rows, dtype=float).reshape(-1, 6)
+    if not np.all(np.isfinite(basis_rows)) or not all(np.all(np.isfinite(a.point)) and math.isfinite(a.pitch) for a in axes):
+        raise AnalysisError(
+            f"the {kinds[0]} axes lie beyond the largest float in the mechanism's unit (characteristic length {norm.length:.3g}): "
+            "write the mechanism in a larger length unit"
+        )
     for arr in (free, basis_rows):
         arr.setflags(write=False)
     return free, axes, basis_rows

@@ -17,14 +17,17 @@ Examples
 
 from __future__ import annotations
 
+import math
+import sys
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, Callable
 
 import numpy as np
 
+from ..errors import MechanismFileError
 from .model import Mechanism
-from .tolerance import characteristic_scale
+from .tolerance import DEFAULT_TOLERANCE, binary_scale, characteristic_scale
 from .transforms import cross, skew
 
 __all__ = ["Normalisation", "JointScrews", "joint_screws", "per_object_cache", "clear_cache"]
@@ -43,8 +46,10 @@ class Normalisation:
 
     @cached_property
     def size(self) -> float:
-        """A length for rounding output: ``length + |centre|``."""
-        return self.length + float(np.sqrt(self.centre @ self.centre))
+        """A length for rounding output: ``length + |centre|`` (the largest float if that overflows)."""
+        scale = binary_scale(self.centre)
+        scaled = self.centre * scale
+        return min(self.length + float(np.sqrt(scaled @ scaled)) / scale, sys.float_info.max)
 
     def to_world(self, screws: np.ndarray) -> np.ndarray:
         """Map screws (columns) from normalised to global coordinates."""
@@ -141,21 +146,79 @@ def joint_screws(mechanism: Mechanism) -> JointScrews:
     return per_object_cache(mechanism, "joint_screws", lambda: _build(mechanism))
 
 
+RESOLUTION = DEFAULT_TOLERANCE
+"""The thresholds of :func:`_refuse_unresolved_links`: written apart beyond ``rank`` of their own
+coordinates, closer than ``inexact`` of the characteristic length (below what a rank decision
+reports).  The default policy's, since the joint twists are tabulated once for every policy."""
+
+
+def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float) -> None:
+    """Refuse a link whose joints are written at distinct points that the analysis cannot tell apart.
+
+    A link whose joint points span less than ``inexact`` of the mechanism's
+    characteristic length (e.g. a four-bar with one pivot at 1e300 and the
+    others near the origin) would be analysed as if its joints met at one
+    point, and no margin could show it: the singular values that would tell
+    are below round-off.  Points that differ only in their last digits (less
+    than ``rank`` of their own size) are taken as written to coincide.
+
+    Raises
+    ------
+    MechanismFileError
+        Naming the link and its joints.
+    """
+    table = mechanism.freedom_table
+    if len(table.located) < 2:
+        return
+    ids = table.located_links.T.reshape(-1)
+    order = np.argsort(ids, kind="stable")
+    ids = ids[order]
+    points = np.concatenate([table.located, table.located])[order] * scale
+    starts = np.flatnonzero(np.concatenate([[True], ids[1:] != ids[:-1]]))
+    low, high = np.minimum.reduceat(points, starts, axis=0), np.maximum.reduceat(points, starts, axis=0)
+    extent = (high - low).max(axis=1)
+    size = np.maximum(np.abs(low), np.abs(high)).max(axis=1)
+    bad = np.flatnonzero((extent > RESOLUTION.rank * size) & (extent <= RESOLUTION.inexact * length_s))
+    if len(bad) == 0:
+        return
+    link = int(ids[starts[bad[0]]])
+    name = mechanism.links[link]
+    joints = [int(j) for j, links in zip(table.located_joints, table.located_links) if link in links]
+    written = ", ".join(mechanism.joints[j].name for j in joints)
+    raise MechanismFileError(
+        f"joints[{joints[0]}].point",
+        f"the joints of link {name!r} ({written}) span {extent[bad[0]] / scale:.3g}, {extent[bad[0]] / length_s:.1e} of the mechanism's size "
+        f"{length_s / scale:.3g}: finer than the analysis can resolve ({RESOLUTION.inexact:.0e} of it); bring the far joints nearer or split the mechanism",
+        file=mechanism.source or "<string>",
+    )
+
+
 def _build(mechanism: Mechanism) -> JointScrews:
     table = mechanism.freedom_table
     pitches = table.pitches
     centre, length = characteristic_scale(table.located, pitches[pitches != 0.0])
+    if not math.isfinite(length):
+        raise MechanismFileError(
+            "joints",
+            f"the joint points are too far apart to compute with: their RMS distance from their centroid exceeds the largest float "
+            f"({sys.float_info.max:.3g}); write the mechanism in a larger length unit",
+            file=mechanism.source or "<string>",
+        )
+    # every length times the same power of two (exact), so that no product below can overflow
+    scale = binary_scale(table.located, pitches)
+    centre_s, length_s = centre * scale, length * scale
+    _refuse_unresolved_links(mechanism, scale, length_s)
     axes = table.axes
-    moment = (cross((table.points - centre).T, axes.T).T + pitches[:, None] * axes) / length
+    moment = (cross((table.points * scale - centre_s).T, axes.T).T + (pitches * scale)[:, None] * axes) / length_s
     p = table.prismatic[:, None]
     tw = np.concatenate([np.where(p, 0.0, axes), np.where(p, axes, moment)], axis=1).T
     tw /= np.sqrt(np.einsum("ij,ij->j", tw, tw))  # unit columns
     tw.setflags(write=False)
     norm = Normalisation(centre, length)
     ee = table.end_effector_points
-    reference = (ee.sum(axis=0) / len(ee) - centre) / length if len(ee) else np.zeros(3)
+    reference = ((ee * scale).sum(axis=0) / len(ee) - centre_s) / length_s if len(ee) else np.zeros(3)
     offsets = table.offsets
     columns = tuple(tw[:, offsets[j] : offsets[j + 1]] for j in range(len(offsets) - 1))
-    reference_in_world = norm.point_to_world(reference)
+    reference_in_world = (centre_s + length_s * reference) / scale  # norm.point_to_world, without overflow
     reference_in_world.setflags(write=False)
     return JointScrews(tw, np.array(offsets), norm, reference, columns, reference_in_world)

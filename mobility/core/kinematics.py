@@ -70,7 +70,7 @@ from .joint_screws import Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
 from .topology import spanning_tree
-from .transforms import bracket, dexp, displacement_log, skew
+from .transforms import bracket, cross, displacement_log, displacement_logs, skew
 from .transforms import twist_exp  # noqa: F401  (re-exported until mobility.sweeps imports it from core.transforms)
 
 __all__ = [
@@ -173,6 +173,7 @@ class Kinematics:
     _skews: np.ndarray = field(repr=False)
     _skews2: np.ndarray = field(repr=False)
     _prismatic: np.ndarray = field(repr=False)
+    _loop_groups: tuple = field(repr=False)
 
     @property
     def variable_count(self) -> int:
@@ -266,7 +267,7 @@ class Kinematics:
         x = self.twists[:, variables].T * np.array([f.sign for f in factors])[:, None]
         rot, shift = before[:, :3, :3], before[:, :3, 3]
         w = np.einsum("mij,mj->mi", rot, x[:, :3])
-        v = np.cross(shift, w) + np.einsum("mij,mj->mi", rot, x[:, 3:])
+        v = cross(shift.T, w.T).T + np.einsum("mij,mj->mi", rot, x[:, 3:])
         cols[:, variables] = np.concatenate([w, v], axis=1).T
         return g, cols
 
@@ -291,14 +292,40 @@ class Kinematics:
         q = self._check(q)
         if not self._loops:
             return np.zeros(0), np.zeros((0, self.variable_count))
-        exps = self._factor_exps(q)
-        residuals, rows = [], []
-        for loop in self._loops:
-            g, cols = self._spatial(loop, exps)
-            r = displacement_log(g)
-            residuals.append(r)
-            rows.append(np.linalg.solve(dexp(r), cols))
-        return np.concatenate(residuals), np.vstack(rows)
+        forward, backward = self._factor_exps(q)
+        table = np.concatenate([forward, backward, np.eye(4)[None]])
+        residual = np.empty((self.loop_count, 6))
+        rows = np.empty((self.loop_count, 6, self.variable_count))
+        for loops, factors, signs in self._loop_groups:
+            residual[loops], rows[loops] = self._linearize_loops(table, factors, signs)
+        return residual.reshape(-1), rows.reshape(-1, self.variable_count)
+
+    def _linearize_loops(self, table: np.ndarray, factors: np.ndarray, signs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Residuals and exact derivatives of loops of about one length, all at once.
+
+        ``factors[l, i]`` indexes the matrix of loop ``l``'s ``i``-th factor in
+        ``table`` (forward exponentials, backward ones, the identity that pads
+        a shorter loop), ``signs`` its sign (0 for padding).  The products are
+        taken position by position over all the loops, then the logarithms and
+        the derivatives of the exponential as stacks.
+        """
+        n = self.variable_count
+        count, length = factors.shape
+        matrices = table[factors]  # (loops, length, 4, 4)
+        before = np.empty((count, length, 4, 4))
+        g = np.broadcast_to(np.eye(4), (count, 4, 4))
+        for i in range(length):
+            before[:, i] = g
+            g = g @ matrices[:, i]
+        variables = factors % n
+        x = self.twists.T[variables] * signs[..., None]  # a padding factor has sign 0
+        turned = before[..., :3, :3] @ x.reshape(count, length, 2, 3).transpose(0, 1, 3, 2)  # R w and R v of each factor's twist
+        w = turned[..., 0]
+        v = cross(before[..., :3, 3].T, w.T).T + turned[..., 1]
+        cols = np.zeros((count, n + 1, 6))
+        cols[np.arange(count)[:, None], np.where(signs != 0.0, variables, n)] = np.concatenate([w, v], axis=-1)
+        r, derivative = displacement_logs(g, with_dexp=True)
+        return r, np.linalg.solve(derivative, cols[:, :n].transpose(0, 2, 1))
 
     def end_effector_jacobian(self, q: np.ndarray) -> np.ndarray:
         """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q``."""
@@ -425,6 +452,8 @@ class Kinematics:
             if iteration == max_iter or stalled >= 6:
                 break
             step = np.linalg.lstsq(np.vstack([jac, a]), -f, rcond=NEWTON_RCOND)[0]
+            if _converging_linearly(history):
+                step = 2.0 * step  # at a singular root Newton halves the error each step: the doubled step removes it
             q = q + step
             if not np.all(np.isfinite(q)) or (max_move is not None and np.linalg.norm(q - start) > max_move):
                 break
@@ -459,6 +488,19 @@ class Kinematics:
                 changes["axes"] = (direction(joint.axes[0], ga), direction(joint.axes[1], gb))
             joints.append(_replace(joint, **changes))
         return self.mechanism.replace(joints=tuple(joints), frames=(), expected=None)
+
+
+LINEAR_RATIO = (0.15, 0.35)
+"""Newton's residual shrinking by a ratio in this range at two steps running (about 1/4: the
+error halves, the residual is quadratic in it) is the mark of a singular root."""
+
+
+def _converging_linearly(history: list[float]) -> bool:
+    """Whether the last three residuals shrank by about 1/4 at each step (Newton at a singular root)."""
+    if len(history) < 3 or history[-3] == 0.0 or history[-2] == 0.0:
+        return False
+    low, high = LINEAR_RATIO
+    return low <= history[-2] / history[-3] <= high and low <= history[-1] / history[-2] <= high
 
 
 def kinematics(mechanism: Mechanism) -> Kinematics:
@@ -525,6 +567,21 @@ def _build(mechanism: Mechanism) -> Kinematics:
         skip_b = sum(offsets[j + 1] - offsets[j] for j in pb[:common])
         inverse_b = tuple(Factor(f.variable, -f.sign) for f in reversed(paths[b][skip_b:]))
         loops.append(paths[a][skip_a:] + joint_factors(index, True) + inverse_b)
+    # the loops as tables of the index of each factor's matrix among [forward (n), backward (n), identity],
+    # grouped by length within a factor of two (so padding at most doubles the work)
+    by_length: dict[int, list[int]] = {}
+    for row, loop in enumerate(loops):
+        by_length.setdefault(max(len(loop), 1).bit_length(), []).append(row)
+    groups = []
+    for rows in by_length.values():
+        length = max(len(loops[r]) for r in rows)
+        factors = np.full((len(rows), length), 2 * n, dtype=int)
+        signs = np.zeros((len(rows), length))
+        for k, row in enumerate(rows):
+            for i, f in enumerate(loops[row]):
+                factors[k, i] = f.variable if f.sign > 0 else n + f.variable
+                signs[k, i] = f.sign
+        groups.append((np.array(rows), factors, signs))
     return Kinematics(
         mechanism=mechanism,
         normalisation=norm,
@@ -541,6 +598,7 @@ def _build(mechanism: Mechanism) -> Kinematics:
         _skews=skews,
         _skews2=skews @ skews,
         _prismatic=is_p,
+        _loop_groups=tuple(groups),
     )
 
 

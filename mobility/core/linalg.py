@@ -1,10 +1,20 @@
 """The singular value decomposition used by every rank decision.
 
-The matrices of screw theory are tiny (6 x n), where the Python wrapper of
-:func:`numpy.linalg.svd` costs more than the factorisation itself; this calls
-LAPACK's ``dgesvd`` (QR iteration; for matrices this small it is as fast as
-divide and conquer) through :mod:`scipy.linalg.lapack` directly, and tries
-``dgesdd`` if it does not converge.
+One library routine, :func:`numpy.linalg.svd` (LAPACK's divide-and-conquer
+``dgesdd``), behind three calls that ask for no more than they use:
+
+* :func:`left_svd`: the left singular vectors (all of them) and the singular
+  values, what a span and its reciprocal need.  The right singular vectors of a
+  wide ``6 x n`` matrix (a long chain, many limbs) are never formed as an
+  ``n x n`` matrix, so the cost grows linearly with ``n``;
+* :func:`svd`: the full decomposition, for null spaces;
+* :func:`singular_values`: the values alone.
+
+``scipy.linalg.lapack.dgesvd`` is cheaper per call on these tiny matrices
+(about 3 µs against 8 µs) but importing :mod:`scipy.linalg` costs more than a
+whole ``mobility analyze`` run (see ``benchmarks/bench_start.py``), so numpy's
+routine is used.  A decomposition that does not converge (a matrix holding NaN
+or infinity) raises :class:`~mobility.errors.AnalysisError`.
 
 Examples
 --------
@@ -12,38 +22,97 @@ Examples
 >>> u, s, vt = svd(np.diag([3.0, 2.0]))
 >>> s.tolist()
 [3.0, 2.0]
+>>> u, s = left_svd(np.ones((2, 5)))
+>>> u.shape, s.round(12).tolist()
+((2, 2), [3.162277660168, 0.0])
 """
 
 from __future__ import annotations
 
 import numpy as np
-from scipy.linalg import lapack
 
 from ..errors import AnalysisError
 
-__all__ = ["svd", "singular_values"]
+__all__ = ["svd", "left_svd", "left_svds", "singular_values"]
+
+_decompose = np.linalg.svd
+
+
+def _not_converged(m: np.ndarray) -> AnalysisError:
+    return AnalysisError(f"the singular value decomposition of a {m.shape[0]}x{m.shape[1]} matrix did not converge (it holds a NaN or an infinity)")
+
+
+def _as_matrix(m: np.ndarray) -> np.ndarray:
+    return m if type(m) is np.ndarray and m.dtype == np.float64 else np.asarray(m, dtype=float)
 
 
 def svd(m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Full SVD ``m = u @ diag(s) @ vt`` (``u`` and ``vt`` square), singular values decreasing."""
-    if type(m) is not np.ndarray or m.dtype != np.float64:
-        m = np.asarray(m, dtype=float)
+    m = _as_matrix(m)
     if m.size == 0:
         return np.eye(m.shape[0]), np.zeros(0), np.eye(m.shape[1])
-    u, s, vt, info = lapack.dgesvd(m)
-    if info:
-        u, s, vt, info = lapack.dgesdd(m)
-        if info:
-            raise AnalysisError(f"the singular value decomposition of a {m.shape[0]}x{m.shape[1]} matrix did not converge")
-    return u, s, vt
+    try:
+        return _decompose(m)
+    except np.linalg.LinAlgError:
+        raise _not_converged(m) from None
+
+
+def left_svd(m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Left singular vectors ``u`` (square, ``m x m``) and singular values ``s`` (decreasing) of ``m``.
+
+    The columns of ``u`` beyond the rank span the orthogonal complement of
+    the column space, which is what a reciprocal system is made of.
+    """
+    m = _as_matrix(m)
+    rows, cols = m.shape
+    if m.size == 0:
+        return np.eye(rows), np.zeros(0)
+    try:
+        # a tall matrix needs full_matrices for the complement; a wide one gets a square u without it
+        u, s, _ = _decompose(m, full_matrices=cols < rows)
+    except np.linalg.LinAlgError:
+        raise _not_converged(m) from None
+    return u, s
+
+
+def left_svds(matrices: list[np.ndarray]) -> list[tuple[np.ndarray, np.ndarray]]:
+    """:func:`left_svd` of each matrix, those of one shape decomposed together by one call.
+
+    A stack of matrices is decomposed matrix by matrix by the same LAPACK
+    routine, so the numbers are those of one call each; only the call's
+    overhead is shared.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> [s.tolist() for _, s in left_svds([np.diag([3.0, 2.0]), np.ones((2, 1)), np.diag([1.0, 5.0])])]
+    [[3.0, 2.0], [1.4142135623730951], [5.0, 1.0]]
+    """
+    out: list[tuple[np.ndarray, np.ndarray] | None] = [None] * len(matrices)
+    groups: dict[tuple[int, int], list[int]] = {}
+    for i, m in enumerate(matrices):
+        groups.setdefault(m.shape, []).append(i)
+    for (rows, cols), members in groups.items():
+        if len(members) == 1 or rows * cols == 0:
+            for i in members:
+                out[i] = left_svd(matrices[i])
+            continue
+        stack = np.stack([matrices[i] for i in members])
+        try:
+            u, s, _ = _decompose(stack, full_matrices=cols < rows)
+        except np.linalg.LinAlgError:
+            raise _not_converged(stack[0]) from None
+        for k, i in enumerate(members):
+            out[i] = (u[k], s[k])
+    return out  # type: ignore[return-value]
 
 
 def singular_values(m: np.ndarray) -> np.ndarray:
     """Singular values of ``m``, decreasing."""
-    m = np.asarray(m, dtype=float)
+    m = _as_matrix(m)
     if m.size == 0:
         return np.zeros(0)
-    _, s, _, info = lapack.dgesdd(m, compute_uv=0)
-    if info != 0:
-        return svd(m)[1]
-    return s
+    try:
+        return _decompose(m, compute_uv=False)
+    except np.linalg.LinAlgError:
+        raise _not_converged(m) from None

@@ -9,10 +9,19 @@ use the series/parallel decomposition:
    path, ``t_x = P_x q'``;
 2. each joint off the tree (a *chord*, including a second joint between two
    already joined links) closes one independent loop:
-   ``P_b q' - P_a q' - S_j q'_j = 0`` for a chord ``j`` from ``a`` to ``b``;
+   ``P_b q' - P_a q' - S_j q'_j = 0`` for a chord ``j`` from ``a`` to ``b``
+   (only the joints of the tree path between ``a`` and ``b`` remain);
 3. stacked, these are the loop-closure equations ``K q' = 0``; the mobility is
    ``sum f - rank K`` and the end effector's twist system is
    ``P_ee null(K)``.
+
+The null space of ``K`` is found by one SVD of the whole matrix while it is
+small (at most :data:`WHOLE_SVD_SIZE` rows and columns).  A larger ``K`` (a
+ladder of 2,000 loops: 12,000 x 4,000) is solved chord by chord instead: the joint
+rates that close the loops seen so far are kept as an orthonormal basis, and
+each chord's six equations restricted to them are decomposed in turn, so
+time and memory grow with the joints, not their square.  Both give the same
+counts; the margin is then the worst over the chords' decisions.
 
 Examples
 --------
@@ -23,22 +32,35 @@ Examples
 >>> lc = loop_closure(m)
 >>> lc.mobility, lc.rank, lc.loops, lc.end_effector_twists.shape[1]
 (1, 3, 1, 1)
+>>> loop_closure(m, method="chords").mobility
+1
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
-from .joint_screws import joint_screws
+from ..errors import RequestError
+from .joint_screws import JointScrews, joint_screws
 from .linalg import svd
 from .model import Mechanism
 from .screws import span_and_reciprocal
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
-from .topology import spanning_tree
+from .topology import TreeEdge, spanning_tree
 
-__all__ = ["LoopClosure", "loop_closure"]
+__all__ = ["LoopClosure", "loop_closure", "WHOLE_SVD_SIZE"]
+
+WHOLE_SVD_SIZE = 300
+"""Largest loop-closure Jacobian (rows ``6 loops`` and columns ``sum f``) decomposed by one SVD
+(``method="auto"``); beyond it the loops are closed chord by chord.  A full SVD costs the cube
+of the size (a 1,200 x 400 Jacobian takes a second, its chords a few milliseconds); every
+bundled mechanism is far below it."""
+
+Terms = tuple[tuple[int, float], ...]
+"""One loop's equation: ``(joint, sign)`` pairs, the equation being ``sum sign * S_joint q'_joint = 0``."""
 
 
 @dataclass(frozen=True)
@@ -47,8 +69,6 @@ class LoopClosure:
 
     Attributes
     ----------
-    jacobian : ndarray, shape (6 * loops, sum f)
-        Loop-closure equations in normalised coordinates.
     rank : int
         Rank of ``jacobian``.
     loops : int
@@ -60,11 +80,12 @@ class LoopClosure:
     end_effector_map : ndarray, shape (6, sum f)
         Twist of the end effector as a function of the joint rates (tree path).
     joint_rates : ndarray, shape (sum f, mobility)
-        Basis of the joint rates that close every loop.
+        Orthonormal basis of the joint rates that close every loop.
     decision : RankDecision
+    jacobian : ndarray, shape (6 * loops, sum f)
+        Loop-closure equations in normalised coordinates (built on first access).
     """
 
-    jacobian: np.ndarray
     rank: int
     loops: int
     mobility: int
@@ -72,34 +93,118 @@ class LoopClosure:
     end_effector_map: np.ndarray
     joint_rates: np.ndarray
     decision: RankDecision
+    equations: tuple[Terms, ...] = field(repr=False)
+    screws: JointScrews = field(repr=False)
+
+    @cached_property
+    def jacobian(self) -> np.ndarray:
+        """The loop-closure equations ``K`` as one dense matrix (6 rows per loop)."""
+        return _dense(self.equations, self.screws)
 
 
-def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE) -> LoopClosure:
-    """Loop-closure Jacobian of the whole mechanism, its rank and the end effector's twists."""
+def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, method: str = "auto") -> LoopClosure:
+    """Loop-closure equations of the whole mechanism, their rank and the end effector's twists.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    tol : Tolerance
+    method : {"auto", "svd", "chords"}
+        One SVD of the whole Jacobian, chord by chord, or the first while the
+        Jacobian has at most :data:`WHOLE_SVD_SIZE` rows and columns.
+
+    Raises
+    ------
+    RequestError
+        For an unknown ``method``.
+    """
+    if method not in ("auto", "svd", "chords"):
+        raise RequestError(f"method: expected 'auto', 'svd' or 'chords', got {method!r}")
     screws = joint_screws(mechanism)
     n = screws.twists.shape[1]
     tree, chords = spanning_tree(mechanism)
-    path_map: dict[str, np.ndarray] = {mechanism.ground: np.zeros((6, n))}
-    for edge in tree:
-        p = path_map[edge.parent].copy()
-        lo, hi = screws.offsets[edge.joint], screws.offsets[edge.joint + 1]
-        p[:, lo:hi] += (1.0 if edge.forward else -1.0) * screws.twists[:, lo:hi]
-        path_map[edge.child] = p
-    rows = []
-    for index in chords:
-        a, b = mechanism.joints[index].links
-        k = path_map[b] - path_map[a]
-        lo, hi = screws.offsets[index], screws.offsets[index + 1]
-        k[:, lo:hi] -= screws.twists[:, lo:hi]
-        rows.append(k)
-    jacobian = np.vstack(rows) if rows else np.zeros((0, n))
-    if rows:
-        _, s, vt = svd(jacobian)
+    up = {edge.child: edge for edge in tree}
+    depth = {mechanism.ground: 0}
+    for edge in tree:  # breadth-first: a parent comes first
+        depth[edge.child] = depth[edge.parent] + 1
+    equations = tuple(_tree_path(up, depth, *mechanism.joints[c].links) + ((c, -1.0),) for c in chords)
+    ee_map = np.zeros((6, n))
+    for joint, sign in _tree_path(up, depth, mechanism.ground, mechanism.end_effector):
+        lo, hi = screws.offsets[joint], screws.offsets[joint + 1]
+        ee_map[:, lo:hi] += sign * screws.twists[:, lo:hi]
+    whole = method == "svd" or (method == "auto" and max(6 * len(equations), n) <= WHOLE_SVD_SIZE)
+    if not equations:
+        decision, rates = RankDecision(0), np.eye(n)
+    elif whole:
+        _, s, vt = svd(_dense(equations, screws))
         decision = decide_rank(s, tol)
         rates = vt[decision.rank :].T
     else:
-        decision = RankDecision(0)
-        rates = np.eye(n)
-    ee_map = path_map[mechanism.end_effector]
+        decision, rates = _chord_by_chord(equations, screws, tol)
     ee = span_and_reciprocal(ee_map @ rates, tol).basis
-    return LoopClosure(jacobian, decision.rank, len(rows), n - decision.rank, ee, ee_map, rates, decision)
+    return LoopClosure(decision.rank, len(equations), n - decision.rank, ee, ee_map, rates, decision, equations, screws)
+
+
+def _tree_path(up: dict[str, TreeEdge], depth: dict[str, int], a: str, b: str) -> Terms:
+    """The tree joints between links ``a`` and ``b`` with the signs of ``P_b - P_a`` (the common part cancels)."""
+    from_a: list[tuple[int, float]] = []
+    from_b: list[tuple[int, float]] = []
+    while a != b:
+        if depth[a] >= depth[b]:
+            edge = up[a]
+            from_a.append((edge.joint, -1.0 if edge.forward else 1.0))
+            a = edge.parent
+        else:
+            edge = up[b]
+            from_b.append((edge.joint, 1.0 if edge.forward else -1.0))
+            b = edge.parent
+    return tuple(from_a) + tuple(reversed(from_b))
+
+
+def _columns(terms: Terms, screws: JointScrews) -> tuple[list[int], np.ndarray]:
+    """The variables of one loop equation and its 6 x k matrix on them."""
+    variables: list[int] = []
+    blocks = []
+    for joint, sign in terms:
+        lo, hi = int(screws.offsets[joint]), int(screws.offsets[joint + 1])
+        variables.extend(range(lo, hi))
+        blocks.append(sign * screws.twists[:, lo:hi])
+    return variables, np.concatenate(blocks, axis=1)
+
+
+def _dense(equations: tuple[Terms, ...], screws: JointScrews) -> np.ndarray:
+    n = screws.twists.shape[1]
+    k = np.zeros((6 * len(equations), n))
+    for row, terms in enumerate(equations):
+        variables, block = _columns(terms, screws)
+        k[6 * row : 6 * row + 6, variables] = block  # each joint once: tree joints and the chord
+    return k
+
+
+def _chord_by_chord(equations: tuple[Terms, ...], screws: JointScrews, tol: Tolerance) -> tuple[RankDecision, np.ndarray]:
+    """Null space of the loop equations, one chord at a time (see the module docstring)."""
+    n = screws.twists.shape[1]
+    row_of: dict[int, int] = {}  # variable -> row of `basis`
+    basis = np.zeros((0, 0))  # orthonormal basis of the rates of the variables met so far that close the loops so far
+    kept, dropped, rank = 1.0, 0.0, 0
+    for terms in equations:
+        variables, block = _columns(terms, screws)
+        new = [v for v in dict.fromkeys(variables) if v not in row_of]
+        if new:
+            grown = np.zeros((basis.shape[0] + len(new), basis.shape[1] + len(new)))
+            grown[: basis.shape[0], : basis.shape[1]] = basis
+            grown[basis.shape[0] :, basis.shape[1] :] = np.eye(len(new))
+            for v in new:
+                row_of[v] = len(row_of)
+            basis = grown
+        restricted = block @ basis[[row_of[v] for v in variables]]  # the chord's equations on the current solutions
+        _, s, vt = svd(restricted)
+        d = decide_rank(s, tol)
+        kept, dropped, rank = min(kept, d.smallest_kept), max(dropped, d.largest_dropped), rank + d.rank
+        basis = basis @ vt[d.rank :].T
+    rates = np.zeros((n, basis.shape[1] + n - len(row_of)))
+    rows = np.fromiter(row_of.keys(), dtype=int, count=len(row_of))
+    rates[rows, : basis.shape[1]] = basis[np.fromiter(row_of.values(), dtype=int, count=len(row_of))]
+    free = np.setdiff1d(np.arange(n), rows)  # variables of no loop: free
+    rates[free, basis.shape[1] + np.arange(len(free))] = 1.0
+    return RankDecision(rank, kept, dropped), rates

@@ -37,6 +37,7 @@ from typing import Any, Iterable, Mapping
 import numpy as np
 
 from ..errors import MechanismError, RequestError
+from .tolerance import binary_scale
 from .transforms import Transform, rotation_from_rpy
 
 __all__ = [
@@ -106,12 +107,12 @@ def _vector(value: Any, key: str, *, direction: bool = False) -> Vector:
     if not np.all(np.isfinite(arr)):
         raise MechanismError(key, f"expected 3 finite numbers, got {value!r}")
     if direction:
-        norm = float(np.linalg.norm(arr))
-        if norm == 0.0 or not math.isfinite(norm):
+        largest = max(abs(x) for x in arr.tolist())
+        if largest == 0.0:
             raise MechanismError(key, "expected a non-zero direction, got [0, 0, 0]")
-        if norm < 1e-12 * float(np.max(np.abs(arr))) or norm < 1e-300:
-            raise MechanismError(key, f"direction {value!r} is too small to normalise")
-        arr = arr / norm
+        if not 1e-140 < largest < 1e140:  # its square could underflow or overflow: scale it by a power of two first (exact)
+            arr = arr * binary_scale(arr)
+        arr = arr / math.sqrt(float(arr @ arr))
     return (float(arr[0]), float(arr[1]), float(arr[2]))
 
 
@@ -325,6 +326,10 @@ class FreedomTable:
         The points of the joints that have one (all but P and point-less E).
     end_effector_points : ndarray, shape (m, 3)
         The points of the located joints on the end effector.
+    located_joints : ndarray of int, shape (k,)
+        The index of the joint of each row of ``located``.
+    located_links : ndarray of int, shape (k, 2)
+        The two links of each of those joints, as indices in :attr:`Mechanism.links`.
     """
 
     prismatic: np.ndarray
@@ -334,6 +339,8 @@ class FreedomTable:
     offsets: tuple[int, ...]
     located: np.ndarray
     end_effector_points: np.ndarray
+    located_joints: np.ndarray
+    located_links: np.ndarray
 
 
 EXPECTED_KEYS: dict[str, str] = {
@@ -537,14 +544,21 @@ class Mechanism:
                 points.append(f.point)
                 pitches.append(f.pitch)
             offsets.append(len(axes))
-        located = [j.point for j in self.world_joints if j.point is not None]
+        link_index = {name: i for i, name in enumerate(self.links)}
+        located, located_joints, located_links = [], [], []
+        for index, j in enumerate(self.world_joints):
+            if j.point is not None:
+                located.append(j.point)
+                located_joints.append(index)
+                located_links.append((link_index[j.links[0]], link_index[j.links[1]]))
         ee = [j.point for j in self.world_joints if j.point is not None and self.end_effector in j.links]
         arrays = [np.array(prismatic), np.array(axes, dtype=float), np.array(points, dtype=float), np.array(pitches, dtype=float),
-                  np.array(located, dtype=float).reshape(-1, 3), np.array(ee, dtype=float).reshape(-1, 3)]
+                  np.array(located, dtype=float).reshape(-1, 3), np.array(ee, dtype=float).reshape(-1, 3),
+                  np.array(located_joints, dtype=int), np.array(located_links, dtype=int).reshape(-1, 2)]
         for a in arrays:
             a.setflags(write=False)
-        p, ax, pt, h, loc, eep = arrays
-        return FreedomTable(p, ax, pt, h, tuple(offsets), loc, eep)
+        p, ax, pt, h, loc, eep, lj, ll = arrays
+        return FreedomTable(p, ax, pt, h, tuple(offsets), loc, eep, lj, ll)
 
     def replace(self, **changes: Any) -> "Mechanism":
         """A copy with some fields changed (validated again)."""

@@ -15,6 +15,7 @@ from typing import Any, Mapping, NamedTuple, Protocol
 
 import numpy as np
 
+from .model import Mechanism
 from .screws import pattern_of
 from .tolerance import clean_numbers
 from .topology import Node, Topology
@@ -135,6 +136,7 @@ class NodeSystem(NamedTuple):
 class ResultDetail(Protocol):
     """What a :class:`Result` computes its lazy parts from (provided by the analysis)."""
 
+    mechanism: Mechanism
     topology: Topology
 
     def node_systems(self) -> dict[Node, NodeSystem]: ...
@@ -203,6 +205,8 @@ class Result:
         Each branch of a top-level parallel connection, in its own frame.
     common_constraints : int
         Wrenches reciprocal to every joint twist (3 for a planar mechanism).
+    mechanism : Mechanism
+        The mechanism that was analysed.
     topology : Topology
         The series/parallel decomposition the analysis used (``structure``
         writes its root out).
@@ -282,6 +286,11 @@ class Result:
     def topology(self) -> Topology:
         """The series/parallel decomposition the analysis used."""
         return self.detail.topology
+
+    @property
+    def mechanism(self) -> Mechanism:
+        """The mechanism that was analysed (at the pose analysed)."""
+        return self.detail.mechanism
 
     @cached_property
     def node_systems(self) -> Mapping[Node, NodeSystem]:

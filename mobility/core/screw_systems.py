@@ -39,10 +39,10 @@ from typing import Iterator, NamedTuple
 import numpy as np
 
 from .joint_screws import JointScrews
-from .linalg import svd
+from .linalg import left_svd, left_svds, svd
 from .screws import SWAP_ROWS
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
-from .topology import Bridge, JointNode, Node, Parallel, Series
+from .topology import Bridge, JointNode, Node, Parallel
 
 __all__ = ["SystemValue", "MarginTracker", "evaluate_node", "subtree_values"]
 
@@ -105,8 +105,8 @@ class SystemValue(NamedTuple):
 
 
 def _span(m: np.ndarray, tol: Tolerance, margin: MarginTracker) -> tuple[np.ndarray, np.ndarray]:
-    """Orthonormal basis of the column span of ``m`` and its reciprocal system (one SVD)."""
-    u, s, _ = svd(m)
+    """Orthonormal basis of the column span of ``m`` and its reciprocal system (one SVD, left vectors only)."""
+    u, s = left_svd(m)
     d = decide_rank(s, tol)
     margin.add(d)
     return u[:, : d.rank], u[SWAP_ROWS, d.rank :]
@@ -114,6 +114,13 @@ def _span(m: np.ndarray, tol: Tolerance, margin: MarginTracker) -> tuple[np.ndar
 
 def evaluate_node(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLERANCE, margin: MarginTracker | None = None) -> SystemValue:
     """Twist system, wrench system and idle count of ``node``.
+
+    The nodes are evaluated level by level from the leaves (no recursion, so
+    a tree nested as deep as a long ladder of loops costs what a flat one
+    does), and the matrices of one level that have the same shape (the limbs
+    of a parallel mechanism) are decomposed by one call
+    (:func:`~mobility.core.linalg.left_svds`): the same numbers as one call
+    each, without paying the call's overhead once per limb.
 
     Parameters
     ----------
@@ -128,42 +135,75 @@ def evaluate_node(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLE
     """
     if margin is None:
         margin = MarginTracker()
-    if isinstance(node, JointNode):
-        basis, wrenches = _span(screws.of_joint(node.index), tol, margin)
-        return SystemValue(basis, wrenches, 0)
-    if isinstance(node, Series):
-        columns, idle, values = [], 0, []
-        joint_columns = screws.columns
-        for child in node.children:
-            if type(child) is JointNode:
-                columns.append(joint_columns[child.index])
+    values: dict[int, SystemValue] = {}  # by id of the node
+    for level in _levels(node):
+        pending = []
+        for n, children in level:
+            if isinstance(n, Bridge):
+                values[id(n)] = _bridge(n, [values[id(c)] for c in children], screws, tol, margin)
             else:
-                v = evaluate_node(child, screws, tol, margin)
-                values.append(v)
-                columns.append(v.basis)
-                idle += v.idle
-        stacked = np.concatenate(columns, axis=1)
-        basis, wrenches = _span(stacked, tol, margin)
-        return SystemValue(basis, wrenches, idle + stacked.shape[1] - basis.shape[1], tuple(values))
+                pending.append((n, children, _matrix(n, [values[id(c)] for c in children], screws)))
+        for (n, children, m), (u, s) in zip(pending, left_svds([m for _, _, m in pending])):
+            d = decide_rank(s, tol)
+            margin.add(d)
+            values[id(n)] = _value(n, [values[id(c)] for c in children], m, u, d.rank)
+    return values[id(node)]
+
+
+def _levels(node: Node) -> list[list[tuple[Node, list[Node]]]]:
+    """The nodes of the tree that get a value, with their children that do, grouped by height (leaves first)."""
+    levels: list[list[tuple[Node, list[Node]]]] = []
+    height: dict[int, int] = {}
+    stack: list[tuple[Node, bool]] = [(node, False)]
+    while stack:
+        n, ready = stack.pop()
+        children = [] if type(n) is JointNode else _composite_children(n)
+        if children and not ready:
+            stack.append((n, True))
+            stack.extend((c, False) for c in reversed(children))
+            continue
+        h = 1 + max(height[id(c)] for c in children) if children else 0
+        height[id(n)] = h
+        if h == len(levels):
+            levels.append([])
+        levels[h].append((n, children))
+    return levels
+
+
+def _composite_children(node: Node) -> list[Node]:
+    """The children of ``node`` that get a value of their own (every child of a parallel node)."""
     if isinstance(node, Parallel):
-        values = [evaluate_node(child, screws, tol, margin) for child in node.children]
-        wrenches, basis = _span(np.concatenate([v.wrenches for v in values], axis=1), tol, margin)
-        return SystemValue(basis, wrenches, sum(v.idle for v in values), tuple(values))
-    return _bridge(node, screws, tol, margin)
+        return list(node.children)
+    children = [c for _, _, c in node.edges] if isinstance(node, Bridge) else node.children
+    return [c for c in children if type(c) is not JointNode]
 
 
-def _bridge(node: Bridge, screws: JointScrews, tol: Tolerance, margin: MarginTracker) -> SystemValue:
-    """Loop closure of a network that does not reduce (incidence form)."""
-    values = []
-    bases = []
-    for _, _, child in node.edges:
-        if isinstance(child, JointNode):
-            bases.append(screws.of_joint(child.index))
-            values.append(None)
-        else:
-            v = evaluate_node(child, screws, tol, margin)
-            bases.append(v.basis)
-            values.append(v)
+def _matrix(node: Node, values: list[SystemValue], screws: JointScrews) -> np.ndarray:
+    """The matrix whose span a joint, series or parallel node is: twists stacked, or (parallel) constraint wrenches stacked."""
+    if type(node) is JointNode:
+        return screws.of_joint(node.index)
+    if isinstance(node, Parallel):
+        return np.concatenate([v.wrenches for v in values], axis=1)
+    composite = iter(values)
+    joint_columns = screws.columns
+    return np.concatenate([joint_columns[c.index] if type(c) is JointNode else next(composite).basis for c in node.children], axis=1)
+
+
+def _value(node: Node, values: list[SystemValue], m: np.ndarray, u: np.ndarray, rank: int) -> SystemValue:
+    """The value of a joint, series or parallel node from the left singular vectors of its matrix and its rank."""
+    span, reciprocal = u[:, :rank], u[SWAP_ROWS, rank:]
+    if type(node) is JointNode:
+        return SystemValue(span, reciprocal, 0)
+    idle = sum(v.idle for v in values)
+    if isinstance(node, Parallel):  # the span of the constraint wrenches; its reciprocal is the twist system
+        return SystemValue(reciprocal, span, idle, tuple(values))
+    return SystemValue(span, reciprocal, idle + m.shape[1] - rank, tuple(values))
+
+
+def _bridge(node: Bridge, values: list[SystemValue], screws: JointScrews, tol: Tolerance, margin: MarginTracker) -> SystemValue:
+    """Loop closure of a network that does not reduce (incidence form), from the values of its composite connections."""
+    composite = iter(values)
+    bases = [screws.of_joint(child.index) if type(child) is JointNode else next(composite).basis for _, _, child in node.edges]
     inner = [x for x in node.links if x != node.source]
     col_of = {x: 6 * i for i, x in enumerate(inner)}
     n_link = 6 * len(inner)
@@ -184,8 +224,8 @@ def _bridge(node: Bridge, screws: JointScrews, tol: Tolerance, margin: MarginTra
     solutions = vt[d.rank :].T
     target = solutions[col_of[node.target] : col_of[node.target] + 6]
     basis, wrenches = _span(target, tol, margin)
-    idle = sum(v.idle for v in values if v is not None) + solutions.shape[1] - basis.shape[1]
-    return SystemValue(basis, wrenches, idle, tuple(v for v in values if v is not None))
+    idle = sum(v.idle for v in values) + solutions.shape[1] - basis.shape[1]
+    return SystemValue(basis, wrenches, idle, tuple(values))
 
 
 def subtree_values(node: Node, value: SystemValue) -> Iterator[tuple[Node, SystemValue | None]]:

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .linalg import singular_values, svd
+from .linalg import left_svd, singular_values, svd
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
 from .transforms import skew
 
@@ -148,8 +148,18 @@ class ScrewSpan:
         return self.decision.rank
 
 
+SIGN_TIE = 1e-9
+"""Components of a unit column within this of its largest are a tie for :func:`span_and_reciprocal`'s
+sign rule, broken by the lowest index: a readability choice far above round-off, not a rank decision."""
+
+
 def span_and_reciprocal(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> ScrewSpan:
     """Span of the columns of ``screws`` and the reciprocal system, by one SVD.
+
+    Each basis column is signed so that its first largest component is
+    positive: the sign an SVD routine gives a singular vector is its own
+    choice, and a one-dimensional system (one constraint force) then comes
+    out the same from every routine and every nearby matrix.
 
     Parameters
     ----------
@@ -165,8 +175,9 @@ def span_and_reciprocal(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) 
     m = screws if isinstance(screws, np.ndarray) and screws.ndim == 2 else np.asarray(screws, dtype=float).reshape(6, -1)
     if m.shape[1] == 0:
         return ScrewSpan(np.zeros((6, 0)), np.eye(6), RankDecision(0))
-    u, s, _ = svd(m)
+    u, s = left_svd(m)
     d = decide_rank(s, tol)
+    u = u * np.where(u[np.argmax(np.abs(u) > np.abs(u).max(axis=0) - SIGN_TIE, axis=0), np.arange(u.shape[1])] < 0.0, -1.0, 1.0)
     return ScrewSpan(u[:, : d.rank], u[SWAP_ROWS, d.rank :], d)
 
 

@@ -27,6 +27,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
@@ -39,6 +40,7 @@ __all__ = [
     "DEFAULT_TOLERANCE",
     "RankDecision",
     "decide_rank",
+    "binary_scale",
     "characteristic_scale",
     "clean_numbers",
     "RankDecisions",
@@ -132,6 +134,44 @@ def decide_rank(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE)
     return RankDecision(rank, kept, dropped)
 
 
+def binary_scale(*values: Any) -> float:
+    """A power of two, ``2**-k``, that brings the largest magnitude among ``values`` into ``[0.5, 1)``.
+
+    Multiplying by a power of two is exact, so a computation made on scaled
+    numbers and scaled back gives the same bits as the plain one whenever the
+    plain one neither overflows nor underflows, and it cannot overflow
+    itself: the one way of normalising before squaring, used for the
+    characteristic length and the joint twists.
+
+    Parameters
+    ----------
+    *values : arrays or floats
+        Finite numbers (non-finite ones are the caller's to refuse).
+
+    Returns
+    -------
+    float
+        1.0 when every value is zero (or there are none).  ``k`` is kept
+        within ``±BINARY_EXPONENT`` so that the scale is a normal float: the
+        largest magnitudes of all (above ``2**1021``) come to below 8, the
+        subnormal ones to about ``2**-53``.
+
+    Examples
+    --------
+    >>> binary_scale([3.0, -5.0]), binary_scale(0.0), binary_scale([1e300]) * 1e300 < 1.0
+    (0.125, 1.0, True)
+    """
+    big = max((float(np.abs(np.asarray(v, dtype=float)).max(initial=0.0)) for v in values), default=0.0)
+    if big == 0.0 or not math.isfinite(big):
+        return 1.0
+    exponent = min(max(math.frexp(big)[1], -BINARY_EXPONENT), BINARY_EXPONENT)
+    return math.ldexp(1.0, -exponent)
+
+
+BINARY_EXPONENT = 1021
+"""The largest ``|k|`` of :func:`binary_scale`: ``2**k`` and ``2**-k`` are normal floats."""
+
+
 def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) -> tuple[np.ndarray, float]:
     """Centre and characteristic length of a mechanism.
 
@@ -139,7 +179,10 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) 
     distance of those points from it, or, when all points coincide, the
     largest other length given (helical pitches); 1.0 when there is none.
     Both follow the mechanism under scaling and rigid motion, which is what
-    makes the rank decisions invariant.
+    makes the rank decisions invariant.  They are computed on the points
+    scaled by :func:`binary_scale` (nothing is squared before it), so any
+    scale of coordinates gives them to full precision; the length is
+    infinite only when the RMS radius itself exceeds the largest float.
 
     Parameters
     ----------
@@ -159,17 +202,23 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) 
     >>> c, L = characteristic_scale(np.array([[1.0, 0, 0], [-1.0, 0, 0]]))
     >>> c.tolist(), L
     ([0.0, 0.0, 0.0], 1.0)
+    >>> characteristic_scale(np.array([[1e200, 0, 0], [-1e200, 0, 0]]))[1], characteristic_scale(np.array([[1e-250, 0, 0], [0, 0, 0]]))[1]
+    (1e+200, 5e-251)
     """
     pts = np.asarray(points, dtype=float).reshape(-1, 3)
     n = len(pts)
+    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
+    scale = binary_scale(pts, other)
     if n == 0:
         centre = np.zeros(3)
         radius = 0.0
     else:
-        centre = pts.sum(axis=0) / n
-        d = pts - centre
+        scaled = pts * scale
+        centre = scaled.sum(axis=0) / n
+        d = scaled - centre
         radius = float(np.sqrt(np.einsum("ij,ij->", d, d) / n))
-    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
+        centre /= scale
+        radius /= scale
     if radius > 0.0 and radius >= 1e-9 * other:
         return centre, radius
     if other > 0.0:
@@ -300,13 +349,20 @@ def characteristic_scales(points: np.ndarray, lengths: np.ndarray | None = None)
     """
     pts = np.asarray(points, dtype=float)
     count, n = pts.shape[0], pts.shape[1]
+    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
     if n == 0:
         centres = np.zeros((count, 3))
         radius = np.zeros(count)
     else:
-        centres = pts.sum(axis=1) / n
-        d = pts - centres[:, None, :]
-        radius = np.sqrt(np.einsum("kij,kij->k", d, d) / n)
-    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
+        # each pose scaled by its own power of two, as characteristic_scale does
+        big = np.maximum(np.abs(pts).reshape(count, -1).max(axis=1), other)
+        exponent = np.clip(np.frexp(np.where(np.isfinite(big) & (big > 0.0), big, 1.0))[1], -BINARY_EXPONENT, BINARY_EXPONENT)
+        scale = np.where(big > 0.0, np.ldexp(1.0, -exponent), 1.0)
+        scaled = pts * scale[:, None, None]
+        centres = scaled.sum(axis=1) / n
+        d = scaled - centres[:, None, :]
+        with np.errstate(over="ignore"):  # infinite only when the radius exceeds the largest float
+            radius = np.sqrt(np.einsum("kij,kij->k", d, d) / n) / scale
+        centres /= scale[:, None]
     fallback = other if other > 0.0 else 1.0
     return centres, np.where((radius > 0.0) & (radius >= 1e-9 * other), radius, fallback)

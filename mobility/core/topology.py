@@ -17,7 +17,13 @@ end effector's freedom; they are kept as :attr:`Topology.detached` because
 they still add to the mobility of the whole mechanism.
 
 The decomposition is structural (no geometry) and cached per graph, so a
-sweep over poses of one mechanism pays for it once.
+sweep over poses of one mechanism pays for it once.  It takes time linear in
+the number of joints (up to a logarithm) and no recursion whose depth grows
+with the mechanism: a chain of 2,000 joints or a ladder of 2,000 loops nests
+as deep as it is long.  Merges keep each connection's orientation as a flag
+and splice nested series (and parallels) only once, when the tree is built;
+:mod:`networkx` (biconnected blocks, breadth-first tree) is imported only when
+a graph does not reduce whole, or for a spanning tree.
 
 Examples
 --------
@@ -31,12 +37,9 @@ Examples
 
 from __future__ import annotations
 
-from collections import defaultdict
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import lru_cache
-from typing import Union
-
-import networkx as nx
+from typing import Any, Callable, Union
 
 from .model import Mechanism
 
@@ -51,22 +54,54 @@ class JointNode:
     name: str
 
 
-@dataclass(frozen=True)
-class Series:
+class _Composite:
+    """Hashing, equality and ``repr`` of a composite node without recursion.
+
+    The hash is computed once, from the children's (already computed) hashes;
+    equality and ``repr`` walk the tree with an explicit stack, so a tree as
+    deep as a 2,000-joint ladder compares and prints like a small one.
+    """
+
+    def _set_hash(self, value: Any) -> None:
+        object.__setattr__(self, "_hash", hash(value))
+
+    def __hash__(self) -> int:
+        return self._hash  # type: ignore[attr-defined]
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, _Composite):
+            return NotImplemented
+        return _same_tree(self, other)  # type: ignore[arg-type]
+
+    def __repr__(self) -> str:
+        return _written(self, _repr_parts)  # type: ignore[arg-type]
+
+    def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:  # rebuilt by the constructor, so the hash is this process's
+        return type(self), tuple(getattr(self, f.name) for f in fields(self))  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Series(_Composite):
     """Connections in series, in order from the first terminal to the second."""
 
     children: tuple["Node", ...]
 
+    def __post_init__(self) -> None:
+        self._set_hash(("series", self.children))
 
-@dataclass(frozen=True)
-class Parallel:
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Parallel(_Composite):
     """Connections in parallel between the same two links."""
 
     children: tuple["Node", ...]
 
+    def __post_init__(self) -> None:
+        self._set_hash(("parallel", self.children))
 
-@dataclass(frozen=True)
-class Bridge:
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Bridge(_Composite):
     """A network that is not series-parallel, between ``source`` and ``target``.
 
     ``edges`` are ``(u, v, node)``: a connection (itself reduced) between
@@ -78,8 +113,87 @@ class Bridge:
     links: tuple[str, ...]
     edges: tuple[tuple[str, str, "Node"], ...]
 
+    def __post_init__(self) -> None:
+        self._set_hash(("bridge", self.source, self.target, self.links, self.edges))
+
 
 Node = Union[JointNode, Series, Parallel, Bridge]
+
+
+def _children(node: Node) -> tuple[Node, ...]:
+    if isinstance(node, (Series, Parallel)):
+        return node.children
+    if isinstance(node, Bridge):
+        return tuple(n for _, _, n in node.edges)
+    return ()
+
+
+def _written(node: Node, parts: Callable[[Node], tuple[str, list[str], str] | str]) -> str:
+    """The text of a tree, with an explicit stack and one join (no string is copied once per level).
+
+    ``parts(n)`` is a leaf's text, or ``(opening, texts before each child, closing)``.
+    """
+    out: list[str] = []
+    stack: list[Node | str] = [node]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, str):
+            out.append(item)
+            continue
+        p = parts(item)
+        if isinstance(p, str):
+            out.append(p)
+            continue
+        opening, before, closing = p
+        out.append(opening)
+        stack.append(closing)
+        for child, text in reversed(list(zip(_children(item), before))):
+            stack.append(child)
+            stack.append(text)
+    return "".join(out)
+
+
+def _describe_parts(node: Node) -> tuple[str, list[str], str] | str:
+    if isinstance(node, JointNode):
+        return node.name
+    if isinstance(node, Series):
+        return "series(", [""] + [","] * (len(node.children) - 1), ")"
+    if isinstance(node, Parallel):
+        return "parallel(", [""] + [", "] * (len(node.children) - 1), ")"
+    return "bridge(", [("" if i == 0 else ", ") + f"{u}-{v}: " for i, (u, v, _) in enumerate(node.edges)], ")"
+
+
+def _repr_parts(node: Node) -> tuple[str, list[str], str] | str:
+    if isinstance(node, JointNode):
+        return repr(node)
+    if isinstance(node, Bridge):
+        one = "," if len(node.edges) == 1 else ""
+        before = [("" if i == 0 else "), ") + f"({u!r}, {v!r}, " for i, (u, v, _) in enumerate(node.edges)]
+        return f"Bridge(source={node.source!r}, target={node.target!r}, links={node.links!r}, edges=(", before, f"){one}))"
+    one = "," if len(node.children) == 1 else ""
+    return f"{type(node).__name__}(children=(", [""] + [", "] * (len(node.children) - 1), f"{one}))"
+
+
+def _same_tree(a: Node, b: Node) -> bool:
+    stack = [(a, b)]
+    while stack:
+        x, y = stack.pop()
+        if x is y:
+            continue
+        if type(x) is not type(y) or hash(x) != hash(y):
+            return False
+        if isinstance(x, JointNode):
+            if x != y:
+                return False
+        elif isinstance(x, Bridge):
+            if (x.source, x.target, x.links) != (y.source, y.target, y.links) or [e[:2] for e in x.edges] != [e[:2] for e in y.edges]:
+                return False
+            stack.extend(zip((n for _, _, n in x.edges), (n for _, _, n in y.edges)))
+        else:
+            if len(x.children) != len(y.children):
+                return False
+            stack.extend(zip(x.children, y.children))
+    return True
 
 
 @dataclass(frozen=True)
@@ -145,6 +259,8 @@ def spanning_tree(mechanism: Mechanism) -> tuple[tuple[TreeEdge, ...], tuple[int
     >>> [(t.parent, t.child, t.joint, t.forward) for t in tree], chords
     ([('g', 'e', 0, True)], (1,))
     """
+    import networkx as nx  # needed only here and for graphs that do not reduce whole: slow to import
+
     graph = nx.Graph()
     for index, joint in enumerate(mechanism.joints):
         a, b = joint.links
@@ -162,32 +278,20 @@ def spanning_tree(mechanism: Mechanism) -> tuple[tuple[TreeEdge, ...], tuple[int
 
 def describe(node: Node) -> str:
     """Write a node as ``parallel(series(P1,R1,S1), ...)``."""
-    if isinstance(node, JointNode):
-        return node.name
-    if isinstance(node, Series):
-        return "series(" + ",".join(describe(c) for c in node.children) + ")"
-    if isinstance(node, Parallel):
-        return "parallel(" + ", ".join(describe(c) for c in node.children) + ")"
-    inner = ", ".join(f"{u}-{v}: {describe(n)}" for u, v, n in node.edges)
-    return f"bridge({inner})"
+    return _written(node, _describe_parts)
 
 
 def joints_of(node: Node) -> list[int]:
-    """Indices of the joints inside a node."""
-    if isinstance(node, JointNode):
-        return [node.index]
-    children = [n for _, _, n in node.edges] if isinstance(node, Bridge) else node.children
-    return [i for c in children for i in joints_of(c)]
-
-
-def _reversed(node: Node) -> Node:
-    if isinstance(node, Series):
-        return Series(tuple(_reversed(c) for c in reversed(node.children)))
-    if isinstance(node, Parallel):
-        return Parallel(tuple(_reversed(c) for c in node.children))
-    if isinstance(node, Bridge):
-        return Bridge(node.target, node.source, node.links, node.edges)
-    return node
+    """Indices of the joints inside a node, in the order :func:`describe` writes them."""
+    out = []
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, JointNode):
+            out.append(n.index)
+        else:
+            stack.extend(reversed(_children(n)))
+    return out
 
 
 def decompose(mechanism: Mechanism) -> Topology:
@@ -196,25 +300,32 @@ def decompose(mechanism: Mechanism) -> Topology:
     return _decompose(signature, mechanism.ground, mechanism.end_effector)
 
 
+Edge = tuple[str, str, Node]
+
+
 @lru_cache(maxsize=512)
 def _decompose(signature: tuple[tuple[str, tuple[str, str]], ...], ground: str, end_effector: str) -> Topology:
     edges = [(a, b, JointNode(i, name)) for i, (name, (a, b)) in enumerate(signature)]
     links = {x for a, b, _ in edges for x in (a, b)}
-    blocks = _blocks(edges, ground, end_effector)
-    root = None
+    # A graph that reduces whole is one block with the virtual edge ground-end effector
+    # (series and parallel steps keep two terminals), so nothing is detached.
+    root = _reduce(edges, ground, end_effector)
     detached = []
-    for block_edges, is_main in blocks:
-        if is_main:
-            root = _reduce(block_edges, ground, end_effector)
-        else:
-            a, b = block_edges[0][0], block_edges[0][1]
-            detached.append(_reduce(block_edges, a, b))
+    if isinstance(root, Bridge):
+        root = None
+        for block_edges, is_main in _blocks(edges, ground, end_effector):
+            if is_main:
+                root = _reduce(block_edges, ground, end_effector)
+            else:
+                detached.append(_reduce(block_edges, block_edges[0][0], block_edges[0][1]))
     assert root is not None
     return Topology(root, tuple(detached), len(links), len(edges) - len(links) + 1, describe(root))
 
 
-def _blocks(edges: list[tuple[str, str, JointNode]], s: str, t: str) -> list[tuple[list[tuple[str, str, JointNode]], bool]]:
+def _blocks(edges: list[Edge], s: str, t: str) -> list[tuple[list[Edge], bool]]:
     """Split the edges by biconnected block of the graph plus a virtual edge s-t."""
+    import networkx as nx  # only for graphs that do not reduce whole
+
     g = nx.Graph()
     g.add_edges_from((a, b) for a, b, _ in edges)
     g.add_edge(s, t)
@@ -225,61 +336,138 @@ def _blocks(edges: list[tuple[str, str, JointNode]], s: str, t: str) -> list[tup
             block_of[frozenset((a, b))] = k
             if {a, b} == {s, t}:
                 main = k
-    grouped: dict[int, list[tuple[str, str, JointNode]]] = defaultdict(list)
+    grouped: dict[int, list[Edge]] = {}
     for e in edges:
-        grouped[block_of[frozenset(e[:2])]].append(e)
+        grouped.setdefault(block_of[frozenset(e[:2])], []).append(e)
     return [(grouped[k], k == main) for k in sorted(grouped)]
 
 
-def _reduce(edge_list: list[tuple[str, str, Node]], s: str, t: str) -> Node:
-    """Series/parallel reduction of a two-terminal multigraph."""
-    edges: dict[int, tuple[str, str, Node]] = dict(enumerate(edge_list))
-    incident: dict[str, set[int]] = defaultdict(set)
+# ---------------------------------------------------------------------------
+# series/parallel reduction
+# ---------------------------------------------------------------------------
+
+
+class _Merged:
+    """A connection made by merging others (``kind`` ``"S"`` or ``"P"``), built into a node at the end.
+
+    ``parts`` are ``(part, flipped)``: a :class:`JointNode` or another
+    ``_Merged``, and whether it runs against this connection's direction.
+    """
+
+    __slots__ = ("kind", "parts")
+
+    def __init__(self, kind: str, parts: list[tuple[Any, bool]]) -> None:
+        self.kind = kind
+        self.parts = parts
+
+
+def _spliced(kind: str, item: _Merged, flipped: bool) -> list[tuple[Any, bool]]:
+    """The parts of ``item`` with the parts of every nested merge of the same kind spliced in, in order."""
+    out = []
+    stack = [(item, flipped)]
+    while stack:
+        part, flip = stack.pop()
+        if isinstance(part, _Merged) and part.kind == kind:
+            seq = [(p, f != flip) for p, f in part.parts]
+            if flip and kind == "S":  # a series run backwards: its parts in reverse order
+                seq.reverse()
+            stack.extend(reversed(seq))
+        else:
+            out.append((part, flip))
+    return out
+
+
+def _built(item: Any, flipped: bool) -> Node:
+    """The node of a connection: series inside series (parallel inside parallel) spliced, orientation applied."""
+    results: list[Node] = []
+    stack: list[tuple[Any, bool, int]] = [(item, flipped, -1)]  # count >= 0: build from the last `count` results
+    while stack:
+        part, flip, count = stack.pop()
+        if count >= 0:
+            children = tuple(results[len(results) - count :])
+            del results[len(results) - count :]
+            results.append(Series(children) if part.kind == "S" else Parallel(children))
+        elif isinstance(part, _Merged):
+            parts = _spliced(part.kind, part, flip)
+            stack.append((part, flip, len(parts)))
+            stack.extend((p, f, -1) for p, f in reversed(parts))
+        else:
+            results.append(part)  # a joint reads the same both ways
+    return results[0]
+
+
+def _reduce(edge_list: list[Edge], s: str, t: str) -> Node:
+    """Series/parallel reduction of a two-terminal multigraph.
+
+    The steps and their order are those of repeated passes of: merge every
+    group of connections between the same two links (groups in the order of
+    their first connection), then every inner link with exactly two
+    connections (links in order of first appearance).  Each pass visits only
+    the groups and links it merges, and a merge only flags orientation, so the
+    whole reduction is linear in the number of joints up to the sorting.
+    """
+    edges: dict[int, tuple[str, str, Any]] = dict(enumerate(edge_list))
+    order: dict[str, int] = {}
+    incident: dict[str, set[int]] = {}
+    pairs: dict[frozenset[str], dict[int, None]] = {}
     for k, (a, b, _) in edges.items():
-        incident[a].add(k)
-        incident[b].add(k)
+        for x in (a, b):
+            if x not in order:
+                order[x] = len(order)
+                incident[x] = set()
+            incident[x].add(k)
+        pairs.setdefault(frozenset((a, b)), {})[k] = None
+    multiple = {key for key, ks in pairs.items() if len(ks) > 1}
+    two = {x for x, ks in incident.items() if len(ks) == 2 and x != s and x != t}
     next_id = len(edges)
 
-    def oriented(k: int, start: str) -> Node:
-        a, _, n = edges[k]
-        return n if a == start else _reversed(n)
+    def degree_changed(x: str) -> None:
+        if len(incident[x]) == 2 and x != s and x != t:
+            two.add(x)
+        else:
+            two.discard(x)
+
+    def add(a: str, b: str, item: Any) -> None:
+        nonlocal next_id
+        edges[next_id] = (a, b, item)
+        for x in (a, b):
+            incident[x].add(next_id)
+            degree_changed(x)
+        key = frozenset((a, b))
+        group = pairs.setdefault(key, {})
+        group[next_id] = None
+        if len(group) > 1:
+            multiple.add(key)
+        next_id += 1
+
+    def remove(k: int) -> None:
+        a, b, _ = edges.pop(k)
+        for x in (a, b):
+            incident[x].discard(k)
+            degree_changed(x)
+        key = frozenset((a, b))
+        group = pairs[key]
+        del group[k]
+        if len(group) < 2:
+            multiple.discard(key)
 
     def other(k: int, x: str) -> str:
         a, b, _ = edges[k]
         return b if a == x else a
 
-    def add(a: str, b: str, node: Node) -> None:
-        nonlocal next_id
-        edges[next_id] = (a, b, node)
-        incident[a].add(next_id)
-        incident[b].add(next_id)
-        next_id += 1
-
-    def remove(k: int) -> None:
-        a, b, _ = edges.pop(k)
-        incident[a].discard(k)
-        incident[b].discard(k)
-
     changed = True
     while changed:
         changed = False
-        pairs: dict[frozenset[str], list[int]] = defaultdict(list)
-        for k, (a, b, _) in edges.items():
-            pairs[frozenset((a, b))].append(k)
-        for ks in pairs.values():
-            if len(ks) > 1:
-                a = edges[ks[0]][0]
-                b = other(ks[0], a)
-                children: list[Node] = []
-                for k in ks:
-                    n = oriented(k, a)
-                    children.extend(n.children if isinstance(n, Parallel) else (n,))
-                    remove(k)
-                add(a, b, Parallel(tuple(children)))
-                changed = True
-        for x in list(incident):
-            if x in (s, t) or len(incident[x]) != 2:
-                continue
+        for key in sorted(multiple, key=lambda key: next(iter(pairs[key]))):
+            ks = list(pairs[key])
+            a = edges[ks[0]][0]
+            b = other(ks[0], a)
+            parts = [(edges[k][2], edges[k][0] != a) for k in ks]
+            for k in ks:
+                remove(k)
+            add(a, b, _Merged("P", parts))
+            changed = True
+        for x in sorted(two, key=order.__getitem__):
             k1, k2 = sorted(incident[x])
             a, b = other(k1, x), other(k2, x)
             if a == b:
@@ -287,16 +475,16 @@ def _reduce(edge_list: list[tuple[str, str, Node]], s: str, t: str) -> Node:
             # keep the order from the side nearer the source when we can tell
             if b == s or a == t:
                 k1, k2, a, b = k2, k1, b, a
-            parts: list[Node] = []
-            for n in (_reversed(oriented(k1, x)), oriented(k2, x)):
-                parts.extend(n.children if isinstance(n, Series) else (n,))
+            first = (edges[k1][2], edges[k1][0] == x)  # k1 run from a to x
+            second = (edges[k2][2], edges[k2][0] != x)  # k2 run from x to b
             remove(k1)
             remove(k2)
             del incident[x]
-            add(a, b, Series(tuple(parts)))
+            two.discard(x)
+            add(a, b, _Merged("S", [first, second]))
             changed = True
     if len(edges) == 1:
-        (k,) = edges
-        return oriented(k, s)
+        ((a, _, item),) = edges.values()
+        return _built(item, a != s)
     links = tuple(sorted({x for a, b, _ in edges.values() for x in (a, b)}, key=lambda x: (x != s, x != t, x)))
-    return Bridge(s, t, links, tuple((a, b, n) for a, b, n in edges.values()))
+    return Bridge(s, t, links, tuple((a, b, _built(item, False)) for a, b, item in edges.values()))

@@ -28,7 +28,6 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 __all__ = [
     "cross",
@@ -43,6 +42,8 @@ __all__ = [
     "so3_left_jacobian",
     "bracket",
     "dexp",
+    "displacement_logs",
+    "dexps",
 ]
 
 
@@ -186,6 +187,9 @@ def twist_exp(twist: np.ndarray) -> np.ndarray:
     return out
 
 
+_FACTORIALS = tuple(float(math.factorial(k)) for k in range(20))
+
+
 def _coefficients(theta: float) -> tuple[float, float, float, float]:
     """``(1 - cos t)/t^2, (t - sin t)/t^3, (t^2 + 2 cos t - 2)/(2 t^4), (2 t - 3 sin t + t cos t)/(2 t^5)``.
 
@@ -195,12 +199,13 @@ def _coefficients(theta: float) -> tuple[float, float, float, float]:
         t2 = theta * theta
         a = b = c = d = 0.0
         power = 1.0
+        f = _FACTORIALS
         for m in range(8):
             sign = power if m % 2 == 0 else -power
-            a += sign / math.factorial(2 * m + 2)
-            b += sign / math.factorial(2 * m + 3)
-            c += sign / math.factorial(2 * m + 4)
-            d += sign * (m + 1) / math.factorial(2 * m + 5)
+            a += sign / f[2 * m + 2]
+            b += sign / f[2 * m + 3]
+            c += sign / f[2 * m + 4]
+            d += sign * (m + 1) / f[2 * m + 5]
             power *= t2
         return a, b, c, d
     s, co = math.sin(theta), math.cos(theta)
@@ -232,6 +237,8 @@ def rotation_log(rot: np.ndarray) -> np.ndarray:
     sine2 = float(np.linalg.norm(axis2))
     theta = float(np.arctan2(0.5 * sine2, 0.5 * (np.trace(rot) - 1.0)))
     if theta > 3.0:
+        from scipy.spatial.transform import Rotation  # near a half turn only; slow to import
+
         return Rotation.from_matrix(rot).as_rotvec()
     return axis2 / (2.0 * float(np.sinc(theta / np.pi)))
 
@@ -262,7 +269,7 @@ def bracket(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """
     a = np.asarray(a, dtype=float)
     b = np.asarray(b, dtype=float)
-    return np.concatenate([np.cross(a[:3], b[:3]), np.cross(a[:3], b[3:]) - np.cross(b[:3], a[3:])])
+    return np.concatenate([cross(a[:3], b[:3]), cross(a[:3], b[3:]) - cross(b[:3], a[3:])])
 
 
 def dexp(x: np.ndarray) -> np.ndarray:
@@ -282,4 +289,110 @@ def dexp(x: np.ndarray) -> np.ndarray:
     out[:3, :3] = jac
     out[3:, 3:] = jac
     out[3:, :3] = q
+    return out
+
+
+# ---------------------------------------------------------------------------
+# the same maps for many twists at once (the loops of a mechanism)
+# ---------------------------------------------------------------------------
+
+
+_TERMS = np.arange(8)
+_ALTERNATING = np.where(_TERMS % 2 == 0, 1.0, -1.0)
+_SERIES_NUMERATORS = np.array([np.ones(8), np.ones(8), np.ones(8), _TERMS + 1.0])[:, None, :]
+_SERIES_DENOMINATORS = np.array([[_FACTORIALS[2 * m + k] for m in range(8)] for k in (2, 3, 4, 5)])[:, None, :]
+
+
+def _coefficients_many(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_coefficients` of every angle of ``theta`` (1-D): the same series and closed forms, the same roundings.
+
+    The powers are running products and the sums running sums in the order
+    of the scalar loop (``cumprod``, ``cumsum``), so each value is the scalar one.
+    """
+    theta = np.asarray(theta, dtype=float)
+    small = theta < 1.0
+    steps = np.empty((len(theta), 8))
+    steps[:, 0] = 1.0
+    steps[:, 1:] = (theta * theta)[:, None]
+    signed = np.cumprod(steps, axis=-1) * _ALTERNATING  # +-t2**m
+    a, b, c, d = np.cumsum(signed * _SERIES_NUMERATORS / _SERIES_DENOMINATORS, axis=-1)[..., -1]
+    if small.all():
+        return a, b, c, d
+    t = np.where(small, 1.0, theta)
+    s, co = np.sin(t), np.cos(t)
+    closed = ((1.0 - co) / t**2, (t - s) / t**3, (t**2 + 2.0 * co - 2.0) / (2.0 * t**4), (2.0 * t - 3.0 * s + t * co) / (2.0 * t**5))
+    return tuple(np.where(small, series, form) for series, form in zip((a, b, c, d), closed))  # type: ignore[return-value]
+
+
+def _skews(v: np.ndarray) -> np.ndarray:
+    """:func:`skew` of each row of ``v`` (shape (k, 3)), shape (k, 3, 3)."""
+    out = np.zeros(v.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
+    return out
+
+
+def displacement_logs(g: np.ndarray, *, with_dexp: bool = False) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+    """:func:`displacement_log` of each displacement of a stack ``g`` (shape (k, 4, 4)), shape (k, 6).
+
+    With ``with_dexp``, also :func:`dexps` of the twists found (shape (k, 6, 6)),
+    sharing the series of their rotation angles.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.array([[0.1, -0.2, 0.3, 1.0, 2.0, -0.5], [0.0, 0.0, 0.0, 1.0, 0.0, 0.0]])
+    >>> logs, derivatives = displacement_logs(np.stack([twist_exp(t) for t in x]), with_dexp=True)
+    >>> bool(np.allclose(logs, x)), bool(np.allclose(derivatives, dexps(x)))
+    (True, True)
+    """
+    g = np.asarray(g, dtype=float)
+    rot = g[:, :3, :3]
+    axis2 = np.stack([rot[:, 2, 1] - rot[:, 1, 2], rot[:, 0, 2] - rot[:, 2, 0], rot[:, 1, 0] - rot[:, 0, 1]], axis=1)  # 2 sin(t) u
+    sine2 = np.sqrt(np.einsum("ij,ij->i", axis2, axis2))
+    theta = np.arctan2(0.5 * sine2, 0.5 * (np.trace(rot, axis1=1, axis2=2) - 1.0))
+    w = axis2 / (2.0 * np.sinc(theta / np.pi))[:, None]
+    for i in np.flatnonzero(theta > 3.0):  # near a half turn: the closed form loses digits
+        w[i] = rotation_log(rot[i])
+    coefficients = _coefficients_many(np.sqrt(np.einsum("ij,ij->i", w, w)))
+    a, b = coefficients[0][:, None, None], coefficients[1][:, None, None]
+    k = _skews(w)
+    kk = k @ k
+    jac = np.eye(3) + a * k + b * kk
+    v = np.linalg.solve(jac, g[:, :3, 3:])[:, :, 0]
+    x = np.concatenate([w, v], axis=1)
+    if not with_dexp:
+        return x
+    return x, _dexps(k, kk, _skews(v), jac, coefficients)
+
+
+def dexps(x: np.ndarray) -> np.ndarray:
+    """:func:`dexp` of each twist of ``x`` (shape (k, 6)), shape (k, 6, 6).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.array([[0.1, -0.2, 0.3, 1.0, 2.0, -0.5], [2.0, 0.0, 1.0, 0.0, 1.0, 0.0]])
+    >>> bool(np.allclose(dexps(x), np.stack([dexp(t) for t in x])))
+    True
+    """
+    x = np.asarray(x, dtype=float)
+    coefficients = _coefficients_many(np.sqrt(np.einsum("ij,ij->i", x[:, :3], x[:, :3])))
+    w = _skews(x[:, :3])
+    ww = w @ w
+    jac = np.eye(3) + coefficients[0][:, None, None] * w + coefficients[1][:, None, None] * ww
+    return _dexps(w, ww, _skews(x[:, 3:]), jac, coefficients)
+
+
+def _dexps(w: np.ndarray, ww: np.ndarray, v: np.ndarray, jac: np.ndarray, coefficients: tuple[np.ndarray, ...]) -> np.ndarray:
+    """:func:`dexp` from ``skew(w)``, its square, ``skew(v)``, the left Jacobian and the angle's series."""
+    _, b, c, d = (u[:, None, None] for u in coefficients)
+    wv, vw = w @ v, v @ w
+    wvw = wv @ w
+    q = 0.5 * v + b * (wv + vw + wvw) + c * (ww @ v + v @ ww - 3.0 * wvw) + d * (wvw @ w + w @ wvw)
+    out = np.zeros((len(w), 6, 6))
+    out[:, :3, :3] = jac
+    out[:, 3:, 3:] = jac
+    out[:, 3:, :3] = q
     return out

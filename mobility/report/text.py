@@ -19,6 +19,7 @@ import numpy as np
 
 from ..core.result import Result, ScrewAxis
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
+from ..errors import AnalysisError
 
 __all__ = ["fmt_number", "fmt_vector", "screw_text", "text_report", "json_report"]
 
@@ -131,5 +132,16 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
 
 
 def json_report(result: Result) -> str:
-    """The result as one JSON object (``mobility analyze --json``)."""
-    return json.dumps(result.to_dict(), indent=2, ensure_ascii=False)
+    """The result as one JSON object (``mobility analyze --json``): always valid JSON.
+
+    Raises
+    ------
+    AnalysisError
+        When a number of the result is not finite (JSON has no NaN or
+        infinity; the analysis refuses such results first, this is the last
+        guard).
+    """
+    try:
+        return json.dumps(result.to_dict(), indent=2, ensure_ascii=False, allow_nan=False)
+    except ValueError:
+        raise AnalysisError(f"the result of {result.name!r} holds a number that is not finite; it cannot be written as JSON") from None
