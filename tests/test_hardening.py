@@ -515,7 +515,6 @@ def extreme_files(draw: st.DrawFn) -> str:
     return yaml.safe_dump(doc, sort_keys=False)
 
 
-@pytest.mark.xfail(strict=True, reason="issue 13, core side: at extreme magnitudes (a coordinate of 1e155) the characteristic length overflows, and the result holds NaN (mobility.core.joint_screws.point_to_world)")
 @FUZZ
 @given(extreme_files())
 def test_fuzz_extreme_numbers_end_in_result_or_one_error(fuzz_file, text):

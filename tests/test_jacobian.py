@@ -202,7 +202,7 @@ joints:
 def test_cli_jacobian(capsys):
     assert main(["jacobian", str(METROM)]) == 0
     out = capsys.readouterr().out
-    assert "platform DOF: 5" in out and "force   along [-1, 0, 0]  through [0, 0, 0]" in out
+    assert "platform DOF: 5" in out and "force   along [1, 0, 0]  through [0, 0, 0]" in out
     assert main(["jacobian", str(METROM), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["dof"] == 5 and len(data["matrix"]) == 6 and data["constraint_axes"][0]["kind"] == "force"
@@ -266,7 +266,7 @@ def test_jacobian_report_is_what_the_cli_prints(metrom, capsys):
     assert main(["jacobian", str(METROM)]) == 0
     assert capsys.readouterr().out == text + "\n"
     lines = text.splitlines()
-    assert lines[0] == metrom.name and "    C1  force   along [-1, 0, 0]  through [0, 0, 0]" in lines
+    assert lines[0] == metrom.name and "    C1  force   along [1, 0, 0]  through [0, 0, 0]" in lines
     assert json.loads(jacobian_json(jac)) == jac.to_dict() | {"condition": jac.condition}
     square_not = jacobian(metrom, actuated=["P0", "P1", "P2", "P3"])
     assert "J is singular (not square)" in jacobian_text(square_not)

@@ -27,6 +27,7 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..errors import RequestError
 from .assessment import Assessment
 from .results import VALID, VERDICTS, Combination, TypeGroup
@@ -76,14 +77,25 @@ def combine_poses(inputs: tuple[str, ...], type: str, per_pose: Sequence[Assessm
 
 
 def rank_combinations(found: Sequence[Combination]) -> tuple[tuple[Combination, ...], tuple[TypeGroup, ...]]:
-    """The combinations ranked (best first), and the valid and total counts of each type."""
-    ranked = sorted(found, key=lambda c: (VERDICTS.index(c.verdict), -c.conditioning, c.inputs))
+    """The combinations ranked (best first), and the valid and total counts of each type.
+
+    Conditioning numbers equal to round-off (12 significant digits, the
+    policy's ``round_off``) count as a tie, broken by the input names, so the
+    order does not depend on the last bit of a LAPACK routine.
+    """
+    ranked = sorted(found, key=lambda c: (VERDICTS.index(c.verdict), -_to_round_off(c.conditioning), c.inputs))
     groups: dict[str, list[int]] = {}
     for c in found:
         g = groups.setdefault(c.type, [0, 0])
         g[0] += c.verdict == VALID
         g[1] += 1
     return tuple(ranked), tuple(TypeGroup(t, v, n) for t, (v, n) in sorted(groups.items(), key=lambda kv: _type_key(kv[0])))
+
+
+def _to_round_off(x: float, tol: Tolerance = DEFAULT_TOLERANCE) -> float:
+    """``x`` with the digits below the round-off rule dropped."""
+    digits = max(1, round(-np.log10(tol.round_off)))
+    return float(f"{x:.{digits}g}")
 
 
 def combinations_count(candidates: int, k: int, advice: str) -> int:
