@@ -178,7 +178,8 @@ def test_rps_all_four_combination_types_are_valid_across_the_prismatic_range():
     assert all(c.verdict == VALID and c.valid_poses == len(POSES) for c in found.combinations)
     assert all(c.conditioning > 0.02 for c in found.combinations)
     # ranked by the worst-pose conditioning
-    assert [c.conditioning for c in found.combinations] == sorted((c.conditioning for c in found.combinations), reverse=True)
+    kappas = [float(f"{c.conditioning:.12g}") for c in found.combinations]  # ties at round-off fall to the input names
+    assert kappas == sorted(kappas, reverse=True)
 
 
 def test_conditioning_is_the_same_for_3R_and_3P_at_the_symmetric_home_pose():
