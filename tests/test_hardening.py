@@ -79,10 +79,10 @@ CORPUS = {
     "NUL byte": (HEAD + ONE_JOINT + "description: a\x00b\n", 6, "", "control character '\\x00'"),
     "BEL byte": (HEAD + "description: a\x07b\n" + ONE_JOINT, 4, "", "control character '\\x07'"),
     "type as a list": (HEAD + "joints:\n  - {name: A, type: [R], links: [g, e], axis: [0, 0, 1]}\n", 5, "joints[0].type", "unknown joint type a list of 1"),
-    "20,000 copies": (HEAD + "limbs: [{copies: 20000, joints: [{name: 'P{i}', type: P, links: [g, e], axis: [0, 0, 1]}]}]\n", 4, "limbs[0].copies", "limit of 1000"),
-    "100,000,000 copies": (HEAD + ONE_JOINT + "limbs: [{copies: 100000000, joints: []}]\n", 6, "limbs[0].copies", "limit of 1000"),
-    "many limbs of many copies": (HEAD + ONE_JOINT + "limbs:\n" + "  - {copies: 600, joints: []}\n" * 2, 8, "limbs[1].copies", "1200 copies of limbs"),
-    "limbs making too many joints": (HEAD + "limbs: [{copies: 600, joints: [{name: 'P{i}', type: P, links: [g, 'l{i}'], axis: [0, 0, 1]}, {name: 'Q{i}', type: P, links: ['l{i}', e], axis: [0, 1, 0]}]}]\n", 4, "limbs[0].copies", "1200 joints"),
+    "20,000 copies": (HEAD + "limbs: [{copies: 20000, joints: [{name: 'P{i}', type: P, links: [g, e], axis: [0, 0, 1]}]}]\n", 4, "limbs[0].copies", "limit of 5000"),
+    "100,000,000 copies": (HEAD + ONE_JOINT + "limbs: [{copies: 100000000, joints: []}]\n", 6, "limbs[0].copies", "limit of 5000"),
+    "many limbs of many copies": (HEAD + ONE_JOINT + "limbs:\n" + "  - {copies: 3000, joints: []}\n" * 2, 8, "limbs[1].copies", "6000 copies of limbs"),
+    "limbs making too many joints": (HEAD + "limbs: [{copies: 3000, joints: [{name: 'P{i}', type: P, links: [g, 'l{i}'], axis: [0, 0, 1]}, {name: 'Q{i}', type: P, links: ['l{i}', e], axis: [0, 1, 0]}]}]\n", 4, "limbs[0].copies", "6000 joints"),
     "billion laughs, unknown key": (HEAD + ONE_JOINT + laughs(9, "lol"), 11, None, "limit of 200000 YAML nodes"),
     "billion laughs, known key": (HEAD + laughs(9, "joints"), 9, None, "limit of 200000 YAML nodes"),
     "unknown tag": (HEAD + "joints:\n  - {name: A, type: P, links: [g, e], axis: !vec [0, 0, 1]}\n", 5, "joints[0].axis", "unsupported YAML tag '!vec'"),
@@ -154,12 +154,16 @@ def test_hostile_input_is_one_line_naming_file_line_and_key(tmp_path, case):
     assert "\n" not in str(err) and len(str(err)) < 400
 
 
-@pytest.mark.parametrize("command", [["analyze"], ["analyze", "--json"], ["check"], ["jacobian"], ["actuation"], ["plot", "-o"]])
+COMMANDS = [["analyze"], ["analyze", "--json"], ["check"], ["jacobian"], ["actuation"], ["plot", "-o", "picture.png"],
+            ["sweep", "--vary", "A=0:1:2"], ["view", "-o", "page.html"], ["convert"]]
+
+
+@pytest.mark.parametrize("command", COMMANDS, ids=lambda c: c[0])
 @pytest.mark.parametrize("case", ["400-digit integer", "billion laughs, unknown key", "NUL byte", "recursive alias", "20,000 copies", "type as a list"])
 def test_hostile_input_exits_2_with_one_line_from_every_command(tmp_path, command, case):
     text, line, _, words = CORPUS[case]
     path = write(tmp_path, text)
-    args = command + [str(tmp_path / "picture.png")] if command[-1] == "-o" else command
+    args = [str(tmp_path / a) if a.endswith((".png", ".html")) else a for a in command]
     with time_bound(10):
         status, out, err = run_cli(*args, str(path))
     assert status == 2, (status, out, err)

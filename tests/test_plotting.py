@@ -407,3 +407,60 @@ print('STATUS', main(['plot', {str(src)!r}, '-o', {str(tmp_path / 'x.png')!r}]))
     assert done.returncode == 0, done.stderr
     assert "STATUS 2" in done.stdout
     assert done.stderr.strip() == "mobility: plotting needs matplotlib, which is not installed: pip install 'mobility[plot]'"
+
+
+# -- any size, any scale ----------------------------------------------------------------------------
+
+
+def ladder(triangles: int) -> mobility.Mechanism:
+    z = (0.0, 0.0, 1.0)
+    joints = [mobility.Joint(f"A{i}", "R", ("g", f"l{i}"), axis=z, point=(float(i), 0.0, 0.0)) for i in range(triangles + 1)]
+    joints += [mobility.Joint(f"B{i}", "R", (f"l{i}", f"l{i + 1}"), axis=z, point=(i + 0.5, 1.0 + 0.25 * np.sin(i), 0.0)) for i in range(triangles)]
+    return mobility.Mechanism(f"ladder of {triangles}", "g", f"l{triangles}", tuple(joints))
+
+
+def test_a_tree_thousands_of_levels_deep_is_laid_out_without_recursion():
+    from mobility.report.plotting.graph import tree_layout
+
+    root = decompose(ladder(3000)).root
+    pos, edges, nodes = tree_layout(root)
+    assert len(pos) == len(nodes) == len(edges) + 1 == 2 * 6001 - 1  # 6,001 leaves, a binary tree
+    children: dict[int, list[int]] = {}
+    for parent, child in edges:
+        children.setdefault(parent, []).append(child)
+    for parent, kids in children.items():  # each parent above the middle of its children, one level up
+        xs = [pos[k][0] for k in kids]
+        assert pos[parent] == (0.5 * (min(xs) + max(xs)), pos[kids[0]][1] + 1.0)
+    leaves = sorted(x for key, (x, _) in pos.items() if key not in children)
+    assert leaves == [float(i) for i in range(6001)]
+
+
+def test_choosing_views_for_thousands_of_points_takes_bounded_memory():
+    import tracemalloc
+
+    rng = np.random.default_rng(5)
+    joints = rng.normal(size=(20000, 3))
+    answer = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0]])
+    tracemalloc.start()
+    views = choose_views(answer, np.array([[0.0, 0, 1]]), 6.0, count=2, context=joints)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert len(views) == 2 and peak < 60 * 2**20  # every pair of 20,000 points in 252 views would be 800 GB
+    # below the thinning bound the context counts point for point, as the points themselves do
+    few = rng.normal(size=(40, 3))
+    assert choose_views(answer, np.array([[0.0, 0, 1]]), 6.0, context=few) == choose_views(np.concatenate([few, answer]), np.array([[0.0, 0, 1]]), 6.0)
+
+
+def test_a_large_mechanism_and_its_graph_are_drawn_with_collections():
+    m = ladder(400)  # 801 joints, 402 links
+    r = mobility.analyze(m)
+    fig = plot_mechanism(m, r, views=1)
+    gids = {a.get_gid() for a in fig.axes[0].get_children()}
+    assert {"mobility:links:ground", "mobility:links:link:plates", "mobility:joints:R"} <= gids
+    assert not any((g or "").startswith("mobility:link:") for g in gids)  # no artist per link
+    graph = plot_graph(m, r)
+    kinds = {a.get_gid() for a in graph.axes[1].collections}
+    assert {"mobility:tree:joint", "mobility:tree:series", "mobility:tree:parallel"} <= kinds
+    assert sum(len(a.get_offsets()) for a in graph.axes[1].collections if (a.get_gid() or "").startswith("mobility:tree:")) == 2 * 801 - 1
+    assert not graph.axes[1].texts[1:]  # only the end effector's line: no box per node
+    assert "names left out" in graph._suptitle.get_text()

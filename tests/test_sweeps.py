@@ -305,6 +305,8 @@ def test_progress_reports_both_stages_to_the_end():
         (["P1=0:1:2.5"], "COUNT must be an integer"),
         (["P1=0:1:2", "P1=0:1:3"], "P1 is varied twice"),
         ([], "at least one coordinate"),
+        (["P1=-1e308:1e308:3"], "do not fit in a float"),  # the step itself overflows
+        (["R1=-1e308:1e308:3"], "do not fit in a float"),
     ],
 )
 def test_bad_requests_are_one_line_errors(vary, message):
@@ -354,3 +356,47 @@ def test_every_way_of_writing_the_request_gives_the_same_grid():
     assert text.axes[0].values.tolist() == [30.0 * k for k in range(13)] and text.axes[0].label == "O1 [deg]"
     single = sweep(m, "O1=45:45:1")
     assert single.size == 1 and single.values.tolist() == [[45.0]]
+
+
+def test_a_sweep_at_any_scale_is_the_sweep_scaled_without_a_warning():
+    import warnings
+
+    m = load("3prs")
+    plain = sweep(m, ["P1=0:20:3"])
+    for k in (1e200, 1e-250):
+        big = m.replace(joints=tuple(j.transformed(_scaling(k)) for j in m.world_joints), frames=())
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # an overflow in the solver would be a warning
+            scaled = sweep(big, [f"P1=0:{20 * k!r}:3"])
+            far = sweep(big, [f"P1=0:{1e6 * 20 * k!r}:2"])  # a target far beyond the mechanism: not assembled, quietly
+        assert np.array_equal(scaled.assembled, plain.assembled) and np.array_equal(scaled.pattern, plain.pattern)
+        assert np.allclose(scaled.conditioning, plain.conditioning, rtol=1e-7)
+        assert scaled.values[:, 0] / k == pytest.approx(plain.values[:, 0], rel=1e-12)
+        assert far.assembled.tolist() == [True, False]
+        if k < 1:  # 1e300 over a size of about 1e-248: not a float
+            with pytest.raises(RequestError, match="x=0:1e.300:3: its values do not fit in a float"):
+                sweep(big, ["x=0:1e300:3"])
+        from mobility.report.sweep import sweep_csv, sweep_summary
+
+        assert f"P1 from 0 to {20 * k:g}" in sweep_summary(scaled)  # shown against the range, not rounded to 0
+        assert sweep_csv(scaled).splitlines()[2].startswith(f"{10 * k:g},")
+
+
+def test_a_deep_tree_is_evaluated_for_every_pose_without_recursion():
+    import sys
+
+    from mobility.sweeps.batch_systems import evaluate_batch
+    from mobility.core.screw_systems import evaluate_node
+    from mobility.core.topology import decompose
+
+    z = (0.0, 0.0, 1.0)
+    n = 1500  # a ladder of rigid triangles: series inside parallel 1,500 deep
+    joints = [mobility.Joint(f"A{i}", "R", ("g", f"l{i}"), axis=z, point=(float(i), 0.0, 0.0)) for i in range(n + 1)]
+    joints += [mobility.Joint(f"B{i}", "R", (f"l{i}", f"l{i + 1}"), axis=z, point=(i + 0.5, 1.0 + 0.25 * math.sin(i), 0.0)) for i in range(n)]
+    m = mobility.Mechanism("ladder", "g", f"l{n}", tuple(joints))
+    assert n > sys.getrecursionlimit()
+    screws = joint_screws(m)
+    twists = np.broadcast_to(screws.twists, (2, *screws.twists.shape))
+    value = evaluate_batch(decompose(m).root, np.ascontiguousarray(twists), tuple(int(x) for x in screws.offsets))
+    single = evaluate_node(decompose(m).root, screws)
+    assert value.dim.tolist() == [single.dim] * 2 and value.mobility.tolist() == [single.mobility] * 2 == [0, 0]

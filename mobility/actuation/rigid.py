@@ -21,9 +21,9 @@ Examples
 from __future__ import annotations
 
 import itertools
+import math
 from typing import Iterable, Sequence
 
-import numpy as np
 
 from ..core.kinematics import sample_poses
 from ..core.model import Mechanism
@@ -147,7 +147,7 @@ def enumerate_actuations(
     if mode == "limb":
         k = len(first.limbs)
         warnings += [f"limb {i + 1} has no one-freedom joint to actuate" for i, c in enumerate(candidates) if not c]
-        limit_combinations(int(np.prod([len(c) for c in candidates])), "choose a smaller k or mode 'limb'")
+        limit_combinations(math.prod(len(c) for c in candidates), "check chosen inputs, or use mode 'any' with a small k")
         combos: Iterable[tuple[int, ...]] = itertools.product(*candidates)
     else:
         flat = sorted(j for c in candidates for j in c)

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import argparse
 
-from ..core.kinematics import sample_poses
 from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
-from ..errors import RequestError
+from ..errors import MechanismFileError, RequestError
+from ..io.limits import current_limits
 
-__all__ = ["add_tolerance_option", "tolerance_from", "add_pose_sampler_options", "sampled_poses"]
+__all__ = ["add_tolerance_option", "tolerance_from", "add_pose_sampler_options", "sampled_poses", "require_size"]
 
 
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
@@ -59,4 +59,34 @@ def sampled_poses(args: argparse.Namespace, mechanism: Mechanism) -> list[Mechan
     """
     if args.samples < 0 or args.step <= 0:
         raise RequestError("--samples must not be negative and --step must be positive")
-    return sample_poses(mechanism, args.samples, step=args.step, seed=args.seed) if args.samples else []
+    if not args.samples:
+        return []
+    from ..core.kinematics import sample_poses  # the finite kinematics: imported only by the commands that move
+
+    return sample_poses(mechanism, args.samples, step=args.step, seed=args.seed)
+
+
+def require_size(mechanism: Mechanism, limit: str, what: str, file: str) -> None:
+    """Refuse, in one line, a mechanism with more joints than the command-specific ``limit`` of :class:`~mobility.io.limits.Limits`.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    limit : str
+        The field of :class:`~mobility.io.limits.Limits`: ``"max_finite_joints"``,
+        ``"max_moving_joints"`` or ``"max_enumerated_joints"``.
+    what : str
+        What the limit is for, as the user asked it (``"--finite"``).
+    file : str
+        The file, named in the message.
+
+    Raises
+    ------
+    MechanismFileError
+        ``FILE: joints: N joints are more than the limit of L for WHAT (set MOBILITY_... to raise it)``.
+    """
+    limits = current_limits()
+    bound = getattr(limits, limit)
+    count = len(mechanism.joints)
+    if count > bound:
+        raise MechanismFileError("joints", f"{count} joints are more than the limit of {bound} for {what} ({limits.hint(limit)})", file=file)

@@ -27,7 +27,7 @@ from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines
 from ..io.loader import load, loads
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
-from ._options import add_pose_sampler_options, add_tolerance_option, sampled_poses, tolerance_from
+from ._options import add_pose_sampler_options, add_tolerance_option, require_size, sampled_poses, tolerance_from
 
 ORDER = 30
 
@@ -66,6 +66,10 @@ def run(args: argparse.Namespace) -> int:
             raise RequestError("--pose and --samples apply to rigid mechanisms only (a flexure is analysed at its one pose)")
         return _run_flexure(args, loads_flexure(text, file=args.file), names, tol)
     mechanism = loads(text, file=args.file)
+    if args.enumerate:
+        require_size(mechanism, "max_enumerated_joints", "--enumerate", args.file)
+    if args.samples:
+        require_size(mechanism, "max_moving_joints", "--samples", args.file)
     if args.enumerate:
         poses = [load(p) for p in args.pose]
         found = enumerate_actuations(mechanism, mode=args.mode, k=args.k, poses=poses, samples=args.samples, step=args.step, seed=args.seed, tol=tol)

@@ -5,17 +5,23 @@ from __future__ import annotations
 import argparse
 
 from ..core.analysis import analyze
-from ..report.markdown import markdown_report
 from ..report.text import json_report, text_report
-from ._options import add_tolerance_option, tolerance_from
+from ._options import add_tolerance_option, require_size, tolerance_from
 from .convert import add_robot_options, load_mechanism
 
 ORDER = 10
 
+
+def _markdown(result, args: argparse.Namespace) -> str:
+    from ..report.markdown import markdown_report  # imported when asked for: most runs print text
+
+    return markdown_report(result)
+
+
 FORMATS = {
     "text": lambda r, a: text_report(r, limbs=a.limbs),
     "json": lambda r, a: json_report(r),
-    "md": lambda r, a: markdown_report(r),
+    "md": _markdown,
 }
 """Output formats: name -> function(result, args) -> str (other modules may add)."""
 
@@ -35,6 +41,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     mechanism = load_mechanism(args)
+    if args.finite:
+        require_size(mechanism, "max_finite_joints", "--finite", args.file)
     result = analyze(mechanism, tol=tol)
     fmt = "json" if args.json else args.format
     text = FORMATS[fmt](result, args)

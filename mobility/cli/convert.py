@@ -4,22 +4,23 @@ Also the options every command that reads a file shares for robot
 descriptions (``--ground``, ``--end-effector``, ``--floating``,
 ``--ignore-unsupported``, ``--close A B``, ``--closures FILE``), and
 :func:`load_mechanism`, which reads the file they name and prints the notes
-of the reading on stderr, one line each.
+of the reading on stderr, one line each.  The robot readers and the writer
+are imported only when a robot file is read or a file written, so that
+``mobility analyze FILE.yaml`` does not pay for them.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+
+import numpy as np
 from pathlib import Path
 from typing import Any
 
-from ..core.analysis import analyze
 from ..core.model import Mechanism
 from ..errors import MechanismFileError
-from ..io.loader import load
-from ..io.robot_files import is_robot_file, read_robot
-from ..io.writer import mechanism_to_yaml
+from ..io.loader import load, loads
 
 __all__ = ["register", "run", "add_robot_options", "robot_options_from", "load_mechanism"]
 
@@ -56,22 +57,40 @@ def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
     return {k: v for k, v in values.items() if v not in (None, False, ())}
 
 
+def _is_robot_file(path: str) -> bool:
+    """Whether ``path`` is a robot description (a YAML suffix is decided without importing the robot readers)."""
+    if Path(path).suffix.lower() in (".yaml", ".yml"):
+        return False
+    from ..io.robot_files import is_robot_file
+
+    return is_robot_file(path)
+
+
+def _read_robot(path: str, options: dict[str, Any]) -> Any:
+    from ..io.robot_files import read_robot  # XML readers (and MuJoCo for MJCF): only for robot files
+
+    return read_robot(path, **options)
+
+
 def load_mechanism(args: argparse.Namespace) -> Mechanism:
     """The mechanism of ``args.file``; for a robot description, its notes go to stderr."""
     options = robot_options_from(args)
-    if not is_robot_file(args.file):
+    if not _is_robot_file(args.file):
         return load(args.file, **options)
-    robot = read_robot(args.file, **options)
+    robot = _read_robot(args.file, options)
     for note in robot.notes:
         print(f"mobility: note: {note}", file=sys.stderr)
     return robot.mechanism
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..core.analysis import analyze
+    from ..io.writer import mechanism_to_yaml
+
     notes: tuple[str, ...] = ()
     options = robot_options_from(args)
-    if is_robot_file(args.file):
-        robot = read_robot(args.file, **options)
+    if _is_robot_file(args.file):
+        robot = _read_robot(args.file, options)
         mechanism, notes = robot.mechanism, robot.notes
     else:
         mechanism = load(args.file, **options)
@@ -81,6 +100,7 @@ def run(args: argparse.Namespace) -> int:
         result = analyze(mechanism)
         expected = {"dof": result.dof, "pattern": result.pattern, "mobility": result.mobility}
     text = mechanism_to_yaml(mechanism, description=description, expected=expected)
+    _require_same_geometry(mechanism, text, args.output or "the converted file")
     for note in notes:
         print(f"mobility: note: {note}", file=sys.stderr)
     if args.output:
@@ -92,3 +112,42 @@ def run(args: argparse.Namespace) -> int:
     else:
         sys.stdout.write(text)
     return 0
+
+
+CONVERSION_DRIFT = 1e-9
+"""Largest change of a joint's geometry that writing and reading back may make (relative to the
+mechanism's characteristic length for points and pitches, absolute for unit directions): the
+written numbers keep many more digits than that, so only numbers the writer cannot hold trip it."""
+
+
+def _require_same_geometry(mechanism: Mechanism, text: str, where: str) -> None:
+    """Read ``text`` back and refuse, in one line, a file whose joints are not ``mechanism``'s.
+
+    The writer keeps a fixed number of digits and writes numbers near zero as
+    0; a mechanism whose size is far below or above everyday sizes would
+    come back as another mechanism, with another answer.  That is refused
+    rather than written.
+
+    Raises
+    ------
+    MechanismFileError
+        Naming the first joint and field that would change.
+    """
+    from ..core.joint_screws import joint_screws
+
+    back = loads(text, file=where)
+    length = joint_screws(mechanism).normalisation.length
+    for i, (a, b) in enumerate(zip(mechanism.world_joints, back.world_joints)):
+        for name, size in (("point", length), ("pitch", length), ("axis", 1.0), ("normal", 1.0), ("axes", 1.0)):
+            x, y = getattr(a, name), getattr(b, name)
+            if x is None or (name == "point" and a.type == "P"):
+                continue
+            with np.errstate(over="ignore", invalid="ignore"):
+                drift = float(np.max(np.abs(np.subtract(x, y, dtype=float)))) / size if y is not None else np.inf
+            if not drift <= CONVERSION_DRIFT:
+                raise MechanismFileError(
+                    f"joints[{i}].{name}",
+                    f"joint {a.name!r} would not be written faithfully (it changes by {drift:.2g} of the mechanism's size "
+                    "once written with the writer's digits); the mechanism is too small or too large to convert",
+                    file=str(mechanism.source or where),
+                )

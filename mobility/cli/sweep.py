@@ -19,7 +19,7 @@ from ..io.loader import load
 from ..report.plotting import picture_path, save_figure
 from ..report.sweep import sweep_csv, sweep_json, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, DEFAULT_MAX_POSES, sweep
-from ._options import add_tolerance_option, tolerance_from
+from ._options import add_tolerance_option, require_size, tolerance_from
 
 ORDER = 35
 
@@ -84,6 +84,7 @@ def run(args: argparse.Namespace) -> int:
     if args.workers is not None and args.workers < 1:
         raise RequestError(f"--workers must be at least 1, got {args.workers}")
     mechanism = load(args.file)
+    require_size(mechanism, "max_moving_joints", "a sweep", args.file)
     inputs = None if args.inputs is None else [n.strip() for n in args.inputs.split(",") if n.strip()]
     result = sweep(
         mechanism,

@@ -14,7 +14,7 @@ from ..errors import RequestError
 from ..io.loader import load
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
-from ._options import add_pose_sampler_options, add_tolerance_option, sampled_poses, tolerance_from
+from ._options import add_pose_sampler_options, add_tolerance_option, require_size, sampled_poses, tolerance_from
 
 ORDER = 31
 
@@ -45,6 +45,8 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError(f"{args.output}: expected a page name ending in .html")
     require_plotly()  # before any work
     mechanism = load(args.file)
+    if args.vary or args.samples:
+        require_size(mechanism, "max_moving_joints", "--vary" if args.vary else "--samples", args.file)
     poses = sampled_poses(args, mechanism)
     result = analyze(mechanism, tol=tol)
     if args.vary:

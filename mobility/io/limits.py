@@ -1,25 +1,30 @@
-"""The limits on what a document may ask of the readers: one place for every bound.
+"""The limits on what a document may ask of the readers and the commands: one place for every bound.
 
-A mechanism file is input from anywhere, so reading it must end quickly and in
-bounded memory whatever it holds.  :class:`Limits` gathers every bound the
-readers apply (file size, nesting depth, nodes after alias expansion, limb
-copies, joints, expression length and depth); each error that a limit raises
-is one line naming the file, the line, the key, the limit and the environment
-variable that raises it.
+A mechanism file is input from anywhere, so reading it, and then running any
+command on it, must end quickly and in bounded memory whatever it holds.
+:class:`Limits` gathers every bound: those the readers apply (file size,
+nesting depth, nodes after alias expansion, limb copies, joints, frames,
+expression length and depth) and the sizes of mechanism that the costlier
+commands accept (finite motion, moving the mechanism, enumerating inputs).
+Each error that a limit raises is one line naming the file, the key, the limit
+and the environment variable that raises it.
 
 The defaults are far above any real mechanism (the largest bundled file has 22
-joints, the deepest nests 7 levels) and low enough that reading, and then
-analysing, a file at the limits takes a few seconds and a few hundred MB.
-Each limit can be raised for a run by an environment variable
-``MOBILITY_<FIELD>`` (``MOBILITY_MAX_JOINTS=5000``), or for one call by
-passing ``limits=Limits(...)`` to :func:`mobility.io.loader.load`.
+joints, the deepest nests 7 levels) and low enough that every command on a
+file at the limits takes a few seconds and a few hundred MB (measured on two
+cores: ``analyze``, ``check``, ``actuation``, ``jacobian``, ``convert``,
+``plot`` and ``view`` of 5,000 joints take at most 4 s and 230 MB; the
+command-specific limits are where their commands reach about 4 s).  Each limit
+can be raised for a run by an environment variable ``MOBILITY_<FIELD>``
+(``MOBILITY_MAX_JOINTS=20000``), or for one call by passing
+``limits=Limits(...)`` to :func:`mobility.io.loader.load`.
 
 Examples
 --------
 >>> Limits().max_joints
-1000
->>> Limits.from_environment({"MOBILITY_MAX_JOINTS": "5000"}).max_joints
 5000
+>>> Limits.from_environment({"MOBILITY_MAX_JOINTS": "20000"}).max_joints
+20000
 >>> Limits().hint("max_joints")
 'set MOBILITY_MAX_JOINTS to raise it'
 >>> Limits.from_environment({"MOBILITY_MAX_DEPTH": "deep"})
@@ -59,8 +64,9 @@ class Limits:
     max_copies : int
         ``copies`` of all the ``limbs`` patterns together.
     max_joints : int
-        Joints of the mechanism, ``limbs`` expanded (the analysis needs time
-        and memory growing faster than linearly with them).
+        Joints of the mechanism, ``limbs`` expanded.  The analysis grows
+        linearly with them (about 2 s and 90 MB at 10,000); the pictures of
+        ``plot`` and the page of ``view`` a little faster.
     max_frames : int
         Frames, the one of each limb copy included.  Chains of ``parent``
         frames are bounded by ``max_depth``.
@@ -68,16 +74,32 @@ class Limits:
         Characters of one arithmetic expression.
     max_expression_depth : int
         Nesting depth of one expression (operators, calls and parentheses).
+    max_finite_joints : int
+        Joints of a mechanism that ``analyze --finite`` moves: it re-closes
+        every loop by Newton's method with dense matrices, in about as many
+        directions as the mechanism has freedoms, so its time grows about
+        with the fourth power of the joints.
+    max_moving_joints : int
+        Joints of a mechanism that ``sweep``, ``--samples`` (``actuation``,
+        ``view``) and ``view --vary`` move: every pose is closed with dense
+        matrices, whose cost grows with the cube of the joints.
+    max_enumerated_joints : int
+        Joints of a mechanism whose inputs ``actuation --enumerate``
+        searches: each candidate's actuation wrench is found against its
+        whole limb, so the time grows with the square of the joints.
     """
 
     max_file_bytes: int = 4 * 1024 * 1024
     max_depth: int = 64
     max_nodes: int = 200_000
-    max_copies: int = 1000
-    max_joints: int = 1000
-    max_frames: int = 1000
+    max_copies: int = 5000
+    max_joints: int = 5000
+    max_frames: int = 5000
     max_expression_length: int = 1000
     max_expression_depth: int = 100
+    max_finite_joints: int = 50
+    max_moving_joints: int = 300
+    max_enumerated_joints: int = 200
 
     @staticmethod
     def variable(name: str) -> str:

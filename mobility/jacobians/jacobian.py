@@ -25,8 +25,17 @@ so ``$_ij`` is the twist of joint ``j`` of limb ``i`` at the pose.  Then
 Rank decisions follow :mod:`mobility.core.tolerance` (normalised coordinates at the
 pose), and so does every other threshold: a pose closes when the limbs agree to
 ``Tolerance.closure`` (entries of ``[R; p / L]``), and a wrench whose force is
-round-off next to its moment (``Tolerance.round_off``) is a couple.  Results are
-in the global frame and the mechanism's length unit.  :mod:`mobility.report.jacobian`
+round-off next to its moment over the characteristic length ``L``
+(``Tolerance.round_off``) is a couple.
+
+Any scale of the file gives the same answer: the Jacobian is computed on the
+mechanism scaled by the power of two that brings ``L`` near 1
+(:func:`~mobility.core.tolerance.binary_scale`, exact), and the results are
+then written back in the file's units, each part by its own power of the
+length (a force per unit rate of a revolute input is a force per length, a
+moment is not), so a mechanism at 1e200 or 1e-250 gets the matrix of the same
+mechanism at 1, scaled, without overflow, underflow or NaN.  Results are in
+the global frame and the mechanism's length unit.  :mod:`mobility.report.jacobian`
 formats them for people.
 
 Examples
@@ -49,7 +58,7 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Sequence
 
 import numpy as np
@@ -59,11 +68,12 @@ from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
 from ..core.joint_screws import Normalisation
 from ..core.model import Joint, Mechanism
 from ..core.screws import SWAP, adjoint, reciprocal_product, reciprocal_system, span_and_reciprocal
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale, clean_numbers, decide_rank
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale, clean_numbers, decide_rank
 from ..core.transforms import cross, skew
 from ..errors import AnalysisError, HalfTurnError, MechanismError, RequestError
+from .wrenches import clean_screw, dominant_signs, is_couple, norm, unit_wrench, wrench_axis
 
-__all__ = ["Chain", "ParallelModel", "JacobianResult", "parallel_model", "jacobian", "wrench_axis"]
+__all__ = ["Chain", "ParallelModel", "JacobianResult", "parallel_model", "jacobian"]
 
 _SOLVER_STOP = 1e-15
 """``xtol``, ``ftol`` and ``gtol`` of the inverse kinematics: iterate until round-off.
@@ -312,38 +322,6 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
     return ParallelModel(mechanism, tuple(chains), tuple(act), tuple(labels))
 
 
-def _is_couple(wrench: np.ndarray, tol: Tolerance) -> bool:
-    """Whether the force part of ``[f; m]`` is round-off next to its moment: a pure couple."""
-    return float(np.linalg.norm(wrench[:3])) <= tol.round_off * max(1.0, float(np.linalg.norm(wrench[3:])))
-
-
-def wrench_axis(wrench: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[str, np.ndarray, np.ndarray, float]:
-    """Kind, unit direction, point nearest the origin and pitch of a wrench ``[f; m]``.
-
-    The direction keeps the sign of the force (unlike the canonical bases of
-    :mod:`mobility.core.canonical`, which choose signs for reading).  A force
-    part at round-off next to the moment (``tol.round_off``) makes a couple; a
-    pitch at round-off next to the distance of the axis makes a pure force.
-
-    Examples
-    --------
-    >>> kind, d, p, h = wrench_axis([0.0, 0, 2, 0, -2, 0])      # a force along z through (1, 0, 0)
-    >>> kind, d.tolist(), p.tolist(), h
-    ('force', [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 0.0)
-    >>> wrench_axis([0.0, 0, 0, 0, 0, -3])[:2]                    # a couple about -z
-    ('couple', array([ 0.,  0., -1.]))
-    """
-    w = np.asarray(wrench, dtype=float)
-    f, m = w[:3], w[3:]
-    if _is_couple(w, tol):
-        return "couple", m / np.linalg.norm(m), np.zeros(3), 0.0
-    nf = float(np.linalg.norm(f))
-    pitch = float(f @ m) / nf**2
-    point = cross(f, m) / nf**2
-    pitch = 0.0 if abs(pitch) <= tol.round_off * max(1.0, float(np.linalg.norm(point))) else pitch
-    return ("force" if pitch == 0.0 else "wrench"), f / nf, point + 0.0, pitch
-
-
 @dataclass(frozen=True, eq=False)
 class JacobianResult:
     """The Jacobian of a parallel mechanism at one pose (global frame, the mechanism's units).
@@ -380,6 +358,10 @@ class JacobianResult:
         The platform's displacement from the mechanism's own pose.
     finite_screw : ndarray or None
         Its finite screw ``[w; v]`` (``None`` at a half-turn).
+    length : float
+        The characteristic length of the pose (RMS distance of the joint
+        points from their centroid), the scale that lengths, moments and
+        round-off are measured against.
     """
 
     name: str
@@ -396,37 +378,39 @@ class JacobianResult:
     limb_twists: tuple[np.ndarray, ...] = field(repr=False)
     transform: np.ndarray = field(repr=False)
     finite_screw: np.ndarray | None = field(repr=False)
+    length: float = 1.0
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON form."""
+        """JSON form: screws with round-off shown as 0 part by part (a moment against a force times the length)."""
+        length = self.length
 
-        def clean(a: np.ndarray | None) -> Any:
-            if a is None:
+        def screws(rows: np.ndarray | None, moment_first: bool = False) -> Any:
+            if rows is None:
                 return None
-            return clean_numbers(np.asarray(a, dtype=float), max(1.0, float(np.max(np.abs(a))) if a.size else 1.0))
+            return [clean_screw(r, length, moment_first) for r in np.asarray(rows, dtype=float).reshape(-1, 6)]
 
         def axes(rows: np.ndarray) -> list[dict[str, Any]]:
             out = []
             for r in rows:
-                kind, d, p, h = wrench_axis(r)
-                out.append({"kind": kind, "axis": clean(d), "point": clean(p), "pitch": h})
+                kind, d, p, h = wrench_axis(r, length=length)
+                out.append({"kind": kind, "axis": clean_numbers(d), "point": clean_numbers(p, max(length, norm(p))), "pitch": h})
             return out
 
         return {
             "name": self.name,
             "actuated": list(self.actuated),
             "dof": self.dof,
-            "matrix": clean(self.matrix),
-            "actuation_wrenches": clean(self.actuation_wrenches),
+            "matrix": screws(self.matrix, moment_first=True),
+            "actuation_wrenches": screws(self.actuation_wrenches),
             "actuation_axes": axes(self.actuation_wrenches),
-            "constraint_wrenches": clean(self.constraint_wrenches),
+            "constraint_wrenches": screws(self.constraint_wrenches),
             "constraint_axes": axes(self.constraint_wrenches),
-            "platform_twists": clean(self.platform_twists),
-            "twist_map": clean(self.twist_map),
+            "platform_twists": screws(self.platform_twists),
+            "twist_map": None if self.twist_map is None else np.array(screws(self.twist_map.T)).T.tolist(),
             "rank": self.rank,
             "condition": self.condition if np.isfinite(self.condition) else None,
             "singular": self.singular,
-            "finite_screw": clean(self.finite_screw),
+            "finite_screw": None if self.finite_screw is None else clean_screw(self.finite_screw, length),
         }
 
 
@@ -466,8 +450,32 @@ def jacobian(
     values = model.home() if q is None else tuple(np.asarray(v, dtype=float) for v in q)
     if len(values) != len(model.chains) or any(len(v) != len(c.limb) for v, c in zip(values, model.chains)):
         raise RequestError("q: expected one array of joint values per limb, as many as the limb's freedoms")
-    if q is not None and model.closure_error(values) > tol.closure:
+    # the same mechanism at a size near 1: every number below is O(1) whatever the file's scale
+    points = [j.point for c in model.chains for j in c.limb.joints if j.kind != "P"]
+    scale = binary_scale(characteristic_scale(np.array(points, dtype=float).reshape(-1, 3))[1])
+    unit = _scaled_model(model, scale)
+    unit_values = tuple(v * _variable_scales(c, scale) for v, c in zip(values, model.chains))
+    if q is not None and unit.closure_error(unit_values) > tol.closure:
         raise AnalysisError("the limbs do not close at this pose (solve it with ParallelModel.assemble)")
+    return _in_file_units(_jacobian_near_unit_size(unit, unit_values, tol), model, scale, tol)
+
+
+def _scaled_model(model: ParallelModel, scale: float) -> ParallelModel:
+    """``model`` with every length times ``scale`` (points and pitches; a power of two, so exactly)."""
+    chains = []
+    for c in model.chains:
+        joints = tuple(replace(j, point=tuple(float(x) * scale for x in j.point), pitch=j.pitch * scale) for j in c.limb.joints)
+        chains.append(Chain(Limb(joints), c.joints, c.freedoms, c.forward))
+    return ParallelModel(model.mechanism, tuple(chains), model.actuated, model.labels)
+
+
+def _variable_scales(chain: Chain, scale: float) -> np.ndarray:
+    """Per freedom of a chain, the factor of its variable when lengths are multiplied by ``scale`` (P: ``scale``; angles: 1)."""
+    return np.array([scale if j.kind == "P" else 1.0 for j in chain.limb.joints])
+
+
+def _jacobian_near_unit_size(model: ParallelModel, values: tuple[np.ndarray, ...], tol: Tolerance) -> JacobianResult:
+    """:func:`jacobian` of a model whose characteristic length is near 1 (its own units)."""
     moved_points = [j.point for c, v in zip(model.chains, values) for j in c.limb.moved(v).joints if j.kind != "P"]
     centre, length = characteristic_scale(np.array(moved_points, dtype=float).reshape(-1, 3))
     norm = Normalisation(centre, length)
@@ -476,7 +484,8 @@ def jacobian(
     limb_n = [norm.from_world(t) * np.array([length if j.kind == "P" else 1.0 for j in c.limb.joints]) for t, c in zip(limb_twists, model.chains)]
     limb_constraints = [reciprocal_system(t, tol) for t in limb_n]
     constraint_span = span_and_reciprocal(np.hstack(limb_constraints), tol)
-    constraints_n = constraint_span.basis
+    # each constraint with its largest normalised component positive: a sign that round-off and scale do not flip
+    constraints_n = constraint_span.basis * np.where(dominant_signs(constraint_span.basis) < 0, -1.0, 1.0)
     twists_n = constraint_span.reciprocal  # twists reciprocal to every constraint: the platform's twist system
     rows_n, wrenches_w = [], []
     for label, (c, p) in zip(model.labels, model.actuated):
@@ -508,7 +517,7 @@ def jacobian(
     square = j_n.shape[0] == 6
     singular = not (square and rank == 6)
     constraints_w = norm.to_world(constraints_n).T
-    constraints_w = np.array([_unit_wrench(w, tol) for w in constraints_w]).reshape(-1, 6)
+    constraints_w = np.array([unit_wrench(w, tol, length) for w in constraints_w]).reshape(-1, 6)
     act_w = np.array(wrenches_w).reshape(-1, 6)
     matrix = np.vstack([(SWAP @ act_w.T).T, (SWAP @ constraints_w.T).T]) if act_w.size or constraints_w.size else np.zeros((0, 6))
     twist_map = None if singular else np.linalg.solve(matrix, np.eye(6)[:, : len(wrenches_w)])
@@ -535,12 +544,58 @@ def jacobian(
         limb_twists,
         screw.transform(),
         fs,
+        length,
     )
 
 
-def _unit_wrench(w: np.ndarray, tol: Tolerance) -> np.ndarray:
-    """A wrench scaled to a unit force part (a couple to a unit moment)."""
-    return w / float(np.linalg.norm(w[3:] if _is_couple(w, tol) else w[:3]))
+def _in_file_units(unit: JacobianResult, model: ParallelModel, scale: float, tol: Tolerance) -> JacobianResult:
+    """The Jacobian ``unit`` of ``model`` scaled by ``scale``, written in the file's units.
+
+    A length ``x`` of the scaled model is ``x / scale`` in the file.  A twist
+    ``[w; v]`` per unit rate becomes ``[w; v / scale]`` per unit angle, and
+    ``scale [w; v / scale]`` per unit length (a P input's rate is a length
+    per time); a wrench ``[f; m]`` with unit product with its joint's twist
+    becomes ``scale [f; m / scale]`` for an angle input, ``[f; m / scale]``
+    for a length input; a unit-force constraint ``[f; m / scale]``, a
+    unit-moment couple ``[scale f; m]``.  Each is computed as written (the
+    large and small factors never meet), so every number is the file's
+    whenever the file's own numbers are representable.
+    """
+    twist_factor = np.array([1.0, 1.0, 1.0, 1.0 / scale, 1.0 / scale, 1.0 / scale])
+    kinds = [model.chains[c].limb.joints[p].kind for c, p in model.actuated]
+    per_rate = np.array([scale if k == "P" else 1.0 for k in kinds])  # scaled rate per file rate
+
+    def wrench_rows(rows: np.ndarray, factors: np.ndarray) -> np.ndarray:
+        return rows * twist_factor * (scale / factors)[:, None] if len(rows) else rows.reshape(0, 6)
+
+    actuation = wrench_rows(unit.actuation_wrenches, per_rate)
+    couples = np.array([is_couple(w, tol, unit.length) for w in unit.constraint_wrenches], dtype=bool)
+    constraints = unit.constraint_wrenches * twist_factor * np.where(couples, scale, 1.0)[:, None] if len(couples) else unit.constraint_wrenches
+    matrix = np.vstack([(SWAP @ actuation.T).T, (SWAP @ constraints.T).T]) if actuation.size or constraints.size else np.zeros((0, 6))
+    twist_map = None if unit.twist_map is None else unit.twist_map * twist_factor[:, None] * per_rate[None, :]
+    limb_twists = tuple(t * twist_factor[:, None] * _variable_scales(c, scale)[None, :] for t, c in zip(unit.limb_twists, model.chains))
+    transform = unit.transform.copy()
+    transform[:3, 3] /= scale
+    screw = None if unit.finite_screw is None else unit.finite_screw * twist_factor
+    for arr in (matrix, actuation, constraints):
+        arr.setflags(write=False)
+    return JacobianResult(
+        unit.name,
+        unit.actuated,
+        unit.dof,
+        matrix,
+        actuation.reshape(-1, 6),
+        constraints.reshape(-1, 6),
+        (unit.platform_twists * twist_factor).reshape(-1, 6),
+        twist_map,
+        unit.rank,
+        unit.condition,
+        unit.singular,
+        limb_twists,
+        transform,
+        screw,
+        unit.length / scale,
+    )
 
 
 def _meeting_point(chain: Chain, values: np.ndarray) -> np.ndarray:

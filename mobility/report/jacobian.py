@@ -4,6 +4,11 @@ Only formatting: no computation happens here.  :func:`jacobian_text` is what
 ``mobility jacobian`` prints, :func:`jacobian_json` its ``--json`` object;
 :func:`wrench_line` writes one wrench as its kind and axis.
 
+Every number is shown with round-off as 0 relative to what it is part of
+(:func:`~mobility.jacobians.jacobian.clean_screw`: a moment against its
+force times the mechanism's characteristic length), so a file scaled by any
+factor prints the same digits, scaled.
+
 Examples
 --------
 >>> import numpy as np
@@ -11,6 +16,8 @@ Examples
 'force   along [0, 0, 1]  through [1, 0, 0]'
 >>> wrench_line(np.array([0.0, 0, 0, 0, 0, 5]), 1.0)
 'couple  about [0, 0, 1]'
+>>> wrench_line(np.array([0.0, 0, 2e-200, 0, -2, 0]), 1e200)          # the same force, the file scaled by 1e200
+'force   along [0, 0, 1]  through [1e+200, 0, 0]'
 """
 
 from __future__ import annotations
@@ -19,19 +26,29 @@ import json
 
 import numpy as np
 
-from ..jacobians import JacobianResult, wrench_axis
+from ..jacobians import JacobianResult, clean_screw, wrench_axis
 from .text import fmt_number, fmt_vector
 
 __all__ = ["wrench_line", "jacobian_text", "jacobian_json"]
 
 
-def wrench_line(wrench: np.ndarray, scale: float) -> str:
-    """A wrench ``[f; m]`` as ``kind  along ... through ...`` (a couple: ``about ...``), lengths rounded against ``scale``."""
-    kind, d, p, h = wrench_axis(wrench)
+def wrench_line(wrench: np.ndarray, length: float) -> str:
+    """A wrench ``[f; m]`` as ``kind  along ... through ...`` (a couple: ``about ...``), lengths rounded against ``length``.
+
+    ``length`` is the mechanism's characteristic length (the couple test and
+    the round-off of the point and the pitch are relative to it).
+    """
+    kind, d, p, h = wrench_axis(wrench, length=length)
     if kind == "couple":
         return f"couple  about {fmt_vector(d)}"
-    pitch = "" if kind == "force" else f"  pitch {fmt_number(h, scale)}"
-    return f"{kind:<6}  along {fmt_vector(d)}  through {fmt_vector(p, scale)}{pitch}"
+    size = max(length, float(np.max(np.abs(p))))
+    pitch = "" if kind == "force" else f"  pitch {fmt_number(h, size)}"
+    return f"{kind:<6}  along {fmt_vector(d)}  through {fmt_vector(p, size)}{pitch}"
+
+
+def _shown(x: float) -> str:
+    """A number already cleaned of round-off, with 6 significant digits."""
+    return "0" if x == 0.0 else f"{x:.6g}"
 
 
 def jacobian_text(result: JacobianResult, unit: str = "") -> str:
@@ -43,27 +60,29 @@ def jacobian_text(result: JacobianResult, unit: str = "") -> str:
     unit : str
         The mechanism's length unit, named in the matrix's heading.
     """
-    scale = float(np.max(np.abs(result.matrix))) if result.matrix.size else 1.0
+    length = result.length
     labels = list(result.actuated) + [f"C{k + 1}" for k in range(result.constraint_wrenches.shape[0])]
     width = max(len(s) for s in labels) if labels else 2
     out = [result.name, f"  platform DOF: {result.dof}   actuated: {', '.join(result.actuated)}"]
     out.append("  constraint wrenches on the platform:")
-    out += [f"    {lab:<{width}}  {wrench_line(w, scale)}" for lab, w in zip(labels[len(result.actuated) :], result.constraint_wrenches)] or ["    (none)"]
+    out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(labels[len(result.actuated) :], result.constraint_wrenches)] or ["    (none)"]
     out.append("  actuation wrenches (unit reciprocal product with their joint's twist):")
-    out += [f"    {lab:<{width}}  {wrench_line(w, scale)}" for lab, w in zip(result.actuated, result.actuation_wrenches)]
+    out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(result.actuated, result.actuation_wrenches)]
     units = f" (lengths in {unit})" if unit else ""
     out.append(f"  Jacobian J: J [w; v] = [actuated rates; 0]{units}")
-    head = "".join(f"{c:>12}" for c in ("wx", "wy", "wz", "vx", "vy", "vz"))
+    cells = [[_shown(x) for x in clean_screw(row, length, moment_first=True)] for row in result.matrix]
+    column = max([12] + [len(c) + 2 for row in cells for c in row])
+    head = "".join(f"{c:>{column}}" for c in ("wx", "wy", "wz", "vx", "vy", "vz"))
     out.append(f"    {'':<{width}}{head}")
-    for lab, row in zip(labels, result.matrix):
-        out.append(f"    {lab:<{width}}" + "".join(f"{fmt_number(x, scale):>12}" for x in row))
+    for lab, row in zip(labels, cells):
+        out.append(f"    {lab:<{width}}" + "".join(f"{c:>{column}}" for c in row))
     if result.singular or result.twist_map is None:
         why = "not square" if result.matrix.shape[0] != 6 else f"rank {result.rank} < 6"
         out.append(f"  J is singular ({why}): the actuated joints do not control the platform at this pose")
     else:
         out.append(f"  condition number (normalised coordinates): {fmt_number(result.condition)}")
         out.append("  platform twist [w; v] per unit actuated rate (columns of J^-1):")
-        out += [f"    {lab:<{width}}  {fmt_vector(col, scale)}" for lab, col in zip(result.actuated, result.twist_map.T)]
+        out += [f"    {lab:<{width}}  [" + ", ".join(_shown(x) for x in clean_screw(col, length)) + "]" for lab, col in zip(result.actuated, result.twist_map.T)]
     return "\n".join(out)
 
 

@@ -40,16 +40,17 @@ SUMMARY_SINGULAR_LIMIT = 8
 
 
 def describe_values(result: SweepResult, values: Any) -> str:
-    """``"O1=120 deg, P1=-5 mm"``: coordinate values with their units."""
-    return ", ".join(f"{a.name}={fmt_number(v)}{(' ' + a.unit) if a.unit else ''}" for a, v in zip(result.axes, values))
+    """``"O1=120 deg, P1=-5 mm"``: coordinate values with their units (round-off relative to each axis's range, :attr:`~mobility.sweeps.grid.SweepAxis.extent`)."""
+    return ", ".join(f"{a.name}={fmt_number(v, a.extent)}{(' ' + a.unit) if a.unit else ''}" for a, v in zip(result.axes, values))
 
 
 def _range(axis) -> str:
     unit = f" {axis.unit}" if axis.unit else ""
+    scale = axis.extent
     if axis.count == 1:
-        return f"{axis.name} = {fmt_number(axis.start)}{unit}"
-    step = (axis.stop - axis.start) / (axis.count - 1)
-    return f"{axis.name} from {fmt_number(axis.start)} to {fmt_number(axis.stop)}{unit} ({axis.count} values, step {fmt_number(step)})"
+        return f"{axis.name} = {fmt_number(axis.start, scale)}{unit}"
+    step = axis.stop / (axis.count - 1) - axis.start / (axis.count - 1)  # no overflow for ends near the largest float
+    return f"{axis.name} from {fmt_number(axis.start, scale)} to {fmt_number(axis.stop, scale)}{unit} ({axis.count} values, step {fmt_number(step, scale)})"
 
 
 def sweep_summary(result: SweepResult) -> str:
@@ -111,7 +112,7 @@ def _answer(c: tuple[int, str, int, str] | None) -> str:
     return f"DOF {dof} {pattern}, mobility {mobility}" + (f", {verdict}" if verdict else "")
 
 
-def _cell(name: str, value: Any, assembled: bool) -> str:
+def _cell(name: str, value: Any, assembled: bool, scale: float = 1.0) -> str:
     if name in ("dof", "mobility", "pattern", "verdict", "smallest_kept", "largest_dropped", "conditioning", "actuation_margin") and not assembled:
         return ""
     if isinstance(value, (bool, np.bool_)):
@@ -122,7 +123,7 @@ def _cell(name: str, value: Any, assembled: bool) -> str:
         x = float(value)
         if not np.isfinite(x):
             return ""
-        return fmt_number(x, digits=6) if name not in ("residual", "smallest_kept", "largest_dropped", "actuation_margin") else (f"{x:.6g}" if x else "0")
+        return fmt_number(x, scale, digits=6) if name not in ("residual", "smallest_kept", "largest_dropped", "actuation_margin") else (f"{x:.6g}" if x else "0")
     return str(value)
 
 
@@ -131,11 +132,12 @@ def sweep_csv(result: SweepResult) -> str:
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     labels = {a.name: a.label for a in result.axes}
+    scales = {a.name: a.extent for a in result.axes}
     names = result.columns
     writer.writerow([labels.get(n, n) for n in names])
     columns = [result.column(n) for n in names]
     for i, ok in enumerate(result.assembled.tolist()):
-        writer.writerow([_cell(n, c[i], ok) for n, c in zip(names, columns)])
+        writer.writerow([_cell(n, c[i], ok, scales.get(n, 1.0)) for n, c in zip(names, columns)])
     return buffer.getvalue()
 
 

@@ -172,6 +172,35 @@ def evaluate_batch(node: Node, twists: np.ndarray, offsets: tuple[int, ...], tol
 
 
 def _evaluate(node: Node, screws: _Screws, tol: Tolerance, margin: MarginCollector | None) -> BatchValue:
+    """Every node below ``node``, children before parents, with an explicit stack (trees thousands of levels deep)."""
+    values: dict[int, BatchValue] = {}
+    stack: list[tuple[Node, bool]] = [(node, False)]
+    while stack:
+        current, ready = stack.pop()
+        if id(current) in values:
+            continue
+        inner = _inner_children(current)
+        if not ready and inner:
+            stack.append((current, True))
+            stack.extend((child, False) for child in reversed(inner))
+            continue
+        values[id(current)] = _evaluate_one(current, screws, tol, margin, values)
+    return values[id(node)]
+
+
+def _inner_children(node: Node) -> list[Node]:
+    """The children of ``node`` that are evaluated as nodes of their own (a series takes its joints' columns directly)."""
+    if isinstance(node, JointNode):
+        return []
+    if isinstance(node, Series):
+        return [c for c in node.children if type(c) is not JointNode]
+    if isinstance(node, Parallel):
+        return list(node.children)
+    return [child for _, _, child in node.edges if not isinstance(child, JointNode)]
+
+
+def _evaluate_one(node: Node, screws: _Screws, tol: Tolerance, margin: MarginCollector | None, done: dict[int, BatchValue]) -> BatchValue:
+    """One node, its inner children's values already in ``done`` (the decisions in the order of the recursive form)."""
     count = screws.twists.shape[0]
     if isinstance(node, JointNode):
         f = screws.dof(node.index)
@@ -184,7 +213,7 @@ def _evaluate(node: Node, screws: _Screws, tol: Tolerance, margin: MarginCollect
                 columns.append(screws.of_joint(child.index))
                 counts = counts + screws.dof(child.index)
             else:
-                v = _evaluate(child, screws, tol, margin)
+                v = done[id(child)]
                 values.append(v)
                 columns.append(v.basis)
                 counts = counts + v.dim
@@ -192,14 +221,14 @@ def _evaluate(node: Node, screws: _Screws, tol: Tolerance, margin: MarginCollect
         basis, wrenches, rank = span_batch(np.concatenate(columns, axis=2), counts, tol, margin)
         return BatchValue(basis, rank, wrenches, idle + counts - rank, tuple(values))
     if isinstance(node, Parallel):
-        values = [_evaluate(child, screws, tol, margin) for child in node.children]
+        values = [done[id(child)] for child in node.children]
         counts = sum((6 - v.dim for v in values), np.zeros(count, dtype=int))
         wrenches, basis, rank = span_batch(np.concatenate([v.wrenches for v in values], axis=2), counts, tol, margin)
         return BatchValue(basis, 6 - rank, wrenches, sum((v.idle for v in values), np.zeros(count, dtype=int)), tuple(values))
-    return _bridge(node, screws, tol, margin)
+    return _bridge(node, screws, tol, margin, done)
 
 
-def _bridge(node: Bridge, screws: _Screws, tol: Tolerance, margin: MarginCollector | None) -> BatchValue:
+def _bridge(node: Bridge, screws: _Screws, tol: Tolerance, margin: MarginCollector | None, done: dict[int, BatchValue]) -> BatchValue:
     """Loop closure of a network that does not reduce, as :mod:`mobility.core.screw_systems` solves it."""
     count = screws.twists.shape[0]
     values, bases, real = [], [], []
@@ -208,7 +237,7 @@ def _bridge(node: Bridge, screws: _Screws, tol: Tolerance, margin: MarginCollect
             bases.append(screws.of_joint(child.index))
             real.append(np.full(count, screws.dof(child.index)))
         else:
-            v = _evaluate(child, screws, tol, margin)
+            v = done[id(child)]
             values.append(v)
             bases.append(v.basis)
             real.append(v.dim)

@@ -159,6 +159,24 @@ def newton(
         Its largest residual component.
     assembled : ndarray of bool, shape (N,)
     """
+    # A solve that diverges (a target far beyond the mechanism's size, or a pose with no assembly near it)
+    # overflows: its iterates turn non-finite and are dropped (err = inf, the move refused), so numpy's
+    # warnings would only repeat what the result says (not assembled).
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        best_q, best = _newton_loop(bk, drive, start, targets, tol, max_move, max_iter)
+    return best_q, best, best <= tol.closure
+
+
+def _newton_loop(
+    bk: BatchKinematics,
+    drive: Drive,
+    start: np.ndarray,
+    targets: np.ndarray,
+    tol: Tolerance,
+    max_move: np.ndarray | float,
+    max_iter: int,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The iterations of :func:`newton`: the best iterate of each pose and its largest residual component."""
     q0 = drive.apply(start, targets)
     count = len(q0)
     q = q0.copy()
@@ -198,7 +216,7 @@ def newton(
         finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
         q[active[finite]] = moved[finite]
         active = active[finite]
-    return best_q, best, best <= tol.closure
+    return best_q, best
 
 
 def _advance(
@@ -212,7 +230,8 @@ def _advance(
     retry: bool,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """One continuation step from assembled poses ``base_q`` (at ``base_t``) to ``targets``, retried in smaller steps."""
-    span = np.linalg.norm(predicted - base_q, axis=1) + np.linalg.norm(targets - base_t, axis=1)
+    with np.errstate(over="ignore", invalid="ignore"):  # an infinite span (a target beyond any size) allows any move
+        span = np.linalg.norm(predicted - base_q, axis=1) + np.linalg.norm(targets - base_t, axis=1)
     q, err, ok = newton(bk, drive, predicted, targets, tol=tol, max_move=10.0 * span + 0.05)
     if not retry:
         return q, err, ok
@@ -225,7 +244,8 @@ def _advance(
         for k in range(1, splits + 1):
             t = base_t[failed] + (targets[failed] - base_t[failed]) * (k / splits)
             guess = cur_q + (predicted[failed] - base_q[failed]) / splits
-            step = np.linalg.norm(guess - cur_q, axis=1) + np.linalg.norm(t - cur_t, axis=1)
+            with np.errstate(over="ignore", invalid="ignore"):
+                step = np.linalg.norm(guess - cur_q, axis=1) + np.linalg.norm(t - cur_t, axis=1)
             nq, nerr, nok = newton(bk, drive, guess, t, tol=tol, max_move=10.0 * step + 0.05)
             good &= nok
             cur_q, cur_t = np.where(nok[:, None], nq, cur_q), t

@@ -113,6 +113,15 @@ class SweepAxis:
         return np.linspace(self.start, self.stop, self.count) if self.count > 1 else np.array([self.start])
 
     @property
+    def extent(self) -> float:
+        """The size the values are shown against (round-off of a value is relative to it): the larger end of the range, 1 for zeros.
+
+        A sweep of a mechanism 1e-250 mm in size over ``P1=0:1e-251:3`` shows
+        ``5e-252``, not 0, whatever the unit.
+        """
+        return max(abs(self.start), abs(self.stop)) or 1.0
+
+    @property
     def internal(self) -> np.ndarray:
         """The values as the solver uses them (radians, lengths over the characteristic length)."""
         return self.values * self.scale
@@ -225,6 +234,16 @@ def _requests(vary: VarySpec | Iterable) -> list[tuple[str, float, float, int]]:
     return out
 
 
+def _require_finite(axis: SweepAxis, length: float) -> None:
+    """Refuse a range whose values, or their internal values (radians, lengths over ``length``), leave the floats."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        values, internal = axis.values, axis.internal
+    if not (np.all(np.isfinite(values)) and np.all(np.isfinite(internal))):
+        where = f"--vary {axis.name}={axis.start:g}:{axis.stop:g}:{axis.count}"
+        size = f" (the mechanism's size is {length:.3g}{' ' + axis.unit if axis.unit and axis.unit != 'deg' else ''})" if axis.unit != "deg" else ""
+        raise RequestError(f"{where}: its values do not fit in a float (in radians, or over the mechanism's size){size}; choose a smaller range")
+
+
 def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int = DEFAULT_MAX_POSES) -> GridPlan:
     """Check a sweep request against ``mechanism`` and give its axes.
 
@@ -245,8 +264,9 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
     ------
     RequestError
         An unknown name, a joint that cannot be driven by one number (S, U,
-        E), a coordinate given twice, a bad range, no coordinate at all, or a
-        grid above ``max_poses``.
+        E), a coordinate given twice, a bad range (one whose values, in
+        radians or over the mechanism's characteristic length, do not fit in
+        a float), no coordinate at all, or a grid above ``max_poses``.
     """
     requests = _requests(vary)
     if not requests:
@@ -282,6 +302,8 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
                 f"{where}: {name!r} is not a joint{source}; expected one of: {', '.join(names)}, "
                 f"or an end-effector pose coordinate ({', '.join(POSE_COORDINATES)})"
             )
+    for axis in axes:
+        _require_finite(axis, length)
     plan = GridPlan(tuple(axes), length)
     if plan.size > max_poses:
         raise RequestError(f"the grid has {plan.size:,} poses, more than --max-poses {max_poses:,}; raise --max-poses or use fewer points")

@@ -298,6 +298,7 @@ class SweepResult:
         """JSON form: the request, the summary (counts, regular answer, singular poses, changes) and the table by column."""
         regular = self.regular
         table: dict[str, list] = {}
+        extents = {a.name: a.extent for a in self.axes}
         for name in self.columns:
             col = self.column(name)
             if name in ("dof", "mobility"):
@@ -307,7 +308,7 @@ class SweepResult:
             elif name in ("assembled", "near_singular", "inexact"):
                 table[name] = [bool(v) for v in col]
             else:
-                table[name] = [_number(v) for v in clean_numbers(np.asarray(col, dtype=float))] if name in self.names else [_number(v) for v in col]
+                table[name] = [_number(v) for v in clean_numbers(np.asarray(col, dtype=float), extents[name])] if name in self.names else [_number(v) for v in col]
         return {
             "name": self.name,
             "coordinates": [a.to_dict() for a in self.axes],

@@ -42,7 +42,7 @@ from ..errors import RequestError
 from .describe import margin_text, pose_title
 from .scene import Glyph, Scene, viewpoint
 
-__all__ = ["figure_dict", "LEGENDS", "ELEMENT_ID"]
+__all__ = ["figure_dict", "axis_ticks", "LEGENDS", "ELEMENT_ID"]
 
 LEGENDS = {"mechanism": "legend", "freedoms": "legend2", "constraints": "legend3"}
 """The legend of each layer."""
@@ -61,6 +61,36 @@ def _coords(points: np.ndarray) -> dict[str, list[float | None]]:
     for name, column in zip("xyz", np.asarray(points, dtype=float).reshape(-1, 3).T):
         out[name] = [None if math.isnan(v) else float(f"{v:.7g}") for v in column]
     return out
+
+
+def axis_ticks(low: float, high: float, drawing: float, count: int = 5) -> dict[str, list]:
+    """Ticks of an axis drawn in drawing units (the file's lengths times ``drawing``), labelled in the file's units.
+
+    Returns ``{"tickvals": [...], "ticktext": [...]}``: about ``count`` round
+    values of the file (1, 2 or 5 times a power of ten) between ``low`` and
+    ``high`` (drawing units), where they are drawn, and their text.  The step
+    is found from logarithms, so a mechanism at 1e200 or 1e-250 gets its
+    ticks without any number leaving the floats.
+
+    Examples
+    --------
+    >>> t = axis_ticks(-0.6, 0.6, 2.0**-664)   # drawn near 1: about 4.6e199 in the file
+    >>> t["ticktext"]
+    ['-4e+199', '-2e+199', '0', '2e+199', '4e+199']
+    >>> [round(v, 3) for v in t["tickvals"]]
+    [-0.523, -0.261, 0.0, 0.261, 0.523]
+    """
+    span = (high - low) / count  # drawing units
+    exponent = math.log10(span) - math.log10(drawing)  # log10 of the step in the file's units
+    power = math.floor(exponent)
+    mantissa = 10.0 ** (exponent - power)
+    nice = 1.0 if mantissa < 1.5 else 2.0 if mantissa < 3.5 else 5.0 if mantissa < 7.5 else 10.0
+    step_file = nice * 10.0**power
+    step = step_file * drawing
+    first, last = math.ceil(low / step), math.floor(high / step)
+    values = [k * step for k in range(first, last + 1)]
+    texts = ["0" if k == 0 else f"{k * step_file:.3g}" for k in range(first, last + 1)]
+    return {"tickvals": values, "ticktext": texts}
 
 
 def _glyph_traces(g: Glyph, frame: int, visible: bool) -> list[dict[str, Any]]:
@@ -135,9 +165,11 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
     upper = np.max([s.upper for s, _, _ in frames], axis=0)
     mid, half = 0.5 * (lower + upper), 0.55 * float(np.max(upper - lower))
     unit = frames[0][1].length_unit
+    drawing = frames[0][0].scale
     axis = {
         name: {"range": [float(f"{mid[i] - half:.7g}"), float(f"{mid[i] + half:.7g}")], "title": {"text": f"{name} ({unit})" if unit else name},
-               "backgroundcolor": _BACKGROUND, "gridcolor": "#eceff1", "zerolinecolor": _AXIS, "showspikes": False}
+               "backgroundcolor": _BACKGROUND, "gridcolor": "#eceff1", "zerolinecolor": _AXIS, "showspikes": False,
+               **(axis_ticks(mid[i] - half, mid[i] + half, drawing) if drawing != 1.0 else {})}
         for i, name in enumerate("xyz")
     }
     first_scene, first_result, first_label = frames[0]

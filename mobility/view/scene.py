@@ -157,6 +157,10 @@ class Scene:
         Extent of the mechanism (the unit of every glyph's size).
     lower, upper : ndarray, shape (3,)
         Bounds of everything drawn.
+    scale : float
+        Drawing units per file unit: every coordinate of the scene is the
+        file's times ``scale`` (1 for every mechanism of an everyday size,
+        see :func:`mobility.report.plotting.sketch.drawing_scale`).
     """
 
     glyphs: tuple[Glyph, ...]
@@ -164,13 +168,14 @@ class Scene:
     size: float
     lower: np.ndarray
     upper: np.ndarray
+    scale: float = 1.0
 
     def layer(self, name: str) -> tuple[Glyph, ...]:
         """The glyphs of one layer, in drawing order."""
         return tuple(g for g in self.glyphs if g.layer == name)
 
 
-def build_scene(mechanism: Mechanism, result: Result) -> Scene:
+def build_scene(mechanism: Mechanism, result: Result, drawing: float | None = None) -> Scene:
     """The glyphs of ``mechanism`` at its pose with the freedoms and constraints of ``result``.
 
     Parameters
@@ -178,6 +183,10 @@ def build_scene(mechanism: Mechanism, result: Result) -> Scene:
     mechanism : Mechanism
     result : Result
         Its analysis (:func:`mobility.analyze`).
+    drawing : float, optional
+        Drawing units per file unit (a power of two; default: the pictures'
+        :func:`~mobility.report.plotting.sketch.drawing_scale`, 1 for every
+        mechanism of an everyday size).  Poses shown together share one.
 
     Returns
     -------
@@ -185,7 +194,7 @@ def build_scene(mechanism: Mechanism, result: Result) -> Scene:
         With ``result.dof`` glyphs in the ``freedoms`` layer and
         ``6 - result.dof`` in the ``constraints`` layer.
     """
-    sk = sketch(mechanism)
+    sk = sketch(mechanism, drawing)
     size, c = sk.size, sk.end_effector_centre
     scale, unit = result.length_scale, result.length_unit
     glyphs = _links(mechanism, sk) + _joints(mechanism, sk, scale, unit)
@@ -198,13 +207,13 @@ def build_scene(mechanism: Mechanism, result: Result) -> Scene:
                             path=segment_samples(c, tip - head * t, 9), width=7.0, hover=translation_text(i + 1, t),
                             mesh=cone(tip, t, 2.0 * head, 0.45 * head), label=f"T{i + 1}", label_at=tip + 0.05 * size * t, direction=t))
     for i, a in enumerate(result.rotations):
-        glyphs.append(_rotation(i, a, size, scale, unit))
+        glyphs.append(_rotation(i, a, size, scale, unit, sk.scale))
     k = len(result.couples)
     for i, cp in enumerate(result.couples):
         glyphs.append(_couple(i, np.asarray(cp, dtype=float), c, size, k))
     for i, f in enumerate(result.forces):
-        glyphs.append(_force(k + i, f, size, scale, unit))
-    return _framed(tuple(glyphs), c, size)
+        glyphs.append(_force(k + i, f, size, scale, unit, sk.scale))
+    return _framed(tuple(glyphs), c, size, sk.scale)
 
 
 def _links(mechanism: Mechanism, sk) -> list[Glyph]:
@@ -265,10 +274,10 @@ def _joints(mechanism: Mechanism, sk, scale: float, unit: str) -> list[Glyph]:
     return out
 
 
-def _rotation(i: int, a, size: float, scale: float, unit: str) -> Glyph:
+def _rotation(i: int, a, size: float, scale: float, unit: str, drawing: float) -> Glyph:
     """``R<i+1>``: the axis line through its point, a circular arrow near one end (a helix if it has a pitch)."""
     d = np.asarray(a.axis, dtype=float)
-    p = np.asarray(a.point, dtype=float)
+    p = np.asarray(a.point, dtype=float) * drawing
     side = 1.0 if i % 2 == 0 else -1.0  # alternate ends, so that two axes through one point keep their labels apart
     start, end = p - side * _HALF_AXIS * size * d, p + side * _HALF_AXIS * size * d
     ring, tangent = arc(p + side * 0.78 * _HALF_AXIS * size * d, d, _MARK * size)
@@ -294,10 +303,10 @@ def _couple(i: int, direction: np.ndarray, centre: np.ndarray, size: float, coun
                  width=5.0, hover=couple_text(i + 1, direction), mesh=heads, label=f"C{i + 1}", label_at=tip + 0.05 * size * direction, direction=direction)
 
 
-def _force(n: int, f, size: float, scale: float, unit: str) -> Glyph:
+def _force(n: int, f, size: float, scale: float, unit: str, drawing: float) -> Glyph:
     """``W<n+1>``: the force line through its point with an arrowhead (and a circular arrow for a pitch)."""
     d = np.asarray(f.axis, dtype=float)
-    p = np.asarray(f.point, dtype=float)
+    p = np.asarray(f.point, dtype=float) * drawing
     head = _HEAD * size
     start, tip = p - _HALF_FORCE * size * d, p + _HALF_FORCE * size * d
     parts = [segment_samples(start, tip - head * d, 11)]
@@ -311,10 +320,10 @@ def _force(n: int, f, size: float, scale: float, unit: str) -> Glyph:
                  hover=force_text(n + 1, f, scale, unit), mesh=Mesh.merged(*meshes), label=label, label_at=tip + 0.05 * size * d, direction=d)
 
 
-def _framed(glyphs: tuple[Glyph, ...], centre: np.ndarray, size: float) -> Scene:
+def _framed(glyphs: tuple[Glyph, ...], centre: np.ndarray, size: float, drawing: float) -> Scene:
     """The scene with the bounds of everything drawn."""
     everything = np.concatenate([g.extent() for g in glyphs])
-    return Scene(glyphs, centre, size, everything.min(axis=0), everything.max(axis=0))
+    return Scene(glyphs, centre, size, everything.min(axis=0), everything.max(axis=0), drawing)
 
 
 def viewpoint(scene: Scene) -> tuple[float, float]:
@@ -324,11 +333,13 @@ def viewpoint(scene: Scene) -> tuple[float, float]:
     joints, the labels and the directions of the freedoms and constraints.
     """
     important = [scene.centre[None]]
+    joints = []
     directions = []
     for g in scene.glyphs:
         if g.layer == "mechanism":
-            important.append(g.points)
+            joints.append(g.points)
         else:
             important.append(g.label_at[None])
             directions.append(g.direction)
-    return choose_views(np.concatenate(important), np.array(directions).reshape(-1, 3), scene.size, count=1)[0]
+    context = np.concatenate(joints).reshape(-1, 3)
+    return choose_views(np.concatenate(important), np.array(directions).reshape(-1, 3), scene.size, count=1, context=context)[0]

@@ -29,10 +29,12 @@ from pathlib import Path
 from typing import Any, Iterable
 
 from ..core.analysis import analyze
+from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism
 from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..errors import MissingExtraError, RequestError
+from ..report.plotting.sketch import drawing_scale
 from ..report.text import text_report
 from .describe import header_lines, margin_text
 from .figure import figure_dict as build_figure_dict
@@ -206,4 +208,6 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
         raise RequestError("a view needs at least one pose")
     if len(out) > max_poses:
         raise RequestError(f"{len(out)} poses is more than a view holds (max_poses={max_poses}); show a subset, e.g. every k-th pose")
-    return View(tuple(out), tuple(build_scene(f.mechanism, f.result) for f in out))
+    # one drawing scale for every pose (1 for a mechanism of an everyday size), so that the poses share their axes
+    drawing = drawing_scale(joint_screws(out[0].mechanism).normalisation.length)
+    return View(tuple(out), tuple(build_scene(f.mechanism, f.result, drawing) for f in out))

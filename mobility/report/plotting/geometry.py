@@ -10,6 +10,8 @@ Examples
 True
 >>> unique_points(np.array([[0.0, 0, 0], [1e-9, 0, 0], [1, 0, 0]]), 1e-6).shape
 (2, 3)
+>>> unique_points(np.repeat(np.eye(3), 10, axis=0) + 1e-9, 1e-6).shape   # the k-d tree route
+(3, 3)
 """
 
 from __future__ import annotations
@@ -39,12 +41,31 @@ def perpendiculars(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def unique_points(p: np.ndarray, eps: float) -> np.ndarray:
-    """The points of ``p`` (rows) with those within ``eps`` of an earlier one left out."""
-    out: list[np.ndarray] = []
-    for x in p:
-        if all(np.linalg.norm(x - y) > eps for y in out):
-            out.append(x)
-    return np.array(out).reshape(-1, 3)
+    """The points of ``p`` (rows) with those within ``eps`` of an earlier one left out.
+
+    A point is kept when no point kept before it lies within ``eps``; the
+    neighbours within ``eps`` are found with a k-d tree beyond a few points,
+    so thousands of joints on one link take milliseconds.
+    """
+    p = np.asarray(p, dtype=float).reshape(-1, 3)
+    if len(p) <= _FEW:
+        out: list[np.ndarray] = []
+        for x in p:
+            if all(np.linalg.norm(x - y) > eps for y in out):
+                out.append(x)
+        return np.array(out).reshape(-1, 3)
+    from scipy.spatial import cKDTree
+
+    near = cKDTree(p).query_ball_point(p, eps * (1.0 + 1e-9), p=2.0)  # a hair wider; the exact test follows
+    dropped = np.zeros(len(p), dtype=bool)
+    for i in range(len(p)):
+        if not dropped[i]:
+            dropped[[k for k in near[i] if k > i and np.linalg.norm(p[k] - p[i]) <= eps]] = True
+    return p[~dropped]
+
+
+_FEW = 16
+"""Up to this many points, :func:`unique_points` compares every pair directly."""
 
 
 def segment_samples(start: np.ndarray, end: np.ndarray, n: int = 7) -> np.ndarray:

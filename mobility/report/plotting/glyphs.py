@@ -18,11 +18,20 @@ from .sketch import Sketch
 from .style import COLORS, JOINT_STYLE
 from .views import view_axes
 
-__all__ = ["cone", "arrow", "rotation_mark", "helix", "draw_link", "draw_joints", "triad", "FLAT"]
+__all__ = ["cone", "arrow", "rotation_mark", "helix", "link_shape", "draw_link", "draw_links", "joint_scale", "draw_joints", "triad", "FLAT", "LINK_WIDTHS", "LINK_ARTISTS", "ROOMY_JOINTS"]
 
 FLAT = 0.05
 """A link whose joints lie within this fraction of its extent from a plane is
 drawn as a plate (from a line: as a bar or a star); a drawing choice."""
+
+LINK_WIDTHS = {"ground": 4.0, "end_effector": 3.0, "link": 2.6}
+"""Line width of a link by its role (points)."""
+
+ROOMY_JOINTS = 100
+"""Joints drawn at full symbol size at most (:func:`joint_scale`)."""
+
+LINK_ARTISTS = 200
+"""Links drawn one artist each at most; more are drawn one collection per role (:func:`draw_links`)."""
 
 
 def cone(ax: Any, tip: np.ndarray, direction: np.ndarray, length: float, color: str, gid: str) -> None:
@@ -65,56 +74,122 @@ def helix(centre: np.ndarray, axis: np.ndarray, radius: float, length: float) ->
     return centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2) + s[:, None] * (axis / np.linalg.norm(axis))
 
 
-def draw_link(ax: Any, name: str, pts: np.ndarray, role: str, size: float) -> None:
-    """A link as a thin body: a bar between two joints, a plate over three or more."""
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+def link_shape(pts: np.ndarray, size: float) -> tuple[str, np.ndarray, list[np.ndarray]]:
+    """How a link over the joint places ``pts`` is drawn: ``(kind, ring, segments)``.
+
+    ``kind`` is ``"none"`` (fewer than two distinct places), ``"bar"`` (two),
+    ``"plate"`` (three or more, nearly coplanar and not collinear: ``ring`` is
+    the convex outline, ``segments`` the spokes to the joints inside it) or
+    ``"star"`` (segments from the centroid to every place: a thin 3D body).
+    """
     from scipy.spatial import ConvexHull, QhullError
 
-    color = COLORS.get(role, COLORS["link"])
-    lw = {"ground": 4.0, "end_effector": 3.0}.get(role, 2.6)
     u = unique_points(pts, SAME_POINT * size)
-    gid = f"mobility:link:{name}"
     if len(u) < 2:
-        return
+        return "none", np.zeros((0, 3)), []
     if len(u) == 2:
-        ax.plot(*u.T, color=color, lw=lw, gid=gid, solid_capstyle="round")
-        return
+        return "bar", np.zeros((0, 3)), [u]
     c = u.mean(axis=0)
     _, sv, vt = np.linalg.svd(u - c)
     flat = sv[2] <= FLAT * sv[0] if len(sv) > 2 else True
     if flat and sv[1] > FLAT * sv[0]:
-        uv = (u - c) @ vt[:2].T
         try:
-            hull = ConvexHull(uv)
+            hull = ConvexHull((u - c) @ vt[:2].T)
         except QhullError:  # pragma: no cover - collinear after all
             hull = None
         if hull is not None:
-            ring = u[hull.vertices]
-            poly = Poly3DCollection([ring], facecolor=color, alpha=0.22 if role != "link" else 0.15, edgecolor=color, linewidth=lw * 0.6)
-            poly.set_gid(gid)
-            ax.add_collection3d(poly)
-            inner = [k for k in range(len(u)) if k not in set(hull.vertices)]
-            for k in inner:
-                ax.plot(*np.stack([c, u[k]]).T, color=color, lw=lw * 0.6, gid=gid + ":spoke")
-            return
-    if not flat or sv[1] <= FLAT * sv[0]:
-        for k in range(len(u)):  # a star from the centroid: a thin 3D body
-            ax.plot(*np.stack([c, u[k]]).T, color=color, lw=lw, gid=gid if k == 0 else gid + ":spoke", solid_capstyle="round")
+            outline = set(hull.vertices.tolist())
+            return "plate", u[hull.vertices], [np.stack([c, u[k]]) for k in range(len(u)) if k not in outline]
+    return "star", np.zeros((0, 3)), [np.stack([c, x]) for x in u]
+
+
+def draw_link(ax: Any, name: str, pts: np.ndarray, role: str, size: float) -> None:
+    """A link as a thin body: a bar between two joints, a plate over three or more."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    color = COLORS.get(role, COLORS["link"])
+    lw = LINK_WIDTHS.get(role, LINK_WIDTHS["link"])
+    gid = f"mobility:link:{name}"
+    kind, ring, segments = link_shape(pts, size)
+    if kind == "bar":
+        ax.plot(*segments[0].T, color=color, lw=lw, gid=gid, solid_capstyle="round")
+    elif kind == "plate":
+        poly = Poly3DCollection([ring], facecolor=color, alpha=0.22 if role != "link" else 0.15, edgecolor=color, linewidth=lw * 0.6)
+        poly.set_gid(gid)
+        ax.add_collection3d(poly)
+        for seg in segments:
+            ax.plot(*seg.T, color=color, lw=lw * 0.6, gid=gid + ":spoke")
+    elif kind == "star":
+        for k, seg in enumerate(segments):
+            ax.plot(*seg.T, color=color, lw=lw, gid=gid if k == 0 else gid + ":spoke", solid_capstyle="round")
+
+
+def draw_links(ax: Any, mechanism: Mechanism, sk: Sketch) -> None:
+    """Every link, by :func:`draw_link`; beyond :data:`LINK_ARTISTS` links, one collection per role.
+
+    matplotlib spends about a millisecond per artist and view, so a mechanism
+    of thousands of links draws each role's bars, spokes and stars as one
+    line collection (gid ``mobility:links:<role>``) and its plates as one
+    polygon collection (``mobility:links:<role>:plates``).
+    """
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+
+    def role_of(link: str) -> str:
+        return "ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"
+
+    if len(sk.link_joints) <= LINK_ARTISTS:
+        for link, idx in sk.link_joints.items():
+            draw_link(ax, link, sk.points[list(idx)], role_of(link), sk.size)
+        return
+    lines: dict[str, list[np.ndarray]] = {}
+    plates: dict[str, list[np.ndarray]] = {}
+    for link, idx in sk.link_joints.items():
+        kind, ring, segments = link_shape(sk.points[list(idx)], sk.size)
+        lines.setdefault(role_of(link), []).extend(segments)
+        if kind == "plate":
+            plates.setdefault(role_of(link), []).append(ring)
+    for role, rings in plates.items():
+        color = COLORS.get(role, COLORS["link"])
+        poly = Poly3DCollection(rings, facecolor=color, alpha=0.22 if role != "link" else 0.15, edgecolor=color, linewidth=LINK_WIDTHS[role] * 0.6)
+        poly.set_gid(f"mobility:links:{role}:plates")
+        ax.add_collection3d(poly)
+    for role, segments in lines.items():
+        if not segments:
+            continue
+        coll = Line3DCollection(segments, colors=COLORS.get(role, COLORS["link"]), linewidths=LINK_WIDTHS[role], capstyle="round")
+        coll.set_gid(f"mobility:links:{role}")
+        ax.add_collection3d(coll)
+
+
+def joint_scale(count: int) -> float:
+    """The factor on the size of joint symbols among ``count`` joints: 1 up to :data:`ROOMY_JOINTS`, then ``sqrt(ROOMY_JOINTS / count)``.
+
+    Examples
+    --------
+    >>> joint_scale(9), joint_scale(400)
+    (1.0, 0.5)
+    """
+    return min(1.0, math.sqrt(ROOMY_JOINTS / max(count, 1)))
 
 
 def draw_joints(ax: Any, m: Mechanism, sk: Sketch, labels: bool, view: tuple[float, float]) -> None:
-    """One scatter per joint type, small axis segments, names (beside each joint on the screen of ``view``)."""
+    """One scatter per joint type, small axis segments, names (beside each joint on the screen of ``view``).
+
+    Among more than :data:`ROOMY_JOINTS` joints the symbols and segments are
+    smaller (:func:`joint_scale`), so that they do not cover the links.
+    """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
-    size = sk.size
     joints = m.world_joints
+    crowd = joint_scale(len(joints))
+    size = sk.size * crowd  # the axis segments: shorter among many joints
     for t, style in JOINT_STYLE.items():
         idx = [i for i, jt in enumerate(sk.types) if jt == t]
         if not idx:
             continue
         p = sk.points[idx]
         edge = "white" if t == "S" else "black"
-        ax.scatter(*p.T, marker=style["marker"], s=style["s"], facecolors=style["facecolor"], edgecolors=edge, linewidths=1.0, depthshade=False, zorder=5, gid=f"mobility:joints:{t}")
+        ax.scatter(*p.T, marker=style["marker"], s=style["s"] * crowd, facecolors=style["facecolor"], edgecolors=edge, linewidths=crowd, depthshade=False, zorder=5, gid=f"mobility:joints:{t}")
     # the small axis segments of every joint in two collections (thin axes, thick rails): one artist each
     axes_segs: list[np.ndarray] = []
     rails: list[np.ndarray] = []
@@ -134,11 +209,11 @@ def draw_joints(ax: Any, m: Mechanism, sk: Sketch, labels: bool, view: tuple[flo
             e1, e2 = perpendiculars(np.asarray(j.normal))
             axes_segs.append(np.array([x + 0.05 * size * (s1 * e1 + s2 * e2) for s1, s2 in ((1, 1), (-1, 1), (-1, -1), (1, -1), (1, 1))]))
     if axes_segs:
-        coll = Line3DCollection(axes_segs, colors="black", linewidths=1.1)
+        coll = Line3DCollection(axes_segs, colors="black", linewidths=1.1 * crowd)
         coll.set_gid("mobility:joint-axes")
         ax.add_collection3d(coll)
     if rails:
-        coll = Line3DCollection(rails, colors="#b8860b", linewidths=5.0, alpha=0.55, capstyle="butt")
+        coll = Line3DCollection(rails, colors="#b8860b", linewidths=5.0 * crowd, alpha=0.55, capstyle="butt")
         coll.set_gid("mobility:joint-rails")
         ax.add_collection3d(coll)
     if labels and len(joints) <= 40:

@@ -25,10 +25,15 @@ from .style import COLORS, LIMB_COLORS
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
-__all__ = ["plot_graph", "tree_layout", "branch_colors"]
+__all__ = ["plot_graph", "tree_layout", "branch_colors", "LABELLED_JOINTS"]
 
 DETACHED_COLOR = "#9e9e9e"
 NODE_FILL = {"joint": "white", "series": "#fff3e0", "parallel": "#e8f5e9", "bridge": "#fce4ec"}
+
+LABELLED_JOINTS = 200
+"""Joints up to which every link, joint and tree node is written in a box; a larger graph is drawn
+with markers and lines only (one collection per kind: thousands of text boxes take minutes to draw
+and cannot be read)."""
 
 
 def _children(n: Node) -> list[Node]:
@@ -62,21 +67,23 @@ def tree_layout(root: Node) -> tuple[dict[int, tuple[float, float]], list[tuple[
     pos: dict[int, tuple[float, float]] = {}
     edges: list[tuple[int, int]] = []
     nodes: dict[int, Node] = {}
-    counter = itertools.count()
-
-    def place(n: Node, depth: int) -> float:
-        nodes[id(n)] = n
+    leaves = itertools.count()
+    # depth first with an explicit stack (trees of thousands of levels): a node is placed after its children
+    stack: list[tuple[Node, int, bool]] = [(root, 0, False)]
+    while stack:
+        n, depth, children_placed = stack.pop()
         kids = _children(n)
-        if not kids:
-            x = float(next(counter))
-        else:
-            xs = [place(c, depth + 1) for c in kids]
-            edges.extend((id(n), id(c)) for c in kids)
-            x = 0.5 * (min(xs) + max(xs))
-        pos[id(n)] = (x, -float(depth))
-        return x
-
-    place(root, 0)
+        if not children_placed:
+            nodes[id(n)] = n
+            if not kids:
+                pos[id(n)] = (float(next(leaves)), -float(depth))
+                continue
+            stack.append((n, depth, True))
+            stack.extend((c, depth + 1, False) for c in reversed(kids))
+            continue
+        xs = [pos[id(c)][0] for c in kids]
+        edges.extend((id(n), id(c)) for c in kids)
+        pos[id(n)] = (0.5 * (min(xs) + max(xs)), -float(depth))
     return pos, edges, nodes
 
 
@@ -107,7 +114,9 @@ def plot_graph(
     connection (a limb).  Right: the tree, ``∥`` parallel (twist systems
     intersect), ``—`` series (twist systems add), ``⊠`` bridge (solved by loop
     closure), each labelled with the dimension of its twist system (and its
-    idle motions); leaves are the joints.
+    idle motions); leaves are the joints.  Beyond :data:`LABELLED_JOINTS`
+    joints, the links and tree nodes are markers (coloured by kind) and
+    the joints lines, without names.
 
     Parameters
     ----------
@@ -138,8 +147,9 @@ def plot_graph(
     leaves = len(joints_of(topo.root)) + sum(len(joints_of(d)) for d in topo.detached)
     w = max(10.0, min(26.0, 3.2 + 0.55 * max(leaves, 2 * graph.widest_layer)))
     fig = new_figure(figsize or (w, 6.4))
-    graph.draw(fig.add_axes((0.01, 0.08, 0.40, 0.82)))
-    _draw_tree(fig.add_axes((0.43, 0.08, 0.56, 0.82)), r, mechanism, colors)
+    labelled = len(mechanism.joints) <= LABELLED_JOINTS
+    graph.draw(fig.add_axes((0.01, 0.08, 0.40, 0.82)), labelled)
+    _draw_tree(fig.add_axes((0.43, 0.08, 0.56, 0.82)), r, mechanism, colors, labelled)
     handles = [
         Line2D([], [], ls="", marker="o", markersize=9, markerfacecolor="#bdbdbd", markeredgecolor="#37474f", label="ground"),
         Line2D([], [], ls="", marker="o", markersize=9, markerfacecolor="#ffb74d", markeredgecolor="#37474f", label="end effector"),
@@ -148,7 +158,8 @@ def plot_graph(
     if len(branches) > 1:
         handles += [Line2D([], [], color=LIMB_COLORS[k % len(LIMB_COLORS)], lw=2.2, label=f"branch {k + 1}") for k in range(min(len(branches), len(LIMB_COLORS)))]
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), frameon=False, fontsize=8)
-    fig.suptitle(f"{r.name}: mobility {r.mobility}, end effector {r.dof} DOF ({r.pattern}), {r.loops} loop(s)", fontsize=11)
+    unlabelled = "" if labelled else f" (names left out: more than {LABELLED_JOINTS} joints)"
+    fig.suptitle(f"{r.name}: mobility {r.mobility}, end effector {r.dof} DOF ({r.pattern}), {r.loops} loop(s){unlabelled}", fontsize=11)
     return fig
 
 
@@ -185,25 +196,32 @@ class _JointGraph:
 
         layers: dict[int, list[str]] = {}  # lists, not sets: the order within a layer is kept
         place: dict[str, float] = {}
-        for d in sorted(set(depth.values())):
-            members = [x for x in m.links if depth[x] == d]
+        order = {x: k for k, x in enumerate(m.links)}
+        by_depth: dict[int, list[str]] = {}
+        for x in m.links:
+            by_depth.setdefault(depth[x], []).append(x)
+        for d in sorted(by_depth):
+            members = by_depth[d]
 
             def key(x: str) -> tuple[float, int, int]:
                 below = [place[y] for y in g.neighbors(x) if depth[y] == d - 1]
-                return (float(np.mean(below)) if below else 0.0, branch(x), m.links.index(x))
+                return (float(np.mean(below)) if below else 0.0, branch(x), order[x])
 
             layers[d] = sorted(members, key=key)
             place.update({x: float(k) / max(len(members) - 1, 1) for k, x in enumerate(layers[d])})
         return layers
 
-    def draw(self, ax: Any) -> None:
-        """Links as boxed names, joints as lines (arcs between links joined twice), joint labels."""
+    def draw(self, ax: Any, labelled: bool = True) -> None:
+        """Links as boxed names, joints as lines (arcs between links joined twice), joint labels (without names: markers and lines)."""
         import networkx as nx
 
         m, g, pos, colors = self.mechanism, self.graph, self.pos, self.colors
         node_color = ["#bdbdbd" if x == m.ground else "#ffb74d" if x == m.end_effector else "#e3f2fd" for x in g.nodes]
         nodes_art = nx.draw_networkx_nodes(g, pos, ax=ax, node_color=node_color, edgecolors="#37474f", node_size=60)
         nodes_art.set_gid("mobility:graph:links")
+        if not labelled:
+            self._draw_lines(ax)
+            return
         for x, fc in zip(g.nodes, node_color):  # each link's name in a box of its role's colour
             nx.draw_networkx_labels(g, pos, labels={x: x}, ax=ax, font_size=7, bbox={"boxstyle": "round,pad=0.3", "fc": fc, "ec": "#37474f", "lw": 0.8})
         seen: dict[frozenset[str], int] = {}
@@ -230,6 +248,21 @@ class _JointGraph:
             t = 0.32 if len(self.layers[self.depth[u]]) > len(self.layers[self.depth[v]]) else 0.68
             x, y = (1.0 - t) * np.asarray(pos[u]) + t * np.asarray(pos[v])
             ax.text(x, y, text, fontsize=6.5, color=colors.get(ks[0], "#37474f"), ha="center", va="center", bbox=label_box, zorder=3)
+        self._finish(ax)
+
+    def _draw_lines(self, ax: Any) -> None:
+        """Every joint as a straight line in its branch's colour, all in one collection."""
+        from matplotlib.collections import LineCollection
+
+        m, pos, colors = self.mechanism, self.pos, self.colors
+        segments = [np.stack([pos[j.links[0]], pos[j.links[1]]]) for j in m.joints]
+        lines = LineCollection(segments, colors=[colors.get(i, "#37474f") for i in range(len(m.joints))], linewidths=1.2, zorder=1)
+        lines.set_gid("mobility:graph:joints")
+        ax.add_collection(lines)
+        self._finish(ax)
+
+    @staticmethod
+    def _finish(ax: Any) -> None:
         ax.set_title("joint graph (links = nodes, joints = edges)", fontsize=10)
         ax.set_axis_off()
         ax.margins(0.12)
@@ -244,8 +277,8 @@ def _node_label(n: Node, dof: int, idle: int, mechanism: Mechanism) -> tuple[str
     return kind, f"{mark} {kind}\ndim {dof}{idle_text}"
 
 
-def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str]) -> None:
-    """The series/parallel tree (and each detached network's), nodes labelled with what the analysis found there."""
+def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str], labelled: bool = True) -> None:
+    """The series/parallel tree (and each detached network's), nodes labelled with what the analysis found there (or markers)."""
     import networkx as nx
 
     topo, systems = r.topology, r.node_systems
@@ -256,16 +289,19 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str])
     for root in (topo.root, *topo.detached):  # side by side
         p, e, nodes = tree_layout(root)
         xs = [x for x, _ in p.values()]
+        left, right = min(xs), max(xs)
         for key, (x, y) in p.items():
-            tpos[key] = (x - min(xs) + offset, y)
-        offset += max(xs) - min(xs) + 2.0
+            tpos[key] = (x - left + offset, y)
+        offset += right - left + 2.0
         tree.add_nodes_from(p)
         tree.add_edges_from(e)
         tnodes.update(nodes)
     nx.draw_networkx_edges(tree, tpos, ax=ax, arrows=False, edge_color="#90a4ae", width=1.2)
-    labelled = {key: _node_label(n, *systems[n], mechanism) for key, n in tnodes.items()}
+    if not labelled:
+        _tree_markers(ax, tpos, tnodes)
+    labels = {key: _node_label(n, *systems[n], mechanism) for key, n in tnodes.items()} if labelled else {}
     for kind in NODE_FILL:  # every node a box of its kind's colour, read back by its gid (drawn kind by kind)
-        for key, (node_kind, label) in labelled.items():
+        for key, (node_kind, label) in labels.items():
             if node_kind != kind:
                 continue
             n = tnodes[key]
@@ -273,7 +309,7 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str])
             ax.text(*tpos[key], label, ha="center", va="center", fontsize=6.5, gid=f"mobility:tree:{kind}",
                     bbox={"boxstyle": "round,pad=0.45", "fc": NODE_FILL[kind], "ec": edge, "lw": 2.0 if kind == "joint" else 1.0})
     bridge_edges = {}
-    for key, n in tnodes.items():  # a bridge's connections join named links: say which
+    for key, n in tnodes.items() if labelled else ():  # a bridge's connections join named links: say which
         if isinstance(n, Bridge):
             for u, v, child in n.edges:
                 bridge_edges[(key, id(child))] = f"{u}–{v}"
@@ -287,3 +323,13 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str])
     ax.set_title("series/parallel tree (dim: DOF between the node's two end links)", fontsize=10)
     ax.set_axis_off()
     ax.margins(0.08, 0.18)
+
+
+def _tree_markers(ax: Any, tpos: dict[int, tuple[float, float]], tnodes: dict[int, Node]) -> None:
+    """Each node of the tree as a marker filled with its kind's colour, one collection per kind (gid ``mobility:tree:<kind>``)."""
+    kinds = {"joint": JointNode, "series": Series, "parallel": Parallel, "bridge": Bridge}
+    for kind, cls in kinds.items():
+        xy = np.array([tpos[key] for key, n in tnodes.items() if type(n) is cls]).reshape(-1, 2)
+        if len(xy):
+            art = ax.scatter(xy[:, 0], xy[:, 1], s=14, c=NODE_FILL[kind], edgecolors="#546e7a", linewidths=0.6, zorder=3)
+            art.set_gid(f"mobility:tree:{kind}")

@@ -28,11 +28,11 @@ from ...core.result import Result
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from .backend import new_figure, require_matplotlib
 from .geometry import SAME_POINT, unique_points
-from .glyphs import arrow, cone, draw_joints, draw_link, rotation_mark, triad
+from .glyphs import arrow, cone, draw_joints, draw_links, rotation_mark, triad
 from .scene import Scene, build_scene
 from .sketch import Sketch, sketch
 from .style import COLORS, JOINT_STYLE
-from .views import choose_views, view_axes
+from .views import choose_views, thinned, view_axes
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -89,9 +89,10 @@ def plot_mechanism(
     r = result if result is not None else analyze(mechanism, tol=tol)
     sk = sketch(mechanism)
     scene = build_scene(r, sk, constraints)
-    important = np.concatenate([sk.points, sk.end_effector_centre[None], *scene.important_points()])
+    answer = np.concatenate([sk.end_effector_centre[None], *scene.important_points()])
+    important = np.concatenate([sk.points, answer])
     if isinstance(views, int):
-        view_list = _chosen_views(sk, important, scene.directions(), views)
+        view_list = _chosen_views(sk, answer, scene.directions(), views)
     else:
         view_list = [(float(e), float(a)) for e, a in views]
     if scene.couples:  # place the couples again, now that the views are known
@@ -108,14 +109,15 @@ def plot_mechanism(
     return fig
 
 
-def _chosen_views(sk: Sketch, important: np.ndarray, directions: np.ndarray, count: int) -> list[tuple[float, float]]:
-    """Views where the answer shows best; the links matter too, but less (the freedoms are listed twice)."""
+def _chosen_views(sk: Sketch, answer: np.ndarray, directions: np.ndarray, count: int) -> list[tuple[float, float]]:
+    """Views where the answer shows best; the joints and links matter too, but less (the freedoms are listed twice)."""
     link_dirs = []
     for idx in sk.link_joints.values():
         u = unique_points(sk.points[list(idx)], SAME_POINT * sk.size)
         if len(u) == 2:
             link_dirs.append((u[1] - u[0]) / np.linalg.norm(u[1] - u[0]))
-    return choose_views(important, np.concatenate([directions, directions, np.array(link_dirs).reshape(-1, 3)]), sk.size, count)
+    link_dirs = thinned(np.array(link_dirs).reshape(-1, 3))
+    return choose_views(answer, np.concatenate([directions, directions, link_dirs]), sk.size, count, context=sk.points)
 
 
 def _view_axes3d(fig: "Figure", k: int, view_list: list[tuple[float, float]], extent: np.ndarray, size: float) -> Any:
@@ -141,9 +143,7 @@ def _draw_view(ax: Any, mechanism: Mechanism, r: Result, sk: Sketch, scene: Scen
     size = sk.size
     head = 0.045 * size
     triad(ax, *view)
-    for link, idx in sk.link_joints.items():
-        role = "ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"
-        draw_link(ax, link, sk.points[list(idx)], role, size)
+    draw_links(ax, mechanism, sk)
     draw_joints(ax, mechanism, sk, labels, view)
     ax.scatter(*sk.end_effector_centre, marker="x", s=30, color=COLORS["end_effector"], depthshade=False, gid="mobility:end-effector-centre")
     for i, (s, e) in enumerate(scene.translations):

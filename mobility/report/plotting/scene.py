@@ -67,7 +67,7 @@ class ForceGlyph(NamedTuple):
 
 @dataclass(frozen=True, eq=False)
 class Scene:
-    """The glyphs of the end effector's answer, in the global frame and the file's length unit."""
+    """The glyphs of the end effector's answer, in the global frame and the sketch's drawing units."""
 
     translations: tuple[Segment, ...]
     rotations: tuple[AxisGlyph, ...]
@@ -107,6 +107,7 @@ class _Placer:
 
     def __init__(self, sk: Sketch) -> None:
         self.size = sk.size
+        self.scale = sk.scale
         self.centre = sk.end_effector_centre
         self.points: list[np.ndarray] = [sk.points, self.centre[None]]  # joints, marks, tips and labels
         self.lines: list[np.ndarray] = []  # samples along drawn lines
@@ -123,7 +124,7 @@ class _Placer:
     def rotation(self, a: ScrewAxis) -> AxisGlyph:
         # which end carries the mark and the label, and how long: clear of joints and other labels
         size, half_axis = self.size, 0.5 * self.size
-        p = np.asarray(a.point, dtype=float)
+        p = np.asarray(a.point, dtype=float) * self.scale
         d = np.asarray(a.axis, dtype=float)
         options = [(s, k) for k in (1.0, 0.8, 1.25) for s in (1.0, -1.0)]
         marks = [np.stack([p + s * 0.62 * k * half_axis * d, p + s * (k * half_axis + 0.06 * size) * d]) for s, k in options]
@@ -138,7 +139,7 @@ class _Placer:
         # shorter than a rotation axis, so both show where they share a line; the arrowhead (and label)
         # at either end, the line a little shorter or longer: clear of marks and joints
         size = self.size
-        p = np.asarray(f.point, dtype=float)
+        p = np.asarray(f.point, dtype=float) * self.scale
         d = np.asarray(f.axis, dtype=float)
         options = [(sg, k) for k in (0.28, 0.2, 0.36) for sg in (1.0, -1.0)]
         tips = [np.stack([p + sg * k * size * d, p + sg * (k + 0.06) * size * d]) for sg, k in options]

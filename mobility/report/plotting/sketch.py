@@ -4,6 +4,13 @@ A prismatic joint (or a planar joint without a point) has no location in the
 file, so it is drawn between the located joints of its two links, or beside
 the one it has.
 
+A picture is drawn in *drawing units*: the file's lengths times
+:attr:`Sketch.scale`, a power of two (exact, so nothing is rounded) that is 1
+for every mechanism between about a micrometre and a thousand kilometres in
+size, whatever its unit, and brings any other to a size near 1, so that a
+mechanism at 1e200 or 1e-250 is drawn without overflow or underflow
+(:func:`drawing_scale`).
+
 Examples
 --------
 >>> import mobility
@@ -29,9 +36,33 @@ import numpy as np
 
 from ...core.joint_screws import joint_screws
 from ...core.model import Mechanism
-from ...core.tolerance import DEFAULT_TOLERANCE
+from ...core.tolerance import DEFAULT_TOLERANCE, binary_scale
 
-__all__ = ["Sketch", "sketch"]
+__all__ = ["Sketch", "sketch", "drawing_scale", "PLAIN_SIZES"]
+
+PLAIN_SIZES = (2.0**-20, 2.0**20)
+"""Sizes of a mechanism drawn in its file's own numbers (drawing scale 1): about 1e-6 to 1e6."""
+
+
+def drawing_scale(length: float) -> float:
+    """The power of two that lengths are multiplied by in a picture of a mechanism of size ``length``.
+
+    1 when ``length`` lies within :data:`PLAIN_SIZES` (a picture's artists then
+    hold the file's numbers), else the power of two bringing ``length`` near 1
+    (:func:`~mobility.core.tolerance.binary_scale`): a drawing library squares
+    coordinates (norms, projections), which would overflow at 1e200 and
+    underflow at 1e-250.
+
+    Examples
+    --------
+    >>> drawing_scale(250.0), drawing_scale(1e-3)
+    (1.0, 1.0)
+    >>> [0.5 <= drawing_scale(x) * x < 1.0 for x in (1e200, 1e-250)]
+    [True, True]
+    """
+    if PLAIN_SIZES[0] <= length <= PLAIN_SIZES[1]:
+        return 1.0
+    return binary_scale(length)
 
 ROUND_OFF = DEFAULT_TOLERANCE.round_off
 """Lengths below this fraction of the scene are round-off (the policy's rule): a scene that small has no extent."""
@@ -41,12 +72,14 @@ ROUND_OFF = DEFAULT_TOLERANCE.round_off
 class Sketch:
     """Where each joint is drawn, and the size of the scene.
 
+    Every length is in drawing units: the file's lengths times ``scale``.
+
     Attributes
     ----------
     names, types : tuple of str
         Joint names and types, in the mechanism's order.
     points : ndarray, shape (J, 3)
-        Drawn location of each joint (global frame).
+        Drawn location of each joint (global frame, drawing units).
     located : ndarray of bool, shape (J,)
         True where the location comes from the file (``point``); false for a
         placed prismatic or planar joint.
@@ -60,6 +93,9 @@ class Sketch:
     end_effector_centre : ndarray, shape (3,)
         Centroid of the located joints of the end effector (where its freedoms
         are drawn); the drawn joints when none is located.
+    scale : float
+        Drawing units per file unit (:func:`drawing_scale`; 1 for every
+        mechanism of an everyday size).
     """
 
     names: tuple[str, ...]
@@ -70,9 +106,14 @@ class Sketch:
     centre: np.ndarray
     size: float
     end_effector_centre: np.ndarray
+    scale: float = 1.0
+
+    def drawn(self, point: np.ndarray) -> np.ndarray:
+        """A point (or points) of the file in drawing units."""
+        return np.asarray(point, dtype=float) * self.scale
 
 
-def sketch(mechanism: Mechanism) -> Sketch:
+def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
     """Compute where each joint of ``mechanism`` is drawn.
 
     A joint without a point (prismatic, or planar without ``point``) is drawn
@@ -84,6 +125,9 @@ def sketch(mechanism: Mechanism) -> Sketch:
     Parameters
     ----------
     mechanism : Mechanism
+    scale : float, optional
+        Drawing units per file unit; default :func:`drawing_scale` of the
+        mechanism's characteristic length (poses drawn together share one).
 
     Returns
     -------
@@ -91,40 +135,44 @@ def sketch(mechanism: Mechanism) -> Sketch:
     """
     joints = mechanism.world_joints
     n = len(joints)
+    norm = joint_screws(mechanism).normalisation
+    scale = drawing_scale(norm.length) if scale is None else float(scale)
+    length = norm.length * scale
     pts = np.zeros((n, 3))
-    located = np.array([j.point is not None for j in joints])
+    located = np.array([j.point is not None for j in joints], dtype=bool)
     for i, j in enumerate(joints):
         if j.point is not None:
             pts[i] = j.point
+    pts *= scale
     link_joints: dict[str, list[int]] = {}
     for i, j in enumerate(joints):
         for x in j.links:
             link_joints.setdefault(x, []).append(i)
-    norm = joint_screws(mechanism).normalisation
     if located.any():
         lp = pts[located]
         size = float(np.max(np.ptp(lp, axis=0)))
         centre = lp.mean(axis=0)
     else:
         size, centre = 0.0, np.zeros(3)
-    if size <= ROUND_OFF * norm.length:  # every located joint at one point
-        size = 2.0 * norm.length if norm.length > 0 else 1.0
+    if size <= ROUND_OFF * length:  # every located joint at one point
+        size = 2.0 * length if length > 0 else 1.0
     ee = [i for i in link_joints[mechanism.end_effector] if located[i]]
     ee_centre = pts[ee].mean(axis=0) if ee else centre
 
     placed = located.copy()
+    for usable in (located, placed):  # first from the located joints only, then from every joint placed so far
+        means: dict[str, np.ndarray | None] = {}  # the mean of a link's usable joints, until one more is placed
 
-    def anchors(i: int, link: str, usable: np.ndarray) -> np.ndarray | None:
-        idx = [k for k in link_joints[link] if k != i and usable[k]]
-        return pts[idx].mean(axis=0) if idx else None
+        def anchor(link: str) -> np.ndarray | None:
+            if link not in means:
+                idx = [k for k in link_joints[link] if usable[k]]
+                means[link] = pts[idx].mean(axis=0) if idx else None
+            return means[link]
 
-    for usable_from_placed in (False, True):
         for i, j in enumerate(joints):
             if placed[i]:
                 continue
-            usable = placed if usable_from_placed else located
-            a = anchors(i, j.links[0], usable)
-            b = anchors(i, j.links[1], usable)
+            a, b = anchor(j.links[0]), anchor(j.links[1])
             if a is not None and b is not None:
                 pts[i] = 0.5 * (a + b)
             elif a is not None or b is not None:
@@ -136,11 +184,14 @@ def sketch(mechanism: Mechanism) -> Sketch:
                 if direction @ away < 0:
                     direction = -direction
                 pts[i] = x + 0.25 * size * direction
-            elif usable_from_placed:
+            elif usable is placed:
                 pts[i] = centre
             else:
                 continue
             placed[i] = True
+            if usable is placed:  # the joint is usable from now on
+                for link in j.links:
+                    means.pop(link, None)
     if not located.any():
         centre = pts.mean(axis=0)
         ee_centre = pts[link_joints[mechanism.end_effector]].mean(axis=0)
@@ -157,4 +208,5 @@ def sketch(mechanism: Mechanism) -> Sketch:
         centre,
         size,
         ee_centre,
+        scale,
     )

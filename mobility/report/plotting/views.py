@@ -4,6 +4,11 @@ Every candidate view ``(elev, azim)`` on a grid is scored by the pairs of
 important points that fall on each other on the screen and by the directions
 seen end-on; :func:`choose_views` takes the best, then the best far enough
 from those chosen.
+
+The cost is bounded whatever the size of the mechanism: the pairs are scored
+a block at a time (memory of :data:`PAIR_BLOCK` pairs times the views), and
+of the *context* points (the joints) at most :data:`MAX_CONTEXT_POINTS`,
+evenly spread over them, take part; the points of the answer always do.
 """
 
 from __future__ import annotations
@@ -13,7 +18,14 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["view_axes", "view_scores", "choose_views"]
+__all__ = ["view_axes", "view_scores", "thinned", "choose_views", "MAX_CONTEXT_POINTS", "PAIR_BLOCK"]
+
+MAX_CONTEXT_POINTS = 300
+"""Context points (joints) scored at most; more are thinned evenly (a picture of thousands of joints
+cannot keep them all apart anyway, and the pairs grow as the square of the points)."""
+
+PAIR_BLOCK = 4096
+"""Pairs of points scored at a time (bounds the memory of scoring to this many pairs times the views)."""
 
 
 def view_axes(elev: Any, azim: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -36,20 +48,46 @@ def view_scores(elev: np.ndarray, azim: np.ndarray, points: np.ndarray, directio
         d = points[i] - points[j]
         d3 = np.linalg.norm(d, axis=1)
         keep = d3 > 0.03 * size
-        if keep.any():
-            d = d[keep]
-            d3 = d3[keep, None]
-            d2 = np.hypot(d @ sx.T, d @ sy.T)  # (pairs, views)
-            bad = bad + np.sum(d2 < 0.04 * size, axis=0)  # points drawn on top of each other
-            bad = bad + np.sum(np.exp(-((d2 / (0.08 * size)) ** 2)) * (d2 < 0.5 * d3), axis=0)
-            bad = bad + 6.0 * (1.0 - np.mean(d2 / d3, axis=0))  # foreshortening: a flat scene seen edge-on
+        d, d3 = d[keep], d3[keep]
+        if len(d):
+            on_top, close, seen_length = (np.zeros(len(elev)) for _ in range(3))
+            for start in range(0, len(d), PAIR_BLOCK):
+                block, block3 = d[start : start + PAIR_BLOCK], d3[start : start + PAIR_BLOCK, None]
+                d2 = np.hypot(block @ sx.T, block @ sy.T)  # (pairs, views)
+                on_top += np.sum(d2 < 0.04 * size, axis=0)  # points drawn on top of each other
+                close += np.sum(np.exp(-((d2 / (0.08 * size)) ** 2)) * (d2 < 0.5 * block3), axis=0)
+                seen_length += np.sum(d2 / block3, axis=0)
+            bad = bad + on_top
+            bad = bad + close
+            bad = bad + 6.0 * (1.0 - seen_length / len(d))  # foreshortening: a flat scene seen edge-on
     if len(directions):
         seen = np.sqrt(np.maximum(0.0, 1.0 - (directions @ eye.T) ** 2))  # (directions, views)
         bad = bad + 4.0 * np.sum(seen < 0.35, axis=0) + np.sum(np.maximum(0.0, 0.6 - seen), axis=0)
     return bad
 
 
-def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count: int = 2, *, separation: float = 60.0) -> list[tuple[float, float]]:
+def thinned(points: np.ndarray, limit: int = MAX_CONTEXT_POINTS) -> np.ndarray:
+    """At most ``limit`` of ``points`` (rows), evenly spread over them in order (all when there are no more).
+
+    Examples
+    --------
+    >>> thinned(np.arange(30.0).reshape(10, 3), 4)[:, 0].tolist()
+    [0.0, 9.0, 18.0, 27.0]
+    """
+    if len(points) <= limit:
+        return points
+    return points[np.unique(np.linspace(0, len(points) - 1, limit).round().astype(int))]
+
+
+def choose_views(
+    points: np.ndarray,
+    directions: np.ndarray,
+    size: float,
+    count: int = 2,
+    *,
+    separation: float = 60.0,
+    context: np.ndarray | None = None,
+) -> list[tuple[float, float]]:
     """Viewpoints ``(elev, azim)`` in degrees where nothing important overlaps.
 
     Every candidate view on a grid is scored by the pairs of ``points`` that
@@ -69,6 +107,10 @@ def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count:
         Number of views.
     separation : float
         Smallest angle between two chosen view directions, degrees.
+    context : ndarray, shape (m, 3), optional
+        Further points that should stay apart too (the joints), scored
+        with ``points``; beyond :data:`MAX_CONTEXT_POINTS` of them, that
+        many evenly spread over them (the same bound applies to ``points``).
 
     Returns
     -------
@@ -82,7 +124,9 @@ def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count:
     >>> elev < 60
     True
     """
-    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    points = thinned(np.asarray(points, dtype=float).reshape(-1, 3))
+    if context is not None:
+        points = np.concatenate([thinned(np.asarray(context, dtype=float).reshape(-1, 3)), points])
     directions = np.asarray(directions, dtype=float).reshape(-1, 3)
     elev, azim = (g.ravel().astype(float) for g in np.meshgrid([10, 20, 30, 40, 55, 70, 85], np.arange(0, 360, 10), indexing="ij"))
     scores = np.round(view_scores(elev, azim, points, directions, size), 9)
