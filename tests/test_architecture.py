@@ -23,7 +23,7 @@ PACKAGE = Path(mobility.__file__).resolve().parent
 ALLOWED = {
     "errors": "",
     "core": "errors",
-    "io": "errors core.model core.transforms",
+    "io": "errors core.model core.transforms core.tolerance",
     "finite": "errors core",
     "actuation": "errors core",
     "flexure": "errors core io actuation",

@@ -37,7 +37,7 @@ def test_every_error_class_is_a_mobility_error():
     names = {c.__name__ for c in ERROR_CLASSES}
     assert {"MobilityError", "MechanismFileError", "RequestError", "MissingExtraError"} <= names  # the scan sees the classes
     assert [c.__name__ for c in ERROR_CLASSES if not issubclass(c, MobilityError)] == []
-    assert set(errors.__all__) == names
+    assert set(errors.__all__) == names | {"name_list"}  # the classes, and the one helper for the names in a message
 
 
 def test_every_error_class_has_a_sample():
@@ -96,3 +96,10 @@ def test_a_bad_file_names_file_line_and_key(write_yaml, capsys):
 def test_a_tolerance_out_of_order_is_a_request_error(fields):
     with pytest.raises(RequestError, match="0 < inexact <= rank < near_singular < 1"):
         Tolerance(**fields)
+
+
+def test_name_lists_in_messages_stay_short():
+    assert errors.name_list(["A", "B"]) == "A, B"
+    assert errors.name_list((f"J{i}" for i in range(5000))) == "J0, J1, J2, J3, J4, J5, J6, J7, J8, J9, J10, J11, ... (5000 in all)"
+    assert errors.name_list([], empty="nothing") == "nothing"
+

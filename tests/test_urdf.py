@@ -277,3 +277,29 @@ def _cleanup():
     yield
     for d in _DIRS:
         d.cleanup()
+
+
+# -- bounds: a robot file is read within the same limits as a mechanism file ----------------------
+
+def test_a_robot_file_is_read_within_the_size_limit(tmp_path, capsys):
+    link = tmp_path / "zero.urdf"
+    link.symlink_to("/dev/zero")
+    from mobility.cli import main
+
+    assert main(["analyze", str(link)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "larger than the limit" in err[0] and "MOBILITY_MAX_FILE_BYTES" in err[0]
+
+
+def test_a_robot_file_is_held_to_the_joint_limit(tmp_path, monkeypatch):
+    monkeypatch.setenv("MOBILITY_MAX_JOINTS", "20")
+    n = 21
+    links = "".join(f'<link name="l{i}"/>' for i in range(n + 1))
+    joints = "".join(f'<joint name="j{i}" type="continuous"><parent link="l{i}"/><child link="l{i + 1}"/>'
+                     f'<origin xyz="0 0 0.1"/><axis xyz="0 0 1"/></joint>' for i in range(n))
+    path = tmp_path / "chain.urdf"
+    path.write_text(f'<robot name="chain">{links}{joints}</robot>')
+    with pytest.raises(MechanismFileError, match=r"21 joints are more than the limit of 20 .*MOBILITY_MAX_JOINTS"):
+        mobility.load(path)
+    monkeypatch.setenv("MOBILITY_MAX_JOINTS", "21")
+    assert len(mobility.load(path).joints) == 21

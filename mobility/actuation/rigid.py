@@ -30,7 +30,7 @@ from ..core.model import Mechanism
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..core.topology import joints_of
-from ..errors import MechanismError, RequestError
+from ..errors import MechanismError, RequestError, name_list
 from .assessment import Assessment, InputWrench, assess_inputs, assess_wrenches
 from .ranking import combination_type, combinations_count, combine_poses, limit_combinations, rank_combinations
 from .results import ActuationCheck, Enumeration
@@ -184,7 +184,7 @@ def _inputs_of(pose: RigidPose, names: Sequence[str]) -> list[InputWrench]:
     out = []
     for name in names:
         if name not in index:
-            raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {', '.join(index)}")
+            raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {name_list(index)}")
         j = joints[index[name]]
         out += [pose.input_wrench(index[name], k, name if j.dof == 1 else f"{name}.{k}") for k in range(j.dof)]
     return out

@@ -6,10 +6,9 @@ import argparse
 
 from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
-from ..errors import MechanismFileError, RequestError
-from ..io.limits import current_limits
+from ..errors import RequestError
 
-__all__ = ["add_tolerance_option", "tolerance_from", "add_pose_sampler_options", "sampled_poses", "require_size"]
+__all__ = ["add_tolerance_option", "tolerance_from", "add_pose_sampler_options", "sampled_poses"]
 
 
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
@@ -64,29 +63,3 @@ def sampled_poses(args: argparse.Namespace, mechanism: Mechanism) -> list[Mechan
     from ..core.kinematics import sample_poses  # the finite kinematics: imported only by the commands that move
 
     return sample_poses(mechanism, args.samples, step=args.step, seed=args.seed)
-
-
-def require_size(mechanism: Mechanism, limit: str, what: str, file: str) -> None:
-    """Refuse, in one line, a mechanism with more joints than the command-specific ``limit`` of :class:`~mobility.io.limits.Limits`.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    limit : str
-        The field of :class:`~mobility.io.limits.Limits`: ``"max_finite_joints"``,
-        ``"max_moving_joints"`` or ``"max_enumerated_joints"``.
-    what : str
-        What the limit is for, as the user asked it (``"--finite"``).
-    file : str
-        The file, named in the message.
-
-    Raises
-    ------
-    MechanismFileError
-        ``FILE: joints: N joints are more than the limit of L for WHAT (set MOBILITY_... to raise it)``.
-    """
-    limits = current_limits()
-    bound = getattr(limits, limit)
-    count = len(mechanism.joints)
-    if count > bound:
-        raise MechanismFileError("joints", f"{count} joints are more than the limit of {bound} for {what} ({limits.hint(limit)})", file=file)

@@ -27,7 +27,8 @@ from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines
 from ..io.loader import load, loads
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
-from ._options import add_pose_sampler_options, add_tolerance_option, require_size, sampled_poses, tolerance_from
+from ..io.limits import require_size
+from ._options import add_pose_sampler_options, add_tolerance_option, sampled_poses, tolerance_from
 
 ORDER = 30
 

@@ -6,7 +6,8 @@ import argparse
 
 from ..core.analysis import analyze
 from ..report.text import json_report, text_report
-from ._options import add_tolerance_option, require_size, tolerance_from
+from ..io.limits import require_size
+from ._options import add_tolerance_option, tolerance_from
 from .convert import add_robot_options, load_mechanism
 
 ORDER = 10

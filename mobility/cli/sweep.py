@@ -19,7 +19,8 @@ from ..io.loader import load
 from ..report.plotting import picture_path, save_figure
 from ..report.sweep import sweep_csv, sweep_json, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, DEFAULT_MAX_POSES, sweep
-from ._options import add_tolerance_option, require_size, tolerance_from
+from ..io.limits import require_size
+from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 35
 

@@ -14,7 +14,8 @@ from ..errors import RequestError
 from ..io.loader import load
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
-from ._options import add_pose_sampler_options, add_tolerance_option, require_size, sampled_poses, tolerance_from
+from ..io.limits import require_size
+from ._options import add_pose_sampler_options, add_tolerance_option, sampled_poses, tolerance_from
 
 ORDER = 31
 

@@ -36,7 +36,7 @@ from typing import Any, Iterable, Mapping
 
 import numpy as np
 
-from ..errors import MechanismError, RequestError
+from ..errors import MechanismError, RequestError, name_list
 from .tolerance import binary_scale
 from .transforms import Transform, rotation_from_rpy
 
@@ -442,7 +442,7 @@ class Mechanism:
             frame_index[f.name] = i
         for f in self.frames:
             if f.parent != WORLD and f.parent not in frame_index:
-                raise MechanismError(f"frames.{f.name}.parent", f"unknown frame {f.parent!r}; expected {WORLD!r} or one of: {', '.join(frame_index) or '(none)'}")
+                raise MechanismError(f"frames.{f.name}.parent", f"unknown frame {f.parent!r}; expected {WORLD!r} or one of: {name_list(frame_index)}")
         for f in self.frames:  # cycles among parents
             chain = [f.name]
             cur = f
@@ -453,7 +453,7 @@ class Mechanism:
                 cur = self.frames[frame_index[cur.parent]]
         for i, j in enumerate(self.joints):
             if j.frame != WORLD and j.frame not in frame_index:
-                raise MechanismError(f"joints[{i}].frame", f"unknown frame {j.frame!r}; expected {WORLD!r} or one of: {', '.join(frame_index) or '(none)'}")
+                raise MechanismError(f"joints[{i}].frame", f"unknown frame {j.frame!r}; expected {WORLD!r} or one of: {name_list(frame_index)}")
         links = self.links
         if self.ground not in links:
             raise MechanismError("ground", f"link {self.ground!r} is not joined by any joint")
@@ -465,7 +465,7 @@ class Mechanism:
         if self.end_effector in unreached:
             raise MechanismError("end_effector", f"link {self.end_effector!r} is not connected to the ground {self.ground!r} through joints")
         if unreached:
-            raise MechanismError("joints", f"links not connected to the ground {self.ground!r}: {', '.join(sorted(unreached))}")
+            raise MechanismError("joints", f"links not connected to the ground {self.ground!r}: {name_list(sorted(unreached))}")
 
     def _links_not_connected_to_ground(self) -> set[str]:
         neighbours: dict[str, set[str]] = {}
@@ -503,7 +503,7 @@ class Mechanism:
         for j in self.joints:
             if j.name == name:
                 return j
-        raise RequestError(f"no joint named {name!r}; the joints are {', '.join(j.name for j in self.joints)}")
+        raise RequestError(f"no joint named {name!r}; the joints are {name_list(j.name for j in self.joints)}")
 
     def frame_transform(self, name: str) -> Transform:
         """Transform from frame ``name`` to the global frame."""

@@ -37,7 +37,7 @@ from ..actuation import ActuationCheck, Enumeration, InputWrench, assess_inputs,
 from ..core.joint_screws import Normalisation
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale, decide_rank
 from ..core.transforms import skew
-from ..errors import MechanismError
+from ..errors import MechanismError, name_list
 from .model import FlexureMechanism, ForceLine
 from .spaces import FlexureSpaces, flexure_spaces
 
@@ -195,7 +195,7 @@ def _select(mechanism: FlexureMechanism, names: Sequence[str] | None) -> list[Fo
     out = []
     for n in names:
         if n not in by_name:
-            raise MechanismError("actuators", f"unknown actuator {n!r}; expected one of: {', '.join(by_name) or '(none)'}")
+            raise MechanismError("actuators", f"unknown actuator {n!r}; expected one of: {name_list(by_name)}")
         out.append(by_name[n])
     return out
 

@@ -48,7 +48,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..errors import MechanismError
+from ..errors import MechanismError, name_list
 from .model import LENGTH_UNITS, MODULUS_UNITS, FlexureMechanism, ForceLine, Material, Rod
 from ..io.reader import DocumentReader, describe_value, parse_key
 from ..core.model import WORLD, Frame
@@ -144,7 +144,7 @@ class _FlexureReader(DocumentReader):
                 raise self.fail(("frames", chain[0], "parent"), "cycle among frame parents: " + " -> ".join(chain + (name,)))
             f = by_name[name]
             if f.parent != WORLD and f.parent not in by_name:
-                raise self.fail(("frames", name, "parent"), f"unknown frame {f.parent!r}; expected {WORLD!r} or one of: {', '.join(by_name)}")
+                raise self.fail(("frames", name, "parent"), f"unknown frame {f.parent!r}; expected {WORLD!r} or one of: {name_list(by_name)}")
             out[name] = resolve(f.parent, chain + (name,)).compose(f.transform)
             return out[name]
 

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core.joint_screws import Normalisation
 from ..core.tolerance import characteristic_scale
-from ..errors import MechanismError
+from ..errors import MechanismError, name_list
 
 __all__ = ["LENGTH_UNITS", "MODULUS_UNITS", "Material", "Rod", "ForceLine", "FlexureMechanism"]
 
@@ -261,7 +261,7 @@ class FlexureMechanism:
                     changed = True
         missing = sorted(set(bodies) - reached)
         if missing:
-            raise MechanismError("elements", f"bodies not connected to the ground {self.ground!r}: {', '.join(missing)}")
+            raise MechanismError("elements", f"bodies not connected to the ground {self.ground!r}: {name_list(missing)}")
         if self.threshold is not None and not (0.0 < _number(self.threshold, "threshold", "a number between 0 and 1") < 1.0):
             raise MechanismError("threshold", f"expected a number between 0 and 1, got {self.threshold!r}")
 

@@ -36,6 +36,7 @@ import operator
 from functools import lru_cache
 from typing import Any, Callable, Mapping
 
+from ..errors import name_list
 from .limits import DEFAULT_LIMITS
 
 __all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression"]
@@ -226,7 +227,7 @@ def _run(program: Program, names: Mapping[str, float], text: str) -> float:
 
 
 def _unknown_name(name: str, text: str, names: Mapping[str, float]) -> ValueError:
-    known = ", ".join(sorted(names)) or "(none)"
+    known = name_list(sorted(names))
     return ValueError(f"unknown name {name!r} in {_shown(text)!r}; parameters defined: {known}")
 
 

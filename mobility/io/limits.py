@@ -39,9 +39,10 @@ import os
 from dataclasses import dataclass, fields
 from typing import Mapping
 
-from ..errors import RequestError
+from ..core.model import Mechanism
+from ..errors import MechanismFileError, RequestError
 
-__all__ = ["Limits", "DEFAULT_LIMITS", "current_limits"]
+__all__ = ["Limits", "DEFAULT_LIMITS", "current_limits", "require_size"]
 
 
 @dataclass(frozen=True)
@@ -142,3 +143,29 @@ DEFAULT_LIMITS = Limits()
 def current_limits(limits: Limits | None = None) -> Limits:
     """``limits`` if given, else the defaults with the environment applied."""
     return limits if limits is not None else Limits.from_environment()
+
+
+def require_size(mechanism: Mechanism, limit: str, what: str, file: str) -> None:
+    """Refuse, in one line, a mechanism with more joints than the command-specific ``limit`` of :class:`Limits`.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    limit : str
+        The field of :class:`Limits`: ``"max_finite_joints"``,
+        ``"max_moving_joints"`` or ``"max_enumerated_joints"``.
+    what : str
+        What the limit is for, as the user asked it (``"--finite"``).
+    file : str
+        The file, named in the message.
+
+    Raises
+    ------
+    MechanismFileError
+        ``FILE: joints: N joints are more than the limit of L for WHAT (set MOBILITY_... to raise it)``.
+    """
+    limits = current_limits()
+    bound = getattr(limits, limit)
+    count = len(mechanism.joints)
+    if count > bound:
+        raise MechanismFileError("joints", f"{count} joints are more than the limit of {bound} for {what} ({limits.hint(limit)})", file=file)

@@ -85,10 +85,11 @@ def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any
         When the file cannot be read or breaks the format; the message names
         file, line, key and what was expected.
     """
-    from .robot_files import is_robot_file, load_robot  # robot descriptions are read only when given
+    if robot_options or Path(path).suffix.lower() not in (".yaml", ".yml"):
+        from .robot_files import is_robot_file, load_robot  # robot descriptions are read only when given
 
-    if robot_options or is_robot_file(path):
-        return load_robot(path, **robot_options)
+        if robot_options or is_robot_file(path):
+            return load_robot(path, **robot_options)
     limits = current_limits(limits)
     return loads(read_text(path, limits), file=str(path), limits=limits)
 

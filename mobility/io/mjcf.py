@@ -39,6 +39,7 @@ import numpy as np
 from ..core.model import Joint
 from ..errors import MechanismError, MechanismFileError, MissingExtraError
 from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, rotation_tuple, vector_tuple
+from .files import read_capped
 from .xml_source import read_xml
 
 __all__ = ["read_mjcf", "import_mujoco"]
@@ -88,7 +89,7 @@ def read_mjcf(path: str | Path) -> RobotTree:
     if Path(file).suffix.lower() == ".xml":
         spec = _mujoco_call(lambda: mujoco.MjSpec.from_file(file), file)
     else:  # MuJoCo picks its reader by extension: give it the text (includes then resolve from the working directory)
-        spec = _mujoco_call(lambda: mujoco.MjSpec.from_string(Path(file).read_bytes().decode("utf-8", errors="replace")), file)
+        spec = _mujoco_call(lambda: mujoco.MjSpec.from_string(read_capped(file).decode("utf-8", errors="replace")), file)
     _without_asset_files(mujoco, spec)
     with warnings.catch_warnings(record=True) as caught:  # MuJoCo's compiler warnings become notes
         warnings.simplefilter("always")

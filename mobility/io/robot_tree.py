@@ -59,6 +59,7 @@ import numpy as np
 
 from ..core.model import Joint, Mechanism
 from ..errors import MechanismError, MechanismFileError
+from .limits import current_limits
 
 __all__ = [
     "Body",
@@ -333,6 +334,9 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
         members = [b.name for b in tree.bodies if body and b.name != body and groups.find(b.name) == groups.find(body)]
         if members:
             notes.append(f"{role} {body} is one rigid link with {', '.join(members[:6])}{' ...' if len(members) > 6 else ''}")
+    limits = current_limits()
+    if len(joints) > limits.max_joints:
+        raise MechanismFileError("joints", f"{len(joints)} joints are more than the limit of {limits.max_joints} ({limits.hint('max_joints')})", file=tree.file)
     description = f"Imported from the {tree.format} file {Path(tree.file).name} at the pose: {tree.pose}."
     try:
         mechanism = Mechanism(name=tree.name, ground=ground, end_effector=end_effector, joints=tuple(joints),

@@ -2,7 +2,9 @@
 
 The text follows version 1 of the format (plus ``actuated``), one joint per
 line in flow style, every joint in the global frame, and loads back with
-:func:`mobility.loads` to the same joints.  Used by ``mobility convert`` and by
+:func:`mobility.loads` to the same joints: every number is written to its last
+bit, except round-off (below the policy's ``round_off`` of the mechanism's
+characteristic length, or of 1 for a direction), which is written as 0.  Used by ``mobility convert`` and by
 the type synthesis to write the mechanisms it assembles.
 
 Examples
@@ -28,9 +30,11 @@ import json
 import re
 from typing import Any, Iterable
 
+import numpy as np
 import yaml
 
 from ..core.model import Mechanism
+from ..core.tolerance import characteristic_scale, clean_numbers
 
 __all__ = ["mechanism_to_yaml", "yaml_scalar"]
 
@@ -47,7 +51,9 @@ def yaml_scalar(value: Any) -> str:
     """
     if isinstance(value, bool):
         return "true" if value else "false"
-    if isinstance(value, (int, float)):
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
         return _number(value)
     text = str(value)
     if _PLAIN.fullmatch(text) and yaml.safe_load(text) == text:  # not read as a number, boolean or null
@@ -55,15 +61,16 @@ def yaml_scalar(value: Any) -> str:
     return json.dumps(text, ensure_ascii=False)  # a JSON string is a YAML double-quoted scalar
 
 
-def _number(x: float) -> str:
-    x = float(x)
-    if abs(x) < 1e-12:
-        return "0"
-    return f"{x:.12g}"
+def _number(x: float, scale: float = 1.0) -> str:
+    """``x`` to the last bit (the shortest text that reads back to the same float), round-off written as 0."""
+    x = clean_numbers(float(x), scale)
+    if x.is_integer() and abs(x) < 2.0**53:
+        return str(int(x))
+    return repr(x)
 
 
-def _vector(v: Iterable[float]) -> str:
-    return "[" + ", ".join(_number(x) for x in v) + "]"
+def _vector(v: Iterable[float], scale: float = 1.0) -> str:
+    return "[" + ", ".join(_number(x, scale) for x in v) + "]"
 
 
 def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: dict[str, Any] | None = None) -> str:
@@ -94,16 +101,19 @@ def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: 
     if mechanism.length_unit:
         lines.append(f"units: {{length: {yaml_scalar(mechanism.length_unit)}}}")
     lines += [f"ground: {yaml_scalar(mechanism.ground)}", f"end_effector: {yaml_scalar(mechanism.end_effector)}", "joints:"]
-    for j in mechanism.world_joints:
+    joints = mechanism.world_joints
+    points = [j.point for j in joints if j.point is not None]
+    _, size = characteristic_scale(np.array(points, dtype=float).reshape(-1, 3), np.array([j.pitch for j in joints if j.pitch is not None], dtype=float))
+    for j in joints:
         fields = [f"name: {yaml_scalar(j.name)}", f"type: {j.type}", f"links: [{yaml_scalar(j.links[0])}, {yaml_scalar(j.links[1])}]"]
         if j.axis is not None:
             fields.append(f"axis: {_vector(j.axis)}")
         if j.axes is not None:
             fields.append(f"axes: [{_vector(j.axes[0])}, {_vector(j.axes[1])}]")
         if j.point is not None and j.type != "P":
-            fields.append(f"point: {_vector(j.point)}")
+            fields.append(f"point: {_vector(j.point, size)}")
         if j.pitch is not None:
-            fields.append(f"pitch: {_number(j.pitch)}")
+            fields.append(f"pitch: {_number(j.pitch, size)}")
         if j.normal is not None:
             fields.append(f"normal: {_vector(j.normal)}")
         if j.actuated:

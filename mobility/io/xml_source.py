@@ -26,6 +26,7 @@ from pathlib import Path
 from xml.parsers import expat
 
 from ..errors import MechanismFileError
+from .files import read_capped
 
 __all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag"]
 
@@ -95,13 +96,10 @@ def read_xml(path: str | Path) -> XmlDocument:
     Raises
     ------
     MechanismFileError
-        When the file cannot be read or is not well-formed XML.
+        When the file cannot be read, is larger than the size limit
+        (:mod:`mobility.io.limits`) or is not well-formed XML.
     """
-    try:
-        data = Path(path).read_bytes()
-    except OSError as exc:
-        raise MechanismFileError("", f"cannot read the file ({exc.strerror or exc})", file=str(path)) from None
-    return parse_xml(data, str(path))
+    return parse_xml(read_capped(path), str(path))
 
 
 def root_tag(path: str | Path) -> str | None:

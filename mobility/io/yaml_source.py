@@ -47,6 +47,7 @@ from typing import Any
 import yaml
 
 from ..errors import MechanismFileError
+from .files import read_capped
 from .limits import Limits, current_limits
 
 try:  # libyaml's parser, in C, about 14 times faster than the pure-Python one
@@ -109,7 +110,7 @@ class Positions:
 
 
 def read_text(path: str | Path, limits: Limits | None = None) -> str:
-    """The text of a document file, read with the size cap of ``limits``.
+    """The text of a document file, read with the size cap of ``limits`` (:func:`read_capped`).
 
     Raises
     ------
@@ -117,31 +118,12 @@ def read_text(path: str | Path, limits: Limits | None = None) -> str:
         One line naming the file: missing, a directory, unreadable, larger
         than the limit, or not UTF-8 (with the line of the first bad byte).
     """
-    name = str(path)
-    cap = current_limits(limits).max_file_bytes
-    try:
-        with open(path, "rb") as stream:
-            chunks, size = [], 0
-            while size <= cap:  # in chunks: read(cap + 1) would allocate the whole cap for every file
-                chunk = stream.read(min(1 << 16, cap + 1 - size))
-                if not chunk:
-                    break
-                chunks.append(chunk)
-                size += len(chunk)
-            raw = b"".join(chunks)
-    except FileNotFoundError:
-        raise MechanismFileError("", "no such file", file=name) from None
-    except IsADirectoryError:
-        raise MechanismFileError("", "is a directory, expected a mechanism file", file=name) from None
-    except OSError as exc:
-        raise MechanismFileError("", f"cannot read: {exc.strerror or exc}", file=name) from None
-    if len(raw) > cap:
-        raise MechanismFileError("", f"larger than the limit of {cap} bytes for a document (set MOBILITY_MAX_FILE_BYTES to raise it)", file=name)
+    raw = read_capped(path, limits)
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as exc:
         line = raw.count(b"\n", 0, exc.start) + 1
-        raise MechanismFileError("", f"not UTF-8 text (byte 0x{raw[exc.start]:02x})", file=name, line=line) from None
+        raise MechanismFileError("", f"not UTF-8 text (byte 0x{raw[exc.start]:02x})", file=str(path), line=line) from None
 
 
 def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) -> tuple[Any, Positions]:

@@ -70,7 +70,7 @@ from ..core.model import Joint, Mechanism
 from ..core.screws import SWAP, adjoint, reciprocal_product, reciprocal_system, span_and_reciprocal
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale, clean_numbers, decide_rank
 from ..core.transforms import cross, skew
-from ..errors import AnalysisError, HalfTurnError, MechanismError, RequestError
+from ..errors import AnalysisError, HalfTurnError, MechanismError, RequestError, name_list
 from .wrenches import clean_screw, dominant_signs, is_couple, norm, unit_wrench, wrench_axis
 
 __all__ = ["Chain", "ParallelModel", "JacobianResult", "parallel_model", "jacobian"]
@@ -307,7 +307,7 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
     for name in names:
         base, _, sub = name.partition(".")
         if base not in by_name:
-            raise MechanismError("actuated", f"unknown joint {base!r}; expected one of {', '.join(by_name)}")
+            raise MechanismError("actuated", f"unknown joint {base!r}; expected one of {name_list(by_name)}")
         index = by_name[base]
         joint = mechanism.joints[index]
         ks = range(joint.dof) if not sub else [int(sub) - 1] if sub.isdigit() and 1 <= int(sub) <= joint.dof else None

@@ -45,7 +45,7 @@ from ..core.model import Mechanism
 from ..core.screws import SWAP_ROWS
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_ranks
 from ..core.topology import JointNode, Node, Parallel, Series, decompose, joints_of
-from ..errors import AnalysisError, MechanismError
+from ..errors import AnalysisError, MechanismError, name_list
 from .batch_systems import BatchValue, PoseAnswers, evaluate_batch, span_batch, stacked_svd
 from .posed_screws import PosedScrews
 
@@ -81,7 +81,7 @@ def actuated_inputs(mechanism: Mechanism, names: Sequence[str] | None = None) ->
     freedoms = []
     for name in chosen:
         if name not in index:
-            raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {', '.join(index)}")
+            raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {name_list(index)}")
         freedoms += [(index[name], k) for k in range(mechanism.joints[index[name]].dof)]
     return ActuationInputs(tuple(chosen), tuple(freedoms))
 

@@ -43,7 +43,7 @@ import numpy as np
 from ..core.joint_screws import joint_screws
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
-from ..errors import RequestError
+from ..errors import RequestError, name_list
 
 __all__ = [
     "POSE_COORDINATES",
@@ -299,7 +299,7 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
             axes.append(SweepAxis(name, "pose", "deg" if angle else unit, start, stop, count, component, math.pi / 180.0 if angle else 1.0 / length))
         else:
             raise RequestError(
-                f"{where}: {name!r} is not a joint{source}; expected one of: {', '.join(names)}, "
+                f"{where}: {name!r} is not a joint{source}; expected one of: {name_list(names)}, "
                 f"or an end-effector pose coordinate ({', '.join(POSE_COORDINATES)})"
             )
     for axis in axes:

@@ -53,6 +53,7 @@ import numpy as np
 
 from ..core.analysis import analyze
 from ..errors import MobilityError
+from ..io.limits import require_size
 from ..io.loader import load
 from ..core.model import Mechanism
 from ..core.result import Result
@@ -246,6 +247,7 @@ class _Subject:
     def finite(self) -> dict[str, Any]:
         from ..finite.full_cycle import finite_mobility  # imported on demand: it pulls in scipy.optimize
 
+        require_size(self.mechanism, "max_finite_joints", "the full-cycle expectations", self.mechanism.source or "<mechanism>")
         return finite_mobility(self.mechanism, tol=self.tol).expected_values()
 
 

@@ -1,0 +1,56 @@
+"""Reading document files within the size limit, whatever they are (a FIFO, ``/dev/zero``, a huge file).
+
+Examples
+--------
+>>> import tempfile, os
+>>> with tempfile.NamedTemporaryFile("wb", delete=False) as f:
+...     _ = f.write(b"name: m")
+>>> read_capped(f.name)
+b'name: m'
+>>> read_capped("/dev/zero")
+Traceback (most recent call last):
+...
+mobility.errors.MechanismFileError: /dev/zero: larger than the limit of 4194304 bytes for a document (set MOBILITY_MAX_FILE_BYTES to raise it)
+>>> os.unlink(f.name)
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..errors import MechanismFileError
+from .limits import Limits, current_limits
+
+__all__ = ["read_capped"]
+
+
+def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
+    """The bytes of a document file, read with the size cap of ``limits`` (never more than the cap plus one chunk).
+
+    Raises
+    ------
+    MechanismFileError
+        One line naming the file: missing, a directory, unreadable or larger
+        than the limit.
+    """
+    name = str(path)
+    cap = current_limits(limits).max_file_bytes
+    try:
+        with open(path, "rb") as stream:
+            chunks, size = [], 0
+            while size <= cap:  # in chunks: read(cap + 1) would allocate the whole cap for every file
+                chunk = stream.read(min(1 << 16, cap + 1 - size))
+                if not chunk:
+                    break
+                chunks.append(chunk)
+                size += len(chunk)
+            raw = b"".join(chunks)
+    except FileNotFoundError:
+        raise MechanismFileError("", "no such file", file=name) from None
+    except IsADirectoryError:
+        raise MechanismFileError("", "is a directory, expected a mechanism file", file=name) from None
+    except OSError as exc:
+        raise MechanismFileError("", f"cannot read: {exc.strerror or exc}", file=name) from None
+    if len(raw) > cap:
+        raise MechanismFileError("", f"larger than the limit of {cap} bytes for a document (set MOBILITY_MAX_FILE_BYTES to raise it)", file=name)
+    return raw
