@@ -202,6 +202,21 @@ def test_model_errors_in_code_name_the_key():
     assert info.value.key == "end_effector"
 
 
+@pytest.mark.parametrize("point", [(0, 0, 10**400), [0.0, 0.0, math.inf], (0.0, float("nan"), 0.0), [0, 0, 1e308 * 10]])
+def test_model_vectors_refuse_what_is_not_a_finite_float(point):
+    with pytest.raises(MechanismError) as info:
+        mobility.Joint("A", "R", ("a", "b"), axis=(0, 0, 1), point=point)
+    assert info.value.key == "point"
+    assert "finite" in str(info.value)
+
+
+def test_model_vectors_keep_their_values_exactly():
+    joint = mobility.Joint("A", "R", ("a", "b"), axis=(0, 0, 2), point=[1, 0.1, -3])
+    assert joint.point == (1.0, 0.1, -3.0)
+    assert all(type(x) is float for x in joint.point)
+    assert joint.axis == (0.0, 0.0, 1.0)
+
+
 def test_expressions_are_safe_and_clear():
     assert evaluate("2 ** 3 % 5 - -1", {}) == 4.0
     assert evaluate("atan2d(1, 1)", {}) == pytest.approx(45.0)

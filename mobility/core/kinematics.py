@@ -156,6 +156,13 @@ class Kinematics:
     chords : tuple of int
         Indices of the joints closing one loop each, in the order of the
         residual's 6-blocks.
+    paths : dict of str to tuple of Factor
+        For each link, the product of exponentials from the ground to it
+        along the spanning tree.
+    loops : tuple of tuple of Factor
+        For each chord, the product around its loop (from the links' common
+        ancestor, through the chord, and back), whose value is the identity
+        when the loop closes.
     """
 
     mechanism: Mechanism
@@ -165,8 +172,8 @@ class Kinematics:
     kinds: tuple[str, ...]
     tree: tuple[int, ...]
     chords: tuple[int, ...]
-    _paths: dict = field(repr=False)
-    _loops: tuple = field(repr=False)
+    paths: dict[str, tuple[Factor, ...]] = field(repr=False)
+    loops: tuple[tuple[Factor, ...], ...] = field(repr=False)
     _points: np.ndarray = field(repr=False)
     _axes: np.ndarray = field(repr=False)
     _pitches: np.ndarray = field(repr=False)
@@ -237,17 +244,17 @@ class Kinematics:
         """
         q = self._check(q)
         exps = self._factor_exps(q)
-        return {link: self._product(path, exps) for link, path in self._paths.items()}
+        return {link: self._product(path, exps) for link, path in self.paths.items()}
 
     def loop_displacements(self, q: np.ndarray) -> list[np.ndarray]:
         """For each chord ``c`` from ``a`` to ``b``: ``g_a E_c(q_c) g_b^-1`` (identity when closed)."""
         q = self._check(q)
         exps = self._factor_exps(q)
-        return [self._product(loop, exps) for loop in self._loops]
+        return [self._product(loop, exps) for loop in self.loops]
 
     def residual(self, q: np.ndarray) -> np.ndarray:
         """Loop-closure residual at ``q``: the logarithm of each loop product, stacked (``6 * loops``)."""
-        if not self._loops:
+        if not self.loops:
             self._check(q)
             return np.zeros(0)
         return np.concatenate([displacement_log(g) for g in self.loop_displacements(q)])
@@ -280,7 +287,7 @@ class Kinematics:
         """
         q = self._check(q)
         exps = self._factor_exps(q)
-        rows = [self._spatial(loop, exps)[1] for loop in self._loops]
+        rows = [self._spatial(loop, exps)[1] for loop in self.loops]
         return np.vstack(rows) if rows else np.zeros((0, self.variable_count))
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
@@ -290,7 +297,7 @@ class Kinematics:
     def linearize(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`residual` and :meth:`jacobian` at ``q``, computed together."""
         q = self._check(q)
-        if not self._loops:
+        if not self.loops:
             return np.zeros(0), np.zeros((0, self.variable_count))
         forward, backward = self._factor_exps(q)
         table = np.concatenate([forward, backward, np.eye(4)[None]])
@@ -331,7 +338,7 @@ class Kinematics:
         """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q``."""
         q = self._check(q)
         exps = self._factor_exps(q)
-        return self._spatial(self._paths[self.mechanism.end_effector], exps)[1]
+        return self._spatial(self.paths[self.mechanism.end_effector], exps)[1]
 
     # -- first-order and second-order structure ------------------------------
     def rank_decision(self, q: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[RankDecision, np.ndarray]:
@@ -372,7 +379,7 @@ class Kinematics:
         n = self.variable_count
         cokernel = np.asarray(cokernel, dtype=float).reshape(6 * self.loop_count, -1)
         out = np.zeros((cokernel.shape[1], n, n))
-        for index, loop in enumerate(self._loops):
+        for index, loop in enumerate(self.loops):
             w = cokernel[6 * index : 6 * index + 6]  # (6, c)
             if not np.any(w):
                 continue
@@ -590,8 +597,8 @@ def _build(mechanism: Mechanism) -> Kinematics:
         kinds=tuple(kinds),
         tree=tuple(sorted(tree)),
         chords=chords,
-        _paths=paths,
-        _loops=tuple(tuple(loop) for loop in loops),
+        paths=paths,
+        loops=tuple(tuple(loop) for loop in loops),
         _points=points_a,
         _axes=axes_a,
         _pitches=pitch_a,

@@ -78,7 +78,11 @@ the description (nine digits), not a rank decision of the analysis."""
 
 ORTHONORMAL = 1e-9
 """A frame's rotation matrix must be orthonormal to this (entries of
-``R R^T - I``): rotations written with ten significant digits pass."""
+``R R^T - I``, with ``numpy.isclose``'s relative allowance of 1e-5 on the
+diagonal): rotations written with ten significant digits pass."""
+
+_IDENTITY = np.eye(3)
+_ORTHONORMAL_LIMIT = ORTHONORMAL + 1e-5 * _IDENTITY  # |R R^T - I| entry by entry, as numpy.allclose(R R^T, I, atol=ORTHONORMAL)
 
 # Geometry fields each joint type requires, and those it may also carry.
 _REQUIRED: Mapping[str, tuple[str, ...]] = {
@@ -97,8 +101,17 @@ Vector = tuple[float, float, float]
 
 def _vector(value: Any, key: str, *, direction: bool = False) -> Vector:
     """Validate a 3-vector of finite numbers; normalise it if it is a direction."""
+    if not direction and type(value) in (tuple, list) and len(value) == 3 and all(type(x) in (float, int) for x in value):
+        try:  # the common case, without numpy's per-call overhead
+            x, y, z = (float(x) for x in value)
+        except OverflowError:
+            raise MechanismError(key, "expected 3 finite numbers, got an integer too large for a float") from None
+        if math.isfinite(x) and math.isfinite(y) and math.isfinite(z):
+            return (x, y, z)
     try:
         arr = np.asarray(value, dtype=float)
+    except OverflowError:
+        raise MechanismError(key, "expected 3 finite numbers, got an integer too large for a float") from None
     except (TypeError, ValueError):
         raise MechanismError(key, f"expected a list of 3 numbers, got {value!r}") from None
     if arr.shape != (3,):
@@ -282,11 +295,14 @@ class Frame:
             raise MechanismError("name", f"expected a frame name, got {self.name!r}")
         object.__setattr__(self, "origin", _vector(self.origin, "origin"))
         rot = np.asarray(self.rotation, dtype=float)
-        if rot.shape != (3, 3) or not np.all(np.isfinite(rot)):
+        if rot.shape != (3, 3) or not np.isfinite(rot).all():
             raise MechanismError("rotation", "expected a 3x3 matrix of finite numbers")
-        if not np.allclose(rot @ rot.T, np.eye(3), atol=ORTHONORMAL) or np.linalg.det(rot) < 0:
+        rows = rot.tolist()
+        (a, b, c), (d, e, f), (g, h, i) = rows
+        determinant = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+        if (np.abs(rot @ rot.T - _IDENTITY) > _ORTHONORMAL_LIMIT).any() or determinant < 0:
             raise MechanismError("rotation", "expected a proper rotation matrix")
-        object.__setattr__(self, "rotation", tuple(tuple(float(x) for x in row) for row in rot))
+        object.__setattr__(self, "rotation", tuple(map(tuple, rows)))
         if not isinstance(self.parent, str) or not self.parent:
             raise MechanismError("parent", f"expected a frame name, got {self.parent!r}")
 

@@ -196,32 +196,11 @@ class BatchKinematics:
         self._k2p = np.einsum("vij,vj->vi", k @ k, self.points)[:, :, None]
         self.variable_count = tw.shape[1]
         self.reference = np.zeros(3) if reference is None else np.asarray(reference, dtype=float)
-        offsets = [int(x) for x in model.offsets]
-        tree, chords = spanning_tree(mechanism)
-
-        def factors(index: int, forward: bool) -> Factors:
-            lo, hi = offsets[index], offsets[index + 1]
-            return tuple((k, 1.0) for k in range(lo, hi)) if forward else tuple((k, -1.0) for k in reversed(range(lo, hi)))
-
-        paths: dict[str, Factors] = {mechanism.ground: ()}
-        joint_paths: dict[str, tuple[int, ...]] = {mechanism.ground: ()}
-        steps = []
-        for edge in tree:
-            step = factors(edge.joint, edge.forward)
-            steps.append((edge.parent, edge.child, step))
-            paths[edge.child] = paths[edge.parent] + step
-            joint_paths[edge.child] = joint_paths[edge.parent] + (edge.joint,)
-        loops = []
-        for index in chords:
-            a, b = mechanism.joints[index].links
-            pa, pb = joint_paths[a], joint_paths[b]
-            common = 0
-            while common < min(len(pa), len(pb)) and pa[common] == pb[common]:
-                common += 1
-            skip_a = sum(offsets[j + 1] - offsets[j] for j in pa[:common])
-            skip_b = sum(offsets[j + 1] - offsets[j] for j in pb[:common])
-            inverse_b = tuple((k, -s) for k, s in reversed(paths[b][skip_b:]))
-            loops.append(paths[a][skip_a:] + factors(index, True) + inverse_b)
+        # the spanning tree and loops of the single-pose model, as (variable, sign) pairs
+        paths = {link: tuple((f.variable, f.sign) for f in path) for link, path in model.paths.items()}
+        loops = [tuple((f.variable, f.sign) for f in loop) for loop in model.loops]
+        tree, _ = spanning_tree(mechanism)
+        steps = [(e.parent, e.child, paths[e.child][len(paths[e.parent]):]) for e in tree]
         self._steps = tuple(steps)
         self._loops = tuple(loops)
         self._end_effector = paths[mechanism.end_effector]
