@@ -36,12 +36,10 @@ import math
 import os
 import re
 import resource
-import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any, Callable
 
 import numpy as np
 import pytest
@@ -49,6 +47,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mobility
+from guards import TookTooLong, time_bound
 from mobility.core.model import Joint, Mechanism
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -179,29 +178,6 @@ def commands(m: Mechanism, path: Path, out: Path) -> dict[str, list[str]]:
         "view --samples": ["view", "--samples", "2", f, "-o", str(out / "samples.html")],
         "convert": ["convert", f, "-o", str(out / "converted.yaml")],
     }
-
-
-class TookTooLong(Exception):
-    """Raised by :func:`time_bound` when the guarded block runs past its bound."""
-
-
-@contextlib.contextmanager
-def time_bound(seconds: float) -> Iterator[None]:
-    """Interrupt the block after ``seconds`` (SIGALRM), keeping any timer already set (pytest-timeout's)."""
-
-    def on_alarm(signum: int, frame: Any) -> None:
-        raise TookTooLong(f"no answer within {seconds} s")
-
-    old_handler = signal.signal(signal.SIGALRM, on_alarm)
-    old_delay, old_interval = signal.setitimer(signal.ITIMER_REAL, seconds)
-    start = time.monotonic()
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old_handler)
-        if old_delay:
-            signal.setitimer(signal.ITIMER_REAL, max(old_delay - (time.monotonic() - start), 0.001), old_interval)
 
 
 def run_cli(args: list[str]) -> tuple[int, str, str]:

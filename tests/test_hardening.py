@@ -20,10 +20,8 @@ import copy
 import io
 import json
 import math
-import signal
-import time
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any
 
 import pytest
 import yaml
@@ -31,6 +29,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import mobility
+from guards import time_bound
 from mobility.cli import main
 from mobility.errors import MechanismFileError, MobilityError, RequestError
 from mobility.io.expressions import evaluate
@@ -111,29 +110,6 @@ def run_cli(*args: str) -> tuple[int, str, str]:
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         status = main(list(args))
     return status, out.getvalue(), err.getvalue()
-
-
-class TookTooLong(Exception):
-    """Raised by :func:`time_bound` when the guarded block runs past its bound."""
-
-
-@contextlib.contextmanager
-def time_bound(seconds: float) -> Iterator[None]:
-    """Interrupt the block after ``seconds`` (SIGALRM), keeping any timer already set (pytest-timeout's)."""
-
-    def on_alarm(signum: int, frame: Any) -> None:
-        raise TookTooLong(f"no answer within {seconds} s")
-
-    old_handler = signal.signal(signal.SIGALRM, on_alarm)
-    old_delay, old_interval = signal.setitimer(signal.ITIMER_REAL, seconds)
-    start = time.monotonic()
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old_handler)
-        if old_delay:
-            signal.setitimer(signal.ITIMER_REAL, max(old_delay - (time.monotonic() - start), 0.001), old_interval)
 
 
 # -- the corpus ------------------------------------------------------------------

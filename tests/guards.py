@@ -1,0 +1,31 @@
+"""A time bound for tests that feed hostile input to the library: a hang becomes a failure, not a stuck run."""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import time
+from typing import Any, Iterator
+
+
+class TookTooLong(Exception):
+    """Raised by :func:`time_bound` when the guarded block runs past its bound."""
+
+
+@contextlib.contextmanager
+def time_bound(seconds: float) -> Iterator[None]:
+    """Interrupt the block after ``seconds`` (SIGALRM), keeping any timer already set (pytest-timeout's)."""
+
+    def on_alarm(signum: int, frame: Any) -> None:
+        raise TookTooLong(f"no answer within {seconds} s")
+
+    old_handler = signal.signal(signal.SIGALRM, on_alarm)
+    old_delay, old_interval = signal.setitimer(signal.ITIMER_REAL, seconds)
+    start = time.monotonic()
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old_handler)
+        if old_delay:
+            signal.setitimer(signal.ITIMER_REAL, max(old_delay - (time.monotonic() - start), 0.001), old_interval)
