@@ -82,7 +82,7 @@ def main() -> None:
         wq, cq = quartiles(walls[name]), quartiles(cpus[name])
         rows.append((name, wq, cq, wq[1] / base_wall, cq[1] / base_cpu))
     if args.markdown:
-        print(f"| command | wall (ms), median [IQR] | CPU (ms), median [IQR] | wall / numpy | CPU / numpy |")
+        print("| command | wall (ms), median [IQR] | CPU (ms), median [IQR] | wall / numpy | CPU / numpy |")
         print("|---|---:|---:|---:|---:|")
         for name, wq, cq, rw, rc in rows:
             print(f"| `{name}` | {1e3 * wq[1]:.0f} [{1e3 * wq[0]:.0f}–{1e3 * wq[2]:.0f}] | {1e3 * cq[1]:.0f} [{1e3 * cq[0]:.0f}–{1e3 * cq[2]:.0f}] | {rw:.2f}× | {rc:.2f}× |")

@@ -48,7 +48,7 @@ _LAZY = {
     "check_mechanism": "testing", "check_file": "testing", "check_paths": "testing",
     "CheckResult": "testing", "CheckReport": "testing", "Comparison": "testing",
     # instantaneous vs full-cycle mobility
-    "finite_mobility": "finite", "FiniteMobility": "finite", "sample_poses": "core.kinematics",
+    "finite_mobility": "finite", "FiniteMobility": "finite", "sample_poses": "core.poses",
     # actuation spaces
     "check_actuation": "actuation", "enumerate_actuations": "actuation", "locked_dof": "actuation",
     "ActuationCheck": "actuation", "Enumeration": "actuation",

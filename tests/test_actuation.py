@@ -507,7 +507,7 @@ def test_verdicts_and_conditioning_do_not_depend_on_unit_or_placement():
 
 
 def test_sampled_poses_keep_the_rps_types_valid_and_agree_with_locking():
-    from mobility.core.kinematics import sample_poses
+    from mobility.core.poses import sample_poses
 
     m = mobility.load(RPS_FILE)
     sampled = sample_poses(m, 4, seed=3)
@@ -522,7 +522,7 @@ def test_sampled_poses_keep_the_rps_types_valid_and_agree_with_locking():
 
 
 def test_four_bar_sampled_poses_agree_with_locking():
-    from mobility.core.kinematics import sample_poses
+    from mobility.core.poses import sample_poses
 
     m = _four_bar()
     for pose in sample_poses(m, 4, step=0.3, seed=0):

@@ -45,7 +45,7 @@ CORE_LAYERS = {
     "screws": 2, "topology": 2,
     "joint_screws": 3,
     "screw_systems": 4, "loop_closure": 4, "canonical": 4, "kinematics": 4,
-    "result": 5,
+    "result": 5, "poses": 5,
     "analysis": 6,
 }
 # ... and screw algebra knows no model, the topology no geometry.

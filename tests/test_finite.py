@@ -18,7 +18,8 @@ from builders import transformed
 import mobility
 from mobility.cli import main
 from mobility.errors import MechanismFileError
-from mobility.core.kinematics import kinematics, sample_poses
+from mobility.core.kinematics import kinematics
+from mobility.core.poses import sample_poses
 from mobility.errors import RequestError
 from mobility.finite import VERDICTS, finite_mobility
 from mobility.report.finite import finite_report

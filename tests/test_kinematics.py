@@ -14,7 +14,8 @@ from builders import six_ups, transformed
 from scipy.linalg import expm
 from test_finite import bennett, folded_parallelogram, puu4, rigidity_gap, tsai_3upu
 
-from mobility.core.kinematics import kinematics, sample_poses
+from mobility.core.kinematics import kinematics
+from mobility.core.poses import sample_poses
 from mobility.core.loop_closure import loop_closure
 from mobility.core.model import Joint, Mechanism
 from mobility.core.tolerance import DEFAULT_TOLERANCE, Tolerance

@@ -25,7 +25,7 @@ import math
 from typing import Iterable, Sequence
 
 
-from ..core.kinematics import sample_poses
+from ..core.poses import sample_poses
 from ..core.model import Mechanism
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
@@ -115,7 +115,7 @@ def enumerate_actuations(
         Further poses of the same mechanism (listed by the user).
     samples : int
         Further poses reached by moving the mechanism, from
-        :func:`mobility.core.kinematics.sample_poses` (with ``step`` and ``seed``).
+        :func:`mobility.core.poses.sample_poses` (with ``step`` and ``seed``).
     tol : Tolerance
 
     Returns

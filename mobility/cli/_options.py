@@ -39,7 +39,7 @@ def add_pose_sampler_options(parser: argparse.ArgumentParser, *, samples_help: s
     samples_help : str
         What the subcommand does with the poses.
     step : float
-        The default ``--step`` of :func:`~mobility.core.kinematics.sample_poses`.
+        The default ``--step`` of :func:`~mobility.core.poses.sample_poses`.
     samples_group : optional
         A group of ``parser`` (e.g. mutually exclusive) that ``--samples`` joins.
     """
@@ -60,6 +60,6 @@ def sampled_poses(args: argparse.Namespace, mechanism: Mechanism) -> list[Mechan
         raise RequestError("--samples must not be negative and --step must be positive")
     if not args.samples:
         return []
-    from ..core.kinematics import sample_poses  # the finite kinematics: imported only by the commands that move
+    from ..core.poses import sample_poses  # the finite kinematics: imported only by the commands that move
 
     return sample_poses(mechanism, args.samples, step=args.step, seed=args.seed)

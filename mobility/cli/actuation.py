@@ -46,7 +46,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--k", type=int, default=None, help="inputs per combination with --mode any (default: the DOF)")
     p.add_argument("--inputs", default=None, help="comma-separated joint (or actuator) names to check instead of those marked actuated")
     p.add_argument("--pose", action="append", default=[], metavar="FILE", help="another pose of the same mechanism (repeatable)")
-    add_pose_sampler_options(p, samples_help="also check N poses reached by moving the mechanism (mobility.core.kinematics.sample_poses)", step=0.1)
+    add_pose_sampler_options(p, samples_help="also check N poses reached by moving the mechanism (mobility.core.poses.sample_poses)", step=0.1)
     p.add_argument("--threshold", type=float, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
     add_tolerance_option(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")

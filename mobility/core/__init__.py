@@ -16,8 +16,9 @@ Modules, in data-flow order (a module imports only those before it):
     a model's joint twists in normalised coordinates.
 ``screw_systems``, ``loop_closure``, ``canonical``, ``kinematics``
     the series/parallel route, the independent loop-closure route, readable
-    bases, and finite motion (joint displacements, loops re-closed by Newton,
-    nearby poses).
+    bases, and finite motion (joint displacements, loops re-closed by Newton).
+``poses``
+    assembled poses away from the given one, by a seeded random walk.
 ``result``, ``analysis``
     the frozen :class:`~mobility.core.result.Result` (with the screw system
     found at every node of the tree, ``node_systems``) and

@@ -71,14 +71,12 @@ from .model import WORLD, Mechanism
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
 from .topology import spanning_tree
 from .transforms import bracket, cross, displacement_log, displacement_logs, skew
-from .transforms import twist_exp  # noqa: F401  (re-exported until mobility.sweeps imports it from core.transforms)
 
 __all__ = [
     "Factor",
     "Closure",
     "Kinematics",
     "kinematics",
-    "sample_poses",
     "NEWTON_RCOND",
 ]
 
@@ -607,78 +605,3 @@ def _build(mechanism: Mechanism) -> Kinematics:
         _prismatic=is_p,
         _loop_groups=tuple(groups),
     )
-
-
-def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> list[Mechanism]:
-    """Assembled poses reached by moving ``mechanism`` from its given pose.
-
-    A seeded random exploration: each new pose starts from one already
-    reached (the given one included), moves ``step`` along a random
-    first-order motion there and re-closes every loop by Newton; a move that
-    does not close is retried with half the step (down to ``step / 8``) and
-    another direction.  Each accepted pose is rebuilt as a
-    :class:`~mobility.core.model.Mechanism` (joints in the global frame) and the
-    next moves start from it, so the parametrisation never degenerates.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    count : int
-        Number of poses wanted.
-    step : float
-        Joint-space distance of each move (radians; lengths over the
-        characteristic length), so the same for a scaled or moved file.
-    seed : int
-        Seed of the random directions.
-    tol : Tolerance
-        The rank policy of the first-order motions and the closure threshold.
-
-    Returns
-    -------
-    list of Mechanism
-        Up to ``count`` poses, each closed to round-off; fewer (possibly none)
-        when the mechanism cannot move from where it is.
-
-    Examples
-    --------
-    >>> from mobility.core.model import Joint, Mechanism
-    >>> crank_slider = Mechanism("slider-crank", "g", "s", (
-    ...     Joint("A", "R", ("g", "crank"), axis=(0, 0, 1), point=(0, 0, 0)),
-    ...     Joint("B", "R", ("crank", "rod"), axis=(0, 0, 1), point=(1, 1, 0)),
-    ...     Joint("C", "R", ("rod", "s"), axis=(0, 0, 1), point=(3, 0, 0)),
-    ...     Joint("D", "P", ("s", "g"), axis=(1, 0, 0))))
-    >>> poses = sample_poses(crank_slider, 3, step=0.2, seed=1)
-    >>> len(poses), all(p.joints[0].point == (0.0, 0.0, 0.0) and abs(p.joints[2].point[1]) < 1e-12 for p in poses)
-    (3, True)
-    """
-    if count < 0:
-        raise RequestError(f"count: expected a number of poses >= 0, got {count}")
-    if not step > 0.0:
-        raise RequestError(f"step: expected a positive joint-space distance, got {step}")
-    rng = np.random.default_rng(seed)
-    reached: list[Mechanism] = [mechanism]
-    out: list[Mechanism] = []
-    failures = 0
-    while len(out) < count and failures < 20 * max(count, 1):
-        start = reached[int(rng.integers(len(reached)))]
-        kin = kinematics(start)
-        _, null = kin.rank_decision(np.zeros(kin.variable_count), tol)
-        if null.shape[1] == 0:
-            if start is mechanism:
-                break  # nothing moves from the given pose
-            failures += 1
-            continue
-        u = rng.standard_normal(null.shape[1])
-        d = null @ (u / np.linalg.norm(u))
-        h = step
-        while h >= step / 8.0:
-            closure = kin.close(h * d, constraints=(d[None, :], np.array([h])), tol=tol, max_move=10.0 * h)
-            if closure.converged:
-                moved = kin.mechanism_at(closure.q)
-                reached.append(moved)
-                out.append(moved)
-                break
-            h /= 2.0
-        else:
-            failures += 1
-    return out

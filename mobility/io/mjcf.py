@@ -219,7 +219,7 @@ class _MjcfTree:
         return out
 
     def equalities(self, notes: list[str]) -> tuple[list[Closure], list[Weld], list[Unsupported]]:
-        m, eq, mj = self.m, self.mj.mjtEq, self.mj
+        m, eq = self.m, self.mj.mjtEq
         closures: list[Closure] = []
         welds: list[Weld] = []
         unsupported: list[Unsupported] = []
