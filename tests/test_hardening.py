@@ -77,7 +77,7 @@ CORPUS = {
     "undefined alias": (HEAD + "joints: [*j]\n", 4, "joints[0]", "undefined alias *j"),
     "NUL byte": (HEAD + ONE_JOINT + "description: a\x00b\n", 6, "", "control character '\\x00'"),
     "BEL byte": (HEAD + "description: a\x07b\n" + ONE_JOINT, 4, "", "control character '\\x07'"),
-    "type as a list": (HEAD + "joints:\n  - {name: A, type: [R], links: [g, e], axis: [0, 0, 1]}\n", 5, "joints[0].type", "unknown joint type a list of 1"),
+    "type as a list": (HEAD + "joints:\n  - {name: A, type: [R], links: [g, e], axis: [0, 0, 1]}\n", 5, "joints[0].type", "expected a joint type, one of R, P, H, C, U, S, E (or revolute, prismatic, helical, cylindrical, universal, spherical, planar); got a list of 1 item"),
     "20,000 copies": (HEAD + "limbs: [{copies: 20000, joints: [{name: 'P{i}', type: P, links: [g, e], axis: [0, 0, 1]}]}]\n", 4, "limbs[0].copies", "limit of 5000"),
     "100,000,000 copies": (HEAD + ONE_JOINT + "limbs: [{copies: 100000000, joints: []}]\n", 6, "limbs[0].copies", "limit of 5000"),
     "many limbs of many copies": (HEAD + ONE_JOINT + "limbs:\n" + "  - {copies: 3000, joints: []}\n" * 2, 8, "limbs[1].copies", "6000 copies of limbs"),

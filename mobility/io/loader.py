@@ -102,7 +102,7 @@ def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) ->
 
 
 def _shown(value: Any) -> str:
-    """A value in a message: its ``repr`` when short, else a description (``a list of 300``)."""
+    """A value in a message: its ``repr`` when short, else a description (``a list of 300 items``)."""
     text = repr(value)
     return text if len(text) <= 40 else describe_value(value)
 
@@ -200,8 +200,10 @@ class _MechanismReader(DocumentReader):
         if isinstance(jtype, str) and jtype.lower() in _TYPE_NAMES:
             jtype = _TYPE_NAMES[jtype.lower()]
         if not isinstance(jtype, str) or jtype not in JOINT_DOF:
-            shown = repr(jtype) if isinstance(jtype, str) else describe_value(jtype)
-            raise self.fail(path + ("type",), f"unknown joint type {shown}; expected one of {', '.join(JOINT_DOF)} (or revolute, prismatic, helical, cylindrical, universal, spherical, planar)")
+            kinds = f"{', '.join(JOINT_DOF)} (or revolute, prismatic, helical, cylindrical, universal, spherical, planar)"
+            if isinstance(jtype, str):
+                raise self.fail(path + ("type",), f"unknown joint type {jtype!r}; expected one of {kinds}")
+            raise self.fail(path + ("type",), f"expected a joint type, one of {kinds}; got {describe_value(jtype)}")
         links = data["links"]
         if not isinstance(links, list) or len(links) != 2:
             raise self.fail(path + ("links",), f"expected two link names [a, b], got {describe_value(links)}")

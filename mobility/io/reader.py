@@ -281,7 +281,7 @@ def describe_value(value: Any) -> str:
     if isinstance(value, str):
         return f"the string {value if len(value) <= 40 else value[:37] + '...'!r}"
     if isinstance(value, list):
-        return f"a list of {len(value)}"
+        return f"a list of {len(value)} item" + ("" if len(value) == 1 else "s")
     if isinstance(value, dict):
         return "a mapping"
     return type(value).__name__
