@@ -155,6 +155,18 @@ def test_parallelogram_full_turn_has_mobility_two_exactly_at_the_folded_poses():
         assert phi == pytest.approx((60.0 + r.values[i, 0]) % 360.0, abs=1e-9)
 
 
+def test_the_way_to_a_grid_next_to_a_change_point_keeps_the_files_branch():
+    # the grid's first point is reached from the file's pose (60 deg) by the same predictor as the grid's lines, so it
+    # arrives just short of the fold (180 deg) on the parallelogram branch, not on the anti-parallelogram one
+    r = sweep(load("parallelogram"), ["O1=119.9787:119.99:2"])
+    assert r.assembled.all()
+    assert r.pattern.tolist()[0] == "1T"
+    pose = r.mechanism_at(0)
+    crank1 = np.subtract(pose.joint("A1").point, pose.joint("O1").point)
+    crank2 = np.subtract(pose.joint("A2").point, pose.joint("O2").point)
+    assert np.allclose(crank1, crank2, atol=1e-9)
+
+
 def test_three_prs_stays_three_dof_1t2r_over_a_grid_of_its_sliders():
     r = sweep(load("3prs"), ["P1=-30:30:7", "P2=-30:30:7", "P3=-30:30:7"])
     assert r.assembled.all()

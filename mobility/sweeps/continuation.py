@@ -15,7 +15,8 @@ at most ``Tolerance.closure`` (radians, lengths over the characteristic length).
 Continuation: the grid is solved one axis at a time, from the file's pose
 (``q = 0``) outwards.  The *anchor* of an axis is its value nearest the
 file's pose; the anchor point is reached from ``q = 0`` (in steps no longer
-than a grid step); then the first axis is swept from its anchor both ways,
+than a grid step, by the same continuation as a line, so its predictor keeps
+the file's branch up to a change point); then the first axis is swept from its anchor both ways,
 then every point found is the start of a line along the second axis, and so
 on, each step advancing all lines of an axis at once.  The start of each
 Newton solve is the cubic predictor ``4 q[i-1] - 6 q[i-2] + 4 q[i-3] - q[i-4]``
@@ -399,14 +400,11 @@ def seed_grid(bk: BatchKinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_T
     goal = targets_of(plan, np.array([anchor_flat]))
     steps = [abs(a.internal[1] - a.internal[0]) if a.count > 1 else HOMOTOPY_STEP for a in plan.axes]
     pieces = max([0] + [int(np.ceil(abs(g) / s - 1e-9)) for g, s in zip(goal[0], steps) if s > 0])
-    cur_q, cur_t, good, last_err = np.zeros((1, n)), np.zeros((1, len(shape))), np.array([True]), np.zeros(1)
-    for k in range(1, pieces + 1):
-        t = goal * (k / pieces)
-        cur_q, last_err, good = _advance(bk, drive, cur_q, cur_t, cur_q, t, tol, retry=True)
-        cur_t = t
-        if not good[0]:
-            break
-    q[anchor_flat], ok[anchor_flat], err[anchor_flat] = cur_q[0], good[0], last_err[0]
+    # one line of continuation (its predictor keeps the file's branch up to a change point)
+    path = goal[:, None, :] * (np.arange(pieces + 1) / max(pieces, 1))[None, :, None]
+    pq, perr, pok = close_lines(bk, drive, np.zeros((1, n)), np.array([True]), path, 0, tol=tol)
+    reached = bool(pok[0].all())  # a failure on the way is a failure, as before
+    q[anchor_flat], ok[anchor_flat], err[anchor_flat] = pq[0, -1], reached, perr[0, -1] if reached else np.inf
     for axis in range(len(shape) - 1):
         layout = line_layout(shape, axis)
         others = [i for i in range(len(shape)) if i != axis]
