@@ -127,7 +127,7 @@ def test_bad_input_is_one_line_and_exit_two(capsys, args, message):
 def test_a_joint_that_cannot_be_driven_names_the_file(capsys):
     status, _, err = run(capsys, "sweep", THREE_PRS, "--vary", "S2=0:10:3")
     assert status == 2 and err.strip() == (
-        f"mobility: --vary S2=0:10:3: S2 is a S joint of {THREE_PRS}; only R, H, C joints (by their angle, in degrees) "
+        f"mobility: --vary S2=0:10:3: S2 is an S joint of {THREE_PRS}; only R, H, C joints (by their angle, in degrees) "
         "and P joints (by their slide) can be swept"
     )
 

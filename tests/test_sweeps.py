@@ -309,7 +309,7 @@ def test_progress_reports_both_stages_to_the_end():
     "vary, message",
     [
         (["Q9=0:1:2"], "'Q9' is not a joint"),
-        (["S1=0:10:3"], "S1 is a S joint"),
+        (["S1=0:10:3"], "S1 is an S joint"),
         (["P1=0:10:0"], "COUNT must be at least 1"),
         (["P1=0:10"], "expected NAME=START:STOP:COUNT"),
         (["P1=a:10:3"], "START must be a number"),

@@ -288,7 +288,7 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
             joint = mechanism.joints[index]
             if joint.type not in DRIVABLE_JOINTS:
                 raise RequestError(
-                    f"{where}: {name} is a {joint.type} joint{source}; only R, H, C joints (by their angle, in degrees) "
+                    f"{where}: {name} is {'an' if joint.type in ('S', 'E') else 'a'} {joint.type} joint{source}; only R, H, C joints (by their angle, in degrees) "
                     "and P joints (by their slide) can be swept"
                 )
             angle = joint.type != "P"
