@@ -33,7 +33,6 @@ from __future__ import annotations
 import argparse
 import gc
 import subprocess
-import math
 import os
 import statistics
 import sys
@@ -44,45 +43,15 @@ import numpy as np
 
 import mobility
 from mobility.core import topology
-from mobility.core.model import Joint, Mechanism
+from mobility.core.model import Mechanism
 
-Z = (0.0, 0.0, 1.0)
-
-
-def chain_joints(count: int) -> list[Joint]:
-    joints = []
-    for i in range(count):
-        a = "g" if i == 0 else f"l{i}"
-        b = "e" if i == count - 1 else f"l{i + 1}"
-        axis = (math.cos(0.7 * i), math.sin(0.7 * i), 0.3 * math.cos(1.3 * i) + 0.1)
-        joints.append(Joint(f"J{i}", "R", (a, b), axis=axis, point=(0.01 * i, math.sin(i), math.cos(0.5 * i))))
-    return joints
-
-
-def chain(count: int) -> Mechanism:
-    return Mechanism(f"chain of {count}", "g", "e", tuple(chain_joints(count)))
-
-
-def ladder(loops: int) -> Mechanism:
-    joints = [Joint(f"A{i}", "R", ("g", f"l{i}"), axis=Z, point=(float(i), 0.0, 0.0)) for i in range(loops + 1)]
-    joints += [Joint(f"B{i}", "R", (f"l{i}", f"l{i + 1}"), axis=Z, point=(i + 0.5, 1.0 + 0.25 * math.sin(i), 0.0)) for i in range(loops)]
-    return Mechanism(f"ladder of {loops}", "g", f"l{loops}", tuple(joints))
-
-
-def parallel(limbs: int) -> Mechanism:
-    joints = []
-    for i in range(limbs):
-        c, s = math.cos(2 * math.pi * i / limbs), math.sin(2 * math.pi * i / limbs)
-        joints.append(Joint(f"P{i}", "P", ("g", f"a{i}"), axis=Z))
-        joints.append(Joint(f"R{i}", "R", (f"a{i}", f"b{i}"), axis=(-s, c, 0.0), point=(c, s, 0.5)))
-        joints.append(Joint(f"S{i}", "S", (f"b{i}", "e"), point=(0.5 * c, 0.5 * s, 1.0)))
-    return Mechanism(f"{limbs}-PRS", "g", "e", tuple(joints))
-
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "tests"))
+from builders import prs_limbs, serial_chain, triangle_ladder  # noqa: E402  (the families tests/test_large.py checks)
 
 FAMILIES: dict[str, tuple[Callable[[int], Mechanism], int, str]] = {
-    "chain": (chain, 2000, "joints"),
-    "ladder": (ladder, 500, "loops"),
-    "parallel": (parallel, 667, "limbs"),
+    "chain": (serial_chain, 2000, "joints"),
+    "ladder": (triangle_ladder, 500, "loops"),
+    "parallel": (prs_limbs, 667, "limbs"),
 }
 
 
@@ -99,7 +68,7 @@ def first_analysis(build: Callable[[int], Mechanism], size: int) -> tuple[float,
 
 
 def analyses_of_a_chain(runs: int) -> list[float]:
-    m = chain(100)
+    m = serial_chain(100)
     mobility.analyze(m)
     times = []
     for _ in range(runs):
@@ -136,7 +105,7 @@ def main() -> None:
     parser.add_argument("--markdown", action="store_true", help="print a Markdown table")
     parser.add_argument("--busy", action="store_true", help="also time a 100-joint chain with both cores kept busy")
     args = parser.parse_args()
-    first_analysis(ladder, 10)  # warm up imports and caches of code
+    first_analysis(triangle_ladder, 10)  # warm up imports and caches of code
     rows, slopes = [], {}
     for family, (build, largest, unit) in FAMILIES.items():
         sizes = [largest // 8, largest // 4, largest // 2, largest]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from mobility.core.model import Frame, Joint, Mechanism
@@ -192,3 +194,37 @@ def normalised(m: Mechanism, screws_rows: np.ndarray) -> np.ndarray:
     from mobility.core.joint_screws import joint_screws
 
     return joint_screws(m).normalisation.from_world(np.asarray(screws_rows).T)
+
+
+# -- large families (tests/test_large.py and benchmarks/bench_large.py) ---------------------------------
+
+Z = (0.0, 0.0, 1.0)
+
+
+def triangle_ladder(triangles: int) -> Mechanism:
+    """A planar ladder: ``A{i}: R [g, l{i}]`` on the ground line, ``B{i}: R [l{i}, l{i+1}]`` above it (every triangle rigid)."""
+    joints = [Joint(f"A{i}", "R", ("g", f"l{i}"), axis=Z, point=(float(i), 0.0, 0.0)) for i in range(triangles + 1)]
+    joints += [Joint(f"B{i}", "R", (f"l{i}", f"l{i + 1}"), axis=Z, point=(i + 0.5, 1.0 + 0.25 * math.sin(i), 0.0)) for i in range(triangles)]
+    return Mechanism(f"ladder of {triangles}", "g", f"l{triangles}", tuple(joints))
+
+
+def serial_chain(count: int) -> Mechanism:
+    """A serial chain of ``count`` revolute joints with axes in general position."""
+    joints = []
+    for i in range(count):
+        a = "g" if i == 0 else f"l{i}"
+        b = "e" if i == count - 1 else f"l{i + 1}"
+        axis = (math.cos(0.7 * i), math.sin(0.7 * i), 0.3 * math.cos(1.3 * i) + 0.1)
+        joints.append(Joint(f"J{i}", "R", (a, b), axis=axis, point=(0.01 * i, math.sin(i), math.cos(0.5 * i))))
+    return Mechanism(f"chain of {count}", "g", "e", tuple(joints))
+
+
+def prs_limbs(limbs: int) -> Mechanism:
+    """A parallel mechanism of ``limbs`` P-R-S limbs around a circle (3 DOF, 1T2R, whatever the count)."""
+    joints = []
+    for i in range(limbs):
+        c, s = math.cos(2 * math.pi * i / limbs), math.sin(2 * math.pi * i / limbs)
+        joints.append(Joint(f"P{i}", "P", ("g", f"a{i}"), axis=Z))
+        joints.append(Joint(f"R{i}", "R", (f"a{i}", f"b{i}"), axis=(-s, c, 0.0), point=(c, s, 0.5)))
+        joints.append(Joint(f"S{i}", "S", (f"b{i}", "e"), point=(0.5 * c, 0.5 * s, 1.0)))
+    return Mechanism(f"{limbs}-PRS", "g", "e", tuple(joints))

@@ -13,12 +13,11 @@ never here.
 from __future__ import annotations
 
 import json
-import math
 import sys
 
 import numpy as np
 import pytest
-from builders import random_mechanism
+from builders import prs_limbs, random_mechanism, serial_chain, triangle_ladder
 
 import mobility
 from mobility.cli import main
@@ -30,13 +29,6 @@ from mobility.core.screws import same_subspace
 from mobility.core.topology import Parallel, Series, decompose, describe, joints_of
 
 Z = (0.0, 0.0, 1.0)
-
-
-def ladder(triangles: int) -> Mechanism:
-    """A planar ladder: ``A{i}: R [g, l{i}]`` on the ground line, ``B{i}: R [l{i}, l{i+1}]`` above it (every triangle rigid)."""
-    joints = [Joint(f"A{i}", "R", ("g", f"l{i}"), axis=Z, point=(float(i), 0.0, 0.0)) for i in range(triangles + 1)]
-    joints += [Joint(f"B{i}", "R", (f"l{i}", f"l{i + 1}"), axis=Z, point=(i + 0.5, 1.0 + 0.25 * math.sin(i), 0.0)) for i in range(triangles)]
-    return Mechanism(f"ladder of {triangles}", "g", f"l{triangles}", tuple(joints))
 
 
 def four_bar_ladder(cells: int) -> Mechanism:
@@ -56,28 +48,6 @@ def four_bar_ladder(cells: int) -> Mechanism:
     return Mechanism(f"ladder of {cells} four-bars", "g", f"l{cells}", tuple(joints))
 
 
-def chain(count: int) -> Mechanism:
-    """A serial chain of ``count`` revolute joints with axes in general position."""
-    joints = []
-    for i in range(count):
-        a = "g" if i == 0 else f"l{i}"
-        b = "e" if i == count - 1 else f"l{i + 1}"
-        axis = (math.cos(0.7 * i), math.sin(0.7 * i), 0.3 * math.cos(1.3 * i) + 0.1)
-        joints.append(Joint(f"J{i}", "R", (a, b), axis=axis, point=(0.01 * i, math.sin(i), math.cos(0.5 * i))))
-    return Mechanism(f"chain of {count}", "g", "e", tuple(joints))
-
-
-def prs_limbs(limbs: int) -> Mechanism:
-    """A parallel mechanism of ``limbs`` P-R-S limbs around a circle (3 DOF, 1T2R, whatever the count)."""
-    joints = []
-    for i in range(limbs):
-        c, s = math.cos(2 * math.pi * i / limbs), math.sin(2 * math.pi * i / limbs)
-        joints.append(Joint(f"P{i}", "P", ("g", f"a{i}"), axis=Z))
-        joints.append(Joint(f"R{i}", "R", (f"a{i}", f"b{i}"), axis=(-s, c, 0.0), point=(c, s, 0.5)))
-        joints.append(Joint(f"S{i}", "S", (f"b{i}", "e"), point=(0.5 * c, 0.5 * s, 1.0)))
-    return Mechanism(f"{limbs}-PRS", "g", "e", tuple(joints))
-
-
 def agree(m: Mechanism) -> mobility.Result:
     """Assert the series/parallel route and the loop-closure route agree on ``m``; return the result."""
     r = mobility.analyze(m)
@@ -90,7 +60,7 @@ def agree(m: Mechanism) -> mobility.Result:
 
 @pytest.mark.parametrize("triangles", [200, 2000])
 def test_rigid_ladders_analyse_and_agree_with_loop_closure(triangles):
-    r = agree(ladder(triangles))
+    r = agree(triangle_ladder(triangles))
     assert (r.dof, r.mobility, r.loops, r.gruebler_kutzbach) == (0, 0, triangles, 1 - 4 * triangles)
     # 3 equations of each planar loop repeat, and the rigid triangles repeat one more each but the first
     assert r.redundant_constraints == 4 * triangles - 1 and r.common_constraints == 3
@@ -109,7 +79,7 @@ def test_a_ladder_of_four_bars_moves_with_one_freedom(cells):
 
 
 def test_a_long_chain_is_one_series_with_idle_freedoms():
-    m = chain(2000)
+    m = serial_chain(2000)
     r = agree(m)
     assert (r.dof, r.pattern, r.mobility, r.idle_dof, r.loops) == (6, "3T3R", 2000, 1994, 0)
     root = r.topology.root
@@ -127,7 +97,7 @@ def test_hundreds_of_limbs_make_one_parallel_node():
 
 
 def test_deep_trees_describe_compare_hash_and_print_without_recursion():
-    m = ladder(3000)
+    m = triangle_ladder(3000)
     limit = sys.getrecursionlimit()
     root = decompose(m).root
     # built again from the same graph (the decomposition is cached: clear it to get new objects)
@@ -143,8 +113,8 @@ def test_deep_trees_describe_compare_hash_and_print_without_recursion():
 
 
 def test_deep_trees_differ_where_they_differ():
-    a = decompose(ladder(1500)).root
-    renamed = ladder(1500).joints[:-1] + (Joint("X", "R", ("l1499", "l1500"), axis=Z, point=(0.0, 1.0, 0.0)),)
+    a = decompose(triangle_ladder(1500)).root
+    renamed = triangle_ladder(1500).joints[:-1] + (Joint("X", "R", ("l1499", "l1500"), axis=Z, point=(0.0, 1.0, 0.0)),)
     b = decompose(Mechanism("m", "g", "l1500", renamed)).root
     assert b != a and describe(b) == describe(a).replace("B1499", "X")
 
