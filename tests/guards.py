@@ -1,8 +1,9 @@
-"""A time bound for tests that feed hostile input to the library: a hang becomes a failure, not a stuck run."""
+"""What the tests of hostile and extreme input assert: an answer within a time bound, and only finite numbers in it."""
 
 from __future__ import annotations
 
 import contextlib
+import math
 import signal
 import time
 from typing import Any, Iterator
@@ -29,3 +30,19 @@ def time_bound(seconds: float) -> Iterator[None]:
         signal.signal(signal.SIGALRM, old_handler)
         if old_delay:
             signal.setitimer(signal.ITIMER_REAL, max(old_delay - (time.monotonic() - start), 0.001), old_interval)
+
+
+def finite_numbers(value: Any) -> bool:
+    """True when every number inside ``value`` (dicts, lists, tuples, arrays) is finite."""
+    stack = [value]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, dict):
+            stack.extend(item.values())
+        elif isinstance(item, (list, tuple)):
+            stack.extend(item)
+        elif hasattr(item, "tolist"):
+            stack.append(item.tolist())
+        elif isinstance(item, float) and not math.isfinite(item):
+            return False
+    return True

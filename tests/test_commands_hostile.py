@@ -47,7 +47,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import mobility
-from guards import TookTooLong, time_bound
+from guards import TookTooLong, finite_numbers, time_bound
 from mobility.core.model import Joint, Mechanism
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -201,20 +201,6 @@ def run_cli(args: list[str]) -> tuple[int, str, str]:
 NON_FINITE = re.compile(r"(?<![\w.])(nan|-?inf|NaN|-?Infinity)(?![\w.])")
 
 
-def all_finite(value: Any) -> bool:
-    """True when every float inside ``value`` (dicts, lists) is finite."""
-    stack = [value]
-    while stack:
-        item = stack.pop()
-        if isinstance(item, dict):
-            stack.extend(item.values())
-        elif isinstance(item, (list, tuple)):
-            stack.extend(item)
-        elif isinstance(item, float) and not math.isfinite(item):
-            return False
-    return True
-
-
 def page_figure(html: str) -> Any:
     """The figure (data and layout) that a page of ``mobility view`` hands to plotly."""
     call = html.rindex("Plotly.newPlot(")
@@ -234,7 +220,7 @@ def written_numbers_are_finite(args: list[str]) -> str:
         return f"{path.name} was not written"
     if path.suffix == ".html":
         figure = page_figure(path.read_text(encoding="utf-8"))
-        return "" if all_finite(figure) and "NaN" not in json.dumps(figure) else f"{path.name}: a number of the figure is not finite"
+        return "" if finite_numbers(figure) and "NaN" not in json.dumps(figure) else f"{path.name}: a number of the figure is not finite"
     if path.suffix == ".yaml":
         back = mobility.load(path)  # what was written reads back
         numbers = [x for j in back.world_joints for v in (j.point, j.axis, j.normal) if v is not None for x in v]
@@ -260,7 +246,7 @@ def verdict(args: list[str], status: int, out: str, err: str) -> str:
         if NON_FINITE.search(out):
             return f"a non-finite number printed: {NON_FINITE.search(out).group(0)!r}"
     else:
-        if not all_finite(printed):
+        if not finite_numbers(printed):
             return "a non-finite number in the JSON printed"
     return written_numbers_are_finite(args)
 

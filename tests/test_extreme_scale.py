@@ -21,6 +21,7 @@ import warnings
 import numpy as np
 import pytest
 from builders import four_bar, random_mechanism, three_prs, transformed
+from guards import finite_numbers
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -52,14 +53,6 @@ def run_cli(*args: str) -> tuple[int, str, str]:
     return status, out.getvalue(), err.getvalue()
 
 
-def all_finite(value) -> bool:
-    if isinstance(value, dict):
-        return all(all_finite(v) for v in value.values())
-    if isinstance(value, (list, tuple)):
-        return all(all_finite(v) for v in value)
-    return not isinstance(value, float) or math.isfinite(value)
-
-
 def instantaneous_centre(points) -> np.ndarray:
     """Where lines AB and DC meet: the coupler's instantaneous centre, by plane geometry."""
     a, b, c, d = (np.array(p[:2], dtype=float) for p in points)
@@ -76,7 +69,7 @@ def test_a_scaled_four_bar_keeps_its_answer(factor):
         data = json.loads(json_report(r))
         text = text_report(r, limbs=True)
     assert (r.dof, r.pattern, r.mobility, r.redundant_constraints) == (1, "1R", 1, 3)
-    assert all_finite(data) and "nan" not in text and "inf" not in text
+    assert finite_numbers(data) and "nan" not in text and "inf" not in text
     (rotation,) = r.rotations
     centre = instantaneous_centre(FOUR_BAR) * factor
     assert np.allclose(rotation.point[:2], centre, rtol=1e-9, atol=0.0)
@@ -154,7 +147,7 @@ def test_scaling_by_any_power_of_ten_changes_no_count(seed, exponent):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         r = mobility.analyze(scaled(m, factor))
-        assert all_finite(r.to_dict())
+        assert finite_numbers(r.to_dict())
     assert counts(r) == counts(mobility.analyze(m))
 
 

@@ -29,7 +29,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import mobility
-from guards import time_bound
+from guards import finite_numbers, time_bound
 from mobility.cli import main
 from mobility.errors import MechanismFileError, MobilityError, RequestError
 from mobility.io.expressions import evaluate
@@ -412,22 +412,6 @@ def generated_mechanisms(draw: st.DrawFn) -> str:
             joint["normal"] = draw(vector)
         joints.append(joint)
     return yaml.safe_dump({"name": "fuzz", "ground": "g", "end_effector": "e", "joints": joints}, sort_keys=False)
-
-
-def finite_numbers(value: Any) -> bool:
-    """True when every number inside ``value`` (dicts, lists, tuples, arrays) is finite."""
-    stack = [value]
-    while stack:
-        item = stack.pop()
-        if isinstance(item, dict):
-            stack.extend(item.values())
-        elif isinstance(item, (list, tuple)):
-            stack.extend(item)
-        elif hasattr(item, "tolist"):
-            stack.append(item.tolist())
-        elif isinstance(item, float) and not math.isfinite(item):
-            return False
-    return True
 
 
 @pytest.fixture(scope="module")
