@@ -39,6 +39,7 @@ from pathlib import Path
 import mobility
 from mobility.core import joint_screws as js_module
 from mobility.core.loop_closure import loop_closure
+from _stats import quartiles
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -103,7 +104,7 @@ def main() -> None:
         m = mobility.load(path)
         r = mobility.analyze(m)
         runs = run_times(lambda: mobility.analyze(m), args.number, args.repeat)
-        q1, t_an, q3 = statistics.quantiles(runs, n=4, method="inclusive")
+        q1, t_an, q3 = quartiles(runs)
         t_re = median_time(rebuilt(m), args.number, args.repeat)
         t_dir = median_time(with_directions(m), max(1, args.number // 2), args.repeat)
         t_lc = median_time(baseline(m), max(1, args.number // 2), args.repeat)

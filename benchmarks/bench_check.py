@@ -20,11 +20,11 @@ from __future__ import annotations
 import argparse
 import os
 import shutil
-import statistics
 import subprocess
 import sys
 import time
 from pathlib import Path
+from _stats import quartiles
 
 ROOT = Path(__file__).resolve().parent.parent
 FINITE_KEYS = ("full_cycle_dof", "full_cycle_mobility", "finite_verdict")
@@ -34,11 +34,6 @@ def wall(argv: list[str]) -> float:
     start = time.perf_counter()
     subprocess.run(argv, cwd=ROOT, stdout=subprocess.DEVNULL, check=False)
     return time.perf_counter() - start
-
-
-def quartiles(values: list[float]) -> tuple[float, float, float]:
-    q = statistics.quantiles(values, n=4, method="inclusive")
-    return q[0], statistics.median(values), q[2]
 
 
 def whole_process(runs: int) -> list[tuple[str, tuple[float, float, float]]]:

@@ -47,6 +47,7 @@ from mobility.core.model import Mechanism
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "tests"))
 from builders import prs_limbs, serial_chain, triangle_ladder  # noqa: E402  (the families tests/test_large.py checks)
+from _stats import quartiles  # noqa: E402  (benchmarks/, the script's folder)
 
 FAMILIES: dict[str, tuple[Callable[[int], Mechanism], int, str]] = {
     "chain": (serial_chain, 2000, "joints"),
@@ -92,11 +93,6 @@ def busy_and_quiet(runs: int) -> tuple[list[float], list[float]]:
             p.kill()
             p.wait()
     return quiet, busy
-
-
-def quartiles(values: list[float]) -> tuple[float, float, float]:
-    q = statistics.quantiles(values, n=4, method="inclusive")
-    return q[0], statistics.median(values), q[2]
 
 
 def main() -> None:

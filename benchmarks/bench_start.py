@@ -30,6 +30,7 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from _stats import quartiles
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -53,11 +54,6 @@ def run_once(argv: list[str]) -> tuple[float, float]:
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-
-
-def quartiles(values: list[float]) -> tuple[float, float, float]:
-    q = statistics.quantiles(values, n=4, method="inclusive")
-    return q[0], statistics.median(values), q[2]
 
 
 def main() -> None:
