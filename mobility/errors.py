@@ -96,13 +96,6 @@ class MechanismError(MobilityError, ValueError):
     def _format(self) -> str:
         return f"{self.key}: {self.message}" if self.key else self.message
 
-    def with_key_prefix(self, prefix: str) -> "MechanismError":
-        """Return the same error with ``prefix`` put in front of its key."""
-        if not prefix:
-            return self
-        key = f"{prefix}.{self.key}" if self.key and not self.key.startswith("[") else f"{prefix}{self.key}"
-        return type(self)(key, self.message)
-
 
 class MechanismFileError(MechanismError):
     """A mechanism file is invalid; the message names file, line and key.

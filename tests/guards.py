@@ -9,8 +9,12 @@ import time
 from typing import Any, Iterator
 
 
-class TookTooLong(Exception):
-    """Raised by :func:`time_bound` when the guarded block runs past its bound."""
+class TookTooLong(BaseException):
+    """Raised by :func:`time_bound` when the guarded block runs past its bound.
+
+    A ``BaseException``, like ``KeyboardInterrupt``: the command line's last-resort ``except Exception``
+    must not turn it into an "internal error" of the code under test.
+    """
 
 
 @contextlib.contextmanager

@@ -303,18 +303,21 @@ def test_every_command_on_a_large_mechanism_answers_or_refuses_in_bounded_memory
 
 
 def test_a_command_beyond_its_limit_names_the_limit_and_its_variable(tmp_path, monkeypatch):
-    path = tmp_path / "chain.yaml"
-    path.write_text(yaml_text(prs(20)), encoding="utf-8")  # 60 joints: beyond the finite limit of 50
+    path = tmp_path / "prs.yaml"
+    path.write_text(yaml_text(prs(4)), encoding="utf-8")  # 12 joints
+    status, out, err = run_cli(["analyze", "--finite", str(path)])
+    assert status == 0 and "full-cycle" in out, err  # within the default limit of 50
+    monkeypatch.setenv("MOBILITY_MAX_FINITE_JOINTS", "11")
     status, out, err = run_cli(["analyze", "--finite", str(path)])
     assert (status, out) == (2, "") and err.count("\n") == 1
-    assert f"mobility: {path}: joints: 60 joints are more than the limit of 50 for --finite (set MOBILITY_MAX_FINITE_JOINTS to raise it)" in err
-    monkeypatch.setenv("MOBILITY_MAX_FINITE_JOINTS", "60")
+    assert f"mobility: {path}: joints: 12 joints are more than the limit of 11 for --finite (set MOBILITY_MAX_FINITE_JOINTS to raise it)" in err
+    monkeypatch.setenv("MOBILITY_MAX_FINITE_JOINTS", "12")
     status, out, err = run_cli(["analyze", "--finite", str(path)])
     assert status == 0 and "full-cycle" in out, err
-    monkeypatch.setenv("MOBILITY_MAX_MOVING_JOINTS", "59")
+    monkeypatch.setenv("MOBILITY_MAX_MOVING_JOINTS", "11")
     for args in (["sweep", str(path), "--vary", "R0=0:1:2"], ["view", "--samples", "1", str(path), "-o", str(tmp_path / "v.html")], ["actuation", "--samples", "1", str(path)]):
         status, out, err = run_cli(args)
-        assert status == 2 and "more than the limit of 59" in err and "MOBILITY_MAX_MOVING_JOINTS" in err, (args, err)
+        assert status == 2 and "more than the limit of 11" in err and "MOBILITY_MAX_MOVING_JOINTS" in err, (args, err)
 
 
 def test_an_enumeration_too_large_to_count_in_a_machine_integer_is_refused(tmp_path, monkeypatch):

@@ -28,7 +28,7 @@ import numpy as np
 from ..errors import MechanismFileError
 from .model import Mechanism
 from .tolerance import DEFAULT_TOLERANCE, binary_scale, characteristic_scale
-from .transforms import cross, skew
+from .transforms import cross
 
 __all__ = ["Normalisation", "JointScrews", "joint_screws", "per_object_cache", "clear_cache"]
 
@@ -74,13 +74,6 @@ class Normalisation:
     def point_from_world(self, p: np.ndarray) -> np.ndarray:
         """Map a point from global to normalised coordinates."""
         return (np.asarray(p, dtype=float) - self.centre) / self.length
-
-    def matrix_to_world(self) -> np.ndarray:
-        """The 6x6 matrix of :meth:`to_world`."""
-        m = np.eye(6)
-        m[3:, 3:] *= self.length
-        m[3:, :3] = skew(self.centre)
-        return m
 
 
 @dataclass(frozen=True)
