@@ -1,7 +1,12 @@
-"""The README stays true to the code: its example output, its Quickstart, CI's command."""
+"""The README and docs stay true to the code: the example output, the Quickstart, CI's command, the format page."""
 
+import math
 import re
 from pathlib import Path
+
+import pytest
+
+import mobility
 
 from mobility.cli import main
 
@@ -27,3 +32,14 @@ def test_quickstart_has_two_command_lines_and_ci_runs_the_test_one():
     assert (ROOT / install_and_analyze.split("analyze ", 1)[1].strip()).exists()
     assert "pip install" in install_and_test and "pytest" in install_and_test
     assert install_and_test in (ROOT / ".ci" / "run").read_text()
+
+
+def test_the_file_format_page_fragments_load_when_completed():
+    text = (ROOT / "docs" / "file-format.md").read_text(encoding="utf-8")
+    parameters, limbs = re.findall(r"```yaml\n(.*?)```", text, re.S)[:2]
+    m = mobility.loads("name: doc\nground: g\nend_effector: l1\n" + parameters)
+    assert m.world_joints[0].axis == pytest.approx((0.0, -math.sin(math.radians(60)), math.cos(math.radians(60))))
+    m = mobility.loads("name: doc\nground: base\nend_effector: leg1\nparameters: {h: 0.5}\n" + limbs)
+    assert [j.name for j in m.world_joints] == ["P1", "R1", "P2", "R2", "P3", "R3"]
+    # the third limb's frame is turned by 240 degrees about z: its R axis [0, 1, 0] becomes [-sin 240, cos 240, 0]
+    assert m.world_joints[5].axis == pytest.approx((-math.sin(math.radians(240)), math.cos(math.radians(240)), 0.0))
