@@ -162,13 +162,16 @@ class MissingExtraError(MobilityError, ImportError):
     extra : str
         The extra of :mod:`mobility` that installs it (``"plot"``).
     detail : str
-        More about what failed to import, if anything.
+        More about what failed to import, if anything; left out when it only says that ``package``
+        itself is missing ("No module named 'mujoco'"), which the message says already.
     """
 
     def __init__(self, feature: str, package: str, extra: str, detail: str = "") -> None:
         self.feature = feature
         self.package = package
         self.extra = extra
+        if detail.startswith(f"No module named '{package.split('[')[0]}"):
+            detail = ""
         more = f" ({detail})" if detail else ""
         super().__init__(f"{feature} needs {package}, which is not installed{more}: pip install 'mobility[{extra}]'")
 

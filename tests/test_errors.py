@@ -103,3 +103,13 @@ def test_name_lists_in_messages_stay_short():
     assert errors.name_list((f"J{i}" for i in range(5000))) == "J0, J1, J2, J3, J4, J5, J6, J7, J8, J9, J10, J11, ... (5000 in all)"
     assert errors.name_list([], empty="nothing") == "nothing"
 
+
+
+def test_a_missing_extra_says_what_to_install_without_repeating_the_import_error():
+    plain = errors.MissingExtraError("reading MJCF files", "mujoco", "mujoco", "No module named 'mujoco'")
+    assert str(plain) == "reading MJCF files needs mujoco, which is not installed: pip install 'mobility[mujoco]'"
+    dask = errors.MissingExtraError("running a sweep on a dask cluster", "dask[distributed]", "dask", "No module named 'dask.distributed'")
+    assert str(dask) == "running a sweep on a dask cluster needs dask[distributed], which is not installed: pip install 'mobility[dask]'"
+    # another module failing inside the package is worth saying
+    broken = errors.MissingExtraError("the 3D view", "plotly", "view", "No module named 'narwhals'")
+    assert str(broken).endswith("which is not installed (No module named 'narwhals'): pip install 'mobility[view]'")
