@@ -7,6 +7,7 @@ import sys
 
 import pytest
 
+import mobility
 import mobility.cli.analyze
 import mobility.errors as errors
 from mobility.cli import build_parser, main
@@ -113,3 +114,23 @@ def test_a_missing_extra_says_what_to_install_without_repeating_the_import_error
     # another module failing inside the package is worth saying
     broken = errors.MissingExtraError("the 3D view", "plotly", "view", "No module named 'narwhals'")
     assert str(broken).endswith("which is not installed (No module named 'narwhals'): pip install 'mobility[view]'")
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda m: mobility.analyze("four_bar.yaml"), "analyze: expected a Mechanism (from mobility.load or built in code), got str"),
+    (lambda m: mobility.analyze(m, tol=1e-9), "analyze: tol must be a Tolerance (e.g. Tolerance(rank=1e-9)), got float"),
+    (lambda m: mobility.loop_closure({"joints": []}), "loop_closure: expected a Mechanism (from mobility.load or built in code), got dict"),
+    (lambda m: mobility.finite_mobility(None), "finite_mobility: expected a Mechanism (from mobility.load or built in code), got NoneType"),
+    (lambda m: mobility.check_actuation([m]), "check_actuation: expected a Mechanism (from mobility.load or built in code), got list"),
+    (lambda m: mobility.enumerate_actuations(m, tol="loose"), "enumerate_actuations: tol must be a Tolerance (e.g. Tolerance(rank=1e-9)), got str"),
+    (lambda m: mobility.jacobian("m"), "jacobian: expected a Mechanism (from mobility.load or built in code), got str"),
+    (lambda m: mobility.load(3), "load: expected a file name (str or Path), got int"),
+    (lambda m: mobility.loads(b"name: x"), "loads: expected the text of a mechanism file (str), got bytes"),
+    (lambda m: mobility.Tolerance(rank="1e-8"), "Tolerance: rank must be a finite number, got '1e-8'"),
+    (lambda m: mobility.Tolerance(closure=float("inf")), "Tolerance: closure must be a finite number, got inf"),
+])
+def test_a_public_function_given_the_wrong_kind_of_argument_says_so_in_one_error(call, message):
+    m = mobility.load(MECHANISMS / "four_bar.yaml")
+    with pytest.raises(errors.RequestError) as caught:
+        call(m)
+    assert str(caught.value) == message

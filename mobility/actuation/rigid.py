@@ -26,9 +26,9 @@ from typing import Iterable, Sequence
 
 
 from ..core.poses import sample_poses
-from ..core.model import Mechanism
+from ..core.model import Mechanism, require_mechanism
 from ..core.screws import motion_pattern
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..core.topology import joints_of
 from ..errors import MechanismError, RequestError, name_list
 from .assessment import Assessment, InputWrench, assess_inputs, assess_wrenches
@@ -62,6 +62,8 @@ def check_actuation(mechanism: Mechanism, actuated: Sequence[str] | None = None,
     MechanismError
         When a name is not a joint of the mechanism.
     """
+    mechanism = require_mechanism(mechanism, "check_actuation")
+    tol = require_tolerance(tol, "check_actuation")
     names = _actuated_names(mechanism, actuated)
     warnings = [] if names else ["no joint is actuated (mark joints with `actuated: true`, or name them)"]
     return _assess_at(RigidPose(mechanism, tol), names, warnings)
@@ -130,6 +132,8 @@ def enumerate_actuations(
     MechanismError
         When a pose is not one of ``mechanism``.
     """
+    mechanism = require_mechanism(mechanism, "enumerate_actuations")
+    tol = require_tolerance(tol, "enumerate_actuations")
     if mode not in ENUMERATION_MODES:
         raise RequestError(f"mode must be 'limb' or 'any', got {mode!r}")
     warnings: list[str] = []

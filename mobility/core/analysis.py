@@ -27,11 +27,11 @@ from ..errors import AnalysisError
 
 from .canonical import canonical_form
 from .joint_screws import JointScrews, Normalisation, joint_screws, per_object_cache
-from .model import WORLD, Mechanism
+from .model import WORLD, Mechanism, require_mechanism
 from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis, pattern_of
 from .screw_systems import MarginTracker, SystemValue, evaluate_node, subtree_values
 from .screws import free_vector_subspace, span_and_reciprocal
-from .tolerance import DEFAULT_TOLERANCE, Tolerance
+from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from .transforms import cross
 from .topology import JointNode, Node, Parallel, Topology, decompose, describe, joints_of
 
@@ -66,7 +66,25 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
         Frozen; screws in the global frame and the mechanism's length unit.
         The counts are computed here; directions, limb systems and common
         constraints on first access.
+
+    Examples
+    --------
+    The planar four-bar: one rotation of the coupler, though Grübler–Kutzbach
+    (spatial) counts -2:
+
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> z = (0, 0, 1)
+    >>> four_bar = Mechanism("four-bar", "ground", "coupler", (
+    ...     Joint("A", "R", ("ground", "crank"), axis=z, point=(0, 0, 0)),
+    ...     Joint("B", "R", ("crank", "coupler"), axis=z, point=(1, 2, 0)),
+    ...     Joint("C", "R", ("coupler", "rocker"), axis=z, point=(4, 2.5, 0)),
+    ...     Joint("D", "R", ("rocker", "ground"), axis=z, point=(5, 0, 0))))
+    >>> r = analyze(four_bar)
+    >>> r.dof, r.pattern, r.mobility, r.gruebler_kutzbach, r.redundant_constraints
+    (1, '1R', 1, -2, 3)
     """
+    mechanism = require_mechanism(mechanism, "analyze")
+    tol = require_tolerance(tol, "analyze")
     topology = per_object_cache(mechanism, "topology", lambda: decompose(mechanism))
     screws = joint_screws(mechanism)
     tracker = MarginTracker()

@@ -46,9 +46,9 @@ import numpy as np
 from ..errors import RequestError
 from .joint_screws import JointScrews, joint_screws
 from .linalg import svd
-from .model import Mechanism
+from .model import Mechanism, require_mechanism
 from .screws import span_and_reciprocal
-from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
+from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank, require_tolerance
 from .topology import TreeEdge, spanning_tree
 
 __all__ = ["LoopClosure", "loop_closure", "WHOLE_SVD_SIZE"]
@@ -118,6 +118,8 @@ def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, me
     RequestError
         For an unknown ``method``.
     """
+    mechanism = require_mechanism(mechanism, "loop_closure")
+    tol = require_tolerance(tol, "loop_closure")
     if method not in ("auto", "svd", "chords"):
         raise RequestError(f"method: expected 'auto', 'svd' or 'chords', got {method!r}")
     screws = joint_screws(mechanism)

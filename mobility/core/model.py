@@ -49,6 +49,7 @@ __all__ = [
     "Frame",
     "Expected",
     "Mechanism",
+    "require_mechanism",
     "WORLD",
 ]
 
@@ -579,3 +580,17 @@ class Mechanism:
     def replace(self, **changes: Any) -> "Mechanism":
         """A copy with some fields changed (validated again)."""
         return replace(self, **changes)
+
+
+def require_mechanism(value: object, caller: str) -> Mechanism:
+    """``value`` when it is a :class:`Mechanism`, else a :class:`~mobility.errors.RequestError` naming ``caller``.
+
+    Examples
+    --------
+    >>> require_mechanism("four_bar.yaml", "analyze")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: analyze: expected a Mechanism (from mobility.load or built in code), got str
+    """
+    if not isinstance(value, Mechanism):
+        raise RequestError(f"{caller}: expected a Mechanism (from mobility.load or built in code), got {type(value).__name__}")
+    return value

@@ -12,8 +12,8 @@ import numpy as np
 
 from ..errors import RequestError
 from .kinematics import kinematics
-from .model import Mechanism
-from .tolerance import DEFAULT_TOLERANCE, Tolerance
+from .model import Mechanism, require_mechanism
+from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 
 __all__ = ["sample_poses"]
 
@@ -60,6 +60,8 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: i
     >>> len(poses), all(p.joints[0].point == (0.0, 0.0, 0.0) and abs(p.joints[2].point[1]) < 1e-12 for p in poses)
     (3, True)
     """
+    mechanism = require_mechanism(mechanism, "sample_poses")
+    tol = require_tolerance(tol, "sample_poses")
     if count < 0:
         raise RequestError(f"count: expected a number of poses >= 0, got {count}")
     if not step > 0.0:

@@ -38,6 +38,7 @@ from ..errors import RequestError
 __all__ = [
     "Tolerance",
     "DEFAULT_TOLERANCE",
+    "require_tolerance",
     "RankDecision",
     "decide_rank",
     "binary_scale",
@@ -78,6 +79,10 @@ class Tolerance:
     round_off: float = 1e-12
 
     def __post_init__(self) -> None:
+        for name in ("rank", "near_singular", "inexact", "closure", "round_off"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                raise RequestError(f"Tolerance: {name} must be a finite number, got {value!r}")
         if not (0.0 < self.inexact <= self.rank < self.near_singular < 1.0):
             raise RequestError("tolerances must satisfy 0 < inexact <= rank < near_singular < 1")
         if not (0.0 < self.closure < 1.0 and 0.0 < self.round_off < 1.0):
@@ -85,6 +90,22 @@ class Tolerance:
 
 
 DEFAULT_TOLERANCE = Tolerance()
+
+
+def require_tolerance(value: object, caller: str) -> Tolerance:
+    """``value`` when it is a :class:`Tolerance`, else a :class:`~mobility.errors.RequestError` naming ``caller``.
+
+    Examples
+    --------
+    >>> require_tolerance(DEFAULT_TOLERANCE, "analyze").rank
+    1e-08
+    >>> require_tolerance(1e-8, "analyze")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: analyze: tol must be a Tolerance (e.g. Tolerance(rank=1e-9)), got float
+    """
+    if not isinstance(value, Tolerance):
+        raise RequestError(f"{caller}: tol must be a Tolerance (e.g. Tolerance(rank=1e-9)), got {type(value).__name__}")
+    return value
 
 
 class RankDecision(NamedTuple):

@@ -51,9 +51,9 @@ import numpy as np
 
 from ..core.analysis import analyze
 from ..core.kinematics import kinematics
-from ..core.model import Mechanism
+from ..core.model import Mechanism, require_mechanism
 from ..core.result import Result
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import RequestError
 from .branches import examine_branch, group_by_tangent
 from .moves import MovePlan, probe, probe_directions
@@ -99,6 +99,8 @@ def finite_mobility(
     RequestError
         When a step is not a positive number.
     """
+    mechanism = require_mechanism(mechanism, "finite_mobility")
+    tol = require_tolerance(tol, "finite_mobility")
     steps = _checked_steps(steps)
     rng = np.random.default_rng(seed)  # one stream, drawn in a fixed order: second order, moves, branches
     instant = analyze(mechanism, tol=tol)

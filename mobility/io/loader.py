@@ -39,12 +39,13 @@ mobility.errors.MechanismFileError: slider.yaml:6: joints[0].axis: expected a li
 
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
 from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Expected, Frame, Joint, Mechanism
-from ..errors import MechanismError
+from ..errors import MechanismError, RequestError
 from .expressions import RESERVED_NAMES
 from .limits import Limits, current_limits
 from .reader import NAME_RE, DocumentReader, describe_value, parse_key
@@ -84,7 +85,15 @@ def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any
     MechanismFileError
         When the file cannot be read or breaks the format; the message names
         file, line, key and what was expected.
+
+    Examples
+    --------
+    >>> m = load("mechanisms/four_bar.yaml")
+    >>> m.ground, m.end_effector, [j.name for j in m.joints]
+    ('ground', 'coupler', ['A', 'B', 'C', 'D'])
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise RequestError(f"load: expected a file name (str or Path), got {type(path).__name__}")
     if robot_options or Path(path).suffix.lower() not in (".yaml", ".yml"):
         from .robot_files import is_robot_file, load_robot  # robot descriptions are read only when given
 
@@ -95,7 +104,25 @@ def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any
 
 
 def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) -> Mechanism:
-    """Load a mechanism from YAML text (see :func:`load`)."""
+    """Load a mechanism from YAML text (see :func:`load`).
+
+    Examples
+    --------
+    >>> m = loads('''
+    ... name: slider
+    ... ground: g
+    ... end_effector: s
+    ... joints:
+    ...   - {name: p, type: P, links: [g, s], axis: [1, 0, 0]}
+    ... ''')
+    >>> m.name, [j.type for j in m.joints]
+    ('slider', ['P'])
+    >>> loads(3)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: loads: expected the text of a mechanism file (str), got int
+    """
+    if not isinstance(text, str):
+        raise RequestError(f"loads: expected the text of a mechanism file (str), got {type(text).__name__}")
     limits = current_limits(limits)
     data, positions = parse_yaml(text, file, limits)
     return _MechanismReader(file, positions, limits).mechanism(data)

@@ -66,9 +66,9 @@ from scipy.optimize import least_squares
 
 from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
 from ..core.joint_screws import Normalisation
-from ..core.model import Joint, Mechanism
+from ..core.model import Joint, Mechanism, require_mechanism
 from ..core.screws import SWAP, adjoint, reciprocal_product, reciprocal_system, span_and_reciprocal
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale, clean_numbers, decide_rank
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale, clean_numbers, decide_rank, require_tolerance
 from ..core.transforms import cross, skew
 from ..errors import AnalysisError, HalfTurnError, MechanismError, RequestError, name_list
 from .wrenches import clean_screw, dominant_signs, is_couple, norm, unit_wrench, wrench_axis
@@ -446,6 +446,8 @@ def jacobian(
         The limbs do not close at ``q``, or an actuated joint cannot move the
         platform on its own at this pose (no actuation wrench).
     """
+    mechanism = require_mechanism(mechanism, "jacobian")
+    tol = require_tolerance(tol, "jacobian")
     model = mechanism if isinstance(mechanism, ParallelModel) else parallel_model(mechanism, actuated)
     values = model.home() if q is None else tuple(np.asarray(v, dtype=float) for v in q)
     if len(values) != len(model.chains) or any(len(v) != len(c.limb) for v, c in zip(values, model.chains)):

@@ -30,9 +30,9 @@ from typing import Any, Iterable
 
 from ..core.analysis import analyze
 from ..core.joint_screws import joint_screws
-from ..core.model import Mechanism
+from ..core.model import Mechanism, require_mechanism
 from ..core.result import Result
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError
 from ..report.plotting.sketch import drawing_scale
 from ..report.text import text_report
@@ -158,6 +158,8 @@ def mechanism_view(mechanism: Mechanism, result: Result | None = None, *, tol: T
     -------
     View
     """
+    mechanism = require_mechanism(mechanism, "mechanism_view")
+    tol = require_tolerance(tol, "mechanism_view")
     return poses_view([ViewFrame(mechanism, result if result is not None else analyze(mechanism, tol=tol))])
 
 

@@ -23,9 +23,9 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 
 from ...core.analysis import analyze
-from ...core.model import Mechanism
+from ...core.model import Mechanism, require_mechanism
 from ...core.result import Result
-from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from .backend import new_figure, require_matplotlib
 from .geometry import SAME_POINT, unique_points
 from .glyphs import arrow, cone, draw_joints, draw_links, rotation_mark, triad
@@ -85,6 +85,8 @@ def plot_mechanism(
     PlottingUnavailableError
         When matplotlib is not installed.
     """
+    mechanism = require_mechanism(mechanism, "plot_mechanism")
+    tol = require_tolerance(tol, "plot_mechanism")
     require_matplotlib()
     r = result if result is not None else analyze(mechanism, tol=tol)
     sk = sketch(mechanism)
