@@ -52,20 +52,9 @@ import numpy as np
 from .linalg import svd
 from .screws import free_vector_subspace
 from .transforms import cross
-from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance
+from .tolerance import COMPONENT_TIE, DEFAULT_TOLERANCE, NORM_TIE, RankDecision, Tolerance
 
 __all__ = ["PrincipalScrew", "CanonicalForm", "canonical_form", "readable_basis"]
-
-COMPONENT_TIE = 1e-9
-"""Components of a unit vector within this of the largest are a tie, broken by
-the lowest index (x before y before z): a readability choice, far above the
-round-off of unit vectors (~1e-16) so that round-off never decides it.  Not a
-rank decision: no count depends on it."""
-
-NORM_TIE = 1e-12
-"""Projections of coordinate axes whose norms are within this of the largest
-are a tie, broken by the lowest index (the same readability choice, for the
-greedy basis of :func:`readable_basis`)."""
 
 
 @dataclass(frozen=True)

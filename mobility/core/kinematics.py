@@ -68,7 +68,7 @@ import numpy as np
 from ..errors import RequestError
 from .joint_screws import Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism
-from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
+from .tolerance import DEFAULT_TOLERANCE, NEWTON_RCOND, RankDecision, Tolerance, decide_rank
 from .topology import spanning_tree
 from .transforms import bracket, cross, displacement_log, displacement_logs, skew
 
@@ -77,15 +77,7 @@ __all__ = [
     "Closure",
     "Kinematics",
     "kinematics",
-    "NEWTON_RCOND",
 ]
-
-NEWTON_RCOND = 1e-12
-"""Singular values of a Newton system below this fraction of the largest are
-ignored when its minimum-norm step is solved (``numpy.linalg.lstsq``'s
-``rcond``): a safeguard of the linear solver a few digits above machine
-precision, not a rank decision (no count depends on it; whether the loops
-closed is judged by :attr:`~mobility.core.tolerance.Tolerance.closure`)."""
 
 
 # ---------------------------------------------------------------------------

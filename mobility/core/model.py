@@ -37,7 +37,7 @@ from typing import Any, Iterable, Mapping
 import numpy as np
 
 from ..errors import MechanismError, RequestError, name_list
-from .tolerance import binary_scale
+from .tolerance import ORTHONORMAL, PARALLEL_AXES, binary_scale
 from .transforms import Transform, rotation_from_rpy
 
 __all__ = [
@@ -71,16 +71,6 @@ JOINT_TYPES: Mapping[str, str] = MappingProxyType(
     }
 )
 """Joint type letters and their names."""
-
-PARALLEL_AXES = 1e-9
-"""The two axes of a U joint are refused as parallel when the sine of their
-angle is below this: the joint would have one freedom, not two.  A check of
-the description (nine digits), not a rank decision of the analysis."""
-
-ORTHONORMAL = 1e-9
-"""A frame's rotation matrix must be orthonormal to this (entries of
-``R R^T - I``, with ``numpy.isclose``'s relative allowance of 1e-5 on the
-diagonal): rotations written with ten significant digits pass."""
 
 _IDENTITY = np.eye(3)
 _ORTHONORMAL_LIMIT = ORTHONORMAL + 1e-5 * _IDENTITY  # |R R^T - I| entry by entry, as numpy.allclose(R R^T, I, atol=ORTHONORMAL)

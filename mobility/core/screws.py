@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .linalg import left_svd, singular_values, svd
-from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
+from .tolerance import DEFAULT_TOLERANCE, SIGN_TIE, RankDecision, Tolerance, decide_rank
 from .transforms import skew
 
 __all__ = [
@@ -146,11 +146,6 @@ class ScrewSpan:
     def dim(self) -> int:
         """Dimension of the span."""
         return self.decision.rank
-
-
-SIGN_TIE = 1e-9
-"""Components of a unit column within this of its largest are a tie for :func:`span_and_reciprocal`'s
-sign rule, broken by the lowest index: a readability choice far above round-off, not a rank decision."""
 
 
 def span_and_reciprocal(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> ScrewSpan:

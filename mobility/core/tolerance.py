@@ -17,6 +17,10 @@ pose is close to a singularity where the rank would drop; a dropped value well
 above round-off means the geometry is only nearly special (e.g. coordinates
 typed with few digits).  Both are reported, never hidden.
 
+Below the policy, the fixed constants that decide no count (checks of a
+description, the solvers' stopping rules, ties of the readable forms) are
+kept here too, each with the reason for its value.
+
 Examples
 --------
 >>> import numpy as np
@@ -39,6 +43,13 @@ __all__ = [
     "Tolerance",
     "DEFAULT_TOLERANCE",
     "require_tolerance",
+    "PARALLEL_AXES",
+    "ORTHONORMAL",
+    "SIGN_TIE",
+    "COMPONENT_TIE",
+    "NORM_TIE",
+    "NEWTON_RCOND",
+    "SOLVER_STOP",
     "RankDecision",
     "decide_rank",
     "binary_scale",
@@ -106,6 +117,52 @@ def require_tolerance(value: object, caller: str) -> Tolerance:
     if not isinstance(value, Tolerance):
         raise RequestError(f"{caller}: tol must be a Tolerance (e.g. Tolerance(rank=1e-9)), got {type(value).__name__}")
     return value
+
+
+# ---------------------------------------------------------------------------
+# Fixed constants: checks of a description, solver safeguards and the ties of
+# readable forms.  None of them decides a count; each says why it is the value
+# it is.  They live here so that every number of the kind is in one place.
+
+PARALLEL_AXES = 1e-9
+"""The two axes of a U joint are refused as parallel when the sine of their
+angle is below this: the joint would have one freedom, not two.  A check of
+the description (nine digits), not a rank decision of the analysis."""
+
+ORTHONORMAL = 1e-9
+"""A frame's rotation matrix must be orthonormal to this (entries of
+``R R^T - I``, with ``numpy.isclose``'s relative allowance of 1e-5 on the
+diagonal): rotations written with ten significant digits pass."""
+
+SIGN_TIE = 1e-9
+"""Components of a unit column within this of its largest are a tie for :func:`~mobility.core.screws.span_and_reciprocal`'s
+sign rule, broken by the lowest index: a readability choice far above round-off, not a rank decision."""
+
+COMPONENT_TIE = 1e-9
+"""Components of a unit vector within this of the largest are a tie, broken by
+the lowest index (x before y before z): a readability choice, far above the
+round-off of unit vectors (~1e-16) so that round-off never decides it.  Not a
+rank decision: no count depends on it."""
+
+NORM_TIE = 1e-12
+"""Projections of coordinate axes whose norms are within this of the largest
+are a tie, broken by the lowest index (the same readability choice, for the
+greedy basis of :func:`~mobility.core.canonical.readable_basis`)."""
+
+NEWTON_RCOND = 1e-12
+"""Singular values of a Newton system below this fraction of the largest are
+ignored when its minimum-norm step is solved (``numpy.linalg.lstsq``'s
+``rcond``): a safeguard of the linear solver a few digits above machine
+precision, not a rank decision (no count depends on it; whether the loops
+closed is judged by :attr:`~mobility.core.tolerance.Tolerance.closure`)."""
+
+SOLVER_STOP = 1e-15
+"""``xtol``, ``ftol`` and ``gtol`` of every least-squares search (the inverse
+kinematics of the Jacobians, the fits of motion patterns, the second-order
+search of the finite analysis): iterate until round-off.  It only asks a
+solver to stop where double precision stops improving; whether a result fits
+is then judged by the policy (:attr:`Tolerance.closure`, :func:`decide_rank`).
+"""
 
 
 class RankDecision(NamedTuple):

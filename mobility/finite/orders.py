@@ -37,8 +37,8 @@ from scipy.linalg import qr
 
 from ..core.kinematics import Kinematics
 from ..core.screws import motion_pattern, span_and_reciprocal
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
-from .parameters import DISTINCT_LINES, INEXACT_ALLOWANCE, SEARCH_PRECISION
+from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance
+from .parameters import DISTINCT_LINES, INEXACT_ALLOWANCE
 from .results import SecondOrder
 
 __all__ = ["FirstOrder", "first_order", "second_order", "canonical_basis", "end_effector_pattern"]
@@ -155,7 +155,7 @@ def second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator,
     starts = list(np.eye(k)) + list(rng.standard_normal((k + 2, k)))
     found: list[np.ndarray] = []
     least = np.inf
-    precision = SEARCH_PRECISION
+    precision = SOLVER_STOP
     for x0 in starts:
         sol = least_squares(residuals, x0 / np.linalg.norm(x0), jac=jacobian, method="lm", xtol=precision, ftol=precision, gtol=precision, max_nfev=100 * k)
         x = sol.x / np.linalg.norm(sol.x)

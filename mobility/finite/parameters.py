@@ -23,7 +23,6 @@ __all__ = [
     "INEXACT_ALLOWANCE",
     "MAX_MOVE",
     "DISTINCT_LINES",
-    "SEARCH_PRECISION",
 ]
 
 DEFAULT_STEPS = (1e-3, 1e-2, 5e-2)
@@ -64,8 +63,3 @@ start: it would reach another assembly, not the nearby one."""
 DISTINCT_LINES = 0.999
 """Two directions found by the second-order search are the same line when
 ``|cos|`` of their angle is at least this."""
-
-SEARCH_PRECISION = 1e-15
-"""Stopping tolerances of the Levenberg–Marquardt search for directions where
-every second-order form vanishes: run to machine precision, since its result is
-compared with the policy's zero."""

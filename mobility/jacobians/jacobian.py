@@ -68,20 +68,12 @@ from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
 from ..core.joint_screws import Normalisation
 from ..core.model import Joint, Mechanism, require_mechanism
 from ..core.screws import SWAP, adjoint, reciprocal_product, reciprocal_system, span_and_reciprocal
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale, clean_numbers, decide_rank, require_tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, binary_scale, characteristic_scale, clean_numbers, decide_rank, require_tolerance
 from ..core.transforms import cross, skew
 from ..errors import AnalysisError, HalfTurnError, MechanismError, RequestError, name_list
 from .wrenches import clean_screw, dominant_signs, is_couple, norm, unit_wrench, wrench_axis
 
 __all__ = ["Chain", "ParallelModel", "JacobianResult", "parallel_model", "jacobian"]
-
-_SOLVER_STOP = 1e-15
-"""``xtol``, ``ftol`` and ``gtol`` of the inverse kinematics: iterate until round-off.
-
-Not a tolerance of the policy: it only asks the solver to stop where double
-precision stops improving; whether a limb reached the platform is decided on
-the residual with ``Tolerance.closure``.
-"""
 
 
 @dataclass(frozen=True)
@@ -186,7 +178,7 @@ class ParallelModel:
                     cols.append(np.concatenate([(skew(w) @ t[:3, :3]).ravel(), (cross(w, t[:3, 3]) + v) / length]))
                 return np.array(cols).T
 
-            sol = least_squares(residual, x0, jac=jac, method="lm", x_scale="jac", xtol=_SOLVER_STOP, ftol=_SOLVER_STOP, gtol=_SOLVER_STOP)
+            sol = least_squares(residual, x0, jac=jac, method="lm", x_scale="jac", xtol=SOLVER_STOP, ftol=SOLVER_STOP, gtol=SOLVER_STOP)
             if float(np.max(np.abs(sol.fun))) > 0.5 * tol.closure:
                 raise AnalysisError(f"limb {k + 1} cannot reach the platform displacement (residual {np.linalg.norm(sol.fun):.2e})")
             out.append(sol.x)
@@ -446,9 +438,8 @@ def jacobian(
         The limbs do not close at ``q``, or an actuated joint cannot move the
         platform on its own at this pose (no actuation wrench).
     """
-    mechanism = require_mechanism(mechanism, "jacobian")
     tol = require_tolerance(tol, "jacobian")
-    model = mechanism if isinstance(mechanism, ParallelModel) else parallel_model(mechanism, actuated)
+    model = mechanism if isinstance(mechanism, ParallelModel) else parallel_model(require_mechanism(mechanism, "jacobian"), actuated)
     values = model.home() if q is None else tuple(np.asarray(v, dtype=float) for v in q)
     if len(values) != len(model.chains) or any(len(v) != len(c.limb) for v, c in zip(values, model.chains)):
         raise RequestError("q: expected one array of joint values per limb, as many as the limb's freedoms")

@@ -40,7 +40,7 @@ from scipy.optimize import least_squares
 
 from ..core.finite_screws import FiniteScrew, ScrewJoint
 from ..core.linalg import singular_values
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale, decide_rank
+from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale, decide_rank
 from ..core.transforms import rotation_from_axis_angle
 from ..errors import SynthesisError
 from .generic_rank import generic_rank
@@ -50,14 +50,6 @@ __all__ = ["Vector", "PatternFactor", "MotionPattern", "PATTERNS", "named_patter
 Vector = tuple[float, float, float]
 
 _FACTOR_KINDS = ("rotations", "rotation", "translations")
-
-_SOLVER_STOP = 1e-15
-"""``xtol``, ``ftol`` and ``gtol`` of the least-squares solves: iterate until round-off.
-
-Not a tolerance of the policy: it only asks the solver to stop where double
-precision stops improving; whether the result fits is decided on the residual
-with ``Tolerance.closure``.
-"""
 
 
 def _vec(v: Iterable[float], what: str = "point") -> Vector:
@@ -303,7 +295,7 @@ class MotionPattern:
         best_x, best_r = np.zeros(self.parameter_count), math.inf
         for k in range(max(1, starts)):
             x0 = np.zeros(self.parameter_count) if k == 0 else rng.uniform(-math.pi, math.pi, self.parameter_count)
-            sol = least_squares(residual, x0, method="lm", xtol=_SOLVER_STOP, ftol=_SOLVER_STOP, gtol=_SOLVER_STOP)
+            sol = least_squares(residual, x0, method="lm", xtol=SOLVER_STOP, ftol=SOLVER_STOP, gtol=SOLVER_STOP)
             r = float(np.linalg.norm(sol.fun))
             if r < best_r:
                 best_x, best_r = sol.x, r
