@@ -8,7 +8,8 @@ One library routine, :func:`numpy.linalg.svd` (LAPACK's divide-and-conquer
   wide ``6 x n`` matrix (a long chain, many limbs) are never formed as an
   ``n x n`` matrix, so the cost grows linearly with ``n``;
 * :func:`svd`: the full decomposition, for null spaces;
-* :func:`singular_values`: the values alone.
+* :func:`singular_values`: the values alone, and :func:`rank`, the policy's
+  rank decision on them.
 
 ``scipy.linalg.lapack.dgesvd`` is cheaper per call on these tiny matrices
 (about 3 µs against 8 µs) but importing :mod:`scipy.linalg` costs more than a
@@ -32,8 +33,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import AnalysisError
+from .tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank
 
-__all__ = ["svd", "left_svd", "left_svds", "singular_values"]
+__all__ = ["svd", "left_svd", "left_svds", "singular_values", "rank"]
 
 _decompose = np.linalg.svd
 
@@ -116,3 +118,14 @@ def singular_values(m: np.ndarray) -> np.ndarray:
         return _decompose(m, compute_uv=False)
     except np.linalg.LinAlgError:
         raise _not_converged(m) from None
+
+
+def rank(m: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> int:
+    """The rank of ``m`` as the tolerance policy decides it (:func:`~mobility.core.tolerance.decide_rank`).
+
+    Examples
+    --------
+    >>> rank(np.array([[1.0, 2.0], [2.0, 4.0 + 1e-12]]))
+    1
+    """
+    return decide_rank(singular_values(m), tol).rank

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .linalg import left_svd, singular_values, svd
+from .linalg import left_svd, rank, singular_values, svd
 from .tolerance import DEFAULT_TOLERANCE, SIGN_TIE, RankDecision, Tolerance, decide_rank
 from .transforms import skew
 
@@ -214,10 +214,7 @@ def same_subspace(a: np.ndarray, b: np.ndarray, tol: Tolerance = DEFAULT_TOLERAN
     if a.shape[0] != b.shape[0]:
         return False
 
-    def rank(m: np.ndarray) -> int:
-        return decide_rank(singular_values(m), tol).rank
-
-    return rank(a) == rank(b) == rank(np.hstack([a, b]))
+    return rank(a, tol) == rank(b, tol) == rank(np.hstack([a, b]), tol)
 
 
 def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, *, coefficients: bool = True):

@@ -35,7 +35,8 @@ import numpy as np
 
 from ..actuation import ActuationCheck, Enumeration, InputWrench, assess_inputs, assess_wrenches, combinations_count, combine_poses, rank_combinations
 from ..core.joint_screws import Normalisation
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale, decide_rank
+from ..core.linalg import rank
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale
 from ..core.transforms import skew
 from ..errors import MechanismError, name_list
 from .model import FlexureMechanism, ForceLine
@@ -170,19 +171,16 @@ def line_set_type(lines: Sequence[ForceLine], *, tol: Tolerance = DEFAULT_TOLERA
     centre, length = characteristic_scale(pts)
     p = (pts - centre) / length
 
-    def rank(m: np.ndarray) -> int:
-        return decide_rank(np.linalg.svd(m, compute_uv=False), tol).rank
-
-    if rank(dirs.T) == 1:
+    if rank(dirs.T, tol) == 1:
         return "parallel"
     # Concurrent: one point x with (p_i - x) x d_i = 0 for all i, i.e. [d_i]x x = d_i x p_i (rank test).
     a = np.vstack([skew(d) for d in dirs])
     b = np.concatenate([np.cross(d, q) for d, q in zip(dirs, p)])
-    if rank(a) == rank(np.column_stack([a, b])):
+    if rank(a, tol) == rank(np.column_stack([a, b]), tol):
         return "concurrent"
     # Coplanar: a plane n.x = delta holding every point and direction.
     m = np.vstack([np.column_stack([p, -np.ones(len(p))]), np.column_stack([dirs, np.zeros(len(dirs))])])
-    if rank(m) < 4:
+    if rank(m, tol) < 4:
         return "coplanar"
     return "general"
 

@@ -30,7 +30,7 @@ import numpy as np
 from ..core.analysis import analyze, gruebler_kutzbach
 from ..core.model import Joint, Mechanism
 from ..core.screws import helical_twist, prismatic_twist
-from ..core.tolerance import decide_rank
+from ..core.linalg import rank
 from ..errors import RequestError, SynthesisError
 from ..io.writer import mechanism_to_yaml
 from .enumeration import SynthesisResult
@@ -66,7 +66,7 @@ def _regular_at_home(joints: Sequence[Joint], origin: np.ndarray, length: float)
             point = (np.asarray(f.point) - origin) / length
             twists.append(prismatic_twist(f.axis) if f.kind == "P" else helical_twist(f.axis, point, f.pitch / length))
     matrix = np.array(twists).T
-    return decide_rank(np.linalg.svd(matrix, compute_uv=False)).rank == matrix.shape[1]
+    return rank(matrix) == matrix.shape[1]
 
 
 def assemble_pkm(
