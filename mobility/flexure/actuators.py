@@ -144,8 +144,8 @@ def actuation_tolerance(spaces: FlexureSpaces, tol: Tolerance = DEFAULT_TOLERANC
     """
     above, below = spaces.gap
     eps = below / above if above > 0 else 1.0
-    rank = min(max(eps, tol.rank), 0.1)
-    return Tolerance(rank=rank, near_singular=min(10.0 * rank, 0.5), inexact=min(tol.inexact, rank))
+    threshold = min(max(eps, tol.rank), 0.1)
+    return Tolerance(rank=threshold, near_singular=min(10.0 * threshold, 0.5), inexact=min(tol.inexact, threshold))
 
 
 def line_set_type(lines: Sequence[ForceLine], *, tol: Tolerance = DEFAULT_TOLERANCE) -> str:
