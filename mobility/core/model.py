@@ -50,6 +50,9 @@ __all__ = [
     "Expected",
     "Mechanism",
     "require_mechanism",
+    "require_graph_names",
+    "require_unique_names",
+    "require_ground_and_end_effector",
     "WORLD",
 ]
 
@@ -427,19 +430,13 @@ class Mechanism:
     def __post_init__(self) -> None:
         object.__setattr__(self, "joints", tuple(self.joints))
         object.__setattr__(self, "frames", tuple(self.frames))
-        for key in ("name", "ground", "end_effector"):
-            value = getattr(self, key)
-            if not isinstance(value, str) or not value:
-                raise MechanismError(key, f"expected a non-empty string, got {value!r}")
+        require_graph_names(self, "link")
         if not self.joints:
             raise MechanismError("joints", "expected at least one joint")
-        seen: dict[str, int] = {}
         for i, j in enumerate(self.joints):
             if not isinstance(j, Joint):
                 raise MechanismError(f"joints[{i}]", f"expected a Joint, got {type(j).__name__}")
-            if j.name in seen:
-                raise MechanismError(f"joints[{i}].name", f"duplicate joint name {j.name!r} (first used by joints[{seen[j.name]}])")
-            seen[j.name] = i
+        require_unique_names(self.joints, "joints", "joint")
         frame_index: dict[str, int] = {}
         for i, f in enumerate(self.frames):
             if f.name == WORLD:
@@ -462,12 +459,7 @@ class Mechanism:
             if j.frame != WORLD and j.frame not in frame_index:
                 raise MechanismError(f"joints[{i}].frame", f"unknown frame {j.frame!r}; expected {WORLD!r} or one of: {name_list(frame_index)}")
         links = self.links
-        if self.ground not in links:
-            raise MechanismError("ground", f"link {self.ground!r} is not joined by any joint")
-        if self.end_effector not in links:
-            raise MechanismError("end_effector", f"link {self.end_effector!r} is not joined by any joint")
-        if self.end_effector == self.ground:
-            raise MechanismError("end_effector", "the end effector must differ from the ground")
+        require_ground_and_end_effector(self, links, "link", "joint")
         unreached = self._links_not_connected_to_ground()
         if self.end_effector in unreached:
             raise MechanismError("end_effector", f"link {self.end_effector!r} is not connected to the ground {self.ground!r} through joints")
@@ -584,3 +576,56 @@ def require_mechanism(value: object, caller: str) -> Mechanism:
     if not isinstance(value, Mechanism):
         raise RequestError(f"{caller}: expected a Mechanism (from mobility.load or built in code), got {type(value).__name__}")
     return value
+
+
+# The checks every graph of bodies shares (this model and the flexure documents).
+
+
+def require_graph_names(graph: Any, node: str) -> None:
+    """``graph.name``, ``.ground`` and ``.end_effector`` must be non-empty strings (``node``: "link", "body").
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> require_graph_names(SimpleNamespace(name="m", ground="g", end_effector=""), "link")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: end_effector: expected the name of a link (a non-empty string), got ''
+    """
+    for key, what in (("name", "a non-empty string"), ("ground", f"the name of a {node} (a non-empty string)"), ("end_effector", f"the name of a {node} (a non-empty string)")):
+        value = getattr(graph, key)
+        if not isinstance(value, str) or not value:
+            raise MechanismError(key, f"expected {what}, got {value!r}")
+
+
+def require_unique_names(items: Iterable[Any], key: str, what: str) -> None:
+    """No two of ``items`` (each with a ``name``) share a name; ``key`` is their list's key, ``what`` their kind.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as N
+    >>> require_unique_names([N(name="A"), N(name="B"), N(name="A")], "joints", "joint")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: joints[2].name: duplicate joint name 'A' (first used by joints[0])
+    """
+    seen: dict[str, int] = {}
+    for i, item in enumerate(items):
+        first = seen.setdefault(item.name, i)
+        if first != i:
+            raise MechanismError(f"{key}[{i}].name", f"duplicate {what} name {item.name!r} (first used by {key}[{first}])")
+
+
+def require_ground_and_end_effector(graph: Any, nodes: Iterable[str], node: str, edge: str) -> None:
+    """The ground and the end effector of ``graph`` are two different ``nodes`` (joined by some ``edge``).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as N
+    >>> require_ground_and_end_effector(N(ground="g", end_effector="e"), {"g", "l"}, "link", "joint")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: end_effector: link 'e' is not joined by any joint
+    """
+    for key in ("ground", "end_effector"):
+        if getattr(graph, key) not in nodes:
+            raise MechanismError(key, f"{node} {getattr(graph, key)!r} is not joined by any {edge}")
+    if graph.end_effector == graph.ground:
+        raise MechanismError("end_effector", "the end effector must differ from the ground")

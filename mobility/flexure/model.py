@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from ..core.joint_screws import Normalisation
+from ..core.model import require_ground_and_end_effector, require_graph_names, require_unique_names
 from ..core.tolerance import characteristic_scale
 from ..errors import MechanismError, name_list
 
@@ -225,31 +226,15 @@ class FlexureMechanism:
     def __post_init__(self) -> None:
         object.__setattr__(self, "elements", tuple(self.elements))
         object.__setattr__(self, "actuators", tuple(self.actuators))
-        for key in ("name", "ground", "end_effector"):
-            value = getattr(self, key)
-            if not isinstance(value, str) or not value:
-                raise MechanismError(key, f"expected a non-empty string, got {value!r}")
+        require_graph_names(self, "body")
         if not self.elements:
             raise MechanismError("elements", "expected at least one flexure element")
         if self.length_unit not in LENGTH_UNITS:
             raise MechanismError("units.length", f"unknown length unit {self.length_unit!r}; expected one of: {', '.join(LENGTH_UNITS)}")
-        seen: dict[str, int] = {}
-        for i, e in enumerate(self.elements):
-            if e.name in seen:
-                raise MechanismError(f"elements[{i}].name", f"duplicate element name {e.name!r} (first used by elements[{seen[e.name]}])")
-            seen[e.name] = i
-        names: dict[str, int] = {}
-        for i, a in enumerate(self.actuators):
-            if a.name in names:
-                raise MechanismError(f"actuators[{i}].name", f"duplicate actuator name {a.name!r}")
-            names[a.name] = i
+        require_unique_names(self.elements, "elements", "element")
+        require_unique_names(self.actuators, "actuators", "actuator")
         bodies = self.bodies
-        if self.ground not in bodies:
-            raise MechanismError("ground", f"body {self.ground!r} is not joined by any element")
-        if self.end_effector not in bodies:
-            raise MechanismError("end_effector", f"body {self.end_effector!r} is not joined by any element")
-        if self.ground == self.end_effector:
-            raise MechanismError("end_effector", "the end effector must differ from the ground")
+        require_ground_and_end_effector(self, bodies, "body", "element")
         reached = {self.ground}
         changed = True
         while changed:
