@@ -46,6 +46,11 @@ def mujoco_compile(path_or_text: Path | str):
             geom.type, geom.meshname, geom.size = mujoco.mjtGeom.mjGEOM_SPHERE, "", [0.02, 0, 0]
     for mesh in list(spec.meshes):
         spec.delete(mesh) if hasattr(spec, "delete") else mesh.delete()
+    return compiled_at_qpos0(spec)
+
+
+def compiled_at_qpos0(spec):
+    """The model of ``spec`` without contacts, with dense Jacobians, and its data after a forward pass at qpos0."""
     model = spec.compile()
     model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
     model.opt.jacobian = int(mujoco.mjtJacobian.mjJAC_DENSE)

@@ -25,7 +25,7 @@ from hypothesis import strategies as st
 import mobility
 from mobility.errors import MechanismFileError, RequestError
 from mobility.io.robot_files import read_robot
-from test_mjcf import MujocoRoute, assert_agrees_with_mujoco, same_subspace
+from test_mjcf import MujocoRoute, assert_agrees_with_mujoco, compiled_at_qpos0, same_subspace
 
 DATA = Path(__file__).parent / "data" / "robots"
 HAND = DATA / "hand"
@@ -48,12 +48,7 @@ def mujoco_from_urdf(text: str, connect: tuple[str, str, tuple[float, float, flo
         eq = spec.add_equality()
         eq.type, eq.objtype, eq.name1, eq.name2 = mujoco.mjtEq.mjEQ_CONNECT, mujoco.mjtObj.mjOBJ_BODY, connect[0], connect[1]
         eq.data[:3] = connect[2]
-    model = spec.compile()
-    model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONTACT)
-    model.opt.jacobian = int(mujoco.mjtJacobian.mjJAC_DENSE)
-    data = mujoco.MjData(model)
-    mujoco.mj_forward(model, data)
-    return model, data
+    return compiled_at_qpos0(spec)
 
 
 def joint_geometry(model, data) -> dict[str, tuple[np.ndarray, np.ndarray]]:
