@@ -61,6 +61,21 @@ def check_actuation(mechanism: Mechanism, actuated: Sequence[str] | None = None,
     ------
     MechanismError
         When a name is not a joint of the mechanism.
+
+    Examples
+    --------
+    The 3-RPS with its three legs' sliders driven, then with two of them (the
+    platform can still move with the inputs locked), then with a fourth input:
+
+    >>> import mobility
+    >>> m = mobility.load("mechanisms/actuation_3rps.yaml")
+    >>> c = check_actuation(m)
+    >>> c.verdict, [i.name for i in c.inputs], round(c.conditioning, 3)
+    ('valid', ['P1', 'P2', 'P3'], 0.311)
+    >>> check_actuation(m, ["P1", "P2"]).uncontrolled_twists.shape
+    (1, 6)
+    >>> check_actuation(m, ["P1", "P2", "P3", "R1"]).verdict
+    'redundant'
     """
     mechanism = require_mechanism(mechanism, "check_actuation")
     tol = require_tolerance(tol, "check_actuation")

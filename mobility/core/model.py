@@ -158,6 +158,15 @@ class Joint:
         Name of the frame the geometry is written in (default ``"world"``).
     actuated : bool
         Whether the joint is driven (used by the actuation analysis).
+
+    Examples
+    --------
+    >>> j = Joint("A", "R", ("ground", "crank"), axis=(0, 0, 2), point=(1, 0, 0))
+    >>> j.axis, j.dof
+    ((0.0, 0.0, 1.0), 1)
+    >>> Joint("A", "R", ("ground", "crank"), axis=(0, 0, 1))
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: point: missing; a joint of type R needs axis, point
     """
 
     name: str
@@ -415,6 +424,19 @@ class Mechanism:
     MechanismError
         On duplicate names, unknown or cyclic frames, unknown ground or end
         effector, or links not connected to the ground.
+
+    Examples
+    --------
+    A slider-crank, built in code (the same as a file's ``joints`` list):
+
+    >>> x, z = (1, 0, 0), (0, 0, 1)
+    >>> m = Mechanism("slider-crank", ground="ground", end_effector="slider", joints=(
+    ...     Joint("A", "R", ("ground", "crank"), axis=z, point=(0, 0, 0)),
+    ...     Joint("B", "R", ("crank", "rod"), axis=z, point=(1, 1, 0)),
+    ...     Joint("C", "R", ("rod", "slider"), axis=z, point=(3, 0, 0)),
+    ...     Joint("D", "P", ("slider", "ground"), axis=x)))
+    >>> sorted(m.links), m.freedom_count
+    (['crank', 'ground', 'rod', 'slider'], 4)
     """
 
     name: str

@@ -213,6 +213,17 @@ class Result:
     node_systems : mapping of Node to NodeSystem
         DOF and idle count of every node of ``topology`` (its root, the
         detached networks and the joints), as the analysis found them.
+
+    Examples
+    --------
+    >>> import mobility, numpy as np
+    >>> r = mobility.analyze(mobility.load("mechanisms/3prs.yaml"))
+    >>> r.dof, r.pattern, (np.round(r.translations, 12) + 0.0).tolist()  # + 0.0: no -0.0 of round-off
+    (3, '1T2R', [[0.0, 0.0, 1.0]])
+    >>> [(a.kind, round(a.pitch, 9)) for a in r.rotations], r.wrenches.shape
+    ([('rotation', 0.0), ('rotation', 0.0)], (3, 6))
+    >>> r.to_dict()["mobility"]
+    3
     """
 
     name: str

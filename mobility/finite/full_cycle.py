@@ -98,6 +98,19 @@ def finite_mobility(
     ------
     RequestError
         When a step is not a positive number.
+
+    Examples
+    --------
+    The four-bar keeps its freedom; the parallelogram at its change point has
+    two instantaneous freedoms, two branches of one freedom each:
+
+    >>> import mobility
+    >>> f = finite_mobility(mobility.load("mechanisms/four_bar.yaml"))
+    >>> f.verdict, f.full_cycle_dof, f.full_cycle_pattern
+    ('full-cycle', 1, '1R')
+    >>> f = finite_mobility(mobility.load("mechanisms/parallelogram_change_point.yaml"))
+    >>> f.verdict, f.instantaneous_dof, f.full_cycle_dof, f.full_cycle_pattern
+    ('bifurcation', 2, 1, '1T | 1R')
     """
     mechanism = require_mechanism(mechanism, "finite_mobility")
     tol = require_tolerance(tol, "finite_mobility")

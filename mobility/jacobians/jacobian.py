@@ -437,6 +437,17 @@ def jacobian(
     AnalysisError
         The limbs do not close at ``q``, or an actuated joint cannot move the
         platform on its own at this pose (no actuation wrench).
+
+    Examples
+    --------
+    The METROM-type 5-axis machine, its five sliders driven: a 6 x 6 map
+    (five actuation rows and the constraint row) of full rank, away from
+    singularity:
+
+    >>> import mobility
+    >>> j = jacobian(mobility.load("mechanisms/metrom.yaml"))
+    >>> j.matrix.shape, j.rank, j.dof, j.singular, j.actuated
+    ((6, 6), 6, 5, False, ('P0', 'P1', 'P2', 'P3', 'P4'))
     """
     tol = require_tolerance(tol, "jacobian")
     model = mechanism if isinstance(mechanism, ParallelModel) else parallel_model(require_mechanism(mechanism, "jacobian"), actuated)

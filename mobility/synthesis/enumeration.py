@@ -202,6 +202,15 @@ def synthesize(
     AnalysisError
         When the two routes disagree on a chain (the sample route finds a
         motion outside the pattern): the rank decisions were too close to call.
+
+    Examples
+    --------
+    The limbs of three joints whose finite motions are the planar 2T1R
+    pattern (its rotations about one direction, translations across it):
+
+    >>> r = synthesize("2T1R", verify_samples=0)
+    >>> len(r.structures), [s.name for s in r.structures[:4]]
+    (7, ['Ra1Ra1Ra1', 'Ra1Ra1P1', 'Ra1P1Ra1', 'Ra1P1P2'])
     """
     start = time.perf_counter()
     if isinstance(pattern, str):
