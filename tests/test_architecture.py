@@ -226,7 +226,7 @@ def test_the_checker_sees_imports():
     assert {"core.topology", "core.screw_systems", "core.joint_screws", "core.canonical", "core.result"} <= found
     assert "core.analysis" in {t for t, _ in internal_imports(PACKAGE / "cli" / "analyze.py")}
     assert not allowed("io", "core.screws") and allowed("io", "core.model") and not allowed("core", "io.loader")
-    assert ("core.finite_screws", ("FiniteScrew", "Limb", "ScrewJoint")) in internal_imports(PACKAGE / "jacobians" / "jacobian.py")
+    assert ("core.finite_screws", ("FiniteScrew", "Limb", "ScrewJoint")) in internal_imports(PACKAGE / "jacobians" / "parallel_model.py")
 
 
 def test_the_checker_sees_what_a_violation_would_hide_behind():

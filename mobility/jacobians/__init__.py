@@ -1,6 +1,6 @@
 """Jacobians of parallel mechanisms by differentiating their finite model (the METROM example).
 
-:func:`parallel_model` turns a mechanism into limbs of finite screws
+:func:`~mobility.jacobians.parallel_model.parallel_model` turns a mechanism into limbs of finite screws
 (:class:`ParallelModel`, with inverse kinematics and moved poses);
 :func:`jacobian` gives the actuation and constraint Jacobians at a pose
 (:class:`JacobianResult`), the same at every scale of the file;
@@ -9,7 +9,8 @@
 (:func:`clean_screw`).  :mod:`mobility.report.jacobian` formats the result for people.
 """
 
-from .jacobian import Chain, JacobianResult, ParallelModel, jacobian, parallel_model
+from .jacobian import JacobianResult, jacobian
+from .parallel_model import Chain, ParallelModel, parallel_model
 from .wrenches import clean_screw, wrench_axis
 
 __all__ = ["jacobian", "parallel_model", "wrench_axis", "clean_screw", "JacobianResult", "ParallelModel", "Chain"]

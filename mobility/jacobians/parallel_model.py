@@ -1,0 +1,271 @@
+"""A parallel mechanism as serial limbs of finite screws, for its Jacobian.
+
+:func:`parallel_model` reads a :class:`~mobility.core.model.Mechanism` whose
+limbs are serial chains from the ground to the platform into a
+:class:`ParallelModel`: one :class:`Chain` per limb (its one-DOF freedoms as
+finite-screw joints, :class:`mobility.core.finite_screws.Limb`), its home
+values, the inverse kinematics that assembles it at a platform displacement,
+and which freedoms are actuated.  :mod:`mobility.jacobians.jacobian`
+differentiates it.
+
+Examples
+--------
+>>> import mobility
+>>> model = parallel_model(mobility.load("mechanisms/metrom.yaml"))
+>>> len(model.chains), model.labels
+(5, ('P0', 'P1', 'P2', 'P3', 'P4'))
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Sequence
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
+from ..core.model import Joint, Mechanism
+from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale
+from ..core.transforms import cross, skew
+from ..errors import AnalysisError, MechanismError, name_list
+
+__all__ = ["Chain", "ParallelModel", "parallel_model"]
+
+
+@dataclass(frozen=True)
+class Chain:
+    """One limb as a serial chain of one-DOF freedoms, from the ground to the platform.
+
+    Attributes
+    ----------
+    limb : Limb
+        The freedoms as :class:`~mobility.core.finite_screws.ScrewJoint` in the
+        mechanism's pose (its home), global frame.  A joint met from its
+        ``links[1]`` side has its freedoms in reverse order with their axes
+        reversed, so every chain variable is the joint's own variable.
+    joints : tuple of int
+        Index in :attr:`Mechanism.joints` of each freedom's joint.
+    freedoms : tuple of int
+        Index of each freedom within its joint.
+    forward : tuple of bool
+        Whether each freedom's joint is met from its ``links[0]`` side.
+    """
+
+    limb: Limb
+    joints: tuple[int, ...]
+    freedoms: tuple[int, ...]
+    forward: tuple[bool, ...]
+
+
+@dataclass(frozen=True)
+class ParallelModel:
+    """A mechanism as parallel serial chains, with its actuated freedoms.
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+    chains : tuple of Chain
+    actuated : tuple of (int, int)
+        ``(chain, position in the chain)`` of each actuated freedom.
+    labels : tuple of str
+        Name of each actuated freedom (the joint name; ``name.k`` for the k-th
+        freedom of a multi-DOF joint).
+    """
+
+    mechanism: Mechanism
+    chains: tuple[Chain, ...]
+    actuated: tuple[tuple[int, int], ...]
+    labels: tuple[str, ...]
+
+    def home(self) -> tuple[np.ndarray, ...]:
+        """Joint values of the mechanism's own pose (all zero)."""
+        return tuple(np.zeros(len(c.limb)) for c in self.chains)
+
+    def platform(self, q: Sequence[np.ndarray] | None = None) -> FiniteScrew:
+        """The platform's finite screw at ``q`` (from the first chain)."""
+        values = self.home() if q is None else q
+        return self.chains[0].limb.finite_screw(values[0])
+
+    def closure_error(self, q: Sequence[np.ndarray]) -> float:
+        """Largest difference between the chains' platform displacements (entries of ``[R; p / L]``).
+
+        The limbs close at ``q`` when it is at most ``Tolerance.closure``.
+        """
+        length = self.length
+        mats = [c.limb.transform(v) for c, v in zip(self.chains, q)]
+        return max(max(float(np.max(np.abs(m[:3, :3] - mats[0][:3, :3]))), float(np.max(np.abs(m[:3, 3] - mats[0][:3, 3]))) / length) for m in mats)
+
+    @property
+    def length(self) -> float:
+        """Characteristic length of the mechanism (RMS distance of the joint points from their centroid)."""
+        pts = [j.point for c in self.chains for j in c.limb.joints if j.kind != "P"]
+        return characteristic_scale(np.array(pts, dtype=float).reshape(-1, 3))[1]
+
+    def assemble(self, displacement: np.ndarray, start: Sequence[np.ndarray] | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[np.ndarray, ...]:
+        """Joint values of every chain putting the platform at ``displacement`` (4x4): inverse kinematics.
+
+        Each chain is solved by :func:`scipy.optimize.least_squares` on the
+        entries of ``[R; p / L]`` with the chain's twists as Jacobian, from
+        ``start`` (default: the home pose).  A chain reaches the displacement
+        when no entry of its residual exceeds half of ``tol.closure``, so that
+        any two chains agree to ``tol.closure`` (:meth:`closure_error`).
+
+        Raises
+        ------
+        AnalysisError
+            When a chain cannot reach the displacement.
+        """
+        target = np.asarray(displacement, dtype=float)
+        length = self.length
+        out = []
+        for k, chain in enumerate(self.chains):
+            limb = chain.limb
+            x0 = np.zeros(len(limb)) if start is None else np.asarray(start[k], dtype=float)
+
+            def residual(x: np.ndarray, limb: Limb = limb) -> np.ndarray:
+                t = limb.transform(x)
+                return np.concatenate([(t[:3, :3] - target[:3, :3]).ravel(), (t[:3, 3] - target[:3, 3]) / length])
+
+            def jac(x: np.ndarray, limb: Limb = limb) -> np.ndarray:
+                t = limb.transform(x)
+                tw = limb.twists(x)
+                cols = []
+                for w, v in zip(tw[:3].T, tw[3:].T):
+                    cols.append(np.concatenate([(skew(w) @ t[:3, :3]).ravel(), (cross(w, t[:3, 3]) + v) / length]))
+                return np.array(cols).T
+
+            sol = least_squares(residual, x0, jac=jac, method="lm", x_scale="jac", xtol=SOLVER_STOP, ftol=SOLVER_STOP, gtol=SOLVER_STOP)
+            if float(np.max(np.abs(sol.fun))) > 0.5 * tol.closure:
+                raise AnalysisError(f"limb {k + 1} cannot reach the platform displacement (residual {np.linalg.norm(sol.fun):.2e})")
+            out.append(sol.x)
+        return tuple(out)
+
+    def mechanism_at(self, q: Sequence[np.ndarray], *, tol: Tolerance = DEFAULT_TOLERANCE) -> Mechanism:
+        """The mechanism with its joints moved to pose ``q`` (a new home), global frame.
+
+        Raises
+        ------
+        AnalysisError
+            When the chains do not close at ``q`` (to ``tol.closure``).
+        """
+        if self.closure_error(q) > tol.closure:
+            raise AnalysisError("the limbs do not close at this pose (solve it with ParallelModel.assemble)")
+        world = self.mechanism.world_joints
+        moved: dict[int, Joint] = {}
+        for chain, values in zip(self.chains, q):
+            acc = np.eye(4)
+            pos = 0
+            while pos < len(chain.joints):
+                index = chain.joints[pos]
+                span = [p for p in range(pos, len(chain.joints)) if chain.joints[p] == index]
+                joint = world[index]
+                moved[index] = _moved_joint(joint, acc, chain, span, values)
+                for p in span:
+                    acc = acc @ chain.limb.joints[p].finite_screw(values[p]).transform()
+                pos = span[-1] + 1
+        joints = tuple(moved.get(i, j) for i, j in enumerate(world))
+        return self.mechanism.replace(joints=joints, frames=())
+
+
+def _moved_joint(joint: Joint, acc: np.ndarray, chain: Chain, span: Sequence[int], values: np.ndarray) -> Joint:
+    """A joint carried by the displacement ``acc`` of the link it is mounted on (U: second axis by the first too)."""
+    rot, pos = acc[:3, :3], acc[:3, 3]
+    fields: dict[str, Any] = {}
+    if joint.axis is not None:
+        fields["axis"] = tuple(rot @ joint.axis)
+    if joint.point is not None:
+        fields["point"] = tuple(rot @ joint.point + pos)
+    if joint.normal is not None:
+        fields["normal"] = tuple(rot @ joint.normal)
+    if joint.axes is not None:
+        first = chain.limb.joints[span[0]].finite_screw(values[span[0]]).transform()[:3, :3]
+        a1, a2 = (np.asarray(a) for a in joint.axes)
+        if chain.forward[span[0]]:
+            fields["axes"] = (tuple(rot @ a1), tuple(rot @ first @ a2))
+        else:
+            fields["axes"] = (tuple(rot @ first @ a1), tuple(rot @ a2))
+    return Joint(joint.name, joint.type, joint.links, frame="world", actuated=joint.actuated, pitch=joint.pitch, **fields)
+
+
+def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) -> ParallelModel:
+    """Split a mechanism into serial chains from the ground to the end effector.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        Every link other than the ground and the end effector must have
+        exactly two joints (limbs are serial chains).
+    actuated : sequence of str, optional
+        Names of the actuated joints (``name.k`` picks the k-th freedom of a
+        multi-DOF joint, from 1); default: the joints marked ``actuated``.
+
+    Raises
+    ------
+    MechanismError
+        When the mechanism is not a set of serial limbs, or an actuated name
+        is unknown or missing.
+    """
+    world = mechanism.world_joints
+    incident: dict[str, list[int]] = {}
+    for i, j in enumerate(world):
+        for link in j.links:
+            incident.setdefault(link, []).append(i)
+    for link, js in incident.items():
+        if link not in (mechanism.ground, mechanism.end_effector) and len(js) != 2:
+            names = ", ".join(world[i].name for i in js)
+            raise MechanismError("joints", f"link {link!r} has {len(js)} joints ({names}); the Jacobian needs limbs that are serial chains from {mechanism.ground!r} to {mechanism.end_effector!r}")
+    chains = []
+    for first in incident[mechanism.ground]:
+        link, index = mechanism.ground, first
+        screw_joints: list[ScrewJoint] = []
+        jidx: list[int] = []
+        fidx: list[int] = []
+        fwd: list[bool] = []
+        seen: set[int] = set()
+        while True:
+            if index in seen:  # pragma: no cover - guarded by the degree check
+                raise MechanismError("joints", "a limb runs in a loop")
+            seen.add(index)
+            joint = world[index]
+            forward = joint.links[0] == link
+            freedoms = list(enumerate(joint.freedoms()))
+            if not forward:
+                freedoms.reverse()
+            for k, f in freedoms:
+                axis = np.asarray(f.axis) if forward else -np.asarray(f.axis)
+                screw_joints.append(ScrewJoint(f.kind, tuple(axis), f.point, f.pitch, f"{joint.name}.{k + 1}" if joint.dof > 1 else joint.name))
+                jidx.append(index)
+                fidx.append(k)
+                fwd.append(forward)
+            link = joint.links[1] if forward else joint.links[0]
+            if link == mechanism.end_effector:
+                break
+            if link == mechanism.ground:
+                raise MechanismError("joints", f"joint {joint.name!r} closes a loop back to the ground without reaching {mechanism.end_effector!r}")
+            index = next(i for i in incident[link] if i != index)
+        chains.append(Chain(Limb(tuple(screw_joints)), tuple(jidx), tuple(fidx), tuple(fwd)))
+    if not chains:
+        raise MechanismError("joints", f"no joint on the ground {mechanism.ground!r}")
+    names = [j.name for j in mechanism.joints if j.actuated] if actuated is None else list(actuated)
+    if not names:
+        raise MechanismError("joints", "no actuated joint: mark joints with 'actuated: true' or name them (--actuated A,B,...)")
+    act: list[tuple[int, int]] = []
+    labels: list[str] = []
+    by_name = {j.name: i for i, j in enumerate(mechanism.joints)}
+    for name in names:
+        base, _, sub = name.partition(".")
+        if base not in by_name:
+            raise MechanismError("actuated", f"unknown joint {base!r}; expected one of {name_list(by_name)}")
+        index = by_name[base]
+        joint = mechanism.joints[index]
+        ks = range(joint.dof) if not sub else [int(sub) - 1] if sub.isdigit() and 1 <= int(sub) <= joint.dof else None
+        if ks is None:
+            raise MechanismError("actuated", f"{name!r}: joint {base!r} has freedoms 1..{joint.dof}")
+        for k in ks:
+            where = [(c, p) for c, chain in enumerate(chains) for p, (ji, fi) in enumerate(zip(chain.joints, chain.freedoms)) if ji == index and fi == k]
+            if not where:
+                raise MechanismError("actuated", f"joint {base!r} is on no limb from {mechanism.ground!r} to {mechanism.end_effector!r}")
+            act.append(where[0])
+            labels.append(f"{base}.{k + 1}" if joint.dof > 1 else base)
+    return ParallelModel(mechanism, tuple(chains), tuple(act), tuple(labels))
