@@ -209,3 +209,48 @@ def test_pose_sampler_step_has_one_default():
     assert inspect.signature(sample_poses).parameters["step"].default == DEFAULT_STEP
     assert inspect.signature(enumerate_actuations).parameters["step"].default == DEFAULT_STEP
 
+
+# ---------------------------------------------------------------------------
+# the idle freedoms: the hint fits the mechanism
+
+
+def _idle_line(out: str) -> str:
+    return next(line for line in out.splitlines() if "motion(s) of the joints leave the end effector still" in line)
+
+
+@pytest.mark.parametrize("name, rods", [("rssr.yaml", 1), ("6sps.yaml", 6), ("delta.yaml", 6), ("h4.yaml", 8)])
+def test_idle_freedoms_of_s_s_rods_are_their_spins(capsys, name, rods):
+    from mobility.report.idle import spherical_chains
+
+    m = mobility.load(ROOT / "mechanisms" / name)
+    assert spherical_chains(m) == mobility.analyze(m).idle_dof == rods  # each rod (or S–P–S leg) spins: one idle freedom each
+    status, out, _ = run(capsys, "analyze", ROOT / "mechanisms" / name)
+    assert status == 0
+    assert _idle_line(out).endswith(f"(e.g. the spin of an S–S rod about the line through its two centres: {rods} such rod{'s' if rods > 1 else ''} here)")
+
+
+def test_idle_freedoms_of_a_serial_arm_are_its_self_motion(capsys):
+    status, out, _ = run(capsys, "analyze", ROOT / "tests" / "data" / "robots" / "robosuite" / "xarm7_robot.xml")
+    assert status == 0 and "S–S" not in out
+    assert _idle_line(out) == ("    idle DOF: 2 motion(s) of the joints leave the end effector still "
+                               "(a self-motion of the serial chain, redundant at this pose: its 7 joint freedoms give the end effector 5 DOF)")
+    status, out, _ = run(capsys, "analyze", ROOT / "tests" / "data" / "robots" / "rtb_data" / "puma560_robot.urdf")
+    assert status == 0 and "S–S" not in out and _idle_line(out).endswith("its 6 joint freedoms give the end effector 5 DOF)")
+
+
+def test_idle_freedoms_off_the_path_and_inside_loops():
+    from mobility import Joint, Mechanism
+    from mobility.report.idle import idle_hint
+
+    x, z = (1, 0, 0), (0, 0, 1)
+    hanging = Mechanism("hanging", "g", "e", (
+        Joint("A", "R", ("g", "a"), axis=z, point=(0, 0, 0)), Joint("B", "R", ("a", "e"), axis=z, point=(0, 0, 0)),
+        Joint("H", "R", ("e", "h"), axis=z, point=(1, 0, 0))))
+    r = mobility.analyze(hanging)
+    assert r.idle_dof == 2
+    assert idle_hint(r) == ("a self-motion of the serial chain, redundant at this pose: its 2 joint freedoms give the end effector 1 DOF; "
+                            "a chain off the path from ground to end effector moves alone (H)")
+    loop = Mechanism("sliders", "g", "e", (
+        Joint("P1", "P", ("g", "a"), axis=x), Joint("P2", "P", ("a", "e"), axis=x), Joint("P3", "P", ("g", "e"), axis=x)))
+    r = mobility.analyze(loop)
+    assert (r.idle_dof, r.loops) == (1, 1) and idle_hint(r) == "joints inside the loops move against each other"
