@@ -1,13 +1,21 @@
 """The command line: reports, JSON, exit statuses, one-line errors."""
 
+import inspect
 import json
+import re
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
 import pytest
 
-from mobility.cli import main
+import mobility
+from mobility.cli import build_parser, main
+from mobility.cli._options import robot_options_from
+
+ROOT = Path(__file__).resolve().parent.parent
+HAND = ROOT / "tests" / "data" / "robots" / "hand"
 
 FOUR_BAR = """\
 name: planar four-bar
@@ -104,3 +112,145 @@ def test_console_script_runs_as_a_process(write_yaml):
     assert json.loads(done.stdout)["dof"] == 1
     done = subprocess.run([sys.executable, "-m", "mobility", "analyze", str(path) + ".missing"], capture_output=True, text=True)
     assert done.returncode == 2 and "Traceback" not in done.stderr
+
+
+# ---------------------------------------------------------------------------
+# one mechanism file, read the same way by every command: YAML, MJCF, URDF and the robot options
+
+ONE_FILE_COMMANDS = ["analyze", "actuation", "view", "sweep", "plot", "jacobian", "convert"]
+
+
+@pytest.mark.parametrize("command", ONE_FILE_COMMANDS)
+def test_every_command_reading_one_file_takes_yaml_mjcf_urdf_and_the_robot_options(command, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main([command, "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert stop.value.code == 0
+    file_help = re.search(r"positional arguments: file (.*?) options:", text).group(1)
+    assert "YAML" in file_help and "MJCF, URDF" in file_help, file_help
+    for option in ("--ground", "--end-effector", "--floating", "--ignore-unsupported", "--close", "--closures"):
+        assert option in text, (command, option)
+    args = build_parser([command]).parse_args([command, "f.xml", "--ground", "g", "--end-effector", "e", "--floating", "--close", "a", "b",
+                              "--closures", "c.yaml", *(["-o", "x.html"] if command in ("view", "plot") else []),
+                              *(["--vary", "A=0:1:2"] if command == "sweep" else [])])
+    assert robot_options_from(args) == {"ground": "g", "end_effector": "e", "floating": True, "close": (("a", "b"),), "closures": "c.yaml"}
+
+
+def test_actuation_reads_an_mjcf_file_whose_actuators_mark_the_inputs(capsys):
+    status, out, err = run(capsys, "actuation", HAND / "3rps.xml", "--json")
+    data = json.loads(out)
+    assert status == 0
+    assert [i["name"] for i in data["inputs"]] == ["P1", "P2", "P3"]  # the three <motor joint=...>: nothing marked by hand
+    assert data["verdict"] == "valid" and data["dof"] == 3
+    assert err == "mobility: note: end effector: platform (the body farthest from the ground world; choose another with --end-effector)\n"
+    status, out, err = run(capsys, "actuation", HAND / "3rps.xml", "--end-effector", "platform", "--inputs", "P1,P2")
+    assert status == 1 and "inputs: P1, P2 (2 for 3 DOF)" in out and err == ""
+
+
+def test_actuation_poses_are_read_as_the_file_is(capsys):
+    # the same robot file given again as a further pose is read with the same options: piston1 as the end effector
+    # (1 DOF, so three inputs are redundant there too), not the platform the file's default would give (valid)
+    pose = HAND / "3rps.xml"
+    status, out, err = run(capsys, "actuation", HAND / "3rps.xml", "--end-effector", "piston1", "--pose", pose)
+    assert status == 1 and err == ""
+    assert "verdict: REDUNDANT" in out and out.endswith(f"  other poses: 0 of 1 valid\n    {pose}: redundant\n")
+
+
+def test_view_reads_a_robot_file_with_its_options(tmp_path, capsys):
+    page = tmp_path / "v.html"
+    status, out, err = run(capsys, "view", HAND / "parallelogram.xml", "-o", page)
+    assert status == 0 and "end effector 1 DOF (1T)" in out and "end effector: coupler" in err
+    status, out, err = run(capsys, "view", HAND / "parallelogram.xml", "-o", page, "--end-effector", "crank1")
+    assert status == 0 and out == f"wrote {page}: parallelogram, end effector 1 DOF (1R), mobility 1\n" and err == ""
+    assert "end effector 1 DOF, pattern 1R; mobility 1" in page.read_text()
+
+
+def test_sweep_reads_a_robot_file_with_its_options(capsys):
+    status, out, err = run(capsys, "sweep", HAND / "parallelogram.xml", "--vary", "O1=0:120:3", "--format", "csv")
+    assert status == 0 and [line.split(",")[2] for line in out.splitlines()[1:]] == ["1T", "1T", "1T1R"]  # the coupler folds at 120 deg
+    assert err.startswith("mobility: note: end effector: coupler")
+    status, out, err = run(capsys, "sweep", HAND / "parallelogram.xml", "--vary", "O1=0:120:3", "--format", "csv",
+                           "--ground", "world", "--end-effector", "crank1")
+    assert status == 0 and err == ""
+    assert [line.split(",")[1:4] for line in out.splitlines()[1:]] == [["1", "1R", "1"], ["1", "1R", "1"], ["1", "1R", "2"]]
+
+
+def test_plot_and_jacobian_read_a_robot_file(tmp_path, capsys):
+    status, out, err = run(capsys, "plot", HAND / "3rps.xml", "-o", tmp_path / "p.png", "--end-effector", "platform")
+    assert status == 0 and out.endswith("3-RPS, end effector 3 DOF (1T2R)\n") and err == ""
+    status, out, err = run(capsys, "jacobian", HAND / "3rps.xml", "--end-effector", "platform", "--json")
+    assert status == 0 and json.loads(out)["actuated"] == ["P1", "P2", "P3"]
+
+
+@pytest.mark.parametrize("command, extra", [
+    ("view", ["-o", "v.html"]), ("sweep", ["--vary", "A=0:10:2"]), ("actuation", []), ("plot", ["-o", "p.png"]), ("jacobian", []),
+])
+def test_robot_options_on_a_yaml_file_are_one_line_and_exit_2(write_yaml, capsys, command, extra):
+    path = write_yaml(FOUR_BAR)
+    status, out, err = run(capsys, command, path, *extra, "--ground", "crank", "--end-effector", "rocker")
+    assert status == 2 and out == ""
+    assert err == f"mobility: end_effector, ground: options of robot description files (MJCF, URDF), not of the mechanism file {path}\n"
+
+
+def test_a_robot_option_on_a_flexure_document_is_refused(capsys):
+    path = sorted((ROOT / "examples" / "flexure").glob("*.yaml"))[0]
+    status, out, err = run(capsys, "actuation", path, "--floating")
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert "floating: options of robot description files (MJCF, URDF), not of the flexure document" in err
+
+
+def test_pose_sampler_step_has_one_default():
+    from mobility.actuation import enumerate_actuations
+    from mobility.core.poses import DEFAULT_STEP, sample_poses
+
+    view = build_parser(["view"]).parse_args(["view", "f.yaml", "-o", "v.html"])
+    actuation = build_parser(["actuation"]).parse_args(["actuation", "f.yaml"])
+    assert view.step == actuation.step == DEFAULT_STEP == 0.1
+    assert inspect.signature(sample_poses).parameters["step"].default == DEFAULT_STEP
+    assert inspect.signature(enumerate_actuations).parameters["step"].default == DEFAULT_STEP
+
+
+# ---------------------------------------------------------------------------
+# the idle freedoms: the hint fits the mechanism
+
+
+def _idle_line(out: str) -> str:
+    return next(line for line in out.splitlines() if "motion(s) of the joints leave the end effector still" in line)
+
+
+@pytest.mark.parametrize("name, rods", [("rssr.yaml", 1), ("6sps.yaml", 6), ("delta.yaml", 6), ("h4.yaml", 8)])
+def test_idle_freedoms_of_s_s_rods_are_their_spins(capsys, name, rods):
+    from mobility.report.idle import spherical_chains
+
+    m = mobility.load(ROOT / "mechanisms" / name)
+    assert spherical_chains(m) == mobility.analyze(m).idle_dof == rods  # each rod (or S–P–S leg) spins: one idle freedom each
+    status, out, _ = run(capsys, "analyze", ROOT / "mechanisms" / name)
+    assert status == 0
+    assert _idle_line(out).endswith(f"(e.g. the spin of an S–S rod about the line through its two centres: {rods} such rod{'s' if rods > 1 else ''} here)")
+
+
+def test_idle_freedoms_of_a_serial_arm_are_its_self_motion(capsys):
+    status, out, _ = run(capsys, "analyze", ROOT / "tests" / "data" / "robots" / "robosuite" / "xarm7_robot.xml")
+    assert status == 0 and "S–S" not in out
+    assert _idle_line(out) == ("    idle DOF: 2 motion(s) of the joints leave the end effector still "
+                               "(a self-motion of the serial chain, redundant at this pose: its 7 joint freedoms give the end effector 5 DOF)")
+    status, out, _ = run(capsys, "analyze", ROOT / "tests" / "data" / "robots" / "rtb_data" / "puma560_robot.urdf")
+    assert status == 0 and "S–S" not in out and _idle_line(out).endswith("its 6 joint freedoms give the end effector 5 DOF)")
+
+
+def test_idle_freedoms_off_the_path_and_inside_loops():
+    from mobility import Joint, Mechanism
+    from mobility.report.idle import idle_hint
+
+    x, z = (1, 0, 0), (0, 0, 1)
+    hanging = Mechanism("hanging", "g", "e", (
+        Joint("A", "R", ("g", "a"), axis=z, point=(0, 0, 0)), Joint("B", "R", ("a", "e"), axis=z, point=(0, 0, 0)),
+        Joint("H", "R", ("e", "h"), axis=z, point=(1, 0, 0))))
+    r = mobility.analyze(hanging)
+    assert r.idle_dof == 2
+    assert idle_hint(r) == ("a self-motion of the serial chain, redundant at this pose: its 2 joint freedoms give the end effector 1 DOF; "
+                            "a chain off the path from ground to end effector moves alone (H)")
+    loop = Mechanism("sliders", "g", "e", (
+        Joint("P1", "P", ("g", "a"), axis=x), Joint("P2", "P", ("a", "e"), axis=x), Joint("P3", "P", ("g", "e"), axis=x)))
+    r = mobility.analyze(loop)
+    assert (r.idle_dof, r.loops) == (1, 1) and idle_hint(r) == "joints inside the loops move against each other"

@@ -48,7 +48,7 @@ def test_a_graph_that_does_not_reduce_whole_imports_networkx_for_its_blocks():
 def test_the_analyze_command_imports_its_own_module_only():
     modules = modules_after("from mobility.cli import main\nmain(['analyze', 'mechanisms/3prs.yaml'])")
     commands = {m for m in modules if m.startswith("mobility.cli.") and not m.startswith("mobility.cli._")}
-    assert commands == {"mobility.cli.analyze", "mobility.cli.convert"}  # analyze reads robot files through convert's options
+    assert commands == {"mobility.cli.analyze"}  # the file options are shared from mobility.cli._options, not another command
     assert heavy(modules) == set()
     assert not any(m.startswith(("mobility.finite", "mobility.synthesis", "mobility.jacobians", "mobility.sweeps", "mobility.view")) for m in modules)
 

@@ -270,7 +270,8 @@ def test_cli_shows_a_sweep_with_a_slider(tmp_path, capsys):
     ("args", "message"),
     [
         (["four_bar.yaml", "-o", "v.html", "--vary", "A=0:1"], "--vary 'A=0:1': expected NAME=START:STOP:COUNT"),
-        (["four_bar.yaml", "-o", "view.png"], "view.png: expected a page name ending in .html"),
+        (["four_bar.yaml", "-o", "view.png"], "view.png: expected a page name ending in .html or .htm (in any case)"),
+        (["four_bar.yaml", "-o", "view.html.txt"], "view.html.txt: expected a page name ending in .html or .htm (in any case)"),
         (["missing.yaml", "-o", "v.html"], "missing.yaml"),
         (["four_bar.yaml", "-o", "v.html", "--samples", "-1"], "--samples must not be negative"),
         (["four_bar.yaml", "-o", "no/such/dir/v.html"], "cannot write"),
@@ -283,6 +284,35 @@ def test_cli_bad_input_is_one_line_and_exit_2(args, message, tmp_path, monkeypat
     assert main(["view", *args]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and message in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("name", ["v.htm", "v.HTML", "v.Htm"])
+def test_cli_takes_the_page_names_its_message_names(name, tmp_path, capsys):
+    out = tmp_path / name
+    assert main(["view", str(MECHANISMS / "four_bar.yaml"), "-o", str(out)]) == 0
+    assert capsys.readouterr().out.startswith(f"wrote {out}: ") and out.read_text().startswith("<!DOCTYPE html>")
+
+
+def test_cli_planar_5r_sweep_says_which_poses_are_not_drawn(tmp_path, capsys):
+    """The page draws the assembled poses only, and says how many of the grid's poses are missing and why."""
+    vary = ["A1=-90:90:5", "A2=-90:90:5"]
+    sweep = mobility.sweep(mobility.load(MECHANISMS / "planar_5r.yaml"), vary)
+    assembled = int(sweep.assembled.sum())
+    assert sweep.size == 25 and 0 < assembled < 25
+    out = tmp_path / "five_bar.html"
+    assert main(["view", str(MECHANISMS / "planar_5r.yaml"), "-o", str(out), "--vary", vary[0], "--vary", vary[1]]) == 0
+    said = capsys.readouterr()
+    assert said.out.endswith(f", {assembled} poses\n") and said.err == ""  # stdout and stderr as before
+    page = out.read_text()
+    assert page.count('"label":"A1=') == assembled
+    assert (f"<p class=\"detail\">{assembled} of the sweep&#x27;s 25 poses drawn: {25 - assembled} not assembled "
+            "(no closed pose reached there)</p>") in page
+    # a thinned sweep says so too; a sweep drawn whole says nothing
+    m = mobility.load(MECHANISMS / "parallelogram.yaml")
+    thinned = sweep_view(mobility.sweep(m, vary={"O1": (-180, 180, 37)}), max_poses=5)
+    assert thinned.notes == ("5 of the sweep's 37 poses drawn: 32 assembled poses left out (evenly spaced ones drawn, every singular one kept)",)
+    assert thinned.notes[0] in thinned.text()
+    assert sweep_view(mobility.sweep(m, vary={"O1": (0, 120, 3)})).notes == ()
 
 
 def test_cli_takes_samples_or_a_sweep_not_both(capsys):
@@ -336,6 +366,41 @@ def test_a_sweep_shows_itself_as_a_slider_in_a_notebook(monkeypatch):
     steps = data["application/vnd.plotly.v1+json"]["layout"]["sliders"][0]["steps"]
     assert [s["label"] for s in steps] == ["O1=0 deg", "O1=60 deg", "O1=120 deg"]
     assert data["text/plain"] == sweep_summary(sweep) == sweep_mimebundle(sweep, rich=False)["text/plain"]
+
+
+def _addresses(page: str) -> list[str]:
+    """The src and href attributes of every element of an HTML text (script bodies are text, not elements)."""
+    from html.parser import HTMLParser
+
+    found: list[str] = []
+
+    class Reader(HTMLParser):
+        def handle_starttag(self, tag, attrs):
+            found.extend(v or "" for k, v in attrs if k in ("src", "href"))
+
+    Reader().feed(page)
+    return found
+
+
+@pytest.mark.parametrize("renderers", ["plotly_mimetype+notebook", "notebook", "notebook_connected", "colab", "iframe", "plotly_mimetype"])
+def test_the_notebook_display_fetches_nothing(renderers, monkeypatch, tmp_path):
+    """Whatever plotly's renderers ask for, the HTML of a result's or a sweep's display loads nothing from the network."""
+    import plotly.io as pio
+
+    monkeypatch.chdir(tmp_path)  # plotly's iframe renderer would write files here
+    monkeypatch.setattr(pio.renderers, "default", renderers)
+    m, r = _load("four_bar.yaml")
+    sweep = mobility.sweep(mobility.load(MECHANISMS / "parallelogram.yaml"), vary={"O1": (0, 120, 3)})
+    for bundle in (result_mimebundle(r), sweep_mimebundle(sweep)):
+        if renderers == "plotly_mimetype":
+            assert set(bundle) == {"application/vnd.plotly.v1+json", "text/plain"}
+            continue
+        page = bundle["text/html"]
+        assert "<script" in page and [a for a in _addresses(page) if re.match(r"\s*(https?:)?//", a, re.IGNORECASE)] == []
+        assert 'import "http' not in page and "mathjax/" not in page.lower()
+        assert "plotly.js v" in page[:2000] and '"layer":"freedoms"' in page  # plotly.js and the figure are inline
+        assert ("application/vnd.plotly.v1+json" in bundle) == renderers.startswith("plotly_mimetype")
+    assert list(tmp_path.iterdir()) == []  # and no file was written
 
 
 def test_a_result_without_its_mechanism_is_shown_as_text():
@@ -447,3 +512,70 @@ def test_the_slider_walks_through_the_poses_in_the_browser(tab, tmp_path):
     page.page.mouse.click(rail["x"] + 1, rail["y"] + rail["height"] / 2)  # back to the first
     page.wait_for_glyphs("freedoms", 1)
     assert len(page.glyphs()["constraints"]) == 5
+
+
+def _slider_to(page, k: int, count: int) -> int:
+    """Click the slider's rail where step ``k`` of ``count`` sits; returns the step the page then shows."""
+    rail = page.page.locator(".slider-rail-rect").bounding_box()
+    x = rail["x"] + 1 + (rail["width"] - 2) * k / (count - 1)
+    page.page.mouse.click(x, rail["y"] + rail["height"] / 2)
+    page.page.wait_for_function(f"(id) => document.getElementById(id)._fullLayout.sliders[0].active === {k}", arg=page.element_id, timeout=10_000)
+    page.page.wait_for_timeout(200)
+    return page.page.evaluate("(id) => document.getElementById(id)._fullLayout.sliders[0].active", page.element_id)
+
+
+def _title(page) -> str:
+    return page.page.evaluate("(id) => document.getElementById(id)._fullLayout.title.text", page.element_id)
+
+
+def test_the_header_follows_the_slider_in_the_browser(tab, tmp_path, capsys):
+    """The page of the README's fold: the header's answer is the pose's the slider shows, as the title is."""
+    out = tmp_path / "fold.html"
+    assert main(["view", str(MECHANISMS / "parallelogram.yaml"), "-o", str(out), "--vary", "O1=-90:150:9"]) == 0
+    capsys.readouterr()
+    page = tab.open(out)
+    assert page.errors() == [] and [u for u in page.requests if not u.startswith("file:")] == []
+    answer = lambda: page.page.inner_text("header .answer")  # noqa: E731
+    first = "O1=-90 deg: end effector 1 DOF, pattern 1T; mobility 1 (Grübler–Kutzbach count -2)"
+    assert answer() == first
+    assert _slider_to(page, 7, 9) == 7
+    assert "O1=120 deg" in _title(page) and "(1T1R), mobility 2" in _title(page)
+    assert answer() == "O1=120 deg: end effector 2 DOF, pattern 1T1R; mobility 2 (Grübler–Kutzbach count -2)"
+    assert len(page.glyphs()["freedoms"]) == 2
+    header = page.page.inner_text("header")
+    assert "9 poses; patterns: 1T × 7, 1T1R × 2" in header and "O1=-90" not in header  # the rest is true of every pose
+    assert _slider_to(page, 0, 9) == 0
+    assert answer() == first and "O1=-90 deg" in _title(page)
+    assert page.errors() == []
+
+
+def test_the_header_writes_any_label_as_text_in_the_browser(tab, tmp_path):
+    """Labels are the page's text, never its markup or script, in the header the slider rewrites."""
+    m, r = _load("four_bar.yaml")
+    labels = ["<b>first</b>", "</script><script>document.title='x'</script>", "{plot_id} & \\u003c 'q' \"r\""]
+    view = poses_view([ViewFrame(m, r, label) for label in labels])
+    page = tab.open(view.write_html(tmp_path / "labels.html"))
+    assert page.errors() == []
+    assert page.page.inner_text("header .answer") == view.answers[0] == f"{labels[0]}: end effector 1 DOF, pattern 1R; mobility 1 (Grübler–Kutzbach count -2)"
+    for k in (2, 1):
+        assert _slider_to(page, k, 3) == k
+        assert page.page.inner_text("header .answer") == view.answers[k]
+    assert page.page.title() == "planar four-bar" and page.page.locator("header b").count() == 0
+
+
+def test_the_notebook_html_works_offline_in_the_browser(tab, tmp_path, monkeypatch):
+    import plotly.io as pio
+
+    monkeypatch.setattr(pio.renderers, "default", "notebook_connected")  # plotly's own would fetch plotly.js and MathJax
+    m, r = _load("agile_eye.yaml")
+    fragment = result_mimebundle(r)["text/html"]
+    element = re.search(r'<div id="([^"]+)" class="plotly-graph-div"', fragment).group(1)
+    path = tmp_path / "cell.html"
+    path.write_text(f"<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"></head><body>{fragment}</body></html>\n", encoding="utf-8")
+    cell = Tab(tab.page.context, element_id=element).open(path)
+    try:
+        assert cell.errors() == []
+        assert [u for u in cell.requests if not u.startswith("file:")] == []
+        assert len(cell.glyphs()["freedoms"]) == r.dof == 3 and len(cell.glyphs()["constraints"]) == 3
+    finally:
+        cell.page.close()

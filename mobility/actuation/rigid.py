@@ -25,8 +25,8 @@ import math
 from typing import Iterable, Sequence
 
 
-from ..core.poses import sample_poses
 from ..core.model import Mechanism, require_mechanism
+from ..core.poses import DEFAULT_STEP, sample_poses
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..core.topology import joints_of
@@ -110,7 +110,7 @@ def enumerate_actuations(
     k: int | None = None,
     poses: Sequence[Mechanism] = (),
     samples: int = 0,
-    step: float = 0.1,
+    step: float = DEFAULT_STEP,
     seed: int = 0,
     tol: Tolerance = DEFAULT_TOLERANCE,
 ) -> Enumeration:

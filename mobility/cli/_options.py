@@ -1,14 +1,39 @@
-"""Options shared by several subcommands: each ``add_*`` function registers them, its partner reads them back checked."""
+"""Options shared by several subcommands: each ``add_*`` function registers them, its partner reads them back checked.
+
+Every subcommand that reads one mechanism file registers it with
+:func:`add_mechanism_file` (the ``FILE`` argument and the options of robot
+description files: ``--ground``, ``--end-effector``, ``--floating``,
+``--ignore-unsupported``, ``--close A B``, ``--closures FILE``) and reads it
+with :func:`load_mechanism` (or :func:`read_mechanism` for the notes), so
+that YAML, MJCF and URDF files are read the same way by every command.  The
+robot readers are imported only when a robot file is read, so that
+``mobility analyze FILE.yaml`` does not pay for them.
+"""
 
 from __future__ import annotations
 
 import argparse
+import sys
+from pathlib import Path
+from typing import Any
 
 from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
 from ..errors import RequestError
+from ..io.loader import load
 
-__all__ = ["add_tolerance_option", "tolerance_from", "add_pose_sampler_options", "sampled_poses"]
+__all__ = [
+    "add_tolerance_option",
+    "tolerance_from",
+    "add_pose_sampler_options",
+    "sampled_poses",
+    "MECHANISM_FILE_HELP",
+    "add_mechanism_file",
+    "robot_options_from",
+    "is_robot_description",
+    "read_mechanism",
+    "load_mechanism",
+]
 
 
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
@@ -30,21 +55,24 @@ def tolerance_from(args: argparse.Namespace) -> Tolerance:
     return Tolerance(rank=args.tol)
 
 
-def add_pose_sampler_options(parser: argparse.ArgumentParser, *, samples_help: str, step: float, samples_group: argparse._ActionsContainer | None = None) -> None:
+def add_pose_sampler_options(parser: argparse.ArgumentParser, *, samples_help: str, samples_group: argparse._ActionsContainer | None = None) -> None:
     """Add ``--samples N``, ``--step`` and ``--seed``: further poses reached by moving the mechanism.
+
+    The default ``--step`` is :data:`mobility.core.poses.DEFAULT_STEP`, that of
+    :func:`~mobility.core.poses.sample_poses`, for every subcommand.
 
     Parameters
     ----------
     parser : argparse.ArgumentParser
     samples_help : str
         What the subcommand does with the poses.
-    step : float
-        The default ``--step`` of :func:`~mobility.core.poses.sample_poses`.
     samples_group : optional
         A group of ``parser`` (e.g. mutually exclusive) that ``--samples`` joins.
     """
+    from ..core.poses import DEFAULT_STEP  # the finite kinematics: imported only by the commands that move
+
     (samples_group or parser).add_argument("--samples", type=int, default=0, metavar="N", help=samples_help + " (default: %(default)s)")
-    parser.add_argument("--step", type=float, default=step, help="step of the pose sampler (default: %(default)g)")
+    parser.add_argument("--step", type=float, default=DEFAULT_STEP, help="step of the pose sampler (default: %(default)g)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
 
 
@@ -63,3 +91,71 @@ def sampled_poses(args: argparse.Namespace, mechanism: Mechanism) -> list[Mechan
     from ..core.poses import sample_poses  # the finite kinematics: imported only by the commands that move
 
     return sample_poses(mechanism, args.samples, step=args.step, seed=args.seed)
+
+
+MECHANISM_FILE_HELP = "mechanism file (YAML) or robot description (MJCF, URDF)"
+"""The help of the ``FILE`` argument of every subcommand that reads one mechanism file."""
+
+
+def add_mechanism_file(parser: argparse.ArgumentParser, *, file_help: str = MECHANISM_FILE_HELP) -> None:
+    """Add the ``file`` argument (YAML, MJCF or URDF) and the options of robot description files.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+    file_help : str
+        The help of ``file`` (say what else the subcommand reads, if anything).
+    """
+    parser.add_argument("file", help=file_help)
+    g = parser.add_argument_group("robot description files (MJCF, URDF)")
+    g.add_argument("--ground", metavar="BODY", help="the fixed body (default: the world or root body)")
+    g.add_argument("--end-effector", metavar="BODY", help="the body whose freedom is reported (default: the body farthest from the ground)")
+    g.add_argument("--floating", action="store_true", help="keep the 6 freedoms of free/floating joints (default: treat them as fixed)")
+    g.add_argument("--ignore-unsupported", action="store_true", help="leave out joint couplings (mimic, joint/tendon equalities) with a note instead of failing")
+    g.add_argument("--close", nargs=2, action="append", metavar=("A", "B"), default=[],
+                   help="close a loop: bodies A and B, whose origins coincide, are joined by a spherical joint (repeatable)")
+    g.add_argument("--closures", metavar="FILE", help="YAML file of closing joints in the project's format (links are body names)")
+
+
+def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
+    """The robot options given on the command line, as keywords of :func:`mobility.load` (those left at their default are omitted)."""
+    values = {"ground": args.ground, "end_effector": args.end_effector, "floating": args.floating,
+              "ignore_unsupported": args.ignore_unsupported, "close": tuple(tuple(p) for p in args.close), "closures": args.closures}
+    return {k: v for k, v in values.items() if v not in (None, False, ())}
+
+
+def is_robot_description(path: str) -> bool:
+    """Whether ``path`` is a robot description (a YAML suffix is decided without importing the robot readers)."""
+    if Path(path).suffix.lower() in (".yaml", ".yml"):
+        return False
+    from ..io.robot_files import is_robot_file
+
+    return is_robot_file(path)
+
+
+def read_mechanism(args: argparse.Namespace, path: str | None = None) -> tuple[Mechanism, tuple[str, ...]]:
+    """The mechanism of ``path`` (default: ``args.file``), read with the robot options of ``args``, and the notes of the reading.
+
+    Raises
+    ------
+    MechanismFileError
+        When the file cannot be read (one line naming file, line and key).
+    RequestError
+        When robot options are given for a mechanism file (YAML).
+    """
+    path = args.file if path is None else path
+    options = robot_options_from(args)
+    if not is_robot_description(path):
+        return load(path, **options), ()
+    from ..io.robot_files import read_robot  # XML readers (and MuJoCo for MJCF): only for robot files
+
+    robot = read_robot(path, **options)
+    return robot.mechanism, tuple(robot.notes)
+
+
+def load_mechanism(args: argparse.Namespace, path: str | None = None) -> Mechanism:
+    """The mechanism of ``path`` (default: ``args.file``); for a robot description, the notes of the reading go to stderr, one line each."""
+    mechanism, notes = read_mechanism(args, path)
+    for note in notes:
+        print(f"mobility: note: {note}", file=sys.stderr)
+    return mechanism

@@ -1,6 +1,7 @@
 """``mobility actuation FILE``: which joints (or linear actuators) may drive a mechanism.
 
-For a mechanism file: the actuation wrench of every joint marked
+For a mechanism file (YAML, MJCF or URDF; in a robot description the joints
+driven by an actuator are the actuated ones): the actuation wrench of every joint marked
 ``actuated: true``, the constraint wrenches and the verdict (valid,
 actuation-singular with the uncontrolled directions, or redundant), with the
 actuation conditioning.  ``--enumerate`` checks every combination of inputs
@@ -24,11 +25,21 @@ from ..actuation import ENUMERATION_MODES, check_actuation, check_over_poses, en
 from ..core.tolerance import Tolerance
 from ..errors import RequestError
 from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines, flexure_spaces, is_flexure_document, loads_flexure
-from ..io.loader import load, loads
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
 from ..io.limits import require_size
-from ._options import add_pose_sampler_options, add_tolerance_option, sampled_poses, tolerance_from
+from ._options import (
+    MECHANISM_FILE_HELP,
+    add_mechanism_file,
+    add_pose_sampler_options,
+    add_tolerance_option,
+    is_robot_description,
+    load_mechanism,
+    read_mechanism,
+    robot_options_from,
+    sampled_poses,
+    tolerance_from,
+)
 
 ORDER = 30
 
@@ -40,13 +51,13 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Actuation spaces (Li, Shan, Yu, Ke 2021): a choice of inputs is valid when its actuation wrenches "
         "and the constraint wrenches together span six dimensions.",
     )
-    p.add_argument("file", help="mechanism file or flexure document (YAML)")
+    add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + ", or flexure document (YAML)")
     p.add_argument("--enumerate", action="store_true", help="check every combination of inputs, grouped by type and ranked")
     p.add_argument("--mode", choices=ENUMERATION_MODES, default="limb", help="enumeration: one joint per limb (default) or any K joints")
     p.add_argument("--k", type=int, default=None, help="inputs per combination with --mode any (default: the DOF)")
     p.add_argument("--inputs", default=None, help="comma-separated joint (or actuator) names to check instead of those marked actuated")
-    p.add_argument("--pose", action="append", default=[], metavar="FILE", help="another pose of the same mechanism (repeatable)")
-    add_pose_sampler_options(p, samples_help="also check N poses reached by moving the mechanism (mobility.core.poses.sample_poses)", step=0.1)
+    p.add_argument("--pose", action="append", default=[], metavar="FILE", help="another pose of the same mechanism, read as FILE is (repeatable)")
+    add_pose_sampler_options(p, samples_help="also check N poses reached by moving the mechanism (mobility.core.poses.sample_poses)")
     p.add_argument("--threshold", type=float, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
     add_tolerance_option(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
@@ -59,25 +70,29 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError("--threshold must lie between 0 and 1")
     if args.samples < 0 or (args.k is not None and args.k < 0):
         raise RequestError("--samples and --k must not be negative")
-    text = read_text(args.file)
-    data, _ = parse_yaml(text, args.file)
     names = [n.strip() for n in args.inputs.split(",") if n.strip()] if args.inputs is not None else None
-    if is_flexure_document(data):
-        if args.pose or args.samples:
-            raise RequestError("--pose and --samples apply to rigid mechanisms only (a flexure is analysed at its one pose)")
-        return _run_flexure(args, loads_flexure(text, file=args.file), names, tol)
-    mechanism = loads(text, file=args.file)
+    if not is_robot_description(args.file):  # a YAML document: a mechanism or a flexure
+        text = read_text(args.file)
+        data, _ = parse_yaml(text, args.file)
+        if is_flexure_document(data):
+            if args.pose or args.samples:
+                raise RequestError("--pose and --samples apply to rigid mechanisms only (a flexure is analysed at its one pose)")
+            given = sorted(robot_options_from(args))
+            if given:
+                raise RequestError(f"{', '.join(given)}: options of robot description files (MJCF, URDF), not of the flexure document {args.file}")
+            return _run_flexure(args, loads_flexure(text, file=args.file), names, tol)
+    mechanism = load_mechanism(args)
     if args.enumerate:
         require_size(mechanism, "max_enumerated_joints", "--enumerate", args.file)
     if args.samples:
         require_size(mechanism, "max_moving_joints", "--samples", args.file)
     if args.enumerate:
-        poses = [load(p) for p in args.pose]
+        poses = [read_mechanism(args, p)[0] for p in args.pose]
         found = enumerate_actuations(mechanism, mode=args.mode, k=args.k, poses=poses, samples=args.samples, step=args.step, seed=args.seed, tol=tol)
         print(enumeration_json(found) if args.json else enumeration_text(found))
         return 0 if found.valid else 1
     check = check_actuation(mechanism, names, tol=tol)
-    extra = check_over_poses(mechanism, names, [load(p) for p in args.pose], tol=tol) if args.pose else ()
+    extra = check_over_poses(mechanism, names, [read_mechanism(args, p)[0] for p in args.pose], tol=tol) if args.pose else ()
     if args.samples:
         extra = tuple(extra) + check_over_poses(mechanism, names, sampled_poses(args, mechanism), tol=tol)
     labels = list(args.pose) + [f"sampled pose {i + 1}" for i in range(len(extra) - len(args.pose))]

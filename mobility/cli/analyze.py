@@ -7,8 +7,7 @@ import argparse
 from ..core.analysis import analyze
 from ..report.text import json_report, text_report
 from ..io.limits import require_size
-from ._options import add_tolerance_option, tolerance_from
-from .convert import add_robot_options, load_mechanism
+from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
 
 ORDER = 10
 
@@ -29,12 +28,11 @@ FORMATS = {
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("analyze", help="DOF, pattern, directions and constraints of a mechanism's end effector")
-    p.add_argument("file", help="mechanism file (YAML) or robot description (MJCF, URDF)")
+    add_mechanism_file(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (same as --format json)")
     p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output format (default: text)")
     p.add_argument("--limbs", action="store_true", help="also show each limb's twists and constraints in its own frame")
     add_tolerance_option(p)
-    add_robot_options(p)
     p.add_argument("--finite", action="store_true", help="also move the mechanism: is the freedom full-cycle or instantaneous only?")
     p.set_defaults(run=run)
 

@@ -1,12 +1,10 @@
 """``mobility convert FILE -o FILE.yaml``: a robot description (MJCF, URDF) as a mechanism file.
 
-Also the options every command that reads a file shares for robot
-descriptions (``--ground``, ``--end-effector``, ``--floating``,
-``--ignore-unsupported``, ``--close A B``, ``--closures FILE``), and
-:func:`load_mechanism`, which reads the file they name and prints the notes
-of the reading on stderr, one line each.  The robot readers and the writer
-are imported only when a robot file is read or a file written, so that
-``mobility analyze FILE.yaml`` does not pay for them.
+The file and the options of robot description files (``--ground``,
+``--end-effector``, ``--floating``, ``--ignore-unsupported``, ``--close A
+B``, ``--closures FILE``) are those every command that reads one mechanism
+file shares (:func:`mobility.cli._options.add_mechanism_file`).  The writer
+is imported only when a file is written.
 """
 
 from __future__ import annotations
@@ -16,13 +14,13 @@ import sys
 
 import numpy as np
 from pathlib import Path
-from typing import Any
 
 from ..core.model import Mechanism
 from ..errors import MechanismFileError
-from ..io.loader import load, loads
+from ..io.loader import loads
+from ._options import add_mechanism_file, read_mechanism
 
-__all__ = ["register", "run", "add_robot_options", "robot_options_from", "load_mechanism"]
+__all__ = ["register", "run"]
 
 ORDER = 15
 
@@ -31,69 +29,17 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("convert", help="write a robot description (MJCF, URDF) as a mechanism file (YAML)",
                        description="Read an MJCF or URDF file and write the mechanism it describes in the project's format, "
                                    "to annotate, add an expected block and check with `mobility check`.")
-    p.add_argument("file", help="robot description (MJCF .xml, URDF .urdf) or mechanism file")
+    add_mechanism_file(p, file_help="robot description (MJCF, URDF) or mechanism file (YAML)")
     p.add_argument("-o", "--output", metavar="FILE.yaml", help="file to write (default: standard output)")
     p.add_argument("--expected", action="store_true", help="also write an expected block (dof, pattern, mobility) from this analysis")
-    add_robot_options(p)
     p.set_defaults(run=run)
-
-
-def add_robot_options(parser: argparse.ArgumentParser) -> None:
-    """Add the options of robot description files to a subcommand."""
-    g = parser.add_argument_group("robot description files (MJCF, URDF)")
-    g.add_argument("--ground", metavar="BODY", help="the fixed body (default: the world or root body)")
-    g.add_argument("--end-effector", metavar="BODY", help="the body whose freedom is reported (default: the body farthest from the ground)")
-    g.add_argument("--floating", action="store_true", help="keep the 6 freedoms of free/floating joints (default: treat them as fixed)")
-    g.add_argument("--ignore-unsupported", action="store_true", help="leave out joint couplings (mimic, joint/tendon equalities) with a note instead of failing")
-    g.add_argument("--close", nargs=2, action="append", metavar=("A", "B"), default=[],
-                   help="close a loop: bodies A and B, whose origins coincide, are joined by a spherical joint (repeatable)")
-    g.add_argument("--closures", metavar="FILE", help="YAML file of closing joints in the project's format (links are body names)")
-
-
-def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
-    """The robot options given on the command line (those left at their default are omitted)."""
-    values = {"ground": args.ground, "end_effector": args.end_effector, "floating": args.floating,
-              "ignore_unsupported": args.ignore_unsupported, "close": tuple(tuple(p) for p in args.close), "closures": args.closures}
-    return {k: v for k, v in values.items() if v not in (None, False, ())}
-
-
-def _is_robot_file(path: str) -> bool:
-    """Whether ``path`` is a robot description (a YAML suffix is decided without importing the robot readers)."""
-    if Path(path).suffix.lower() in (".yaml", ".yml"):
-        return False
-    from ..io.robot_files import is_robot_file
-
-    return is_robot_file(path)
-
-
-def _read_robot(path: str, options: dict[str, Any]) -> Any:
-    from ..io.robot_files import read_robot  # XML readers (and MuJoCo for MJCF): only for robot files
-
-    return read_robot(path, **options)
-
-
-def load_mechanism(args: argparse.Namespace) -> Mechanism:
-    """The mechanism of ``args.file``; for a robot description, its notes go to stderr."""
-    options = robot_options_from(args)
-    if not _is_robot_file(args.file):
-        return load(args.file, **options)
-    robot = _read_robot(args.file, options)
-    for note in robot.notes:
-        print(f"mobility: note: {note}", file=sys.stderr)
-    return robot.mechanism
 
 
 def run(args: argparse.Namespace) -> int:
     from ..core.analysis import analyze
     from ..io.writer import mechanism_to_yaml
 
-    notes: tuple[str, ...] = ()
-    options = robot_options_from(args)
-    if _is_robot_file(args.file):
-        robot = _read_robot(args.file, options)
-        mechanism, notes = robot.mechanism, robot.notes
-    else:
-        mechanism = load(args.file, **options)
+    mechanism, notes = read_mechanism(args)
     description = " ".join([mechanism.description] + [f"Note: {n}." for n in notes]).strip()
     expected = None
     if args.expected:

@@ -11,10 +11,9 @@ from __future__ import annotations
 import argparse
 
 from ..errors import MechanismError, MechanismFileError
-from ..io.loader import load
 from ..jacobians import jacobian
 from ..report.jacobian import jacobian_json, jacobian_text
-from ._options import add_tolerance_option, tolerance_from
+from ._options import MECHANISM_FILE_HELP, add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
 
 ORDER = 45
 
@@ -26,7 +25,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Jacobian by differentiating the limbs' finite screws (Sun et al. 2018, Eq. 26): "
         "J $ = [actuated rates; 0] for the platform twist $ = [w; v].",
     )
-    p.add_argument("file", help="mechanism file (YAML) whose limbs are serial chains")
+    add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + " whose limbs are serial chains")
     p.add_argument("--actuated", default=None, metavar="A,B,...", help="actuated joints (default: those marked actuated: true); NAME.k picks the k-th freedom of a multi-DOF joint")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     add_tolerance_option(p)
@@ -35,7 +34,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
-    mechanism = load(args.file)
+    mechanism = load_mechanism(args)
     names = None if args.actuated is None else [n.strip() for n in args.actuated.split(",") if n.strip()]
     try:
         result = jacobian(mechanism, actuated=names, tol=tol)

@@ -7,8 +7,7 @@ import sys
 
 from ..core.analysis import analyze
 from ..errors import MechanismFileError, PlotFormatError
-from ..io.loader import load
-from ._options import add_tolerance_option, tolerance_from
+from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
 
 ORDER = 30
 
@@ -21,7 +20,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "axis lines with a rotation mark for rotations (pitch written where non-zero). Needs matplotlib "
         "(pip install 'mobility[plot]').",
     )
-    p.add_argument("file", help="mechanism file (YAML)")
+    add_mechanism_file(p)
     p.add_argument("-o", "--output", required=True, help="picture to write; the type follows the suffix: .png, .svg or .pdf")
     p.add_argument("--constraints", action="store_true", help="also draw the constraint wrenches (force lines, couples)")
     p.add_argument("--graph", action="store_true", help="draw the joint graph and its series/parallel tree instead")
@@ -53,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
         print("mobility plot: error: --constraints draws on the mechanism, not on the --graph picture", file=sys.stderr)
         return 2
     try:
-        mechanism = load(args.file)
+        mechanism = load_mechanism(args)
     except MechanismFileError:
         if _is_flexure(args.file):
             raise PlotFormatError(f"{args.file}: a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures") from None

@@ -15,12 +15,11 @@ import sys
 from pathlib import Path
 
 from ..errors import RequestError
-from ..io.loader import load
 from ..report.plotting import picture_path, save_figure
 from ..report.sweep import sweep_csv, sweep_json, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, DEFAULT_MAX_POSES, sweep
 from ..io.limits import require_size
-from ._options import add_tolerance_option, tolerance_from
+from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
 
 ORDER = 35
 
@@ -36,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "DOF, pattern, mobility, rank margin and, for actuated joints, the actuation verdict and conditioning; "
         "the summary names the singular poses and where the answer changes.",
     )
-    p.add_argument("file", help="mechanism file (YAML)")
+    add_mechanism_file(p)
     p.add_argument(
         "--vary",
         action="append",
@@ -84,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError(f"--chunk-size must be at least 1, got {args.chunk_size}")
     if args.workers is not None and args.workers < 1:
         raise RequestError(f"--workers must be at least 1, got {args.workers}")
-    mechanism = load(args.file)
+    mechanism = load_mechanism(args)
     require_size(mechanism, "max_moving_joints", "a sweep", args.file)
     inputs = None if args.inputs is None else [n.strip() for n in args.inputs.split(",") if n.strip()]
     result = sweep(

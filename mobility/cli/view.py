@@ -11,13 +11,15 @@ import argparse
 
 from ..core.analysis import analyze
 from ..errors import RequestError
-from ..io.loader import load
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
 from ..io.limits import require_size
-from ._options import add_pose_sampler_options, add_tolerance_option, sampled_poses, tolerance_from
+from ._options import add_mechanism_file, add_pose_sampler_options, add_tolerance_option, load_mechanism, sampled_poses, tolerance_from
 
 ORDER = 31
+
+PAGE_SUFFIXES = (".html", ".htm")
+"""The endings of a page name that ``-o`` accepts, compared in lower case (``page.HTML`` too)."""
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -29,23 +31,23 @@ def register(sub: argparse._SubParsersAction) -> None:
         "each layer switchable, hover text with each screw's numbers. Rotate, zoom and pan with the mouse. "
         "Needs plotly (pip install 'mobility[view]').",
     )
-    p.add_argument("file", help="mechanism file (YAML)")
-    p.add_argument("-o", "--output", required=True, help="page to write (.html)")
+    add_mechanism_file(p)
+    p.add_argument("-o", "--output", required=True, help="page to write (a name ending in .html or .htm, in any case)")
     poses = p.add_mutually_exclusive_group()
     poses.add_argument("--vary", action="append", default=[], metavar="NAME=START:STOP:COUNT",
                        help="show the poses of a sweep, as for `mobility sweep` (repeat for a grid), with a slider; "
                        f"at most {MAX_POSES} poses are drawn, evenly spaced, every singular one kept")
-    add_pose_sampler_options(p, samples_help="also show N poses reached by moving the mechanism, with a slider", step=0.2, samples_group=poses)
+    add_pose_sampler_options(p, samples_help="also show N poses reached by moving the mechanism, with a slider", samples_group=poses)
     add_tolerance_option(p)
     p.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
-    if not args.output.lower().endswith((".html", ".htm")):
-        raise RequestError(f"{args.output}: expected a page name ending in .html")
+    if not args.output.lower().endswith(PAGE_SUFFIXES):
+        raise RequestError(f"{args.output}: expected a page name ending in .html or .htm (in any case)")
     require_plotly()  # before any work
-    mechanism = load(args.file)
+    mechanism = load_mechanism(args)
     if args.vary or args.samples:
         require_size(mechanism, "max_moving_joints", "--vary" if args.vary else "--samples", args.file)
     poses = sampled_poses(args, mechanism)

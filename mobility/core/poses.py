@@ -15,10 +15,14 @@ from .kinematics import kinematics
 from .model import Mechanism, require_mechanism
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 
-__all__ = ["sample_poses"]
+__all__ = ["sample_poses", "DEFAULT_STEP"]
+
+DEFAULT_STEP = 0.1
+"""The default step of :func:`sample_poses` (radians; lengths over the characteristic length), also the
+default ``--step`` of ``mobility actuation --samples`` and ``mobility view --samples``."""
 
 
-def sample_poses(mechanism: Mechanism, count: int, *, step: float = 0.1, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> list[Mechanism]:
+def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> list[Mechanism]:
     """Assembled poses reached by moving ``mechanism`` from its given pose.
 
     A seeded random exploration: each new pose starts from one already

@@ -3,9 +3,11 @@
 The core knows nothing of views, so :class:`Result` has no display method of
 its own; instead ``import mobility`` calls :func:`register_display` when it
 runs inside IPython, which registers :func:`result_mimebundle` with IPython's
-mime-bundle formatter.  A rich front end (a notebook kernel) then gets
-plotly's own display of the view and the text report as plain text; a
-terminal gets the text report.  Without plotly the text report is shown
+mime-bundle formatter.  A rich front end (a notebook kernel) then gets the
+view in the forms plotly's renderers name (:func:`offline_mimebundle`: the
+plotly JSON that JupyterLab, Notebook 7 and VS Code draw, or HTML with
+plotly.js inline; nothing is fetched from the network) and the text report
+as plain text; a terminal gets the text report.  Without plotly the text report is shown
 with the one-line install hint.  A sweep result (:func:`mobility.sweep`) is
 shown the same way, as a slider through up to :data:`NOTEBOOK_POSES` of its
 poses (:func:`mobility.view.sweep.sweep_view`), with its text summary.
@@ -20,10 +22,51 @@ from typing import Any
 from ..core.result import Result
 from ..report.text import text_report
 
-__all__ = ["result_mimebundle", "sweep_mimebundle", "register_display", "NOTEBOOK_POSES"]
+__all__ = ["result_mimebundle", "sweep_mimebundle", "register_display", "offline_mimebundle", "NOTEBOOK_POSES"]
 
 NOTEBOOK_POSES = 60
 """Poses of a sweep shown in a notebook's slider (each is analysed again to be drawn)."""
+
+
+def _makes_html(renderer: Any) -> bool:
+    """Whether a plotly renderer's output is HTML (its own HTML loads MathJax, and plotly.js, from a CDN)."""
+    return any(c.__name__ in ("HtmlRenderer", "IFrameRenderer") for c in type(renderer).__mro__)
+
+
+def offline_mimebundle(figure: Any) -> dict[str, Any]:
+    """The forms of ``figure`` that plotly's default renderers name, none of them fetching anything.
+
+    For each renderer of ``plotly.io.renderers.default`` that returns a mime
+    bundle: the HTML renderers (``notebook``, ``notebook_connected``,
+    ``colab``, ``iframe``...) give way to one HTML fragment with plotly.js
+    inline and no MathJax (:func:`mobility.view.page.figure_html`), where
+    plotly's own would load MathJax (and, connected, plotly.js) from a CDN or
+    write files; every other renderer (``plotly_mimetype``, ``json``,
+    ``png``...) gives its own form.  Renderers that open a browser are not
+    display forms and are left out, as plotly does.
+
+    Parameters
+    ----------
+    figure : plotly.graph_objects.Figure
+
+    Returns
+    -------
+    dict
+        Mime type -> data.
+    """
+    import plotly.io as pio
+
+    from .page import figure_html
+
+    fig_dict = figure.to_plotly_json()
+    bundle: dict[str, Any] = {}
+    for name in filter(None, (pio.renderers.default or "").split("+")):
+        renderer = pio.renderers[name]
+        if _makes_html(renderer):
+            bundle["text/html"] = figure_html(fig_dict)
+        elif hasattr(renderer, "to_mimebundle"):
+            bundle.update(renderer.to_mimebundle(fig_dict))
+    return bundle
 
 
 def result_mimebundle(result: Result, *, rich: bool = True) -> dict[str, Any]:

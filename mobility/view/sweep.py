@@ -5,7 +5,9 @@ frames of :func:`~mobility.view.views.poses_view`: each assembled grid point
 rebuilt as a mechanism (``SweepResult.mechanism_at``) and analysed, labelled by
 its coordinates.  A sweep larger than a page holds is thinned to evenly
 spaced poses, keeping every singular pose the sweep found, so the slider
-passes through each change of pattern.
+passes through each change of pattern.  The header of the page says how many
+of the sweep's poses are drawn, and why the others are not
+(:func:`sweep_notes`: not assembled, or left out by the thinning).
 
 Only the sweep result's public attributes are used (``size``, ``assembled``,
 ``values``, ``singular``, ``mechanism_at``, ``tolerance``, ``axes``); the
@@ -31,7 +33,7 @@ from ..core.analysis import analyze
 from ..errors import RequestError
 from .views import MAX_POSES, View, ViewFrame, poses_view
 
-__all__ = ["sweep_view", "sweep_poses"]
+__all__ = ["sweep_view", "sweep_poses", "sweep_notes"]
 
 
 def sweep_poses(sweep: Any, max_poses: int = MAX_POSES) -> list[int]:
@@ -51,6 +53,30 @@ def sweep_poses(sweep: Any, max_poses: int = MAX_POSES) -> list[int]:
     singular = sorted({int(p.index) for p in sweep.singular})[:max_poses]
     spaced = assembled[np.round(np.linspace(0, len(assembled) - 1, max_poses - len(singular))).astype(int)] if max_poses > len(singular) else []
     return sorted(set(singular) | {int(i) for i in spaced})
+
+
+def sweep_notes(sweep: Any, shown: int) -> list[str]:
+    """What a view of ``shown`` of the sweep's poses says of the others: none when every pose is drawn.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import numpy as np
+    >>> sweep_notes(SimpleNamespace(size=25, assembled=np.arange(25) < 14), 14)
+    ["14 of the sweep's 25 poses drawn: 11 not assembled (no closed pose reached there)"]
+    >>> sweep_notes(SimpleNamespace(size=1000, assembled=np.arange(1000) != 3), 200)
+    ["200 of the sweep's 1,000 poses drawn: 1 not assembled (no closed pose reached there); 799 assembled poses left out (evenly spaced ones drawn, every singular one kept)"]
+    """
+    size = int(sweep.size)
+    assembled = int(np.count_nonzero(sweep.assembled))
+    if shown >= size:
+        return []
+    why = []
+    if assembled < size:
+        why.append(f"{size - assembled:,} not assembled (no closed pose reached there)")
+    if shown < assembled:
+        why.append(f"{assembled - shown:,} assembled poses left out (evenly spaced ones drawn, every singular one kept)")
+    return [f"{shown:,} of the sweep's {size:,} poses drawn: " + "; ".join(why)]
 
 
 def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
@@ -83,4 +109,4 @@ def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
     for i in indices:
         mechanism = sweep.mechanism_at(i)
         frames.append(ViewFrame(mechanism, analyze(mechanism, tol=sweep.tolerance), describe_values(sweep, sweep.values[i])))
-    return poses_view(frames, max_poses=max_poses)
+    return poses_view(frames, max_poses=max_poses, notes=sweep_notes(sweep, len(frames)))

@@ -6,8 +6,9 @@ triples, e.g. from :func:`mobility.sample_poses` or a sweep) with a slider
 that walks through them, the pattern and rank margin of each in the title.
 
 A :class:`View` writes itself as one self-contained HTML page
-(:meth:`View.write_html`, works offline) and shows itself in Jupyter through
-plotly's own display (``_repr_mimebundle_``), with the text report as the
+(:meth:`View.write_html`, works offline) and shows itself in Jupyter
+(``_repr_mimebundle_``) in the forms plotly's renderers name, each made so
+that it fetches nothing from the network, with the text report as the
 plain-text part, so a front end without plotly shows the text.
 
 Examples
@@ -38,6 +39,7 @@ from ..report.plotting.sketch import drawing_scale
 from ..report.text import text_report
 from .describe import header_lines, margin_text
 from .figure import figure_dict as build_figure_dict
+from .notebook import offline_mimebundle
 from .page import page_html, require_plotly
 from .scene import Scene, build_scene
 
@@ -62,10 +64,14 @@ class View:
     frames : tuple of ViewFrame
     scenes : tuple of Scene
         What is drawn for each frame (:func:`mobility.view.scene.build_scene`).
+    notes : tuple of str
+        What the header says of the poses besides their answers (e.g. the
+        poses of a sweep that are not drawn, and why).
     """
 
     frames: tuple[ViewFrame, ...]
     scenes: tuple[Scene, ...]
+    notes: tuple[str, ...] = ()
 
     @property
     def name(self) -> str:
@@ -73,11 +79,24 @@ class View:
         return self.frames[0].result.name
 
     @property
+    def answers(self) -> tuple[str, ...]:
+        """DOF, pattern and mobility of each pose in one line (with the pose's label when there are several)."""
+        out = []
+        for k, f in enumerate(self.frames):
+            r = f.result
+            text = f"end effector {r.dof} DOF, pattern {r.pattern}; mobility {r.mobility} (Grübler–Kutzbach count {r.gruebler_kutzbach})"
+            out.append(text if len(self.frames) == 1 else f"{f.label or f'pose {k + 1}'}: {text}")
+        return tuple(out)
+
+    @property
     def answer(self) -> str:
-        """DOF, pattern and mobility (of the first pose) in one line."""
-        r = self.frames[0].result
-        text = f"end effector {r.dof} DOF, pattern {r.pattern}; mobility {r.mobility} (Grübler–Kutzbach count {r.gruebler_kutzbach})"
-        return text if len(self.frames) == 1 else f"{self.frames[0].label or 'first pose'}: {text}"
+        """DOF, pattern and mobility of the first pose in one line (the page's header then shows the slider's pose)."""
+        return self.answers[0]
+
+    @property
+    def header(self) -> list[str]:
+        """The lines under the answer in the page's header, true of every pose (units, counts of patterns, notes...)."""
+        return header_lines([f.result for f in self.frames], [f.label for f in self.frames]) + list(self.notes)
 
     @cached_property
     def figure_dict(self) -> dict[str, Any]:
@@ -94,12 +113,11 @@ class View:
 
     def to_html(self) -> str:
         """The self-contained page (plotly.js inline; nothing fetched from the network)."""
-        lines = header_lines([f.result for f in self.frames], [f.label for f in self.frames])
         figure = self.figure_dict
         if len(self.frames) == 1:  # the page's header says it all; several poses keep the title the slider updates
             layout = {**figure["layout"], "title": {"text": ""}, "margin": {**figure["layout"]["margin"], "t": 10}}
             figure = {**figure, "layout": layout}
-        return page_html(figure, self.name, self.answer, lines)
+        return page_html(figure, self.name, self.answers, self.header)
 
     def write_html(self, path: str | Path) -> Path:
         """Write :meth:`to_html` to ``path``; returns the path.
@@ -123,20 +141,21 @@ class View:
         """The text form: the text report of one pose, a line per pose for several."""
         if len(self.frames) == 1:
             return text_report(self.frames[0].result)
-        results = [f.result for f in self.frames]
-        lines = [self.name, *("  " + x for x in header_lines(results, [f.label for f in self.frames]))]
+        lines = [self.name, *("  " + x for x in self.header)]
         for k, f in enumerate(self.frames):
             lines.append(f"  {f.label or k + 1}: {f.result.dof} DOF ({f.result.pattern}), mobility {f.result.mobility}, {margin_text(f.result)}")
         return "\n".join(lines)
 
     def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, Any]:
-        """Jupyter: plotly's own display of the figure, the text report as plain text."""
+        """Jupyter: the figure in the forms plotly's renderers name, none fetching anything; the text report as plain text.
+
+        See :func:`mobility.view.notebook.offline_mimebundle`.
+        """
         try:
             figure = self.figure
         except MissingExtraError as exc:
             return {"text/plain": f"{self.text()}\n({exc})"}
-        bundle = figure._repr_mimebundle_(include, exclude)  # plotly's renderers choose the rich forms
-        bundle = bundle[0] if isinstance(bundle, tuple) else dict(bundle)
+        bundle = offline_mimebundle(figure)
         bundle["text/plain"] = self.text()
         return bundle
 
@@ -167,7 +186,7 @@ MAX_POSES = 200
 """The most poses one view holds (every pose is in the page; pick a subset of a large sweep)."""
 
 
-def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSES) -> View:
+def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSES, notes: Iterable[str] = ()) -> View:
     """A 3D view of several poses with a slider: each pose's freedoms, constraints, pattern and margin.
 
     Parameters
@@ -177,6 +196,8 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
     max_poses : int
         Refuse more poses than this: each one is drawn into the page, which
         grows (about 40 kB a pose) and slows down with every pose.
+    notes : iterable of str
+        Further lines of the header, true of every pose (:attr:`View.notes`).
 
     Returns
     -------
@@ -212,4 +233,4 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
         raise RequestError(f"{len(out)} poses is more than a view holds (max_poses={max_poses}); show a subset, e.g. every k-th pose")
     # one drawing scale for every pose (1 for a mechanism of an everyday size), so that the poses share their axes
     drawing = drawing_scale(joint_screws(out[0].mechanism).normalisation.length)
-    return View(tuple(out), tuple(build_scene(f.mechanism, f.result, drawing) for f in out))
+    return View(tuple(out), tuple(build_scene(f.mechanism, f.result, drawing) for f in out), tuple(str(n) for n in notes))

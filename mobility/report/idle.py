@@ -1,0 +1,113 @@
+"""What the idle freedoms of a mechanism are, in words: the hint after ``idle DOF`` in the text report.
+
+An idle freedom moves joints and leaves the end effector still.  Where it
+comes from depends on the mechanism, and the hint says which case applies:
+
+* an **S–S rod** (more generally a chain of links between two spherical
+  joints, each link carrying two joints, such as the S–P–S leg of a
+  Gough–Stewart platform) spins about the line through its two centres;
+* a **serial chain** (no loop) with more joint freedoms than its end
+  effector has DOF moves by *self-motion*: a redundant arm, or one whose
+  axes line up at this pose;
+* a **chain off the path** between ground and end effector (a hanging
+  chain) moves alone;
+* otherwise joints inside the loops move against each other.
+
+Examples
+--------
+>>> import mobility
+>>> idle_hint(mobility.analyze(mobility.load("mechanisms/rssr.yaml")))
+'e.g. the spin of an S–S rod about the line through its two centres: 1 such rod here'
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+
+from ..core.model import Mechanism
+from ..core.result import Result
+from ..core.topology import JointNode, Node, Series, joints_of
+
+__all__ = ["spherical_chains", "idle_hint"]
+
+
+def spherical_chains(mechanism: Mechanism) -> int:
+    """The number of chains of links between two spherical joints whose every link carries just those two joints.
+
+    Each such chain (an S–S rod, an S–P–S leg...) turns as one body about the
+    line through its two centres while the rest of the mechanism stays
+    still: one idle freedom each.  The ground and the end effector never
+    belong to one.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> spherical_chains(mobility.load("mechanisms/6sps.yaml")), spherical_chains(mobility.load("mechanisms/3rps.yaml"))
+    (6, 0)
+    """
+    joints = mechanism.joints
+    at: dict[str, list[int]] = defaultdict(list)
+    for i, j in enumerate(joints):
+        for link in set(j.links):
+            at[link].append(i)
+    ends = {mechanism.ground, mechanism.end_effector}
+    found: set[frozenset[str]] = set()
+    for i, j in enumerate(joints):
+        if j.type != "S" or j.links[0] == j.links[1]:
+            continue
+        for link in j.links:
+            came, chain = i, []
+            while link not in ends and len(at[link]) == 2 and link not in chain:
+                chain.append(link)
+                nxt = at[link][0] if at[link][1] == came else at[link][1]
+                a, b = joints[nxt].links
+                if joints[nxt].type == "S":
+                    found.add(frozenset(chain))
+                    break
+                came, link = nxt, (b if a == link else a)
+    return len(found)
+
+
+def _serial(node: Node) -> bool:
+    """Whether ``node`` is one joint or joints in series (no loop)."""
+    return isinstance(node, JointNode) or (isinstance(node, Series) and all(isinstance(c, JointNode) for c in node.children))
+
+
+def idle_hint(result: Result) -> str:
+    """The words after the count of idle freedoms: which motions of this mechanism they are.
+
+    Reads the mechanism and the series/parallel tree the result carries
+    (:attr:`~mobility.core.result.Result.node_systems`); a result without
+    them gets a hint without example.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> arm = Mechanism("planar 3R arm", "g", "e", tuple(
+    ...     Joint(f"J{k}", "R", (("g", "a", "b")[k], ("a", "b", "e")[k]), axis=(0, 0, 1), point=(k, 0, 0)) for k in range(3)))
+    >>> idle_hint(mobility.analyze(arm))
+    'a self-motion of the serial chain, redundant at this pose: its 3 joint freedoms give the end effector 2 DOF'
+    """
+    detail = result.detail
+    mechanism = getattr(detail, "mechanism", None)
+    topology = getattr(detail, "topology", None)
+    if mechanism is None or topology is None:
+        return "joints move while the end effector stays still"
+    rods = spherical_chains(mechanism)
+    if rods:
+        return f"e.g. the spin of an S–S rod about the line through its two centres: {rods} such rod{'s' if rods > 1 else ''} here"
+    systems = result.node_systems
+    hints = []
+    root = systems[topology.root]
+    if root.idle:
+        if _serial(topology.root):
+            hints.append(f"a self-motion of the serial chain, redundant at this pose: its {root.mobility} joint freedoms give the end effector {root.dof} DOF")
+        else:
+            hints.append("joints inside the loops move against each other")
+    moving = [n for n in topology.detached if systems[n].mobility]
+    if moving:
+        names = [mechanism.joints[k].name for n in moving for k in joints_of(n)]
+        shown = ", ".join(names[:4]) + (", ..." if len(names) > 4 else "")
+        hints.append(f"a chain off the path from ground to end effector moves alone ({shown})")
+    return "; ".join(hints) or "joints move while the end effector stays still"
