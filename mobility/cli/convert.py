@@ -12,12 +12,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-import numpy as np
 from pathlib import Path
 
-from ..core.model import Mechanism
 from ..errors import MechanismFileError
-from ..io.loader import loads
 from ._options import add_mechanism_file, read_mechanism
 
 __all__ = ["register", "run"]
@@ -37,7 +34,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..core.analysis import analyze
-    from ..io.writer import mechanism_to_yaml
+    from ..io.writer import mechanism_to_yaml, require_written_faithfully
 
     mechanism, notes = read_mechanism(args)
     description = " ".join([mechanism.description] + [f"Note: {n}." for n in notes]).strip()
@@ -46,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
         result = analyze(mechanism)
         expected = {"dof": result.dof, "pattern": result.pattern, "mobility": result.mobility}
     text = mechanism_to_yaml(mechanism, description=description, expected=expected)
-    _require_same_geometry(mechanism, text, args.output or "the converted file")
+    require_written_faithfully(mechanism, text, args.output or "the converted file")
     for note in notes:
         print(f"mobility: note: {note}", file=sys.stderr)
     if args.output:
@@ -58,42 +55,3 @@ def run(args: argparse.Namespace) -> int:
     else:
         sys.stdout.write(text)
     return 0
-
-
-CONVERSION_DRIFT = 1e-9
-"""Largest change of a joint's geometry that writing and reading back may make (relative to the
-mechanism's characteristic length for points and pitches, absolute for unit directions): the
-written numbers keep many more digits than that, so only numbers the writer cannot hold trip it."""
-
-
-def _require_same_geometry(mechanism: Mechanism, text: str, where: str) -> None:
-    """Read ``text`` back and refuse, in one line, a file whose joints are not ``mechanism``'s.
-
-    The writer keeps a fixed number of digits and writes numbers near zero as
-    0; a mechanism whose size is far below or above everyday sizes would
-    come back as another mechanism, with another answer.  That is refused
-    rather than written.
-
-    Raises
-    ------
-    MechanismFileError
-        Naming the first joint and field that would change.
-    """
-    from ..core.joint_screws import joint_screws
-
-    back = loads(text, file=where)
-    length = joint_screws(mechanism).normalisation.length
-    for i, (a, b) in enumerate(zip(mechanism.world_joints, back.world_joints)):
-        for name, size in (("point", length), ("pitch", length), ("axis", 1.0), ("normal", 1.0), ("axes", 1.0)):
-            x, y = getattr(a, name), getattr(b, name)
-            if x is None or (name == "point" and a.type == "P"):
-                continue
-            with np.errstate(over="ignore", invalid="ignore"):
-                drift = float(np.max(np.abs(np.subtract(x, y, dtype=float)))) / size if y is not None else np.inf
-            if not drift <= CONVERSION_DRIFT:
-                raise MechanismFileError(
-                    f"joints[{i}].{name}",
-                    f"joint {a.name!r} would not be written faithfully (it changes by {drift:.2g} of the mechanism's size "
-                    "once written with the writer's digits); the mechanism is too small or too large to convert",
-                    file=str(mechanism.source or where),
-                )

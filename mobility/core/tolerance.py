@@ -50,6 +50,7 @@ __all__ = [
     "NORM_TIE",
     "NEWTON_RCOND",
     "SOLVER_STOP",
+    "WRITE_DRIFT",
     "RankDecision",
     "decide_rank",
     "binary_scale",
@@ -155,6 +156,13 @@ ignored when its minimum-norm step is solved (``numpy.linalg.lstsq``'s
 ``rcond``): a safeguard of the linear solver a few digits above machine
 precision, not a rank decision (no count depends on it; whether the loops
 closed is judged by :attr:`~mobility.core.tolerance.Tolerance.closure`)."""
+
+WRITE_DRIFT = 1e-9
+"""Largest change of a joint's geometry that writing a mechanism file and
+reading it back may make (relative to the characteristic length for points
+and pitches, absolute for unit directions): the written numbers keep many more
+digits than that, so only numbers the writer cannot hold trip it
+(:func:`mobility.io.writer.require_written_faithfully`)."""
 
 SOLVER_STOP = 1e-15
 """``xtol``, ``ftol`` and ``gtol`` of every least-squares search (the inverse

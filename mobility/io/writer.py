@@ -34,9 +34,10 @@ import numpy as np
 import yaml
 
 from ..core.model import Mechanism
-from ..core.tolerance import characteristic_scale, clean_numbers
+from ..core.tolerance import WRITE_DRIFT, characteristic_scale, clean_numbers
+from ..errors import MechanismFileError
 
-__all__ = ["mechanism_to_yaml", "yaml_scalar"]
+__all__ = ["mechanism_to_yaml", "yaml_scalar", "require_written_faithfully"]
 
 _PLAIN = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.\-()+/ ]*[A-Za-z0-9_.)]|[A-Za-z_]")
 
@@ -102,8 +103,7 @@ def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: 
         lines.append(f"units: {{length: {yaml_scalar(mechanism.length_unit)}}}")
     lines += [f"ground: {yaml_scalar(mechanism.ground)}", f"end_effector: {yaml_scalar(mechanism.end_effector)}", "joints:"]
     joints = mechanism.world_joints
-    points = [j.point for j in joints if j.point is not None]
-    _, size = characteristic_scale(np.array(points, dtype=float).reshape(-1, 3), np.array([j.pitch for j in joints if j.pitch is not None], dtype=float))
+    size = _size(mechanism)
     for j in joints:
         fields = [f"name: {yaml_scalar(j.name)}", f"type: {j.type}", f"links: [{yaml_scalar(j.links[0])}, {yaml_scalar(j.links[1])}]"]
         if j.axis is not None:
@@ -122,3 +122,65 @@ def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: 
     if expected:
         lines.append("expected: {" + ", ".join(f"{k}: {yaml_scalar(v)}" for k, v in expected.items()) + "}")
     return "\n".join(lines) + "\n"
+
+
+def _size(mechanism: Mechanism) -> float:
+    """The characteristic length of ``mechanism``'s joint points and pitches (:func:`~mobility.core.tolerance.characteristic_scale`)."""
+    joints = mechanism.world_joints
+    points = [j.point for j in joints if j.point is not None]
+    pitches = [j.pitch for j in joints if j.pitch is not None]
+    return characteristic_scale(np.array(points, dtype=float).reshape(-1, 3), np.array(pitches, dtype=float))[1]
+
+
+def require_written_faithfully(mechanism: Mechanism, text: str, where: str) -> None:
+    """Read ``text`` (written by :func:`mechanism_to_yaml`) back and refuse it, in one line, unless its joints are ``mechanism``'s.
+
+    The writer writes round-off as 0; a mechanism whose numbers span more
+    than double precision can hold relative to its size would come back as
+    another mechanism, with another answer.  That is refused rather than
+    written.  A joint's geometry may change by :data:`~mobility.core.tolerance.WRITE_DRIFT`
+    (relative to the characteristic length for points and pitches, absolute
+    for unit directions).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    text : str
+    where : str
+        The file it is for, in a message.
+
+    Raises
+    ------
+    MechanismFileError
+        Naming the first joint and field that would change.
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> z = (0, 0, 1)
+    >>> m = Mechanism("arm", "g", "b", (Joint("A", "R", ("g", "a"), axis=z, point=(0, 0, 0)),
+    ...                                 Joint("B", "R", ("a", "b"), axis=z, point=(1, 1e-300, 0))))
+    >>> text = mechanism_to_yaml(m)
+    >>> require_written_faithfully(m, text, "arm.yaml")      # 1e-300 is round-off: written as 0, and that is faithful
+    >>> require_written_faithfully(m, text.replace("point: [1, 0, 0]", "point: [1, 0.001, 0]"), "arm.yaml")
+    Traceback (most recent call last):
+    mobility.errors.MechanismFileError: arm.yaml: joints[1].point: joint 'B' would not be written faithfully (it changes by 0.002 of the mechanism's size once written with the writer's digits); the mechanism is too small or too large to convert
+    """
+    from .loader import loads  # the reader, to read back what was written
+
+    back = loads(text, file=where)
+    length = _size(mechanism)
+    for i, (a, b) in enumerate(zip(mechanism.world_joints, back.world_joints)):
+        for name, size in (("point", length), ("pitch", length), ("axis", 1.0), ("normal", 1.0), ("axes", 1.0)):
+            x, y = getattr(a, name), getattr(b, name)
+            if x is None or (name == "point" and a.type == "P"):
+                continue
+            with np.errstate(over="ignore", invalid="ignore"):
+                drift = float(np.max(np.abs(np.subtract(x, y, dtype=float)))) / size if y is not None else np.inf
+            if not drift <= WRITE_DRIFT:
+                raise MechanismFileError(
+                    f"joints[{i}].{name}",
+                    f"joint {a.name!r} would not be written faithfully (it changes by {drift:.2g} of the mechanism's size "
+                    "once written with the writer's digits); the mechanism is too small or too large to convert",
+                    file=str(mechanism.source or where),
+                )
