@@ -254,3 +254,16 @@ def test_idle_freedoms_off_the_path_and_inside_loops():
         Joint("P1", "P", ("g", "a"), axis=x), Joint("P2", "P", ("a", "e"), axis=x), Joint("P3", "P", ("g", "e"), axis=x)))
     r = mobility.analyze(loop)
     assert (r.idle_dof, r.loops) == (1, 1) and idle_hint(r) == "joints inside the loops move against each other"
+
+
+@pytest.mark.parametrize("args, message", [
+    (["plot", "--graph", "--constraints", "mechanisms/four_bar.yaml", "-o", "{tmp}/g.png"], "mobility: --constraints draws on the mechanism, not on the --graph picture"),
+    (["plot", "mechanisms/four_bar.yaml", "-o", "{tmp}/no/such/dir/p.png"], "mobility: {tmp}/no/such/dir/p.png: --output: cannot write the file (No such file or directory)"),
+    (["synthesize", "2T1R", "--samples", "0"], "mobility: --samples must be at least 1 and --verify not negative, got 0 and 2"),
+    (["synthesize", "2T1R", "--verify", "-1"], "mobility: --samples must be at least 1 and --verify not negative, got 3 and -1"),
+])
+def test_plot_and_synthesize_refuse_a_bad_request_in_the_one_line_form(args, message, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(Path(__file__).resolve().parent.parent)
+    status = main([a.replace("{tmp}", str(tmp_path)) for a in args])
+    out, err = capsys.readouterr()
+    assert (status, out, err) == (2, "", message.replace("{tmp}", str(tmp_path)) + "\n")

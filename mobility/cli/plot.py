@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 import argparse
-import sys
 
 from ..core.analysis import analyze
-from ..errors import MechanismFileError, PlotFormatError
+from ..errors import MechanismFileError, PlotFormatError, RequestError
 from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
 
 ORDER = 30
@@ -49,8 +48,7 @@ def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     picture_path(args.output)  # before any work
     if args.graph and args.constraints:
-        print("mobility plot: error: --constraints draws on the mechanism, not on the --graph picture", file=sys.stderr)
-        return 2
+        raise RequestError("--constraints draws on the mechanism, not on the --graph picture")
     try:
         mechanism = load_mechanism(args)
     except MechanismFileError:
@@ -65,7 +63,6 @@ def run(args: argparse.Namespace) -> int:
     try:
         path = save_figure(fig, args.output, dpi=args.dpi)
     except OSError as exc:
-        print(f"mobility plot: error: cannot write {args.output}: {exc.strerror or exc}", file=sys.stderr)
-        return 2
+        raise MechanismFileError("--output", f"cannot write the file ({exc.strerror or exc})", file=args.output) from None
     print(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern})")
     return 0

@@ -12,9 +12,8 @@ input.
 from __future__ import annotations
 
 import argparse
-import sys
 
-from ..errors import SynthesisError
+from ..errors import RequestError, SynthesisError
 from ..report.synthesis import synthesis_json, synthesis_text, written_files_text
 from ..synthesis import PATTERNS, named_pattern, synthesize, write_pkm_files
 
@@ -53,8 +52,7 @@ def _vector(text: str, what: str) -> tuple[float, float, float]:
 
 def run(args: argparse.Namespace) -> int:
     if args.samples < 1 or args.verify < 0:
-        print("mobility synthesize: error: --samples must be at least 1 and --verify not negative", file=sys.stderr)
-        return 2
+        raise RequestError(f"--samples must be at least 1 and --verify not negative, got {args.samples} and {args.verify}")
     directions = None if args.directions is None else [_vector(d, "--directions") for d in args.directions.split(";")]
     pattern = named_pattern(args.pattern, point=_vector(args.point, "--point"), directions=directions)
     result = synthesize(pattern, joints=args.joints, samples=args.samples, verify_samples=args.verify, seed=args.seed)
