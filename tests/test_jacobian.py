@@ -269,4 +269,16 @@ def test_jacobian_report_is_what_the_cli_prints(metrom, capsys):
     assert lines[0] == metrom.name and "    C1  force   along [1, 0, 0]  through [0, 0, 0]" in lines
     assert json.loads(jacobian_json(jac)) == jac.to_dict() | {"condition": jac.condition}
     square_not = jacobian(metrom, actuated=["P0", "P1", "P2", "P3"])
-    assert "J is singular (not square)" in jacobian_text(square_not)
+    assert "J is singular (rank 5 < 6, 5 rows): the actuated joints do not control the platform at this pose" in jacobian_text(square_not)
+
+
+@pytest.mark.parametrize("inputs, verdict", [(["P1", "P2", "P3", "P4"], "redundant"), (["P1", "P2", "P3"], "valid"), (["P1", "P2"], "actuation-singular")])
+def test_the_4puu_jacobian_agrees_with_the_actuation_verdict_redundant_inputs_included(inputs, verdict):
+    m = mobility.load(MECHANISMS / "4puu.yaml")
+    jac = jacobian(m, actuated=inputs)
+    assert mobility.check_actuation(m, inputs).verdict == verdict  # the screw route, independent of the Jacobian
+    assert jac.matrix.shape == (len(inputs) + 3, 6)
+    assert jac.singular == (verdict == "actuation-singular")
+    assert jac.redundant == (1 if verdict == "redundant" else 0)
+    assert (jac.twist_map is not None) == (verdict == "valid")
+    assert jac.rank == (5 if verdict == "actuation-singular" else 6)

@@ -100,13 +100,18 @@ class JacobianResult:
         A basis of the platform's twist system (rows ``[ω; v]``).
     twist_map : ndarray or None, shape (6, a)
         Platform twist per unit actuated rate (first ``a`` columns of
-        ``J^-1``); ``None`` when ``J`` is not square or is singular.
+        ``J^-1``); ``None`` when ``J`` is singular or has more rows than 6
+        (redundant actuation: one rate alone is not a motion, the rates must
+        agree, ``J [w; v] = [rates; 0]``).
     rank : int
         Rank of ``J`` (normalised coordinates).
     condition : float
         Condition number of ``J`` in normalised coordinates (``inf`` if singular).
     singular : bool
-        ``J`` is not square and regular.
+        ``J`` has rank below 6: the actuated joints do not control the
+        platform at this pose (too few inputs, or an actuation singularity).
+        A ``J`` of rank 6 with more rows than 6 is regular: the platform is
+        controlled, with :attr:`redundant` inputs to spare.
     limb_twists : tuple of ndarray
         Per limb, the joint twists ``$_ij`` (6 x n_i), derivatives of its finite screw.
     transform : ndarray, shape (4, 4)
@@ -134,6 +139,11 @@ class JacobianResult:
     transform: np.ndarray = field(repr=False)
     finite_screw: np.ndarray | None = field(repr=False)
     length: float = 1.0
+
+    @property
+    def redundant(self) -> int:
+        """Inputs beyond those the platform needs (``rows of J - 6`` when ``J`` is regular, else 0)."""
+        return 0 if self.singular else self.matrix.shape[0] - 6
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form: screws with round-off shown as 0 part by part (a moment against a force times the length)."""
@@ -165,6 +175,7 @@ class JacobianResult:
             "rank": self.rank,
             "condition": self.condition if np.isfinite(self.condition) else None,
             "singular": self.singular,
+            "redundant": self.redundant,
             "finite_screw": None if self.finite_screw is None else clean_screw(self.finite_screw, length),
         }
 
@@ -282,12 +293,12 @@ def _jacobian_near_unit_size(model: ParallelModel, values: tuple[np.ndarray, ...
     sv = np.linalg.svd(j_n, compute_uv=False)
     rank = decide_rank(sv, tol).rank
     square = j_n.shape[0] == 6
-    singular = not (square and rank == 6)
+    singular = rank < 6
     constraints_w = norm.to_world(constraints_n).T
     constraints_w = np.array([unit_wrench(w, tol, length) for w in constraints_w]).reshape(-1, 6)
     act_w = np.array(wrenches_w).reshape(-1, 6)
     matrix = np.vstack([(SWAP @ act_w.T).T, (SWAP @ constraints_w.T).T]) if act_w.size or constraints_w.size else np.zeros((0, 6))
-    twist_map = None if singular else np.linalg.solve(matrix, np.eye(6)[:, : len(wrenches_w)])
+    twist_map = None if singular or not square else np.linalg.solve(matrix, np.eye(6)[:, : len(wrenches_w)])
     twists_w = norm.to_world(twists_n).T
     screw = model.platform(values)
     try:

@@ -76,9 +76,14 @@ def jacobian_text(result: JacobianResult, unit: str = "") -> str:
     out.append(f"    {'':<{width}}{head}")
     for lab, row in zip(labels, cells):
         out.append(f"    {lab:<{width}}" + "".join(f"{c:>{column}}" for c in row))
-    if result.singular or result.twist_map is None:
-        why = "not square" if result.matrix.shape[0] != 6 else f"rank {result.rank} < 6"
+    rows = result.matrix.shape[0]
+    if result.singular:
+        why = f"rank {result.rank} < 6" + (f", {rows} rows" if rows != 6 else "")
         out.append(f"  J is singular ({why}): the actuated joints do not control the platform at this pose")
+    elif result.twist_map is None:  # regular with more rows than 6: redundant actuation
+        out.append(f"  condition number (normalised coordinates): {fmt_number(result.condition)}")
+        out.append(f"  J has rank 6 with {rows} rows: the platform is controlled, redundantly ({result.redundant} input"
+                   f"{'s' if result.redundant > 1 else ''} more than needed); the actuated rates must agree, J [w; v] = [rates; 0]")
     else:
         out.append(f"  condition number (normalised coordinates): {fmt_number(result.condition)}")
         out.append("  platform twist [w; v] per unit actuated rate (columns of J^-1):")
