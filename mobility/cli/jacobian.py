@@ -2,8 +2,8 @@
 
 The limbs must be serial chains from the ground to the end effector; the
 actuated joints are those marked ``actuated: true`` in the file, or those named
-with ``--actuated``.  Exit status 0 when the Jacobian is square and regular, 1
-when it is singular (or not square), 2 on bad input.
+with ``--actuated``.  Exit status 0 when the Jacobian has rank 6 (the platform
+is controlled, redundantly or not), 1 when it is singular, 2 on bad input.
 """
 
 from __future__ import annotations
