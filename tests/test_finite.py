@@ -491,3 +491,21 @@ def test_cli_analyze_finite_markdown(capsys):
 def test_finite_report_names_the_obstruction():
     text = finite_report(finite_mobility(flat_four_bar()))
     assert "verdict: cannot-move" in text and "second order" in text and "obstructed" in text
+
+
+def test_a_pose_where_only_the_pattern_is_special_says_so():
+    # Two R-R-S limbs tied by an S-S bridge: 1T2R at this pose, 3R at every pose nearby (same DOF 3, mobility 4).
+    z, x, y = (0, 0, 1), (1, 0, 0), (0, 1, 0)
+    m = Mechanism("R-R-S pair with an S-S bridge", "ground", "ee", (
+        Joint("A1", "R", ("ground", "a1"), axis=z, point=(0, 0, 0)), Joint("A2", "R", ("a1", "a2"), axis=x, point=(0, 100, 0)),
+        Joint("A3", "S", ("a2", "ee"), point=(0, 100, 200)),
+        Joint("B1", "R", ("ground", "b1"), axis=z, point=(300, 0, 0)), Joint("B2", "R", ("b1", "b2"), axis=y, point=(300, 100, 0)),
+        Joint("B3", "S", ("b2", "ee"), point=(300, 100, 200)),
+        Joint("X1", "S", ("a2", "bridge"), point=(0, 150, 100)), Joint("X2", "S", ("bridge", "b2"), point=(300, 50, 120)),
+    ))
+    f = finite_mobility(m)
+    assert (f.instantaneous_dof, f.instantaneous_pattern, f.instantaneous_mobility) == (3, "1T2R", 4)
+    assert (f.verdict, f.full_cycle_dof, f.full_cycle_pattern, f.full_cycle_mobility) == ("full-cycle", 3, "3R", 4)
+    assert "but not the pattern: 3R at nearby poses, 1T2R at this one" in f.explanation
+    # the nearby pattern, by the screw route at a sampled pose (a second route to the same answer)
+    assert {mobility.analyze(p).pattern for p in sample_poses(m, 3, step=0.05)} == {"3R"}

@@ -1,7 +1,9 @@
 """The verdict: what the branches found say about the instantaneous answer, in one word and one paragraph.
 
 * ``full-cycle``: one branch with every instantaneous freedom (also a pose
-  with no instantaneous freedom: nothing to follow);
+  with no instantaneous freedom: nothing to follow); when the end effector's
+  pattern differs at nearby poses, the explanation says so (a pattern
+  singularity at this pose);
 * ``instantaneous-only``: one branch, of lower dimension or end-effector DOF;
 * ``cannot-move``: no direction moves;
 * ``bifurcation``: two or more branches meet (a change point).
@@ -134,8 +136,14 @@ def _verdict_text(instant: Result, k: int, branches: list[Branch], probes: tuple
             f"The {k} first-order motion(s) of the screw route are the union of their tangents; {numbers}. "
             f"No single motion has all {k} freedoms: each branch has at most {top.dimension}."
         )
-    if top.dimension == k and top.dof == instant.dof:
+    if top.dimension == k and top.dof == instant.dof and top.pattern == instant.pattern:
         return "full-cycle", f"Every first-order motion is a finite one: {numbers}; {summary}. The instantaneous answer holds for finite motion."
+    if top.dimension == k and top.dof == instant.dof:
+        return "full-cycle", (
+            f"Every first-order motion is a finite one ({numbers}; {summary}): the DOF {instant.dof} and the mobility {k} hold "
+            f"for finite motion, but not the pattern: {top.pattern} at nearby poses, {instant.pattern} at this one, which is "
+            "special for the kind of the end effector's freedoms (a pattern singularity), not for their number."
+        )
     if top.dimension == k and top.dof > instant.dof:
         return "full-cycle", (
             f"Every first-order motion is a finite one ({numbers}; {summary}), and the end effector has more DOF at nearby "
