@@ -268,6 +268,22 @@ def test_weld_merges_bodies_and_locks_the_joint_between_them():
     assert_agrees_with_mujoco(robot, *mujoco_compile(text))
 
 
+
+def test_a_free_joint_held_by_a_weld_is_left_out_with_a_note_even_when_floating():
+    text = """
+<mujoco model="welded box">
+  <worldbody>
+    <body name="arm"><joint name="hinge" type="hinge" axis="0 0 1"/><geom type="capsule" fromto="0 0 0 1 0 0" size="0.05"/></body>
+    <body name="box" pos="2 0 0"><freejoint name="float"/><geom type="box" size="0.1 0.1 0.1"/></body>
+  </worldbody>
+  <equality><weld name="hold" body1="box" body2="world"/></equality>
+</mujoco>"""
+    robot = read_robot(_write(text), floating=True, end_effector="arm")
+    assert "joint float cannot move: welds hold box to world; left out" in robot.notes
+    assert [j.name for j in robot.mechanism.joints] == ["hinge"]
+    route = assert_agrees_with_mujoco(robot, *mujoco_compile(text), floating=True)
+    assert route.mobility == 1
+
 FREE_PENDULUM = """
 <mujoco model="free pendulum">
   <worldbody>

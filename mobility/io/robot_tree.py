@@ -301,7 +301,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     parents = {b.name: b.parent for b in tree.bodies}
     for body, chain in by_body.items():
         start, end = link(parents[body]), link(body)
-        if len(chain) == 1 and start == end and chain[0].kind != "free":
+        if len(chain) == 1 and start == end:
             notes.append(f"joint {chain[0].name}{_at(chain[0].line)} cannot move: welds hold {body} to {start}; left out")
             continue
         here = start
