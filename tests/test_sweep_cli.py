@@ -5,6 +5,8 @@ from __future__ import annotations
 import csv
 import io
 import json
+import sys
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -13,13 +15,16 @@ import mobility
 from mobility.cli import main
 from mobility.errors import RequestError
 from mobility.report.sweep import sweep_csv, sweep_json, sweep_summary
-from mobility.report.sweep_plot import MAX_SLICES, plot_sweep
+from mobility.report.sweep_plot import MAX_SLICES, choose_slices, plot_sweep
+from mobility.sweeps import plan_grid
 
 from conftest import MECHANISMS
 
 PARALLELOGRAM = str(MECHANISMS / "parallelogram.yaml")
 THREE_PRS = str(MECHANISMS / "3prs.yaml")
 FIVE_BAR = str(MECHANISMS / "planar_5r.yaml")
+FOUR_BAR = str(MECHANISMS / "four_bar.yaml")
+TSAI = str(MECHANISMS / "3upu_singular.yaml")
 
 
 def run(capsys, *args):
@@ -58,6 +63,19 @@ def test_unassembled_rows_have_empty_answers():
     missing = [row for row in rows if row["assembled"] == "false"]
     assert len(rows) == 25 and missing and len(missing) == int((~r.assembled).sum())
     assert all(row["dof"] == row["pattern"] == row["verdict"] == "" for row in missing)
+    answers = ("dof", "pattern", "mobility", "smallest_kept", "largest_dropped", "near_singular", "inexact", "verdict", "conditioning", "actuation_margin")
+    assert all(row[name] == "" for row in missing for name in answers)
+    assert {row["near_singular"] for row in rows if row["assembled"] == "true"} == {"false"}
+
+
+def test_unassembled_poses_have_no_warnings_in_csv_or_json():
+    r = mobility.sweep(mobility.load(FOUR_BAR), ["A=30:40:3"])  # the crank reaches 34 deg: 35 and 40 are not assembled
+    assert r.assembled.tolist() == [True, False, False]
+    rows = list(csv.DictReader(io.StringIO(sweep_csv(r))))
+    assert [(row["near_singular"], row["inexact"]) for row in rows] == [("false", "false"), ("", ""), ("", "")]
+    columns = json.loads(sweep_json(r))["columns"]
+    assert columns["near_singular"] == columns["inexact"] == [False, None, None]
+    assert r.row(1)["near_singular"] is None and r.row(1)["inexact"] is None and r.row(0)["near_singular"] is False
 
 
 def test_json_and_output_file(capsys, tmp_path):
@@ -68,6 +86,7 @@ def test_json_and_output_file(capsys, tmp_path):
     assert data["shape"] == [13] and data["assembled"] == 13
     assert [p["values"] for p in data["singular_poses"]] == [{"O1": 120.0}, {"O1": 300.0}]
     assert data["regular"] == {"dof": 1, "pattern": "1T", "mobility": 1, "verdict": None}
+    assert [p["verdict"] for p in data["singular_poses"]] == [None, None]  # no actuated joints: null, as in "regular"
     assert data["columns"]["mobility"][4] == 2 and data["columns"]["O1"][4] == 120.0
     assert data == json.loads(sweep_json(mobility.sweep(mobility.load(PARALLELOGRAM), ["O1=0:360:13"])))
 
@@ -100,6 +119,88 @@ def test_pictures_mark_what_the_sweep_found():
         plot_sweep(mobility.sweep(mobility.load(THREE_PRS), ["P1=0:1:1", "P2=0:1:1", "P3=0:1:1", "R1=0:1:1"]))
 
 
+def test_singular_poses_of_the_five_bar_have_their_verdict_in_json():
+    data = json.loads(sweep_json(mobility.sweep(mobility.load(FIVE_BAR), ["A1=-10:30:9", "P=60:100:9"])))
+    assert data["singular_poses"] and {p["verdict"] for p in data["singular_poses"]} == {"actuation-singular"}
+
+
+def test_slices_of_a_grid_with_a_singular_pose_show_it_and_the_files_pose(capsys, tmp_path):
+    r = mobility.sweep(mobility.load(TSAI), ["P1=-4:4:5", "P2=-4:4:5", "P3=-3:3:7"])
+    assert [p.values for p in r.singular] == [(0.0, 0.0, 0.0)]
+    fig = plot_sweep(r)
+    shown = [ax for ax in fig.axes if _gids_of(ax, "mobility:sweep:map")]
+    assert len(shown) == MAX_SLICES
+    titles = [ax.get_title() for ax in shown]
+    assert "P3 = 0 mm (file's pose, 1 singular)" in titles  # the file's pose, dropped before
+    assert titles == ["P3 = -3 mm", "P3 = -2 mm", "P3 = -1 mm", "P3 = 0 mm (file's pose, 1 singular)", "P3 = 2 mm", "P3 = 3 mm"]
+    assert "6 of 7 values of P3: the file's pose; the 1 value holding singular poses; then values spread over the range" in fig.get_suptitle()
+    markers = [a for ax in shown for a in ax.get_children() if a.get_gid() == "mobility:sweep:singular"]
+    assert len(markers) == 1 and np.allclose(markers[0].get_offsets(), [[0.0, 0.0]])
+    # the command that crashed on a 3-D grid with a singular pose
+    target = tmp_path / "slices.png"
+    status, out, err = run(capsys, "sweep", TSAI, "--vary", "P1=-4:4:5", "--vary", "P2=-4:4:5", "--vary", "P3=-8:8:9", "--plot", target, "--no-progress")
+    assert status == 0 and err == "" and f"wrote {target}: slices" in out
+    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _gids_of(ax, gid: str) -> int:
+    return sum(1 for artist in ax.get_children() if artist.get_gid() == gid)
+
+
+def _slice_request(singular_slices: list[int], third: str = "P3=-9:9:19") -> SimpleNamespace:
+    """What choose_slices reads of a sweep: its axes, shape and singular poses (one on each listed slice)."""
+    plan = plan_grid(mobility.load(THREE_PRS), ["P1=0:1:2", "P2=0:1:2", third])
+    shape = plan.shape
+    singular = [SimpleNamespace(index=int(np.ravel_multi_index((1, 0, k), shape))) for k in singular_slices]
+    return SimpleNamespace(axes=plan.axes, shape=shape, singular=tuple(singular))
+
+
+def test_slices_are_chosen_file_pose_first_then_singular_then_spread():
+    slices, note = choose_slices(_slice_request([2, 15]))
+    assert slices == (0, 2, 9, 11, 15, 18)
+    assert note.startswith("6 of 19 values of P3: the file's pose; the 2 values holding singular poses; then")
+    many = [0, 1, 2, 3, 4, 14, 15, 16, 17, 18]  # more singular slices than room: spread over them
+    slices, note = choose_slices(_slice_request(many))
+    assert slices == (0, 2, 4, 9, 16, 18)
+    assert "5 of the 10 values holding singular poses" in note and "spread" not in note
+    slices, note = choose_slices(_slice_request([], "P3=1:19:10"))  # the file's pose is not a value: spread alone
+    assert slices == (0, 2, 4, 5, 7, 9) and note == "6 of 10 values of P3: values spread over the range"
+    assert choose_slices(_slice_request([1], "P3=-2:2:5")) == ((0, 1, 2, 3, 4), "all 5 values of P3")
+
+
+def test_pictures_say_what_grey_means_and_count_freedoms_in_whole_numbers():
+    four = plot_sweep(mobility.sweep(mobility.load(FOUR_BAR), ["A=0:60:13"]))  # beyond 34 deg: not assembled
+    legend = [t.get_text() for t in four.axes[0].get_legend().get_texts()]
+    assert any("not assembled" in t for t in legend)
+    for name, vary in ((FOUR_BAR, "A=0:60:13"), (THREE_PRS, "P1=-30:30:7"), (PARALLELOGRAM, "O1=0:360:37")):
+        r = mobility.sweep(mobility.load(name), [vary])
+        ticks = plot_sweep(r).axes[0].yaxis.get_majorticklocs()
+        low, high = int(r.dof[r.assembled].min()), int(r.mobility[r.assembled].max())
+        assert all(float(t).is_integer() for t in ticks) and {low, high} <= {int(t) for t in ticks}
+    grey = plot_sweep(mobility.sweep(mobility.load(FIVE_BAR), ["A1=-40:40:5", "A2=-40:40:5"]))
+    assert _gids(grey, "mobility:sweep:unassembled") == 1
+    assert any("not assembled" in t.get_text() for ax in grey.axes if ax.get_legend() for t in ax.get_legend().get_texts())
+
+
+def test_a_picture_that_cannot_be_drawn_is_refused_before_the_sweep(capsys, monkeypatch, tmp_path):
+    import mobility.cli.sweep as command
+
+    def no_sweep(*args, **kwargs):
+        raise AssertionError("the sweep ran")
+
+    monkeypatch.setattr(command, "sweep", no_sweep)
+    target = tmp_path / "four.png"
+    four = [x for v in ("O1=0:1:1", "A1=0:1:1", "A2=0:1:1", "O2=0:1:1") for x in ("--vary", v)]
+    status, out, err = run(capsys, "sweep", PARALLELOGRAM, *four, "--plot", target)
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert err == f"mobility: --plot {target}: a sweep of 4 coordinates cannot be drawn; plots show 1 (curve), 2 (map) or 3 (slices)\n"
+    monkeypatch.setitem(sys.modules, "matplotlib", None)  # matplotlib not installed
+    status, out, err = run(capsys, "sweep", PARALLELOGRAM, "--vary", "O1=0:360:5", "--plot", target)
+    assert status == 2 and out == "" and err.count("\n") == 1
+    assert "plotting needs matplotlib, which is not installed" in err and "pip install 'mobility[plot]'" in err
+    assert not target.exists()
+
+
 def test_progress_bar_on_request(capsys):
     status, _, err = run(capsys, "sweep", PARALLELOGRAM, "--vary", "O1=0:90:4", "--progress")
     assert status == 0 and "closing loops" in err and "analysing" in err
@@ -113,7 +214,8 @@ def test_progress_bar_on_request(capsys):
         (["--vary", "O1=0:1"], "expected NAME=START:STOP:COUNT"),
         (["--vary", "O1=0:1:2", "--vary", "A1=0:1:2", "--max-poses", "3"], "the grid has 4 poses, more than --max-poses 3"),
         (["--vary", "O1=0:1:2", "--plot", "out.gif"], "--plot out.gif: cannot tell the picture type"),
-        (["--vary", "O1=0:1:2", "--inputs", "Z9"], "unknown joint 'Z9'"),
+        (["--vary", "O1=0:1:2", "--inputs", "Z9"], "--inputs Z9: unknown joint 'Z9'; expected one of: O1, A1, A2, O2"),
+        (["--vary", "O1=0:1:2", "--inputs", "O1, Z9"], "--inputs O1, Z9: unknown joint 'Z9'"),
         (["--vary", "O1=0:1:2", "--workers", "0"], "--workers must be at least 1"),
         (["--vary", "O1=0:1:2", "--tol", "0.5"], "--tol must lie in"),
     ],

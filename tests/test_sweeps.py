@@ -264,6 +264,88 @@ def test_a_serial_arm_without_loops_is_swept_too():
         assert_pose_matches_one_pose_routes(r, i)
 
 
+# --- angles that wrap ---------------------------------------------------------------------------------
+
+
+def four_bar_reach(m: mobility.Mechanism):
+    """Whether the four-bar assembles at a crank displacement (degrees), from its link lengths alone.
+
+    The crank AB turns about A; the dyad B-C-D closes when the distance BD lies between the difference and the
+    sum of the coupler BC and the rocker CD.
+    """
+    a, b, c, d = (np.array(m.joint(name).point[:2], dtype=float) for name in "ABCD")
+    crank, coupler, rocker, ground = (np.linalg.norm(u - v) for u, v in ((b, a), (c, b), (d, c), (d, a)))
+    start = math.atan2(*(b - a)[::-1]) - math.atan2(*(d - a)[::-1])  # the crank's angle from AD in the file
+
+    def reachable(displacement: float) -> bool:
+        theta = start + math.radians(displacement)
+        bd = math.sqrt(crank**2 + ground**2 - 2.0 * crank * ground * math.cos(theta))
+        return abs(coupler - rocker) < bd < coupler + rocker
+
+    return reachable
+
+
+@pytest.mark.parametrize("vary", ["A=0:360:361", "A=-180:180:361", "A=-360:360:721", "A=0:359:360", "A=100:460:73", "A=200:350:16"])
+def test_a_crank_that_cannot_turn_fully_is_assembled_wherever_it_reaches(vary):
+    m = load("four_bar")  # crank at 63.4 deg from the ground line; it reaches -160.8 .. +34.0 deg from there
+    r = sweep(m, [vary])
+    reachable = four_bar_reach(m)
+    assert r.assembled.tolist() == [reachable(v) for v in r.values[:, 0]]
+    for i in random_rows(r, 3):
+        assert_pose_matches_one_pose_routes(r, i)
+
+
+def test_angles_a_turn_apart_are_one_joint_state():
+    m = load("four_bar")
+    up, centred = sweep(m, ["A=0:360:361"]), sweep(m, ["A=-180:180:361"])
+    turns = [{float(v) % 360.0 for v in r.values[r.assembled, 0]} for r in (up, centred)]
+    assert turns[0] == turns[1] and len(turns[0]) == 194  # -160 .. 33
+    assert up.assembled[[0, 199, 200, 360]].tolist() == [True, False, True, True]
+    crank = kinematics(m).variables_of("A").start
+    for a, b in ((300, 120), (360, 180), (200, 20)):  # 300 deg is -60 deg, 360 is 0, 200 is -160
+        assert up.q[a, crank] - centred.q[b, crank] == pytest.approx(2.0 * math.pi, abs=1e-12)
+        for joint in "BC":
+            assert np.allclose(up.mechanism_at(a).joint(joint).point, centred.mechanism_at(b).joint(joint).point, atol=1e-9)
+    assert up.counts() == {(1, "1R", 1): 195} and up.residual[up.assembled].max() <= up.tolerance.closure
+
+
+def test_a_map_of_two_full_turns_assembles_every_pose_the_five_bar_reaches():
+    m = load("planar_5r")
+    a1, b1, p, b2, a2 = (np.array(m.joint(name).point[:2], dtype=float) for name in ("A1", "B1", "P", "B2", "A2"))
+    reach = np.linalg.norm(p - b1) + np.linalg.norm(b2 - p)  # the two distal links, stretched
+
+    def crank_end(centre, end, displacement):  # A2 joins proximal2 to the ground: its angle turns the other way
+        angle = math.atan2(*(end - centre)[::-1]) + displacement
+        return centre + np.linalg.norm(end - centre) * np.array([math.cos(angle), math.sin(angle)])
+
+    r = sweep(m, ["A1=0:360:19", "A2=0:360:19"])
+    expected = [np.linalg.norm(crank_end(a2, b2, -math.radians(v2)) - crank_end(a1, b1, math.radians(v1))) < reach for v1, v2 in r.values]
+    assert r.assembled.tolist() == expected and sum(expected) == 316
+    for i in random_rows(r, 4):
+        assert_pose_matches_one_pose_routes(r, i)
+
+
+def test_only_the_angles_of_r_and_c_joints_wrap():
+    from mobility.sweeps.walks import axis_walk
+
+    z, x = (0.0, 0.0, 1.0), (1.0, 0.0, 0.0)
+    m = mobility.Mechanism("serial", "g", "e", (
+        mobility.Joint("R1", "R", ("g", "a"), axis=z, point=(0.0, 0.0, 0.0)),
+        mobility.Joint("P1", "P", ("a", "b"), axis=x),
+        mobility.Joint("H1", "H", ("b", "c"), axis=z, point=(1.0, 0.0, 0.0), pitch=2.0),
+        mobility.Joint("C1", "C", ("c", "e"), axis=x, point=(0.0, 1.0, 0.0)),
+    ))
+    plan = plan_grid(m, ["R1=0:360:3", "P1=0:360:3", "H1=0:360:3", "C1=0:360:3", "rz=0:360:3"])
+    assert [a.period for a in plan.axes] == [360.0, 0.0, 0.0, 360.0, 0.0]
+    assert [axis_walk(a).closed for a in plan.axes] == [True, False, False, True, False]
+    screw = sweep(m, ["H1=0:360:3"], actuated=[])  # a turn of the screw moves its nut by the pitch times 2 pi
+    moved = np.subtract(screw.mechanism_at(2).joint("C1").point, screw.mechanism_at(0).joint("C1").point)
+    assert np.allclose(moved, [0.0, 0.0, 2.0 * 2.0 * math.pi], atol=1e-9)
+    spin = sweep(m, ["C1=0:360:3"], actuated=[])  # a turn of a C joint is the same joint state: one pose
+    assert spin.q[2, spin.axes[0].variable] - spin.q[0, spin.axes[0].variable] == pytest.approx(2.0 * math.pi)
+    assert np.allclose(np.delete(spin.q[2], spin.axes[0].variable), np.delete(spin.q[0], spin.axes[0].variable))
+
+
 # --- scale-out, progress -----------------------------------------------------------------------------
 
 

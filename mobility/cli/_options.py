@@ -33,6 +33,7 @@ __all__ = [
     "is_robot_description",
     "read_mechanism",
     "load_mechanism",
+    "names_from",
 ]
 
 
@@ -159,3 +160,14 @@ def load_mechanism(args: argparse.Namespace, path: str | None = None) -> Mechani
     for note in notes:
         print(f"mobility: note: {note}", file=sys.stderr)
     return mechanism
+
+
+def names_from(text: str | None) -> list[str] | None:
+    """The names of a comma-separated option (``--inputs P1, P2``), ``None`` when the option was not given.
+
+    Examples
+    --------
+    >>> names_from("P1, P2,,P3"), names_from(None)
+    (['P1', 'P2', 'P3'], None)
+    """
+    return None if text is None else [n.strip() for n in text.split(",") if n.strip()]

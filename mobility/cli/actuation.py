@@ -35,6 +35,7 @@ from ._options import (
     add_tolerance_option,
     is_robot_description,
     load_mechanism,
+    names_from,
     read_mechanism,
     robot_options_from,
     sampled_poses,
@@ -70,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError("--threshold must lie between 0 and 1")
     if args.samples < 0 or (args.k is not None and args.k < 0):
         raise RequestError("--samples and --k must not be negative")
-    names = [n.strip() for n in args.inputs.split(",") if n.strip()] if args.inputs is not None else None
+    names = names_from(args.inputs)
     if not is_robot_description(args.file):  # a YAML document: a mechanism or a flexure
         text = read_text(args.file)
         data, _ = parse_yaml(text, args.file)

@@ -13,7 +13,7 @@ import argparse
 from ..errors import MechanismError, MechanismFileError
 from ..jacobians import jacobian
 from ..report.jacobian import jacobian_json, jacobian_text
-from ._options import MECHANISM_FILE_HELP, add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
+from ._options import MECHANISM_FILE_HELP, add_mechanism_file, add_tolerance_option, load_mechanism, names_from, tolerance_from
 
 ORDER = 45
 
@@ -35,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     mechanism = load_mechanism(args)
-    names = None if args.actuated is None else [n.strip() for n in args.actuated.split(",") if n.strip()]
+    names = names_from(args.actuated)
     try:
         result = jacobian(mechanism, actuated=names, tol=tol)
     except MechanismError as exc:

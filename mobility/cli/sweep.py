@@ -14,12 +14,13 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..errors import RequestError
+from ..errors import MechanismError, RequestError
 from ..report.plotting import picture_path, save_figure
 from ..report.sweep import sweep_csv, sweep_json, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, DEFAULT_MAX_POSES, sweep
+from ..sweeps.batch_actuation import actuated_inputs
 from ..io.limits import require_size
-from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
+from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, names_from, tolerance_from
 
 ORDER = 35
 
@@ -75,8 +76,11 @@ def _progress_wanted(choice: bool | None) -> bool:
 
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
-    if args.plot is not None:
-        picture_path(args.plot, "--plot ")  # before any work
+    if args.plot is not None:  # before any work: a picture that cannot be drawn is refused now, not after the sweep
+        from ..report.sweep_plot import require_drawable
+
+        picture_path(args.plot, "--plot ")
+        require_drawable(len(args.vary), f"--plot {args.plot}: ")
     if args.max_poses < 1:
         raise RequestError(f"--max-poses must be at least 1, got {args.max_poses}")
     if args.chunk_size < 1:
@@ -85,7 +89,12 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError(f"--workers must be at least 1, got {args.workers}")
     mechanism = load_mechanism(args)
     require_size(mechanism, "max_moving_joints", "a sweep", args.file)
-    inputs = None if args.inputs is None else [n.strip() for n in args.inputs.split(",") if n.strip()]
+    inputs = names_from(args.inputs)
+    if inputs is not None:
+        try:
+            actuated_inputs(mechanism, inputs)
+        except MechanismError as exc:
+            raise RequestError(f"--inputs {args.inputs}: {exc.message}") from None
     result = sweep(
         mechanism,
         args.vary,

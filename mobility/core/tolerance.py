@@ -59,6 +59,7 @@ __all__ = [
     "RankDecisions",
     "decide_ranks",
     "characteristic_scales",
+    "SAME_GRID_VALUE",
 ]
 
 
@@ -102,6 +103,16 @@ class Tolerance:
 
 
 DEFAULT_TOLERANCE = Tolerance()
+
+SAME_GRID_VALUE = 1e-9
+"""Two values of a sweep's axis that differ by less than this fraction of its step are one value.
+
+Evenly spaced values carry round-off (``linspace``), and so does an angle
+reduced by whole turns: ``-180`` and ``180`` degrees, or ``0`` and ``360``,
+are one joint state of an R joint.  Used for ties (the value nearest the
+file's pose) and for angles congruent modulo a turn
+(:mod:`mobility.sweeps.walks`).
+"""
 
 
 def require_tolerance(value: object, caller: str) -> Tolerance:

@@ -112,8 +112,12 @@ def _answer(c: tuple[int, str, int, str] | None) -> str:
     return f"DOF {dof} {pattern}, mobility {mobility}" + (f", {verdict}" if verdict else "")
 
 
+ANSWER_COLUMNS = ("dof", "pattern", "mobility", "smallest_kept", "largest_dropped", "near_singular", "inexact", "verdict", "conditioning", "actuation_margin")
+"""Columns that are an answer of the analysis: empty cells where a pose is not assembled."""
+
+
 def _cell(name: str, value: Any, assembled: bool, scale: float = 1.0) -> str:
-    if name in ("dof", "mobility", "pattern", "verdict", "smallest_kept", "largest_dropped", "conditioning", "actuation_margin") and not assembled:
+    if name in ANSWER_COLUMNS and not assembled:
         return ""
     if isinstance(value, (bool, np.bool_)):
         return "true" if value else "false"

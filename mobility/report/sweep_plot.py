@@ -34,14 +34,17 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..core.tolerance import SAME_GRID_VALUE
 from ..errors import RequestError
-from ..sweeps import SweepResult
+from ..sweeps import SweepAxis, SweepResult
+from ..sweeps.walks import anchor_of, whole_turns
 from .plotting.backend import new_figure, require_matplotlib
+from .text import fmt_number
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
-__all__ = ["plot_sweep", "colour_of", "MAX_SLICES"]
+__all__ = ["plot_sweep", "require_drawable", "colour_of", "choose_slices", "MAX_SLICES"]
 
 MAX_SLICES = 6
 """Slices drawn of a 3-D grid."""
@@ -72,6 +75,35 @@ def _answers(result: SweepResult) -> tuple[np.ndarray, list[str]]:
     return codes, labels
 
 
+def require_drawable(coordinates: int, what: str = "") -> None:
+    """Refuse a picture that cannot be drawn, before the sweep is computed.
+
+    Parameters
+    ----------
+    coordinates : int
+        The number of varied coordinates.
+    what : str
+        Put in front of the message (``"--plot out.png: "``).
+
+    Raises
+    ------
+    RequestError
+        For more than three coordinates.
+    PlottingUnavailableError
+        When matplotlib is not installed.
+
+    Examples
+    --------
+    >>> require_drawable(4, "--plot out.png: ")
+    Traceback (most recent call last):
+    ...
+    mobility.errors.RequestError: --plot out.png: a sweep of 4 coordinates cannot be drawn; plots show 1 (curve), 2 (map) or 3 (slices)
+    """
+    if coordinates > 3:
+        raise RequestError(f"{what}a sweep of {coordinates} coordinates cannot be drawn; plots show 1 (curve), 2 (map) or 3 (slices)")
+    require_matplotlib()
+
+
 def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
     """A picture of ``result``: a curve, a map or slices (see the module docstring).
 
@@ -83,9 +115,7 @@ def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
         When matplotlib is not installed.
     """
     k = len(result.axes)
-    if k > 3:
-        raise RequestError(f"a sweep of {k} coordinates cannot be drawn; plots show 1 (curve), 2 (map) or 3 (slices)")
-    require_matplotlib()
+    require_drawable(k)
     title = result.name if title is None else title
     if k == 1:
         return _curve(result, title)
@@ -99,7 +129,20 @@ def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
     return _slices(result, title)
 
 
+UNASSEMBLED = "0.85"
+"""The grey of poses not assembled (curves: shaded spans; maps: cells)."""
+
+
+def _unassembled_patch(label: str = "not assembled (grey)") -> Any:
+    """A legend entry for the grey of poses not assembled."""
+    from matplotlib.patches import Patch
+
+    return Patch(facecolor=UNASSEMBLED, edgecolor="0.6", label=label)
+
+
 def _curve(result: SweepResult, title: str) -> "Figure":
+    from matplotlib.ticker import MaxNLocator
+
     axis = result.axes[0]
     x = axis.values
     fig = new_figure((8.0, 6.0), layout="constrained")
@@ -110,7 +153,10 @@ def _curve(result: SweepResult, title: str) -> "Figure":
     top.step(x, dof, where="mid", color="tab:blue", label="end-effector DOF", gid="mobility:sweep:curve")
     top.step(x, mob, where="mid", color="tab:orange", linestyle="--", label="mobility", gid="mobility:sweep:curve")
     top.set_ylabel("freedoms")
-    top.yaxis.get_major_locator().set_params(integer=True)
+    top.yaxis.set_major_locator(MaxNLocator(integer=True))  # freedoms are whole numbers, also when the curve is flat
+    counts = np.concatenate([result.dof[ok], result.mobility[ok]])
+    low, high = (int(counts.min()), int(counts.max())) if counts.size else (0, 1)
+    top.set_ylim(max(low - 1, 0) - 0.25, high + 1.25)
     top.set_title(title)
     with np.errstate(divide="ignore"):
         bottom.semilogy(x, np.where(ok, result.smallest_kept, np.nan), color="tab:green", label="rank margin (smallest kept)", gid="mobility:sweep:curve")
@@ -121,13 +167,16 @@ def _curve(result: SweepResult, title: str) -> "Figure":
     step = (x[1] - x[0]) if len(x) > 1 else 1.0
     for panel in (top, bottom):
         for i in np.flatnonzero(~ok):
-            panel.axvspan(x[i] - step / 2, x[i] + step / 2, color="0.85", lw=0, gid="mobility:sweep:unassembled")
+            panel.axvspan(x[i] - step / 2, x[i] + step / 2, color=UNASSEMBLED, lw=0, gid="mobility:sweep:unassembled")
     for p in result.singular:
         top.axvline(p.values[0], color="tab:red", lw=1.0, gid="mobility:sweep:singular")
         bottom.axvline(p.values[0], color="tab:red", lw=1.0)
     if result.singular:
         top.plot([], [], color="tab:red", label="singular pose")
-    top.legend(loc="best", fontsize="small")
+    handles, _ = top.get_legend_handles_labels()
+    if not ok.all():
+        handles.append(_unassembled_patch("not assembled (grey spans)"))
+    top.legend(handles=handles, loc="best", fontsize="small")
     bottom.legend(loc="best", fontsize="small")
     return fig
 
@@ -142,11 +191,13 @@ def _map(ax: Any, result: SweepResult, index: np.ndarray, limits: tuple[float, f
     if limits is None:
         finite = z[np.isfinite(z)]
         limits = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
-    cmap = require_matplotlib().colormaps["viridis"].with_extremes(bad="0.8")
+    matplotlib = require_matplotlib()
+    cmap = matplotlib.colormaps["viridis"].with_extremes(bad=UNASSEMBLED)
     mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(z).T, shading="nearest", cmap=cmap, vmin=limits[0], vmax=limits[1], gid="mobility:sweep:map")
     missing = ~result.assembled[index]
     if missing.any():
-        ax.pcolormesh(x, y, np.ma.masked_where(~missing, np.ones(missing.shape)).T, shading="nearest", cmap="Greys", vmin=0, vmax=3, gid="mobility:sweep:unassembled")
+        grey = matplotlib.colors.ListedColormap([UNASSEMBLED])
+        ax.pcolormesh(x, y, np.ma.masked_where(~missing, np.ones(missing.shape)).T, shading="nearest", cmap=grey, vmin=0, vmax=1, gid="mobility:sweep:unassembled")
     code = codes[index].astype(float)
     present = np.unique(code[code >= 0])
     if present.size > 1 and len(x) > 1 and len(y) > 1:
@@ -160,34 +211,104 @@ def _map(ax: Any, result: SweepResult, index: np.ndarray, limits: tuple[float, f
         ax.scatter([], [], marker="s", color="none", edgecolor="0.3", label="regions (white outlines): " + "; ".join(labels[c] for c in present.astype(int)))
     ax.set_xlabel(a0.label)
     ax.set_ylabel(a1.label)
-    handles, names = ax.get_legend_handles_labels()
-    if names:
-        ax.legend(handles, names, loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize="x-small", ncol=1, frameon=False)
+    handles, _ = ax.get_legend_handles_labels()
+    if missing.any():
+        handles.append(_unassembled_patch())
+    if handles:
+        ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize="x-small", ncol=1, frameon=False)
     return mesh
+
+
+def _at_file_pose(axis: SweepAxis) -> int | None:
+    """The index of the axis's value at the file's pose (displacement 0, or whole turns of an angle that wraps), if it has one."""
+    k = anchor_of(axis)
+    value = axis.values[k]
+    step = abs(axis.stop - axis.start) / max(axis.count - 1, 1)
+    return k if abs(value - float(whole_turns(value, axis.period))) <= SAME_GRID_VALUE * step else None
+
+
+def _spread(candidates: list[int], chosen: list[int], count: int, size: int) -> list[int]:
+    """``count`` of ``candidates`` (indices ``0 .. size - 1``) nearest evenly spaced places, the places nearest those ``chosen`` already left out."""
+    places = np.linspace(0, size - 1, count + len(chosen)).tolist() if count > 0 else []
+    for i in chosen:
+        if places:
+            places.remove(min(places, key=lambda x: abs(x - i)))
+    picked: list[int] = []
+    left = list(candidates)
+    for place in places:
+        if not left:
+            break
+        best = min(left, key=lambda i: (abs(i - place), i))
+        picked.append(best)
+        left.remove(best)
+    return picked
+
+
+def choose_slices(result: SweepResult, most: int = MAX_SLICES) -> tuple[tuple[int, ...], str]:
+    """The values of the third coordinate drawn as slices, and a note saying which.
+
+    Preferred, in turn: the file's pose (when the third coordinate takes
+    it), the values holding singular poses (spread over them when there are
+    more than the room left), then values spread over the range.
+
+    Returns
+    -------
+    slices : tuple of int
+        Indices of the chosen values, in increasing order.
+    note : str
+        Which slices are shown, out of how many (for the figure's title).
+
+    Examples
+    --------
+    >>> import mobility
+    >>> r = mobility.sweep(mobility.load("mechanisms/3prs.yaml"), ["P1=0:1:2", "P2=0:1:2", "P3=-3:3:7"])
+    >>> choose_slices(r)
+    ((0, 1, 2, 3, 5, 6), "6 of 7 values of P3: the file's pose; then values spread over the range")
+    """
+    third = result.axes[2]
+    count = third.count
+    if count <= most:
+        return tuple(range(count)), f"all {count} values of {third.name}"
+    home = _at_file_pose(third)
+    chosen = [] if home is None else [home]
+    holding = sorted({int(np.unravel_index(p.index, result.shape)[2]) for p in result.singular})
+    left = [i for i in holding if i not in chosen]
+    room = most - len(chosen)
+    singular = [left[int(k)] for k in np.linspace(0, len(left) - 1, room).round()] if len(left) > room else left
+    chosen += singular
+    chosen += _spread([i for i in range(count) if i not in chosen], chosen, most - len(chosen), count)
+    parts = ["the file's pose"] if home is not None else []
+    if holding:
+        shown = sum(1 for i in holding if i in chosen)
+        plural = "s" if len(holding) != 1 else ""
+        parts.append(f"the {len(holding)} value{plural} holding singular poses" if shown == len(holding) else f"{shown} of the {len(holding)} values holding singular poses")
+    if len(chosen) > len(singular) + (home is not None):
+        parts.append("then values spread over the range" if parts else "values spread over the range")
+    return tuple(sorted(chosen)), f"{len(chosen)} of {count} values of {third.name}: " + "; ".join(parts)
 
 
 def _slices(result: SweepResult, title: str) -> "Figure":
     third = result.axes[2]
     grid = np.arange(result.size).reshape(result.shape)
-    on_singular = sorted({int(np.unravel_index(p.index, result.shape)[2]) for p in result.singular})
-    even = np.linspace(0, third.count - 1, min(third.count, MAX_SLICES)).round().astype(int).tolist()
-    chosen = sorted(set(on_singular[: MAX_SLICES // 2] + [i for i in even if i not in on_singular])[:MAX_SLICES]) if on_singular else even
-    chosen = sorted(set(chosen))[:MAX_SLICES]
+    chosen, note = choose_slices(result)
+    home = _at_file_pose(third)
+    on_slice = np.bincount([int(np.unravel_index(p.index, result.shape)[2]) for p in result.singular], minlength=third.count)
     colour, label = colour_of(result)
     finite = colour[np.isfinite(colour)]
     limits = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
     columns = min(3, len(chosen))
     rows = int(np.ceil(len(chosen) / columns))
-    fig = new_figure((4.2 * columns, 3.8 * rows + 0.6), layout="constrained")
+    fig = new_figure((4.2 * columns, 3.8 * rows + 0.8), layout="constrained")
     axes = np.atleast_1d(fig.subplots(rows, columns, squeeze=False)).ravel()
     mesh = None
+    unit = f" {third.unit}" if third.unit else ""
     for ax, k in zip(axes, chosen):
         mesh = _map(ax, result, grid[:, :, k], limits)
-        unit = f" {third.unit}" if third.unit else ""
-        ax.set_title(f"{third.name} = {third.values[k]:g}{unit}", fontsize="medium")
+        marks = (["file's pose"] if k == home else []) + ([f"{on_slice[k]} singular"] if on_slice[k] else [])
+        ax.set_title(f"{third.name} = {fmt_number(float(third.values[k]), third.extent)}{unit}" + (f" ({', '.join(marks)})" if marks else ""), fontsize="medium")
     for ax in axes[len(chosen) :]:
         ax.set_visible(False)
     if mesh is not None:
         fig.colorbar(mesh, ax=axes[: len(chosen)].tolist(), label=label, shrink=0.9)
-    fig.suptitle(title)
+    fig.suptitle(f"{title}\nslices: {note}")
     return fig

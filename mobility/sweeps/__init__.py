@@ -11,8 +11,10 @@ Modules, in data-flow order:
 
 ``grid``
     the request: coordinates, ranges, units, checked against the mechanism.
-``batch_kinematics``, ``continuation``
-    forward kinematics of many poses; Newton and continuation over the grid.
+``batch_kinematics``, ``walks``, ``continuation``, ``grid_closure``
+    forward kinematics of many poses; the order each axis is walked in
+    (angles that wrap); Newton and continuation along lines of the grid;
+    the whole grid, with the poses the lines missed tried again.
 ``posed_screws``, ``batch_systems``, ``batch_actuation``
     each pose's joint twists; the series/parallel screw systems, counts and
     margins; the actuation verdict and conditioning, all stacked.

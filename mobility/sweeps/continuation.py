@@ -25,17 +25,24 @@ after two), which keeps the continuation on its branch through a change
 point and leaves one Newton step to do.  A point that fails is retried in 2 and then 4
 smaller steps from its last assembled neighbour; the points still missing at
 the end are tried again from any assembled neighbour on any axis
-(:func:`fill`), layer after layer.  A point that cannot be assembled stays in
-the grid with ``assembled`` false and its best residual.
+(:func:`mobility.sweeps.grid_closure.fill`), layer after layer.  A point that cannot
+be assembled stays in the grid with ``assembled`` false and its best residual.
+
+The angle of an R or C joint wraps (:mod:`mobility.sweeps.walks`): its
+anchor is the value nearest the file's pose round the circle, values a whole
+turn apart are solved once, and a range that covers a full turn is walked
+round the circle (up half way, then down until the walk meets what the
+first half assembled), the driven angle continuous along the walk.
 
 Examples
 --------
 >>> import mobility
 >>> from mobility.sweeps.grid import plan_grid
 >>> m = mobility.load("mechanisms/parallelogram.yaml")
->>> plan = plan_grid(m, ["O1=0:360:13"])
->>> closure = close_grid(BatchKinematics(m), plan)
->>> bool(closure.assembled.all()), float(closure.residual.max()) < 1e-12
+>>> plan, bk = plan_grid(m, ["O1=0:90:7"]), BatchKinematics(m)
+>>> line = targets_of(plan, line_layout(plan.shape, 0))
+>>> q, residual, assembled = close_lines(bk, Drive.of(plan.axes, bk.variable_count), np.zeros((1, bk.variable_count)), np.array([True]), line, 0)
+>>> bool(assembled.all()), float(residual.max()) < 1e-12
 (True, True)
 """
 
@@ -49,8 +56,9 @@ import numpy as np
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from .batch_kinematics import BatchKinematics
 from .grid import GridPlan, SweepAxis
+from .walks import AxisWalk, anchor_of, plan_walks, whole_turns
 
-__all__ = ["Drive", "GridClosure", "newton", "close_lines", "close_grid", "fill", "seed_grid", "line_layout"]
+__all__ = ["Drive", "GridClosure", "newton", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget"]
 
 MAX_ITERATIONS = 12
 """Newton steps at most for one solve."""
@@ -265,6 +273,7 @@ def close_lines(
     line_targets: np.ndarray,
     anchor: int,
     *,
+    walk: AxisWalk | None = None,
     tol: Tolerance = DEFAULT_TOLERANCE,
     on_step: Callable[[int], None] | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -279,6 +288,10 @@ def close_lines(
         Driven values of every point of every line.
     anchor : int
         Index of the anchor point on the lines.
+    walk : AxisWalk, optional
+        How to walk the lines' axis (:func:`mobility.sweeps.walks.axis_walk`:
+        round the circle, congruent angles solved once, for an angle that
+        wraps); default: along the lines, both ways from the anchor.
     on_step : callable, optional
         Called with the number of poses done after each step (progress).
 
@@ -289,43 +302,134 @@ def close_lines(
     assembled : ndarray of bool, shape (B, c)
     """
     lines, count = line_targets.shape[:2]
+    plain = walk is None or walk.plain
+    if plain:
+        width, start, stops = count, anchor, None
+        legs = ((np.arange(anchor + 1, count), None, False), (np.arange(anchor - 1, -1, -1), None, False))
+    else:
+        width, start, stops = walk.stops.size, int(walk.stop_of[anchor]), walk.stops
+        legs = walk.legs()
+    n = bk.variable_count
+    q = np.zeros((lines, width, n))
+    err = np.full((lines, width), np.inf)
+    ok = np.zeros((lines, width), dtype=bool)
+    q[:, start], ok[:, start] = start_q, start_ok
+    err[:, start] = np.where(start_ok, 0.0, np.inf)
+    start_t = line_targets[:, anchor]
+    if on_step:
+        on_step(lines)
+    for at, values, halts in legs:
+        targets = line_targets[:, at if stops is None else stops[at]]
+        if values is not None:
+            targets = targets.copy()
+            targets[:, :, walk.position] = values
+        halt = ok[:, at] if halts else None
+        lq, lerr, lok = _leg(bk, drive, start_q, start_ok, start_t, targets, tol, halt, on_step)
+        if halt is None:
+            q[:, at], err[:, at], ok[:, at] = lq, lerr, lok
+        else:  # keep what the other leg assembled
+            take = lok | (~ok[:, at] & (lerr < err[:, at]))
+            q[:, at] = np.where(take[:, :, None], lq, q[:, at])
+            err[:, at] = np.where(take, lerr, err[:, at])
+            ok[:, at] = ok[:, at] | lok
+    if plain:
+        return q, err, ok
+    return _spread_stops(bk, drive, walk, q, err, ok, line_targets, tol)
+
+
+def _spread_stops(
+    bk: BatchKinematics, drive: Drive, walk: AxisWalk, q: np.ndarray, err: np.ndarray, ok: np.ndarray, line_targets: np.ndarray, tol: Tolerance
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every point of the lines takes the pose of its stop, its driven angle turned by whole turns to its own value."""
+    lines, count = line_targets.shape[:2]
+    n = q.shape[2]
+    gq, gerr, gok = q[:, walk.stop_of].reshape(-1, n), err[:, walk.stop_of].reshape(-1), ok[:, walk.stop_of].reshape(-1)
+    gq, gerr, gok = retarget(bk, drive, gq, gerr, gok, line_targets.reshape(lines * count, -1), tol=tol)
+    return gq.reshape(lines, count, n), gerr.reshape(lines, count), gok.reshape(lines, count)
+
+
+def retarget(
+    bk: BatchKinematics, drive: Drive, q: np.ndarray, residual: np.ndarray, assembled: np.ndarray, targets: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Poses with their driven joint variables set to ``targets`` (the same joint states whole turns away); the residual of every changed assembled pose measured again.
+
+    Parameters
+    ----------
+    q : ndarray, shape (N, n)
+    residual : ndarray, shape (N,)
+    assembled : ndarray of bool, shape (N,)
+    targets : ndarray, shape (N, axes)
+
+    Returns
+    -------
+    q, residual, assembled
+    """
+    moved = drive.apply(q, targets)
+    changed = np.flatnonzero(np.any(moved != q, axis=1) & assembled)
+    residual, assembled = residual.copy(), assembled.copy()
+    if changed.size:
+        with np.errstate(over="ignore", invalid="ignore"):
+            r, _ = _evaluate(bk, drive, moved[changed], targets[changed])
+            e = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(changed.size)
+        residual[changed] = np.where(np.isfinite(e), e, np.inf)
+        assembled[changed] = residual[changed] <= tol.closure
+    return moved, residual, assembled
+
+
+def _leg(
+    bk: BatchKinematics,
+    drive: Drive,
+    start_q: np.ndarray,
+    start_ok: np.ndarray,
+    start_t: np.ndarray,
+    leg_targets: np.ndarray,
+    tol: Tolerance,
+    halt: np.ndarray | None = None,
+    on_step: Callable[[int], None] | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Continuation of many lines from their start through ``leg_targets`` ``(B, s, axes)``, in order.
+
+    ``halt`` ``(B, s)``: a line ends for good at a point where it is true
+    (assembled already).  Returns ``q (B, s, n)``, the residuals and
+    ``assembled`` of the points of the leg.
+    """
+    lines, count = leg_targets.shape[:2]
     n = bk.variable_count
     q = np.zeros((lines, count, n))
     err = np.full((lines, count), np.inf)
     ok = np.zeros((lines, count), dtype=bool)
-    q[:, anchor], ok[:, anchor] = start_q, start_ok
-    err[:, anchor] = np.where(start_ok, 0.0, np.inf)
-    if on_step:
-        on_step(lines)
-    for direction in (1, -1):
-        last_q, last_t = start_q.copy(), line_targets[:, anchor].copy()  # the last assembled point of each line
-        last_ok = start_ok.copy()  # is the previous point assembled
-        # the points before the last one, most recent first, and whether each (and all after it) is assembled
-        history = [start_q.copy() for _ in range(len(EXTRAPOLATION) - 1)]
-        known = [np.zeros(lines, dtype=bool) for _ in history]
-        misses = np.where(start_ok, 0, GIVE_UP)  # failures in a row since the last assembled point
-        for i in range(anchor + direction, count if direction > 0 else -1, direction):
-            targets = line_targets[:, i]
-            points = [last_q] + history
-            available = [last_ok] + known
-            predicted = last_q.copy()
-            for order in range(1, len(EXTRAPOLATION)):  # the highest order the assembled points allow
-                use = available[order]
-                if use.any():
-                    predicted[use] = sum(c * p[use] for c, p in zip(EXTRAPOLATION[order], points))
-            for retry, rows in ((True, np.flatnonzero(last_ok)), (False, np.flatnonzero(~last_ok & (misses < GIVE_UP)))):
-                if rows.size:
-                    rq, rerr, rok = _advance(bk, drive, last_q[rows], last_t[rows], predicted[rows], targets[rows], tol, retry=retry)
-                    q[rows, i], err[rows, i], ok[rows, i] = rq, rerr, rok
-            now = ok[:, i]
-            history = [np.where(now[:, None], p, h) for p, h in zip(points[:-1], history)]
-            known = [now & a for a in available[:-1]]
-            last_q = np.where(now[:, None], q[:, i], last_q)
-            last_t = np.where(now[:, None], targets, last_t)
-            last_ok = now
-            misses = np.where(now, 0, misses + 1)
-            if on_step:
-                on_step(lines)
+    last_q, last_t = start_q.copy(), start_t.copy()  # the last assembled point of each line
+    last_ok = start_ok.copy()  # is the previous point assembled
+    # the points before the last one, most recent first, and whether each (and all after it) is assembled
+    history = [start_q.copy() for _ in range(len(EXTRAPOLATION) - 1)]
+    known = [np.zeros(lines, dtype=bool) for _ in history]
+    misses = np.where(start_ok, 0, GIVE_UP)  # failures in a row since the last assembled point
+    for i in range(count):
+        if halt is not None:
+            ended = halt[:, i]
+            last_ok = last_ok & ~ended
+            misses = np.where(ended, GIVE_UP, misses)
+        targets = leg_targets[:, i]
+        points = [last_q] + history
+        available = [last_ok] + known
+        predicted = last_q.copy()
+        for order in range(1, len(EXTRAPOLATION)):  # the highest order the assembled points allow
+            use = available[order]
+            if use.any():
+                predicted[use] = sum(c * p[use] for c, p in zip(EXTRAPOLATION[order], points))
+        for retry, rows in ((True, np.flatnonzero(last_ok)), (False, np.flatnonzero(~last_ok & (misses < GIVE_UP)))):
+            if rows.size:
+                rq, rerr, rok = _advance(bk, drive, last_q[rows], last_t[rows], predicted[rows], targets[rows], tol, retry=retry)
+                q[rows, i], err[rows, i], ok[rows, i] = rq, rerr, rok
+        now = ok[:, i]
+        history = [np.where(now[:, None], p, h) for p, h in zip(points[:-1], history)]
+        known = [now & a for a in available[:-1]]
+        last_q = np.where(now[:, None], q[:, i], last_q)
+        last_t = np.where(now[:, None], targets, last_t)
+        last_ok = now
+        misses = np.where(now, 0, misses + 1)
+        if on_step:
+            on_step(lines)
     return q, err, ok
 
 
@@ -342,7 +446,7 @@ def line_layout(shape: tuple[int, ...], axis: int) -> np.ndarray:
 
 
 def anchors(plan: GridPlan) -> tuple[int, ...]:
-    """Index, on each axis, of the value nearest the file's pose (displacement 0); the first of two as near.
+    """Index, on each axis, of the value nearest the file's pose (displacement 0, round the circle for an angle that wraps); the first of two as near.
 
     Examples
     --------
@@ -351,12 +455,7 @@ def anchors(plan: GridPlan) -> tuple[int, ...]:
     >>> anchors(plan_grid(mobility.load("mechanisms/3prs.yaml"), ["P1=-11:11:4", "P2=5:20:4"]))
     (1, 0)
     """
-    out = []
-    for a in plan.axes:
-        distance = np.abs(a.values)
-        step = abs(a.stop - a.start) / max(a.count - 1, 1)
-        out.append(int(np.flatnonzero(distance <= distance.min() + 1e-9 * step)[0]))  # round-off must not pick between ties
-    return tuple(out)
+    return tuple(anchor_of(a) for a in plan.axes)
 
 
 def targets_of(plan: GridPlan, flat: np.ndarray) -> np.ndarray:
@@ -394,17 +493,20 @@ def seed_grid(bk: BatchKinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_T
     q = np.zeros((size, n))
     err = np.full(size, np.inf)
     ok = np.zeros(size, dtype=bool)
+    walks = plan_walks(plan)
     anchor = anchors(plan)
     anchor_flat = int(np.ravel_multi_index(anchor, shape))
-    # from the file's pose to the anchor point, in steps no longer than a grid step
-    goal = targets_of(plan, np.array([anchor_flat]))
+    # from the file's pose to the anchor point, in steps no longer than a grid step (an angle that wraps: the shorter way round)
+    at = targets_of(plan, np.array([anchor_flat]))
+    goal = at - np.array([[float(whole_turns(t, a.period * a.scale)) for t, a in zip(at[0], plan.axes)]])
     steps = [abs(a.internal[1] - a.internal[0]) if a.count > 1 else HOMOTOPY_STEP for a in plan.axes]
     pieces = max([0] + [int(np.ceil(abs(g) / s - 1e-9)) for g, s in zip(goal[0], steps) if s > 0])
     # one line of continuation (its predictor keeps the file's branch up to a change point)
     path = goal[:, None, :] * (np.arange(pieces + 1) / max(pieces, 1))[None, :, None]
     pq, perr, pok = close_lines(bk, drive, np.zeros((1, n)), np.array([True]), path, 0, tol=tol)
     reached = bool(pok[0].all())  # a failure on the way is a failure, as before
-    q[anchor_flat], ok[anchor_flat], err[anchor_flat] = pq[0, -1], reached, perr[0, -1] if reached else np.inf
+    aq, aerr, aok = retarget(bk, drive, pq[0, -1:], perr[0, -1:], np.array([reached]), at, tol=tol)  # whole turns back to the grid's value
+    q[anchor_flat], ok[anchor_flat], err[anchor_flat] = aq[0], aok[0], aerr[0] if aok[0] else np.inf
     for axis in range(len(shape) - 1):
         layout = line_layout(shape, axis)
         others = [i for i in range(len(shape)) if i != axis]
@@ -414,98 +516,6 @@ def seed_grid(bk: BatchKinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_T
             at_anchor &= index[i] == anchor[i]
         lines = layout[at_anchor]
         start = lines[:, anchor[axis]]
-        lq, lerr, lok = close_lines(bk, drive, q[start], ok[start], targets_of(plan, lines), anchor[axis], tol=tol)
+        lq, lerr, lok = close_lines(bk, drive, q[start], ok[start], targets_of(plan, lines), anchor[axis], walk=walks[axis], tol=tol)
         q[lines], err[lines], ok[lines] = lq, lerr, lok
-    return GridClosure(q, err, ok)
-
-
-def close_grid(
-    bk: BatchKinematics,
-    plan: GridPlan,
-    *,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    run_lines: Callable | None = None,
-) -> GridClosure:
-    """Close every pose of the grid by continuation, then :func:`fill` what is missing.
-
-    Parameters
-    ----------
-    run_lines : callable, optional
-        ``run_lines(starts_q, starts_ok, lines, anchor) -> (q, residual, ok)``
-        closes the lines of the last axis (default: :func:`close_lines` here,
-        in one batch); :func:`mobility.sweeps.sweep` passes one that cuts them
-        into chunks and runs them where it is told.
-    """
-    seeds = seed_grid(bk, plan, tol=tol)
-    shape = plan.shape
-    last = len(shape) - 1
-    layout = line_layout(shape, last)
-    anchor = anchors(plan)[last]
-    starts = layout[:, anchor]
-    q, err, ok = seeds.q.copy(), seeds.residual.copy(), seeds.assembled.copy()
-    if run_lines is None:
-        drive = Drive.of(plan.axes, bk.variable_count)
-        lq, lerr, lok = close_lines(bk, drive, q[starts], ok[starts], targets_of(plan, layout), anchor, tol=tol)
-    else:
-        lq, lerr, lok = run_lines(q[starts], ok[starts], layout, anchor)
-    q[layout], err[layout], ok[layout] = lq, lerr, lok
-    return fill(bk, plan, GridClosure(q, err, ok), tol=tol)
-
-
-def fill(bk: BatchKinematics, plan: GridPlan, closure: GridClosure, *, tol: Tolerance = DEFAULT_TOLERANCE, max_passes: int | None = None) -> GridClosure:
-    """Try the missing poses again from any assembled neighbour, layer after layer.
-
-    Each pass takes every pose not assembled that has an assembled neighbour
-    (on any axis) it was not yet tried from, and solves it from there (the
-    secant predictor when the neighbour's own neighbour on that axis is
-    assembled too), all in one batch; passes go on while they assemble new poses.
-    """
-    q, err, ok = closure.q.copy(), closure.residual.copy(), closure.assembled.copy()
-    shape = plan.shape
-    drive = Drive.of(plan.axes, bk.variable_count)
-    grid_index = np.arange(plan.size).reshape(shape)
-    tried: set[tuple[int, int]] = set()
-    passes = max_passes if max_passes is not None else sum(shape)
-    for _ in range(passes):
-        missing = ~ok
-        if not missing.any():
-            break
-        pairs = []  # (pose, neighbour, neighbour's neighbour or -1)
-        for axis in range(len(shape)):
-            for direction in (1, -1):
-                src = np.roll(grid_index, direction, axis=axis)  # the neighbour at index - direction
-                valid = np.ones(shape, dtype=bool)
-                edge = [slice(None)] * len(shape)
-                edge[axis] = 0 if direction > 0 else -1
-                valid[tuple(edge)] = False
-                src2 = np.roll(grid_index, 2 * direction, axis=axis)
-                valid2 = valid.copy()
-                edge2 = [slice(None)] * len(shape)
-                edge2[axis] = 1 if direction > 0 else -2
-                if shape[axis] > 1:
-                    valid2[tuple(edge2)] = False
-                sel = valid & missing.reshape(shape) & ok[src].reshape(shape)
-                for pose, nb, nb2, v2 in zip(grid_index[sel], src[sel], src2[sel], valid2[sel]):
-                    if (pose, nb) not in tried:
-                        pairs.append((pose, nb, nb2 if v2 and ok[nb2] else -1))
-        if not pairs:
-            break
-        pairs_a = np.array(pairs, dtype=int)
-        tried.update((int(a), int(b)) for a, b, _ in pairs)
-        poses, nbs, nbs2 = pairs_a[:, 0], pairs_a[:, 1], pairs_a[:, 2]
-        base_q = q[nbs]
-        predicted = np.where((nbs2 >= 0)[:, None], 2.0 * base_q - q[np.maximum(nbs2, 0)], base_q)
-        nq, nerr, nok = _advance(bk, drive, base_q, targets_of(plan, nbs), predicted, targets_of(plan, poses), tol, retry=True)
-        found = False
-        for k in np.argsort(nerr):  # the best attempt at each pose
-            pose = poses[k]
-            if ok[pose]:
-                continue
-            if nok[k]:
-                q[pose], err[pose], ok[pose] = nq[k], nerr[k], True
-                found = True
-            elif nerr[k] < err[pose]:
-                q[pose], err[pose] = nq[k], nerr[k]
-        if not found:
-            break
     return GridClosure(q, err, ok)

@@ -17,6 +17,10 @@ A coordinate is
   file's pose, in degrees; all in the file's global frame.  Pose coordinates
   drive a parallel mechanism by its platform; joints not driven follow.
 
+The angle of an ``R`` or ``C`` joint displaced by 360 degrees is the same
+joint state (:attr:`SweepAxis.period`); the continuation knows it
+(:mod:`mobility.sweeps.walks`).
+
 Inside, every coordinate is dimensionless as in :mod:`mobility.core.kinematics`:
 angles in radians, lengths over the mechanism's characteristic length.
 
@@ -48,6 +52,8 @@ from ..errors import RequestError, name_list
 __all__ = [
     "POSE_COORDINATES",
     "DRIVABLE_JOINTS",
+    "WRAPPING_JOINTS",
+    "FULL_TURN",
     "DEFAULT_MAX_POSES",
     "SweepAxis",
     "GridPlan",
@@ -61,6 +67,12 @@ POSE_COORDINATES = ("x", "y", "z", "rx", "ry", "rz")
 
 DRIVABLE_JOINTS = ("R", "P", "H", "C")
 """Joint types a sweep can drive (by one angle or one length)."""
+
+WRAPPING_JOINTS = ("R", "C")
+"""Joint types whose driven angle displaced by a whole turn is the same joint state (an H joint's slide goes with its angle)."""
+
+FULL_TURN = 360.0
+"""A whole turn, in the unit of a swept angle (degrees)."""
 
 DEFAULT_MAX_POSES = 10_000_000
 """Largest grid :func:`plan_grid` accepts unless told otherwise."""
@@ -96,6 +108,11 @@ class SweepAxis:
     scale : float
         Internal value per unit value (radians per degree, or one over the
         characteristic length).
+    period : float
+        The displacement (user units) that gives the same joint state: 360
+        for the angle of an ``R`` or ``C`` joint; 0 when there is none (the
+        angle of an ``H`` joint, whose slide goes with it, a slide, a pose
+        coordinate).
     """
 
     name: str
@@ -106,6 +123,7 @@ class SweepAxis:
     count: int
     variable: int
     scale: float
+    period: float = 0.0
 
     @property
     def values(self) -> np.ndarray:
@@ -292,7 +310,8 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
                     "and P joints (by their slide) can be swept"
                 )
             angle = joint.type != "P"
-            axes.append(SweepAxis(name, "joint", "deg" if angle else unit, start, stop, count, int(offsets[index]), math.pi / 180.0 if angle else 1.0 / length))
+            period = FULL_TURN if joint.type in WRAPPING_JOINTS else 0.0
+            axes.append(SweepAxis(name, "joint", "deg" if angle else unit, start, stop, count, int(offsets[index]), math.pi / 180.0 if angle else 1.0 / length, period))
         elif name in POSE_COORDINATES:
             component = POSE_COORDINATES.index(name)
             angle = component >= 3

@@ -72,7 +72,7 @@ class SingularPose:
     dof, mobility : int
     pattern : str
     verdict : str
-        The actuation verdict (empty when no input is chosen).
+        The actuation verdict (empty when no input is chosen; ``null`` in JSON then).
     reasons : tuple of str
     """
 
@@ -92,7 +92,7 @@ class SingularPose:
             "dof": self.dof,
             "pattern": self.pattern,
             "mobility": self.mobility,
-            "verdict": self.verdict,
+            "verdict": self.verdict or None,
             "reasons": list(self.reasons),
         }
 
@@ -120,6 +120,8 @@ class SweepResult:
     smallest_kept, largest_dropped : ndarray of float
         The margin of the pose's rank decisions (NaN where not assembled).
     near_singular, inexact : ndarray of bool
+        The margin's warnings (False where not assembled; empty in the CSV,
+        ``null`` in the JSON there).
     actuated : tuple of str
         The actuated joints (empty: no actuation columns).
     verdict : ndarray of str
@@ -287,8 +289,8 @@ class SweepResult:
             residual=_number(self.residual[index]),
             smallest_kept=_number(self.smallest_kept[index]),
             largest_dropped=_number(self.largest_dropped[index]),
-            near_singular=bool(self.near_singular[index]),
-            inexact=bool(self.inexact[index]),
+            near_singular=bool(self.near_singular[index]) if ok else None,
+            inexact=bool(self.inexact[index]) if ok else None,
         )
         if self.actuated:
             out.update(verdict=str(self.verdict[index]) if ok else None, conditioning=_number(self.conditioning[index]), actuation_margin=_number(self.actuation_margin[index]))
@@ -305,8 +307,10 @@ class SweepResult:
                 table[name] = [int(v) if ok else None for v, ok in zip(col, self.assembled)]
             elif name in ("pattern", "verdict"):
                 table[name] = [str(v) if ok else None for v, ok in zip(col, self.assembled)]
-            elif name in ("assembled", "near_singular", "inexact"):
+            elif name == "assembled":
                 table[name] = [bool(v) for v in col]
+            elif name in ("near_singular", "inexact"):
+                table[name] = [bool(v) if ok else None for v, ok in zip(col, self.assembled)]
             else:
                 table[name] = [_number(v) for v in clean_numbers(np.asarray(col, dtype=float), extents[name])] if name in self.names else [_number(v) for v in col]
         return {

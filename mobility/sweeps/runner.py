@@ -43,10 +43,12 @@ from ..errors import MissingExtraError, RequestError
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
 from .batch_kinematics import BatchKinematics
 from .batch_systems import analyse_poses
-from .continuation import Drive, GridClosure, close_lines, fill, line_layout, anchors, seed_grid, targets_of
+from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, seed_grid, targets_of
+from .grid_closure import fill
 from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
 from .posed_screws import posed_screws
 from .result import SweepResult
+from .walks import axis_walk
 
 __all__ = ["sweep", "analyse_joint_variables", "tqdm_progress", "DEFAULT_CHUNK_SIZE", "BLOCK", "Progress"]
 
@@ -84,8 +86,10 @@ class _Context:
 
 def close_chunk(context: _Context, starts_q: np.ndarray, starts_ok: np.ndarray, lines: np.ndarray, anchor: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Close a chunk of lines of the last axis by continuation (a task)."""
-    drive = Drive.of(context.plan.axes, context.bk.variable_count)
-    return close_lines(context.bk, drive, starts_q, starts_ok, targets_of(context.plan, lines), anchor, tol=context.tol)
+    axes = context.plan.axes
+    drive = Drive.of(axes, context.bk.variable_count)
+    walk = axis_walk(axes[-1], len(axes) - 1)
+    return close_lines(context.bk, drive, starts_q, starts_ok, targets_of(context.plan, lines), anchor, walk=walk, tol=context.tol)
 
 
 def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:

@@ -1,0 +1,184 @@
+"""Closing every pose of a grid: the lines of continuation, then the poses they missed.
+
+:func:`close_grid` closes a whole grid in this process: the starts of the
+lines (:func:`~mobility.sweeps.continuation.seed_grid`), the lines of the
+last axis (:func:`~mobility.sweeps.continuation.close_lines`), then
+:func:`fill`.  :func:`mobility.sweeps.sweep` runs the same stages with the
+lines cut into chunks.
+
+:func:`fill` tries the missing poses again: where a line gave up (two
+failures in a row) a neighbour on another axis may be assembled.  Each
+missing pose is tried from its assembled neighbours on every axis (the two
+ends of an axis whose angles wrap round a full turn are neighbours, the
+angle turned to within half a turn of the pose's), and a pose whose driven
+angle is congruent, modulo a turn, to an assembled pose's (its other
+coordinates equal) takes that pose (:mod:`mobility.sweeps.walks`).
+
+Examples
+--------
+>>> import mobility
+>>> from mobility.sweeps.batch_kinematics import BatchKinematics
+>>> from mobility.sweeps.grid import plan_grid
+>>> m = mobility.load("mechanisms/four_bar.yaml")  # the crank reaches -160.8 .. +34.0 deg from the file's pose
+>>> closure = close_grid(BatchKinematics(m), plan_grid(m, ["A=0:360:13"]))
+>>> closure.assembled.tolist()  # 0, 30; then 210 .. 360, the same poses as -150 .. 0
+[True, True, False, False, False, False, False, True, True, True, True, True, True]
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from .batch_kinematics import BatchKinematics
+from .continuation import Drive, GridClosure, _advance, anchors, close_lines, line_layout, retarget, seed_grid, targets_of
+from .grid import GridPlan
+from .walks import AxisWalk, axis_walk, plan_walks, whole_turns
+
+__all__ = ["close_grid", "fill"]
+
+
+def close_grid(
+    bk: BatchKinematics,
+    plan: GridPlan,
+    *,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+    run_lines: Callable | None = None,
+) -> GridClosure:
+    """Close every pose of the grid by continuation, then :func:`fill` what is missing.
+
+    Parameters
+    ----------
+    run_lines : callable, optional
+        ``run_lines(starts_q, starts_ok, lines, anchor) -> (q, residual, ok)``
+        closes the lines of the last axis (default: :func:`close_lines` here,
+        in one batch); :func:`mobility.sweeps.sweep` passes one that cuts them
+        into chunks and runs them where it is told.
+    """
+    seeds = seed_grid(bk, plan, tol=tol)
+    shape = plan.shape
+    last = len(shape) - 1
+    layout = line_layout(shape, last)
+    anchor = anchors(plan)[last]
+    starts = layout[:, anchor]
+    q, err, ok = seeds.q.copy(), seeds.residual.copy(), seeds.assembled.copy()
+    if run_lines is None:
+        drive = Drive.of(plan.axes, bk.variable_count)
+        lq, lerr, lok = close_lines(bk, drive, q[starts], ok[starts], targets_of(plan, layout), anchor, walk=axis_walk(plan.axes[last], last), tol=tol)
+    else:
+        lq, lerr, lok = run_lines(q[starts], ok[starts], layout, anchor)
+    q[layout], err[layout], ok[layout] = lq, lerr, lok
+    return fill(bk, plan, GridClosure(q, err, ok), tol=tol)
+
+
+def fill(bk: BatchKinematics, plan: GridPlan, closure: GridClosure, *, tol: Tolerance = DEFAULT_TOLERANCE, max_passes: int | None = None) -> GridClosure:
+    """Try the missing poses again from any assembled neighbour, layer after layer.
+
+    Each pass takes every pose not assembled that has an assembled neighbour
+    (on any axis; the two ends of an axis whose angles wrap round a full
+    turn are neighbours) it was not yet tried from, and solves it from there
+    (the secant predictor when the neighbour's own neighbour on that axis is
+    assembled too), all in one batch; passes go on while they assemble new
+    poses.  A pose whose driven angle is congruent, modulo a turn, to an
+    assembled one's (the rest of its coordinates equal) takes that pose.
+    """
+    q, err, ok = closure.q.copy(), closure.residual.copy(), closure.assembled.copy()
+    shape = plan.shape
+    drive = Drive.of(plan.axes, bk.variable_count)
+    walks = plan_walks(plan)
+    grid_index = np.arange(plan.size).reshape(shape)
+    tried: set[tuple[int, int]] = set()
+    passes = max_passes if max_passes is not None else sum(shape)
+    q, err, ok = _congruent(bk, drive, plan, walks, q, err, ok, tol)
+    for _ in range(passes):
+        missing = ~ok
+        if not missing.any():
+            break
+        pairs = []  # (pose, neighbour, neighbour's neighbour or -1)
+        for axis in range(len(shape)):
+            around = walks[axis].closed
+            for direction in (1, -1):
+                src = np.roll(grid_index, direction, axis=axis)  # the neighbour at index - direction
+                valid = np.ones(shape, dtype=bool)
+                edge = [slice(None)] * len(shape)
+                edge[axis] = 0 if direction > 0 else -1
+                if not around:
+                    valid[tuple(edge)] = False
+                src2 = np.roll(grid_index, 2 * direction, axis=axis)
+                valid2 = valid.copy()
+                edge2 = [slice(None)] * len(shape)
+                edge2[axis] = 1 if direction > 0 else -2
+                if shape[axis] > 1 and not around:
+                    valid2[tuple(edge2)] = False
+                sel = valid & missing.reshape(shape) & ok[src].reshape(shape)
+                for pose, nb, nb2, v2 in zip(grid_index[sel], src[sel], src2[sel], valid2[sel]):
+                    if (pose, nb) not in tried:
+                        pairs.append((pose, nb, nb2 if v2 and ok[nb2] and nb2 != pose else -1))
+        if not pairs:
+            break
+        pairs_a = np.array(pairs, dtype=int)
+        tried.update((int(a), int(b)) for a, b, _ in pairs)
+        poses, nbs, nbs2 = pairs_a[:, 0], pairs_a[:, 1], pairs_a[:, 2]
+        goal = targets_of(plan, poses)
+        base_q, base_t = _turned_towards(plan, q[nbs], targets_of(plan, nbs), goal)
+        second_q, _ = _turned_towards(plan, q[np.maximum(nbs2, 0)], targets_of(plan, np.maximum(nbs2, 0)), base_t)
+        predicted = np.where((nbs2 >= 0)[:, None], 2.0 * base_q - second_q, base_q)
+        nq, nerr, nok = _advance(bk, drive, base_q, base_t, predicted, goal, tol, retry=True)
+        found = False
+        for k in np.argsort(nerr):  # the best attempt at each pose
+            pose = poses[k]
+            if ok[pose]:
+                continue
+            if nok[k]:
+                q[pose], err[pose], ok[pose] = nq[k], nerr[k], True
+                found = True
+            elif nerr[k] < err[pose]:
+                q[pose], err[pose] = nq[k], nerr[k]
+        if not found:
+            break
+        q, err, ok = _congruent(bk, drive, plan, walks, q, err, ok, tol)
+    return GridClosure(q, err, ok)
+
+
+def _turned_towards(plan: GridPlan, q: np.ndarray, targets: np.ndarray, goal: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Poses and their driven values, each angle that wraps turned by whole turns to within half a turn of ``goal``."""
+    q, targets = q.copy(), targets.copy()
+    for k, axis in enumerate(plan.axes):
+        if axis.period:
+            turn = whole_turns(goal[:, k] - targets[:, k], axis.period * axis.scale)
+            targets[:, k] += turn
+            q[:, axis.variable] += turn
+    return q, targets
+
+
+def _congruent(
+    bk: BatchKinematics, drive: Drive, plan: GridPlan, walks: tuple[AxisWalk, ...], q: np.ndarray, err: np.ndarray, ok: np.ndarray, tol: Tolerance
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Missing poses whose driven angle is congruent (modulo a turn) to an assembled pose's on the same line take its pose."""
+    sources, places = [], []
+    for axis, walk in enumerate(walks):
+        if walk.stops.size == walk.stop_of.size:
+            continue
+        layout = line_layout(plan.shape, axis)
+        members = np.argsort(walk.stop_of, kind="stable")
+        bounds = np.flatnonzero(np.diff(walk.stop_of[members])) + 1
+        for group in np.split(members, bounds):
+            if group.size < 2:
+                continue
+            index = layout[:, group]  # (lines, members)
+            present = ok[index]
+            need = present.any(axis=1)[:, None] & ~present
+            rows, cols = np.nonzero(need)
+            sources.append(index[rows, np.argmax(present[rows], axis=1)])
+            places.append(index[rows, cols])
+    if not sources or not sum(p.size for p in places):
+        return q, err, ok
+    src, dst = np.concatenate(sources), np.concatenate(places)
+    dst, first = np.unique(dst, return_index=True)
+    src = src[first]
+    nq, nerr, nok = retarget(bk, drive, q[src], err[src], ok[src], targets_of(plan, dst), tol=tol)
+    q, err, ok = q.copy(), err.copy(), ok.copy()
+    q[dst[nok]], err[dst[nok]], ok[dst[nok]] = nq[nok], nerr[nok], True
+    return q, err, ok
