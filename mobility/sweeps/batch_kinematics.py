@@ -38,6 +38,7 @@ from ..core.kinematics import Kinematics, kinematics
 from ..core.model import Mechanism
 from ..core.topology import spanning_tree
 from ..core.transforms import skew
+from ..errors import RequestError
 
 __all__ = ["BatchKinematics", "Evaluation", "Motion", "rotation_logs", "displacement_logs", "left_jacobians"]
 
@@ -166,7 +167,7 @@ class BatchKinematics:
     mechanism : Mechanism
     reference : ndarray, shape (3,), optional
         The end effector's reference point, normalised coordinates of the file's
-        pose (for :meth:`end_effector_pose`).
+        pose (for the pose coordinates of :meth:`evaluate`).
 
     Attributes
     ----------
@@ -235,11 +236,6 @@ class BatchKinematics:
             cols[3:, variable] = _cross(shift, w) + np.einsum("ijn,j->in", rot, x[3:])
         return cols
 
-    def _spatial(self, factors: Factors, exps: "_Exponentials") -> tuple[Motion, np.ndarray]:
-        """Product of ``factors`` and its right-trivialised derivative ``(6, n, N)``."""
-        g, before = self._chain(factors, exps)
-        return g, self._columns(factors, before, None, exps.count)
-
     def _product(self, factors: Factors, exps: "_Exponentials") -> Motion:
         g: Motion | None = None
         for variable, sign in factors:
@@ -251,7 +247,7 @@ class BatchKinematics:
     def _check(self, q: np.ndarray) -> np.ndarray:
         q = np.asarray(q, dtype=float)
         if q.ndim != 2 or q.shape[1] != self.variable_count:
-            raise ValueError(f"expected joint variables of shape (N, {self.variable_count}), got {q.shape}")
+            raise RequestError(f"expected joint variables of shape (N, {self.variable_count}), got {q.shape}")
         return q
 
     def link_motions(self, q: np.ndarray) -> dict[str, Motion]:
@@ -286,56 +282,9 @@ class BatchKinematics:
         exps = self._exponentials(q)
         return np.concatenate([_soa_logs(self._product(loop, exps)) for loop in self._loops]).T
 
-    def system(self, q: np.ndarray, components: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Residual and Jacobian of the loops, and of the end effector's pose coordinates if asked.
-
-        Parameters
-        ----------
-        q : ndarray, shape (N, n)
-        components : ndarray of int, optional
-            Pose coordinates (0..5 for x, y, z, rx, ry, rz) appended after the
-            loops: their values ``[p - p0; r]`` (the displacement of the
-            reference point and the rotation vector, normalised coordinates).
-
-        Returns
-        -------
-        values : ndarray, shape (m, N)
-            The residual of each loop (6 numbers), then the pose coordinates.
-        jacobian : ndarray, shape (m, n, N)
-            Their derivative per unit joint rate (right-trivialised for the
-            loops: exact at a closed pose).
-        """
-        q = self._check(q)
-        exps = self._exponentials(q)
-        values, rows = [], []
-        for loop in self._loops:
-            g, cols = self._spatial(loop, exps)
-            values.append(_soa_logs(g))
-            rows.append(cols)
-        if components is not None and len(components):
-            (rot, shift), cols = self._spatial(self._end_effector, exps)
-            p = np.einsum("ijn,j->in", rot, self.reference) + shift
-            r = _soa_rotation_logs(rot)
-            omega = cols[:3]
-            dp = cols[3:] + _cross(omega, p[:, None, :])  # point velocity v + w x p
-            dr = _inverse_left_jacobian_times(r, omega)
-            values.append(np.concatenate([p - self.reference[:, None], r])[components])
-            rows.append(np.concatenate([dp, dr])[components])
-        if not values:
-            return np.zeros((0, len(q))), np.zeros((0, self.variable_count, len(q)))
-        return np.concatenate(values), np.concatenate(rows)
-
     def evaluate(self, q: np.ndarray, components: np.ndarray | None = None) -> "Evaluation":
-        """The values of :meth:`system` now, its Jacobian later and only for the poses that need it."""
+        """The loop residuals (and pose coordinates ``components``) now, their Jacobian later and only for the poses that need it."""
         return Evaluation(self, self._check(q), components)
-
-    def end_effector_pose(self, q: np.ndarray) -> np.ndarray:
-        """Pose coordinates ``[p - p0; r]`` of the end effector, ``(N, 6)`` (normalised coordinates, radians)."""
-        exps = self._exponentials(self._check(q))
-        rot, shift = self._product(self._end_effector, exps)
-        p = np.einsum("ijn,j->in", rot, self.reference) + shift
-        return np.concatenate([p - self.reference[:, None], _soa_rotation_logs(rot)]).T
-
 
 class _Exponentials:
     """``exp(q_i x_i)`` of every variable (Rodrigues), its inverse computed when first asked."""
@@ -367,7 +316,11 @@ class Evaluation:
     Attributes
     ----------
     values : ndarray, shape (m, N)
-        As :meth:`BatchKinematics.system` returns them.
+        The residual of each loop (6 numbers), then the pose coordinates asked
+        for (0..5 for x, y, z, rx, ry, rz: the displacement of the reference
+        point and the rotation vector, normalised coordinates).  Their
+        Jacobian, per unit joint rate, right-trivialised for the loops (exact
+        at a closed pose), comes from :meth:`jacobian`.
     """
 
     def __init__(self, bk: BatchKinematics, q: np.ndarray, components: np.ndarray | None) -> None:

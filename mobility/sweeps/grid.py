@@ -178,11 +178,6 @@ class GridPlan:
         """Number of poses of the grid."""
         return math.prod(self.shape)
 
-    def values_at(self, flat: np.ndarray) -> np.ndarray:
-        """The coordinate values (user units) of grid points given by flat index, shape ``(n, axes)``."""
-        index = np.unravel_index(np.asarray(flat), self.shape)
-        return np.stack([a.values[i] for a, i in zip(self.axes, index)], axis=-1)
-
 
 def parse_vary(spec: str) -> tuple[str, float, float, int]:
     """Read ``"NAME=START:STOP:COUNT"``.
