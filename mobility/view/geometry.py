@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..report.plotting.geometry import perpendiculars
+from ..report.plotting.geometry import FLAT, helix, perpendiculars, plate_ring
 
 __all__ = ["Mesh", "cone", "pieces", "arc", "helix", "plate"]
 
@@ -83,16 +83,7 @@ def arc(centre: np.ndarray, axis: np.ndarray, radius: float, turn: float = 1.5 *
     return points, -math.sin(turn) * e1 + math.cos(turn) * e2
 
 
-def helix(centre: np.ndarray, axis: np.ndarray, radius: float, length: float, turns: float = 2.0, samples: int = 61) -> np.ndarray:
-    """A right-handed helix of ``turns`` turns about ``axis``, ``length`` long, centred at ``centre``."""
-    e1, e2 = perpendiculars(axis)
-    d = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
-    t = np.linspace(0.0, 2.0 * math.pi * turns, samples)
-    s = np.linspace(-0.5, 0.5, samples) * length
-    return centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2) + s[:, None] * d
-
-
-def plate(points: np.ndarray, *, flatness: float = 0.05) -> Mesh | None:
+def plate(points: np.ndarray, *, flatness: float = FLAT) -> Mesh | None:
     """A flat convex plate over ``points`` (a fan of triangles over their convex hull in their plane).
 
     ``None`` when the points are not nearly coplanar (third singular value
@@ -108,23 +99,10 @@ def plate(points: np.ndarray, *, flatness: float = 0.05) -> Mesh | None:
     >>> plate(np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0]])) is None
     True
     """
-    from scipy.spatial import ConvexHull, QhullError
-
     p = np.asarray(points, dtype=float).reshape(-1, 3)
-    if len(p) < 3:
+    order = plate_ring(p, flatness=flatness)
+    if order is None:
         return None
-    c = p.mean(axis=0)
-    _, sv, vt = np.linalg.svd(p - c)
-    if sv[1] <= flatness * sv[0] or (len(sv) > 2 and sv[2] > flatness * sv[0]):
-        return None
-    try:
-        hull = ConvexHull((p - c) @ vt[:2].T)
-    except QhullError:  # pragma: no cover - collinear after all
-        return None
-    order = list(hull.vertices)  # around the hull; made independent of the plane's axes:
-    order = order[order.index(min(order)):] + order[: order.index(min(order))]  # from the first point given,
-    if len(order) > 2 and order[1] > order[-1]:  # towards its lower-numbered neighbour
-        order = order[:1] + order[:0:-1]
     ring = p[order]
     n = len(ring)
     faces = np.stack([np.zeros(n - 2, dtype=int), np.arange(1, n - 1), np.arange(2, n)], axis=1)

@@ -2,7 +2,9 @@
 
 Examples
 --------
->>> import numpy as np
+>>> import math
+
+import numpy as np
 >>> e1, e2 = perpendiculars(np.array([0.0, 0, 2]))
 >>> float(e1 @ e2), float(e1 @ [0, 0, 1])
 (0.0, 0.0)
@@ -16,9 +18,11 @@ True
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["SAME_POINT", "perpendiculars", "unique_points", "segment_samples"]
+__all__ = ["SAME_POINT", "FLAT", "perpendiculars", "unique_points", "segment_samples", "helix", "plate_ring"]
 
 SAME_POINT = 1e-6
 """Points closer than this fraction of the scene are drawn as one: a drawing
@@ -72,3 +76,60 @@ def segment_samples(start: np.ndarray, end: np.ndarray, n: int = 7) -> np.ndarra
     """``n`` points evenly along the segment, both ends included (so that a hover finds the line anywhere along it)."""
     start = np.asarray(start, dtype=float)
     return start + np.linspace(0.0, 1.0, n)[:, None] * (np.asarray(end, dtype=float) - start)
+
+
+FLAT = 0.05
+"""Points whose third singular value (about their centroid) is at most this
+fraction of the first lie nearly in a plane, and are drawn as a plate over
+them when their second is above it (not nearly on a line): a drawing choice."""
+
+
+def helix(centre: np.ndarray, axis: np.ndarray, radius: float, length: float, turns: float = 2.0, samples: int = 61) -> np.ndarray:
+    """A right-handed helix of ``turns`` turns about ``axis``, ``length`` long, centred at ``centre`` (``samples`` points).
+
+    Examples
+    --------
+    >>> h = helix(np.zeros(3), np.array([0.0, 0, 2]), 1.0, 4.0)
+    >>> h.shape, h[0].round(12).tolist(), h[-1].round(12).tolist()
+    ((61, 3), [0.0, 1.0, -2.0], [0.0, 1.0, 2.0])
+    """
+    e1, e2 = perpendiculars(axis)
+    d = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    t = np.linspace(0.0, 2.0 * math.pi * turns, samples)
+    s = np.linspace(-0.5, 0.5, samples) * length
+    return centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2) + s[:, None] * d
+
+
+def plate_ring(points: np.ndarray, *, flatness: float = FLAT) -> list[int] | None:
+    """The indices of ``points`` on their convex outline, in order round it, when they make a plate.
+
+    ``None`` when the points are not nearly coplanar (third singular value
+    above ``flatness`` times the first) or are nearly collinear (second at or
+    below it): such a link is better drawn as bars.  The ring starts at the
+    lowest index and goes towards its lower-numbered neighbour, so it does
+    not depend on the axes of the plane.
+
+    Examples
+    --------
+    >>> square = np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, 0]])
+    >>> plate_ring(square), plate_ring(square[:3] * [1, 0, 0])
+    ([0, 1, 2, 3], None)
+    """
+    from scipy.spatial import ConvexHull, QhullError
+
+    p = np.asarray(points, dtype=float).reshape(-1, 3)
+    if len(p) < 3:
+        return None
+    c = p.mean(axis=0)
+    _, sv, vt = np.linalg.svd(p - c)
+    if sv[1] <= flatness * sv[0] or (len(sv) > 2 and sv[2] > flatness * sv[0]):
+        return None
+    try:
+        hull = ConvexHull((p - c) @ vt[:2].T)
+    except QhullError:  # pragma: no cover - collinear after all
+        return None
+    order = [int(k) for k in hull.vertices]
+    order = order[order.index(min(order)):] + order[: order.index(min(order))]
+    if len(order) > 2 and order[1] > order[-1]:
+        order = order[:1] + order[:0:-1]
+    return order

@@ -13,17 +13,12 @@ from typing import Any
 import numpy as np
 
 from ...core.model import Mechanism
-from .geometry import SAME_POINT, perpendiculars, unique_points
+from .geometry import SAME_POINT, helix, perpendiculars, plate_ring, unique_points
 from .sketch import Sketch
 from .style import COLORS, JOINT_STYLE
 from .views import view_axes
 
-__all__ = ["cone", "arrow", "rotation_mark", "helix", "link_shape", "draw_link", "draw_links", "joint_scale", "draw_joints", "triad", "FLAT", "LINK_WIDTHS", "LINK_ARTISTS", "ROOMY_JOINTS"]
-
-FLAT = 0.05
-"""A link whose joints lie within this fraction of its extent from a plane is
-drawn as a plate (from a line: as a bar or a star); a drawing choice."""
-
+__all__ = ["cone", "arrow", "rotation_mark", "link_shape", "draw_link", "draw_links", "joint_scale", "draw_joints", "triad", "LINK_WIDTHS", "LINK_ARTISTS", "ROOMY_JOINTS"]
 LINK_WIDTHS = {"ground": 4.0, "end_effector": 3.0, "link": 2.6}
 """Line width of a link by its role (points)."""
 
@@ -67,13 +62,6 @@ def rotation_mark(ax: Any, centre: np.ndarray, axis: np.ndarray, radius: float, 
     cone(ax, arc[-1] + 0.35 * radius * tangent, tangent, 0.6 * radius, color, gid + ":head")
 
 
-def helix(centre: np.ndarray, axis: np.ndarray, radius: float, length: float) -> np.ndarray:
-    e1, e2 = perpendiculars(axis)
-    t = np.linspace(0, 4 * math.pi, 60)
-    s = np.linspace(-0.5, 0.5, 60) * length
-    return centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2) + s[:, None] * (axis / np.linalg.norm(axis))
-
-
 def link_shape(pts: np.ndarray, size: float) -> tuple[str, np.ndarray, list[np.ndarray]]:
     """How a link over the joint places ``pts`` is drawn: ``(kind, ring, segments)``.
 
@@ -82,24 +70,16 @@ def link_shape(pts: np.ndarray, size: float) -> tuple[str, np.ndarray, list[np.n
     the convex outline, ``segments`` the spokes to the joints inside it) or
     ``"star"`` (segments from the centroid to every place: a thin 3D body).
     """
-    from scipy.spatial import ConvexHull, QhullError
-
     u = unique_points(pts, SAME_POINT * size)
     if len(u) < 2:
         return "none", np.zeros((0, 3)), []
     if len(u) == 2:
         return "bar", np.zeros((0, 3)), [u]
     c = u.mean(axis=0)
-    _, sv, vt = np.linalg.svd(u - c)
-    flat = sv[2] <= FLAT * sv[0] if len(sv) > 2 else True
-    if flat and sv[1] > FLAT * sv[0]:
-        try:
-            hull = ConvexHull((u - c) @ vt[:2].T)
-        except QhullError:  # pragma: no cover - collinear after all
-            hull = None
-        if hull is not None:
-            outline = set(hull.vertices.tolist())
-            return "plate", u[hull.vertices], [np.stack([c, u[k]]) for k in range(len(u)) if k not in outline]
+    ring = plate_ring(u)
+    if ring is not None:
+        outline = set(ring)
+        return "plate", u[ring], [np.stack([c, u[k]]) for k in range(len(u)) if k not in outline]
     return "star", np.zeros((0, 3)), [np.stack([c, x]) for x in u]
 
 
