@@ -49,6 +49,7 @@ __all__ = [
     "COMPONENT_TIE",
     "NORM_TIE",
     "NEWTON_RCOND",
+    "NEWTON_DAMPING",
     "SOLVER_STOP",
     "WRITE_DRIFT",
     "RankDecision",
@@ -104,16 +105,6 @@ class Tolerance:
 
 DEFAULT_TOLERANCE = Tolerance()
 
-SAME_GRID_VALUE = 1e-9
-"""Two values of a sweep's axis that differ by less than this fraction of its step are one value.
-
-Evenly spaced values carry round-off (``linspace``), and so does an angle
-reduced by whole turns: ``-180`` and ``180`` degrees, or ``0`` and ``360``,
-are one joint state of an R joint.  Used for ties (the value nearest the
-file's pose) and for angles congruent modulo a turn
-(:mod:`mobility.sweeps.walks`).
-"""
-
 
 def require_tolerance(value: object, caller: str) -> Tolerance:
     """``value`` when it is a :class:`Tolerance`, else a :class:`~mobility.errors.RequestError` naming ``caller``.
@@ -168,12 +159,29 @@ ignored when its minimum-norm step is solved (``numpy.linalg.lstsq``'s
 precision, not a rank decision (no count depends on it; whether the loops
 closed is judged by :attr:`~mobility.core.tolerance.Tolerance.closure`)."""
 
+NEWTON_DAMPING = 1e-14
+"""Damping of the batched Newton steps of a sweep, relative to the mean
+squared row of the Jacobian: far below every kept singular value squared, so
+it only keeps the normal equations of a singular pose solvable (the same role
+as :data:`NEWTON_RCOND` for the one-pose solver); whether loops closed is
+judged by :attr:`Tolerance.closure`."""
+
 WRITE_DRIFT = 1e-9
 """Largest change of a joint's geometry that writing a mechanism file and
 reading it back may make (relative to the characteristic length for points
 and pitches, absolute for unit directions): the written numbers keep many more
 digits than that, so only numbers the writer cannot hold trip it
 (:func:`mobility.io.writer.require_written_faithfully`)."""
+
+SAME_GRID_VALUE = 1e-9
+"""Two values of a sweep's axis that differ by less than this fraction of its step are one value.
+
+Evenly spaced values carry round-off (``linspace``), and so does an angle
+reduced by whole turns: ``-180`` and ``180`` degrees, or ``0`` and ``360``,
+are one joint state of an R joint.  Used for ties (the value nearest the
+file's pose) and for angles congruent modulo a turn
+(:mod:`mobility.sweeps.walks`).
+"""
 
 SOLVER_STOP = 1e-15
 """``xtol``, ``ftol`` and ``gtol`` of every least-squares search (the inverse

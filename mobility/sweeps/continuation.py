@@ -53,7 +53,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, SAME_GRID_VALUE, Tolerance
 from .batch_kinematics import BatchKinematics
 from .grid import GridPlan, SweepAxis
 from .walks import AxisWalk, anchor_of, plan_walks, whole_turns
@@ -65,9 +65,6 @@ MAX_ITERATIONS = 12
 
 RETRY_SPLITS = (2, 4)
 """A failed step is retried in this many smaller steps, in turn."""
-
-DAMPING = 1e-14
-"""Damping of the Newton step, relative to the mean squared row of the Jacobian: far below every kept singular value squared."""
 
 POLISHED = 0.1
 """A pose whose residual is below this fraction of ``Tolerance.closure`` needs no polishing step."""
@@ -218,7 +215,7 @@ def _newton_loop(
         equations = j.shape[1]
         gram = j @ j.swapaxes(1, 2)
         diagonal = gram.reshape(len(gram), -1)[:, :: equations + 1]
-        diagonal += (DAMPING * diagonal.sum(axis=1) / equations + 1e-300)[:, None]
+        diagonal += (NEWTON_DAMPING * diagonal.sum(axis=1) / equations + 1e-300)[:, None]
         step = -(j.swapaxes(1, 2) @ np.linalg.solve(gram, np.ascontiguousarray(r.T)[:, :, None]))[:, :, 0]
         moved = q[active].copy()
         moved[:, drive.free] += step
@@ -500,7 +497,7 @@ def seed_grid(bk: BatchKinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_T
     at = targets_of(plan, np.array([anchor_flat]))
     goal = at - np.array([[float(whole_turns(t, a.period * a.scale)) for t, a in zip(at[0], plan.axes)]])
     steps = [abs(a.internal[1] - a.internal[0]) if a.count > 1 else HOMOTOPY_STEP for a in plan.axes]
-    pieces = max([0] + [int(np.ceil(abs(g) / s - 1e-9)) for g, s in zip(goal[0], steps) if s > 0])
+    pieces = max([0] + [int(np.ceil(abs(g) / s - SAME_GRID_VALUE)) for g, s in zip(goal[0], steps) if s > 0])
     # one line of continuation (its predictor keeps the file's branch up to a change point)
     path = goal[:, None, :] * (np.arange(pieces + 1) / max(pieces, 1))[None, :, None]
     pq, perr, pok = close_lines(bk, drive, np.zeros((1, n)), np.array([True]), path, 0, tol=tol)

@@ -234,7 +234,7 @@ def _links(mechanism: Mechanism, sk) -> list[Glyph]:
             if body is not None:
                 meshes.append(body)
                 lines.append(np.vstack([body.vertices, body.vertices[:1]]))  # its outline
-                inner = [p for p in pts if np.min(np.linalg.norm(body.vertices - p, axis=1)) > 1e-6 * sk.size]
+                inner = [p for p in pts if np.min(np.linalg.norm(body.vertices - p, axis=1)) > SAME_POINT * sk.size]
                 lines += [np.stack([pts.mean(axis=0), p]) for p in inner]
             elif len(pts) == 2:
                 lines.append(segment_samples(pts[0], pts[1], 9))
