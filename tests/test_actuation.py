@@ -460,7 +460,7 @@ def test_cli_bad_requests_are_one_line_with_status_2(tmp_path, capsys):
     arm.write_text("\n".join(lines) + "\n", encoding="utf-8")
     for argv, message in (
         (["actuation", str(arm), "--enumerate", "--mode", "any"], "mobility: 177100 combinations to try"),
-        (["actuation", str(RPS_FILE), "--k", "-1"], "mobility: --samples and --k must not be negative"),
+        (["actuation", str(RPS_FILE), "--k", "-1"], "mobility: --k must lie in [0, 6]"),
         (["actuation", str(RPS_FILE), "--pose", str(ROOT / "mechanisms" / "3prs.yaml")], "is not a pose of"),
     ):
         assert main(argv) == 2

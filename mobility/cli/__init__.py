@@ -42,9 +42,8 @@ def command_modules(names: Sequence[str] | None = None) -> list:
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # one line, exit 2
-        self.print_usage(sys.stderr)
-        self.exit(2, f"{self.prog}: error: {message}\n")
+    def error(self, message: str) -> None:  # one line, exit 2 (the usage is one --help away)
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
 def build_parser(commands: Sequence[str] | None = None) -> argparse.ArgumentParser:

@@ -34,6 +34,9 @@ __all__ = [
     "read_mechanism",
     "load_mechanism",
     "names_from",
+    "MAX_SAMPLES",
+    "require_sampler_options",
+    "require_new_output",
 ]
 
 
@@ -77,6 +80,17 @@ def add_pose_sampler_options(parser: argparse.ArgumentParser, *, samples_help: s
     parser.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
 
 
+MAX_SAMPLES = 1000
+"""The most poses ``--samples`` may ask for (each is a loop closure and an analysis)."""
+
+
+def require_sampler_options(args: argparse.Namespace) -> None:
+    """``--samples`` in ``[0, MAX_SAMPLES]``, ``--seed`` not negative, ``--step`` in ``(0, 1]`` (a joint-space distance), else a :class:`RequestError`."""
+    if not (0 <= args.samples <= MAX_SAMPLES) or not (0.0 < args.step <= 1.0) or args.seed < 0:
+        raise RequestError(f"--samples must lie in [0, {MAX_SAMPLES}], --seed must not be negative and --step must lie in (0, 1]; "
+                           f"got {args.samples}, {args.seed} and {args.step:g}")
+
+
 def sampled_poses(args: argparse.Namespace, mechanism: Mechanism) -> list[Mechanism]:
     """The poses asked for by ``--samples``, ``--step`` and ``--seed`` (none for ``--samples 0``).
 
@@ -85,8 +99,7 @@ def sampled_poses(args: argparse.Namespace, mechanism: Mechanism) -> list[Mechan
     RequestError
         For a negative ``--samples`` or a ``--step`` that is not positive.
     """
-    if args.samples < 0 or args.step <= 0:
-        raise RequestError("--samples must not be negative and --step must be positive")
+    require_sampler_options(args)
     if not args.samples:
         return []
     from ..core.poses import sample_poses  # the finite kinematics: imported only by the commands that move
@@ -171,3 +184,25 @@ def names_from(text: str | None) -> list[str] | None:
     (['P1', 'P2', 'P3'], None)
     """
     return None if text is None else [n.strip() for n in text.split(",") if n.strip()]
+
+
+def require_new_output(output: str | None, option: str, *inputs: str | None) -> None:
+    """Refuse an output file that is one of the ``inputs`` (the same file, by any path): writing it would destroy it.
+
+    Examples
+    --------
+    >>> require_new_output("mechanisms/four_bar.yaml", "-o", "mechanisms/../mechanisms/four_bar.yaml")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: -o mechanisms/four_bar.yaml: the same file as mechanisms/../mechanisms/four_bar.yaml, which would be overwritten
+    """
+    if output is None:
+        return
+    for given in inputs:
+        if given is None:
+            continue
+        try:
+            same = Path(output).resolve() == Path(given).resolve() or (Path(output).exists() and Path(output).samefile(given))
+        except OSError:
+            same = False
+        if same:
+            raise RequestError(f"{option} {output}: the same file as {given}, which would be overwritten")

@@ -36,6 +36,7 @@ from ._options import (
     is_robot_description,
     load_mechanism,
     names_from,
+    require_sampler_options,
     read_mechanism,
     robot_options_from,
     sampled_poses,
@@ -69,8 +70,9 @@ def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if args.threshold is not None and not (0.0 < args.threshold < 1.0):
         raise RequestError("--threshold must lie between 0 and 1")
-    if args.samples < 0 or (args.k is not None and args.k < 0):
-        raise RequestError("--samples and --k must not be negative")
+    require_sampler_options(args)
+    if args.k is not None and not (0 <= args.k <= 6):
+        raise RequestError(f"--k must lie in [0, 6] (inputs per combination, at most the 6 freedoms of a body), got {args.k}")
     names = names_from(args.inputs)
     if not is_robot_description(args.file):  # a YAML document: a mechanism or a flexure
         text = read_text(args.file)

@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 
 from ..errors import MechanismFileError
-from ._options import add_mechanism_file, read_mechanism
+from ._options import add_mechanism_file, read_mechanism, require_new_output
 
 __all__ = ["register", "run"]
 
@@ -36,6 +36,7 @@ def run(args: argparse.Namespace) -> int:
     from ..core.analysis import analyze
     from ..io.writer import mechanism_to_yaml, require_written_faithfully
 
+    require_new_output(args.output, "-o", args.file, args.closures)
     mechanism, notes = read_mechanism(args)
     description = " ".join([mechanism.description] + [f"Note: {n}." for n in notes]).strip()
     expected = None

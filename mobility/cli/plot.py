@@ -6,7 +6,7 @@ import argparse
 
 from ..core.analysis import analyze
 from ..errors import MechanismFileError, PlotFormatError, RequestError
-from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
+from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, require_new_output, tolerance_from
 
 ORDER = 30
 
@@ -46,7 +46,10 @@ def run(args: argparse.Namespace) -> int:
     from ..report.plotting import picture_path, plot_graph, plot_mechanism, save_figure
 
     tol = tolerance_from(args)
+    if not 20 <= args.dpi <= 600:
+        raise RequestError(f"--dpi must lie in [20, 600], got {args.dpi}")
     picture_path(args.output)  # before any work
+    require_new_output(args.output, "-o", args.file)
     if args.graph and args.constraints:
         raise RequestError("--constraints draws on the mechanism, not on the --graph picture")
     try:

@@ -20,7 +20,7 @@ from ..report.sweep import sweep_csv, sweep_json, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, DEFAULT_MAX_POSES, sweep
 from ..sweeps.batch_actuation import actuated_inputs
 from ..io.limits import require_size
-from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, names_from, tolerance_from
+from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, names_from, require_new_output, tolerance_from
 
 ORDER = 35
 
@@ -76,6 +76,8 @@ def _progress_wanted(choice: bool | None) -> bool:
 
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
+    require_new_output(args.output, "-o", args.file)
+    require_new_output(args.plot, "--plot", args.file, args.output)
     if args.plot is not None:  # before any work: a picture that cannot be drawn is refused now, not after the sweep
         from ..report.sweep_plot import require_drawable
 

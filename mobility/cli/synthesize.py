@@ -53,6 +53,9 @@ def _vector(text: str, what: str) -> tuple[float, float, float]:
 def run(args: argparse.Namespace) -> int:
     if args.samples < 1 or args.verify < 0:
         raise RequestError(f"--samples must be at least 1 and --verify not negative, got {args.samples} and {args.verify}")
+    if args.samples > 100 or args.verify > 100 or args.seed < 0 or (args.joints is not None and not 1 <= args.joints <= 8):
+        raise RequestError(f"--samples and --verify must be at most 100, --seed not negative and --joints in [1, 8]; "
+                           f"got {args.samples}, {args.verify}, {args.seed} and {args.joints}")
     directions = None if args.directions is None else [_vector(d, "--directions") for d in args.directions.split(";")]
     pattern = named_pattern(args.pattern, point=_vector(args.point, "--point"), directions=directions)
     result = synthesize(pattern, joints=args.joints, samples=args.samples, verify_samples=args.verify, seed=args.seed)

@@ -14,7 +14,7 @@ from ..errors import RequestError
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
 from ..io.limits import require_size
-from ._options import add_mechanism_file, add_pose_sampler_options, add_tolerance_option, load_mechanism, sampled_poses, tolerance_from
+from ._options import add_mechanism_file, add_pose_sampler_options, add_tolerance_option, load_mechanism, require_new_output, sampled_poses, tolerance_from
 
 ORDER = 31
 
@@ -46,6 +46,7 @@ def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if not args.output.lower().endswith(PAGE_SUFFIXES):
         raise RequestError(f"{args.output}: expected a page name ending in .html or .htm (in any case)")
+    require_new_output(args.output, "-o", args.file)
     require_plotly()  # before any work
     mechanism = load_mechanism(args)
     if args.vary or args.samples:

@@ -16,6 +16,8 @@ mobility.errors.MechanismFileError: /dev/zero: larger than the limit of 4194304 
 
 from __future__ import annotations
 
+import os
+import stat
 from pathlib import Path
 
 from ..errors import MechanismFileError
@@ -35,6 +37,12 @@ def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
     """
     name = str(path)
     cap = current_limits(limits).max_file_bytes
+    try:
+        kind = os.stat(path).st_mode
+    except OSError:
+        kind = 0  # missing or unreadable: open() below says which
+    if stat.S_ISFIFO(kind) or stat.S_ISSOCK(kind):  # opening one waits for a writer: never
+        raise MechanismFileError("", "is a pipe or socket, expected a mechanism file", file=name)
     try:
         with open(path, "rb") as stream:
             chunks, size = [], 0

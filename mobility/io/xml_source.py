@@ -87,6 +87,8 @@ def parse_xml(text: str | bytes, file: str = "<string>") -> XmlDocument:
     except expat.ExpatError as exc:
         reason = expat.ErrorString(exc.code)
         raise MechanismFileError("", f"malformed XML: {reason} (column {exc.offset + 1}); expected well-formed XML", file=file, line=exc.lineno) from None
+    except (LookupError, ValueError) as exc:  # an encoding the XML declaration names and Python does not know
+        raise MechanismFileError("", f"unreadable XML ({exc}); expected UTF-8 or another known encoding", file=file, line=1) from None
     return XmlDocument(builder.close(), file, lines)
 
 
@@ -134,6 +136,6 @@ def root_tag(path: str | Path) -> str | None:
     parser.StartElementHandler = start
     try:
         parser.Parse(head, False)
-    except (StopIteration, expat.ExpatError):
+    except (StopIteration, expat.ExpatError, LookupError, ValueError):
         pass
     return found[0] if found else None

@@ -296,6 +296,8 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
         if name in seen:
             raise RequestError(f"{where}: {name} is varied twice")
         seen.add(name)
+        if count > max_poses:  # before any array of that many values is made
+            raise RequestError(f"{where}: {count:,} values, more than --max-poses {max_poses:,}; raise --max-poses or use fewer points")
         if name in names:
             index = names.index(name)
             joint = mechanism.joints[index]

@@ -1,0 +1,68 @@
+"""Options and files that once got past the exit-2 contract: each ends in one line and exit 2, quickly."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+
+from mobility.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+FOUR_BAR = str(ROOT / "mechanisms" / "four_bar.yaml")
+RPS = str(ROOT / "mechanisms" / "actuation_3rps.yaml")
+
+
+@pytest.mark.parametrize("args, expected", [
+    (["actuation", "--samples", "2", "--step=inf", RPS], "--step must lie in (0, 1]"),
+    (["view", "--samples", "2", "--seed=-1", RPS, "-o", "{tmp}/v.html"], "--seed must not be negative"),
+    (["actuation", "--samples", "1000000", RPS], "--samples must lie in [0, 1000]"),
+    (["actuation", "--enumerate", "--mode", "any", "--k", "99999999999999999999", RPS], "--k must lie in [0, 6]"),
+    (["plot", "--dpi", "5000", FOUR_BAR, "-o", "{tmp}/p.png"], "--dpi must lie in [20, 600], got 5000"),
+    (["plot", "--dpi", "0", FOUR_BAR, "-o", "{tmp}/p.png"], "--dpi must lie in [20, 600], got 0"),
+    (["sweep", "--vary", "A=0:10:99999999999999999999", FOUR_BAR], "99,999,999,999,999,999,999 values, more than --max-poses"),
+    (["synthesize", "3T", "--joints", "100000"], "--joints in [1, 8]"),
+    (["synthesize", "3T", "--seed=-1"], "--seed not negative"),
+    (["analyze", "--tol", "abc", FOUR_BAR], "argument --tol: invalid float value: 'abc' (see mobility analyze --help)"),
+])
+def test_an_out_of_range_option_is_refused_in_one_line(args, expected, tmp_path, capsys):
+    status = main([a.replace("{tmp}", str(tmp_path)) for a in args]) if args[1:2] != ["--tol"] else None
+    if status is None:  # argparse's own refusal exits
+        with pytest.raises(SystemExit) as stop:
+            main(args)
+        status = stop.value.code
+    out, err = capsys.readouterr()
+    assert status == 2 and out == "" and err.count("\n") == 1 and expected in err, err
+
+
+@pytest.mark.parametrize("command", [["sweep", "--vary", "A=0:10:3"], ["convert"]])
+def test_an_output_that_is_the_input_file_is_refused_and_the_file_kept(command, tmp_path, capsys):
+    path = tmp_path / "four_bar.yaml"
+    shutil.copy(FOUR_BAR, path)
+    before = path.read_bytes()
+    args = command[:1] + [str(path)] + command[1:] + ["-o", str(tmp_path / "." / "four_bar.yaml")]
+    assert main(args) == 2
+    assert "the same file as" in capsys.readouterr().err and path.read_bytes() == before
+
+
+def test_a_pipe_is_refused_without_waiting_for_a_writer(tmp_path, capsys):
+    fifo = tmp_path / "pipe.yaml"
+    os.mkfifo(fifo)
+    assert main(["analyze", str(fifo)]) == 2  # opening it would wait for ever
+    assert capsys.readouterr().err == f"mobility: {fifo}: is a pipe or socket, expected a mechanism file\n"
+
+
+def test_a_pose_coordinate_far_beyond_reach_is_not_assembled_quickly(capsys):
+    assert main(["sweep", "--vary", "x=1e12:1e12:1", "--json", "--no-progress", FOUR_BAR]) == 0
+    answer = json.loads(capsys.readouterr().out)
+    assert (answer["poses"], answer["assembled"], answer["columns"]["assembled"]) == (1, 0, [False])
+
+
+def test_an_xml_file_in_an_unknown_encoding_is_one_line(tmp_path, capsys):
+    path = tmp_path / "robot.urdf"
+    path.write_text('<?xml version="1.0" encoding="klingon"?>\n<robot name="r"><link name="a"/></robot>\n')
+    assert main(["analyze", str(path)]) == 2
+    assert capsys.readouterr().err == f"mobility: {path}:1: unreadable XML (unknown encoding: klingon); expected UTF-8 or another known encoding\n"
