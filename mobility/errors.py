@@ -32,7 +32,10 @@ True
 
 from __future__ import annotations
 
+import re
 from typing import Iterable
+
+_UNPRINTABLE = re.compile("[\x00-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
 
 __all__ = [
     "MobilityError",
@@ -47,6 +50,7 @@ __all__ = [
     "MissingExtraError",
     "PlottingUnavailableError",
     "name_list",
+    "one_line",
 ]
 
 
@@ -70,6 +74,20 @@ def name_list(names: Iterable[object], *, most: int = 12, empty: str = "(none)")
         return empty
     shown = ", ".join(items[:most])
     return shown if len(items) <= most else f"{shown}, ... ({len(items)} in all)"
+
+
+def one_line(text: str) -> str:
+    """``text`` safe to print as one terminal line: line breaks and control characters shown escaped.
+
+    A message may quote what a user typed (a file name, an option); an escape
+    sequence in it must reach the terminal as text, not as a command.
+
+    Examples
+    --------
+    >>> one_line("bad.yaml: two\\nlines and \\x1b[31mred")
+    'bad.yaml: two\\\\nlines and \\\\x1b[31mred'
+    """
+    return _UNPRINTABLE.sub(lambda m: repr(m.group())[1:-1], text)
 
 
 class MobilityError(Exception):

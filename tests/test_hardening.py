@@ -91,6 +91,11 @@ CORPUS = {
     "index shadows pi": (HEAD + "limbs: [{copies: 2, index: pi, joints: [{name: 'P{pi}', type: P, links: [g, e], axis: [0, 0, 1]}]}]\n", 4, "limbs[0].index", "'pi' is a constant"),
     "index shadows a parameter": (HEAD + "parameters: {k: 2}\nlimbs: [{copies: 2, index: k, joints: [{name: 'P{k}', type: P, links: [g, e], axis: [0, 0, 1]}]}]\n", 5, "limbs[0].index", "already a parameter"),
     "parameter named sin": (HEAD + ONE_JOINT + "parameters: {sin: 2}\n", 6, "parameters.sin", "not pi, tau, e or a function name"),
+    "octal in YAML 1.1": (HEAD + "joints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0, 1], point: [010, 0, 0]}\n", 5, "joints[0].point[0]", "reads as octal 8 in YAML 1.1 but as 10"),
+    "base 60 in YAML 1.1": (HEAD + "joints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0, 1], point: [1:30, 0, 0]}\n", 5, "joints[0].point[0]", "base-60"),
+    "escaped ESC in a name": (HEAD + 'joints:\n  - {name: "A\\e[31m", type: P, links: [g, e], axis: [0, 0, 1]}\n', 5, "joints[0].name", "control character '\\x1b'"),
+    "escaped C1 in a key": (HEAD + ONE_JOINT + '"x\\x9b": 1\n', 6, "", "control character '\\x9b'"),
+    "bidirectional override": (HEAD + "joints:\n  - {name: A\u202eB, type: P, links: [g, e], axis: [0, 0, 1]}\n", 5, None, "control character '\\u202e'"),
     "merge key": (HEAD + "joints:\n  - &b {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\n  - {<<: *b, name: B}\n", 6, "joints[1].<<", "merge keys"),
     "second document": (HEAD + ONE_JOINT + "---\nname: u\n", 6, "", "found a second one"),
     "collection as a key": (HEAD + ONE_JOINT + "? [a, b]\n: 1\n", 6, "", "mapping keys must be plain names"),
@@ -147,6 +152,11 @@ def test_hostile_input_exits_2_with_one_line_from_every_command(tmp_path, comman
     assert f"{path}:{line}:" in shown and words in shown
     if err.strip():
         assert err.count("\n") == 1 and err.startswith("mobility: ")
+
+
+def test_a_file_name_with_an_escape_sequence_is_printed_as_text(tmp_path):
+    status, out, err = run_cli("analyze", str(tmp_path / "x\x1b[31m\u202e.yaml"))
+    assert status == 2 and "x\\x1b[31m\\u202e.yaml: no such file" in err and "\x1b" not in err and "\u202e" not in err
 
 
 def test_check_over_a_folder_reports_each_bad_file_on_its_line_and_goes_on(tmp_path):
@@ -269,6 +279,11 @@ def test_any_plain_document_reads_as_pyyaml_reads_it(doc, flow):
     expected = yaml.load(text, Loader=yaml.SafeLoader)
     assert json.dumps(data, sort_keys=True, default=str) == json.dumps(expected, sort_keys=True, default=str)
     assert positions.lines == composer_lines(text)
+
+
+def test_numbers_read_alike_in_yaml_11_and_12_are_accepted():
+    data, _ = parse_yaml("a: [07, 00, -0, 0x1f, 1_000, 12, '010', 1.5]\n")
+    assert data["a"] == [7, 0, 0, 31, 1000, 12, "010", 1.5]
 
 
 def test_aliases_share_values_as_pyyaml_does():

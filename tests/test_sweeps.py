@@ -28,6 +28,7 @@ from mobility.sweeps.batch_systems import analyse_poses
 from mobility.sweeps.posed_screws import posed_screws
 
 from conftest import MECHANISMS
+from guards import time_bound
 
 RNG_SEED = 20240611
 
@@ -372,6 +373,26 @@ def test_dask_cluster_runs_the_chunks():
         assert np.array_equal(on_dask.column(name), local.column(name))
     assert np.allclose(on_dask.q, local.q, atol=1e-12) and np.allclose(on_dask.conditioning, local.conditioning, rtol=1e-9)
     assert [p.values for p in by_address.singular] == [(120.0,), (300.0,)]
+
+
+def test_a_scheduler_that_never_answers_or_has_no_workers_is_refused(monkeypatch):
+    import socket
+
+    from dask import distributed
+
+    from mobility.sweeps import runner
+
+    monkeypatch.setattr(runner, "CONNECT_SECONDS", 1.0)
+    silent = socket.create_server(("127.0.0.1", 0))  # accepts connections, never speaks
+    try:
+        address = "tcp://127.0.0.1:%d" % silent.getsockname()[1]
+        with time_bound(15), pytest.raises(RequestError, match=r"cannot reach a dask scheduler there \(no answer within 1 s\)"):
+            sweep(load("parallelogram"), ["O1=0:90:3"], scheduler=address)
+    finally:
+        silent.close()
+    with distributed.LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cluster:
+        with time_bound(15), pytest.raises(RequestError, match="has no workers"):
+            sweep(load("parallelogram"), ["O1=0:90:3"], scheduler=cluster.scheduler_address)
 
 
 def test_progress_reports_both_stages_to_the_end():

@@ -217,6 +217,8 @@ J = '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xy
     ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J + '\n<transmission name="t">\n<joint name="q"/>\n</transmission>\n</robot>',
      r":5: transmission\[t\]/joint: unknown joint 'q'"),
     ('<robot name="r">\n<link name="a"/>\n</robot>', r": no joint can move"),
+    ('<robot name="r">\n<link name="a&#x9b;31m"/>\n</robot>', r":2: link\.name: control character '\\x9b' \(code 155\) is not allowed"),
+    ('<robot name="r&#x202e;">\n<link name="a"/>\n</robot>', r":1: robot\.name: control character '\\u202e'"),
 ])
 def test_bad_urdf_is_one_line(tmp_path, text, expected):
     with pytest.raises(MechanismFileError) as err:

@@ -25,7 +25,7 @@ import sys
 import traceback
 from typing import Sequence
 
-from ..errors import MobilityError
+from ..errors import MobilityError, one_line
 
 __all__ = ["main", "build_parser", "command_modules", "command_names"]
 
@@ -78,7 +78,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return int(args.run(args) or 0)
     except MobilityError as exc:
-        print(f"mobility: {exc}", file=sys.stderr)
+        print(f"mobility: {one_line(str(exc))}", file=sys.stderr)
         return 2
     except BrokenPipeError:
         return 0
@@ -86,7 +86,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.debug:
             traceback.print_exc()
         else:
-            print(f"mobility: internal error ({type(exc).__name__}: {exc}); rerun with --debug and please report it", file=sys.stderr)
+            print(f"mobility: internal error ({type(exc).__name__}: {one_line(str(exc))}); rerun with --debug and please report it", file=sys.stderr)
         return 3
 
 

@@ -19,7 +19,7 @@ from typing import Any
 
 from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
-from ..errors import RequestError
+from ..errors import RequestError, one_line
 from ..io.loader import load
 
 __all__ = [
@@ -171,7 +171,7 @@ def load_mechanism(args: argparse.Namespace, path: str | None = None) -> Mechani
     """The mechanism of ``path`` (default: ``args.file``); for a robot description, the notes of the reading go to stderr, one line each."""
     mechanism, notes = read_mechanism(args, path)
     for note in notes:
-        print(f"mobility: note: {note}", file=sys.stderr)
+        print(f"mobility: note: {one_line(note)}", file=sys.stderr)
     return mechanism
 
 

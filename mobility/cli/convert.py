@@ -14,7 +14,7 @@ import sys
 
 from pathlib import Path
 
-from ..errors import MechanismFileError
+from ..errors import MechanismFileError, one_line
 from ._options import add_mechanism_file, read_mechanism, require_new_output
 
 __all__ = ["register", "run"]
@@ -46,13 +46,13 @@ def run(args: argparse.Namespace) -> int:
     text = mechanism_to_yaml(mechanism, description=description, expected=expected)
     require_written_faithfully(mechanism, text, args.output or "the converted file")
     for note in notes:
-        print(f"mobility: note: {note}", file=sys.stderr)
+        print(f"mobility: note: {one_line(note)}", file=sys.stderr)
     if args.output:
         try:
             Path(args.output).write_text(text)
         except OSError as exc:
             raise MechanismFileError("--output", f"cannot write the file ({exc.strerror or exc})", file=args.output) from None
-        print(f"mobility: wrote {args.output} ({len(mechanism.joints)} joints, {len(mechanism.links)} links)", file=sys.stderr)
+        print(one_line(f"mobility: wrote {args.output} ({len(mechanism.joints)} joints, {len(mechanism.links)} links)"), file=sys.stderr)
     else:
         sys.stdout.write(text)
     return 0

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..core.analysis import analyze
-from ..errors import MechanismFileError, PlotFormatError, RequestError
+from ..errors import MechanismFileError, PlotFormatError, RequestError, one_line
 from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, require_new_output, tolerance_from
 
 ORDER = 30
@@ -67,5 +67,5 @@ def run(args: argparse.Namespace) -> int:
         path = save_figure(fig, args.output, dpi=args.dpi)
     except OSError as exc:
         raise MechanismFileError("--output", f"cannot write the file ({exc.strerror or exc})", file=args.output) from None
-    print(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern})")
+    print(one_line(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern})"))
     return 0

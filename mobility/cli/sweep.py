@@ -14,7 +14,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..errors import MechanismError, RequestError
+from ..errors import MechanismError, RequestError, one_line
 from ..report.plotting import picture_path, save_figure
 from ..report.sweep import sweep_csv, sweep_json, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, DEFAULT_MAX_POSES, sweep
@@ -115,7 +115,7 @@ def run(args: argparse.Namespace) -> int:
             Path(args.output).write_text(text if text.endswith("\n") else text + "\n", encoding="utf-8")
         except OSError as exc:
             raise RequestError(f"-o {args.output}: cannot write it ({exc.strerror or exc})") from None
-        print(f"wrote {args.output}: {result.size:,} poses of {result.name} ({fmt})")
+        print(one_line(f"wrote {args.output}: {result.size:,} poses of {result.name} ({fmt})"))
     else:
         print(text, end="" if text.endswith("\n") else "\n")
     if args.plot is not None:
@@ -127,5 +127,5 @@ def run(args: argparse.Namespace) -> int:
             raise RequestError(f"--plot {args.plot}: cannot write it ({exc.strerror or exc})") from None
         note = f"wrote {path}: {'curve' if len(result.axes) == 1 else 'map' if len(result.axes) == 2 else 'slices'} of {result.name}"
         # a table printed on stdout stays a clean table: the note goes to stderr then
-        print(note, file=sys.stderr if (args.output is None and fmt != "text") else sys.stdout)
+        print(one_line(note), file=sys.stderr if (args.output is None and fmt != "text") else sys.stdout)
     return 0

@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 
 from ..core.analysis import analyze
-from ..errors import RequestError
+from ..errors import RequestError, one_line
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
 from ..io.limits import require_size
@@ -65,5 +65,5 @@ def run(args: argparse.Namespace) -> int:
         view = mechanism_view(mechanism, result)
     path = view.write_html(args.output)
     poses = f", {len(view.frames)} poses" if len(view.frames) > 1 else ""
-    print(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility}{poses}")
+    print(one_line(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility}{poses}"))
     return 0

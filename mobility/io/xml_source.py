@@ -20,6 +20,7 @@ mobility.errors.MechanismFileError: r.urdf:3: malformed XML: mismatched tag (col
 
 from __future__ import annotations
 
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,6 +30,9 @@ from ..errors import MechanismFileError
 from .files import read_capped
 
 __all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag"]
+
+_CONTROL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
+"""Control characters (C0 but tab and line breaks, DEL, C1) and bidirectional overrides."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,6 +81,10 @@ def parse_xml(text: str | bytes, file: str = "<string>") -> XmlDocument:
     parser.buffer_text = True
 
     def start(tag: str, attrs: dict[str, str]) -> None:
+        for key, value in attrs.items():
+            bad = _CONTROL.search(value)
+            if bad is not None:  # a character reference (&#x9b;) can make what a terminal obeys
+                raise MechanismFileError(f"{tag}.{key}", f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in an attribute", file=file, line=parser.CurrentLineNumber)
         lines[builder.start(tag, attrs)] = parser.CurrentLineNumber
 
     parser.StartElementHandler = start
@@ -84,6 +92,8 @@ def parse_xml(text: str | bytes, file: str = "<string>") -> XmlDocument:
     parser.CharacterDataHandler = builder.data
     try:
         parser.Parse(text, True)
+    except MechanismFileError:
+        raise
     except expat.ExpatError as exc:
         reason = expat.ErrorString(exc.code)
         raise MechanismFileError("", f"malformed XML: {reason} (column {exc.offset + 1}); expected well-formed XML", file=file, line=exc.lineno) from None

@@ -70,6 +70,8 @@ _KIND = {_TAG + "int": "an integer", _TAG + "float": "a number", _TAG + "bool": 
 
 # Characters YAML does not allow in a stream (the complement of its printable set).
 _NOT_PRINTABLE = re.compile("[^\t\n\r\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+# Characters that reorder or hide the text around them on a terminal (bidirectional overrides, "Trojan source").
+_INVISIBLE_CONTROL = re.compile("[\u202a-\u202e\u2066-\u2069]")
 
 
 def format_key(path: KeyPath) -> str:
@@ -152,7 +154,7 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
     lim = current_limits(limits)
     if len(text) > lim.max_file_bytes:
         raise MechanismFileError("", f"a document of {len(text)} characters is larger than the limit of {lim.max_file_bytes} (set MOBILITY_MAX_FILE_BYTES to raise it)", file=file)
-    bad = _NOT_PRINTABLE.search(text)
+    bad = _NOT_PRINTABLE.search(text) or _INVISIBLE_CONTROL.search(text)
     if bad is not None:
         line = text.count("\n", 0, bad.start()) + 1
         raise MechanismFileError("", f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in YAML", file=file, line=line)
@@ -275,6 +277,8 @@ class _Builder:
         if event.tag not in (None, "!") and event.tag not in _SCALAR_TAGS:
             raise self.fail(path, line, _unsupported_tag(event.tag))
         key = event.value
+        if event.style == '"':
+            self.check_printable(key, path, line)
         if key == "<<" and event.implicit[0]:
             raise self.fail(path + (key,), line, "YAML merge keys (<<) are not supported; write the keys out")
         if key in frame[0]:
@@ -287,6 +291,8 @@ class _Builder:
     def scalar(self, event: Any, path: KeyPath, line: int) -> Any:
         """The value of a scalar: resolved as PyYAML's safe loader does, with every failure an error at its key."""
         value, tag = event.value, event.tag
+        if event.style == '"':  # an escape (backslash-e, backslash-x1b) makes what the stream did not hold
+            self.check_printable(value, path, line)
         if tag is None or tag == "!":
             if not event.implicit[0]:  # quoted, or tagged '!': a string
                 return value
@@ -299,7 +305,16 @@ class _Builder:
             raise self.fail(path, line, _unsupported_tag(tag))
         if tag == _STR:
             return value
+        ambiguous = _yaml11_only_number(tag, value)
+        if ambiguous:
+            raise self.fail(path, line, ambiguous)
         return self.scalar_by_constructor(tag, event, path, line)
+
+    def check_printable(self, text: str, path: KeyPath, line: int) -> None:
+        """A string written with escapes must still hold no control character (an ESC would reach the terminal)."""
+        bad = _NOT_PRINTABLE.search(text) or _INVISIBLE_CONTROL.search(text)
+        if bad is not None:
+            raise self.fail(path, line, f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in a value")
 
     def scalar_by_constructor(self, tag: str, event: Any, path: KeyPath, line: int) -> Any:
         value = event.value
@@ -323,6 +338,37 @@ class _Builder:
 def _resolve_plain(value: str) -> str:
     """The tag PyYAML's safe loader gives a plain scalar (``'3'`` -> int, ``'yes'`` -> bool, else str)."""
     return _RESOLVER.resolve(yaml.ScalarNode, value, (True, False))
+
+
+_OCTAL = re.compile(r"[-+]?0[0-7_]+")
+_SEXAGESIMAL = re.compile(r"[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+(?:\.[0-9_]*)?")
+
+
+def _yaml11_only_number(tag: str, value: str) -> str | None:
+    """Why ``value`` is refused as a number, when YAML 1.1 and YAML 1.2 read it differently.
+
+    YAML 1.1 (PyYAML) reads ``010`` as the octal 8 and ``1:30`` as the base-60
+    number 90, where YAML 1.2 and most readers see ten and a string: a value so
+    written is refused rather than silently read as either.
+
+    Examples
+    --------
+    >>> _yaml11_only_number(_INT, "010")
+    "'010' reads as octal 8 in YAML 1.1 but as 10 in YAML 1.2; write 10 or 8, without the leading zero"
+    >>> _yaml11_only_number(_INT, "10") is None
+    True
+    """
+    body = value.strip()
+    if tag == _INT and _OCTAL.fullmatch(body):
+        digits = body.lstrip("+-").replace("_", "")
+        if int(digits, 8) == int(digits):  # 07, 00: the same number either way
+            return None
+        sign = "-" if body.startswith("-") else ""
+        octal, decimal = f"{sign}{int(digits, 8)}", f"{sign}{int(digits)}"
+        return f"{body!r} reads as octal {octal} in YAML 1.1 but as {decimal} in YAML 1.2; write {decimal} or {octal}, without the leading zero"
+    if tag in (_INT, _TAG + "float") and _SEXAGESIMAL.fullmatch(body):
+        return f"{body!r} reads as a base-60 number in YAML 1.1 but as text in YAML 1.2; write a plain decimal number"
+    return None
 
 
 def _unsupported_tag(tag: str) -> str:

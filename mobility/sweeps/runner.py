@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 import os
 import sys
+import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from functools import cached_property
@@ -139,6 +140,34 @@ def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Se
     return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs is not None and inputs.freedoms else None), np.asarray(q, dtype=float))
 
 
+CONNECT_SECONDS = 10.0
+"""How long a sweep waits for a dask scheduler to answer before giving up."""
+
+
+def _connect(distributed: Any, address: str) -> Any:
+    """A ``distributed.Client`` of the scheduler at ``address``, or a :class:`RequestError` within :data:`CONNECT_SECONDS`.
+
+    The client is made on a daemon thread: a server that accepts the
+    connection and never answers the handshake would otherwise hold the
+    sweep forever (the client's own timeout does not cover that case).
+    """
+    box: dict[str, Any] = {}
+
+    def connect() -> None:
+        try:
+            box["client"] = distributed.Client(address, timeout=f"{CONNECT_SECONDS}s")
+        except Exception as exc:  # reported below, on the caller's thread
+            box["error"] = exc
+
+    thread = threading.Thread(target=connect, name="mobility-dask-connect", daemon=True)
+    thread.start()
+    thread.join(CONNECT_SECONDS + 2.0)
+    if "client" in box:
+        return box["client"]
+    why = f"{type(box['error']).__name__}: {box['error']}" if "error" in box else f"no answer within {CONNECT_SECONDS:g} s"
+    raise RequestError(f"--scheduler {address}: cannot reach a dask scheduler there ({why})")
+
+
 class _Runner:
     """Runs chunks in-process (threads) or on a dask.distributed cluster, reporting progress."""
 
@@ -153,14 +182,14 @@ class _Runner:
             except ImportError as exc:
                 raise MissingExtraError("running a sweep on a dask cluster", "dask[distributed]", "dask", str(exc)) from None
             if isinstance(scheduler, str):
-                try:
-                    self.client = distributed.Client(scheduler, timeout="10s")
-                except (OSError, TimeoutError, ValueError) as exc:
-                    raise RequestError(f"--scheduler {scheduler}: cannot reach a dask scheduler there ({exc})") from None
+                self.client = _connect(distributed, scheduler)
                 self._owns_client = True
             else:
                 self.client = scheduler
-            self.workers = max(1, len(self.client.scheduler_info().get("workers", {})))
+            self.workers = len(self.client.scheduler_info().get("workers", {}))
+            if self.workers == 0:
+                self.close()
+                raise RequestError(f"--scheduler {scheduler}: the dask scheduler has no workers; start some (dask worker ADDRESS) and run again")
             self._context_future = self.client.scatter(context, broadcast=True)
         else:
             self.workers = max(1, workers if workers is not None else (os.cpu_count() or 1))
