@@ -159,6 +159,12 @@ def displacement_logs(g: np.ndarray) -> np.ndarray:
     return _soa_logs((g[:3, :3], g[:3, 3])).T
 
 
+def _floats(q: np.ndarray) -> np.ndarray:
+    """``q`` as floats: ``numpy.longdouble`` kept (the extended-precision residuals of a polishing step), else float64."""
+    q = np.asarray(q)
+    return q if q.dtype == np.longdouble else np.asarray(q, dtype=float)
+
+
 class BatchKinematics:
     """The product-of-exponentials model of one mechanism, evaluated on many poses at once.
 
@@ -209,7 +215,7 @@ class BatchKinematics:
 
     # -- exponentials and products (pose index last) -------------------------------
     def _exponentials(self, q: np.ndarray) -> "_Exponentials":
-        return _Exponentials(self, np.asarray(q, dtype=float).T)
+        return _Exponentials(self, _floats(q).T)
 
     def _chain(self, factors: Factors, exps: "_Exponentials") -> tuple[Motion, list[Motion | None]]:
         """Product of ``factors`` and the partial product before each factor (``None``: the identity)."""
@@ -245,7 +251,7 @@ class BatchKinematics:
         return g
 
     def _check(self, q: np.ndarray) -> np.ndarray:
-        q = np.asarray(q, dtype=float)
+        q = _floats(q)
         if q.ndim != 2 or q.shape[1] != self.variable_count:
             raise RequestError(f"expected joint variables of shape (N, {self.variable_count}), got {q.shape}")
         return q

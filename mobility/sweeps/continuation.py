@@ -58,7 +58,7 @@ from .batch_kinematics import BatchKinematics
 from .grid import GridPlan, SweepAxis
 from .walks import AxisWalk, anchor_of, plan_walks, whole_turns
 
-__all__ = ["Drive", "GridClosure", "newton", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget"]
+__all__ = ["Drive", "GridClosure", "newton", "polish", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget"]
 
 MAX_PIECES = 2000
 """Grid steps at most on the way from the file's pose to the grid's anchor point; a grid
@@ -215,18 +215,79 @@ def _newton_loop(
         active, r = active[keep], r[:, keep]
         # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
         # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
-        j = np.ascontiguousarray(np.moveaxis(jac, -1, 0))  # (N, m, free)
-        equations = j.shape[1]
-        gram = j @ j.swapaxes(1, 2)
-        diagonal = gram.reshape(len(gram), -1)[:, :: equations + 1]
-        diagonal += (NEWTON_DAMPING * diagonal.sum(axis=1) / equations + 1e-300)[:, None]
-        step = -(j.swapaxes(1, 2) @ np.linalg.solve(gram, np.ascontiguousarray(r.T)[:, :, None]))[:, :, 0]
+        step = _min_norm_steps(np.ascontiguousarray(np.moveaxis(jac, -1, 0)), r)
         moved = q[active].copy()
         moved[:, drive.free] += step
         finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
         q[active[finite]] = moved[finite]
         active = active[finite]
     return best_q, best
+
+
+POLISH_STEPS = 2
+"""Newton steps of :func:`polish` (each from a residual in extended precision)."""
+
+_EXTENDED = np.finfo(np.longdouble).eps < np.finfo(float).eps
+"""Whether this platform's ``numpy.longdouble`` holds more digits than float64 (x86: 64-bit mantissa)."""
+
+
+def polish(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """Closed poses refined by Newton steps whose residual is evaluated in extended precision.
+
+    Near a singularity the closure equations are ill-conditioned: with a
+    smallest singular value ``s`` of their Jacobian, the round-off of a
+    float64 residual (about 1e-16) leaves the joint variables uncertain by
+    ``1e-16 / s`` along the near-singular motion, and the screw systems of the
+    pose amplify that again by ``1 / s``.  A parallelogram 0.01 degree from
+    its change point (``s`` about 2e-4) then shows its coupler tilted by 1e-12
+    rad and a pure translation with a rotational part of 1e-8, at the rank
+    tolerance.  Residuals in ``numpy.longdouble`` (on x86 three more digits)
+    take that uncertainty below the float64 rounding of the variables
+    themselves; the steps are solved in float64 (the residual is tiny).  A
+    step that does not lower the extended residual is not taken.  Where
+    ``longdouble`` is float64 (some platforms) nothing changes.
+
+    Parameters
+    ----------
+    q : ndarray, shape (N, n)
+        Closed poses (assembled rows).
+    targets : ndarray, shape (N, axes)
+        Their driven values (internal units).
+
+    Returns
+    -------
+    ndarray, shape (N, n)
+        The refined poses (float64), driven variables unchanged.
+    """
+    if not _EXTENDED or len(q) == 0 or not drive.free.any():
+        return q
+    exact, wanted = np.asarray(q, dtype=np.longdouble), np.asarray(targets, dtype=np.longdouble)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        r, evaluation = _evaluate(bk, drive, exact, wanted)
+        if r.shape[0] == 0:
+            return q
+        err = np.abs(r).max(axis=0)
+        for _ in range(POLISH_STEPS):
+            j = np.moveaxis(evaluation.jacobian()[:, drive.free], -1, 0).astype(float)  # (N, m, free)
+            trial = exact.copy()
+            trial[:, drive.free] += _min_norm_steps(np.ascontiguousarray(j), np.asarray(r, dtype=float))
+            r_trial, evaluation = _evaluate(bk, drive, trial, wanted)
+            err_trial = np.abs(r_trial).max(axis=0)
+            better = np.isfinite(err_trial) & (err_trial < err)
+            if not better.any():
+                break
+            exact[better], err[better] = trial[better], err_trial[better]
+            r, evaluation = (r_trial, evaluation) if better.all() else _evaluate(bk, drive, exact, wanted)
+    return exact.astype(float)
+
+
+def _min_norm_steps(j: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """The damped minimum-norm Newton steps ``-J^T (J J^T + mu I)^-1 r`` of stacked systems ``j`` ``(N, m, free)``, ``r`` ``(m, N)``."""
+    equations = j.shape[1]
+    gram = j @ j.swapaxes(1, 2)
+    diagonal = gram.reshape(len(gram), -1)[:, :: equations + 1]
+    diagonal += (NEWTON_DAMPING * diagonal.sum(axis=1) / equations + 1e-300)[:, None]
+    return -(j.swapaxes(1, 2) @ np.linalg.solve(gram, np.ascontiguousarray(r.T)[:, :, None]))[:, :, 0]
 
 
 def _advance(

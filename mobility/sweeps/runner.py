@@ -44,7 +44,7 @@ from ..errors import MissingExtraError, RequestError
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
 from .batch_kinematics import BatchKinematics
 from .batch_systems import analyse_poses
-from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, seed_grid, targets_of
+from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, seed_grid, targets_of
 from .grid_closure import fill
 from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
 from .posed_screws import posed_screws
@@ -116,6 +116,13 @@ def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
     if not parts:
         return {}
     return {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}
+
+
+def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> dict[str, np.ndarray]:
+    """Polish and analyse a chunk of assembled grid points (a task): the columns of the table, and ``"q"`` the polished poses."""
+    drive = Drive.of(context.plan.axes, context.bk.variable_count)
+    q = polish(context.bk, drive, q, targets_of(context.plan, rows))
+    return {**analyse_chunk(context, q), "q": q}
 
 
 def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> dict[str, np.ndarray]:
@@ -369,7 +376,7 @@ def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_siz
     rows = np.flatnonzero(closure.assembled)
     pieces = max(math.ceil(rows.size / chunk_size), runner.workers if rows.size >= 2 * BLOCK * runner.workers else 1)
     groups = [rows[g] for g in _split(rows.size, pieces)] if rows.size else []
-    results = runner.map("analysing", analyse_chunk, [(closure.q[g],) for g in groups], [g.size for g in groups]) if groups else []
+    results = runner.map("analysing", analyse_grid_chunk, [(g, closure.q[g]) for g in groups], [g.size for g in groups]) if groups else []
     columns = {key: np.concatenate([r[key] for r in results]) for key in results[0]} if results else {}
     return rows, columns
 
@@ -392,10 +399,13 @@ def _result(context: _Context, closure: GridClosure, analysed: tuple[np.ndarray,
             conditioning=full("conditioning", np.nan, float),
             actuation_margin=full("actuation_margin", np.nan, float),
         )
+    q = closure.q.copy()
+    if rows.size:
+        q[rows] = columns["q"]
     return SweepResult(
         mechanism=context.mechanism,
         axes=context.plan.axes,
-        q=closure.q,
+        q=q,
         assembled=closure.assembled,
         residual=closure.residual,
         dof=full("dof", -1, int),
