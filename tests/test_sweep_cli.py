@@ -57,6 +57,24 @@ def test_csv_has_a_header_then_one_row_per_pose(capsys):
         assert float(row[-2]) == pytest.approx(r.conditioning[i], rel=1e-5)
 
 
+@pytest.mark.parametrize("vary, shown", [
+    ("O1=119.999:120.001:5", ["119.999", "119.9995", "120", "120.0005", "120.001"]),
+    ("O1=100000:100001:3", ["100000", "100000.5", "100001"]),
+])
+def test_coordinates_show_the_digits_that_tell_neighbours_apart(capsys, vary, shown):
+    status, out, _ = run(capsys, "sweep", PARALLELOGRAM, "--vary", vary, "--format", "csv")
+    assert status == 0 and [r[0] for r in list(csv.reader(io.StringIO(out)))[1:]] == shown
+    status, out, _ = run(capsys, "sweep", PARALLELOGRAM, "--vary", vary)
+    assert f"O1 from {shown[0]} to {shown[-1]} deg" in out
+
+
+def test_summary_says_when_freedoms_are_left_to_the_solver(capsys):
+    status, out, _ = run(capsys, "sweep", TSAI, "--vary", "P1=-30:30:3", "--vary", "P2=-30:30:3")
+    assert status == 0 and "note: 2 coordinate(s) driven for mobility 3: the other 1 freedom(s) follow the solver" in out
+    status, out, _ = run(capsys, "sweep", TSAI, "--vary", "P1=-30:30:3", "--vary", "P2=-30:30:3", "--vary", "P3=0:0:1")
+    assert status == 0 and "note:" not in out
+
+
 def test_unassembled_rows_have_empty_answers():
     r = mobility.sweep(mobility.load(FIVE_BAR), ["A1=-40:40:5", "A2=-40:40:5"])
     rows = list(csv.DictReader(io.StringIO(sweep_csv(r))))
@@ -117,6 +135,20 @@ def test_pictures_mark_what_the_sweep_found():
     assert _gids(slices, "mobility:sweep:map") == MAX_SLICES
     with pytest.raises(RequestError, match="cannot be drawn"):
         plot_sweep(mobility.sweep(mobility.load(THREE_PRS), ["P1=0:1:1", "P2=0:1:1", "P3=0:1:1", "R1=0:1:1"]))
+
+
+def test_pictures_scale_kappa_from_zero_and_break_the_margin_at_a_gain():
+    kappa_map = plot_sweep(mobility.sweep(mobility.load(THREE_PRS), ["P1=-20:20:5", "P2=-20:20:5"]))
+    mesh = next(a for ax in kappa_map.axes for a in ax.get_children() if a.get_gid() == "mobility:sweep:map")
+    assert mesh.norm.vmin == 0.0 and mesh.norm.vmax == pytest.approx(0.28, abs=0.02)  # kappa 0.22 .. 0.28 here
+    r = mobility.sweep(mobility.load(PARALLELOGRAM), ["O1=0:360:37"])
+    curve = plot_sweep(r)
+    margin = next(line for line in curve.axes[1].get_lines() if line.get_label().startswith("rank margin"))
+    y = np.asarray(margin.get_ydata(), dtype=float)
+    folded = [p.index for p in r.singular]
+    assert folded == [12, 30] and np.isnan(y[folded]).all() and np.isfinite(np.delete(y, folded)).all()
+    nothing = plot_sweep(mobility.sweep(mobility.load(FOUR_BAR), ["A=60:180:5"]))
+    assert [t.get_text() for t in nothing.texts] == ["no pose of the grid could be assembled"]
 
 
 def test_singular_poses_of_the_five_bar_have_their_verdict_in_json():

@@ -296,6 +296,42 @@ def test_a_crank_that_cannot_turn_fully_is_assembled_wherever_it_reaches(vary):
         assert_pose_matches_one_pose_routes(r, i)
 
 
+def test_a_sweep_result_shows_itself_in_one_line():
+    r = sweep(load("3prs"), ["P1=-20:20:31", "P2=-20:20:31"])
+    assert repr(r).startswith("SweepResult('3-PRS parallel head (Sprint Z3), symmetric pose', 961 poses over P1 x P2, 961 assembled, regular: DOF 3 1T2R mobility 3 valid")
+    assert "\n" not in repr(r) and len(repr(r)) < 200
+
+
+@pytest.mark.parametrize("vary", ["O1=119.99:120.01:3", "O1=119.99:119.99:1", "O1=-60.01:-59.99:3", "O1=299.99:300.01:3"])
+def test_the_pattern_next_to_a_change_point_does_not_depend_on_the_grid(vary):
+    r = sweep(load("parallelogram"), [vary])  # 0.01 deg from a fold: round-off of a float64 closure alone made this 1R
+    off = np.abs(np.abs(((r.values[:, 0] - 120.0) + 90.0) % 180.0 - 90.0)) > 1e-6
+    assert r.pattern[off].tolist() == ["1T"] * int(off.sum()) and not r.near_singular[off].any()
+    assert r.pattern[~off].tolist() == ["1T1R"] * int((~off).sum())
+    for i in np.flatnonzero(off):
+        assert mobility.analyze(r.mechanism_at(i)).pattern == "1T"
+
+
+def test_a_point_not_assembled_has_no_mechanism():
+    r = sweep(load("four_bar"), ["A=0:360:13"])
+    missing = int(np.flatnonzero(~r.assembled)[0])
+    with pytest.raises(RequestError, match=rf"grid point {missing} \(A=[0-9.]+\) was not assembled"):
+        r.mechanism_at(missing)
+    with pytest.raises(RequestError, match="expected a grid point index in 0..12"):
+        r.mechanism_at(13)
+    assert mobility.analyze(r.mechanism_at(0)).pattern == r.pattern[0]
+
+
+def test_dead_centres_of_a_slider_crank_are_singular_poses():
+    r = sweep(load("slider_crank"), ["O=-180:180:13"])
+    dead = [p for p in r.singular]
+    assert [p.values for p in dead] == [(-60.0,), (120.0,)]  # crank and rod in line
+    assert all(p.dof == 0 and p.mobility == 1 and "dead point" in p.reasons[0] for p in dead)
+    for p in dead:  # the end effector is instantaneously locked there, the crank still turns
+        one = mobility.analyze(r.mechanism_at(p.index))
+        assert (one.dof, one.mobility) == (0, 1)
+
+
 def test_angles_a_turn_apart_are_one_joint_state():
     m = load("four_bar")
     up, centred = sweep(m, ["A=0:360:361"]), sweep(m, ["A=-180:180:361"])

@@ -22,7 +22,11 @@ Everything here is in the normalised coordinates of
   representative of ``a_i`` is taken, nor on the unit of length or the
   placement of the mechanism (normalised coordinates).  ``kappa`` is 0 at an
   actuation singularity and 1 when a unit twist of the end effector in any
-  direction needs the same input speed.
+  direction needs the same input speed.  When the end effector has no
+  freedom (``d = 0``, e.g. a slider-crank's slider at a dead centre) the map
+  is empty and ``kappa`` is 1 by convention: there is nothing to control, and
+  the inputs, which still move the mechanism, are ``redundant`` for the end
+  effector.
 
 :func:`assess_wrenches` gives the verdict of bare wrenches (fast, for
 enumerations); :func:`assess_inputs` the full :class:`ActuationCheck` of named

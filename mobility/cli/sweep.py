@@ -43,7 +43,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         required=True,
         metavar="NAME=START:STOP:COUNT",
         help="a joint (R/H/C: degrees, P: length) or a pose coordinate x, y, z (length), rx, ry, rz (degrees), "
-        "displaced from the file's pose; COUNT values, both ends included (repeat for a grid)",
+        "displaced from the file's pose (a joint moves its links[1] relative to links[0], right-handed about its axis); "
+        "COUNT values, both ends included (repeat for a grid)",
     )
     p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated)")
     p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output: a summary (default), the table as CSV, or JSON")

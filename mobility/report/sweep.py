@@ -26,6 +26,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import math
 from typing import Any
 
 import numpy as np
@@ -40,17 +41,40 @@ SUMMARY_SINGULAR_LIMIT = 8
 
 
 def describe_values(result: SweepResult, values: Any) -> str:
-    """``"O1=120 deg, P1=-5 mm"``: coordinate values with their units (round-off relative to each axis's range, :attr:`~mobility.sweeps.grid.SweepAxis.extent`)."""
-    return ", ".join(f"{a.name}={fmt_number(v, a.extent)}{(' ' + a.unit) if a.unit else ''}" for a, v in zip(result.axes, values))
+    """``"O1=120 deg, P1=-5 mm"``: coordinate values with their units, with the digits that tell neighbours apart (:func:`axis_digits`)."""
+    return ", ".join(f"{a.name}={fmt_number(v, a.extent, digits=axis_digits(a))}{(' ' + a.unit) if a.unit else ''}" for a, v in zip(result.axes, values))
+
+
+def _step(axis) -> float:
+    return axis.stop / (axis.count - 1) - axis.start / (axis.count - 1) if axis.count > 1 else 0.0  # no overflow for ends near the largest float
+
+
+def axis_digits(axis) -> int:
+    """Significant digits that show every value of a sweep axis apart from its neighbours.
+
+    Six, or more when the step is small against the values: ``119.999:120.001:5``
+    needs seven (``119.9995``), ``100000:100001:3`` eight.  At most 15.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as A
+    >>> axis_digits(A(start=0.0, stop=360.0, count=13)), axis_digits(A(start=119.999, stop=120.001, count=5))
+    (6, 8)
+    """
+    step = abs(_step(axis))
+    largest = max(abs(axis.start), abs(axis.stop))
+    if step == 0.0 or largest == 0.0 or not math.isfinite(largest / step):
+        return 6
+    return int(min(15, max(6, math.ceil(math.log10(largest / step)) + 2)))
 
 
 def _range(axis) -> str:
     unit = f" {axis.unit}" if axis.unit else ""
-    scale = axis.extent
+    scale, digits = axis.extent, axis_digits(axis)
     if axis.count == 1:
-        return f"{axis.name} = {fmt_number(axis.start, scale)}{unit}"
-    step = axis.stop / (axis.count - 1) - axis.start / (axis.count - 1)  # no overflow for ends near the largest float
-    return f"{axis.name} from {fmt_number(axis.start, scale)} to {fmt_number(axis.stop, scale)}{unit} ({axis.count} values, step {fmt_number(step, scale)})"
+        return f"{axis.name} = {fmt_number(axis.start, scale, digits=digits)}{unit}"
+    shown = lambda x: fmt_number(x, scale, digits=digits)  # noqa: E731
+    return f"{axis.name} from {shown(axis.start)} to {shown(axis.stop)}{unit} ({axis.count} values, step {fmt_number(_step(axis), scale)})"
 
 
 def sweep_summary(result: SweepResult) -> str:
@@ -70,6 +94,12 @@ def sweep_summary(result: SweepResult) -> str:
     out.append("  poses per answer (end-effector DOF, pattern, mobility):")
     for (dof, pattern, mobility), n in result.counts().items():
         out.append(f"    {n:>9,}  DOF {dof}  {pattern:<6}  mobility {mobility}")
+    left = result.regular[2] - len(result.axes) if result.regular is not None else 0
+    if left > 0:
+        out.append(
+            f"  note: {len(result.axes)} coordinate(s) driven for mobility {result.regular[2]}: the other {left} freedom(s) "
+            "follow the solver (the smallest change from the neighbouring pose), so the path across the grid decides them"
+        )
     if result.actuated:
         verdicts = ", ".join(f"{v} at {n:,}" for v, n in result.verdict_counts().items())
         out.append(f"  actuation by {', '.join(result.actuated)}: {verdicts}")
@@ -116,7 +146,7 @@ ANSWER_COLUMNS = ("dof", "pattern", "mobility", "smallest_kept", "largest_droppe
 """Columns that are an answer of the analysis: empty cells where a pose is not assembled."""
 
 
-def _cell(name: str, value: Any, assembled: bool, scale: float = 1.0) -> str:
+def _cell(name: str, value: Any, assembled: bool, scale: float = 1.0, digits: int = 6) -> str:
     if name in ANSWER_COLUMNS and not assembled:
         return ""
     if isinstance(value, (bool, np.bool_)):
@@ -127,7 +157,7 @@ def _cell(name: str, value: Any, assembled: bool, scale: float = 1.0) -> str:
         x = float(value)
         if not np.isfinite(x):
             return ""
-        return fmt_number(x, scale, digits=6) if name not in ("residual", "smallest_kept", "largest_dropped", "actuation_margin") else (f"{x:.6g}" if x else "0")
+        return fmt_number(x, scale, digits=digits) if name not in ("residual", "smallest_kept", "largest_dropped", "actuation_margin") else (f"{x:.6g}" if x else "0")
     return str(value)
 
 
@@ -137,11 +167,12 @@ def sweep_csv(result: SweepResult) -> str:
     writer = csv.writer(buffer, lineterminator="\n")
     labels = {a.name: a.label for a in result.axes}
     scales = {a.name: a.extent for a in result.axes}
+    digits = {a.name: axis_digits(a) for a in result.axes}
     names = result.columns
     writer.writerow([labels.get(n, n) for n in names])
     columns = [result.column(n) for n in names]
     for i, ok in enumerate(result.assembled.tolist()):
-        writer.writerow([_cell(n, c[i], ok, scales.get(n, 1.0)) for n, c in zip(names, columns)])
+        writer.writerow([_cell(n, c[i], ok, scales.get(n, 1.0), digits.get(n, 6)) for n, c in zip(names, columns)])
     return buffer.getvalue()
 
 

@@ -51,12 +51,42 @@ MAX_SLICES = 6
 
 
 def colour_of(result: SweepResult) -> tuple[np.ndarray, str]:
-    """The quantity a map shows, per pose (NaN where not assembled), and its label."""
+    """The quantity a map shows, per pose (NaN where not assembled), and its label.
+
+    With inputs, the actuation conditioning κ; else the rank margin, which at
+    a pose that gains a freedom is that of another rank (the new freedom's
+    singular value is dropped there, not kept): such a pose shows the
+    smallest margin of the map, as the regular answer's margin is zero there.
+    """
     if result.actuated:
         return np.where(result.assembled, result.conditioning, np.nan), f"actuation conditioning κ ({', '.join(result.actuated)})"
     with np.errstate(divide="ignore"):
         margin = np.log10(np.where(result.assembled, result.smallest_kept, np.nan))
+    gained = _gains(result)
+    regular = margin[~gained & np.isfinite(margin)]
+    if gained.any() and regular.size:
+        margin[gained] = regular.min()
     return margin, "rank margin: log10 smallest kept relative singular value"
+
+
+def _gains(result: SweepResult) -> np.ndarray:
+    """Poses that gain a freedom over the regular answer (their rank margin belongs to another rank)."""
+    out = np.zeros(result.size, dtype=bool)
+    if result.regular is not None:
+        dof0, _, mob0, _ = result.regular
+        out = result.assembled & ((result.dof > dof0) | (result.mobility > mob0))
+    return out
+
+
+def _colour_limits(result: SweepResult, colour: np.ndarray) -> tuple[float, float]:
+    """The ends of the colour scale: κ from 0 (an actuation singularity is always the darkest), the margin over its range."""
+    finite = colour[np.isfinite(colour)]
+    if not finite.size:
+        return (0.0, 1.0)
+    low, high = float(finite.min()), float(finite.max())
+    if result.actuated:
+        low = 0.0
+    return (low, high if high > low else low + 1.0)
 
 
 def _answers(result: SweepResult) -> tuple[np.ndarray, list[str]]:
@@ -118,15 +148,19 @@ def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
     require_drawable(k)
     title = result.name if title is None else title
     if k == 1:
-        return _curve(result, title)
-    if k == 2:
+        fig = _curve(result, title)
+    elif k == 2:
         fig = new_figure((7.5, 6.0), layout="constrained")
         ax = fig.add_subplot()
         mesh = _map(ax, result, np.arange(result.size).reshape(result.shape), None)
         fig.colorbar(mesh, ax=ax, label=colour_of(result)[1])
         ax.set_title(title)
-        return fig
-    return _slices(result, title)
+    else:
+        fig = _slices(result, title)
+    if not result.assembled.any():
+        fig.text(0.5, 0.5, "no pose of the grid could be assembled", ha="center", va="center", fontsize="large",
+                 bbox={"facecolor": "white", "edgecolor": "0.5"}, gid="mobility:sweep:nothing")
+    return fig
 
 
 UNASSEMBLED = "0.85"
@@ -159,7 +193,8 @@ def _curve(result: SweepResult, title: str) -> "Figure":
     top.set_ylim(max(low - 1, 0) - 0.25, high + 1.25)
     top.set_title(title)
     with np.errstate(divide="ignore"):
-        bottom.semilogy(x, np.where(ok, result.smallest_kept, np.nan), color="tab:green", label="rank margin (smallest kept)", gid="mobility:sweep:curve")
+        # broken at a pose that gains a freedom: its margin is that of another rank (the red line marks it)
+        bottom.semilogy(x, np.where(ok & ~_gains(result), result.smallest_kept, np.nan), color="tab:green", label="rank margin (smallest kept)", gid="mobility:sweep:curve")
     if result.actuated:
         bottom.semilogy(x, np.where(ok & (result.conditioning > 0), result.conditioning, np.nan), color="tab:purple", label="actuation conditioning κ", gid="mobility:sweep:curve")
     bottom.set_xlabel(axis.label)
@@ -189,8 +224,7 @@ def _map(ax: Any, result: SweepResult, index: np.ndarray, limits: tuple[float, f
     codes, labels = _answers(result)
     z = colour[index]
     if limits is None:
-        finite = z[np.isfinite(z)]
-        limits = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
+        limits = _colour_limits(result, z)
     matplotlib = require_matplotlib()
     cmap = matplotlib.colormaps["viridis"].with_extremes(bad=UNASSEMBLED)
     mesh = ax.pcolormesh(x, y, np.ma.masked_invalid(z).T, shading="nearest", cmap=cmap, vmin=limits[0], vmax=limits[1], gid="mobility:sweep:map")
@@ -294,8 +328,7 @@ def _slices(result: SweepResult, title: str) -> "Figure":
     home = _at_file_pose(third)
     on_slice = np.bincount([int(np.unravel_index(p.index, result.shape)[2]) for p in result.singular], minlength=third.count)
     colour, label = colour_of(result)
-    finite = colour[np.isfinite(colour)]
-    limits = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
+    limits = _colour_limits(result, colour)
     columns = min(3, len(chosen))
     rows = int(np.ceil(len(chosen) / columns))
     fig = new_figure((4.2 * columns, 3.8 * rows + 0.8), layout="constrained")

@@ -9,8 +9,10 @@ margin of its rank decisions) and, when inputs are chosen, what
 * the **regular** answer: the most common ``(dof, pattern, mobility, verdict)``
   among assembled poses;
 * the **singular poses**: assembled poses where the end effector or the
-  mechanism gains a freedom over the regular answer, or where the inputs
-  become actuation-singular (each with its reasons);
+  mechanism gains a freedom over the regular answer, where the end effector
+  loses one while the mechanism keeps its mobility (a dead point, such as a
+  slider-crank's dead centres), or where the inputs become
+  actuation-singular (each with its reasons);
 * the **changes**: pairs of neighbouring grid points (along one axis), both
   assembled, whose answers differ; a singularity between two grid points
   shows here even when no grid point falls on it.
@@ -38,6 +40,7 @@ from ..actuation import SINGULAR
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
+from ..errors import RequestError
 from .grid import SweepAxis
 
 __all__ = ["SingularPose", "SweepResult", "COLUMNS"]
@@ -109,10 +112,12 @@ class SweepResult:
         The varied coordinates, first varying slowest.
     q : ndarray, shape (N, n)
         Joint variables of each pose (see :mod:`mobility.core.kinematics`;
-        the best attempt where not assembled).
+        the best attempt where not assembled, zeros where no solve reached
+        the point).
     assembled : ndarray of bool
     residual : ndarray of float
-        Largest loop-closure residual component (dimensionless).
+        Largest loop-closure residual component (dimensionless; infinite where
+        no solve reached the point, shown empty or null).
     dof, mobility : ndarray of int
         -1 where not assembled.
     pattern : ndarray of str
@@ -154,6 +159,20 @@ class SweepResult:
         for value in vars(self).values():
             if isinstance(value, np.ndarray):
                 value.setflags(write=False)
+
+    def __repr__(self) -> str:
+        """One line: the mechanism, the grid, what was assembled and found (the table is in the columns).
+
+        Examples
+        --------
+        >>> import mobility
+        >>> mobility.sweep(mobility.load("mechanisms/parallelogram.yaml"), ["O1=0:360:13"])
+        SweepResult('planar parallelogram four-bar', 13 poses over O1, 13 assembled, regular: DOF 1 1T mobility 1, 2 singular)
+        """
+        regular = self.regular
+        found = f"regular: DOF {regular[0]} {regular[1]} mobility {regular[2]}" + (f" {regular[3]}" if regular[3] else "") if regular else "no answer"
+        return (f"SweepResult({self.name!r}, {self.size:,} poses over {' x '.join(self.names)}, "
+                f"{int(self.assembled.sum()):,} assembled, {found}, {len(self.singular)} singular)")
 
     # -- the grid ----------------------------------------------------------------
     @property
@@ -238,11 +257,14 @@ class SweepResult:
         dof0, _, mob0, verdict0 = regular
         out = []
         gains = self.assembled & ((self.dof > dof0) | (self.mobility > mob0))
+        dead = self.assembled & (self.dof < dof0) & (self.mobility >= mob0)
         lost = self.assembled & (self.verdict == SINGULAR) & (verdict0 != SINGULAR) if self.actuated else np.zeros(self.size, dtype=bool)
-        for i in np.flatnonzero(gains | lost):
+        for i in np.flatnonzero(gains | dead | lost):
             reasons = []
             if self.dof[i] > dof0:
                 reasons.append(f"the end effector gains {self.dof[i] - dof0} freedom(s): {self.dof[i]} DOF ({self.pattern[i]})")
+            if dead[i]:
+                reasons.append(f"the end effector loses {dof0 - self.dof[i]} freedom(s) while the mechanism still moves (a dead point): {self.dof[i]} DOF ({self.pattern[i]})")
             if self.mobility[i] > mob0:
                 reasons.append(f"the mechanism gains {self.mobility[i] - mob0} freedom(s): mobility {self.mobility[i]}")
             if lost[i]:
@@ -274,7 +296,18 @@ class SweepResult:
 
     # -- one pose --------------------------------------------------------------------
     def mechanism_at(self, index: int) -> Mechanism:
-        """The pose of grid point ``index`` (flat) rebuilt as a :class:`~mobility.core.model.Mechanism`."""
+        """The pose of grid point ``index`` (flat) rebuilt as a :class:`~mobility.core.model.Mechanism`.
+
+        Raises
+        ------
+        RequestError
+            When the point is not on the grid or was not assembled (its joint
+            variables close no loop, so no mechanism has that pose).
+        """
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not -self.size <= index < self.size:
+            raise RequestError(f"mechanism_at: expected a grid point index in 0..{self.size - 1}, got {index!r}")
+        if not self.assembled[index]:
+            raise RequestError(f"mechanism_at: grid point {int(index)} ({', '.join(f'{n}={v:g}' for n, v in zip(self.names, self.values[index]))}) was not assembled; its loops do not close")
         return kinematics(self.mechanism).mechanism_at(self.q[index])
 
     def row(self, index: int) -> dict[str, Any]:

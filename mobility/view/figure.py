@@ -180,8 +180,8 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
         "margin": {"l": 10, "r": 10, "t": 70, "b": 10},
         "paper_bgcolor": _BACKGROUND,
         "uirevision": "mobility",
-        "scene": {**{f"{n}axis": a for n, a in axis.items()}, "aspectmode": "manual", "aspectratio": {"x": 1.35, "y": 1.35, "z": 1.35}, "camera": _camera(viewpoint(first_scene)),
-                  "domain": {"x": [0.0, 1.0], "y": [0.2 if len(frames) > 1 else 0.15, 1.0]}},
+        "scene": {**{f"{n}axis": a for n, a in axis.items()}, "aspectmode": "manual", "aspectratio": {"x": 1.15, "y": 1.15, "z": 1.15}, "camera": _camera(viewpoint(first_scene)),
+                  "domain": {"x": [0.0, 1.0], "y": [0.23 if len(frames) > 1 else 0.16, 1.0]}},
     }
     counts = {"mechanism": "", "freedoms": f" ({first_result.dof})", "constraints": f" ({6 - first_result.dof})"}
     for layer, name in LEGENDS.items():
@@ -195,6 +195,7 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
         for k, (_, result, label) in enumerate(frames):
             steps.append({"label": label or str(k + 1), "method": "update",
                           "args": [{"visible": [o == k for o in owner]}, {"title.text": _title(result, label, len(frames))}]})
-        layout["sliders"] = [{"active": 0, "steps": steps, "x": 0.02, "len": 0.96, "y": 0.08, "yanchor": "top",
+        # inset so that the labels of the end steps, centred on them, stay on the page
+        layout["sliders"] = [{"active": 0, "steps": steps, "x": 0.1, "len": 0.8, "y": 0.08, "yanchor": "top",
                               "currentvalue": {"prefix": "pose: ", "font": {"size": 13}}, "pad": {"t": 0, "b": 0}}]
     return {"data": data, "layout": layout}
