@@ -119,10 +119,25 @@ def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> dict[str, np.ndarray]:
-    """Polish and analyse a chunk of assembled grid points (a task): the columns of the table, and ``"q"`` the polished poses."""
-    drive = Drive.of(context.plan.axes, context.bk.variable_count)
-    q = polish(context.bk, drive, q, targets_of(context.plan, rows))
-    return {**analyse_chunk(context, q), "q": q}
+    """Analyse a chunk of assembled grid points (a task): the columns of the table, and ``"q"`` the poses.
+
+    A pose whose answer rests on a rank decision within the warning band of
+    the tolerance policy (``near_singular`` or ``inexact``: a singular value
+    between ``Tolerance.inexact`` and ``Tolerance.near_singular``, where the
+    round-off of a float64 loop closure can decide it) is polished
+    (:func:`~mobility.sweeps.continuation.polish`) and analysed again; the
+    others, almost every pose of a sweep, are not touched.
+    """
+    columns = analyse_chunk(context, q)
+    doubtful = np.flatnonzero(columns["near_singular"] | columns["inexact"]) if columns else np.zeros(0, dtype=int)
+    if doubtful.size:
+        drive = Drive.of(context.plan.axes, context.bk.variable_count)
+        q = q.copy()
+        q[doubtful] = polish(context.bk, drive, q[doubtful], targets_of(context.plan, rows[doubtful]))
+        again = analyse_chunk(context, q[doubtful])
+        for key, values in again.items():
+            columns[key][doubtful] = values
+    return {**columns, "q": q}
 
 
 def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> dict[str, np.ndarray]:
