@@ -109,7 +109,7 @@ class MechanismError(MobilityError, ValueError):
     def __init__(self, key: str, message: str) -> None:
         self.key = key
         self.message = message
-        super().__init__(self._format())
+        super().__init__(one_line(self._format()))  # a key may quote a name as written ("pi\n")
 
     def _format(self) -> str:
         return f"{self.key}: {self.message}" if self.key else self.message

@@ -96,6 +96,9 @@ CORPUS = {
     "escaped ESC in a name": (HEAD + 'joints:\n  - {name: "A\\e[31m", type: P, links: [g, e], axis: [0, 0, 1]}\n', 5, "joints[0].name", "control character '\\x1b'"),
     "escaped C1 in a key": (HEAD + ONE_JOINT + '"x\\x9b": 1\n', 6, "", "control character '\\x9b'"),
     "bidirectional override": (HEAD + "joints:\n  - {name: A\u202eB, type: P, links: [g, e], axis: [0, 0, 1]}\n", 5, None, "control character '\\u202e'"),
+    "parameter named pi with a line break": (HEAD + 'parameters: {"pi\\n": 3}\n' + ONE_JOINT, 4, None, "not pi, tau, e or a function name"),
+    "limb index e with a line break": (HEAD + "limbs: [{copies: 2, index: \"e\\n\", joints: [{name: 'P{e}', type: P, links: [g, e], axis: [0, 0, 1]}]}]\n", 4, "limbs[0].index", "expected"),
+    "fullwidth letter in an expression": (HEAD + "parameters: {a: 1}\njoints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0, 1], point: ['\uff41+0', 0, 0]}\n", 6, "joints[0].point[0]", "expressions are written in ASCII"),
     "merge key": (HEAD + "joints:\n  - &b {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\n  - {<<: *b, name: B}\n", 6, "joints[1].<<", "merge keys"),
     "second document": (HEAD + ONE_JOINT + "---\nname: u\n", 6, "", "found a second one"),
     "collection as a key": (HEAD + ONE_JOINT + "? [a, b]\n: 1\n", 6, "", "mapping keys must be plain names"),
@@ -279,6 +282,12 @@ def test_any_plain_document_reads_as_pyyaml_reads_it(doc, flow):
     expected = yaml.load(text, Loader=yaml.SafeLoader)
     assert json.dumps(data, sort_keys=True, default=str) == json.dumps(expected, sort_keys=True, default=str)
     assert positions.lines == composer_lines(text)
+
+
+def test_functions_of_no_argument_are_evaluated():
+    assert evaluate("hypot() + 1", {}) == 1.0 and evaluate("hypot()", {}) == 0.0
+    with pytest.raises(ValueError, match="max expected at least 1 argument"):
+        evaluate("max()", {})
 
 
 def test_numbers_read_alike_in_yaml_11_and_12_are_accepted():

@@ -55,6 +55,32 @@ def test_a_pipe_is_refused_without_waiting_for_a_writer(tmp_path, capsys):
     assert capsys.readouterr().err == f"mobility: {fifo}: is a pipe or socket, expected a mechanism file\n"
 
 
+@pytest.mark.parametrize("command", [["sweep", "--vary", "A=0:10:3", "-o"], ["view", "-o"], ["convert", "-o"], ["plot", "-o"], ["sweep", "--vary", "A=0:10:3", "--plot"]])
+def test_an_output_that_is_a_pipe_is_refused_without_waiting_for_a_reader(command, tmp_path, capsys):
+    fifo = tmp_path / ("out." + {"view": "html", "plot": "png", "convert": "yaml"}.get(command[0], "png" if command[-1] == "--plot" else "csv"))
+    os.mkfifo(fifo)
+    assert main(command[:1] + [FOUR_BAR] + command[1:] + [str(fifo)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"{fifo}: is a pipe or socket, expected a file to write" in err
+
+
+@pytest.mark.parametrize("command", [["actuation", RPS, "--inputs", "P1,P1,P1"], ["jacobian", RPS, "--actuated", "P1,P1"], ["sweep", RPS, "--vary", "P1=0:1:2", "--inputs", "P1,P1"]])
+def test_an_input_named_twice_is_refused(command, capsys):
+    assert main(command) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "'P1' is given twice; name each input once" in err
+
+
+def test_check_reports_a_pipe_in_a_folder_and_prints_paths_as_text(tmp_path, capsys):
+    odd = tmp_path / "a\x1b[31mred.yaml"
+    shutil.copy(FOUR_BAR, odd)
+    os.mkfifo(tmp_path / "pipe.yaml")
+    assert main(["check", str(tmp_path)]) == 2
+    out = capsys.readouterr().out
+    assert "\x1b" not in out and "a\\x1b[31mred.yaml" in out and "pass (3 keys)" in out
+    assert "pipe.yaml: is a pipe or socket, expected a mechanism file" in out and "1 passed, 0 failed, 0 without expected block, 1 error" in out
+
+
 def test_a_pose_coordinate_far_beyond_reach_is_not_assembled_quickly(capsys):
     assert main(["sweep", "--vary", "x=1e12:1e12:1", "--json", "--no-progress", FOUR_BAR]) == 0
     answer = json.loads(capsys.readouterr().out)

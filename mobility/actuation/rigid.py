@@ -25,7 +25,7 @@ import math
 from typing import Iterable, Sequence
 
 
-from ..core.model import Mechanism, require_mechanism
+from ..core.model import Mechanism, require_mechanism, require_no_repeats
 from ..core.poses import DEFAULT_STEP, sample_poses
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
@@ -201,6 +201,7 @@ def _inputs_of(pose: RigidPose, names: Sequence[str]) -> list[InputWrench]:
     joints = pose.mechanism.joints
     index = {j.name: i for i, j in enumerate(joints)}
     out = []
+    require_no_repeats(names, "actuated")
     for name in names:
         if name not in index:
             raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {name_list(index)}")

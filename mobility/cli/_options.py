@@ -13,6 +13,8 @@ robot readers are imported only when a robot file is read, so that
 from __future__ import annotations
 
 import argparse
+import os
+import stat
 import sys
 from pathlib import Path
 from typing import Any
@@ -187,7 +189,7 @@ def names_from(text: str | None) -> list[str] | None:
 
 
 def require_new_output(output: str | None, option: str, *inputs: str | None) -> None:
-    """Refuse an output file that is one of the ``inputs`` (the same file, by any path): writing it would destroy it.
+    """Refuse an output that would destroy an input or never be written: one of ``inputs`` (by any path), a directory, a pipe or a socket.
 
     Examples
     --------
@@ -197,6 +199,13 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
     """
     if output is None:
         return
+    try:
+        mode = os.stat(output).st_mode
+    except (OSError, ValueError):
+        mode = None  # a new file: nothing to check
+    if mode is not None and (stat.S_ISFIFO(mode) or stat.S_ISSOCK(mode) or stat.S_ISDIR(mode)):
+        kind = "a directory" if stat.S_ISDIR(mode) else "a pipe or socket"
+        raise RequestError(f"{option} {output}: is {kind}, expected a file to write (writing to a pipe would wait for a reader)")
     for given in inputs:
         if given is None:
             continue

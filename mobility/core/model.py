@@ -52,6 +52,7 @@ __all__ = [
     "require_mechanism",
     "require_graph_names",
     "require_unique_names",
+    "require_no_repeats",
     "require_ground_and_end_effector",
     "WORLD",
 ]
@@ -617,6 +618,22 @@ def require_graph_names(graph: Any, node: str) -> None:
         value = getattr(graph, key)
         if not isinstance(value, str) or not value:
             raise MechanismError(key, f"expected {what}, got {value!r}")
+
+
+def require_no_repeats(names: Iterable[str], key: str) -> None:
+    """No name of ``names`` (a choice of inputs, say) is given twice; ``key`` names the option or argument.
+
+    Examples
+    --------
+    >>> require_no_repeats(["P1", "P2", "P1"], "actuated")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: actuated: 'P1' is given twice; name each input once
+    """
+    seen: set[str] = set()
+    for name in names:
+        if name in seen:
+            raise MechanismError(key, f"{name!r} is given twice; name each input once")
+        seen.add(name)
 
 
 def require_unique_names(items: Iterable[Any], key: str, what: str) -> None:

@@ -36,6 +36,7 @@ import numpy as np
 from ..actuation import ActuationCheck, Enumeration, InputWrench, assess_inputs, assess_wrenches, combinations_count, combine_poses, rank_combinations
 from ..core.joint_screws import Normalisation
 from ..core.linalg import rank
+from ..core.model import require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale
 from ..core.transforms import skew
 from ..errors import MechanismError, name_list
@@ -191,6 +192,7 @@ def _select(mechanism: FlexureMechanism, names: Sequence[str] | None) -> list[Fo
     if names is None:
         return [a for a in mechanism.actuators if a.actuated]
     out = []
+    require_no_repeats(names, "actuators")
     for n in names:
         if n not in by_name:
             raise MechanismError("actuators", f"unknown actuator {n!r}; expected one of: {name_list(by_name)}")

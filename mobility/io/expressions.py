@@ -151,9 +151,12 @@ def compile_expression(text: str, max_length: int = DEFAULT_LIMITS.max_expressio
     source = text.strip()
     if len(source) > max_length:
         raise ValueError(f"an expression of {len(source)} characters is longer than the limit of {max_length} (set MOBILITY_MAX_EXPRESSION_LENGTH to raise it)")
+    shown = _shown(source)
+    if not source.isascii():  # Python would read a fullwidth 'ａ' as 'a' (NFKC) inside an expression, not alone
+        bad = next(c for c in source if not c.isascii())
+        raise ValueError(f"expression {shown!r} holds the character {bad!r}; expressions are written in ASCII (names, digits, + - * / ** %)")
     if source.isidentifier() and not keyword.iskeyword(source):  # a lone name, the commonest expression
         return ((_NAME, source),)
-    shown = _shown(source)
     try:
         tree = ast.parse(source, mode="eval")
     except SyntaxError as exc:
@@ -184,7 +187,7 @@ def _shown(text: str) -> str:
 
 
 def _run(program: Program, names: Mapping[str, float], text: str) -> float:
-    if len(program) == 1:  # a lone number or name: nothing to compute
+    if len(program) == 1 and program[0][0] != _APPLY:  # a lone number or name: nothing to compute
         kind, item = program[0][0], program[0][1]
         if kind == _NUMBER:
             return item

@@ -46,7 +46,7 @@ __all__ = ["DocumentReader", "describe_value", "parse_key", "NAME_RE", "FRAME_KE
 FRAME_KEYS = ("origin", "rpy", "axis", "angle", "parent")
 Required = tuple[str | tuple[str, ...], ...]
 """Required keys: each a key, or a tuple of keys of which one is enough."""
-NAME_RE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
 
 class DocumentReader:

@@ -25,7 +25,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
-from ..core.model import Joint, Mechanism
+from ..core.model import Joint, Mechanism, require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale
 from ..core.transforms import cross, skew
 from ..errors import AnalysisError, MechanismError, name_list
@@ -253,6 +253,7 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
     act: list[tuple[int, int]] = []
     labels: list[str] = []
     by_name = {j.name: i for i, j in enumerate(mechanism.joints)}
+    require_no_repeats(names, "actuated")
     for name in names:
         base, _, sub = name.partition(".")
         if base not in by_name:

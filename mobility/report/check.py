@@ -19,6 +19,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from ..errors import one_line
+
 if TYPE_CHECKING:  # pragma: no cover
     from ..testing.check import CheckReport, CheckResult
 
@@ -57,7 +59,7 @@ def check_table(report: "CheckReport") -> str:
     for r in report.results:
         res = r.result
         found = ("", "", "", "") if res is None else (str(res.gruebler_kutzbach), str(res.mobility), str(res.dof), res.pattern)
-        rows.append((r.path, *found, expected_text(r), verdict_text(r)))
+        rows.append(tuple(one_line(c) for c in (r.path, *found, expected_text(r), verdict_text(r))))  # a path as typed may hold an escape
     widths = [max(len(h), *(len(row[i]) for row in rows)) if rows else len(h) for i, h in enumerate(HEADER)]
 
     def line(cells: tuple[str, ...]) -> str:

@@ -41,7 +41,7 @@ from typing import Sequence
 import numpy as np
 
 from ..actuation import REDUNDANT, SINGULAR, VALID
-from ..core.model import Mechanism
+from ..core.model import Mechanism, require_no_repeats
 from ..core.screws import SWAP_ROWS
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_ranks
 from ..core.topology import JointNode, Node, Parallel, Series, decompose, joints_of
@@ -79,6 +79,7 @@ def actuated_inputs(mechanism: Mechanism, names: Sequence[str] | None = None) ->
     chosen = [j.name for j in mechanism.joints if j.actuated] if names is None else list(names)
     index = {j.name: i for i, j in enumerate(mechanism.joints)}
     freedoms = []
+    require_no_repeats(chosen, "actuated")
     for name in chosen:
         if name not in index:
             raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {name_list(index)}")

@@ -380,7 +380,7 @@ def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None,
     for raw in paths:
         p = Path(raw)
         if p.is_dir():
-            found = sorted(f for f in p.rglob("*") if f.suffix in MECHANISM_SUFFIXES and f.is_file())
+            found = sorted(f for f in p.rglob("*") if f.suffix in MECHANISM_SUFFIXES and not f.is_dir())  # a pipe among them is reported on its row, not skipped
             if not found:
                 out.append((str(raw), None, f"{raw}: no *.yaml mechanism file in this folder"))
             out.extend((str(f), f, "") for f in found)
