@@ -464,3 +464,33 @@ def test_a_large_mechanism_and_its_graph_are_drawn_with_collections():
     assert sum(len(a.get_offsets()) for a in graph.axes[1].collections if (a.get_gid() or "").startswith("mobility:tree:")) == 2 * 801 - 1
     assert not graph.axes[1].texts[1:]  # only the end effector's line: no box per node
     assert "names left out" in graph._suptitle.get_text()
+
+
+DOLLARS = """name: "cost $_$ mech"
+ground: "$g$"
+end_effector: coupler
+joints:
+  - {name: A, type: R, links: ["$g$", crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: "$_$", type: R, links: [crank, coupler], axis: [0, 0, 1], point: [1, 2, 0]}
+  - {name: C, type: R, links: [coupler, rocker], axis: [0, 0, 1], point: [4, 2.5, 0]}
+  - {name: D, type: R, links: [rocker, "$g$"], axis: [0, 0, 1], point: [5, 0, 0]}
+"""
+
+
+@pytest.mark.parametrize("options", [["plot"], ["plot", "--graph"], ["plot", "--constraints"], ["sweep", "--vary", "A=0:60:4", "--plot"]])
+def test_names_with_dollars_are_drawn_as_written(tmp_path, capsys, options):
+    path = tmp_path / "dollars.yaml"
+    path.write_text(DOLLARS)
+    picture = tmp_path / "p.png"
+    args = options[:1] + [str(path)] + options[1:] + ([str(picture)] if options[0] == "sweep" else ["-o", str(picture)])
+    assert main(args) == 0, capsys.readouterr().err
+    assert picture.stat().st_size > 10_000
+
+
+def test_a_flat_curve_keeps_a_readable_log_scale():
+    from mobility.report.sweep_plot import plot_sweep
+
+    r = mobility.sweep(mobility.load(ROOT / "mechanisms" / "parallelogram.yaml"), ["O1=10:20:5"])
+    bottom = plot_sweep(r).axes[1]
+    low, high = bottom.get_ylim()
+    assert high / low >= 4.0 and low < r.smallest_kept.min() and high > r.smallest_kept.max()

@@ -197,6 +197,10 @@ def _curve(result: SweepResult, title: str) -> "Figure":
         bottom.semilogy(x, np.where(ok & ~_gains(result), result.smallest_kept, np.nan), color="tab:green", label="rank margin (smallest kept)", gid="mobility:sweep:curve")
     if result.actuated:
         bottom.semilogy(x, np.where(ok & (result.conditioning > 0), result.conditioning, np.nan), color="tab:purple", label="actuation conditioning κ", gid="mobility:sweep:curve")
+    shown = np.concatenate([np.asarray(line.get_ydata(), dtype=float) for line in bottom.get_lines()] or [np.zeros(0)])
+    shown = shown[np.isfinite(shown) & (shown > 0)]
+    if shown.size:  # at least a factor of 4: a flat curve would leave the log scale a range of 1e-16 (no ticks, a tilted line)
+        bottom.set_ylim(shown.min() / 2.0, min(shown.max() * 2.0, 10.0))
     bottom.set_xlabel(axis.label)
     bottom.set_ylabel("relative value")
     step = (x[1] - x[0]) if len(x) > 1 else 1.0

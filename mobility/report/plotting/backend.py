@@ -50,7 +50,16 @@ def _figure_class() -> type:
         from matplotlib.figure import Figure
 
         class MobilityFigure(Figure):
-            """A figure of :mod:`mobility.report.plotting`; displays itself as PNG in Jupyter."""
+            """A figure of :mod:`mobility.report.plotting`; displays itself as PNG in Jupyter.
+
+            Its texts are drawn as written: a name such as ``$_$`` is not
+            TeX for matplotlib's mathtext (which would fail on it); only the
+            numbers of the axes' ticks keep mathtext (``10^-2`` on a log scale).
+            """
+
+            def draw(self, renderer: Any) -> None:
+                _literal_texts(self)
+                super().draw(renderer)
 
             def _repr_png_(self) -> bytes:
                 buf = io.BytesIO()
@@ -59,6 +68,23 @@ def _figure_class() -> type:
 
         _FIGURE_CLASS.append(MobilityFigure)
     return _FIGURE_CLASS[0]
+
+
+def _literal_texts(fig: Any) -> None:
+    """Turn off mathtext for every text of ``fig`` but the tick labels (names are user data, not TeX)."""
+    from matplotlib.text import Text
+
+    ticks: set[int] = set()
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis, getattr(ax, "zaxis", None)):
+            if axis is None:
+                continue
+            for tick in axis.get_major_ticks() + axis.get_minor_ticks():
+                ticks.update((id(tick.label1), id(tick.label2)))
+            ticks.add(id(axis.get_offset_text()))
+    for text in fig.findobj(Text):
+        if id(text) not in ticks:
+            text.set_parse_math(False)
 
 
 def new_figure(figsize: tuple[float, float], **options: Any) -> "Figure":
