@@ -25,6 +25,9 @@ RPS = str(ROOT / "mechanisms" / "actuation_3rps.yaml")
     (["plot", "--dpi", "0", FOUR_BAR, "-o", "{tmp}/p.png"], "--dpi must lie in [20, 600], got 0"),
     (["sweep", "--vary", "A=0:10:99999999999999999999", FOUR_BAR], "99,999,999,999,999,999,999 values, more than --max-poses"),
     (["synthesize", "3T", "--joints", "100000"], "--joints in [1, 8]"),
+    (["synthesize", "2T3R", "--verify", "11"], "--verify at most 10"),
+    (["synthesize", "2T3R", "--samples", "31"], "--samples must be at most 30"),
+    (["synthesize", "3T", "--directions", "1,0,0"], "the 3T pattern takes 3 directions, got 1"),
     (["synthesize", "3T", "--seed=-1"], "--seed not negative"),
     (["analyze", "--tol", "abc", FOUR_BAR], "argument --tol: invalid float value: 'abc' (see mobility analyze --help)"),
 ])

@@ -9,6 +9,8 @@ limb qualifies.
 
 import json
 import math
+import re
+import warnings
 
 import numpy as np
 import pytest
@@ -327,3 +329,33 @@ def test_synthesis_reports():
         "wrote 1 mechanism files to d; not assembled (singular at the home pose): 1",
         "  X: why",
     ]
+
+
+@pytest.mark.parametrize("name", ["3R", "3T1R", "2T3R"])
+def test_the_limbs_found_do_not_depend_on_where_the_pattern_is(name):
+    home = synthesize(named_pattern(name), verify_samples=1)
+    for point in ((7.0, -3.0, 2.0), (1e200, 0.0, 0.0)):
+        moved = synthesize(named_pattern(name, point=point), verify_samples=1)
+        assert moved.pattern.dim == home.pattern.dim
+        assert [s.name for s in moved.structures] == [s.name for s in home.structures]
+        assert moved.points["O"] == point
+
+
+@pytest.mark.parametrize("name, directions, message", [
+    ("3T", [(1, 0, 0)], "the 3T pattern takes 3 directions, got 1"),
+    ("3T", [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)], "the 3T pattern takes 3 directions, got 4"),
+    ("3R", [(1, 0, 0)], "the 3R pattern takes no directions, got 1"),
+    ("2T1R", [(1, 0, 0), (2, 0, 0)], "the directions of the 2T1R pattern must be independent"),
+    ("3T", [(0, 0, 0), (0, 1, 0), (0, 0, 1)], "expected a non-zero finite direction"),
+])
+def test_directions_that_do_not_fit_the_pattern_are_refused(name, directions, message):
+    with pytest.raises(SynthesisError, match=re.escape(message)):
+        named_pattern(name, directions=directions)
+
+
+def test_extreme_directions_are_normalised_without_overflow():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        big = named_pattern("3T", directions=[(1e308, 1e308, 0), (0, 1, 0), (0, 0, 1)])
+        tiny = named_pattern("3T", directions=[(1e-320, 0, 0), (0, 1, 0), (0, 0, 1)])
+    assert np.allclose(big.translation_directions[0], (2**-0.5, 2**-0.5, 0)) and np.allclose(tiny.translation_directions[0], (1, 0, 0))

@@ -31,13 +31,20 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--joints", type=int, default=None, help="one-DOF joints per limb (default: the pattern's dimension)")
     p.add_argument("--point", default="0,0,0", metavar="X,Y,Z", help="the pattern's point O (default: %(default)s)")
     p.add_argument("--directions", default=None, metavar="X,Y,Z;X,Y,Z", help="the pattern's translation directions, ';'-separated (default: the coordinate axes)")
-    p.add_argument("--samples", type=int, default=3, help="random poses per rank decision (default: %(default)d)")
-    p.add_argument("--verify", type=int, default=2, help="finite motions of each kept limb fitted by the pattern (default: %(default)d; 0 skips)")
+    p.add_argument("--samples", type=int, default=3, help="random poses per rank decision, at most 30 (default: %(default)d)")
+    p.add_argument("--verify", type=int, default=2, help="finite motions of each kept limb fitted by the pattern, at most 10 (default: %(default)d; 0 skips)")
     p.add_argument("--seed", type=int, default=0, help="seed of every random choice (default: %(default)d)")
     p.add_argument("--write", default=None, metavar="DIR", help="assemble a PKM of each limb type with four 6-DOF limbs and write mechanism files there")
     p.add_argument("--other", choices=("UPS", "SPRR"), default="UPS", help="the 6-DOF limbs of --write (default: %(default)s)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)
+
+
+MAX_SAMPLES = 30
+"""Largest ``--samples``: random poses per rank decision (3 decide every bundled pattern; 30 take 2T3R about 6 s)."""
+
+MAX_VERIFY = 10
+"""Largest ``--verify``: each verified sample fits every kept limb's motions by the pattern (10 take 2T3R about 20 s)."""
 
 
 def _vector(text: str, what: str) -> tuple[float, float, float]:
@@ -53,8 +60,8 @@ def _vector(text: str, what: str) -> tuple[float, float, float]:
 def run(args: argparse.Namespace) -> int:
     if args.samples < 1 or args.verify < 0:
         raise RequestError(f"--samples must be at least 1 and --verify not negative, got {args.samples} and {args.verify}")
-    if args.samples > 100 or args.verify > 100 or args.seed < 0 or (args.joints is not None and not 1 <= args.joints <= 8):
-        raise RequestError(f"--samples and --verify must be at most 100, --seed not negative and --joints in [1, 8]; "
+    if args.samples > MAX_SAMPLES or args.verify > MAX_VERIFY or args.seed < 0 or (args.joints is not None and not 1 <= args.joints <= 8):
+        raise RequestError(f"--samples must be at most {MAX_SAMPLES}, --verify at most {MAX_VERIFY}, --seed not negative and --joints in [1, 8]; "
                            f"got {args.samples}, {args.verify}, {args.seed} and {args.joints}")
     directions = None if args.directions is None else [_vector(d, "--directions") for d in args.directions.split(";")]
     pattern = named_pattern(args.pattern, point=_vector(args.point, "--point"), directions=directions)

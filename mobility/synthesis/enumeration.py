@@ -217,6 +217,12 @@ def synthesize(
         pattern = named_pattern(pattern)
     if len(pattern.factors) > 2:
         raise SynthesisError("synthesize needs a pattern of one or two factors (M = G1 △ G2)")
+    # The pattern is searched with its points' centre at the origin (the set of limbs does not depend on where the
+    # pattern is): twists of a pattern far from the origin (a point at 1e200) would lose every digit of their
+    # moments; the points found are moved back at the end.
+    given = pattern
+    centre = np.mean(np.asarray(pattern.points or [(0.0, 0.0, 0.0)], dtype=float), axis=0)
+    pattern = pattern.translated(-centre)
     if samples < 1 or verify_samples < 0:
         raise SynthesisError(f"samples must be at least 1 and verify_samples not negative, got {samples} and {verify_samples}")
     dim = pattern.dim
@@ -270,7 +276,7 @@ def synthesize(
             verified += 1
     plane = tuple(f"s{i + 1}" for i in range(len(pattern.translation_directions)))
     return SynthesisResult(
-        pattern,
+        given,
         n,
         tuple(alphabet),
         tuple(rejected),
@@ -279,7 +285,7 @@ def synthesize(
         tested,
         verified,
         time.perf_counter() - start,
-        points,
+        {label: tuple(float(x) for x in np.asarray(p) + centre) for label, p in points.items()},
         directions,
     )
 

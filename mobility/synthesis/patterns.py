@@ -31,7 +31,7 @@ True
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any, Iterable, Sequence
 
@@ -64,10 +64,11 @@ def _vec(v: Iterable[float], what: str = "point") -> Vector:
 
 def _unit(v: Iterable[float]) -> np.ndarray:
     a = np.array(_vec(v, "direction"))
-    n = float(np.linalg.norm(a))
-    if n == 0.0:
+    biggest = float(np.abs(a).max())
+    if biggest == 0.0:
         raise SynthesisError(f"expected a non-zero finite direction, got {a.tolist()}")
-    return a / n
+    a = a / biggest  # first: the norm of (1e308, 1e308, 0) overflows, that of (1e-320, 0, 0) underflows
+    return a / float(np.linalg.norm(a))
 
 
 def _direction_rank(directions: Sequence[Iterable[float]], tol: Tolerance = DEFAULT_TOLERANCE) -> int:
@@ -188,6 +189,18 @@ class MotionPattern:
         if not self.factors:
             raise SynthesisError("a motion pattern needs at least one factor")
 
+    def translated(self, offset: Iterable[float]) -> "MotionPattern":
+        """The same pattern moved by ``offset`` (every point of every factor; directions unchanged).
+
+        Examples
+        --------
+        >>> named_pattern("3R", point=(1, 2, 3)).translated((-1, -2, -3)).points
+        ((0.0, 0.0, 0.0),)
+        """
+        shift = np.asarray(_vec(offset, "offset"))
+        moved = tuple(replace(f, point=_vec(np.asarray(f.point) + shift)) for f in self.factors)
+        return MotionPattern(self.name, moved, self.description)
+
     @property
     def parameter_count(self) -> int:
         """Sum of the factors' dimensions."""
@@ -195,8 +208,9 @@ class MotionPattern:
 
     @cached_property
     def dim(self) -> int:
-        """Dimension of the set of motions (generic rank of its generators)."""
-        return generic_rank(self.generators(), np.random.default_rng(0), 3, self.length)
+        """Dimension of the set of motions (generic rank of its generators, the points' centre taken as origin)."""
+        centred = self.translated(-np.mean(np.asarray(self.points or [(0.0, 0.0, 0.0)], dtype=float), axis=0))
+        return generic_rank(centred.generators(), np.random.default_rng(0), 3, self.length)
 
     def generators(self) -> tuple[ScrewJoint, ...]:
         """The factors' generators, in product order."""
@@ -355,6 +369,9 @@ def _pattern_3t1r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] 
 PATTERNS = {"2T3R": _pattern_2t3r, "3T": _pattern_3t, "3R": _pattern_3r, "2T1R": _pattern_2t1r, "3T1R": _pattern_3t1r}
 """Named motion patterns: name -> function(point, directions) -> MotionPattern."""
 
+DIRECTION_COUNTS = {"2T3R": 2, "3T": 3, "3R": 0, "2T1R": 2, "3T1R": 3}
+"""The number of directions each named pattern takes (its translation directions; 3T1R's third is also its rotation axis)."""
+
 
 def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), directions: Sequence[Iterable[float]] | None = None) -> MotionPattern:
     """A named motion pattern (see :data:`PATTERNS`) at ``point`` with the given directions.
@@ -374,5 +391,12 @@ def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), direct
         raise SynthesisError(f"unknown motion pattern {name!r}; expected one of {', '.join(PATTERNS)}")
     kwargs: dict[str, Any] = {"point": _vec(point)}
     if directions is not None:
-        kwargs["directions"] = tuple(_vec(_unit(d)) for d in directions)
+        wanted = DIRECTION_COUNTS[key]
+        given = tuple(_vec(_unit(d)) for d in directions)
+        if len(given) != wanted:
+            takes = "no directions" if wanted == 0 else f"{wanted} directions"
+            raise SynthesisError(f"the {key} pattern takes {takes}, got {len(given)}")
+        if given and _direction_rank(given) < len(given):
+            raise SynthesisError(f"the directions of the {key} pattern must be independent, got {[list(d) for d in given]}")
+        kwargs["directions"] = given
     return PATTERNS[key](**kwargs)
