@@ -99,6 +99,8 @@ CORPUS = {
     "parameter named pi with a line break": (HEAD + 'parameters: {"pi\\n": 3}\n' + ONE_JOINT, 4, None, "not pi, tau, e or a function name"),
     "limb index e with a line break": (HEAD + "limbs: [{copies: 2, index: \"e\\n\", joints: [{name: 'P{e}', type: P, links: [g, e], axis: [0, 0, 1]}]}]\n", 4, "limbs[0].index", "expected"),
     "fullwidth letter in an expression": (HEAD + "parameters: {a: 1}\njoints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0, 1], point: ['\uff41+0', 0, 0]}\n", 6, "joints[0].point[0]", "expressions are written in ASCII"),
+    "a point beyond the largest float once in the global frame": (HEAD + "frames:\n  F: {origin: [1.0e308, 0, 0]}\njoints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0, 1], point: [1.0e308, 0, 0], frame: F}\n", 7, "joints[0].point", "once written in the global frame (from frame 'F')"),
+    "frame origins adding up beyond the largest float": (HEAD + "frames:\n  F: {origin: [1.0e308, 0, 0], parent: G}\n  G: {origin: [1.0e308, 0, 0]}\njoints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0, 1], point: [0, 0, 0], frame: F}\n", 5, "frames.F.origin", "its origin in the global frame is not finite"),
     "merge key": (HEAD + "joints:\n  - &b {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\n  - {<<: *b, name: B}\n", 6, "joints[1].<<", "merge keys"),
     "second document": (HEAD + ONE_JOINT + "---\nname: u\n", 6, "", "found a second one"),
     "collection as a key": (HEAD + ONE_JOINT + "? [a, b]\n: 1\n", 6, "", "mapping keys must be plain names"),

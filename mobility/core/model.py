@@ -265,14 +265,16 @@ class Joint:
     def transformed(self, tf: Transform, frame: str = WORLD) -> "Joint":
         """The same joint with its geometry mapped by ``tf`` and written in ``frame``."""
         changes: dict[str, Any] = {"frame": frame}
-        if self.axis is not None:
-            changes["axis"] = tuple(tf.apply_vector(self.axis))
-        if self.normal is not None:
-            changes["normal"] = tuple(tf.apply_vector(self.normal))
-        if self.point is not None:
-            changes["point"] = tuple(tf.apply_point(self.point))
-        if self.axes is not None:
-            changes["axes"] = tuple(tuple(tf.apply_vector(a)) for a in self.axes)
+        floats = lambda v: tuple(float(x) for x in v)  # noqa: E731
+        with np.errstate(over="ignore", invalid="ignore"):  # a point beyond the largest float is refused by the Joint itself
+            if self.axis is not None:
+                changes["axis"] = floats(tf.apply_vector(self.axis))
+            if self.normal is not None:
+                changes["normal"] = floats(tf.apply_vector(self.normal))
+            if self.point is not None:
+                changes["point"] = floats(tf.apply_point(self.point))
+            if self.axes is not None:
+                changes["axes"] = tuple(floats(tf.apply_vector(a)) for a in self.axes)
         return replace(self, **changes)
 
 
@@ -488,6 +490,8 @@ class Mechanism:
             raise MechanismError("end_effector", f"link {self.end_effector!r} is not connected to the ground {self.ground!r} through joints")
         if unreached:
             raise MechanismError("joints", f"links not connected to the ground {self.ground!r}: {name_list(sorted(unreached))}")
+        if self.frames:
+            self.world_joints  # noqa: B018 - every joint's geometry must stay finite in the global frame
 
     def _links_not_connected_to_ground(self) -> set[str]:
         neighbours: dict[str, set[str]] = {}
@@ -535,15 +539,19 @@ class Mechanism:
     def _frame_transforms(self) -> dict[str, Transform]:
         by_name = {f.name: f for f in self.frames}
         out: dict[str, Transform] = {WORLD: Transform.identity()}
-
-        def resolve(name: str) -> Transform:
-            if name not in out:
-                f = by_name[name]
-                out[name] = resolve(f.parent).compose(f.transform)
-            return out[name]
-
-        for f in self.frames:
-            resolve(f.name)
+        for f in self.frames:  # each chain of parents walked once, without recursion (a chain may be long)
+            chain = []
+            name = f.name
+            while name not in out:
+                chain.append(name)
+                name = by_name[name].parent
+            for name in reversed(chain):
+                frame = by_name[name]
+                with np.errstate(over="ignore", invalid="ignore"):
+                    tf = out[frame.parent].compose(frame.transform)
+                if not (np.all(np.isfinite(tf.translation)) and np.all(np.isfinite(tf.rotation))):
+                    raise MechanismError(f"frames.{name}.origin", "its origin in the global frame is not finite: the origins of its chain of frames add up beyond the largest float")
+                out[name] = tf
         return out
 
     @cached_property
@@ -553,7 +561,17 @@ class Mechanism:
         The ``frame`` of each returned joint is ``"world"``; the original
         frame name stays available in :attr:`joints`.
         """
-        return tuple(j if j.frame == WORLD else j.transformed(self.frame_transform(j.frame)) for j in self.joints)
+        transforms = self._frame_transforms  # a frame whose origin is not finite is named as such, before any joint
+        out = []
+        for i, j in enumerate(self.joints):
+            if j.frame == WORLD:
+                out.append(j)
+                continue
+            try:
+                out.append(j.transformed(transforms[j.frame]))
+            except MechanismError as exc:
+                raise MechanismError(f"joints[{i}].{exc.key}", f"{exc.message} once written in the global frame (from frame {j.frame!r})") from None
+        return tuple(out)
 
     @cached_property
     def freedom_table(self) -> FreedomTable:
