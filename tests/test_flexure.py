@@ -466,3 +466,31 @@ def test_cli_flexure_report_json_and_enumeration(capsys):
 def test_cli_rejects_poses_for_a_flexure(capsys):
     assert main(["actuation", str(FILE), "--pose", str(FILE)]) == 2
     assert "rigid mechanisms only" in capsys.readouterr().err
+
+
+ONE_ROD = """name: one rod
+units: {length: mm, modulus: GPa}
+ground: base
+end_effector: stage
+materials:
+  steel: {E: 200, nu: 0.3}
+elements:
+  - {name: w1, type: rod, bodies: [base, stage], point: [0, 0, 0], axis: [0, 0, 1], length: LENGTH, radius: RADIUS, material: steel}
+actuators:
+  - {name: a1, point: [0, 0, 0], direction: [1, 0, 0], actuated: true}
+"""
+
+
+@pytest.mark.parametrize("length, radius, expected", [
+    ("100", "1e-100", "8: elements[0].radius: radius 1e-100 is less than 1e-06 of the rod's length 100"),
+    ("100", "1e-80", "8: elements[0].radius: radius 1e-80 is less than 1e-06"),
+    ("1e-300", "1e-301", "8: elements[0]: the compliance of 'w1' (length 1e-300, radius 1e-301, E 2e+11) is beyond the range of double precision"),
+])
+def test_rods_beyond_double_precision_are_refused_at_their_line(tmp_path, capsys, length, radius, expected):
+    path = tmp_path / "rod.yaml"
+    path.write_text(ONE_ROD.replace("LENGTH", length).replace("RADIUS", radius))
+    assert main(["actuation", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err == f"mobility: {path}:{expected}" + err[len(f"mobility: {path}:{expected}"):] and err.count("\n") == 1, err
+    path.write_text(ONE_ROD.replace("LENGTH", "100").replace("RADIUS", "1"))
+    assert main(["actuation", str(path)]) == 0

@@ -50,6 +50,7 @@ import numpy as np
 
 from ..errors import MechanismError, name_list
 from .model import LENGTH_UNITS, MODULUS_UNITS, FlexureMechanism, ForceLine, Material, Rod
+from .compliance import compliance_matrix
 from ..io.reader import DocumentReader, describe_value, parse_key
 from ..core.model import WORLD, Frame
 from ..core.transforms import Transform
@@ -105,7 +106,7 @@ class _FlexureReader(DocumentReader):
             if not (0.0 < threshold < 1.0):
                 raise self.fail(("threshold",), f"expected a relative compliance between 0 and 1, got {threshold!r}")
         try:
-            return FlexureMechanism(
+            mechanism = FlexureMechanism(
                 name=name,
                 ground=self.string(doc["ground"], ("ground",)),
                 end_effector=self.string(doc["end_effector"], ("end_effector",)),
@@ -116,6 +117,8 @@ class _FlexureReader(DocumentReader):
                 threshold=threshold,
                 source=self.file,
             )
+            compliance_matrix(mechanism)  # sizes or moduli beyond double precision: named here, with their line
+            return mechanism
         except MechanismError as exc:
             raise self.fail(parse_key(exc.key), exc.message) from None
 

@@ -36,6 +36,9 @@ from ..errors import MechanismError, name_list
 
 __all__ = ["LENGTH_UNITS", "MODULUS_UNITS", "Material", "Rod", "ForceLine", "FlexureMechanism"]
 
+THINNEST_ROD = 1e-6
+"""Smallest radius of a rod over its length: its bending compliance is then 1e12 times its axial one."""
+
 LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "in": 0.0254}
 """Length units a flexure document may use, in metres."""
 
@@ -145,6 +148,9 @@ class Rod:
             raise MechanismError("material", f"expected a Material, got {self.material!r}")
         if self.radius >= self.length:
             raise MechanismError("radius", f"a rod must be slender: radius {self.radius:g} is not smaller than its length {self.length:g}")
+        if self.radius < THINNEST_ROD * self.length:
+            raise MechanismError("radius", f"radius {self.radius:g} is less than {THINNEST_ROD:g} of the rod's length {self.length:g}: "
+                                 "its bending and axial compliances would differ by more than double precision can compare")
 
     @property
     def end(self) -> np.ndarray:
