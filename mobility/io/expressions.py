@@ -33,6 +33,7 @@ import ast
 import keyword
 import math
 import operator
+import sys
 from functools import lru_cache
 from typing import Any, Callable, Mapping
 
@@ -83,6 +84,11 @@ _BINARY: dict[type, Callable[[float, float], Any]] = {
     ast.Mod: operator.mod,
 }
 _UNARY: dict[type, Callable[[float], float]] = {ast.USub: operator.neg, ast.UAdd: operator.pos}
+
+_NEVER_ZERO = {operator.mul, operator.truediv, operator.pow, math.exp, math.sqrt, math.hypot}
+"""Operations whose result is not zero when no argument is: a zero (or a subnormal number) from them is an underflow."""
+
+_SMALLEST_NORMAL = sys.float_info.min
 
 # Instructions of a compiled expression (tuples, so a program is hashable and cacheable).
 _NUMBER, _NAME, _APPLY = 0, 1, 2
@@ -225,6 +231,9 @@ def _run(program: Program, names: Mapping[str, float], text: str) -> float:
         result = float(result)
         if not math.isfinite(result):
             raise ValueError(f"expression {_shown(text)!r} is not finite")
+        if abs(result) < _SMALLEST_NORMAL and op[1] in _NEVER_ZERO and all(a != 0.0 for a in args):
+            raise ValueError(f"expression {_shown(text)!r} underflows: a product, quotient or power of its numbers is below the "
+                             f"smallest float ({_SMALLEST_NORMAL:.3g}); write the lengths in a larger unit")
         stack.append(result)
     return stack[-1]
 
