@@ -509,3 +509,10 @@ def extreme_files(draw: st.DrawFn) -> str:
 @given(extreme_files())
 def test_fuzz_extreme_numbers_end_in_result_or_one_error(fuzz_file, text):
     ends_in_result_or_one_error(text, fuzz_file)
+
+
+@pytest.mark.parametrize("text", ["(300e-200)**2", "1e-200 * 1e-200", "1e-300 / 1e10", "exp(-1000)"])
+def test_an_expression_that_underflows_is_an_error(text):
+    with pytest.raises(ValueError, match="underflows"):
+        evaluate(text, {})
+    assert evaluate("x - x", {"x": 1e-300}) == 0.0 and evaluate("0 * 5", {}) == 0.0 and evaluate("1e-200 * 2", {}) == 2e-200

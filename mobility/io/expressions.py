@@ -231,7 +231,7 @@ def _run(program: Program, names: Mapping[str, float], text: str) -> float:
         result = float(result)
         if not math.isfinite(result):
             raise ValueError(f"expression {_shown(text)!r} is not finite")
-        if abs(result) < _SMALLEST_NORMAL and op[1] in _NEVER_ZERO and all(a != 0.0 for a in args):
+        if abs(result) < _SMALLEST_NORMAL and op[1] in _NEVER_ZERO and args and all(a != 0.0 for a in args):
             raise ValueError(f"expression {_shown(text)!r} underflows: a product, quotient or power of its numbers is below the "
                              f"smallest float ({_SMALLEST_NORMAL:.3g}); write the lengths in a larger unit")
         stack.append(result)
