@@ -90,7 +90,7 @@ def require_sampler_options(args: argparse.Namespace) -> None:
     """``--samples`` in ``[0, MAX_SAMPLES]``, ``--seed`` not negative, ``--step`` in ``(0, 1]`` (a joint-space distance), else a :class:`RequestError`."""
     if not (0 <= args.samples <= MAX_SAMPLES) or not (0.0 < args.step <= 1.0) or args.seed < 0:
         raise RequestError(f"--samples must lie in [0, {MAX_SAMPLES}], --seed must not be negative and --step must lie in (0, 1]; "
-                           f"got {args.samples}, {args.seed} and {args.step:g}")
+                           f"got {args.samples}, {args.seed} and {args.step!r}")
 
 
 def sampled_poses(args: argparse.Namespace, mechanism: Mechanism) -> list[Mechanism]:

@@ -141,8 +141,15 @@ def _expected_int(value: Any, key: str, *, signed: bool = False) -> int:
 
 
 def _expected_pattern(value: Any, key: str) -> str:
-    if not isinstance(value, str) or not re.fullmatch(r"0|([1-6]T)?([1-6]R)?", value) or not value:
-        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0", got {_shown(value)}')
+    """An expected pattern, checked: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (also unquoted).
+
+    A twist system of more than 3 dimensions always holds a translation, so
+    ``m`` is at most 3 too.
+    """
+    if value == 0 and type(value) is int:
+        return "0"
+    if not isinstance(value, str) or not re.fullmatch(r"0|([1-3]T)?([1-3]R)?", value) or not value:
+        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got {_shown(value)}')
     return value
 
 
