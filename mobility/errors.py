@@ -51,6 +51,7 @@ __all__ = [
     "PlottingUnavailableError",
     "name_list",
     "one_line",
+    "clipped",
 ]
 
 
@@ -88,6 +89,23 @@ def one_line(text: str) -> str:
     'bad.yaml: two\\\\nlines and \\\\x1b[31mred'
     """
     return _UNPRINTABLE.sub(lambda m: repr(m.group())[1:-1], text)
+
+
+def clipped(text: object, most: int = 40) -> str:
+    """``text`` shortened for a message: at most ``most`` characters, the cut marked by ``...``.
+
+    A value quoted from a file (a name, an attribute) may be megabytes long;
+    an error or a note quotes only its start.
+
+    Examples
+    --------
+    >>> clipped("shoulder")
+    'shoulder'
+    >>> clipped("A" * 1000)
+    'AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAA...'
+    """
+    text = str(text)
+    return text if len(text) <= most else text[: max(most - 3, 0)] + "..."
 
 
 class MobilityError(Exception):

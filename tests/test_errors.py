@@ -38,7 +38,7 @@ def test_every_error_class_is_a_mobility_error():
     names = {c.__name__ for c in ERROR_CLASSES}
     assert {"MobilityError", "MechanismFileError", "RequestError", "MissingExtraError"} <= names  # the scan sees the classes
     assert [c.__name__ for c in ERROR_CLASSES if not issubclass(c, MobilityError)] == []
-    assert set(errors.__all__) == names | {"name_list", "one_line"}  # the classes, and the two helpers of a message (names, one line)
+    assert set(errors.__all__) == names | {"name_list", "one_line", "clipped"}  # the classes, and the three helpers of a message (names, one line, a value cut short)
 
 
 def test_every_error_class_has_a_sample():

@@ -13,8 +13,10 @@ gripper (two four-bar fingers closed by ``<connect>``) from robosuite 1.5.2
 from __future__ import annotations
 
 import math
+import os
 import re
 import shutil
+import subprocess
 import sys
 from pathlib import Path
 
@@ -382,7 +384,7 @@ def test_unknown_or_impossible_bodies_are_one_line(options, expected):
      r":4: joint: MuJoCo cannot compile it: unknown default class name 'nope'; expected a model MuJoCo compiles"),
     ("<mujoco>\n<worldbody>\n<body>\n<joint type='hinj'/>\n<geom size='1'/></body>\n</worldbody>\n</mujoco>\n", r":4: joint: MuJoCo cannot compile it: invalid keyword: 'hinj'"),
     ("<mujoco><worldbody><body><geom size='1'/></body></worldbody></mujoco>", r": no joint can move: every body of .* is rigidly attached to world"),
-    ("<mujoco><include file='absent.xml'/></mujoco>", r"MuJoCo cannot compile it: .*absent\.xml"),
+    ("<mujoco><include file='absent.xml'/></mujoco>", r"\.xml:1: include: 'absent\.xml': no such file \(looked in '.*'\); expected a file to include"),
 ])
 def test_bad_mjcf_is_one_line(text, expected):
     with pytest.raises(MechanismFileError) as err:
@@ -441,3 +443,204 @@ def _remove_written_files():
     yield
     for path in _FILES:
         path.unlink(missing_ok=True)
+
+
+# -- free bodies held by the mechanism --------------------------------------------------------
+
+ARM_AND_TOOL = """<mujoco model="arm and tool">
+  <worldbody>
+    <body name="l1"><joint name="j1" type="hinge" axis="0 0 1"/><geom size=".1"/>
+      <body name="l2" pos="1 0 0"><joint name="j2" type="hinge" axis="0 0 1"/><geom size=".1"/></body>
+    </body>
+    <body name="tool" pos="2 0 0"><freejoint name="tool_free"/><geom size=".1"/></body>
+  </worldbody>
+  <equality>{}</equality>
+</mujoco>"""
+
+
+@pytest.mark.parametrize("equality, mobility_, dof", [
+    ('<weld name="grip" body1="tool" body2="l2"/>', 2, 2),
+    ('<connect name="pin" body1="tool" body2="l2" anchor="0 0 0"/>', 5, 4),  # a ball at the tool: M = 2 + 6 - 3; l2's 2 + 3 turns - 1 shared
+])
+def test_a_free_body_tied_to_a_moving_body_keeps_its_freedoms(equality, mobility_, dof):
+    text = ARM_AND_TOOL.format(equality)
+    robot = read_robot(_write(text), end_effector="tool")
+    notes = " | ".join(robot.notes)
+    assert "free joint tool_free of body tool keeps its 6 freedoms: " in notes and "(line 8) ties its subtree to l2, outside it" in notes
+    r = mobility.analyze(robot.mechanism)
+    assert (r.mobility, r.dof) == (mobility_, dof)
+    # MuJoCo keeps every freedom of the free joint: its null space is the second route
+    route = assert_agrees_with_mujoco(robot, *mujoco_compile(text), floating=True)
+    assert route.mobility == mobility_
+    # the same as --floating, which keeps the freedoms of every free joint
+    assert mobility.analyze(read_robot(_write(text), end_effector="tool", floating=True).mechanism).mobility == mobility_
+
+
+def test_a_free_body_tied_only_inside_its_own_subtree_is_still_fixed():
+    text = FREE_PENDULUM.replace("</worldbody>", "</worldbody><equality><connect name='own' body1='arm' body2='base' anchor='0 0 1'/></equality>")
+    robot = read_robot(_write(text))
+    assert any("free joint root of body base treated as fixed" in n for n in robot.notes)
+    assert mobility.analyze(robot.mechanism).mobility == 0  # the connect holds the arm to its own (fixed) base
+
+
+# -- files MuJoCo would open: pipes, includes ----------------------------------------------------
+
+def _cli(*args: str, cwd: Path, timeout: float = 30) -> subprocess.CompletedProcess:
+    """The command line in a child process, so that a wait for ever fails the test instead of stopping the suite."""
+    root = Path(__file__).resolve().parent.parent
+    env = dict(os.environ, PYTHONPATH=str(root))
+    return subprocess.run([sys.executable, "-m", "mobility", *args], capture_output=True, text=True, cwd=cwd, timeout=timeout, env=env)
+
+
+def test_a_named_pipe_is_refused_without_waiting_even_when_included(tmp_path):
+    os.mkfifo(tmp_path / "p.xml")
+    done = _cli("analyze", "p.xml", cwd=tmp_path)
+    assert (done.returncode, done.stderr) == (2, "mobility: p.xml: is a pipe or socket, expected a mechanism file\n")
+    (tmp_path / "model.xml").write_text('<mujoco>\n<worldbody>\n<include file="p.xml"/>\n</worldbody>\n</mujoco>\n')
+    done = _cli("analyze", "model.xml", cwd=tmp_path)
+    assert (done.returncode, done.stderr) == (2, "mobility: model.xml:3: include: 'p.xml': a pipe or socket; expected a file to include\n")
+
+
+def _include(tmp_path: Path, target: str, name: str = "model.xml") -> Path:
+    path = tmp_path / name
+    path.write_text(f'<mujoco>\n<worldbody>\n<body name="a"><joint/><geom size=".1"/></body>\n<include file="{target}"/>\n</worldbody>\n</mujoco>\n')
+    return path
+
+
+def test_an_include_is_checked_before_mujoco_opens_it(tmp_path):
+    big = tmp_path / "big.xml"
+    with open(big, "wb") as handle:
+        handle.truncate(700 * 1024 * 1024)  # sparse: 700 MB that take no room
+    (tmp_path / "folder").mkdir()
+    cases = {
+        "big.xml": r"model\.xml:4: include: 'big\.xml': has 734003200 bytes: with the \d+ bytes read before it, more than the limit of 4194304 bytes .*MOBILITY_MAX_FILE_BYTES",
+        "folder": r"model\.xml:4: include: 'folder': a directory; expected a file to include",
+        "/dev/zero": r"model\.xml:4: include: '/dev/zero': not a regular file",
+        "missing.xml": r"model\.xml:4: include: 'missing\.xml': no such file \(looked in '.*'\); expected a file to include",
+        "model.xml": r"model\.xml:4: include: 'model\.xml': included already \(the model file itself\)",
+    }
+    for target, expected in cases.items():
+        with pytest.raises(MechanismFileError) as err:
+            read_robot(_include(tmp_path, target))
+        assert re.search(expected, str(err.value)), str(err.value)
+
+
+def test_included_files_are_found_as_mujoco_finds_them_and_named_in_errors(tmp_path):
+    # MuJoCo looks in the model's folder first, then in the folder of the file that includes
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "arm.xml").write_text('<mujoco>\n<body name="arm"><joint/><geom size=".1"/>\n<include file="hand.xml"/></body>\n</mujoco>\n')
+    (tmp_path / "sub" / "hand.xml").write_text('<mujoco>\n<body name="hand">\n<joint axis="0 nan 1"/><geom size=".1"/></body>\n</mujoco>\n')
+    path = _include(tmp_path, "sub/arm.xml")
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(path)
+    assert str(err.value) == f"{tmp_path / 'sub' / 'hand.xml'}:3: joint/@axis: expected finite numbers, got '0 nan 1'"
+    (tmp_path / "hand.xml").write_text('<mujoco><body name="top_hand"><joint/><geom size=".1"/></body></mujoco>')  # the model's folder wins
+    m = read_robot(path).mechanism
+    assert "top_hand" in {link for j in m.joints for link in j.links}
+    model, _ = mujoco_compile(path)
+    assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "top_hand") > 0
+    # an error MuJoCo finds in an included file: its name and line are unknown to MuJoCo (it says line 0)
+    (tmp_path / "hand.xml").write_text('<mujoco>\n<body name="top_hand">\n<joint axis="0 0 0"/><geom size=".1"/></body>\n</mujoco>\n')
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(path)
+    assert str(err.value) == f"{path}: MuJoCo cannot compile it: axis too small in joint; expected a model MuJoCo compiles"
+
+
+# -- expansion bounded before MuJoCo expands ----------------------------------------------------
+
+@pytest.mark.parametrize("body, expected", [
+    ('<replicate count="100" offset="1 0 0">\n<body><joint/><geom size=".1"/></body></replicate>',
+     r":4: joint: 100 joints \(count of <replicate> 100\) are more than the limit of 50 \(set MOBILITY_MAX_JOINTS to raise it\)"),
+    ('<replicate count="3" offset="1 0 0">\n<replicate count="200" offset="0 1 0">\n<replicate count="200" offset="0 0 1">\n<body><joint/></body></replicate></replicate></replicate>',
+     r":6: joint: 120000 joints \(count of <replicate> 3 x 200 x 200\) are more than the limit of 50"),
+    ('<replicate count="20" offset="1 0 0">\n<body><geom size=".1"/><geom size=".2"/><site/></body></replicate>',
+     r":3: replicate: 80 elements made by the count of <replicate>, <flexcomp> and <composite> \(count of <replicate> 20\) are more than the limit of 50 \(set MOBILITY_MAX_JOINTS"),
+    ('<flexcomp name="cloth" type="grid" count="30 30 1" spacing=".1 .1 .1" dim="2"/>',
+     r":3: flexcomp: 900 elements made by the count of <replicate>, <flexcomp> and <composite> are more than the limit of 50"),
+    ('<composite type="cable" count="1000 1 1"><joint kind="main"/></composite>', r":3: composite: 1000 elements made by the count"),
+])
+def test_copies_are_counted_before_mujoco_makes_them(monkeypatch, body, expected):
+    monkeypatch.setenv("MOBILITY_MAX_JOINTS", "50")
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(_write(f"<mujoco>\n<worldbody>\n{body}\n</worldbody>\n</mujoco>\n"))
+    assert re.search(expected, str(err.value)), str(err.value)
+
+
+def test_an_included_file_is_counted_with_every_copy_and_limits_can_be_raised(tmp_path, monkeypatch):
+    (tmp_path / "leg.xml").write_text('<mujoco><body><joint/><geom size=".1"/></body></mujoco>')
+    path = tmp_path / "legs.xml"
+    path.write_text('<mujoco>\n<worldbody>\n<replicate count="20" offset="1 0 0">\n<include file="leg.xml"/>\n</replicate>\n</worldbody>\n</mujoco>\n')
+    monkeypatch.setenv("MOBILITY_MAX_JOINTS", "79")  # 20 copies of <include>, <body>, <joint>, <geom>
+    with pytest.raises(MechanismFileError, match=r"legs\.xml:3: replicate: 80 elements made by the count .* limit of 79"):
+        read_robot(path)
+    monkeypatch.setenv("MOBILITY_MAX_JOINTS", "80")
+    assert len(read_robot(path).mechanism.joints) == 20
+    monkeypatch.setenv("MOBILITY_MAX_ELEMENTS", "80")
+    with pytest.raises(MechanismFileError, match=r"leg\.xml:1: geom: 82 elements \(included files and copies counted; count of <replicate> 20\) are more than the limit of 80 \(set MOBILITY_MAX_ELEMENTS"):
+        read_robot(path)
+
+
+def test_a_huge_replicate_is_refused_at_once(tmp_path):
+    (tmp_path / "many.xml").write_text('<mujoco><worldbody><replicate count="1000000" offset="0.01 0 0">'
+                                       '<body name="b"><joint/><geom size=".01"/></body></replicate></worldbody></mujoco>')
+    done = _cli("analyze", "many.xml", cwd=tmp_path)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1
+    assert "many.xml:1: joint: 1000000 joints (count of <replicate> 1000000) are more than the limit of 5000" in done.stderr
+
+
+# -- numbers, MuJoCo's warnings and messages -----------------------------------------------------
+
+@pytest.mark.parametrize("attributes, expected", [
+    ('pos="nan 0 0"', ":4: body[b]/@pos: expected finite numbers, got 'nan 0 0'"),
+    ('euler="1e400 0 0"', ":4: body[b]/@euler: expected finite numbers, got '1e400 0 0'"),
+    ('><joint name="k" axis="inf 0 1"/', ":4: joint[k]/@axis: expected finite numbers, got 'inf 0 1'"),
+])
+def test_a_number_that_is_not_finite_is_refused_at_its_line(attributes, expected):
+    text = f'<mujoco>\n<worldbody>\n<body name="a"><joint/><geom size=".1"/>\n<body name="b" {attributes}><joint/><geom size=".1"/></body></body>\n</worldbody>\n</mujoco>'
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(_write(text))
+    assert str(err.value).endswith(expected)
+
+
+def test_mujoco_warnings_become_notes_and_never_reach_the_terminal(tmp_path, monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)  # MuJoCo would also write MUJOCO_LOG.TXT here
+    text = (HAND / "four_bar.xml").read_text().replace('<joint name="B"/>', '<joint name="B" damping="nan" range="-inf inf"/>')
+    robot = read_robot(_write(text))
+    assert "MuJoCo warns: XML contains a 'NaN'. Please check it carefully." in robot.notes
+    assert mobility.analyze(robot.mechanism).mobility == 1
+    assert capfd.readouterr().err == "" and not (tmp_path / "MUJOCO_LOG.TXT").exists()
+
+
+def test_mujoco_messages_keep_their_reason_and_never_say_line_0(tmp_path):
+    deep = "<mujoco>\n<worldbody>\n" + "<body>\n" * 600 + "<geom size='1'/>" + "</body>" * 600 + "\n</worldbody>\n</mujoco>\n"
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(_write(deep))
+    message = str(err.value)
+    assert "Element nesting is too deep" in message and "\n" not in message
+    assert re.search(r"\.xml:\d+: MuJoCo cannot compile it: XML parse error 18: ", message) and ":0:" not in message
+    (tmp_path / "deep.xml").write_text(deep)
+    including = tmp_path / "model.xml"
+    including.write_text('<mujoco>\n<worldbody>\n<include file="deep.xml"/>\n</worldbody>\n</mujoco>\n')
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(including)
+    assert str(err.value).startswith(f"{including}:3: include: MuJoCo cannot compile it: Include error: ")
+    assert "Element nesting is too deep" in str(err.value)
+
+
+def test_a_file_whose_first_element_comes_late_is_still_mjcf(tmp_path):
+    text = (HAND / "four_bar.xml").read_text()
+    commented = tmp_path / "commented.xml"
+    commented.write_text("<!-- " + "x" * 70_000 + " -->\n" + text)
+    long_root = tmp_path / "long_root.xml"
+    long_root.write_text(re.sub(r'<mujoco model="[^"]*"', '<mujoco model="' + "y" * 2_000_000 + '"', text, count=1))
+    for path in (commented, long_root):
+        assert robot_format(path) == "mjcf"
+        assert mobility.analyze(mobility.load(path)).pattern == "1R"
+
+
+def test_a_huge_value_is_quoted_short(tmp_path):
+    path = tmp_path / "long.xml"
+    path.write_text('<mujoco><worldbody><body><joint type="' + "A" * 3_000_000 + '"/><geom size="1"/></body></worldbody></mujoco>')
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(path)
+    assert len(str(err.value)) - len(str(path)) < 400 and "AAA..." in str(err.value)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -219,6 +220,10 @@ J = '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xy
     ('<robot name="r">\n<link name="a"/>\n</robot>', r": no joint can move"),
     ('<robot name="r">\n<link name="a&#x9b;31m"/>\n</robot>', r":2: link\.name: control character '\\x9b' \(code 155\) is not allowed"),
     ('<robot name="r&#x202e;">\n<link name="a"/>\n</robot>', r":1: robot\.name: control character '\\u202e'"),
+    ('<robot name="r">\n<link name="a"/><link name="b"/><link name="c"/>\n' + J + '\n' + J.replace('link="a"', 'link="b"').replace('link="b"/><axis', 'link="c"/><axis') + '\n</robot>',
+     r":4: joint\[j\]: duplicate joint name \(first on line 3\)"),
+    ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J.replace('<axis', '\n<mimic joint="nosuch"/><axis') + '\n</robot>',
+     r":4: joint\[j\]/mimic: unknown joint 'nosuch'; expected a <joint> of this robot"),
 ])
 def test_bad_urdf_is_one_line(tmp_path, text, expected):
     with pytest.raises(MechanismFileError) as err:
@@ -300,3 +305,25 @@ def test_a_robot_file_is_held_to_the_joint_limit(tmp_path, monkeypatch):
         mobility.load(path)
     monkeypatch.setenv("MOBILITY_MAX_JOINTS", "21")
     assert len(mobility.load(path).joints) == 21
+
+
+def test_origins_whose_sum_overflows_are_refused_at_the_joint_without_a_warning(tmp_path):
+    links = "".join(f'<link name="l{i}"/>' for i in range(4))
+    joints = "".join(f'\n<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
+                     f'<origin xyz="1e308 0 0"/><axis xyz="0 0 1"/></joint>' for i in range(3))
+    path = write(tmp_path, f'<robot name="far">{links}{joints}\n</robot>')
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a numpy RuntimeWarning would be printed on the terminal
+        with pytest.raises(MechanismFileError) as err:
+            read_robot(path)
+    assert str(err.value) == (f"{path}:3: joint[j1]/origin: the frame of link 'l2', the origins from the root composed, "
+                              "is not finite; expected origins whose sum stays finite")
+
+
+def test_huge_values_are_quoted_short(tmp_path):
+    for text in ('<robot name="r"><link name="a"/><link name="b"/>' + J.replace('type="revolute"', 'type="' + "A" * 3_000_000 + '"') + '</robot>',
+                 '<robot name="r"><link name="a"/><link name="b"/>' + J.replace('link="a"', 'link="' + "Z" * 3_000_000 + '"') + '</robot>'):
+        path = write(tmp_path, text)
+        with pytest.raises(MechanismFileError) as err:
+            read_robot(path)
+        assert len(str(err.value)) - len(str(path)) < 200 and "..." in str(err.value)

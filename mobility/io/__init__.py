@@ -16,9 +16,10 @@ Modules, in data-flow order:
     build on it.
 ``loader``
     the format of ``docs/spec-v1.md`` and its extensions: :func:`load`, :func:`loads`.
-``robot_tree``, ``mjcf``, ``urdf``, ``closures``, ``robot_files``
-    robot descriptions: a tree of bodies and the joint graph it makes; MJCF
-    read as MuJoCo compiles it; URDF; loop closures by option or side file;
+``robot_tree``, ``mjcf_scan``, ``mjcf``, ``urdf``, ``closures``, ``robot_files``
+    robot descriptions: a tree of bodies and the joint graph it makes; an
+    MJCF file and its includes checked before MuJoCo reads them; MJCF read
+    as MuJoCo compiles it; URDF; loop closures by option or side file;
     recognising a robot file and reading it (:func:`~mobility.io.robot_files.read_robot`).
 ``writer``
     a mechanism written back as YAML text (``mobility convert``).

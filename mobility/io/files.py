@@ -23,7 +23,32 @@ from pathlib import Path
 from ..errors import MechanismFileError
 from .limits import Limits, current_limits
 
-__all__ = ["read_capped"]
+__all__ = ["read_capped", "refuse_pipe", "is_regular_file"]
+
+
+def refuse_pipe(path: str | Path) -> int:
+    """The file type bits of ``path`` (0 if it cannot be stat-ed), refusing a pipe or socket without opening it.
+
+    Opening a named pipe waits for a writer, possibly for ever: whatever
+    reads a file asks this first.
+
+    Raises
+    ------
+    MechanismFileError
+        When ``path`` is a named pipe (FIFO) or a socket.
+    """
+    try:
+        kind = os.stat(path).st_mode
+    except (OSError, ValueError):
+        return 0  # missing or unreadable: opening it says which
+    if stat.S_ISFIFO(kind) or stat.S_ISSOCK(kind):
+        raise MechanismFileError("", "is a pipe or socket, expected a mechanism file", file=str(path))
+    return kind
+
+
+def is_regular_file(path: str | Path) -> bool:
+    """Whether ``path`` is a regular file (a pipe or socket is refused, see :func:`refuse_pipe`); never opens it."""
+    return stat.S_ISREG(refuse_pipe(path))
 
 
 def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
@@ -37,12 +62,7 @@ def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
     """
     name = str(path)
     cap = current_limits(limits).max_file_bytes
-    try:
-        kind = os.stat(path).st_mode
-    except OSError:
-        kind = 0  # missing or unreadable: open() below says which
-    if stat.S_ISFIFO(kind) or stat.S_ISSOCK(kind):  # opening one waits for a writer: never
-        raise MechanismFileError("", "is a pipe or socket, expected a mechanism file", file=name)
+    refuse_pipe(path)
     try:
         with open(path, "rb") as stream:
             chunks, size = [], 0

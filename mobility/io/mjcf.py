@@ -20,32 +20,42 @@ joint's anchor and axis in the global frame, each body's parent.
 
 Geometry is not needed: meshes, height fields, textures and skins are removed
 before compiling (a mesh geom becomes a small sphere), so a file whose mesh
-files are absent imports.  Every error is one line naming the file, the line
-(from MuJoCo where it knows it) and the element.
+files are absent imports.  The file and the files it includes are checked
+before MuJoCo reads them (:mod:`mobility.io.mjcf_scan`); MuJoCo's warnings
+become notes, never printed.  Every error is one line naming the file, the
+line (from MuJoCo where it knows it, never line 0) and the element.
 """
 
 from __future__ import annotations
 
+import os
 import re
 import warnings
+from contextlib import contextmanager
 from dataclasses import replace
 from importlib import import_module
 from pathlib import Path
 from types import ModuleType
-from typing import Any
+from typing import Any, Iterator
 
 import numpy as np
 
 from ..core.model import Joint
-from ..errors import MechanismError, MechanismFileError, MissingExtraError
-from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, rotation_tuple, vector_tuple
+from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped
 from .files import read_capped
-from .xml_source import read_xml
+from .mjcf_scan import MjcfScan, scan_mjcf
+from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, rotation_tuple, vector_tuple
+from .xml_source import parse_xml
 
 __all__ = ["read_mjcf", "import_mujoco"]
 
 _LINE = re.compile(r"\bline(?: number)?\s*=?\s*(\d+)", re.IGNORECASE)
 _ELEMENT = re.compile(r"Element (?:name )?'([^']*)'")
+_ELEMENT_LINE = re.compile(r"\s*Element (?:name )?'[^']*'(?:, id -?\d+)?, line (\d+)")
+_PARSER_LINE = re.compile(r"Line number=(\d+)")
+_PARSER_NOISE = re.compile(r"ErrorID=\d+ \(0x[0-9a-fA-F]+\) |Line number=\d+:? ?|Error=")
+_PREFIX = re.compile(r"^(?:XML )?Error:\s*", re.IGNORECASE)
+_FINITE = "expected positions and directions whose numbers stay finite (smaller numbers)"
 
 
 def import_mujoco() -> ModuleType:
@@ -65,6 +75,11 @@ def import_mujoco() -> ModuleType:
 def read_mjcf(path: str | Path) -> RobotTree:
     """Read an MJCF file into a :class:`~mobility.io.robot_tree.RobotTree` at ``qpos0``.
 
+    The file and the files it includes are checked first
+    (:func:`~mobility.io.mjcf_scan.scan_mjcf`: files, counts, numbers), so
+    that MuJoCo is never asked to read a pipe or to expand a model without
+    bound.  MuJoCo's warnings become notes; none reaches the terminal.
+
     Parameters
     ----------
     path : str or Path
@@ -76,43 +91,94 @@ def read_mjcf(path: str | Path) -> RobotTree:
     Raises
     ------
     MechanismFileError
-        When the file is not well-formed XML, not MJCF, or MuJoCo cannot
-        compile it (the message names the line MuJoCo gives).
+        When the file is not well-formed XML, not MJCF, fails a check of
+        :mod:`mobility.io.mjcf_scan`, or MuJoCo cannot compile it (the
+        message names the file and line MuJoCo gives, when it gives one).
     MissingExtraError
         When the ``mujoco`` package is not installed.
     """
     file = str(path)
-    doc = read_xml(path)
+    raw = read_capped(path)
+    doc = parse_xml(raw, file)
     if doc.root.tag != "mujoco":
-        raise doc.fail(doc.root, doc.root.tag, "not an MJCF file; expected the root element <mujoco>")
+        raise doc.fail(doc.root, clipped(doc.root.tag), "not an MJCF file; expected the root element <mujoco>")
+    by_name = Path(file).suffix.lower() == ".xml"  # MuJoCo picks its reader by extension: other files are given as text
+    scan = scan_mjcf(doc, (os.path.dirname(file) or ".") if by_name else ".", size=len(raw))
     mujoco = import_mujoco()
-    if Path(file).suffix.lower() == ".xml":
-        spec = _mujoco_call(lambda: mujoco.MjSpec.from_file(file), file)
-    else:  # MuJoCo picks its reader by extension: give it the text (includes then resolve from the working directory)
-        spec = _mujoco_call(lambda: mujoco.MjSpec.from_string(read_capped(file).decode("utf-8", errors="replace")), file)
-    _without_asset_files(mujoco, spec)
-    with warnings.catch_warnings(record=True) as caught:  # MuJoCo's compiler warnings become notes
-        warnings.simplefilter("always")
-        model = _mujoco_call(spec.compile, file)
-    data = mujoco.MjData(model)
-    mujoco.mj_kinematics(model, data)
+    said: list[str] = []
+    with _warnings_into(mujoco, said), warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")  # MuJoCo's compiler warnings become notes
+        read = (lambda: mujoco.MjSpec.from_file(file)) if by_name else (lambda: mujoco.MjSpec.from_string(raw.decode("utf-8", errors="replace")))
+        spec = _mujoco_call(read, file, scan)
+        _without_asset_files(mujoco, spec)
+        model = _mujoco_call(spec.compile, file, scan)
+        data = mujoco.MjData(model)
+        mujoco.mj_kinematics(model, data)
+    said += [str(w.message) for w in caught]
     tree = _MjcfTree(mujoco, spec, model, data, file).tree()
-    said = [f"MuJoCo warns: {str(w.message).splitlines()[0]}" for w in caught if str(w.message).strip()]
-    return replace(tree, notes=tree.notes + tuple(said))
+    notes = [f"MuJoCo warns: {clipped(' '.join(text.split()), 200)}" for text in dict.fromkeys(said) if text.strip()]
+    return replace(tree, notes=tree.notes + tuple(notes))
 
 
-def _mujoco_call(call: Any, file: str) -> Any:
-    """Run a MuJoCo parse or compile step; its error becomes one line with the line it names."""
+@contextmanager
+def _warnings_into(mujoco: ModuleType, said: list[str]) -> Iterator[None]:
+    """MuJoCo's warnings appended to ``said`` instead of printed (and written to ``MUJOCO_LOG.TXT``)."""
+    setter = getattr(mujoco, "set_mju_user_warning", None)
+    if setter is None:  # an old MuJoCo without the hook
+        yield
+        return
+    before = mujoco.get_mju_user_warning() if hasattr(mujoco, "get_mju_user_warning") else None
+    setter(lambda message: said.append(str(message)))
+    try:
+        yield
+    finally:
+        setter(before)
+
+
+def _mujoco_call(call: Any, file: str, scan: MjcfScan) -> Any:
+    """Run a MuJoCo parse or compile step; its error becomes one line (see :func:`_mujoco_error`)."""
     try:
         return call()
     except (ValueError, RuntimeError) as exc:  # MuJoCo's parse and compile errors
-        text = str(exc).strip()
-        first = text.splitlines()[0] if text else "MuJoCo could not read the file"
-        first = re.sub(r"^(XML )?(parse )?Error( \d+)?:?\s*", "", first, flags=re.IGNORECASE).strip() or first
-        line = _LINE.search(text)
-        element = _ELEMENT.search(text)
-        raise MechanismFileError(element.group(1) if element else "", f"MuJoCo cannot compile it: {first}; expected a model MuJoCo compiles",
-                                 file=file, line=int(line.group(1)) if line else None) from None
+        raise _mujoco_error(str(exc), file, scan) from None
+
+
+def _mujoco_error(text: str, file: str, scan: MjcfScan) -> MechanismFileError:
+    """MuJoCo's message, all of it on one line, with the file and line it names (never line 0).
+
+    MuJoCo gives elements of an included file line 0, and an error inside an
+    included file the line of the ``<include>``: the line is then that of the
+    ``<include>`` in the file that holds it, or left out.
+
+    Examples
+    --------
+    >>> str(_mujoco_error("XML Error: invalid keyword: 'hinj'\\nElement 'joint', line 4\\n", "m.xml", MjcfScan()))
+    "m.xml:4: joint: MuJoCo cannot compile it: invalid keyword: 'hinj'; expected a model MuJoCo compiles"
+    >>> str(_mujoco_error("Error: axis too small in joint\\nElement name '', id 0, line 0", "m.xml", MjcfScan()))
+    'm.xml: MuJoCo cannot compile it: axis too small in joint; expected a model MuJoCo compiles'
+    """
+    flat = " ".join(text.split())
+    element = _ELEMENT.search(flat)
+    where = _ELEMENT_LINE.search(flat) or _PARSER_LINE.search(flat)
+    line = int(where.group(1)) if where else 0
+    reason = _ELEMENT_LINE.sub("", _PARSER_NOISE.sub("", flat))
+    reason = _PREFIX.sub("", reason).strip(" ;") or "MuJoCo could not read the file"
+    key = element.group(1) if element else ""
+    at_file, at_line = _where(file, line, key, scan)
+    return MechanismFileError(clipped(key), f"MuJoCo cannot compile it: {clipped(reason, 300)}; expected a model MuJoCo compiles",
+                              file=at_file, line=at_line)
+
+
+def _where(file: str, line: int, key: str, scan: MjcfScan) -> tuple[str, int | None]:
+    """The file and line an error is about: never line 0; an ``<include>``'s line in the file that holds it."""
+    if line <= 0:
+        return file, None
+    if key != "include":
+        return file, line
+    holders = {f for f, at in scan.includes if at == line}
+    if file in holders or not holders:
+        return file, line
+    return (holders.pop(), line) if len(holders) == 1 else (file, None)
 
 
 def _without_asset_files(mujoco: ModuleType, spec: Any) -> None:
@@ -135,8 +201,9 @@ def _without_asset_files(mujoco: ModuleType, spec: Any) -> None:
 
 
 def _line(element: Any) -> int | None:
+    """The line of a spec element (``None`` when MuJoCo does not know it: it says line 0 for included files)."""
     found = _LINE.search(getattr(element, "info", "") or "")
-    return int(found.group(1)) if found else None
+    return int(found.group(1)) if found and int(found.group(1)) > 0 else None
 
 
 class _MjcfTree:
@@ -169,11 +236,8 @@ class _MjcfTree:
         return self.mj.mj_id2name(self.m, getattr(self.mj.mjtObj, kind), index) or ""
 
     def tree(self) -> RobotTree:
-        m, d, mj = self.m, self.d, self.mj
-        bodies = tuple(
-            Body(self.body_names[i], None if i == 0 else self.body_names[m.body_parentid[i]],
-                 vector_tuple(d.xpos[i]), rotation_tuple(d.xmat[i]), self.lines["body"].get(i))
-            for i in range(m.nbody))
+        m, mj = self.m, self.mj
+        bodies = tuple(self.body(i) for i in range(m.nbody))
         notes: list[str] = []
         actuated = self.actuated_joints(notes)
         joints = tuple(self.joint(i, i in actuated) for i in range(m.njnt))
@@ -186,14 +250,31 @@ class _MjcfTree:
         unsupported += more
         for i in range(m.ntendon):
             tname = self.name("mjOBJ_TENDON", i) or f"tendon{i}"
-            notes.append(f"tendon {tname}{_at(self.lines['tendon'].get(i))} is not imported: a tendon is not a joint (only an equality on it would constrain the mechanism)")
+            notes.append(f"tendon {clipped(tname)}{_at(self.lines['tendon'].get(i))} is not imported: a tendon is not a joint (only an equality on it would constrain the mechanism)")
         for i in range(m.nbody):
             if m.body_mocapid[i] >= 0:
-                notes.append(f"mocap body {self.body_names[i]}{_at(self.lines['body'].get(i))} is moved only by the simulation: treated as fixed")
+                notes.append(f"mocap body {clipped(self.body_names[i])}{_at(self.lines['body'].get(i))} is moved only by the simulation: treated as fixed")
         name = self.spec.modelname if self.spec.modelname and self.spec.modelname != "MuJoCo Model" else Path(self.file).stem
         version = getattr(mj, "__version__", "")
         return RobotTree(name, self.file, "MJCF", bodies, joints, tuple(closures), tuple(welds), tuple(unsupported), tuple(notes),
                          pose=f"qpos0, as MuJoCo {version} compiles it".replace("  ", " "))
+
+    def body(self, i: int) -> Body:
+        """Body ``i`` at ``qpos0``: its parent, origin and rotation in the global frame."""
+        m, d, line = self.m, self.d, self.lines["body"].get(i)
+        key = f"body[{clipped(self.body_names[i])}]"
+        origin = self.finite(d.xpos[i], key, line)
+        if not np.all(np.isfinite(d.xmat[i])):
+            raise MechanismFileError(key, f"MuJoCo computes a rotation that is not finite at qpos0; {_FINITE}", file=self.file, line=line)
+        return Body(self.body_names[i], None if i == 0 else self.body_names[m.body_parentid[i]], origin, rotation_tuple(d.xmat[i]), line)
+
+    def finite(self, values: Any, key: str, line: int | None) -> tuple[float, float, float]:
+        """A vector MuJoCo computed, refused at the element's line when it is not finite (numbers too large)."""
+        try:
+            return vector_tuple(values)
+        except MechanismError as exc:
+            raise MechanismFileError(key, f"MuJoCo computes it at qpos0 as {exc.message.removeprefix('expected finite numbers, got ')}; {_FINITE}",
+                                     file=self.file, line=line) from None
 
     def joint(self, i: int, actuated: bool) -> TreeJoint:
         m, d, types = self.m, self.d, self.mj.mjtJoint
@@ -201,9 +282,10 @@ class _MjcfTree:
         index = i - int(m.body_jntadr[body])
         name = self.name("mjOBJ_JOINT", i) or (f"{self.body_names[body]}_joint" + (str(index) if m.body_jntnum[body] > 1 else ""))
         kind = {int(types.mjJNT_HINGE): "hinge", int(types.mjJNT_SLIDE): "slide", int(types.mjJNT_BALL): "ball", int(types.mjJNT_FREE): "free"}[int(m.jnt_type[i])]
-        axis = vector_tuple(d.xaxis[i]) if kind in ("hinge", "slide") else None
-        point = vector_tuple(d.xpos[body]) if kind == "free" else vector_tuple(d.xanchor[i])
-        return TreeJoint(name, kind, self.body_names[body], point, axis, actuated, self.lines["joint"].get(i))
+        line, key = self.lines["joint"].get(i), f"joint[{clipped(name)}]"
+        axis = self.finite(d.xaxis[i], key, line) if kind in ("hinge", "slide") else None
+        point = self.finite(d.xpos[body] if kind == "free" else d.xanchor[i], key, line)
+        return TreeJoint(name, kind, self.body_names[body], point, axis, actuated, line)
 
     def actuated_joints(self, notes: list[str]) -> set[int]:
         m, trn = self.m, self.mj.mjtTrn
@@ -215,7 +297,7 @@ class _MjcfTree:
                 continue
             aname = self.name("mjOBJ_ACTUATOR", a) or f"actuator{a}"
             what = {int(trn.mjTRN_TENDON): "a tendon", int(trn.mjTRN_SITE): "a site", int(trn.mjTRN_BODY): "a body", int(trn.mjTRN_SLIDERCRANK): "a slider-crank"}.get(kind, "no joint")
-            notes.append(f"actuator {aname}{_at(self.lines['actuator'].get(a))} drives {what}, not a joint: no joint is marked actuated for it")
+            notes.append(f"actuator {clipped(aname)}{_at(self.lines['actuator'].get(a))} drives {what}, not a joint: no joint is marked actuated for it")
         return out
 
     def equalities(self, notes: list[str]) -> tuple[list[Closure], list[Weld], list[Unsupported]]:
@@ -231,38 +313,40 @@ class _MjcfTree:
             name = self.name("mjOBJ_EQUALITY", k) or f"{tag}{counts[tag] - 1}"
             line = self.lines["equality"].get(k)
             if not m.eq_active0[k]:
-                notes.append(f"equality {tag} {name}{_at(line)} is inactive at start: left out")
+                notes.append(f"equality {tag} {clipped(name)}{_at(line)} is inactive at start: left out")
                 continue
             if tag in ("joint", "tendon"):
                 kind_name = "mjOBJ_JOINT" if tag == "joint" else "mjOBJ_TENDON"
-                objects = [self.name(kind_name, int(o)) or str(int(o)) for o in (m.eq_obj1id[k], m.eq_obj2id[k]) if o >= 0]
-                unsupported.append(Unsupported(f"equality/{tag}[{name}]", f"a coupling of {tag}s ({', '.join(objects)}) is not supported; expected connect or weld", line))
+                objects = [clipped(self.name(kind_name, int(o)) or str(int(o))) for o in (m.eq_obj1id[k], m.eq_obj2id[k]) if o >= 0]
+                unsupported.append(Unsupported(f"equality/{tag}[{clipped(name)}]", f"a coupling of {tag}s ({', '.join(objects)}) is not supported; expected connect or weld", line))
                 continue
             if tag == "flex":
-                unsupported.append(Unsupported(f"equality/flex[{name}]", "a flex equality is not supported; expected connect or weld", line))
+                unsupported.append(Unsupported(f"equality/flex[{clipped(name)}]", "a flex equality is not supported; expected connect or weld", line))
                 continue
-            b1, b2, anchor = self.equality_bodies(k)
+            b1, b2, anchor = self.equality_bodies(k, f"equality/{tag}[{clipped(name)}]", line)
             if tag == "weld":
                 welds.append(Weld(name, (self.body_names[b1], self.body_names[b2]), line))
                 continue
             if b1 == b2:
-                notes.append(f"connect {name}{_at(line)} joins body {self.body_names[b1]} to itself: left out")
+                notes.append(f"connect {clipped(name)}{_at(line)} joins body {clipped(self.body_names[b1])} to itself: left out")
                 continue
             try:
                 joint = Joint(name, "S", (self.body_names[b1], self.body_names[b2]), point=anchor)
             except MechanismError as exc:
-                raise MechanismFileError(f"equality/connect[{name}]", exc.message, file=self.file, line=line) from None
+                raise MechanismFileError(f"equality/connect[{clipped(name)}]", exc.message, file=self.file, line=line) from None
             closures.append(Closure(joint, "connect", line))
         return closures, welds, unsupported
 
-    def equality_bodies(self, k: int) -> tuple[int, int, tuple[float, float, float]]:
+    def equality_bodies(self, k: int, key: str, line: int | None) -> tuple[int, int, tuple[float, float, float]]:
         """The two bodies of a connect or weld, and the anchor in the global frame."""
         m, d = self.m, self.d
         o1, o2 = int(m.eq_obj1id[k]), int(m.eq_obj2id[k])
         if int(m.eq_objtype[k]) == int(self.mj.mjtObj.mjOBJ_SITE):
-            return int(m.site_bodyid[o1]), int(m.site_bodyid[o2]), vector_tuple(d.site_xpos[o1])
+            return int(m.site_bodyid[o1]), int(m.site_bodyid[o2]), self.finite(d.site_xpos[o1], key, line)
         rotation = np.asarray(d.xmat[o1]).reshape(3, 3)
-        return o1, o2, vector_tuple(d.xpos[o1] + rotation @ np.asarray(m.eq_data[k][:3]))
+        with np.errstate(all="ignore"):  # an overflow is refused just below, in one line
+            anchor = d.xpos[o1] + rotation @ np.asarray(m.eq_data[k][:3])
+        return o1, o2, self.finite(anchor, key, line)
 
 
 def _at(line: int | None) -> str:

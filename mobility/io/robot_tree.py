@@ -15,7 +15,9 @@ and :func:`build_mechanism` turns it into a
 * a body with several joints (MJCF allows it) hangs by a chain of joints
   through virtual links named ``body/joint``;
 * ``hinge`` is R, ``slide`` P, ``ball`` S, ``planar`` E; a ``free`` (or URDF
-  ``floating``) joint is treated as fixed unless ``floating=True``, when it
+  ``floating``) joint is treated as fixed unless ``floating=True``, or unless
+  an equality (a weld or a closing joint) ties its body's subtree to a body
+  outside it (the mechanism holds that body: it is no floating base); it then
   becomes three P joints along x, y, z and an S joint;
 * a closing joint (an MJCF ``connect`` is a spherical joint at its anchor)
   joins the links of its two bodies;
@@ -58,7 +60,7 @@ from typing import Iterable
 import numpy as np
 
 from ..core.model import Joint, Mechanism
-from ..errors import MechanismError, MechanismFileError
+from ..errors import MechanismError, MechanismFileError, clipped
 from .limits import current_limits
 
 __all__ = [
@@ -188,9 +190,9 @@ class RobotTree:
                 return b
         names = [b.name for b in self.bodies]
         close = difflib.get_close_matches(name, names, n=1)
-        hint = f" (did you mean {close[0]!r}?)" if close else ""
-        shown = ", ".join(names[:12]) + (f", ... ({len(names)} bodies)" if len(names) > 12 else "")
-        raise MechanismFileError(key, f"no body named {name!r}{hint}; expected one of: {shown}", file=self.file)
+        hint = f" (did you mean {clipped(close[0])!r}?)" if close else ""
+        shown = ", ".join(clipped(n) for n in names[:12]) + (f", ... ({len(names)} bodies)" if len(names) > 12 else "")
+        raise MechanismFileError(key, f"no body named {clipped(name)!r}{hint}; expected one of: {shown}", file=self.file)
 
     def with_closures(self, closures: Iterable[Closure], welds: Iterable[Weld] = (), notes: Iterable[str] = ()) -> "RobotTree":
         """The same tree with more closing joints, welds and notes."""
@@ -282,7 +284,8 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
 
     ground_body = tree.body(options.ground, "ground").name if options.ground else tree.bodies[0].name
     ee_body = tree.body(options.end_effector, "end_effector").name if options.end_effector else None
-    groups = _rigid_groups(tree, options, notes)
+    kept = _free_joints_kept(tree, options, notes)
+    groups = _rigid_groups(tree, kept, notes)
     names = _group_names(tree, groups, [n for n in (ground_body, ee_body) if n])
 
     def link(body: str) -> str:
@@ -295,14 +298,14 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     link_names = set(names.values())
     by_body: dict[str, list[TreeJoint]] = {}
     for j in tree.joints:
-        if j.kind == "free" and not options.floating:
+        if j.kind == "free" and j.body not in kept:
             continue
         by_body.setdefault(j.body, []).append(j)
     parents = {b.name: b.parent for b in tree.bodies}
     for body, chain in by_body.items():
         start, end = link(parents[body]), link(body)
         if len(chain) == 1 and start == end:
-            notes.append(f"joint {chain[0].name}{_at(chain[0].line)} cannot move: welds hold {body} to {start}; left out")
+            notes.append(f"joint {clipped(chain[0].name)}{_at(chain[0].line)} cannot move: welds hold {clipped(body)} to {clipped(start)}; left out")
             continue
         here = start
         for k, j in enumerate(chain):
@@ -313,27 +316,27 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     for c in tree.closures:
         a, b = (link(n) for n in c.joint.links)
         if a == b:
-            notes.append(f"{c.what} {c.joint.name}{_at(c.line)} joins two bodies of one rigid link ({a}): it constrains nothing; left out")
+            notes.append(f"{c.what} {clipped(c.joint.name)}{_at(c.line)} joins two bodies of one rigid link ({clipped(a)}): it constrains nothing; left out")
             continue
         try:
             joints.append(replace(c.joint, name=_unique(c.joint.name, used), links=(a, b)))
         except MechanismError as exc:
-            raise MechanismFileError(c.joint.name, exc.message, file=c.file or tree.file, line=c.line) from None
+            raise MechanismFileError(clipped(c.joint.name), exc.message, file=c.file or tree.file, line=c.line) from None
 
     if not joints:
-        raise MechanismFileError("", f"no joint can move: every body of {tree.name!r} is rigidly attached to {link(ground_body)} (free joints count as fixed unless --floating)", file=tree.file)
+        raise MechanismFileError("", f"no joint can move: every body of {clipped(tree.name)!r} is rigidly attached to {clipped(link(ground_body))} (free joints count as fixed unless --floating)", file=tree.file)
     ground = link(ground_body)
     if ee_body is None:
         end_effector = _farthest_link(tree, joints, ground, link)
-        notes.append(f"end effector: {end_effector} (the body farthest from the ground {ground}; choose another with --end-effector)")
+        notes.append(f"end effector: {clipped(end_effector)} (the body farthest from the ground {clipped(ground)}; choose another with --end-effector)")
     else:
         end_effector = link(ee_body)
         if end_effector == ground:
-            raise MechanismFileError("end_effector", f"body {ee_body!r} is rigidly attached to the ground {ground!r} (no joint between them); expected a body that can move", file=tree.file)
+            raise MechanismFileError("end_effector", f"body {clipped(ee_body)!r} is rigidly attached to the ground {clipped(ground)!r} (no joint between them); expected a body that can move", file=tree.file)
     for role, body in (("ground", ground_body if options.ground else None), ("end effector", ee_body)):
         members = [b.name for b in tree.bodies if body and b.name != body and groups.find(b.name) == groups.find(body)]
         if members:
-            notes.append(f"{role} {body} is one rigid link with {', '.join(members[:6])}{' ...' if len(members) > 6 else ''}")
+            notes.append(f"{role} {clipped(body)} is one rigid link with {', '.join(clipped(n) for n in members[:6])}{' ...' if len(members) > 6 else ''}")
     limits = current_limits()
     if len(joints) > limits.max_joints:
         raise MechanismFileError("joints", f"{len(joints)} joints are more than the limit of {limits.max_joints} ({limits.hint('max_joints')})", file=tree.file)
@@ -358,18 +361,64 @@ def _unique(name: str, used: set[str]) -> str:
     return out
 
 
-def _rigid_groups(tree: RobotTree, options: RobotOptions, notes: list[str]) -> _Groups:
+def _free_joints_kept(tree: RobotTree, options: RobotOptions, notes: list[str]) -> set[str]:
+    """The bodies whose free joint keeps its six freedoms (a note for each free joint says which way it went).
+
+    All of them with ``floating``; otherwise those an equality (a weld or a
+    closing joint) ties to a body outside their own subtree: such a body is
+    held by the mechanism, not a floating base, and fixing it would lock what
+    it is welded to.
+    """
+    free = {j.body: j for j in tree.joints if j.kind == "free"}
+    if options.floating or not free:
+        return set(free)
+    ties = _ties_out_of_subtree(tree, set(free))
+    for body, j in free.items():
+        if body in ties:
+            notes.append(f"free joint {clipped(j.name)}{_at(j.line)} of body {clipped(body)} keeps its 6 freedoms: {ties[body]}")
+        else:
+            notes.append(f"free joint {clipped(j.name)}{_at(j.line)} of body {clipped(body)} treated as fixed (use --floating to keep its 6 freedoms)")
+    return set(ties)
+
+
+def _ties_out_of_subtree(tree: RobotTree, free: set[str]) -> dict[str, str]:
+    """For each body of ``free`` that an equality ties to a body outside its subtree, the equality (for a note)."""
+    parents = {b.name: b.parent for b in tree.bodies}
+    nearest: dict[str, str | None] = {}  # the nearest body of ``free`` at or above each body
+    for b in tree.bodies:  # parents come first
+        nearest[b.name] = b.name if b.name in free else nearest.get(b.parent) if b.parent else None
+
+    def free_above(name: str) -> list[str]:
+        out, here = [], nearest.get(name)
+        while here is not None:
+            out.append(here)
+            above = parents.get(here)
+            here = nearest.get(above) if above else None
+        return out
+
+    equalities = [(w.bodies, f"weld {clipped(w.name)}{_at(w.line)}") for w in tree.welds]
+    equalities += [(c.joint.links, f"{c.what} {clipped(c.joint.name)}{_at(c.line)}") for c in tree.closures]
+    ties: dict[str, str] = {}
+    for (a, b), what in equalities:
+        above_a, above_b = free_above(a), free_above(b)
+        for body in above_a:
+            if body not in above_b:
+                ties.setdefault(body, f"{what} ties its subtree to {clipped(b)}, outside it")
+        for body in above_b:
+            if body not in above_a:
+                ties.setdefault(body, f"{what} ties its subtree to {clipped(a)}, outside it")
+    return ties
+
+
+def _rigid_groups(tree: RobotTree, kept: set[str], notes: list[str]) -> _Groups:
     groups = _Groups({b.name: b.name for b in tree.bodies})
-    moving = {j.body for j in tree.joints if j.kind != "free" or options.floating}
-    for j in tree.joints:
-        if j.kind == "free" and not options.floating:
-            notes.append(f"free joint {j.name}{_at(j.line)} of body {j.body} treated as fixed (use --floating to keep its 6 freedoms)")
+    moving = {j.body for j in tree.joints if j.kind != "free" or j.body in kept}
     for b in tree.bodies:
         if b.parent is not None and b.name not in moving:
             groups.union(b.parent, b.name)
     for w in tree.welds:
         if groups.find(w.bodies[0]) != groups.find(w.bodies[1]):
-            notes.append(f"weld {w.name}{_at(w.line)} makes {w.bodies[0]} and {w.bodies[1]} one rigid link")
+            notes.append(f"weld {clipped(w.name)}{_at(w.line)} makes {clipped(w.bodies[0])} and {clipped(w.bodies[1])} one rigid link")
         groups.union(*w.bodies)
     return groups
 
@@ -405,7 +454,7 @@ def _model_joints(tree: RobotTree, j: TreeJoint, a: str, b: str, used: set[str],
             return [Joint(name, "S", (a, b), point=j.point, actuated=j.actuated)]
         return [Joint(name, "E", (a, b), normal=j.axis, point=j.point, actuated=j.actuated)]
     except MechanismError as exc:
-        raise MechanismFileError(f"joint[{j.name}]", exc.message if not exc.key else f"{exc.key}: {exc.message}", file=tree.file, line=j.line) from None
+        raise MechanismFileError(f"joint[{clipped(j.name)}]", exc.message if not exc.key else f"{exc.key}: {exc.message}", file=tree.file, line=j.line) from None
 
 
 def _farthest_link(tree: RobotTree, joints: list[Joint], ground: str, link) -> str:

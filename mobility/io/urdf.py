@@ -50,6 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core.transforms import Transform, rotation_from_rpy
+from ..errors import clipped
 from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml
 
@@ -86,28 +87,28 @@ class _UrdfReader:
         if root.tag != "robot":
             raise self.fail(root, root.tag, "not a URDF file; expected the root element <robot>")
         links = self.links(root)
-        joints = [self.joint(el, links) for el in root.findall("joint")]
+        joints = self.joints(root, links)
         parent_joint: dict[str, dict] = {}
         for j in joints:
             if j["child"] in parent_joint:
                 first = parent_joint[j["child"]]["name"]
-                raise self.fail(j["element"], f"joint[{j['name']}]/child", f"link {j['child']!r} already has the parent joint {first!r}; expected a tree (close loops with --close or a closures file)")
+                raise self.fail(j["element"], f"joint[{clipped(j['name'])}]/child", f"link {clipped(j['child'])!r} already has the parent joint {clipped(first)!r}; expected a tree (close loops with --close or a closures file)")
             parent_joint[j["child"]] = j
         roots = [name for name in links if name not in parent_joint]
         if len(roots) != 1:
-            what = "no root link (the joints form a cycle)" if not roots else f"several root links ({', '.join(roots[:6])})"
+            what = "no root link (the joints form a cycle)" if not roots else f"several root links ({', '.join(clipped(r) for r in roots[:6])})"
             raise self.fail(root, "robot", f"{what}; expected one link that is no joint's child")
         order, poses = self.poses(roots[0], joints)
         unreached = [name for name in links if name not in poses]
         if unreached:
-            raise self.fail(links[unreached[0]], f"link[{unreached[0]}]", "not reached from the root link: the joints form a cycle; expected a tree")
+            raise self.fail(links[unreached[0]], f"link[{clipped(unreached[0])}]", "not reached from the root link: the joints form a cycle; expected a tree")
         bodies = tuple(Body(name, parent_joint[name]["parent"] if name in parent_joint else None, vector_tuple(poses[name].translation),
                             rotation_tuple(poses[name].rotation), self.doc.line(links[name])) for name in order)
         actuated = self.transmissions(root, {j["name"] for j in joints})
         tree_joints, unsupported = [], []
         for j in joints:
             if j["mimic"] is not None:
-                unsupported.append(Unsupported(f"joint[{j['name']}]/mimic", f"joint {j['name']!r} mimics joint {j['mimic']!r} (a coupling of joints) is not supported; expected independent joints", self.doc.line(j["element"].find("mimic"))))
+                unsupported.append(Unsupported(f"joint[{clipped(j['name'])}]/mimic", f"joint {clipped(j['name'])!r} mimics joint {clipped(j['mimic'])!r} (a coupling of joints) is not supported; expected independent joints", self.doc.line(j["element"].find("mimic"))))
             kind = URDF_JOINT_KINDS[j["type"]]
             if kind is None:
                 continue
@@ -124,20 +125,37 @@ class _UrdfReader:
             if not name:
                 raise self.fail(el, "link", "missing attribute name; expected <link name=\"...\">")
             if name in links:
-                raise self.fail(el, f"link[{name}]", f"duplicate link name (first on line {self.doc.line(links[name])})")
+                raise self.fail(el, f"link[{clipped(name)}]", f"duplicate link name (first on line {self.doc.line(links[name])})")
             links[name] = el
         if not links:
             raise self.fail(root, "robot", "no <link>; expected links joined by joints")
         return links
 
+    def joints(self, root: ET.Element, links: dict[str, ET.Element]) -> list[dict]:
+        """Every ``<joint>``, its name unique, a ``<mimic>`` naming a joint of the robot."""
+        joints: list[dict] = []
+        first: dict[str, ET.Element] = {}
+        for el in root.findall("joint"):
+            j = self.joint(el, links)
+            if j["name"] in first:
+                raise self.fail(el, f"joint[{clipped(j['name'])}]", f"duplicate joint name (first on line {self.doc.line(first[j['name']])})")
+            first[j["name"]] = el
+            joints.append(j)
+        for j in joints:
+            if j["mimic"] is not None and j["mimic"] not in first:
+                raise self.fail(j["element"].find("mimic"), f"joint[{clipped(j['name'])}]/mimic", f"unknown joint {clipped(j['mimic'])!r}; expected a <joint> of this robot")
+        return joints
+
     def joint(self, el: ET.Element, links: dict[str, ET.Element]) -> dict:
         name = el.get("name")
         if not name:
             raise self.fail(el, "joint", "missing attribute name; expected <joint name=\"...\" type=\"...\">")
-        key = f"joint[{name}]"
+        key = f"joint[{clipped(name)}]"
         jtype = el.get("type")
+        if jtype is None:
+            raise self.fail(el, f"{key}/@type", f"missing attribute type; expected one of {', '.join(URDF_JOINT_KINDS)}")
         if jtype not in URDF_JOINT_KINDS:
-            raise self.fail(el, f"{key}/@type", f"unknown joint type {jtype!r}; expected one of {', '.join(URDF_JOINT_KINDS)}")
+            raise self.fail(el, f"{key}/@type", f"unknown joint type {clipped(jtype)!r}; expected one of {', '.join(URDF_JOINT_KINDS)}")
         ends = {}
         for end in ("parent", "child"):
             sub = el.find(end)
@@ -145,10 +163,10 @@ class _UrdfReader:
             if not link:
                 raise self.fail(sub if sub is not None else el, f"{key}/{end}", f"missing; expected <{end} link=\"...\">")
             if link not in links:
-                raise self.fail(sub, f"{key}/{end}", f"unknown link {link!r}; expected a <link> of this robot")
+                raise self.fail(sub, f"{key}/{end}", f"unknown link {clipped(link)!r}; expected a <link> of this robot")
             ends[end] = link
         if ends["parent"] == ends["child"]:
-            raise self.fail(el, key, f"parent and child are the same link {ends['parent']!r}")
+            raise self.fail(el, key, f"parent and child are the same link {clipped(ends['parent'])!r}")
         origin = el.find("origin")
         xyz = self.numbers(origin, "xyz", f"{key}/origin/@xyz", (0.0, 0.0, 0.0))
         rpy = self.numbers(origin, "rpy", f"{key}/origin/@rpy", (0.0, 0.0, 0.0))
@@ -171,7 +189,7 @@ class _UrdfReader:
         except ValueError:
             values = []
         if len(values) != 3 or not all(math.isfinite(v) for v in values):
-            raise self.fail(el, key, f"expected 3 numbers, got {text!r}")
+            raise self.fail(el, key, f"expected 3 numbers, got {clipped(text)!r}")
         return (values[0], values[1], values[2])
 
     def poses(self, root_link: str, joints: list[dict]) -> tuple[list[str], dict[str, Transform]]:
@@ -186,10 +204,19 @@ class _UrdfReader:
             here = todo.popleft()
             for j in children.get(here, []):
                 if j["child"] not in poses:
-                    poses[j["child"]] = poses[here].compose(j["origin"])
+                    poses[j["child"]] = self.composed(poses[here], j)
                     order.append(j["child"])
                     todo.append(j["child"])
         return order, poses
+
+    def composed(self, parent: Transform, j: dict) -> Transform:
+        """The child frame of joint ``j``: ``parent`` composed with its origin, refused at the joint's line if it overflows."""
+        with np.errstate(all="ignore"):  # an overflow is refused just below, in one line
+            frame = parent.compose(j["origin"])
+        if not (np.all(np.isfinite(frame.translation)) and np.all(np.isfinite(frame.rotation))):
+            raise self.fail(j["element"].find("origin") if j["element"].find("origin") is not None else j["element"], f"joint[{clipped(j['name'])}]/origin",
+                            f"the frame of link {clipped(j['child'])!r}, the origins from the root composed, is not finite; expected origins whose sum stays finite")
+        return frame
 
     def transmissions(self, root: ET.Element, joint_names: set[str]) -> set[str]:
         out: set[str] = set()
@@ -197,6 +224,6 @@ class _UrdfReader:
             for j in t.findall("joint"):
                 name = j.get("name")
                 if name not in joint_names:
-                    raise self.fail(j, f"transmission[{t.get('name', '')}]/joint", f"unknown joint {name!r}; expected a <joint> of this robot")
+                    raise self.fail(j, f"transmission[{clipped(t.get('name', ''))}]/joint", f"unknown joint {clipped(name)!r}; expected a <joint> of this robot")
                 out.add(name)
         return out

@@ -24,15 +24,20 @@ import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, BinaryIO
 from xml.parsers import expat
 
-from ..errors import MechanismFileError
-from .files import read_capped
+from ..errors import MechanismFileError, clipped
+from .files import is_regular_file, read_capped
+from .limits import Limits, current_limits
 
 __all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag"]
 
 _CONTROL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
 """Control characters (C0 but tab and line breaks, DEL, C1) and bidirectional overrides."""
+
+_CHUNK = 1 << 16
+_BOM = b"\xef\xbb\xbf"
 
 
 @dataclass(frozen=True, eq=False)
@@ -57,8 +62,8 @@ class XmlDocument:
         return None if element is None else self.lines.get(element)
 
     def fail(self, element: ET.Element | None, key: str, message: str) -> MechanismFileError:
-        """A one-line error about ``element``: ``file:line: key: message``."""
-        return MechanismFileError(key, message, file=self.file, line=self.line(element))
+        """A one-line error about ``element``: ``file:line: key: message`` (a key built from a huge name is cut short)."""
+        return MechanismFileError(clipped(key, 120), message, file=self.file, line=self.line(element))
 
 
 def parse_xml(text: str | bytes, file: str = "<string>") -> XmlDocument:
@@ -84,7 +89,7 @@ def parse_xml(text: str | bytes, file: str = "<string>") -> XmlDocument:
         for key, value in attrs.items():
             bad = _CONTROL.search(value)
             if bad is not None:  # a character reference (&#x9b;) can make what a terminal obeys
-                raise MechanismFileError(f"{tag}.{key}", f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in an attribute", file=file, line=parser.CurrentLineNumber)
+                raise MechanismFileError(f"{clipped(tag)}.{clipped(key)}", f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in an attribute", file=file, line=parser.CurrentLineNumber)
         lines[builder.start(tag, attrs)] = parser.CurrentLineNumber
 
     parser.StartElementHandler = start
@@ -114,11 +119,20 @@ def read_xml(path: str | Path) -> XmlDocument:
     return parse_xml(read_capped(path), str(path))
 
 
-def root_tag(path: str | Path) -> str | None:
+def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
     """The tag of the first element of an XML file, or ``None`` if it is not XML.
 
-    Reads only the start of the file: enough to tell a URDF (``<robot>``) from
-    an MJCF (``<mujoco>``) file.
+    Reads the file in chunks until its first start tag (a long comment or a
+    long attribute may come first), never beyond the size limit: enough to
+    tell a URDF (``<robot>``) from an MJCF (``<mujoco>``) file.  A file that
+    is not a regular file is not opened: a pipe or socket is refused (as
+    :func:`~mobility.io.files.read_capped` refuses it), a directory or a
+    device gives ``None`` (reading it then says what it is).
+
+    Raises
+    ------
+    MechanismFileError
+        When ``path`` is a named pipe or a socket.
 
     Examples
     --------
@@ -129,12 +143,7 @@ def root_tag(path: str | Path) -> str | None:
     'mujoco'
     >>> os.unlink(f.name)
     """
-    try:
-        with open(path, "rb") as handle:
-            head = handle.read(65536)
-    except OSError:
-        return None
-    if not head.lstrip().startswith(b"<"):
+    if not is_regular_file(path):
         return None
     found: list[str] = []
     parser = expat.ParserCreate()
@@ -145,7 +154,21 @@ def root_tag(path: str | Path) -> str | None:
 
     parser.StartElementHandler = start
     try:
-        parser.Parse(head, False)
-    except (StopIteration, expat.ExpatError, LookupError, ValueError):
+        with open(path, "rb") as handle:
+            _feed_until_found(handle, parser, found, current_limits(limits).max_file_bytes)
+    except (OSError, StopIteration, expat.ExpatError, LookupError, ValueError):
         pass
     return found[0] if found else None
+
+
+def _feed_until_found(handle: BinaryIO, parser: Any, found: list[str], cap: int) -> None:
+    """Give ``parser`` the file in chunks until it finds an element, the file ends, or ``cap`` bytes are read."""
+    size = 0
+    while not found and size <= cap:
+        chunk = handle.read(min(_CHUNK, cap + 1 - size))
+        if size == 0 and not chunk.removeprefix(_BOM).lstrip().startswith(b"<"):
+            return  # not XML
+        if not chunk:
+            return
+        size += len(chunk)
+        parser.Parse(chunk, False)

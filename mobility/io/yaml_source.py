@@ -46,7 +46,7 @@ from typing import Any
 
 import yaml
 
-from ..errors import MechanismFileError
+from ..errors import MechanismFileError, clipped
 from .files import read_capped
 from .limits import Limits, current_limits
 
@@ -324,8 +324,7 @@ class _Builder:
         try:
             return construct(self.loader, yaml.ScalarNode(tag, value, event.start_mark, event.end_mark))
         except (ValueError, TypeError, AttributeError, OverflowError, KeyError):
-            shown = value if len(value) <= 40 else value[:37] + "..."
-            raise self.fail(path, line, f"cannot read {shown!r} as {_KIND.get(tag, tag)}") from None
+            raise self.fail(path, line, f"cannot read {clipped(value)!r} as {_KIND.get(tag, tag)}") from None
 
     def check_collection_tag(self, event: Any, path: KeyPath, line: int, is_mapping: bool) -> None:
         tag = event.tag
