@@ -29,6 +29,7 @@ Examples
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from types import MappingProxyType
@@ -56,6 +57,9 @@ __all__ = [
     "require_ground_and_end_effector",
     "WORLD",
 ]
+
+_FAR = sys.float_info.max / 1e8
+"""Coordinates below this cannot overflow when a few are added (the bound of :meth:`Mechanism._frames_cannot_overflow`)."""
 
 WORLD = "world"
 """Name of the global frame."""
@@ -490,8 +494,18 @@ class Mechanism:
             raise MechanismError("end_effector", f"link {self.end_effector!r} is not connected to the ground {self.ground!r} through joints")
         if unreached:
             raise MechanismError("joints", f"links not connected to the ground {self.ground!r}: {name_list(sorted(unreached))}")
-        if self.frames:
+        if self.frames and not self._frames_cannot_overflow():
             self.world_joints  # noqa: B018 - every joint's geometry must stay finite in the global frame
+
+    def _frames_cannot_overflow(self) -> bool:
+        """Whether no joint can leave the floats once written in the global frame (a cheap bound; else the exact check).
+
+        A point in the global frame is at most the sum of its coordinates and
+        of the origins of its chain of frames (rotations keep lengths).
+        """
+        origin = max(max(abs(x) for x in f.origin) for f in self.frames)
+        point = max((max(abs(x) for x in j.point) for j in self.joints if j.point is not None), default=0.0)
+        return 2.0 * (origin * (len(self.frames) + 1) + point) < _FAR
 
     def _links_not_connected_to_ground(self) -> set[str]:
         neighbours: dict[str, set[str]] = {}
