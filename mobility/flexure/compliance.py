@@ -108,7 +108,7 @@ def compliance_matrix(mechanism: FlexureMechanism) -> np.ndarray:
     movable = [b for b in mechanism.bodies if b != mechanism.ground]
     slot = {b: 6 * i for i, b in enumerate(movable)}
     h = np.zeros((6 * len(movable), 6 * len(movable)))
-    for i, e in enumerate(mechanism.elements):
+    for index, e in enumerate(mechanism.elements):
         rot, end = e.frame()
         ad = adjoint(rot, end * metres)
         try:
@@ -120,7 +120,7 @@ def compliance_matrix(mechanism: FlexureMechanism) -> np.ndarray:
         except (ArithmeticError, FloatingPointError, np.linalg.LinAlgError):
             stiff = None
         if stiff is None or not np.all(np.isfinite(stiff)):
-            raise MechanismError(f"elements[{i}]", f"the compliance of {e.name!r} (length {e.length:g}, radius {e.radius:g}, E {e.material.E:g}) "
+            raise MechanismError(f"elements[{index}]", f"the compliance of {e.name!r} (length {e.length:g}, radius {e.radius:g}, E {e.material.E:g}) "
                                  "is beyond the range of double precision in SI units; expected sizes and moduli a physical flexure can have")
         ends = [slot.get(b) for b in e.bodies]
         for i, si in enumerate(ends):

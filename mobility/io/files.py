@@ -26,7 +26,7 @@ from .limits import Limits, current_limits
 __all__ = ["read_capped", "refuse_pipe", "is_regular_file"]
 
 
-def refuse_pipe(path: str | Path) -> int:
+def refuse_pipe(path: str | Path, expected: str = "a mechanism file") -> int:
     """The file type bits of ``path`` (0 if it cannot be stat-ed), refusing a pipe or socket without opening it.
 
     Opening a named pipe waits for a writer, possibly for ever: whatever
@@ -42,7 +42,7 @@ def refuse_pipe(path: str | Path) -> int:
     except (OSError, ValueError):
         return 0  # missing or unreadable: opening it says which
     if stat.S_ISFIFO(kind) or stat.S_ISSOCK(kind):
-        raise MechanismFileError("", "is a pipe or socket, expected a mechanism file", file=str(path))
+        raise MechanismFileError("", f"is a pipe or socket, expected {expected}", file=str(path))
     return kind
 
 
