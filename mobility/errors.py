@@ -35,7 +35,11 @@ from __future__ import annotations
 import re
 from typing import Iterable
 
-_UNPRINTABLE = re.compile("[\x00-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
+_BIDI = "\u202a-\u202e\u2066-\u2069"
+"""Characters that reorder the text around them on a terminal (bidirectional overrides, "Trojan source")."""
+_UNPRINTABLE = re.compile(f"[\x00-\x1f\x7f-\x9f{_BIDI}]")
+TERMINAL_CONTROL = re.compile(f"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x84\x86-\x9f{_BIDI}]")
+"""Characters a terminal obeys rather than shows: C0 and C1 controls but tab and line breaks (LF, CR, NEL), DEL, bidirectional overrides."""
 
 __all__ = [
     "MobilityError",
@@ -52,6 +56,8 @@ __all__ = [
     "name_list",
     "one_line",
     "clipped",
+    "control_character_problem",
+    "TERMINAL_CONTROL",
 ]
 
 
@@ -89,6 +95,28 @@ def one_line(text: str) -> str:
     'bad.yaml: two\\\\nlines and \\\\x1b[31mred'
     """
     return _UNPRINTABLE.sub(lambda m: repr(m.group())[1:-1], text)
+
+
+def control_character_problem(text: str, where: str, *, also: re.Pattern[str] | None = None) -> str | None:
+    """What is wrong with ``text`` if it holds a character a terminal obeys rather than shows, else None.
+
+    Tab and line breaks are allowed; the other C0 and C1 controls, DEL and
+    the bidirectional overrides (``TERMINAL_CONTROL``) are not (an ESC or a CSI in a name would reach
+    the terminal that prints a message quoting it).  The file readers use it
+    for every value a message may quote; ``also`` adds a format's own
+    forbidden characters (YAML's non-printable set).
+
+    Examples
+    --------
+    >>> control_character_problem("link one", "a value") is None
+    True
+    >>> print(control_character_problem("a\\x1b[2J", "a value"))
+    control character '\\x1b' (code 27) is not allowed in a value
+    """
+    bad = TERMINAL_CONTROL.search(text) or (also.search(text) if also is not None else None)
+    if bad is None:
+        return None
+    return f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in {where}"
 
 
 def clipped(text: object, most: int = 40) -> str:

@@ -28,7 +28,7 @@ from hypothesis import strategies as st
 import mobility
 from mobility.cli import main
 from mobility.core.model import Mechanism
-from mobility.core.tolerance import binary_scale, characteristic_scale
+from mobility.core.tolerance import COINCIDENT_POINTS, binary_scale, characteristic_scale, characteristic_scales
 from mobility.core.transforms import Transform
 from mobility.errors import AnalysisError, MechanismFileError
 from mobility.report.text import json_report, text_report
@@ -171,10 +171,22 @@ def test_the_characteristic_scale_scales_exactly_by_powers_of_two(points, power)
     if length * scale == 0.0 or not math.isfinite(length * scale) or np.any((pts * scale != 0) & (np.abs(pts * scale) < 2.3e-308)):
         return  # the scaled points leave the normal floats: nothing to compare bit for bit
     centre2, length2 = characteristic_scale(pts * scale)
-    if length == 1.0 and np.all(pts == pts[0]):  # coincident points: the fallback length 1 does not scale
+    spread = np.sqrt(np.mean(np.sum((pts - pts.mean(axis=0)) ** 2, axis=1)))
+    if length == 1.0 and spread <= COINCIDENT_POINTS * np.abs(centre).max():  # coincident points: the fallback length 1 does not scale
         assert length2 == 1.0
         return
     assert length2 == length * scale and np.array_equal(centre2, centre * scale)
+
+
+def test_a_pitch_is_the_characteristic_length_only_of_coincident_points():
+    pitch = np.array([2.5])
+    third = np.full((3, 3), 0.1)  # the mean of three 0.1s is not 0.1: a spread of round-off, ~1e-17
+    assert characteristic_scale(third, pitch)[1] == 2.5 and characteristic_scale(third)[1] == 1.0
+    # points a micrometre apart beside a pitch of 10 m are a mechanism of that size, not of the pitch's
+    # (the pitch is then refused by the model: its rotation is below resolution)
+    tiny = np.array([[0.0, 0, 0], [1e-6, 0, 0]])
+    assert characteristic_scale(tiny, np.array([1e4]))[1] == pytest.approx(5e-7)
+    assert characteristic_scales(tiny[None], np.array([1e4]))[1].tolist() == [characteristic_scale(tiny, np.array([1e4]))[1]]
 
 
 def test_binary_scale_brings_any_magnitude_near_one():

@@ -20,6 +20,7 @@ import copy
 import io
 import json
 import math
+import os
 from pathlib import Path
 from typing import Any
 
@@ -178,6 +179,20 @@ def test_check_over_a_folder_reports_each_bad_file_on_its_line_and_goes_on(tmp_p
     assert status == 2 == report.exit_status
     rows = [row for row in out.splitlines() if ".yaml" in row]
     assert len(rows) == 4 and "pass" in rows[2] and all("ERROR" in rows[i] for i in (0, 1, 3))
+
+
+def test_a_terminal_is_refused_rather_than_read_until_someone_types(capsys):
+    leader, follower = os.openpty()
+    try:
+        terminal = os.ttyname(follower)
+        with time_bound(10):
+            with pytest.raises(MechanismFileError, match=f"^{terminal}: is a terminal, expected a mechanism file$"):
+                mobility.load(terminal)
+            assert main(["analyze", terminal]) == 2
+        assert capsys.readouterr().err.strip() == f"mobility: {terminal}: is a terminal, expected a mechanism file"
+    finally:
+        os.close(leader)
+        os.close(follower)
 
 
 def test_dev_zero_and_big_files_stop_at_the_size_limit(tmp_path):

@@ -282,3 +282,29 @@ def test_the_4puu_jacobian_agrees_with_the_actuation_verdict_redundant_inputs_in
     assert jac.redundant == (1 if verdict == "redundant" else 0)
     assert (jac.twist_map is not None) == (verdict == "valid")
     assert jac.rank == (5 if verdict == "actuation-singular" else 6)
+
+
+def _three_hrs(pitch: float) -> mobility.Mechanism:
+    """The bundled 3-PRS with its actuated sliders made screws of ``pitch`` (mm/rad) about the guides."""
+    text = (MECHANISMS / "3prs.yaml").read_text()
+    slider = 'type: P, links: [frame, "slider{i+1}"], axis: [0, 0, 1]'
+    assert slider in text
+    return mobility.loads(text.replace(slider, f'type: H, pitch: {pitch}, links: [frame, "slider{{i+1}}"], axis: [0, 0, 1], point: [R, 0, 0]'))
+
+
+@pytest.mark.parametrize("pitch", [1.0, 1e6, 1.5e10])
+def test_a_screw_input_of_large_pitch_is_judged_as_the_actuation_check_judges_it(pitch):
+    # A large pitch makes the input's row of J short (one radian moves far), so kappa grows with the pitch;
+    # at 1.5e10 mm/rad it passes 1/rank.  Whether the inputs control the platform does not depend on that
+    # unit: the rank is decided on unit rows, and agrees with the screw route of check_actuation.
+    m = _three_hrs(pitch)
+    jac = jacobian(m)
+    assert mobility.check_actuation(m, ["P1", "P2", "P3"]).verdict == "valid"
+    assert not jac.singular and jac.rank == 6 and jac.twist_map is not None
+    assert (jac.condition > 1e8) == (pitch > 1e10)
+
+
+def test_a_pitch_whose_rotation_is_below_resolution_is_refused_at_its_line():
+    with pytest.raises(MechanismError, match=r"<string>:32: limbs\[0\]\.joints\[0\]\.pitch: pitch 1e\+12 is 4\.6e\+09 times the mechanism's size 219.*write it as a P joint"):
+        _three_hrs(1e12)
+    assert _three_hrs(1e10).joints[0].pitch == 1e10  # 4.6e7 times the size: resolved, and analysed

@@ -38,7 +38,7 @@ from typing import Any, Iterable, Mapping
 import numpy as np
 
 from ..errors import MechanismError, RequestError, name_list
-from .tolerance import ORTHONORMAL, PARALLEL_AXES, binary_scale
+from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, binary_scale, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
 
 __all__ = [
@@ -496,6 +496,29 @@ class Mechanism:
             raise MechanismError("joints", f"links not connected to the ground {self.ground!r}: {name_list(sorted(unreached))}")
         if self.frames and not self._frames_cannot_overflow():
             self.world_joints  # noqa: B018 - every joint's geometry must stay finite in the global frame
+        if any(j.type == "H" for j in self.joints):
+            self._require_resolved_pitches()
+
+    def _require_resolved_pitches(self) -> None:
+        """Refuse a helical joint whose rotation is below the resolution of the analysis.
+
+        A screw of pitch ``p`` in a mechanism of size ``L`` (:func:`~mobility.core.tolerance.characteristic_scale`)
+        turns by ``L / p`` of its motion; below :attr:`~mobility.core.tolerance.Tolerance.rank`
+        that rotation cannot be told from round-off, and the joint would be
+        counted sometimes as a screw, sometimes as a slider.
+        """
+        table = self.freedom_table
+        pitches = np.abs(table.pitches)
+        largest = float(pitches.max())
+        length = characteristic_scale(table.located, pitches[pitches != 0.0])[1]
+        if largest * DEFAULT_TOLERANCE.rank <= length:
+            return
+        index = int(np.searchsorted(table.offsets, int(np.argmax(pitches)), side="right")) - 1
+        raise MechanismError(
+            f"joints[{index}].pitch",
+            f"pitch {largest:.6g} is {largest / length:.1e} times the mechanism's size {length:.3g}: the joint's rotation "
+            f"({length / largest:.1e} of its motion) is finer than the analysis can resolve ({DEFAULT_TOLERANCE.rank:.0e}); write it as a P joint",
+        )
 
     def _frames_cannot_overflow(self) -> bool:
         """Whether no joint can leave the floats once written in the global frame (a cheap bound; else the exact check).

@@ -48,6 +48,7 @@ __all__ = [
     "SIGN_TIE",
     "COMPONENT_TIE",
     "NORM_TIE",
+    "COINCIDENT_POINTS",
     "NEWTON_RCOND",
     "NEWTON_DAMPING",
     "SOLVER_STOP",
@@ -146,6 +147,13 @@ COMPONENT_TIE = 1e-9
 the lowest index (x before y before z): a readability choice, far above the
 round-off of unit vectors (~1e-16) so that round-off never decides it.  Not a
 rank decision: no count depends on it."""
+
+COINCIDENT_POINTS = 1e-12
+"""Joint points whose RMS distance from their centroid is below this fraction
+of the centroid's distance from the origin coincide (their spread is the
+round-off of averaging them); only then is a helical pitch the mechanism's
+characteristic length (:func:`characteristic_scale`).  The same size as
+:attr:`Tolerance.round_off`: round-off, not a decision of the analysis."""
 
 NORM_TIE = 1e-12
 """Projections of coordinate axes whose norms are within this of the largest
@@ -281,8 +289,9 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) 
     """Centre and characteristic length of a mechanism.
 
     The centre is the centroid of the joint points; the length is the RMS
-    distance of those points from it, or, when all points coincide, the
-    largest other length given (helical pitches); 1.0 when there is none.
+    distance of those points from it, or, when all points coincide (to
+    :data:`COINCIDENT_POINTS`), the largest other length given (helical
+    pitches); 1.0 when there is none.
     Both follow the mechanism under scaling and rigid motion, which is what
     makes the rank decisions invariant.  They are computed on the points
     scaled by :func:`binary_scale` (nothing is squared before it), so any
@@ -324,7 +333,7 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) 
         radius = float(np.sqrt(np.einsum("ij,ij->", d, d) / n))
         centre /= scale
         radius /= scale
-    if radius > 0.0 and radius >= 1e-9 * other:
+    if radius > COINCIDENT_POINTS * float(np.abs(centre).max(initial=0.0)):
         return centre, radius
     if other > 0.0:
         return centre, other
@@ -470,4 +479,5 @@ def characteristic_scales(points: np.ndarray, lengths: np.ndarray | None = None)
             radius = np.sqrt(np.einsum("kij,kij->k", d, d) / n) / scale
         centres /= scale[:, None]
     fallback = other if other > 0.0 else 1.0
-    return centres, np.where((radius > 0.0) & (radius >= 1e-9 * other), radius, fallback)
+    spread = radius > COINCIDENT_POINTS * (np.abs(centres).max(axis=1) if n else 0.0)
+    return centres, np.where(spread, radius, fallback)

@@ -57,14 +57,16 @@ def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
     Raises
     ------
     MechanismFileError
-        One line naming the file: missing, a directory, unreadable or larger
-        than the limit.
+        One line naming the file: missing, a directory, a terminal,
+        unreadable or larger than the limit.
     """
     name = str(path)
     cap = current_limits(limits).max_file_bytes
     refuse_pipe(path)
     try:
         with open(path, "rb") as stream:
+            if stream.isatty():  # reading would wait for someone to type the file
+                raise MechanismFileError("", "is a terminal, expected a mechanism file", file=name)
             chunks, size = [], 0
             while size <= cap:  # in chunks: read(cap + 1) would allocate the whole cap for every file
                 chunk = stream.read(min(1 << 16, cap + 1 - size))

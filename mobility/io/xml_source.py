@@ -27,14 +27,12 @@ from pathlib import Path
 from typing import Any, BinaryIO
 from xml.parsers import expat
 
-from ..errors import MechanismFileError, clipped
+from ..errors import MechanismFileError, clipped, control_character_problem
 from .files import is_regular_file, read_capped
 from .limits import Limits, current_limits
 
 __all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag"]
 
-_CONTROL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
-"""Control characters (C0 but tab and line breaks, DEL, C1) and bidirectional overrides."""
 
 _CHUNK = 1 << 16
 _BOM = b"\xef\xbb\xbf"
@@ -87,9 +85,9 @@ def parse_xml(text: str | bytes, file: str = "<string>") -> XmlDocument:
 
     def start(tag: str, attrs: dict[str, str]) -> None:
         for key, value in attrs.items():
-            bad = _CONTROL.search(value)
-            if bad is not None:  # a character reference (&#x9b;) can make what a terminal obeys
-                raise MechanismFileError(f"{clipped(tag)}.{clipped(key)}", f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in an attribute", file=file, line=parser.CurrentLineNumber)
+            problem = control_character_problem(value, "an attribute")
+            if problem is not None:  # a character reference (&#x9b;) can make what a terminal obeys
+                raise MechanismFileError(f"{clipped(tag)}.{clipped(key)}", problem, file=file, line=parser.CurrentLineNumber)
         lines[builder.start(tag, attrs)] = parser.CurrentLineNumber
 
     parser.StartElementHandler = start

@@ -46,7 +46,7 @@ from typing import Any
 
 import yaml
 
-from ..errors import MechanismFileError, clipped
+from ..errors import TERMINAL_CONTROL, MechanismFileError, clipped, control_character_problem
 from .files import read_capped
 from .limits import Limits, current_limits
 
@@ -70,8 +70,6 @@ _KIND = {_TAG + "int": "an integer", _TAG + "float": "a number", _TAG + "bool": 
 
 # Characters YAML does not allow in a stream (the complement of its printable set).
 _NOT_PRINTABLE = re.compile("[^\t\n\r\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
-# Characters that reorder or hide the text around them on a terminal (bidirectional overrides, "Trojan source").
-_INVISIBLE_CONTROL = re.compile("[\u202a-\u202e\u2066-\u2069]")
 
 
 def format_key(path: KeyPath) -> str:
@@ -154,10 +152,10 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
     lim = current_limits(limits)
     if len(text) > lim.max_file_bytes:
         raise MechanismFileError("", f"a document of {len(text)} characters is larger than the limit of {lim.max_file_bytes} (set MOBILITY_MAX_FILE_BYTES to raise it)", file=file)
-    bad = _NOT_PRINTABLE.search(text) or _INVISIBLE_CONTROL.search(text)
+    bad = _NOT_PRINTABLE.search(text) or TERMINAL_CONTROL.search(text)
     if bad is not None:
         line = text.count("\n", 0, bad.start()) + 1
-        raise MechanismFileError("", f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in YAML", file=file, line=line)
+        raise MechanismFileError("", control_character_problem(bad.group(), "YAML", also=_NOT_PRINTABLE) or "", file=file, line=line)
     loader = _EventSource(text)
     try:
         return _Builder(loader, file, lim).document()
@@ -312,9 +310,9 @@ class _Builder:
 
     def check_printable(self, text: str, path: KeyPath, line: int) -> None:
         """A string written with escapes must still hold no control character (an ESC would reach the terminal)."""
-        bad = _NOT_PRINTABLE.search(text) or _INVISIBLE_CONTROL.search(text)
-        if bad is not None:
-            raise self.fail(path, line, f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in a value")
+        problem = control_character_problem(text, "a value", also=_NOT_PRINTABLE)
+        if problem is not None:
+            raise self.fail(path, line, problem)
 
     def scalar_by_constructor(self, tag: str, event: Any, path: KeyPath, line: int) -> Any:
         value = event.value

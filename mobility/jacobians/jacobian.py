@@ -104,9 +104,13 @@ class JacobianResult:
         (redundant actuation: one rate alone is not a motion, the rates must
         agree, ``J [w; v] = [rates; 0]``).
     rank : int
-        Rank of ``J`` (normalised coordinates).
+        Rank of ``J`` (normalised coordinates), decided on its rows scaled
+        to unit length: a row's length is the input's rate unit (a screw of
+        large pitch gives a short one), which does not change which wrenches
+        span.
     condition : float
-        Condition number of ``J`` in normalised coordinates (``inf`` if singular).
+        Condition number of ``J`` in normalised coordinates, rows as they
+        are (``inf`` if singular): it does depend on the inputs' rate units.
     singular : bool
         ``J`` has rank below 6: the actuated joints do not control the
         platform at this pose (too few inputs, or an actuation singularity).
@@ -291,7 +295,10 @@ def _jacobian_near_unit_size(model: ParallelModel, values: tuple[np.ndarray, ...
     rows_n += [SWAP @ w for w in constraints_n.T]
     j_n = np.array(rows_n).reshape(-1, 6)
     sv = np.linalg.svd(j_n, compute_uv=False)
-    rank = decide_rank(sv, tol).rank
+    # Whether the wrenches span is a property of their lines, not of the rate units of the inputs (a screw of
+    # large pitch gives a short row): the rank is decided on unit rows, as the actuation check decides it.
+    rows = np.linalg.norm(j_n, axis=1)
+    rank = decide_rank(np.linalg.svd(j_n / np.where(rows > 0.0, rows, 1.0)[:, None], compute_uv=False), tol).rank
     square = j_n.shape[0] == 6
     singular = rank < 6
     constraints_w = norm.to_world(constraints_n).T
