@@ -20,7 +20,6 @@ mobility.errors.MechanismFileError: r.urdf:3: malformed XML: mismatched tag (col
 
 from __future__ import annotations
 
-import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
