@@ -233,9 +233,10 @@ def test_mechanism_tests_returns_a_parametrized_test():
 
 def test_full_cycle_expectations_are_held_to_the_finite_limit(tmp_path, monkeypatch, capsys):
     # a chain of 6 revolute joints expecting a full-cycle DOF: above a limit of 5 joints the check is an error
-    # line, and the other files of the folder are still checked
+    # line, and the other files of the folder are still checked.  Stretched in a line, the planar chain's end
+    # link has 2 DOF (1T1R); every bent pose of its one branch has 3 (2T1R), its full-cycle DOF.
     joints = "\n".join(f"  - {{name: R{i}, type: R, links: [l{i}, l{i + 1}], axis: [0, 0, 1], point: [{i}, 0, 0]}}" for i in range(6))
-    (tmp_path / "chain.yaml").write_text(f"name: chain\nground: l0\nend_effector: l6\njoints:\n{joints}\nexpected: {{full_cycle_dof: 2}}\n")
+    (tmp_path / "chain.yaml").write_text(f"name: chain\nground: l0\nend_effector: l6\njoints:\n{joints}\nexpected: {{dof: 2, full_cycle_dof: 3}}\n")
     (tmp_path / "slide.yaml").write_text("name: slide\nground: g\nend_effector: s\njoints:\n  - {name: P, type: P, links: [g, s], axis: [1, 0, 0]}\nexpected: {dof: 1}\n")
     monkeypatch.setenv("MOBILITY_MAX_FINITE_JOINTS", "5")
     assert main(["check", str(tmp_path)]) == 2

@@ -509,3 +509,22 @@ def test_a_pose_where_only_the_pattern_is_special_says_so():
     assert "but not the pattern: 3R at nearby poses, 1T2R at this one" in f.explanation
     # the nearby pattern, by the screw route at a sampled pose (a second route to the same answer)
     assert {mobility.analyze(p).pattern for p in sample_poses(m, 3, step=0.05)} == {"3R"}
+
+
+def test_a_wrist_in_gimbal_lock_is_singular_for_the_end_effector_only():
+    # ZYZ wrist with its first and last axes in line: 2R at this pose, 3R at every other pose of its one
+    # branch.  Moves about the locked axes alone stay on the singular locus; the branch is measured at
+    # its most regular pose reached, so the full-cycle DOF is the generic 3.
+    axes = ((0.0, 0.0, 1.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    links = ("ground", "l1", "l2", "tool")
+    wrist = Mechanism(
+        "ZYZ wrist", "ground", "tool",
+        tuple(Joint(f"J{i + 1}", "R", (links[i], links[i + 1]), axis=a, point=(0.0, 0.0, float(i))) for i, a in enumerate(axes)),
+    )
+    here = mobility.analyze(wrist)
+    assert (here.dof, here.pattern, here.mobility) == (2, "2R", 3)
+    fm = finite_mobility(wrist)
+    assert (fm.instantaneous_dof, fm.full_cycle_dof, fm.full_cycle_pattern, fm.full_cycle_mobility) == (2, 3, "3R", 3)
+    assert "the pose is singular for the end effector, not for the mechanism" in fm.explanation
+    tilted = kinematics(wrist).mechanism_at(np.array([0.0, 0.2, 0.0]))  # the second route: the screws one pose away
+    assert mobility.analyze(tilted).dof == 3

@@ -70,7 +70,10 @@ def group_by_tangent(probes: tuple[Probe, ...], k: int) -> tuple[list[TangentGro
     """Group the moves that moved by the tangent spaces they reached.
 
     Moves are taken from the least singular pose reached (lowest mobility,
-    then largest margin) so each group starts from its most regular pose.
+    then most end-effector DOF, then largest margin) so each group starts
+    from its most regular pose: a move that stays on a singular locus of the
+    end effector (a wrist turned about its locked axes) does not stand for a
+    branch whose other poses have more DOF.
 
     Returns
     -------
@@ -83,7 +86,7 @@ def group_by_tangent(probes: tuple[Probe, ...], k: int) -> tuple[list[TangentGro
     """
     moved = [i for i, p in enumerate(probes) if p.moved]
     groups: list[TangentGroup] = []
-    for i in sorted(moved, key=lambda i: (probes[i].mobility, -(probes[i].margin or 0.0))):
+    for i in sorted(moved, key=lambda i: (probes[i].mobility, -(probes[i].dof or 0), -(probes[i].margin or 0.0))):
         p = probes[i]
         for g in groups:
             if same_tangent(g.tangent, p.tangent):
