@@ -9,6 +9,7 @@ checked against :func:`mobility.analyze`, the loop-closure route
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -26,6 +27,7 @@ from mobility.sweeps import SweepResult, plan_grid, sweep
 from mobility.sweeps.batch_kinematics import BatchKinematics, displacement_logs, rotation_logs
 from mobility.sweeps.batch_systems import analyse_poses
 from mobility.sweeps.posed_screws import posed_screws
+from mobility.report.sweep import sweep_csv, sweep_json, sweep_summary
 
 from conftest import MECHANISMS
 from guards import time_bound
@@ -527,8 +529,6 @@ def test_a_sweep_at_any_scale_is_the_sweep_scaled_without_a_warning():
         if k < 1:  # 1e300 over a size of about 1e-248: not a float
             with pytest.raises(RequestError, match="x=0:1e.300:3: its values do not fit in a float"):
                 sweep(big, ["x=0:1e300:3"])
-        from mobility.report.sweep import sweep_csv, sweep_summary
-
         assert f"P1 from 0 to {20 * k:g}" in sweep_summary(scaled)  # shown against the range, not rounded to 0
         assert sweep_csv(scaled).splitlines()[2].startswith(f"{10 * k:g},")
 
@@ -551,3 +551,48 @@ def test_a_deep_tree_is_evaluated_for_every_pose_without_recursion():
     value = evaluate_batch(decompose(m).root, np.ascontiguousarray(twists), tuple(int(x) for x in screws.offsets))
     single = evaluate_node(decompose(m).root, screws)
     assert value.dim.tolist() == [single.dim] * 2 and value.mobility.tolist() == [single.mobility] * 2 == [0, 0]
+
+
+FLAT_3RPS = """
+name: 3-RPS with its platform in the base plane
+ground: base
+end_effector: platform
+units: {angle: deg, length: mm}
+limbs:
+  - copies: 3
+    frame: {name: "leg{i+1}", rpy: [0, 0, "120*i"]}
+    joints:
+      - {name: "R{i+1}", type: R, links: [base, "cyl{i+1}"], axis: [0, 1, 0], point: [200, 0, 0]}
+      - {name: "P{i+1}", type: P, links: ["cyl{i+1}", "pis{i+1}"], axis: [-1, 0, 0], actuated: true}
+      - {name: "S{i+1}", type: S, links: ["pis{i+1}", platform], point: [100, 0, 0]}
+"""
+
+
+def test_a_type_two_singularity_between_grid_points_is_a_margin_dip():
+    # The legs lie in the platform's plane at z = 0: actuation and constraint forces are coplanar, three
+    # uncontrolled freedoms; on both sides the inputs are valid, so no answer changes across it.
+    m = mobility.loads(FLAT_3RPS)
+    assert mobility.check_actuation(m, ["P1", "P2", "P3"]).verdict == "actuation-singular"
+    off = sweep(m, ["z=-20.25:19.75:81", "rx=0:0:1", "ry=0:0:1"])  # misses z = 0 by a quarter step
+    assert off.singular == () and len(off.changes) == 0 and off.verdict_counts() == {"valid": 81}
+    assert off.dips and {(d.column, abs(d.values[0])) for d in off.dips} == {("actuation_margin", 0.25)}
+    assert float(np.min(off.conditioning)) > 0.4  # kappa does not see the three inputs vanish together
+    for d in off.dips:  # the second route: the pose rebuilt and checked on its own
+        alone = mobility.check_actuation(off.mechanism_at(d.index), ["P1", "P2", "P3"])
+        assert alone.verdict == "valid" and alone.margin.smallest_kept == pytest.approx(d.margin, rel=1e-6)
+        assert d.margin < 0.5 * max(d.neighbours)
+    on = sweep(m, ["z=-20:20:81", "rx=0:0:1", "ry=0:0:1"])  # through z = 0: the singular pose itself, no dip beside it
+    assert [p.values[0] for p in on.singular] == [0.0] and on.dips == ()
+    assert "margin dips (" in sweep_summary(off) and "actuation margin (distance to an actuation singularity): smallest" in sweep_summary(off)
+    assert json.loads(sweep_json(off))["margin_dips"][0]["column"] == "actuation_margin"
+
+
+def test_a_dead_centre_between_grid_points_and_at_the_grid_end_are_margin_dips():
+    m = mobility.load(MECHANISMS / "slider_crank.yaml")  # dead centres at -60 and 120 degrees from the file's pose
+    r = sweep(m, ["O=-59.75:120.25:181"])
+    assert r.singular == () and len(r.changes) == 0
+    found = {(round(d.values[0], 2), d.column, len(d.neighbours)) for d in r.dips}
+    assert found == {(-59.75, "smallest_kept", 1), (120.25, "smallest_kept", 1)}  # each end a quarter degree past a dead centre
+    assert r.dips[0].margin < 0.5 * r.dips[0].neighbours[0]
+    through = sweep(m, ["O=-60:120:181"])
+    assert [p.values[0] for p in through.singular] == [-60.0, 120.0] and through.dips == ()

@@ -20,9 +20,12 @@ Everything here is in the normalised coordinates of
   actuation wrench and ``$_i`` the input's twist with unit rate (its *rate*
   ``a_i o $_i`` is given with the wrench).  ``G`` does not depend on which
   representative of ``a_i`` is taken, nor on the unit of length or the
-  placement of the mechanism (normalised coordinates).  ``kappa`` is 0 at an
-  actuation singularity and 1 when a unit twist of the end effector in any
-  direction needs the same input speed.  When the end effector has no
+  placement of the mechanism (normalised coordinates).  ``kappa`` is 1 when
+  a unit twist of the end effector in any direction needs the same input
+  speed and falls to 0 where ``G`` loses rank unevenly; being a ratio, it
+  stays finite where every input's effect vanishes at once (and is 1 for one
+  freedom), so the distance to an actuation singularity is the margin of the
+  verdict's rank decision, not ``kappa``.  When the end effector has no
   freedom (``d = 0``, e.g. a slider-crank's slider at a dead centre) the map
   is empty and ``kappa`` is 1 by convention: there is nothing to control, and
   the inputs, which still move the mechanism, are ``redundant`` for the end

@@ -107,9 +107,12 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
             f"(below {tol.near_singular:.0e}); a small change of pose may change the count"
         )
     if margin.inexact:
+        cause = "check that the special geometry is exact"
+        if margin.near_singular:  # the screw systems are reciprocals of ill-conditioned ones: round-off grows by about 1/margin
+            cause += f", or, this pose being near-singular, it may be round-off amplified about {1.0 / margin.smallest_kept:.0e} times"
         warnings.append(
             f"inexact geometry: a direction counted as blocked has relative singular value {margin.largest_dropped:.2e} "
-            f"(above round-off, below the rank threshold {tol.rank:.0e}); check that the special geometry is exact"
+            f"(above round-off, below the rank threshold {tol.rank:.0e}); {cause}"
         )
     norm = screws.normalisation
     return Result(

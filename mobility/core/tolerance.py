@@ -49,6 +49,7 @@ __all__ = [
     "COMPONENT_TIE",
     "NORM_TIE",
     "COINCIDENT_POINTS",
+    "MARGIN_DIP",
     "NEWTON_RCOND",
     "NEWTON_DAMPING",
     "SOLVER_STOP",
@@ -154,6 +155,14 @@ of the centroid's distance from the origin coincide (their spread is the
 round-off of averaging them); only then is a helical pitch the mechanism's
 characteristic length (:func:`characteristic_scale`).  The same size as
 :attr:`Tolerance.round_off`: round-off, not a decision of the analysis."""
+
+MARGIN_DIP = 0.5
+"""A sweep's grid point whose rank margin is at most this fraction of a
+neighbour's along an axis (and no larger than either) is a *margin dip*
+(:attr:`mobility.sweeps.SweepResult.dips`).  A margin that falls linearly to
+0 between two grid points is at most 1/3 of its farther neighbour at the
+nearest grid point, wherever the zero lies; 0.5 leaves room for curvature.
+A pointer for refining the grid, not a rank decision: no count depends on it."""
 
 NORM_TIE = 1e-12
 """Projections of coordinate axes whose norms are within this of the largest

@@ -91,7 +91,11 @@ def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:
             out.append("    (none)")
     out.append(f"  verdict: {check.verdict.upper()}: {check.explanation}")
     if check.verdict != SINGULAR:
-        out.append(f"  actuation conditioning kappa = {check.conditioning:.3g}   (1: isotropic, 0: actuation singularity)")
+        if check.dof <= 1:
+            legend = "one end-effector freedom: 1 by definition; the rank margin below is the distance to an actuation singularity"
+        else:
+            legend = "1: isotropic, 0: the inputs' effects lose rank; it stays finite where they all vanish together: the rank margin below measures that"
+        out.append(f"  actuation conditioning kappa = {check.conditioning:.3g}   ({legend})")
     if check.uncontrolled_twists.shape[0]:
         out.append("  uncontrolled directions (the end effector still moves with every input locked):")
         out += [f"    translation along {fmt_vector(t)}" for t in check.uncontrolled_translations]

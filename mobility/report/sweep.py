@@ -23,6 +23,8 @@ O1 [deg],dof,pattern,mobility,assembled,residual,smallest_kept,largest_dropped,n
 
 from __future__ import annotations
 
+from collections import Counter
+
 import csv
 import io
 import json
@@ -31,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from ..actuation import SINGULAR
 from ..sweeps import SweepResult
 from .text import fmt_number
 
@@ -92,8 +95,14 @@ def sweep_summary(result: SweepResult) -> str:
     if not assembled:
         return "\n".join(out)
     out.append("  poses per answer (end-effector DOF, pattern, mobility):")
-    for (dof, pattern, mobility), n in result.counts().items():
-        out.append(f"    {n:>9,}  DOF {dof}  {pattern:<6}  mobility {mobility}")
+    doubtful = result.assembled & (result.near_singular | result.inexact)
+    doubts = Counter(zip(result.dof[doubtful].tolist(), result.pattern[doubtful].tolist(), result.mobility[doubtful].tolist()))
+    for answer, n in result.counts().items():
+        dof, pattern, mobility = answer
+        line = f"    {n:>9,}  DOF {dof}  {pattern:<6}  mobility {mobility}"
+        if doubts[answer]:
+            line += f"   ({doubts[answer]:,} of them near-singular or inexact: there the count or the pattern may follow round-off)"
+        out.append(line)
     left = result.regular[2] - len(result.axes) if result.regular is not None else 0
     if left > 0:
         out.append(
@@ -111,6 +120,12 @@ def sweep_summary(result: SweepResult) -> str:
                 f"    conditioning kappa: median {fmt_number(float(np.median(kappa)), digits=3)}, "
                 f"smallest {fmt_number(float(kappa.min()), digits=3)} at {describe_values(result, result.values[worst])}"
             )
+        controlled = result.assembled & (result.verdict != SINGULAR)  # at a singular pose the margin is that of a lower rank
+        margins = np.where(controlled, result.actuation_margin, np.inf)
+        if np.isfinite(margins).any():
+            lowest = int(np.argmin(margins))
+            where = "" if controlled.sum() == result.assembled.sum() else " of the poses not actuation-singular"
+            out.append(f"    actuation margin (distance to an actuation singularity): smallest{where} {float(margins[lowest]):.2e} at {describe_values(result, result.values[lowest])}")
     margin = result.smallest_kept[result.assembled]
     worst = int(np.flatnonzero(result.assembled)[int(np.argmin(margin))])
     near = int(result.near_singular[result.assembled].sum())
@@ -124,6 +139,16 @@ def sweep_summary(result: SweepResult) -> str:
             out.append(f"    ... and {len(singular) - SUMMARY_SINGULAR_LIMIT:,} more (see --format csv or json)")
     else:
         out.append("  singular poses: none on the grid")
+    dips = result.dips
+    if dips:
+        out.append(f"  margin dips ({len(dips):,}): a singularity with the same answer on both sides may lie next to these poses, between grid points; a finer grid there tells")
+        for d in dips[:SUMMARY_SINGULAR_LIMIT]:
+            what = "actuation margin" if d.column == "actuation_margin" else "rank margin"
+            around = ", ".join(f"{m:.2e}" for m in d.neighbours)
+            whose = "its neighbours" if len(d.neighbours) == 2 else "an end of the grid; its neighbour"
+            out.append(f"    {describe_values(result, d.values)}: {what} {d.margin:.2e} ({whose} along {d.axis}: {around})")
+        if len(dips) > SUMMARY_SINGULAR_LIMIT:
+            out.append(f"    ... and {len(dips) - SUMMARY_SINGULAR_LIMIT:,} more (see --format json)")
     changes = result.changes
     classes = result.classes()
     if len(changes):

@@ -23,7 +23,7 @@ Modules, in data-flow order:
 """
 
 from .grid import DEFAULT_MAX_POSES, POSE_COORDINATES, GridPlan, SweepAxis, parse_vary, plan_grid
-from .result import COLUMNS, SingularPose, SweepResult
+from .result import COLUMNS, MarginDip, SingularPose, SweepResult
 from .runner import DEFAULT_CHUNK_SIZE, analyse_joint_variables, sweep
 
 __all__ = [
@@ -31,6 +31,7 @@ __all__ = [
     "analyse_joint_variables",
     "SweepResult",
     "SingularPose",
+    "MarginDip",
     "SweepAxis",
     "GridPlan",
     "parse_vary",

@@ -14,8 +14,15 @@ margin of its rank decisions) and, when inputs are chosen, what
   slider-crank's dead centres), or where the inputs become
   actuation-singular (each with its reasons);
 * the **changes**: pairs of neighbouring grid points (along one axis), both
-  assembled, whose answers differ; a singularity between two grid points
-  shows here even when no grid point falls on it.
+  assembled, whose answers differ (a singularity between two grid points
+  shows here when the answers on its two sides differ);
+* the **margin dips**: grid points whose rank margin (of the analysis, or of
+  the actuation verdict) is at most :data:`~mobility.core.tolerance.MARGIN_DIP`
+  of a neighbour's along some axis and no larger than either neighbour's (or,
+  at an end of the axis, than its one neighbour's), the poses having the same
+  answer: where a singularity whose two sides have the same answer (a
+  type-II singularity crossed, a constraint singularity passed) may lie
+  between grid points.
 
 Examples
 --------
@@ -39,11 +46,11 @@ import numpy as np
 from ..actuation import SINGULAR
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
+from ..core.tolerance import DEFAULT_TOLERANCE, MARGIN_DIP, Tolerance, clean_numbers
 from ..errors import RequestError
 from .grid import SweepAxis
 
-__all__ = ["SingularPose", "SweepResult", "COLUMNS"]
+__all__ = ["SingularPose", "MarginDip", "SweepResult", "COLUMNS"]
 
 COLUMNS = (
     "dof",
@@ -97,6 +104,47 @@ class SingularPose:
             "mobility": self.mobility,
             "verdict": self.verdict or None,
             "reasons": list(self.reasons),
+        }
+
+
+@dataclass(frozen=True)
+class MarginDip:
+    """A grid point where a rank margin dips: a singularity may lie next to it, between grid points.
+
+    Attributes
+    ----------
+    index : int
+        Flat index of the grid point.
+    values : tuple of float
+        Its coordinate values (user units).
+    column : str
+        ``"smallest_kept"`` (the analysis) or ``"actuation_margin"`` (the actuation verdict).
+    margin : float
+        The margin there.
+    neighbours : tuple of float
+        The margins of its neighbours along the axis where the dip is deepest
+        (one at an end of the axis, where the margin falls towards the end:
+        the singularity may lie beyond it).
+    axis : str
+        That axis.
+    """
+
+    index: int
+    values: tuple[float, ...]
+    column: str
+    margin: float
+    neighbours: tuple[float, ...]
+    axis: str
+
+    def to_dict(self, names: tuple[str, ...] = ()) -> dict[str, Any]:
+        """JSON form (``names``: the coordinates, to key the values)."""
+        return {
+            "index": self.index,
+            "values": dict(zip(names, self.values)) if names else list(self.values),
+            "column": self.column,
+            "margin": self.margin,
+            "neighbours": list(self.neighbours),
+            "axis": self.axis,
         }
 
 
@@ -273,16 +321,19 @@ class SweepResult:
             out.append(SingularPose(int(i), tuple(float(x) for x in self.values[i]), int(self.dof[i]), str(self.pattern[i]), int(self.mobility[i]), verdict, tuple(reasons)))
         return tuple(out)
 
+    def _class_codes(self) -> np.ndarray:
+        """Each pose's answer as a small integer (-1 where not assembled), in the grid's shape."""
+        codes = np.full(self.size, -1)
+        lookup: dict = {}
+        for i, c in enumerate(self.classes()):
+            if c is not None:
+                codes[i] = lookup.setdefault(c, len(lookup))
+        return codes.reshape(self.shape)
+
     @cached_property
     def changes(self) -> np.ndarray:
         """Neighbouring assembled grid points whose answers differ: rows ``(index a, index b, axis)``, ``a < b``."""
-        classes = self.classes()
-        codes = np.full(self.size, -1)
-        lookup: dict = {}
-        for i, c in enumerate(classes):
-            if c is not None:
-                codes[i] = lookup.setdefault(c, len(lookup))
-        grid = codes.reshape(self.shape)
+        grid = self._class_codes()
         index = np.arange(self.size).reshape(self.shape)
         rows = []
         for axis in range(len(self.shape)):
@@ -293,6 +344,40 @@ class SweepResult:
             differ = (a >= 0) & (b >= 0) & (a != b)
             rows += [(int(x), int(y), axis) for x, y in zip(ia[differ], ib[differ])]
         return np.array(sorted(rows), dtype=int).reshape(-1, 3)
+
+    @cached_property
+    def dips(self) -> tuple[MarginDip, ...]:
+        """The grid points where a rank margin dips (see the module docstring), in grid order, deepest dip per point and column."""
+        codes = self._class_codes()
+        index = np.arange(self.size).reshape(self.shape)
+        singular = {p.index for p in self.singular}
+        found: dict[tuple[int, str], MarginDip] = {}
+        columns = ("smallest_kept", "actuation_margin") if self.actuated else ("smallest_kept",)
+        for column in columns:
+            values = np.where(self.assembled, np.asarray(getattr(self, column), dtype=float), np.nan).reshape(self.shape)
+            for axis, name in enumerate(self.names):
+                n = self.shape[axis]
+                if n < 3:
+                    continue
+                left, mid, right = (np.take(values, range(k, n - 2 + k), axis=axis) for k in range(3))
+                code = [np.take(codes, range(k, n - 2 + k), axis=axis) for k in range(3)]
+                at = np.take(index, range(1, n - 1), axis=axis)
+                with np.errstate(invalid="ignore"):
+                    same = (code[1] >= 0) & (code[0] == code[1]) & (code[2] == code[1]) & np.isfinite(left + mid + right)
+                    dip = same & (mid <= left) & (mid <= right) & (mid <= MARGIN_DIP * np.maximum(left, right))
+                candidates = [(i, m, (a, b)) for i, a, b, m in zip(at[dip].tolist(), left[dip].tolist(), right[dip].tolist(), mid[dip].tolist())]
+                for end, inner in ((0, 1), (n - 1, n - 2)):  # an end of the axis: falling towards it from its one neighbour
+                    e, f = np.take(values, end, axis=axis), np.take(values, inner, axis=axis)
+                    with np.errstate(invalid="ignore"):
+                        low = (np.take(codes, end, axis=axis) >= 0) & (np.take(codes, end, axis=axis) == np.take(codes, inner, axis=axis)) & (e <= MARGIN_DIP * f)
+                    candidates += [(i, m, (b,)) for i, m, b in zip(np.take(index, end, axis=axis)[low].tolist(), e[low].tolist(), f[low].tolist())]
+                for i, m, around in candidates:
+                    if i in singular:
+                        continue
+                    old = found.get((i, column))
+                    if old is None or m / max(around) < old.margin / max(old.neighbours):
+                        found[(i, column)] = MarginDip(i, tuple(float(x) for x in self.values[i]), column, m, around, name)
+        return tuple(found[k] for k in sorted(found))
 
     # -- one pose --------------------------------------------------------------------
     def mechanism_at(self, index: int) -> Mechanism:
@@ -358,6 +443,7 @@ class SweepResult:
             "regular": None if regular is None else {"dof": regular[0], "pattern": regular[1], "mobility": regular[2], "verdict": regular[3] or None},
             "singular_poses": [p.to_dict(self.names) for p in self.singular],
             "changes": [{"from": int(a), "to": int(b), "axis": self.names[int(k)]} for a, b, k in self.changes],
+            "margin_dips": [d.to_dict(self.names) for d in self.dips],
             "tolerance": {"rank": self.tolerance.rank, "near_singular": self.tolerance.near_singular, "closure": self.tolerance.closure},
             "columns": table,
         }
