@@ -596,3 +596,20 @@ def test_a_dead_centre_between_grid_points_and_at_the_grid_end_are_margin_dips()
     assert r.dips[0].margin < 0.5 * r.dips[0].neighbours[0]
     through = sweep(m, ["O=-60:120:181"])
     assert [p.values[0] for p in through.singular] == [-60.0, 120.0] and through.dips == ()
+
+
+def test_a_sweep_leaves_a_fold_of_its_drive_on_the_side_where_poses_exist():
+    # The slider-crank at its outer dead centre, driven by its slider: the slider is at its farthest, so
+    # only one side of the grid can be assembled, and there the crank turns by sqrt(step), along the motion
+    # the drive leaves free at the fold (Newton's minimum-norm step alone never takes it).
+    text = (MECHANISMS / "slider_crank.yaml").read_text()
+    assert "phi: 60" in text
+    m = mobility.loads(text.replace("phi: 60", "phi: 0"))
+    r = sweep(m, ["G=-2:2:21"])
+    g = r.values[:, 0]
+    assert r.assembled.tolist() == (g >= 0).tolist()
+    crank = r.q[:, kinematics(m).variables_of("O")][:, 0]
+    x = 40.0 + 120.0 - g[r.assembled]  # the second route: the crank angle of that slider position, closed form
+    assert np.abs(crank[r.assembled]) == pytest.approx(np.arccos((40.0**2 + x**2 - 120.0**2) / (2 * 40.0 * x)), abs=1e-9)
+    assert len(set(np.sign(crank[r.assembled][1:]).tolist())) == 1  # one branch, not a zigzag between the two
+    assert r.dof[r.assembled].tolist() == [0] + [1] * 10  # at the dead centre the slider is stopped

@@ -23,7 +23,8 @@ Newton solve is the cubic predictor ``4 q[i-1] - 6 q[i-2] + 4 q[i-3] - q[i-4]``
 (lower orders while fewer points are known: the secant ``2 q[i-1] - q[i-2]``
 after two), which keeps the continuation on its branch through a change
 point and leaves one Newton step to do.  A point that fails is retried in 2 and then 4
-smaller steps from its last assembled neighbour; the points still missing at
+smaller steps from its last assembled neighbour, then off a fold when that
+neighbour is one (:func:`_off_a_fold`); the points still missing at
 the end are tried again from any assembled neighbour on any axis
 (:func:`mobility.sweeps.grid_closure.fill`), layer after layer.  A point that cannot
 be assembled stays in the grid with ``assembled`` false and its best residual.
@@ -324,6 +325,62 @@ def _advance(
                 err[failed] = np.where(good, nerr, np.minimum(err[failed], nerr))
         q[failed[good]] = cur_q[good]
         ok[failed[good]] = True
+    failed = np.flatnonzero(~ok)
+    if failed.size:
+        fq, ferr, fok = _off_a_fold(bk, drive, base_q[failed], base_t[failed], targets[failed], tol)
+        q[failed[fok]], ok[failed[fok]] = fq[fok], True
+        err[failed] = np.where(fok, ferr, np.minimum(err[failed], ferr))
+    return q, err, ok
+
+
+FOLD_REACH = (0.3, 1.0, 3.0)
+"""Distances tried along a singular direction when a step leaves a fold, in units of ``sqrt(step)``."""
+
+
+def _off_a_fold(
+    bk: BatchKinematics,
+    drive: Drive,
+    base_q: np.ndarray,
+    base_t: np.ndarray,
+    targets: np.ndarray,
+    tol: Tolerance,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Steps that failed from a pose where the drive's Jacobian is singular, tried again off that pose.
+
+    At a fold of the driven coordinates (a leg length at its largest, a
+    dead centre) the nearby poses lie ``sqrt(step)`` away along the motion the
+    drive leaves free to first order, which Newton's minimum-norm step never
+    takes.  From each failed step's base pose, starts at ``+-c sqrt(step)``
+    along each such direction (:data:`FOLD_REACH`, the ``+`` side first) are
+    given to Newton; the first that closes is kept.  A base pose whose
+    Jacobian keeps its rank (``Tolerance.near_singular``) is no fold: nothing
+    is tried.
+    """
+    count, n = base_q.shape
+    q, err, ok = base_q.copy(), np.full(count, np.inf), np.zeros(count, dtype=bool)
+    if not drive.free.any():
+        return q, err, ok
+    with np.errstate(over="ignore", invalid="ignore"):
+        _, evaluation = _evaluate(bk, drive, base_q, base_t)
+        jac = np.moveaxis(evaluation.jacobian(np.arange(count))[:, drive.free], -1, 0)  # (N, m, free)
+        _, sv, vt = np.linalg.svd(jac, full_matrices=True)
+        step = np.abs(targets - base_t).max(axis=1)
+    free = int(drive.free.sum())
+    top = sv[:, :1] if sv.shape[1] else np.zeros((count, 1))
+    padded = np.concatenate([sv, np.zeros((count, free - sv.shape[1]))], axis=1) if sv.shape[1] < free else sv[:, :free]
+    singular = padded <= tol.near_singular * np.maximum(top, 1e-300)  # (N, free): which right singular vectors are free motions
+    for k in range(free):
+        for reach in FOLD_REACH:
+            for sign in (1.0, -1.0):
+                rows = np.flatnonzero(~ok & singular[:, k] & np.isfinite(step) & (step > 0))
+                if rows.size == 0:
+                    continue
+                guess = base_q[rows].copy()
+                length = sign * reach * np.sqrt(step[rows])
+                guess[:, drive.free] += length[:, None] * vt[rows, k]
+                nq, nerr, nok = newton(bk, drive, guess, targets[rows], tol=tol, max_move=10.0 * np.abs(length) + 10.0 * step[rows] + 0.05)
+                err[rows] = np.minimum(err[rows], nerr)
+                q[rows[nok]], ok[rows[nok]] = nq[nok], True
     return q, err, ok
 
 
