@@ -307,12 +307,13 @@ class SweepResult:
         gains = self.assembled & ((self.dof > dof0) | (self.mobility > mob0))
         dead = self.assembled & (self.dof < dof0) & (self.mobility >= mob0)
         lost = self.assembled & (self.verdict == SINGULAR) & (verdict0 != SINGULAR) if self.actuated else np.zeros(self.size, dtype=bool)
+        kind = "a dead point" if kinematics(self.mechanism).loop_count else "a serial singularity"
         for i in np.flatnonzero(gains | dead | lost):
             reasons = []
             if self.dof[i] > dof0:
                 reasons.append(f"the end effector gains {self.dof[i] - dof0} freedom(s): {self.dof[i]} DOF ({self.pattern[i]})")
             if dead[i]:
-                reasons.append(f"the end effector loses {dof0 - self.dof[i]} freedom(s) while the mechanism still moves (a dead point): {self.dof[i]} DOF ({self.pattern[i]})")
+                reasons.append(f"the end effector loses {dof0 - self.dof[i]} freedom(s) while the mechanism still moves ({kind}): {self.dof[i]} DOF ({self.pattern[i]})")
             if self.mobility[i] > mob0:
                 reasons.append(f"the mechanism gains {self.mobility[i] - mob0} freedom(s): mobility {self.mobility[i]}")
             if lost[i]:
