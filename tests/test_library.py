@@ -72,6 +72,7 @@ def test_loop_closure_route_agrees(path):
     assert free.shape[1] == r.translations.shape[0]
     if free.shape[1]:
         assert same_subspace(free, r.translations.T)
+    assert same_subspace(lc.world_twists.T, r.twists.T) or r.dof == 0  # the whole twist systems, in the file's frame and unit
 
 
 # --- the paradox linkages satisfy their conditions, from the joint lines alone -------------

@@ -76,7 +76,10 @@ class LoopClosure:
     mobility : int
         ``sum f - rank``.
     end_effector_twists : ndarray, shape (6, dof)
-        Orthonormal basis of the end effector's twist system, normalised coordinates.
+        Orthonormal basis of the end effector's twist system, in normalised
+        coordinates (origin at the mechanism's centre, lengths over its
+        characteristic length): to compare with :attr:`mobility.Result.twists`
+        take :attr:`world_twists`.
     end_effector_map : ndarray, shape (6, sum f)
         Twist of the end effector as a function of the joint rates (tree path).
     joint_rates : ndarray, shape (sum f, mobility)
@@ -95,6 +98,21 @@ class LoopClosure:
     decision: RankDecision
     equations: tuple[Terms, ...] = field(repr=False)
     screws: JointScrews = field(repr=False)
+
+    @cached_property
+    def world_twists(self) -> np.ndarray:
+        """``end_effector_twists`` in the global frame and the file's length unit, as rows ``[w; v]`` like :attr:`mobility.Result.twists` (a basis, not orthonormal there).
+
+        Examples
+        --------
+        >>> import mobility
+        >>> from mobility.core.screws import same_subspace
+        >>> m = mobility.load("mechanisms/3prs.yaml")
+        >>> lc, result = mobility.loop_closure(m), mobility.analyze(m)
+        >>> same_subspace(lc.world_twists.T, result.twists.T), same_subspace(lc.end_effector_twists, result.twists.T)
+        (True, False)
+        """
+        return self.screws.normalisation.to_world(self.end_effector_twists).T
 
     @cached_property
     def jacobian(self) -> np.ndarray:
