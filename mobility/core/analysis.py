@@ -103,7 +103,7 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
     warnings = []
     if margin.near_singular:
         warnings.append(
-            f"near-singular pose: a direction counted as free has relative singular value {margin.smallest_kept:.2e} "
+            f"near-singular pose: a direction counted as independent (a freedom, or a constraint of a rigid part) has relative singular value {margin.smallest_kept:.2e} "
             f"(below {tol.near_singular:.0e}); a small change of pose may change the count"
         )
     if margin.inexact:
