@@ -8,6 +8,7 @@ away from the symmetric pose, Xie's 2R1T limbs, G-K failures, idle spins) are
 asserted one by one.
 """
 
+import math
 import re
 
 import numpy as np
@@ -23,7 +24,9 @@ LIBRARY = (
     "agile_eye", "bennett", "bricard_line_symmetric", "delta", "four_bar", "goldberg_5r", "h4",
     "hooke_joint", "myard_5r", "orthoglide", "parallelogram", "planar_3rrr", "planar_5r", "rssr",
     "sarrus", "scara", "slider_crank", "stephenson_six_bar", "tricept", "tsai_3upu", "xie_2r1t",
-    "xy_sprint_hybrid",
+    "xy_sprint_hybrid", "schatz", "bricard_orthogonal", "bricard_plane_symmetric", "bricard_trihedral",
+    "spatial_7r_generic", "tripteron_3prrr", "exechon", "3ruu", "hexa_6rus", "planar_3rpr", "spherical_3rrr",
+    "3upu_wrist", "4ruu_schoenflies", "four_bar_change_point", "wrist_gimbal_lock",
 )
 """The files of the classic-mechanism library (other helpers add more files to the folder)."""
 
@@ -136,6 +139,40 @@ def test_bricard_is_line_symmetric():
     for i in (1, 2, 3):
         (p, u), (q, v) = lines[f"J{i}"], lines[f"J{i + 3}"]
         assert np.array_equal(half_turn @ p, q) and np.allclose(half_turn @ u, v, atol=1e-15)
+
+
+SIX = ["J1", "J2", "J3", "J4", "J5", "J6"]
+
+
+@pytest.mark.parametrize("stem", ["bricard_trihedral", "bricard_orthogonal", "schatz"])
+def test_trihedral_bricards_satisfy_their_conditions(stem):
+    # consecutive axes at right angles, no offsets, and a12^2 + a34^2 + a56^2 = a23^2 + a45^2 + a61^2
+    a, s, d = loop_parameters(load(stem), SIX)
+    scale = max(a)
+    assert max(abs(x - 1.0) for x in s) < 1e-12 and max(d) < 1e-10 * scale
+    assert abs(a[0] ** 2 + a[2] ** 2 + a[4] ** 2 - a[1] ** 2 - a[3] ** 2 - a[5] ** 2) < 1e-10 * scale**2
+    if stem == "bricard_orthogonal":
+        assert np.ptp(a) < 1e-10 * scale
+    if stem == "schatz":  # a12 = a34 = 0, a23 = a45 = a61, a56 the diagonal of the cube they span
+        assert a[0] < 1e-10 * scale and a[2] < 1e-10 * scale and np.ptp([a[1], a[3], a[5]]) < 1e-10 * scale
+        assert abs(a[4] - math.sqrt(3) * a[1]) < 1e-10 * scale
+
+
+def test_plane_symmetric_bricard_satisfies_its_conditions():
+    a, s, d = loop_parameters(load("bricard_plane_symmetric"), SIX)
+    scale = max(a)
+    for i, j in ((0, 5), (1, 4), (2, 3)):  # a12 = a61, a23 = a56, a34 = a45 and their twists alpha + alpha' = 360 deg
+        assert abs(a[i] - a[j]) < 1e-10 * scale and abs(s[i] - s[j]) < 1e-12
+    assert d[0] < 1e-10 * scale and d[3] < 1e-10 * scale  # R1 = R4 = 0
+    assert abs(d[1] - d[5]) < 1e-10 * scale and abs(d[2] - d[4]) < 1e-10 * scale  # R2 = -R6, R3 = -R5
+    assert min(d[1], d[2]) > 1e-3 * scale  # a general one: the offsets are not all zero
+
+
+@pytest.mark.parametrize("stem", ["bricard_trihedral", "bricard_plane_symmetric", "bricard_orthogonal", "schatz"])
+def test_the_bricards_move_through_a_full_cycle(stem):
+    # Grübler–Kutzbach says 0; the screw route says 1 at the pose; moving the loop shows the freedom is finite
+    fm = mobility.finite_mobility(load(stem))
+    assert (fm.verdict, fm.full_cycle_mobility, fm.full_cycle_dof) == ("full-cycle", 1, 1)
 
 
 @pytest.mark.parametrize(
