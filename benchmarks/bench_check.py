@@ -2,7 +2,7 @@
 
 Run:  python benchmarks/bench_check.py [--runs N] [--markdown]
 
-Part 1 runs ``mobility check mechanisms`` (58 files, twelve of them with
+Part 1 runs ``mobility check mechanisms`` (58 files, eleven of them with
 full-cycle expectations that move the mechanism) and the baseline
 ``python -c "import numpy"`` as fresh processes, ``runs`` times each,
 interleaved; reported: the median wall time with the interquartile range,
@@ -11,7 +11,7 @@ and the ratio of medians.  Target: at most 2 s wall.
 Part 2 times, in this process and in the order a check meets them, the
 imports (the package; scipy.linalg, scipy.optimize and networkx, which only
 the full-cycle analyses need), loading the files, analysing them, and the
-full-cycle analyses (:func:`mobility.finite_mobility`) of the twelve files that
+full-cycle analyses (:func:`mobility.finite_mobility`) of the eleven files that
 expect them, with their Newton steps.
 """
 

@@ -175,6 +175,14 @@ def test_the_bricards_move_through_a_full_cycle(stem):
     assert (fm.verdict, fm.full_cycle_mobility, fm.full_cycle_dof) == ("full-cycle", 1, 1)
 
 
+def test_the_change_point_four_bar_is_a_bifurcation_of_two_one_dof_branches():
+    # kept out of the file's expected block (mobility check stays within its time budget); the same verdict
+    # as the parallelogram's change point, with no two links equal
+    fm = mobility.finite_mobility(load("four_bar_change_point"))
+    assert (fm.verdict, fm.instantaneous_mobility, fm.full_cycle_mobility, fm.full_cycle_dof) == ("bifurcation", 2, 1, 1)
+    assert len(fm.branches) == 2 and all(b.dof == 1 and b.pattern == "1R" for b in fm.branches)
+
+
 @pytest.mark.parametrize(
     "stem, old, new",
     [
