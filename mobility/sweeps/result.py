@@ -50,7 +50,7 @@ from ..core.tolerance import DEFAULT_TOLERANCE, MARGIN_DIP, Tolerance, clean_num
 from ..errors import RequestError
 from .grid import SweepAxis
 
-__all__ = ["SingularPose", "MarginDip", "SweepResult", "COLUMNS"]
+__all__ = ["GridPoint", "SingularPose", "MarginDip", "SweepResult", "COLUMNS"]
 
 COLUMNS = (
     "dof",
@@ -70,8 +70,8 @@ COLUMNS = (
 
 
 @dataclass(frozen=True)
-class SingularPose:
-    """A grid point where the answer is singular (see the module docstring).
+class GridPoint:
+    """A point of a sweep's grid.
 
     Attributes
     ----------
@@ -79,6 +79,24 @@ class SingularPose:
         Flat index of the grid point.
     values : tuple of float
         Its coordinate values (user units).
+    """
+
+    index: int
+    values: tuple[float, ...]
+
+    def located(self, names: tuple[str, ...] = ()) -> dict[str, Any]:
+        """The first keys of a grid point's JSON form: ``index`` and ``values`` (keyed by ``names``, the coordinates, if given)."""
+        return {"index": self.index, "values": dict(zip(names, self.values)) if names else list(self.values)}
+
+
+@dataclass(frozen=True)
+class SingularPose(GridPoint):
+    """A grid point where the answer is singular (see the module docstring).
+
+    Attributes
+    ----------
+    index, values
+        As :class:`GridPoint`.
     dof, mobility : int
     pattern : str
     verdict : str
@@ -86,8 +104,6 @@ class SingularPose:
     reasons : tuple of str
     """
 
-    index: int
-    values: tuple[float, ...]
     dof: int
     pattern: str
     mobility: int
@@ -96,9 +112,7 @@ class SingularPose:
 
     def to_dict(self, names: tuple[str, ...] = ()) -> dict[str, Any]:
         """JSON form (``names``: the coordinates, to key the values)."""
-        return {
-            "index": self.index,
-            "values": dict(zip(names, self.values)) if names else list(self.values),
+        return self.located(names) | {
             "dof": self.dof,
             "pattern": self.pattern,
             "mobility": self.mobility,
@@ -108,15 +122,13 @@ class SingularPose:
 
 
 @dataclass(frozen=True)
-class MarginDip:
+class MarginDip(GridPoint):
     """A grid point where a rank margin dips: a singularity may lie next to it, between grid points.
 
     Attributes
     ----------
-    index : int
-        Flat index of the grid point.
-    values : tuple of float
-        Its coordinate values (user units).
+    index, values
+        As :class:`GridPoint`.
     column : str
         ``"smallest_kept"`` (the analysis) or ``"actuation_margin"`` (the actuation verdict).
     margin : float
@@ -129,8 +141,6 @@ class MarginDip:
         That axis.
     """
 
-    index: int
-    values: tuple[float, ...]
     column: str
     margin: float
     neighbours: tuple[float, ...]
@@ -138,9 +148,7 @@ class MarginDip:
 
     def to_dict(self, names: tuple[str, ...] = ()) -> dict[str, Any]:
         """JSON form (``names``: the coordinates, to key the values)."""
-        return {
-            "index": self.index,
-            "values": dict(zip(names, self.values)) if names else list(self.values),
+        return self.located(names) | {
             "column": self.column,
             "margin": self.margin,
             "neighbours": list(self.neighbours),
