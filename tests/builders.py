@@ -228,3 +228,25 @@ def prs_limbs(limbs: int) -> Mechanism:
         joints.append(Joint(f"R{i}", "R", (f"a{i}", f"b{i}"), axis=(-s, c, 0.0), point=(c, s, 0.5)))
         joints.append(Joint(f"S{i}", "S", (f"b{i}", "e"), point=(0.5 * c, 0.5 * s, 1.0)))
     return Mechanism(f"{limbs}-PRS", "g", "e", tuple(joints))
+
+
+def flat_3rps(height: float = 0.0) -> str:
+    """Lee and Shah's 3-RPS (base radius 200 mm, platform 100 mm) with its platform ``height`` mm above the base plane.
+
+    At height 0 every leg lies in the platform's plane: actuation and constraint
+    forces are coplanar, an actuation singularity with three uncontrolled
+    freedoms whose two sides are both valid.
+    """
+    return f"""
+name: 3-RPS with its platform {height:g} mm above the base plane
+ground: base
+end_effector: platform
+units: {{angle: deg, length: mm}}
+limbs:
+  - copies: 3
+    frame: {{name: "leg{{i+1}}", rpy: [0, 0, "120*i"]}}
+    joints:
+      - {{name: "R{{i+1}}", type: R, links: [base, "cyl{{i+1}}"], axis: [0, 1, 0], point: [200, 0, 0]}}
+      - {{name: "P{{i+1}}", type: P, links: ["cyl{{i+1}}", "pis{{i+1}}"], axis: [-100, 0, {height!r}], actuated: true}}
+      - {{name: "S{{i+1}}", type: S, links: ["pis{{i+1}}", platform], point: [100, 0, {height!r}]}}
+"""

@@ -42,6 +42,8 @@ from mobility.core.joint_screws import joint_screws
 from mobility.core.model import Joint, Mechanism
 from mobility.core.screws import reciprocal_product, same_subspace
 from mobility.core.transforms import rotation_from_axis_angle
+from mobility.report.actuation import actuation_text, enumeration_text
+from builders import flat_3rps
 
 ROOT = Path(__file__).resolve().parents[1]
 RPS_FILE = ROOT / "mechanisms" / "actuation_3rps.yaml"
@@ -592,3 +594,19 @@ def test_cli_bad_input_is_one_line_with_status_2(tmp_path, capsys):
     assert main(["actuation", str(RPS_FILE), "--inputs", "Z1"]) == 2
     assert "unknown joint 'Z1'" in capsys.readouterr().err
     assert main(["actuation", str(tmp_path / "missing.yaml")]) == 2
+
+
+def test_the_enumeration_shows_the_margin_that_kappa_does_not_see():
+    # 1e-4 mm above the pose where the legs lie in the platform's plane: the three inputs lose their
+    # effect together, so kappa stays near 0.447 while the rank margin is about 3e-7
+    near = mobility.loads(flat_3rps(1e-4))
+    check = mobility.check_actuation(near, ["P1", "P2", "P3"])
+    assert check.verdict == "valid" and check.conditioning > 0.4 and check.margin.smallest_kept < 1e-6
+    assert any("near an actuation singularity" in w for w in check.warnings)
+    found = mobility.enumerate_actuations(near)
+    sliders = next(c for c in found.combinations if c.inputs == ("P1", "P2", "P3"))
+    assert sliders.conditioning > 0.4 and sliders.margin == pytest.approx(check.margin.smallest_kept, rel=1e-9)
+    assert sliders.to_dict()["margin"] == sliders.margin
+    header, row = [line for line in enumeration_text(found).splitlines() if "worst margin" in line or "P1 P2 P3" in line][:2]
+    assert header.rstrip().endswith("worst margin") and row.split()[-1] == f"{sliders.margin:.2g}"
+    assert "rank margin below measures that" in actuation_text(check)

@@ -31,6 +31,7 @@ from mobility.report.sweep import sweep_csv, sweep_json, sweep_summary
 
 from conftest import MECHANISMS
 from guards import time_bound
+from builders import flat_3rps
 
 RNG_SEED = 20240611
 
@@ -553,25 +554,12 @@ def test_a_deep_tree_is_evaluated_for_every_pose_without_recursion():
     assert value.dim.tolist() == [single.dim] * 2 and value.mobility.tolist() == [single.mobility] * 2 == [0, 0]
 
 
-FLAT_3RPS = """
-name: 3-RPS with its platform in the base plane
-ground: base
-end_effector: platform
-units: {angle: deg, length: mm}
-limbs:
-  - copies: 3
-    frame: {name: "leg{i+1}", rpy: [0, 0, "120*i"]}
-    joints:
-      - {name: "R{i+1}", type: R, links: [base, "cyl{i+1}"], axis: [0, 1, 0], point: [200, 0, 0]}
-      - {name: "P{i+1}", type: P, links: ["cyl{i+1}", "pis{i+1}"], axis: [-1, 0, 0], actuated: true}
-      - {name: "S{i+1}", type: S, links: ["pis{i+1}", platform], point: [100, 0, 0]}
-"""
 
 
 def test_a_type_two_singularity_between_grid_points_is_a_margin_dip():
     # The legs lie in the platform's plane at z = 0: actuation and constraint forces are coplanar, three
     # uncontrolled freedoms; on both sides the inputs are valid, so no answer changes across it.
-    m = mobility.loads(FLAT_3RPS)
+    m = mobility.loads(flat_3rps())
     assert mobility.check_actuation(m, ["P1", "P2", "P3"]).verdict == "actuation-singular"
     off = sweep(m, ["z=-20.25:19.75:81", "rx=0:0:1", "ry=0:0:1"])  # misses z = 0 by a quarter step
     assert off.singular == () and len(off.changes) == 0 and off.verdict_counts() == {"valid": 81}

@@ -30,7 +30,7 @@ import numpy as np
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..errors import RequestError
 from .assessment import Assessment
-from .results import VALID, VERDICTS, Combination, TypeGroup
+from .results import SINGULAR, VALID, VERDICTS, Combination, TypeGroup
 
 __all__ = ["MAX_COMBINATIONS", "combination_type", "combine_poses", "rank_combinations", "combinations_count", "limit_combinations"]
 
@@ -73,7 +73,10 @@ def combine_poses(inputs: tuple[str, ...], type: str, per_pose: Sequence[Assessm
     conditioning = [a.conditioning for a in per_pose]
     k = int(np.argmin(conditioning))
     failures = tuple((i, v) for i, v in enumerate(verdicts) if v != VALID)
-    return Combination(inputs, type, worst, len(per_pose) - len(failures), len(per_pose), float(conditioning[k]), k, failures)
+    margins = [a.decision.smallest_kept if a.verdict != SINGULAR else np.inf for a in per_pose]
+    m = int(np.argmin(margins))
+    margin = float(min(margins[m], 1.0))
+    return Combination(inputs, type, worst, len(per_pose) - len(failures), len(per_pose), float(conditioning[k]), k, failures, margin, m)
 
 
 def rank_combinations(found: Sequence[Combination]) -> tuple[tuple[Combination, ...], tuple[TypeGroup, ...]]:

@@ -210,6 +210,13 @@ class Combination:
         Index of the pose where the conditioning is smallest.
     failures : tuple of (int, str)
         ``(pose index, verdict)`` for every pose where it is not valid.
+    margin : float
+        Smallest rank margin of the verdict over the poses where it is not
+        actuation-singular (the distance to an actuation singularity, which
+        ``conditioning`` does not see when every input's effect vanishes at
+        once); 1.0 when there is none.
+    margin_pose : int
+        Index of the pose where it is smallest.
     """
 
     inputs: tuple[str, ...]
@@ -220,6 +227,8 @@ class Combination:
     conditioning: float
     worst_pose: int
     failures: tuple[tuple[int, str], ...] = ()
+    margin: float = 1.0
+    margin_pose: int = 0
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
@@ -232,6 +241,8 @@ class Combination:
             "conditioning": self.conditioning,
             "worst_pose": self.worst_pose,
             "failures": [list(f) for f in self.failures],
+            "margin": self.margin,
+            "margin_pose": self.margin_pose,
         }
 
 

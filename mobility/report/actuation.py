@@ -140,10 +140,13 @@ def enumeration_text(found: Enumeration) -> str:
     out.append("  type            valid / total")
     out += [f"  {g.type:<15} {g.valid:>5} / {g.total}" for g in found.groups]
     width = max([len(" ".join(c.inputs)) for c in found.combinations] + [6])
-    out.append(f"  {'rank':<5} {'inputs':<{width}}  {'type':<11} {'verdict':<19} {'poses valid':<12} worst kappa")
+    out.append(f"  {'rank':<5} {'inputs':<{width}}  {'type':<11} {'verdict':<19} {'poses valid':<12} {'worst kappa':<18} worst margin")
+    several = len(found.poses) > 1
     for k, c in enumerate(found.combinations):
-        worst = f"{c.conditioning:.3g}" + (f" (pose {c.worst_pose})" if len(found.poses) > 1 else "")
-        out.append(f"  {k + 1:<5} {' '.join(c.inputs):<{width}}  {c.type:<11} {c.verdict:<19} {c.valid_poses:>3} / {c.poses:<6} {worst}")
+        worst = f"{c.conditioning:.3g}" + (f" (pose {c.worst_pose})" if several else "")
+        singular_everywhere = sum(v == SINGULAR for _, v in c.failures) == c.poses
+        margin = "-" if singular_everywhere else f"{c.margin:.2g}" + (f" (pose {c.margin_pose})" if several else "")
+        out.append(f"  {k + 1:<5} {' '.join(c.inputs):<{width}}  {c.type:<11} {c.verdict:<19} {c.valid_poses:>3} / {c.poses:<6} {worst:<18} {margin}")
     if len(found.poses) > 1:
         out.append("  poses: " + "; ".join(f"{i}: {p}" for i, p in enumerate(found.poses)))
     out += [f"  warning: {w}" for w in found.warnings]
