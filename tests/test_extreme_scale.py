@@ -27,7 +27,7 @@ from hypothesis import strategies as st
 
 import mobility
 from mobility.cli import main
-from mobility.core.model import Mechanism
+from mobility.core.model import Joint, Mechanism
 from mobility.core.tolerance import COINCIDENT_POINTS, binary_scale, characteristic_scale, characteristic_scales
 from mobility.core.transforms import Transform
 from mobility.errors import AnalysisError, MechanismFileError
@@ -105,6 +105,22 @@ def test_one_pivot_at_1e300_is_one_line_naming_the_link(tmp_path, where):
         assert err.startswith(f"mobility: {path}: joints[") and "finer than the analysis can resolve" in err
     status, out, _ = run_cli("check", str(path))
     assert status == 2 and "finer than the analysis can resolve" in out
+
+
+def test_points_a_round_off_apart_near_the_origin_are_refused_with_the_fix_for_both_readings():
+    # Two joints of a link written 3.6e-15 apart near the origin, in a mechanism of size about 70: far
+    # above the round-off of their own coordinates, far below what the analysis resolves.  They may be
+    # distinct points (a link too narrow to analyse) or one point written with a generator's round-off;
+    # the message gives the fix for each.  Written as one point, they analyse.
+    joints = lambda x: (
+        Joint("J1", "R", ("g", "a"), axis=(0.0, 0.0, 1.0), point=(0.0, 0.0, 0.0)),
+        Joint("J2", "R", ("a", "b"), axis=(1.0, 0.0, 0.0), point=(x, 0.0, 0.0)),
+        Joint("J3", "R", ("b", "c"), axis=(0.0, 1.0, 0.0), point=(100.0, 0.0, 0.0)),
+        Joint("J4", "R", ("c", "g"), axis=(0.0, 0.0, 1.0), point=(100.0, 100.0, 0.0)),
+    )
+    assert mobility.analyze(Mechanism("m", "g", "b", joints(0.0))).dof >= 0
+    with pytest.raises(MechanismFileError, match=r"the joints of link 'a' \(J1, J2\) span 3.55e-15.*bring the far joints nearer or split the mechanism, or, if these joints meet at one point, write the same point for each$"):
+        mobility.analyze(Mechanism("m", "g", "b", joints(3.55e-15)))
 
 
 def test_the_largest_float_as_a_coordinate_is_refused_in_one_line(tmp_path):

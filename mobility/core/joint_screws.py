@@ -181,7 +181,8 @@ def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float
     raise MechanismFileError(
         f"joints[{joints[0]}].point",
         f"the joints of link {name!r} ({written}) span {extent[bad[0]] / scale:.3g}, {extent[bad[0]] / length_s:.1e} of the mechanism's size "
-        f"{length_s / scale:.3g}: finer than the analysis can resolve ({RESOLUTION.inexact:.0e} of it); bring the far joints nearer or split the mechanism",
+        f"{length_s / scale:.3g}: finer than the analysis can resolve ({RESOLUTION.inexact:.0e} of it); bring the far joints nearer or split the mechanism, "
+        "or, if these joints meet at one point, write the same point for each",
         file=mechanism.source or "<string>",
     )
 

@@ -62,12 +62,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from dataclasses import replace as _replace
+from typing import Sequence
 
 import numpy as np
 
 from ..errors import RequestError
 from .joint_screws import Normalisation, joint_screws, per_object_cache
-from .model import WORLD, Mechanism
+from .model import WORLD, Joint, Mechanism
 from .tolerance import DEFAULT_TOLERANCE, NEWTON_RCOND, RankDecision, Tolerance, decide_rank
 from .topology import spanning_tree
 from .transforms import bracket, cross, displacement_log, displacement_logs, skew
@@ -484,7 +485,37 @@ class Kinematics:
             if joint.axes is not None:
                 changes["axes"] = (direction(joint.axes[0], ga), direction(joint.axes[1], gb))
             joints.append(_replace(joint, **changes))
-        return self.mechanism.replace(joints=tuple(joints), frames=(), expected=None)
+        return self.mechanism.replace(joints=_keep_coincident_points(self.mechanism.world_joints, joints), frames=(), expected=None)
+
+
+POINT_FIXED_IN_BOTH = frozenset("RUS")
+"""Joint types whose point stays fixed in both links (they only turn about it); a C, H, P or E joint moves it along the other."""
+
+
+def _keep_coincident_points(given: Sequence[Joint], moved: list[Joint]) -> tuple[Joint, ...]:
+    """``moved`` with the joints of one link that met at one point in ``given`` meeting there still.
+
+    Each moved point is carried by one of its joint's links, so two joints of
+    a link that met at one point (axes that intersect) may come out apart by
+    round-off of the mechanism's size; near the origin that is far above the
+    round-off of their own tiny coordinates, and the analysis would take them
+    for distinct points it cannot resolve.  A rigid link keeps them together:
+    each takes the moved point of the first joint of the group.
+    """
+    first: dict[tuple, int] = {}
+    for index, joint in enumerate(given):
+        if joint.point is None:
+            continue
+        # the links the point is fixed in: both for a joint that only turns about it, else the carrier (links[0])
+        for link in joint.links if joint.type in POINT_FIXED_IN_BOTH else joint.links[:1]:
+            key = (link, tuple(joint.point))
+            if key in first:
+                source = moved[first[key]].point
+                if index != first[key] and moved[index].point != source:
+                    moved[index] = _replace(moved[index], point=source)
+            else:
+                first[key] = index
+    return tuple(moved)
 
 
 LINEAR_RATIO = (0.15, 0.35)
