@@ -353,8 +353,9 @@ def _off_a_fold(
     takes.  From each failed step's base pose, starts at ``+-c sqrt(step)``
     along each such direction (:data:`FOLD_REACH`, the ``+`` side first) are
     given to Newton; the first that closes is kept.  A base pose whose
-    Jacobian keeps its rank (``Tolerance.near_singular``) is no fold: nothing
-    is tried.
+    Jacobian keeps its rank (``Tolerance.rank``) is no fold: nothing is tried,
+    so the continuation never leaves the file's assembly branch across a fold
+    it only approached.
     """
     count, n = base_q.shape
     q, err, ok = base_q.copy(), np.full(count, np.inf), np.zeros(count, dtype=bool)
@@ -368,7 +369,11 @@ def _off_a_fold(
     free = int(drive.free.sum())
     top = sv[:, :1] if sv.shape[1] else np.zeros((count, 1))
     padded = np.concatenate([sv, np.zeros((count, free - sv.shape[1]))], axis=1) if sv.shape[1] < free else sv[:, :free]
-    singular = padded <= tol.near_singular * np.maximum(top, 1e-300)  # (N, free): which right singular vectors are free motions
+    # (N, free): the right singular vectors the rank decision drops: motions free to first order.  Only a base
+    # pose singular by the policy's own rank decision (a file at a dead centre) is a fold to leave this way; one
+    # merely near a fold (the last grid point before a workspace boundary) is not: a start across the fold there
+    # would land on the other assembly branch and carry it into the grid
+    singular = padded <= tol.rank * np.maximum(top, 1e-300)
     for k in range(free):
         for reach in FOLD_REACH:
             for sign in (1.0, -1.0):
