@@ -54,7 +54,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..core.tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, SAME_GRID_VALUE, Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, SAME_GRID_VALUE, Tolerance, decide_ranks
 from .batch_kinematics import BatchKinematics
 from .grid import GridPlan, SweepAxis
 from .walks import AxisWalk, anchor_of, plan_walks, whole_turns
@@ -367,13 +367,14 @@ def _off_a_fold(
         _, sv, vt = np.linalg.svd(jac, full_matrices=True)
         step = np.abs(targets - base_t).max(axis=1)
     free = int(drive.free.sum())
-    top = sv[:, :1] if sv.shape[1] else np.zeros((count, 1))
-    padded = np.concatenate([sv, np.zeros((count, free - sv.shape[1]))], axis=1) if sv.shape[1] < free else sv[:, :free]
-    # (N, free): the right singular vectors the rank decision drops: motions free to first order.  Only a base
-    # pose singular by the policy's own rank decision (a file at a dead centre) is a fold to leave this way; one
-    # merely near a fold (the last grid point before a workspace boundary) is not: a start across the fold there
-    # would land on the other assembly branch and carry it into the grid
-    singular = padded <= tol.rank * np.maximum(top, 1e-300)
+    # (N, free): the right singular vectors the rank decision drops (and those beyond the equations' count):
+    # motions free to first order.  Only a base pose singular by the policy's own rank decision (a file at a
+    # dead centre) is a fold to leave this way; one merely near a fold (the last grid point before a workspace
+    # boundary) is not: a start across the fold there would land on the other assembly branch and carry it
+    # into the grid
+    rank = decide_ranks(sv, tol).rank if sv.shape[1] else np.zeros(count, dtype=int)
+    fold = rank < sv.shape[1]  # the equations lose rank there (more variables than equations is no fold by itself)
+    singular = fold[:, None] & (np.arange(free)[None, :] >= rank[:, None])
     for k in range(free):
         for reach in FOLD_REACH:
             for sign in (1.0, -1.0):
