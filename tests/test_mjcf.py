@@ -341,6 +341,14 @@ def test_connect_between_sites_and_inactive_equalities():
     assert robot.mechanism.joint("C").point == pytest.approx((4, 2.5, 0))
     assert mobility.analyze(robot.mechanism).pattern == "1R"
     assert_agrees_with_mujoco(robot, *mujoco_compile(by_sites))
+    assert not any("does not hold at qpos0" in n for n in robot.notes)  # the sites meet: nothing to say
+    apart = by_sites.replace('<site name="c_on_rocker" pos="-1 2.5 0"/>', '<site name="c_on_rocker" pos="-1 2.1 0"/>')
+    robot = read_robot(_write(apart))  # 0.4 apart at qpos0, as MuJoCo's own constraint residual says
+    assert any(n.startswith("connect C (line") and "does not hold at qpos0 (its points are 0.4 apart)" in n for n in robot.notes)
+    welded = text.replace('<connect name="C" body1="coupler" body2="rocker" anchor="3 0.5 0"/>', '<weld name="W" body1="coupler" body2="rocker"/>')
+    assert not any("does not hold" in n for n in read_robot(_write(welded)).notes)  # relpose taken from qpos0: holds
+    shifted = welded.replace('body2="rocker"/>', 'body2="rocker" relpose="0.3 0 0 1 0 0 0"/>')
+    assert any(n.startswith("weld W (line") and "does not hold at qpos0" in n for n in read_robot(_write(shifted)).notes)
     inactive = text.replace('anchor="3 0.5 0"/>', 'anchor="3 0.5 0" active="false"/>')
     robot = read_robot(_write(inactive))
     assert any("equality connect C (line" in n and "inactive" in n for n in robot.notes)

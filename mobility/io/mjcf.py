@@ -41,6 +41,7 @@ from typing import Any, Iterator
 import numpy as np
 
 from ..core.model import Joint
+from ..core.tolerance import DEFAULT_TOLERANCE
 from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped
 from .files import read_capped
 from .mjcf_scan import MjcfScan, scan_mjcf
@@ -306,6 +307,7 @@ class _MjcfTree:
         welds: list[Weld] = []
         unsupported: list[Unsupported] = []
         counts: dict[str, int] = {}
+        gaps = self.equality_gaps()
         for k in range(m.neq):
             kind = int(m.eq_type[k])
             tag = {int(eq.mjEQ_CONNECT): "connect", int(eq.mjEQ_WELD): "weld", int(eq.mjEQ_JOINT): "joint", int(eq.mjEQ_TENDON): "tendon"}.get(kind, "flex")
@@ -324,6 +326,10 @@ class _MjcfTree:
                 unsupported.append(Unsupported(f"equality/flex[{clipped(name)}]", "a flex equality is not supported; expected connect or weld", line))
                 continue
             b1, b2, anchor = self.equality_bodies(k, f"equality/{tag}[{clipped(name)}]", line)
+            if k in gaps:
+                held = "a spherical joint at its first point" if tag == "connect" else "the two bodies welded as they are placed"
+                notes.append(f"{tag} {clipped(name)}{_at(line)} does not hold at qpos0 ({gaps[k]}): the file is not assembled there; "
+                             f"analysed as {held}")
             if tag == "weld":
                 welds.append(Weld(name, (self.body_names[b1], self.body_names[b2]), line))
                 continue
@@ -336,6 +342,32 @@ class _MjcfTree:
                 raise MechanismFileError(f"equality/connect[{clipped(name)}]", exc.message, file=self.file, line=line) from None
             closures.append(Closure(joint, "connect", line))
         return closures, welds, unsupported
+
+    def equality_gaps(self) -> dict[int, str]:
+        """How far each active connect or weld is from holding at qpos0, by MuJoCo's own residuals, where it is.
+
+        ``mj_forward`` on a copy of the data gives the constraint rows
+        (``efc_pos``); a connect's three rows are a distance, a weld's next
+        three a rotation.  A gap above ``Tolerance.rank`` of the model's size
+        (``stat.extent``), or of a radian, is reported: a connect between
+        sites that are apart, a weld whose ``relpose`` is not the written pose.
+        """
+        m, mj = self.m, self.mj
+        if not m.neq:
+            return {}
+        data = mj.MjData(m)
+        data.qpos[:] = m.qpos0
+        mj.mj_forward(m, data)
+        rows = np.flatnonzero(np.asarray(data.efc_type[: data.nefc]) == int(mj.mjtConstraint.mjCNSTR_EQUALITY))
+        ids, residual = np.asarray(data.efc_id)[rows], np.asarray(data.efc_pos)[rows]
+        size = max(float(m.stat.extent), 1e-300)
+        gaps: dict[int, str] = {}
+        for k in np.unique(ids).tolist():
+            own = residual[ids == k]
+            distance, turn = float(np.linalg.norm(own[:3])), float(np.linalg.norm(own[3:6])) if len(own) > 3 else 0.0
+            if distance > DEFAULT_TOLERANCE.rank * size or turn > DEFAULT_TOLERANCE.rank:
+                gaps[int(k)] = f"its points are {distance:.3g} apart" + (f" and its frames {turn:.3g} rad" if turn > DEFAULT_TOLERANCE.rank else "")
+        return gaps
 
     def equality_bodies(self, k: int, key: str, line: int | None) -> tuple[int, int, tuple[float, float, float]]:
         """The two bodies of a connect or weld, and the anchor in the global frame."""
