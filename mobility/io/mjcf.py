@@ -346,7 +346,7 @@ class _MjcfTree:
     def equality_gaps(self) -> dict[int, str]:
         """How far each active connect or weld is from holding at qpos0, by MuJoCo's own residuals, where it is.
 
-        ``mj_forward`` on a copy of the data gives the constraint rows
+        ``mj_forward`` on new data (at ``qpos0``) gives the constraint rows
         (``efc_pos``); a connect's three rows are a distance, a weld's next
         three a rotation.  A gap above ``Tolerance.rank`` of the model's size
         (``stat.extent``), or of a radian, is reported: a connect between
@@ -355,8 +355,7 @@ class _MjcfTree:
         m, mj = self.m, self.mj
         if not m.neq:
             return {}
-        data = mj.MjData(m)
-        data.qpos[:] = m.qpos0
+        data = mj.MjData(m)  # at qpos0; its own copy, so the kinematics read elsewhere stay as they are
         mj.mj_forward(m, data)
         rows = np.flatnonzero(np.asarray(data.efc_type[: data.nefc]) == int(mj.mjtConstraint.mjCNSTR_EQUALITY))
         ids, residual = np.asarray(data.efc_id)[rows], np.asarray(data.efc_pos)[rows]

@@ -357,7 +357,7 @@ def _off_a_fold(
     so the continuation never leaves the file's assembly branch across a fold
     it only approached.
     """
-    count, n = base_q.shape
+    count = len(base_q)
     q, err, ok = base_q.copy(), np.full(count, np.inf), np.zeros(count, dtype=bool)
     if not drive.free.any():
         return q, err, ok
@@ -367,8 +367,8 @@ def _off_a_fold(
         _, sv, vt = np.linalg.svd(jac, full_matrices=True)
         step = np.abs(targets - base_t).max(axis=1)
     free = int(drive.free.sum())
-    # (N, free): the right singular vectors the rank decision drops (and those beyond the equations' count):
-    # motions free to first order.  Only a base pose singular by the policy's own rank decision (a file at a
+    # (N, free): where the equations lose rank, the right singular vectors the rank decision drops (with those
+    # beyond the equations' count): motions free to first order.  Only a base pose singular by the policy's own rank decision (a file at a
     # dead centre) is a fold to leave this way; one merely near a fold (the last grid point before a workspace
     # boundary) is not: a start across the fold there would land on the other assembly branch and carry it
     # into the grid
