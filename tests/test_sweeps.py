@@ -414,6 +414,43 @@ def test_dask_cluster_runs_the_chunks():
     assert [p.values for p in by_address.singular] == [(120.0,), (300.0,)]
 
 
+def _most_chunks_out_at_once(runner_, count: int) -> tuple[list[int], int]:
+    """Run ``count`` trivial chunks through a sweep runner; the order of the answers and the most chunks built but not yet answered."""
+    drawn, answered, most = [0], [0], [0]
+
+    def chunks():
+        for i in range(count):
+            drawn[0] += 1
+            most[0] = max(most[0], drawn[0] - answered[0])
+            yield (i,)
+
+    order = []
+    for i, value in runner_.run("test", _square, chunks(), [1] * count):
+        answered[0] += 1
+        assert value == i * i
+        order.append(i)
+    return order, most[0]
+
+
+def _square(context, i):
+    return i * i
+
+
+def test_a_sweep_hands_out_a_few_chunks_at_a_time_so_its_memory_stays_bounded():
+    from dask import distributed
+
+    from mobility.sweeps import runner
+
+    context = runner._Context(load("parallelogram"), plan_grid(load("parallelogram"), ["O1=0:90:3"]), mobility.DEFAULT_TOLERANCE, None)
+    threads = runner._Runner(context, None, 2, None)
+    order, most = _most_chunks_out_at_once(threads, 40)
+    assert sorted(order) == list(range(40)) and most <= runner.IN_FLIGHT * 2 + 1  # + the one being handed over
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        on_dask = runner._Runner(context, client, None, None)
+        order, most = _most_chunks_out_at_once(on_dask, 25)
+    assert sorted(order) == list(range(25)) and most <= runner.IN_FLIGHT * on_dask.workers + 1
+
+
 def test_a_scheduler_that_never_answers_or_has_no_workers_is_refused(monkeypatch):
     import socket
 

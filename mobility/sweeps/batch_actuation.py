@@ -197,7 +197,8 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
     stack = np.concatenate([value.wrenches] + [w[:, :, None] for w in wrenches], axis=2)
     counts = (6 - dof) + present.sum(axis=1)
     decision = decide_ranks(_singular_values(stack), tol, np.minimum(counts, 6))
-    verdict = np.where(decision.rank < 6, SINGULAR, np.where(n > dof, REDUNDANT, VALID)).astype(object)
+    code = np.where(decision.rank < 6, 0, np.where(n > dof, 1, 2))
+    verdict = np.array([SINGULAR, REDUNDANT, VALID], dtype=object)[code]  # the three strings shared, not one per pose
     conditioning = np.zeros(count)
     regular = decision.rank == 6
     conditioning[regular & (dof == 0)] = 1.0

@@ -83,8 +83,11 @@ def fill(bk: BatchKinematics, plan: GridPlan, closure: GridClosure, *, tol: Tole
     assembled too), all in one batch; passes go on while they assemble new
     poses.  A pose whose driven angle is congruent, modulo a turn, to an
     assembled one's (the rest of its coordinates equal) takes that pose.
+
+    The arrays of ``closure`` are updated in place (a sweep's grid can be
+    large: no copy is made) and returned in a new :class:`GridClosure`.
     """
-    q, err, ok = closure.q.copy(), closure.residual.copy(), closure.assembled.copy()
+    q, err, ok = closure.q, closure.residual, closure.assembled
     shape = plan.shape
     drive = Drive.of(plan.axes, bk.variable_count)
     walks = plan_walks(plan)
@@ -156,7 +159,7 @@ def _turned_towards(plan: GridPlan, q: np.ndarray, targets: np.ndarray, goal: np
 def _congruent(
     bk: BatchKinematics, drive: Drive, plan: GridPlan, walks: tuple[AxisWalk, ...], q: np.ndarray, err: np.ndarray, ok: np.ndarray, tol: Tolerance
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Missing poses whose driven angle is congruent (modulo a turn) to an assembled pose's on the same line take its pose."""
+    """Missing poses whose driven angle is congruent (modulo a turn) to an assembled pose's on the same line take its pose (in place)."""
     sources, places = [], []
     for axis, walk in enumerate(walks):
         if walk.stops.size == walk.stop_of.size:
@@ -179,6 +182,5 @@ def _congruent(
     dst, first = np.unique(dst, return_index=True)
     src = src[first]
     nq, nerr, nok = retarget(bk, drive, q[src], err[src], ok[src], targets_of(plan, dst), tol=tol)
-    q, err, ok = q.copy(), err.copy(), ok.copy()
     q[dst[nok]], err[dst[nok]], ok[dst[nok]] = nq[nok], nerr[nok], True
     return q, err, ok

@@ -26,14 +26,15 @@ Examples
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 import sys
 import threading
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Callable, Iterable, Sequence
+from typing import Any, Callable, Iterable, Iterator, Sequence
 
 import numpy as np
 
@@ -58,6 +59,9 @@ DEFAULT_CHUNK_SIZE = 50_000
 
 BLOCK = 8192
 """Poses analysed together inside a chunk (keeps the stacked arrays in cache)."""
+
+IN_FLIGHT = 2
+"""Chunks per worker handed out at a time (the rest wait, unbuilt, so memory stays bounded)."""
 
 Progress = Callable[[str, int, int], None]
 """``progress(stage, done, total)``: called as chunks finish (stage ``"closing loops"`` or ``"analysing"``)."""
@@ -119,7 +123,10 @@ def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> dict[str, np.ndarray]:
-    """Analyse a chunk of assembled grid points (a task): the columns of the table, and ``"q"`` the poses.
+    """Analyse a chunk of assembled grid points (a task): the columns of the table, and the polished poses.
+
+    ``"polished"`` holds the positions (in ``rows``) of the poses polished,
+    ``"q_polished"`` their joint variables.
 
     A pose whose answer rests on a rank decision within the warning band of
     the tolerance policy (``near_singular`` or ``inexact``: a singular value
@@ -130,14 +137,14 @@ def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> di
     """
     columns = analyse_chunk(context, q)
     doubtful = np.flatnonzero(columns["near_singular"] | columns["inexact"]) if columns else np.zeros(0, dtype=int)
+    polished = q[doubtful]
     if doubtful.size:
         drive = Drive.of(context.plan.axes, context.bk.variable_count)
-        q = q.copy()
-        q[doubtful] = polish(context.bk, drive, q[doubtful], targets_of(context.plan, rows[doubtful]))
-        again = analyse_chunk(context, q[doubtful])
+        polished = polish(context.bk, drive, polished, targets_of(context.plan, rows[doubtful]))
+        again = analyse_chunk(context, polished)
         for key, values in again.items():
             columns[key][doubtful] = values
-    return {**columns, "q": q}
+    return {**columns, "polished": doubtful, "q_polished": polished}
 
 
 def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> dict[str, np.ndarray]:
@@ -220,43 +227,61 @@ class _Runner:
         if self._owns_client and self.client is not None:
             self.client.close()
 
-    def map(self, stage: str, function: Callable, chunks: Sequence[tuple], weights: Sequence[int]) -> list:
-        """``function(context, *chunk)`` of every chunk, in order."""
+    def run(self, stage: str, function: Callable, chunks: Iterable[tuple], weights: Sequence[int]) -> Iterator[tuple[int, Any]]:
+        """``(i, function(context, *chunk))`` for every chunk, as they finish.
+
+        ``chunks`` is consumed lazily and at most :data:`IN_FLIGHT` chunks per
+        worker are out at a time, so that the memory a sweep holds beyond its
+        table is a few chunks' worth, whatever the grid's size.
+        """
         total = int(sum(weights))
         done = 0
         if self.progress:
             self.progress(stage, 0, total)
-        results: list = [None] * len(chunks)
+        if self.client is None and self.workers == 1:
+            for i, chunk in enumerate(chunks):
+                result = function(self.context, *chunk)
+                done += weights[i]
+                if self.progress:
+                    self.progress(stage, done, total)
+                yield i, result
+            return
+        for i, result in self._bounded(function, iter(enumerate(chunks))):
+            done += weights[i]
+            if self.progress:
+                self.progress(stage, done, total)
+            yield i, result
+
+    def _bounded(self, function: Callable, numbered: Iterator[tuple[int, tuple]]) -> Iterator[tuple[int, Any]]:
+        limit = IN_FLIGHT * self.workers
         if self.client is not None:
             from dask import distributed
 
-            futures = [self.client.submit(function, self._context_future, *chunk, pure=False) for chunk in chunks]
-            position = {f.key: i for i, f in enumerate(futures)}
-            for future in distributed.as_completed(futures):
-                i = position[future.key]
-                results[i] = future.result()
-                done += weights[i]
-                if self.progress:
-                    self.progress(stage, done, total)
-            return results
-        if self.workers == 1 or len(chunks) == 1:
-            for i, chunk in enumerate(chunks):
-                results[i] = function(self.context, *chunk)
-                done += weights[i]
-                if self.progress:
-                    self.progress(stage, done, total)
-            return results
-        with ThreadPoolExecutor(self.workers) as pool:
-            futures = {pool.submit(function, self.context, *chunk): i for i, chunk in enumerate(chunks)}
-            from concurrent.futures import as_completed
+            position: dict[Any, int] = {}
+            queue = distributed.as_completed()
 
-            for future in as_completed(futures):
-                i = futures[future]
-                results[i] = future.result()
-                done += weights[i]
-                if self.progress:
-                    self.progress(stage, done, total)
-        return results
+            def submit(i: int, chunk: tuple) -> None:
+                future = self.client.submit(function, self._context_future, *chunk, pure=False)
+                position[future.key] = i
+                queue.add(future)
+
+            for i, chunk in itertools.islice(numbered, limit):
+                submit(i, chunk)
+            for future in queue:  # as_completed takes futures added while it is iterated
+                i = position.pop(future.key)
+                for j, chunk in itertools.islice(numbered, 1):
+                    submit(j, chunk)
+                yield i, future.result()
+            return
+        with ThreadPoolExecutor(self.workers) as pool:
+            running = {pool.submit(function, self.context, *chunk): i for i, chunk in itertools.islice(numbered, limit)}
+            while running:
+                finished, _ = wait(running, return_when=FIRST_COMPLETED)
+                for future in finished:
+                    i = running.pop(future)
+                    for j, chunk in itertools.islice(numbered, 1):
+                        running[pool.submit(function, self.context, *chunk)] = j
+                    yield i, future.result()
 
 
 def _split(count: int, pieces: int) -> list[np.ndarray]:
@@ -373,63 +398,68 @@ def sweep(
 
 def _close(context: _Context, runner: _Runner, chunk_size: int) -> GridClosure:
     plan = context.plan
-    seeds = seed_grid(context.bk, plan, tol=context.tol)
+    closure = seed_grid(context.bk, plan, tol=context.tol)  # this sweep's own arrays, filled in place from here on
+    q, err, ok = closure.q, closure.residual, closure.assembled
     shape = plan.shape
     layout = line_layout(shape, len(shape) - 1)
     anchor = anchors(plan)[-1]
     starts = layout[:, anchor]
-    q, err, ok = seeds.q.copy(), seeds.residual.copy(), seeds.assembled.copy()
     pieces = max(math.ceil(plan.size / chunk_size), runner.workers if len(layout) >= 64 * runner.workers else 1)
     groups = _split(len(layout), pieces)
-    chunks = [(q[starts[g]], ok[starts[g]], layout[g], anchor) for g in groups]
-    for g, (lq, lerr, lok) in zip(groups, runner.map("closing loops", close_chunk, chunks, [layout[g].size for g in groups])):
-        q[layout[g]], err[layout[g]], ok[layout[g]] = lq, lerr, lok
-    return fill(context.bk, plan, GridClosure(q, err, ok), tol=context.tol)
+    chunks = ((q[starts[g]], ok[starts[g]], layout[g], anchor) for g in groups)
+    for i, (lq, lerr, lok) in runner.run("closing loops", close_chunk, chunks, [layout[g].size for g in groups]):
+        lines = layout[groups[i]]
+        q[lines], err[lines], ok[lines] = lq, lerr, lok
+    return fill(context.bk, plan, closure, tol=context.tol)
 
 
-def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_size: int) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+UNANSWERED = {
+    "dof": (-1, int),
+    "pattern": ("", object),
+    "mobility": (-1, int),
+    "smallest_kept": (np.nan, float),
+    "largest_dropped": (np.nan, float),
+    "near_singular": (False, bool),
+    "inexact": (False, bool),
+    "verdict": ("", object),
+    "conditioning": (np.nan, float),
+    "actuation_margin": (np.nan, float),
+}
+"""Each column's value (and type) at a pose that is not analysed (not assembled, or no input chosen)."""
+
+
+def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_size: int) -> dict[str, np.ndarray]:
+    """The table's columns over the whole grid; polished poses replace theirs in ``closure.q`` (the sweep's own array)."""
+    keys = [key for key in UNANSWERED if context.inputs is not None or key not in ("verdict", "conditioning", "actuation_margin")]
+    columns = {key: np.full(context.plan.size, *UNANSWERED[key]) for key in keys}
     rows = np.flatnonzero(closure.assembled)
     pieces = max(math.ceil(rows.size / chunk_size), runner.workers if rows.size >= 2 * BLOCK * runner.workers else 1)
     groups = [rows[g] for g in _split(rows.size, pieces)] if rows.size else []
-    results = runner.map("analysing", analyse_grid_chunk, [(g, closure.q[g]) for g in groups], [g.size for g in groups]) if groups else []
-    columns = {key: np.concatenate([r[key] for r in results]) for key in results[0]} if results else {}
-    return rows, columns
+    chunks = ((g, closure.q[g]) for g in groups)
+    for i, result in runner.run("analysing", analyse_grid_chunk, chunks, [g.size for g in groups]):
+        g = groups[i]
+        closure.q[g[result.pop("polished")]] = result.pop("q_polished")
+        for key, values in result.items():
+            columns[key][g] = values
+    return columns
 
 
-def _result(context: _Context, closure: GridClosure, analysed: tuple[np.ndarray, dict[str, np.ndarray]]) -> SweepResult:
-    rows, columns = analysed
-    size = context.plan.size
-
-    def full(key: str, fill_value: Any, dtype: Any) -> np.ndarray:
-        out = np.full(size, fill_value, dtype=dtype)
-        if rows.size:
-            out[rows] = columns[key]
-        return out
-
+def _result(context: _Context, closure: GridClosure, columns: dict[str, np.ndarray]) -> SweepResult:
     actuation: dict[str, Any] = {}
     if context.inputs is not None:
         actuation = dict(
             actuated=context.inputs.names,
-            verdict=full("verdict", "", object),
-            conditioning=full("conditioning", np.nan, float),
-            actuation_margin=full("actuation_margin", np.nan, float),
+            verdict=columns.pop("verdict"),
+            conditioning=columns.pop("conditioning"),
+            actuation_margin=columns.pop("actuation_margin"),
         )
-    q = closure.q.copy()
-    if rows.size:
-        q[rows] = columns["q"]
     return SweepResult(
         mechanism=context.mechanism,
         axes=context.plan.axes,
-        q=q,
+        q=closure.q,
         assembled=closure.assembled,
         residual=closure.residual,
-        dof=full("dof", -1, int),
-        pattern=full("pattern", "", object),
-        mobility=full("mobility", -1, int),
-        smallest_kept=full("smallest_kept", np.nan, float),
-        largest_dropped=full("largest_dropped", np.nan, float),
-        near_singular=full("near_singular", False, bool),
-        inexact=full("inexact", False, bool),
         tolerance=context.tol,
+        **columns,
         **actuation,
     )
