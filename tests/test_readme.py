@@ -43,3 +43,58 @@ def test_the_file_format_page_fragments_load_when_completed():
     assert [j.name for j in m.world_joints] == ["P1", "R1", "P2", "R2", "P3", "R3"]
     # the third limb's frame is turned by 240 degrees about z: its R axis [0, 1, 0] becomes [-sin 240, cos 240, 0]
     assert m.world_joints[5].axis == pytest.approx((-math.sin(math.radians(240)), math.cos(math.radians(240)), 0.0))
+
+
+def _console_blocks():
+    """Every ```console block of the README and docs/ that runs one ``mobility`` command: (where, arguments, shown lines)."""
+    for page in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+        text = page.read_text(encoding="utf-8")
+        for found in re.finditer(r"```console\n\$ mobility (.*?)\n(.*?)```", text, re.S):
+            where = f"{page.name}:{text[: found.start()].count(chr(10)) + 2}"
+            yield pytest.param(found.group(1).split(), found.group(2).rstrip("\n").split("\n"), id=where)
+
+
+def _shows(shown: list[str], printed: list[str]) -> bool:
+    """Whether ``printed`` is ``shown`` where each ``...`` line stands for any lines (none included)."""
+    runs, run = [], []
+    for line in shown:
+        if line.strip() == "...":
+            runs.append(run)
+            run = []
+        else:
+            run.append(line)
+    runs.append(run)
+    if len(runs) == 1:
+        return printed == shown
+    at = 0
+    for k, run in enumerate(runs):
+        if k == 0:
+            if printed[: len(run)] != run:
+                return False
+            at = len(run)
+        elif k == len(runs) - 1:
+            return not run or (len(printed) - len(run) >= at and printed[len(printed) - len(run) :] == run)
+        else:
+            for start in range(at, len(printed) - len(run) + 1):
+                if printed[start : start + len(run)] == run:
+                    at = start + len(run)
+                    break
+            else:
+                return False
+    return True
+
+
+@pytest.mark.parametrize("arguments, shown", list(_console_blocks()))
+def test_each_console_example_in_the_docs_is_what_the_command_prints(arguments, shown, capsys, monkeypatch):
+    monkeypatch.chdir(ROOT)
+    assert main(arguments) == 0
+    printed = capsys.readouterr().out.rstrip("\n").split("\n")
+    assert _shows(shown, printed), "\n".join(printed)
+
+
+def test_an_elided_example_still_has_to_match_around_its_gaps():
+    printed = ["a", "b", "c", "d"]
+    assert _shows(["a", "...", "d"], printed) and _shows(["...", "c", "..."], printed) and _shows(["a", "b", "c", "d"], printed)
+    assert not _shows(["a", "...", "c"], printed)  # the end must match when the block does not end in "..."
+    assert not _shows(["b", "..."], printed) and not _shows(["a", "...", "d", "..."] + ["e"], printed)
+    assert not _shows(["a", "c", "d"], printed)

@@ -27,7 +27,7 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, first_least
 from ..errors import RequestError
 from .assessment import Assessment
 from .results import SINGULAR, VALID, VERDICTS, Combination, TypeGroup
@@ -71,10 +71,10 @@ def combine_poses(inputs: tuple[str, ...], type: str, per_pose: Sequence[Assessm
     verdicts = [a.verdict for a in per_pose]
     worst = max(verdicts, key=VERDICTS.index)
     conditioning = [a.conditioning for a in per_pose]
-    k = int(np.argmin(conditioning))
+    k = first_least(conditioning)
     failures = tuple((i, v) for i, v in enumerate(verdicts) if v != VALID)
     margins = [a.decision.smallest_kept if a.verdict != SINGULAR else np.inf for a in per_pose]
-    m = int(np.argmin(margins))
+    m = first_least(margins)
     margin = float(min(margins[m], 1.0))
     return Combination(inputs, type, worst, len(per_pose) - len(failures), len(per_pose), float(conditioning[k]), k, failures, margin, m)
 

@@ -40,6 +40,7 @@ import numpy as np
 from ..errors import RequestError
 
 __all__ = [
+    "first_least",
     "Tolerance",
     "DEFAULT_TOLERANCE",
     "require_tolerance",
@@ -384,6 +385,34 @@ def clean_numbers(value: Any, scale: float = 1.0, tol: Tolerance = DEFAULT_TOLER
     if isinstance(value, np.generic):
         return value.item()
     return value
+
+
+def first_least(values: Any, tol: Tolerance = DEFAULT_TOLERANCE) -> int:
+    """Index of the first of the smallest values, values within round-off of the smallest counting as equal.
+
+    Where several poses tie (a symmetric mechanism's margin at mirror poses),
+    the one named does not then depend on the last bit of a LAPACK routine.
+
+    Parameters
+    ----------
+    values : array_like of float
+        Not empty; NaN counts as larger than any number.
+    tol : Tolerance
+        ``tol.round_off`` (relative to the smallest value's size) decides a tie.
+
+    Examples
+    --------
+    >>> first_least([0.3, 0.1 + 1e-17, 0.1, 0.2])
+    1
+    >>> first_least([2.0, float("nan"), 1.0])
+    2
+    """
+    a = np.asarray(values, dtype=float)
+    a = np.where(np.isnan(a), np.inf, a)
+    least = float(a.min())
+    if not np.isfinite(least):
+        return int(np.argmin(a))
+    return int(np.flatnonzero(a <= least + tol.round_off * abs(least))[0])
 
 
 # ---------------------------------------------------------------------------

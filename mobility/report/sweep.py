@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from ..actuation import SINGULAR
+from ..core.tolerance import first_least
 from ..sweeps import SweepResult
 from .text import fmt_number
 
@@ -115,7 +116,7 @@ def sweep_summary(result: SweepResult) -> str:
         finite = result.assembled & np.isfinite(result.conditioning)
         if finite.any():
             kappa = result.conditioning[finite]
-            worst = int(np.flatnonzero(finite)[int(np.argmin(kappa))])
+            worst = int(np.flatnonzero(finite)[first_least(kappa, result.tolerance)])
             out.append(
                 f"    conditioning kappa: median {fmt_number(float(np.median(kappa)), digits=3)}, "
                 f"smallest {fmt_number(float(kappa.min()), digits=3)} at {describe_values(result, result.values[worst])}"
@@ -123,11 +124,11 @@ def sweep_summary(result: SweepResult) -> str:
         controlled = result.assembled & (result.verdict != SINGULAR)  # at a singular pose the margin is that of a lower rank
         margins = np.where(controlled, result.actuation_margin, np.inf)
         if np.isfinite(margins).any():
-            lowest = int(np.argmin(margins))
+            lowest = first_least(margins, result.tolerance)
             where = "" if controlled.sum() == result.assembled.sum() else " of the poses not actuation-singular"
             out.append(f"    actuation margin (distance to an actuation singularity): smallest{where} {float(margins[lowest]):.2e} at {describe_values(result, result.values[lowest])}")
     margin = result.smallest_kept[result.assembled]
-    worst = int(np.flatnonzero(result.assembled)[int(np.argmin(margin))])
+    worst = int(np.flatnonzero(result.assembled)[first_least(margin, result.tolerance)])
     near = int(result.near_singular[result.assembled].sum())
     out.append(f"  rank margin: smallest kept relative singular value {float(margin.min()):.2e} at {describe_values(result, result.values[worst])}; near-singular poses: {near:,}")
     singular = result.singular
