@@ -151,6 +151,38 @@ def _offset_from_O(r: float) -> float:
     return max(np.linalg.norm(t[3:] + np.cross(t[:3], O)) / np.linalg.norm(t[:3]) for t in spaces.freedom_twists)
 
 
+def test_rotation_per_unit_couple_is_frame_free_and_the_z_rotation_is_the_softest(flexure):
+    """docs/actuation.md: the couple block of C (6.48e-3, 6.48e-3, 9.46e-3 rad/(N m)) against the relative compliances (1, 1, 0.832).
+
+    Second route: each rod's compliance at its midpoint (its centre of elasticity, where the
+    bending, axial and torsion terms are uncoupled: l^3/12EI, l/EA, l/EI, l/GJ), moved to the
+    origin by the adjoint, the stiffnesses summed.
+    """
+    area, inertia = math.pi * 0.0015**2, math.pi * 0.0015**4 / 4
+    g = ALU.E / (2 * (1 + ALU.nu))
+    mid = np.zeros((6, 6))
+    mid[3, 0] = mid[4, 1] = 0.082**3 / (12 * ALU.E * inertia)
+    mid[5, 2] = 0.082 / (ALU.E * area)
+    mid[0, 3] = mid[1, 4] = 0.082 / (ALU.E * inertia)
+    mid[2, 5] = 0.082 / (g * 2 * inertia)
+    stiffness = np.zeros((6, 6))
+    for e in flexure.elements:
+        z = np.asarray(e.axis) / np.linalg.norm(e.axis)
+        x = np.cross([0.0, 0.0, 1.0], z)
+        x /= np.linalg.norm(x)
+        ad = adjoint(np.column_stack([x, np.cross(z, x), z]), (np.asarray(e.start) + 0.5 * e.length * z) * 1e-3)
+        stiffness += np.linalg.inv(ad @ mid @ np.linalg.inv(ad))
+    expected = np.linalg.inv(stiffness)
+    c = compliance_matrix(flexure)
+    assert np.allclose(c, expected, rtol=1e-9, atol=1e-9 * np.abs(expected).max())
+    couple = np.diag(c[:3, 3:])
+    assert couple == pytest.approx([6.4752e-3, 6.4752e-3, 9.4574e-3], rel=1e-4)
+    assert couple[2] / couple[0] == pytest.approx(1.46, abs=0.005)
+    moved = adjoint(rotation_from_axis_angle(np.array([0.0, 0.0, 1.0]), 0.3), np.array([0.4, -0.25, 0.09]))
+    assert np.allclose(np.diag((moved @ c @ np.linalg.inv(moved))[:3, 3:]), [couple[1], couple[0], couple[2]], rtol=1e-9)
+    assert flexure_spaces(flexure).eigenvalues[:3] == pytest.approx([1.0, 1.0, 0.832], abs=5e-4)
+
+
 def test_freedoms_approach_the_ideal_rotations_about_O_as_the_rods_get_slender():
     # The deviation comes from the rods' bending stiffness: it scales as (r / l)^2.
     wide, thin = _offset_from_O(1.5), _offset_from_O(0.75)
