@@ -105,6 +105,21 @@ def test_triangle_product_is_b_then_a_as_the_matrix_product(a1, p1, th1, t1, a2,
 
 
 @FAST
+@given(direction, vec3, angle, slide, direction, vec3, angle, slide)
+def test_the_papers_eq_3_written_a_then_b_is_our_product_in_the_other_order(a1, p1, th1, t1, a2, p2, th2, t2):
+    """Paper 000, Eq. 3, coded as printed: (Sa + Sb + ½ Sb × Sa - tan(θa/2) tan(θb/2) (tb [0; sa] + ta [0; sb])) / (1 - tan tan sa·sb)."""
+    sa_, sb_ = np.asarray(a1) / np.linalg.norm(a1), np.asarray(a2) / np.linalg.norm(a2)
+    ka, kb = math.tan(th1 / 2), math.tan(th2 / 2)
+    denominator = 1.0 - ka * kb * float(sa_ @ sb_)
+    if abs(denominator) < 1e-3:  # (nearly) a half-turn: no usable quasi-vector
+        return
+    sa, sb = finite_screw(a1, p1, th1, t1), finite_screw(a2, p2, th2, t2)
+    lie = np.concatenate([np.cross(sb[:3], sa[:3]), np.cross(sb[:3], sa[3:]) + np.cross(sb[3:], sa[:3])])  # Sb × Sa
+    paper = (sa + sb + 0.5 * lie - ka * kb * (t2 * np.concatenate([np.zeros(3), sa_]) + t1 * np.concatenate([np.zeros(3), sb_]))) / denominator
+    assert np.allclose(triangle_product(sb, sa), paper, rtol=1e-7, atol=1e-7 * (1 + np.abs(paper).max()))
+
+
+@FAST
 @given(direction, vec3, angle, slide)
 def test_inverse_is_the_negative(axis, point, theta, t):
     s = finite_screw(axis, point, theta, t)
