@@ -331,6 +331,26 @@ def test_random_line_sets_follow_the_geometric_rule(flexure):
     assert clear >= 15
 
 
+@pytest.mark.parametrize(
+    "points, verdict",
+    [
+        ([(30, 20, -50)] * 3, SINGULAR),  # Eq. 29: concurrent off the axes (the paper: valid)
+        ([(0, 10, -50), (20, 0, -50), (20, 10, 0)], SINGULAR),  # Eq. 34 with x1 y3 = y1 x3: the lines meet at (20, 10, -50)
+        ([(0, 10, -50), (20, 0, -50), (20, 25, 0)], VALID),  # Eq. 34 otherwise
+        ([(0, -10, -20), (-10, 0, -10), (-20, -10, 0)], SINGULAR),  # Eq. 35 with z1 x2 y3 = y1 z2 x3, pairwise skew
+        ([(0, -20, -10), (-10, 0, -30), (-10, -10, 0)], VALID),  # Eq. 35 otherwise
+    ],
+)
+def test_the_papers_table_3_line_sets_follow_the_determinant_of_their_moments(flexure, points, verdict):
+    """Forces along x, y, z through the points (about the flexure's centre): det[p_i x d_i] decides, not the paper's conditions."""
+    centre = _centre(flexure_spaces(flexure))
+    directions = np.eye(3)
+    lines = [ForceLine(f"a{k}", tuple(centre + np.asarray(p, float)), tuple(d)) for k, (p, d) in enumerate(zip(points, directions))]
+    determinant = np.linalg.det(np.cross(np.asarray(points, float), directions))
+    assert (abs(determinant) > 1.0) == (verdict == VALID)
+    assert check_force_lines(flexure, [], lines=lines).verdict == verdict
+
+
 def test_enumeration_groups_the_candidate_sets_by_geometry(flexure):
     found = enumerate_force_lines(flexure)
     groups = {g.type: (g.valid, g.total) for g in found.groups}
