@@ -343,7 +343,8 @@ def test_angles_a_turn_apart_are_one_joint_state():
     assert up.assembled[[0, 199, 200, 360]].tolist() == [True, False, True, True]
     crank = kinematics(m).variables_of("A").start
     for a, b in ((300, 120), (360, 180), (200, 20)):  # 300 deg is -60 deg, 360 is 0, 200 is -160
-        assert up.q[a, crank] - centred.q[b, crank] == pytest.approx(2.0 * math.pi, abs=1e-12)
+        assert up.q[a, crank] == pytest.approx(centred.q[b, crank], abs=1e-12)  # solved once, near the file's pose
+        assert abs(up.q[a, crank]) <= math.pi and (math.degrees(up.q[a, crank]) - up.values[a, 0]) % 360.0 == pytest.approx(0.0, abs=1e-9)
         for joint in "BC":
             assert np.allclose(up.mechanism_at(a).joint(joint).point, centred.mechanism_at(b).joint(joint).point, atol=1e-9)
     assert up.counts() == {(1, "1R", 1): 195} and up.residual[up.assembled].max() <= up.tolerance.closure
@@ -365,6 +366,15 @@ def test_a_map_of_two_full_turns_assembles_every_pose_the_five_bar_reaches():
         assert_pose_matches_one_pose_routes(r, i)
 
 
+def test_angles_many_turns_away_are_solved_near_the_file_pose_without_losing_digits():
+    m = load("four_bar")
+    far, near = sweep(m, ["A=500000:500000:1"]), sweep(m, ["A=-40:-40:1"])  # 500000 deg is 1389 turns less 40 deg
+    assert far.assembled.all() and np.allclose(far.q, near.q, atol=1e-12) and far.values[0, 0] == 500000.0
+    both = sweep(m, ["A=3.6e6:0:2"])  # ten thousand turns, and the file's pose
+    assert both.assembled.all() and np.array_equal(both.q[0], both.q[1]) and both.residual.max() <= both.tolerance.closure
+    assert both.counts() == {(1, "1R", 1): 2}
+
+
 def test_only_the_angles_of_r_and_c_joints_wrap():
     from mobility.sweeps.walks import axis_walk
 
@@ -375,15 +385,14 @@ def test_only_the_angles_of_r_and_c_joints_wrap():
         mobility.Joint("H1", "H", ("b", "c"), axis=z, point=(1.0, 0.0, 0.0), pitch=2.0),
         mobility.Joint("C1", "C", ("c", "e"), axis=x, point=(0.0, 1.0, 0.0)),
     ))
-    plan = plan_grid(m, ["R1=0:360:3", "P1=0:360:3", "H1=0:360:3", "C1=0:360:3", "rz=0:360:3"])
+    plan = plan_grid(m, ["R1=0:360:3", "P1=0:360:3", "H1=0:360:3", "C1=0:360:3", "rz=-180:180:3"])
     assert [a.period for a in plan.axes] == [360.0, 0.0, 0.0, 360.0, 0.0]
     assert [axis_walk(a).closed for a in plan.axes] == [True, False, False, True, False]
     screw = sweep(m, ["H1=0:360:3"], actuated=[])  # a turn of the screw moves its nut by the pitch times 2 pi
     moved = np.subtract(screw.mechanism_at(2).joint("C1").point, screw.mechanism_at(0).joint("C1").point)
     assert np.allclose(moved, [0.0, 0.0, 2.0 * 2.0 * math.pi], atol=1e-9)
     spin = sweep(m, ["C1=0:360:3"], actuated=[])  # a turn of a C joint is the same joint state: one pose
-    assert spin.q[2, spin.axes[0].variable] - spin.q[0, spin.axes[0].variable] == pytest.approx(2.0 * math.pi)
-    assert np.allclose(np.delete(spin.q[2], spin.axes[0].variable), np.delete(spin.q[0], spin.axes[0].variable))
+    assert spin.assembled.all() and np.array_equal(spin.q[2], spin.q[0])  # the driven angle too: solved once, as 0
 
 
 # --- scale-out, progress -----------------------------------------------------------------------------
@@ -471,6 +480,35 @@ def test_a_scheduler_that_never_answers_or_has_no_workers_is_refused(monkeypatch
             sweep(load("parallelogram"), ["O1=0:90:3"], scheduler=cluster.scheduler_address)
 
 
+def test_a_server_that_is_not_a_scheduler_is_one_line_without_distributed_s_traceback():
+    import socket
+    import struct
+    import subprocess
+    import sys
+    import threading
+    import time
+
+    server = socket.create_server(("127.0.0.1", 0))
+
+    def answer() -> None:  # a message of 1,000 empty frames, which distributed cannot decode (it logs a traceback)
+        connection, _ = server.accept()
+        with connection:
+            connection.sendall(struct.pack("Q", 1000) + bytes(8000))
+            time.sleep(5)
+
+    threading.Thread(target=answer, daemon=True).start()
+    address = "tcp://127.0.0.1:%d" % server.getsockname()[1]
+    try:  # a process of its own: distributed's log handlers write to the real stderr
+        run = subprocess.run(
+            [sys.executable, "-m", "mobility", "sweep", str(MECHANISMS / "parallelogram.yaml"), "--vary", "O1=0:90:3", "--scheduler", address],
+            capture_output=True, text=True, timeout=60,
+        )
+    finally:
+        server.close()
+    assert run.returncode == 2 and run.stderr.count("\n") == 1, run.stderr
+    assert "cannot reach a dask scheduler there" in run.stderr and "Traceback" not in run.stderr
+
+
 def test_progress_reports_both_stages_to_the_end():
     seen: list[tuple[str, int, int]] = []
     sweep(load("parallelogram"), ["O1=0:90:10"], progress=lambda stage, done, total: seen.append((stage, done, total)))
@@ -498,6 +536,9 @@ def test_progress_reports_both_stages_to_the_end():
         ([], "at least one coordinate"),
         (["P1=-1e308:1e308:3"], "do not fit in a float"),  # the step itself overflows
         (["R1=-1e308:1e308:3"], "do not fit in a float"),
+        (["z=1e6:2e6:3"], r"2e\+06 is beyond what a sweep reaches from the file's pose, 1,000 times the mechanism's size"),
+        (["P1=0:3e5:3"], "beyond what a sweep reaches"),
+        (["rx=-150:150:3", "ry=-150:150:3"], "rotation vector reaches 212.132 deg, more than half a turn"),
     ],
 )
 def test_bad_requests_are_one_line_errors(vary, message):
@@ -506,10 +547,52 @@ def test_bad_requests_are_one_line_errors(vary, message):
     assert "\n" not in str(info.value)
 
 
+@pytest.mark.parametrize(
+    "arguments, error, message",
+    [
+        (dict(vary=None), RequestError, "vary: expected NAME=START:STOP:COUNT"),
+        (dict(vary=1.5), RequestError, "got float"),
+        (dict(vary=[("O1", 10**400, 1, 2)]), RequestError, "START must be a finite number, got an integer of 401 digits"),
+        (dict(tol=1e-8), RequestError, "tol must be a Tolerance"),
+        (dict(max_poses=math.nan), RequestError, "max_poses must be a positive integer, got nan"),
+        (dict(max_poses="10"), RequestError, "max_poses must be a positive integer"),
+        (dict(scheduler=object()), RequestError, "scheduler must be a dask distributed.Client"),
+        (dict(progress="x"), RequestError, "progress must be True, False or a callable"),
+        (dict(progress=lambda stage: None), RequestError, "progress must accept three arguments"),
+        (dict(actuated="O1"), MechanismError, r"got the string 'O1' \(write \['O1'\]\)"),
+        (dict(actuated=5), MechanismError, "expected a sequence of joint names, got int"),
+    ],
+)
+def test_wrong_arguments_from_python_are_mobility_errors(arguments, error, message):
+    arguments = {"vary": ["O1=0:90:3"]} | arguments
+    with pytest.raises(error, match=message):
+        sweep(load("parallelogram"), **arguments)
+
+
+def test_a_joint_whose_name_holds_an_equals_sign_can_be_swept():
+    m = mobility.loads("name: eq\nground: g\nend_effector: l\njoints:\n  - {name: 'A=1', type: R, links: [g, l], axis: [0, 0, 1], point: [0, 0, 0]}\n")
+    r = sweep(m, ["A=1=0:90:3"])
+    assert [a.name for a in r.axes] == ["A=1"] and r.values[:, 0].tolist() == [0.0, 45.0, 90.0]
+
+
 def test_a_grid_above_the_cap_is_refused_before_any_work():
     with pytest.raises(RequestError, match="more than --max-poses 1,000"):
         plan_grid(load("3prs"), ["P1=0:1:11", "P2=0:1:11", "P3=0:1:11"], max_poses=1000)
     assert plan_grid(load("3prs"), ["P1=0:1:11", "P2=0:1:11", "P3=0:1:11"], max_poses=1331).size == 1331
+
+
+def test_a_sweep_reaches_its_limits_and_every_pose_up_to_them_closes():
+    from mobility.core.tolerance import SWEEP_REACH
+
+    m = load("3prs")
+    size = plan_grid(m, ["z=0:1:2"]).length
+    far = sweep(m, [f"z={0.5 * SWEEP_REACH * size}:{SWEEP_REACH * size}:3"])  # starting half way: long steps, far from the origin
+    assert far.assembled.all() and far.residual.max() <= far.tolerance.closure and far.counts() == {(3, "1T2R", 3): 3}
+    with pytest.raises(RequestError, match="beyond what a sweep reaches"):
+        plan_grid(m, [f"z=0:{1.01 * SWEEP_REACH * size}:3"])
+    scara = load("scara")
+    turned = sweep(scara, ["rz=-180:180:9"])  # the principal rotation vector: up to half a turn each way
+    assert turned.assembled.all() and turned.counts() == {(4, "3T1R", 4): 9}
 
 
 def test_an_unknown_input_is_a_mechanism_error():
@@ -559,11 +642,13 @@ def test_a_sweep_at_any_scale_is_the_sweep_scaled_without_a_warning():
         with warnings.catch_warnings():
             warnings.simplefilter("error")  # an overflow in the solver would be a warning
             scaled = sweep(big, [f"P1=0:{20 * k!r}:3"])
-            far = sweep(big, [f"P1=0:{1e6 * 20 * k!r}:2"])  # a target far beyond the mechanism: not assembled, quietly
+            far = sweep(big, [f"P1=0:{1e5 * k!r}:2"])  # a target far beyond the mechanism (within reach of the solver): not assembled, quietly
         assert np.array_equal(scaled.assembled, plain.assembled) and np.array_equal(scaled.pattern, plain.pattern)
         assert np.allclose(scaled.conditioning, plain.conditioning, rtol=1e-7)
         assert scaled.values[:, 0] / k == pytest.approx(plain.values[:, 0], rel=1e-12)
         assert far.assembled.tolist() == [True, False]
+        with pytest.raises(RequestError, match="beyond what a sweep reaches"):
+            sweep(big, [f"P1=0:{1e6 * 20 * k!r}:2"])
         if k < 1:  # 1e300 over a size of about 1e-248: not a float
             with pytest.raises(RequestError, match="x=0:1e.300:3: its values do not fit in a float"):
                 sweep(big, ["x=0:1e300:3"])

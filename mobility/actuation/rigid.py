@@ -25,7 +25,7 @@ import math
 from typing import Iterable, Sequence
 
 
-from ..core.model import Mechanism, require_mechanism, require_no_repeats
+from ..core.model import Mechanism, joint_names, require_mechanism, require_no_repeats
 from ..core.poses import DEFAULT_STEP, sample_poses
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
@@ -193,7 +193,7 @@ def enumerate_actuations(
 
 
 def _actuated_names(mechanism: Mechanism, actuated: Sequence[str] | None) -> list[str]:
-    return [j.name for j in mechanism.joints if j.actuated] if actuated is None else list(actuated)
+    return [j.name for j in mechanism.joints if j.actuated] if actuated is None else joint_names(actuated, "actuated")
 
 
 def _inputs_of(pose: RigidPose, names: Sequence[str]) -> list[InputWrench]:

@@ -54,6 +54,7 @@ __all__ = [
     "require_graph_names",
     "require_unique_names",
     "require_no_repeats",
+    "joint_names",
     "require_ground_and_end_effector",
     "WORLD",
 ]
@@ -673,6 +674,29 @@ def require_graph_names(graph: Any, node: str) -> None:
         value = getattr(graph, key)
         if not isinstance(value, str) or not value:
             raise MechanismError(key, f"expected {what}, got {value!r}")
+
+
+def joint_names(value: Any, key: str) -> list[str]:
+    """``value`` as a list of joint names: a list, tuple or other iterable of strings (not one string).
+
+    Examples
+    --------
+    >>> joint_names(("P1", "P2"), "actuated")
+    ['P1', 'P2']
+    >>> joint_names("P1", "actuated")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: actuated: expected a sequence of joint names, got the string 'P1' (write ['P1'])
+    """
+    if isinstance(value, str):
+        raise MechanismError(key, f"expected a sequence of joint names, got the string {value!r} (write [{value!r}])")
+    try:
+        names = list(value)
+    except TypeError:
+        raise MechanismError(key, f"expected a sequence of joint names, got {type(value).__name__}") from None
+    for name in names:
+        if not isinstance(name, str):
+            raise MechanismError(key, f"expected joint names (strings), got {name!r}")
+    return names
 
 
 def require_no_repeats(names: Iterable[str], key: str) -> None:

@@ -64,6 +64,7 @@ __all__ = [
     "decide_ranks",
     "characteristic_scales",
     "SAME_GRID_VALUE",
+    "SWEEP_REACH",
 ]
 
 
@@ -199,6 +200,17 @@ reduced by whole turns: ``-180`` and ``180`` degrees, or ``0`` and ``360``,
 are one joint state of an R joint.  Used for ties (the value nearest the
 file's pose) and for angles congruent modulo a turn
 (:mod:`mobility.sweeps.walks`).
+"""
+
+SWEEP_REACH = 1000.0
+"""Farthest a sweep drives a coordinate from the file's pose: a slide or a
+translation of the end effector in characteristic lengths, an angle that does
+not wrap (an H joint's) in radians.  Beyond it double precision cannot close
+the loops to :attr:`Tolerance.closure`: lengths of ``D`` characteristic
+lengths carry round-off of about ``D * 1e-16`` into every residual
+component, and Newton's steps there are as ill-conditioned (measured on the
+3-PRS: sweeps reach 1,900 lengths, fail at 4,700).  An angle of an R or C
+joint wraps, so it has no limit (:attr:`mobility.sweeps.SweepAxis.internal`).
 """
 
 SOLVER_STOP = 1e-15

@@ -41,7 +41,7 @@ from typing import Sequence
 import numpy as np
 
 from ..actuation import REDUNDANT, SINGULAR, VALID
-from ..core.model import Mechanism, require_no_repeats
+from ..core.model import Mechanism, joint_names, require_no_repeats
 from ..core.screws import SWAP_ROWS
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_ranks
 from ..core.topology import JointNode, Node, Parallel, Series, decompose, joints_of
@@ -76,7 +76,7 @@ def actuated_inputs(mechanism: Mechanism, names: Sequence[str] | None = None) ->
     MechanismError
         When a name is not a joint of the mechanism.
     """
-    chosen = [j.name for j in mechanism.joints if j.actuated] if names is None else list(names)
+    chosen = [j.name for j in mechanism.joints if j.actuated] if names is None else joint_names(names, "actuated")
     index = {j.name: i for i, j in enumerate(mechanism.joints)}
     freedoms = []
     require_no_repeats(chosen, "actuated")

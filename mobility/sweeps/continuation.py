@@ -624,7 +624,7 @@ def seed_grid(bk: BatchKinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_T
     # from the file's pose to the anchor point, in steps no longer than a grid step (an angle that wraps: the shorter way round)
     at = targets_of(plan, np.array([anchor_flat]))
     goal = at - np.array([[float(whole_turns(t, a.period * a.scale)) for t, a in zip(at[0], plan.axes)]])
-    steps = [abs(a.internal[1] - a.internal[0]) if a.count > 1 else HOMOTOPY_STEP for a in plan.axes]
+    steps = [a.step * a.scale if a.count > 1 else HOMOTOPY_STEP for a in plan.axes]
     pieces = max([0] + [int(np.ceil(abs(g) / s - SAME_GRID_VALUE)) for g, s in zip(goal[0], steps) if s > 0])
     pieces = min(pieces, MAX_PIECES)  # farther than that: longer steps, which fail (not assembled) rather than run for ever
     # one line of continuation (its predictor keeps the file's branch up to a change point)

@@ -47,7 +47,8 @@ import numpy as np
 from ..core.joint_screws import joint_screws
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
-from ..errors import RequestError, name_list
+from ..core.tolerance import SAME_GRID_VALUE, SWEEP_REACH
+from ..errors import RequestError, clipped, name_list
 
 __all__ = [
     "POSE_COORDINATES",
@@ -81,7 +82,7 @@ VarySpec = Union[str, tuple, Mapping[str, tuple]]
 """``"NAME=START:STOP:COUNT"``, a tuple ``(name, start, stop, count)``, or a
 mapping ``{name: (start, stop, count)}``."""
 
-_SPEC = re.compile(r"^\s*(?P<name>[^=]+?)\s*=\s*(?P<range>.*)$")
+_SPEC = re.compile(r"^\s*(?P<name>.+?)\s*=\s*(?P<range>[^=]*)$")  # the last '=': a joint's name may hold one
 
 
 @dataclass(frozen=True)
@@ -140,9 +141,42 @@ class SweepAxis:
         return max(abs(self.start), abs(self.stop)) or 1.0
 
     @property
+    def step(self) -> float:
+        """The distance between neighbouring values (user units; the span of a single value, 0)."""
+        return abs(self.stop - self.start) / max(self.count - 1, 1)
+
+    @property
+    def anchor(self) -> int:
+        """Index of the value nearest the file's pose (displacement 0, round the circle for an angle that wraps); the first of two as near."""
+        values = self.values
+        distance = np.abs(values - _whole_turns(values, self.period))
+        return int(np.flatnonzero(distance <= distance.min() + SAME_GRID_VALUE * self.step)[0])  # round-off must not pick between ties
+
+    @property
+    def covers_turn(self) -> bool:
+        """The values wrap and go round a whole turn (no gap between them round the circle longer than a step)."""
+        step = self.step
+        return bool(self.period) and self.count >= 2 and abs(self.stop - self.start) + step >= self.period - SAME_GRID_VALUE * step
+
+    @property
     def internal(self) -> np.ndarray:
-        """The values as the solver uses them (radians, lengths over the characteristic length)."""
-        return self.values * self.scale
+        """The values as the solver uses them (radians, lengths over the characteristic length).
+
+        An angle that wraps is taken whole turns away where that brings it
+        near the file's pose (the turns removed in degrees, exactly, before
+        the conversion to radians): ``3600000`` degrees is solved as 0, so a
+        closure residual of round-off size stays one.  A range shorter than
+        a turn moves by the anchor's turns as a whole, so the values stay in
+        order; the values of a range that covers a turn each go within half
+        a turn of the anchor (the walk round the circle takes congruent
+        values as one, :mod:`mobility.sweeps.walks`).
+        """
+        values = self.values
+        if self.period:
+            base = values[self.anchor]
+            base = base - _whole_turns(base, self.period)
+            values = values - _whole_turns(values - base, self.period) if self.covers_turn else values - (values[self.anchor] - base)
+        return values * self.scale
 
     @property
     def label(self) -> str:
@@ -179,6 +213,14 @@ class GridPlan:
         return math.prod(self.shape)
 
 
+def _whole_turns(difference: np.ndarray, period: float) -> np.ndarray:
+    """The multiple of ``period`` nearest ``difference`` (0 when ``period`` is 0)."""
+    difference = np.asarray(difference, dtype=float)
+    if not period:
+        return np.zeros_like(difference)
+    return period * np.round(difference / period)
+
+
 def parse_vary(spec: str) -> tuple[str, float, float, int]:
     """Read ``"NAME=START:STOP:COUNT"``.
 
@@ -213,7 +255,9 @@ def _bounds(where: str, start: object, stop: object, count: object) -> tuple[flo
         try:
             x = float(str(text).strip()) if not isinstance(text, (int, float)) or isinstance(text, bool) else float(text)
         except ValueError:
-            raise RequestError(f"{where}: {label} must be a number, got {str(text).strip()!r}") from None
+            raise RequestError(f"{where}: {label} must be a number, got {clipped(str(text).strip())!r}") from None
+        except OverflowError:  # an integer beyond the floats
+            raise RequestError(f"{where}: {label} must be a finite number, got an integer of {len(str(abs(text)))} digits") from None
         if isinstance(text, bool) or not math.isfinite(x):
             raise RequestError(f"{where}: {label} must be a finite number, got {text!r}")
         values.append(x)
@@ -234,8 +278,10 @@ def _requests(vary: VarySpec | Iterable) -> list[tuple[str, float, float, int]]:
         return [parse_vary(vary)]
     if isinstance(vary, Mapping):
         items: Iterable = [(name, *rng) if isinstance(rng, (tuple, list)) else (name, rng) for name, rng in vary.items()]
-    else:
+    elif isinstance(vary, (list, tuple)):
         items = vary
+    else:
+        raise RequestError(f"vary: expected NAME=START:STOP:COUNT, a list of them or of (name, start, stop, count), or a mapping, got {type(vary).__name__}")
     out = []
     for item in items:
         if isinstance(item, str):
@@ -250,11 +296,43 @@ def _requests(vary: VarySpec | Iterable) -> list[tuple[str, float, float, int]]:
 def _require_finite(axis: SweepAxis, length: float) -> None:
     """Refuse a range whose values, or their internal values (radians, lengths over ``length``), leave the floats."""
     with np.errstate(over="ignore", invalid="ignore"):
-        values, internal = axis.values, axis.internal
+        values = axis.values
+        internal = values * axis.scale
     if not (np.all(np.isfinite(values)) and np.all(np.isfinite(internal))):
         where = f"--vary {axis.name}={axis.start:g}:{axis.stop:g}:{axis.count}"
         size = f" (the mechanism's size is {length:.3g}{' ' + axis.unit if axis.unit and axis.unit != 'deg' else ''})" if axis.unit != "deg" else ""
         raise RequestError(f"{where}: its values do not fit in a float (in radians, or over the mechanism's size){size}; choose a smaller range")
+
+
+def _require_within_reach(axis: SweepAxis, length: float) -> None:
+    """Refuse a slide, translation or non-wrapping angle that goes farther than :data:`SWEEP_REACH` from the file's pose."""
+    if axis.period or (axis.kind == "pose" and axis.unit == "deg"):
+        return  # angles that wrap are taken near the file's pose; rotation coordinates: _require_one_rotation
+    farthest = max(abs(axis.start), abs(axis.stop))
+    if farthest * axis.scale <= SWEEP_REACH:
+        return
+    where = f"--vary {axis.name}={axis.start:g}:{axis.stop:g}:{axis.count}"
+    if axis.unit == "deg":
+        limit = f"{math.degrees(SWEEP_REACH):,.0f} deg ({SWEEP_REACH / (2.0 * math.pi):.0f} turns) of an H joint, whose slide goes with its angle"
+    else:
+        unit = f" {axis.unit}" if axis.unit else ""
+        limit = f"{SWEEP_REACH:,.0f} times the mechanism's size ({SWEEP_REACH * length:.4g}{unit}; its size is {length:.4g}{unit})"
+    raise RequestError(f"{where}: {farthest:g} is beyond what a sweep reaches from the file's pose, {limit}: there double precision cannot close the loops; choose a smaller range")
+
+
+def _require_one_rotation(axes: list[SweepAxis]) -> None:
+    """Refuse rotation coordinates (rx, ry, rz) whose rotation vector, at some grid point, turns more than half a turn."""
+    rotations = [a for a in axes if a.kind == "pose" and a.unit == "deg"]
+    if not rotations:
+        return
+    farthest = math.sqrt(sum(max(abs(a.start), abs(a.stop)) ** 2 for a in rotations))  # at a corner of the grid
+    if farthest <= 180.0 * (1.0 + SAME_GRID_VALUE):
+        return
+    names = ", ".join(f"{a.name}={a.start:g}:{a.stop:g}:{a.count}" for a in rotations)
+    raise RequestError(
+        f"--vary {names}: the end effector's rotation vector reaches {farthest:g} deg, more than half a turn, "
+        "where it no longer names one rotation; sweep rotations of at most 180 deg (or drive a joint, whose angle wraps)"
+    )
 
 
 def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int = DEFAULT_MAX_POSES) -> GridPlan:
@@ -279,7 +357,9 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
         An unknown name, a joint that cannot be driven by one number (S, U,
         E), a coordinate given twice, a bad range (one whose values, in
         radians or over the mechanism's characteristic length, do not fit in
-        a float), no coordinate at all, or a grid above ``max_poses``.
+        a float, or reach beyond :data:`~mobility.core.tolerance.SWEEP_REACH`;
+        rotation coordinates turning more than half a turn), no coordinate at
+        all, or a grid above ``max_poses``.
     """
     requests = _requests(vary)
     if not requests:
@@ -320,6 +400,8 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
             )
     for axis in axes:
         _require_finite(axis, length)
+        _require_within_reach(axis, length)
+    _require_one_rotation(axes)
     plan = GridPlan(tuple(axes), length)
     if plan.size > max_poses:
         raise RequestError(f"the grid has {plan.size:,} poses, more than --max-poses {max_poses:,}; raise --max-poses or use fewer points")

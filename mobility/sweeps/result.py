@@ -169,7 +169,9 @@ class SweepResult:
     q : ndarray, shape (N, n)
         Joint variables of each pose (see :mod:`mobility.core.kinematics`;
         the best attempt where not assembled, zeros where no solve reached
-        the point).
+        the point).  The angle of a driven R or C joint is the one solved,
+        whole turns away from the grid's value where that brings it near the
+        file's pose (:attr:`SweepAxis.internal`): the same joint state.
     assembled : ndarray of bool
     residual : ndarray of float
         Largest loop-closure residual component (dimensionless; infinite where

@@ -26,7 +26,10 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
+import inspect
 import itertools
+import logging
 import math
 import os
 import sys
@@ -40,7 +43,7 @@ import numpy as np
 
 from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
 from .batch_kinematics import BatchKinematics
@@ -173,6 +176,21 @@ CONNECT_SECONDS = 10.0
 """How long a sweep waits for a dask scheduler to answer before giving up."""
 
 
+@contextlib.contextmanager
+def _quiet_distributed() -> Iterator[None]:
+    """distributed's loggers silenced for the duration (their levels restored after)."""
+    names = ["distributed"] + [n for n in list(logging.root.manager.loggerDict) if n.startswith("distributed.")]
+    loggers = [logging.getLogger(n) for n in names]
+    saved = [lg.level for lg in loggers]
+    for lg in loggers:
+        lg.setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        for lg, level in zip(loggers, saved):
+            lg.setLevel(level)
+
+
 def _connect(distributed: Any, address: str) -> Any:
     """A ``distributed.Client`` of the scheduler at ``address``, or a :class:`RequestError` within :data:`CONNECT_SECONDS`.
 
@@ -189,8 +207,9 @@ def _connect(distributed: Any, address: str) -> Any:
             box["error"] = exc
 
     thread = threading.Thread(target=connect, name="mobility-dask-connect", daemon=True)
-    thread.start()
-    thread.join(CONNECT_SECONDS + 2.0)
+    with _quiet_distributed():  # a server that is not a scheduler makes distributed log tracebacks; the error below says it in one line
+        thread.start()
+        thread.join(CONNECT_SECONDS + 2.0)
     if "client" in box:
         return box["client"]
     why = f"{type(box['error']).__name__}: {box['error']}" if "error" in box else f"no answer within {CONNECT_SECONDS:g} s"
@@ -376,10 +395,14 @@ def sweep(
     """
     if not isinstance(mechanism, Mechanism):
         raise RequestError(f"sweep: expected a Mechanism (from mobility.load), got {type(mechanism).__name__}")
-    if not isinstance(chunk_size, int) or chunk_size < 1:
-        raise RequestError(f"sweep: chunk_size must be a positive integer, got {chunk_size!r}")
-    if workers is not None and (not isinstance(workers, int) or workers < 1):
+    tol = require_tolerance(tol, "sweep")
+    for key, value in (("chunk_size", chunk_size), ("max_poses", max_poses)):
+        if not isinstance(value, int) or isinstance(value, bool) or value < 1:
+            raise RequestError(f"sweep: {key} must be a positive integer, got {value!r}")
+    if workers is not None and (not isinstance(workers, int) or isinstance(workers, bool) or workers < 1):
         raise RequestError(f"sweep: workers must be a positive integer, got {workers!r}")
+    _require_scheduler(scheduler)
+    _require_progress(progress)
     plan = plan_grid(mechanism, vary, max_poses=max_poses)
     marked = any(j.actuated for j in mechanism.joints)
     inputs = actuated_inputs(mechanism, actuated) if (actuated is not None or marked) else None
@@ -394,6 +417,28 @@ def sweep(
     finally:
         runner.close()
     return _result(context, closure, columns)
+
+
+def _require_scheduler(scheduler: Any) -> None:
+    """``None``, an address, or a ``distributed.Client`` (anything with ``submit`` and ``scheduler_info``)."""
+    if scheduler is None or isinstance(scheduler, str):
+        return
+    if not (callable(getattr(scheduler, "submit", None)) and callable(getattr(scheduler, "scheduler_info", None))):
+        raise RequestError(f"sweep: scheduler must be a dask distributed.Client or a scheduler's address, got {type(scheduler).__name__}")
+
+
+def _require_progress(progress: Any) -> None:
+    """``None``, a bool, or a callable taking ``(stage, done, total)``."""
+    if progress is None or isinstance(progress, bool):
+        return
+    if not callable(progress):
+        raise RequestError(f"sweep: progress must be True, False or a callable progress(stage, done, total), got {type(progress).__name__}")
+    try:
+        inspect.signature(progress).bind("stage", 0, 1)
+    except TypeError:
+        raise RequestError("sweep: progress must accept three arguments, progress(stage, done, total)") from None
+    except ValueError:  # no signature to read (some builtins): take it as it is
+        pass
 
 
 def _close(context: _Context, runner: _Runner, chunk_size: int) -> GridClosure:

@@ -51,14 +51,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.tolerance import SAME_GRID_VALUE
-from .grid import GridPlan, SweepAxis
+from .grid import GridPlan, SweepAxis, _whole_turns
 
 __all__ = ["AxisWalk", "axis_walk", "plan_walks", "anchor_of", "whole_turns"]
-
-
-def _step(axis: SweepAxis) -> float:
-    """The axis's step (its span for a single value)."""
-    return abs(axis.stop - axis.start) / max(axis.count - 1, 1)
 
 
 def whole_turns(difference: np.ndarray, period: float) -> np.ndarray:
@@ -69,17 +64,12 @@ def whole_turns(difference: np.ndarray, period: float) -> np.ndarray:
     >>> whole_turns(np.array([350.0, -190.0, 10.0]), 360.0).tolist(), whole_turns(np.array([700.0]), 0.0).tolist()
     ([360.0, -360.0, 0.0], [0.0])
     """
-    difference = np.asarray(difference, dtype=float)
-    if not period:
-        return np.zeros_like(difference)
-    return period * np.round(difference / period)
+    return _whole_turns(difference, period)
 
 
 def anchor_of(axis: SweepAxis) -> int:
-    """Index of the value nearest the file's pose (displacement 0, round the circle for an angle that wraps); the first of two as near."""
-    values = axis.values
-    distance = np.abs(values - whole_turns(values, axis.period))
-    return int(np.flatnonzero(distance <= distance.min() + SAME_GRID_VALUE * _step(axis))[0])  # round-off must not pick between ties
+    """Index of the value nearest the file's pose (:attr:`SweepAxis.anchor`)."""
+    return axis.anchor
 
 
 @dataclass(frozen=True, eq=False)
@@ -144,11 +134,11 @@ class AxisWalk:
 
 def axis_walk(axis: SweepAxis, position: int = 0) -> AxisWalk:
     """The walk of one axis (the ``position``-th of its grid): closed, with congruent values merged, when the axis wraps and covers a full turn."""
-    count, start = axis.count, anchor_of(axis)
+    count, start = axis.count, axis.anchor
     variable = axis.variable if axis.kind == "joint" else -1
-    step = _step(axis)
+    step = axis.step
     period = axis.period
-    if not period or count < 2 or abs(axis.stop - axis.start) + step < period - SAME_GRID_VALUE * step:
+    if not axis.covers_turn:
         every = np.arange(count)
         return AxisWalk(position, variable, every, axis.internal, start, False, 0.0, every)
     tie = SAME_GRID_VALUE * step
@@ -170,7 +160,7 @@ def axis_walk(axis: SweepAxis, position: int = 0) -> AxisWalk:
     if wrapped and here[0] > 0.5 * period:
         here[0] -= period
     s = int(stop_of[start])
-    unwrapped = values[start] + (here - here[s])
+    unwrapped = axis.internal[start] / axis.scale + (here - here[s])  # from the anchor's value as the solver takes it (near the file's pose)
     return AxisWalk(position, variable, stops, unwrapped * axis.scale, s, True, period * axis.scale, stop_of)
 
 
