@@ -95,3 +95,17 @@ def test_bad_input_is_one_line_and_exit_2(capsys, args, message):
 def test_unwritable_output_is_one_line(tmp_path, capsys):
     status, _, err = run(capsys, "convert", HAND / "four_bar.xml", "-o", tmp_path / "no" / "such" / "dir.yaml")
     assert status == 2 and "dir.yaml: --output: cannot write the file" in err and len(err.strip().splitlines()) == 2
+
+
+def test_convert_never_writes_over_a_file_the_model_includes(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    part = '<mujoco><body name="p"><joint/><geom size=".1"/></body></mujoco>'
+    (tmp_path / "part.xml").write_text(part)
+    (tmp_path / "model.xml").write_text('<mujoco model="t"><worldbody><include file="part.xml"/></worldbody></mujoco>')
+    (tmp_path / "alias.xml").symlink_to("part.xml")
+    for output in ("part.xml", "alias.xml", tmp_path / "part.xml"):
+        status, out, err = run(capsys, "convert", "model.xml", "-o", output)
+        assert (status, out) == (2, "") and err == f"mobility: -o {output}: the same file as ./part.xml, which would be overwritten\n"
+        assert (tmp_path / "part.xml").read_text() == part
+    status, _, err = run(capsys, "convert", "model.xml", "-o", "model.yaml")
+    assert status == 0 and mobility.load(tmp_path / "model.yaml").end_effector == "p"

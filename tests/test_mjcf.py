@@ -28,7 +28,7 @@ from hypothesis import strategies as st
 from scipy.linalg import subspace_angles
 
 import mobility
-from mobility.errors import MechanismFileError, MissingExtraError
+from mobility.errors import MechanismFileError, MissingExtraError, RequestError
 from mobility.io.robot_files import read_robot, robot_format
 
 DATA = Path(__file__).parent / "data" / "robots"
@@ -652,3 +652,153 @@ def test_a_huge_value_is_quoted_short(tmp_path):
     with pytest.raises(MechanismFileError) as err:
         read_robot(path)
     assert len(str(err.value)) - len(str(path)) < 400 and "AAA..." in str(err.value)
+
+
+# -- directions MuJoCo would silently replace ------------------------------------------------------
+
+DIRECTION_MODEL = ('<mujoco>\n<worldbody>\n<body name="p"><joint axis="1 0 0"/><geom size=".1"/>\n'
+                   '<body name="b" {body}><joint name="j" {joint}/><geom size=".1"/><site name="s" type="capsule" size=".1" {site}/></body></body>\n'
+                   '<body name="d" pos="1 0 0"><joint axis="0 1 0"/><geom size=".1"/></body>\n</worldbody>\n{equality}\n</mujoco>\n')
+_PLACES = {"axis": ("joint", "joint[j]", 4), "fromto": ("site", "site[s]", 4), "relpose": ("equality", "weld", 7)}
+
+
+def _direction_model(attribute: str, text: str) -> str:
+    element, _, _ = _PLACES.get(attribute, ("body", "body[b]", 4))
+    parts = {"body": "", "joint": 'axis="0 0 1"', "site": "", "equality": ""}
+    parts[element] = (f'<equality><weld body1="b" body2="d" relpose="{text}"/></equality>' if element == "equality" else f'{attribute}="{text}"')
+    return DIRECTION_MODEL.format(**parts)
+
+
+def _as_written(attribute: str, text: str) -> str:
+    """The same direction with numbers near 1 (scaled by the largest, then normalized without overflow): what the file means."""
+    numbers = [float.fromhex(t) if t.lower().lstrip("+-").startswith("0x") else float(t) for t in text.split()]
+
+    def unit(vector: list[float]) -> list[float]:
+        scaled = [x / max(abs(y) for y in vector) for x in vector]
+        return [x / math.hypot(*scaled) for x in scaled]
+
+    if attribute == "fromto":  # the segment's direction, from the origin (in halves: the difference of huge numbers may overflow)
+        return " ".join(repr(x) for x in [0.0, 0.0, 0.0] + unit([b / 2 - a / 2 for a, b in zip(numbers[:3], numbers[3:])]))
+    head, direction, tail = {"axisangle": ([], numbers[:3], numbers[3:]), "relpose": (numbers[:3], numbers[3:], [])}.get(attribute, ([], numbers, []))
+    return " ".join(repr(x) for x in head + unit(direction) + tail)
+
+
+def _mujoco_state(text: str) -> np.ndarray:
+    """What MuJoCo computes at qpos0 that a direction changes: body b's frame, joint j's axis, site s's frame, the weld's residual."""
+    model = mujoco.MjModel.from_xml_string(text)
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    return np.concatenate([data.xmat[2], data.xaxis[1], data.site_xmat[0], data.efc_pos[: data.nefc]])
+
+
+@pytest.mark.parametrize("attribute, text, refused", [
+    ("quat", "1e200 1e200 0 0", True),          # the squares overflow: MuJoCo divides by an infinite norm, uses no rotation
+    ("quat", "1e153 1e153 0 0", False),         # below the overflow: normalized as written
+    ("quat", "0x1p520 0x1p520 0 0", True),      # hexadecimal numbers, which MuJoCo reads too
+    ("quat", "1e-170 1e-170 0 0", True),        # the squares underflow: MuJoCo leaves it unnormalized
+    ("quat", "1e-8 1e-8 0 0", True),            # sum of squares 2e-16 < mjEPS
+    ("quat", "1e-7 1e-7 0 0", False),           # 2e-14: normalized
+    ("quat", "1e200 0 0 0", False),             # MuJoCo's zero quaternion is no rotation, as written
+    ("axisangle", "1e200 1e200 0 90", True),
+    ("axisangle", "1e200 1e200 0 0", False),    # a turn by nothing, whatever the axis
+    ("zaxis", "1e200 1e200 0", True),
+    ("zaxis", "0 0 -1e200", False),             # MuJoCo's signed zero keeps -z
+    ("axis", "1e154 1e154 0", True),            # a zero joint axis
+    ("axis", "1e153 1e153 0", False),
+    ("fromto", "0 0 0 1e200 1e200 0", True),
+    ("fromto", "0 0 0 0 0 1e200", False),
+    ("relpose", "1 0 0 1e200 1e200 0 0", True),  # a weld with a zero quaternion
+    ("relpose", "1 0 0 1e-8 1e-8 0 0", True),
+    ("relpose", "1 0 0 1e-8 0 0 0", False),     # MuJoCo makes it the identity, as written
+])
+def test_a_direction_is_refused_exactly_when_mujoco_would_use_another(tmp_path, monkeypatch, attribute, text, refused):
+    monkeypatch.chdir(tmp_path)  # a MuJoCo warning writes MUJOCO_LOG.TXT in the working directory
+    model = _direction_model(attribute, text)
+    differs = not np.allclose(_mujoco_state(model), _mujoco_state(_direction_model(attribute, _as_written(attribute, text))), atol=1e-9)
+    assert differs == refused, "MuJoCo's behaviour is not the one this case documents"
+    if not refused:
+        read_robot(_write(model))
+        return
+    _, key, line = _PLACES.get(attribute, ("body", "body[b]", 4))
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(_write(model))
+    assert re.search(rf"\.xml:{line}: {re.escape(key)}/@{attribute}: the sum of its squares.* MuJoCo would .*silently use .*; expected "
+                     rf"(smaller|larger) numbers \(only the direction counts\), got '{re.escape(text)}'$", str(err.value)), str(err.value)
+
+
+def test_the_audited_quaternions_are_refused_in_one_line(tmp_path):
+    chain = ('<mujoco model="t"><worldbody><body name="b0" quat="{q}" pos="0 0 0.1"><joint name="j0" type="hinge" axis="0 0 1"/><geom size="0.1"/>'
+             '<body name="b1" quat="{q}" pos="0 0 0.1"><joint name="j1" type="hinge" axis="0 0 1"/><geom size="0.1"/></body></body></worldbody></mujoco>')
+    for name, q in (("t_q.xml", "1e200 1e200 0 0"), ("t_q2.xml", "1e-170 1e-170 0 0")):
+        (tmp_path / name).write_text(chain.format(q=q))
+        done = _cli("analyze", name, cwd=tmp_path)
+        assert done.returncode == 2 and done.stdout == "" and done.stderr.count("\n") == 1
+        assert done.stderr.startswith(f"mobility: {name}:1: body[b0]/@quat: the sum of its squares")
+    (tmp_path / "t_11.xml").write_text(chain.format(q="1 1 0 0"))
+    assert mobility.analyze(mobility.load(tmp_path / "t_11.xml")).dof == 2  # the same chain, written with small numbers
+
+
+# -- what MuJoCo reads is what was checked ---------------------------------------------------------
+
+SMALL = '<mujoco><body name="small"><joint/><geom size=".1"/></body></mujoco>'
+
+
+def test_a_dtd_is_refused_since_mujoco_would_open_the_entity_as_written(tmp_path):
+    (tmp_path / "small.xml").write_text(SMALL)
+    os.mkfifo(tmp_path / "&f;")  # the file MuJoCo opens: its parser skips the DTD and reads '&f;' as written
+    (tmp_path / "model.xml").write_text('<?xml version="1.0"?>\n<!DOCTYPE m [<!ENTITY f "small.xml">]>\n'
+                                        '<mujoco>\n<worldbody><include file="&f;"/></worldbody>\n</mujoco>\n')
+    done = _cli("analyze", "model.xml", cwd=tmp_path)
+    assert (done.returncode, done.stdout) == (2, "")
+    assert done.stderr == ("mobility: model.xml:2: <!DOCTYPE>: a document type declaration, which MuJoCo skips (it reads '&name;' as written, "
+                           "not the entity); expected MJCF without <!DOCTYPE>\n")
+    # in an included file too, named with its own line
+    (tmp_path / "part.xml").write_text('<!DOCTYPE m>\n<mujoco><body name="p"><joint/><geom size=".1"/></body></mujoco>')
+    with pytest.raises(MechanismFileError, match=r"part\.xml:1: <!DOCTYPE>: a document type declaration"):
+        read_robot(_include(tmp_path, "part.xml"))
+
+
+def test_a_tab_in_an_include_name_is_refused_since_mujoco_would_open_it_with_the_tab(tmp_path):
+    (tmp_path / "a b.xml").write_text(SMALL)  # what an XML parser reads: the tab becomes a space
+    os.mkfifo(tmp_path / "a\tb.xml")  # what MuJoCo opens
+    (tmp_path / "model.xml").write_text('<mujoco>\n<worldbody>\n<include file="a\tb.xml"/>\n</worldbody>\n</mujoco>\n')
+    done = _cli("analyze", "model.xml", cwd=tmp_path)
+    assert (done.returncode, done.stderr) == (2, "mobility: model.xml:3: include/@file: 'a\\tb.xml': a tab or a line break, which MuJoCo keeps "
+                                                 "in the name it opens while XML reads a space; expected a file name without tabs or line breaks\n")
+    (tmp_path / "model.xml").write_text('<mujoco>\n<worldbody>\n<include file="a b.xml"/>\n</worldbody>\n</mujoco>\n')  # a space is a space
+    assert read_robot(tmp_path / "model.xml").mechanism.end_effector == "small"
+
+
+@pytest.mark.parametrize("encoding, name, expected", [
+    ("utf-16", "model.xml", ":1: not UTF-8 text (it starts with a UTF-16 byte order mark); expected a UTF-8 file, the only encoding MuJoCo reads"),
+    ("utf-16", "model.mjcf", ":1: not UTF-8 text (it starts with a UTF-16 byte order mark); expected a UTF-8 file, the only encoding MuJoCo reads"),
+    ("latin-1", "model.xml", ":3: not UTF-8 text (byte 0xe9 is not valid UTF-8 there); expected a UTF-8 file, the only encoding MuJoCo reads"),
+])
+def test_an_mjcf_file_mujoco_cannot_read_as_utf8_is_one_clear_line(tmp_path, capsys, encoding, name, expected):
+    declaration = '<?xml version="1.0" encoding="ISO-8859-1"?>\n' if encoding == "latin-1" else ""
+    text = declaration + '<mujoco>\n<worldbody><body name="caf\u00e9"><joint/><geom size=".1"/></body></worldbody>\n</mujoco>\n'
+    path = tmp_path / name
+    path.write_bytes(text.encode(encoding))
+    if encoding == "utf-16" and name.endswith(".xml"):
+        with pytest.raises((ValueError, RuntimeError)):
+            mujoco.MjModel.from_xml_path(str(path))  # MuJoCo reads UTF-8 only (Latin-1 bytes would make names that are not text)
+    from mobility.cli import main
+
+    assert main(["analyze", str(path)]) == 2
+    assert capsys.readouterr().err == f"mobility: {path}{expected}\n"
+
+
+@pytest.mark.parametrize("option", ["ground", "end_effector"])
+def test_an_empty_body_name_is_refused_not_taken_as_the_default(option):
+    with pytest.raises(RequestError, match=rf"^{option}: an empty body name; expected the name of a body"):
+        read_robot(HAND / "four_bar.xml", **{option: ""})
+    with pytest.raises(RequestError, match=rf"^{option}: an empty body name"):
+        mobility.load(HAND / "four_bar.xml", **{option: ""})
+
+
+def test_the_files_read_are_listed(tmp_path):
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "arm.xml").write_text('<mujoco><body name="arm"><joint/><geom size=".1"/></body></mujoco>')
+    path = _include(tmp_path, "sub/arm.xml")
+    files = read_robot(path).files
+    assert [os.path.realpath(f) for f in files] == [str(path.resolve()), str((tmp_path / "sub" / "arm.xml").resolve())]

@@ -327,3 +327,35 @@ def test_huge_values_are_quoted_short(tmp_path):
         with pytest.raises(MechanismFileError) as err:
             read_robot(path)
         assert len(str(err.value)) - len(str(path)) < 200 and "..." in str(err.value)
+
+
+# -- numbers and encodings: what is written is what is read ---------------------------------------------
+
+def test_an_axis_too_small_to_keep_its_direction_is_refused(tmp_path):
+    text = '<robot name="r">\n<link name="a"/><link name="b"/>\n' + J.replace('0 0 1', '{}') + '\n</robot>'
+    with pytest.raises(MechanismFileError) as err:  # subnormal: 7e-324 reads as 5e-324, the direction (5, 7, 0) as (1, 1, 0)
+        read_robot(write(tmp_path, text.format("5e-324 7e-324 0")))
+    assert str(err.value).endswith(":3: joint[j]/axis/@xyz: numbers below 2.23e-308, the smallest normal double, do not keep their direction "
+                                   "in double precision; expected larger numbers (only the direction counts), got '5e-324 7e-324 0'")
+    for small, large in (("1e-300 1e-300 0", "1 1 0"), ("1e300 1e300 0", "1 1 0"), ("1e308 1e308 1e308", "1 1 1")):  # normalized without overflow or underflow
+        got, want = (read_robot(write(tmp_path, text.format(v))).mechanism.joints[0].axis for v in (small, large))
+        assert np.allclose(got, want, rtol=0, atol=1e-15), small
+
+
+def test_a_utf16_urdf_named_xml_is_read(tmp_path):
+    text = '<?xml version="1.0" encoding="UTF-16"?>\n<robot name="r">\n<link name="a"/><link name="b"/>\n' + J + '\n</robot>'
+    path = tmp_path / "robot.xml"
+    path.write_bytes(text.encode("utf-16"))  # with a byte order mark: Python's XML parser reads it
+    robot = read_robot(path)
+    assert robot.format == "URDF" and [j.name for j in robot.mechanism.joints] == ["j"]
+
+
+def test_a_dtd_is_read_since_this_reader_alone_reads_urdf(tmp_path):
+    text = '<?xml version="1.0"?>\n<!DOCTYPE robot [<!ENTITY base "a">]>\n<robot name="r">\n<link name="&base;"/><link name="b"/>\n' + J + '\n</robot>'
+    assert read_robot(write(tmp_path, text)).mechanism.ground == "a"
+
+
+@pytest.mark.parametrize("option", ["ground", "end_effector"])
+def test_an_empty_body_name_is_refused(option):
+    with pytest.raises(RequestError, match=rf"^{option}: an empty body name; expected the name of a body"):
+        read_robot(HAND / "four_bar.urdf", **{option: ""})

@@ -4,18 +4,23 @@ The file and the options of robot description files (``--ground``,
 ``--end-effector``, ``--floating``, ``--ignore-unsupported``, ``--close A
 B``, ``--closures FILE``) are those every command that reads one mechanism
 file shares (:func:`mobility.cli._options.add_mechanism_file`).  The writer
-is imported only when a file is written.
+is imported only when a file is written.  ``-o`` never writes over a file
+the conversion reads: the input, a closures file, or a file an MJCF model
+includes.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
-
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..errors import MechanismFileError, one_line
-from ._options import add_mechanism_file, read_mechanism, require_new_output
+from ._options import add_mechanism_file, is_robot_description, read_mechanism, require_new_output, robot_options_from
+
+if TYPE_CHECKING:
+    from ..core.model import Mechanism
 
 __all__ = ["register", "run"]
 
@@ -37,7 +42,8 @@ def run(args: argparse.Namespace) -> int:
     from ..io.writer import mechanism_to_yaml, require_written_faithfully
 
     require_new_output(args.output, "-o", args.file, args.closures)
-    mechanism, notes = read_mechanism(args)
+    mechanism, notes, files = _read(args)
+    require_new_output(args.output, "-o", *files)  # nor a file the model includes
     description = " ".join([mechanism.description] + [f"Note: {n}." for n in notes]).strip()
     expected = None
     if args.expected:
@@ -56,3 +62,14 @@ def run(args: argparse.Namespace) -> int:
     else:
         sys.stdout.write(text)
     return 0
+
+
+def _read(args: argparse.Namespace) -> tuple[Mechanism, tuple[str, ...], tuple[str, ...]]:
+    """The mechanism of ``args.file``, the notes of its reading and every file read for it (an MJCF model's included files among them)."""
+    if not is_robot_description(args.file):
+        mechanism, notes = read_mechanism(args)
+        return mechanism, notes, (args.file,)
+    from ..io.robot_files import read_robot  # XML readers (and MuJoCo for MJCF): only for robot files
+
+    robot = read_robot(args.file, **robot_options_from(args))
+    return robot.mechanism, tuple(robot.notes), robot.files

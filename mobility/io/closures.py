@@ -96,4 +96,4 @@ def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
             body = bodies[joint.frame]
             joint = joint.transformed(Transform(np.array(body.rotation), np.array(body.origin)))
         closures.append(Closure(joint, "closing joint", positions.line(source), file))
-    return tree.with_closures(closures, notes=[f"{len(closures)} closing joint(s) from {file}"])
+    return tree.with_closures(closures, notes=[f"{len(closures)} closing joint(s) from {file}"], files=[file])

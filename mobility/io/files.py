@@ -1,4 +1,8 @@
-"""Reading document files within the size limit, whatever they are (a FIFO, ``/dev/zero``, a huge file).
+"""Reading document files within the size limit, whatever they are (a FIFO, ``/dev/zero``, a huge file, a symbolic link loop).
+
+Also how a path is named in a message: :func:`os_problem` puts an
+``OSError`` in words, :func:`printable_name` escapes the bytes of a file
+name that are not text.
 
 Examples
 --------
@@ -16,14 +20,59 @@ mobility.errors.MechanismFileError: /dev/zero: larger than the limit of 4194304 
 
 from __future__ import annotations
 
+import errno
 import os
 import stat
+import sys
 from pathlib import Path
 
 from ..errors import MechanismFileError
 from .limits import Limits, current_limits
 
-__all__ = ["read_capped", "refuse_pipe", "is_regular_file"]
+__all__ = ["read_capped", "refuse_pipe", "is_regular_file", "os_problem", "printable_name"]
+
+
+def os_problem(exc: OSError) -> str:
+    """What an ``OSError`` met on a path says, in words for a one-line message.
+
+    A symbolic link loop is named as such (the system's own words, "too many
+    levels of symbolic links", do not say what to look for).
+
+    Examples
+    --------
+    >>> import errno, os
+    >>> os_problem(OSError(errno.ELOOP, os.strerror(errno.ELOOP)))
+    'a symbolic link loop (too many levels of symbolic links)'
+    >>> os_problem(OSError(errno.ENOSPC, "No space left on device"))
+    'No space left on device'
+    """
+    if exc.errno == errno.ELOOP:
+        return "a symbolic link loop (too many levels of symbolic links)"
+    return exc.strerror or str(exc)
+
+
+def printable_name(name: str | os.PathLike[str]) -> str:
+    """``name`` as text that any output takes: the bytes of a file name that the file system's encoding cannot decode shown as ``\\xNN``.
+
+    Python keeps such bytes in a ``str`` as lone surrogates (``os.fsdecode``);
+    written out they make invalid UTF-8 (or fail to encode at all), so every
+    name that a report prints (a path found in a folder, a message quoting it)
+    goes through this first.
+
+    Examples
+    --------
+    >>> import os
+    >>> printable_name(os.fsdecode(b"bad\\xff\\xfename.yaml"))
+    'bad\\\\xff\\\\xfename.yaml'
+    >>> printable_name("caf\u00e9.yaml")
+    'café.yaml'
+    """
+    text = os.fspath(name)
+    try:
+        raw = os.fsencode(text)
+    except UnicodeEncodeError:  # a surrogate that stands for no byte (not from a file name): escape it as a code point
+        return text.encode("utf-8", "backslashreplace").decode("utf-8")
+    return raw.decode(sys.getfilesystemencoding(), "backslashreplace")
 
 
 def refuse_pipe(path: str | Path, expected: str = "a mechanism file") -> int:
@@ -80,7 +129,9 @@ def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
     except IsADirectoryError:
         raise MechanismFileError("", "is a directory, expected a mechanism file", file=name) from None
     except OSError as exc:
-        raise MechanismFileError("", f"cannot read: {exc.strerror or exc}", file=name) from None
+        if exc.errno == errno.ELOOP:
+            raise MechanismFileError("", f"is {os_problem(exc)}, expected a mechanism file", file=name) from None
+        raise MechanismFileError("", f"cannot read: {os_problem(exc)}", file=name) from None
     if len(raw) > cap:
         raise MechanismFileError("", f"larger than the limit of {cap} bytes for a document (set MOBILITY_MAX_FILE_BYTES to raise it)", file=name)
     return raw

@@ -92,15 +92,17 @@ def read_mjcf(path: str | Path) -> RobotTree:
     Raises
     ------
     MechanismFileError
-        When the file is not well-formed XML, not MJCF, fails a check of
-        :mod:`mobility.io.mjcf_scan`, or MuJoCo cannot compile it (the
-        message names the file and line MuJoCo gives, when it gives one).
+        When the file is not well-formed XML, not UTF-8, has a
+        ``<!DOCTYPE>`` (MuJoCo's parser would read it otherwise), is not MJCF,
+        fails a check of :mod:`mobility.io.mjcf_scan`, or MuJoCo cannot
+        compile it (the message names the file and line MuJoCo gives, when
+        it gives one).
     MissingExtraError
         When the ``mujoco`` package is not installed.
     """
     file = str(path)
     raw = read_capped(path)
-    doc = parse_xml(raw, file)
+    doc = parse_xml(raw, file, mujoco=True)  # as MuJoCo's parser reads it: UTF-8, no DTD
     if doc.root.tag != "mujoco":
         raise doc.fail(doc.root, clipped(doc.root.tag), "not an MJCF file; expected the root element <mujoco>")
     by_name = Path(file).suffix.lower() == ".xml"  # MuJoCo picks its reader by extension: other files are given as text
@@ -109,7 +111,7 @@ def read_mjcf(path: str | Path) -> RobotTree:
     said: list[str] = []
     with _warnings_into(mujoco, said), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")  # MuJoCo's compiler warnings become notes
-        read = (lambda: mujoco.MjSpec.from_file(file)) if by_name else (lambda: mujoco.MjSpec.from_string(raw.decode("utf-8", errors="replace")))
+        read = (lambda: mujoco.MjSpec.from_file(file)) if by_name else (lambda: mujoco.MjSpec.from_string(raw.decode("utf-8")))  # UTF-8: checked
         spec = _mujoco_call(read, file, scan)
         _without_asset_files(mujoco, spec)
         model = _mujoco_call(spec.compile, file, scan)
@@ -118,7 +120,7 @@ def read_mjcf(path: str | Path) -> RobotTree:
     said += [str(w.message) for w in caught]
     tree = _MjcfTree(mujoco, spec, model, data, file).tree()
     notes = [f"MuJoCo warns: {clipped(' '.join(text.split()), 200)}" for text in dict.fromkeys(said) if text.strip()]
-    return replace(tree, notes=tree.notes + tuple(notes))
+    return replace(tree, notes=tree.notes + tuple(notes), files=scan.files)
 
 
 @contextmanager

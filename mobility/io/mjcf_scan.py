@@ -19,10 +19,29 @@ the line of the element:
   replicates multiply), included files counted (see
   :mod:`mobility.io.limits`);
 * a geometric attribute (``pos``, ``quat``, ``axis``, ``euler``, ...) that
-  holds ``nan`` or ``inf``.
+  holds ``nan`` or ``inf``;
+* a direction that MuJoCo would silently replace (:data:`DIRECTIONS`): MuJoCo
+  normalizes ``quat``, the axis of ``axisangle``, ``zaxis``, a joint's
+  ``axis``, the direction of ``fromto`` and the quaternion of a weld's
+  ``relpose`` by the square root of the sum of their squares, summed in
+  double precision (``mjuu_normvec``).  When that sum overflows (numbers from
+  about ``1e154``) it divides by an infinite norm and uses a zero vector: no
+  rotation (a zero axis for a joint), and no error.  When the sum of a
+  quaternion's squares is below MuJoCo's ``mjEPS`` (``1e-14``: numbers below
+  about ``1e-7``, and numbers whose squares underflow, as ``1e-170``) it leaves
+  the quaternion as written, not normalized, and uses another rotation.
+  Neither is refused when what MuJoCo uses is what was written (a
+  quaternion of no rotation, an ``axisangle`` of angle 0, a ``zaxis`` or
+  ``fromto`` along z).  A direction other than a quaternion with so small a
+  sum is an error of MuJoCo's own ("axis too small").  ``xyaxes`` and ``euler`` are left to
+  MuJoCo: an ``xyaxes`` it cannot normalize is its own error, and Euler
+  angles are not normalized.
 
 Files are found as MuJoCo finds them: relative to the directory of the model
-file first, then to the directory of the file that includes them.
+file first, then to the directory of the file that includes them.  Every
+file is read as MuJoCo's own XML parser reads it (``parse_xml(...,
+mujoco=True)``): UTF-8, without a ``<!DOCTYPE>``, no tab or line break in a
+``file`` attribute, so that the names checked are the names MuJoCo opens.
 
 Examples
 --------
@@ -37,13 +56,20 @@ mobility.errors.MechanismFileError: m.xml:3: body/@pos: expected finite numbers,
 Traceback (most recent call last):
 ...
 mobility.errors.MechanismFileError: r.xml:1: joint: 9000 joints (count of <replicate> 9000) are more than the limit of 5000 (set MOBILITY_MAX_JOINTS to raise it)
+>>> doc = parse_xml('<mujoco><worldbody><body name="b" quat="1e200 1e200 0 0"/></worldbody></mujoco>', "q.xml")
+>>> scan_mjcf(doc, ".")
+Traceback (most recent call last):
+...
+mobility.errors.MechanismFileError: q.xml:1: body[b]/@quat: the sum of its squares overflows in double precision: MuJoCo would silently use no rotation instead; expected smaller numbers (only the direction counts), got '1e200 1e200 0 0'
 """
 
 from __future__ import annotations
 
 import math
 import os
+import re
 import stat
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from xml.etree.ElementTree import Element
@@ -53,7 +79,7 @@ from .files import read_capped, refuse_pipe
 from .limits import Limits, current_limits
 from .xml_source import XmlDocument, parse_xml
 
-__all__ = ["scan_mjcf", "MjcfScan", "GEOMETRY_ATTRIBUTES"]
+__all__ = ["scan_mjcf", "MjcfScan", "GEOMETRY_ATTRIBUTES", "DIRECTIONS", "MUJOCO_EPS"]
 
 GEOMETRY_ATTRIBUTES = frozenset({
     "pos", "quat", "axisangle", "euler", "xyaxes", "zaxis", "axis", "anchor", "ref", "springref",
@@ -63,14 +89,34 @@ GEOMETRY_ATTRIBUTES = frozenset({
 
 Others (``range="-inf inf"`` is common) are left to MuJoCo."""
 
+MUJOCO_EPS = 1e-14
+"""MuJoCo's ``mjEPS``: a vector whose sum of squares is below it is not normalized (``mjuu_normvec``)."""
+
+DIRECTIONS = {
+    "quat": "no rotation",
+    "axisangle": "no rotation",
+    "zaxis": "the direction +z or -z",
+    "axis": "a zero axis",
+    "fromto": "the direction +z or -z",
+    "relpose": "a zero quaternion",
+}
+"""Attributes whose direction MuJoCo normalizes, and what it silently uses when their sum of squares overflows.
+
+A ``quat`` (and the quaternion of ``relpose``) whose sum of squares is
+below :data:`MUJOCO_EPS` is refused too: MuJoCo leaves it unnormalized.
+Neither is refused when what MuJoCo uses is what was written (see
+:func:`_overflow_harmless`)."""
+
 _COUNTED = {"replicate", "flexcomp", "composite"}
+_HEX = re.compile(r"[+-]?0[xX]")
 
 
 @dataclass(frozen=True)
 class MjcfScan:
-    """What the scan found: every ``<include>`` (the including file and the line) and the counts, copies included."""
+    """What the scan found: every ``<include>`` (the including file and the line), the files read (included files, ``<model>`` files) and the counts, copies included."""
 
     includes: tuple[tuple[str, int | None], ...] = ()
+    files: tuple[str, ...] = ()
     elements: int = 0
     joints: int = 0
     copies: int = 0
@@ -104,6 +150,7 @@ class _Scanner:
     used_bytes: int
     seen: dict[str, str] = field(default_factory=dict)
     includes: list[tuple[str, int | None]] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
     counts: dict[str, int] = field(default_factory=lambda: {"elements": 0, "joints": 0, "copies": 0})
     over: dict[str, _Over] = field(default_factory=dict)
 
@@ -173,7 +220,8 @@ class _Scanner:
         if kind == "include":
             self.seen[real] = f"{doc.file}:{doc.line(element)}"
             self.includes.append((doc.file, doc.line(element)))
-        inner = parse_xml(read_capped(path, self.limits), os.path.normpath(path))
+        self.files.append(path)
+        inner = parse_xml(read_capped(path, self.limits), os.path.normpath(path), mujoco=True)
         context = _Context(inner, where.multiplier, where.factors, where.in_world and kind == "include", where.chain + (real,), where.source)
         return [(child, context) for child in inner.root]
 
@@ -248,22 +296,113 @@ def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = N
     scanner.seen[os.path.realpath(doc.file)] = "the model file itself"
     scanner.walk(doc.root, _Context(doc, chain=(os.path.realpath(doc.file),)))
     scanner.raise_first_over()
-    return MjcfScan(tuple(scanner.includes), scanner.counts["elements"], scanner.counts["joints"], scanner.counts["copies"])
+    return MjcfScan(tuple(scanner.includes), tuple(scanner.files), scanner.counts["elements"], scanner.counts["joints"], scanner.counts["copies"])
 
 
 def _check_numbers(doc: XmlDocument, element: Element) -> None:
-    """Refuse a geometric attribute holding ``nan`` or ``inf`` (``1e400`` reads as ``inf``)."""
+    """Refuse a geometric attribute holding ``nan`` or ``inf`` (``1e400`` reads as ``inf``), or a direction MuJoCo would replace (:data:`DIRECTIONS`)."""
     for attribute, value in element.attrib.items():
         if attribute not in GEOMETRY_ATTRIBUTES:
             continue
-        try:
-            numbers = [float(token) for token in value.split()]
-        except ValueError:
+        numbers = _numbers(value)
+        if numbers is None:
             continue  # not numbers: MuJoCo says what it expected
-        if not all(math.isfinite(x) for x in numbers):
+        problem = "expected finite numbers" if not all(math.isfinite(x) for x in numbers) else _direction_problem(attribute, numbers)
+        if problem is not None:
             name = element.get("name")
             key = f"{clipped(element.tag)}[{clipped(name)}]/@{attribute}" if name else f"{clipped(element.tag)}/@{attribute}"
-            raise doc.fail(element, key, f"expected finite numbers, got {clipped(value)!r}")
+            raise doc.fail(element, key, f"{problem}, got {clipped(value)!r}")
+
+
+def _numbers(value: str) -> list[float] | None:
+    """The numbers of an attribute as MuJoCo reads them (decimal or hexadecimal; too large is ``inf``), ``None`` if it is not numbers.
+
+    Examples
+    --------
+    >>> _numbers("1 0x1p3 -2e500"), _numbers("a b")
+    ([1.0, 8.0, -inf], None)
+    """
+    out = []
+    for token in value.split():
+        try:
+            out.append(float(token))
+            continue
+        except ValueError:
+            if not _HEX.match(token):
+                return None
+        try:
+            out.append(float.fromhex(token))
+        except OverflowError:
+            out.append(-math.inf if token.startswith("-") else math.inf)
+        except ValueError:
+            return None
+    return out
+
+
+def _direction_problem(attribute: str, numbers: list[float]) -> str | None:
+    """What MuJoCo would silently use instead of the direction in ``numbers``, or ``None`` when it uses what was written (or refuses it itself).
+
+    Examples
+    --------
+    >>> _direction_problem("quat", [1e153, 1e153, 0, 0]) is None
+    True
+    >>> _direction_problem("axis", [1e154, 1e154, 0])
+    'the sum of its squares overflows in double precision: MuJoCo would silently use a zero axis instead; expected smaller numbers (only the direction counts)'
+    >>> _direction_problem("quat", [1e-8, 1e-8, 0, 0])
+    "the sum of its squares, 2e-16, is below MuJoCo's 1e-14: MuJoCo would leave it unnormalized and silently use another rotation; expected larger numbers (only the direction counts)"
+    >>> _direction_problem("quat", [1e200, 0, 0, 0]) is None  # MuJoCo's zero quaternion is no rotation, as written
+    True
+    """
+    sizes = {"quat": 4, "axisangle": 4, "zaxis": 3, "axis": 3, "fromto": 6, "relpose": 7}
+    if attribute not in DIRECTIONS or len(numbers) != sizes[attribute]:
+        return None  # MuJoCo says how many numbers it expected
+    quaternion = attribute in ("quat", "relpose")
+    vector = {"axisangle": numbers[:3], "relpose": numbers[3:],
+              "fromto": [a - b for a, b in zip(numbers[:3], numbers[3:])]}.get(attribute, numbers)  # fromto: from - to, as MuJoCo
+    squares = 0.0
+    for x in vector:  # summed in MuJoCo's order, so that it overflows or underflows where MuJoCo's does
+        squares += x * x
+    if squares == math.inf and not _overflow_harmless(attribute, numbers, vector):
+        return (f"the sum of its squares overflows in double precision: MuJoCo would silently use {DIRECTIONS[attribute]} instead; "
+                "expected smaller numbers (only the direction counts)")
+    if quaternion and squares < MUJOCO_EPS and any(vector) and not _no_rotation(vector):  # all zero: MuJoCo's own error, or (relpose) the pose at qpos0
+        size = f"{squares:.3g}" if squares else "0 (the squares underflow)"
+        return (f"the sum of its squares, {size}, is below MuJoCo's {MUJOCO_EPS:g}: MuJoCo would leave it unnormalized and "
+                "silently use another rotation; expected larger numbers (only the direction counts)")
+    return None
+
+
+def _overflow_harmless(attribute: str, numbers: list[float], vector: list[float]) -> bool:
+    """Whether what MuJoCo uses for a direction whose sum of squares overflows is what was written.
+
+    Dividing by the infinite norm leaves zeros (signed as the numbers were):
+    a zero quaternion is no rotation; an ``axisangle`` then turns by nothing;
+    a zero ``zaxis`` (or ``fromto`` direction) becomes +z, or -z when its
+    last zero is negative.  A zero joint axis and a weld's zero quaternion
+    are never what was written.
+    """
+    if attribute == "quat":
+        return _no_rotation(vector)
+    if attribute == "axisangle":
+        return numbers[3] == 0.0
+    if attribute in ("zaxis", "fromto") and all(math.isfinite(x) for x in vector):
+        used = (0.0, 0.0, math.copysign(1.0, vector[2]))
+        return math.dist(_unit(vector), used) <= sys.float_info.epsilon
+    return False
+
+
+def _no_rotation(quaternion: list[float]) -> bool:
+    """Whether a (finite, non-zero) quaternion is no rotation to double precision, whatever its size."""
+    unit = _unit(quaternion)
+    return math.hypot(*unit[1:]) <= sys.float_info.epsilon
+
+
+def _unit(vector: list[float]) -> list[float]:
+    """A finite, non-zero vector made of length 1, without overflow or underflow (scaled by its largest number first)."""
+    largest = max(abs(x) for x in vector)
+    scaled = [x / largest for x in vector]
+    length = math.hypot(*scaled)
+    return [x / length for x in scaled]
 
 
 def _counts(text: str) -> list[int]:

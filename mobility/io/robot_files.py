@@ -97,21 +97,24 @@ def read_robot(path: str | Path, options: RobotOptions | None = None, **option_v
     MissingExtraError
         For an MJCF file when the ``mujoco`` package is not installed.
     RequestError
-        For an unknown option.
+        For an unknown option, or an empty body name for ``ground`` or
+        ``end_effector``.
     """
     options = _options(options, option_values)
     fmt = robot_format(path)
+    if fmt is None:  # no known extension, and a first element not found early (an encoding read only in full)
+        doc = read_xml(path)  # a file that cannot be read, or malformed XML, says so here
+        fmt = _ROOTS.get(doc.root.tag)
+        if fmt is None:
+            raise doc.fail(doc.root, doc.root.tag, "not a robot description; expected MJCF (<mujoco>) or URDF (<robot>), or a mechanism file (.yaml)")
     if fmt == "mjcf":
         from .mjcf import read_mjcf  # imports mujoco only when asked
 
         tree = read_mjcf(path)
-    elif fmt == "urdf":
+    else:
         from .urdf import read_urdf
 
         tree = read_urdf(path)
-    else:
-        doc = read_xml(path)  # a file that cannot be read, or malformed XML, says so here
-        raise doc.fail(doc.root, doc.root.tag, "not a robot description; expected MJCF (<mujoco>) or URDF (<robot>), or a mechanism file (.yaml)")
     if options.close:
         tree = with_close_pairs(tree, options.close)
     if options.closures:
@@ -135,4 +138,8 @@ def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptio
     values = dict(values)
     if "close" in values:
         values["close"] = tuple(tuple(pair) for pair in values["close"] or ())
-    return replace(options or RobotOptions(), **values)
+    out = replace(options or RobotOptions(), **values)
+    for key in ("ground", "end_effector"):
+        if getattr(out, key) == "":  # not the same as leaving it out (the default body)
+            raise RequestError(f"{key}: an empty body name; expected the name of a body (or leave the option out for the default)")
+    return out

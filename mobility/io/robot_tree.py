@@ -169,6 +169,9 @@ class RobotTree:
     pose : str
         The configuration the geometry is taken at (for the description).
     length_unit : str
+    files : tuple of str
+        The other files read for it: the files an MJCF model includes (and
+        its ``<model>`` files), a closures file.
     """
 
     name: str
@@ -182,6 +185,7 @@ class RobotTree:
     notes: tuple[str, ...] = ()
     pose: str = "all joint positions zero"
     length_unit: str = "m"
+    files: tuple[str, ...] = ()
 
     def body(self, name: str, key: str) -> Body:
         """The body called ``name``; an error naming ``key`` and the close matches otherwise."""
@@ -194,9 +198,10 @@ class RobotTree:
         shown = ", ".join(clipped(n) for n in names[:12]) + (f", ... ({len(names)} bodies)" if len(names) > 12 else "")
         raise MechanismFileError(key, f"no body named {clipped(name)!r}{hint}; expected one of: {shown}", file=self.file)
 
-    def with_closures(self, closures: Iterable[Closure], welds: Iterable[Weld] = (), notes: Iterable[str] = ()) -> "RobotTree":
-        """The same tree with more closing joints, welds and notes."""
-        return replace(self, closures=self.closures + tuple(closures), welds=self.welds + tuple(welds), notes=self.notes + tuple(notes))
+    def with_closures(self, closures: Iterable[Closure], welds: Iterable[Weld] = (), notes: Iterable[str] = (), files: Iterable[str] = ()) -> "RobotTree":
+        """The same tree with more closing joints, welds and notes (and the files they were read from)."""
+        return replace(self, closures=self.closures + tuple(closures), welds=self.welds + tuple(welds), notes=self.notes + tuple(notes),
+                       files=self.files + tuple(files))
 
 
 @dataclass(frozen=True)
@@ -230,11 +235,17 @@ class RobotOptions:
 
 @dataclass(frozen=True)
 class ImportedRobot:
-    """A mechanism read from a robot description, with the notes of its reading."""
+    """A mechanism read from a robot description, with the notes of its reading.
+
+    ``files`` are every file read for it: the description first, then the
+    files it includes and a closures file (``mobility convert`` writes over
+    none of them).
+    """
 
     mechanism: Mechanism
     notes: tuple[str, ...] = ()
     format: str = ""
+    files: tuple[str, ...] = ()
 
 
 @dataclass
@@ -282,8 +293,8 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
             raise MechanismFileError(item.key, f"{item.message}; {IGNORE_HINT}", file=tree.file, line=item.line)
         notes.append(f"left out {item.key}{_at(item.line)}: {item.message}")
 
-    ground_body = tree.body(options.ground, "ground").name if options.ground else tree.bodies[0].name
-    ee_body = tree.body(options.end_effector, "end_effector").name if options.end_effector else None
+    ground_body = tree.body(options.ground, "ground").name if options.ground is not None else tree.bodies[0].name
+    ee_body = tree.body(options.end_effector, "end_effector").name if options.end_effector is not None else None
     kept = _free_joints_kept(tree, options, notes)
     groups = _rigid_groups(tree, kept, notes)
     names = _group_names(tree, groups, [n for n in (ground_body, ee_body) if n])
@@ -333,7 +344,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
         end_effector = link(ee_body)
         if end_effector == ground:
             raise MechanismFileError("end_effector", f"body {clipped(ee_body)!r} is rigidly attached to the ground {clipped(ground)!r} (no joint between them); expected a body that can move", file=tree.file)
-    for role, body in (("ground", ground_body if options.ground else None), ("end effector", ee_body)):
+    for role, body in (("ground", ground_body if options.ground is not None else None), ("end effector", ee_body)):
         members = [b.name for b in tree.bodies if body and b.name != body and groups.find(b.name) == groups.find(body)]
         if members:
             notes.append(f"{role} {clipped(body)} is one rigid link with {', '.join(clipped(n) for n in members[:6])}{' ...' if len(members) > 6 else ''}")
@@ -346,7 +357,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
                               description=description, length_unit=tree.length_unit, source=tree.file)
     except MechanismError as exc:
         raise MechanismFileError(exc.key, exc.message, file=tree.file) from None
-    return ImportedRobot(mechanism, tuple(notes), tree.format)
+    return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files)
 
 
 def _at(line: int | None) -> str:

@@ -16,6 +16,13 @@ child frame is the parent frame composed with the origin.
 * a URDF cannot express a closed loop: close loops with ``--close A B`` or a
   side file (:mod:`mobility.io.closures`).
 
+Numbers are read in double precision: an ``<axis>`` is normalized by
+``math.hypot`` (no overflow or underflow), and one whose numbers are all
+subnormal (below 2.2e-308, kept with fewer digits than a double) is
+refused.  The file is the only one read, by this module alone: a document
+type declaration's entities are expanded (external ones never fetched), and
+nothing else reads the file otherwise.
+
 The file is parsed with the standard library's XML parser: URDF kinematics
 is a handful of elements and attributes, so no extra package is needed (a
 URDF library would bring meshes and their dependencies), and every error
@@ -43,6 +50,7 @@ Examples
 from __future__ import annotations
 
 import math
+import sys
 import xml.etree.ElementTree as ET
 from collections import deque
 from pathlib import Path
@@ -173,6 +181,9 @@ class _UrdfReader:
         axis = self.numbers(el.find("axis"), "xyz", f"{key}/axis/@xyz", (1.0, 0.0, 0.0))
         if URDF_JOINT_KINDS[jtype] not in (None, "free") and math.hypot(*axis) == 0.0:
             raise self.fail(el.find("axis"), f"{key}/axis/@xyz", "expected a non-zero direction, got 0 0 0")
+        if 0.0 < max(abs(a) for a in axis) < sys.float_info.min:  # subnormal: read with fewer digits than a double holds
+            raise self.fail(el.find("axis"), f"{key}/axis/@xyz", f"numbers below {sys.float_info.min:.3g}, the smallest normal double, do not keep "
+                            f"their direction in double precision; expected larger numbers (only the direction counts), got {clipped(el.find('axis').get('xyz', ''))!r}")
         mimic = el.find("mimic")
         if mimic is not None and not mimic.get("joint"):
             raise self.fail(mimic, f"{key}/mimic", "missing attribute joint; expected <mimic joint=\"...\">")

@@ -7,6 +7,15 @@ element starts, so that a later error about ``<joint name="knee">`` can name
 its line.  Malformed XML is a :class:`~mobility.errors.MechanismFileError`
 naming the line and column.
 
+MuJoCo reads MJCF with its own XML parser (tinyxml2), which reads UTF-8
+only, skips a document type declaration and reads an entity reference
+(``&name;``) as written, and keeps a tab or a line break in an attribute
+value where XML makes it a space.  ``parse_xml(..., mujoco=True)`` refuses
+what the two parsers would read differently, so that what
+:mod:`mobility.io.mjcf_scan` checks is what MuJoCo opens: a file that is not
+UTF-8, a ``<!DOCTYPE>``, and a ``file`` attribute holding a tab or a line
+break.
+
 Examples
 --------
 >>> doc = parse_xml('<robot name="r">\\n  <link name="base"/>\\n</robot>\\n', "r.urdf")
@@ -20,6 +29,7 @@ mobility.errors.MechanismFileError: r.urdf:3: malformed XML: mismatched tag (col
 
 from __future__ import annotations
 
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -35,6 +45,11 @@ __all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag"]
 
 _CHUNK = 1 << 16
 _BOM = b"\xef\xbb\xbf"
+_UTF16_BOMS = ((b"\xff\xfe", "utf-16-le"), (b"\xfe\xff", "utf-16-be"))
+_OTHER_BOMS = ((b"\xff\xfe\x00\x00", "UTF-32"), (b"\x00\x00\xfe\xff", "UTF-32"), (b"\xff\xfe", "UTF-16"), (b"\xfe\xff", "UTF-16"))
+_TAG = re.compile(rb"<[^\s/>]+")
+_ATTRIBUTE = re.compile(rb"\s+([^\s=/>]+)\s*=\s*(\"[^\"]*\"|'[^']*')")
+_XML_SPACE = re.compile(rb"[\t\r\n]")
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,7 +78,7 @@ class XmlDocument:
         return MechanismFileError(clipped(key, 120), message, file=self.file, line=self.line(element))
 
 
-def parse_xml(text: str | bytes, file: str = "<string>") -> XmlDocument:
+def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False) -> XmlDocument:
     """Parse XML text, keeping the line of each element.
 
     Parameters
@@ -71,27 +86,56 @@ def parse_xml(text: str | bytes, file: str = "<string>") -> XmlDocument:
     text : str or bytes
     file : str
         Name used in error messages.
+    mujoco : bool
+        Read the text as MuJoCo's XML parser reads it, refusing what it would
+        read differently (see the module docstring): text that is not UTF-8,
+        a document type declaration, a ``file`` attribute holding a tab or a
+        line break.  The encoding an XML declaration names is then ignored,
+        as MuJoCo ignores it.
 
     Raises
     ------
     MechanismFileError
-        When the text is not well-formed XML (the message names line and column).
+        When the text is not well-formed XML (the message names line and
+        column), or, with ``mujoco``, when MuJoCo would read it differently.
+
+    Examples
+    --------
+    >>> parse_xml('<!DOCTYPE m [<!ENTITY f "a.xml">]>\\n<mujoco><include file="&f;"/></mujoco>', "m.xml", mujoco=True)
+    Traceback (most recent call last):
+    ...
+    mobility.errors.MechanismFileError: m.xml:1: <!DOCTYPE>: a document type declaration, which MuJoCo skips (it reads '&name;' as written, not the entity); expected MJCF without <!DOCTYPE>
     """
     builder = ET.TreeBuilder()
     lines: dict[ET.Element, int] = {}
     parser = expat.ParserCreate()
     parser.buffer_text = True
+    source = b""
+    if mujoco:
+        text, source = _as_utf8(text, file)
 
     def start(tag: str, attrs: dict[str, str]) -> None:
         for key, value in attrs.items():
             problem = control_character_problem(value, "an attribute")
             if problem is not None:  # a character reference (&#x9b;) can make what a terminal obeys
                 raise MechanismFileError(f"{clipped(tag)}.{clipped(key)}", problem, file=file, line=parser.CurrentLineNumber)
+        if mujoco and "file" in attrs:
+            raw = _raw_value(source, parser.CurrentByteIndex, b"file")
+            if raw is not None and _XML_SPACE.search(raw):
+                raise MechanismFileError(f"{clipped(tag)}/@file", f"{clipped(raw.decode('utf-8', 'replace'))!r}: a tab or a line break, which MuJoCo keeps in the name "
+                                         "it opens while XML reads a space; expected a file name without tabs or line breaks",
+                                         file=file, line=parser.CurrentLineNumber)
         lines[builder.start(tag, attrs)] = parser.CurrentLineNumber
+
+    def doctype(*_: Any) -> None:
+        raise MechanismFileError("<!DOCTYPE>", "a document type declaration, which MuJoCo skips (it reads '&name;' as written, not the entity); "
+                                 "expected MJCF without <!DOCTYPE>", file=file, line=parser.CurrentLineNumber)
 
     parser.StartElementHandler = start
     parser.EndElementHandler = builder.end
     parser.CharacterDataHandler = builder.data
+    if mujoco:
+        parser.StartDoctypeDeclHandler = doctype
     try:
         parser.Parse(text, True)
     except MechanismFileError:
@@ -102,6 +146,47 @@ def parse_xml(text: str | bytes, file: str = "<string>") -> XmlDocument:
     except (LookupError, ValueError) as exc:  # an encoding the XML declaration names and Python does not know
         raise MechanismFileError("", f"unreadable XML ({exc}); expected UTF-8 or another known encoding", file=file, line=1) from None
     return XmlDocument(builder.close(), file, lines)
+
+
+def _as_utf8(text: str | bytes, file: str) -> tuple[str, bytes]:
+    """The text as MuJoCo reads it (UTF-8, whatever the XML declaration says) and its bytes; text that is not UTF-8 refused.
+
+    Examples
+    --------
+    >>> _as_utf8("<m/>".encode("utf-16"), "m.xml")
+    Traceback (most recent call last):
+    ...
+    mobility.errors.MechanismFileError: m.xml:1: not UTF-8 text (it starts with a UTF-16 byte order mark); expected a UTF-8 file, the only encoding MuJoCo reads
+    """
+    if isinstance(text, str):
+        return text, text.encode("utf-8", "surrogatepass")
+    for bom, name in _OTHER_BOMS:
+        if text.startswith(bom):
+            raise MechanismFileError("", f"not UTF-8 text (it starts with a {name} byte order mark); expected a UTF-8 file, the only encoding MuJoCo reads",
+                                     file=file, line=1)
+    try:
+        return text.decode("utf-8"), text
+    except UnicodeDecodeError as exc:
+        line = text.count(b"\n", 0, exc.start) + 1
+        raise MechanismFileError("", f"not UTF-8 text (byte 0x{text[exc.start]:02x} is not valid UTF-8 there); "
+                                 "expected a UTF-8 file, the only encoding MuJoCo reads", file=file, line=line) from None
+
+
+def _raw_value(source: bytes, start: int, name: bytes) -> bytes | None:
+    """The value of attribute ``name`` as written in the start tag at byte ``start`` of ``source`` (``None`` if not found).
+
+    Examples
+    --------
+    >>> _raw_value(b'<include  file="a\\tb.xml"/>', 0, b"file")
+    b'a\\tb.xml'
+    """
+    found = _TAG.match(source, start)
+    at = found.end() if found else len(source)
+    while (attribute := _ATTRIBUTE.match(source, at)) is not None:
+        if attribute.group(1) == name:
+            return attribute.group(2)[1:-1]
+        at = attribute.end()
+    return None
 
 
 def read_xml(path: str | Path) -> XmlDocument:
@@ -163,9 +248,24 @@ def _feed_until_found(handle: BinaryIO, parser: Any, found: list[str], cap: int)
     size = 0
     while not found and size <= cap:
         chunk = handle.read(min(_CHUNK, cap + 1 - size))
-        if size == 0 and not chunk.removeprefix(_BOM).lstrip().startswith(b"<"):
+        if size == 0 and not _starts_like_xml(chunk):
             return  # not XML
         if not chunk:
             return
         size += len(chunk)
         parser.Parse(chunk, False)
+
+
+def _starts_like_xml(chunk: bytes) -> bool:
+    """Whether the first bytes of a file start with ``<`` after a byte order mark (UTF-8 or UTF-16) and white space.
+
+    Examples
+    --------
+    >>> _starts_like_xml("<mujoco/>".encode("utf-16")), _starts_like_xml(b"name: m")
+    (True, False)
+    """
+    for bom, codec in _UTF16_BOMS:
+        if chunk.startswith(bom):
+            head = chunk[len(bom):len(bom) + 512]
+            return head[: len(head) // 2 * 2].decode(codec, "replace").lstrip().startswith("<")
+    return chunk.removeprefix(_BOM).lstrip().startswith(b"<")
