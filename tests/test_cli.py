@@ -1,6 +1,8 @@
 """The command line: reports, JSON, exit statuses, one-line errors."""
 
+import errno
 import inspect
+import io
 import json
 import re
 import subprocess
@@ -267,3 +269,61 @@ def test_plot_and_synthesize_refuse_a_bad_request_in_the_one_line_form(args, mes
     status = main([a.replace("{tmp}", str(tmp_path)) for a in args])
     out, err = capsys.readouterr()
     assert (status, out, err) == (2, "", message.replace("{tmp}", str(tmp_path)) + "\n")
+
+
+# ---------------------------------------------------------------------------
+# standard output that cannot be written, or whose reader has gone
+
+
+MOBILITY = [sys.executable, "-m", "mobility"]
+BAR = str(ROOT / "mechanisms" / "four_bar.yaml")
+STDOUT_COMMANDS = {
+    "analyze": ["analyze", BAR],  # a few lines: they fail only when flushed at the end
+    "sweep": ["sweep", BAR, "--vary", "A=0:10:3000", "--format", "csv", "--no-progress"],  # 3000 rows: they fail while written
+    "convert": ["convert", str(HAND / "four_bar.xml"), "--end-effector", "coupler"],
+    "check": ["check", BAR],
+    "view": ["view", BAR, "-o", "{tmp}/v.html"],
+    "help": ["--help"],
+}
+
+
+@pytest.mark.parametrize("command", STDOUT_COMMANDS.values(), ids=STDOUT_COMMANDS.keys())
+def test_a_full_standard_output_is_one_line_and_exit_2(command, tmp_path):
+    with open("/dev/full", "w") as full:
+        done = subprocess.run(MOBILITY + [a.replace("{tmp}", str(tmp_path)) for a in command], stdout=full, stderr=subprocess.PIPE, text=True)
+    # was exit 3 "internal error (OSError ...)"; the flush at interpreter exit must not add a second message (exit 120)
+    assert (done.returncode, done.stderr) == (2, "mobility: standard output: cannot write it (No space left on device)\n")
+
+
+@pytest.mark.parametrize("command", [STDOUT_COMMANDS["analyze"], STDOUT_COMMANDS["sweep"], STDOUT_COMMANDS["help"]], ids=["analyze", "sweep", "help"])
+def test_a_reader_that_has_gone_ends_the_command_quietly(command):
+    child = subprocess.Popen(MOBILITY + command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    child.stdout.close()  # `| head -0`: nobody reads, every write meets a broken pipe
+    err = child.stderr.read()
+    assert (child.wait(), err) == (0, "")
+
+
+def test_a_closed_standard_output_is_one_line_and_exit_2():
+    done = subprocess.run(["sh", "-c", 'exec "$@" >&-', "sh", *MOBILITY, "analyze", BAR], capture_output=True, text=True)
+    assert (done.returncode, done.stderr) == (2, "mobility: standard output: cannot write it (it is closed)\n")  # was 3 (or a silent 0)
+
+
+def test_a_failed_write_in_process_is_bad_input_not_an_internal_error(monkeypatch, capsys):
+    class Full(io.StringIO):
+        def write(self, text):
+            raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(sys, "stdout", Full())
+    assert main(["analyze", BAR]) == 2
+    assert capsys.readouterr().err == "mobility: standard output: cannot write it (No space left on device)\n"
+
+
+# ---------------------------------------------------------------------------
+# robot options given an empty name
+
+
+@pytest.mark.parametrize("option, what", [("--ground", "a body name"), ("--end-effector", "a body name"), ("--closures", "a file name")])
+@pytest.mark.parametrize("command", ["analyze", "convert"])
+def test_an_empty_robot_option_is_refused_not_read_as_left_out(command, option, what, capsys):
+    status, out, err = run(capsys, command, HAND / "3rps.xml", f"{option}=")  # was the default body (file), silently
+    assert (status, out, err) == (2, "", f"mobility: {option}: expected {what}, got an empty one\n")

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 import shutil
 from pathlib import Path
@@ -84,10 +83,12 @@ def test_check_reports_a_pipe_in_a_folder_and_prints_paths_as_text(tmp_path, cap
     assert "pipe.yaml: is a pipe or socket, expected a mechanism file" in out and "1 passed, 0 failed, 0 without expected block, 1 error" in out
 
 
-def test_a_pose_coordinate_far_beyond_reach_is_not_assembled_quickly(capsys):
-    assert main(["sweep", "--vary", "x=1e12:1e12:1", "--json", "--no-progress", FOUR_BAR]) == 0
-    answer = json.loads(capsys.readouterr().out)
-    assert (answer["poses"], answer["assembled"], answer["columns"]["assembled"]) == (1, 0, [False])
+def test_a_pose_coordinate_far_beyond_reach_is_refused_in_one_line(capsys):
+    # once reported as one unassembled pose; since the sweeps' reach limit (SWEEP_REACH) it is refused before any work
+    assert main(["sweep", "--vary", "x=1e12:1e12:1", "--json", "--no-progress", FOUR_BAR]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1
+    assert err.startswith("mobility: --vary x=1e+12:1e+12:1: 1e+12 is beyond what a sweep reaches from the file's pose")
 
 
 def test_an_xml_file_in_an_unknown_encoding_is_one_line(tmp_path, capsys):
@@ -95,3 +96,30 @@ def test_an_xml_file_in_an_unknown_encoding_is_one_line(tmp_path, capsys):
     path.write_text('<?xml version="1.0" encoding="klingon"?>\n<robot name="r"><link name="a"/></robot>\n')
     assert main(["analyze", str(path)]) == 2
     assert capsys.readouterr().err == f"mobility: {path}:1: unreadable XML (unknown encoding: klingon); expected UTF-8 or another known encoding\n"
+
+
+def _symlink_loop(folder: Path, name: str) -> Path:
+    """``folder/name`` -> ``folder/other`` -> ``folder/name``: looking it up never ends (ELOOP)."""
+    path, other = folder / name, folder / ("other-" + name)
+    path.symlink_to(other.name)
+    other.symlink_to(path.name)
+    return path
+
+
+@pytest.mark.parametrize("command, suffix", [(["sweep", "--vary", "A=0:10:3", "-o"], ".csv"), (["sweep", "--vary", "A=0:10:3", "--plot"], ".png"),
+                                             (["view", "-o"], ".html"), (["plot", "-o"], ".png"), (["convert", "-o"], ".yaml")])
+def test_an_output_that_is_a_symlink_loop_is_refused_before_any_work(command, suffix, tmp_path, capsys):
+    loop = _symlink_loop(tmp_path, "out" + suffix)
+    assert main(command[:1] + [FOUR_BAR] + command[1:] + [str(loop)]) == 2  # was 3: Path.resolve raised RuntimeError
+    out, err = capsys.readouterr()
+    option = command[-1]
+    assert out == "" and err == f"mobility: {option} {loop}: cannot write there: a symbolic link loop (too many levels of symbolic links)\n"
+
+
+@pytest.mark.parametrize("command", [["view", "-o", "{tmp}/v.html"], ["convert"], ["plot", "-o", "{tmp}/p.png"], ["analyze"],
+                                     ["sweep", "--vary", "A=0:10:3"]])
+def test_an_input_that_is_a_symlink_loop_is_named_as_one(command, tmp_path, capsys):
+    loop = _symlink_loop(tmp_path, "in.yaml")
+    assert main(command[:1] + [str(loop)] + [a.replace("{tmp}", str(tmp_path)) for a in command[1:]]) == 2
+    assert capsys.readouterr().err == f"mobility: {loop}: is a symbolic link loop (too many levels of symbolic links), expected a mechanism file\n"
+    assert not any(p.name in ("v.html", "p.png") for p in tmp_path.iterdir())

@@ -286,6 +286,23 @@ def test_cli_bad_input_is_one_line_and_exit_2(args, message, tmp_path, monkeypat
     assert err.count("\n") == 1 and message in err and "Traceback" not in err
 
 
+def test_cli_bounds_a_sweep_by_max_poses_as_sweep_does(tmp_path, capsys):
+    from mobility.cli import build_parser
+    from mobility.sweeps import DEFAULT_MAX_POSES
+
+    out = tmp_path / "v.html"
+    base = ["view", str(MECHANISMS / "four_bar.yaml"), "-o", str(out), "--vary", "A=0:10:100"]
+    assert main(base + ["--max-poses", "50"]) == 2  # was: no such option, every grid drawn at any size
+    err = capsys.readouterr().err
+    assert err == "mobility: --vary A=0:10:100: 100 values, more than --max-poses 50; raise --max-poses or use fewer points\n"
+    assert not out.exists()
+    assert main(base + ["--max-poses", "0"]) == 2
+    assert capsys.readouterr().err == "mobility: --max-poses must be at least 1, got 0\n"
+    assert main(base + ["--max-poses", "100"]) == 0 and out.exists()
+    defaults = [build_parser([c]).parse_args([c, "f.yaml", "-o", "v.html", "--vary", "A=0:1:2"]).max_poses for c in ("view", "sweep")]
+    assert defaults == [DEFAULT_MAX_POSES, DEFAULT_MAX_POSES]
+
+
 @pytest.mark.parametrize("name", ["v.htm", "v.HTML", "v.Htm"])
 def test_cli_takes_the_page_names_its_message_names(name, tmp_path, capsys):
     out = tmp_path / name

@@ -7,7 +7,10 @@ an ``ORDER`` number placing it in ``mobility --help``.  The command line only
 parses arguments and formats results.
 
 Exit status: 0 success, 1 a check failed, 2 bad input (one line naming file,
-line and key on stderr, never a traceback), 3 an internal error.
+line and key on stderr, never a traceback), 3 an internal error.  Standard
+output that cannot be written (a full disk) is bad input too: one line saying
+why, exit status 2; a reader that has gone away (``mobility ... | head``)
+ends the command quietly, with exit status 0.
 
 A subcommand module is named after its command (``analyze.py`` registers
 ``analyze``), so :func:`main` imports only the module of the command asked
@@ -19,13 +22,16 @@ that is not one, builds the whole parser.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
+import os
 import pkgutil
 import sys
 import traceback
-from typing import Sequence
+from typing import Any, Sequence
 
-from ..errors import MobilityError, one_line
+from ..errors import MobilityError, RequestError, one_line
+from ..io.files import os_problem
 
 __all__ = ["main", "build_parser", "command_modules", "command_names"]
 
@@ -70,24 +76,96 @@ def _command_asked(argv: Sequence[str]) -> list[str] | None:
     return None
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status."""
-    argv = list(sys.argv[1:] if argv is None else argv)
-    parser = build_parser(_command_asked(argv))
-    args = parser.parse_args(argv)
+class _GuardedOutput:
+    """Standard output for the length of a command: a write or flush that fails is bad input, not an internal error.
+
+    An ``OSError`` (a full disk: ``ENOSPC``) becomes a :class:`RequestError`
+    saying that the output could not be written and why; a
+    ``BrokenPipeError`` (the reader has gone away) is left as it is, for
+    :func:`main` to end quietly.  Either way :attr:`failed` is set.  Every
+    other attribute is the stream's own.  ``stream`` is ``None`` when the
+    process was started with standard output closed: a write is refused.
+    """
+
+    def __init__(self, stream: Any) -> None:
+        self.stream = stream
+        self.failed = False
+
+    def _guarded(self, action: Any, *args: Any) -> Any:
+        try:
+            return action(*args)
+        except OSError as exc:
+            self.failed = True
+            if isinstance(exc, BrokenPipeError):
+                raise
+            raise RequestError(f"standard output: cannot write it ({os_problem(exc)})") from None
+
+    def write(self, text: str) -> int:
+        if self.stream is None:  # started with standard output closed (`>&-`): Python has none
+            self.failed = True
+            raise RequestError("standard output: cannot write it (it is closed)")
+        return self._guarded(self.stream.write, text)
+
+    def flush(self) -> None:
+        if self.stream is not None:
+            self._guarded(self.stream.flush)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.stream, name)
+
+
+def _discard_stdout() -> None:
+    """Point the process's standard output at ``os.devnull`` after a write to it failed.
+
+    What is left in its buffer would otherwise fail again when the
+    interpreter flushes it at exit (a second message, exit status 120); the
+    documentation of :mod:`signal` advises the same for ``SIGPIPE``.  A stream
+    put in place of the process's own (a test's capture) is left alone.
+    """
+    if sys.stdout is None or sys.stdout is not sys.__stdout__:
+        return
     try:
-        return int(args.run(args) or 0)
+        fd = sys.stdout.fileno()
+    except (OSError, ValueError):  # no descriptor (io.UnsupportedOperation is both)
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, fd)
+    finally:
+        os.close(devnull)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status.
+
+    Standard output is flushed before returning, so that a failure to write
+    it is reported here (:class:`_GuardedOutput`), not at the interpreter's
+    exit.
+    """
+    argv = list(sys.argv[1:] if argv is None else argv)
+    out = _GuardedOutput(sys.stdout)
+    args = None
+    try:
+        with contextlib.redirect_stdout(out):
+            try:
+                args = build_parser(_command_asked(argv)).parse_args(argv)
+                return int(args.run(args) or 0)
+            finally:  # --help and --version too (their SystemExit passes through, unless the flush fails)
+                out.flush()
     except MobilityError as exc:
         print(f"mobility: {one_line(str(exc))}", file=sys.stderr)
         return 2
     except BrokenPipeError:
         return 0
     except Exception as exc:  # an internal error: one line unless --debug
-        if args.debug:
+        if args is not None and args.debug:
             traceback.print_exc()
         else:
             print(f"mobility: internal error ({type(exc).__name__}: {one_line(str(exc))}); rerun with --debug and please report it", file=sys.stderr)
         return 3
+    finally:
+        if out.failed:
+            _discard_stdout()
 
 
 if __name__ == "__main__":  # pragma: no cover

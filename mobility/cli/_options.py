@@ -13,6 +13,7 @@ robot readers are imported only when a robot file is read, so that
 from __future__ import annotations
 
 import argparse
+import os
 import stat
 import sys
 from pathlib import Path
@@ -21,7 +22,7 @@ from typing import Any
 from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
 from ..errors import RequestError, one_line
-from ..io.files import refuse_pipe
+from ..io.files import os_problem, refuse_pipe
 from ..io.loader import load
 
 __all__ = [
@@ -39,6 +40,8 @@ __all__ = [
     "MAX_SAMPLES",
     "require_sampler_options",
     "require_new_output",
+    "add_max_poses_option",
+    "max_poses_from",
 ]
 
 
@@ -80,6 +83,20 @@ def add_pose_sampler_options(parser: argparse.ArgumentParser, *, samples_help: s
     (samples_group or parser).add_argument("--samples", type=int, default=0, metavar="N", help=samples_help + " (default: %(default)s)")
     parser.add_argument("--step", type=float, default=DEFAULT_STEP, help="step of the pose sampler (default: %(default)g)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
+
+
+def add_max_poses_option(parser: argparse.ArgumentParser, *, what: str = "refuse a larger grid") -> None:
+    """Add ``--max-poses N``, the largest grid of a ``--vary`` sweep (default :data:`mobility.sweeps.DEFAULT_MAX_POSES`, as ``mobility sweep``)."""
+    from ..sweeps import DEFAULT_MAX_POSES  # the sweeps: imported only by the commands that vary joints
+
+    parser.add_argument("--max-poses", type=int, default=DEFAULT_MAX_POSES, metavar="N", help=what + " (default: %(default)d)")
+
+
+def max_poses_from(args: argparse.Namespace) -> int:
+    """``--max-poses``, checked: at least 1, else a :class:`RequestError` (a larger grid is refused by :func:`mobility.sweeps.sweep` itself)."""
+    if args.max_poses < 1:
+        raise RequestError(f"--max-poses must be at least 1, got {args.max_poses}")
+    return args.max_poses
 
 
 MAX_SAMPLES = 1000
@@ -134,7 +151,18 @@ def add_mechanism_file(parser: argparse.ArgumentParser, *, file_help: str = MECH
 
 
 def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
-    """The robot options given on the command line, as keywords of :func:`mobility.load` (those left at their default are omitted)."""
+    """The robot options given on the command line, as keywords of :func:`mobility.load` (those left at their default are omitted).
+
+    Raises
+    ------
+    RequestError
+        When ``--ground``, ``--end-effector`` or ``--closures`` is given an
+        empty name (which would otherwise read as the option left out).
+    """
+    for option, value, what in (("--ground", args.ground, "a body name"), ("--end-effector", args.end_effector, "a body name"),
+                                ("--closures", args.closures, "a file name")):
+        if value == "":
+            raise RequestError(f"{option}: expected {what}, got an empty one")
     values = {"ground": args.ground, "end_effector": args.end_effector, "floating": args.floating,
               "ignore_unsupported": args.ignore_unsupported, "close": tuple(tuple(p) for p in args.close), "closures": args.closures}
     return {k: v for k, v in values.items() if v not in (None, False, ())}
@@ -189,7 +217,7 @@ def names_from(text: str | None) -> list[str] | None:
 
 
 def require_new_output(output: str | None, option: str, *inputs: str | None) -> None:
-    """Refuse an output that would destroy an input or never be written: one of ``inputs`` (by any path), a directory, a pipe or a socket.
+    """Refuse an output that would destroy an input or never be written: one of ``inputs`` (by any path), a directory, a pipe, a socket, or a path that cannot be looked up (a symbolic link loop).
 
     Examples
     --------
@@ -201,12 +229,18 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
         return
     if stat.S_ISDIR(refuse_pipe(output, f"a file to write for {option} (writing to a pipe would wait for a reader)")):
         raise RequestError(f"{option} {output}: is a directory, expected a file to write")
+    try:
+        os.stat(output)
+    except FileNotFoundError:
+        pass  # a new file (or a missing folder, which writing it will name)
+    except OSError as exc:  # before any work: writing there would fail after it
+        raise RequestError(f"{option} {output}: cannot write there: {os_problem(exc)}") from None
     for given in inputs:
         if given is None:
             continue
-        try:
-            same = Path(output).resolve() == Path(given).resolve() or (Path(output).exists() and Path(output).samefile(given))
-        except OSError:
+        try:  # realpath, unlike Path.resolve, stops at a symbolic link loop instead of raising
+            same = os.path.realpath(output) == os.path.realpath(given) or (os.path.exists(output) and os.path.samefile(output, given))
+        except (OSError, ValueError):
             same = False
         if same:
             raise RequestError(f"{option} {output}: the same file as {given}, which would be overwritten")

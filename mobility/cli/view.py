@@ -1,8 +1,8 @@
 """``mobility view FILE -o FILE.html``: an interactive 3D view of the mechanism, its freedoms and constraints.
 
 ``--samples N`` adds poses reached by moving the mechanism, ``--vary
-NAME=START:STOP:COUNT`` the poses of a sweep (as ``mobility sweep``); a slider
-walks through them.
+NAME=START:STOP:COUNT`` the poses of a sweep (as ``mobility sweep``, with its
+``--max-poses`` bound on the grid); a slider walks through them.
 """
 
 from __future__ import annotations
@@ -14,7 +14,8 @@ from ..errors import RequestError, one_line
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
 from ..io.limits import require_size
-from ._options import add_mechanism_file, add_pose_sampler_options, add_tolerance_option, load_mechanism, require_new_output, sampled_poses, tolerance_from
+from ._options import (add_max_poses_option, add_mechanism_file, add_pose_sampler_options, add_tolerance_option, load_mechanism, max_poses_from,
+                       require_new_output, sampled_poses, tolerance_from)
 
 ORDER = 31
 
@@ -37,6 +38,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     poses.add_argument("--vary", action="append", default=[], metavar="NAME=START:STOP:COUNT",
                        help="show the poses of a sweep, as for `mobility sweep` (repeat for a grid), with a slider; "
                        f"at most {MAX_POSES} poses are drawn, evenly spaced, every singular one kept")
+    add_max_poses_option(p, what="with --vary: refuse a grid of more poses, as `mobility sweep` does")
     add_pose_sampler_options(p, samples_help="also show N poses reached by moving the mechanism, with a slider", samples_group=poses)
     add_tolerance_option(p)
     p.set_defaults(run=run)
@@ -47,6 +49,7 @@ def run(args: argparse.Namespace) -> int:
     if not args.output.lower().endswith(PAGE_SUFFIXES):
         raise RequestError(f"{args.output}: expected a page name ending in .html or .htm (in any case)")
     require_new_output(args.output, "-o", args.file)
+    max_poses = max_poses_from(args)
     require_plotly()  # before any work
     mechanism = load_mechanism(args)
     if args.vary or args.samples:
@@ -56,7 +59,7 @@ def run(args: argparse.Namespace) -> int:
     if args.vary:
         from ..sweeps import sweep
 
-        view = sweep_view(sweep(mechanism, args.vary, tol=tol))
+        view = sweep_view(sweep(mechanism, args.vary, tol=tol, max_poses=max_poses))
     elif args.samples:
         frames = [ViewFrame(mechanism, result, "as in the file")]
         frames += [ViewFrame(p, analyze(p, tol=tol), f"sampled pose {k + 1}") for k, p in enumerate(poses)]

@@ -25,6 +25,13 @@ Each checked file ends in one of four statuses: ``"pass"``, ``"fail"`` (a key
 disagrees), ``"missing"`` (no ``expected`` block: not a pass) and ``"error"``
 (the file cannot be read or analysed; its one-line message is kept).
 
+A YAML document of another kind (a flexure document, see
+``docs/actuation.md``) is checked by a function given in ``others``
+(:data:`OtherDocument`); ``mobility check`` gives the one for flexures.
+Paths and messages are reported as text
+(:func:`mobility.io.files.printable_name`): the bytes of a file name that
+are not UTF-8 appear as ``\\xNN``.
+
 Examples
 --------
 >>> import mobility
@@ -44,6 +51,10 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
+import errno
+import os
+import stat
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -52,9 +63,11 @@ from typing import Any, Callable, Iterable, Sequence
 import numpy as np
 
 from ..core.analysis import analyze
-from ..errors import MobilityError
+from ..errors import MechanismFileError, MobilityError
+from ..io.files import os_problem, printable_name
 from ..io.limits import require_size
 from ..io.loader import load
+from ..io.yaml_source import parse_yaml, read_text
 from ..core.model import Mechanism
 from ..core.result import Result
 from ..core.screws import same_subspace
@@ -66,6 +79,7 @@ __all__ = [
     "CheckReport",
     "COMPARATORS",
     "STATUSES",
+    "OtherDocument",
     "check_mechanism",
     "check_file",
     "check_paths",
@@ -132,6 +146,10 @@ class CheckResult:
     internal : bool
         True when the error is a defect of :mod:`mobility` rather than bad
         input (exit status 3 instead of 2).
+    kind : str
+        What the file holds: ``"mechanism"``, or the kind of another
+        document (``"flexure"``), whose analysis is not a
+        :class:`~mobility.core.result.Result` (``result`` is then ``None``).
     """
 
     path: str
@@ -141,6 +159,7 @@ class CheckResult:
     result: Result | None = None
     error: str = ""
     internal: bool = False
+    kind: str = "mechanism"
 
     @property
     def ok(self) -> bool:
@@ -169,6 +188,7 @@ class CheckResult:
         return {
             "path": self.path,
             "name": self.name,
+            "kind": self.kind,
             "status": self.status,
             "message": self.message,
             "found": None if r is None else {
@@ -341,8 +361,23 @@ def check_mechanism(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE,
     return CheckResult(path, mechanism.name, status, tuple(comparisons), subject.result)
 
 
-def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE) -> CheckResult:
+OtherDocument = Callable[[str, Any, Tolerance], "CheckResult | None"]
+"""``check(path, data, tol)``: the check of a YAML document that is not a mechanism file (``data``, the
+parsed document, says which kind it is), or ``None`` when ``data`` is not of its kind.  It may raise
+:class:`~mobility.errors.MobilityError` for a bad document (reported as the file's error)."""
+
+
+def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE, others: Sequence[OtherDocument] = ()) -> CheckResult:
     """Load, analyse and check one mechanism file; never raises on a bad file.
+
+    Parameters
+    ----------
+    path : str or Path
+    tol : Tolerance
+    others : sequence of OtherDocument
+        Checks of other kinds of YAML documents, tried in turn on a file that
+        does not read as a mechanism file (its mechanism error stands when
+        none of them takes it).
 
     Returns
     -------
@@ -355,14 +390,49 @@ def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Check
     >>> check_file("no/such/file.yaml").message
     'no/such/file.yaml: no such file'
     """
-    name = str(path)
+    name = printable_name(path)
     try:
-        mechanism = load(path)
+        try:
+            mechanism = load(path)
+        except MechanismFileError:
+            other = _other_document(str(path), others, tol)
+            if other is None:
+                raise
+            return dataclasses.replace(other, path=name, name=printable_name(other.name))
         return check_mechanism(mechanism, tol=tol, path=name)
     except MobilityError as exc:
-        return CheckResult(name, "", "error", error=str(exc))
+        return CheckResult(name, "", "error", error=printable_name(str(exc)))
     except Exception as exc:  # a defect of the package: report it, keep checking the other files
-        return CheckResult(name, "", "error", error=f"internal error ({type(exc).__name__}: {exc})", internal=True)
+        return CheckResult(name, "", "error", error=printable_name(f"internal error ({type(exc).__name__}: {exc})"), internal=True)
+
+
+def _other_document(path: str, others: Sequence[OtherDocument], tol: Tolerance) -> CheckResult | None:
+    """The check of ``path`` by the first of ``others`` that takes it (None if none does, or if it is not YAML)."""
+    if not others or Path(path).suffix.lower() not in MECHANISM_SUFFIXES:
+        return None
+    try:
+        data, _ = parse_yaml(read_text(path), path)
+    except MobilityError:
+        return None  # the mechanism reader's error says it
+    for check in others:
+        found = check(path, data, tol)
+        if found is not None:
+            return found
+    return None
+
+
+def _path_problem(raw: str | Path) -> tuple[int, str]:
+    """The file type bits of ``raw`` and, when it cannot be looked up, why (else ``""``)."""
+    try:
+        return os.stat(raw).st_mode, ""
+    except FileNotFoundError:
+        return 0, "no such file or folder"
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            return 0, f"is {os_problem(exc)}, expected a mechanism file or folder"
+        return 0, f"cannot look it up: {os_problem(exc)}"
+    except ValueError as exc:  # a NUL in a name given from Python
+        return 0, f"cannot look it up: {exc}"
 
 
 def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None, str]]:
@@ -371,28 +441,31 @@ def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None,
     Returns
     -------
     list of (shown, path, problem)
-        ``shown`` is the name to report; ``path`` is ``None`` when ``problem``
-        says why nothing can be checked there (no such path, empty folder).
-        Folders give every ``*.yaml``/``*.yml`` file inside, recursively,
-        sorted by path.
+        ``shown`` is the name to report, as text
+        (:func:`~mobility.io.files.printable_name`); ``path`` is ``None`` when
+        ``problem`` says why nothing can be checked there (no such path, a
+        symbolic link loop, an empty folder).  Folders give every
+        ``*.yaml``/``*.yml`` file inside, recursively, sorted by path.
     """
     out: list[tuple[str, Path | None, str]] = []
     for raw in paths:
         p = Path(raw)
-        if p.is_dir():
+        shown = printable_name(raw)
+        mode, problem = _path_problem(raw)
+        if problem:
+            out.append((shown, None, f"{shown}: {problem}"))
+        elif stat.S_ISDIR(mode):
             found = sorted(f for f in p.rglob("*") if f.suffix in MECHANISM_SUFFIXES and not f.is_dir())  # a pipe among them is reported on its row, not skipped
             if not found:
-                out.append((str(raw), None, f"{raw}: no *.yaml mechanism file in this folder"))
-            out.extend((str(f), f, "") for f in found)
-        elif p.exists():
-            out.append((str(raw), p, ""))
+                out.append((shown, None, f"{shown}: no *.yaml mechanism file in this folder"))
+            out.extend((printable_name(f), f, "") for f in found)
         else:
-            out.append((str(raw), None, f"{raw}: no such file or folder"))
+            out.append((shown, p, ""))
     return out
 
 
-def check_paths(paths: Sequence[str | Path], *, tol: Tolerance = DEFAULT_TOLERANCE) -> CheckReport:
-    """Check every mechanism file given or found in the folders given.
+def check_paths(paths: Sequence[str | Path], *, tol: Tolerance = DEFAULT_TOLERANCE, others: Sequence[OtherDocument] = ()) -> CheckReport:
+    """Check every mechanism file given or found in the folders given (``others``: as for :func:`check_file`).
 
     Examples
     --------
@@ -405,7 +478,7 @@ def check_paths(paths: Sequence[str | Path], *, tol: Tolerance = DEFAULT_TOLERAN
         if path is None:
             results.append(CheckResult(shown, "", "error", error=problem))
         else:
-            results.append(check_file(path, tol=tol))
+            results.append(check_file(path, tol=tol, others=others))
     return CheckReport(tuple(results))
 
 
