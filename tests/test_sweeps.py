@@ -375,6 +375,29 @@ def test_angles_many_turns_away_are_solved_near_the_file_pose_without_losing_dig
     assert both.counts() == {(1, "1R", 1): 2}
 
 
+@pytest.mark.parametrize(
+    "name, vary",
+    [("parallelogram", "O1=100:140:4001"), ("parallelogram", "O1=0:360:7201"), ("four_bar", "A=20:40:4001"), ("parallelogram_change_point", "A=-30:30:4001")],
+)
+def test_a_long_line_solved_in_two_levels_gives_the_one_level_answers(monkeypatch, name, vary):
+    """A 1-D sweep of thousands of points: every k-th point first, then the pieces between, all together (continuation._leg)."""
+    from mobility.sweeps import continuation
+
+    m = load(name)
+    calls = []
+    stride = continuation._coarse_stride
+    monkeypatch.setattr(continuation, "_coarse_stride", lambda *a: calls.append(stride(*a)) or calls[-1])
+    two = sweep(m, [vary])
+    assert max(calls) >= 8  # the two-level path was taken
+    monkeypatch.setattr(continuation, "TWO_LEVEL_LINES", 10**12)
+    one = sweep(m, [vary])
+    for column in ("assembled", "dof", "pattern", "mobility"):
+        assert np.array_equal(two.column(column), one.column(column)), column
+    assert np.allclose(two.q[two.assembled], one.q[one.assembled], atol=1e-9)
+    assert [p.values for p in two.singular] == [p.values for p in one.singular]
+    assert two.residual[two.assembled].max() <= two.tolerance.closure
+
+
 def test_only_the_angles_of_r_and_c_joints_wrap():
     from mobility.sweeps.walks import axis_walk
 

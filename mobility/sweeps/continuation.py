@@ -49,6 +49,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Callable
 
@@ -492,13 +493,18 @@ def retarget(
     moved = drive.apply(q, targets)
     changed = np.flatnonzero(np.any(moved != q, axis=1) & assembled)
     residual, assembled = residual.copy(), assembled.copy()
-    if changed.size:
+    for start in range(0, changed.size, EVALUATION_BLOCK):  # a line of a 1-D sweep may hold millions of poses
+        rows = changed[start : start + EVALUATION_BLOCK]
         with np.errstate(over="ignore", invalid="ignore"):
-            r, _ = _evaluate(bk, drive, moved[changed], targets[changed])
-            e = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(changed.size)
-        residual[changed] = np.where(np.isfinite(e), e, np.inf)
-        assembled[changed] = residual[changed] <= tol.closure
+            r, _ = _evaluate(bk, drive, moved[rows], targets[rows])
+            e = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(rows.size)
+        residual[rows] = np.where(np.isfinite(e), e, np.inf)
+        assembled[rows] = residual[rows] <= tol.closure
     return moved, residual, assembled
+
+
+EVALUATION_BLOCK = 16384
+"""Poses evaluated together by :func:`retarget` (its stacked arrays take about 1 kB per pose and joint variable)."""
 
 
 def _leg(
@@ -513,6 +519,90 @@ def _leg(
     on_step: Callable[[int], None] | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Continuation of many lines from their start through ``leg_targets`` ``(B, s, axes)``, in order.
+
+    A long leg of few lines (a 1-D sweep of a million points is one line: a
+    million Newton solves one after the other) is cut in two levels when its
+    steps are short: every ``k``-th point first (a continuation whose steps
+    are still at most :data:`COARSE_STEP`), then the ``k - 1`` points after
+    each of those, all pieces together, each from its coarse point; about
+    ``2 sqrt(s)`` batched steps instead of ``s``.  With ``halt`` (a walk's
+    second leg, which stops where it meets the first) each line is solved up
+    to its first halting point.
+    """
+    lines, count = leg_targets.shape[:2]
+    if halt is not None and lines * TWO_LEVEL_LINES <= count:
+        # a line ends for good at its first halting point: solve up to the last of those, then forget what lies past each line's own
+        ends = np.where(halt.any(axis=1), np.argmax(halt, axis=1), count)
+        reach = int(ends.max(initial=0))
+        q = np.zeros((lines, count, start_q.shape[1]))
+        err = np.full((lines, count), np.inf)
+        ok = np.zeros((lines, count), dtype=bool)
+        if reach:
+            q[:, :reach], err[:, :reach], ok[:, :reach] = _leg(bk, drive, start_q, start_ok, start_t, leg_targets[:, :reach], tol, None, on_step)
+        past = np.arange(count)[None, :] >= ends[:, None]
+        err[past], ok[past] = np.inf, False
+        if on_step and count > reach:
+            on_step(lines * (count - reach))
+        return q, err, ok
+    k = _coarse_stride(leg_targets, start_t) if halt is None and lines * TWO_LEVEL_LINES <= count else 1
+    if k < 2:
+        return _leg_steps(bk, drive, start_q, start_ok, start_t, leg_targets, tol, halt, on_step)
+    pieces = count // k
+    coarse = np.arange(1, pieces + 1) * k - 1  # the last point of each piece
+    cq, cerr, cok = _leg_steps(bk, drive, start_q, start_ok, start_t, leg_targets[:, coarse], tol, None, on_step)
+    n, axes = start_q.shape[1], leg_targets.shape[2]
+    q = np.zeros((lines, count, n))
+    err = np.full((lines, count), np.inf)
+    ok = np.zeros((lines, count), dtype=bool)
+    q[:, coarse], err[:, coarse], ok[:, coarse] = cq, cerr, cok
+    # piece j: the k - 1 points before coarse point j, from coarse point j - 1 (piece 0 from the leg's start)
+    from_q = np.concatenate([start_q[:, None], cq[:, :-1]], axis=1).reshape(lines * pieces, n)
+    from_ok = np.concatenate([start_ok[:, None], cok[:, :-1]], axis=1).reshape(lines * pieces)
+    from_t = np.concatenate([start_t[:, None], leg_targets[:, coarse[:-1]]], axis=1).reshape(lines * pieces, axes)
+    inner = (coarse[:, None] - k + 1 + np.arange(k - 1)[None, :])  # (pieces, k - 1)
+    pq, perr, pok = _leg_steps(bk, drive, from_q, from_ok, from_t, leg_targets[:, inner].reshape(lines * pieces, k - 1, axes), tol, None, on_step)
+    q[:, inner], err[:, inner], ok[:, inner] = pq.reshape(lines, pieces, k - 1, n), perr.reshape(lines, pieces, k - 1), pok.reshape(lines, pieces, k - 1)
+    tail = np.arange(pieces * k, count)
+    if tail.size:
+        tq, terr, tok = _leg_steps(bk, drive, cq[:, -1], cok[:, -1], leg_targets[:, coarse[-1]], leg_targets[:, tail], tol, None, on_step)
+        q[:, tail], err[:, tail], ok[:, tail] = tq, terr, tok
+    return q, err, ok
+
+
+COARSE_STEP = 0.01
+"""Longest step (radians, lengths over the characteristic length) of the first level of a two-level leg (:func:`_leg`):
+about half a degree, finer than the steps the continuation takes through change points in the tests."""
+
+TWO_LEVEL_LINES = 512
+"""A leg is cut in two levels when it has at least this many points per line (and its steps allow it)."""
+
+
+def _coarse_stride(leg_targets: np.ndarray, start_t: np.ndarray) -> int:
+    """The stride ``k`` of a two-level leg: at most ``sqrt(s)``, and ``k`` steps no longer than :data:`COARSE_STEP`; 1 when not worth it."""
+    count = leg_targets.shape[1]
+    path = np.concatenate([start_t[:, None], leg_targets], axis=1)
+    with np.errstate(over="ignore", invalid="ignore"):
+        longest = float(np.max(np.abs(np.diff(path, axis=1)), initial=0.0))
+    if not np.isfinite(longest):
+        return 1
+    k = int(math.isqrt(count))
+    if longest > 0.0:
+        k = min(k, int(COARSE_STEP / longest))
+    return k if k >= 8 else 1
+
+
+def _leg_steps(
+    bk: BatchKinematics,
+    drive: Drive,
+    start_q: np.ndarray,
+    start_ok: np.ndarray,
+    start_t: np.ndarray,
+    leg_targets: np.ndarray,
+    tol: Tolerance,
+    halt: np.ndarray | None = None,
+    on_step: Callable[[int], None] | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Continuation of many lines from their start through ``leg_targets`` ``(B, s, axes)``, one point after the other.
 
     ``halt`` ``(B, s)``: a line ends for good at a point where it is true
     (assembled already).  Returns ``q (B, s, n)``, the residuals and
