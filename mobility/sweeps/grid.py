@@ -75,8 +75,9 @@ WRAPPING_JOINTS = ("R", "C")
 FULL_TURN = 360.0
 """A whole turn, in the unit of a swept angle (degrees)."""
 
-DEFAULT_MAX_POSES = 10_000_000
-"""Largest grid :func:`plan_grid` accepts unless told otherwise."""
+DEFAULT_MAX_POSES = 1_000_000
+"""Largest grid :func:`plan_grid` accepts unless told otherwise: a sweep of that many poses takes
+about half a GB and under a minute on two cores (docs/sweeps.md, Memory); a larger one is asked for."""
 
 VarySpec = Union[str, tuple, Mapping[str, tuple]]
 """``"NAME=START:STOP:COUNT"``, a tuple ``(name, start, stop, count)``, or a
