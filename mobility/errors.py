@@ -37,7 +37,7 @@ from typing import Iterable
 
 _BIDI = "\u202a-\u202e\u2066-\u2069"
 """Characters that reorder the text around them on a terminal (bidirectional overrides, "Trojan source")."""
-_UNPRINTABLE = re.compile(f"[\x00-\x1f\x7f-\x9f{_BIDI}]")
+_UNPRINTABLE = re.compile(f"[\x00-\x1f\x7f-\x9f{_BIDI}\ud800-\udfff]")  # lone surrogates: bytes of a file name no encoding decodes
 TERMINAL_CONTROL = re.compile(f"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x84\x86-\x9f{_BIDI}]")
 """Characters a terminal obeys rather than shows: C0 and C1 controls but tab and line breaks (LF, CR, NEL), DEL, bidirectional overrides."""
 
@@ -93,8 +93,18 @@ def one_line(text: str) -> str:
     --------
     >>> one_line("bad.yaml: two\\nlines and \\x1b[31mred")
     'bad.yaml: two\\\\nlines and \\\\x1b[31mred'
+    >>> one_line("wrote bad\\udcff.csv")   # a file name's undecodable byte: printable in any encoding
+    'wrote bad\\\\xff.csv'
     """
-    return _UNPRINTABLE.sub(lambda m: repr(m.group())[1:-1], text)
+    return _UNPRINTABLE.sub(_escaped, text)
+
+
+def _escaped(match: re.Match[str]) -> str:
+    """A character of :func:`one_line` shown escaped: a byte no encoding decoded (``surrogateescape``) as ``\\xNN``, the rest as Python writes it."""
+    char = match.group()
+    if "\udc80" <= char <= "\udcff":
+        return f"\\x{ord(char) - 0xDC00:02x}"
+    return repr(char)[1:-1]
 
 
 def control_character_problem(text: str, where: str, *, also: re.Pattern[str] | None = None) -> str | None:

@@ -50,10 +50,10 @@ def test_every_library_file_passes(library_report):
 def test_folders_are_expanded_recursively_and_sorted(tmp_path):
     (tmp_path / "b").mkdir()
     (tmp_path / "a" / "deep").mkdir(parents=True)
-    for rel in ("b/z.yaml", "a/deep/y.yml", "a/x.yaml", "a/notes.txt"):
+    for rel in ("b/z.yaml", "a/deep/y.yml", "a/x.yaml", "a/notes.txt", "a/W.YAML"):
         (tmp_path / rel).write_text(PLANAR)
     shown = [s for s, _, _ in mechanism_files([tmp_path])]
-    assert shown == [str(tmp_path / p) for p in ("a/deep/y.yml", "a/x.yaml", "b/z.yaml")]
+    assert shown == [str(tmp_path / p) for p in ("a/W.YAML", "a/deep/y.yml", "a/x.yaml", "b/z.yaml")]  # the suffix in any case
 
 
 def test_cli_table_for_the_library(capsys):

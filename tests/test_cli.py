@@ -260,7 +260,7 @@ def test_idle_freedoms_off_the_path_and_inside_loops():
 
 @pytest.mark.parametrize("args, message", [
     (["plot", "--graph", "--constraints", "mechanisms/four_bar.yaml", "-o", "{tmp}/g.png"], "mobility: --constraints draws on the mechanism, not on the --graph picture"),
-    (["plot", "mechanisms/four_bar.yaml", "-o", "{tmp}/no/such/dir/p.png"], "mobility: {tmp}/no/such/dir/p.png: --output: cannot write the file (No such file or directory)"),
+    (["plot", "mechanisms/four_bar.yaml", "-o", "{tmp}/no/such/dir/p.png"], "mobility: -o {tmp}/no/such/dir/p.png: cannot write there: the folder {tmp}/no/such/dir does not exist"),
     (["synthesize", "2T1R", "--samples", "0"], "mobility: --samples must be at least 1 and --verify not negative, got 0 and 2"),
     (["synthesize", "2T1R", "--verify", "-1"], "mobility: --samples must be at least 1 and --verify not negative, got 3 and -1"),
 ])
@@ -327,3 +327,16 @@ def test_a_failed_write_in_process_is_bad_input_not_an_internal_error(monkeypatc
 def test_an_empty_robot_option_is_refused_not_read_as_left_out(command, option, what, capsys):
     status, out, err = run(capsys, command, HAND / "3rps.xml", f"{option}=")  # was the default body (file), silently
     assert (status, out, err) == (2, "", f"mobility: {option}: expected {what}, got an empty one\n")
+
+
+def test_an_output_named_with_undecodable_bytes_is_reported_on_a_strict_utf8_stdout(tmp_path):
+    import os
+
+    name = os.fsdecode(b"bad\xff.csv")
+    run = subprocess.run(
+        [sys.executable, "-m", "mobility", "sweep", str(ROOT / "mechanisms" / "four_bar.yaml"), "--vary", "A=0:10:3", "--format", "csv", "-o", name],
+        capture_output=True, cwd=tmp_path, env=dict(os.environ, PYTHONIOENCODING="utf-8"), timeout=120,
+    )
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.decode("utf-8") == "wrote bad\\xff.csv: 3 poses of planar four-bar (csv)\n"
+    assert (tmp_path / name).read_text().startswith("A [deg],dof")

@@ -123,3 +123,11 @@ def test_an_input_that_is_a_symlink_loop_is_named_as_one(command, tmp_path, caps
     assert main(command[:1] + [str(loop)] + [a.replace("{tmp}", str(tmp_path)) for a in command[1:]]) == 2
     assert capsys.readouterr().err == f"mobility: {loop}: is a symbolic link loop (too many levels of symbolic links), expected a mechanism file\n"
     assert not any(p.name in ("v.html", "p.png") for p in tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("command, suffix", [(["sweep", "--vary", "A=0:10:3", "-o"], ".csv"), (["view", "-o"], ".html"), (["plot", "-o"], ".png"), (["convert", "-o"], ".yaml")])
+def test_an_output_in_a_missing_folder_is_refused_before_any_work(command, suffix, tmp_path, capsys):
+    target = tmp_path / "no such folder" / ("out" + suffix)
+    assert main(command[:1] + [FOUR_BAR] + command[1:] + [str(target)]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err == f"mobility: {command[-1]} {target}: cannot write there: the folder {target.parent} does not exist\n"

@@ -231,8 +231,10 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
         raise RequestError(f"{option} {output}: is a directory, expected a file to write")
     try:
         os.stat(output)
-    except FileNotFoundError:
-        pass  # a new file (or a missing folder, which writing it will name)
+    except FileNotFoundError:  # a new file: its folder must be there
+        folder = os.path.dirname(os.path.abspath(output))
+        if not os.path.isdir(folder):
+            raise RequestError(f"{option} {output}: cannot write there: the folder {folder} does not exist") from None
     except OSError as exc:  # before any work: writing there would fail after it
         raise RequestError(f"{option} {output}: cannot write there: {os_problem(exc)}") from None
     for given in inputs:

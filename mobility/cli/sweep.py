@@ -17,10 +17,10 @@ from pathlib import Path
 from ..errors import MechanismError, RequestError, one_line
 from ..report.plotting import picture_path, save_figure
 from ..report.sweep import sweep_csv, sweep_json, sweep_summary
-from ..sweeps import DEFAULT_CHUNK_SIZE, DEFAULT_MAX_POSES, sweep
+from ..sweeps import DEFAULT_CHUNK_SIZE, sweep
 from ..sweeps.batch_actuation import actuated_inputs
 from ..io.limits import require_size
-from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, names_from, require_new_output, tolerance_from
+from ._options import add_max_poses_option, add_mechanism_file, add_tolerance_option, load_mechanism, max_poses_from, names_from, require_new_output, tolerance_from
 
 ORDER = 35
 
@@ -51,7 +51,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--json", action="store_true", help="same as --format json")
     p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the output to FILE instead of printing it")
     p.add_argument("--plot", default=None, metavar="FILE", help="also draw the sweep (.png, .svg or .pdf): a curve, a map, or slices of a 3-D grid")
-    p.add_argument("--max-poses", type=int, default=DEFAULT_MAX_POSES, help="refuse a larger grid (default: %(default)d)")
+    add_max_poses_option(p)
     p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE, help="poses per chunk of work (default: %(default)d)")
     p.add_argument("--workers", type=int, default=None, help="threads in this process (default: the number of CPUs)")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS", help="run the chunks on a dask.distributed scheduler (needs mobility[dask])")
@@ -84,8 +84,6 @@ def run(args: argparse.Namespace) -> int:
 
         picture_path(args.plot, "--plot ")
         require_drawable(len(args.vary), f"--plot {args.plot}: ")
-    if args.max_poses < 1:
-        raise RequestError(f"--max-poses must be at least 1, got {args.max_poses}")
     if args.chunk_size < 1:
         raise RequestError(f"--chunk-size must be at least 1, got {args.chunk_size}")
     if args.workers is not None and args.workers < 1:
@@ -103,7 +101,7 @@ def run(args: argparse.Namespace) -> int:
         args.vary,
         actuated=inputs,
         tol=tol,
-        max_poses=args.max_poses,
+        max_poses=max_poses_from(args),
         chunk_size=args.chunk_size,
         scheduler=args.scheduler,
         workers=args.workers,

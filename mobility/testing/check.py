@@ -455,7 +455,7 @@ def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None,
         if problem:
             out.append((shown, None, f"{shown}: {problem}"))
         elif stat.S_ISDIR(mode):
-            found = sorted(f for f in p.rglob("*") if f.suffix in MECHANISM_SUFFIXES and not f.is_dir())  # a pipe among them is reported on its row, not skipped
+            found = sorted(f for f in p.rglob("*") if f.suffix.lower() in MECHANISM_SUFFIXES and not f.is_dir())  # a pipe among them is reported on its row, not skipped
             if not found:
                 out.append((shown, None, f"{shown}: no *.yaml mechanism file in this folder"))
             out.extend((printable_name(f), f, "") for f in found)
