@@ -93,8 +93,11 @@ def test_bad_input_is_one_line_and_exit_2(capsys, args, message):
 
 
 def test_unwritable_output_is_one_line(tmp_path, capsys):
-    status, _, err = run(capsys, "convert", HAND / "four_bar.xml", "-o", tmp_path / "no" / "such" / "dir.yaml")
-    assert status == 2 and "dir.yaml: --output: cannot write the file" in err and len(err.strip().splitlines()) == 2
+    missing = tmp_path / "no" / "such" / "dir.yaml"  # refused before the file is read
+    status, _, err = run(capsys, "convert", HAND / "four_bar.xml", "-o", missing)
+    assert status == 2 and err == f"mobility: -o {missing}: cannot write there: the folder {missing.parent} does not exist\n"
+    status, _, err = run(capsys, "convert", HAND / "four_bar.xml", "-o", "/dev/full")  # the write itself fails: after the note on the end effector
+    assert status == 2 and err.splitlines()[-1] == "mobility: /dev/full: --output: cannot write the file (No space left on device)" and len(err.splitlines()) == 2
 
 
 def test_convert_never_writes_over_a_file_the_model_includes(tmp_path, capsys, monkeypatch):
