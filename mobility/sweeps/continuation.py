@@ -517,8 +517,14 @@ def _leg(
     tol: Tolerance,
     halt: np.ndarray | None = None,
     on_step: Callable[[int], None] | None = None,
+    *,
+    levels: bool = True,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Continuation of many lines from their start through ``leg_targets`` ``(B, s, axes)``, in order.
+
+    ``halt`` ``(B, s)``: a line ends for good at a point where it is true
+    (assembled already).  Returns ``q (B, s, n)``, the residuals and
+    ``assembled`` of the points of the leg.
 
     A long leg of few lines (a 1-D sweep of a million points is one line: a
     million Newton solves one after the other) is cut in two levels when its
@@ -527,10 +533,10 @@ def _leg(
     each of those, all pieces together, each from its coarse point; about
     ``2 sqrt(s)`` batched steps instead of ``s``.  With ``halt`` (a walk's
     second leg, which stops where it meets the first) each line is solved up
-    to its first halting point.
+    to its first halting point.  ``levels=False``: one point after the other.
     """
     lines, count = leg_targets.shape[:2]
-    if halt is not None and lines * TWO_LEVEL_LINES <= count:
+    if levels and halt is not None and lines * TWO_LEVEL_LINES <= count:
         # a line ends for good at its first halting point: solve up to the last of those, then forget what lies past each line's own
         ends = np.where(halt.any(axis=1), np.argmax(halt, axis=1), count)
         reach = int(ends.max(initial=0))
@@ -544,12 +550,49 @@ def _leg(
         if on_step and count > reach:
             on_step(lines * (count - reach))
         return q, err, ok
-    k = _coarse_stride(leg_targets, start_t) if halt is None and lines * TWO_LEVEL_LINES <= count else 1
+    k = _coarse_stride(leg_targets, start_t) if levels and halt is None and lines * TWO_LEVEL_LINES <= count else 1
     if k < 2:
-        return _leg_steps(bk, drive, start_q, start_ok, start_t, leg_targets, tol, halt, on_step)
+        # one point after the other
+        n = bk.variable_count
+        q = np.zeros((lines, count, n))
+        err = np.full((lines, count), np.inf)
+        ok = np.zeros((lines, count), dtype=bool)
+        last_q, last_t = start_q.copy(), start_t.copy()  # the last assembled point of each line
+        last_ok = start_ok.copy()  # is the previous point assembled
+        # the points before the last one, most recent first, and whether each (and all after it) is assembled
+        history = [start_q.copy() for _ in range(len(EXTRAPOLATION) - 1)]
+        known = [np.zeros(lines, dtype=bool) for _ in history]
+        misses = np.where(start_ok, 0, GIVE_UP)  # failures in a row since the last assembled point
+        for i in range(count):
+            if halt is not None:
+                ended = halt[:, i]
+                last_ok = last_ok & ~ended
+                misses = np.where(ended, GIVE_UP, misses)
+            targets = leg_targets[:, i]
+            points = [last_q] + history
+            available = [last_ok] + known
+            predicted = last_q.copy()
+            for order in range(1, len(EXTRAPOLATION)):  # the highest order the assembled points allow
+                use = available[order]
+                if use.any():
+                    predicted[use] = sum(c * p[use] for c, p in zip(EXTRAPOLATION[order], points))
+            for retry, rows in ((True, np.flatnonzero(last_ok)), (False, np.flatnonzero(~last_ok & (misses < GIVE_UP)))):
+                if rows.size:
+                    rq, rerr, rok = _advance(bk, drive, last_q[rows], last_t[rows], predicted[rows], targets[rows], tol, retry=retry)
+                    q[rows, i], err[rows, i], ok[rows, i] = rq, rerr, rok
+            now = ok[:, i]
+            history = [np.where(now[:, None], p, h) for p, h in zip(points[:-1], history)]
+            known = [now & a for a in available[:-1]]
+            last_q = np.where(now[:, None], q[:, i], last_q)
+            last_t = np.where(now[:, None], targets, last_t)
+            last_ok = now
+            misses = np.where(now, 0, misses + 1)
+            if on_step:
+                on_step(lines)
+        return q, err, ok
     pieces = count // k
     coarse = np.arange(1, pieces + 1) * k - 1  # the last point of each piece
-    cq, cerr, cok = _leg_steps(bk, drive, start_q, start_ok, start_t, leg_targets[:, coarse], tol, None, on_step)
+    cq, cerr, cok = _leg(bk, drive, start_q, start_ok, start_t, leg_targets[:, coarse], tol, None, on_step, levels=False)
     n, axes = start_q.shape[1], leg_targets.shape[2]
     q = np.zeros((lines, count, n))
     err = np.full((lines, count), np.inf)
@@ -560,11 +603,11 @@ def _leg(
     from_ok = np.concatenate([start_ok[:, None], cok[:, :-1]], axis=1).reshape(lines * pieces)
     from_t = np.concatenate([start_t[:, None], leg_targets[:, coarse[:-1]]], axis=1).reshape(lines * pieces, axes)
     inner = (coarse[:, None] - k + 1 + np.arange(k - 1)[None, :])  # (pieces, k - 1)
-    pq, perr, pok = _leg_steps(bk, drive, from_q, from_ok, from_t, leg_targets[:, inner].reshape(lines * pieces, k - 1, axes), tol, None, on_step)
+    pq, perr, pok = _leg(bk, drive, from_q, from_ok, from_t, leg_targets[:, inner].reshape(lines * pieces, k - 1, axes), tol, None, on_step, levels=False)
     q[:, inner], err[:, inner], ok[:, inner] = pq.reshape(lines, pieces, k - 1, n), perr.reshape(lines, pieces, k - 1), pok.reshape(lines, pieces, k - 1)
     tail = np.arange(pieces * k, count)
     if tail.size:
-        tq, terr, tok = _leg_steps(bk, drive, cq[:, -1], cok[:, -1], leg_targets[:, coarse[-1]], leg_targets[:, tail], tol, None, on_step)
+        tq, terr, tok = _leg(bk, drive, cq[:, -1], cok[:, -1], leg_targets[:, coarse[-1]], leg_targets[:, tail], tol, None, on_step, levels=False)
         q[:, tail], err[:, tail], ok[:, tail] = tq, terr, tok
     return q, err, ok
 
@@ -589,63 +632,6 @@ def _coarse_stride(leg_targets: np.ndarray, start_t: np.ndarray) -> int:
     if longest > 0.0:
         k = min(k, int(COARSE_STEP / longest))
     return k if k >= 8 else 1
-
-
-def _leg_steps(
-    bk: BatchKinematics,
-    drive: Drive,
-    start_q: np.ndarray,
-    start_ok: np.ndarray,
-    start_t: np.ndarray,
-    leg_targets: np.ndarray,
-    tol: Tolerance,
-    halt: np.ndarray | None = None,
-    on_step: Callable[[int], None] | None = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Continuation of many lines from their start through ``leg_targets`` ``(B, s, axes)``, one point after the other.
-
-    ``halt`` ``(B, s)``: a line ends for good at a point where it is true
-    (assembled already).  Returns ``q (B, s, n)``, the residuals and
-    ``assembled`` of the points of the leg.
-    """
-    lines, count = leg_targets.shape[:2]
-    n = bk.variable_count
-    q = np.zeros((lines, count, n))
-    err = np.full((lines, count), np.inf)
-    ok = np.zeros((lines, count), dtype=bool)
-    last_q, last_t = start_q.copy(), start_t.copy()  # the last assembled point of each line
-    last_ok = start_ok.copy()  # is the previous point assembled
-    # the points before the last one, most recent first, and whether each (and all after it) is assembled
-    history = [start_q.copy() for _ in range(len(EXTRAPOLATION) - 1)]
-    known = [np.zeros(lines, dtype=bool) for _ in history]
-    misses = np.where(start_ok, 0, GIVE_UP)  # failures in a row since the last assembled point
-    for i in range(count):
-        if halt is not None:
-            ended = halt[:, i]
-            last_ok = last_ok & ~ended
-            misses = np.where(ended, GIVE_UP, misses)
-        targets = leg_targets[:, i]
-        points = [last_q] + history
-        available = [last_ok] + known
-        predicted = last_q.copy()
-        for order in range(1, len(EXTRAPOLATION)):  # the highest order the assembled points allow
-            use = available[order]
-            if use.any():
-                predicted[use] = sum(c * p[use] for c, p in zip(EXTRAPOLATION[order], points))
-        for retry, rows in ((True, np.flatnonzero(last_ok)), (False, np.flatnonzero(~last_ok & (misses < GIVE_UP)))):
-            if rows.size:
-                rq, rerr, rok = _advance(bk, drive, last_q[rows], last_t[rows], predicted[rows], targets[rows], tol, retry=retry)
-                q[rows, i], err[rows, i], ok[rows, i] = rq, rerr, rok
-        now = ok[:, i]
-        history = [np.where(now[:, None], p, h) for p, h in zip(points[:-1], history)]
-        known = [now & a for a in available[:-1]]
-        last_q = np.where(now[:, None], q[:, i], last_q)
-        last_t = np.where(now[:, None], targets, last_t)
-        last_ok = now
-        misses = np.where(now, 0, misses + 1)
-        if on_step:
-            on_step(lines)
-    return q, err, ok
 
 
 def line_layout(shape: tuple[int, ...], axis: int) -> np.ndarray:
