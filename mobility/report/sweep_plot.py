@@ -37,7 +37,7 @@ import numpy as np
 from ..core.tolerance import SAME_GRID_VALUE
 from ..errors import RequestError
 from ..sweeps import SweepAxis, SweepResult
-from ..sweeps.walks import anchor_of, whole_turns
+from ..sweeps.grid import whole_turns
 from .plotting.backend import new_figure, require_matplotlib
 from .text import fmt_number
 
@@ -259,10 +259,9 @@ def _map(ax: Any, result: SweepResult, index: np.ndarray, limits: tuple[float, f
 
 def _at_file_pose(axis: SweepAxis) -> int | None:
     """The index of the axis's value at the file's pose (displacement 0, or whole turns of an angle that wraps), if it has one."""
-    k = anchor_of(axis)
+    k = axis.anchor
     value = axis.values[k]
-    step = abs(axis.stop - axis.start) / max(axis.count - 1, 1)
-    return k if abs(value - float(whole_turns(value, axis.period))) <= SAME_GRID_VALUE * step else None
+    return k if abs(value - float(whole_turns(value, axis.period))) <= SAME_GRID_VALUE * axis.step else None
 
 
 def _spread(candidates: list[int], chosen: list[int], count: int, size: int) -> list[int]:

@@ -57,8 +57,8 @@ import numpy as np
 
 from ..core.tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, SAME_GRID_VALUE, Tolerance, decide_ranks
 from .batch_kinematics import BatchKinematics
-from .grid import GridPlan, SweepAxis
-from .walks import AxisWalk, anchor_of, plan_walks, whole_turns
+from .grid import GridPlan, SweepAxis, whole_turns
+from .walks import AxisWalk, plan_walks
 
 __all__ = ["Drive", "GridClosure", "newton", "polish", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget"]
 
@@ -435,10 +435,7 @@ def close_lines(
     else:
         width, start, stops = walk.stops.size, int(walk.stop_of[anchor]), walk.stops
         legs = walk.legs()
-    n = bk.variable_count
-    q = np.zeros((lines, width, n))
-    err = np.full((lines, width), np.inf)
-    ok = np.zeros((lines, width), dtype=bool)
+    q, err, ok = _unsolved((lines, width), bk.variable_count)
     q[:, start], ok[:, start] = start_q, start_ok
     err[:, start] = np.where(start_ok, 0.0, np.inf)
     start_t = line_targets[:, anchor]
@@ -507,6 +504,11 @@ EVALUATION_BLOCK = 16384
 """Poses evaluated together by :func:`retarget` (its stacked arrays take about 1 kB per pose and joint variable)."""
 
 
+def _unsolved(shape: tuple[int, ...], n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Joint variables, residuals and ``assembled`` of points not solved yet: zeros, infinite, false."""
+    return np.zeros(shape + (n,)), np.full(shape, np.inf), np.zeros(shape, dtype=bool)
+
+
 def _leg(
     bk: BatchKinematics,
     drive: Drive,
@@ -536,13 +538,12 @@ def _leg(
     to its first halting point.  ``levels=False``: one point after the other.
     """
     lines, count = leg_targets.shape[:2]
+    n = bk.variable_count
+    q, err, ok = _unsolved((lines, count), n)
     if levels and halt is not None and lines * TWO_LEVEL_LINES <= count:
         # a line ends for good at its first halting point: solve up to the last of those, then forget what lies past each line's own
         ends = np.where(halt.any(axis=1), np.argmax(halt, axis=1), count)
         reach = int(ends.max(initial=0))
-        q = np.zeros((lines, count, start_q.shape[1]))
-        err = np.full((lines, count), np.inf)
-        ok = np.zeros((lines, count), dtype=bool)
         if reach:
             q[:, :reach], err[:, :reach], ok[:, :reach] = _leg(bk, drive, start_q, start_ok, start_t, leg_targets[:, :reach], tol, None, on_step)
         past = np.arange(count)[None, :] >= ends[:, None]
@@ -551,64 +552,57 @@ def _leg(
             on_step(lines * (count - reach))
         return q, err, ok
     k = _coarse_stride(leg_targets, start_t) if levels and halt is None and lines * TWO_LEVEL_LINES <= count else 1
-    if k < 2:
-        # one point after the other
-        n = bk.variable_count
-        q = np.zeros((lines, count, n))
-        err = np.full((lines, count), np.inf)
-        ok = np.zeros((lines, count), dtype=bool)
-        last_q, last_t = start_q.copy(), start_t.copy()  # the last assembled point of each line
-        last_ok = start_ok.copy()  # is the previous point assembled
-        # the points before the last one, most recent first, and whether each (and all after it) is assembled
-        history = [start_q.copy() for _ in range(len(EXTRAPOLATION) - 1)]
-        known = [np.zeros(lines, dtype=bool) for _ in history]
-        misses = np.where(start_ok, 0, GIVE_UP)  # failures in a row since the last assembled point
-        for i in range(count):
-            if halt is not None:
-                ended = halt[:, i]
-                last_ok = last_ok & ~ended
-                misses = np.where(ended, GIVE_UP, misses)
-            targets = leg_targets[:, i]
-            points = [last_q] + history
-            available = [last_ok] + known
-            predicted = last_q.copy()
-            for order in range(1, len(EXTRAPOLATION)):  # the highest order the assembled points allow
-                use = available[order]
-                if use.any():
-                    predicted[use] = sum(c * p[use] for c, p in zip(EXTRAPOLATION[order], points))
-            for retry, rows in ((True, np.flatnonzero(last_ok)), (False, np.flatnonzero(~last_ok & (misses < GIVE_UP)))):
-                if rows.size:
-                    rq, rerr, rok = _advance(bk, drive, last_q[rows], last_t[rows], predicted[rows], targets[rows], tol, retry=retry)
-                    q[rows, i], err[rows, i], ok[rows, i] = rq, rerr, rok
-            now = ok[:, i]
-            history = [np.where(now[:, None], p, h) for p, h in zip(points[:-1], history)]
-            known = [now & a for a in available[:-1]]
-            last_q = np.where(now[:, None], q[:, i], last_q)
-            last_t = np.where(now[:, None], targets, last_t)
-            last_ok = now
-            misses = np.where(now, 0, misses + 1)
-            if on_step:
-                on_step(lines)
+    if k >= 2:
+        pieces = count // k
+        coarse = np.arange(1, pieces + 1) * k - 1  # the last point of each piece
+        cq, cerr, cok = _leg(bk, drive, start_q, start_ok, start_t, leg_targets[:, coarse], tol, None, on_step, levels=False)
+        axes = leg_targets.shape[2]
+        q[:, coarse], err[:, coarse], ok[:, coarse] = cq, cerr, cok
+        # piece j: the k - 1 points before coarse point j, from coarse point j - 1 (piece 0 from the leg's start)
+        from_q = np.concatenate([start_q[:, None], cq[:, :-1]], axis=1).reshape(lines * pieces, n)
+        from_ok = np.concatenate([start_ok[:, None], cok[:, :-1]], axis=1).reshape(lines * pieces)
+        from_t = np.concatenate([start_t[:, None], leg_targets[:, coarse[:-1]]], axis=1).reshape(lines * pieces, axes)
+        inner = (coarse[:, None] - k + 1 + np.arange(k - 1)[None, :])  # (pieces, k - 1)
+        pq, perr, pok = _leg(bk, drive, from_q, from_ok, from_t, leg_targets[:, inner].reshape(lines * pieces, k - 1, axes), tol, None, on_step, levels=False)
+        q[:, inner], err[:, inner], ok[:, inner] = pq.reshape(lines, pieces, k - 1, n), perr.reshape(lines, pieces, k - 1), pok.reshape(lines, pieces, k - 1)
+        tail = np.arange(pieces * k, count)
+        if tail.size:
+            tq, terr, tok = _leg(bk, drive, cq[:, -1], cok[:, -1], leg_targets[:, coarse[-1]], leg_targets[:, tail], tol, None, on_step, levels=False)
+            q[:, tail], err[:, tail], ok[:, tail] = tq, terr, tok
         return q, err, ok
-    pieces = count // k
-    coarse = np.arange(1, pieces + 1) * k - 1  # the last point of each piece
-    cq, cerr, cok = _leg(bk, drive, start_q, start_ok, start_t, leg_targets[:, coarse], tol, None, on_step, levels=False)
-    n, axes = start_q.shape[1], leg_targets.shape[2]
-    q = np.zeros((lines, count, n))
-    err = np.full((lines, count), np.inf)
-    ok = np.zeros((lines, count), dtype=bool)
-    q[:, coarse], err[:, coarse], ok[:, coarse] = cq, cerr, cok
-    # piece j: the k - 1 points before coarse point j, from coarse point j - 1 (piece 0 from the leg's start)
-    from_q = np.concatenate([start_q[:, None], cq[:, :-1]], axis=1).reshape(lines * pieces, n)
-    from_ok = np.concatenate([start_ok[:, None], cok[:, :-1]], axis=1).reshape(lines * pieces)
-    from_t = np.concatenate([start_t[:, None], leg_targets[:, coarse[:-1]]], axis=1).reshape(lines * pieces, axes)
-    inner = (coarse[:, None] - k + 1 + np.arange(k - 1)[None, :])  # (pieces, k - 1)
-    pq, perr, pok = _leg(bk, drive, from_q, from_ok, from_t, leg_targets[:, inner].reshape(lines * pieces, k - 1, axes), tol, None, on_step, levels=False)
-    q[:, inner], err[:, inner], ok[:, inner] = pq.reshape(lines, pieces, k - 1, n), perr.reshape(lines, pieces, k - 1), pok.reshape(lines, pieces, k - 1)
-    tail = np.arange(pieces * k, count)
-    if tail.size:
-        tq, terr, tok = _leg(bk, drive, cq[:, -1], cok[:, -1], leg_targets[:, coarse[-1]], leg_targets[:, tail], tol, None, on_step, levels=False)
-        q[:, tail], err[:, tail], ok[:, tail] = tq, terr, tok
+    # one point after the other
+    last_q, last_t = start_q.copy(), start_t.copy()  # the last assembled point of each line
+    last_ok = start_ok.copy()  # is the previous point assembled
+    # the points before the last one, most recent first, and whether each (and all after it) is assembled
+    history = [start_q.copy() for _ in range(len(EXTRAPOLATION) - 1)]
+    known = [np.zeros(lines, dtype=bool) for _ in history]
+    misses = np.where(start_ok, 0, GIVE_UP)  # failures in a row since the last assembled point
+    for i in range(count):
+        if halt is not None:
+            ended = halt[:, i]
+            last_ok = last_ok & ~ended
+            misses = np.where(ended, GIVE_UP, misses)
+        targets = leg_targets[:, i]
+        points = [last_q] + history
+        available = [last_ok] + known
+        predicted = last_q.copy()
+        for order in range(1, len(EXTRAPOLATION)):  # the highest order the assembled points allow
+            use = available[order]
+            if use.any():
+                predicted[use] = sum(c * p[use] for c, p in zip(EXTRAPOLATION[order], points))
+        for retry, rows in ((True, np.flatnonzero(last_ok)), (False, np.flatnonzero(~last_ok & (misses < GIVE_UP)))):
+            if rows.size:
+                rq, rerr, rok = _advance(bk, drive, last_q[rows], last_t[rows], predicted[rows], targets[rows], tol, retry=retry)
+                q[rows, i], err[rows, i], ok[rows, i] = rq, rerr, rok
+        now = ok[:, i]
+        history = [np.where(now[:, None], p, h) for p, h in zip(points[:-1], history)]
+        known = [now & a for a in available[:-1]]
+        last_q = np.where(now[:, None], q[:, i], last_q)
+        last_t = np.where(now[:, None], targets, last_t)
+        last_ok = now
+        misses = np.where(now, 0, misses + 1)
+        if on_step:
+            on_step(lines)
     return q, err, ok
 
 
@@ -656,7 +650,7 @@ def anchors(plan: GridPlan) -> tuple[int, ...]:
     >>> anchors(plan_grid(mobility.load("mechanisms/3prs.yaml"), ["P1=-11:11:4", "P2=5:20:4"]))
     (1, 0)
     """
-    return tuple(anchor_of(a) for a in plan.axes)
+    return tuple(a.anchor for a in plan.axes)
 
 
 def targets_of(plan: GridPlan, flat: np.ndarray) -> np.ndarray:
@@ -691,9 +685,7 @@ def seed_grid(bk: BatchKinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_T
     """
     drive = Drive.of(plan.axes, bk.variable_count)
     shape, size, n = plan.shape, plan.size, bk.variable_count
-    q = np.zeros((size, n))
-    err = np.full(size, np.inf)
-    ok = np.zeros(size, dtype=bool)
+    q, err, ok = _unsolved((size,), n)
     walks = plan_walks(plan)
     anchor = anchors(plan)
     anchor_flat = int(np.ravel_multi_index(anchor, shape))

@@ -60,6 +60,7 @@ __all__ = [
     "GridPlan",
     "VarySpec",
     "parse_vary",
+    "whole_turns",
     "plan_grid",
 ]
 
@@ -150,7 +151,7 @@ class SweepAxis:
     def anchor(self) -> int:
         """Index of the value nearest the file's pose (displacement 0, round the circle for an angle that wraps); the first of two as near."""
         values = self.values
-        distance = np.abs(values - _whole_turns(values, self.period))
+        distance = np.abs(values - whole_turns(values, self.period))
         return int(np.flatnonzero(distance <= distance.min() + SAME_GRID_VALUE * self.step)[0])  # round-off must not pick between ties
 
     @property
@@ -174,9 +175,9 @@ class SweepAxis:
         """
         values = self.values
         if self.period:
-            base = values[self.anchor]
-            base = base - _whole_turns(base, self.period)
-            values = values - _whole_turns(values - base, self.period) if self.covers_turn else values - (values[self.anchor] - base)
+            anchor = values[self.anchor]
+            near = anchor - whole_turns(anchor, self.period)  # the anchor's value, near the file's pose
+            values = values - whole_turns(values - near, self.period) if self.covers_turn else values - (anchor - near)
         return values * self.scale
 
     @property
@@ -214,8 +215,14 @@ class GridPlan:
         return math.prod(self.shape)
 
 
-def _whole_turns(difference: np.ndarray, period: float) -> np.ndarray:
-    """The multiple of ``period`` nearest ``difference`` (0 when ``period`` is 0)."""
+def whole_turns(difference: np.ndarray, period: float) -> np.ndarray:
+    """The whole turns in ``difference``: the multiple of ``period`` nearest it (0 when ``period`` is 0).
+
+    Examples
+    --------
+    >>> whole_turns(np.array([350.0, -190.0, 10.0]), 360.0).tolist(), whole_turns(np.array([700.0]), 0.0).tolist()
+    ([360.0, -360.0, 0.0], [0.0])
+    """
     difference = np.asarray(difference, dtype=float)
     if not period:
         return np.zeros_like(difference)

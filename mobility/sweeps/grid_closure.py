@@ -34,8 +34,8 @@ import numpy as np
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from .batch_kinematics import BatchKinematics
 from .continuation import Drive, GridClosure, _advance, anchors, close_lines, line_layout, retarget, seed_grid, targets_of
-from .grid import GridPlan
-from .walks import AxisWalk, axis_walk, plan_walks, whole_turns
+from .grid import GridPlan, whole_turns
+from .walks import AxisWalk, axis_walk, plan_walks
 
 __all__ = ["close_grid", "fill"]
 

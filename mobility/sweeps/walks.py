@@ -40,7 +40,7 @@ Examples
 (True, [0, 1, 2, 3], [0, 1, 2, 3, 0])
 >>> [(walk.stops[at].tolist(), np.degrees(values).round(9).tolist(), halts) for at, values, halts in walk.legs()]
 [([1, 2], [90.0, 180.0], False), ([3, 2, 1], [-90.0, -180.0, -270.0], True)]
->>> anchor_of(plan_grid(mobility.load("mechanisms/four_bar.yaml"), ["A=100:350:6"]).axes[0])  # 350 is 10 from 0
+>>> plan_grid(mobility.load("mechanisms/four_bar.yaml"), ["A=100:350:6"]).axes[0].anchor  # 350 is 10 from 0
 5
 """
 
@@ -51,25 +51,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.tolerance import SAME_GRID_VALUE
-from .grid import GridPlan, SweepAxis, _whole_turns
+from .grid import GridPlan, SweepAxis
 
-__all__ = ["AxisWalk", "axis_walk", "plan_walks", "anchor_of", "whole_turns"]
-
-
-def whole_turns(difference: np.ndarray, period: float) -> np.ndarray:
-    """The whole turns in ``difference``: the multiple of ``period`` nearest it (0 when ``period`` is 0).
-
-    Examples
-    --------
-    >>> whole_turns(np.array([350.0, -190.0, 10.0]), 360.0).tolist(), whole_turns(np.array([700.0]), 0.0).tolist()
-    ([360.0, -360.0, 0.0], [0.0])
-    """
-    return _whole_turns(difference, period)
-
-
-def anchor_of(axis: SweepAxis) -> int:
-    """Index of the value nearest the file's pose (:attr:`SweepAxis.anchor`)."""
-    return axis.anchor
+__all__ = ["AxisWalk", "axis_walk", "plan_walks"]
 
 
 @dataclass(frozen=True, eq=False)
