@@ -37,7 +37,7 @@ Examples
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from functools import cached_property
 from typing import Any
 
@@ -84,9 +84,14 @@ class GridPoint:
     index: int
     values: tuple[float, ...]
 
-    def located(self, names: tuple[str, ...] = ()) -> dict[str, Any]:
-        """The first keys of a grid point's JSON form: ``index`` and ``values`` (keyed by ``names``, the coordinates, if given)."""
-        return {"index": self.index, "values": dict(zip(names, self.values)) if names else list(self.values)}
+    def to_dict(self, names: tuple[str, ...] = ()) -> dict[str, Any]:
+        """JSON form: ``index``, ``values`` (keyed by ``names``, the coordinates, if given), then a subclass's fields in order (tuples as lists)."""
+        located = {"index": self.index, "values": dict(zip(names, self.values)) if names else list(self.values)}
+        return located | {f.name: _listed(getattr(self, f.name)) for f in fields(self) if f.name not in located}
+
+
+def _listed(value: Any) -> Any:
+    return list(value) if isinstance(value, tuple) else value
 
 
 @dataclass(frozen=True)
@@ -111,14 +116,8 @@ class SingularPose(GridPoint):
     reasons: tuple[str, ...]
 
     def to_dict(self, names: tuple[str, ...] = ()) -> dict[str, Any]:
-        """JSON form (``names``: the coordinates, to key the values)."""
-        return self.located(names) | {
-            "dof": self.dof,
-            "pattern": self.pattern,
-            "mobility": self.mobility,
-            "verdict": self.verdict or None,
-            "reasons": list(self.reasons),
-        }
+        """JSON form (``names``: the coordinates, to key the values); no verdict is ``null``."""
+        return super().to_dict(names) | {"verdict": self.verdict or None}
 
 
 @dataclass(frozen=True)
@@ -145,15 +144,6 @@ class MarginDip(GridPoint):
     margin: float
     neighbours: tuple[float, ...]
     axis: str
-
-    def to_dict(self, names: tuple[str, ...] = ()) -> dict[str, Any]:
-        """JSON form (``names``: the coordinates, to key the values)."""
-        return self.located(names) | {
-            "column": self.column,
-            "margin": self.margin,
-            "neighbours": list(self.neighbours),
-            "axis": self.axis,
-        }
 
 
 @dataclass(frozen=True, eq=False)
