@@ -12,7 +12,8 @@ Part 2 times, in this process and in the order a check meets them, the
 imports (the package; scipy.linalg, scipy.optimize and networkx, which only
 the full-cycle analyses need), loading the files, analysing them, and the
 full-cycle analyses (:func:`mobility.finite_mobility`) of the eleven files that
-expect them, with their Newton steps.
+expect them, with their Newton steps, and the actuation verdicts of the files
+that expect one.
 """
 
 from __future__ import annotations
@@ -75,6 +76,13 @@ def stages() -> list[tuple[str, float]]:
     start = time.perf_counter()
     steps = sum(sum(p.iterations[i] for p in f.probes for i in range(len(p.iterations))) for f in (finite_mobility(m) for m in moving))
     out.append((f"full-cycle analyses of {len(moving)} files ({steps} Newton steps from the given poses)", time.perf_counter() - start))
+    from mobility.actuation import check_actuation
+
+    driven = [m for m in mechanisms if m.expected is not None and "actuation" in dict(m.expected.items())]
+    start = time.perf_counter()
+    for m in driven:
+        check_actuation(m)
+    out.append((f"actuation verdicts of {len(driven)} files", time.perf_counter() - start))
     return out
 
 

@@ -32,7 +32,7 @@ ALLOWED = {
     "sweeps": "errors core actuation",
     "report": "errors core finite actuation flexure synthesis jacobians sweeps testing",
     "view": "errors core report sweeps",
-    "testing": "errors core io finite",
+    "testing": "errors core io finite actuation flexure",
     "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps report view testing",
     "__init__": "errors core io finite actuation flexure synthesis jacobians sweeps report view testing",
     "__main__": "cli",

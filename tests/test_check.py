@@ -1,5 +1,6 @@
 """`mobility check`: the library passes; mismatches, missing blocks and bad input give the right exit status."""
 
+import dataclasses
 import json
 import os
 
@@ -9,6 +10,7 @@ from conftest import MECHANISMS
 import mobility
 from mobility.testing import check as check_module
 from mobility.testing.check import COMPARATORS, check_file, check_mechanism, check_paths, mechanism_files
+from mobility.testing.flexure_check import flexure_document
 from mobility.cli import main
 from mobility.errors import MechanismCheckFailed
 from mobility.testing.pytest_plugin import assert_mechanism_passes, mechanism_test_cases, mechanism_tests
@@ -281,23 +283,116 @@ def test_a_symlink_loop_is_named_as_one_not_as_missing(tmp_path):
 EXAMPLES = MECHANISMS.parent / "examples"
 
 
-def test_the_projects_own_examples_report_no_error(capsys):
+def test_the_projects_own_examples_pass(capsys):
     status, out, err = run(capsys, "check", "--json", EXAMPLES)
     data = json.loads(out)
-    assert (status, err) == (1, "") and data["summary"]["error"] == 0 and data["summary"]["total"] >= 1  # was 2: "threshold: unknown key"
+    assert (status, err) == (0, "") and data["summary"]["pass"] == data["summary"]["total"] >= 1  # was 1: "without expected block"
     flexure = next(r for r in data["results"] if r["path"].endswith("three_rod.yaml"))
-    assert (flexure["kind"], flexure["status"], flexure["name"]) == ("flexure", "missing", "three-rod spherical flexure (actuation example)")
+    assert (flexure["kind"], flexure["status"], flexure["name"]) == ("flexure", "pass", "three-rod spherical flexure (actuation example)")
+    assert flexure["found"] == {"dof": 3, "pattern": "3R", "constraints": 3, "translations": [], "actuation": "valid"}
+    assert [c["key"] for c in flexure["comparisons"]] == ["dof", "pattern", "translations", "actuation"]
     assert all(r["kind"] == "mechanism" for r in json.loads(run(capsys, "check", "--json", MECHANISMS / "bennett.yaml")[1])["results"])
 
 
+THREE_ROD = (EXAMPLES / "flexure" / "three_rod.yaml").read_text()
+
+
+def flexure_with(tmp_path, name, expected):
+    """The three-rod flexure with another expected block (its last line)."""
+    lines = THREE_ROD.rstrip("\n").split("\n")
+    assert lines[-1].startswith("expected:")
+    path = tmp_path / name
+    path.write_text("\n".join(lines[:-1] + [f"expected: {expected}"]) + "\n")
+    return path
+
+
 def test_a_flexure_document_is_read_by_the_flexure_reader(tmp_path, capsys):
-    text = (EXAMPLES / "flexure" / "three_rod.yaml").read_text()
     bad = tmp_path / "bad.yaml"
-    bad.write_text(text.replace("material: aluminium}", "material: steel}", 1))
-    with_expected = tmp_path / "with_expected.yaml"
-    with_expected.write_text(text + "expected: {dof: 3}\n")  # the flexure format has no expected block: refused, never ignored
-    status, out, _ = run(capsys, "check", "--json", bad, with_expected)
-    first, second = json.loads(out)["results"]
+    bad.write_text(THREE_ROD.replace("material: aluminium}", "material: steel}", 1))
+    unknown = flexure_with(tmp_path, "unknown.yaml", "{dof: 3, mobility: 3}")  # a mechanism's key, not a flexure's
+    wrong = flexure_with(tmp_path, "wrong.yaml", "{pattern: 4R}")
+    status, out, _ = run(capsys, "check", "--json", bad, unknown, wrong)
+    first, second, third = json.loads(out)["results"]
     assert status == 2
     assert first["message"].startswith(f"{bad}:39: elements[0].material: unknown material 'steel'")
-    assert second["message"].startswith(f"{with_expected}:65: expected: unknown key in a flexure document")
+    assert second["message"] == f"{unknown}:67: expected.mobility: unknown key in the expected block; expected one of: dof, pattern, translations, actuation"
+    assert third["message"].startswith(f'{wrong}:67: expected.pattern: expected a pattern such as "3T"')
+
+
+def test_a_flexure_mismatch_fails_and_says_what_was_found(tmp_path, capsys):
+    path = flexure_with(tmp_path, "f.yaml", "{dof: 2, pattern: 3R, translations: [[0, 0, 1]], actuation: redundant}")
+    status, out, _ = run(capsys, "check", path)
+    assert status == 1
+    row = next(line for line in out.splitlines() if line.startswith(str(path)))
+    assert row.split()[1:3] == ["3", "3R"]  # the found DOF and pattern in the table
+    assert row.endswith("FAIL: dof 3 (expected 2); translations: found the span of [], expected the span of [[0, 0, 1]]; actuation valid (expected redundant)")
+
+
+def test_a_flexure_actuation_key_needs_marked_actuators(tmp_path):
+    unmarked = tmp_path / "unmarked.yaml"
+    unmarked.write_text(THREE_ROD.replace(", actuated: true}", "}"))
+    result = check_file(unmarked, others=(flexure_document,))
+    assert (result.status, result.message) == ("fail", "actuation: no input is marked actuated (actuated: true), so there is no verdict to compare")
+    # other actuators marked: the verdict of those (the vertical lines v1..v3 cannot control the rotations about horizontal axes)
+    vertical = tmp_path / "vertical.yaml"
+    vertical.write_text(THREE_ROD.replace(", actuated: true}", "}").replace("direction: [0, 0, 1]}", "direction: [0, 0, 1], actuated: true}"))
+    assert check_file(vertical, others=(flexure_document,)).message == "actuation actuation-singular (expected valid)"
+
+
+def test_a_flexure_document_is_parsed_once(monkeypatch):
+    calls = []
+    real = check_module.parse_yaml
+    monkeypatch.setattr(check_module, "parse_yaml", lambda *a, **k: calls.append(a[1]) or real(*a, **k))
+    result = check_file(EXAMPLES / "flexure" / "three_rod.yaml", others=(flexure_document,))
+    assert result.status == "pass" and len(calls) == 1  # was 3: read as a mechanism, then as YAML, then as a flexure
+
+
+def test_without_the_flexure_check_a_flexure_document_is_a_mechanism_error():
+    result = check_file(EXAMPLES / "flexure" / "three_rod.yaml")
+    assert result.status == "error" and ":29: threshold: unknown key in a mechanism" in result.message  # its first key unknown to mechanisms
+
+
+def test_the_pytest_helpers_check_flexure_documents_too(tmp_path):
+    (passed,) = assert_mechanism_passes(EXAMPLES / "flexure")
+    assert passed.kind == "flexure"
+    with pytest.raises(MechanismCheckFailed, match=r"disagrees with its expected block:\n  dof 3 \(expected 4\)"):
+        assert_mechanism_passes(flexure_with(tmp_path, "f.yaml", "{dof: 4}"))
+
+
+# --- the actuation key ---------------------------------------------------------------------------
+
+
+def test_the_actuation_key_compares_the_verdict_of_the_marked_joints(write_yaml):
+    text = (MECHANISMS / "actuation_3rps.yaml").read_text()
+    assert "actuation: valid" in text
+    assert check_file(write_yaml(text)).ok
+    result = check_file(write_yaml(text.replace("actuation: valid", "actuation: redundant")))
+    assert result.message == "actuation valid (expected redundant)"
+    m = mobility.load(MECHANISMS / "actuation_3rps.yaml")
+    two = m.replace(joints=tuple(dataclasses.replace(j, actuated=j.name in ("P1", "P2")) for j in m.joints))
+    assert check_mechanism(two).message == "actuation actuation-singular (expected valid)"
+    none = text.replace("actuated: true", "actuated: false")
+    assert check_file(write_yaml(none)).message == "actuation: no input is marked actuated (actuated: true), so there is no verdict to compare"
+
+
+def test_the_actuation_key_is_validated_at_its_line(write_yaml, capsys):
+    text = (MECHANISMS / "actuation_3rps.yaml").read_text()
+    path = write_yaml(text.replace("actuation: valid", "actuation: fine"))
+    line = next(k for k, row in enumerate(text.split("\n"), 1) if "actuation: valid" in row)
+    status, out, _ = run(capsys, "check", path)
+    assert status == 2 and f"{path}:{line}: expected.actuation: expected one of valid, redundant, actuation-singular, got 'fine'" in out
+
+
+def test_the_file_formats_verdict_words_are_the_actuation_verdicts():
+    from mobility.actuation import VERDICTS
+    from mobility.io.expected import ACTUATION_VERDICTS
+
+    assert ACTUATION_VERDICTS == VERDICTS
+
+
+def test_the_library_pins_the_verdict_of_every_file_that_marks_actuated_joints(library_report):
+    pinned = {r.path for r in library_report.results if any(c.key == "actuation" for c in r.comparisons)}
+    marked = {str(p) for p in MECHANISMS.glob("*.yaml") if any(j.actuated for j in mobility.load(p).joints)}
+    assert pinned == marked - {str(MECHANISMS / "3crr.yaml")}  # 3crr: see its expected block
+    verdicts = {c.expected for r in library_report.results for c in r.comparisons if c.key == "actuation"}
+    assert verdicts == {"valid", "redundant", "actuation-singular"}

@@ -381,6 +381,7 @@ EXPECTED_KEYS: dict[str, str] = {
     "full_cycle_dof": "end-effector DOF along the finite motion from this pose (integer >= 0; mobility analyze --finite)",
     "full_cycle_mobility": "DOF of the whole mechanism along the finite motion (integer >= 0; mobility analyze --finite)",
     "finite_verdict": "full-cycle, instantaneous-only, cannot-move or bifurcation (mobility analyze --finite)",
+    "actuation": "verdict of the joints marked actuated: valid, redundant or actuation-singular (mobility actuation)",
 }
 """Keys an ``expected`` block may hold, with what each means."""
 

@@ -20,13 +20,14 @@ Modules, in the order data flows:
 
 from .actuators import actuation_tolerance, check_force_lines, enumerate_force_lines, line_set_type
 from .compliance import compliance_matrix, normalised_energy_form, rod_compliance
-from .loader import is_flexure_document, load_flexure, loads_flexure
+from .loader import is_flexure_document, load_flexure, loads_flexure, read_flexure
 from .model import LENGTH_UNITS, MODULUS_UNITS, FlexureMechanism, ForceLine, Material, Rod
 from .spaces import CLEAR_GAP, DEFAULT_THRESHOLD, FlexureSpaces, flexure_spaces
 
 __all__ = [
     "load_flexure",
     "loads_flexure",
+    "read_flexure",
     "is_flexure_document",
     "FlexureMechanism",
     "Material",

@@ -14,10 +14,13 @@ joints (the format is in ``docs/actuation.md``)::
          length: 100, radius: 1, material: steel}
     actuators:
       - {name: a1, point: [0, 0, 100], direction: [1, 0, 0], actuated: true}
+    expected: {dof: 5, pattern: 2T3R}
 
 It shares ``parameters`` (named numbers and expressions), ``frames`` and the
 angle unit with mechanism files, and gives bad input the same one-line
-``file:line: key: what was expected`` errors.  A document is a flexure
+``file:line: key: what was expected`` errors.  Its ``expected`` block
+(for ``mobility check``) may hold the keys of
+:data:`~mobility.io.expected.FLEXURE_EXPECTED_KEYS`.  A document is a flexure
 document when it has the top-level key ``elements``
 (:func:`is_flexure_document`).
 
@@ -54,11 +57,12 @@ from .compliance import compliance_matrix
 from ..io.reader import DocumentReader, describe_value, parse_key
 from ..core.model import WORLD, Frame
 from ..core.transforms import Transform
-from ..io.yaml_source import KeyPath, parse_yaml, read_text
+from ..io.expected import FLEXURE_EXPECTED_KEYS, read_expected
+from ..io.yaml_source import KeyPath, Positions, parse_yaml, read_text
 
-__all__ = ["load_flexure", "loads_flexure", "is_flexure_document", "FLEXURE_KEYS", "ELEMENT_KEYS", "ACTUATOR_KEYS", "ELEMENT_TYPES"]
+__all__ = ["load_flexure", "loads_flexure", "read_flexure", "is_flexure_document", "FLEXURE_KEYS", "ELEMENT_KEYS", "ACTUATOR_KEYS", "ELEMENT_TYPES"]
 
-FLEXURE_KEYS = ("name", "description", "units", "parameters", "frames", "ground", "end_effector", "materials", "elements", "actuators", "threshold")
+FLEXURE_KEYS = ("name", "description", "units", "parameters", "frames", "ground", "end_effector", "materials", "elements", "actuators", "threshold", "expected")
 ELEMENT_KEYS = ("name", "type", "bodies", "frame", "point", "axis", "length", "radius", "material")
 ACTUATOR_KEYS = ("name", "frame", "point", "direction", "actuated")
 MATERIAL_KEYS = ("E", "nu")
@@ -85,6 +89,11 @@ def load_flexure(path: str | Path) -> FlexureMechanism:
 def loads_flexure(text: str, file: str = "<string>") -> FlexureMechanism:
     """Load a flexure document from YAML text (see :func:`load_flexure`)."""
     data, positions = parse_yaml(text, file)
+    return read_flexure(data, positions, file)
+
+
+def read_flexure(data: Any, positions: Positions, file: str = "<string>") -> FlexureMechanism:
+    """The flexure mechanism of an already parsed document (``data, positions`` from :func:`~mobility.io.yaml_source.parse_yaml`)."""
     return _FlexureReader(file, positions).flexure_mechanism(data)
 
 
@@ -105,6 +114,7 @@ class _FlexureReader(DocumentReader):
             threshold = self.number(doc["threshold"], ("threshold",))
             if not (0.0 < threshold < 1.0):
                 raise self.fail(("threshold",), f"expected a relative compliance between 0 and 1, got {threshold!r}")
+        expected = read_expected(self, doc["expected"], FLEXURE_EXPECTED_KEYS) if "expected" in doc else None
         try:
             mechanism = FlexureMechanism(
                 name=name,
@@ -115,6 +125,7 @@ class _FlexureReader(DocumentReader):
                 description=description,
                 length_unit=length_unit,
                 threshold=threshold,
+                expected=expected,
                 source=self.file,
             )
             compliance_matrix(mechanism)  # sizes or moduli beyond double precision: named here, with their line

@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from ..core.joint_screws import Normalisation
-from ..core.model import require_ground_and_end_effector, require_graph_names, require_unique_names
+from ..core.model import Expected, require_ground_and_end_effector, require_graph_names, require_unique_names
 from ..core.tolerance import characteristic_scale
 from ..errors import MechanismError, name_list
 
@@ -215,6 +215,9 @@ class FlexureMechanism:
         A key of :data:`LENGTH_UNITS` (default ``"m"``).
     threshold : float or None
         Relative-compliance threshold (``None``: :data:`mobility.flexure.spaces.DEFAULT_THRESHOLD`).
+    expected : Expected or None
+        What ``mobility check`` compares the freedom space and the actuation
+        verdict with (keys of :data:`mobility.io.expected.FLEXURE_EXPECTED_KEYS`).
     source : str
         Where it came from, for messages.
     """
@@ -227,6 +230,7 @@ class FlexureMechanism:
     description: str = ""
     length_unit: str = "m"
     threshold: float | None = None
+    expected: Expected | None = None
     source: str = ""
 
     def __post_init__(self) -> None:

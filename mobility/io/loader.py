@@ -44,14 +44,15 @@ import re
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
-from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Expected, Frame, Joint, Mechanism
+from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
 from ..errors import MechanismError, RequestError
+from .expected import read_expected
 from .expressions import RESERVED_NAMES
 from .limits import Limits, current_limits
-from .reader import NAME_RE, DocumentReader, describe_value, parse_key
-from .yaml_source import KeyPath, format_key, parse_yaml, read_text
+from .reader import NAME_RE, DocumentReader, describe_value, parse_key, shown_value
+from .yaml_source import KeyPath, Positions, parse_yaml, read_text
 
-__all__ = ["load", "loads", "TOP_LEVEL_KEYS", "JOINT_KEYS", "EXPECTED_VALIDATORS"]
+__all__ = ["load", "loads", "read_mechanism", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
 
 TOP_LEVEL_KEYS = ("name", "description", "ground", "end_effector", "units", "frames", "joints", "expected", "parameters", "limbs")
 JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes", "normal", "actuated")
@@ -125,52 +126,22 @@ def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) ->
         raise RequestError(f"loads: expected the text of a mechanism file (str), got {type(text).__name__}")
     limits = current_limits(limits)
     data, positions = parse_yaml(text, file, limits)
-    return _MechanismReader(file, positions, limits).mechanism(data)
+    return read_mechanism(data, positions, file, limits=limits)
 
 
-def _shown(value: Any) -> str:
-    """A value in a message: its ``repr`` when short, else a description (``a list of 300 items``)."""
-    text = repr(value)
-    return text if len(text) <= 40 else describe_value(value)
+def read_mechanism(data: Any, positions: Positions, file: str = "<string>", *, limits: Limits | None = None) -> Mechanism:
+    """The mechanism of an already parsed document (``data, positions`` from :func:`~mobility.io.yaml_source.parse_yaml`).
 
+    For a caller that reads a YAML file once and decides by its content which
+    kind of document it is (``mobility check``).
 
-def _expected_int(value: Any, key: str, *, signed: bool = False) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or (not signed and value < 0):
-        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {_shown(value)}")
-    return value
-
-
-def _expected_pattern(value: Any, key: str) -> str:
-    """An expected pattern, checked: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (also unquoted).
-
-    A twist system of more than 3 dimensions always holds a translation, so
-    ``m`` is at most 3 too.
+    Examples
+    --------
+    >>> data, positions = parse_yaml("{name: s, ground: g, end_effector: s, joints: [{name: p, type: P, links: [g, s], axis: [1, 0, 0]}]}")
+    >>> read_mechanism(data, positions).joints[0].type
+    'P'
     """
-    if value == 0 and type(value) is int:
-        return "0"
-    if not isinstance(value, str) or not re.fullmatch(r"0|([1-3]T)?([1-3]R)?", value) or not value:
-        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got {_shown(value)}')
-    return value
-
-
-EXPECTED_VALIDATORS: dict[str, Callable[[Any, str], Any]] = {
-    "dof": _expected_int,
-    "pattern": _expected_pattern,
-    "mobility": _expected_int,
-    "redundant_constraints": _expected_int,
-    "idle_dof": _expected_int,
-    "gruebler_kutzbach": lambda v, k: _expected_int(v, k, signed=True),
-    "full_cycle_dof": _expected_int,
-    "full_cycle_mobility": _expected_int,
-    "finite_verdict": lambda v, k: _expected_choice(v, k, ("full-cycle", "instantaneous-only", "cannot-move", "bifurcation")),
-}
-"""Validators of the ``expected`` keys (other modules may register more)."""
-
-
-def _expected_choice(value: Any, key: str, choices: tuple[str, ...]) -> str:
-    if not isinstance(value, str) or value not in choices:
-        raise MechanismError(key, f"expected one of {', '.join(choices)}, got {_shown(value)}")
-    return value
+    return _MechanismReader(file, positions, current_limits(limits)).mechanism(data)
 
 
 class _MechanismReader(DocumentReader):
@@ -191,7 +162,7 @@ class _MechanismReader(DocumentReader):
         sources += limb_sources
         if not joints:
             raise self.fail(("joints",), "expected at least one joint")
-        expected = self.expected(doc["expected"]) if "expected" in doc else None
+        expected = read_expected(self, doc["expected"], tuple(EXPECTED_KEYS)) if "expected" in doc else None
         try:
             return Mechanism(
                 name=name,
@@ -256,7 +227,7 @@ class _MechanismReader(DocumentReader):
         frame = self.identifier(data.get("frame", default_frame or WORLD), path + ("frame",), "a frame name")
         actuated = data.get("actuated", False)
         if not isinstance(actuated, bool):
-            raise self.fail(path + ("actuated",), f"expected true or false, got {_shown(actuated)}")
+            raise self.fail(path + ("actuated",), f"expected true or false, got {shown_value(actuated)}")
         try:
             return Joint(name, jtype, links, frame=text(frame, path + ("frame",)), actuated=actuated, **fields)
         except MechanismError as exc:
@@ -321,7 +292,7 @@ class _MechanismReader(DocumentReader):
                 raise self.fail(path + ("copies",), f"{all_copies} copies of limbs are more than the limit of {lim.max_copies} ({lim.hint('max_copies')})")
             index = limb.get("index", "i")
             if not isinstance(index, str) or not NAME_RE.match(index):
-                raise self.fail(path + ("index",), f"expected a variable name, got {_shown(index)}")
+                raise self.fail(path + ("index",), f"expected a variable name, got {shown_value(index)}")
             if index in RESERVED_NAMES:
                 raise self.fail(path + ("index",), f"{index!r} is a constant or a function of the expressions; choose another name for the index")
             if index in self.names:
@@ -338,27 +309,3 @@ class _MechanismReader(DocumentReader):
                 raise self.fail(path + ("copies",), f"the limbs make {frames} frames in all, more than the limit of {lim.max_frames} ({lim.hint('max_frames')})")
             out.append((limb, copies, index))
         return out
-
-    def expected(self, value: Any) -> Expected:
-        path: KeyPath = ("expected",)
-        data = self.mapping(value, path, "expected results")
-        self.check_keys(data, tuple(EXPECTED_KEYS), path, "the expected block")
-        fields: dict[str, Any] = {}
-        extra: dict[str, Any] = {}
-        for key, raw in data.items():
-            kpath = path + (key,)
-            if key == "translations":
-                if not isinstance(raw, list):
-                    raise self.fail(kpath, f"expected a list of 3-vectors, got {describe_value(raw)}")
-                fields[key] = tuple(self.vector(v, kpath + (i,)) for i, v in enumerate(raw))
-                continue
-            validator = EXPECTED_VALIDATORS.get(key)
-            try:
-                parsed = validator(raw, format_key(kpath)) if validator else raw
-            except MechanismError as exc:
-                raise self.fail(kpath, exc.message) from None
-            if key in Expected.__dataclass_fields__:
-                fields[key] = parsed
-            else:
-                extra[key] = parsed
-        return Expected(**fields, extra=extra)

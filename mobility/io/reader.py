@@ -287,6 +287,18 @@ def describe_value(value: Any) -> str:
     return type(value).__name__
 
 
+def shown_value(value: Any) -> str:
+    """A value in a message: its ``repr`` when short, else :func:`describe_value` (``a list of 300 items``).
+
+    Examples
+    --------
+    >>> shown_value("yes"), shown_value(list(range(300)))
+    ("'yes'", 'a list of 300 items')
+    """
+    text = repr(value)
+    return text if len(text) <= 40 else describe_value(value)
+
+
 def parse_key(key: str) -> KeyPath:
     """Parse ``joints[3].axes[0]`` into ``("joints", 3, "axes", 0)``."""
     out: list[str | int] = []

@@ -25,9 +25,14 @@ Each checked file ends in one of four statuses: ``"pass"``, ``"fail"`` (a key
 disagrees), ``"missing"`` (no ``expected`` block: not a pass) and ``"error"``
 (the file cannot be read or analysed; its one-line message is kept).
 
+* ``actuation``: equality with the verdict of
+  :func:`mobility.actuation.check_actuation` for the joints marked
+  ``actuated: true`` (none marked: a mismatch that says so).
+
 A YAML document of another kind (a flexure document, see
 ``docs/actuation.md``) is checked by a function given in ``others``
-(:data:`OtherDocument`); ``mobility check`` gives the one for flexures.
+(:data:`OtherDocument`); ``mobility check`` gives the one for flexures,
+:func:`mobility.testing.flexure_check.flexure_document`.
 Paths and messages are reported as text
 (:func:`mobility.io.files.printable_name`): the bytes of a file name that
 are not UTF-8 appear as ``\\xNN``.
@@ -63,11 +68,11 @@ from typing import Any, Callable, Iterable, Sequence
 import numpy as np
 
 from ..core.analysis import analyze
-from ..errors import MechanismFileError, MobilityError
+from ..errors import MobilityError
 from ..io.files import os_problem, printable_name
-from ..io.limits import require_size
-from ..io.loader import load
-from ..io.yaml_source import parse_yaml, read_text
+from ..io.limits import current_limits, require_size
+from ..io.loader import load, read_mechanism
+from ..io.yaml_source import Positions, parse_yaml, read_text
 from ..core.model import Mechanism
 from ..core.result import Result
 from ..core.screws import same_subspace
@@ -84,6 +89,8 @@ __all__ = [
     "check_file",
     "check_paths",
     "mechanism_files",
+    "compare_translations",
+    "compare_verdict",
 ]
 
 STATUSES = ("pass", "fail", "missing", "error")
@@ -150,6 +157,10 @@ class CheckResult:
         What the file holds: ``"mechanism"``, or the kind of another
         document (``"flexure"``), whose analysis is not a
         :class:`~mobility.core.result.Result` (``result`` is then ``None``).
+    found : dict or None
+        What was found, in the JSON form of ``to_dict()["found"]``: from
+        ``result`` for a mechanism; given by the check of another kind of
+        document (a flexure's ``dof``, ``pattern``, ``translations``...).
     """
 
     path: str
@@ -160,6 +171,20 @@ class CheckResult:
     error: str = ""
     internal: bool = False
     kind: str = "mechanism"
+    found: dict[str, Any] | None = None
+
+    def __post_init__(self) -> None:
+        r = self.result
+        if r is not None and self.found is None:
+            object.__setattr__(self, "found", {
+                "dof": r.dof,
+                "pattern": r.pattern,
+                "mobility": r.mobility,
+                "gruebler_kutzbach": r.gruebler_kutzbach,
+                "redundant_constraints": r.redundant_constraints,
+                "idle_dof": r.idle_dof,
+                "translations": clean_numbers(r.translations),
+            })
 
     @property
     def ok(self) -> bool:
@@ -184,22 +209,13 @@ class CheckResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form (one entry of ``mobility check --json``)."""
-        r = self.result
         return {
             "path": self.path,
             "name": self.name,
             "kind": self.kind,
             "status": self.status,
             "message": self.message,
-            "found": None if r is None else {
-                "dof": r.dof,
-                "pattern": r.pattern,
-                "mobility": r.mobility,
-                "gruebler_kutzbach": r.gruebler_kutzbach,
-                "redundant_constraints": r.redundant_constraints,
-                "idle_dof": r.idle_dof,
-                "translations": clean_numbers(r.translations),
-            },
+            "found": self.found,
             "comparisons": [c.to_dict() for c in self.comparisons],
         }
 
@@ -291,8 +307,16 @@ def _finite(key: str) -> Comparator:
     return compare
 
 
-def _translations(subject: _Subject, expected: Any) -> Comparison:
-    found = subject.result.translations
+def compare_translations(found: np.ndarray, expected: Any, tol: Tolerance) -> Comparison:
+    """An expected translation basis (rows) compared with the ``found`` one as subspaces.
+
+    Examples
+    --------
+    >>> compare_translations(np.array([[0.0, 0.0, 1.0]]), [[0, 0, 5]], DEFAULT_TOLERANCE).ok
+    True
+    >>> compare_translations(np.zeros((0, 3)), [[1, 0, 0]], DEFAULT_TOLERANCE).describe()
+    'translations: found the span of [], expected the span of [[1, 0, 0]]'
+    """
     rows = np.asarray(expected, dtype=float).reshape(-1, 3)
     norms = np.linalg.norm(rows, axis=1)
     actual = clean_numbers(found)
@@ -302,9 +326,35 @@ def _translations(subject: _Subject, expected: Any) -> Comparison:
     if len(unit) == 0 or len(found) == 0:
         ok = len(found) == 0 and len(unit) == 0
     else:
-        ok = same_subspace(unit.T, found.T, subject.tol)
+        ok = same_subspace(unit.T, found.T, tol)
     note = "" if ok else f"found the span of {_short(actual)}, expected the span of {_short(rows.tolist())}"
     return Comparison("translations", rows.tolist(), actual, ok, note)
+
+
+def compare_verdict(key: str, found: Any, expected: Any, inputs: Sequence[str]) -> Comparison:
+    """An expected actuation verdict compared with the one ``found`` for ``inputs`` (none marked: a mismatch that says so).
+
+    Examples
+    --------
+    >>> compare_verdict("actuation", "valid", "valid", ["P1", "P2"]).ok
+    True
+    >>> compare_verdict("actuation", "actuation-singular", "valid", []).describe()
+    'actuation: no input is marked actuated (actuated: true), so there is no verdict to compare'
+    """
+    if not inputs:
+        return Comparison(key, expected, None, False, "no input is marked actuated (actuated: true), so there is no verdict to compare")
+    return Comparison(key, expected, found, found == expected)
+
+
+def _translations(subject: _Subject, expected: Any) -> Comparison:
+    return compare_translations(subject.result.translations, expected, subject.tol)
+
+
+def _actuation(subject: _Subject, expected: Any) -> Comparison:
+    from ..actuation import check_actuation  # imported on demand: most files expect no actuation verdict
+
+    check = check_actuation(subject.mechanism, tol=subject.tol)
+    return compare_verdict("actuation", check.verdict, expected, [i.name for i in check.inputs])
 
 
 COMPARATORS: dict[str, Comparator] = {
@@ -318,6 +368,7 @@ COMPARATORS: dict[str, Comparator] = {
     "full_cycle_dof": _finite("full_cycle_dof"),
     "full_cycle_mobility": _finite("full_cycle_mobility"),
     "finite_verdict": _finite("finite_verdict"),
+    "actuation": _actuation,
 }
 """How each ``expected`` key is compared (other modules may register more)."""
 
@@ -361,23 +412,28 @@ def check_mechanism(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE,
     return CheckResult(path, mechanism.name, status, tuple(comparisons), subject.result)
 
 
-OtherDocument = Callable[[str, Any, Tolerance], "CheckResult | None"]
-"""``check(path, data, tol)``: the check of a YAML document that is not a mechanism file (``data``, the
-parsed document, says which kind it is), or ``None`` when ``data`` is not of its kind.  It may raise
-:class:`~mobility.errors.MobilityError` for a bad document (reported as the file's error)."""
+OtherDocument = Callable[[str, Any, Positions, Tolerance], "CheckResult | None"]
+"""``check(path, data, positions, tol)``: the check of a YAML document that is not a mechanism file
+(``data`` and ``positions``, the parsed document from :func:`~mobility.io.yaml_source.parse_yaml`, say
+which kind it is and where each key stands), or ``None`` when ``data`` is not of its kind.  It may raise
+:class:`~mobility.errors.MobilityError` for a bad document (reported as the file's error).
+:func:`mobility.testing.flexure_check.flexure_document` is the one for flexure documents."""
 
 
 def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE, others: Sequence[OtherDocument] = ()) -> CheckResult:
     """Load, analyse and check one mechanism file; never raises on a bad file.
+
+    A YAML file is read and parsed once; each of ``others`` is then offered
+    the parsed document before it is read as a mechanism.  Any other file
+    (a robot description) is loaded by :func:`mobility.io.loader.load`.
 
     Parameters
     ----------
     path : str or Path
     tol : Tolerance
     others : sequence of OtherDocument
-        Checks of other kinds of YAML documents, tried in turn on a file that
-        does not read as a mechanism file (its mechanism error stands when
-        none of them takes it).
+        Checks of other kinds of YAML documents, tried in turn; the first
+        that takes the document checks it.
 
     Returns
     -------
@@ -392,33 +448,19 @@ def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE, others: 
     """
     name = printable_name(path)
     try:
-        try:
-            mechanism = load(path)
-        except MechanismFileError:
-            other = _other_document(str(path), others, tol)
-            if other is None:
-                raise
-            return dataclasses.replace(other, path=name, name=printable_name(other.name))
-        return check_mechanism(mechanism, tol=tol, path=name)
+        if Path(path).suffix.lower() not in MECHANISM_SUFFIXES:
+            return check_mechanism(load(path), tol=tol, path=name)
+        limits = current_limits()
+        data, positions = parse_yaml(read_text(path, limits), str(path), limits)
+        for other in others:
+            found = other(str(path), data, positions, tol)
+            if found is not None:
+                return dataclasses.replace(found, path=name, name=printable_name(found.name))
+        return check_mechanism(read_mechanism(data, positions, str(path), limits=limits), tol=tol, path=name)
     except MobilityError as exc:
         return CheckResult(name, "", "error", error=printable_name(str(exc)))
     except Exception as exc:  # a defect of the package: report it, keep checking the other files
         return CheckResult(name, "", "error", error=printable_name(f"internal error ({type(exc).__name__}: {exc})"), internal=True)
-
-
-def _other_document(path: str, others: Sequence[OtherDocument], tol: Tolerance) -> CheckResult | None:
-    """The check of ``path`` by the first of ``others`` that takes it (None if none does, or if it is not YAML)."""
-    if not others or Path(path).suffix.lower() not in MECHANISM_SUFFIXES:
-        return None
-    try:
-        data, _ = parse_yaml(read_text(path), path)
-    except MobilityError:
-        return None  # the mechanism reader's error says it
-    for check in others:
-        found = check(path, data, tol)
-        if found is not None:
-            return found
-    return None
 
 
 def _path_problem(raw: str | Path) -> tuple[int, str]:

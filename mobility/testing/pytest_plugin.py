@@ -2,7 +2,9 @@
 
 Two ways, both running :func:`mobility.testing.check.check_file` on each file (one
 test per file, named after it; a file fails its test when it disagrees with
-its ``expected`` block, has none, or cannot be read):
+its ``expected`` block, has none, or cannot be read).  A flexure document
+among the files is checked as one
+(:func:`mobility.testing.flexure_check.flexure_document`):
 
 1. **One line in a test module** (no plugin needed)::
 
@@ -40,7 +42,7 @@ from typing import Any, Callable, Iterator
 
 import pytest
 
-from .check import CheckResult, check_file, check_paths, mechanism_files
+from .check import CheckResult, OtherDocument, check_file, check_paths, mechanism_files
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..errors import MechanismCheckFailed
 
@@ -51,6 +53,13 @@ __all__ = [
     "assert_mechanism_passes",
     "failure_text",
 ]
+
+
+def _document_checks() -> tuple[OtherDocument, ...]:
+    """The checks of other kinds of document: flexures (imported when a file is checked, not when pytest starts)."""
+    from .flexure_check import flexure_document
+
+    return (flexure_document,)
 
 
 def failure_text(result: CheckResult) -> str:
@@ -75,7 +84,7 @@ def assert_mechanism_passes(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERA
     tuple of CheckResult
         The passing results.
     """
-    report = check_paths([path], tol=tol)
+    report = check_paths([path], tol=tol, others=_document_checks())
     failed = [r for r in report.results if not r.ok]
     if failed:
         raise MechanismCheckFailed("\n".join(failure_text(r) for r in failed))
@@ -179,7 +188,7 @@ class MechanismItem(pytest.Item):
     """The check of one mechanism file against its ``expected`` block."""
 
     def runtest(self) -> None:
-        result = check_file(self.path)
+        result = check_file(self.path, others=_document_checks())
         if not result.ok:
             raise MechanismCheckFailed(failure_text(result))
 

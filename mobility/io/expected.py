@@ -1,0 +1,132 @@
+"""The ``expected`` block of a document: what a regression check compares an analysis with.
+
+Mechanism files and flexure documents may both carry one; each kind of
+document allows its own keys (:data:`~mobility.core.model.EXPECTED_KEYS` for
+mechanisms, :data:`FLEXURE_EXPECTED_KEYS` for flexures), and every value is
+checked where it is read (:data:`EXPECTED_VALIDATORS`), so a misspelt key or a
+pattern such as ``"4R"`` is a one-line error at its line, not a check that
+can never pass.
+
+Examples
+--------
+>>> from mobility.io.reader import DocumentReader
+>>> from mobility.io.yaml_source import parse_yaml
+>>> data, positions = parse_yaml("expected: {dof: 3, pattern: 3R, actuation: valid}\\n", "e.yaml")
+>>> e = read_expected(DocumentReader("e.yaml", positions), data["expected"], FLEXURE_EXPECTED_KEYS)
+>>> e.items()
+[('dof', 3), ('pattern', '3R'), ('actuation', 'valid')]
+>>> data, positions = parse_yaml("expected: {dof: 3, mobility: 3}\\n", "e.yaml")
+>>> read_expected(DocumentReader("e.yaml", positions), data["expected"], FLEXURE_EXPECTED_KEYS)
+Traceback (most recent call last):
+...
+mobility.errors.MechanismFileError: e.yaml:1: expected.mobility: unknown key in the expected block; expected one of: dof, pattern, translations, actuation
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any, Callable
+
+from ..core.model import Expected
+from ..errors import MechanismError
+from .reader import DocumentReader, describe_value, shown_value
+from .yaml_source import KeyPath, format_key
+
+__all__ = ["ACTUATION_VERDICTS", "FINITE_VERDICTS", "EXPECTED_VALIDATORS", "FLEXURE_EXPECTED_KEYS", "read_expected"]
+
+ACTUATION_VERDICTS = ("valid", "redundant", "actuation-singular")
+"""The verdicts of a choice of actuated inputs (:data:`mobility.actuation.VERDICTS`, which the tests compare)."""
+
+FINITE_VERDICTS = ("full-cycle", "instantaneous-only", "cannot-move", "bifurcation")
+"""The verdicts of the finite-motion analysis (``mobility analyze --finite``)."""
+
+FLEXURE_EXPECTED_KEYS = ("dof", "pattern", "translations", "actuation")
+"""The keys the ``expected`` block of a flexure document may hold (freedom space and actuation)."""
+
+
+def _integer(value: Any, key: str, *, signed: bool = False) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or (not signed and value < 0):
+        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {shown_value(value)}")
+    return value
+
+
+def _pattern(value: Any, key: str) -> str:
+    """An expected pattern, checked: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (also unquoted).
+
+    A twist system of more than 3 dimensions always holds a translation, so
+    ``m`` is at most 3 too.
+    """
+    if value == 0 and type(value) is int:
+        return "0"
+    if not isinstance(value, str) or not re.fullmatch(r"0|([1-3]T)?([1-3]R)?", value) or not value:
+        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got {shown_value(value)}')
+    return value
+
+
+def _choice(choices: tuple[str, ...]) -> Callable[[Any, str], str]:
+    def validate(value: Any, key: str) -> str:
+        if not isinstance(value, str) or value not in choices:
+            raise MechanismError(key, f"expected one of {', '.join(choices)}, got {shown_value(value)}")
+        return value
+
+    return validate
+
+
+EXPECTED_VALIDATORS: dict[str, Callable[[Any, str], Any]] = {
+    "dof": _integer,
+    "pattern": _pattern,
+    "mobility": _integer,
+    "redundant_constraints": _integer,
+    "idle_dof": _integer,
+    "gruebler_kutzbach": lambda v, k: _integer(v, k, signed=True),
+    "full_cycle_dof": _integer,
+    "full_cycle_mobility": _integer,
+    "finite_verdict": _choice(FINITE_VERDICTS),
+    "actuation": _choice(ACTUATION_VERDICTS),
+}
+"""Validators of the ``expected`` keys (``translations`` is read as a list of vectors)."""
+
+
+def read_expected(reader: DocumentReader, value: Any, keys: tuple[str, ...]) -> Expected:
+    """The ``expected`` block ``value`` of a document, each key among ``keys`` and each value checked.
+
+    Parameters
+    ----------
+    reader : DocumentReader
+        The document's reader (its errors name file, line and key).
+    value : Any
+        The parsed block.
+    keys : tuple of str
+        The keys this kind of document may expect.
+
+    Returns
+    -------
+    Expected
+
+    Raises
+    ------
+    MechanismFileError
+        On an unknown key or a value of the wrong kind.
+    """
+    path: KeyPath = ("expected",)
+    data = reader.mapping(value, path, "expected results")
+    reader.check_keys(data, keys, path, "the expected block")
+    fields: dict[str, Any] = {}
+    extra: dict[str, Any] = {}
+    for key, raw in data.items():
+        kpath = path + (key,)
+        if key == "translations":
+            if not isinstance(raw, list):
+                raise reader.fail(kpath, f"expected a list of 3-vectors, got {describe_value(raw)}")
+            fields[key] = tuple(reader.vector(v, kpath + (i,)) for i, v in enumerate(raw))
+            continue
+        validator = EXPECTED_VALIDATORS.get(key)
+        try:
+            parsed = validator(raw, format_key(kpath)) if validator else raw
+        except MechanismError as exc:
+            raise reader.fail(kpath, exc.message) from None
+        if key in Expected.__dataclass_fields__:
+            fields[key] = parsed
+        else:
+            extra[key] = parsed
+    return Expected(**fields, extra=extra)

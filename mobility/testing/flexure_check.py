@@ -1,0 +1,105 @@
+"""Regression checks of flexure documents: freedom space and actuation verdict against their ``expected`` blocks.
+
+A flexure document (``docs/actuation.md``) may carry an ``expected`` block
+with the keys of :data:`~mobility.io.expected.FLEXURE_EXPECTED_KEYS`:
+
+* ``dof``, ``pattern``: equality with the freedom space of
+  :func:`mobility.flexure.flexure_spaces` (at the document's threshold);
+* ``translations``: the pure translations of the freedom space, compared as
+  subspaces (:func:`~mobility.testing.check.compare_translations`);
+* ``actuation``: the verdict of :func:`mobility.flexure.check_force_lines`
+  for the actuators marked ``actuated: true``.
+
+:func:`flexure_document` is the :data:`~mobility.testing.check.OtherDocument`
+that ``mobility check`` gives :func:`~mobility.testing.check.check_paths`, so
+a folder may hold mechanism files and flexure documents side by side.
+
+Examples
+--------
+>>> from mobility.flexure import loads_flexure
+>>> text = '''
+... name: one wire
+... units: {length: mm, modulus: GPa}
+... ground: base
+... end_effector: stage
+... materials: {steel: {E: 200, nu: 0.3}}
+... elements:
+...   - {name: w1, type: rod, bodies: [base, stage], axis: [0, 0, 1], length: 100, radius: 1, material: steel}
+... expected: {dof: 5, pattern: 2T3R, translations: [[1, 0, 0], [0, 1, 0]]}
+... '''
+>>> c = check_flexure(loads_flexure(text))
+>>> c.status, c.found["pattern"]
+('pass', '2T3R')
+>>> check_flexure(loads_flexure(text.replace("dof: 5", "dof: 3"))).message
+'dof 5 (expected 3)'
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
+from ..flexure import FlexureMechanism, check_force_lines, flexure_spaces, is_flexure_document, read_flexure
+from ..io.yaml_source import Positions
+from .check import CheckResult, Comparison, compare_translations, compare_verdict
+
+__all__ = ["check_flexure", "flexure_document"]
+
+
+def check_flexure(flexure: FlexureMechanism, *, tol: Tolerance = DEFAULT_TOLERANCE, path: str = "") -> CheckResult:
+    """Compute a flexure mechanism's spaces and compare them with its ``expected`` block.
+
+    Parameters
+    ----------
+    flexure : FlexureMechanism
+    tol : Tolerance
+    path : str
+        Where it came from, for the report.
+
+    Returns
+    -------
+    CheckResult
+        ``kind`` ``"flexure"``; ``found`` holds ``dof``, ``pattern``,
+        ``constraints`` and ``translations`` (and ``actuation`` when the
+        block expects a verdict); status ``"missing"`` without a block.
+
+    Raises
+    ------
+    MobilityError
+        When the spaces cannot be computed.
+    """
+    spaces = flexure_spaces(flexure, tol=tol)
+    found: dict[str, Any] = {
+        "dof": spaces.dof,
+        "pattern": spaces.pattern,
+        "constraints": 6 - spaces.dof,
+        "translations": clean_numbers(spaces.freedom_translations),
+    }
+    expected = flexure.expected
+    items = expected.items() if expected is not None else []
+    if not items:
+        return CheckResult(path, flexure.name, "missing", kind="flexure", found=found)
+    comparisons = []
+    for key, value in items:
+        if key == "translations":
+            comparisons.append(compare_translations(spaces.freedom_translations, value, tol))
+        elif key == "actuation":
+            check = check_force_lines(flexure, tol=tol)
+            found["actuation"] = check.verdict
+            comparisons.append(compare_verdict(key, check.verdict, value, [i.name for i in check.inputs]))
+        else:  # dof, pattern: the reader allows no other key
+            comparisons.append(Comparison(key, value, found[key], found[key] == value))
+    status = "pass" if all(c.ok for c in comparisons) else "fail"
+    return CheckResult(path, flexure.name, status, tuple(comparisons), kind="flexure", found=found)
+
+
+def flexure_document(path: str, data: Any, positions: Positions, tol: Tolerance) -> CheckResult | None:
+    """The check of a parsed flexure document, ``None`` for a document of another kind.
+
+    An :data:`~mobility.testing.check.OtherDocument`: the document is read by
+    the flexure reader, so a bad one is an error naming its file, line and
+    key (raised, and reported by :func:`~mobility.testing.check.check_file`).
+    """
+    if not is_flexure_document(data):
+        return None
+    return check_flexure(read_flexure(data, positions, path), tol=tol, path=path)
