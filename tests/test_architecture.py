@@ -260,3 +260,15 @@ def test_the_readme_layout_table_states_the_same_lines():
             rows[folder] = cells[2].replace("\\_", "_").replace("nothing", "")
     package_folders = {k: " ".join(v.split()) for k, v in ALLOWED.items() if k not in ("__init__", "__main__")}
     assert {k: " ".join(v.split()) for k, v in rows.items()} == package_folders
+
+
+LONG_MODULE = 600
+"""Lines above which a module must say in its docstring why it is one module (issue 10)."""
+
+
+def test_a_long_module_says_why_it_reads_better_whole():
+    long = {p: len(p.read_text(encoding="utf-8").splitlines()) for p in MODULES}
+    long = {p: n for p, n in long.items() if n > LONG_MODULE}
+    unexplained = [f"{p.relative_to(PACKAGE)} ({n} lines)" for p, n in long.items()
+                   if "longer than most" not in " ".join((ast.get_docstring(ast.parse(p.read_text(encoding="utf-8"))) or "").split())]
+    assert long and unexplained == []  # four modules today: core/model, core/kinematics, core/finite_screws, sweeps/continuation

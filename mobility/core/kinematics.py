@@ -1,5 +1,10 @@
 """Finite motion of a mechanism: joint variables, forward kinematics and loop closure.
 
+One module, longer than most, because it is one concept that reads better
+whole: the joint variables, the link displacements, the loop residuals, their
+Jacobians and the Newton closure all stand on one spanning tree and one set of
+normalised coordinates, held by one :class:`Kinematics` object.
+
 The screw route (:func:`mobility.analyze`) answers at one pose.  This module
 moves the mechanism: it is the finite counterpart of
 :mod:`mobility.core.loop_closure`, on the same spanning tree of the joint graph.

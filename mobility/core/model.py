@@ -10,6 +10,11 @@ gives the same joints in the global frame ``world``.  Each joint type is a set
 of elementary freedoms (:meth:`Joint.freedoms`): rotations about lines,
 translations along directions, screw motions.
 
+One module, longer than most, because a description and the rules it checks
+on construction read better together: the ``require_*`` helpers at the end
+are the checks a :class:`Joint`, :class:`Frame` or :class:`Mechanism` (and
+the flexure model, which shares them) makes of itself.
+
 Examples
 --------
 >>> four_bar = Mechanism(

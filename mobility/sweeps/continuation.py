@@ -1,5 +1,11 @@
 """Closing every loop at every point of a grid: batched Newton and continuation.
 
+One module, longer than most, because it is one algorithm that reads better
+whole: the batched Newton step, the continuation of lines with its retries
+(smaller steps, off a fold), the two-level walk of long lines and the seeding
+of a grid call each other and share the :class:`Drive` of the driven
+coordinates.
+
 At a grid point the driven coordinates have given values (see
 :mod:`mobility.sweeps.grid`): a driven joint's variable is fixed; a pose
 coordinate is one more equation.  The other variables are solved so that
