@@ -58,10 +58,16 @@ def test_convert_with_expected_passes_mobility_check(tmp_path, capsys):
     status, _, err = run(capsys, "convert", HAND / "four_bar.xml", "-o", out_file, "--expected")
     assert status == 0 and "mobility: note: end effector: coupler" in err
     text = out_file.read_text()
-    assert "expected: {dof: 1, pattern: 1R, mobility: 1}" in text
+    assert "expected: {dof: 1, pattern: 1R, mobility: 1, actuation: valid}" in text  # one motor for one DOF
     assert "actuated: true" in text  # the motor on A
     status, out, _ = run(capsys, "check", out_file)
-    assert status == 0 and "pass" in out.lower()
+    assert status == 0 and "pass (4 keys)" in out
+    urdf = (HAND / "four_bar.urdf").read_text()
+    no_motor = tmp_path / "no_motor.urdf"
+    no_motor.write_text(urdf[:urdf.index("  <transmission")] + urdf[urdf.index("</transmission>") + len("</transmission>\n"):])
+    unactuated = tmp_path / "no_motor.yaml"
+    run(capsys, "convert", no_motor, "--close", "coupler_tip", "rocker_tip", "--end-effector", "coupler", "-o", unactuated, "--expected")
+    assert "expected: {dof: 1, pattern: 1R, mobility: 1}\n" in unactuated.read_text()  # no joint actuated: no verdict to pin
 
 
 def test_convert_prints_to_stdout_and_notes_to_stderr(capsys):

@@ -33,7 +33,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "to annotate, add an expected block and check with `mobility check`.")
     add_mechanism_file(p, file_help="robot description (MJCF, URDF) or mechanism file (YAML)")
     p.add_argument("-o", "--output", metavar="FILE.yaml", help="file to write (default: standard output)")
-    p.add_argument("--expected", action="store_true", help="also write an expected block (dof, pattern, mobility) from this analysis")
+    p.add_argument("--expected", action="store_true", help="also write an expected block from this analysis (dof, pattern, mobility; "
+                                                                   "the actuation verdict when joints are actuated)")
     p.set_defaults(run=run)
 
 
@@ -49,6 +50,10 @@ def run(args: argparse.Namespace) -> int:
     if args.expected:
         result = analyze(mechanism)
         expected = {"dof": result.dof, "pattern": result.pattern, "mobility": result.mobility}
+        if any(j.actuated for j in mechanism.joints):  # an MJCF actuator's joint
+            from ..actuation import check_actuation
+
+            expected["actuation"] = check_actuation(mechanism).verdict
     text = mechanism_to_yaml(mechanism, description=description, expected=expected)
     require_written_faithfully(mechanism, text, args.output or "the converted file")
     for note in notes:
