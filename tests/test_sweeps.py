@@ -761,3 +761,39 @@ def test_joints_that_meet_on_a_link_still_meet_in_every_rebuilt_pose():
         assert pose.joints[0].point == pose.joints[1].point
         alone = mobility.analyze(pose)
         assert (alone.dof, alone.pattern, alone.mobility) == (int(r.dof[i]), str(r.pattern[i]), int(r.mobility[i])) == (1, "1R", 1)
+
+
+def test_a_reachable_pose_is_assembled_whatever_the_grid_step():
+    # The tilted 3-PRS driven by R1: the other joints move about 25 times faster than R1 near the file's
+    # pose, so a line's first step must move them far more than the drive itself.  Every grid reaches the
+    # same range along the minimum-norm path, R1 from -19.45 deg up (found independently by a 0.05-degree
+    # least-squares walk; towards -19.45 the sliders run off without bound); a half-degree grid used to
+    # assemble 1 of 241 poses, since smaller steps shrank the allowed move with them.
+    m = load("3prs_tilted")
+    coarse, fine = sweep(m, ["R1=-60:60:241"]), sweep(m, ["R1=-60:60:1201"])
+    assert coarse.assembled.tolist() == (coarse.values[:, 0] >= -19.45).tolist()
+    assert fine.assembled.tolist() == (fine.values[:, 0] >= -19.45).tolist()
+    for i in random_rows(coarse, 3):
+        assert_pose_matches_one_pose_routes(coarse, i)
+    # a pose coordinate driven in one long step: the wrist's platform raised by 1.769 in one step, as in 40
+    one, many = sweep(load("3upu_wrist"), ["z=0:1.769:2"]), sweep(load("3upu_wrist"), ["z=0:1.769:41"])
+    assert one.assembled.all() and many.assembled.all()
+    assert_pose_matches_one_pose_routes(one, 1)
+
+
+def test_a_rotation_a_translational_platform_cannot_make_is_not_assembled_on_another_branch():
+    # The Tsai 3-UPU and the Delta translate: no motion from the file's pose turns the platform, so a
+    # sweep of a rotation assembles the file's pose only.  Starts far along the translations (tried at a
+    # fold of the drive) used to close poses of other assemblies, with legs 39 times the mechanism's size
+    # and tilts that jumped from one grid point to the next; now a pose found off a fold is kept only if
+    # walking back from it reaches the fold's pose.
+    for name, vary in [("tsai_3upu", "rx=-10:10:25"), ("delta", "ry=-10:10:7"), ("delta", "ry=-10:10:25")]:
+        r = sweep(load(name), [vary])
+        assert r.assembled.tolist() == (r.values[:, 0] == 0).tolist(), (name, vary)
+        assert mobility.analyze(r.mechanism_at(int(np.flatnonzero(r.assembled)[0]))).pattern == "3T"
+    # where the rotation is a freedom, holding x still as well reaches every pose (it used to reach 1 of 7)
+    m = load("pkm_sp1rc_4ups")
+    alone, with_x = sweep(m, ["ry=-10:10:7"]), sweep(m, ["x=0:0:1", "ry=-10:10:7"])
+    assert alone.assembled.all() and with_x.assembled.all()
+    for i in (0, 6):
+        assert_pose_matches_one_pose_routes(with_x, i)

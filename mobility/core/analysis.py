@@ -31,7 +31,7 @@ from .model import WORLD, Mechanism, require_mechanism
 from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis, pattern_of
 from .screw_systems import MarginTracker, SystemValue, evaluate_node, subtree_values
 from .screws import free_vector_subspace, span_and_reciprocal
-from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
+from .tolerance import DEFAULT_TOLERANCE, NEAR_LARGEST_FLOAT, Tolerance, require_tolerance
 from .transforms import cross
 from .topology import JointNode, Node, Parallel, Topology, decompose, describe, joints_of
 
@@ -115,7 +115,7 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
             f"(above round-off, below the rank threshold {tol.rank:.0e}); {cause}"
         )
     norm = screws.normalisation
-    return Result(
+    result = Result(
         name=mechanism.name,
         dof=root.dim,
         pattern=pattern_of(root.dim - rotational.rank, rotational.rank),
@@ -135,6 +135,9 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
         reference_point=screws.reference_in_world,
         detail=_Detail(mechanism, topology, screws, root, detached, tol),
     )
+    if float(np.abs(norm.centre).max()) + norm.length > NEAR_LARGEST_FLOAT:
+        result.to_dict()  # its axes may lie past the largest float: said here, not when a lazy part is first read
+    return result
 
 
 class _Detail:

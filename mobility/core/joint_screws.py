@@ -213,6 +213,8 @@ def _build(mechanism: Mechanism) -> JointScrews:
     reference = ((ee * scale).sum(axis=0) / len(ee) - centre_s) / length_s if len(ee) else np.zeros(3)
     offsets = table.offsets
     columns = tuple(tw[:, offsets[j] : offsets[j + 1]] for j in range(len(offsets) - 1))
-    reference_in_world = (centre_s + length_s * reference) / scale  # norm.point_to_world, without overflow
+    with np.errstate(over="ignore"):  # norm.point_to_world, without overflow: the centroid of finite points is
+        # finite, so a coordinate past the largest float is one that rounding took there: it is that float
+        reference_in_world = np.clip((centre_s + length_s * reference) / scale, -sys.float_info.max, sys.float_info.max)
     reference_in_world.setflags(write=False)
     return JointScrews(tw, np.array(offsets), norm, reference, columns, reference_in_world)

@@ -32,6 +32,7 @@ Examples
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
@@ -211,6 +212,16 @@ lengths carry round-off of about ``D * 1e-16`` into every residual
 component, and Newton's steps there are as ill-conditioned (measured on the
 3-PRS: sweeps reach 1,900 lengths, fail at 4,700).  An angle of an R or C
 joint wraps, so it has no limit (:attr:`mobility.sweeps.SweepAxis.internal`).
+"""
+
+NEAR_LARGEST_FLOAT = sys.float_info.max * 2.0**-20
+"""A mechanism reaching this far from the origin (its centre's largest
+coordinate plus its characteristic length) has the lazy parts of its result
+(screw axes, limbs) computed by :func:`mobility.analyze` itself, so that an
+axis whose point lies beyond the largest float is an error of the analysis,
+not of a later read of the result.  Nearer the origin no point of an axis
+can get there (the factor ``2**-20`` leaves room for axes a million
+characteristic lengths from the centre), and the result stays lazy.
 """
 
 SOLVER_STOP = 1e-15

@@ -232,8 +232,9 @@ def _run(program: Program, names: Mapping[str, float], text: str) -> float:
         if not math.isfinite(result):
             raise ValueError(f"expression {_shown(text)!r} is not finite")
         if abs(result) < _SMALLEST_NORMAL and op[1] in _NEVER_ZERO and args and all(a != 0.0 for a in args):
-            raise ValueError(f"expression {_shown(text)!r} underflows: a product, quotient or power of its numbers is below the "
-                             f"smallest float ({_SMALLEST_NORMAL:.3g}); write the lengths in a larger unit")
+            what = "an exp" if op[1] is math.exp else "a product, quotient or power"
+            hint = "" if op[1] is math.exp else "; write the lengths in a larger unit"
+            raise ValueError(f"expression {_shown(text)!r} underflows: {what} of its numbers is below the smallest float ({_SMALLEST_NORMAL:.3g}){hint}")
         stack.append(result)
     return stack[-1]
 

@@ -30,7 +30,8 @@ Newton solve is the cubic predictor ``4 q[i-1] - 6 q[i-2] + 4 q[i-3] - q[i-4]``
 after two), which keeps the continuation on its branch through a change
 point and leaves one Newton step to do.  A point that fails is retried in 2 and then 4
 smaller steps from its last assembled neighbour, then off a fold when that
-neighbour is one (:func:`_off_a_fold`); the points still missing at
+neighbour is one (:func:`_off_a_fold`, whose poses must walk back to
+that neighbour: :func:`_walks_back`); the points still missing at
 the end are tried again from any assembled neighbour on any axis
 (:func:`mobility.sweeps.grid_closure.fill`), layer after layer.  A point that cannot
 be assembled stays in the grid with ``assembled`` false and its best residual.
@@ -308,12 +309,30 @@ def _advance(
     tol: Tolerance,
     retry: bool,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """One continuation step from assembled poses ``base_q`` (at ``base_t``) to ``targets``, retried in smaller steps."""
+    """One continuation step from assembled poses ``base_q`` (at ``base_t``) to ``targets``, retried in smaller steps.
+
+    A solve may move at most ``10 span + 0.05`` from its start, ``span`` being
+    the predicted move plus the drive's change: farther, it would reach
+    another assembly.  A retry also allows the length of the linearised step
+    from the base pose (:func:`_linear_step_lengths`): where the other joints
+    move many times faster than the driven ones (a poorly conditioned drive,
+    or a line's first step, predicted from one point only), the nearby
+    assembly lies that far, and smaller steps alone would never reach it.
+    """
     with np.errstate(over="ignore", invalid="ignore"):  # an infinite span (a target beyond any size) allows any move
         span = np.linalg.norm(predicted - base_q, axis=1) + np.linalg.norm(targets - base_t, axis=1)
     q, err, ok = newton(bk, drive, predicted, targets, tol=tol, max_move=10.0 * span + 0.05)
     if not retry:
         return q, err, ok
+    failed = np.flatnonzero(~ok)
+    linear = np.zeros(len(q))
+    if failed.size:
+        linear[failed] = _linear_step_lengths(bk, drive, base_q[failed], targets[failed], tol)
+        wider = failed[linear[failed] > np.linalg.norm(predicted[failed] - base_q[failed], axis=1)]
+        if wider.size:  # the same step, allowed as far as the linearised step reaches
+            nq, nerr, nok = newton(bk, drive, predicted[wider], targets[wider], tol=tol, max_move=10.0 * (span[wider] + linear[wider]) + 0.05)
+            q[wider[nok]], ok[wider[nok]] = nq[nok], True
+            err[wider] = np.where(nok, nerr, np.minimum(err[wider], nerr))
     for splits in RETRY_SPLITS:
         failed = np.flatnonzero(~ok)
         if failed.size == 0:
@@ -324,7 +343,7 @@ def _advance(
             t = base_t[failed] + (targets[failed] - base_t[failed]) * (k / splits)
             guess = cur_q + (predicted[failed] - base_q[failed]) / splits
             with np.errstate(over="ignore", invalid="ignore"):
-                step = np.linalg.norm(guess - cur_q, axis=1) + np.linalg.norm(t - cur_t, axis=1)
+                step = np.linalg.norm(guess - cur_q, axis=1) + np.linalg.norm(t - cur_t, axis=1) + linear[failed] / splits
             nq, nerr, nok = newton(bk, drive, guess, t, tol=tol, max_move=10.0 * step + 0.05)
             good &= nok
             cur_q, cur_t = np.where(nok[:, None], nq, cur_q), t
@@ -338,6 +357,33 @@ def _advance(
         q[failed[fok]], ok[failed[fok]] = fq[fok], True
         err[failed] = np.where(fok, ferr, np.minimum(err[failed], ferr))
     return q, err, ok
+
+
+def _linear_step_lengths(bk: BatchKinematics, drive: Drive, base_q: np.ndarray, targets: np.ndarray, tol: Tolerance) -> np.ndarray:
+    """Length of the first Newton step from each assembled ``base_q`` to ``targets`` (the linearised motion), 0 at a fold.
+
+    Where the closure equations keep their rank (``Tolerance.rank``), the
+    step is the tangent of the branch through the base pose, scaled to the
+    drive's change.  Where they lose it (a fold, or a driven coordinate the
+    mechanism cannot change there), the linear equations have no solution and
+    the damped step's length means nothing: 0 is returned.
+    """
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        start = drive.apply(base_q, targets)
+        r, evaluation = _evaluate(bk, drive, start, targets)
+        lengths = np.zeros(len(base_q))
+        if r.shape[0] == 0 or not drive.free.any():
+            return lengths
+        jac = np.ascontiguousarray(np.moveaxis(evaluation.jacobian()[:, drive.free], -1, 0))  # (N, m, free)
+        equations = jac.shape[1]
+        full = np.zeros(len(base_q), dtype=bool)
+        finite = np.all(np.isfinite(jac), axis=(1, 2)) & np.all(np.isfinite(r), axis=0)
+        if equations <= jac.shape[2] and finite.any():
+            sv = np.linalg.svd(jac[finite], compute_uv=False)
+            full[finite] = decide_ranks(sv, tol).rank == equations
+        if full.any():
+            lengths[full] = np.linalg.norm(_min_norm_steps(jac[full], r[:, full]), axis=1)
+    return np.where(np.isfinite(lengths), lengths, 0.0)
 
 
 FOLD_REACH = (0.3, 1.0, 3.0)
@@ -392,9 +438,32 @@ def _off_a_fold(
                 length = sign * reach * np.sqrt(step[rows])
                 guess[:, drive.free] += length[:, None] * vt[rows, k]
                 nq, nerr, nok = newton(bk, drive, guess, targets[rows], tol=tol, max_move=10.0 * np.abs(length) + 10.0 * step[rows] + 0.05)
+                nok &= _walks_back(bk, drive, nq, targets[rows], base_q[rows], base_t[rows], tol)
                 err[rows] = np.minimum(err[rows], nerr)
                 q[rows[nok]], ok[rows[nok]] = nq[nok], True
     return q, err, ok
+
+
+RETURN_STEPS = 4
+"""Steps of the walk back from a pose found off a fold to the fold's drive values (:func:`_walks_back`)."""
+
+
+def _walks_back(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray, base_q: np.ndarray, base_t: np.ndarray, tol: Tolerance) -> np.ndarray:
+    """Whether each closed pose ``q`` (at ``targets``) lies on a branch through ``base_q``: walking back comes home.
+
+    A pose found off a fold is kept only when continuation from it back to
+    the base's drive values, in :data:`RETURN_STEPS` steps, ends nearer the
+    base than half its distance from it.  On a branch through the base (a
+    fold, a change point) the walk ends at the base; a pose of another
+    assembly, which a start far along a direction the drive leaves free can
+    reach when the driven coordinate cannot change at the base (a rotation of
+    a translational platform), walks back to a pose of its own branch.
+    """
+    cur = q
+    for k in range(1, RETURN_STEPS + 1):
+        cur, _, _ = newton(bk, drive, cur, targets + (base_t - targets) * (k / RETURN_STEPS), tol=tol)
+    with np.errstate(over="ignore", invalid="ignore"):
+        return np.linalg.norm(cur - base_q, axis=1) <= 0.5 * np.linalg.norm(q - base_q, axis=1)
 
 
 def close_lines(
