@@ -16,7 +16,10 @@ How each key is compared:
   :mod:`mobility.core.tolerance`; an empty list means "no translation";
 * ``full_cycle_dof``, ``full_cycle_mobility``, ``finite_verdict``: equality
   with :func:`mobility.finite.finite_mobility`, computed only when one of them
-  is present (it costs more than the screw analysis).
+  is present (it costs more than the screw analysis);
+* ``actuation``: equality with the verdict of
+  :func:`mobility.actuation.check_actuation` for the joints marked
+  ``actuated: true`` (none marked: a mismatch that says so).
 
 Other modules may add keys to :data:`COMPARATORS`.  A key of the block that no
 comparator knows is reported as a mismatch, never silently passed.
@@ -24,10 +27,6 @@ comparator knows is reported as a mismatch, never silently passed.
 Each checked file ends in one of four statuses: ``"pass"``, ``"fail"`` (a key
 disagrees), ``"missing"`` (no ``expected`` block: not a pass) and ``"error"``
 (the file cannot be read or analysed; its one-line message is kept).
-
-* ``actuation``: equality with the verdict of
-  :func:`mobility.actuation.check_actuation` for the joints marked
-  ``actuated: true`` (none marked: a mismatch that says so).
 
 A YAML document of another kind (a flexure document, see
 ``docs/actuation.md``) is checked by a function given in ``others``
@@ -158,9 +157,9 @@ class CheckResult:
         document (``"flexure"``), whose analysis is not a
         :class:`~mobility.core.result.Result` (``result`` is then ``None``).
     found : dict or None
-        What was found, in the JSON form of ``to_dict()["found"]``: from
-        ``result`` for a mechanism; given by the check of another kind of
-        document (a flexure's ``dof``, ``pattern``, ``translations``...).
+        What the check of another kind of document found (a flexure's
+        ``dof``, ``pattern``, ``translations``...); for a mechanism
+        :meth:`found_values` reads it from ``result``.
     """
 
     path: str
@@ -173,18 +172,20 @@ class CheckResult:
     kind: str = "mechanism"
     found: dict[str, Any] | None = None
 
-    def __post_init__(self) -> None:
+    def found_values(self) -> dict[str, Any] | None:
+        """``found``, or for a mechanism the numbers of its ``result`` (``None`` on error)."""
         r = self.result
-        if r is not None and self.found is None:
-            object.__setattr__(self, "found", {
-                "dof": r.dof,
-                "pattern": r.pattern,
-                "mobility": r.mobility,
-                "gruebler_kutzbach": r.gruebler_kutzbach,
-                "redundant_constraints": r.redundant_constraints,
-                "idle_dof": r.idle_dof,
-                "translations": clean_numbers(r.translations),
-            })
+        if self.found is not None or r is None:
+            return self.found
+        return {
+            "dof": r.dof,
+            "pattern": r.pattern,
+            "mobility": r.mobility,
+            "gruebler_kutzbach": r.gruebler_kutzbach,
+            "redundant_constraints": r.redundant_constraints,
+            "idle_dof": r.idle_dof,
+            "translations": clean_numbers(r.translations),
+        }
 
     @property
     def ok(self) -> bool:
@@ -215,7 +216,7 @@ class CheckResult:
             "kind": self.kind,
             "status": self.status,
             "message": self.message,
-            "found": self.found,
+            "found": self.found_values(),
             "comparisons": [c.to_dict() for c in self.comparisons],
         }
 
