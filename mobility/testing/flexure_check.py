@@ -16,22 +16,15 @@ a folder may hold mechanism files and flexure documents side by side.
 
 Examples
 --------
->>> from mobility.flexure import loads_flexure
->>> text = '''
-... name: one wire
-... units: {length: mm, modulus: GPa}
-... ground: base
-... end_effector: stage
-... materials: {steel: {E: 200, nu: 0.3}}
-... elements:
-...   - {name: w1, type: rod, bodies: [base, stage], axis: [0, 0, 1], length: 100, radius: 1, material: steel}
-... expected: {dof: 5, pattern: 2T3R, translations: [[1, 0, 0], [0, 1, 0]]}
-... '''
->>> c = check_flexure(loads_flexure(text))
->>> c.status, c.found["pattern"]
-('pass', '2T3R')
->>> check_flexure(loads_flexure(text.replace("dof: 5", "dof: 3"))).message
-'dof 5 (expected 3)'
+>>> import dataclasses
+>>> from mobility.flexure import load_flexure
+>>> flexure = load_flexure("examples/flexure/three_rod.yaml")
+>>> c = check_flexure(flexure)
+>>> c.status, c.found["pattern"], [x.key for x in c.comparisons]
+('pass', '3R', ['dof', 'pattern', 'translations', 'actuation'])
+>>> wrong = dataclasses.replace(flexure, expected=dataclasses.replace(flexure.expected, dof=2))
+>>> check_flexure(wrong).message
+'dof 3 (expected 2)'
 """
 
 from __future__ import annotations
