@@ -797,3 +797,26 @@ def test_a_rotation_a_translational_platform_cannot_make_is_not_assembled_on_ano
     assert alone.assembled.all() and with_x.assembled.all()
     for i in (0, 6):
         assert_pose_matches_one_pose_routes(with_x, i)
+
+
+def test_a_branch_with_a_second_order_freedom_is_never_reported_clean_with_another_pattern():
+    # 4puu_singular: along its translations the platform's rotation stays an infinitesimal freedom (the
+    # finite analysis: instantaneous-only, first-order 3T1R on the whole branch).  The closure pins that
+    # rotation only to about 1e-7, so a row may show what round-off leaves; it must then say so.
+    m = load("4puu_singular")
+    finite = mobility.finite_mobility(m)
+    assert (finite.verdict, finite.branches[0].analysis.pattern) == ("instantaneous-only", "3T1R")
+    for vary in (["P1=-1:1:9"], ["x=-1:1:9"]):
+        r = sweep(m, vary)
+        rows = np.flatnonzero(r.assembled)
+        assert rows.size == 9
+        clean = rows[~r.near_singular[rows]]
+        assert all(r.pattern[i] == "3T1R" and r.dof[i] == 4 for i in clean), vary
+        assert (r.smallest_kept[rows[r.near_singular[rows]]] < 1e-5).all()
+    # the exact branch pose: every slider moved by the same amount, a pure translation along x
+    k = kinematics(m)
+    q = np.zeros(k.variable_count)
+    for name in ("P1", "P2", "P3", "P4"):
+        q[k.variables_of(name)] = 0.5 / k.normalisation.length
+    assert np.abs(k.residual(q)).max() == 0.0
+    assert mobility.analyze(k.mechanism_at(q)).pattern == "3T1R"
