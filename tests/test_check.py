@@ -3,6 +3,7 @@
 import dataclasses
 import json
 import os
+import warnings
 
 import pytest
 from conftest import MECHANISMS
@@ -103,6 +104,16 @@ def test_translations_are_compared_as_subspaces(write_yaml):
     assert status("[]") == "fail"
     zero = check_file(write_yaml(PLANAR + "expected: {translations: [[0, 0, 0]]}\n"))
     assert zero.status == "fail" and "zero vector" in zero.message
+
+
+def test_expected_translations_of_any_finite_size_are_directions(write_yaml):
+    text = (MECHANISMS / "3prs.yaml").read_text()
+    assert "translations: [[0, 0, 1]]" in text
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the norm of [0, 1e308, 1e308] squared overflowed (a numpy warning, then a wrong direction)
+        assert check_file(write_yaml(text.replace("translations: [[0, 0, 1]]", "translations: [[0, -1.7e308, 1.7e308]]"))).message == (
+            "translations: found the span of [[0, 0, 1]], expected the span of [[0, -1.7e+308, 1.7e+308]]")
+        assert check_file(write_yaml(text.replace("translations: [[0, 0, 1]]", "translations: [[0, 0, 1.7e308], [0, 0, 5e-324]]"))).ok
 
 
 def test_no_translation_is_written_as_an_empty_list():

@@ -319,11 +319,12 @@ def compare_translations(found: np.ndarray, expected: Any, tol: Tolerance) -> Co
     'translations: found the span of [], expected the span of [[1, 0, 0]]'
     """
     rows = np.asarray(expected, dtype=float).reshape(-1, 3)
-    norms = np.linalg.norm(rows, axis=1)
+    largest = np.abs(rows).max(axis=1, initial=0.0)
     actual = clean_numbers(found)
-    if np.any(norms == 0.0):
+    if np.any(largest == 0.0):
         return Comparison("translations", rows.tolist(), actual, False, "an expected translation is the zero vector")
-    unit = rows / norms[:, None]
+    scaled = rows / largest[:, None]  # divided before squaring: any finite vector has a unit direction
+    unit = scaled / np.linalg.norm(scaled, axis=1)[:, None]
     if len(unit) == 0 or len(found) == 0:
         ok = len(found) == 0 and len(unit) == 0
     else:
