@@ -326,3 +326,9 @@ def test_isclose_compares_lengths_over_a_length():
     assert not a.isclose(b)  # in the unit of the numbers: 2.5e-8 apart
     assert a.isclose(b, length=1000.0)
     assert a.isclose(FiniteScrew(-a.homogeneous))  # the sign of a dual quaternion is no displacement
+
+
+def test_an_axis_of_any_finite_size_is_a_direction():
+    # the squared norm of (1e308, 1e308, 0) overflowed: the axis was taken for a zero vector and refused
+    assert np.allclose(finite_screw((1e308, 1e308, 0), (0, 0, 0), 0.5), finite_screw((1, 1, 0), (0, 0, 0), 0.5), atol=1e-15)
+    assert np.allclose(finite_screw((5e-324, 0, 0), (0, 0, 0), 0.5), finite_screw((1, 0, 0), (0, 0, 0), 0.5), atol=1e-15)

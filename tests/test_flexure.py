@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import warnings
 from dataclasses import replace
 from pathlib import Path
 
@@ -535,3 +536,20 @@ def test_rods_beyond_double_precision_are_refused_at_their_line(tmp_path, capsys
     path.write_text(GOOD)  # the same rod, of a physical size: analysed
     status = main(["actuation", str(path)])
     assert status in (0, 1) and "compliance eigenvalues" in capsys.readouterr().out
+
+
+def test_directions_of_any_finite_size_are_directions(tmp_path):
+    # A rod's axis and an actuator's direction are directions: 1e200 times them is the same document
+    # (their squared norms overflowed, leaving a zero axis, numpy warnings and an unrelated error).
+    text = FILE.read_text()
+    big = text.replace('axis: ["-sind(tilt)", 0, "cosd(tilt)"]', 'axis: ["-1e200*sind(tilt)", 0, "1e200*cosd(tilt)"]')
+    big = big.replace("direction: [0, 1, 0], actuated: true", "direction: [0, 1e300, 0], actuated: true")
+    assert big.count("1e200") == 6 and big.count("1e300") == 3
+    path = tmp_path / "big.yaml"
+    path.write_text(big)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mine, theirs = load_flexure(path), load_flexure(FILE)
+        assert np.abs(np.array([e.axis for e in mine.elements]) - [e.axis for e in theirs.elements]).max() < 1e-15
+        a, b = check_force_lines(mine), check_force_lines(theirs)
+    assert a.verdict == b.verdict == VALID and a.conditioning == pytest.approx(b.conditioning, rel=1e-12)

@@ -125,8 +125,11 @@ def _unit_or_none(v: Iterable[float]) -> np.ndarray | None:
         a = np.asarray(v, dtype=float).reshape(3)
     except (TypeError, ValueError):
         return None
-    n = float(np.linalg.norm(a))
-    return a / n if np.isfinite(n) and n > 0.0 else None
+    largest = float(np.abs(a).max())
+    if not (np.isfinite(largest) and largest > 0.0):
+        return None
+    a = a / largest  # before squaring: any finite direction has a unit vector
+    return a / float(np.linalg.norm(a))
 
 
 def _unit(v: Iterable[float], what: str) -> np.ndarray:

@@ -56,6 +56,7 @@ __all__ = [
     "Expected",
     "Mechanism",
     "require_mechanism",
+    "require_vector",
     "require_graph_names",
     "require_unique_names",
     "require_no_repeats",
@@ -104,8 +105,17 @@ _OPTIONAL: Mapping[str, tuple[str, ...]] = {"P": ("point",), "E": ("point",)}
 Vector = tuple[float, float, float]
 
 
-def _vector(value: Any, key: str, *, direction: bool = False) -> Vector:
-    """Validate a 3-vector of finite numbers; normalise it if it is a direction."""
+def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
+    """A 3-vector of finite numbers, normalised if it is a direction (any finite size: scaled before squaring); else a :class:`MechanismError`.
+
+    Examples
+    --------
+    >>> require_vector([0, 3e300, 4e300], "axis", direction=True)
+    (0.0, 0.6, 0.8)
+    >>> require_vector([1, 2], "point")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: point: expected a list of 3 numbers, got 2
+    """
     if not direction and type(value) in (tuple, list) and len(value) == 3 and all(type(x) in (float, int) for x in value):
         try:  # the common case, without numpy's per-call overhead
             x, y, z = (float(x) for x in value)
@@ -211,11 +221,11 @@ class Joint:
             if key not in allowed and value is not None:
                 raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {', '.join(need)})")
         if self.axis is not None:
-            object.__setattr__(self, "axis", _vector(self.axis, "axis", direction=True))
+            object.__setattr__(self, "axis", require_vector(self.axis, "axis", direction=True))
         if self.normal is not None:
-            object.__setattr__(self, "normal", _vector(self.normal, "normal", direction=True))
+            object.__setattr__(self, "normal", require_vector(self.normal, "normal", direction=True))
         if self.point is not None:
-            object.__setattr__(self, "point", _vector(self.point, "point"))
+            object.__setattr__(self, "point", require_vector(self.point, "point"))
         if self.pitch is not None:
             try:
                 pitch = float(self.pitch)
@@ -227,8 +237,8 @@ class Joint:
         if self.axes is not None:
             if not isinstance(self.axes, (list, tuple)) or len(self.axes) != 2:
                 raise MechanismError("axes", "expected two directions [a1, a2]")
-            a1 = _vector(self.axes[0], "axes[0]", direction=True)
-            a2 = _vector(self.axes[1], "axes[1]", direction=True)
+            a1 = require_vector(self.axes[0], "axes[0]", direction=True)
+            a2 = require_vector(self.axes[1], "axes[1]", direction=True)
             sine = float(np.linalg.norm(np.cross(a1, a2)))
             if sine < PARALLEL_AXES:
                 raise MechanismError("axes", "the two axes of a U joint must not be parallel")
@@ -309,7 +319,7 @@ class Frame:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
             raise MechanismError("name", f"expected a frame name, got {self.name!r}")
-        object.__setattr__(self, "origin", _vector(self.origin, "origin"))
+        object.__setattr__(self, "origin", require_vector(self.origin, "origin"))
         rot = np.asarray(self.rotation, dtype=float)
         if rot.shape != (3, 3) or not np.isfinite(rot).all():
             raise MechanismError("rotation", "expected a 3x3 matrix of finite numbers")
@@ -332,7 +342,7 @@ class Frame:
         >>> [round(float(x), 12) + 0.0 for x in f.transform.apply_point((1, 0, 0))]
         [1.0, 1.0, 0.0]
         """
-        rpy = _vector(tuple(rpy), "rpy")
+        rpy = require_vector(tuple(rpy), "rpy")
         return Frame(name, tuple(origin), tuple(map(tuple, rotation_from_rpy(rpy))), parent)
 
     @property

@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from ..core.joint_screws import Normalisation
-from ..core.model import Expected, require_ground_and_end_effector, require_graph_names, require_unique_names
+from ..core.model import Expected, require_ground_and_end_effector, require_vector, require_graph_names, require_unique_names
 from ..core.tolerance import characteristic_scale
 from ..errors import MechanismError, name_list
 
@@ -46,22 +46,6 @@ MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "N/mm^2": 1e6, "
 """Units of Young's modulus a flexure document may use, in pascals."""
 
 Vector = tuple[float, float, float]
-
-
-def _vec(value: Any, key: str, *, direction: bool = False) -> Vector:
-    """A 3-vector of finite numbers (normalised if it is a direction), else a :class:`MechanismError`."""
-    try:
-        arr = np.asarray(value, dtype=float).reshape(-1)
-    except (TypeError, ValueError):
-        raise MechanismError(key, f"expected 3 finite numbers, got {value!r}") from None
-    if arr.shape != (3,) or not np.all(np.isfinite(arr)):
-        raise MechanismError(key, f"expected 3 finite numbers, got {value!r}")
-    if direction:
-        n = float(np.linalg.norm(arr))
-        if n == 0.0:
-            raise MechanismError(key, "expected a non-zero direction, got [0, 0, 0]")
-        arr = arr / n
-    return (float(arr[0]), float(arr[1]), float(arr[2]))
 
 
 def _number(value: Any, key: str, expected: str = "a number") -> float:
@@ -140,8 +124,8 @@ class Rod:
         if b[0] == b[1]:
             raise MechanismError("bodies", f"an element must join two different bodies, got {b[0]!r} twice")
         object.__setattr__(self, "bodies", b)
-        object.__setattr__(self, "start", _vec(self.start, "point"))
-        object.__setattr__(self, "axis", _vec(self.axis, "axis", direction=True))
+        object.__setattr__(self, "start", require_vector(self.start, "point"))
+        object.__setattr__(self, "axis", require_vector(self.axis, "axis", direction=True))
         object.__setattr__(self, "length", _positive(self.length, "length"))
         object.__setattr__(self, "radius", _positive(self.radius, "radius"))
         if not isinstance(self.material, Material):
@@ -189,8 +173,8 @@ class ForceLine:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
             raise MechanismError("name", f"expected a non-empty string, got {self.name!r}")
-        object.__setattr__(self, "point", _vec(self.point, "point"))
-        object.__setattr__(self, "direction", _vec(self.direction, "direction", direction=True))
+        object.__setattr__(self, "point", require_vector(self.point, "point"))
+        object.__setattr__(self, "direction", require_vector(self.direction, "direction", direction=True))
         if not isinstance(self.actuated, bool):
             raise MechanismError("actuated", f"expected true or false, got {self.actuated!r}")
 
