@@ -553,3 +553,24 @@ def test_directions_of_any_finite_size_are_directions(tmp_path):
         assert np.abs(np.array([e.axis for e in mine.elements]) - [e.axis for e in theirs.elements]).max() < 1e-15
         a, b = check_force_lines(mine), check_force_lines(theirs)
     assert a.verdict == b.verdict == VALID and a.conditioning == pytest.approx(b.conditioning, rel=1e-12)
+
+
+@pytest.mark.parametrize("old, new, key, words", [
+    ("modulus: GPa", "modulus: [GPa]", "units.modulus", "expected one of Pa, kPa, MPa, GPa"),  # was a TypeError (found by the flexure fuzz test)
+    ("length: mm, modulus", "length: [mm], modulus", "units.length", "expected one of m, cm, mm"),
+    ("{name: rod1,", "{name: [rod1],", "elements[0].name", "expected an element name (a string), got a list of 1 item"),
+    ("bodies: [base, stage], frame: leg1", "bodies: [base, 7], frame: leg1", "elements[0].bodies[1]", "expected a body name (a string), got the number 7; write it in quotes"),
+    ("{name: t1,", "{name: true,", "actuators[0].name", "expected an actuator name (a string), got true"),
+    ("type: rod, bodies: [base, stage], frame: leg1", "type: [rod], bodies: [base, stage], frame: leg1", "elements[0].type", "unknown flexure element type ['rod']"),
+    ("length: l, radius: r, material: aluminium}", "length: abc, radius: r, material: aluminium}", "elements[0].length", "unknown name 'abc'"),  # its key was written twice
+    ("ground: base", "ground: 3", "ground", "expected a body name (a string), got the number 3"),
+])
+def test_names_and_units_of_the_wrong_kind_are_one_line_errors(tmp_path, old, new, key, words):
+    text = FILE.read_text()
+    assert old in text
+    path = tmp_path / "bad.yaml"
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(MechanismFileError) as info:
+        load_flexure(path)
+    message = str(info.value)
+    assert message.startswith(f"{path}:") and f": {key}: " in message and words in message and "\n" not in message

@@ -35,6 +35,7 @@ import mobility
 from guards import finite_numbers, time_bound
 from mobility.cli import main
 from mobility.errors import MechanismFileError, MobilityError, RequestError
+from mobility.flexure import check_force_lines, flexure_spaces, loads_flexure
 from mobility.io.expressions import evaluate
 from mobility.io.limits import Limits
 from mobility.io.yaml_source import parse_yaml, read_text
@@ -389,9 +390,9 @@ def parent_and_key(doc: Any, path: tuple) -> tuple[Any, Any]:
 
 
 @st.composite
-def mutated_files(draw: st.DrawFn) -> str:
-    name = draw(st.sampled_from(sorted(TEXTS)))
-    text = TEXTS[name]
+def mutated_files(draw: st.DrawFn, texts: dict[str, str] = TEXTS) -> str:
+    name = draw(st.sampled_from(sorted(texts)))
+    text = texts[name]
     kind = draw(st.sampled_from(["replace", "delete", "duplicate", "nest", "alias", "bomb", "control", "cut", "swap"]))
     if kind in ("control", "cut"):
         at = draw(st.integers(0, len(text)))
@@ -510,8 +511,8 @@ def scaled(doc: Any, factor: float) -> Any:
 
 
 @st.composite
-def extreme_files(draw: st.DrawFn) -> str:
-    doc = yaml.safe_load(TEXTS[draw(st.sampled_from(sorted(TEXTS)))])
+def extreme_files(draw: st.DrawFn, texts: dict[str, str] = TEXTS) -> str:
+    doc = yaml.safe_load(texts[draw(st.sampled_from(sorted(texts)))])
     if draw(st.booleans()):
         doc = scaled(doc, draw(st.sampled_from([1e-300, 1e-200, 1e-100, 1e100, 1e200, 1e300])))
     else:
@@ -576,3 +577,59 @@ def test_points_at_the_largest_float_are_an_error_of_analyze_itself(text):
         warnings.simplefilter("error")
         with pytest.raises(MobilityError, match="axes lie beyond the largest float"):
             mobility.analyze(m)
+
+
+
+# -- flexure documents: the same mutations and extreme numbers ----------------------------------
+
+FLEXURE_TEXTS = {p.name: p.read_text(encoding="utf-8") for p in sorted((MECHANISMS.parent / "examples" / "flexure").glob("*.yaml"))}
+
+
+def flexure_ends_in_result_or_one_error(text: str, path: Path) -> None:
+    """Read a flexure document in-process (spaces and actuation), then ``mobility actuation`` and ``mobility check`` on it."""
+    with time_bound(20):
+        try:
+            flexure = loads_flexure(text, file="fuzz.yaml")
+            spaces, check = flexure_spaces(flexure), check_force_lines(flexure)
+        except MobilityError as exc:
+            assert "\n" not in str(exc), str(exc)
+            library_ok = False
+        else:
+            assert finite_numbers(spaces.to_dict()) and finite_numbers(check.to_dict())
+            library_ok = True
+        path.write_bytes(text.encode("utf-8", "surrogatepass"))
+        status, out, err = run_cli("actuation", "--json", str(path))
+        checked, _, check_err = run_cli("check", "--json", str(path))
+    if library_ok:
+        assert status in (0, 1) and finite_numbers(json.loads(out)), (status, err)
+        assert checked in (0, 1), check_err  # pass, or a mismatch of a mutated expected block
+    else:
+        assert status == 2 and err.count("\n") == 1 and err.startswith("mobility: "), (status, err)
+        assert checked == 2
+
+
+@FUZZ
+@given(st.one_of(mutated_files(FLEXURE_TEXTS), extreme_files(FLEXURE_TEXTS)))
+def test_fuzz_flexure_documents_end_in_result_or_one_error(fuzz_file, text):
+    flexure_ends_in_result_or_one_error(text, fuzz_file)
+
+
+def test_an_actuation_wrench_past_the_largest_float_is_refused_by_name():
+    text = AT_THE_LARGEST_FLOAT.replace("Z", "1.7976931348623157e308").replace("axis: [0, 0, 1]}", "axis: [0, 0, 1], actuated: true}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(MobilityError, match="the actuation wrench of 'P1' lies beyond the largest float"):
+            mobility.check_actuation(mobility.loads(text))
+
+
+def test_a_force_line_at_the_largest_float_acts_as_a_couple():
+    # found by the flexure fuzz test: the actuator t3 moved to y = 1.8e308 in its leg's frame.  Its unit
+    # wrench is a couple about the line's normal to the platform (the limit of a force ever farther away),
+    # the verdict stands, and the conditioning is 0, its limit (that input's row outgrows every other).
+    text = FLEXURE_TEXTS["three_rod.yaml"].replace("{name: t3, frame: leg3, point: [rho, 0, h]", "{name: t3, frame: leg3, point: [rho, 1.7976931348623157e308, h]")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check = check_force_lines(loads_flexure(text))
+    t3 = check.inputs[2]
+    assert (check.verdict, check.conditioning, t3.axis.kind) == ("valid", 0.0, "couple")
+    assert t3.axis.axis == pytest.approx([0, 0, -1], abs=1e-12) and finite_numbers(check.to_dict())

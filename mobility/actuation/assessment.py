@@ -59,6 +59,7 @@ from typing import Sequence
 import numpy as np
 
 from ..core.analysis import screw_system_in_frame
+from ..errors import AnalysisError
 from ..core.joint_screws import Normalisation
 from ..core.linalg import singular_values, svd
 from ..core.result import ScrewAxis
@@ -207,7 +208,12 @@ def _lies_in(wrench: np.ndarray, constraints: np.ndarray, tol: Tolerance) -> boo
 def _conditioning(present: Sequence[tuple[np.ndarray, float]], twists: np.ndarray) -> float:
     """``s_min / s_max`` of ``G[i, k] = (a_i o t_k) / (a_i o $_i)``."""
     dof = twists.shape[1]
-    g = np.array([(w[SWAP_ROWS] @ twists) / r for w, r in present]).reshape(-1, dof)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        g = np.array([(w[SWAP_ROWS] @ twists) / r for w, r in present]).reshape(-1, dof)
+    if not np.all(np.isfinite(g)):
+        # an input whose rate vanishes against its effect (a force line ~1e154 characteristic lengths away or
+        # farther): its row outgrows every other beyond any float, so s_min / s_max is 0 in the limit
+        return 0.0
     sv = singular_values(g)
     return float(sv[dof - 1] / sv[0]) if sv.size >= dof and sv[0] > 0 else 0.0
 
@@ -259,7 +265,13 @@ def assess_inputs(
             out_inputs.append(ActuationInput(i.name, i.kind, i.limb, None, None, True, i.note))
             useless.append(i.name)
             continue
-        world, axis = _wrench_in_world(i.wrench, norm, reference, tol)
+        with np.errstate(over="ignore", invalid="ignore"):  # checked here: a number past the largest float is refused, never shown
+            world, axis = _wrench_in_world(i.wrench, norm, reference, tol)
+        if not (np.all(np.isfinite(world)) and np.all(np.isfinite(axis.point)) and np.isfinite(axis.pitch)):
+            raise AnalysisError(
+                f"the actuation wrench of {i.name!r} lies beyond the largest float in the mechanism's unit "
+                f"(characteristic length {norm.length:.3g}): write the mechanism in a larger length unit"
+            )
         note = i.note
         if flag:
             useless.append(i.name)

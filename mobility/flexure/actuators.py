@@ -206,6 +206,8 @@ def _input_wrench(line: ForceLine, norm: Normalisation) -> InputWrench:
     The input is the speed of the line's point along it, so ``a o $`` is the
     length of the unit wrench's force part.
     """
-    w = norm.from_world(line.wrench())[:, 0]
-    w = w / np.linalg.norm(w)
+    with np.errstate(over="ignore", invalid="ignore"):  # a line past the largest float: refused by the assessment, by name
+        w = norm.from_world(line.wrench())[:, 0]
+        w = w / np.abs(w).max()  # before squaring: a line however far has a unit wrench
+        w = w / np.linalg.norm(w)
     return InputWrench(line.name, "F", None, w, float(np.linalg.norm(w[:3])))

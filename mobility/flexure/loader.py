@@ -54,7 +54,7 @@ import numpy as np
 from ..errors import MechanismError, name_list
 from .model import LENGTH_UNITS, MODULUS_UNITS, FlexureMechanism, ForceLine, Material, Rod
 from .compliance import compliance_matrix
-from ..io.reader import DocumentReader, describe_value, parse_key
+from ..io.reader import DocumentReader, describe_value, parse_key, shown_value
 from ..core.model import WORLD, Frame
 from ..core.transforms import Transform
 from ..io.expected import FLEXURE_EXPECTED_KEYS, read_expected
@@ -115,11 +115,13 @@ class _FlexureReader(DocumentReader):
             if not (0.0 < threshold < 1.0):
                 raise self.fail(("threshold",), f"expected a relative compliance between 0 and 1, got {threshold!r}")
         expected = read_expected(self, doc["expected"], FLEXURE_EXPECTED_KEYS) if "expected" in doc else None
+        ground = self.identifier(doc["ground"], ("ground",), "a body name")
+        end_effector = self.identifier(doc["end_effector"], ("end_effector",), "a body name")
         try:
             mechanism = FlexureMechanism(
                 name=name,
-                ground=self.string(doc["ground"], ("ground",)),
-                end_effector=self.string(doc["end_effector"], ("end_effector",)),
+                ground=ground,
+                end_effector=end_effector,
                 elements=tuple(elements),
                 actuators=tuple(actuators),
                 description=description,
@@ -140,11 +142,11 @@ class _FlexureReader(DocumentReader):
         self.check_keys(units, ("angle", "length", "modulus"), ("units",), "units")
         self.units({k: v for k, v in units.items() if k == "angle"})
         length = units.get("length", "m")
-        if length not in LENGTH_UNITS:
-            raise self.fail(("units", "length"), f"expected one of {', '.join(LENGTH_UNITS)} (a flexure's compliance needs a real unit), got {length!r}")
+        if not isinstance(length, str) or length not in LENGTH_UNITS:
+            raise self.fail(("units", "length"), f"expected one of {', '.join(LENGTH_UNITS)} (a flexure's compliance needs a real unit), got {shown_value(length)}")
         modulus = units.get("modulus", "Pa")
-        if modulus not in MODULUS_UNITS:
-            raise self.fail(("units", "modulus"), f"expected one of {', '.join(MODULUS_UNITS)}, got {modulus!r}")
+        if not isinstance(modulus, str) or modulus not in MODULUS_UNITS:
+            raise self.fail(("units", "modulus"), f"expected one of {', '.join(MODULUS_UNITS)}, got {shown_value(modulus)}")
         return length, MODULUS_UNITS[modulus]
 
     def resolve_frames(self, frames: list[Frame]) -> dict[str, Transform]:
@@ -169,7 +171,7 @@ class _FlexureReader(DocumentReader):
     def frame_of(self, data: Mapping[str, Any], path: KeyPath, transforms: Mapping[str, Transform]) -> Transform:
         frame = data.get("frame", WORLD)
         if not isinstance(frame, str) or frame not in transforms:
-            raise self.fail(path + ("frame",), f"unknown frame {frame!r}; expected {WORLD!r} or one of: {', '.join(k for k in transforms if k != WORLD) or '(none)'}")
+            raise self.fail(path + ("frame",), f"unknown frame {shown_value(frame)}; expected {WORLD!r} or one of: {', '.join(k for k in transforms if k != WORLD) or '(none)'}")
         return transforms[frame]
 
     def material(self, raw: Any, path: KeyPath, modulus: float) -> Material:
@@ -196,10 +198,11 @@ class _FlexureReader(DocumentReader):
             required = ("name", "type", "bodies", "length", "radius", "material")
             data = self.record(raw, path, "a flexure element", ELEMENT_KEYS, required, described="a flexure element with name, type, bodies and geometry")
             if data["type"] not in ELEMENT_TYPES:
-                raise self.fail(path + ("type",), f"unknown flexure element type {data['type']!r}; expected one of: {', '.join(ELEMENT_TYPES)}")
+                raise self.fail(path + ("type",), f"unknown flexure element type {shown_value(data['type'])}; expected one of: {', '.join(ELEMENT_TYPES)}")
             bodies = data["bodies"]
-            if not isinstance(bodies, list) or len(bodies) != 2 or not all(isinstance(b, (str, int)) for b in bodies):
+            if not isinstance(bodies, list) or len(bodies) != 2:
                 raise self.fail(path + ("bodies",), f"expected two body names [a, b], got {describe_value(bodies)}")
+            bodies = [self.identifier(b, path + ("bodies", k), "a body name") for k, b in enumerate(bodies)]
             tf = self.frame_of(data, path, transforms)
             point = self.vector(data["point"], path + ("point",)) if "point" in data else (0.0, 0.0, 0.0)
             axis = self.vector(data["axis"], path + ("axis",)) if "axis" in data else (0.0, 0.0, 1.0)
@@ -212,15 +215,17 @@ class _FlexureReader(DocumentReader):
                 material = materials[mat]
             else:
                 material = self.material(mat, path + ("material",), modulus)
+            name = self.identifier(data["name"], path + ("name",), "an element name")
+            length, radius = self.number(data["length"], path + ("length",)), self.number(data["radius"], path + ("radius",))
             try:
                 out.append(
                     Rod(
-                        self.string(str(data["name"]), path + ("name",)),
-                        (str(bodies[0]), str(bodies[1])),
+                        name,
+                        (bodies[0], bodies[1]),
                         tuple(tf.apply_point(point)),
                         tuple(tf.apply_vector(axis)),
-                        self.number(data["length"], path + ("length",)),
-                        self.number(data["radius"], path + ("radius",)),
+                        length,
+                        radius,
                         material,
                     )
                 )
@@ -244,9 +249,10 @@ class _FlexureReader(DocumentReader):
                 raise self.fail(path + ("direction",), "expected a non-zero direction, got [0, 0, 0]")
             actuated = data.get("actuated", False)
             if not isinstance(actuated, bool):
-                raise self.fail(path + ("actuated",), f"expected true or false, got {actuated!r}")
+                raise self.fail(path + ("actuated",), f"expected true or false, got {shown_value(actuated)}")
+            name = self.identifier(data["name"], path + ("name",), "an actuator name")
             try:
-                out.append(ForceLine(self.string(str(data["name"]), path + ("name",)), tuple(tf.apply_point(point)), tuple(tf.apply_vector(direction)), actuated))
+                out.append(ForceLine(name, tuple(tf.apply_point(point)), tuple(tf.apply_vector(direction)), actuated))
             except MechanismError as exc:
                 raise self.fail(path + parse_key(exc.key), exc.message) from None
         return out
