@@ -241,6 +241,7 @@ def test_bad_urdf_is_one_line(tmp_path, text, expected):
     ("joint:\n  - {name: C}\n", r"closures\.yaml:1: joint: unknown key in a closures file \(did you mean 'joints'\?\)"),
     ("description: nothing\n", r"closures\.yaml:1: missing required key 'joints'"),
     ("joints:\n  - {name: C, type: R, links: [coupler, rocker], point: [0, 0, 0]}\n", r"closures\.yaml:2: joints\[0\]\.axis: missing"),
+    ("joints: []\n", r"closures\.yaml:1: joints: expected at least one closing joint"),  # was read as closing nothing
 ])
 def test_bad_side_file_is_one_line(tmp_path, side, expected):
     path = write(tmp_path, side, "closures.yaml")

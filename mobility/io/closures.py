@@ -83,6 +83,8 @@ def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
     reader = _MechanismReader(file, positions)
     doc = reader.record(data, (), "a closures file", CLOSURES_KEYS, ("joints",), described="closing joints: a mapping with joints")
     joints, sources = reader.joints(doc["joints"], ("joints",), {}, None)
+    if not joints:
+        raise reader.fail(("joints",), "expected at least one closing joint (a closures file that closes nothing is a mistake)")
     bodies = {b.name: b for b in tree.bodies}
     closures = []
     for joint, source in zip(joints, sources):
