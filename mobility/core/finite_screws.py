@@ -92,7 +92,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from ..errors import HalfTurnError, MechanismError, RequestError
-from .tolerance import DEFAULT_TOLERANCE, Tolerance
+from .tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale
 from .transforms import cross, skew
 
 __all__ = [
@@ -125,10 +125,9 @@ def _unit_or_none(v: Iterable[float]) -> np.ndarray | None:
         a = np.asarray(v, dtype=float).reshape(3)
     except (TypeError, ValueError):
         return None
-    largest = float(np.abs(a).max())
-    if not (np.isfinite(largest) and largest > 0.0):
+    if not np.all(np.isfinite(a)) or not np.any(a):
         return None
-    a = a / largest  # before squaring: any finite direction has a unit vector
+    a = a * binary_scale(a)  # before squaring: any finite direction has a unit vector
     return a / float(np.linalg.norm(a))
 
 

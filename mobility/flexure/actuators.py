@@ -37,7 +37,7 @@ from ..actuation import ActuationCheck, Enumeration, InputWrench, assess_inputs,
 from ..core.joint_screws import Normalisation
 from ..core.linalg import rank
 from ..core.model import require_no_repeats
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, characteristic_scale
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale
 from ..core.transforms import skew
 from ..errors import MechanismError, name_list
 from .model import FlexureMechanism, ForceLine
@@ -208,6 +208,6 @@ def _input_wrench(line: ForceLine, norm: Normalisation) -> InputWrench:
     """
     with np.errstate(over="ignore", invalid="ignore"):  # a line past the largest float: refused by the assessment, by name
         w = norm.from_world(line.wrench())[:, 0]
-        w = w / np.abs(w).max()  # before squaring: a line however far has a unit wrench
+        w = w * binary_scale(w)  # before squaring: a line however far has a unit wrench
         w = w / np.linalg.norm(w)
     return InputWrench(line.name, "F", None, w, float(np.linalg.norm(w[:3])))

@@ -63,7 +63,7 @@ from typing import Callable
 import numpy as np
 
 from ..core.tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, SAME_GRID_VALUE, Tolerance, decide_ranks
-from .batch_kinematics import BatchKinematics
+from .batch_kinematics import BatchKinematics, Evaluation
 from .grid import GridPlan, SweepAxis, whole_turns
 from .walks import AxisWalk, plan_walks
 
@@ -220,11 +220,11 @@ def _newton_loop(
         keep = np.flatnonzero(~done & (st < 4) & (iteration < max_iter) & bool(drive.free.any()) & (r.shape[0] > 0))
         if keep.size == 0:
             break
-        jac = evaluation.jacobian(keep)[:, drive.free]
+        jac = _free_jacobians(evaluation, drive, keep)
         active, r = active[keep], r[:, keep]
         # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
         # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
-        step = _min_norm_steps(np.ascontiguousarray(np.moveaxis(jac, -1, 0)), r)
+        step = _min_norm_steps(jac, r)
         moved = q[active].copy()
         moved[:, drive.free] += step
         finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
@@ -277,9 +277,9 @@ def polish(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray
             return q
         err = np.abs(r).max(axis=0)
         for _ in range(POLISH_STEPS):
-            j = np.moveaxis(evaluation.jacobian()[:, drive.free], -1, 0).astype(float)  # (N, m, free)
+            j = _free_jacobians(evaluation, drive).astype(float)  # the step in float64: the residual is what needs the digits
             trial = exact.copy()
-            trial[:, drive.free] += _min_norm_steps(np.ascontiguousarray(j), np.asarray(r, dtype=float))
+            trial[:, drive.free] += _min_norm_steps(j, np.asarray(r, dtype=float))
             r_trial, evaluation = _evaluate(bk, drive, trial, wanted)
             err_trial = np.abs(r_trial).max(axis=0)
             better = np.isfinite(err_trial) & (err_trial < err)
@@ -374,13 +374,11 @@ def _linear_step_lengths(bk: BatchKinematics, drive: Drive, base_q: np.ndarray, 
         lengths = np.zeros(len(base_q))
         if r.shape[0] == 0 or not drive.free.any():
             return lengths
-        jac = np.ascontiguousarray(np.moveaxis(evaluation.jacobian()[:, drive.free], -1, 0))  # (N, m, free)
-        equations = jac.shape[1]
+        jac = _free_jacobians(evaluation, drive)
         full = np.zeros(len(base_q), dtype=bool)
         finite = np.all(np.isfinite(jac), axis=(1, 2)) & np.all(np.isfinite(r), axis=0)
-        if equations <= jac.shape[2] and finite.any():
-            sv = np.linalg.svd(jac[finite], compute_uv=False)
-            full[finite] = decide_ranks(sv, tol).rank == equations
+        if jac.shape[1] <= jac.shape[2] and finite.any():  # no more equations than free variables, and none lost
+            full[finite] = ~_folds(np.linalg.svd(jac[finite], compute_uv=False), tol)[1]
         if full.any():
             lengths[full] = np.linalg.norm(_min_norm_steps(jac[full], r[:, full]), axis=1)
     return np.where(np.isfinite(lengths), lengths, 0.0)
@@ -416,8 +414,7 @@ def _off_a_fold(
         return q, err, ok
     with np.errstate(over="ignore", invalid="ignore"):
         _, evaluation = _evaluate(bk, drive, base_q, base_t)
-        jac = np.moveaxis(evaluation.jacobian(np.arange(count))[:, drive.free], -1, 0)  # (N, m, free)
-        _, sv, vt = np.linalg.svd(jac, full_matrices=True)
+        _, sv, vt = np.linalg.svd(_free_jacobians(evaluation, drive), full_matrices=True)
         step = np.abs(targets - base_t).max(axis=1)
     free = int(drive.free.sum())
     # (N, free): where the equations lose rank, the right singular vectors the rank decision drops (with those
@@ -425,8 +422,7 @@ def _off_a_fold(
     # dead centre) is a fold to leave this way; one merely near a fold (the last grid point before a workspace
     # boundary) is not: a start across the fold there would land on the other assembly branch and carry it
     # into the grid
-    rank = decide_ranks(sv, tol).rank if sv.shape[1] else np.zeros(count, dtype=int)
-    fold = rank < sv.shape[1]  # the equations lose rank there (more variables than equations is no fold by itself)
+    rank, fold = _folds(sv, tol)
     singular = fold[:, None] & (np.arange(free)[None, :] >= rank[:, None])
     for k in range(free):
         for reach in FOLD_REACH:
@@ -442,6 +438,21 @@ def _off_a_fold(
                 err[rows] = np.minimum(err[rows], nerr)
                 q[rows[nok]], ok[rows[nok]] = nq[nok], True
     return q, err, ok
+
+
+def _folds(sv: np.ndarray, tol: Tolerance) -> tuple[np.ndarray, np.ndarray]:
+    """The rank of each stacked closure Jacobian (singular values ``(N, min(m, free))``) and whether it is a fold.
+
+    A fold: the equations lose rank by the policy's rank decision
+    (``Tolerance.rank``); more variables than equations is no fold by itself.
+    """
+    rank = decide_ranks(sv, tol).rank if sv.shape[1] else np.zeros(len(sv), dtype=int)
+    return rank, rank < sv.shape[1]
+
+
+def _free_jacobians(evaluation: Evaluation, drive: Drive, rows: np.ndarray | None = None) -> np.ndarray:
+    """The closure Jacobians of the poses (all, or ``rows``) over the free variables, stacked ``(N, m, free)``."""
+    return np.ascontiguousarray(np.moveaxis(evaluation.jacobian(rows)[:, drive.free], -1, 0))
 
 
 RETURN_STEPS = 4

@@ -75,7 +75,7 @@ from ..io.yaml_source import Positions, parse_yaml, read_text
 from ..core.model import Mechanism
 from ..core.result import Result
 from ..core.screws import same_subspace
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, clean_numbers
 
 __all__ = [
     "Comparison",
@@ -323,7 +323,7 @@ def compare_translations(found: np.ndarray, expected: Any, tol: Tolerance) -> Co
     actual = clean_numbers(found)
     if np.any(largest == 0.0):
         return Comparison("translations", rows.tolist(), actual, False, "an expected translation is the zero vector")
-    scaled = rows / largest[:, None]  # divided before squaring: any finite vector has a unit direction
+    scaled = rows * np.array([binary_scale(row) for row in rows]).reshape(-1, 1)  # before squaring: any finite vector has a direction
     unit = scaled / np.linalg.norm(scaled, axis=1)[:, None]
     if len(unit) == 0 or len(found) == 0:
         ok = len(found) == 0 and len(unit) == 0
