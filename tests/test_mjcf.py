@@ -491,6 +491,49 @@ def test_a_free_body_tied_only_inside_its_own_subtree_is_still_fixed():
     assert mobility.analyze(robot.mechanism).mobility == 0  # the connect holds the arm to its own (fixed) base
 
 
+# -- names MuJoCo leaves empty, masses it would refuse --------------------------------------------
+
+UNNAMED_NEXT_TO_BODY1 = """<mujoco model="unnamed">
+  <worldbody>
+    <body pos="0 -1 0"><joint type="slide" axis="1 0 0"/><geom size="0.1"/></body>
+    <body name="body1" pos="0 1 0"><joint name="h" type="hinge" axis="0 0 1"/><geom size="0.1"/>
+      <body name="tip" pos="0.5 0 0"><geom size="0.1"/></body>
+    </body>
+  </worldbody>
+  <equality><connect body1="tip" anchor="0 0 0"/></equality>
+</mujoco>"""
+
+
+def test_an_unnamed_body_never_takes_the_name_of_a_named_one():
+    # body 1 has no name; the made-up "body1" would merge it with the real body1 (the slider would then
+    # carry the hinge, and the connect would lock both: mobility 0 instead of 1)
+    robot = read_robot(_write(UNNAMED_NEXT_TO_BODY1))
+    m = robot.mechanism
+    assert {j.name: j.links for j in m.joints}["h"] == ("world", "body1")
+    assert {j.name: j.links for j in m.joints}["body1~2_joint"] == ("world", "body1~2")
+    route = assert_agrees_with_mujoco(robot, *mujoco_compile(UNNAMED_NEXT_TO_BODY1))
+    assert route.mobility == 1 and mobility.analyze(m).idle_dof == 1  # the slider moves alone; the hinge is held
+
+
+MASSLESS = """<mujoco model="massless">
+  <worldbody>
+    <body name="a"><joint name="h" type="hinge" axis="0 0 1"/>
+      <body name="b" pos="1 0 0"><joint name="s" type="slide" axis="1 0 0"/></body>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+def test_bodies_without_mass_import_because_kinematics_needs_none():
+    with pytest.raises(ValueError, match="mass and inertia"):
+        mujoco.MjSpec.from_string(MASSLESS).compile()  # MuJoCo alone refuses the file
+    r = mobility.analyze(read_robot(_write(MASSLESS)).mechanism)
+    assert (r.mobility, r.dof, r.pattern) == (2, 2, "1T1R")
+    # with masses given, MuJoCo compiles it: the same answer by its own Jacobians
+    with_mass = MASSLESS.replace('axis="0 0 1"/>', 'axis="0 0 1"/><geom size="0.1"/>').replace('axis="1 0 0"/>', 'axis="1 0 0"/><geom size="0.1"/>')
+    assert_agrees_with_mujoco(read_robot(_write(with_mass)), *mujoco_compile(with_mass))
+
+
 # -- files MuJoCo would open: pipes, includes ----------------------------------------------------
 
 def _cli(*args: str, cwd: Path, timeout: float = 30) -> subprocess.CompletedProcess:

@@ -45,7 +45,7 @@ from ..core.tolerance import DEFAULT_TOLERANCE
 from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped
 from .files import read_capped
 from .mjcf_scan import MjcfScan, scan_mjcf
-from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, rotation_tuple, vector_tuple
+from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, rotation_tuple, unique_name, vector_tuple
 from .xml_source import parse_xml
 
 __all__ = ["read_mjcf", "import_mujoco"]
@@ -114,6 +114,7 @@ def read_mjcf(path: str | Path) -> RobotTree:
         read = (lambda: mujoco.MjSpec.from_file(file)) if by_name else (lambda: mujoco.MjSpec.from_string(raw.decode("utf-8")))  # UTF-8: checked
         spec = _mujoco_call(read, file, scan)
         _without_asset_files(mujoco, spec)
+        _without_mass_bounds(spec)
         model = _mujoco_call(spec.compile, file, scan)
         data = mujoco.MjData(model)
         mujoco.mj_kinematics(model, data)
@@ -184,6 +185,22 @@ def _where(file: str, line: int, key: str, scan: MjcfScan) -> tuple[str, int | N
     return (holders.pop(), line) if len(holders) == 1 else (file, None)
 
 
+def _without_mass_bounds(spec: Any) -> None:
+    """Let a body without mass or inertia compile: kinematics needs neither.
+
+    MuJoCo refuses a moving body whose mass or inertia is below ``mjMINVAL``
+    (a body with no geom and no inertial element).  Where the file sets no
+    bound of its own (``<compiler boundmass/boundinertia>`` zero), a small one
+    is set instead; masses change nothing in the poses, axes and constraint
+    Jacobians read here.
+    """
+    compiler = spec.compiler
+    if not compiler.boundmass:
+        compiler.boundmass = 1e-6
+    if not compiler.boundinertia:
+        compiler.boundinertia = 1e-12
+
+
 def _without_asset_files(mujoco: ModuleType, spec: Any) -> None:
     """Remove what needs files on disk (meshes, height fields, textures, skins): kinematics needs none of it."""
     kinds = mujoco.mjtGeom
@@ -218,7 +235,9 @@ class _MjcfTree:
             ("body", "mjOBJ_BODY", spec.bodies, False), ("joint", "mjOBJ_JOINT", spec.joints, False),
             ("equality", "mjOBJ_EQUALITY", spec.equalities, True), ("tendon", "mjOBJ_TENDON", spec.tendons, True),
             ("actuator", "mjOBJ_ACTUATOR", spec.actuators, True))}
-        self.body_names = [self.name("mjOBJ_BODY", i) or f"body{i}" for i in range(model.nbody)]
+        written = [self.name("mjOBJ_BODY", i) for i in range(model.nbody)]
+        used = set(filter(None, written))  # an unnamed body's made-up name never takes a real body's
+        self.body_names = [name or unique_name(f"body{i}", used) for i, name in enumerate(written)]
 
     def element_lines(self, kind: str, elements: Any, in_order: bool) -> dict[int, int | None]:
         """Line of each element of the spec, by its index in the compiled model.

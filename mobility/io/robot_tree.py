@@ -76,6 +76,7 @@ __all__ = [
     "JOINT_KINDS",
     "rotation_tuple",
     "vector_tuple",
+    "unique_name",
 ]
 
 Vector = tuple[float, float, float]
@@ -320,7 +321,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
             continue
         here = start
         for k, j in enumerate(chain):
-            there = end if k == len(chain) - 1 else _unique(f"{body}/{j.name}", link_names)
+            there = end if k == len(chain) - 1 else unique_name(f"{body}/{j.name}", link_names)
             joints += _model_joints(tree, j, here, there, used, link_names)
             here = there
 
@@ -330,7 +331,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
             notes.append(f"{c.what} {clipped(c.joint.name)}{_at(c.line)} joins two bodies of one rigid link ({clipped(a)}): it constrains nothing; left out")
             continue
         try:
-            joints.append(replace(c.joint, name=_unique(c.joint.name, used), links=(a, b)))
+            joints.append(replace(c.joint, name=unique_name(c.joint.name, used), links=(a, b)))
         except MechanismError as exc:
             raise MechanismFileError(clipped(c.joint.name), exc.message, file=c.file or tree.file, line=c.line) from None
 
@@ -364,7 +365,15 @@ def _at(line: int | None) -> str:
     return f" (line {line})" if line is not None else ""
 
 
-def _unique(name: str, used: set[str]) -> str:
+def unique_name(name: str, used: set[str]) -> str:
+    """``name``, or ``name~2``, ``name~3``, ... : the first not in ``used`` (which then holds it).
+
+    Examples
+    --------
+    >>> used = {"a", "a~2"}
+    >>> unique_name("a", used), unique_name("b", used), sorted(used)
+    ('a~3', 'b', ['a', 'a~2', 'a~3', 'b'])
+    """
     out, k = name, 2
     while out in used:
         out, k = f"{name}~{k}", k + 1
@@ -451,12 +460,12 @@ def _model_joints(tree: RobotTree, j: TreeJoint, a: str, b: str, used: set[str],
         if kind == "free":
             out, here = [], a
             for axis, letter in zip(np.eye(3), "xyz"):
-                there = _unique(f"{j.body}/{j.name}.{letter}", link_names)
-                out.append(Joint(_unique(f"{j.name}.{letter}", used), "P", (here, there), axis=tuple(axis), actuated=j.actuated))
+                there = unique_name(f"{j.body}/{j.name}.{letter}", link_names)
+                out.append(Joint(unique_name(f"{j.name}.{letter}", used), "P", (here, there), axis=tuple(axis), actuated=j.actuated))
                 here = there
-            out.append(Joint(_unique(j.name, used), "S", (here, b), point=j.point, actuated=j.actuated))
+            out.append(Joint(unique_name(j.name, used), "S", (here, b), point=j.point, actuated=j.actuated))
             return out
-        name = _unique(j.name, used)
+        name = unique_name(j.name, used)
         if kind == "R":
             return [Joint(name, "R", (a, b), axis=j.axis, point=j.point, actuated=j.actuated)]
         if kind == "P":
