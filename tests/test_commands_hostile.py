@@ -131,6 +131,11 @@ def far_pivot() -> Mechanism:
     return m.replace(joints=tuple(joints), frames=())
 
 
+def lone_far_pivot() -> Mechanism:
+    """One hinge at 1e308 on every axis: a valid mechanism (1R) that no picture can hold (a drawing squares coordinates)."""
+    return Mechanism("lone pivot", "a", "b", (Joint("j", "R", ("a", "b"), axis=(0.0, 0.0, 1.0), point=(1e308, 1e308, 1e308), actuated=True),))
+
+
 THREE_PRS = mobility.load(MECHANISMS / "3prs.yaml")
 PLANAR_3RRR = mobility.load(MECHANISMS / "planar_3rrr.yaml")
 
@@ -139,6 +144,7 @@ EXTREME: dict[str, Callable[[], Mechanism]] = {
     "3prs x 1e-250": lambda: scaled(THREE_PRS, 1e-250),
     "planar 3-RRR x 1e-250": lambda: scaled(PLANAR_3RRR, 1e-250),
     "pivot at 1e300": far_pivot,
+    "lone pivot at 1e308": lone_far_pivot,
 }
 
 LARGE: dict[str, Callable[[], Mechanism]] = {
@@ -273,6 +279,8 @@ def test_every_command_at_an_extreme_scale_answers_or_refuses_in_one_line(case, 
     refused = {name for name, (status, _) in outcome.items() if status == 2}
     if case == "pivot at 1e300":  # geometry finer than any analysis resolves: everything that analyses refuses it
         assert set(outcome) - refused <= {"convert"}
+    elif case == "lone pivot at 1e308":  # analysed; drawn nowhere (too far out for a drawing's arithmetic)
+        assert refused == {"plot", "view", "view --samples"}, refused
     else:  # a valid mechanism at any scale: every command answers (convert: when its file can hold the numbers)
         assert refused <= ({"convert"} if "1e-250" in case else set()), refused
 

@@ -112,9 +112,43 @@ def test_convert_never_writes_over_a_file_the_model_includes(tmp_path, capsys, m
     (tmp_path / "part.xml").write_text(part)
     (tmp_path / "model.xml").write_text('<mujoco model="t"><worldbody><include file="part.xml"/></worldbody></mujoco>')
     (tmp_path / "alias.xml").symlink_to("part.xml")
-    for output in ("part.xml", "alias.xml", tmp_path / "part.xml"):
+    (tmp_path / "alias.yaml").symlink_to("part.xml")
+    for output in ("alias.yaml", tmp_path / "alias.yaml"):
         status, out, err = run(capsys, "convert", "model.xml", "-o", output)
         assert (status, out) == (2, "") and err == f"mobility: -o {output}: the same file as ./part.xml, which would be overwritten\n"
         assert (tmp_path / "part.xml").read_text() == part
     status, _, err = run(capsys, "convert", "model.xml", "-o", "model.yaml")
     assert status == 0 and mobility.load(tmp_path / "model.yaml").end_effector == "p"
+
+
+@pytest.mark.parametrize("output", ["", "c.xml", "c.URDF", "c.mjcf"])
+def test_convert_writes_only_a_file_that_reads_back_as_yaml(tmp_path, capsys, monkeypatch, output):
+    monkeypatch.chdir(tmp_path)
+    status, out, err = run(capsys, "convert", HAND / "four_bar.xml", "-o", output)  # '' was standard output; .xml was YAML read as XML
+    assert (status, out) == (2, "") and err == f"mobility: -o {output!r}: expected a mechanism file name (.yaml): a robot description's extension would be read back as XML\n"
+    assert list(tmp_path.iterdir()) == []
+    status, _, _ = run(capsys, "convert", HAND / "four_bar.xml", "-o", "c.txt")  # another name reads back as YAML
+    assert status == 0 and mobility.load(tmp_path / "c.txt").end_effector == "coupler"
+
+
+@pytest.mark.parametrize("command, output", [("sweep", "c.yaml"), ("view", "c.html"), ("plot", "c.png"), ("convert", "c.yaml")])
+def test_no_command_writes_over_the_closures_file_it_read(tmp_path, capsys, monkeypatch, command, output):
+    monkeypatch.chdir(tmp_path)
+    closures = (HAND / "four_bar_closures.yaml").read_text()
+    (tmp_path / output).write_text(closures)
+    extra = {"sweep": ["--vary", "A=0:1:2", "--no-progress"], "view": [], "plot": ["--dpi", "30"], "convert": []}[command]
+    status, _, err = run(capsys, command, HAND / "four_bar.urdf", "--closures", output, "-o", output, *extra)
+    assert status == 2 and err.splitlines()[-1] == f"mobility: -o {output}: the same file as {output}, which would be overwritten"
+    assert (tmp_path / output).read_text() == closures
+
+
+@pytest.mark.parametrize("command, extra", [("sweep", ["--vary", "p_joint=0:1:2", "--no-progress"]), ("view", []), ("plot", ["--dpi", "30"])])
+def test_no_command_writes_over_a_file_the_model_includes(tmp_path, capsys, monkeypatch, command, extra):
+    monkeypatch.chdir(tmp_path)
+    part = '<mujoco><body name="p"><joint/><geom size=".1"/></body></mujoco>'
+    output = {"sweep": "part.csv", "view": "part.html", "plot": "part.png"}[command]
+    (tmp_path / output).write_text(part)
+    (tmp_path / "model.xml").write_text(f'<mujoco model="t"><worldbody><include file="{output}"/></worldbody></mujoco>')
+    status, _, err = run(capsys, command, "model.xml", "-o", output, *extra)
+    assert status == 2 and err.splitlines()[-1] == f"mobility: -o {output}: the same file as ./{output}, which would be overwritten"
+    assert (tmp_path / output).read_text() == part

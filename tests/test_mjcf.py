@@ -534,6 +534,20 @@ def test_bodies_without_mass_import_because_kinematics_needs_none():
     assert_agrees_with_mujoco(read_robot(_write(with_mass)), *mujoco_compile(with_mass))
 
 
+def test_a_weld_pose_near_the_largest_float_is_a_note_without_a_numpy_warning():
+    text = """<mujoco><worldbody>
+<body name="a"><joint name="j" type="hinge" axis="0 0 1"/><geom size=".1"/>
+<body name="b" pos="1 0 0"><joint name="k" axis="0 0 1"/><geom size=".1"/></body></body>
+</worldbody><equality><weld body1="a" body2="b" relpose="1e300 0 0 1 0 0 0"/></equality></mujoco>"""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)  # the gap's norm overflowed: a warning on stderr
+        robot = read_robot(_write(text))
+    assert any("does not hold at qpos0 (its points are 1e+300 apart)" in n for n in robot.notes), robot.notes
+    assert mobility.analyze(robot.mechanism).mobility == 1  # b welded to a as placed: the hinge j alone
+
+
 # -- files MuJoCo would open: pipes, includes ----------------------------------------------------
 
 def _cli(*args: str, cwd: Path, timeout: float = 30) -> subprocess.CompletedProcess:

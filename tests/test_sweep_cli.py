@@ -248,7 +248,10 @@ def test_progress_bar_on_request(capsys):
         (["--vary", "O1=0:1:2", "--plot", "out.gif"], "--plot out.gif: cannot tell the picture type"),
         (["--vary", "O1=0:1:2", "--inputs", "Z9"], "--inputs Z9: unknown joint 'Z9'; expected one of: O1, A1, A2, O2"),
         (["--vary", "O1=0:1:2", "--inputs", "O1, Z9"], "--inputs O1, Z9: unknown joint 'Z9'"),
-        (["--vary", "O1=0:1:2", "--workers", "0"], "--workers must be at least 1"),
+        (["--vary", "O1=0:1:2", "--workers", "0"], "--workers must be between 1 and 256"),
+        (["--vary", "O1=0:1:2", "--workers", "9" * 30], "--workers must be between 1 and 256 (threads of this process; for more, use --scheduler)"),
+        (["--vary", "rz=-1e300:1e300:3"], "the end effector's rotation vector reaches 1e+300 deg, more than half a turn"),
+        (["--vary", "rx=1e300:1e300:1", "--vary", "ry=1e300:1e300:1"], "the end effector's rotation vector reaches 1.41421e+300 deg"),
         (["--vary", "O1=0:1:2", "--tol", "0.5"], "--tol must lie in"),
     ],
 )
@@ -277,3 +280,53 @@ def test_summary_of_a_sweep_with_nothing_assembled():
     text = sweep_summary(r)
     assert "assembled: 0 of 3 poses" in text and "not assembled: 3 poses" in text
     assert r.regular is None and r.singular == () and len(r.changes) == 0
+
+
+def test_large_rotations_and_worker_counts_are_refused_by_the_api_too():
+    m = mobility.load(PARALLELOGRAM)
+    with pytest.raises(RequestError, match="rotation vector reaches 1e\\+200 deg"):  # was an OverflowError
+        mobility.sweep(m, [("rz", 1e200, 1e200, 1)])
+    with pytest.raises(RequestError, match="workers must be at most 256"):  # was a ValueError from islice
+        mobility.sweep(m, ["O1=0:1:2"], workers=10**30)
+
+
+@pytest.mark.parametrize("fmt", ["csv", "json"])
+def test_tables_are_written_in_pieces_that_make_the_same_text(capsys, tmp_path, fmt, monkeypatch):
+    import mobility.cli.sweep as command_module
+    from mobility.report import sweep as writers
+
+    r = mobility.sweep(mobility.load(PARALLELOGRAM), ["O1=0:360:25"])
+    whole = writers.sweep_csv(r) if fmt == "csv" else writers.sweep_json(r)
+    if fmt == "csv":
+        pieces = list(writers.sweep_csv_pieces(r, rows=4))
+        assert len(pieces) == 7 and "".join(pieces) == whole  # 25 rows in pieces of 4
+        assert whole.splitlines()[1:] == [",".join(row) for row in csv.reader(io.StringIO(whole))][1:]
+    else:
+        pieces = list(writers.sweep_json_pieces(r))
+        assert len(pieces) == 2 + len(r.columns) and json.loads(whole) == r.to_dict()
+    monkeypatch.setattr(writers, "PIECE_ROWS", 4)
+    written: list[str] = []
+    real = command_module._write_pieces
+
+    def recorded(handle, parts):
+        real(handle, (written.append(part) or part for part in parts))
+
+    monkeypatch.setattr(command_module, "_write_pieces", recorded)
+    status, out, _ = run(capsys, "sweep", PARALLELOGRAM, "--vary", "O1=0:360:25", "--format", fmt, "-o", tmp_path / f"t.{fmt}")
+    assert status == 0 and (tmp_path / f"t.{fmt}").read_text(encoding="utf-8") == whole + ("" if whole.endswith("\n") else "\n")
+    status, out, _ = run(capsys, "sweep", PARALLELOGRAM, "--vary", "O1=0:360:25", "--format", fmt)
+    assert status == 0 and out == whole + ("" if whole.endswith("\n") else "\n")
+    assert len(written) == (2 * 7 if fmt == "csv" else 2 * len(pieces))  # the command wrote the pieces as they came (file, then stdout)
+
+
+def test_running_out_of_memory_is_one_line_and_exit_two(capsys, monkeypatch):
+    import mobility.cli.sweep as command
+
+    def too_big(*args, **kwargs):
+        raise MemoryError()
+
+    monkeypatch.setattr(command, "sweep", too_big)
+    status, out, err = run(capsys, "sweep", PARALLELOGRAM, "--vary", "O1=0:1:2")
+    assert (status, out) == (2, "")  # was exit 3, an "internal error"
+    assert err == ("mobility: out of memory: the request needs more memory than this machine has free; "
+                   "ask for less (a coarser grid or fewer poses: --max-poses; fewer samples)\n")

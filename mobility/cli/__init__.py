@@ -157,6 +157,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     except BrokenPipeError:
         return 0
+    except MemoryError:  # a request too large for this machine: said in one line, like any request out of range
+        print("mobility: out of memory: the request needs more memory than this machine has free; "
+              "ask for less (a coarser grid or fewer poses: --max-poses; fewer samples)", file=sys.stderr)
+        return 2
     except Exception as exc:  # an internal error: one line unless --debug
         if args is not None and args.debug:
             traceback.print_exc()

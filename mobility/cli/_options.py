@@ -17,7 +17,7 @@ import os
 import stat
 import sys
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
@@ -177,8 +177,19 @@ def is_robot_description(path: str) -> bool:
     return is_robot_file(path)
 
 
-def read_mechanism(args: argparse.Namespace, path: str | None = None) -> tuple[Mechanism, tuple[str, ...]]:
-    """The mechanism of ``path`` (default: ``args.file``), read with the robot options of ``args``, and the notes of the reading.
+class ReadMechanism(NamedTuple):
+    """A mechanism read for a command: the mechanism, the notes of its reading, and every file read for it."""
+
+    mechanism: Mechanism
+    notes: tuple[str, ...]
+    files: tuple[str, ...]
+
+
+def read_mechanism(args: argparse.Namespace, path: str | None = None) -> ReadMechanism:
+    """The mechanism of ``path`` (default: ``args.file``), read with the robot options of ``args``, the notes of the reading and the files read.
+
+    The files are the file itself, a URDF's closures side file and the files an
+    MJCF model includes: no output may overwrite one of them.
 
     Raises
     ------
@@ -190,19 +201,26 @@ def read_mechanism(args: argparse.Namespace, path: str | None = None) -> tuple[M
     path = args.file if path is None else path
     options = robot_options_from(args)
     if not is_robot_description(path):
-        return load(path, **options), ()
+        return ReadMechanism(load(path, **options), (), (path,))
     from ..io.robot_files import read_robot  # XML readers (and MuJoCo for MJCF): only for robot files
 
     robot = read_robot(path, **options)
-    return robot.mechanism, tuple(robot.notes)
+    closures = options.get("closures")
+    return ReadMechanism(robot.mechanism, tuple(robot.notes), tuple(robot.files) + ((str(closures),) if closures else ()))
 
 
-def load_mechanism(args: argparse.Namespace, path: str | None = None) -> Mechanism:
-    """The mechanism of ``path`` (default: ``args.file``); for a robot description, the notes of the reading go to stderr, one line each."""
-    mechanism, notes = read_mechanism(args, path)
-    for note in notes:
+def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> Mechanism:
+    """The mechanism of ``path`` (default: ``args.file``); for a robot description, the notes of the reading go to stderr, one line each.
+
+    Each ``(output, option)`` of ``outputs`` is refused (:func:`require_new_output`)
+    when it would overwrite a file read for the mechanism.
+    """
+    read = read_mechanism(args, path)
+    for output, option in outputs:
+        require_new_output(output, option, *read.files)
+    for note in read.notes:
         print(f"mobility: note: {one_line(note)}", file=sys.stderr)
-    return mechanism
+    return read.mechanism
 
 
 def names_from(text: str | None) -> list[str] | None:

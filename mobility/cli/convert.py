@@ -14,13 +14,9 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
 
-from ..errors import MechanismFileError, one_line
-from ._options import add_mechanism_file, is_robot_description, read_mechanism, require_new_output, robot_options_from
-
-if TYPE_CHECKING:
-    from ..core.model import Mechanism
+from ..errors import MechanismFileError, RequestError, one_line
+from ._options import add_mechanism_file, read_mechanism, require_new_output
 
 __all__ = ["register", "run"]
 
@@ -42,8 +38,12 @@ def run(args: argparse.Namespace) -> int:
     from ..core.analysis import analyze
     from ..io.writer import mechanism_to_yaml, require_written_faithfully
 
+    from ..io.robot_files import ROBOT_SUFFIXES
+
+    if args.output is not None and (not args.output or Path(args.output).suffix.lower() in ROBOT_SUFFIXES):
+        raise RequestError(f"-o {args.output!r}: expected a mechanism file name (.yaml): a robot description's extension would be read back as XML")
     require_new_output(args.output, "-o", args.file, args.closures)
-    mechanism, notes, files = _read(args)
+    mechanism, notes, files = read_mechanism(args)
     require_new_output(args.output, "-o", *files)  # nor a file the model includes
     description = " ".join([mechanism.description] + [f"Note: {n}." for n in notes]).strip()
     expected = None
@@ -69,12 +69,3 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _read(args: argparse.Namespace) -> tuple[Mechanism, tuple[str, ...], tuple[str, ...]]:
-    """The mechanism of ``args.file``, the notes of its reading and every file read for it (an MJCF model's included files among them)."""
-    if not is_robot_description(args.file):
-        mechanism, notes = read_mechanism(args)
-        return mechanism, notes, (args.file,)
-    from ..io.robot_files import read_robot  # XML readers (and MuJoCo for MJCF): only for robot files
-
-    robot = read_robot(args.file, **robot_options_from(args))
-    return robot.mechanism, tuple(robot.notes), robot.files

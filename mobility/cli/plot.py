@@ -53,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
     if args.graph and args.constraints:
         raise RequestError("--constraints draws on the mechanism, not on the --graph picture")
     try:
-        mechanism = load_mechanism(args)
+        mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
     except MechanismFileError:
         if _is_flexure(args.file):
             raise PlotFormatError(f"{args.file}: a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures") from None

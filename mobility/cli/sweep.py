@@ -12,20 +12,25 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
+from typing import Iterable, Iterator, TextIO
 
-from ..errors import MechanismError, RequestError, one_line
+from ..errors import MechanismError, RequestError, clipped, one_line
 from ..report.plotting import picture_path, save_figure
-from ..report.sweep import sweep_csv, sweep_json, sweep_summary
-from ..sweeps import DEFAULT_CHUNK_SIZE, sweep
+from ..report.sweep import sweep_csv_pieces, sweep_json_pieces, sweep_summary
+from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, SweepResult, sweep
 from ..sweeps.batch_actuation import actuated_inputs
 from ..io.limits import require_size
 from ._options import add_max_poses_option, add_mechanism_file, add_tolerance_option, load_mechanism, max_poses_from, names_from, require_new_output, tolerance_from
 
 ORDER = 35
 
-FORMATS = {"text": sweep_summary, "csv": sweep_csv, "json": sweep_json}
-"""Output formats: name -> function(result) -> str."""
+
+def _summary_pieces(result: SweepResult) -> Iterator[str]:
+    yield sweep_summary(result)
+
+
+FORMATS = {"text": _summary_pieces, "csv": sweep_csv_pieces, "json": sweep_json_pieces}
+"""Output formats: name -> function(result) -> the text in pieces (a table of a million poses is never held whole as text)."""
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -53,7 +58,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--plot", default=None, metavar="FILE", help="also draw the sweep (.png, .svg or .pdf): a curve, a map, or slices of a 3-D grid")
     add_max_poses_option(p)
     p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE, help="poses per chunk of work (default: %(default)d)")
-    p.add_argument("--workers", type=int, default=None, help="threads in this process (default: the number of CPUs)")
+    p.add_argument("--workers", type=int, default=None, help=f"threads in this process, at most {MAX_WORKERS} (default: the number of CPUs)")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS", help="run the chunks on a dask.distributed scheduler (needs mobility[dask])")
     bar = p.add_mutually_exclusive_group()
     bar.add_argument("--progress", dest="progress", action="store_true", default=None, help="show a progress bar on stderr (needs mobility[progress])")
@@ -86,9 +91,9 @@ def run(args: argparse.Namespace) -> int:
         require_drawable(len(args.vary), f"--plot {args.plot}: ")
     if args.chunk_size < 1:
         raise RequestError(f"--chunk-size must be at least 1, got {args.chunk_size}")
-    if args.workers is not None and args.workers < 1:
-        raise RequestError(f"--workers must be at least 1, got {args.workers}")
-    mechanism = load_mechanism(args)
+    if args.workers is not None and not 1 <= args.workers <= MAX_WORKERS:
+        raise RequestError(f"--workers must be between 1 and {MAX_WORKERS} (threads of this process; for more, use --scheduler), got {clipped(str(args.workers))}")
+    mechanism = load_mechanism(args, outputs=((args.output, "-o"), (args.plot, "--plot")))
     require_size(mechanism, "max_moving_joints", "a sweep", args.file)
     inputs = names_from(args.inputs)
     if inputs is not None:
@@ -108,15 +113,16 @@ def run(args: argparse.Namespace) -> int:
         progress=_progress_wanted(args.progress),
     )
     fmt = "json" if args.json else args.format
-    text = FORMATS[fmt](result)
+    pieces = FORMATS[fmt](result)
     if args.output is not None:
         try:
-            Path(args.output).write_text(text if text.endswith("\n") else text + "\n", encoding="utf-8")
+            with open(args.output, "w", encoding="utf-8") as handle:
+                _write_pieces(handle, pieces)
         except OSError as exc:
             raise RequestError(f"-o {args.output}: cannot write it ({exc.strerror or exc})") from None
         print(one_line(f"wrote {args.output}: {result.size:,} poses of {result.name} ({fmt})"))
     else:
-        print(text, end="" if text.endswith("\n") else "\n")
+        _write_pieces(sys.stdout, pieces)
     if args.plot is not None:
         from ..report.sweep_plot import plot_sweep
 
@@ -128,3 +134,14 @@ def run(args: argparse.Namespace) -> int:
         # a table printed on stdout stays a clean table: the note goes to stderr then
         print(one_line(note), file=sys.stderr if (args.output is None and fmt != "text") else sys.stdout)
     return 0
+
+
+def _write_pieces(handle: TextIO, pieces: Iterable[str]) -> None:
+    """Write the pieces of an output as they come, ending it with a newline."""
+    last = ""
+    for piece in pieces:
+        if piece:
+            handle.write(piece)
+            last = piece
+    if not last.endswith("\n"):
+        handle.write("\n")

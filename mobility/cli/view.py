@@ -51,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
     require_new_output(args.output, "-o", args.file)
     max_poses = max_poses_from(args)
     require_plotly()  # before any work
-    mechanism = load_mechanism(args)
+    mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
     if args.vary or args.samples:
         require_size(mechanism, "max_moving_joints", "--vary" if args.vary else "--samples", args.file)
     poses = sampled_poses(args, mechanism)

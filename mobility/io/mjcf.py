@@ -28,6 +28,7 @@ line (from MuJoCo where it knows it, never line 0) and the element.
 
 from __future__ import annotations
 
+import math
 import os
 import re
 import warnings
@@ -384,7 +385,7 @@ class _MjcfTree:
         gaps: dict[int, str] = {}
         for k in np.unique(ids).tolist():
             own = residual[ids == k]
-            distance, turn = float(np.linalg.norm(own[:3])), float(np.linalg.norm(own[3:6])) if len(own) > 3 else 0.0
+            distance, turn = math.hypot(*own[:3]), math.hypot(*own[3:6])  # hypot: no overflow for a relpose near the largest float
             if distance > DEFAULT_TOLERANCE.rank * size or turn > DEFAULT_TOLERANCE.rank:
                 gaps[int(k)] = f"its points are {distance:.3g} apart" + (f" and its frames {turn:.3g} rad" if turn > DEFAULT_TOLERANCE.rank else "")
         return gaps

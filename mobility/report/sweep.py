@@ -29,7 +29,7 @@ import csv
 import io
 import json
 import math
-from typing import Any
+from typing import Any, Iterator
 
 import numpy as np
 
@@ -38,10 +38,13 @@ from ..core.tolerance import first_least
 from ..sweeps import SweepResult
 from .text import fmt_number
 
-__all__ = ["sweep_summary", "sweep_csv", "sweep_json", "describe_values", "SUMMARY_SINGULAR_LIMIT"]
+__all__ = ["sweep_summary", "sweep_csv", "sweep_json", "sweep_csv_pieces", "sweep_json_pieces", "describe_values", "SUMMARY_SINGULAR_LIMIT", "PIECE_ROWS"]
 
 SUMMARY_SINGULAR_LIMIT = 8
 """Singular poses and changes listed in the summary (the CSV and JSON have them all)."""
+
+PIECE_ROWS = 10_000
+"""Rows of a table written at a time: a million-pose table is never held whole as text."""
 
 
 def describe_values(result: SweepResult, values: Any) -> str:
@@ -189,19 +192,49 @@ def _cell(name: str, value: Any, assembled: bool, scale: float = 1.0, digits: in
 
 def sweep_csv(result: SweepResult) -> str:
     """The table as CSV: the varied coordinates (``name [unit]``), then ``dof, pattern, mobility`` and the rest."""
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
+    return "".join(sweep_csv_pieces(result))
+
+
+def sweep_csv_pieces(result: SweepResult, rows: int | None = None) -> Iterator[str]:
+    """:func:`sweep_csv` in pieces of ``rows`` rows (default :data:`PIECE_ROWS`; the header first), for a writer that never holds the whole text."""
+    rows = PIECE_ROWS if rows is None else rows
     labels = {a.name: a.label for a in result.axes}
     scales = {a.name: a.extent for a in result.axes}
     digits = {a.name: axis_digits(a) for a in result.axes}
     names = result.columns
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow([labels.get(n, n) for n in names])
     columns = [result.column(n) for n in names]
-    for i, ok in enumerate(result.assembled.tolist()):
-        writer.writerow([_cell(n, c[i], ok, scales.get(n, 1.0), digits.get(n, 6)) for n, c in zip(names, columns)])
-    return buffer.getvalue()
+    for start in range(0, result.size, rows):
+        for i in range(start, min(start + rows, result.size)):
+            ok = bool(result.assembled[i])
+            writer.writerow([_cell(n, c[i], ok, scales.get(n, 1.0), digits.get(n, 6)) for n, c in zip(names, columns)])
+        yield buffer.getvalue()
+        buffer.seek(0)
+        buffer.truncate()
+    if buffer.tell():
+        yield buffer.getvalue()  # the header of an empty table
 
 
 def sweep_json(result: SweepResult) -> str:
     """:meth:`SweepResult.to_dict` as indented JSON."""
-    return json.dumps(result.to_dict(), indent=1, ensure_ascii=False)
+    return "".join(sweep_json_pieces(result))
+
+
+def sweep_json_pieces(result: SweepResult) -> Iterator[str]:
+    """:func:`sweep_json` in pieces: the summary, then one column at a time (a writer never holds the whole table as text).
+
+    Examples
+    --------
+    >>> import json, mobility
+    >>> r = mobility.sweep(mobility.load("mechanisms/parallelogram.yaml"), ["O1=0:360:13"])
+    >>> json.loads("".join(sweep_json_pieces(r))) == r.to_dict()
+    True
+    """
+    head = json.dumps(result.summary_dict(), indent=1, ensure_ascii=False)
+    yield head[:-2] + ',\n "columns": {'
+    for k, name in enumerate(result.columns):
+        values = json.dumps(result.column_list(name), indent=1, ensure_ascii=False).replace("\n", "\n  ")
+        yield ("," if k else "") + f"\n  {json.dumps(name)}: {values}"
+    yield "\n }\n}"

@@ -24,7 +24,7 @@ Modules, in data-flow order:
 
 from .grid import DEFAULT_MAX_POSES, POSE_COORDINATES, GridPlan, SweepAxis, parse_vary, plan_grid
 from .result import COLUMNS, MarginDip, SingularPose, SweepResult
-from .runner import DEFAULT_CHUNK_SIZE, analyse_joint_variables, sweep
+from .runner import DEFAULT_CHUNK_SIZE, MAX_WORKERS, analyse_joint_variables, sweep
 
 __all__ = [
     "sweep",
@@ -40,4 +40,5 @@ __all__ = [
     "POSE_COORDINATES",
     "DEFAULT_MAX_POSES",
     "DEFAULT_CHUNK_SIZE",
+    "MAX_WORKERS",
 ]

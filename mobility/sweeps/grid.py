@@ -333,7 +333,7 @@ def _require_one_rotation(axes: list[SweepAxis]) -> None:
     rotations = [a for a in axes if a.kind == "pose" and a.unit == "deg"]
     if not rotations:
         return
-    farthest = math.sqrt(sum(max(abs(a.start), abs(a.stop)) ** 2 for a in rotations))  # at a corner of the grid
+    farthest = math.hypot(*(max(abs(a.start), abs(a.stop)) for a in rotations))  # at a corner of the grid; hypot cannot overflow
     if farthest <= 180.0 * (1.0 + SAME_GRID_VALUE):
         return
     names = ", ".join(f"{a.name}={a.start:g}:{a.stop:g}:{a.count}" for a in rotations)

@@ -417,21 +417,11 @@ class SweepResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form: the request, the summary (counts, regular answer, singular poses, changes) and the table by column."""
+        return {**self.summary_dict(), "columns": {name: self.column_list(name) for name in self.columns}}
+
+    def summary_dict(self) -> dict[str, Any]:
+        """:meth:`to_dict` without the table (``columns``): what a writer sends before the columns, one at a time."""
         regular = self.regular
-        table: dict[str, list] = {}
-        extents = {a.name: a.extent for a in self.axes}
-        for name in self.columns:
-            col = self.column(name)
-            if name in ("dof", "mobility"):
-                table[name] = [int(v) if ok else None for v, ok in zip(col, self.assembled)]
-            elif name in ("pattern", "verdict"):
-                table[name] = [str(v) if ok else None for v, ok in zip(col, self.assembled)]
-            elif name == "assembled":
-                table[name] = [bool(v) for v in col]
-            elif name in ("near_singular", "inexact"):
-                table[name] = [bool(v) if ok else None for v, ok in zip(col, self.assembled)]
-            else:
-                table[name] = [_number(v) for v in clean_numbers(np.asarray(col, dtype=float), extents[name])] if name in self.names else [_number(v) for v in col]
         return {
             "name": self.name,
             "coordinates": [a.to_dict() for a in self.axes],
@@ -446,8 +436,23 @@ class SweepResult:
             "changes": [{"from": int(a), "to": int(b), "axis": self.names[int(k)]} for a, b, k in self.changes],
             "margin_dips": [d.to_dict(self.names) for d in self.dips],
             "tolerance": {"rank": self.tolerance.rank, "near_singular": self.tolerance.near_singular, "closure": self.tolerance.closure},
-            "columns": table,
         }
+
+    def column_list(self, name: str) -> list:
+        """Column ``name`` of :meth:`to_dict`'s table: plain Python values, ``None`` where a pose has no answer (or a number is not finite)."""
+        col = self.column(name)
+        if name in ("dof", "mobility"):
+            return [int(v) if ok else None for v, ok in zip(col, self.assembled)]
+        if name in ("pattern", "verdict"):
+            return [str(v) if ok else None for v, ok in zip(col, self.assembled)]
+        if name == "assembled":
+            return [bool(v) for v in col]
+        if name in ("near_singular", "inexact"):
+            return [bool(v) if ok else None for v, ok in zip(col, self.assembled)]
+        if name in self.names:
+            extent = next(a.extent for a in self.axes if a.name == name)
+            return [_number(v) for v in clean_numbers(np.asarray(col, dtype=float), extent)]
+        return [_number(v) for v in col]
 
 
 def _number(x: Any) -> float | None:

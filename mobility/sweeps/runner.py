@@ -44,7 +44,7 @@ import numpy as np
 from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import MissingExtraError, RequestError
+from ..errors import MissingExtraError, RequestError, clipped
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
 from .batch_kinematics import BatchKinematics
 from .batch_systems import analyse_poses
@@ -55,7 +55,7 @@ from .posed_screws import posed_screws
 from .result import SweepResult
 from .walks import axis_walk
 
-__all__ = ["sweep", "analyse_joint_variables", "tqdm_progress", "DEFAULT_CHUNK_SIZE", "BLOCK", "Progress"]
+__all__ = ["sweep", "analyse_joint_variables", "tqdm_progress", "DEFAULT_CHUNK_SIZE", "BLOCK", "MAX_WORKERS", "Progress"]
 
 DEFAULT_CHUNK_SIZE = 50_000
 """Poses per chunk (a unit of work sent to a worker)."""
@@ -65,6 +65,9 @@ BLOCK = 8192
 
 IN_FLIGHT = 2
 """Chunks per worker handed out at a time (the rest wait, unbuilt, so memory stays bounded)."""
+
+MAX_WORKERS = 256
+"""Most threads a sweep runs its chunks on in this process (more only wait for the same cores)."""
 
 Progress = Callable[[str, int, int], None]
 """``progress(stage, done, total)``: called as chunks finish (stage ``"closing loops"`` or ``"analysing"``)."""
@@ -401,6 +404,9 @@ def sweep(
             raise RequestError(f"sweep: {key} must be a positive integer, got {value!r}")
     if workers is not None and (not isinstance(workers, int) or isinstance(workers, bool) or workers < 1):
         raise RequestError(f"sweep: workers must be a positive integer, got {workers!r}")
+    if workers is not None and workers > MAX_WORKERS:
+        raise RequestError(f"sweep: workers must be at most {MAX_WORKERS} (threads of this process), got {clipped(str(workers))}; "
+                           "for more, run the chunks on a dask cluster (scheduler)")
     _require_scheduler(scheduler)
     _require_progress(progress)
     plan = plan_grid(mechanism, vary, max_poses=max_poses)

@@ -30,6 +30,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -37,6 +38,7 @@ import numpy as np
 from ...core.joint_screws import joint_screws
 from ...core.model import Mechanism
 from ...core.tolerance import DEFAULT_TOLERANCE, binary_scale
+from ...errors import MechanismFileError, clipped
 
 __all__ = ["Sketch", "sketch", "drawing_scale", "PLAIN_SIZES"]
 
@@ -63,6 +65,33 @@ def drawing_scale(length: float) -> float:
     if PLAIN_SIZES[0] <= length <= PLAIN_SIZES[1]:
         return 1.0
     return binary_scale(length)
+
+DRAWING_REACH = 1e150
+"""Farthest from the origin a joint is drawn, in drawing units (where the
+mechanism's size is about 1): a drawing library squares and multiplies
+coordinates (norms, projections, axis ticks), which stays finite up to the
+square root of the largest float.  A joint farther out is refused in one line:
+at such a distance, in the file's own frame, no picture resolves the mechanism.
+"""
+
+
+def _require_drawable(mechanism: Mechanism, joints: tuple, pts: np.ndarray, located: np.ndarray, length: float) -> None:
+    """Refuse to draw a mechanism whose located joints lie beyond :data:`DRAWING_REACH` (or past the largest float)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        reach = np.where(located, np.max(np.abs(pts), axis=1), 0.0)
+    far = np.flatnonzero(~(reach <= DRAWING_REACH))
+    if far.size == 0:
+        return
+    i = int(far[0])
+    joint = joints[i]
+    point = max(abs(float(x)) for x in joint.point)
+    unit = f" {mechanism.length_unit}" if mechanism.length_unit else ""
+    raise MechanismFileError(
+        f"joint {clipped(joint.name)}",
+        f"its point lies {point:.3g}{unit} from the origin, {point / length if length > 0 else math.inf:.3g} times the mechanism's size: too far out to draw; "
+        f"expected joints within {DRAWING_REACH:.0e} sizes of the origin for a picture or a view (move the file's origin near the mechanism; the analysis itself is unaffected)",
+        file=mechanism.source or "<string>")
+
 
 ROUND_OFF = DEFAULT_TOLERANCE.round_off
 """Lengths below this fraction of the scene are round-off (the policy's rule): a scene that small has no extent."""
@@ -144,6 +173,7 @@ def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
         if j.point is not None:
             pts[i] = j.point
     pts *= scale
+    _require_drawable(mechanism, joints, pts, located, norm.length)
     link_joints: dict[str, list[int]] = {}
     for i, j in enumerate(joints):
         for x in j.links:
