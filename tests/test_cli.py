@@ -340,3 +340,11 @@ def test_an_output_named_with_undecodable_bytes_is_reported_on_a_strict_utf8_std
     assert run.returncode == 0, run.stderr
     assert run.stdout.decode("utf-8") == "wrote bad\\xff.csv: 3 poses of planar four-bar (csv)\n"
     assert (tmp_path / name).read_text().startswith("A [deg],dof")
+
+
+@pytest.mark.parametrize("option, values", [("--closures", ("a.yaml", "b.yaml")), ("--ground", ("world", "crank")), ("--end-effector", ("coupler", "rocker"))])
+def test_a_robot_option_given_twice_is_refused_not_overridden(option, values, capsys):
+    with pytest.raises(SystemExit) as info:  # argparse's exit, status 2
+        main(["analyze", str(HAND / "four_bar.urdf"), option, values[0], option, values[1]])
+    out, err = capsys.readouterr()  # the last used to win, the first never read
+    assert (info.value.code, out) == (2, "") and err == f"mobility analyze: error: {option} given twice; expected it once (see mobility analyze --help)\n"

@@ -130,6 +130,15 @@ MECHANISM_FILE_HELP = "mechanism file (YAML) or robot description (MJCF, URDF)"
 """The help of the ``FILE`` argument of every subcommand that reads one mechanism file."""
 
 
+class StoreOnce(argparse.Action):
+    """Store an option's value, refusing it given twice (the last would win silently, the first never read)."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: Any, option_string: str | None = None) -> None:
+        if getattr(namespace, self.dest, None) is not None:
+            parser.error(f"{option_string} given twice; expected it once")
+        setattr(namespace, self.dest, values)
+
+
 def add_mechanism_file(parser: argparse.ArgumentParser, *, file_help: str = MECHANISM_FILE_HELP) -> None:
     """Add the ``file`` argument (YAML, MJCF or URDF) and the options of robot description files.
 
@@ -141,13 +150,13 @@ def add_mechanism_file(parser: argparse.ArgumentParser, *, file_help: str = MECH
     """
     parser.add_argument("file", help=file_help)
     g = parser.add_argument_group("robot description files (MJCF, URDF)")
-    g.add_argument("--ground", metavar="BODY", help="the fixed body (default: the world or root body)")
-    g.add_argument("--end-effector", metavar="BODY", help="the body whose freedom is reported (default: the body farthest from the ground)")
+    g.add_argument("--ground", metavar="BODY", action=StoreOnce, help="the fixed body (default: the world or root body)")
+    g.add_argument("--end-effector", metavar="BODY", action=StoreOnce, help="the body whose freedom is reported (default: the body farthest from the ground)")
     g.add_argument("--floating", action="store_true", help="keep the 6 freedoms of free/floating joints (default: treat them as fixed)")
     g.add_argument("--ignore-unsupported", action="store_true", help="leave out joint couplings (mimic, joint/tendon equalities) with a note instead of failing")
     g.add_argument("--close", nargs=2, action="append", metavar=("A", "B"), default=[],
                    help="close a loop: bodies A and B, whose origins coincide, are joined by a spherical joint (repeatable)")
-    g.add_argument("--closures", metavar="FILE", help="YAML file of closing joints in the project's format (links are body names)")
+    g.add_argument("--closures", metavar="FILE", action=StoreOnce, help="YAML file of closing joints in the project's format (links are body names)")
 
 
 def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
