@@ -330,3 +330,19 @@ def test_running_out_of_memory_is_one_line_and_exit_two(capsys, monkeypatch):
     assert (status, out) == (2, "")  # was exit 3, an "internal error"
     assert err == ("mobility: out of memory: the request needs more memory than this machine has free; "
                    "ask for less (a coarser grid or fewer poses: --max-poses; fewer samples)\n")
+
+
+def test_reading_a_sweep_result_wrongly_is_a_request_error():
+    r = mobility.sweep(mobility.load(PARALLELOGRAM), ["O1=0:360:13"])
+    for call, message in [
+        (lambda: r.column("nope"), "no column 'nope'; expected one of: O1, dof, pattern"),  # was a KeyError
+        (lambda: r.grid("verdict"), "no column 'verdict'"),  # no inputs were chosen: no actuation columns
+        (lambda: r.column(3), "no column 3"),
+        (lambda: r.row(13), "row: expected a grid point index in 0..12, got 13"),  # was an IndexError
+        (lambda: r.row("a"), "row: expected a grid point index in 0..12, got 'a'"),
+        (lambda: r.row(True), "row: expected a grid point index in 0..12, got True"),  # was a TypeError
+    ]:
+        with pytest.raises(RequestError) as info:
+            call()
+        assert message in str(info.value)
+    assert r.row(-1) == r.row(12) and r.grid("dof").shape == (13,)

@@ -47,7 +47,7 @@ from ..actuation import SINGULAR
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
 from ..core.tolerance import DEFAULT_TOLERANCE, MARGIN_DIP, Tolerance, clean_numbers
-from ..errors import RequestError
+from ..errors import RequestError, clipped
 from .grid import SweepAxis
 
 __all__ = ["GridPoint", "SingularPose", "MarginDip", "SweepResult", "COLUMNS"]
@@ -255,11 +255,11 @@ class SweepResult:
 
     def column(self, name: str) -> np.ndarray:
         """A column of the table by name: a coordinate or one of :data:`COLUMNS`."""
-        if name in self.names:
+        if isinstance(name, str) and name in self.names:
             return self.values[:, self.names.index(name)]
-        if name in COLUMNS:
+        if isinstance(name, str) and name in self.columns:
             return getattr(self, name)
-        raise KeyError(f"no column {name!r}; expected one of: {', '.join(self.columns)}")
+        raise RequestError(f"no column {clipped(repr(name))}; expected one of: {', '.join(self.columns)}")
 
     @property
     def columns(self) -> tuple[str, ...]:
@@ -390,14 +390,24 @@ class SweepResult:
             When the point is not on the grid or was not assembled (its joint
             variables close no loop, so no mechanism has that pose).
         """
-        if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not -self.size <= index < self.size:
-            raise RequestError(f"mechanism_at: expected a grid point index in 0..{self.size - 1}, got {index!r}")
+        self._require_index(index, "mechanism_at")
         if not self.assembled[index]:
             raise RequestError(f"mechanism_at: grid point {int(index)} ({', '.join(f'{n}={v:g}' for n, v in zip(self.names, self.values[index]))}) was not assembled; its loops do not close")
         return kinematics(self.mechanism).mechanism_at(self.q[index])
 
+    def _require_index(self, index: Any, what: str) -> None:
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not -self.size <= index < self.size:
+            raise RequestError(f"{what}: expected a grid point index in 0..{self.size - 1}, got {clipped(repr(index))}")
+
     def row(self, index: int) -> dict[str, Any]:
-        """One row of the table as a dict (JSON-ready)."""
+        """One row of the table as a dict (JSON-ready).
+
+        Raises
+        ------
+        RequestError
+            When ``index`` is not a grid point's (flat) index.
+        """
+        self._require_index(index, "row")
         out: dict[str, Any] = {n: float(v) for n, v in zip(self.names, self.values[index])}
         ok = bool(self.assembled[index])
         out.update(
