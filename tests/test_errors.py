@@ -135,3 +135,37 @@ def test_a_public_function_given_the_wrong_kind_of_argument_says_so_in_one_error
     with pytest.raises(errors.RequestError) as caught:
         call(m)
     assert str(caught.value) == message
+
+
+def _api_misuse():
+    import mobility
+    from mobility.core.model import Mechanism
+    from mobility.core.poses import sample_poses
+    from mobility.report.markdown import markdown_report
+    from mobility.report.plotting import save_figure
+    from mobility.report.text import json_report, text_report
+
+    bar = mobility.load(MECHANISMS / "four_bar.yaml")
+    return [
+        (lambda: Mechanism("x", "g", "b", None), "joints: expected a sequence of Joints, got NoneType"),  # was a TypeError
+        (lambda: Mechanism("x", "g", "b", "AB"), "joints: expected a sequence of Joints, got str"),
+        (lambda: Mechanism("x", "g", "b", bar.joints, frames=3), "frames: expected a sequence of Frames, got int"),
+        (lambda: sample_poses(bar, "x"), "count: expected a number of poses in [0, 100,000], got 'x'"),
+        (lambda: sample_poses(bar, 10**9), "count: expected a number of poses in [0, 100,000], got 1000000000"),  # was a walk of a billion poses
+        (lambda: sample_poses(bar, 2, step="a"), "step: expected a positive joint-space distance, got 'a'"),
+        (lambda: sample_poses(bar, 2, step=float("inf")), "step: expected a positive joint-space distance, got inf"),
+        (lambda: sample_poses(bar, 2, seed="a"), "seed: expected a non-negative integer, got 'a'"),
+        (lambda: text_report(None), "text_report: expected a Result (from mobility.analyze), got NoneType"),  # was an AttributeError
+        (lambda: json_report(bar), "json_report: expected a Result (from mobility.analyze), got Mechanism"),
+        (lambda: markdown_report(3), "markdown_report: expected a Result (from mobility.analyze), got int"),
+        (lambda: save_figure(None, "x.png"), "save_figure: expected a matplotlib Figure, got NoneType"),
+    ]
+
+
+def test_a_wrong_argument_to_the_api_is_one_of_the_project_s_errors():
+    from mobility.errors import MobilityError
+
+    for call, message in _api_misuse():
+        with pytest.raises(MobilityError) as info:
+            call()
+        assert str(info.value) == message

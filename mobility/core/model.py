@@ -474,8 +474,11 @@ class Mechanism:
     source: str = ""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "joints", tuple(self.joints))
-        object.__setattr__(self, "frames", tuple(self.frames))
+        for key in ("joints", "frames"):
+            value = getattr(self, key)
+            if isinstance(value, (str, bytes, dict)) or not isinstance(value, Iterable):
+                raise MechanismError(key, f"expected a sequence of {'Joint' if key == 'joints' else 'Frame'}s, got {type(value).__name__}")
+            object.__setattr__(self, key, tuple(value))
         require_graph_names(self, "link")
         if not self.joints:
             raise MechanismError("joints", "expected at least one joint")

@@ -8,14 +8,20 @@ each step moves along a first-order motion and re-closes every loop with
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from ..errors import RequestError
+from ..errors import RequestError, clipped
 from .kinematics import kinematics
 from .model import Mechanism, require_mechanism
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 
-__all__ = ["sample_poses", "DEFAULT_STEP"]
+__all__ = ["sample_poses", "DEFAULT_STEP", "MAX_SAMPLED_POSES"]
+
+MAX_SAMPLED_POSES = 100_000
+"""Most poses :func:`sample_poses` is asked for (each is a Newton solve and a rebuilt mechanism; the
+command line's ``--samples`` stops at 1,000)."""
 
 DEFAULT_STEP = 0.1
 """The default step of :func:`sample_poses` (radians; lengths over the characteristic length), also the
@@ -66,10 +72,12 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
     """
     mechanism = require_mechanism(mechanism, "sample_poses")
     tol = require_tolerance(tol, "sample_poses")
-    if count < 0:
-        raise RequestError(f"count: expected a number of poses >= 0, got {count}")
-    if not step > 0.0:
-        raise RequestError(f"step: expected a positive joint-space distance, got {step}")
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 0 <= count <= MAX_SAMPLED_POSES:
+        raise RequestError(f"count: expected a number of poses in [0, {MAX_SAMPLED_POSES:,}], got {clipped(repr(count))}")
+    if isinstance(step, bool) or not isinstance(step, (int, float, np.integer, np.floating)) or not 0.0 < step < math.inf:
+        raise RequestError(f"step: expected a positive joint-space distance, got {clipped(repr(step))}")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise RequestError(f"seed: expected a non-negative integer, got {clipped(repr(seed))}")
     rng = np.random.default_rng(seed)
     reached: list[Mechanism] = [mechanism]
     out: list[Mechanism] = []

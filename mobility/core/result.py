@@ -15,12 +15,13 @@ from typing import Any, Mapping, NamedTuple, Protocol
 
 import numpy as np
 
+from ..errors import RequestError
 from .model import Mechanism
 from .screws import pattern_of
 from .tolerance import clean_numbers
 from .topology import Node, Topology
 
-__all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultDetail", "pattern_of"]
+__all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultDetail", "pattern_of", "require_result"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -382,3 +383,17 @@ class Result:
             "length_unit": self.length_unit,
             "reference_point": clean_numbers(self.reference_point, s),
         }
+
+
+def require_result(value: object, caller: str) -> Result:
+    """``value`` when it is a :class:`Result`, else a :class:`~mobility.errors.RequestError` naming ``caller``.
+
+    Examples
+    --------
+    >>> require_result(None, "text_report")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: text_report: expected a Result (from mobility.analyze), got NoneType
+    """
+    if not isinstance(value, Result):
+        raise RequestError(f"{caller}: expected a Result (from mobility.analyze), got {type(value).__name__}")
+    return value

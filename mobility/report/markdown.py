@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from typing import Iterable, Sequence
 
-from ..core.result import Result, ScrewAxis
+from ..core.result import Result, ScrewAxis, require_result
 from ..errors import RequestError
 from .text import fmt_number, fmt_vector, screw_text
 
@@ -119,6 +119,7 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     str
         Markdown text, ending without a newline.
     """
+    result = require_result(result, "markdown_report")
     s = result.length_scale
     unit = _unit(result)
     out = [f"# {md_escape(result.name)}", ""]

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.result import Result, ScrewAxis
+from ..core.result import Result, ScrewAxis, require_result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
 from ..errors import AnalysisError
 from .idle import idle_hint
@@ -88,6 +88,7 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
     limbs : bool
         Also list each limb's twists and constraint wrenches in the limb's frame.
     """
+    result = require_result(result, "text_report")
     s = result.length_scale
     unit = result.length_unit
     out = [result.name, f"  end-effector DOF: {result.dof}   pattern: {result.pattern}"]
@@ -142,6 +143,7 @@ def json_report(result: Result) -> str:
         infinity; the analysis refuses such results first, this is the last
         guard).
     """
+    result = require_result(result, "json_report")
     try:
         return json.dumps(result.to_dict(), indent=2, ensure_ascii=False, allow_nan=False)
     except ValueError:

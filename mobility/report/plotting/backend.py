@@ -13,7 +13,7 @@ import io
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ...errors import PlotFormatError, PlottingUnavailableError
+from ...errors import PlotFormatError, PlottingUnavailableError, RequestError
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -134,6 +134,8 @@ def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     PlotFormatError
         For another suffix (:func:`picture_path`).
     """
+    if not callable(getattr(fig, "savefig", None)):
+        raise RequestError(f"save_figure: expected a matplotlib Figure, got {type(fig).__name__}")
     p = picture_path(path)
     fig.savefig(p, dpi=dpi, facecolor="white")
     return p
