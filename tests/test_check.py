@@ -407,3 +407,26 @@ def test_the_library_pins_the_verdict_of_every_file_that_marks_actuated_joints(l
     assert pinned == marked - {str(MECHANISMS / "3crr.yaml")}  # 3crr: see its expected block
     verdicts = {c.expected for r in library_report.results for c in r.comparisons if c.key == "actuation"}
     assert verdicts == {"valid", "redundant", "actuation-singular"}
+
+
+@pytest.mark.parametrize("path, expected", [
+    (None, r"^check_file: expected a file name \(str or Path\), got NoneType$"),
+    (3, r"^check_file: expected a file name \(str or Path\), got int$"),
+    (b"four_bar.yaml", r"^check_file: expected a file name \(str or Path\), got bytes$"),
+    ("a\x00b.yaml", r"^check_file: expected a file name without a NUL character, got 'a\\x00b\.yaml'$"),
+])
+def test_check_file_refuses_what_is_not_a_file_name(path, expected):
+    with pytest.raises(mobility.errors.RequestError, match=expected):
+        check_file(path)
+
+
+@pytest.mark.parametrize("paths, expected", [
+    (None, r"^check_paths: expected a list of file or folder names, got NoneType$"),
+    (3, r"^check_paths: expected a list of file or folder names, got int$"),
+    (str(MECHANISMS), r"^check_paths: expected a list of file or folder names, got str \(one name is written \[name\]\)$"),
+    ([str(MECHANISMS), 3], r"^check_paths: paths\[1\]: expected a file name \(str or Path\), got int$"),
+    ([None], r"^check_paths: paths\[0\]: expected a file name \(str or Path\), got NoneType$"),
+])
+def test_check_paths_refuses_what_is_not_a_list_of_names(paths, expected):
+    with pytest.raises(mobility.errors.RequestError, match=expected):
+        check_paths(paths)

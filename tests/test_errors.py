@@ -169,3 +169,29 @@ def test_a_wrong_argument_to_the_api_is_one_of_the_project_s_errors():
         with pytest.raises(MobilityError) as info:
             call()
         assert str(info.value) == message
+
+
+def test_no_reader_takes_a_number_for_a_file_descriptor_of_the_caller(tmp_path):
+    import os
+
+    from mobility.flexure.loader import load_flexure, loads_flexure
+    from mobility.io.files import read_capped
+    from mobility.io.yaml_source import parse_yaml, read_text
+
+    fd = os.open(MECHANISMS / "four_bar.yaml", os.O_RDONLY)
+    try:
+        for call, message in [
+            (lambda: load_flexure(fd), "load_flexure: expected a file name (str or Path), got int"),  # read the descriptor and closed it
+            (lambda: load_flexure(True), "load_flexure: expected a file name (str or Path), got bool"),  # True is descriptor 1: stdout
+            (lambda: read_text(fd), "read: expected a file name (str or Path), got int"),
+            (lambda: read_capped(None), "read: expected a file name (str or Path), got NoneType"),
+            (lambda: read_capped(str(tmp_path / "a\x00b.yaml")), "read: expected a file name without a NUL character"),
+            (lambda: loads_flexure(3), "loads_flexure: expected the text of a flexure document (str), got int"),
+            (lambda: parse_yaml(3), "parse_yaml: expected the text of a document (str), got int"),
+        ]:
+            with pytest.raises(RequestError) as info:
+                call()
+            assert str(info.value).startswith(message)
+        assert os.fstat(fd) and os.fstat(1)  # the caller's descriptors are still open
+    finally:
+        os.close(fd)

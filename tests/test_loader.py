@@ -225,3 +225,38 @@ def test_expressions_are_safe_and_clear():
             evaluate(bad, {"a": 1.0})
     with pytest.raises(ValueError, match="math domain error"):
         evaluate("sqrt(-1)", {})
+
+
+# -- arguments of load and loads: a wrong type is a RequestError naming it, never a bare builtin -------------
+
+@pytest.mark.parametrize("path, expected", [
+    (None, r"^load: expected a file name \(str or Path\), got NoneType$"),
+    (3, r"^load: expected a file name \(str or Path\), got int$"),
+    (True, r"^load: expected a file name \(str or Path\), got bool$"),
+    (b"four_bar.yaml", r"^load: expected a file name \(str or Path\), got bytes$"),
+    ({"name": "m"}, r"^load: expected a file name \(str or Path\), got dict$"),
+    ("a\x00b.yaml", r"^load: expected a file name without a NUL character, got 'a\\x00b\.yaml'$"),
+    ("a\x00b.urdf", r"^load: expected a file name without a NUL character, got 'a\\x00b\.urdf'$"),
+])
+def test_load_refuses_what_is_not_a_file_name(path, expected):
+    with pytest.raises(mobility.errors.RequestError, match=expected):
+        mobility.load(path)
+
+
+@pytest.mark.parametrize("limits", [3, "x", {"max_joints": 3}])
+def test_limits_must_be_a_limits_object(limits, write_yaml):
+    path = write_yaml(HEAD + "joints:\n  - {name: P1, type: P, links: [g, e], axis: [0, 0, 1]}\n")
+    for call in (lambda: mobility.load(path, limits=limits), lambda: mobility.loads(path.read_text(), limits=limits)):
+        with pytest.raises(mobility.errors.RequestError, match=rf"^limits: expected a Limits \(mobility\.io\.limits\.Limits\) or None, got {type(limits).__name__}$"):
+            call()
+
+
+def test_robot_options_left_at_their_defaults_do_not_make_a_yaml_file_a_robot(write_yaml):
+    path = write_yaml(HEAD + "joints:\n  - {name: P1, type: P, links: [g, e], axis: [0, 0, 1]}\n")
+    assert [j.name for j in mobility.load(path, ground=None, close=(), floating=False).joints] == ["P1"]
+
+
+@pytest.mark.parametrize("file", [3, None, b"m.yaml"])
+def test_loads_refuses_a_file_name_for_messages_that_is_not_one(file):
+    with pytest.raises(mobility.errors.RequestError, match=rf"^loads: file: expected a file name \(str or Path\), got {type(file).__name__}$"):
+        mobility.loads(HEAD + "joints: []\n", file=file)

@@ -12,6 +12,7 @@ under ``tests/data/robots/rtb_data``.
 from __future__ import annotations
 
 import math
+import os
 import re
 import warnings
 import xml.etree.ElementTree as ET
@@ -25,7 +26,7 @@ from hypothesis import strategies as st
 
 import mobility
 from mobility.errors import MechanismFileError, RequestError
-from mobility.io.robot_files import read_robot
+from mobility.io.robot_files import RobotOptions, read_robot
 from test_mjcf import MujocoRoute, assert_agrees_with_mujoco, compiled_at_qpos0, same_subspace
 
 DATA = Path(__file__).parent / "data" / "robots"
@@ -363,3 +364,110 @@ def test_a_dtd_is_read_since_this_reader_alone_reads_urdf(tmp_path):
 def test_an_empty_body_name_is_refused(option):
     with pytest.raises(RequestError, match=rf"^{option}: an empty body name; expected the name of a body"):
         read_robot(HAND / "four_bar.urdf", **{option: ""})
+
+
+# -- numbers and elements as MuJoCo's URDF compiler reads them ------------------------------------
+
+ROBOT = '<robot name="r">\n<link name="a"/><link name="b"/>\n{joint}\n</robot>'
+
+
+@pytest.mark.parametrize("xyz", ["\u0661 \u0662 \u0663", "\uff11 \uff10 \uff10", "1_0 0 0", "1\u00a00 0", "1\u20030 0", "0,0,1", "nan 0 1", "inf 0 1", "0x1 0 0", "1e 0 0"])
+def test_a_number_that_is_not_a_plain_decimal_is_refused(tmp_path, xyz):
+    text = ROBOT.format(joint=J.replace("0 0 1", xyz))
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(write(tmp_path, text))
+    assert str(err.value).endswith(f":3: joint[j]/axis/@xyz: expected 3 numbers, got {xyz!r}")
+
+
+@pytest.mark.parametrize("xyz, axis", [("1. 0 0", (1, 0, 0)), (".5 0 0", (1, 0, 0)), ("+1 -0 1e0", (math.sqrt(0.5), 0, math.sqrt(0.5))),
+                                       ("0\t0\n1", (0, 0, 1)), ("  0 1E+2 0 ", (0, 1, 0)), ("0 0 2.5e-3", (0, 0, 1))])
+def test_plain_decimals_in_every_form_mujoco_reads_are_read(tmp_path, xyz, axis):
+    j = read_robot(write(tmp_path, ROBOT.format(joint=J.replace("0 0 1", xyz)))).mechanism.joints[0]
+    assert np.allclose(j.axis, axis)
+
+
+@pytest.mark.parametrize("element", ['<parent link="a"/>', '<child link="b"/>', '<axis xyz="1 0 0"/>', '<origin xyz="0 0 1"/>', '<limit lower="-1" upper="1"/>',
+                                     '<mimic joint="j"/>', '<dynamics damping="1"/>'])
+def test_an_element_repeated_in_a_joint_is_refused_naming_both_lines(tmp_path, element):
+    tag = element[1:].split()[0]
+    first = 3 if f"<{tag} " in J else 4  # line 3 holds J and its elements
+    joint = J.replace("</joint>", ("\n" + element) * (1 if first == 3 else 2) + "</joint>")
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(write(tmp_path, ROBOT.format(joint=joint)))
+    assert str(err.value).endswith(f":{first + 1}: joint[j]/{tag}: a second <{tag}> in the joint (the first on line {first}); expected one")
+
+
+def test_a_transmission_joint_without_a_name_says_so(tmp_path):
+    text = ROBOT.format(joint=J + '\n<transmission name="t">\n<joint/>\n</transmission>')
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(write(tmp_path, text))
+    assert str(err.value).endswith(':5: transmission[t]/joint: missing attribute name; expected <joint name="...">')
+
+
+# -- arguments of read_robot and load: a wrong type is a RequestError naming it ----------------------
+
+@pytest.mark.parametrize("options, expected", [
+    ({"ground": 3}, r"^ground: expected a body name \(str\), got int$"),
+    ({"end_effector": 3}, r"^end_effector: expected a body name \(str\), got int$"),
+    ({"ground": ["crank"]}, r"^ground: expected a body name \(str\), got list$"),
+    ({"end_effector": b"coupler"}, r"^end_effector: expected a body name \(str\), got bytes$"),
+    ({"floating": "yes"}, r"^floating: expected True or False, got str$"),
+    ({"ignore_unsupported": 2}, r"^ignore_unsupported: expected True or False, got int$"),
+    ({"close": "ab"}, r"^close: expected a list of pairs of body names \[\(A, B\), \.\.\.\], got str$"),
+    ({"close": 5}, r"^close: expected a list of pairs of body names \[\(A, B\), \.\.\.\], got int$"),
+    ({"close": {"coupler_tip": "rocker_tip"}}, r"^close: expected a list of pairs of body names \[\(A, B\), \.\.\.\], got dict$"),
+    ({"close": [("coupler_tip",)]}, r"^close\[0\]: expected a pair of body names \(A, B\), got 1 item$"),
+    ({"close": [("coupler_tip", "rocker_tip", "x")]}, r"^close\[0\]: expected a pair of body names \(A, B\), got 3 items$"),
+    ({"close": [None]}, r"^close\[0\]: expected a pair of body names \(A, B\), got NoneType$"),
+    ({"close": [(1, 2)]}, r"^close\[0\]: expected a pair of body names \(A, B\), got a pair of int and int$"),
+    ({"close": [("coupler_tip", "rocker_tip"), "ab"]}, r"^close\[1\]: expected a pair of body names \(A, B\), got str$"),
+    ({"close": ("coupler_tip", "rocker_tip")}, r"^close\[0\]: expected a pair of body names \(A, B\), got str \(one pair is written \[\(A, B\)\]\)$"),
+    ({"closures": 3}, r"^closures: expected a file name \(str or Path\), got int$"),
+    ({"closures": True}, r"^closures: expected a file name \(str or Path\), got bool$"),
+    ({"closures": {"joints": []}}, r"^closures: expected a file name \(str or Path\), got dict$"),
+    ({"closures": b"four_bar_closures.yaml"}, r"^closures: expected a file name \(str or Path\), got bytes$"),
+    ({"closures": "a\x00b.yaml"}, r"^closures: expected a file name without a NUL character, got 'a\\x00b\.yaml'$"),
+    ({"options": 3}, r"^options: expected a RobotOptions or None, got int$"),
+    ({"options": {"ground": "crank"}}, r"^options: expected a RobotOptions or None, got dict$"),
+    ({"options": RobotOptions(ground=3)}, r"^ground: expected a body name \(str\), got int$"),
+    ({"options": RobotOptions(close=(("a",),))}, r"^close\[0\]: expected a pair of body names \(A, B\), got 1 item$"),
+])
+@pytest.mark.parametrize("file", ["four_bar.urdf", "four_bar.xml"])
+def test_a_robot_option_of_the_wrong_type_is_refused_naming_it(options, expected, file):
+    with pytest.raises(RequestError, match=expected):
+        read_robot(HAND / file, **options)
+    if "options" not in options:
+        with pytest.raises(RequestError, match=expected):
+            mobility.load(HAND / file, **options)
+
+
+@pytest.mark.parametrize("path", [None, 3, True, b"four_bar.urdf"])
+def test_read_robot_refuses_what_is_not_a_file_name(path):
+    with pytest.raises(RequestError, match=rf"^read_robot: expected a file name \(str or Path\), got {type(path).__name__}$"):
+        read_robot(path)
+
+
+def test_a_close_pair_may_be_a_list_and_the_closures_a_path():
+    closed = read_robot(HAND / "four_bar.urdf", close=[["coupler_tip", "rocker_tip"]]).mechanism
+    assert [j.type for j in closed.joints][-1] == "S"
+    sided = read_robot(HAND / "four_bar.urdf", closures=HAND / "four_bar_closures.yaml", end_effector="coupler").mechanism
+    assert [j.name for j in sided.joints] == ["A", "B", "D", "C"]
+
+
+def test_a_file_descriptor_is_never_read_nor_closed(tmp_path):
+    """closures=fd once read the caller's descriptor and closed it (closures=True closed standard output)."""
+    fd = os.open(HAND / "four_bar_closures.yaml", os.O_RDONLY)
+    try:
+        for value in (fd, True, 1, 0):
+            with pytest.raises(RequestError, match=r"^closures: expected a file name"):
+                mobility.load(HAND / "four_bar.urdf", closures=value)
+        os.fstat(fd)  # still open
+        os.fstat(1)
+    finally:
+        os.close(fd)
+
+
+def test_a_mechanism_file_given_to_read_robot_is_named_as_one():
+    path = Path(__file__).parent.parent / "mechanisms" / "four_bar.yaml"
+    with pytest.raises(MechanismFileError, match=r"four_bar\.yaml: a mechanism file \(YAML\), not a robot description; expected MJCF or URDF \(read it with mobility\.load\)$"):
+        read_robot(path)

@@ -51,13 +51,14 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..errors import MechanismError, name_list
+from ..errors import MechanismError, RequestError, name_list
 from .model import LENGTH_UNITS, MODULUS_UNITS, FlexureMechanism, ForceLine, Material, Rod
 from .compliance import compliance_matrix
 from ..io.reader import DocumentReader, describe_value, parse_key, shown_value
 from ..core.model import WORLD, Frame
 from ..core.transforms import Transform
 from ..io.expected import FLEXURE_EXPECTED_KEYS, read_expected
+from ..io.files import file_name
 from ..io.yaml_source import KeyPath, Positions, parse_yaml, read_text
 
 __all__ = ["load_flexure", "loads_flexure", "read_flexure", "is_flexure_document", "FLEXURE_KEYS", "ELEMENT_KEYS", "ACTUATOR_KEYS", "ELEMENT_TYPES"]
@@ -83,11 +84,14 @@ def load_flexure(path: str | Path) -> FlexureMechanism:
     MechanismFileError
         When the file cannot be read or breaks the format.
     """
-    return loads_flexure(read_text(path), file=str(path))
+    name = file_name(path, "load_flexure")  # never a descriptor of the caller's (an int)
+    return loads_flexure(read_text(name), file=name)
 
 
 def loads_flexure(text: str, file: str = "<string>") -> FlexureMechanism:
     """Load a flexure document from YAML text (see :func:`load_flexure`)."""
+    if not isinstance(text, str):
+        raise RequestError(f"loads_flexure: expected the text of a flexure document (str), got {type(text).__name__}")
     data, positions = parse_yaml(text, file)
     return read_flexure(data, positions, file)
 

@@ -38,15 +38,59 @@ import numpy as np
 
 from ..core.model import WORLD, Joint
 from ..core.transforms import Transform
-from ..errors import MechanismFileError
+from ..errors import MechanismFileError, RequestError
+from .files import file_name
 from .loader import _MechanismReader
 from .robot_tree import Closure, RobotTree
 from .yaml_source import parse_yaml, read_text
 
-__all__ = ["with_close_pairs", "with_closures_file", "CLOSURES_KEYS"]
+__all__ = ["with_close_pairs", "with_closures_file", "close_pairs", "CLOSURES_KEYS"]
 
 CLOSURES_KEYS = ("description", "joints")
 """Keys of a closures side file."""
+
+
+def close_pairs(value: object) -> tuple[tuple[str, str], ...]:
+    """``value`` as pairs of body names ``((A, B), ...)``, refusing in one line what is not.
+
+    ``value`` is a list or tuple of pairs, each a list or tuple of two
+    names (``str``); ``None`` is no pair.  A bare pair ``("A", "B")`` is
+    refused rather than read as two pairs of letters.
+
+    Raises
+    ------
+    RequestError
+        When ``value`` is not a list of pairs of names (key ``close``, or
+        ``close[k]`` for the ``k``-th pair).
+
+    Examples
+    --------
+    >>> close_pairs([["a", "b"]])
+    (('a', 'b'),)
+    >>> close_pairs(("a", "b"))
+    Traceback (most recent call last):
+    ...
+    mobility.errors.RequestError: close[0]: expected a pair of body names (A, B), got str (one pair is written [(A, B)])
+    """
+    if value is None:
+        return ()
+    if not isinstance(value, (list, tuple)):
+        raise RequestError(f"close: expected a list of pairs of body names [(A, B), ...], got {type(value).__name__}")
+    pairs = []
+    for k, pair in enumerate(value):
+        if isinstance(pair, (list, tuple)) and len(pair) == 2 and all(isinstance(name, str) for name in pair):
+            pairs.append((pair[0], pair[1]))
+            continue
+        if not isinstance(pair, (list, tuple)):
+            got = type(pair).__name__
+            if len(value) == 2 and all(isinstance(name, str) for name in value):
+                got += " (one pair is written [(A, B)])"
+        elif len(pair) != 2:
+            got = f"{len(pair)} item{'s' if len(pair) != 1 else ''}"
+        else:
+            got = f"a pair of {type(pair[0]).__name__} and {type(pair[1]).__name__}"
+        raise RequestError(f"close[{k}]: expected a pair of body names (A, B), got {got}")
+    return tuple(pairs)
 
 
 def with_close_pairs(tree: RobotTree, pairs: Iterable[tuple[str, str]]) -> RobotTree:
@@ -56,9 +100,11 @@ def with_close_pairs(tree: RobotTree, pairs: Iterable[tuple[str, str]]) -> Robot
     ------
     MechanismFileError
         When a name is not a body of the tree (key ``close``).
+    RequestError
+        When ``pairs`` is not a list of pairs of names (:func:`close_pairs`).
     """
     closures, notes = [], []
-    for a, b in pairs:
+    for a, b in close_pairs(pairs):
         first, second = tree.body(a, "close"), tree.body(b, "close")
         if first.name == second.name:
             raise MechanismFileError("close", f"expected two different bodies, got {a!r} twice", file=tree.file)
@@ -77,8 +123,11 @@ def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
     MechanismFileError
         On a malformed file, an unknown body or frame, or bad joint geometry;
         the message names the side file, the line and the key.
+    RequestError
+        When ``path`` is not a file name (a ``str`` or ``os.PathLike``; an
+        ``int`` would be read as a file descriptor, and closed).
     """
-    file = str(path)
+    file = file_name(path, "closures")
     data, positions = parse_yaml(read_text(path), file)
     reader = _MechanismReader(file, positions)
     doc = reader.record(data, (), "a closures file", CLOSURES_KEYS, ("joints",), described="closing joints: a mapping with joints")

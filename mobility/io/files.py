@@ -26,10 +26,10 @@ import stat
 import sys
 from pathlib import Path
 
-from ..errors import MechanismFileError
+from ..errors import MechanismFileError, RequestError, clipped, one_line
 from .limits import Limits, current_limits
 
-__all__ = ["read_capped", "refuse_pipe", "is_regular_file", "os_problem", "printable_name"]
+__all__ = ["read_capped", "file_name", "refuse_pipe", "is_regular_file", "os_problem", "printable_name"]
 
 
 def os_problem(exc: OSError) -> str:
@@ -100,6 +100,58 @@ def is_regular_file(path: str | Path) -> bool:
     return stat.S_ISREG(refuse_pipe(path))
 
 
+def file_name(value: object, what: str) -> str:
+    """``value`` as the name of a file to read, refusing in one line what is not one.
+
+    A file name is a ``str`` or an ``os.PathLike`` naming the file as text.
+    Anything else is refused before a file is touched: ``open`` would take an
+    ``int`` (or a ``bool``) as a file descriptor of the caller's process,
+    read it and close it.  A NUL character, which no file name holds, is
+    refused too (``open`` would raise a bare ``ValueError``).
+
+    Parameters
+    ----------
+    value : object
+        What the caller passed.
+    what : str
+        The function or argument it was passed to, first in the message (``"load"``, ``"closures"``).
+
+    Returns
+    -------
+    str
+        The file name (``os.fspath(value)``).
+
+    Raises
+    ------
+    RequestError
+        When ``value`` is not a file name.
+
+    Examples
+    --------
+    >>> file_name(Path("arm.urdf"), "load")
+    'arm.urdf'
+    >>> file_name(1, "closures")
+    Traceback (most recent call last):
+    ...
+    mobility.errors.RequestError: closures: expected a file name (str or Path), got int
+    >>> file_name("a\\x00b.yaml", "load")
+    Traceback (most recent call last):
+    ...
+    mobility.errors.RequestError: load: expected a file name without a NUL character, got 'a\\x00b.yaml'
+    """
+    name: object = None
+    if isinstance(value, (str, os.PathLike)):
+        try:
+            name = os.fspath(value)
+        except TypeError:  # an __fspath__ that returns neither str nor bytes
+            name = None
+    if not isinstance(name, str):
+        raise RequestError(f"{what}: expected a file name (str or Path), got {type(value).__name__}")
+    if "\x00" in name:
+        raise RequestError(one_line(f"{what}: expected a file name without a NUL character, got {clipped(name, 80)!r}"))
+    return name
+
+
 def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
     """The bytes of a document file, read with the size cap of ``limits`` (never more than the cap plus one chunk).
 
@@ -109,7 +161,7 @@ def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
         One line naming the file: missing, a directory, a terminal,
         unreadable or larger than the limit.
     """
-    name = str(path)
+    name = file_name(path, "read")  # never a descriptor of the caller's (an int), nor a NUL in a name
     cap = current_limits(limits).max_file_bytes
     refuse_pipe(path)
     try:

@@ -39,7 +39,6 @@ mobility.errors.MechanismFileError: slider.yaml:6: joints[0].axis: expected a li
 
 from __future__ import annotations
 
-import os
 import re
 from pathlib import Path
 from typing import Any, Callable, Mapping
@@ -47,12 +46,13 @@ from typing import Any, Callable, Mapping
 from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
 from ..errors import MechanismError, RequestError
 from .expected import read_expected
+from .files import file_name
 from .expressions import RESERVED_NAMES
 from .limits import Limits, current_limits
 from .reader import NAME_RE, DocumentReader, describe_value, parse_key, shown_value
 from .yaml_source import KeyPath, Positions, parse_yaml, read_text
 
-__all__ = ["load", "loads", "read_mechanism", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
+__all__ = ["load", "loads", "read_mechanism", "file_name", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
 
 TOP_LEVEL_KEYS = ("name", "description", "ground", "end_effector", "units", "frames", "joints", "expected", "parameters", "limbs")
 JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes", "normal", "actuated")
@@ -86,6 +86,11 @@ def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any
     MechanismFileError
         When the file cannot be read or breaks the format; the message names
         file, line, key and what was expected.
+    RequestError
+        When ``path`` is not a file name (a ``str`` or ``os.PathLike``
+        without a NUL character), ``limits`` is not a
+        :class:`~mobility.io.limits.Limits`, or a robot option is unknown, of
+        the wrong type, or given for a mechanism file (YAML).
 
     Examples
     --------
@@ -93,14 +98,14 @@ def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any
     >>> m.ground, m.end_effector, [j.name for j in m.joints]
     ('ground', 'coupler', ['A', 'B', 'C', 'D'])
     """
-    if not isinstance(path, (str, os.PathLike)):
-        raise RequestError(f"load: expected a file name (str or Path), got {type(path).__name__}")
+    file_name(path, "load")
+    limits = _limits_argument(limits)
     if robot_options or Path(path).suffix.lower() not in (".yaml", ".yml"):
-        from .robot_files import is_robot_file, load_robot  # robot descriptions are read only when given
+        from .robot_files import is_robot_file, load_robot, refuse_robot_options  # robot descriptions are read only when given
 
-        if robot_options or is_robot_file(path):
+        if is_robot_file(path):
             return load_robot(path, **robot_options)
-    limits = current_limits(limits)
+        refuse_robot_options(path, robot_options)
     return loads(read_text(path, limits), file=str(path), limits=limits)
 
 
@@ -124,9 +129,17 @@ def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) ->
     """
     if not isinstance(text, str):
         raise RequestError(f"loads: expected the text of a mechanism file (str), got {type(text).__name__}")
-    limits = current_limits(limits)
+    file = file_name(file, "loads: file")
+    limits = _limits_argument(limits)
     data, positions = parse_yaml(text, file, limits)
     return read_mechanism(data, positions, file, limits=limits)
+
+
+def _limits_argument(limits: object) -> Limits:
+    """``limits`` if it is a :class:`Limits`, the current limits for ``None``; a :class:`RequestError` otherwise."""
+    if limits is not None and not isinstance(limits, Limits):
+        raise RequestError(f"limits: expected a Limits (mobility.io.limits.Limits) or None, got {type(limits).__name__}")
+    return current_limits(limits)
 
 
 def read_mechanism(data: Any, positions: Positions, file: str = "<string>", *, limits: Limits | None = None) -> Mechanism:

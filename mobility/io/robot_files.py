@@ -38,12 +38,13 @@ from pathlib import Path
 from typing import Any
 
 from ..core.model import Mechanism
-from ..errors import RequestError
-from .closures import with_close_pairs, with_closures_file
+from ..errors import MechanismFileError, RequestError
+from .closures import close_pairs, with_close_pairs, with_closures_file
+from .files import file_name
 from .robot_tree import ImportedRobot, RobotOptions, build_mechanism
 from .xml_source import read_xml, root_tag
 
-__all__ = ["robot_format", "is_robot_file", "read_robot", "load_robot", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
+__all__ = ["robot_format", "is_robot_file", "read_robot", "load_robot", "refuse_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
 
 ROBOT_SUFFIXES = {".urdf": "urdf", ".mjcf": "mjcf", ".xml": None}
 """Extensions of robot description files (``.xml``: MJCF or URDF, by its first element)."""
@@ -57,7 +58,7 @@ def robot_format(path: str | Path) -> str | None:
     A ``.urdf`` or ``.mjcf`` extension decides; otherwise the first XML
     element does (``<mujoco>``, ``<robot>``).  YAML files are never read.
     """
-    suffix = Path(path).suffix.lower()
+    suffix = Path(file_name(path, "robot_format")).suffix.lower()
     if suffix in (".yaml", ".yml"):
         return None
     if ROBOT_SUFFIXES.get(suffix):
@@ -67,7 +68,7 @@ def robot_format(path: str | Path) -> str | None:
 
 def is_robot_file(path: str | Path) -> bool:
     """Whether ``path`` is to be read as a robot description: an XML extension or XML content."""
-    suffix = Path(path).suffix.lower()
+    suffix = Path(file_name(path, "is_robot_file")).suffix.lower()
     if suffix in (".yaml", ".yml"):
         return False
     return suffix in ROBOT_SUFFIXES or root_tag(path) is not None
@@ -97,11 +98,15 @@ def read_robot(path: str | Path, options: RobotOptions | None = None, **option_v
     MissingExtraError
         For an MJCF file when the ``mujoco`` package is not installed.
     RequestError
-        For an unknown option, or an empty body name for ``ground`` or
-        ``end_effector``.
+        When ``path`` is not a file name (a ``str`` or ``os.PathLike``); for
+        an unknown option, an option of the wrong type (each is named), or
+        an empty body name for ``ground`` or ``end_effector``.
     """
+    file_name(path, "read_robot")
     options = _options(options, option_values)
     fmt = robot_format(path)
+    if fmt is None and Path(path).suffix.lower() in (".yaml", ".yml"):
+        raise MechanismFileError("", "a mechanism file (YAML), not a robot description; expected MJCF or URDF (read it with mobility.load)", file=str(path))
     if fmt is None:  # no known extension, and a first element not found early (an encoding read only in full)
         doc = read_xml(path)  # a file that cannot be read, or malformed XML, says so here
         fmt = _ROOTS.get(doc.root.tag)
@@ -117,29 +122,75 @@ def read_robot(path: str | Path, options: RobotOptions | None = None, **option_v
         tree = read_urdf(path)
     if options.close:
         tree = with_close_pairs(tree, options.close)
-    if options.closures:
+    if options.closures is not None:
         tree = with_closures_file(tree, options.closures)
     return build_mechanism(tree, options)
 
 
 def load_robot(path: str | Path, **option_values: Any) -> Mechanism:
-    """The mechanism of an MJCF or URDF file (see :func:`read_robot`; the notes are dropped)."""
-    given = sorted(k for k, v in option_values.items() if v not in (None, False, (), []))
-    if given and not is_robot_file(path):
-        raise RequestError(f"{', '.join(given)}: options of robot description files (MJCF, URDF), not of the mechanism file {path}")
+    """The mechanism of an MJCF or URDF file (see :func:`read_robot`; the notes are dropped).
+
+    For a mechanism file (YAML), every option must be left at its default
+    (``None``, ``False``, no pairs): the file is then loaded as it is.
+
+    Raises
+    ------
+    RequestError
+        As :func:`read_robot`, and for an option given with a mechanism file.
+    """
+    file_name(path, "load")
+    if not is_robot_file(path):
+        refuse_robot_options(path, option_values)
+        from .loader import load  # options all at their defaults: the mechanism file as it is
+
+        return load(path)
     return read_robot(path, **option_values).mechanism
 
 
+def refuse_robot_options(path: str | Path, option_values: dict[str, Any]) -> None:
+    """Refuse the robot options given for a mechanism file (YAML); options left at their defaults pass.
+
+    Raises
+    ------
+    RequestError
+        Naming the options given (or the first unknown or wrong one).
+
+    Examples
+    --------
+    >>> refuse_robot_options("arm.yaml", {"ground": None, "close": []})
+    >>> refuse_robot_options("arm.yaml", {"ground": "base", "floating": True})
+    Traceback (most recent call last):
+    ...
+    mobility.errors.RequestError: floating, ground: options of robot description files (MJCF, URDF), not of the mechanism file arm.yaml
+    """
+    options, default = _options(None, option_values), RobotOptions()
+    given = sorted(f.name for f in fields(RobotOptions) if getattr(options, f.name) != getattr(default, f.name))
+    if given:
+        raise RequestError(f"{', '.join(given)}: options of robot description files (MJCF, URDF), not of the mechanism file {path}")
+
+
 def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptions:
+    """``options`` with ``values`` applied, each field checked: a :class:`RequestError` naming the first wrong one."""
+    if options is not None and not isinstance(options, RobotOptions):
+        raise RequestError(f"options: expected a RobotOptions or None, got {type(options).__name__}")
     known = {f.name for f in fields(RobotOptions)}
     unknown = sorted(set(values) - known)
     if unknown:
         raise RequestError(f"unknown option {unknown[0]!r} for a robot description; expected one of: {', '.join(sorted(known))}")
-    values = dict(values)
-    if "close" in values:
-        values["close"] = tuple(tuple(pair) for pair in values["close"] or ())
     out = replace(options or RobotOptions(), **values)
     for key in ("ground", "end_effector"):
-        if getattr(out, key) == "":  # not the same as leaving it out (the default body)
+        name = getattr(out, key)
+        if name is not None and not isinstance(name, str):
+            raise RequestError(f"{key}: expected a body name (str), got {type(name).__name__}")
+        if name == "":  # not the same as leaving it out (the default body)
             raise RequestError(f"{key}: an empty body name; expected the name of a body (or leave the option out for the default)")
-    return out
+    flags = {}
+    for key in ("floating", "ignore_unsupported"):
+        flag = getattr(out, key)
+        if flag is not None and not isinstance(flag, bool):
+            raise RequestError(f"{key}: expected True or False, got {type(flag).__name__}")
+        flags[key] = bool(flag)  # None: the default, False
+    closures = None if out.closures is None else file_name(out.closures, "closures")
+    if closures == "":
+        raise RequestError("closures: an empty file name; expected the name of a closures file (or leave the option out)")
+    return replace(out, close=close_pairs(out.close), closures=closures, **flags)

@@ -16,6 +16,14 @@ child frame is the parent frame composed with the origin.
 * a URDF cannot express a closed loop: close loops with ``--close A B`` or a
   side file (:mod:`mobility.io.closures`).
 
+Numbers are plain ASCII decimals, as MuJoCo's URDF compiler reads them
+(``1``, ``-0.5``, ``.5``, ``1e-3``), separated by spaces, tabs or line
+breaks; what Python's ``float`` alone would take (``1_0``, digits of other
+scripts, a no-break space between numbers) is refused, as are ``nan`` and
+``inf``.  An element a joint holds once (``<parent>``, ``<axis>``,
+``<origin>``...) is refused when repeated, as MuJoCo refuses it, rather
+than read from its first copy.
+
 Numbers are read in double precision: an ``<axis>`` is normalized by
 ``math.hypot`` (no overflow or underflow), and one whose numbers are all
 subnormal (below 2.2e-308, kept with fewer digits than a double) is
@@ -50,6 +58,7 @@ Examples
 from __future__ import annotations
 
 import math
+import re
 import sys
 import xml.etree.ElementTree as ET
 from collections import deque
@@ -59,6 +68,7 @@ import numpy as np
 
 from ..core.transforms import Transform, rotation_from_rpy
 from ..errors import clipped
+from .files import file_name
 from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml
 
@@ -66,6 +76,13 @@ __all__ = ["read_urdf", "URDF_JOINT_KINDS"]
 
 URDF_JOINT_KINDS = {"revolute": "hinge", "continuous": "hinge", "prismatic": "slide", "planar": "planar", "floating": "free", "fixed": None}
 """URDF joint types and the tree joint kind each becomes (``fixed``: none, the links merge)."""
+
+_JOINT_ELEMENTS = ("parent", "child", "origin", "axis", "limit", "dynamics", "mimic", "calibration", "safety_controller")
+"""Elements of a ``<joint>`` that it holds at most once (MuJoCo refuses a repeated one)."""
+
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+"""A plain ASCII decimal number, as ``strtod`` reads it in MuJoCo (no ``_``, no digits of other scripts)."""
+_XML_SPACE = re.compile(r"[ \t\r\n]+")
 
 
 def read_urdf(path: str | Path) -> RobotTree:
@@ -78,7 +95,7 @@ def read_urdf(path: str | Path) -> RobotTree:
         two parents, no root or several, bad numbers, or an unknown joint
         type; the message names the line.
     """
-    return _UrdfReader(read_xml(path)).tree()
+    return _UrdfReader(read_xml(file_name(path, "read_urdf"))).tree()
 
 
 class _UrdfReader:
@@ -159,6 +176,7 @@ class _UrdfReader:
         if not name:
             raise self.fail(el, "joint", "missing attribute name; expected <joint name=\"...\" type=\"...\">")
         key = f"joint[{clipped(name)}]"
+        self.refuse_repeated(el, key)
         jtype = el.get("type")
         if jtype is None:
             raise self.fail(el, f"{key}/@type", f"missing attribute type; expected one of {', '.join(URDF_JOINT_KINDS)}")
@@ -191,14 +209,21 @@ class _UrdfReader:
                 "origin": Transform(rotation_from_rpy(rpy), np.array(xyz)), "axis": np.array(axis) / (math.hypot(*axis) or 1.0),
                 "mimic": mimic.get("joint") if mimic is not None else None}
 
+    def refuse_repeated(self, el: ET.Element, key: str) -> None:
+        """Refuse a second ``<parent>``, ``<axis>``... in the joint ``el``: its line, and the first one's."""
+        first: dict[str, ET.Element] = {}
+        for sub in el:
+            if sub.tag in _JOINT_ELEMENTS:
+                if sub.tag in first:
+                    raise self.fail(sub, f"{key}/{sub.tag}", f"a second <{sub.tag}> in the joint (the first on line {self.doc.line(first[sub.tag])}); expected one")
+                first[sub.tag] = sub
+
     def numbers(self, el: ET.Element | None, attribute: str, key: str, default: tuple[float, float, float]) -> tuple[float, float, float]:
         if el is None or el.get(attribute) is None:
             return default
         text = el.get(attribute, "")
-        try:
-            values = [float(x) for x in text.split()]
-        except ValueError:
-            values = []
+        words = _XML_SPACE.split(text.strip(" \t\r\n"))
+        values = [float(x) for x in words] if all(_NUMBER.fullmatch(x) for x in words) else []
         if len(values) != 3 or not all(math.isfinite(v) for v in values):
             raise self.fail(el, key, f"expected 3 numbers, got {clipped(text)!r}")
         return (values[0], values[1], values[2])
@@ -234,6 +259,8 @@ class _UrdfReader:
         for t in root.findall("transmission"):
             for j in t.findall("joint"):
                 name = j.get("name")
+                if not name:
+                    raise self.fail(j, f"transmission[{clipped(t.get('name', ''))}]/joint", "missing attribute name; expected <joint name=\"...\">")
                 if name not in joint_names:
                     raise self.fail(j, f"transmission[{clipped(t.get('name', ''))}]/joint", f"unknown joint {clipped(name)!r}; expected a <joint> of this robot")
                 out.add(name)

@@ -36,8 +36,8 @@ from pathlib import Path
 from typing import Any, BinaryIO
 from xml.parsers import expat
 
-from ..errors import MechanismFileError, clipped, control_character_problem
-from .files import is_regular_file, read_capped
+from ..errors import MechanismFileError, RequestError, clipped, control_character_problem
+from .files import file_name, is_regular_file, read_capped
 from .limits import Limits, current_limits
 
 __all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag"]
@@ -98,6 +98,8 @@ def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False
     MechanismFileError
         When the text is not well-formed XML (the message names line and
         column), or, with ``mujoco``, when MuJoCo would read it differently.
+    RequestError
+        When ``text`` is neither ``str`` nor ``bytes``.
 
     Examples
     --------
@@ -106,6 +108,8 @@ def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False
     ...
     mobility.errors.MechanismFileError: m.xml:1: <!DOCTYPE>: a document type declaration, which MuJoCo skips (it reads '&name;' as written, not the entity); expected MJCF without <!DOCTYPE>
     """
+    if not isinstance(text, (str, bytes)):
+        raise RequestError(f"parse_xml: expected the text of an XML file (str or bytes), got {type(text).__name__}")
     builder = ET.TreeBuilder()
     lines: dict[ET.Element, int] = {}
     parser = expat.ParserCreate()
@@ -197,8 +201,10 @@ def read_xml(path: str | Path) -> XmlDocument:
     MechanismFileError
         When the file cannot be read, is larger than the size limit
         (:mod:`mobility.io.limits`) or is not well-formed XML.
+    RequestError
+        When ``path`` is not a file name (:func:`~mobility.io.loader.file_name`).
     """
-    return parse_xml(read_capped(path), str(path))
+    return parse_xml(read_capped(file_name(path, "read_xml")), str(path))
 
 
 def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
@@ -215,6 +221,9 @@ def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
     ------
     MechanismFileError
         When ``path`` is a named pipe or a socket.
+    RequestError
+        When ``path`` is not a file name (an ``int`` would be taken for a
+        file descriptor of the caller's process, and closed).
 
     Examples
     --------
@@ -225,7 +234,7 @@ def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
     'mujoco'
     >>> os.unlink(f.name)
     """
-    if not is_regular_file(path):
+    if not is_regular_file(file_name(path, "root_tag")):
         return None
     found: list[str] = []
     parser = expat.ParserCreate()

@@ -46,7 +46,7 @@ from typing import Any
 
 import yaml
 
-from ..errors import TERMINAL_CONTROL, MechanismFileError, clipped, control_character_problem
+from ..errors import TERMINAL_CONTROL, MechanismFileError, RequestError, clipped, control_character_problem
 from .files import read_capped
 from .limits import Limits, current_limits
 
@@ -149,6 +149,8 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
         On a YAML syntax error (with its line), a limit passed, or any
         construct listed in the module docstring.
     """
+    if not isinstance(text, str):
+        raise RequestError(f"parse_yaml: expected the text of a document (str), got {type(text).__name__}")
     lim = current_limits(limits)
     if len(text) > lim.max_file_bytes:
         raise MechanismFileError("", f"a document of {len(text)} characters is larger than the limit of {lim.max_file_bytes} (set MOBILITY_MAX_FILE_BYTES to raise it)", file=file)

@@ -67,9 +67,10 @@ from typing import Any, Callable, Iterable, Sequence
 import numpy as np
 
 from ..core.analysis import analyze
-from ..errors import MobilityError
+from ..errors import MobilityError, RequestError
 from ..io.files import os_problem, printable_name
 from ..io.limits import current_limits, require_size
+from ..io.files import file_name
 from ..io.loader import load, read_mechanism
 from ..io.yaml_source import Positions, parse_yaml, read_text
 from ..core.model import Mechanism
@@ -443,11 +444,18 @@ def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE, others: 
         Status ``"error"`` with the one-line message (file, line, key) when
         the file cannot be read or analysed.
 
+    Raises
+    ------
+    RequestError
+        When ``path`` is not a file name (a ``str`` or ``os.PathLike``
+        without a NUL character): no file is named, so no result can be.
+
     Examples
     --------
     >>> check_file("no/such/file.yaml").message
     'no/such/file.yaml: no such file'
     """
+    file_name(path, "check_file")
     name = printable_name(path)
     try:
         if Path(path).suffix.lower() not in MECHANISM_SUFFIXES:
@@ -511,12 +519,27 @@ def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None,
 def check_paths(paths: Sequence[str | Path], *, tol: Tolerance = DEFAULT_TOLERANCE, others: Sequence[OtherDocument] = ()) -> CheckReport:
     """Check every mechanism file given or found in the folders given (``others``: as for :func:`check_file`).
 
+    Raises
+    ------
+    RequestError
+        When ``paths`` is not a list (or tuple) of file names; a bare name
+        is refused, not read as a list of its characters.
+
     Examples
     --------
     >>> report = check_paths(["no/such/folder"])
     >>> report.exit_status, report.results[0].message
     (2, 'no/such/folder: no such file or folder')
+    >>> check_paths("mechanisms")
+    Traceback (most recent call last):
+    ...
+    mobility.errors.RequestError: check_paths: expected a list of file or folder names, got str (one name is written [name])
     """
+    if not isinstance(paths, (list, tuple)):
+        one = " (one name is written [name])" if isinstance(paths, (str, os.PathLike)) else ""
+        raise RequestError(f"check_paths: expected a list of file or folder names, got {type(paths).__name__}{one}")
+    for k, path in enumerate(paths):
+        file_name(path, f"check_paths: paths[{k}]")
     results = []
     for shown, path, problem in mechanism_files(paths):
         if path is None:
