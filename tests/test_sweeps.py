@@ -26,6 +26,7 @@ from mobility.errors import MechanismError, RequestError
 from mobility.sweeps import SweepResult, plan_grid, sweep
 from mobility.sweeps.batch_kinematics import BatchKinematics, displacement_logs, rotation_logs
 from mobility.sweeps.batch_systems import analyse_poses
+from mobility.sweeps.continuation import Drive, residuals
 from mobility.sweeps.posed_screws import posed_screws
 from mobility.report.sweep import sweep_csv, sweep_json, sweep_summary
 
@@ -503,6 +504,23 @@ def test_a_scheduler_that_never_answers_or_has_no_workers_is_refused(monkeypatch
             sweep(load("parallelogram"), ["O1=0:90:3"], scheduler=cluster.scheduler_address)
 
 
+@pytest.mark.parametrize("address, why", [("tcp://127.0.0.1:{closed}", "Connection refused"), ("127.0.0.1:{closed}", "Connection refused"),
+                                          ("tcp://localhost:99999", "Port out of range 0-65535")])
+def test_a_scheduler_address_that_refuses_is_said_at_once(monkeypatch, address, why):
+    import socket
+
+    from mobility.sweeps import runner
+
+    probe = socket.create_server(("127.0.0.1", 0))
+    closed = probe.getsockname()[1]
+    probe.close()  # a port nothing listens on
+    monkeypatch.setattr(runner, "CONNECT_SECONDS", 60.0)  # dask's own retries would take this long
+    address = address.format(closed=closed)
+    with time_bound(10), pytest.raises(RequestError) as info:
+        sweep(load("parallelogram"), ["O1=0:90:3"], scheduler=address)
+    assert str(info.value) == f"--scheduler {address}: cannot reach a dask scheduler there ({why})"
+
+
 def test_a_server_that_is_not_a_scheduler_is_one_line_without_distributed_s_traceback():
     import socket
     import struct
@@ -513,13 +531,20 @@ def test_a_server_that_is_not_a_scheduler_is_one_line_without_distributed_s_trac
 
     server = socket.create_server(("127.0.0.1", 0))
 
-    def answer() -> None:  # a message of 1,000 empty frames, which distributed cannot decode (it logs a traceback)
-        connection, _ = server.accept()
+    def answer(connection: socket.socket) -> None:  # a message of 1,000 empty frames, which distributed cannot decode (it logs a traceback)
         with connection:
             connection.sendall(struct.pack("Q", 1000) + bytes(8000))
             time.sleep(5)
 
-    threading.Thread(target=answer, daemon=True).start()
+    def serve() -> None:  # every connection (the sweep first checks that the port accepts one)
+        while True:
+            try:
+                connection, _ = server.accept()
+            except OSError:  # closed at the end of the test
+                return
+            threading.Thread(target=answer, args=(connection,), daemon=True).start()
+
+    threading.Thread(target=serve, daemon=True).start()
     address = "tcp://127.0.0.1:%d" % server.getsockname()[1]
     try:  # a process of its own: distributed's log handlers write to the real stderr
         run = subprocess.run(
@@ -765,14 +790,18 @@ def test_joints_that_meet_on_a_link_still_meet_in_every_rebuilt_pose():
 
 def test_a_reachable_pose_is_assembled_whatever_the_grid_step():
     # The tilted 3-PRS driven by R1: the other joints move about 25 times faster than R1 near the file's
-    # pose, so a line's first step must move them far more than the drive itself.  Every grid reaches the
-    # same range along the minimum-norm path, R1 from -19.45 deg up (found independently by a 0.05-degree
-    # least-squares walk; towards -19.45 the sliders run off without bound); a half-degree grid used to
-    # assemble 1 of 241 poses, since smaller steps shrank the allowed move with them.
+    # pose, so a line's first step must move them far more than the drive itself.  A half-degree grid
+    # reaches R1 from -19.45 deg up along the minimum-norm path (found independently by a 0.05-degree
+    # least-squares walk); it used to assemble 1 of 241 poses, since smaller steps shrank the allowed move
+    # with them.  R1 alone leaves the 3-PRS two freedoms, so the pose depends on the path: towards -19.45
+    # the sliders run off to hundreds of lengths, and where a grid's path gives up there depends on its
+    # step (a 0.1-degree grid stops a few tenths of a degree short); above -18.5 every grid reaches all.
     m = load("3prs_tilted")
     coarse, fine = sweep(m, ["R1=-60:60:241"]), sweep(m, ["R1=-60:60:1201"])
     assert coarse.assembled.tolist() == (coarse.values[:, 0] >= -19.45).tolist()
-    assert fine.assembled.tolist() == (fine.values[:, 0] >= -19.45).tolist()
+    lowest = fine.values[fine.assembled, 0].min()
+    assert -19.5 < lowest < -18.5
+    assert fine.assembled.tolist() == (fine.values[:, 0] >= lowest).tolist()
     for i in random_rows(coarse, 3):
         assert_pose_matches_one_pose_routes(coarse, i)
     # a pose coordinate driven in one long step: the wrist's platform raised by 1.769 in one step, as in 40
@@ -820,3 +849,137 @@ def test_a_branch_with_a_second_order_freedom_is_never_reported_clean_with_anoth
         q[k.variables_of(name)] = 0.5 / k.normalisation.length
     assert np.abs(k.residual(q)).max() == 0.0
     assert mobility.analyze(k.mechanism_at(q)).pattern == "3T1R"
+
+
+# --- continuation: coarse steps, full turns, residuals, chunks --------------------------------
+
+_AXIS_3RRR = [-0.3163144964919387, -0.49309860600178157, 0.8104313074333636]
+_JOINTS_3RRR = [
+    ("A1", "ground, p1", [3.0, -1.0, 2.0]),
+    ("B1", "p1, d1", [1.5960394807787979, 2.052096716422004, 3.3090456424717027]),
+    ("C1", "d1, platform", [3.0055103960508163, 3.028746401984467, 4.453400102721235]),
+    ("A2", "ground, p2", [8.037760694579221, 5.36571059271199, 7.839408859977784]),
+    ("B2", "p2, d2", [4.216777121170155, 6.168015505029132, 6.836218270204397]),
+    ("C2", "d2, platform", [3.8522950244241905, 4.420485493718839, 5.630692799415202]),
+    ("A3", "ground, p3", [-0.9118200744091798, 6.926734224034944, 5.2961414179252815]),
+    ("B3", "p3, d3", [0.6947529518053543, 4.935015211718313, 4.711352150396937]),
+    ("C3", "d3, platform", [2.303530136440215, 4.5547947601954695, 5.107922923957087]),
+]
+
+
+def planar_3rrr_near_a_fold() -> mobility.Mechanism:
+    """A planar 3-RRR in a tilted plane whose file pose lies 1.18 degrees of A1 below a fold (A2, A3 held)."""
+    joints = "".join(f"  - {{name: {n}, type: R, links: [{links}], axis: {_AXIS_3RRR}, point: {p}}}\n" for n, links, p in _JOINTS_3RRR)
+    return mobility.loads(f"name: planar 3-RRR near a fold\nground: ground\nend_effector: platform\njoints:\n{joints}")
+
+
+def assert_same_poses_as_a_finer_grid(coarse: SweepResult, fine: SweepResult) -> None:
+    """Every value of ``coarse`` is a value of ``fine`` (its first axis ``k`` times finer): the same poses assembled, at the same joint variables."""
+    k = (fine.shape[0] - 1) // (coarse.shape[0] - 1)
+    assert np.array_equal(coarse.values[:, 0], fine.values[::k, 0])
+    assert coarse.assembled.tolist() == fine.assembled[::k].tolist()
+    both = coarse.assembled
+    assert np.abs(coarse.q[both] - fine.q[::k][both]).max() < 1e-9
+
+
+def test_a_coarse_step_near_a_fold_is_walked_in_sub_steps():
+    # The file's pose lies 1.18 deg of A1 below a fold, where the other joints move about 16 times faster
+    # than A1: a 2-degree step from it must move them 0.57, farther than a first step (predicted from one
+    # point) may move.  Such a step is walked in halved sub-steps from its assembled neighbour: every pose
+    # below the fold is assembled on any grid, at the joint variables a 0.1-degree grid finds (it used to
+    # assemble the file's pose only), and no pose above the fold (none is reachable from the file's pose).
+    m = planar_3rrr_near_a_fold()
+    assert sweep(m, ["A1=-2:0:2", "A2=0:0:1", "A3=0:0:1"]).assembled.all()
+    fine = sweep(m, ["A1=-30:30:601", "A2=0:0:1", "A3=0:0:1"])
+    assert fine.assembled.tolist() == (fine.values[:, 0] < 1.15).tolist()  # the fold lies at about +1.18
+    for count in (31, 61):
+        coarse = sweep(m, [f"A1=-30:30:{count}", "A2=0:0:1", "A3=0:0:1"])
+        assert_same_poses_as_a_finer_grid(coarse, fine)
+    assert_pose_matches_one_pose_routes(coarse, 0)
+    # the 3-UPU wrist passes from its spherical 3R mode to a 1T2R mode near P1 = -21.7 and +15: a walk
+    # from the file's pose reaches every pose, and a 1-length grid (47 of 65 assembled before) finds the
+    # poses of a 0.25-length grid
+    wrist = load("3upu_wrist")
+    fine = sweep(wrist, ["P1=-32:32:257", "P2=0:0:1", "P3=0:0:1"])
+    coarse = sweep(wrist, ["P1=-32:32:65", "P2=0:0:1", "P3=0:0:1"])
+    assert fine.assembled.all()
+    assert_same_poses_as_a_finer_grid(coarse, fine)
+    assert {str(p) for p in coarse.pattern} == {"3R", "1T2R"}
+
+
+def test_a_sub_stepped_walk_does_not_cross_a_fold_onto_another_branch():
+    # A1 above the fold is reachable only on the other assembly branch (by a walk that goes round the
+    # fold, which a monotonic drive cannot do): from the last pose below the fold, however small the
+    # sub-steps, nothing above is assembled, on coarse and fine grids alike
+    m = planar_3rrr_near_a_fold()
+    for vary in ("A1=0:30:16", "A1=0:2:21", "A1=-1:1.5:2"):
+        r = sweep(m, [vary, "A2=0:0:1", "A3=0:0:1"])
+        assert r.assembled.tolist() == (r.values[:, 0] < 1.15).tolist(), vary
+
+
+def test_a_full_turn_is_walked_in_one_direction_so_neighbours_are_joined_by_motion():
+    # The file's four-bar sits at a change point, which it leaves on one branch turning up and on the
+    # other turning down: walked up half way and down the other half, the two halves met at 180 deg on
+    # different branches (joint D jumped by 2.86 rad between 180 and 185 deg, a regular pose).  Walked
+    # up all the way round, every pair of neighbouring rows is joined by the motion, the last (355 deg)
+    # included with the first (0 deg, the file's pose again after a full turn).
+    m = load("four_bar_change_point")
+    for vary in ("A=0:360:73", "A=-180:180:73"):
+        r = sweep(m, [vary])
+        assert r.assembled.all()
+        step = np.diff(np.concatenate([r.q, r.q[:1]]), axis=0)
+        wrapped = np.abs((step + np.pi) % (2 * np.pi) - np.pi)  # every joint is an R joint
+        assert wrapped.max() < 0.2, vary  # a 5-degree step of the crank moves no joint farther
+    # both ranges walk the same stops from 0 deg up: the same joint states
+    up, centred = sweep(m, ["A=0:360:73"]), sweep(m, ["A=-180:180:73"])
+    assert np.abs(np.angle(np.exp(1j * (up.q[36:72] - centred.q[:36])))).max() < 1e-9
+
+
+def true_residuals(r: SweepResult) -> np.ndarray:
+    """The largest loop residual component of every row's stored joint variables (and of its pose coordinates), pose by pose."""
+    bk = BatchKinematics(r.mechanism, joint_screws(r.mechanism).reference)  # the reference point of pose coordinates, as the sweep's
+    drive = Drive.of(r.axes, bk.variable_count)
+    index = np.unravel_index(np.arange(r.size), r.shape)
+    targets = np.stack([a.internal[i] for a, i in zip(r.axes, index)], axis=-1)
+    return np.array([residuals(bk, drive, r.q[i : i + 1], targets[i : i + 1])[0] for i in range(r.size)])
+
+
+def test_the_residual_column_is_the_residual_of_the_stored_joint_variables():
+    # Every row of the line through the file's pose used to show a residual of exactly 0 (the start of a
+    # line was never measured), so the summary read "largest loop-closure residual 0.0e+00"
+    r = sweep(load("3prs"), ["P1=-30:30:5", "P2=0:0:1"])
+    k = kinematics(r.mechanism)
+    loop = np.array([np.abs(k.residual(q)).max() for q in r.q])
+    assert r.assembled.all() and r.residual.max() > 0.0
+    assert np.array_equal(r.residual, true_residuals(r))
+    assert np.abs(r.residual - loop).max() < 1e-15
+    # a pose polished for its analysis (near the parallelogram's change point) carries the residual of
+    # its polished joint variables, not the one measured before polishing
+    near = sweep(load("parallelogram"), ["O1=119.99:120.01:5"])
+    assert near.near_singular.sum() == 2 and np.array_equal(near.residual, true_residuals(near))
+
+
+def test_a_pose_not_assembled_carries_the_residual_of_its_joint_variables():
+    # It used to carry the best residual of any attempt, such as a pose of another assembly found off a
+    # fold and refused (1e-15), with joint variables whose residual is 2e-2
+    r = sweep(load("tsai_3upu"), ["x=-20:20:9", "rz=-5:5:3"])
+    missing = np.flatnonzero(~r.assembled)
+    assert missing.size == 18 and (r.residual[missing] > r.tolerance.closure).all()
+    assert np.array_equal(r.residual, true_residuals(r))
+
+
+def test_a_sweep_does_not_depend_on_its_chunk_size():
+    # The batched kinematics gives every pose the same bits whatever the batch around it, so a sweep cut
+    # into chunks of one line gives the same table, the joint variables of poses not assembled included
+    # (a Newton solve that cannot close a pose amplifies its round-off: they used to differ by 2e-4)
+    m = load("tsai_3upu")
+    whole, cut = sweep(m, ["x=-20:20:9", "rz=-5:5:3"]), sweep(m, ["x=-20:20:9", "rz=-5:5:3"], chunk_size=1)
+    for column in ("q", "residual", "assembled"):
+        assert np.array_equal(getattr(whole, column), getattr(cut, column)), column
+    bk = BatchKinematics(m)
+    q = np.random.default_rng(RNG_SEED).normal(size=(7, bk.variable_count))
+    together = bk.evaluate(q, np.arange(6))
+    for i in range(7):
+        alone = bk.evaluate(q[i : i + 1], np.arange(6))
+        assert np.array_equal(alone.values[:, 0], together.values[:, i])
+        assert np.array_equal(alone.jacobian()[:, :, 0], together.jacobian()[:, :, i])

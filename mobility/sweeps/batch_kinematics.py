@@ -90,13 +90,32 @@ def _compose(g: Motion | None, h: Motion) -> Motion:
     if g is None:
         return h
     rot, shift = g
-    return np.einsum("ijn,jkn->ikn", rot, h[0]), np.einsum("ijn,jn->in", rot, h[1]) + shift
+    turned = rot[:, 0, None] * h[0][0] + rot[:, 1, None] * h[0][1] + rot[:, 2, None] * h[0][2]
+    return turned, _rotate(rot, h[1]) + shift
+
+
+def _rotate(rot: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``rot v`` for rotations ``(3, 3, N)`` and vectors ``(3, N)`` (or one vector ``(3,)``).
+
+    Written as elementwise products summed in a fixed order, as every product
+    of this module, so that each pose's numbers are the same bits whatever
+    the batch around it: ``einsum`` picks its inner loop (and fused
+    multiply-adds) by the arrays' sizes, which made a pose's round-off, and
+    through a Newton solve that cannot close the pose it stops at, depend on
+    how many poses were solved with it (the chunk size of a sweep).
+    """
+    return rot[:, 0] * v[0] + rot[:, 1] * v[1] + rot[:, 2] * v[2]
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a . b`` along the first axis (components first), in a fixed order (see :func:`_rotate`)."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
 def _soa_rotation_logs(rot: np.ndarray) -> np.ndarray:
     """Rotation vectors ``(3, N)`` of rotations ``(3, 3, N)`` (closed form, scipy near a half turn)."""
     axis2 = np.array((rot[2, 1] - rot[1, 2], rot[0, 2] - rot[2, 0], rot[1, 0] - rot[0, 1]))  # 2 sin(t) u
-    sine2 = np.sqrt(np.einsum("in,in->n", axis2, axis2))
+    sine2 = np.sqrt(_dot(axis2, axis2))
     theta = np.arctan2(0.5 * sine2, 0.5 * (rot[0, 0] + rot[1, 1] + rot[2, 2] - 1.0))
     out = axis2 / (2.0 * np.sinc(theta / np.pi))
     near_half_turn = theta > 3.0
@@ -107,7 +126,7 @@ def _soa_rotation_logs(rot: np.ndarray) -> np.ndarray:
 
 def _inverse_left_jacobian_times(w: np.ndarray, x: np.ndarray) -> np.ndarray:
     """``J_l(w)^-1 x`` for rotation vectors ``w`` ``(3, N)`` and vectors ``x`` ``(3, N)`` or ``(3, k, N)``."""
-    c = _c(np.sqrt(np.einsum("in,in->n", w, w)))
+    c = _c(np.sqrt(_dot(w, w)))
     if x.ndim == 3:
         wb = w[:, None, :]
         wx = _cross(wb, x)
@@ -237,9 +256,9 @@ class BatchKinematics:
                 cols[:, variable] = x[:, None]
                 continue
             rot, shift = (g[0], g[1]) if rows is None else (g[0][:, :, rows], g[1][:, rows])
-            w = np.einsum("ijn,j->in", rot, x[:3])
+            w = _rotate(rot, x[:3])
             cols[:3, variable] = w
-            cols[3:, variable] = _cross(shift, w) + np.einsum("ijn,j->in", rot, x[3:])
+            cols[3:, variable] = _cross(shift, w) + _rotate(rot, x[3:])
         return cols
 
     def _product(self, factors: Factors, exps: "_Exponentials") -> Motion:
@@ -312,7 +331,7 @@ class _Exponentials:
             return self.rot[variable], self.shift[variable]
         if variable not in self._inverse:
             rt = np.swapaxes(self.rot[variable], 0, 1)
-            self._inverse[variable] = (rt, -np.einsum("ijn,jn->in", rt, self.shift[variable]))
+            self._inverse[variable] = (rt, -_rotate(rt, self.shift[variable]))
         return self._inverse[variable]
 
 
@@ -342,7 +361,7 @@ class Evaluation:
         self._components = None if components is None or not len(components) else np.asarray(components)
         if self._components is not None:
             (rot, shift), before = bk._chain(bk._end_effector, exps)
-            p = np.einsum("ijn,j->in", rot, bk.reference) + shift
+            p = _rotate(rot, bk.reference) + shift
             r = _soa_rotation_logs(rot)
             values.append(np.concatenate([p - bk.reference[:, None], r])[self._components])
             self._chains.append((bk._end_effector, before, (p, r)))

@@ -28,19 +28,24 @@ on, each step advancing all lines of an axis at once.  The start of each
 Newton solve is the cubic predictor ``4 q[i-1] - 6 q[i-2] + 4 q[i-3] - q[i-4]``
 (lower orders while fewer points are known: the secant ``2 q[i-1] - q[i-2]``
 after two), which keeps the continuation on its branch through a change
-point and leaves one Newton step to do.  A point that fails is retried in 2 and then 4
-smaller steps from its last assembled neighbour, then off a fold when that
-neighbour is one (:func:`_off_a_fold`, whose poses must walk back to
-that neighbour: :func:`_walks_back`); the points still missing at
+point and leaves one Newton step to do.  A point that fails is retried
+allowing the length of the linearised step, then walked from its last
+assembled neighbour in sub-steps, halved where one fails (:func:`_substeps`:
+the poses a finer grid reaches, whatever the grid step), then off a fold
+when that neighbour is one (:func:`_off_a_fold`, whose poses must walk back
+to that neighbour: :func:`_walks_back`); the points still missing at
 the end are tried again from any assembled neighbour on any axis
 (:func:`mobility.sweeps.grid_closure.fill`), layer after layer.  A point that cannot
-be assembled stays in the grid with ``assembled`` false and its best residual.
+be assembled stays in the grid with ``assembled`` false and the best
+residual a solve reached there, with the joint variables of that solve (the
+residual of every row is that of its joint variables).
 
 The angle of an R or C joint wraps (:mod:`mobility.sweeps.walks`): its
 anchor is the value nearest the file's pose round the circle, values a whole
 turn apart are solved once, and a range that covers a full turn is walked
-round the circle (up half way, then down until the walk meets what the
-first half assembled), the driven angle continuous along the walk.
+round the circle (up all the way round, so neighbouring poses are joined by
+motion, then down for what the way up could not reach), the driven angle
+continuous along the walk.
 
 Examples
 --------
@@ -67,7 +72,7 @@ from .batch_kinematics import BatchKinematics, Evaluation
 from .grid import GridPlan, SweepAxis, whole_turns
 from .walks import AxisWalk, plan_walks
 
-__all__ = ["Drive", "GridClosure", "newton", "polish", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget"]
+__all__ = ["Drive", "GridClosure", "newton", "polish", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget", "residuals"]
 
 MAX_PIECES = 2000
 """Grid steps at most on the way from the file's pose to the grid's anchor point; a grid
@@ -75,9 +80,6 @@ farther away is approached in longer steps (and is not assembled if Newton canno
 
 MAX_ITERATIONS = 12
 """Newton steps at most for one solve."""
-
-RETRY_SPLITS = (2, 4)
-"""A failed step is retried in this many smaller steps, in turn."""
 
 POLISHED = 0.1
 """A pose whose residual is below this fraction of ``Tolerance.closure`` needs no polishing step."""
@@ -317,7 +319,12 @@ def _advance(
     from the base pose (:func:`_linear_step_lengths`): where the other joints
     move many times faster than the driven ones (a poorly conditioned drive,
     or a line's first step, predicted from one point only), the nearby
-    assembly lies that far, and smaller steps alone would never reach it.
+    assembly lies that far.  A step still failing is walked from its base in
+    sub-steps (:func:`_substeps`), then, from a base at a fold, tried off the
+    fold (:func:`_off_a_fold`).
+
+    The residual returned for a pose not assembled is that of the joint
+    variables returned with it: the best a solve reached there.
     """
     with np.errstate(over="ignore", invalid="ignore"):  # an infinite span (a target beyond any size) allows any move
         span = np.linalg.norm(predicted - base_q, axis=1) + np.linalg.norm(targets - base_t, axis=1)
@@ -330,32 +337,95 @@ def _advance(
         linear[failed] = _linear_step_lengths(bk, drive, base_q[failed], targets[failed], tol)
         wider = failed[linear[failed] > np.linalg.norm(predicted[failed] - base_q[failed], axis=1)]
         if wider.size:  # the same step, allowed as far as the linearised step reaches
-            nq, nerr, nok = newton(bk, drive, predicted[wider], targets[wider], tol=tol, max_move=10.0 * (span[wider] + linear[wider]) + 0.05)
-            q[wider[nok]], ok[wider[nok]] = nq[nok], True
-            err[wider] = np.where(nok, nerr, np.minimum(err[wider], nerr))
-    for splits in RETRY_SPLITS:
-        failed = np.flatnonzero(~ok)
-        if failed.size == 0:
-            break
-        cur_q, cur_t = base_q[failed], base_t[failed]
-        good = np.ones(failed.size, dtype=bool)
-        for k in range(1, splits + 1):
-            t = base_t[failed] + (targets[failed] - base_t[failed]) * (k / splits)
-            guess = cur_q + (predicted[failed] - base_q[failed]) / splits
-            with np.errstate(over="ignore", invalid="ignore"):
-                step = np.linalg.norm(guess - cur_q, axis=1) + np.linalg.norm(t - cur_t, axis=1) + linear[failed] / splits
-            nq, nerr, nok = newton(bk, drive, guess, t, tol=tol, max_move=10.0 * step + 0.05)
-            good &= nok
-            cur_q, cur_t = np.where(nok[:, None], nq, cur_q), t
-            if k == splits:
-                err[failed] = np.where(good, nerr, np.minimum(err[failed], nerr))
-        q[failed[good]] = cur_q[good]
-        ok[failed[good]] = True
+            _keep_better(q, err, ok, wider, *newton(bk, drive, predicted[wider], targets[wider], tol=tol, max_move=10.0 * (span[wider] + linear[wider]) + 0.05))
     failed = np.flatnonzero(~ok)
     if failed.size:
-        fq, ferr, fok = _off_a_fold(bk, drive, base_q[failed], base_t[failed], targets[failed], tol)
-        q[failed[fok]], ok[failed[fok]] = fq[fok], True
-        err[failed] = np.where(fok, ferr, np.minimum(err[failed], ferr))
+        _keep_better(q, err, ok, failed, *_substeps(bk, drive, base_q[failed], base_t[failed], predicted[failed], targets[failed], linear[failed], tol))
+    failed = np.flatnonzero(~ok)
+    if failed.size:
+        _keep_better(q, err, ok, failed, *_off_a_fold(bk, drive, base_q[failed], base_t[failed], targets[failed], tol))
+    return q, err, ok
+
+
+def _keep_better(q: np.ndarray, err: np.ndarray, ok: np.ndarray, rows: np.ndarray, new_q: np.ndarray, new_err: np.ndarray, new_ok: np.ndarray) -> None:
+    """In place: each of ``rows`` (not assembled) takes the new attempt if it assembles, or if it lowers the residual.
+
+    So the residual of a pose not assembled is always that of its joint variables.
+    """
+    take = new_ok | (new_err < err[rows])
+    q[rows[take]], err[rows[take]] = new_q[take], new_err[take]
+    ok[rows[new_ok]] = True
+
+
+SUBSTEP_HALVINGS = 4
+"""A failed step walked in sub-steps (:func:`_substeps`) gives up at its ``SUBSTEP_HALVINGS + 1``-th failed sub-step; each
+failure halves the next sub-step, so the shortest tried is ``2**-(SUBSTEP_HALVINGS + 1)`` of the step (1/32)."""
+
+
+def _substeps(
+    bk: BatchKinematics,
+    drive: Drive,
+    base_q: np.ndarray,
+    base_t: np.ndarray,
+    predicted: np.ndarray,
+    targets: np.ndarray,
+    linear: np.ndarray,
+    tol: Tolerance,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Failed steps walked from their base towards their targets in sub-steps, halving a sub-step that fails.
+
+    Each walk starts with half the step.  A sub-step that closes is taken (the
+    next one allowed twice as long, up to half the step); one that fails is
+    tried again half as long from the same pose.  Each sub-step is predicted
+    along the line's predictor (its share of ``predicted - base_q``), or, when
+    the line predicted from one point only (``predicted`` is the base), along
+    the secant of the walk's last sub-step.  A walk gives up at its
+    ``SUBSTEP_HALVINGS + 1``-th failure, so its work is bounded (a target
+    beyond a fold, which no walk reaches, costs a few solves).  Every sub-step is a plain continuation
+    step: its solve may move at most ``10 span + 0.05`` (``span``: its
+    predicted move, its drive's change and its share of the linearised step
+    ``linear``), and the drive moves monotonically from the base to the
+    target, so a walk cannot pass a fold onto the other assembly branch.
+
+    Where the other joints move many times faster than the driven ones (the
+    file's pose near a fold), a grid step can be too long for a first step
+    predicted from one point; the walk reaches the poses a finer grid reaches.
+
+    Returns
+    -------
+    q, residual, assembled
+        At the targets: the best attempt at each (its residual infinite and
+        ``q`` the base where no sub-step reached the target).
+    """
+    count = len(base_q)
+    cur_q, cur_t = base_q.copy(), base_t.copy()
+    tangent = predicted - base_q  # the move per whole step: the line's predictor, or (from one point) the walk's secant
+    secant = ~np.any(tangent != 0.0, axis=1)
+    done, size = np.zeros(count), np.full(count, 0.5)
+    failures = np.zeros(count, dtype=int)
+    q, err, ok = base_q.copy(), np.full(count, np.inf), np.zeros(count, dtype=bool)
+    active = np.arange(count)
+    while active.size:
+        reach = np.minimum(done[active] + size[active], 1.0)
+        part = reach - done[active]
+        t = base_t[active] + (targets[active] - base_t[active]) * reach[:, None]
+        guess = cur_q[active] + tangent[active] * part[:, None]
+        with np.errstate(over="ignore", invalid="ignore"):
+            move = np.linalg.norm(guess - cur_q[active], axis=1) + np.linalg.norm(t - cur_t[active], axis=1) + linear[active] * part
+        nq, nerr, nok = newton(bk, drive, guess, t, tol=tol, max_move=10.0 * move + 0.05)
+        final = reach >= 1.0
+        at_target = active[final]
+        _keep_better(q, err, ok, at_target, nq[final], nerr[final], nok[final])
+        took = active[nok]
+        along = nok & secant[active]
+        with np.errstate(over="ignore", invalid="ignore"):
+            tangent[active[along]] = (nq[along] - cur_q[active[along]]) / part[along, None]
+        cur_q[took], cur_t[took], done[took] = nq[nok], t[nok], reach[nok]
+        size[took] = np.minimum(2.0 * size[took], 0.5)
+        missed = active[~nok]
+        size[missed] *= 0.5
+        failures[missed] += 1
+        active = active[~(final & nok) & (failures[active] <= SUBSTEP_HALVINGS)]
     return q, err, ok
 
 
@@ -402,11 +472,19 @@ def _off_a_fold(
     dead centre) the nearby poses lie ``sqrt(step)`` away along the motion the
     drive leaves free to first order, which Newton's minimum-norm step never
     takes.  From each failed step's base pose, starts at ``+-c sqrt(step)``
-    along each such direction (:data:`FOLD_REACH`, the ``+`` side first) are
-    given to Newton; the first that closes is kept.  A base pose whose
-    Jacobian keeps its rank (``Tolerance.rank``) is no fold: nothing is tried,
-    so the continuation never leaves the file's assembly branch across a fold
-    it only approached.
+    along each such direction are given to Newton, for each ``c`` of
+    :data:`FOLD_REACH` in turn (all directions and both sides of one ``c``
+    solved together); the first that closes and walks back to the base
+    (:func:`_walks_back`), in the order ``c``, direction, ``+`` side first, is
+    kept.  A base pose whose Jacobian keeps its rank (``Tolerance.rank``) is no
+    fold: nothing is tried, so the continuation never leaves the file's
+    assembly branch across a fold it only approached.
+
+    Returns
+    -------
+    q, residual, assembled
+        The pose kept and its residual; where none is, the base and an
+        infinite residual (the poses refused belong to other assemblies).
     """
     count = len(base_q)
     q, err, ok = base_q.copy(), np.full(count, np.inf), np.zeros(count, dtype=bool)
@@ -423,20 +501,23 @@ def _off_a_fold(
     # boundary) is not: a start across the fold there would land on the other assembly branch and carry it
     # into the grid
     rank, fold = _folds(sv, tol)
-    singular = fold[:, None] & (np.arange(free)[None, :] >= rank[:, None])
-    for k in range(free):
-        for reach in FOLD_REACH:
-            for sign in (1.0, -1.0):
-                rows = np.flatnonzero(~ok & singular[:, k] & np.isfinite(step) & (step > 0))
-                if rows.size == 0:
-                    continue
-                guess = base_q[rows].copy()
-                length = sign * reach * np.sqrt(step[rows])
-                guess[:, drive.free] += length[:, None] * vt[rows, k]
-                nq, nerr, nok = newton(bk, drive, guess, targets[rows], tol=tol, max_move=10.0 * np.abs(length) + 10.0 * step[rows] + 0.05)
-                nok &= _walks_back(bk, drive, nq, targets[rows], base_q[rows], base_t[rows], tol)
-                err[rows] = np.minimum(err[rows], nerr)
-                q[rows[nok]], ok[rows[nok]] = nq[nok], True
+    singular = fold[:, None] & (np.arange(free)[None, :] >= rank[:, None]) & (np.isfinite(step) & (step > 0))[:, None]
+    for reach in FOLD_REACH:
+        rows, direction = np.nonzero(~ok[:, None] & singular)  # row-major: each row's directions in order
+        if rows.size == 0:
+            break
+        rows, direction = np.repeat(rows, 2), np.repeat(direction, 2)
+        sign = np.tile([1.0, -1.0], rows.size // 2)
+        length = sign * reach * np.sqrt(step[rows])
+        guess = base_q[rows].copy()
+        guess[:, drive.free] += length[:, None] * vt[rows, direction]
+        nq, nerr, nok = newton(bk, drive, guess, targets[rows], tol=tol, max_move=10.0 * np.abs(length) + 10.0 * step[rows] + 0.05)
+        closed = np.flatnonzero(nok)
+        if closed.size:
+            nok[closed] = _walks_back(bk, drive, nq[closed], targets[rows[closed]], base_q[rows[closed]], base_t[rows[closed]], tol)
+        for k in np.flatnonzero(nok):  # the first kept start of each row, in order
+            if not ok[rows[k]]:
+                q[rows[k]], err[rows[k]], ok[rows[k]] = nq[k], nerr[k], True
     return q, err, ok
 
 
@@ -523,8 +604,8 @@ def close_lines(
         legs = walk.legs()
     q, err, ok = _unsolved((lines, width), bk.variable_count)
     q[:, start], ok[:, start] = start_q, start_ok
-    err[:, start] = np.where(start_ok, 0.0, np.inf)
     start_t = line_targets[:, anchor]
+    err[:, start] = np.where(start_ok, residuals(bk, drive, start_q, start_t), np.inf)  # the start's own residual, as every row's
     if on_step:
         on_step(lines)
     for at, values, halts in legs:
@@ -576,18 +657,25 @@ def retarget(
     moved = drive.apply(q, targets)
     changed = np.flatnonzero(np.any(moved != q, axis=1) & assembled)
     residual, assembled = residual.copy(), assembled.copy()
-    for start in range(0, changed.size, EVALUATION_BLOCK):  # a line of a 1-D sweep may hold millions of poses
-        rows = changed[start : start + EVALUATION_BLOCK]
-        with np.errstate(over="ignore", invalid="ignore"):
-            r, _ = _evaluate(bk, drive, moved[rows], targets[rows])
-            e = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(rows.size)
-        residual[rows] = np.where(np.isfinite(e), e, np.inf)
-        assembled[rows] = residual[rows] <= tol.closure
+    residual[changed] = residuals(bk, drive, moved[changed], targets[changed])
+    assembled[changed] = residual[changed] <= tol.closure
     return moved, residual, assembled
 
 
+def residuals(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """The largest residual component of each pose ``q`` ``(N, n)`` at its driven values ``targets`` (loops and pose equations); infinite where not finite."""
+    out = np.empty(len(q))
+    for start in range(0, len(q), EVALUATION_BLOCK):  # a line of a 1-D sweep may hold millions of poses
+        rows = slice(start, start + EVALUATION_BLOCK)
+        with np.errstate(over="ignore", invalid="ignore"):
+            r, _ = _evaluate(bk, drive, q[rows], targets[rows])
+            e = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(len(q[rows]))
+        out[rows] = np.where(np.isfinite(e), e, np.inf)
+    return out
+
+
 EVALUATION_BLOCK = 16384
-"""Poses evaluated together by :func:`retarget` (its stacked arrays take about 1 kB per pose and joint variable)."""
+"""Poses evaluated together by :func:`residuals` (its stacked arrays take about 1 kB per pose and joint variable)."""
 
 
 def _unsolved(shape: tuple[int, ...], n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -32,12 +32,14 @@ import itertools
 import logging
 import math
 import os
+import socket
 import sys
 import threading
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, Callable, Iterable, Iterator, Sequence
+from urllib.parse import urlsplit
 
 import numpy as np
 
@@ -48,7 +50,7 @@ from ..errors import MissingExtraError, RequestError, clipped
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
 from .batch_kinematics import BatchKinematics
 from .batch_systems import analyse_poses
-from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, seed_grid, targets_of
+from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, residuals, seed_grid, targets_of
 from .grid_closure import fill
 from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
 from .posed_screws import posed_screws
@@ -132,7 +134,8 @@ def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> di
     """Analyse a chunk of assembled grid points (a task): the columns of the table, and the polished poses.
 
     ``"polished"`` holds the positions (in ``rows``) of the poses polished,
-    ``"q_polished"`` their joint variables.
+    ``"q_polished"`` their joint variables and ``"residual_polished"`` their
+    residuals (the residual column is that of the joint variables kept).
 
     A pose whose answer rests on a rank decision within the warning band of
     the tolerance policy (``near_singular`` or ``inexact``: a singular value
@@ -143,14 +146,16 @@ def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> di
     """
     columns = analyse_chunk(context, q)
     doubtful = np.flatnonzero(columns["near_singular"] | columns["inexact"]) if columns else np.zeros(0, dtype=int)
-    polished = q[doubtful]
+    polished, residual = q[doubtful], np.zeros(doubtful.size)
     if doubtful.size:
         drive = Drive.of(context.plan.axes, context.bk.variable_count)
-        polished = polish(context.bk, drive, polished, targets_of(context.plan, rows[doubtful]))
+        targets = targets_of(context.plan, rows[doubtful])
+        polished = polish(context.bk, drive, polished, targets)
+        residual = residuals(context.bk, drive, polished, targets)
         again = analyse_chunk(context, polished)
         for key, values in again.items():
             columns[key][doubtful] = values
-    return {**columns, "polished": doubtful, "q_polished": polished}
+    return {**columns, "polished": doubtful, "q_polished": polished, "residual_polished": residual}
 
 
 def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> dict[str, np.ndarray]:
@@ -201,6 +206,9 @@ def _connect(distributed: Any, address: str) -> Any:
     connection and never answers the handshake would otherwise hold the
     sweep forever (the client's own timeout does not cover that case).
     """
+    refused = _refused(address)
+    if refused:
+        raise RequestError(f"--scheduler {address}: cannot reach a dask scheduler there ({refused})")
     box: dict[str, Any] = {}
 
     def connect() -> None:
@@ -217,6 +225,28 @@ def _connect(distributed: Any, address: str) -> Any:
         return box["client"]
     why = f"{type(box['error']).__name__}: {box['error']}" if "error" in box else f"no answer within {CONNECT_SECONDS:g} s"
     raise RequestError(f"--scheduler {address}: cannot reach a dask scheduler there ({why})")
+
+
+def _refused(address: str) -> str:
+    """Why a TCP scheduler address cannot be connected to at all ('' when it can, or is not plain TCP).
+
+    A port that refuses, or is out of range, is said at once instead of after
+    dask's retries for :data:`CONNECT_SECONDS`.
+    """
+    parts = urlsplit(address if "://" in address else f"tcp://{address}")
+    if parts.scheme != "tcp":
+        return ""
+    try:
+        host, port = parts.hostname, parts.port
+    except ValueError as exc:  # a port out of range or not a number
+        return str(exc)
+    if not host or port is None:
+        return ""
+    try:
+        socket.create_connection((host, port), timeout=CONNECT_SECONDS).close()
+    except OSError as exc:
+        return exc.strerror or str(exc) or type(exc).__name__
+    return ""
 
 
 class _Runner:
@@ -489,7 +519,9 @@ def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_siz
     chunks = ((g, closure.q[g]) for g in groups)
     for i, result in runner.run("analysing", analyse_grid_chunk, chunks, [g.size for g in groups]):
         g = groups[i]
-        closure.q[g[result.pop("polished")]] = result.pop("q_polished")
+        polished = g[result.pop("polished")]
+        closure.q[polished] = result.pop("q_polished")
+        closure.residual[polished] = result.pop("residual_polished")
         for key, values in result.items():
             columns[key][g] = values
     return columns

@@ -19,12 +19,20 @@ whose values wrap:
 * when the range covers a full turn (its span plus one step reaches a turn,
   so that no gap between the values round the circle is longer than a step)
   the walk is *closed*: its stops are ordered round the circle and the last
-  is a neighbour of the first.  The walk goes up from the anchor half way
-  round, then down from the anchor until it meets a stop already assembled:
-  each stop is reached the shorter way round from the file's pose when both
-  ways close, the longer way when the shorter one fails.  So ``0:360:361``
-  and ``-180:180:361`` assemble the same poses (those of a crank that cannot
-  turn fully: both sides of the file's pose).
+  is a neighbour of the first.  The walk goes up from the anchor all the
+  way round (to the stop before the anchor), then down from the anchor
+  until it meets a stop already assembled: a crank that turns fully is
+  walked in one direction, so neighbouring stops are joined by motion
+  everywhere but between the last stop and the anchor (where a full turn
+  comes back to the file's pose, as it does unless the turn leads to
+  another assembly); a crank that cannot turn fully is walked up to its
+  limit, and the down leg reaches the poses on the other side of the
+  file's pose.  So ``0:360:361`` and ``-180:180:361`` assemble the same
+  poses (the walk of both starts at 0 and goes up first).  Walking up half
+  way and down the other half would meet in the middle, where the two
+  halves can arrive on different branches: a four-bar whose file sits at a
+  change point leaves it on one branch going up and on the other going
+  down.
 
 Inside a walk the driven angle is continuous (``values`` of a closed walk go
 on past a turn), so the predictor and the step size of the continuation
@@ -39,7 +47,7 @@ Examples
 >>> walk.closed, walk.stops.tolist(), walk.stop_of.tolist()
 (True, [0, 1, 2, 3], [0, 1, 2, 3, 0])
 >>> [(walk.stops[at].tolist(), np.degrees(values).round(9).tolist(), halts) for at, values, halts in walk.legs()]
-[([1, 2], [90.0, 180.0], False), ([3, 2, 1], [-90.0, -180.0, -270.0], True)]
+[([1, 2, 3], [90.0, 180.0, 270.0], False), ([3, 2, 1], [-90.0, -180.0, -270.0], True)]
 >>> plan_grid(mobility.load("mechanisms/four_bar.yaml"), ["A=100:350:6"]).axes[0].anchor  # 350 is 10 from 0
 5
 """
@@ -99,6 +107,10 @@ class AxisWalk:
     def legs(self) -> tuple[tuple[np.ndarray, np.ndarray, bool], tuple[np.ndarray, np.ndarray, bool]]:
         """The two legs from the start, up then down: ``(stops, values, halts)`` each.
 
+        A closed walk's up leg goes all the way round (one direction, so
+        the stops it reaches are joined by motion); its down leg serves the
+        stops the up leg could not reach.
+
         ``stops`` indexes :attr:`stops` in the order the leg visits them,
         ``values`` are the driven internal values there (continuous from the
         start's), ``halts``: the leg ends where it meets a stop already
@@ -106,7 +118,7 @@ class AxisWalk:
         """
         w, s = self.stops.size, self.start
         if self.closed:
-            up, down = np.arange(s + 1, s + 1 + w // 2), np.arange(s - 1, s - w, -1)
+            up, down = np.arange(s + 1, s + w), np.arange(s - 1, s - w, -1)
         else:
             up, down = np.arange(s + 1, w), np.arange(s - 1, -1, -1)
         legs = []
