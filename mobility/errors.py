@@ -54,6 +54,7 @@ __all__ = [
     "MissingExtraError",
     "PlottingUnavailableError",
     "name_list",
+    "did_you_mean",
     "one_line",
     "clipped",
     "control_character_problem",
@@ -81,6 +82,20 @@ def name_list(names: Iterable[object], *, most: int = 12, empty: str = "(none)")
         return empty
     shown = ", ".join(items[:most])
     return shown if len(items) <= most else f"{shown}, ... ({len(items)} in all)"
+
+
+def did_you_mean(name: object, names: Iterable[object]) -> str:
+    """`` (did you mean 'x'?)`` naming the closest of ``names`` to ``name`` (``difflib``), or ``""`` when none is close.
+
+    Examples
+    --------
+    >>> did_you_mean("crnk", ["crank", "rocker"]), did_you_mean("zz", ["crank"])
+    (" (did you mean 'crank'?)", '')
+    """
+    import difflib  # only when a name is wrong: not at start-up
+
+    close = difflib.get_close_matches(str(name), [str(n) for n in names], n=1)
+    return f" (did you mean {clipped(close[0])!r}?)" if close else ""
 
 
 def one_line(text: str) -> str:

@@ -66,7 +66,7 @@ CORPUS = {
     "2,000-term sum": (joint_axis("+".join(["1"] * 2000)), 5, "joints[0].axis[2]", "longer than the limit of 1000"),
     "400-term sum (deep tree)": (joint_axis("+".join(["1"] * 400)), 5, "joints[0].axis[2]", "nested deeper than the limit"),
     "deep parentheses": (joint_axis("(" * 250 + "1" + ")" * 250), 5, "joints[0].axis[2]", "too many nested parentheses"),
-    "deeply nested calls": (joint_axis("sqrt(" * 150 + "1" + ")" * 150), 5, "joints[0].axis[2]", "nested deeper than the limit of 100"),
+    "deeply nested calls": (joint_axis("sqrt(" * 150 + "1" + ")" * 150), 5, "joints[0].axis[2]", "nested deeper than the limit of 100 levels (set MOBILITY_MAX_EXPRESSION_DEPTH to raise it)"),
     "overflowing expression": (joint_axis("exp(1000)"), 5, "joints[0].axis[2]", "too large for a float"),
     "overflowing power": (joint_axis("10.0**400"), 5, "joints[0].axis[2]", "too large for a float"),
     "modulo zero": (joint_axis("2 % 0"), 5, "joints[0].axis[2]", "division by zero"),

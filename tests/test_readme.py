@@ -98,3 +98,24 @@ def test_an_elided_example_still_has_to_match_around_its_gaps():
     assert not _shows(["a", "...", "c"], printed)  # the end must match when the block does not end in "..."
     assert not _shows(["b", "..."], printed) and not _shows(["a", "...", "d", "..."] + ["e"], printed)
     assert not _shows(["a", "c", "d"], printed)
+
+
+def _documents_with_expected_blocks() -> list[tuple[str, str]]:
+    """Every YAML block of README.md and docs/*.md that is a whole document (a name, a ground) with an expected block."""
+    found = []
+    for page in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+        for k, block in enumerate(re.findall(r"```yaml\n(.*?)```", page.read_text(encoding="utf-8"), re.S)):
+            if re.search(r"^name:", block, re.M) and re.search(r"^ground:", block, re.M) and re.search(r"^expected:", block, re.M):
+                found.append((f"{page.name}#{k}", block))
+    return found
+
+
+@pytest.mark.parametrize("where, block", _documents_with_expected_blocks(), ids=[w for w, _ in _documents_with_expected_blocks()])
+def test_a_document_shown_with_its_expected_block_passes_check(where, block, tmp_path):
+    from mobility.testing.check import check_file
+    from mobility.testing.flexure_check import flexure_document
+
+    path = tmp_path / "shown.yaml"
+    path.write_text(block.replace("description: ...", "description: shown in the docs"), encoding="utf-8")
+    result = check_file(path, others=(flexure_document,))  # as mobility check reads it
+    assert result.status == "pass", (where, result.message)

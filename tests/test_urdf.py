@@ -207,6 +207,8 @@ J = '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xy
     ('<sdf version="1.6"/>', r":1: sdf: not a URDF file; expected the root element <robot>"),
     ('<robot name="r">\n<link name="a"/>\n<joint name="j" type="revolute">\n<parent link="a"/><child link="c"/></joint>\n</robot>',
      r":4: joint\[j\]/child: unknown link 'c'; expected a <link> of this robot"),
+    ('<robot name="r">\n<link name="base"/><link name="crank"/>\n<joint name="j" type="revolute">\n<parent link="base"/><child link="crnk"/></joint>\n</robot>',
+     r":4: joint\[j\]/child: unknown link 'crnk' \(did you mean 'crank'\?\); expected a <link> of this robot"),
     ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J + '\n<joint name="k" type="fixed"><parent link="a"/><child link="b"/></joint>\n</robot>',
      r":4: joint\[k\]/child: link 'b' already has the parent joint 'j'; expected a tree"),
     ('<robot name="r">\n<link name="a"/><link name="b"/>\n' + J + '\n<joint name="k" type="fixed"><parent link="b"/><child link="a"/></joint>\n</robot>',
@@ -237,7 +239,7 @@ def test_bad_urdf_is_one_line(tmp_path, text, expected):
 
 
 @pytest.mark.parametrize("side, expected", [
-    ("joints:\n  - {name: C, type: S, links: [coupler, rockr], point: [0, 0, 0]}\n", r"closures\.yaml:2: joints\[0\]\.links\[1\]: no body named 'rockr' in four_bar\.urdf"),
+    ("joints:\n  - {name: C, type: S, links: [coupler, rockr], point: [0, 0, 0]}\n", r"closures\.yaml:2: joints\[0\]\.links\[1\]: no body named 'rockr' \(did you mean 'rocker'\?\) in four_bar\.urdf"),
     ("joints:\n  - {name: C, type: S, links: [coupler, rocker], point: [0, 0, 0], frame: tip}\n", r"closures\.yaml:2: joints\[0\]\.frame: unknown frame 'tip'; expected 'world' or a body of four_bar\.urdf"),
     ("joint:\n  - {name: C}\n", r"closures\.yaml:1: joint: unknown key in a closures file \(did you mean 'joints'\?\)"),
     ("description: nothing\n", r"closures\.yaml:1: missing required key 'joints'"),

@@ -38,7 +38,7 @@ import numpy as np
 
 from ..core.model import WORLD, Joint
 from ..core.transforms import Transform
-from ..errors import MechanismFileError, RequestError
+from ..errors import MechanismFileError, RequestError, did_you_mean
 from .files import file_name
 from .loader import _MechanismReader
 from .robot_tree import Closure, RobotTree
@@ -140,7 +140,7 @@ def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
         for k, link in enumerate(joint.links):
             if link not in bodies:
                 known = ", ".join(list(bodies)[:12])
-                raise reader.fail(source + ("links", k), f"no body named {link!r} in {Path(tree.file).name}; expected one of: {known}")
+                raise reader.fail(source + ("links", k), f"no body named {link!r}{did_you_mean(link, bodies)} in {Path(tree.file).name}; expected one of: {known}")
         if joint.frame != WORLD:
             if joint.frame not in bodies:
                 raise reader.fail(source + ("frame",), f"unknown frame {joint.frame!r}; expected {WORLD!r} or a body of {Path(tree.file).name}")

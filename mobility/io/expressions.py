@@ -152,7 +152,7 @@ def compile_expression(text: str, max_length: int = DEFAULT_LIMITS.max_expressio
     >>> compile_expression("-" * 20 + "1", max_depth=10)
     Traceback (most recent call last):
     ...
-    ValueError: expression '--------------------1' is nested deeper than the limit of 10 levels
+    ValueError: expression '--------------------1' is nested deeper than the limit of 10 levels (set MOBILITY_MAX_EXPRESSION_DEPTH to raise it)
     """
     source = text.strip()
     if len(source) > max_length:
@@ -178,7 +178,7 @@ def compile_expression(text: str, max_length: int = DEFAULT_LIMITS.max_expressio
             program.append(done)
             continue
         if depth > max_depth:
-            raise ValueError(f"expression {shown!r} is nested deeper than the limit of {max_depth} levels")
+            raise ValueError(f"expression {shown!r} is nested deeper than the limit of {max_depth} levels (set MOBILITY_MAX_EXPRESSION_DEPTH to raise it)")
         operands, instruction = _children(node, shown)
         if instruction is not None:
             pending.append((node, depth, instruction))

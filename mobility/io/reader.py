@@ -29,14 +29,13 @@ mobility.errors.MechanismFileError: p.yaml:2: point: expected a list of 3 number
 
 from __future__ import annotations
 
-import difflib
 import math
 import re
 from typing import Any, Mapping
 
 from ..core.model import WORLD, Frame
 from ..core.transforms import rotation_from_axis_angle, rotation_from_rpy
-from ..errors import MechanismError, MechanismFileError
+from ..errors import MechanismError, MechanismFileError, did_you_mean
 from .expressions import RESERVED_NAMES, evaluate
 from .limits import Limits, current_limits
 from .yaml_source import KeyPath, Positions, format_key
@@ -77,9 +76,7 @@ class DocumentReader:
     def check_keys(self, mapping: Mapping[str, Any], allowed: tuple[str, ...], path: KeyPath, what: str) -> None:
         for key in mapping:
             if key not in allowed:
-                close = difflib.get_close_matches(str(key), allowed, n=1)
-                hint = f" (did you mean {close[0]!r}?)" if close else ""
-                raise self.fail(path + (key,), f"unknown key in {what}{hint}; expected one of: {', '.join(allowed)}")
+                raise self.fail(path + (key,), f"unknown key in {what}{did_you_mean(key, allowed)}; expected one of: {', '.join(allowed)}")
 
     def mapping(self, value: Any, path: KeyPath, what: str) -> Mapping[str, Any]:
         if not isinstance(value, dict):

@@ -50,7 +50,6 @@ mobility.errors.MechanismFileError: p.urdf: ground: no body named 'bse' (did you
 
 from __future__ import annotations
 
-import difflib
 import math
 from collections import deque
 from dataclasses import dataclass, field, replace
@@ -60,7 +59,7 @@ from typing import Iterable
 import numpy as np
 
 from ..core.model import Joint, Mechanism
-from ..errors import MechanismError, MechanismFileError, clipped
+from ..errors import MechanismError, MechanismFileError, clipped, did_you_mean
 from .limits import current_limits
 
 __all__ = [
@@ -194,8 +193,7 @@ class RobotTree:
             if b.name == name:
                 return b
         names = [b.name for b in self.bodies]
-        close = difflib.get_close_matches(name, names, n=1)
-        hint = f" (did you mean {clipped(close[0])!r}?)" if close else ""
+        hint = did_you_mean(name, names)
         shown = ", ".join(clipped(n) for n in names[:12]) + (f", ... ({len(names)} bodies)" if len(names) > 12 else "")
         raise MechanismFileError(key, f"no body named {clipped(name)!r}{hint}; expected one of: {shown}", file=self.file)
 

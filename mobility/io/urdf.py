@@ -67,7 +67,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core.transforms import Transform, rotation_from_rpy
-from ..errors import clipped
+from ..errors import clipped, did_you_mean
 from .files import file_name
 from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml
@@ -189,7 +189,7 @@ class _UrdfReader:
             if not link:
                 raise self.fail(sub if sub is not None else el, f"{key}/{end}", f"missing; expected <{end} link=\"...\">")
             if link not in links:
-                raise self.fail(sub, f"{key}/{end}", f"unknown link {clipped(link)!r}; expected a <link> of this robot")
+                raise self.fail(sub, f"{key}/{end}", f"unknown link {clipped(link)!r}{did_you_mean(link, links)}; expected a <link> of this robot")
             ends[end] = link
         if ends["parent"] == ends["child"]:
             raise self.fail(el, key, f"parent and child are the same link {clipped(ends['parent'])!r}")
