@@ -439,5 +439,36 @@ def test_the_view_of_a_scaled_mechanism_labels_its_axes_in_the_file_units():
     assert np.allclose(np.array(traces[0]["x"], dtype=float) * per_drawn / 1e-250, np.array(plain_traces[0]["x"], dtype=float), rtol=1e-5, atol=1e-6, equal_nan=True)  # None: a break in the line
 
 
+
+@pytest.mark.parametrize("factor, offset", [(1.0, 3e7), (1e-6, 1000.0)])
+def test_the_view_of_a_mechanism_far_from_the_origin_is_drawn_about_its_middle(factor, offset):
+    # With absolute coordinates written to 7 digits, a 3-PRS a millionth of its size, moved 1000 mm away,
+    # was drawn with two distinct x values (and at 3e7 mm its axis lines were 1 % of its size off)
+    from mobility.view import mechanism_view
+
+    def moved(m: Mechanism) -> Mechanism:
+        return m.replace(joints=tuple(dataclasses.replace(j, point=(j.point[0] + offset, j.point[1], j.point[2])) if j.point is not None else j
+                                      for j in m.world_joints), frames=())
+
+    near, far = scaled(THREE_PRS, factor), moved(scaled(THREE_PRS, factor))
+    plain, view = mechanism_view(near).figure_dict, mechanism_view(far).figure_dict
+    per_drawn = 1.0 / mechanism_view(far).scenes[0].scale  # file units per drawing unit (the same near and far)
+    lo, hi = plain["layout"]["scene"]["xaxis"]["range"]
+    middle, width = 0.5 * (lo + hi), hi - lo  # the near scene's middle: where the far one's is drawn from
+    compared = 0
+    for mine, theirs in zip(view["data"], plain["data"]):  # the same glyphs, drawn the same about the scene's middle
+        assert mine["meta"] == theirs["meta"]
+        if "x" in mine and mine["meta"]["key"] in ("R1", "W2", "T1"):
+            x, x0 = np.array(mine["x"], dtype=float) + middle, np.array(theirs["x"], dtype=float)
+            assert np.allclose(x, x0, rtol=0, atol=1e-6 * width, equal_nan=True), mine["meta"]
+            compared += 1
+    assert compared >= 3
+    axis = view["layout"]["scene"]["xaxis"]
+    shown = np.array([float(t) for t in axis["ticktext"]])
+    assert len(set(axis["ticktext"])) == len(shown) >= 3  # ticks told apart
+    file_x = (np.array(axis["tickvals"]) + middle) * per_drawn + offset  # the file's x where each tick is drawn
+    assert np.allclose(shown, file_x, rtol=1e-12, atol=1e-9 * width * per_drawn)
+
+
 if __name__ == "__main__":  # the child process of the large cases
     child_main(sys.argv[1], sys.argv[2])

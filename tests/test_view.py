@@ -221,6 +221,23 @@ def test_page_header_escapes_the_name(tmp_path):
     assert "<h1>&lt;script&gt;alert(1)&lt;/script&gt; &amp; co</h1>" in page
 
 
+def test_names_are_shown_as_written_in_hover_texts_titles_and_slider_labels():
+    # Plotly reads tags in its texts: a joint "gr<b>o</b>und&" was shown with a bold o, "ü<br>x" on two lines
+    m, _ = _load("four_bar.yaml")
+    renamed = {"A": "gr<b>o</b>und&", "B": "ü<br>x"}
+    m = m.replace(name="<i>bar</i>", joints=tuple(dataclasses.replace(j, name=renamed.get(j.name, j.name)) for j in m.joints),
+                  end_effector=m.end_effector)
+    r = mobility.analyze(m)
+    figure = poses_view([ViewFrame(m, r, "<b>first</b>"), ViewFrame(m, r, "second & last")]).figure_dict
+    hovers = [h for t in figure["data"] for h in (t.get("hovertext") if isinstance(t.get("hovertext"), list) else [t.get("hovertext") or ""])]
+    joined = "\n".join(hovers)
+    assert "gr&lt;b&gt;o&lt;/b&gt;und&amp;: R revolute" in joined and "ü&lt;br&gt;x: R revolute" in joined
+    assert "<b>" not in joined and "ü<br>x" not in joined  # our own line breaks stay: '<br>' between lines
+    title = figure["layout"]["title"]["text"]
+    assert title.startswith("&lt;i&gt;bar&lt;/i&gt; — &lt;b&gt;first&lt;/b&gt;: end effector") and "<i>" not in title
+    assert [step["label"] for step in figure["layout"]["sliders"][0]["steps"]] == ["&lt;b&gt;first&lt;/b&gt;", "second &amp; last"]
+
+
 def test_without_plotly_the_view_says_what_to_install(monkeypatch):
     for name in [n for n in sys.modules if n == "plotly" or n.startswith("plotly.")]:
         monkeypatch.delitem(sys.modules, name)

@@ -19,6 +19,7 @@ Examples
 
 from __future__ import annotations
 
+import html
 from typing import Sequence
 
 import numpy as np
@@ -36,6 +37,7 @@ __all__ = [
     "pose_title",
     "margin_text",
     "header_lines",
+    "plotly_text",
 ]
 
 
@@ -72,9 +74,23 @@ def force_text(number: int, axis: ScrewAxis, scale: float, unit: str) -> str:
     return text
 
 
+def plotly_text(text: object) -> str:
+    """``text`` as Plotly shows it written: its ``<``, ``>`` and ``&`` as entities (Plotly reads tags in its texts).
+
+    Names of joints, links and mechanisms go through it before they join a
+    hover text or a title, so ``gr<b>o</b>und`` is shown as written, not in bold.
+
+    Examples
+    --------
+    >>> plotly_text("crank<i>&</i>")
+    'crank&lt;i&gt;&amp;&lt;/i&gt;'
+    """
+    return html.escape(str(text), quote=False)
+
+
 def joint_text(joint: Joint, located: bool, scale: float, unit: str) -> str:
     """Hover text of a joint: name, type, links, axis or axes, point."""
-    lines = [f"{joint.name}: {joint.type} {JOINT_TYPES[joint.type]}", f"links {joint.links[0]} – {joint.links[1]}"]
+    lines = [f"{plotly_text(joint.name)}: {joint.type} {JOINT_TYPES[joint.type]}", f"links {plotly_text(joint.links[0])} – {plotly_text(joint.links[1])}"]
     if joint.axis is not None:
         lines.append(f"axis {fmt_vector(joint.axis)}")
     if joint.axes is not None:

@@ -39,7 +39,7 @@ import numpy as np
 
 from ..core.result import Result
 from ..errors import RequestError
-from .describe import margin_text, pose_title
+from .describe import margin_text, plotly_text, pose_title
 from .scene import Glyph, Scene, viewpoint
 
 __all__ = ["figure_dict", "axis_ticks", "LEGENDS", "ELEMENT_ID"]
@@ -55,22 +55,28 @@ _AXIS = "#b0bec5"
 _JOINT_AXES = "#37474f"
 
 
-def _coords(points: np.ndarray) -> dict[str, list[float | None]]:
-    """x, y, z lists with 7 significant digits (NaN, a break in a line, as None)."""
+FAR_FROM_ORIGIN = 100.0
+"""A scene whose middle lies farther from the origin than this many half-widths is drawn about its middle:
+its coordinates, written with 7 significant digits, then keep about 7 digits of the scene itself."""
+
+
+def _coords(points: np.ndarray, offset: np.ndarray) -> dict[str, list[float | None]]:
+    """x, y, z lists of ``points - offset`` with 7 significant digits (NaN, a break in a line, as None)."""
     out: dict[str, list[float | None]] = {}
-    for name, column in zip("xyz", np.asarray(points, dtype=float).reshape(-1, 3).T):
+    for name, column in zip("xyz", (np.asarray(points, dtype=float).reshape(-1, 3) - offset).T):
         out[name] = [None if math.isnan(v) else float(f"{v:.7g}") for v in column]
     return out
 
 
-def axis_ticks(low: float, high: float, drawing: float, count: int = 5) -> dict[str, list]:
-    """Ticks of an axis drawn in drawing units (the file's lengths times ``drawing``), labelled in the file's units.
+def axis_ticks(low: float, high: float, drawing: float, count: int = 5, offset: float = 0.0) -> dict[str, list]:
+    """Ticks of an axis drawn in drawing units (the file's lengths times ``drawing``, less ``offset``), labelled in the file's units.
 
     Returns ``{"tickvals": [...], "ticktext": [...]}``: about ``count`` round
     values of the file (1, 2 or 5 times a power of ten) between ``low`` and
-    ``high`` (drawing units), where they are drawn, and their text.  The step
-    is found from logarithms, so a mechanism at 1e200 or 1e-250 gets its
-    ticks without any number leaving the floats.
+    ``high`` (drawing units), where they are drawn, and their text, with the
+    digits that tell them apart.  The step is found from logarithms, so a
+    mechanism at 1e200 or 1e-250 gets its ticks without any number leaving
+    the floats.
 
     Examples
     --------
@@ -79,6 +85,8 @@ def axis_ticks(low: float, high: float, drawing: float, count: int = 5) -> dict[
     ['-4e+199', '-2e+199', '0', '2e+199', '4e+199']
     >>> [round(v, 3) for v in t["tickvals"]]
     [-0.523, -0.261, 0.0, 0.261, 0.523]
+    >>> axis_ticks(-300.0, 300.0, 1.0, offset=3e7)["ticktext"]   # drawn about 0, at 3e7 in the file
+    ['29999700', '29999800', '29999900', '30000000', '30000100', '30000200', '30000300']
     """
     span = (high - low) / count  # drawing units
     exponent = math.log10(span) - math.log10(drawing)  # log10 of the step in the file's units
@@ -87,14 +95,15 @@ def axis_ticks(low: float, high: float, drawing: float, count: int = 5) -> dict[
     nice = 1.0 if mantissa < 1.5 else 2.0 if mantissa < 3.5 else 5.0 if mantissa < 7.5 else 10.0
     step_file = nice * 10.0**power
     step = step_file * drawing
-    first, last = math.ceil(low / step), math.floor(high / step)
-    values = [k * step for k in range(first, last + 1)]
-    texts = ["0" if k == 0 else f"{k * step_file:.3g}" for k in range(first, last + 1)]
+    first, last = math.ceil((low + offset) / step), math.floor((high + offset) / step)
+    values = [k * step - offset for k in range(first, last + 1)]
+    digits = 3 + math.ceil(math.log10(max(abs(first), abs(last), 1)))  # round multiples of the step, told apart
+    texts = ["0" if k == 0 else f"{k * step_file:.{digits}g}" for k in range(first, last + 1)]
     return {"tickvals": values, "ticktext": texts}
 
 
-def _glyph_traces(g: Glyph, frame: int, visible: bool) -> list[dict[str, Any]]:
-    """The traces of one glyph; the first one carries its legend entry."""
+def _glyph_traces(g: Glyph, frame: int, visible: bool, offset: np.ndarray) -> list[dict[str, Any]]:
+    """The traces of one glyph, drawn less ``offset``; the first one carries its legend entry."""
     common = {
         "legend": LEGENDS[g.layer],
         "legendgroup": g.key,
@@ -105,20 +114,20 @@ def _glyph_traces(g: Glyph, frame: int, visible: bool) -> list[dict[str, Any]]:
     traces: list[dict[str, Any]] = []
     if len(g.points):  # first, so that a joint's legend entry shows its marker
         outline = "#263238" if g.kind == "joint" else g.color
-        traces.append({"type": "scatter3d", "mode": "markers", **_coords(g.points),
+        traces.append({"type": "scatter3d", "mode": "markers", **_coords(g.points, offset),
                        "marker": {"symbol": g.symbol, "size": 7 if g.kind == "joint" else 5, "color": g.color, "line": {"color": outline, "width": 2}},
                        "hoverinfo": "text", "hovertext": list(g.point_hover)})
     if len(g.path):
         color = _JOINT_AXES if g.kind == "joint" else g.color
-        traces.append({"type": "scatter3d", "mode": "lines", **_coords(g.path), "line": {"color": color, "width": g.width},
+        traces.append({"type": "scatter3d", "mode": "lines", **_coords(g.path, offset), "line": {"color": color, "width": g.width},
                        "hoverinfo": "text", "hovertext": g.hover, "connectgaps": False})
     if g.mesh is not None:
         v, f = g.mesh.vertices, g.mesh.faces
-        traces.append({"type": "mesh3d", **_coords(v), "i": f[:, 0].tolist(), "j": f[:, 1].tolist(), "k": f[:, 2].tolist(),
+        traces.append({"type": "mesh3d", **_coords(v, offset), "i": f[:, 0].tolist(), "j": f[:, 1].tolist(), "k": f[:, 2].tolist(),
                        "color": g.color, "opacity": g.opacity, "flatshading": True, "hoverinfo": "text", "hovertext": g.hover,
                        "lighting": {"ambient": 0.65, "diffuse": 0.6, "specular": 0.1}})
     if g.label:
-        traces.append({"type": "scatter3d", "mode": "text", **_coords(g.label_at[None]), "text": [g.label],
+        traces.append({"type": "scatter3d", "mode": "text", **_coords(g.label_at[None], offset), "text": [g.label],
                        "textfont": {"color": g.color, "size": 13}, "hoverinfo": "text", "hovertext": g.hover})
     for k, t in enumerate(traces):
         t.update(common)
@@ -134,7 +143,7 @@ def _camera(elev_azim: tuple[float, float]) -> dict[str, Any]:
 
 
 def _title(result: Result, label: str, frames: int) -> str:
-    return f"{pose_title(result, label)}<br><sup>{margin_text(result)}" + ("" if frames == 1 else "  ·  use the slider to walk through the poses") + "</sup>"
+    return f"{plotly_text(pose_title(result, label))}<br><sup>{margin_text(result)}" + ("" if frames == 1 else "  ·  use the slider to walk through the poses") + "</sup>"
 
 
 def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 720) -> dict[str, Any]:
@@ -154,22 +163,25 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
     """
     if not frames:
         raise RequestError("a view needs at least one pose")
+    lower = np.min([s.lower for s, _, _ in frames], axis=0)
+    upper = np.max([s.upper for s, _, _ in frames], axis=0)
+    mid, half = 0.5 * (lower + upper), 0.55 * float(np.max(upper - lower))
+    # far from the origin for its size, the scene is drawn about its middle (7 digits would not resolve it), ticks in the file's numbers
+    offset = mid if float(np.max(np.abs(mid))) > FAR_FROM_ORIGIN * half else np.zeros(3)
     data: list[dict[str, Any]] = []
     owner: list[int] = []
     for k, (scene, _, _) in enumerate(frames):
         for g in scene.glyphs:
-            traces = _glyph_traces(g, k, k == 0)
+            traces = _glyph_traces(g, k, k == 0, offset)
             data += traces
             owner += [k] * len(traces)
-    lower = np.min([s.lower for s, _, _ in frames], axis=0)
-    upper = np.max([s.upper for s, _, _ in frames], axis=0)
-    mid, half = 0.5 * (lower + upper), 0.55 * float(np.max(upper - lower))
     unit = frames[0][1].length_unit
     drawing = frames[0][0].scale
+    low, high = mid - offset - half, mid - offset + half
     axis = {
-        name: {"range": [float(f"{mid[i] - half:.7g}"), float(f"{mid[i] + half:.7g}")], "title": {"text": f"{name} ({unit})" if unit else name},
+        name: {"range": [float(f"{low[i]:.7g}"), float(f"{high[i]:.7g}")], "title": {"text": f"{name} ({unit})" if unit else name},
                "backgroundcolor": _BACKGROUND, "gridcolor": "#eceff1", "zerolinecolor": _AXIS, "showspikes": False,
-               **(axis_ticks(mid[i] - half, mid[i] + half, drawing) if drawing != 1.0 else {})}
+               **(axis_ticks(low[i], high[i], drawing, offset=float(offset[i])) if drawing != 1.0 or offset[i] else {})}
         for i, name in enumerate("xyz")
     }
     first_scene, first_result, first_label = frames[0]
@@ -193,7 +205,7 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
     if len(frames) > 1:
         steps = []
         for k, (_, result, label) in enumerate(frames):
-            steps.append({"label": label or str(k + 1), "method": "update",
+            steps.append({"label": plotly_text(label) if label else str(k + 1), "method": "update",
                           "args": [{"visible": [o == k for o in owner]}, {"title.text": _title(result, label, len(frames))}]})
         # inset so that the labels of the end steps, centred on them, stay on the page
         layout["sliders"] = [{"active": 0, "steps": steps, "x": 0.1, "len": 0.8, "y": 0.08, "yanchor": "top",

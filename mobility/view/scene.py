@@ -46,7 +46,7 @@ from ..core.model import JOINT_TYPES, Mechanism
 from ..core.result import Result
 from ..report.plotting import COLORS, choose_views, sketch
 from ..report.plotting.geometry import SAME_POINT, perpendiculars, segment_samples, unique_points
-from .describe import couple_text, force_text, joint_text, rotation_text, translation_text
+from .describe import couple_text, force_text, joint_text, plotly_text, rotation_text, translation_text
 from .geometry import Mesh, arc, cone, helix, pieces, plate
 
 __all__ = ["LAYERS", "JOINT_SYMBOLS", "Glyph", "Scene", "build_scene", "viewpoint"]
@@ -242,7 +242,7 @@ def _links(mechanism: Mechanism, sk) -> list[Glyph]:
                 lines += [segment_samples(pts.mean(axis=0), p, 5) for p in pts]
         if not lines:
             continue
-        hover = "<br>".join(f"{names[role] if role != 'link' else 'link'} {link}" for link, _ in members[:12])
+        hover = "<br>".join(f"{names[role] if role != 'link' else 'link'} {plotly_text(link)}" for link, _ in members[:12])
         out.append(Glyph(f"links:{role}", "mechanism", role, names[role], COLORS[role], path=pieces(*lines),
                          width=widths[role], hover=hover, mesh=Mesh.merged(*meshes) if meshes else None, opacity=0.25))
     return out
