@@ -127,7 +127,7 @@ def header_lines(results: Sequence[Result], labels: Sequence[str]) -> list[str]:
     first = results[0]
     lines = []
     if first.length_unit:
-        lines.append(f"lengths in {first.length_unit}, pitches in {first.length_unit}/rad")
+        lines.append(f"lengths in {first.length_unit}; pitches of freedoms in {first.length_unit}/rad, of wrenches in {first.length_unit}")
     if len(results) == 1:
         lines.append(f"constraint wrenches on the end effector: {6 - first.dof}; {margin_text(first)}")
         if first.gruebler_kutzbach_explanation:
