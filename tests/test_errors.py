@@ -38,8 +38,8 @@ def test_every_error_class_is_a_mobility_error():
     names = {c.__name__ for c in ERROR_CLASSES}
     assert {"MobilityError", "MechanismFileError", "RequestError", "MissingExtraError"} <= names  # the scan sees the classes
     assert [c.__name__ for c in ERROR_CLASSES if not issubclass(c, MobilityError)] == []
-    # the classes, and the helpers of a message: names, one line, a value cut short, a control character found
-    assert set(errors.__all__) == names | {"name_list", "one_line", "clipped", "control_character_problem", "TERMINAL_CONTROL"}
+    # the classes, and the helpers of a message: names, a close name, one line, a value cut short, a control character found
+    assert set(errors.__all__) == names | {"name_list", "did_you_mean", "one_line", "clipped", "control_character_problem", "TERMINAL_CONTROL"}
 
 
 def test_every_error_class_has_a_sample():
