@@ -52,7 +52,7 @@ from .limits import Limits, current_limits
 from .reader import NAME_RE, DocumentReader, describe_value, parse_key, shown_value
 from .yaml_source import KeyPath, Positions, parse_yaml, read_text
 
-__all__ = ["load", "loads", "read_mechanism", "file_name", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
+__all__ = ["load", "loads", "read_mechanism", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
 
 TOP_LEVEL_KEYS = ("name", "description", "ground", "end_effector", "units", "frames", "joints", "expected", "parameters", "limbs")
 JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes", "normal", "actuated")

@@ -130,20 +130,9 @@ def read_robot(path: str | Path, options: RobotOptions | None = None, **option_v
 def load_robot(path: str | Path, **option_values: Any) -> Mechanism:
     """The mechanism of an MJCF or URDF file (see :func:`read_robot`; the notes are dropped).
 
-    For a mechanism file (YAML), every option must be left at its default
-    (``None``, ``False``, no pairs): the file is then loaded as it is.
-
-    Raises
-    ------
-    RequestError
-        As :func:`read_robot`, and for an option given with a mechanism file.
+    :func:`mobility.load` calls it for a robot description; a mechanism file
+    (YAML) with robot options is refused there (:func:`refuse_robot_options`).
     """
-    file_name(path, "load")
-    if not is_robot_file(path):
-        refuse_robot_options(path, option_values)
-        from .loader import load  # options all at their defaults: the mechanism file as it is
-
-        return load(path)
     return read_robot(path, **option_values).mechanism
 
 

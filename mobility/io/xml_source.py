@@ -202,7 +202,7 @@ def read_xml(path: str | Path) -> XmlDocument:
         When the file cannot be read, is larger than the size limit
         (:mod:`mobility.io.limits`) or is not well-formed XML.
     RequestError
-        When ``path`` is not a file name (:func:`~mobility.io.loader.file_name`).
+        When ``path`` is not a file name (:func:`~mobility.io.files.file_name`).
     """
     return parse_xml(read_capped(file_name(path, "read_xml")), str(path))
 

@@ -68,9 +68,8 @@ import numpy as np
 
 from ..core.analysis import analyze
 from ..errors import MobilityError, RequestError
-from ..io.files import os_problem, printable_name
+from ..io.files import file_name, os_problem, printable_name
 from ..io.limits import current_limits, require_size
-from ..io.files import file_name
 from ..io.loader import load, read_mechanism
 from ..io.yaml_source import Positions, parse_yaml, read_text
 from ..core.model import Mechanism
