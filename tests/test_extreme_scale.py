@@ -16,7 +16,9 @@ import contextlib
 import io
 import json
 import math
+import re
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -34,6 +36,9 @@ from mobility.errors import AnalysisError, MechanismFileError
 from mobility.report.text import json_report, text_report
 
 FOUR_BAR = ((0, 0, 0), (1, 2, 0), (4, 2.5, 0), (5, 0, 0))
+
+
+ROOT = Path(__file__).resolve().parent.parent
 
 
 def four_bar_text(points) -> str:
@@ -102,9 +107,33 @@ def test_one_pivot_at_1e300_is_one_line_naming_the_link(tmp_path, where):
     for command in (["analyze"], ["analyze", "--json"], ["analyze", "--finite"], ["actuation"]):
         status, out, err = run_cli(*command, str(path))
         assert (status, out) == (2, "") and err.count("\n") == 1, (command, err)
-        assert err.startswith(f"mobility: {path}: joints[") and "finer than the analysis can resolve" in err
+        # the line of the joint named (the joints start on line 5 of the file)
+        located = re.match(rf"mobility: {re.escape(str(path))}:(\d+): joints\[(\d)\]\.point: ", err)
+        assert located and int(located[1]) == 5 + int(located[2]) and "finer than the analysis can resolve" in err, err
     status, out, _ = run_cli("check", str(path))
     assert status == 2 and "finer than the analysis can resolve" in out
+
+
+def test_an_unresolved_link_of_a_limb_pattern_names_the_limb_joint_and_its_line(tmp_path):
+    # the third copy's sphere at 1e300: the first link refused is leg1, whose joints R1, S1 the pattern writes
+    text = (ROOT / "mechanisms" / "3prs.yaml").read_text()
+    path = tmp_path / "far_limb.yaml"
+    path.write_text(text.replace("point: [r, 0, 0]", 'point: ["r + 1e300*max(i - 1, 0)", 0, 0]'))
+    status, out, err = run_cli("analyze", str(path))
+    written = next(n for n, line in enumerate(text.splitlines(), 1) if '{name: "R{i+1}"' in line)
+    assert (status, out) == (2, "") and err.startswith(f"mobility: {path}:{written}: limbs[0].joints[1].point: the joints of link 'leg1' (R1, S1) span 283"), err
+
+
+def test_a_joint_too_far_out_to_draw_is_named_with_its_line(tmp_path):
+    # a hinge and a slider, the hinge at 1e308: analysed, but beyond any drawing's arithmetic
+    path = tmp_path / "lone.yaml"
+    path.write_text("name: lone\nground: a\nend_effector: c\njoints:\n"
+                    "  - {name: s, type: P, links: [a, b], axis: [1, 0, 0]}\n"
+                    "  - {name: j, type: R, links: [b, c], axis: [0, 0, 1], point: [1e308, 0, 0]}\n")
+    assert run_cli("analyze", str(path))[0] == 0
+    status, out, err = run_cli("plot", str(path), "-o", str(tmp_path / "lone.png"))
+    assert (status, out) == (2, "") and err.startswith(f"mobility: {path}:6: joints[1].point (joint j): its point lies 1e+308 from the origin"), err
+    assert not (tmp_path / "lone.png").exists()
 
 
 def test_points_a_round_off_apart_near_the_origin_are_refused_with_the_fix_for_both_readings():
@@ -129,14 +158,14 @@ def test_the_largest_float_as_a_coordinate_is_refused_in_one_line(tmp_path):
     path = tmp_path / "max.yaml"
     path.write_text(four_bar_text(points))
     status, out, err = run_cli("analyze", "--json", str(path))
-    assert (status, out) == (2, "") and err.count("\n") == 1 and err.startswith(f"mobility: {path}: ")
+    assert (status, out) == (2, "") and err.count("\n") == 1 and err.startswith(f"mobility: {path}:5: joints[0].point: ")
 
 
 def test_points_too_far_apart_for_a_float_are_refused_in_one_line():
     # the RMS distance from the centroid exceeds the largest float: no length unit can hold the mechanism
     big = 1.7976931348623157e308
     m = four_bar(((big, big, 0), (-big, -big, 0), (big, -big, 0), (-big, big, 0)))
-    with pytest.raises(MechanismFileError, match="too far apart"):
+    with pytest.raises(MechanismFileError, match=r"^<string>: joints\[\d\]\.point: the joint points are too far apart"):
         mobility.analyze(m)
 
 

@@ -178,12 +178,14 @@ def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float
     name = mechanism.links[link]
     joints = [int(j) for j, links in zip(table.located_joints, table.located_links) if link in links]
     written = ", ".join(mechanism.joints[j].name for j in joints)
+    key, line = mechanism.joint_key(joints[0], "point")
     raise MechanismFileError(
-        f"joints[{joints[0]}].point",
+        key,
         f"the joints of link {name!r} ({written}) span {extent[bad[0]] / scale:.3g}, {extent[bad[0]] / length_s:.1e} of the mechanism's size "
         f"{length_s / scale:.3g}: finer than the analysis can resolve ({RESOLUTION.inexact:.0e} of it); bring the far joints nearer or split the mechanism, "
         "or, if these joints meet at one point, write the same point for each",
         file=mechanism.source or "<string>",
+        line=line,
     )
 
 
@@ -192,11 +194,13 @@ def _build(mechanism: Mechanism) -> JointScrews:
     pitches = table.pitches
     centre, length = characteristic_scale(table.located, pitches[pitches != 0.0])
     if not math.isfinite(length):
+        key, line = mechanism.joint_key(int(table.located_joints[np.argmax(np.abs(table.located).max(axis=1))]), "point")  # the farthest
         raise MechanismFileError(
-            "joints",
+            key,
             f"the joint points are too far apart to compute with: their RMS distance from their centroid exceeds the largest float "
             f"({sys.float_info.max:.3g}); write the mechanism in a larger length unit",
             file=mechanism.source or "<string>",
+            line=line,
         )
     # every length times the same power of two (exact), so that no product below can overflow
     scale = binary_scale(table.located, pitches)

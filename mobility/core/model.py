@@ -442,6 +442,12 @@ class Mechanism:
     expected : Expected or None
     source : str
         Where it came from (a file path), for messages.
+    written_at : mapping of str to (str, int or None)
+        Where the file wrote each joint, by joint name: its key path
+        (``limbs[0].joints[2]``) and 1-based line, for messages about the
+        mechanism once loaded (the loader fills it; empty for a mechanism
+        built in code).  Not part of its value: equal mechanisms may come
+        from different files.
 
     Raises
     ------
@@ -472,6 +478,7 @@ class Mechanism:
     length_unit: str = ""
     expected: Expected | None = None
     source: str = ""
+    written_at: Mapping[str, tuple[str, int | None]] = field(default_factory=dict, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         for key in ("joints", "frames"):
@@ -656,6 +663,23 @@ class Mechanism:
             a.setflags(write=False)
         p, ax, pt, h, loc, eep, lj, ll = arrays
         return FreedomTable(p, ax, pt, h, tuple(offsets), loc, eep, lj, ll)
+
+    def joint_key(self, index: int, key: str = "") -> tuple[str, int | None]:
+        """The key path of joint ``index`` (with ``key`` below it, such as ``"point"``) as its file wrote it, and its line.
+
+        A mechanism built in code, or a joint the file did not write, is
+        named by its place in :attr:`joints`, without a line.
+
+        Examples
+        --------
+        >>> import mobility
+        >>> mobility.load("mechanisms/3prs.yaml").joint_key(4, "point")
+        ('limbs[0].joints[1].point', 33)
+        >>> Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(0, 0, 1)),)).joint_key(0, "axis")
+        ('joints[0].axis', None)
+        """
+        written, line = self.written_at.get(self.joints[index].name, (f"joints[{index}]", None))
+        return (f"{written}.{key}" if key else written), line
 
     def replace(self, **changes: Any) -> "Mechanism":
         """A copy with some fields changed (validated again)."""

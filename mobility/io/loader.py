@@ -50,7 +50,7 @@ from .files import file_name
 from .expressions import RESERVED_NAMES
 from .limits import Limits, current_limits
 from .reader import NAME_RE, DocumentReader, describe_value, parse_key, shown_value
-from .yaml_source import KeyPath, Positions, parse_yaml, read_text
+from .yaml_source import KeyPath, Positions, format_key, parse_yaml, read_text
 
 __all__ = ["load", "loads", "read_mechanism", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
 
@@ -187,6 +187,7 @@ class _MechanismReader(DocumentReader):
                 length_unit=length_unit,
                 expected=expected,
                 source=self.file,
+                written_at={j.name: (format_key(path), self.pos.line(path)) for j, path in zip(joints, sources)},
             )
         except MechanismError as exc:
             raise self.fail(self.source_path(exc.key, sources), exc.message) from None

@@ -86,11 +86,12 @@ def _require_drawable(mechanism: Mechanism, joints: tuple, pts: np.ndarray, loca
     joint = joints[i]
     point = max(abs(float(x)) for x in joint.point)
     unit = f" {mechanism.length_unit}" if mechanism.length_unit else ""
+    key, line = mechanism.joint_key(i, "point")
     raise MechanismFileError(
-        f"joint {clipped(joint.name)}",
+        f"{key} (joint {clipped(joint.name)})",
         f"its point lies {point:.3g}{unit} from the origin, {point / length if length > 0 else math.inf:.3g} times the mechanism's size: too far out to draw; "
         f"expected joints within {DRAWING_REACH:.0e} sizes of the origin for a picture or a view (move the file's origin near the mechanism; the analysis itself is unaffected)",
-        file=mechanism.source or "<string>")
+        file=mechanism.source or "<string>", line=line)
 
 
 ROUND_OFF = DEFAULT_TOLERANCE.round_off
