@@ -1,5 +1,6 @@
 """The command line: reports, JSON, exit statuses, one-line errors."""
 
+import csv
 import errno
 import inspect
 import io
@@ -348,3 +349,18 @@ def test_a_robot_option_given_twice_is_refused_not_overridden(option, values, ca
         main(["analyze", str(HAND / "four_bar.urdf"), option, values[0], option, values[1]])
     out, err = capsys.readouterr()  # the last used to win, the first never read
     assert (info.value.code, out) == (2, "") and err == f"mobility analyze: error: {option} given twice; expected it once (see mobility analyze --help)\n"
+
+
+def test_joint_names_holding_commas_are_named_in_a_comma_separated_option(tmp_path, capsys):
+    # "P,1" is one joint: --actuated P,1,P,2,P,3 names three, not six (and a plain split would find none of them)
+    path = tmp_path / "commas.yaml"
+    path.write_text((ROOT / "mechanisms" / "3prs.yaml").read_text().replace('name: "P{i+1}"', 'name: "P,{i+1}"'))
+    assert main(["jacobian", str(path), "--actuated", "P,1,P,2,P,3", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["actuated"] == ["P,1", "P,2", "P,3"]
+    assert main(["actuation", str(path), "--inputs", "P,1, P,2,P,3", "--json"]) == 0
+    assert [i["name"] for i in json.loads(capsys.readouterr().out)["inputs"]] == ["P,1", "P,2", "P,3"]
+    assert main(["sweep", str(path), "--vary", "P,1=0:1:2", "--inputs", "P,1,P,2,P,3", "--format", "csv"]) == 0
+    header, first = list(csv.reader(io.StringIO(capsys.readouterr().out)))[:2]
+    assert header[0] == "P,1 [mm]" and dict(zip(header, first))["verdict"] == "valid"
+    assert main(["actuation", str(path), "--inputs", "P,4"]) == 2
+    assert "unknown joint 'P'" in capsys.readouterr().err  # no joint is called P,4: its parts are names

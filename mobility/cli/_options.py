@@ -17,7 +17,7 @@ import os
 import stat
 import sys
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import Any, Collection, NamedTuple
 
 from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
@@ -232,15 +232,33 @@ def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs
     return read.mechanism
 
 
-def names_from(text: str | None) -> list[str] | None:
+def names_from(text: str | None, known: Collection[str] = ()) -> list[str] | None:
     """The names of a comma-separated option (``--inputs P1, P2``), ``None`` when the option was not given.
+
+    A name may hold commas (a file may call a joint ``"hip,left"``): parts
+    that, joined again by their commas, make one of the ``known`` names
+    (or ``NAME.k``, the k-th freedom of one) are taken as that name, the
+    longest such run first.
 
     Examples
     --------
     >>> names_from("P1, P2,,P3"), names_from(None)
     (['P1', 'P2', 'P3'], None)
+    >>> names_from("hip,left, knee,hip,left.1", known=("hip,left", "knee"))
+    ['hip,left', 'knee', 'hip,left.1']
     """
-    return None if text is None else [n.strip() for n in text.split(",") if n.strip()]
+    if text is None:
+        return None
+    names_set = set(known)
+    is_name = lambda candidate: candidate in names_set or candidate.rpartition(".")[0] in names_set  # noqa: E731
+    parts = text.split(",")
+    longest = 1 + max((n.count(",") for n in names_set), default=0)  # parts one name may span
+    names, at = [], 0
+    while at < len(parts):
+        run = next((span for span in range(min(longest, len(parts) - at), 1, -1) if is_name(",".join(parts[at : at + span]).strip())), 1)
+        names.append(",".join(parts[at : at + run]).strip())
+        at += run
+    return [n for n in names if n]
 
 
 def require_new_output(output: str | None, option: str, *inputs: str | None) -> None:

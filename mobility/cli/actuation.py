@@ -73,7 +73,6 @@ def run(args: argparse.Namespace) -> int:
     require_sampler_options(args)
     if args.k is not None and not (0 <= args.k <= 6):
         raise RequestError(f"--k must lie in [0, 6] (inputs per combination, at most the 6 freedoms of a body), got {args.k}")
-    names = names_from(args.inputs)
     if not is_robot_description(args.file):  # a YAML document: a mechanism or a flexure
         text = read_text(args.file)
         data, _ = parse_yaml(text, args.file)
@@ -83,8 +82,10 @@ def run(args: argparse.Namespace) -> int:
             given = sorted(robot_options_from(args))
             if given:
                 raise RequestError(f"{', '.join(given)}: options of robot description files (MJCF, URDF), not of the flexure document {args.file}")
-            return _run_flexure(args, loads_flexure(text, file=args.file), names, tol)
+            flexure = loads_flexure(text, file=args.file)
+            return _run_flexure(args, flexure, names_from(args.inputs, [a.name for a in flexure.actuators]), tol)
     mechanism = load_mechanism(args)
+    names = names_from(args.inputs, [j.name for j in mechanism.joints])
     if args.enumerate:
         require_size(mechanism, "max_enumerated_joints", "--enumerate", args.file)
     if args.samples:
