@@ -364,3 +364,16 @@ def test_joint_names_holding_commas_are_named_in_a_comma_separated_option(tmp_pa
     assert header[0] == "P,1 [mm]" and dict(zip(header, first))["verdict"] == "valid"
     assert main(["actuation", str(path), "--inputs", "P,4"]) == 2
     assert "unknown joint 'P'" in capsys.readouterr().err  # no joint is called P,4: its parts are names
+
+
+def test_output_dash_is_standard_output_for_the_commands_that_print_text(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)  # a file named '-' would land here
+    four_bar = str(ROOT / "mechanisms" / "four_bar.yaml")
+    assert main(["sweep", four_bar, "--vary", "A=0:10:2", "--format", "csv", "-o", "-"]) == 0
+    assert capsys.readouterr().out.splitlines()[0].startswith("A [deg],dof,pattern,mobility")
+    assert main(["convert", four_bar, "-o", "-"]) == 0
+    assert mobility.loads(capsys.readouterr().out).joints == mobility.load(four_bar).joints
+    for command in (["plot", four_bar, "-o", "-"], ["view", four_bar, "-o", "-"]):  # a picture or a page is a file
+        assert main(command) == 2
+        assert capsys.readouterr().err.startswith("mobility: -: ")
+    assert list(tmp_path.iterdir()) == []

@@ -28,7 +28,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                        description="Read an MJCF or URDF file and write the mechanism it describes in the project's format, "
                                    "to annotate, add an expected block and check with `mobility check`.")
     add_mechanism_file(p, file_help="robot description (MJCF, URDF) or mechanism file (YAML)")
-    p.add_argument("-o", "--output", metavar="FILE.yaml", help="file to write (default: standard output)")
+    p.add_argument("-o", "--output", metavar="FILE.yaml", help="file to write (default, or '-': standard output)")
     p.add_argument("--expected", action="store_true", help="also write an expected block from this analysis (dof, pattern, mobility; "
                                                                    "the actuation verdict when joints are actuated)")
     p.set_defaults(run=run)
@@ -40,6 +40,8 @@ def run(args: argparse.Namespace) -> int:
 
     from ..io.robot_files import ROBOT_SUFFIXES
 
+    if args.output == "-":  # the usual name of standard output
+        args.output = None
     if args.output is not None and (not args.output or Path(args.output).suffix.lower() in ROBOT_SUFFIXES):
         raise RequestError(f"-o {args.output!r}: expected a mechanism file name (.yaml): a robot description's extension would be read back as XML")
     require_new_output(args.output, "-o", args.file, args.closures)

@@ -54,7 +54,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated)")
     p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output: a summary (default), the table as CSV, or JSON")
     p.add_argument("--json", action="store_true", help="same as --format json")
-    p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the output to FILE instead of printing it")
+    p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the output to FILE instead of printing it ('-': standard output)")
     p.add_argument("--plot", default=None, metavar="FILE", help="also draw the sweep (.png, .svg or .pdf): a curve, a map, or slices of a 3-D grid")
     add_max_poses_option(p)
     p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE, help="poses per chunk of work (default: %(default)d)")
@@ -82,6 +82,8 @@ def _progress_wanted(choice: bool | None) -> bool:
 
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
+    if args.output == "-":  # the usual name of standard output
+        args.output = None
     require_new_output(args.output, "-o", args.file)
     require_new_output(args.plot, "--plot", args.file, args.output)
     if args.plot is not None:  # before any work: a picture that cannot be drawn is refused now, not after the sweep
