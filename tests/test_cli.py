@@ -5,10 +5,13 @@ import errno
 import inspect
 import io
 import json
+import os
 import re
+import signal
 import subprocess
 import sys
 import textwrap
+import time
 from pathlib import Path
 
 import pytest
@@ -377,3 +380,48 @@ def test_output_dash_is_standard_output_for_the_commands_that_print_text(tmp_pat
         assert main(command) == 2
         assert capsys.readouterr().err.startswith("mobility: -: ")
     assert list(tmp_path.iterdir()) == []
+
+
+def _mobility(*args: str, **popen: object) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "mobility", *args], cwd=ROOT, text=True, **popen)
+
+
+WRONG_EXPECTATION = "name: wrong\nground: g\nend_effector: c\njoints:\n" + "".join(
+    f"  - {{name: {n}, type: R, links: [{a}, {b}], axis: [0, 0, 1], point: [{x}, {y}, 0]}}\n"
+    for n, a, b, x, y in (("A", "g", "k", 0, 0), ("B", "k", "c", 1, 2), ("C", "c", "r", 4, 2.5), ("D", "r", "g", 5, 0))
+) + "expected: {dof: 2}\n"
+
+
+def test_a_reader_gone_away_keeps_the_commands_own_exit_status(tmp_path):
+    # `mobility check designs/ | head` under `set -o pipefail` must still fail when a check fails
+    path = tmp_path / "wrong.yaml"
+    path.write_text(WRONG_EXPECTATION)
+    child = _mobility("check", str(path), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    child.stdout.close()  # the reader leaves before the first line
+    assert child.wait(timeout=60) == 1
+    assert child.stderr.read() == ""
+
+
+def test_ctrl_c_is_one_line_and_status_130(tmp_path):
+    child = _mobility("sweep", "mechanisms/3prs.yaml", "--vary", "P1=-30:30:200", "--vary", "P2=-30:30:200", "--vary", "P3=-30:30:100",
+                      "--max-poses", "10000000", "--no-progress", stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    time.sleep(3.0)  # started and sweeping (4 million poses take minutes)
+    child.send_signal(signal.SIGINT)
+    assert child.wait(timeout=60) == 130
+    assert child.stderr.read() == "mobility: interrupted\n" and child.stdout.read() == ""
+
+
+def test_a_terminal_that_cannot_show_a_character_gets_an_escape_not_an_error():
+    env = dict(os.environ, PYTHONIOENCODING="ascii")
+    child = _mobility("analyze", "mechanisms/four_bar.yaml", stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+    out, err = child.communicate(timeout=60)
+    assert (child.returncode, err) == (0, "") and "Gr\\xfcbler\\u2013Kutzbach count: -2" in out
+
+
+def test_with_standard_error_closed_messages_never_enter_the_output(tmp_path):
+    close_stderr = lambda: os.close(2)  # noqa: E731 - the child starts without standard error (`2>&-`)
+    child = _mobility("convert", str(HAND / "four_bar.xml"), stdout=subprocess.PIPE, preexec_fn=close_stderr)
+    out, _ = child.communicate(timeout=120)
+    assert child.returncode == 0 and out.startswith("name: four-bar closed by connect") and "mobility:" not in out
+    child = _mobility("analyze", str(tmp_path / "missing.yaml"), stdout=subprocess.PIPE, preexec_fn=close_stderr)
+    assert child.communicate(timeout=60)[0] == "" and child.returncode == 2

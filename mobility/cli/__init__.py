@@ -7,10 +7,15 @@ an ``ORDER`` number placing it in ``mobility --help``.  The command line only
 parses arguments and formats results.
 
 Exit status: 0 success, 1 a check failed, 2 bad input (one line naming file,
-line and key on stderr, never a traceback), 3 an internal error.  Standard
-output that cannot be written (a full disk) is bad input too: one line saying
-why, exit status 2; a reader that has gone away (``mobility ... | head``)
-ends the command quietly, with exit status 0.
+line and key on stderr, never a traceback), 3 an internal error, 130 when
+interrupted (Ctrl-C: one line, ``mobility: interrupted``).  Standard output
+that cannot be written (a full disk) is bad input too: one line saying why,
+exit status 2; when its reader has gone away (``mobility check designs/ |
+head``) the rest of the output is dropped quietly and the command ends with
+its own status (a failed check still exits 1).  Text that the terminal's
+encoding cannot show is written with backslash escapes (``\xfc``), never an
+error; with standard error closed (``2>&-``) messages are dropped, never
+mixed into the output.
 
 A subcommand module is named after its command (``analyze.py`` registers
 ``analyze``), so :func:`main` imports only the module of the command asked
@@ -80,9 +85,10 @@ class _GuardedOutput:
     """Standard output for the length of a command: a write or flush that fails is bad input, not an internal error.
 
     An ``OSError`` (a full disk: ``ENOSPC``) becomes a :class:`RequestError`
-    saying that the output could not be written and why; a
-    ``BrokenPipeError`` (the reader has gone away) is left as it is, for
-    :func:`main` to end quietly.  Either way :attr:`failed` is set.  Every
+    saying that the output could not be written and why; after a
+    ``BrokenPipeError`` (the reader has gone away) every later write is
+    dropped, so that the command ends with its own exit status.  Either way
+    :attr:`failed` is set.  Every
     other attribute is the stream's own.  ``stream`` is ``None`` when the
     process was started with standard output closed: a write is refused.
     """
@@ -90,21 +96,26 @@ class _GuardedOutput:
     def __init__(self, stream: Any) -> None:
         self.stream = stream
         self.failed = False
+        self.reader_gone = False
 
     def _guarded(self, action: Any, *args: Any) -> Any:
+        if self.reader_gone:
+            return None
         try:
             return action(*args)
         except OSError as exc:
             self.failed = True
             if isinstance(exc, BrokenPipeError):
-                raise
+                self.reader_gone = True  # drop the rest: the command still runs to its own exit status
+                return None
             raise RequestError(f"standard output: cannot write it ({os_problem(exc)})") from None
 
     def write(self, text: str) -> int:
         if self.stream is None:  # started with standard output closed (`>&-`): Python has none
             self.failed = True
             raise RequestError("standard output: cannot write it (it is closed)")
-        return self._guarded(self.stream.write, text)
+        self._guarded(self.stream.write, text)
+        return len(text)
 
     def flush(self) -> None:
         if self.stream is not None:
@@ -135,6 +146,29 @@ def _discard_stdout() -> None:
         os.close(devnull)
 
 
+def _escape_what_cannot_be_encoded() -> None:
+    """Write characters that the standard streams' encoding lacks (``ü`` on an ASCII terminal) as backslash escapes, not an error."""
+    for stream in (sys.stdout, sys.stderr):
+        reconfigure = getattr(stream, "reconfigure", None)
+        if reconfigure is not None:
+            with contextlib.suppress(OSError, ValueError):
+                reconfigure(errors="backslashreplace")
+
+
+@contextlib.contextmanager
+def _stderr_or_nothing() -> Any:
+    """Standard error as it is, or a sink when the process was started without one (``2>&-``).
+
+    Python then has ``sys.stderr = None``, and ``print(..., file=None)``
+    would write messages into standard output, mixed into a result.
+    """
+    if sys.stderr is not None:
+        yield
+        return
+    with open(os.devnull, "w", encoding="utf-8") as sink, contextlib.redirect_stderr(sink):
+        yield
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status.
 
@@ -143,6 +177,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     exit.
     """
     argv = list(sys.argv[1:] if argv is None else argv)
+    _escape_what_cannot_be_encoded()
+    with _stderr_or_nothing():
+        return _run(argv)
+
+
+def _run(argv: list[str]) -> int:
+    """:func:`main` with its streams in place: the command, its errors turned into exit statuses."""
     out = _GuardedOutput(sys.stdout)
     args = None
     try:
@@ -155,8 +196,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except MobilityError as exc:
         print(f"mobility: {one_line(str(exc))}", file=sys.stderr)
         return 2
-    except BrokenPipeError:
-        return 0
+    except KeyboardInterrupt:  # Ctrl-C: one line, the shell's status for SIGINT
+        print("mobility: interrupted", file=sys.stderr)
+        return 130
     except MemoryError:  # a request too large for this machine: said in one line, like any request out of range
         print("mobility: out of memory: the request needs more memory than this machine has free; "
               "ask for less (a coarser grid or fewer poses: --max-poses; fewer samples)", file=sys.stderr)

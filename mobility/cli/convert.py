@@ -62,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
         print(f"mobility: note: {one_line(note)}", file=sys.stderr)
     if args.output:
         try:
-            Path(args.output).write_text(text)
+            Path(args.output).write_text(text, encoding="utf-8")
         except OSError as exc:
             raise MechanismFileError("--output", f"cannot write the file ({exc.strerror or exc})", file=args.output) from None
         print(one_line(f"mobility: wrote {args.output} ({len(mechanism.joints)} joints, {len(mechanism.links)} links)"), file=sys.stderr)
