@@ -19,6 +19,7 @@ import mobility
 from mobility.core.finite_screws import Limb, ScrewJoint
 from mobility.core.screws import same_subspace
 from mobility.core.tolerance import Tolerance
+from mobility.cli import main
 from mobility.core.transforms import Transform, rotation_from_rpy
 from mobility.errors import RequestError, SynthesisError
 from mobility.io.writer import mechanism_to_yaml
@@ -359,3 +360,30 @@ def test_extreme_directions_are_normalised_without_overflow():
         big = named_pattern("3T", directions=[(1e308, 1e308, 0), (0, 1, 0), (0, 0, 1)])
         tiny = named_pattern("3T", directions=[(1e-320, 0, 0), (0, 1, 0), (0, 0, 1)])
     assert np.allclose(big.translation_directions[0], (2**-0.5, 2**-0.5, 0)) and np.allclose(tiny.translation_directions[0], (1, 0, 0))
+
+
+def test_fewer_joints_than_the_pattern_are_parts_of_limbs_and_more_are_refused(capsys):
+    assert main(["synthesize", "3R", "--joints", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "chains of 1 one-DOF joints whose finite motions lie in the pattern (fewer joints than its dimension 3: parts of limbs, not limbs): 3" in out
+    assert "whose finite motions are the pattern" not in out  # they are not: one joint moves in one dimension of three
+    assert main(["synthesize", "3T", "--joints", "4"]) == 2
+    assert "a chain of 4 independent one-DOF joints has 4 freedoms, more than the 3 of 3T" in capsys.readouterr().err
+    with pytest.raises(SynthesisError, match="more than the 5 of 2T3R"):
+        synthesize(named_pattern("2T3R"), joints=6)
+
+
+def test_write_refuses_before_the_search_and_never_overwrites(tmp_path, capsys):
+    (tmp_path / "afile").write_text("x")
+    for folder, said in ((tmp_path / "afile", "is a file, expected a folder"), (tmp_path / "no" / "sub", "does not exist")):
+        assert main(["synthesize", "3T", "--write", str(folder)]) == 2
+        assert said in capsys.readouterr().err
+    assert main(["synthesize", "3R", "--joints", "2", "--write", str(tmp_path / "parts")]) == 2
+    assert "--write assembles PKMs from limbs of 3 joints" in capsys.readouterr().err and not (tmp_path / "parts").exists()
+    out = tmp_path / "out"
+    assert main(["synthesize", "3T", "--write", str(out)]) == 0
+    (written,) = out.iterdir()
+    written.write_text("# annotated by hand\n")
+    assert main(["synthesize", "3T", "--write", str(out)]) == 2
+    assert f"--write {out}: would overwrite {written}" in capsys.readouterr().err
+    assert written.read_text() == "# annotated by hand\n"

@@ -232,13 +232,14 @@ def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs
     return read.mechanism
 
 
-def names_from(text: str | None, known: Collection[str] = ()) -> list[str] | None:
+def names_from(text: str | None, known: Collection[str] = (), option: str = "--inputs") -> list[str] | None:
     """The names of a comma-separated option (``--inputs P1, P2``), ``None`` when the option was not given.
 
     A name may hold commas (a file may call a joint ``"hip,left"``): parts
     that, joined again by their commas, make one of the ``known`` names
     (or ``NAME.k``, the k-th freedom of one) are taken as that name, the
-    longest such run first.
+    longest such run first.  An option given with no name in it
+    (``--inputs ''``) is refused, naming ``option``.
 
     Examples
     --------
@@ -249,6 +250,8 @@ def names_from(text: str | None, known: Collection[str] = ()) -> list[str] | Non
     """
     if text is None:
         return None
+    if not text.replace(",", "").strip():
+        raise RequestError(f"{option} {text!r}: expected one or more joint names, separated by commas")
     names_set = set(known)
     is_name = lambda candidate: candidate in names_set or candidate.rpartition(".")[0] in names_set  # noqa: E731
     parts = text.split(",")
@@ -272,6 +275,8 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
     """
     if output is None:
         return
+    if output.endswith(("/", os.sep)):  # `-o newdir/` would write a file called newdir
+        raise RequestError(f"{option} {output}: expected a file name, not a folder (it ends with {output[-1]})")
     if stat.S_ISDIR(refuse_pipe(output, f"a file to write for {option} (writing to a pipe would wait for a reader)")):
         raise RequestError(f"{option} {output}: is a directory, expected a file to write")
     try:

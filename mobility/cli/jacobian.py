@@ -35,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     mechanism = load_mechanism(args)
-    names = names_from(args.actuated, [j.name for j in mechanism.joints])
+    names = names_from(args.actuated, [j.name for j in mechanism.joints], "--actuated")
     try:
         result = jacobian(mechanism, actuated=names, tol=tol)
     except MechanismError as exc:

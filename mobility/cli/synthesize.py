@@ -12,6 +12,8 @@ input.
 from __future__ import annotations
 
 import argparse
+import os
+from pathlib import Path
 
 from ..errors import RequestError, SynthesisError
 from ..report.synthesis import synthesis_json, synthesis_text, written_files_text
@@ -57,6 +59,15 @@ def _vector(text: str, what: str) -> tuple[float, float, float]:
     return (parts[0], parts[1], parts[2])
 
 
+def _require_folder_to_write(folder: str) -> None:
+    """A folder that is there, or can be made in one that is (a file, or a missing parent, is refused)."""
+    where = Path(os.path.abspath(folder))
+    if where.exists() and not where.is_dir():
+        raise RequestError(f"--write {folder}: is a file, expected a folder to write mechanism files in")
+    if not where.exists() and not where.parent.is_dir():
+        raise RequestError(f"--write {folder}: cannot write there: the folder {where.parent} does not exist")
+
+
 def run(args: argparse.Namespace) -> int:
     if args.samples < 1 or args.verify < 0:
         raise RequestError(f"--samples must be at least 1 and --verify not negative, got {args.samples} and {args.verify}")
@@ -65,8 +76,15 @@ def run(args: argparse.Namespace) -> int:
                            f"got {args.samples}, {args.verify}, {args.seed} and {args.joints}")
     directions = None if args.directions is None else [_vector(d, "--directions") for d in args.directions.split(";")]
     pattern = named_pattern(args.pattern, point=_vector(args.point, "--point"), directions=directions)
+    if args.write is not None:  # before the search: a folder that cannot take the files is refused now
+        _require_folder_to_write(args.write)
+        if args.joints is not None and args.joints != pattern.dim:
+            raise RequestError(f"--write assembles PKMs from limbs of {pattern.dim} joints (the dimension of {pattern.name}); --joints {args.joints} gives parts of limbs")
     result = synthesize(pattern, joints=args.joints, samples=args.samples, verify_samples=args.verify, seed=args.seed)
-    written, skipped = write_pkm_files(result, args.write, other=args.other) if args.write else ((), ())
+    try:
+        written, skipped = write_pkm_files(result, args.write, other=args.other) if args.write else ((), ())
+    except RequestError as exc:
+        raise RequestError(f"--write {exc}") from None
     if args.json:
         print(synthesis_json(result, written, skipped))
     else:

@@ -34,7 +34,11 @@ def synthesis_text(result: SynthesisResult) -> str:
     out.append("  candidate joints: " + " ".join(c.label for c in result.alphabet))
     if result.rejected_joints:
         out.append("  rejected alone (their own motion leaves the pattern): " + " ".join(c.label for c in result.rejected_joints))
-    out.append(f"  limb types of {result.joints} one-DOF joints whose finite motions are the pattern: {len(result.structures)} ({result.sequences} joint sequences)")
+    if result.joints < p.dim:  # chains too short to fill the pattern: parts of limbs
+        out.append(f"  chains of {result.joints} one-DOF joints whose finite motions lie in the pattern (fewer joints than its dimension {p.dim}: "
+                   f"parts of limbs, not limbs): {len(result.structures)} ({result.sequences} joint sequences)")
+    else:
+        out.append(f"  limb types of {result.joints} one-DOF joints whose finite motions are the pattern: {len(result.structures)} ({result.sequences} joint sequences)")
     width = max((len(s.name) for s in result.structures), default=4)
     for s in result.structures:
         mark = "Table 1" if s.in_table_1 else "       "

@@ -21,6 +21,7 @@ expected: {dof: 3, pattern: 3R, mobility: 3}
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import replace
 from pathlib import Path
 from typing import Any, Sequence
@@ -31,7 +32,7 @@ from ..core.analysis import analyze, gruebler_kutzbach
 from ..core.model import Joint, Mechanism
 from ..core.screws import helical_twist, prismatic_twist
 from ..core.linalg import rank
-from ..errors import RequestError, SynthesisError
+from ..errors import RequestError, SynthesisError, name_list
 from ..io.writer import mechanism_to_yaml
 from .enumeration import SynthesisResult
 from .limb_types import CandidateJoint, joint_groups
@@ -216,20 +217,31 @@ def write_pkm_files(result: SynthesisResult, folder: str | Path, *, other: str =
     Raises
     ------
     RequestError
-        When ``folder`` cannot be created or written.
+        When ``folder`` cannot be created (its parent must exist) or
+        written, when a file to write is already there (nothing is
+        overwritten: nothing is written then), or when the chains of
+        ``result`` are shorter than the pattern's dimension (not limbs).
     """
     path = Path(folder)
+    if result.joints != result.pattern.dim:
+        raise RequestError(f"{folder}: a PKM is assembled from limbs of {result.pattern.dim} joints (the dimension of {result.pattern.name}); "
+                           f"these chains have {result.joints}")
     written: list[str] = []
     skipped: list[str] = []
+    documents: list[tuple[Path, str]] = []
+    for s in result.structures:
+        try:
+            _, text = pkm_document(result, s.name, other=other)
+        except SynthesisError as exc:
+            skipped.append(f"{s.name}: {exc}")
+            continue
+        documents.append((path / f"pkm_{s.name.lower()}_4{other.lower()}.yaml", text))
+    present = [str(target) for target, _ in documents if os.path.lexists(target)]
+    if present:  # a file written before may have been annotated by hand since
+        raise RequestError(f"{folder}: would overwrite {name_list(present, most=3)}; write to a new folder, or remove them first")
     try:
-        path.mkdir(parents=True, exist_ok=True)
-        for s in result.structures:
-            try:
-                _, text = pkm_document(result, s.name, other=other)
-            except SynthesisError as exc:
-                skipped.append(f"{s.name}: {exc}")
-                continue
-            target = path / f"pkm_{s.name.lower()}_4{other.lower()}.yaml"
+        path.mkdir(exist_ok=True)
+        for target, text in documents:
             target.write_text(text, encoding="utf-8")
             written.append(str(target))
     except OSError as exc:

@@ -176,7 +176,9 @@ def synthesize(
     pattern : MotionPattern or str
         A pattern or a name of :data:`~mobility.synthesis.patterns.PATTERNS` (default geometry).
     joints : int, optional
-        One-DOF joints per limb (default: the pattern's dimension).
+        One-DOF joints per limb (default: the pattern's dimension, at most
+        that: fewer give the chains whose motions lie in the pattern, the
+        parts of limbs).
     generic_points : int, optional
         Generic points for R axes off the pattern's points (default: ``joints``).
     samples : int
@@ -229,6 +231,9 @@ def synthesize(
     n = dim if joints is None else int(joints)
     if n < 1:
         raise SynthesisError(f"joints: expected at least 1, got {n}")
+    if n > dim:  # n independent joints move in n dimensions: none lies in a pattern of fewer
+        raise SynthesisError(f"joints: a chain of {n} independent one-DOF joints has {n} freedoms, more than the {dim} of {pattern.name}: "
+                             f"no such chain lies in it; expected at most {dim} (a limb has {dim})")
     rng = np.random.default_rng(seed)
     candidates, points, directions = candidate_joints(pattern, n if generic_points is None else generic_points, rng)
     outer_left = pattern.factors[0].generators()
