@@ -425,3 +425,15 @@ def test_with_standard_error_closed_messages_never_enter_the_output(tmp_path):
     assert child.returncode == 0 and out.startswith("name: four-bar closed by connect") and "mobility:" not in out
     child = _mobility("analyze", str(tmp_path / "missing.yaml"), stdout=subprocess.PIPE, preexec_fn=close_stderr)
     assert child.communicate(timeout=60)[0] == "" and child.returncode == 2
+
+
+def test_an_option_of_names_given_none_and_an_output_ending_in_a_slash_are_refused(tmp_path, capsys):
+    prs = str(ROOT / "mechanisms" / "3prs.yaml")
+    for command, option in ((["actuation", prs, "--inputs", ""], "--inputs"), (["sweep", prs, "--vary", "P1=0:1:2", "--inputs", " , "], "--inputs"),
+                            (["jacobian", prs, "--actuated", ""], "--actuated")):
+        assert main(command) == 2  # the sweep used to drop the file's actuated joints silently, the actuation to check no input
+        assert capsys.readouterr().err.startswith(f"mobility: {option} ")
+    for command in (["convert", prs, "-o", f"{tmp_path}/new/"], ["sweep", prs, "--vary", "P1=0:1:2", "-o", f"{tmp_path}/new/"]):
+        assert main(command) == 2
+        assert "expected a file name, not a folder (it ends with /)" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
