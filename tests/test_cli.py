@@ -437,3 +437,14 @@ def test_an_option_of_names_given_none_and_an_output_ending_in_a_slash_are_refus
         assert main(command) == 2
         assert "expected a file name, not a folder (it ends with /)" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_sweep_written_to_a_csv_or_json_name_is_written_in_that_format(tmp_path, capsys):
+    four_bar = str(ROOT / "mechanisms" / "four_bar.yaml")
+    for name in ("map.csv", "map.JSON", "map.txt"):
+        assert main(["sweep", four_bar, "--vary", "A=0:10:3", "-o", str(tmp_path / name)]) == 0
+    assert (tmp_path / "map.csv").read_text().startswith("A [deg],dof,pattern,mobility")
+    assert json.loads((tmp_path / "map.JSON").read_text())["poses"] == 3
+    assert (tmp_path / "map.txt").read_text().startswith("planar four-bar: sweep of 1 coordinate(s), 3 poses")
+    assert main(["sweep", four_bar, "--vary", "A=0:10:3", "--format", "text", "-o", str(tmp_path / "summary.csv")]) == 0  # --format decides
+    assert (tmp_path / "summary.csv").read_text().startswith("planar four-bar: sweep")

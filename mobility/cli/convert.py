@@ -43,7 +43,8 @@ def run(args: argparse.Namespace) -> int:
     if args.output == "-":  # the usual name of standard output
         args.output = None
     if args.output is not None and (not args.output or Path(args.output).suffix.lower() in ROBOT_SUFFIXES):
-        raise RequestError(f"-o {args.output!r}: expected a mechanism file name (.yaml): a robot description's extension would be read back as XML")
+        raise RequestError(f"-o {args.output!r}: expected a name for the YAML file (such as model.yaml), not empty nor with a robot description's extension "
+                           f"({', '.join(sorted(ROBOT_SUFFIXES))}), which would be read back as XML")
     require_new_output(args.output, "-o", args.file, args.closures)
     mechanism, notes, files = read_mechanism(args)
     require_new_output(args.output, "-o", *files)  # nor a file the model includes

@@ -52,7 +52,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "COUNT values, both ends included (repeat for a grid)",
     )
     p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated)")
-    p.add_argument("--format", choices=sorted(FORMATS), default="text", help="output: a summary (default), the table as CSV, or JSON")
+    p.add_argument("--format", choices=sorted(FORMATS), default=None,
+                   help="output: a summary, the table as CSV, or JSON (default: what the -o name ends with, .csv or .json, else the summary)")
     p.add_argument("--json", action="store_true", help="same as --format json")
     p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the output to FILE instead of printing it ('-': standard output)")
     p.add_argument("--plot", default=None, metavar="FILE", help="also draw the sweep (.png, .svg or .pdf): a curve, a map, or slices of a 3-D grid")
@@ -114,7 +115,7 @@ def run(args: argparse.Namespace) -> int:
         workers=args.workers,
         progress=_progress_wanted(args.progress),
     )
-    fmt = "json" if args.json else args.format
+    fmt = "json" if args.json else args.format or _format_of(args.output)
     pieces = FORMATS[fmt](result)
     if args.output is not None:
         try:
@@ -136,6 +137,18 @@ def run(args: argparse.Namespace) -> int:
         # a table printed on stdout stays a clean table: the note goes to stderr then
         print(one_line(note), file=sys.stderr if (args.output is None and fmt != "text") else sys.stdout)
     return 0
+
+
+def _format_of(output: str | None) -> str:
+    """The format an output's name asks for: ``csv`` or ``json`` by its suffix (in any case), else ``text``.
+
+    Examples
+    --------
+    >>> _format_of("map.CSV"), _format_of("rows.json"), _format_of("notes.txt"), _format_of(None)
+    ('csv', 'json', 'text', 'text')
+    """
+    suffix = "" if output is None else output.rpartition(".")[2].lower() if "." in output else ""
+    return suffix if suffix in ("csv", "json") else "text"
 
 
 def _write_pieces(handle: TextIO, pieces: Iterable[str]) -> None:
