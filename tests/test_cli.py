@@ -448,3 +448,12 @@ def test_a_sweep_written_to_a_csv_or_json_name_is_written_in_that_format(tmp_pat
     assert (tmp_path / "map.txt").read_text().startswith("planar four-bar: sweep of 1 coordinate(s), 3 poses")
     assert main(["sweep", four_bar, "--vary", "A=0:10:3", "--format", "text", "-o", str(tmp_path / "summary.csv")]) == 0  # --format decides
     assert (tmp_path / "summary.csv").read_text().startswith("planar four-bar: sweep")
+
+
+@pytest.mark.parametrize("command, status", [("analyze", "0 success, 2 bad input"), ("check", "1 a file disagrees with its expected block"),
+                                             ("actuation", "1 otherwise"), ("jacobian", "1 it is singular"), ("synthesize", "1 none is")])
+def test_every_commands_help_lists_its_exit_statuses(command, status, capsys):
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert f"Exit status: 0" in help_text and status in help_text and help_text.endswith("3 an internal error; 130 interrupted.")

@@ -3,7 +3,8 @@
 Each subcommand lives in its own module of this package, found automatically:
 a module with a ``register(subparsers)`` function that adds its parser and
 sets ``run`` (a function ``run(args) -> int`` returning the exit status), and
-an ``ORDER`` number placing it in ``mobility --help``.  The command line only
+an ``ORDER`` number placing it in ``mobility --help`` (and, when the command
+has a verdict, ``EXIT_STATUS``, the statuses its ``--help`` lists).  The command line only
 parses arguments and formats results.
 
 Exit status: 0 success, 1 a check failed, 2 bad input (one line naming file,
@@ -38,7 +39,10 @@ from typing import Any, Sequence
 from ..errors import MobilityError, RequestError, one_line
 from ..io.files import os_problem
 
-__all__ = ["main", "build_parser", "command_modules", "command_names"]
+__all__ = ["main", "build_parser", "command_modules", "command_names", "SUCCESS_OR_BAD_INPUT"]
+
+SUCCESS_OR_BAD_INPUT = "0 success, 2 bad input (one line on standard error)"
+"""The exit statuses of a command without a verdict; a module with one says its own in ``EXIT_STATUS`` (shown by its ``--help``)."""
 
 
 def command_names() -> list[str]:
@@ -68,6 +72,8 @@ def build_parser(commands: Sequence[str] | None = None) -> argparse.ArgumentPars
     sub.required = True
     for module in command_modules(commands):
         module.register(sub)
+        command = sub.choices[module.__name__.rpartition(".")[2]]
+        command.epilog = f"Exit status: {getattr(module, 'EXIT_STATUS', SUCCESS_OR_BAD_INPUT)}; 3 an internal error; 130 interrupted."
     return parser
 
 

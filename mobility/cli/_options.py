@@ -47,7 +47,9 @@ __all__ = [
 
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--tol``, the relative rank threshold of the tolerance policy."""
-    parser.add_argument("--tol", type=float, default=Tolerance().rank, help="relative rank threshold (default: %(default)g)")
+    base = Tolerance()
+    parser.add_argument("--tol", type=float, default=base.rank,
+                        help=f"relative rank threshold, in [{base.inexact:g}, {base.near_singular:g}) (default: %(default)g)")
 
 
 def tolerance_from(args: argparse.Namespace) -> Tolerance:
@@ -80,8 +82,9 @@ def add_pose_sampler_options(parser: argparse.ArgumentParser, *, samples_help: s
     """
     from ..core.poses import DEFAULT_STEP  # the finite kinematics: imported only by the commands that move
 
-    (samples_group or parser).add_argument("--samples", type=int, default=0, metavar="N", help=samples_help + " (default: %(default)s)")
-    parser.add_argument("--step", type=float, default=DEFAULT_STEP, help="step of the pose sampler (default: %(default)g)")
+    (samples_group or parser).add_argument("--samples", type=int, default=0, metavar="N", help=samples_help + f", 0 to {MAX_SAMPLES} (default: %(default)s)")
+    parser.add_argument("--step", type=float, default=DEFAULT_STEP,
+                        help="step of the pose sampler, in (0, 1]: a joint-space distance (radians, lengths over the mechanism's size) (default: %(default)g)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
 
 

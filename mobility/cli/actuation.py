@@ -44,6 +44,7 @@ from ._options import (
 )
 
 ORDER = 30
+EXIT_STATUS = "0 the chosen inputs are valid (with --enumerate: at least one combination is), 1 otherwise, 2 bad input (one line on standard error)"
 
 
 def register(sub: argparse._SubParsersAction) -> None:

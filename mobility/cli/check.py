@@ -24,6 +24,7 @@ from ..testing.flexure_check import flexure_document
 from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 20
+EXIT_STATUS = "0 every file passes, 1 a file disagrees with its expected block or has none, 2 a path or file is bad input (in the table, on its line)"
 
 
 def register(sub: argparse._SubParsersAction) -> None:

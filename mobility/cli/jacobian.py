@@ -16,6 +16,7 @@ from ..report.jacobian import jacobian_json, jacobian_text
 from ._options import MECHANISM_FILE_HELP, add_mechanism_file, add_tolerance_option, load_mechanism, names_from, tolerance_from
 
 ORDER = 45
+EXIT_STATUS = "0 the Jacobian has rank 6 (the platform is controlled, redundantly or not), 1 it is singular, 2 bad input (one line on standard error)"
 
 
 def register(sub: argparse._SubParsersAction) -> None:

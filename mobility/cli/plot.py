@@ -25,7 +25,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--graph", action="store_true", help="draw the joint graph and its series/parallel tree instead")
     p.add_argument("--views", type=int, default=2, choices=(1, 2, 3), help="number of viewpoints (default: %(default)s)")
     p.add_argument("--no-labels", action="store_true", help="leave out the joint names")
-    p.add_argument("--dpi", type=int, default=150, help="resolution of a PNG (default: %(default)s)")
+    p.add_argument("--dpi", type=int, default=150, help="resolution of a PNG, 20 to 600 dots per inch (default: %(default)s)")
     add_tolerance_option(p)
     p.set_defaults(run=run)
 

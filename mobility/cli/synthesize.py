@@ -20,6 +20,7 @@ from ..report.synthesis import synthesis_json, synthesis_text, written_files_tex
 from ..synthesis import PATTERNS, named_pattern, synthesize, write_pkm_files
 
 ORDER = 50
+EXIT_STATUS = "0 a limb type is found, 1 none is, 2 bad input (one line on standard error)"
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -31,7 +32,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("pattern", help="motion pattern: " + ", ".join(PATTERNS))
     p.add_argument("--joints", type=int, default=None, help="one-DOF joints per limb (default: the pattern's dimension)")
-    p.add_argument("--point", default="0,0,0", metavar="X,Y,Z", help="the pattern's point O (default: %(default)s)")
+    p.add_argument("--point", default="0,0,0", metavar="X,Y,Z", help="the pattern's point O, in mm like the files --write writes (default: %(default)s)")
     p.add_argument("--directions", default=None, metavar="X,Y,Z;X,Y,Z", help="the pattern's translation directions, ';'-separated (default: the coordinate axes)")
     p.add_argument("--samples", type=int, default=3, help="random poses per rank decision, at most 30 (default: %(default)d)")
     p.add_argument("--verify", type=int, default=2, help="finite motions of each kept limb fitted by the pattern, at most 10 (default: %(default)d; 0 skips)")
