@@ -859,3 +859,16 @@ def test_the_files_read_are_listed(tmp_path):
     path = _include(tmp_path, "sub/arm.xml")
     files = read_robot(path).files
     assert [os.path.realpath(f) for f in files] == [str(path.resolve()), str((tmp_path / "sub" / "arm.xml").resolve())]
+
+
+def test_a_file_name_that_is_not_utf8_is_one_line_not_an_internal_error(tmp_path):
+    # MuJoCo takes a file name as UTF-8 text: a name of Latin-1 bytes reached it as a TypeError (exit 3)
+    folder = os.fsencode(tmp_path) + b"/d\xe4"
+    os.mkdir(folder)
+    for name in (os.fsencode(tmp_path) + b"/lat\xe4.xml", folder + b"/m.xml"):
+        shutil.copy(HAND / "four_bar.xml", name)
+        path = os.fsdecode(name)
+        with pytest.raises(MechanismFileError, match=r"the file name \(or its folder's\) is not UTF-8 text, which MuJoCo cannot open; rename it$"):
+            mobility.load(path)
+        done = subprocess.run([sys.executable, "-m", "mobility", "analyze", path], capture_output=True)
+        assert done.returncode == 2 and done.stdout == b"" and done.stderr.count(b"\n") == 1 and b"is not UTF-8 text" in done.stderr

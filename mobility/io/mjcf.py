@@ -103,6 +103,8 @@ def read_mjcf(path: str | Path) -> RobotTree:
     """
     file = str(path)
     raw = read_capped(path)
+    if not file.isascii() and _not_utf8(file):  # bytes no encoding decoded: MuJoCo takes a file name as UTF-8 text only
+        raise MechanismFileError("", "the file name (or its folder's) is not UTF-8 text, which MuJoCo cannot open; rename it", file=file)
     doc = parse_xml(raw, file, mujoco=True)  # as MuJoCo's parser reads it: UTF-8, no DTD
     if doc.root.tag != "mujoco":
         raise doc.fail(doc.root, clipped(doc.root.tag), "not an MJCF file; expected the root element <mujoco>")
@@ -123,6 +125,21 @@ def read_mjcf(path: str | Path) -> RobotTree:
     tree = _MjcfTree(mujoco, spec, model, data, file).tree()
     notes = [f"MuJoCo warns: {clipped(' '.join(text.split()), 200)}" for text in dict.fromkeys(said) if text.strip()]
     return replace(tree, notes=tree.notes + tuple(notes), files=scan.files)
+
+
+def _not_utf8(name: str) -> bool:
+    """Whether ``name`` holds bytes that were not UTF-8 (Python keeps them as lone surrogates), so that it has no UTF-8 form.
+
+    Examples
+    --------
+    >>> _not_utf8("gelenk_\\u00e4.xml"), _not_utf8(b"lat\\xe4.xml".decode("utf-8", "surrogateescape"))
+    (False, True)
+    """
+    try:
+        name.encode("utf-8")
+    except UnicodeEncodeError:
+        return True
+    return False
 
 
 @contextmanager
