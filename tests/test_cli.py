@@ -457,3 +457,11 @@ def test_every_commands_help_lists_its_exit_statuses(command, status, capsys):
         main([command, "--help"])
     help_text = " ".join(capsys.readouterr().out.split())
     assert f"Exit status: 0" in help_text and status in help_text and help_text.endswith("3 an internal error; 130 interrupted.")
+
+
+def test_actuation_options_that_would_be_ignored_are_refused(capsys):
+    rps = str(ROOT / "mechanisms" / "actuation_3rps.yaml")
+    for command, said in ((["--k", "2"], "--mode and --k choose the combinations of --enumerate"), (["--mode", "any"], "--mode and --k choose"),
+                          (["--enumerate", "--inputs", "P1,P2,P3"], "--inputs checks one choice and --enumerate every combination")):
+        assert main(["actuation", rps, *command]) == 2  # they were silently ignored
+        assert capsys.readouterr().err.startswith(f"mobility: {said}")

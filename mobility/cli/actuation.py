@@ -56,7 +56,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + ", or flexure document (YAML)")
     p.add_argument("--enumerate", action="store_true", help="check every combination of inputs, grouped by type and ranked")
-    p.add_argument("--mode", choices=ENUMERATION_MODES, default="limb", help="enumeration: one joint per limb (default) or any K joints")
+    p.add_argument("--mode", choices=ENUMERATION_MODES, default=None, help="enumeration: one joint per limb (default) or any K joints")
     p.add_argument("--k", type=int, default=None, help="inputs per combination with --mode any (default: the DOF)")
     p.add_argument("--inputs", default=None, help="comma-separated joint (or actuator) names to check instead of those marked actuated")
     p.add_argument("--pose", action="append", default=[], metavar="FILE", help="another pose of the same mechanism, read as FILE is (repeatable)")
@@ -74,6 +74,10 @@ def run(args: argparse.Namespace) -> int:
     require_sampler_options(args)
     if args.k is not None and not (0 <= args.k <= 6):
         raise RequestError(f"--k must lie in [0, 6] (inputs per combination, at most the 6 freedoms of a body), got {args.k}")
+    if not args.enumerate and (args.mode is not None or args.k is not None):
+        raise RequestError("--mode and --k choose the combinations of --enumerate; give --enumerate too (or --inputs to check one choice)")
+    if args.enumerate and args.inputs is not None:
+        raise RequestError("--inputs checks one choice and --enumerate every combination: give one of them")
     if not is_robot_description(args.file):  # a YAML document: a mechanism or a flexure
         text = read_text(args.file)
         data, _ = parse_yaml(text, args.file)
@@ -93,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
         require_size(mechanism, "max_moving_joints", "--samples", args.file)
     if args.enumerate:
         poses = [read_mechanism(args, p)[0] for p in args.pose]
-        found = enumerate_actuations(mechanism, mode=args.mode, k=args.k, poses=poses, samples=args.samples, step=args.step, seed=args.seed, tol=tol)
+        found = enumerate_actuations(mechanism, mode=args.mode or "limb", k=args.k, poses=poses, samples=args.samples, step=args.step, seed=args.seed, tol=tol)
         print(enumeration_json(found) if args.json else enumeration_text(found))
         return 0 if found.valid else 1
     check = check_actuation(mechanism, names, tol=tol)
