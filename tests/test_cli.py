@@ -195,14 +195,14 @@ def test_robot_options_on_a_yaml_file_are_one_line_and_exit_2(write_yaml, capsys
     path = write_yaml(FOUR_BAR)
     status, out, err = run(capsys, command, path, *extra, "--ground", "crank", "--end-effector", "rocker")
     assert status == 2 and out == ""
-    assert err == f"mobility: end_effector, ground: options of robot description files (MJCF, URDF), not of the mechanism file {path}\n"
+    assert err == f"mobility: --ground, --end-effector: options of robot description files (MJCF, URDF), not of the mechanism file {path}\n"
 
 
 def test_a_robot_option_on_a_flexure_document_is_refused(capsys):
     path = sorted((ROOT / "examples" / "flexure").glob("*.yaml"))[0]
     status, out, err = run(capsys, "actuation", path, "--floating")
     assert status == 2 and out == "" and err.count("\n") == 1
-    assert "floating: options of robot description files (MJCF, URDF), not of the flexure document" in err
+    assert "mobility: --floating: options of robot description files (MJCF, URDF), not of the flexure document" in err
 
 
 def test_pose_sampler_step_has_one_default():

@@ -89,7 +89,7 @@ def test_analyze_a_robot_file_with_options(capsys):
 @pytest.mark.parametrize("args, message", [
     (["analyze", HAND / "four_bar.xml", "--ground", "rockr"], "four_bar.xml: ground: no body named 'rockr' (did you mean 'rocker'?)"),
     (["convert", HAND / "four_bar.urdf", "--close", "crank", "tip"], "four_bar.urdf: close: no body named 'tip'"),
-    (["analyze", Path(__file__).parent.parent / "mechanisms" / "four_bar.yaml", "--floating"], "floating: options of robot description files (MJCF, URDF)"),
+    (["analyze", Path(__file__).parent.parent / "mechanisms" / "four_bar.yaml", "--floating"], "--floating: options of robot description files (MJCF, URDF)"),
     (["convert", DATA / "robosuite" / "xarm7_gripper.xml"], "xarm7_gripper.xml:20: default: MuJoCo cannot compile it"),
 ])
 def test_bad_input_is_one_line_and_exit_2(capsys, args, message):

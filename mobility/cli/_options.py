@@ -162,6 +162,11 @@ def add_mechanism_file(parser: argparse.ArgumentParser, *, file_help: str = MECH
     g.add_argument("--closures", metavar="FILE", action=StoreOnce, help="YAML file of closing joints in the project's format (links are body names)")
 
 
+OPTION_SPELLING = {"ground": "--ground", "end_effector": "--end-effector", "floating": "--floating",
+                   "ignore_unsupported": "--ignore-unsupported", "close": "--close", "closures": "--closures"}
+"""The command-line option of each keyword of :func:`mobility.load` that :func:`robot_options_from` gives."""
+
+
 def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
     """The robot options given on the command line, as keywords of :func:`mobility.load` (those left at their default are omitted).
 
@@ -213,7 +218,9 @@ def read_mechanism(args: argparse.Namespace, path: str | None = None) -> ReadMec
     path = args.file if path is None else path
     options = robot_options_from(args)
     if not is_robot_description(path):
-        return ReadMechanism(load(path, **options), (), (path,))
+        if options:  # said with the options as typed (the library's message names its keywords)
+            raise RequestError(f"{', '.join(OPTION_SPELLING[k] for k in options)}: options of robot description files (MJCF, URDF), not of the mechanism file {path}")
+        return ReadMechanism(load(path), (), (path,))
     from ..io.robot_files import read_robot  # XML readers (and MuJoCo for MJCF): only for robot files
 
     robot = read_robot(path, **options)

@@ -30,6 +30,7 @@ from ..report.actuation import actuation_json, actuation_text, enumeration_json,
 from ..io.limits import require_size
 from ._options import (
     MECHANISM_FILE_HELP,
+    OPTION_SPELLING,
     add_mechanism_file,
     add_pose_sampler_options,
     add_tolerance_option,
@@ -86,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
                 raise RequestError("--pose and --samples apply to rigid mechanisms only (a flexure is analysed at its one pose)")
             given = sorted(robot_options_from(args))
             if given:
-                raise RequestError(f"{', '.join(given)}: options of robot description files (MJCF, URDF), not of the flexure document {args.file}")
+                raise RequestError(f"{', '.join(OPTION_SPELLING[k] for k in given)}: options of robot description files (MJCF, URDF), not of the flexure document {args.file}")
             flexure = loads_flexure(text, file=args.file)
             return _run_flexure(args, flexure, names_from(args.inputs, [a.name for a in flexure.actuators]), tol)
     mechanism = load_mechanism(args)
