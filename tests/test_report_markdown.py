@@ -170,3 +170,15 @@ def test_cli_format_md_and_json(tmp_path, capsys):
     as_format = capsys.readouterr().out
     assert main(["analyze", str(path), "--json"]) == 0
     assert capsys.readouterr().out == as_format
+
+
+def test_a_joint_name_with_backticks_stays_inside_its_code_span():
+    # names with backticks ended the code span early: the rest of the structure was read as Markdown
+    text = THREE_RPS_YAML.replace('name: "R{i+1}"', 'name: "R`{i+1}"').replace('name: "P{i+1}"', 'name: "P``{i+1}"')
+    assert "R`{i+1}" in text and "P``{i+1}" in text
+    report = markdown_report(mobility.analyze(mobility.loads(text)))
+    structure = next(line for line in report.splitlines() if line.startswith("Structure"))
+    fence, code = re.fullmatch(r"Structure \(series/parallel decomposition\): (`+)(.*)\1", structure).groups()
+    assert len(fence) == 3 and "R`1" in code and "P``1" in code  # a fence longer than any run inside
+    limb_cells = [line.split(" | ")[1] for line in report.splitlines() if line.startswith("| 1 |")]
+    assert limb_cells and limb_cells[0].startswith("```") and "R`1" in limb_cells[0]

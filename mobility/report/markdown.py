@@ -17,13 +17,14 @@ Examples
 
 from __future__ import annotations
 
+import re
 from typing import Iterable, Sequence
 
 from ..core.result import Result, ScrewAxis, require_result
 from ..errors import RequestError
 from .text import fmt_number, fmt_vector, screw_text
 
-__all__ = ["markdown_report", "markdown_table", "md_escape"]
+__all__ = ["markdown_report", "markdown_table", "md_escape", "md_code"]
 
 
 def md_escape(text: str) -> str:
@@ -35,6 +36,23 @@ def md_escape(text: str) -> str:
     'a\\\\|b c'
     """
     return str(text).replace("\\", "\\\\").replace("|", "\\|").replace("\r", " ").replace("\n", " ")
+
+
+def md_code(text: str) -> str:
+    """``text`` as a Markdown code span, whatever backticks it holds (CommonMark: a fence longer than any run inside).
+
+    Examples
+    --------
+    >>> md_code("series(A,B)"), md_code("series(D`t,C)")
+    ('`series(A,B)`', '``series(D`t,C)``')
+    >>> md_code("`x")
+    '`` `x ``'
+    """
+    text = str(text)
+    longest = max((len(run) for run in re.findall("`+", text)), default=0)
+    fence = "`" * (longest + 1)
+    pad = " " if text.startswith("`") or text.endswith("`") else ""
+    return f"{fence}{pad}{text}{pad}{fence}"
 
 
 def markdown_table(header: Sequence[str], rows: Iterable[Sequence[object]], align: str | None = None) -> str:
@@ -157,14 +175,14 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     out.append(markdown_table(["quantity", "formula", "value"], counts, align="llr"))
     if result.gruebler_kutzbach_explanation:
         out += ["", f"Why Grübler–Kutzbach differs: {result.gruebler_kutzbach_explanation}"]
-    out += ["", f"Structure (series/parallel decomposition): `{result.structure}`"]
+    out += ["", f"Structure (series/parallel decomposition): {md_code(result.structure)}"]
     if limbs and result.limbs:
         out += ["", f"## Limbs ({len(result.limbs)}), each in its own frame", ""]
         limb_rows = []
         for i, limb in enumerate(result.limbs):
             free = "; ".join([f"translation {fmt_vector(t)}" for t in limb.translations] + ([_screw_list(limb.rotations, s)] if limb.rotations else []))
             cons = "; ".join([f"couple {fmt_vector(c)}" for c in limb.couples] + ([_screw_list(limb.forces, s)] if limb.forces else []))
-            limb_rows.append([i + 1, f"`{limb.structure}`", limb.frame, limb.dof, limb.idle_dof, free or "none", cons or "none"])
+            limb_rows.append([i + 1, md_code(limb.structure), limb.frame, limb.dof, limb.idle_dof, free or "none", cons or "none"])
         out.append(markdown_table(["limb", "structure", "frame", "DOF", "idle", "freedoms", "constraint wrenches"], limb_rows, align="rllrrll"))
     out += [
         "",
