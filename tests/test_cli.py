@@ -465,3 +465,10 @@ def test_actuation_options_that_would_be_ignored_are_refused(capsys):
                           (["--enumerate", "--inputs", "P1,P2,P3"], "--inputs checks one choice and --enumerate every combination")):
         assert main(["actuation", rps, *command]) == 2  # they were silently ignored
         assert capsys.readouterr().err.startswith(f"mobility: {said}")
+
+
+def test_json_with_another_format_is_refused_before_any_work(capsys):
+    four_bar = str(ROOT / "mechanisms" / "four_bar.yaml")
+    for command in (["analyze", four_bar, "--json", "--format", "md"], ["sweep", four_bar, "--vary", "A=0:1:2", "--json", "--format", "csv"]):
+        assert main(command) == 2  # --json won silently
+        assert capsys.readouterr() == ("", f"mobility: --json and --format {command[-1]}: choose one output format\n")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ..core.analysis import analyze
+from ..errors import RequestError
 from ..report.text import json_report, text_report
 from ..io.limits import require_size
 from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
@@ -39,6 +40,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
+    if args.json and args.format not in ("text", "json"):
+        raise RequestError(f"--json and --format {args.format}: choose one output format")
     mechanism = load_mechanism(args)
     if args.finite:
         require_size(mechanism, "max_finite_joints", "--finite", args.file)

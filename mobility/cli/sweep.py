@@ -85,6 +85,8 @@ def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if args.output == "-":  # the usual name of standard output
         args.output = None
+    if args.json and args.format not in (None, "json"):
+        raise RequestError(f"--json and --format {args.format}: choose one output format")
     require_new_output(args.output, "-o", args.file)
     require_new_output(args.plot, "--plot", args.file, args.output)
     if args.plot is not None:  # before any work: a picture that cannot be drawn is refused now, not after the sweep
