@@ -472,3 +472,18 @@ def test_json_with_another_format_is_refused_before_any_work(capsys):
     for command in (["analyze", four_bar, "--json", "--format", "md"], ["sweep", four_bar, "--vary", "A=0:1:2", "--json", "--format", "csv"]):
         assert main(command) == 2  # --json won silently
         assert capsys.readouterr() == ("", f"mobility: --json and --format {command[-1]}: choose one output format\n")
+
+
+def test_debug_may_follow_the_command_as_the_internal_error_message_suggests(monkeypatch, capsys):
+    import mobility.cli.analyze as analyze_command
+
+    def broken(args):
+        raise ZeroDivisionError("a planted bug")
+
+    monkeypatch.setattr(analyze_command, "run", broken)
+    four_bar = str(ROOT / "mechanisms" / "four_bar.yaml")
+    assert main(["analyze", four_bar]) == 3
+    assert "rerun with --debug" in capsys.readouterr().err
+    for argv in (["analyze", four_bar, "--debug"], ["--debug", "analyze", four_bar]):
+        assert main(argv) == 3
+        assert "Traceback (most recent call last)" in capsys.readouterr().err

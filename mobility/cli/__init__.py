@@ -74,6 +74,8 @@ def build_parser(commands: Sequence[str] | None = None) -> argparse.ArgumentPars
         module.register(sub)
         command = sub.choices[module.__name__.rpartition(".")[2]]
         command.epilog = f"Exit status: {getattr(module, 'EXIT_STATUS', SUCCESS_OR_BAD_INPUT)}; 3 an internal error; 130 interrupted."
+        # after the command too (`mobility analyze f --debug`), as the internal-error message suggests; unset unless given
+        command.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show a traceback on internal errors")
     return parser
 
 
