@@ -34,7 +34,19 @@ from importlib import import_module
 from typing import Any
 
 from .core.analysis import analyze, gruebler_kutzbach
-from .errors import AnalysisError, MechanismError, MechanismFileError, MobilityError
+from .errors import (
+    AnalysisError,
+    HalfTurnError,
+    MechanismCheckFailed,
+    MechanismError,
+    MechanismFileError,
+    MissingExtraError,
+    MobilityError,
+    PlotFormatError,
+    PlottingUnavailableError,
+    RequestError,
+    SynthesisError,
+)
 from .io.loader import load, loads
 from .core.loop_closure import LoopClosure, loop_closure
 from .core.model import Expected, Frame, Joint, Mechanism
@@ -57,7 +69,7 @@ _LAZY = {
     "flexure_spaces": "flexure", "check_force_lines": "flexure", "FlexureMechanism": "flexure",
     # finite screws, type synthesis, Jacobians
     "FiniteScrew": "core.finite_screws", "finite_screw": "core.finite_screws", "triangle_product": "core.finite_screws",
-    "HalfTurnError": "errors", "Limb": "core.finite_screws", "ScrewJoint": "core.finite_screws",
+    "Limb": "core.finite_screws", "ScrewJoint": "core.finite_screws",
     "synthesize": "synthesis", "named_pattern": "synthesis", "MotionPattern": "synthesis", "assemble_pkm": "synthesis",
     "jacobian": "jacobians", "parallel_model": "jacobians",
     # pictures and Markdown
@@ -88,10 +100,18 @@ __all__ = [
     "Margin",
     "Tolerance",
     "DEFAULT_TOLERANCE",
+    # every error class of mobility.errors: what the package raises on purpose
     "MobilityError",
     "MechanismError",
     "MechanismFileError",
+    "MechanismCheckFailed",
+    "RequestError",
+    "SynthesisError",
+    "PlotFormatError",
     "AnalysisError",
+    "HalfTurnError",
+    "MissingExtraError",
+    "PlottingUnavailableError",
     *_LAZY,
 ]
 

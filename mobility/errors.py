@@ -162,7 +162,33 @@ def clipped(text: object, most: int = 40) -> str:
 
 
 class MobilityError(Exception):
-    """Base class of every error raised on purpose by :mod:`mobility`."""
+    """Base class of every error raised on purpose by :mod:`mobility`.
+
+    Every error of the package pickles and copies with its message and its
+    attributes (``key``, ``file``, ``line``...), so one raised in a worker
+    process (:mod:`concurrent.futures`, :mod:`multiprocessing`) reaches the
+    caller as it was raised.
+
+    Examples
+    --------
+    >>> import copy, pickle
+    >>> err = pickle.loads(pickle.dumps(MechanismFileError("joints[0].axis", "expected 3 numbers", file="a.yaml", line=3)))
+    >>> str(err), err.key, err.line, str(copy.copy(err)) == str(err)
+    ('a.yaml:3: joints[0].axis: expected 3 numbers', 'joints[0].axis', 3, True)
+    """
+
+    def __reduce__(self) -> tuple:
+        # Exception's own reduction calls the class with ``self.args`` (the message), which a class whose
+        # __init__ takes other arguments (MechanismError(key, message)) cannot take: rebuild without __init__.
+        return (_rebuilt, (type(self), self.args, dict(self.__dict__)))
+
+
+def _rebuilt(cls: type, args: tuple, state: dict) -> MobilityError:
+    """An error of class ``cls`` with ``args`` and attributes ``state``, without calling its ``__init__`` (the pickle of :class:`MobilityError`)."""
+    error = cls.__new__(cls, *args)
+    error.args = args
+    error.__dict__.update(state)
+    return error
 
 
 class MechanismError(MobilityError, ValueError):

@@ -360,7 +360,7 @@ def test_a_flexure_document_is_parsed_once(monkeypatch):
 
 def test_without_the_flexure_check_a_flexure_document_is_a_mechanism_error():
     result = check_file(EXAMPLES / "flexure" / "three_rod.yaml")
-    assert result.status == "error" and ":29: threshold: unknown key in a mechanism" in result.message  # its first key unknown to mechanisms
+    assert result.status == "error" and ":38: elements: a flexure document, not a mechanism: read it with mobility.load_flexure" in result.message
 
 
 def test_the_pytest_helpers_check_flexure_documents_too(tmp_path):

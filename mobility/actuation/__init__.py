@@ -46,7 +46,7 @@ Examples
 
 from .assessment import Assessment, EndEffectorSpaces, InputWrench, assess_inputs, assess_wrenches
 from .locking import lock_joints, locked_dof
-from .ranking import MAX_COMBINATIONS, combination_type, combinations_count, combine_poses, limit_combinations, rank_combinations
+from .ranking import MAX_COMBINATIONS, combination_type, combinations_count, combine_poses, inputs_per_combination, limit_combinations, rank_combinations
 from .results import REDUNDANT, SINGULAR, VALID, VERDICTS, ActuationCheck, ActuationInput, Combination, Enumeration, TypeGroup
 from .rigid import ENUMERATION_MODES, check_actuation, check_over_poses, enumerate_actuations
 from .rigid_pose import RigidPose
@@ -81,6 +81,7 @@ __all__ = [
     "combination_type",
     "combinations_count",
     "limit_combinations",
+    "inputs_per_combination",
     "combine_poses",
     "rank_combinations",
 ]

@@ -22,8 +22,8 @@ from dataclasses import replace
 from typing import Iterable
 
 from ..core.loop_closure import loop_closure
-from ..core.model import Mechanism
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.model import Mechanism, joint_names, require_mechanism, require_no_repeats
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MechanismError
 
 __all__ = ["lock_joints", "locked_dof"]
@@ -31,6 +31,9 @@ __all__ = ["lock_joints", "locked_dof"]
 
 def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
     """The mechanism with the named joints made rigid: each removed, its two links merged.
+
+    ``names`` is a sequence of joint names, each given once (``["A"]``, not
+    the string ``"A"``), as for :func:`~mobility.actuation.check_actuation`.
 
     Joints left joining a link to itself (their links were merged through
     other locked joints) are removed too: they cannot move.  A merged body
@@ -44,9 +47,13 @@ def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
     Raises
     ------
     MechanismError
-        When a name is not a joint of the mechanism.
+        When ``names`` is a string, names a joint twice, or a name is not a
+        joint of the mechanism.
+    RequestError
+        When ``mechanism`` is not a :class:`~mobility.core.model.Mechanism`.
     """
-    names = set(names)
+    mechanism = require_mechanism(mechanism, "lock_joints")
+    names = _lock_names(names)
     unknown = sorted(names - {j.name for j in mechanism.joints})
     if unknown:
         raise MechanismError("actuated", f"unknown joint {unknown[0]!r}")
@@ -89,8 +96,20 @@ def locked_dof(mechanism: Mechanism, names: Iterable[str], *, tol: Tolerance = D
     ...                                      Joint("B", "R", ("arm", "hand"), axis=(0, 0, 1), point=(1, 0, 0))))
     >>> locked_dof(m, []), locked_dof(m, ["A"]), locked_dof(m, ["A", "B"])
     (2, 1, 0)
+    >>> locked_dof(m, "AB")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: actuated: expected a sequence of joint names, got the string 'AB' (write ['AB'])
     """
+    mechanism = require_mechanism(mechanism, "locked_dof")
+    tol = require_tolerance(tol, "locked_dof")
     locked = lock_joints(mechanism, names)
     if locked is None:
         return 0
     return int(loop_closure(locked, tol).end_effector_twists.shape[1])
+
+
+def _lock_names(names: Iterable[str]) -> set[str]:
+    """The joint names to lock: a sequence of names (not one string), each given once."""
+    listed = joint_names(names, "actuated")
+    require_no_repeats(listed, "actuated")
+    return set(listed)

@@ -27,12 +27,13 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
+from ..core.model import integer_value
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, first_least
-from ..errors import RequestError
+from ..errors import RequestError, clipped
 from .assessment import Assessment
 from .results import SINGULAR, VALID, VERDICTS, Combination, TypeGroup
 
-__all__ = ["MAX_COMBINATIONS", "combination_type", "combine_poses", "rank_combinations", "combinations_count", "limit_combinations"]
+__all__ = ["MAX_COMBINATIONS", "combination_type", "combine_poses", "rank_combinations", "combinations_count", "limit_combinations", "inputs_per_combination"]
 
 MAX_COMBINATIONS = 20000
 """Largest number of input combinations an enumeration will try."""
@@ -122,6 +123,35 @@ def combinations_count(candidates: int, k: int, advice: str) -> int:
         raise RequestError("k must be non-negative")
     count = comb(candidates, k) if k <= candidates else 0
     return limit_combinations(count, advice)
+
+
+def inputs_per_combination(k: object, default: int) -> int:
+    """``k``, the inputs per combination of an enumeration, checked: ``default`` for None, else a non-negative integer.
+
+    An integer is an ``int`` or a numpy integer; a bool, a float (``3.9``) or
+    a string (``"3"``) is refused rather than rounded or read.
+
+    Raises
+    ------
+    RequestError
+        When ``k`` is not a non-negative integer.
+
+    Examples
+    --------
+    >>> inputs_per_combination(None, 3), inputs_per_combination(np.int64(2), 3)
+    (3, 2)
+    >>> inputs_per_combination(3.9, 3)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: k must be an integer (inputs per combination), got 3.9
+    """
+    if k is None:
+        return default
+    number = integer_value(k)
+    if number is None:
+        raise RequestError(f"k must be an integer (inputs per combination), got {clipped(repr(k))}")
+    if number < 0:
+        raise RequestError(f"k must be non-negative (inputs per combination), got {number}")
+    return number
 
 
 def limit_combinations(count: int, advice: str) -> int:

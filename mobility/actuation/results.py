@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.result import ScrewAxis
+from ..core.result import ReadOnlyArrays, ScrewAxis
 from ..core.tolerance import RankDecision, clean_numbers
 
 __all__ = [
@@ -44,7 +44,7 @@ VERDICTS = (VALID, REDUNDANT, SINGULAR)
 
 
 @dataclass(frozen=True, eq=False)
-class ActuationInput:
+class ActuationInput(ReadOnlyArrays):
     """One input (an actuated joint freedom or a linear actuator) and its actuation wrench.
 
     Attributes
@@ -91,7 +91,7 @@ class ActuationInput:
 
 
 @dataclass(frozen=True, eq=False)
-class ActuationCheck:
+class ActuationCheck(ReadOnlyArrays):
     """The verdict on one choice of inputs at one pose.
 
     Attributes

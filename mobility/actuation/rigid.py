@@ -26,13 +26,13 @@ from typing import Iterable, Sequence
 
 
 from ..core.model import Mechanism, joint_names, require_mechanism, require_no_repeats
-from ..core.poses import DEFAULT_STEP, sample_poses
+from ..core.poses import DEFAULT_STEP, require_pose_count, sample_poses
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..core.topology import joints_of
-from ..errors import MechanismError, RequestError, name_list
+from ..errors import MechanismError, RequestError, clipped, name_list
 from .assessment import Assessment, InputWrench, assess_inputs, assess_wrenches
-from .ranking import combination_type, combinations_count, combine_poses, limit_combinations, rank_combinations
+from .ranking import combination_type, combinations_count, combine_poses, inputs_per_combination, limit_combinations, rank_combinations
 from .results import ActuationCheck, Enumeration
 from .rigid_pose import RigidPose
 
@@ -94,10 +94,14 @@ def check_over_poses(mechanism: Mechanism, actuated: Sequence[str] | None, poses
     ------
     MechanismError
         When a pose is not one of ``mechanism``, or a name is not a joint.
+    RequestError
+        When ``mechanism`` or a pose is not a :class:`~mobility.core.model.Mechanism`.
     """
+    mechanism = require_mechanism(mechanism, "check_over_poses")
+    tol = require_tolerance(tol, "check_over_poses")
     names = _actuated_names(mechanism, actuated)
     out = []
-    for i, pose in enumerate(poses):
+    for i, pose in enumerate(_poses(poses, "check_over_poses")):
         _require_same_mechanism(mechanism, pose, pose.source or f"pose {i}")
         out.append(_assess_at(RigidPose(pose, tol), names))
     return tuple(out)
@@ -127,12 +131,16 @@ def enumerate_actuations(
         ``"limb"``: one joint in each limb (the paper's enumeration);
         ``"any"``: any ``k`` candidates.
     k : int, optional
-        Inputs per combination in ``"any"`` mode (default: the DOF).
+        Inputs per combination (an ``int`` or a numpy integer).  In
+        ``"any"`` mode, default: the DOF.  In ``"limb"`` mode it is the
+        number of limbs, fixed by the mode: leave it out (a ``k`` that
+        differs is refused).
     poses : sequence of Mechanism
         Further poses of the same mechanism (listed by the user).
     samples : int
         Further poses reached by moving the mechanism, from
-        :func:`mobility.core.poses.sample_poses` (with ``step`` and ``seed``).
+        :func:`mobility.core.poses.sample_poses` (with ``step``, ``seed``
+        and ``tol``).
     tol : Tolerance
 
     Returns
@@ -142,25 +150,43 @@ def enumerate_actuations(
     Raises
     ------
     RequestError
-        On an unknown mode, a negative ``k``, or more than
+        On an unknown mode, a ``k`` that is not a non-negative integer (or,
+        in ``"limb"`` mode, not the number of limbs), a ``samples`` that is
+        not a number of poses, a pose that is not a
+        :class:`~mobility.core.model.Mechanism`, or more than
         :data:`~mobility.actuation.ranking.MAX_COMBINATIONS` combinations.
     MechanismError
         When a pose is not one of ``mechanism``.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> found = enumerate_actuations(mobility.load("mechanisms/actuation_3rps.yaml"))
+    >>> found.mode, found.k, found.combinations[0].verdict
+    ('limb', 3, 'valid')
+    >>> enumerate_actuations(mobility.load("mechanisms/actuation_3rps.yaml"), mode="limb", k=2)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: k: mode 'limb' takes one input in each limb, 3 here, got k=2 (leave k out, or use mode 'any')
     """
     mechanism = require_mechanism(mechanism, "enumerate_actuations")
     tol = require_tolerance(tol, "enumerate_actuations")
     if mode not in ENUMERATION_MODES:
-        raise RequestError(f"mode must be 'limb' or 'any', got {mode!r}")
+        raise RequestError(f"mode must be 'limb' or 'any', got {clipped(repr(mode))}")
+    given_k = None if k is None else inputs_per_combination(k, 0)
+    samples = require_pose_count(samples, "samples")
+    poses = _poses(poses, "enumerate_actuations")
     warnings: list[str] = []
     first = RigidPose(mechanism, tol)
     dof = first.spaces.dof
+    if mode == "limb" and given_k is not None and given_k != len(first.limbs):
+        raise RequestError(f"k: mode 'limb' takes one input in each limb, {len(first.limbs)} here, got k={given_k} (leave k out, or use mode 'any')")
     pose_list: list[tuple[str, Mechanism]] = [("given pose", mechanism)]
     for i, p in enumerate(poses):
         label = p.source or f"pose {i + 1}"
         _require_same_mechanism(mechanism, p, label)
         pose_list.append((label, p))
     if samples:
-        sampled = sample_poses(mechanism, samples, step=step, seed=seed)
+        sampled = sample_poses(mechanism, samples, step=step, seed=seed, tol=tol)
         pose_list += [(f"sampled pose {i + 1}", p) for i, p in enumerate(sampled)]
     candidates = [[j for j in joints_of(node) if mechanism.joints[j].dof == 1] for node, _ in first.limbs]
     if mode == "limb":
@@ -170,7 +196,7 @@ def enumerate_actuations(
         combos: Iterable[tuple[int, ...]] = itertools.product(*candidates)
     else:
         flat = sorted(j for c in candidates for j in c)
-        k = dof if k is None else int(k)
+        k = dof if given_k is None else given_k
         combinations_count(len(flat), k, "choose a smaller k or mode 'limb'")
         combos = itertools.combinations(flat, k)
     if k != dof:
@@ -190,6 +216,13 @@ def enumerate_actuations(
     ranked, groups = rank_combinations(results)
     pattern = motion_pattern(first.spaces.twists, tol)
     return Enumeration(mechanism.name, "rigid", dof, pattern, mode, k, ranked, groups, tuple(label for label, _ in pose_list), tuple(warnings))
+
+
+def _poses(poses: Iterable[Mechanism], caller: str) -> list[Mechanism]:
+    """``poses`` as a list, each a :class:`~mobility.core.model.Mechanism` (else a :class:`RequestError` naming it)."""
+    if isinstance(poses, (str, bytes, Mechanism)) or not isinstance(poses, Iterable):
+        raise RequestError(f"{caller}: poses must be a sequence of Mechanisms, got {type(poses).__name__}")
+    return [require_mechanism(p, f"{caller}: poses[{i}]") for i, p in enumerate(poses)]
 
 
 def _actuated_names(mechanism: Mechanism, actuated: Sequence[str] | None) -> list[str]:

@@ -47,6 +47,7 @@ def gruebler_kutzbach(mechanism: Mechanism) -> int:
     >>> gruebler_kutzbach(Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(1, 0, 0)),)))
     1
     """
+    mechanism = require_mechanism(mechanism, "gruebler_kutzbach")
     return 6 * (len(mechanism.links) - 1 - len(mechanism.joints)) + mechanism.freedom_count
 
 

@@ -34,15 +34,18 @@ Examples
 from __future__ import annotations
 
 import math
+import numbers
+import operator
+import re
 import sys
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from types import MappingProxyType
-from typing import Any, Iterable, Mapping
+from typing import Any, Callable, Iterable, Mapping
 
 import numpy as np
 
-from ..errors import MechanismError, RequestError, name_list
+from ..errors import MechanismError, RequestError, clipped, did_you_mean, name_list
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, binary_scale, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
 
@@ -57,6 +60,12 @@ __all__ = [
     "Mechanism",
     "require_mechanism",
     "require_vector",
+    "integer_value",
+    "real_value",
+    "bool_value",
+    "require_expected_integer",
+    "require_expected_pattern",
+    "EXPECTED_PATTERN",
     "require_graph_names",
     "require_unique_names",
     "require_no_repeats",
@@ -130,7 +139,7 @@ def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
     except (TypeError, ValueError):
         raise MechanismError(key, f"expected a list of 3 numbers, got {value!r}") from None
     if arr.shape != (3,):
-        n = arr.size if arr.ndim == 1 else "a nested list"
+        n = arr.size if arr.ndim == 1 else "a nested list" if arr.ndim > 1 else clipped(repr(value))
         raise MechanismError(key, f"expected a list of 3 numbers, got {n}")
     if not np.all(np.isfinite(arr)):
         raise MechanismError(key, f"expected 3 finite numbers, got {value!r}")
@@ -204,8 +213,8 @@ class Joint:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
             raise MechanismError("name", f"expected a non-empty string, got {self.name!r}")
-        if self.type not in JOINT_DOF:
-            raise MechanismError("type", f"unknown joint type {self.type!r}; expected one of {', '.join(JOINT_DOF)}")
+        if not isinstance(self.type, str) or self.type not in JOINT_DOF:
+            raise MechanismError("type", f"unknown joint type {clipped(repr(self.type))}; expected one of {', '.join(JOINT_DOF)}")
         links = tuple(self.links) if isinstance(self.links, (list, tuple)) else None
         if links is None or len(links) != 2 or not all(isinstance(x, str) and x for x in links):
             raise MechanismError("links", f"expected two link names, got {self.links!r}")
@@ -229,24 +238,29 @@ class Joint:
         if self.pitch is not None:
             try:
                 pitch = float(self.pitch)
+            except OverflowError:
+                raise MechanismError("pitch", "expected a finite number, got an integer too large for a float") from None
             except (TypeError, ValueError):
-                raise MechanismError("pitch", f"expected a number, got {self.pitch!r}") from None
+                raise MechanismError("pitch", f"expected a number, got {clipped(repr(self.pitch))}") from None
             if not math.isfinite(pitch):
                 raise MechanismError("pitch", f"expected a finite number, got {self.pitch!r}")
             object.__setattr__(self, "pitch", pitch)
         if self.axes is not None:
-            if not isinstance(self.axes, (list, tuple)) or len(self.axes) != 2:
+            axes = list(self.axes) if isinstance(self.axes, (list, tuple, np.ndarray)) else None
+            if axes is None or len(axes) != 2:
                 raise MechanismError("axes", "expected two directions [a1, a2]")
-            a1 = require_vector(self.axes[0], "axes[0]", direction=True)
-            a2 = require_vector(self.axes[1], "axes[1]", direction=True)
+            a1 = require_vector(axes[0], "axes[0]", direction=True)
+            a2 = require_vector(axes[1], "axes[1]", direction=True)
             sine = float(np.linalg.norm(np.cross(a1, a2)))
             if sine < PARALLEL_AXES:
                 raise MechanismError("axes", "the two axes of a U joint must not be parallel")
             object.__setattr__(self, "axes", (a1, a2))
         if not isinstance(self.frame, str) or not self.frame:
             raise MechanismError("frame", f"expected a frame name, got {self.frame!r}")
-        if not isinstance(self.actuated, bool):
-            raise MechanismError("actuated", f"expected true or false, got {self.actuated!r}")
+        actuated = bool_value(self.actuated)
+        if actuated is None:
+            raise MechanismError("actuated", f"expected true or false, got {clipped(repr(self.actuated))}")
+        object.__setattr__(self, "actuated", actuated)
 
     @property
     def dof(self) -> int:
@@ -320,8 +334,11 @@ class Frame:
         if not isinstance(self.name, str) or not self.name:
             raise MechanismError("name", f"expected a frame name, got {self.name!r}")
         object.__setattr__(self, "origin", require_vector(self.origin, "origin"))
-        rot = np.asarray(self.rotation, dtype=float)
-        if rot.shape != (3, 3) or not np.isfinite(rot).all():
+        try:
+            rot = np.asarray(self.rotation, dtype=float)
+        except (TypeError, ValueError, OverflowError):  # text, a ragged nesting, an integer beyond the floats
+            rot = None
+        if rot is None or rot.shape != (3, 3) or not np.isfinite(rot).all():
             raise MechanismError("rotation", "expected a 3x3 matrix of finite numbers")
         rows = rot.tolist()
         (a, b, c), (d, e, f), (g, h, i) = rows
@@ -334,21 +351,49 @@ class Frame:
 
     @staticmethod
     def from_rpy(name: str, origin: Iterable[float] = (0, 0, 0), rpy: Iterable[float] = (0, 0, 0), parent: str = WORLD) -> "Frame":
-        """A frame from roll-pitch-yaw angles in radians (``R = Rz(y) Ry(p) Rx(r)``).
+        """A frame from roll-pitch-yaw angles **in radians** (``R = Rz(y) Ry(p) Rx(r)``).
+
+        Unlike a mechanism file (``rpy`` in degrees unless ``units.angle``
+        says otherwise), a sweep's angles and ``assemble_pkm(twist_deg=...)``,
+        this function takes **radians**: convert degrees with
+        :func:`numpy.radians`.
+
+        Parameters
+        ----------
+        name : str
+        origin : 3 numbers
+            The frame's origin in its parent.
+        rpy : 3 numbers
+            Roll, pitch and yaw, in radians.
+        parent : str
+            Name of the parent frame (default ``"world"``).
+
+        Raises
+        ------
+        MechanismError
+            When ``origin`` or ``rpy`` is not 3 finite numbers.
 
         Examples
         --------
-        >>> f = Frame.from_rpy("leg", (1, 0, 0), (0, 0, 3.141592653589793 / 2))
+        A yaw of 90 degrees, given in radians:
+
+        >>> import numpy as np
+        >>> f = Frame.from_rpy("leg", (1, 0, 0), np.radians([0, 0, 90]))
         >>> [round(float(x), 12) + 0.0 for x in f.transform.apply_point((1, 0, 0))]
         [1.0, 1.0, 0.0]
         """
-        rpy = require_vector(tuple(rpy), "rpy")
-        return Frame(name, tuple(origin), tuple(map(tuple, rotation_from_rpy(rpy))), parent)
+        rpy = require_vector(_listed(rpy), "rpy")
+        return Frame(name, require_vector(_listed(origin), "origin"), tuple(map(tuple, rotation_from_rpy(rpy))), parent)
 
     @property
     def transform(self) -> Transform:
         """The transform from this frame to its parent."""
         return Transform(np.array(self.rotation), np.array(self.origin))
+
+
+def _listed(value: Any) -> Any:
+    """``value`` as a tuple when it is iterable (a generator too), else as it is (for :func:`require_vector` to refuse)."""
+    return tuple(value) if isinstance(value, Iterable) and not isinstance(value, (str, bytes, Mapping)) else value
 
 
 @dataclass(frozen=True, eq=False)
@@ -401,9 +446,87 @@ EXPECTED_KEYS: dict[str, str] = {
 """Keys an ``expected`` block may hold, with what each means."""
 
 
+EXPECTED_PATTERN = re.compile(r"0|([1-3]T)?([1-3]R)?")
+"""An expected motion pattern: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (matched whole).
+
+A twist system of more than 3 dimensions always holds a translation, so ``m``
+is at most 3 too.
+"""
+
+
+def require_expected_integer(value: Any, key: str, *, signed: bool = False, shown: Callable[[Any], str] | None = None) -> int:
+    """An expected count: an integer (Python or numpy, not a bool), non-negative unless ``signed``; else a :class:`MechanismError` naming ``key``.
+
+    ``shown`` writes the value in the message (default: its ``repr``, clipped).
+
+    Examples
+    --------
+    >>> require_expected_integer(np.int64(3), "dof")
+    3
+    >>> require_expected_integer("1", "dof")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: dof: expected a non-negative integer, got '1'
+    """
+    number = integer_value(value)
+    if number is None or (not signed and number < 0):
+        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {(shown or _shown)(value)}")
+    return number
+
+
+def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str] | None = None) -> str:
+    """An expected motion pattern (:data:`EXPECTED_PATTERN`; the integer ``0`` is ``"0"``), else a :class:`MechanismError` naming ``key``.
+
+    Examples
+    --------
+    >>> require_expected_pattern("1T2R", "pattern"), require_expected_pattern(0, "pattern")
+    ('1T2R', '0')
+    >>> require_expected_pattern("4R", "pattern")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: pattern: expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got '4R'
+    """
+    if value == 0 and type(value) is int:
+        return "0"
+    if not isinstance(value, str) or not value or not EXPECTED_PATTERN.fullmatch(value):
+        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got {(shown or _shown)(value)}')
+    return value
+
+
+def _shown(value: Any) -> str:
+    """A value in a message: its ``repr``, clipped."""
+    return clipped(repr(value))
+
+
+_EXPECTED_COUNTS = ("dof", "mobility", "redundant_constraints", "idle_dof")
+
+
 @dataclass(frozen=True)
 class Expected:
-    """What a regression check compares an analysis against (all optional)."""
+    """What a regression check compares an analysis against (all optional).
+
+    Each field is checked on construction, as the same key of a file's
+    ``expected`` block is (:data:`EXPECTED_KEYS`); ``extra`` holds further
+    keys (each compared by its comparator in
+    :data:`mobility.testing.check.COMPARATORS`) and is copied, so the
+    caller's mapping may change afterwards.  Hashable (over the fields and
+    the keys of ``extra``) and picklable, as a :class:`Mechanism` holding it is.
+
+    Raises
+    ------
+    MechanismError
+        Naming the key whose value is of the wrong kind, or an ``extra`` key
+        that is one of the fields.
+
+    Examples
+    --------
+    >>> e = Expected(dof=1, pattern="1R", extra={"actuation": "valid"})
+    >>> e.items()
+    [('dof', 1), ('pattern', '1R'), ('actuation', 'valid')]
+    >>> hash(e) == hash(Expected(dof=1, pattern="1R", extra={"actuation": "valid"}))
+    True
+    >>> Expected(dof="1")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: dof: expected a non-negative integer, got '1'
+    """
 
     dof: int | None = None
     pattern: str | None = None
@@ -413,6 +536,33 @@ class Expected:
     idle_dof: int | None = None
     gruebler_kutzbach: int | None = None
     extra: Mapping[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        for key in _EXPECTED_COUNTS + ("gruebler_kutzbach",):
+            value = getattr(self, key)
+            if value is not None:
+                object.__setattr__(self, key, require_expected_integer(value, key, signed=key == "gruebler_kutzbach"))
+        if self.pattern is not None:
+            object.__setattr__(self, "pattern", require_expected_pattern(self.pattern, "pattern"))
+        if self.translations is not None:
+            rows = _listed(self.translations)
+            if not isinstance(rows, tuple):
+                raise MechanismError("translations", f"expected a list of 3-vectors, got {_shown(self.translations)}")
+            object.__setattr__(self, "translations", tuple(require_vector(_listed(v), f"translations[{i}]") for i, v in enumerate(rows)))
+        if not isinstance(self.extra, Mapping):
+            raise MechanismError("extra", f"expected a mapping of further expected keys, got {type(self.extra).__name__}")
+        extra = dict(self.extra)  # a copy: the caller's mapping may change afterwards
+        for key in extra:
+            if not isinstance(key, str) or not key:
+                raise MechanismError("extra", f"expected keys that are names (non-empty strings), got {_shown(key)}")
+            if key in self.__dataclass_fields__:
+                raise MechanismError(f"extra.{key}", f"{key!r} is a field of Expected: give it as Expected({key}=...)")
+        object.__setattr__(self, "extra", extra)
+
+    def __hash__(self) -> int:
+        # extra's values may be unhashable (lists); equal Expecteds have equal keys, which is all a hash needs
+        return hash((self.dof, self.pattern, self.translations, self.mobility, self.redundant_constraints,
+                     self.idle_dof, self.gruebler_kutzbach, frozenset(self.extra)))
 
     def items(self) -> list[tuple[str, Any]]:
         """The expectations that are set, as ``(key, value)`` pairs."""
@@ -493,6 +643,11 @@ class Mechanism:
             if not isinstance(j, Joint):
                 raise MechanismError(f"joints[{i}]", f"expected a Joint, got {type(j).__name__}")
         require_unique_names(self.joints, "joints", "joint")
+        for i, f in enumerate(self.frames):
+            if not isinstance(f, Frame):
+                raise MechanismError(f"frames[{i}]", f"expected a Frame, got {type(f).__name__}")
+        if self.expected is not None and not isinstance(self.expected, Expected):
+            raise MechanismError("expected", f"expected an Expected or None, got {type(self.expected).__name__}")
         frame_index: dict[str, int] = {}
         for i, f in enumerate(self.frames):
             if f.name == WORLD:
@@ -596,8 +751,23 @@ class Mechanism:
         raise RequestError(f"no joint named {name!r}; the joints are {name_list(j.name for j in self.joints)}")
 
     def frame_transform(self, name: str) -> Transform:
-        """Transform from frame ``name`` to the global frame."""
-        return self._frame_transforms[name]
+        """Transform from frame ``name`` to the global frame.
+
+        Raises
+        ------
+        RequestError
+            When no frame has that name.
+
+        Examples
+        --------
+        >>> import mobility
+        >>> mobility.load("mechanisms/3prs.yaml").frame_transform("world").translation.tolist()
+        [0.0, 0.0, 0.0]
+        """
+        transforms = self._frame_transforms
+        if not isinstance(name, str) or name not in transforms:
+            raise RequestError(f"frame_transform: no frame named {clipped(repr(name))}{did_you_mean(name, transforms)}; the frames are {name_list(transforms)}")
+        return transforms[name]
 
     @cached_property
     def _frame_transforms(self) -> dict[str, Transform]:
@@ -674,7 +844,7 @@ class Mechanism:
         --------
         >>> import mobility
         >>> mobility.load("mechanisms/3prs.yaml").joint_key(4, "point")
-        ('limbs[0].joints[1].point', 33)
+        ('limbs[0].joints[1].point', 35)
         >>> Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(0, 0, 1)),)).joint_key(0, "axis")
         ('joints[0].axis', None)
         """
@@ -684,6 +854,53 @@ class Mechanism:
     def replace(self, **changes: Any) -> "Mechanism":
         """A copy with some fields changed (validated again)."""
         return replace(self, **changes)
+
+
+def integer_value(value: Any) -> int | None:
+    """``value`` as an ``int`` when it is an integer (``int``, a numpy integer, anything with ``__index__``) but not a bool, else None.
+
+    The one test of "an integer" of the API: ``3.0``, ``"3"`` and ``True``
+    are not, ``numpy.int64(3)`` is.
+
+    Examples
+    --------
+    >>> integer_value(np.int64(3)), integer_value(3.0), integer_value("3"), integer_value(True)
+    (3, None, None, None)
+    """
+    if isinstance(value, (bool, np.bool_)):
+        return None
+    try:
+        return operator.index(value)
+    except TypeError:
+        return None
+
+
+def real_value(value: Any) -> float | None:
+    """``value`` as a finite ``float`` when it is a real number (``int``, ``float``, a numpy number) but not a bool, else None.
+
+    Examples
+    --------
+    >>> real_value(np.float32(0.5)), real_value(2), real_value("0.1"), real_value(True), real_value(float("nan"))
+    (0.5, 2.0, None, None, None)
+    """
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        return None
+    try:
+        number = float(value)
+    except OverflowError:  # an integer beyond the floats
+        return None
+    return number if math.isfinite(number) else None
+
+
+def bool_value(value: Any) -> bool | None:
+    """``value`` as a ``bool`` when it is one (``True``, ``False``, ``numpy.True_``...), else None (``1`` and ``"yes"`` are not).
+
+    Examples
+    --------
+    >>> bool_value(np.bool_(True)), bool_value(False), bool_value(1)
+    (True, False, None)
+    """
+    return bool(value) if isinstance(value, (bool, np.bool_)) else None
 
 
 def require_mechanism(value: object, caller: str) -> Mechanism:

@@ -14,10 +14,10 @@ import numpy as np
 
 from ..errors import RequestError, clipped
 from .kinematics import kinematics
-from .model import Mechanism, require_mechanism
+from .model import Mechanism, integer_value, require_mechanism
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 
-__all__ = ["sample_poses", "DEFAULT_STEP", "MAX_SAMPLED_POSES"]
+__all__ = ["sample_poses", "require_pose_count", "DEFAULT_STEP", "MAX_SAMPLED_POSES"]
 
 MAX_SAMPLED_POSES = 100_000
 """Most poses :func:`sample_poses` is asked for (each is a Newton solve and a rebuilt mechanism; the
@@ -26,6 +26,23 @@ command line's ``--samples`` stops at 1,000)."""
 DEFAULT_STEP = 0.1
 """The default step of :func:`sample_poses` (radians; lengths over the characteristic length), also the
 default ``--step`` of ``mobility actuation --samples`` and ``mobility view --samples``."""
+
+
+def require_pose_count(value: object, key: str = "count") -> int:
+    """``value`` as a number of poses to sample: an integer (not a bool) in ``[0, MAX_SAMPLED_POSES]``; else a :class:`RequestError` naming ``key``.
+
+    Examples
+    --------
+    >>> require_pose_count(np.int64(3), "samples")
+    3
+    >>> require_pose_count(2.5, "samples")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: samples: expected a number of poses in [0, 100,000], got 2.5
+    """
+    count = integer_value(value)
+    if count is None or not 0 <= count <= MAX_SAMPLED_POSES:
+        raise RequestError(f"{key}: expected a number of poses in [0, {MAX_SAMPLED_POSES:,}], got {clipped(repr(value))}")
+    return count
 
 
 def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> list[Mechanism]:
@@ -72,11 +89,10 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
     """
     mechanism = require_mechanism(mechanism, "sample_poses")
     tol = require_tolerance(tol, "sample_poses")
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 0 <= count <= MAX_SAMPLED_POSES:
-        raise RequestError(f"count: expected a number of poses in [0, {MAX_SAMPLED_POSES:,}], got {clipped(repr(count))}")
+    count = require_pose_count(count)
     if isinstance(step, bool) or not isinstance(step, (int, float, np.integer, np.floating)) or not 0.0 < step < math.inf:
         raise RequestError(f"step: expected a positive joint-space distance, got {clipped(repr(step))}")
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+    if integer_value(seed) is None or seed < 0:
         raise RequestError(f"seed: expected a non-negative integer, got {clipped(repr(seed))}")
     rng = np.random.default_rng(seed)
     reached: list[Mechanism] = [mechanism]

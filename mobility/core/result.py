@@ -4,33 +4,177 @@ A :class:`Result` holds only answers, in the global frame and the file's
 length unit.  Screws are rows: ``twists[i] = [w; v]``, ``wrenches[i] = [f; m]``.
 :meth:`Result.to_dict` gives the JSON form (keys of the file-format spec plus
 the whole-mechanism numbers).
+
+The result classes derive from :class:`ReadOnlyArrays`: the arrays a result
+holds, or computes on first access, are read-only, also after a pickle round
+trip or a deep copy (:func:`read_only` does it for one value).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
+from dataclasses import fields as dataclass_fields
+from functools import cached_property, wraps
 from types import MappingProxyType
-from typing import Any, Mapping, NamedTuple, Protocol
+from typing import Any, Callable, Mapping, NamedTuple, Protocol, TypeVar
 
 import numpy as np
 
-from ..errors import RequestError
+from ..errors import RequestError, clipped
 from .model import Mechanism
 from .screws import pattern_of
 from .tolerance import clean_numbers
 from .topology import Node, Topology
 
-__all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultDetail", "pattern_of", "require_result"]
+__all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultDetail", "pattern_of", "require_result",
+           "require_result_of", "require_same_mechanism", "read_only", "read_only_cached_property", "ReadOnlyArrays"]
+
+_T = TypeVar("_T")
+
+
+def _sealed(array: np.ndarray) -> bool:
+    """True when nothing can write into ``array``'s data: it and every array it views read-only, over read-only memory."""
+    base: object = array
+    while isinstance(base, np.ndarray):
+        if base.flags.writeable:
+            return False
+        base = base.base
+    if base is None:
+        return True
+    try:
+        return memoryview(base).readonly  # type: ignore[arg-type]
+    except TypeError:  # memory that is not a buffer: it may change
+        return False
+
+
+def read_only(value: _T, *, copy: bool = True) -> _T:
+    """``value`` with every ndarray in it read-only: an array, or a tuple (named or not) holding some, at any depth.
+
+    Other values are returned as they are (a result dataclass makes its own
+    arrays read-only, see :class:`ReadOnlyArrays`).
+
+    Parameters
+    ----------
+    value : object
+    copy : bool
+        True (for an array the caller may share): an array that something
+        could still write into is replaced by a read-only copy; one that
+        nothing can write into is kept.  False (for arrays just computed or
+        unpickled, which nothing else holds): every array, and every array
+        it is a view of, is made read-only in place.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> mine = np.zeros(3)
+    >>> kept = read_only((mine, "x"))
+    >>> kept[0].flags.writeable, mine.flags.writeable, kept[1]
+    (False, True, 'x')
+    >>> kept[0][0] = 1.0
+    Traceback (most recent call last):
+    ValueError: assignment destination is read-only
+    """
+    if isinstance(value, np.ndarray):
+        if not copy:
+            base: object = value
+            while isinstance(base, np.ndarray):
+                base.setflags(write=False)
+                base = base.base
+            return value  # type: ignore[return-value]
+        if _sealed(value):
+            return value
+        out = value.copy(order="K")
+        out.setflags(write=False)
+        return out  # type: ignore[return-value]
+    if isinstance(value, tuple) and value:
+        items = [read_only(x, copy=copy) for x in value]
+        if all(a is b for a, b in zip(items, value)):
+            return value
+        make = getattr(type(value), "_make", None)  # a named tuple
+        return make(items) if make is not None else tuple(items)  # type: ignore[return-value]
+    return value
+
+
+def read_only_cached_property(func: Callable[[Any], _T]) -> cached_property:
+    """:func:`functools.cached_property` whose value has its arrays read-only (:func:`read_only`, copying shared ones).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> class Grid:
+    ...     @read_only_cached_property
+    ...     def values(self):
+    ...         return np.arange(3.0)
+    >>> g = Grid()
+    >>> g.values.flags.writeable, g.values is g.values
+    (False, True)
+    """
+
+    @wraps(func)
+    def compute(self: Any) -> _T:
+        return read_only(func(self))
+
+    return cached_property(compute)
+
+
+_PLAIN_TYPES = frozenset(f"{t}{none}" for t in ("int", "float", "str", "bool") for none in ("", " | None"))
+"""Annotations of the fields that hold no array (a result's many counts and names are not looked at)."""
+
+
+def _may_hold_arrays(cls: type) -> tuple[str, ...]:
+    """The fields of dataclass ``cls`` whose annotation is not one of :data:`_PLAIN_TYPES` (found once per class)."""
+    names = cls.__dict__.get("_array_fields")
+    if names is None:
+        names = tuple(f.name for f in dataclass_fields(cls) if (f.type if isinstance(f.type, str) else getattr(f.type, "__name__", "")) not in _PLAIN_TYPES)
+        cls._array_fields = names  # type: ignore[attr-defined]
+    return names
+
+
+class ReadOnlyArrays:
+    """Base of the frozen result dataclasses: every ndarray they hold is read-only, also after a pickle round trip.
+
+    On construction each field goes through :func:`read_only` (an array the
+    caller passed and can still write into is copied); values cached on the
+    instance (:func:`read_only_cached_property`) are made read-only when
+    computed.  Unpickling (numpy unpickles arrays writable) and
+    :func:`copy.deepcopy` make the restored arrays read-only again
+    (``__setstate__``).  A subclass with its own ``__post_init__`` calls
+    this one.
+
+    Examples
+    --------
+    >>> import pickle, numpy as np
+    >>> a = ScrewAxis(np.array([0.0, 0.0, 1.0]), np.zeros(3), 0.0, "rotation")
+    >>> b = pickle.loads(pickle.dumps(a))
+    >>> a.axis.flags.writeable, b.point.flags.writeable
+    (False, False)
+    """
+
+    __slots__ = ()
+
+    def __post_init__(self) -> None:
+        values = vars(self)
+        for name in _may_hold_arrays(type(self)):
+            value = values.get(name)
+            if isinstance(value, (np.ndarray, tuple)):
+                frozen = read_only(value)
+                if frozen is not value:
+                    values[name] = frozen  # past the frozen __setattr__, as the dataclass's own __init__ does
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        for value in state.values():
+            read_only(value, copy=False)  # the arrays of a pickle (or of a deep copy) are new: frozen in place
+        vars(self).update(state)
 
 
 @dataclass(frozen=True, eq=False)
-class ScrewAxis:
+class ScrewAxis(ReadOnlyArrays):
     """A screw axis in the global frame.
 
     For a twist: a rotation about ``axis`` through ``point`` with ``pitch``
     (length per radian) of translation along it; for a wrench: a force along
-    ``axis`` with a couple ``pitch`` times it.
+    ``axis`` with a couple ``pitch`` times it.  ``axis`` and ``point`` are
+    read-only arrays (copies of writable ones given).
     """
 
     axis: np.ndarray
@@ -80,7 +224,7 @@ class Margin:
 
 
 @dataclass(frozen=True, eq=False)
-class LimbSystem:
+class LimbSystem(ReadOnlyArrays):
     """Twist and constraint systems of one limb (a branch of the top parallel connection).
 
     Everything is written in ``frame`` (the frame all the limb's joints are
@@ -152,12 +296,14 @@ class ResultDetail(Protocol):
 
 
 @dataclass(frozen=True, eq=False)
-class Result:
+class Result(ReadOnlyArrays):
     """What :func:`mobility.analyze` finds.
 
     The counts are computed by the analysis; the directions (canonical forms),
     limb systems and common constraints are computed on first access and then
-    kept (the result never changes).
+    kept (the result never changes: its arrays are read-only).  It pickles
+    (and deep-copies) at any time, with what it has computed so far.  Two
+    results are equal only when they are the same object.
 
     Attributes
     ----------
@@ -246,11 +392,11 @@ class Result:
     reference_point: np.ndarray
     detail: ResultDetail = field(repr=False)
 
-    @cached_property
+    @read_only_cached_property
     def _twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
         return self.detail.twist_form()
 
-    @cached_property
+    @read_only_cached_property
     def _wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
         return self.detail.wrench_form()
 
@@ -284,7 +430,7 @@ class Result:
         """Basis (rows ``[f; m]``) of the constraint wrench system."""
         return self._wrench_form[2]
 
-    @cached_property
+    @read_only_cached_property
     def limbs(self) -> tuple[LimbSystem, ...]:
         """Twist and constraint systems of each limb, in its own frame."""
         return self.detail.limbs()
@@ -305,6 +451,10 @@ class Result:
         return self.detail.mechanism
 
     @cached_property
+    def _node_systems(self) -> dict[Node, NodeSystem]:
+        return self.detail.node_systems()  # kept as a dict: a mapping proxy cached here would not pickle
+
+    @property
     def node_systems(self) -> Mapping[Node, NodeSystem]:
         """DOF and idle count of every node of :attr:`topology`, read-only.
 
@@ -323,7 +473,7 @@ class Result:
         >>> r.node_systems[r.topology.root]
         NodeSystem(dof=1, idle=1)
         """
-        return MappingProxyType(self.detail.node_systems())
+        return MappingProxyType(self._node_systems)
 
     @property
     def translation_count(self) -> int:
@@ -397,3 +547,48 @@ def require_result(value: object, caller: str) -> Result:
     if not isinstance(value, Result):
         raise RequestError(f"{caller}: expected a Result (from mobility.analyze), got {type(value).__name__}")
     return value
+
+
+def require_result_of(mechanism: Mechanism, value: object, caller: str) -> Result:
+    """``value`` when it is a :class:`Result` of ``mechanism``, else a :class:`~mobility.errors.RequestError` naming ``caller``.
+
+    :func:`require_result`, then :func:`require_same_mechanism`.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> four_bar, head = mobility.load("mechanisms/four_bar.yaml"), mobility.load("mechanisms/3prs.yaml")
+    >>> require_result_of(four_bar, mobility.analyze(four_bar), "plot_mechanism").pattern
+    '1R'
+    >>> require_result_of(four_bar, mobility.analyze(head), "plot_mechanism")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: plot_mechanism: the result is of another mechanism ('3-PRS parallel head (Sprint Z3), symmetric pose') than 'planar four-bar'; pass the result of analysing this one, or none
+    """
+    result = require_result(value, caller)
+    require_same_mechanism(mechanism, result, caller)
+    return result
+
+
+def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) -> None:
+    """A :class:`~mobility.errors.RequestError` naming ``caller`` when ``result`` analysed another mechanism than ``mechanism``.
+
+    The mechanism a result analysed (its ``mechanism``: :attr:`Result.mechanism`)
+    must equal ``mechanism`` (mechanisms compare by value: the same fields,
+    joints and pose).  A result that does not keep its mechanism is taken as it is.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> four_bar = mobility.load("mechanisms/four_bar.yaml")
+    >>> moved = mobility.sample_poses(four_bar, 1, step=0.2, seed=1)[0]
+    >>> require_same_mechanism(four_bar, mobility.analyze(mobility.load("mechanisms/four_bar.yaml")), "plot_graph")  # an equal one
+    >>> require_same_mechanism(four_bar, mobility.analyze(moved), "plot_graph")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: plot_graph: the result is of another mechanism than 'planar four-bar' (of the same name, with other joints, pose or fields); pass the result of analysing this one, or none
+    """
+    analysed = getattr(result, "mechanism", None)
+    if analysed is not None and analysed is not mechanism and analysed != mechanism:
+        name = clipped(repr(mechanism.name), 60)
+        other = clipped(repr(getattr(analysed, "name", analysed)), 60)
+        which = f"than {name} (of the same name, with other joints, pose or fields)" if other == name else f"({other}) than {name}"
+        raise RequestError(f"{caller}: the result is of another mechanism {which}; pass the result of analysing this one, or none")

@@ -32,13 +32,14 @@ Examples
 from __future__ import annotations
 
 import math
+import numbers
 import sys
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..errors import RequestError
+from ..errors import RequestError, clipped
 
 __all__ = [
     "first_least",
@@ -89,6 +90,14 @@ class Tolerance:
     round_off : float
         Numbers below ``round_off`` times their scale are shown as 0
         (:func:`clean_numbers`).
+
+    Each is a real number (a numpy float too, stored as a ``float``); a bool
+    or a string is refused.
+
+    Examples
+    --------
+    >>> Tolerance(rank=np.float32(1e-9)).rank == float(np.float32(1e-9))
+    True
     """
 
     rank: float = 1e-8
@@ -100,8 +109,15 @@ class Tolerance:
     def __post_init__(self) -> None:
         for name in ("rank", "near_singular", "inexact", "closure", "round_off"):
             value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-                raise RequestError(f"Tolerance: {name} must be a finite number, got {value!r}")
+            number = math.nan
+            if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
+                try:
+                    number = float(value)
+                except OverflowError:  # an integer beyond the floats
+                    pass
+            if not math.isfinite(number):
+                raise RequestError(f"Tolerance: {name} must be a finite number, got {clipped(repr(value))}")
+            object.__setattr__(self, name, number)
         if not (0.0 < self.inexact <= self.rank < self.near_singular < 1.0):
             raise RequestError("tolerances must satisfy 0 < inexact <= rank < near_singular < 1")
         if not (0.0 < self.closure < 1.0 and 0.0 < self.round_off < 1.0):

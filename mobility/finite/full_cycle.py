@@ -51,10 +51,10 @@ import numpy as np
 
 from ..core.analysis import analyze
 from ..core.kinematics import kinematics
-from ..core.model import Mechanism, require_mechanism
+from ..core.model import Mechanism, integer_value, require_mechanism
 from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import RequestError
+from ..errors import RequestError, clipped
 from .branches import examine_branch, group_by_tangent
 from .moves import MovePlan, probe, probe_directions
 from .orders import canonical_basis, first_order, second_order
@@ -83,8 +83,9 @@ def finite_mobility(
         characteristic length).  The middle one (or the only one) is the
         *probe step*: nearby poses are examined there.
     randoms : int, optional
-        Random combinations of the tangent basis to try (default ``2 k + 2``,
-        at most 14, for ``k`` instantaneous freedoms).
+        Random combinations of the tangent basis to try, a non-negative
+        integer (default ``2 k + 2``, at most 14, for ``k`` instantaneous
+        freedoms).
     seed : int
         Seed of the random directions (results are reproducible).
     tol : Tolerance
@@ -97,7 +98,8 @@ def finite_mobility(
     Raises
     ------
     RequestError
-        When a step is not a positive number.
+        When a step is not a positive number, or ``randoms`` not a
+        non-negative integer.
 
     Examples
     --------
@@ -115,6 +117,11 @@ def finite_mobility(
     mechanism = require_mechanism(mechanism, "finite_mobility")
     tol = require_tolerance(tol, "finite_mobility")
     steps = _checked_steps(steps)
+    if randoms is not None:
+        count = integer_value(randoms)
+        if count is None or count < 0:
+            raise RequestError(f"randoms: expected a non-negative integer (random directions to try), got {clipped(repr(randoms))}")
+        randoms = count
     rng = np.random.default_rng(seed)  # one stream, drawn in a fixed order: second order, moves, branches
     instant = analyze(mechanism, tol=tol)
     kin = kinematics(mechanism)

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.result import Margin, Result
+from ..core.result import Margin, ReadOnlyArrays, Result
 from ..core.tolerance import DEFAULT_TOLERANCE
 
 __all__ = ["VERDICTS", "Probe", "Branch", "SecondOrder", "FiniteMobility"]
@@ -24,7 +24,7 @@ VERDICTS = ("full-cycle", "instantaneous-only", "cannot-move", "bifurcation")
 
 
 @dataclass(frozen=True, eq=False)
-class Probe:
+class Probe(ReadOnlyArrays):
     """One attempt to move from a pose along a direction.
 
     Attributes
@@ -85,7 +85,7 @@ class Probe:
 
 
 @dataclass(frozen=True, eq=False)
-class Branch:
+class Branch(ReadOnlyArrays):
     """A branch of finite motion through the given pose.
 
     Attributes
@@ -162,7 +162,7 @@ class Branch:
 
 
 @dataclass(frozen=True, eq=False)
-class SecondOrder:
+class SecondOrder(ReadOnlyArrays):
     """The second-order test at the given pose.
 
     Attributes
@@ -225,7 +225,7 @@ class SecondOrder:
 
 
 @dataclass(frozen=True, eq=False)
-class FiniteMobility:
+class FiniteMobility(ReadOnlyArrays):
     """Instantaneous and full-cycle mobility of a mechanism at its pose.
 
     Attributes

@@ -33,7 +33,17 @@ from typing import Sequence
 
 import numpy as np
 
-from ..actuation import ActuationCheck, Enumeration, InputWrench, assess_inputs, assess_wrenches, combinations_count, combine_poses, rank_combinations
+from ..actuation import (
+    ActuationCheck,
+    Enumeration,
+    InputWrench,
+    assess_inputs,
+    assess_wrenches,
+    combinations_count,
+    combine_poses,
+    inputs_per_combination,
+    rank_combinations,
+)
 from ..core.joint_screws import Normalisation
 from ..core.linalg import rank
 from ..core.model import require_no_repeats
@@ -99,10 +109,10 @@ def enumerate_force_lines(mechanism: FlexureMechanism, k: int | None = None, *, 
     Raises
     ------
     RequestError
-        When ``k`` is negative or there are too many combinations to try.
+        When ``k`` is not a non-negative integer or there are too many combinations to try.
     """
     spaces = flexure_spaces(mechanism, threshold, tol=tol)
-    k = spaces.dof if k is None else int(k)
+    k = inputs_per_combination(k, spaces.dof)
     candidates = list(mechanism.actuators)
     combinations_count(len(candidates), k, "choose a smaller k")
     norm = spaces.normalised.normalisation

@@ -59,6 +59,7 @@ from ..core.model import WORLD, Frame
 from ..core.transforms import Transform
 from ..io.expected import FLEXURE_EXPECTED_KEYS, read_expected
 from ..io.files import file_name
+from ..io.loader import is_flexure_document
 from ..io.yaml_source import KeyPath, Positions, parse_yaml, read_text
 
 __all__ = ["load_flexure", "loads_flexure", "read_flexure", "is_flexure_document", "FLEXURE_KEYS", "ELEMENT_KEYS", "ACTUATOR_KEYS", "ELEMENT_TYPES"]
@@ -69,11 +70,6 @@ ACTUATOR_KEYS = ("name", "frame", "point", "direction", "actuated")
 MATERIAL_KEYS = ("E", "nu")
 ELEMENT_TYPES = ("rod",)
 """Flexure element types: ``rod`` (a slender rod of circular section, a wire flexure)."""
-
-
-def is_flexure_document(data: Any) -> bool:
-    """True when parsed YAML ``data`` is a flexure document (it has ``elements``)."""
-    return isinstance(data, dict) and "elements" in data
 
 
 def load_flexure(path: str | Path) -> FlexureMechanism:

@@ -32,9 +32,9 @@ import numpy as np
 from ..core.joint_screws import Normalisation
 from ..core.model import Expected, require_ground_and_end_effector, require_vector, require_graph_names, require_unique_names
 from ..core.tolerance import characteristic_scale
-from ..errors import MechanismError, name_list
+from ..errors import MechanismError, RequestError, name_list
 
-__all__ = ["LENGTH_UNITS", "MODULUS_UNITS", "Material", "Rod", "ForceLine", "FlexureMechanism"]
+__all__ = ["LENGTH_UNITS", "MODULUS_UNITS", "Material", "Rod", "ForceLine", "FlexureMechanism", "require_flexure"]
 
 THINNEST_ROD = 1e-6
 """Smallest radius of a rod over its length: its bending compliance is then 1e12 times its axial one."""
@@ -241,8 +241,11 @@ class FlexureMechanism:
         missing = sorted(set(bodies) - reached)
         if missing:
             raise MechanismError("elements", f"bodies not connected to the ground {self.ground!r}: {name_list(missing)}")
-        if self.threshold is not None and not (0.0 < _number(self.threshold, "threshold", "a number between 0 and 1") < 1.0):
-            raise MechanismError("threshold", f"expected a number between 0 and 1, got {self.threshold!r}")
+        if self.threshold is not None:
+            threshold = _number(self.threshold, "threshold", "a number between 0 and 1")
+            if not 0.0 < threshold < 1.0:
+                raise MechanismError("threshold", f"expected a number between 0 and 1, got {self.threshold!r}")
+            object.__setattr__(self, "threshold", threshold)
 
     @property
     def bodies(self) -> tuple[str, ...]:
@@ -264,3 +267,17 @@ class FlexureMechanism:
         pts = np.array([p for e in self.elements for p in (e.start, e.end)], dtype=float)
         centre, length = characteristic_scale(pts, np.array([e.length for e in self.elements]))
         return Normalisation(centre, length)
+
+
+def require_flexure(value: object, caller: str) -> FlexureMechanism:
+    """``value`` when it is a :class:`FlexureMechanism`, else a :class:`~mobility.errors.RequestError` naming ``caller``.
+
+    Examples
+    --------
+    >>> require_flexure("three_rod.yaml", "flexure_spaces")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: flexure_spaces: expected a FlexureMechanism (from mobility.load_flexure or built in code), got str
+    """
+    if not isinstance(value, FlexureMechanism):
+        raise RequestError(f"{caller}: expected a FlexureMechanism (from mobility.load_flexure or built in code), got {type(value).__name__}")
+    return value

@@ -33,10 +33,11 @@ from ..actuation import EndEffectorSpaces
 from ..core.analysis import screw_system_in_frame
 from ..core.result import ScrewAxis
 from ..core.screws import SWAP_ROWS, motion_pattern
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
-from ..errors import RequestError
+from ..core.model import real_value
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers, require_tolerance
+from ..errors import RequestError, clipped
 from .compliance import compliance_matrix, normalised_energy_form
-from .model import FlexureMechanism
+from .model import FlexureMechanism, require_flexure
 
 __all__ = ["DEFAULT_THRESHOLD", "CLEAR_GAP", "FlexureSpaces", "flexure_spaces"]
 
@@ -154,10 +155,15 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
     Raises
     ------
     RequestError
-        When ``threshold`` is not between 0 and 1.
+        When ``mechanism`` is not a :class:`FlexureMechanism`, or
+        ``threshold`` is not a number between 0 and 1.
     """
+    mechanism = require_flexure(mechanism, "flexure_spaces")
+    tol = require_tolerance(tol, "flexure_spaces")
     if threshold is None:
         threshold = mechanism.threshold if mechanism.threshold is not None else DEFAULT_THRESHOLD
+    elif real_value(threshold) is None:
+        raise RequestError(f"threshold must be a number between 0 and 1, got {clipped(repr(threshold))}")
     if not (0.0 < threshold < 1.0):
         raise RequestError(f"threshold must lie between 0 and 1, got {threshold!r}")
     compliance = compliance_matrix(mechanism)

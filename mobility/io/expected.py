@@ -24,10 +24,9 @@ mobility.errors.MechanismFileError: e.yaml:1: expected.mobility: unknown key in 
 
 from __future__ import annotations
 
-import re
 from typing import Any, Callable
 
-from ..core.model import Expected
+from ..core.model import Expected, require_expected_integer, require_expected_pattern
 from ..errors import MechanismError
 from .reader import DocumentReader, describe_value, shown_value
 from .yaml_source import KeyPath, format_key
@@ -45,22 +44,13 @@ FLEXURE_EXPECTED_KEYS = ("dof", "pattern", "translations", "actuation")
 
 
 def _integer(value: Any, key: str, *, signed: bool = False) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or (not signed and value < 0):
-        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {shown_value(value)}")
-    return value
+    """An expected count, checked as :class:`~mobility.core.model.Expected` checks it (the value shown as a file's)."""
+    return require_expected_integer(value, key, signed=signed, shown=shown_value)
 
 
 def _pattern(value: Any, key: str) -> str:
-    """An expected pattern, checked: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (also unquoted).
-
-    A twist system of more than 3 dimensions always holds a translation, so
-    ``m`` is at most 3 too.
-    """
-    if value == 0 and type(value) is int:
-        return "0"
-    if not isinstance(value, str) or not re.fullmatch(r"0|([1-3]T)?([1-3]R)?", value) or not value:
-        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got {shown_value(value)}')
-    return value
+    """An expected pattern (:data:`~mobility.core.model.EXPECTED_PATTERN`; also an unquoted ``0``), checked as :class:`~mobility.core.model.Expected` checks it."""
+    return require_expected_pattern(value, key, shown=shown_value)
 
 
 def _choice(choices: tuple[str, ...]) -> Callable[[Any, str], str]:

@@ -52,13 +52,24 @@ from .limits import Limits, current_limits
 from .reader import NAME_RE, DocumentReader, describe_value, parse_key, shown_value
 from .yaml_source import KeyPath, Positions, format_key, parse_yaml, read_text
 
-__all__ = ["load", "loads", "read_mechanism", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
+__all__ = ["load", "loads", "read_mechanism", "is_flexure_document", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
 
 TOP_LEVEL_KEYS = ("name", "description", "ground", "end_effector", "units", "frames", "joints", "expected", "parameters", "limbs")
 JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes", "normal", "actuated")
 LIMB_KEYS = ("copies", "index", "frame", "joints")
 _TYPE_NAMES = {name: letter for letter, name in JOINT_TYPES.items()}
 _SUBST_RE = re.compile(r"\{([^{}]*)\}")
+
+
+def is_flexure_document(data: Any) -> bool:
+    """True when parsed YAML ``data`` is a flexure document (it has ``elements``), which :mod:`mobility.flexure` reads, not this loader.
+
+    Examples
+    --------
+    >>> is_flexure_document({"name": "three rods", "elements": []}), is_flexure_document({"joints": []})
+    (True, False)
+    """
+    return isinstance(data, dict) and "elements" in data
 
 
 def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any) -> Mechanism:
@@ -162,6 +173,8 @@ class _MechanismReader(DocumentReader):
 
     # -- document ---------------------------------------------------------
     def mechanism(self, data: Any) -> Mechanism:
+        if is_flexure_document(data):
+            raise self.fail(("elements",), "a flexure document, not a mechanism: read it with mobility.load_flexure (on the command line: mobility actuation)")
         doc = self.document(data, "a mechanism", TOP_LEVEL_KEYS, ("name", "ground", "end_effector", ("joints", "limbs")))
         name, description = self.name_and_description(doc)
         length_unit = self.units(doc.get("units"))

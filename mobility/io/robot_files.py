@@ -37,7 +37,7 @@ from dataclasses import fields, replace
 from pathlib import Path
 from typing import Any
 
-from ..core.model import Mechanism
+from ..core.model import Mechanism, bool_value
 from ..errors import MechanismFileError, RequestError
 from .closures import close_pairs, with_close_pairs, with_closures_file
 from .files import file_name
@@ -176,9 +176,9 @@ def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptio
     flags = {}
     for key in ("floating", "ignore_unsupported"):
         flag = getattr(out, key)
-        if flag is not None and not isinstance(flag, bool):
+        if flag is not None and bool_value(flag) is None:
             raise RequestError(f"{key}: expected True or False, got {type(flag).__name__}")
-        flags[key] = bool(flag)  # None: the default, False
+        flags[key] = bool(flag)  # None: the default, False; numpy.bool_ too
     closures = None if out.closures is None else file_name(out.closures, "closures")
     if closures == "":
         raise RequestError("closures: an empty file name; expected the name of a closures file (or leave the option out)")

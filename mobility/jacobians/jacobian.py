@@ -68,8 +68,8 @@ from ..core.joint_screws import Normalisation
 from ..core.model import Mechanism, require_mechanism
 from ..core.screws import SWAP, adjoint, reciprocal_product, reciprocal_system, span_and_reciprocal
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale, clean_numbers, decide_rank, require_tolerance
-from ..errors import AnalysisError, HalfTurnError, RequestError
-from .parallel_model import Chain, ParallelModel, parallel_model
+from ..errors import AnalysisError, HalfTurnError
+from .parallel_model import Chain, ParallelModel, joint_values, parallel_model
 from .wrenches import clean_screw, dominant_signs, is_couple, norm, unit_wrench, wrench_axis
 
 __all__ = ["JacobianResult", "jacobian"]
@@ -211,7 +211,10 @@ def jacobian(
     Raises
     ------
     MechanismError
-        Not a set of serial limbs, or no/unknown actuated joints.
+        Not a set of serial limbs, or no/unknown/repeated actuated joints
+        (``actuated`` is a sequence of names: ``["P0"]``, not ``"P0"``).
+    RequestError
+        ``q`` is not one array of finite joint values per limb.
     AnalysisError
         The limbs do not close at ``q``, or an actuated joint cannot move the
         platform on its own at this pose (no actuation wrench).
@@ -229,9 +232,7 @@ def jacobian(
     """
     tol = require_tolerance(tol, "jacobian")
     model = mechanism if isinstance(mechanism, ParallelModel) else parallel_model(require_mechanism(mechanism, "jacobian"), actuated)
-    values = model.home() if q is None else tuple(np.asarray(v, dtype=float) for v in q)
-    if len(values) != len(model.chains) or any(len(v) != len(c.limb) for v, c in zip(values, model.chains)):
-        raise RequestError("q: expected one array of joint values per limb, as many as the limb's freedoms")
+    values = model.home() if q is None else joint_values(q, model.chains)
     # the same mechanism at a size near 1: every number below is O(1) whatever the file's scale
     points = [j.point for c in model.chains for j in c.limb.joints if j.kind != "P"]
     scale = binary_scale(characteristic_scale(np.array(points, dtype=float).reshape(-1, 3))[1])

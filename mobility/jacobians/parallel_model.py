@@ -19,18 +19,18 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Sequence
+from typing import Any, Iterable, Sequence
 
 import numpy as np
 from scipy.optimize import least_squares
 
 from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
-from ..core.model import Joint, Mechanism, require_no_repeats
+from ..core.model import Joint, Mechanism, joint_names, require_mechanism, require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale
 from ..core.transforms import cross, skew
-from ..errors import AnalysisError, MechanismError, name_list
+from ..errors import AnalysisError, MechanismError, RequestError, name_list
 
-__all__ = ["Chain", "ParallelModel", "parallel_model"]
+__all__ = ["Chain", "ParallelModel", "parallel_model", "joint_values"]
 
 
 @dataclass(frozen=True)
@@ -113,15 +113,31 @@ class ParallelModel:
 
         Raises
         ------
+        RequestError
+            When ``displacement`` is not a 4x4 matrix of finite numbers, or
+            ``start`` not one array of joint values per limb.
         AnalysisError
             When a chain cannot reach the displacement.
+
+        Examples
+        --------
+        >>> import mobility
+        >>> model = parallel_model(mobility.load("mechanisms/metrom.yaml"))
+        >>> [len(q) for q in model.assemble(np.eye(4))] == [len(c.limb) for c in model.chains]
+        True
+        >>> model.assemble(np.zeros(6))
+        Traceback (most recent call last):
+        mobility.errors.RequestError: assemble: displacement must be a 4x4 homogeneous transform of finite numbers, got an array of shape (6,)
         """
-        target = np.asarray(displacement, dtype=float)
+        target = _finite_array(displacement, "assemble: displacement", "a 4x4 homogeneous transform of finite numbers")
+        if target.shape != (4, 4):
+            raise RequestError(f"assemble: displacement must be a 4x4 homogeneous transform of finite numbers, got an array of shape {target.shape}")
+        starts = None if start is None else joint_values(start, self.chains, "start")
         length = self.length
         out = []
         for k, chain in enumerate(self.chains):
             limb = chain.limb
-            x0 = np.zeros(len(limb)) if start is None else np.asarray(start[k], dtype=float)
+            x0 = np.zeros(len(limb)) if starts is None else starts[k]
 
             def residual(x: np.ndarray, limb: Limb = limb) -> np.ndarray:
                 t = limb.transform(x)
@@ -168,6 +184,47 @@ class ParallelModel:
         return self.mechanism.replace(joints=joints, frames=())
 
 
+def _finite_array(value: Any, key: str, what: str) -> np.ndarray:
+    """``value`` as an array of finite floats, else a :class:`RequestError` saying it must be ``what``."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise RequestError(f"{key} must be {what}, got {type(value).__name__}") from None
+    if not np.isfinite(array).all():
+        raise RequestError(f"{key} must be {what}, got a value that is not finite")
+    return array
+
+
+def joint_values(q: Any, chains: Sequence[Chain], key: str = "q") -> tuple[np.ndarray, ...]:
+    """``q`` as one array of finite joint values per chain, as many as the chain's freedoms; else a :class:`RequestError`.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> chains = parallel_model(mobility.load("mechanisms/metrom.yaml")).chains
+    >>> [len(v) for v in joint_values([[0.0] * len(c.limb) for c in chains], chains)] == [len(c.limb) for c in chains]
+    True
+    >>> joint_values([["a"]] * 5, chains)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: q: expected one array of joint values per limb, as many as the limb's freedoms (numbers), got list
+    """
+    expected = "one array of joint values per limb, as many as the limb's freedoms"
+    if isinstance(q, (str, bytes)) or not isinstance(q, Iterable):
+        raise RequestError(f"{key}: expected {expected}, got {type(q).__name__}")
+    values = []
+    for v in q:
+        try:
+            array = np.asarray(v, dtype=float)
+        except (TypeError, ValueError, OverflowError):
+            raise RequestError(f"{key}: expected {expected} (numbers), got {type(v).__name__}") from None
+        if array.ndim != 1 or not np.isfinite(array).all():
+            raise RequestError(f"{key}: expected {expected} (finite numbers in a flat list)")
+        values.append(array)
+    if len(values) != len(chains) or any(len(v) != len(c.limb) for v, c in zip(values, chains)):
+        raise RequestError(f"{key}: expected {expected}")
+    return tuple(values)
+
+
 def _moved_joint(joint: Joint, acc: np.ndarray, chain: Chain, span: Sequence[int], values: np.ndarray) -> Joint:
     """A joint carried by the displacement ``acc`` of the link it is mounted on (U: second axis by the first too)."""
     rot, pos = acc[:3, :3], acc[:3, 3]
@@ -204,8 +261,12 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
     ------
     MechanismError
         When the mechanism is not a set of serial limbs, or an actuated name
-        is unknown or missing.
+        is unknown, missing or repeated (or ``actuated`` is one string, not a
+        sequence of names).
+    RequestError
+        When ``mechanism`` is not a :class:`~mobility.core.model.Mechanism`.
     """
+    mechanism = require_mechanism(mechanism, "parallel_model")
     world = mechanism.world_joints
     incident: dict[str, list[int]] = {}
     for i, j in enumerate(world):
@@ -247,7 +308,7 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
         chains.append(Chain(Limb(tuple(screw_joints)), tuple(jidx), tuple(fidx), tuple(fwd)))
     if not chains:
         raise MechanismError("joints", f"no joint on the ground {mechanism.ground!r}")
-    names = [j.name for j in mechanism.joints if j.actuated] if actuated is None else list(actuated)
+    names = [j.name for j in mechanism.joints if j.actuated] if actuated is None else joint_names(actuated, "actuated")
     if not names:
         raise MechanismError("joints", "no actuated joint: mark joints with 'actuated: true' or name them (--actuated A,B,...)")
     act: list[tuple[int, int]] = []

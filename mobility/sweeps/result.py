@@ -46,6 +46,7 @@ import numpy as np
 from ..actuation import SINGULAR
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
+from ..core.result import ReadOnlyArrays, read_only, read_only_cached_property
 from ..core.tolerance import DEFAULT_TOLERANCE, MARGIN_DIP, Tolerance, clean_numbers
 from ..errors import RequestError, clipped
 from .grid import SweepAxis
@@ -147,8 +148,13 @@ class MarginDip(GridPoint):
 
 
 @dataclass(frozen=True, eq=False)
-class SweepResult:
+class SweepResult(ReadOnlyArrays):
     """Every pose of a sweep (arrays of length ``N``, the grid flattened in C order).
+
+    Frozen: its arrays (and those it computes, :attr:`values`,
+    :attr:`changes`) are read-only, also after a pickle round trip; the
+    arrays it is built from are made read-only in place, not copied (the
+    sweep makes them for it).  It compares by identity.
 
     Attributes
     ----------
@@ -204,9 +210,8 @@ class SweepResult:
     tolerance: Tolerance = DEFAULT_TOLERANCE
 
     def __post_init__(self) -> None:
-        for value in vars(self).values():
-            if isinstance(value, np.ndarray):
-                value.setflags(write=False)
+        for value in vars(self).values():  # columns of every pose, made by the sweep for this result: read-only in place, not copied
+            read_only(value, copy=False)
 
     def __repr__(self) -> str:
         """One line: the mechanism, the grid, what was assembled and found (the table is in the columns).
@@ -243,7 +248,7 @@ class SweepResult:
         """The varied coordinates."""
         return tuple(a.name for a in self.axes)
 
-    @cached_property
+    @read_only_cached_property
     def values(self) -> np.ndarray:
         """Coordinate values of every pose, ``(N, axes)``, user units."""
         grids = np.meshgrid(*[a.values for a in self.axes], indexing="ij")
@@ -331,7 +336,7 @@ class SweepResult:
                 codes[i] = lookup.setdefault(c, len(lookup))
         return codes.reshape(self.shape)
 
-    @cached_property
+    @read_only_cached_property
     def changes(self) -> np.ndarray:
         """Neighbouring assembled grid points whose answers differ: rows ``(index a, index b, axis)``, ``a < b``."""
         grid = self._class_codes()

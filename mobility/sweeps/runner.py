@@ -44,7 +44,7 @@ from urllib.parse import urlsplit
 import numpy as np
 
 from ..core.joint_screws import joint_screws
-from ..core.model import Mechanism
+from ..core.model import Mechanism, integer_value
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError, clipped
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
@@ -429,11 +429,8 @@ def sweep(
     if not isinstance(mechanism, Mechanism):
         raise RequestError(f"sweep: expected a Mechanism (from mobility.load), got {type(mechanism).__name__}")
     tol = require_tolerance(tol, "sweep")
-    for key, value in (("chunk_size", chunk_size), ("max_poses", max_poses)):
-        if not isinstance(value, int) or isinstance(value, bool) or value < 1:
-            raise RequestError(f"sweep: {key} must be a positive integer, got {value!r}")
-    if workers is not None and (not isinstance(workers, int) or isinstance(workers, bool) or workers < 1):
-        raise RequestError(f"sweep: workers must be a positive integer, got {workers!r}")
+    chunk_size, max_poses = (_positive_integer(key, value) for key, value in (("chunk_size", chunk_size), ("max_poses", max_poses)))
+    workers = None if workers is None else _positive_integer("workers", workers)
     if workers is not None and workers > MAX_WORKERS:
         raise RequestError(f"sweep: workers must be at most {MAX_WORKERS} (threads of this process), got {clipped(str(workers))}; "
                            "for more, run the chunks on a dask cluster (scheduler)")
@@ -453,6 +450,14 @@ def sweep(
     finally:
         runner.close()
     return _result(context, closure, columns)
+
+
+def _positive_integer(key: str, value: Any) -> int:
+    """``value`` as an ``int`` when it is a positive integer (an ``int`` or a numpy integer, not a bool), else a :class:`RequestError`."""
+    number = integer_value(value)
+    if number is None or number < 1:
+        raise RequestError(f"sweep: {key} must be a positive integer, got {clipped(repr(value))}")
+    return number
 
 
 def _require_scheduler(scheduler: Any) -> None:

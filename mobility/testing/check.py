@@ -72,10 +72,10 @@ from ..io.files import file_name, os_problem, printable_name
 from ..io.limits import current_limits, require_size
 from ..io.loader import load, read_mechanism
 from ..io.yaml_source import Positions, parse_yaml, read_text
-from ..core.model import Mechanism
+from ..core.model import Mechanism, require_mechanism
 from ..core.result import Result
 from ..core.screws import same_subspace
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, clean_numbers
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, clean_numbers, require_tolerance
 
 __all__ = [
     "Comparison",
@@ -394,10 +394,15 @@ def check_mechanism(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE,
 
     Raises
     ------
+    RequestError
+        When ``mechanism`` is not a :class:`~mobility.core.model.Mechanism`
+        or ``tol`` not a :class:`~mobility.core.tolerance.Tolerance`.
     MobilityError
         When the analysis itself fails (:func:`check_file` turns it into an
         ``"error"`` result).
     """
+    mechanism = require_mechanism(mechanism, "check_mechanism")
+    tol = require_tolerance(tol, "check_mechanism")
     subject = _Subject(mechanism, tol)
     expected = mechanism.expected
     items = expected.items() if expected is not None else []

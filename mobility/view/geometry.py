@@ -23,13 +23,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.result import ReadOnlyArrays
 from ..report.plotting.geometry import FLAT, helix, perpendiculars, plate_ring
 
 __all__ = ["Mesh", "cone", "pieces", "arc", "helix", "plate"]
 
 
 @dataclass(frozen=True, eq=False)
-class Mesh:
+class Mesh(ReadOnlyArrays):
     """Triangles: ``vertices`` (n, 3) and ``faces`` (m, 3), indices into the vertices."""
 
     vertices: np.ndarray

@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.model import JOINT_TYPES, Mechanism
-from ..core.result import Result
+from ..core.result import ReadOnlyArrays, Result
 from ..report.plotting import COLORS, choose_views, sketch
 from ..report.plotting.geometry import SAME_POINT, perpendiculars, segment_samples, unique_points
 from .describe import couple_text, force_text, joint_text, plotly_text, rotation_text, translation_text
@@ -75,7 +75,7 @@ _COUPLE_OFFSET = 0.25
 
 
 @dataclass(frozen=True, eq=False)
-class Glyph:
+class Glyph(ReadOnlyArrays):
     """One thing drawn: a link group, a joint type, one freedom or one constraint.
 
     Attributes
@@ -143,7 +143,7 @@ class Glyph:
 
 
 @dataclass(frozen=True, eq=False)
-class Scene:
+class Scene(ReadOnlyArrays):
     """The glyphs of one pose, the centre and size of the scene, the bounds of what is drawn.
 
     Attributes

@@ -24,6 +24,7 @@ Examples
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -32,7 +33,7 @@ from typing import Any, Iterable
 from ..core.analysis import analyze
 from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism, require_mechanism
-from ..core.result import Result
+from ..core.result import Result, require_result_of
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError
 from ..report.plotting.sketch import drawing_scale
@@ -127,9 +128,11 @@ class View:
         MissingExtraError
             When plotly is not installed.
         RequestError
-            When the file cannot be written (the message says why).
+            When ``path`` is not a file name (a ``str`` or ``os.PathLike``
+            naming the file as text), or the file cannot be written (the
+            message says why).
         """
-        path = Path(path)
+        path = _html_path(path)
         text = self.to_html()
         try:
             path.write_text(text, encoding="utf-8")
@@ -163,6 +166,26 @@ class View:
         return f"<View of {self.name}: {len(self.frames)} pose(s)>"
 
 
+def _html_path(path: object) -> Path:
+    """``path`` as a :class:`~pathlib.Path` when it names a file as text (``str`` or ``os.PathLike``), else a :class:`RequestError`.
+
+    Examples
+    --------
+    >>> _html_path(b"view.html")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: write_html: expected a file name (str or Path), got bytes
+    """
+    try:
+        name = os.fspath(path) if isinstance(path, (str, os.PathLike)) else None
+    except TypeError:  # an __fspath__ that returns neither str nor bytes
+        name = None
+    if not isinstance(name, str):
+        raise RequestError(f"write_html: expected a file name (str or Path), got {type(path).__name__}")
+    if "\x00" in name:
+        raise RequestError("write_html: expected a file name without a NUL character")
+    return Path(name)
+
+
 def mechanism_view(mechanism: Mechanism, result: Result | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> View:
     """The 3D view of ``mechanism`` at its pose with its end effector's freedoms and constraints.
 
@@ -170,16 +193,24 @@ def mechanism_view(mechanism: Mechanism, result: Result | None = None, *, tol: T
     ----------
     mechanism : Mechanism
     result : Result, optional
-        Its analysis; computed with ``tol`` when not given.
+        Its analysis (of this mechanism at this pose); computed with ``tol``
+        when not given.
     tol : Tolerance
 
     Returns
     -------
     View
+
+    Raises
+    ------
+    RequestError
+        When ``result`` is not a :class:`Result` of ``mechanism`` (the
+        mechanism it analysed differs).
     """
     mechanism = require_mechanism(mechanism, "mechanism_view")
     tol = require_tolerance(tol, "mechanism_view")
-    return poses_view([ViewFrame(mechanism, result if result is not None else analyze(mechanism, tol=tol))])
+    result = require_result_of(mechanism, result, "mechanism_view") if result is not None else analyze(mechanism, tol=tol)
+    return poses_view([ViewFrame(mechanism, result)])
 
 
 MAX_POSES = 200
@@ -207,7 +238,7 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
     ------
     RequestError
         When there is no frame, more than ``max_poses``, or a frame is not a
-        mechanism with its result.
+        mechanism with its result (the result of analysing that mechanism).
 
     Examples
     --------
@@ -226,6 +257,7 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
             f = ViewFrame(*f)
         if not isinstance(f.mechanism, Mechanism) or not isinstance(f.result, Result):
             raise RequestError(f"frame {k}: expected a Mechanism and its Result, got {type(f.mechanism).__name__} and {type(f.result).__name__}")
+        require_result_of(f.mechanism, f.result, f"frame {k}")
         out.append(f)
     if not out:
         raise RequestError("a view needs at least one pose")

@@ -15,9 +15,9 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 
 from ...core.analysis import analyze
-from ...core.model import Mechanism
-from ...core.result import Result
-from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ...core.model import Mechanism, require_mechanism
+from ...core.result import Result, require_same_mechanism
+from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ...core.topology import Bridge, JointNode, Node, Parallel, Series, joints_of
 from .backend import new_figure, require_matplotlib
 from .style import COLORS, LIMB_COLORS
@@ -122,8 +122,8 @@ def plot_graph(
     ----------
     mechanism : Mechanism
     result : Result, optional
-        Its analysis (the tree and the values drawn); computed with ``tol``
-        when not given.
+        Its analysis (the tree and the values drawn; of this mechanism at
+        this pose); computed with ``tol`` when not given.
     figsize : (width, height) in inches, optional
     tol : Tolerance
 
@@ -136,7 +136,13 @@ def plot_graph(
     ------
     PlottingUnavailableError
         When matplotlib is not installed.
+    RequestError
+        When ``result`` analysed another mechanism than ``mechanism``.
     """
+    mechanism = require_mechanism(mechanism, "plot_graph")
+    tol = require_tolerance(tol, "plot_graph")
+    if result is not None:
+        require_same_mechanism(mechanism, result, "plot_graph")
     require_matplotlib()
     from matplotlib.lines import Line2D
 

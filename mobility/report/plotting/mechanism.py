@@ -17,14 +17,16 @@ Every drawn answer carries a ``gid`` (``"mobility:translation:0"``,
 
 from __future__ import annotations
 
+import math
 import textwrap
 from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 
 from ...core.analysis import analyze
-from ...core.model import Mechanism, require_mechanism
-from ...core.result import Result
+from ...core.model import Mechanism, integer_value, require_mechanism
+from ...core.result import Result, require_result_of
+from ...errors import RequestError, clipped
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from .backend import new_figure, require_matplotlib
 from .geometry import SAME_POINT, unique_points
@@ -32,7 +34,7 @@ from .glyphs import arrow, cone, draw_joints, draw_links, rotation_mark, triad
 from .scene import Scene, build_scene
 from .sketch import Sketch, sketch
 from .style import COLORS, JOINT_STYLE
-from .views import choose_views, thinned, view_axes
+from .views import MAX_VIEWS, choose_views, thinned, view_axes
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -58,15 +60,17 @@ def plot_mechanism(
     ----------
     mechanism : Mechanism
     result : Result, optional
-        Its analysis; computed with ``tol`` when not given.
+        Its analysis (of this mechanism at this pose); computed with ``tol``
+        when not given.
     constraints : bool
         Also draw the constraint wrenches on the end effector: force lines
         (red, ``W``) and couples (purple double arrows, ``C``), numbered as in
         the text report.
     views : int or sequence of (elev, azim)
         Number of viewpoints chosen by
-        :func:`~mobility.report.plotting.views.choose_views`, or the
-        viewpoints themselves (degrees).
+        :func:`~mobility.report.plotting.views.choose_views`, from 1 to
+        :data:`~mobility.report.plotting.views.MAX_VIEWS` (a Python or numpy
+        integer), or the viewpoints themselves (degrees).
     labels : bool
         Write joint names (up to 40 joints).
     legend : bool
@@ -84,19 +88,22 @@ def plot_mechanism(
     ------
     PlottingUnavailableError
         When matplotlib is not installed.
+    RequestError
+        When ``result`` is not a :class:`Result` of ``mechanism``, or
+        ``views`` is neither a number of views in range nor a list of
+        ``(elev, azim)`` pairs.
     """
     mechanism = require_mechanism(mechanism, "plot_mechanism")
     tol = require_tolerance(tol, "plot_mechanism")
+    count, given = _views_asked(views)
+    r = require_result_of(mechanism, result, "plot_mechanism") if result is not None else None
     require_matplotlib()
-    r = result if result is not None else analyze(mechanism, tol=tol)
+    r = r if r is not None else analyze(mechanism, tol=tol)
     sk = sketch(mechanism)
     scene = build_scene(r, sk, constraints)
     answer = np.concatenate([sk.end_effector_centre[None], *scene.important_points()])
     important = np.concatenate([sk.points, answer])
-    if isinstance(views, int):
-        view_list = _chosen_views(sk, answer, scene.directions(), views)
-    else:
-        view_list = [(float(e), float(a)) for e, a in views]
+    view_list = given if count is None else _chosen_views(sk, answer, scene.directions(), count)
     if scene.couples:  # place the couples again, now that the views are known
         scene = build_scene(r, sk, constraints, eyes=np.array([view_axes(e, a)[0] for e, a in view_list]))
     extent = np.concatenate([important, sk.points])
@@ -109,6 +116,30 @@ def plot_mechanism(
     unit = f", lengths in {r.length_unit}" if r.length_unit else ""
     _title(fig, title if title is not None else f"{r.name}: end effector {r.dof} DOF ({r.pattern}), mobility {r.mobility}{unit}", legend)
     return fig
+
+
+def _views_asked(views: Any) -> tuple[int | None, list[tuple[float, float]]]:
+    """``(count, [])`` for a number of views to choose, ``(None, viewpoints)`` for the viewpoints given; else a :class:`RequestError`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> _views_asked(np.int64(2)), _views_asked([(30, 40)])
+    ((2, []), (None, [(30.0, 40.0)]))
+    >>> _views_asked(0)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: plot_mechanism: views: expected a number of views from 1 to 3, or a list of (elev, azim) pairs in degrees, got 0
+    """
+    count = integer_value(views)
+    given: list[tuple[float, float]] = []
+    if count is None and not isinstance(views, (str, bytes, bool, np.bool_)):
+        try:
+            given = [(float(e), float(a)) for e, a in views]
+        except (TypeError, ValueError):  # not iterable, not pairs, not numbers
+            given = []
+    if (count is not None and 1 <= count <= MAX_VIEWS) or (given and all(math.isfinite(e) and math.isfinite(a) for e, a in given)):
+        return count, given
+    raise RequestError(f"plot_mechanism: views: expected a number of views from 1 to {MAX_VIEWS}, or a list of (elev, azim) pairs in degrees, got {clipped(repr(views))}")
 
 
 def _chosen_views(sk: Sketch, answer: np.ndarray, directions: np.ndarray, count: int) -> list[tuple[float, float]]:

@@ -32,7 +32,7 @@ from typing import NamedTuple, Sequence
 
 import numpy as np
 
-from ...core.result import Result, ScrewAxis
+from ...core.result import ReadOnlyArrays, Result, ScrewAxis
 from .geometry import perpendiculars, segment_samples
 from .sketch import Sketch
 
@@ -66,7 +66,7 @@ class ForceGlyph(NamedTuple):
 
 
 @dataclass(frozen=True, eq=False)
-class Scene:
+class Scene(ReadOnlyArrays):
     """The glyphs of the end effector's answer, in the global frame and the sketch's drawing units."""
 
     translations: tuple[Segment, ...]

@@ -37,6 +37,7 @@ import numpy as np
 
 from ...core.joint_screws import joint_screws
 from ...core.model import Mechanism
+from ...core.result import ReadOnlyArrays
 from ...core.tolerance import DEFAULT_TOLERANCE, binary_scale
 from ...errors import MechanismFileError, clipped
 
@@ -99,7 +100,7 @@ ROUND_OFF = DEFAULT_TOLERANCE.round_off
 
 
 @dataclass(frozen=True, eq=False)
-class Sketch:
+class Sketch(ReadOnlyArrays):
     """Where each joint is drawn, and the size of the scene.
 
     Every length is in drawing units: the file's lengths times ``scale``.

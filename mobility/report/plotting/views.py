@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["view_axes", "view_scores", "thinned", "choose_views", "MAX_CONTEXT_POINTS", "PAIR_BLOCK"]
+__all__ = ["view_axes", "view_scores", "thinned", "choose_views", "MAX_CONTEXT_POINTS", "PAIR_BLOCK", "MAX_VIEWS"]
 
 MAX_CONTEXT_POINTS = 300
 """Context points (joints) scored at most; more are thinned evenly (a picture of thousands of joints
@@ -26,6 +26,10 @@ cannot keep them all apart anyway, and the pairs grow as the square of the point
 
 PAIR_BLOCK = 4096
 """Pairs of points scored at a time (bounds the memory of scoring to this many pairs times the views)."""
+
+MAX_VIEWS = 3
+"""The most views :func:`choose_views` always finds at its default separation: whatever the scores, its
+grid of candidates holds at least three views 60 degrees apart from one another (a fourth may not exist)."""
 
 
 def view_axes(elev: Any, azim: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
