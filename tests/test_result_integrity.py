@@ -265,3 +265,20 @@ def test_check_results_pickle_and_compare_as_the_library_page_says():
     a, b = (check_file(str(MECHANISMS / "four_bar.yaml")) for _ in range(2))
     assert a != b and a.result != b.result  # by identity
     assert a.comparisons == b.comparisons and a.result.margin == b.result.margin and a.result.mechanism == b.result.mechanism  # by value
+
+
+def test_what_a_mechanism_computes_of_itself_is_read_only_and_not_pickled():
+    # the joint twists' centre and reference are shared by every later analysis of the mechanism:
+    # a write through r.detail.screws would have changed them all
+    m = mobility.load(ROOT / "mechanisms" / "3prs.yaml")
+    before = mobility.analyze(m).to_dict()
+    from mobility.core.joint_screws import joint_screws
+
+    screws = joint_screws(m)
+    for array in (screws.normalisation.centre, screws.reference, screws.offsets, screws.reference_in_world, *screws.columns):
+        with pytest.raises(ValueError, match="read-only"):
+            array[...] = 0
+    again = pickle.loads(pickle.dumps(m))
+    assert again == m and "_mobility_cache" not in vars(again) and "freedom_table" not in vars(again)
+    assert not again.freedom_table.axes.flags.writeable  # recomputed read-only, not unpickled writable
+    assert mobility.analyze(again).to_dict() == before

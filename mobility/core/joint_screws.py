@@ -212,13 +212,17 @@ def _build(mechanism: Mechanism) -> JointScrews:
     tw = np.concatenate([np.where(p, 0.0, axes), np.where(p, axes, moment)], axis=1).T
     tw /= np.sqrt(np.einsum("ij,ij->j", tw, tw))  # unit columns
     tw.setflags(write=False)
+    centre.setflags(write=False)  # shared by every later analysis of this mechanism: nobody may write to it
     norm = Normalisation(centre, length)
     ee = table.end_effector_points
     reference = ((ee * scale).sum(axis=0) / len(ee) - centre_s) / length_s if len(ee) else np.zeros(3)
+    reference.setflags(write=False)
     offsets = table.offsets
     columns = tuple(tw[:, offsets[j] : offsets[j + 1]] for j in range(len(offsets) - 1))
     with np.errstate(over="ignore"):  # norm.point_to_world, without overflow: the centroid of finite points is
         # finite, so a coordinate past the largest float is one that rounding took there: it is that float
         reference_in_world = np.clip((centre_s + length_s * reference) / scale, -sys.float_info.max, sys.float_info.max)
     reference_in_world.setflags(write=False)
-    return JointScrews(tw, np.array(offsets), norm, reference, columns, reference_in_world)
+    offsets_array = np.array(offsets)
+    offsets_array.setflags(write=False)
+    return JointScrews(tw, offsets_array, norm, reference, columns, reference_in_world)

@@ -38,7 +38,7 @@ import numbers
 import operator
 import re
 import sys
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
 from types import MappingProxyType
 from typing import Any, Callable, Iterable, Mapping
@@ -833,6 +833,10 @@ class Mechanism:
             a.setflags(write=False)
         p, ax, pt, h, loc, eep, lj, ll = arrays
         return FreedomTable(p, ax, pt, h, tuple(offsets), loc, eep, lj, ll)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The fields only: what a mechanism computed of itself (its freedom table, joint twists...) is computed again after unpickling, read-only."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
 
     def joint_key(self, index: int, key: str = "") -> tuple[str, int | None]:
         """The key path of joint ``index`` (with ``key`` below it, such as ``"point"``) as its file wrote it, and its line.
