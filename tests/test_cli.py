@@ -487,3 +487,12 @@ def test_debug_may_follow_the_command_as_the_internal_error_message_suggests(mon
     for argv in (["analyze", four_bar, "--debug"], ["--debug", "analyze", four_bar]):
         assert main(argv) == 3
         assert "Traceback (most recent call last)" in capsys.readouterr().err
+
+
+def test_characters_the_pictures_font_lacks_are_one_note_not_a_page_of_warnings(tmp_path, capsys):
+    path = tmp_path / "uni.yaml"
+    path.write_text((ROOT / "mechanisms" / "four_bar.yaml").read_text(encoding="utf-8").replace("name: A,", "name: 连杆,"), encoding="utf-8")
+    assert main(["plot", str(path), "-o", str(tmp_path / "uni.png")]) == 0
+    out, err = capsys.readouterr()
+    assert out.startswith("wrote ") and (tmp_path / "uni.png").stat().st_size > 0
+    assert err == "mobility: note: the picture's font has no glyph for 2 character(s) of the names (连杆): drawn as boxes\n"

@@ -34,6 +34,7 @@ import os
 import pkgutil
 import sys
 import traceback
+import warnings
 from typing import Any, Sequence
 
 from ..errors import MobilityError, RequestError, one_line
@@ -186,8 +187,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     argv = list(sys.argv[1:] if argv is None else argv)
     _escape_what_cannot_be_encoded()
-    with _stderr_or_nothing():
+    with _stderr_or_nothing(), warnings.catch_warnings():
+        warnings.showwarning = _warning_as_a_note
         return _run(argv)
+
+
+def _warning_as_a_note(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: str | None = None) -> None:
+    """A Python warning (a library's: matplotlib, numpy...) shown as one line, ``mobility: note: ...``, not with its source line."""
+    print(f"mobility: note: {one_line(str(message))}", file=sys.stderr)
 
 
 def _run(argv: list[str]) -> int:

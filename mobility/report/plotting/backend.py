@@ -10,8 +10,11 @@ state); one left as a notebook cell's value shows itself as PNG.
 from __future__ import annotations
 
 import io
+import re
+import warnings
+from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Iterator
 
 from ...errors import PlotFormatError, PlottingUnavailableError, RequestError
 
@@ -63,7 +66,8 @@ def _figure_class() -> type:
 
             def _repr_png_(self) -> bytes:
                 buf = io.BytesIO()
-                self.savefig(buf, format="png", dpi=90, facecolor="white")
+                with glyphs_summarised():
+                    self.savefig(buf, format="png", dpi=90, facecolor="white")
                 return buf.getvalue()
 
         _FIGURE_CLASS.append(MobilityFigure)
@@ -126,6 +130,31 @@ def picture_path(path: str | Path, what: str = "") -> Path:
     return p
 
 
+_MISSING_GLYPH = re.compile(r"Glyph (\d+) .*missing from (?:current )?font")
+
+
+@contextmanager
+def glyphs_summarised() -> Iterator[None]:
+    """Around a drawing: matplotlib's warning for each character its font lacks (a name in Chinese, say) becomes one warning naming them all.
+
+    matplotlib warns once per glyph, with a line of source each; the
+    characters are drawn as boxes.  Other warnings pass through unchanged.
+    """
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        yield
+    missing = []
+    for w in caught:
+        found = _MISSING_GLYPH.search(str(w.message))
+        if found:
+            missing.append(chr(int(found[1])))
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    if missing:
+        shown = "".join(dict.fromkeys(missing))
+        warnings.warn(f"the picture's font has no glyph for {len(shown)} character(s) of the names ({shown}): drawn as boxes", UserWarning, stacklevel=3)
+
+
 def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background; returns the path.
 
@@ -137,5 +166,6 @@ def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     if not callable(getattr(fig, "savefig", None)):
         raise RequestError(f"save_figure: expected a matplotlib Figure, got {type(fig).__name__}")
     p = picture_path(path)
-    fig.savefig(p, dpi=dpi, facecolor="white")
+    with glyphs_summarised():
+        fig.savefig(p, dpi=dpi, facecolor="white")
     return p
