@@ -462,7 +462,8 @@ def test_every_commands_help_lists_its_exit_statuses(command, status, capsys):
 def test_actuation_options_that_would_be_ignored_are_refused(capsys):
     rps = str(ROOT / "mechanisms" / "actuation_3rps.yaml")
     for command, said in ((["--k", "2"], "--mode and --k choose the combinations of --enumerate"), (["--mode", "any"], "--mode and --k choose"),
-                          (["--enumerate", "--inputs", "P1,P2,P3"], "--inputs checks one choice and --enumerate every combination")):
+                          (["--enumerate", "--inputs", "P1,P2,P3"], "--inputs checks one choice and --enumerate every combination"),
+                          (["--threshold", "0.1"], "--threshold applies to flexure documents")):
         assert main(["actuation", rps, *command]) == 2  # they were silently ignored
         assert capsys.readouterr().err.startswith(f"mobility: {said}")
 

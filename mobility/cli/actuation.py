@@ -90,6 +90,8 @@ def run(args: argparse.Namespace) -> int:
                 raise RequestError(f"{', '.join(OPTION_SPELLING[k] for k in given)}: options of robot description files (MJCF, URDF), not of the flexure document {args.file}")
             flexure = loads_flexure(text, file=args.file)
             return _run_flexure(args, flexure, names_from(args.inputs, [a.name for a in flexure.actuators]), tol)
+    if args.threshold is not None:  # it would be ignored: a rigid mechanism has no compliance
+        raise RequestError(f"--threshold applies to flexure documents (their compliance), not to the rigid mechanism {args.file}")
     mechanism = load_mechanism(args)
     names = names_from(args.inputs, [j.name for j in mechanism.joints])
     if args.enumerate:
