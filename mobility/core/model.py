@@ -41,7 +41,7 @@ import sys
 from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
 from types import MappingProxyType
-from typing import Any, Callable, Iterable, Mapping
+from typing import Any, Callable, Iterable, Mapping, TypeVar
 
 import numpy as np
 
@@ -59,6 +59,7 @@ __all__ = [
     "Expected",
     "Mechanism",
     "require_mechanism",
+    "require_instance",
     "require_vector",
     "integer_value",
     "real_value",
@@ -73,6 +74,8 @@ __all__ = [
     "require_ground_and_end_effector",
     "WORLD",
 ]
+
+_T = TypeVar("_T")
 
 _FAR = sys.float_info.max / 1e8
 """Coordinates below this cannot overflow when a few are added (the bound of :meth:`Mechanism._frames_cannot_overflow`)."""
@@ -916,8 +919,20 @@ def require_mechanism(value: object, caller: str) -> Mechanism:
     Traceback (most recent call last):
     mobility.errors.RequestError: analyze: expected a Mechanism (from mobility.load or built in code), got str
     """
-    if not isinstance(value, Mechanism):
-        raise RequestError(f"{caller}: expected a Mechanism (from mobility.load or built in code), got {type(value).__name__}")
+    return require_instance(value, Mechanism, caller, "mobility.load")
+
+
+def require_instance(value: object, cls: type[_T], caller: str, reader: str) -> _T:
+    """``value`` when it is a ``cls``, else a :class:`~mobility.errors.RequestError` naming ``caller`` and where a ``cls`` comes from (``reader``).
+
+    Examples
+    --------
+    >>> require_instance(3, str, "label", "str()")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: label: expected a str (from str() or built in code), got int
+    """
+    if not isinstance(value, cls):
+        raise RequestError(f"{caller}: expected a {cls.__name__} (from {reader} or built in code), got {type(value).__name__}")
     return value
 
 

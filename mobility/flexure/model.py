@@ -30,9 +30,9 @@ from typing import Any
 import numpy as np
 
 from ..core.joint_screws import Normalisation
-from ..core.model import Expected, require_ground_and_end_effector, require_vector, require_graph_names, require_unique_names
+from ..core.model import Expected, require_ground_and_end_effector, require_instance, require_vector, require_graph_names, require_unique_names
 from ..core.tolerance import characteristic_scale
-from ..errors import MechanismError, RequestError, name_list
+from ..errors import MechanismError, name_list
 
 __all__ = ["LENGTH_UNITS", "MODULUS_UNITS", "Material", "Rod", "ForceLine", "FlexureMechanism", "require_flexure"]
 
@@ -278,6 +278,4 @@ def require_flexure(value: object, caller: str) -> FlexureMechanism:
     Traceback (most recent call last):
     mobility.errors.RequestError: flexure_spaces: expected a FlexureMechanism (from mobility.load_flexure or built in code), got str
     """
-    if not isinstance(value, FlexureMechanism):
-        raise RequestError(f"{caller}: expected a FlexureMechanism (from mobility.load_flexure or built in code), got {type(value).__name__}")
-    return value
+    return require_instance(value, FlexureMechanism, caller, "mobility.load_flexure")
