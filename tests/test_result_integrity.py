@@ -24,7 +24,8 @@ matplotlib.use("Agg")
 
 import mobility  # noqa: E402
 from mobility.actuation import check_actuation  # noqa: E402
-from mobility.core.result import ReadOnlyArrays, ScrewAxis, read_only  # noqa: E402
+from mobility.core.frozen import ReadOnlyArrays, read_only  # noqa: E402
+from mobility.core.result import ScrewAxis  # noqa: E402
 from mobility.errors import RequestError  # noqa: E402
 from mobility.finite import finite_mobility  # noqa: E402
 from mobility.report.plotting import plot_graph, plot_mechanism  # noqa: E402
@@ -282,3 +283,154 @@ def test_what_a_mechanism_computes_of_itself_is_read_only_and_not_pickled():
     assert again == m and "_mobility_cache" not in vars(again) and "freedom_table" not in vars(again)
     assert not again.freedom_table.axes.flags.writeable  # recomputed read-only, not unpickled writable
     assert mobility.analyze(again).to_dict() == before
+
+
+# -- 5. the loop-closure route, the Jacobian, flexure spaces and the actuation assessment -----------------
+
+
+def _new_results():
+    """One of each result class that derives from ReadOnlyArrays since the machinery moved to core/frozen, from a real computation."""
+    from mobility.actuation import RigidPose
+    from mobility.actuation.assessment import assess_wrenches
+
+    rps = _load("actuation_3rps.yaml")
+    pose = RigidPose(rps)
+    inputs = [pose.input_wrench(i, 0, j.name) for i, j in enumerate(rps.joints) if j.actuated]
+    three_rod = mobility.load_flexure(ROOT / "examples" / "flexure" / "three_rod.yaml")
+    return {
+        "LoopClosure": mobility.loop_closure(_load("3prs.yaml")),
+        "LoopClosure-chords": mobility.loop_closure(_load("3prs.yaml"), method="chords"),
+        "JacobianResult": mobility.jacobian(_load("metrom.yaml")),
+        "FlexureSpaces": mobility.flexure_spaces(three_rod),
+        "EndEffectorSpaces": pose.spaces,
+        "InputWrench": inputs[0],
+        # two of the three legs driven: actuation-singular, one uncontrolled direction
+        "Assessment": assess_wrenches([i.wrench for i in inputs[:2]], [i.rate for i in inputs[:2]], pose.spaces.twists, pose.spaces.constraints),
+    }
+
+
+NEW_KINDS = ["LoopClosure", "LoopClosure-chords", "JacobianResult", "FlexureSpaces", "EndEffectorSpaces", "InputWrench", "Assessment"]
+
+_NAMED_ARRAYS = {
+    "LoopClosure": lambda r: (r.end_effector_twists, r.end_effector_map, r.joint_rates, r.world_twists, r.jacobian),
+    "JacobianResult": lambda r: (r.matrix, r.actuation_wrenches, r.constraint_wrenches, r.platform_twists, r.twist_map, *r.limb_twists,
+                                 r.transform, r.finite_screw),
+    "FlexureSpaces": lambda r: (r.eigenvalues, r.freedom_translations, r.freedom_twists, r.constraint_couples, r.constraint_wrenches,
+                                r.compliance, r.freedom_rotations[0].point, r.constraint_forces[0].axis,
+                                r.normalised.twists, r.normalised.constraints, r.normalised.reference),
+    "EndEffectorSpaces": lambda r: (r.twists, r.constraints, r.reference),
+    "InputWrench": lambda r: (r.wrench,),
+    "Assessment": lambda r: (r.uncontrolled,),
+}
+
+
+def _named_arrays(kind: str, r: object) -> tuple[np.ndarray, ...]:
+    """The arrays a user reads of a result of ``kind``, computed ones included."""
+    return _NAMED_ARRAYS[kind.split("-")[0]](r)
+
+
+def _coordinates(r: object) -> tuple[np.ndarray, ...]:
+    """The arrays of the plain objects a result keeps to write its answers out (joint screws, a normalisation)."""
+    if isinstance(r, mobility.LoopClosure):
+        s = r.screws
+        return (s.twists, s.offsets, s.reference, *s.columns, s.reference_in_world, s.normalisation.centre)
+    spaces = getattr(r, "normalised", r)
+    return (spaces.normalisation.centre,) if hasattr(spaces, "normalisation") else ()
+
+
+def _cannot_be_written(arrays) -> None:
+    for array in arrays:
+        assert isinstance(array, np.ndarray)
+        with pytest.raises(ValueError, match="read-only"):
+            array[...] = 0.0
+
+
+@pytest.fixture(scope="module")
+def new_results():
+    return _new_results()
+
+
+@pytest.mark.parametrize("kind", NEW_KINDS)
+def test_no_array_of_a_loop_closure_jacobian_flexure_space_or_assessment_can_be_written(new_results, kind):
+    r = new_results[kind]
+    _cannot_be_written(_named_arrays(kind, r))
+    _cannot_be_written(_coordinates(r))
+    assert _writable(r) == []
+    assert len(list(_arrays(r))) >= len(_named_arrays(kind, r))
+
+
+@pytest.mark.parametrize("kind", NEW_KINDS)
+@pytest.mark.parametrize("restore", [lambda r: pickle.loads(pickle.dumps(r)), copy.deepcopy, copy.copy], ids=["pickle", "deepcopy", "copy"])
+def test_a_loop_closure_jacobian_flexure_space_or_assessment_pickles_and_copies_with_read_only_arrays(new_results, kind, restore):
+    r = new_results[kind]
+    list(_arrays(r))  # every lazy part computed before the round trip
+    again = restore(r)
+    assert all(np.array_equal(a, b) for a, b in zip(_named_arrays(kind, again), _named_arrays(kind, r), strict=True))
+    _cannot_be_written(_named_arrays(kind, again))
+    _cannot_be_written(_coordinates(again))
+    assert _writable(again) == []
+    restored = _coordinates(again)  # new arrays (or, for a shallow copy, the very ones): nothing can write into them
+    assert [a.flags.writeable or (isinstance(a.base, np.ndarray) and a.base.flags.writeable) for a in restored] == [False] * len(restored)
+    if hasattr(r, "to_dict"):
+        assert again.to_dict() == r.to_dict()
+
+
+def test_a_flexure_spaces_normalisation_is_its_own_read_only_copy():
+    three_rod = mobility.load_flexure(ROOT / "examples" / "flexure" / "three_rod.yaml")
+    spaces = mobility.flexure_spaces(three_rod)
+    mine = three_rod.normalisation()
+    assert np.array_equal(spaces.normalised.normalisation.centre, mine.centre) and spaces.normalised.normalisation.length == mine.length
+    from mobility.actuation.assessment import EndEffectorSpaces
+
+    given = EndEffectorSpaces(np.eye(6)[:, [3]], np.eye(6)[:, 1:], mine, np.zeros(3))
+    mine.centre[0] = 5.0  # the caller's coordinates stay the caller's
+    assert given.normalisation.centre[0] != 5.0 and not given.normalisation.centre.flags.writeable and mine.centre.flags.writeable
+    assert EndEffectorSpaces(given.twists, given.constraints, given.normalisation, given.reference).normalisation is given.normalisation
+
+
+def test_the_loop_closure_jacobian_flexure_and_assessment_classes_hold_read_only_arrays():
+    from mobility.actuation.assessment import Assessment, EndEffectorSpaces, InputWrench
+    from mobility.core.loop_closure import LoopClosure
+    from mobility.flexure.spaces import FlexureSpaces
+    from mobility.jacobians.jacobian import JacobianResult
+
+    for cls in (LoopClosure, JacobianResult, FlexureSpaces, EndEffectorSpaces, InputWrench, Assessment):
+        assert issubclass(cls, ReadOnlyArrays), cls
+    for cls in (JacobianResult, FlexureSpaces, InputWrench, Assessment):
+        assert inspect.getattr_static(cls, "__setstate__") is ReadOnlyArrays.__setstate__, cls
+
+
+def _arrays_outside_results(obj: object, path: str = "result"):
+    """The ndarrays reachable from ``obj`` through tuples, lists, dicts and dataclasses that are not ReadOnlyArrays results."""
+    import dataclasses
+
+    if isinstance(obj, np.ndarray):
+        yield path
+    elif isinstance(obj, (tuple, list)):
+        for i, x in enumerate(obj):
+            yield from _arrays_outside_results(x, f"{path}[{i}]")
+    elif isinstance(obj, dict):
+        for k, x in obj.items():
+            yield from _arrays_outside_results(x, f"{path}[{k!r}]")
+    elif dataclasses.is_dataclass(obj) and not isinstance(obj, (type, ReadOnlyArrays)):
+        for f in dataclasses.fields(obj):
+            yield from _arrays_outside_results(getattr(obj, f.name), f"{path}.{f.name}")
+
+
+def test_the_results_that_are_not_read_only_arrays_hold_no_array():
+    # enumerations (rigid and flexure), synthesis and check results: numbers, names and tuples only, or ReadOnlyArrays results
+    from mobility.flexure.actuators import enumerate_force_lines
+    from mobility.testing.check import check_paths
+    from mobility.testing.flexure_check import flexure_document
+
+    three_rod = mobility.load_flexure(ROOT / "examples" / "flexure" / "three_rod.yaml")
+    rps = _load("actuation_3rps.yaml")
+    found = {
+        "enumerate_actuations": mobility.enumerate_actuations(rps),
+        "enumerate_force_lines": enumerate_force_lines(three_rod),
+        "synthesize": mobility.synthesize(mobility.named_pattern("2T3R"), joints=3, verify_samples=1),
+        "check_paths": check_paths([str(MECHANISMS / "four_bar.yaml"), str(ROOT / "examples" / "flexure" / "three_rod.yaml")], others=[flexure_document]),
+    }
+    for name, r in found.items():
+        assert list(_arrays_outside_results(r)) == [], name
+    assert found["check_paths"].results[1].kind == "flexure" and found["check_paths"].results[1].found is not None

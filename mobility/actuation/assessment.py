@@ -54,12 +54,13 @@ force along ``x``.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 
 from ..core.analysis import screw_system_in_frame
 from ..errors import AnalysisError
+from ..core.frozen import ReadOnlyArrays, read_only
 from ..core.joint_screws import Normalisation
 from ..core.linalg import singular_values, svd
 from ..core.result import ScrewAxis
@@ -71,8 +72,11 @@ __all__ = ["EndEffectorSpaces", "InputWrench", "Assessment", "assess_wrenches", 
 
 
 @dataclass(frozen=True, eq=False)
-class EndEffectorSpaces:
+class EndEffectorSpaces(ReadOnlyArrays):
     """The end effector's twist and constraint systems, normalised, with the coordinates to report them in.
+
+    Its arrays (the normalisation's centre too) are read-only, also after a
+    pickle round trip or a deep copy: a writable one given is copied.
 
     Attributes
     ----------
@@ -92,6 +96,20 @@ class EndEffectorSpaces:
     normalisation: Normalisation
     reference: np.ndarray
 
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        norm = self.normalisation
+        if isinstance(norm, Normalisation):
+            centre = read_only(norm.centre)
+            if centre is not norm.centre:  # one the caller can still write into: these coordinates get their own
+                object.__setattr__(self, "normalisation", Normalisation(centre, norm.length))
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        super().__setstate__(state)
+        norm = state.get("normalisation")
+        if isinstance(norm, Normalisation):  # unpickled (or deep-copied) with the rest: a new array, frozen in place
+            read_only(norm.centre, copy=False)
+
     @property
     def dof(self) -> int:
         """Dimension of the twist system."""
@@ -99,8 +117,8 @@ class EndEffectorSpaces:
 
 
 @dataclass(frozen=True, eq=False)
-class InputWrench:
-    """One input and its actuation wrench, before assessment.
+class InputWrench(ReadOnlyArrays):
+    """One input and its actuation wrench, before assessment (``wrench`` read-only, a copy of a writable one given).
 
     Attributes
     ----------
@@ -126,8 +144,8 @@ class InputWrench:
 
 
 @dataclass(frozen=True, eq=False)
-class Assessment:
-    """The verdict on a set of actuation wrenches (normalised coordinates).
+class Assessment(ReadOnlyArrays):
+    """The verdict on a set of actuation wrenches (normalised coordinates; ``uncontrolled`` read-only).
 
     Attributes
     ----------
@@ -185,6 +203,7 @@ def assess_wrenches(
     else:
         decision = RankDecision(0)
         uncontrolled = np.eye(6)
+    read_only(uncontrolled, copy=False)  # computed here for the assessment alone: frozen in place, not copied
     in_constraint = tuple(w is None or _lies_in(w, constraints, tol) for w in wrenches)
     n = len(wrenches)
     if decision.rank < 6:

@@ -21,7 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from ..core.result import ReadOnlyArrays, ScrewAxis
+from ..core.frozen import ReadOnlyArrays
+from ..core.result import ScrewAxis
 from ..core.tolerance import RankDecision, clean_numbers
 
 __all__ = [

@@ -3,8 +3,9 @@
 Everything a feature builds on, and nothing that knows of files or features.
 Modules, in data-flow order (a module imports only those before it):
 
-``tolerance``, ``transforms``, ``linalg``
-    the one tolerance policy; rigid transforms; the SVD.
+``tolerance``, ``transforms``, ``frozen``, ``linalg``
+    the one tolerance policy; rigid transforms; read-only arrays for frozen
+    results (also after pickling); the SVD.
 ``screws``, ``finite_screws``
     instantaneous screws (twists ``[w; v]``, wrenches ``[f; m]``, the adjoint)
     and finite screws.

@@ -39,11 +39,12 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
+from typing import Any
 
 import numpy as np
 
 from ..errors import RequestError
+from .frozen import ReadOnlyArrays, read_only, read_only_cached_property
 from .joint_screws import JointScrews, joint_screws
 from .linalg import svd
 from .model import Mechanism, require_mechanism
@@ -64,8 +65,11 @@ Terms = tuple[tuple[int, float], ...]
 
 
 @dataclass(frozen=True)
-class LoopClosure:
+class LoopClosure(ReadOnlyArrays):
     """Answers of the loop-closure route.
+
+    Its arrays (those of ``screws`` too) are read-only, also after a pickle
+    round trip or a deep copy.
 
     Attributes
     ----------
@@ -99,7 +103,7 @@ class LoopClosure:
     equations: tuple[Terms, ...] = field(repr=False)
     screws: JointScrews = field(repr=False)
 
-    @cached_property
+    @read_only_cached_property
     def world_twists(self) -> np.ndarray:
         """``end_effector_twists`` in the global frame and the file's length unit, as rows ``[w; v]`` like :attr:`mobility.Result.twists` (a basis, not orthonormal there).
 
@@ -114,10 +118,16 @@ class LoopClosure:
         """
         return self.screws.normalisation.to_world(self.end_effector_twists).T
 
-    @cached_property
+    @read_only_cached_property
     def jacobian(self) -> np.ndarray:
         """The loop-closure equations ``K`` as one dense matrix (6 rows per loop)."""
         return _dense(self.equations, self.screws)
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        super().__setstate__(state)
+        screws = state.get("screws")
+        if isinstance(screws, JointScrews):  # unpickled (or deep-copied) with the rest: new arrays, frozen in place
+            read_only((screws.twists, screws.offsets, screws.reference, screws.columns, screws.reference_in_world, screws.normalisation.centre), copy=False)
 
 
 def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, method: str = "auto") -> LoopClosure:

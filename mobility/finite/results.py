@@ -14,7 +14,8 @@ from typing import Any
 
 import numpy as np
 
-from ..core.result import Margin, ReadOnlyArrays, Result
+from ..core.frozen import ReadOnlyArrays
+from ..core.result import Margin, Result
 from ..core.tolerance import DEFAULT_TOLERANCE
 
 __all__ = ["VERDICTS", "Probe", "Branch", "SecondOrder", "FiniteMobility"]

@@ -31,6 +31,7 @@ import numpy as np
 
 from ..actuation import EndEffectorSpaces
 from ..core.analysis import screw_system_in_frame
+from ..core.frozen import ReadOnlyArrays
 from ..core.result import ScrewAxis
 from ..core.screws import SWAP_ROWS, motion_pattern
 from ..core.model import real_value
@@ -49,8 +50,11 @@ CLEAR_GAP = 10.0
 
 
 @dataclass(frozen=True, eq=False)
-class FlexureSpaces:
+class FlexureSpaces(ReadOnlyArrays):
     """Freedom and constraint spaces of a flexure mechanism's end effector.
+
+    Its arrays (those of ``normalised`` too) are read-only, also after a
+    pickle round trip or a deep copy.
 
     Attributes
     ----------

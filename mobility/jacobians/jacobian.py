@@ -64,6 +64,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..core.finite_screws import Limb
+from ..core.frozen import ReadOnlyArrays
 from ..core.joint_screws import Normalisation
 from ..core.model import Mechanism, require_mechanism
 from ..core.screws import SWAP, adjoint, reciprocal_product, reciprocal_system, span_and_reciprocal
@@ -78,8 +79,11 @@ __all__ = ["JacobianResult", "jacobian"]
 
 
 @dataclass(frozen=True, eq=False)
-class JacobianResult:
+class JacobianResult(ReadOnlyArrays):
     """The Jacobian of a parallel mechanism at one pose (global frame, the mechanism's units).
+
+    Its arrays are read-only (copies of writable ones given), also after a
+    pickle round trip or a deep copy.
 
     Attributes
     ----------

@@ -44,9 +44,9 @@ from typing import Any
 import numpy as np
 
 from ..actuation import SINGULAR
+from ..core.frozen import ReadOnlyArrays, read_only, read_only_cached_property
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
-from ..core.result import ReadOnlyArrays, read_only, read_only_cached_property
 from ..core.tolerance import DEFAULT_TOLERANCE, MARGIN_DIP, Tolerance, clean_numbers
 from ..errors import RequestError, clipped
 from .grid import SweepAxis

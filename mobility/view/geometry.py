@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.result import ReadOnlyArrays
+from ..core.frozen import ReadOnlyArrays
 from ..report.plotting.geometry import FLAT, helix, perpendiculars, plate_ring
 
 __all__ = ["Mesh", "cone", "pieces", "arc", "helix", "plate"]

@@ -43,7 +43,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.model import JOINT_TYPES, Mechanism
-from ..core.result import ReadOnlyArrays, Result
+from ..core.frozen import ReadOnlyArrays
+from ..core.result import Result
 from ..report.plotting import COLORS, choose_views, sketch
 from ..report.plotting.geometry import SAME_POINT, perpendiculars, segment_samples, unique_points
 from .describe import couple_text, force_text, joint_text, plotly_text, rotation_text, translation_text

@@ -32,7 +32,8 @@ from typing import NamedTuple, Sequence
 
 import numpy as np
 
-from ...core.result import ReadOnlyArrays, Result, ScrewAxis
+from ...core.frozen import ReadOnlyArrays
+from ...core.result import Result, ScrewAxis
 from .geometry import perpendiculars, segment_samples
 from .sketch import Sketch
 

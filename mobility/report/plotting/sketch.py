@@ -35,9 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...core.frozen import ReadOnlyArrays
 from ...core.joint_screws import joint_screws
 from ...core.model import Mechanism
-from ...core.result import ReadOnlyArrays
 from ...core.tolerance import DEFAULT_TOLERANCE, binary_scale
 from ...errors import MechanismFileError, clipped
 
