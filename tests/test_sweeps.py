@@ -983,3 +983,39 @@ def test_a_sweep_does_not_depend_on_its_chunk_size():
         alone = bk.evaluate(q[i : i + 1], np.arange(6))
         assert np.array_equal(alone.values[:, 0], together.values[:, i])
         assert np.array_equal(alone.jacobian()[:, :, 0], together.jacobian()[:, :, i])
+
+
+# -- seams: a full turn that comes back on another pose ---------------------------------------------
+
+
+def _point(result: SweepResult, index: int, joint: str) -> np.ndarray:
+    """A joint's point at a grid point, from the pose rebuilt as a mechanism (the independent route)."""
+    return np.array(next(j.point for j in result.mechanism_at(index).world_joints if j.name == joint))
+
+
+def test_a_full_turn_whose_free_joint_drifts_is_reported_as_a_seam():
+    # the 5R driven by one crank of its two: A2 follows the solver, and after a turn of A1 it is elsewhere;
+    # the table held two neighbouring poses (359 and 0 degrees) that no small motion joins, and said nothing
+    r = sweep(mobility.load(MECHANISMS / "planar_5r.yaml"), ["A1=0:360:361"])
+    assert r.seams.tolist() == [[359, 0]]
+    jumps = [np.linalg.norm(_point(r, i + 1, "P") - _point(r, i, "P")) for i in (357, 358)]
+    assert max(jumps) < 20.0 and np.linalg.norm(_point(r, 0, "P") - _point(r, 359, "P")) > 100.0  # mm: a step, then a jump
+    assert "seams: at 1 pair(s) of neighbouring poses a full turn comes back on another pose" in sweep_summary(r)
+    assert "    A1=359 deg -> A1=0 deg" in sweep_summary(r)
+    assert json.loads(sweep_json(r))["seams"] == [{"from": 359, "to": 0}]
+
+
+def test_a_full_turn_that_reaches_another_assembly_is_a_seam_at_that_line_only():
+    # both cranks driven, the second round a full turn: at A1 = 300 the distal links flip to their other assembly
+    r = sweep(mobility.load(MECHANISMS / "planar_5r.yaml"), ["A1=0:360:73", "A2=0:360:37"])
+    (a, b), = r.seams.tolist()
+    assert r.values[a].tolist() == [300.0, 350.0] and r.values[b].tolist() == [300.0, 0.0]
+    assert abs(_point(r, a, "P")[1] - _point(r, b, "P")[1]) > 300.0  # the distal joint below the base line, then above it
+    assert r.changes.size == 0 or not any({int(x), int(y)} == {a, b} for x, y, _ in r.changes)  # the answers alone did not show it
+
+
+@pytest.mark.parametrize("name, vary", [("four_bar.yaml", "A=0:360:361"), ("parallelogram.yaml", "O1=0:360:361"),
+                                        ("slider_crank.yaml", "A=-180:180:361"), ("four_bar.yaml", "A=0:350:36")])
+def test_a_full_turn_that_comes_back_has_no_seam(name, vary):
+    r = sweep(mobility.load(MECHANISMS / name), [vary])
+    assert r.seams.shape == (0, 2) and "seams" not in sweep_summary(r)

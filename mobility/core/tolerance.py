@@ -66,6 +66,7 @@ __all__ = [
     "decide_ranks",
     "characteristic_scales",
     "SAME_GRID_VALUE",
+    "SEAM_GAP",
     "SWEEP_REACH",
 ]
 
@@ -217,6 +218,16 @@ reduced by whole turns: ``-180`` and ``180`` degrees, or ``0`` and ``360``,
 are one joint state of an R joint.  Used for ties (the value nearest the
 file's pose) and for angles congruent modulo a turn
 (:mod:`mobility.sweeps.walks`).
+"""
+
+SEAM_GAP = 1e-3
+"""Two solves of one pose farther apart than this are two poses (a seam of a sweep: :mod:`mobility.sweeps.seams`).
+
+The largest difference of the links' displacements, rotation entries and
+translations over the characteristic length.  Newton's poses of one assembly
+agree to round-off, or to about the square root of the closure tolerance at
+a change point (1e-6); two assemblies, or a free joint that drifted round a
+turn, differ by much more (a tenth and up in the cases found).
 """
 
 SWEEP_REACH = 1000.0

@@ -4,7 +4,8 @@ Only formatting: the sweep is computed by :func:`mobility.sweep`.
 
 * :func:`sweep_summary`: what ``mobility sweep`` prints: the grid, how many
   poses were assembled, the poses per answer (DOF, pattern, mobility), the
-  actuation verdicts, the singular poses and where the answer changes;
+  actuation verdicts, the singular poses, where the answer changes and the seams
+  of full turns;
 * :func:`sweep_csv`: a header row naming each varied coordinate (with its
   unit), then ``dof``, ``pattern``, ``mobility`` and the other columns of
   :data:`mobility.sweeps.COLUMNS`; one row per pose, empty cells where a pose
@@ -161,6 +162,14 @@ def sweep_summary(result: SweepResult) -> str:
             out.append(f"    {describe_values(result, result.values[a])} ({_answer(classes[a])}) -> {describe_values(result, result.values[b])} ({_answer(classes[b])})")
         if len(changes) > SUMMARY_SINGULAR_LIMIT // 2:
             out.append(f"    ... and {len(changes) - SUMMARY_SINGULAR_LIMIT // 2:,} more")
+    seams = result.seams
+    if len(seams):
+        out.append(f"  seams: at {len(seams):,} pair(s) of neighbouring poses a full turn comes back on another pose "
+                   "(no small motion joins them: free joints drifted, or another assembly was reached):")
+        for a, b in seams[: SUMMARY_SINGULAR_LIMIT // 2]:
+            out.append(f"    {describe_values(result, result.values[a])} -> {describe_values(result, result.values[b])}")
+        if len(seams) > SUMMARY_SINGULAR_LIMIT // 2:
+            out.append(f"    ... and {len(seams) - SUMMARY_SINGULAR_LIMIT // 2:,} more (see --format json)")
     return "\n".join(out)
 
 

@@ -4,8 +4,8 @@
 grid, closes every loop at every point by continuation, and analyses all the
 poses together with stacked numpy linear algebra: DOF, pattern, mobility, the
 margin of the rank decisions and, for a choice of inputs, the actuation
-verdict and conditioning; the :class:`SweepResult` names the singular poses
-and where the answer changes.  ``mobility sweep`` is its command line.
+verdict and conditioning; the :class:`SweepResult` names the singular poses,
+where the answer changes, and the seams of full turns.  ``mobility sweep`` is its command line.
 
 Modules, in data-flow order:
 
@@ -18,6 +18,8 @@ Modules, in data-flow order:
 ``posed_screws``, ``batch_systems``, ``batch_actuation``
     each pose's joint twists; the series/parallel screw systems, counts and
     margins; the actuation verdict and conditioning, all stacked.
+``seams``
+    where a walk round a full turn comes back on another pose.
 ``result``, ``runner``
     :class:`SweepResult`; :func:`sweep` (chunks, threads or dask, progress).
 """

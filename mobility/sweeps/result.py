@@ -16,6 +16,9 @@ margin of its rank decisions) and, when inputs are chosen, what
 * the **changes**: pairs of neighbouring grid points (along one axis), both
   assembled, whose answers differ (a singularity between two grid points
   shows here when the answers on its two sides differ);
+* the **seams**: pairs of grid points round a full turn of a joint, the
+  last stop of the walk and its anchor, that no small motion joins (the turn
+  came back on another pose: :mod:`mobility.sweeps.seams`);
 * the **margin dips**: grid points whose rank margin (of the analysis, or of
   the actuation verdict) is at most :data:`~mobility.core.tolerance.MARGIN_DIP`
   of a neighbour's along some axis and no larger than either neighbour's (or,
@@ -189,6 +192,10 @@ class SweepResult(ReadOnlyArrays):
         Actuation conditioning ``kappa`` and the margin of the verdict's rank
         decision (NaN where not assembled or no input chosen).
     tolerance : Tolerance
+    seams : ndarray of int, shape (k, 2)
+        Pairs of grid points, the last stop and the anchor of a line round a
+        full turn, that no small motion joins: the turn came back on another
+        pose (:mod:`mobility.sweeps.seams`).
     """
 
     mechanism: Mechanism
@@ -208,6 +215,7 @@ class SweepResult(ReadOnlyArrays):
     conditioning: np.ndarray = field(default_factory=lambda: np.zeros(0))
     actuation_margin: np.ndarray = field(default_factory=lambda: np.zeros(0))
     tolerance: Tolerance = DEFAULT_TOLERANCE
+    seams: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=int))
 
     def __post_init__(self) -> None:
         for value in vars(self).values():  # columns of every pose, made by the sweep for this result: read-only in place, not copied
@@ -449,6 +457,7 @@ class SweepResult(ReadOnlyArrays):
             "regular": None if regular is None else {"dof": regular[0], "pattern": regular[1], "mobility": regular[2], "verdict": regular[3] or None},
             "singular_poses": [p.to_dict(self.names) for p in self.singular],
             "changes": [{"from": int(a), "to": int(b), "axis": self.names[int(k)]} for a, b, k in self.changes],
+            "seams": [{"from": int(a), "to": int(b)} for a, b in self.seams],
             "margin_dips": [d.to_dict(self.names) for d in self.dips],
             "tolerance": {"rank": self.tolerance.rank, "near_singular": self.tolerance.near_singular, "closure": self.tolerance.closure},
         }

@@ -49,6 +49,7 @@ from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError, clipped
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
 from .batch_kinematics import BatchKinematics
+from .seams import find_seams
 from .batch_systems import analyse_poses
 from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, residuals, seed_grid, targets_of
 from .grid_closure import fill
@@ -548,6 +549,7 @@ def _result(context: _Context, closure: GridClosure, columns: dict[str, np.ndarr
         assembled=closure.assembled,
         residual=closure.residual,
         tolerance=context.tol,
+        seams=find_seams(context.bk, context.plan, closure.q, closure.assembled, tol=context.tol),
         **columns,
         **actuation,
     )

@@ -25,7 +25,7 @@ whose values wrap:
   walked in one direction, so neighbouring stops are joined by motion
   everywhere but between the last stop and the anchor (where a full turn
   comes back to the file's pose, as it does unless the turn leads to
-  another assembly); a crank that cannot turn fully is walked up to its
+  another pose: a seam, :mod:`mobility.sweeps.seams`); a crank that cannot turn fully is walked up to its
   limit, and the down leg reaches the poses on the other side of the
   file's pose.  So ``0:360:361`` and ``-180:180:361`` assemble the same
   poses (the walk of both starts at 0 and goes up first).  Walking up half

@@ -1,0 +1,100 @@
+"""Seams: where the walk round a full turn comes back on another assembly.
+
+A range that covers a full turn of an ``R`` or ``C`` joint is walked round the
+circle in one direction (:mod:`mobility.sweeps.walks`), so neighbouring
+poses are joined by motion everywhere but between the last stop of the walk
+and its anchor, where the turn closes.  There a full turn usually comes back
+to the pose it left; it need not: the free joints of a mechanism driven by
+fewer coordinates than its mobility drift along the turn (a planar 5R with
+one crank driven), and a mechanism can leave one assembly for another on the
+way (a crank that turns twice per turn of its output).  The table then holds
+two poses a grid step apart that no small motion joins, which the answers
+alone may not show.
+
+:func:`find_seams` walks from the last stop of each closed line to its
+anchor's drive values (:data:`SEAM_STEPS` Newton steps, as the continuation
+went) and compares the pose reached with the anchor's, link by link
+(rotations, and translations over the mechanism's characteristic length):
+they differ by more than :data:`~mobility.core.tolerance.SEAM_GAP` at a seam.
+
+Examples
+--------
+>>> import mobility
+>>> r = mobility.sweep(mobility.load("mechanisms/planar_5r.yaml"), ["A1=0:360:361"])
+>>> [(r.values[a].tolist(), r.values[b].tolist()) for a, b in r.seams]   # A2, left free, drifts round the turn
+[([359.0], [0.0])]
+>>> mobility.sweep(mobility.load("mechanisms/four_bar.yaml"), ["A=0:360:361"]).seams.shape   # a four-bar's crank comes back
+(0, 2)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..core.tolerance import DEFAULT_TOLERANCE, SEAM_GAP, Tolerance
+from .batch_kinematics import BatchKinematics
+from .continuation import Drive, line_layout, newton, targets_of
+from .grid import GridPlan
+from .walks import plan_walks
+
+__all__ = ["find_seams", "SEAM_STEPS"]
+
+SEAM_STEPS = 4
+"""Newton solves on the way from a closed walk's last stop to its anchor (each a quarter of a grid step)."""
+
+
+def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
+    """The pairs of grid points, ``(last stop, anchor)`` of a line round a full turn, that no small motion joins.
+
+    Parameters
+    ----------
+    bk : BatchKinematics
+    plan : GridPlan
+    q : ndarray, shape (size, n)
+        The joint variables of every grid point (flat, C order).
+    assembled : ndarray of bool, shape (size,)
+    tol : Tolerance
+
+    Returns
+    -------
+    ndarray of int, shape (k, 2)
+        Flat indices of the two grid points of each seam, in grid order of
+        the lines (none when no axis covers a full turn).
+    """
+    out = []
+    drive = Drive.of(plan.axes, bk.variable_count)
+    for walk in plan_walks(plan):
+        if not walk.closed or walk.stops.size < 2 or walk.variable < 0:
+            continue
+        w, s = walk.stops.size, walk.start
+        layout = line_layout(plan.shape, walk.position)
+        last, anchor = layout[:, walk.stops[(s - 1) % w]], layout[:, walk.stops[s]]
+        both = assembled[last] & assembled[anchor]
+        last, anchor = last[both], anchor[both]
+        if last.size == 0:
+            continue
+        # the anchor's drive values, its driven angle continued from the last stop's (one step on, not a turn back)
+        begin, end = targets_of(plan, last), targets_of(plan, anchor)
+        ahead = np.mod(end[:, walk.position] - begin[:, walk.position], walk.period)
+        start_angle = q[last, walk.variable]
+        cur = q[last]
+        for k in range(1, SEAM_STEPS + 1):
+            goal = end.copy()
+            goal[:, walk.position] = start_angle + ahead * (k / SEAM_STEPS)
+            cur, _, _ = newton(bk, drive, cur, goal, tol=tol)
+        gap = _pose_gap(bk, cur, q[anchor])
+        apart = ~(gap <= SEAM_GAP)  # a walk that diverged (not finite) is a seam too
+        out.extend(zip(last[apart].tolist(), anchor[apart].tolist()))
+    return np.array(sorted(out), dtype=int).reshape(-1, 2)
+
+
+def _pose_gap(bk: BatchKinematics, q: np.ndarray, other: np.ndarray) -> np.ndarray:
+    """The largest difference between the link displacements of two sets of poses (normalised coordinates), per pose."""
+    a, b = bk.link_motions(q), bk.link_motions(other)
+    gap = np.zeros(len(q))
+    with np.errstate(invalid="ignore", over="ignore"):
+        for link in a:
+            rot = np.abs(a[link][0] - b[link][0]).max(axis=(0, 1))
+            move = np.abs(a[link][1] - b[link][1]).max(axis=0)
+            gap = np.fmax(gap, np.where(np.isfinite(rot) & np.isfinite(move), np.maximum(rot, move), np.inf))
+    return gap
