@@ -55,7 +55,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--format", choices=sorted(FORMATS), default=None,
                    help="output: a summary, the table as CSV, or JSON (default: what the -o name ends with, .csv or .json, else the summary)")
     p.add_argument("--json", action="store_true", help="same as --format json")
-    p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the output to FILE instead of printing it ('-': standard output)")
+    p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the output to FILE (a line saying so is printed instead; '-': standard output)")
     p.add_argument("--plot", default=None, metavar="FILE", help="also draw the sweep (.png, .svg or .pdf): a curve, a map, or slices of a 3-D grid")
     add_max_poses_option(p)
     p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE, help="poses per chunk of work (default: %(default)d)")
