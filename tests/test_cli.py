@@ -415,7 +415,15 @@ def test_a_terminal_that_cannot_show_a_character_gets_an_escape_not_an_error():
     env = dict(os.environ, PYTHONIOENCODING="ascii")
     child = _mobility("analyze", "mechanisms/four_bar.yaml", stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
     out, err = child.communicate(timeout=60)
-    assert (child.returncode, err) == (0, "") and "Gr\\xfcbler\\u2013Kutzbach count: -2" in out
+    assert (child.returncode, err) == (0, "") and "Gr\\u00fcbler\\u2013Kutzbach count: -2" in out
+    for command in (["analyze", "--json", "mechanisms/four_bar.yaml"], ["sweep", "--json", "mechanisms/four_bar.yaml", "--vary", "A=0:1:2"],
+                    ["check", "--json", "mechanisms/four_bar.yaml"], ["actuation", "--json", "mechanisms/actuation_3rps.yaml"]):
+        child = _mobility(*command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+        out, err = child.communicate(timeout=60)
+        assert (child.returncode, err) == (0, "") and out.isascii(), command
+        read = json.loads(out)  # a backslash escape such as \xfc was not JSON: the sweep's JSON did not parse
+        if command[0] == "analyze":
+            assert "Grübler–Kutzbach" in read["gruebler_kutzbach_explanation"]  # the escapes read back as the text
 
 
 def test_with_standard_error_closed_messages_never_enter_the_output(tmp_path):

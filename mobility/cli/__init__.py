@@ -14,8 +14,8 @@ that cannot be written (a full disk) is bad input too: one line saying why,
 exit status 2; when its reader has gone away (``mobility check designs/ |
 head``) the rest of the output is dropped quietly and the command ends with
 its own status (a failed check still exits 1).  Text that the terminal's
-encoding cannot show is written with backslash escapes (``\xfc``), never an
-error; with standard error closed (``2>&-``) messages are dropped, never
+encoding cannot show is written as a JSON escape (``\u00fc``: a JSON output
+stays JSON), never an error; with standard error closed (``2>&-``) messages are dropped, never
 mixed into the output.
 
 A subcommand module is named after its command (``analyze.py`` registers
@@ -28,6 +28,7 @@ that is not one, builds the whole parser.
 from __future__ import annotations
 
 import argparse
+import codecs
 import contextlib
 import importlib
 import os
@@ -155,13 +156,44 @@ def _discard_stdout() -> None:
         os.close(devnull)
 
 
+ESCAPE_ERRORS = "mobility.escape"
+"""The codec error handler of the standard streams: a character their encoding lacks is written ``\\uXXXX``."""
+
+
+def _unicode_escapes(exc: UnicodeError) -> tuple[str, int]:
+    r"""``\uXXXX`` for each character that cannot be encoded (a surrogate pair beyond the BMP): a JSON escape, so JSON stays JSON.
+
+    Examples
+    --------
+    >>> "Gr\u00fcbler \U0001F600".encode("ascii", errors=ESCAPE_ERRORS)
+    b'Gr\\u00fcbler \\ud83d\\ude00'
+    """
+    if not isinstance(exc, UnicodeEncodeError):
+        raise exc
+    out = []
+    for char in exc.object[exc.start : exc.end]:
+        code = ord(char)
+        if code > 0xFFFF:
+            code -= 0x10000
+            out.append(f"\\u{0xD800 + (code >> 10):04x}\\u{0xDC00 + (code & 0x3FF):04x}")
+        else:
+            out.append(f"\\u{code:04x}")
+    return "".join(out), exc.end
+
+
+codecs.register_error(ESCAPE_ERRORS, _unicode_escapes)
+
+
 def _escape_what_cannot_be_encoded() -> None:
-    """Write characters that the standard streams' encoding lacks (``ü`` on an ASCII terminal) as backslash escapes, not an error."""
+    """Write characters that the standard streams' encoding lacks (``ü`` on an ASCII terminal) as ``\\u00fc``, not an error.
+
+    The escape is JSON's: a JSON output stays valid JSON, and reads back as the characters written.
+    """
     for stream in (sys.stdout, sys.stderr):
         reconfigure = getattr(stream, "reconfigure", None)
         if reconfigure is not None:
             with contextlib.suppress(OSError, ValueError):
-                reconfigure(errors="backslashreplace")
+                reconfigure(errors=ESCAPE_ERRORS)
 
 
 @contextlib.contextmanager
