@@ -223,8 +223,8 @@ file's pose) and for angles congruent modulo a turn
 SEAM_GAP = 1e-3
 """Two solves of one pose farther apart than this are two poses (a seam of a sweep: :mod:`mobility.sweeps.seams`).
 
-The largest difference of the links' displacements, rotation entries and
-translations over the characteristic length.  Newton's poses of one assembly
+The largest difference of the joints' unit twists, in normalised coordinates
+(lines over the characteristic length).  Newton's poses of one assembly
 agree to round-off, or to about the square root of the closure tolerance at
 a change point (1e-6); two assemblies, or a free joint that drifted round a
 turn, differ by much more (a tenth and up in the cases found).

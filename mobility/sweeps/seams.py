@@ -13,9 +13,11 @@ alone may not show.
 
 :func:`find_seams` walks from the last stop of each closed line to its
 anchor's drive values (:data:`SEAM_STEPS` Newton steps, as the continuation
-went) and compares the pose reached with the anchor's, link by link
-(rotations, and translations over the mechanism's characteristic length):
-they differ by more than :data:`~mobility.core.tolerance.SEAM_GAP` at a seam.
+went) and compares the pose reached with the anchor's, joint by joint (their
+unit twists in normalised coordinates, so that a link spinning idly is the
+same pose): they differ by more than :data:`~mobility.core.tolerance.SEAM_GAP`
+at a seam.  Only lines walked all the way round are looked at (a line with a
+pose not assembled was joined to its anchor the other way).
 
 Examples
 --------
@@ -35,6 +37,7 @@ from ..core.tolerance import DEFAULT_TOLERANCE, SEAM_GAP, Tolerance
 from .batch_kinematics import BatchKinematics
 from .continuation import Drive, line_layout, newton, targets_of
 from .grid import GridPlan
+from .posed_screws import posed_screws
 from .walks import plan_walks
 
 __all__ = ["find_seams", "SEAM_STEPS"]
@@ -69,8 +72,9 @@ def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np
         w, s = walk.stops.size, walk.start
         layout = line_layout(plan.shape, walk.position)
         last, anchor = layout[:, walk.stops[(s - 1) % w]], layout[:, walk.stops[s]]
-        both = assembled[last] & assembled[anchor]
-        last, anchor = last[both], anchor[both]
+        # a line with a stop not assembled was not walked all the way round: its down leg joined the last stop to the anchor
+        whole = assembled[layout[:, walk.stops]].all(axis=1)
+        last, anchor = last[whole], anchor[whole]
         if last.size == 0:
             continue
         # the anchor's drive values, its driven angle continued from the last stop's (one step on, not a turn back)
@@ -89,12 +93,13 @@ def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np
 
 
 def _pose_gap(bk: BatchKinematics, q: np.ndarray, other: np.ndarray) -> np.ndarray:
-    """The largest difference between the link displacements of two sets of poses (normalised coordinates), per pose."""
-    a, b = bk.link_motions(q), bk.link_motions(other)
-    gap = np.zeros(len(q))
+    """The largest difference between the joint twists of two sets of poses (unit columns, normalised coordinates), per pose.
+
+    The joints' lines, not the links' displacements: a link that spins idly
+    between two spherical joints (a rod of a Delta) turns without moving any
+    joint, and is the same pose.
+    """
     with np.errstate(invalid="ignore", over="ignore"):
-        for link in a:
-            rot = np.abs(a[link][0] - b[link][0]).max(axis=(0, 1))
-            move = np.abs(a[link][1] - b[link][1]).max(axis=0)
-            gap = np.fmax(gap, np.where(np.isfinite(rot) & np.isfinite(move), np.maximum(rot, move), np.inf))
-    return gap
+        a, b = posed_screws(bk, q).twists, posed_screws(bk, other).twists
+        gap = np.abs(a - b).max(axis=(1, 2)) if a.shape[2] else np.zeros(len(q))
+    return np.where(np.isfinite(gap), gap, np.inf)
