@@ -505,3 +505,34 @@ def test_characters_the_pictures_font_lacks_are_one_note_not_a_page_of_warnings(
     out, err = capsys.readouterr()
     assert out.startswith("wrote ") and (tmp_path / "uni.png").stat().st_size > 0
     assert err == "mobility: note: the picture's font has no glyph for 2 character(s) of the names (连杆): drawn as boxes\n"
+
+
+def test_convert_to_standard_output_writes_utf8_yaml_that_reads_back_whatever_the_terminal(tmp_path):
+    # escaped for an ASCII terminal, a folded description read back as the escapes' text, and a character beyond
+    # the BMP as an invalid YAML escape
+    text = (ROOT / "mechanisms" / "four_bar.yaml").read_text(encoding="utf-8").replace("name: planar four-bar", "name: Grübler 𝄞")
+    source = tmp_path / "uni.yaml"
+    source.write_text(text, encoding="utf-8")
+    env = dict(os.environ, PYTHONIOENCODING="ascii")
+    child = _mobility("convert", str(source), "-o", "-", stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+    out, err = child.communicate(timeout=60)
+    assert (child.returncode, err) == (0, "")
+    back = tmp_path / "back.yaml"
+    back.write_bytes(out.encode("utf-8", "surrogateescape") if isinstance(out, str) else out)
+    again = mobility.load(back)
+    assert again.name == "Grübler 𝄞" and "Grübler–Kutzbach" in again.description
+
+
+def test_comma_names_are_found_in_time_linear_in_the_option():
+    from mobility.cli._options import names_from
+
+    long_name = ",".join(["x"] * 301)
+    started = time.perf_counter()
+    found = names_from("x," * 65000, [long_name, "y"])  # took 32 s when every span was tried at every part
+    assert time.perf_counter() - started < 5.0
+    assert found[:215] == [long_name] * 215 and found[215:] == ["x"] * 285
+
+
+def test_synthesize_write_refuses_an_empty_folder_name(capsys):
+    assert main(["synthesize", "3T", "--write", ""]) == 2
+    assert capsys.readouterr().err == "mobility: --write '': expected a folder name\n"

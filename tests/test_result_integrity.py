@@ -434,3 +434,14 @@ def test_the_results_that_are_not_read_only_arrays_hold_no_array():
     for name, r in found.items():
         assert list(_arrays_outside_results(r)) == [], name
     assert found["check_paths"].results[1].kind == "flexure" and found["check_paths"].results[1].found is not None
+
+
+def test_the_result_of_the_same_file_read_by_another_path_is_the_result_of_this_mechanism():
+    # `source` differs (a relative and an absolute path, or a copy): the mechanism is the same, the view must take its result
+    here = mobility.load(ROOT / "mechanisms" / "four_bar.yaml")
+    there = mobility.loads((ROOT / "mechanisms" / "four_bar.yaml").read_text(encoding="utf-8"))
+    assert here.source != there.source
+    view = mobility.mechanism_view(here, mobility.analyze(there))
+    assert view.frames[0].result.pattern == "1R"
+    with pytest.raises(mobility.RequestError, match="of another mechanism"):
+        mobility.mechanism_view(here, mobility.analyze(mobility.load(ROOT / "mechanisms" / "3prs.yaml")))

@@ -264,11 +264,15 @@ def names_from(text: str | None, known: Collection[str] = (), option: str = "--i
         raise RequestError(f"{option} {text!r}: expected one or more joint names, separated by commas")
     names_set = set(known)
     is_name = lambda candidate: candidate in names_set or candidate.rpartition(".")[0] in names_set  # noqa: E731
+    spans: dict[str, set[int]] = {}  # the first part of each name that holds commas -> how many parts it has
+    for name in names_set:
+        if "," in name:
+            spans.setdefault(name.split(",", 1)[0].strip(), set()).add(name.count(",") + 1)
     parts = text.split(",")
-    longest = 1 + max((n.count(",") for n in names_set), default=0)  # parts one name may span
     names, at = [], 0
-    while at < len(parts):
-        run = next((span for span in range(min(longest, len(parts) - at), 1, -1) if is_name(",".join(parts[at : at + span]).strip())), 1)
+    while at < len(parts):  # only the spans of the names that start with this part are tried: linear in the text
+        tried = sorted((k for k in spans.get(parts[at].strip(), ()) if at + k <= len(parts)), reverse=True)
+        run = next((span for span in tried if is_name(",".join(parts[at : at + span]).strip())), 1)
         names.append(",".join(parts[at : at + run]).strip())
         at += run
     return [n for n in names if n]

@@ -68,7 +68,23 @@ def run(args: argparse.Namespace) -> int:
             raise MechanismFileError("--output", f"cannot write the file ({exc.strerror or exc})", file=args.output) from None
         print(one_line(f"mobility: wrote {args.output} ({len(mechanism.joints)} joints, {len(mechanism.links)} links)"), file=sys.stderr)
     else:
-        sys.stdout.write(text)
+        _write_utf8(text)
     return 0
+
+
+def _write_utf8(text: str) -> None:
+    """Write a YAML document to standard output in UTF-8, YAML's own encoding, whatever the terminal's.
+
+    Escaped for an ASCII terminal (``\\u00fc``), it would not read back: a
+    folded description takes escapes as plain text.
+    """
+    buffer = getattr(sys.stdout, "buffer", None)
+    encoding = (getattr(sys.stdout, "encoding", None) or "").lower().replace("-", "").replace("_", "")
+    if buffer is None or encoding == "utf8" or text.isascii():
+        sys.stdout.write(text)
+        return
+    sys.stdout.flush()
+    buffer.write(text.encode("utf-8"))
+    buffer.flush()
 
 

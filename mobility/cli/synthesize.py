@@ -62,6 +62,8 @@ def _vector(text: str, what: str) -> tuple[float, float, float]:
 
 def _require_folder_to_write(folder: str) -> None:
     """A folder that is there, or can be made in one that is (a file, or a missing parent, is refused)."""
+    if not folder.strip():
+        raise RequestError(f"--write {folder!r}: expected a folder name")
     where = Path(os.path.abspath(folder))
     if where.exists() and not where.is_dir():
         raise RequestError(f"--write {folder}: is a file, expected a folder to write mechanism files in")

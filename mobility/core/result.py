@@ -14,6 +14,7 @@ does it for one value).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from dataclasses import fields as dataclass_fields
 from functools import cached_property
 from types import MappingProxyType
 from typing import Any, Mapping, NamedTuple, Protocol
@@ -433,12 +434,19 @@ def require_result_of(mechanism: Mechanism, value: object, caller: str) -> Resul
     return result
 
 
+def _same_description(a: object, b: Mechanism) -> bool:
+    """Whether ``a`` is a mechanism equal to ``b`` but perhaps for where it was read from (one file by two paths, or a copy)."""
+    if not isinstance(a, Mechanism):
+        return False
+    return all(getattr(a, f.name) == getattr(b, f.name) for f in dataclass_fields(Mechanism) if f.compare and f.name != "source")
+
+
 def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) -> None:
     """A :class:`~mobility.errors.RequestError` naming ``caller`` when ``result`` analysed another mechanism than ``mechanism``.
 
     The mechanism a result analysed (its ``mechanism``: :attr:`Result.mechanism`)
     must equal ``mechanism`` (mechanisms compare by value: the same fields,
-    joints and pose).  A result that does not keep its mechanism is taken as it is.
+    joints and pose; where the file was read from does not count).  A result that does not keep its mechanism is taken as it is.
 
     Examples
     --------
@@ -451,7 +459,7 @@ def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) ->
     mobility.errors.RequestError: plot_graph: the result is of another mechanism than 'planar four-bar' (of the same name, with other joints, pose or fields); pass the result of analysing this one, or none
     """
     analysed = getattr(result, "mechanism", None)
-    if analysed is not None and analysed is not mechanism and analysed != mechanism:
+    if analysed is not None and analysed is not mechanism and not _same_description(analysed, mechanism):
         name = clipped(repr(mechanism.name), 60)
         other = clipped(repr(getattr(analysed, "name", analysed)), 60)
         which = f"than {name} (of the same name, with other joints, pose or fields)" if other == name else f"({other}) than {name}"
