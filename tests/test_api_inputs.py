@@ -268,3 +268,10 @@ def test_loading_a_flexure_document_as_a_mechanism_names_load_flexure():
     error = one_line_error(lambda: mobility.load(EXAMPLES / "flexure" / "three_rod.yaml"), MechanismFileError, "a flexure document")
     assert "mobility.load_flexure" in str(error) and "mobility actuation" in str(error) and error.key == "elements"
     assert mobility.load_flexure(EXAMPLES / "flexure" / "three_rod.yaml").elements
+
+
+@pytest.mark.parametrize("bad", [5, {"j": 5}, None, {"j": ("k", "x")}, {"j": ("k",)}])
+def test_a_mechanism_checks_where_its_joints_were_written(bad):
+    # a wrong written_at was accepted, then broke the first error message that used it
+    with pytest.raises(mobility.MechanismError, match=r"^written_at: expected a mapping of joint names to \(key path, line or None\)$"):
+        mobility.Mechanism("m", "g", "s", (mobility.Joint("j", "P", ("g", "s"), axis=(0, 0, 1)),), written_at=bad)

@@ -651,6 +651,11 @@ class Mechanism:
                 raise MechanismError(f"frames[{i}]", f"expected a Frame, got {type(f).__name__}")
         if self.expected is not None and not isinstance(self.expected, Expected):
             raise MechanismError("expected", f"expected an Expected or None, got {type(self.expected).__name__}")
+        if not isinstance(self.written_at, Mapping) or not all(
+            isinstance(k, str) and isinstance(v, tuple) and len(v) == 2 and isinstance(v[0], str) and (v[1] is None or integer_value(v[1]) is not None)
+            for k, v in self.written_at.items()
+        ):
+            raise MechanismError("written_at", "expected a mapping of joint names to (key path, line or None)")
         frame_index: dict[str, int] = {}
         for i, f in enumerate(self.frames):
             if f.name == WORLD:
