@@ -72,7 +72,7 @@ from .batch_kinematics import BatchKinematics, Evaluation
 from .grid import GridPlan, SweepAxis, whole_turns
 from .walks import AxisWalk, plan_walks
 
-__all__ = ["Drive", "GridClosure", "newton", "polish", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget", "residuals"]
+__all__ = ["Drive", "GridClosure", "newton", "polish", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget", "residuals", "walk_between"]
 
 MAX_PIECES = 2000
 """Grid steps at most on the way from the file's pose to the grid's anchor point; a grid
@@ -540,6 +540,14 @@ RETURN_STEPS = 4
 """Steps of the walk back from a pose found off a fold to the fold's drive values (:func:`_walks_back`)."""
 
 
+def walk_between(bk: BatchKinematics, drive: Drive, q: np.ndarray, start: np.ndarray, goal: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
+    """The poses reached from ``q`` (closed at drive values ``start``) by :data:`RETURN_STEPS` Newton solves on the straight way to ``goal``."""
+    cur = q
+    for k in range(1, RETURN_STEPS + 1):
+        cur, _, _ = newton(bk, drive, cur, start + (goal - start) * (k / RETURN_STEPS), tol=tol)
+    return cur
+
+
 def _walks_back(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray, base_q: np.ndarray, base_t: np.ndarray, tol: Tolerance) -> np.ndarray:
     """Whether each closed pose ``q`` (at ``targets``) lies on a branch through ``base_q``: walking back comes home.
 
@@ -551,9 +559,7 @@ def _walks_back(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.nd
     reach when the driven coordinate cannot change at the base (a rotation of
     a translational platform), walks back to a pose of its own branch.
     """
-    cur = q
-    for k in range(1, RETURN_STEPS + 1):
-        cur, _, _ = newton(bk, drive, cur, targets + (base_t - targets) * (k / RETURN_STEPS), tol=tol)
+    cur = walk_between(bk, drive, q, targets, base_t, tol=tol)
     with np.errstate(over="ignore", invalid="ignore"):
         return np.linalg.norm(cur - base_q, axis=1) <= 0.5 * np.linalg.norm(q - base_q, axis=1)
 

@@ -12,8 +12,8 @@ two poses a grid step apart that no small motion joins, which the answers
 alone may not show.
 
 :func:`find_seams` walks from the last stop of each closed line to its
-anchor's drive values (:data:`SEAM_STEPS` Newton steps, as the continuation
-went) and compares the pose reached with the anchor's, joint by joint (their
+anchor's drive values (:data:`~mobility.sweeps.continuation.RETURN_STEPS` Newton steps,
+:func:`~mobility.sweeps.continuation.walk_between`) and compares the pose reached with the anchor's, joint by joint (their
 unit twists in normalised coordinates, so that a link spinning idly is the
 same pose): they differ by more than :data:`~mobility.core.tolerance.SEAM_GAP`
 at a seam.  Only lines walked all the way round are looked at (a line with a
@@ -35,15 +35,12 @@ import numpy as np
 
 from ..core.tolerance import DEFAULT_TOLERANCE, SEAM_GAP, Tolerance
 from .batch_kinematics import BatchKinematics
-from .continuation import Drive, line_layout, newton, targets_of
+from .continuation import Drive, line_layout, targets_of, walk_between
 from .grid import GridPlan
 from .posed_screws import posed_screws
 from .walks import plan_walks
 
-__all__ = ["find_seams", "SEAM_STEPS"]
-
-SEAM_STEPS = 4
-"""Newton solves on the way from a closed walk's last stop to its anchor (each a quarter of a grid step)."""
+__all__ = ["find_seams"]
 
 
 def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
@@ -78,15 +75,12 @@ def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np
         if last.size == 0:
             continue
         # the anchor's drive values, its driven angle continued from the last stop's (one step on, not a turn back)
-        begin, end = targets_of(plan, last), targets_of(plan, anchor)
-        ahead = np.mod(end[:, walk.position] - begin[:, walk.position], walk.period)
-        start_angle = q[last, walk.variable]
-        cur = q[last]
-        for k in range(1, SEAM_STEPS + 1):
-            goal = end.copy()
-            goal[:, walk.position] = start_angle + ahead * (k / SEAM_STEPS)
-            cur, _, _ = newton(bk, drive, cur, goal, tol=tol)
-        gap = _pose_gap(bk, cur, q[anchor])
+        begin, goal = targets_of(plan, last), targets_of(plan, anchor)
+        ahead = np.mod(goal[:, walk.position] - begin[:, walk.position], walk.period)
+        start = goal.copy()
+        start[:, walk.position] = q[last, walk.variable]
+        goal[:, walk.position] = start[:, walk.position] + ahead
+        gap = _pose_gap(bk, walk_between(bk, drive, q[last], start, goal, tol=tol), q[anchor])
         apart = ~(gap <= SEAM_GAP)  # a walk that diverged (not finite) is a seam too
         out.extend(zip(last[apart].tolist(), anchor[apart].tolist()))
     return np.array(sorted(out), dtype=int).reshape(-1, 2)
