@@ -346,3 +346,11 @@ def test_reading_a_sweep_result_wrongly_is_a_request_error():
             call()
         assert message in str(info.value)
     assert r.row(-1) == r.row(12) and r.grid("dof").shape == (13,)
+
+
+@pytest.mark.parametrize("name", ["map.png", "map.SVG", "map.pdf"])
+def test_a_picture_name_given_to_o_is_refused_with_the_option_that_draws_it(capsys, tmp_path, name):
+    target = tmp_path / name
+    status, out, err = run(capsys, "sweep", PARALLELOGRAM, "--vary", "O1=0:360:5", "-o", target)
+    assert (status, out) == (2, "") and not target.exists()  # was exit 0 and a text table in map.png
+    assert err.strip() == f"mobility: -o {target}: -o writes the table (text, csv or json); a picture is drawn by --plot {target}"

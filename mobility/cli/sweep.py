@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 from typing import Iterable, Iterator, TextIO
 
 from ..errors import MechanismError, RequestError, clipped, one_line
-from ..report.plotting import picture_path, save_figure
+from ..report.plotting import FORMATS as PICTURE_FORMATS, picture_path, save_figure
 from ..report.sweep import sweep_csv_pieces, sweep_json_pieces, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, SweepResult, sweep
 from ..sweeps.batch_actuation import actuated_inputs
@@ -55,7 +56,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--format", choices=sorted(FORMATS), default=None,
                    help="output: a summary, the table as CSV, or JSON (default: what the -o name ends with, .csv or .json, else the summary)")
     p.add_argument("--json", action="store_true", help="same as --format json")
-    p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the output to FILE (a line saying so is printed instead; '-': standard output)")
+    p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the table to FILE (a line saying so is printed instead; '-': standard output; pictures: --plot)")
     p.add_argument("--plot", default=None, metavar="FILE", help="also draw the sweep (.png, .svg or .pdf): a curve, a map, or slices of a 3-D grid")
     add_max_poses_option(p)
     p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE, help="poses per chunk of work (default: %(default)d)")
@@ -87,6 +88,8 @@ def run(args: argparse.Namespace) -> int:
         args.output = None
     if args.json and args.format not in (None, "json"):
         raise RequestError(f"--json and --format {args.format}: choose one output format")
+    if args.output is not None and Path(args.output).suffix.lower() in PICTURE_FORMATS:
+        raise RequestError(f"-o {args.output}: -o writes the table (text, csv or json); a picture is drawn by --plot {args.output}")
     require_new_output(args.output, "-o", args.file)
     require_new_output(args.plot, "--plot", args.file, args.output)
     if args.plot is not None:  # before any work: a picture that cannot be drawn is refused now, not after the sweep
