@@ -351,6 +351,88 @@ def test_four_bar_input_at_a_dead_centre_is_singular():
     assert check_actuation(m, ["B"]).verdict == VALID and locked_dof(m, ["B"]) == 0
 
 
+def _movers(check) -> list[str] | None:
+    """The inputs a redundant verdict's sentence says move the mechanism without the end effector (None: it says they fight)."""
+    found = re.search(r"do not fight: each moves the mechanism on its own, and (.+?) moves? it without moving the end effector", check.explanation)
+    return None if found is None else found.group(1).split(", ")
+
+
+def _independent_by_locking(m: Mechanism, inputs: list[str]) -> bool:
+    """Second route: the inputs can be set one by one when locking them takes one freedom of the whole mechanism each."""
+    locked = lock_joints(m, inputs)
+    assert locked is not None
+    return mobility.analyze(m).mobility - mobility.loop_closure(locked).mobility == len(inputs)
+
+
+def test_a_crank_at_a_dead_centre_drives_the_mechanism_and_is_not_said_to_fight():
+    # The slider-crank with the crank and the rod in line: the slider has no instantaneous freedom (0 DOF),
+    # the crank still turns; the verdict counts 1 input for 0 DOF, but nothing fights (was "they fight each other").
+    R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)  # noqa: E731
+    m = Mechanism("slider-crank at its dead centre", "ground", "slider", (
+        R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "rod", (1, 0, 0)),
+        R("C", "rod", "slider", (3, 0, 0)), Joint("S", "P", ("slider", "ground"), axis=(1, 0, 0))))
+    check = check_actuation(m, ["A"])
+    assert (check.verdict, check.dof, mobility.analyze(m).mobility) == (REDUNDANT, 0, 1)
+    assert _movers(check) == ["A"] and check.explanation.startswith("1 input for 0 DOF, yet")
+    assert _independent_by_locking(m, ["A"]) and locked_dof(m, ["A"]) == check.dof  # locking A leaves the slider as it was
+    text = actuation_text(check)
+    assert "no end-effector freedom to control: 1 by convention" in text and "one end-effector freedom" not in text
+    both = check_actuation(m, ["A", "S"])  # the slider cannot move here: driving it fights the mechanism
+    assert both.verdict == REDUNDANT and _movers(both) is None and "fight each other" in both.explanation
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(st.floats(-2, 2), st.floats(-2, 2)), min_size=4, max_size=5, unique=True), st.data())
+def test_inputs_of_a_planar_arm_with_a_self_motion_agree_with_the_locking_route(points, data):
+    # A planar arm of 4 or 5 parallel R joints (at most 3 end-effector freedoms), with joints in line at times:
+    # a joint whose motion the others produce has no wrench of its own, yet locking it with the others holds the arm
+    # (a 7R or an all-driven redundant arm was "actuation-singular, 6 uncontrolled directions").
+    pts = [(x, y, 0.0) for x, y in points]
+    if min(np.hypot(a[0] - b[0], a[1] - b[1]) for i, a in enumerate(pts) for b in pts[i + 1 :]) < 0.1:
+        return  # two joints nearly on one axis: a different mechanism
+    links = ["g"] + [f"l{i}" for i in range(1, len(pts))] + ["hand"]
+    m = Mechanism("planar arm", "g", "hand", tuple(Joint(f"J{i}", "R", (links[i], links[i + 1]), axis=(0, 0, 1), point=p) for i, p in enumerate(pts)))
+    names = [j.name for j in m.joints]
+    inputs = data.draw(st.lists(st.sampled_from(names), min_size=1, max_size=len(names), unique=True))
+    check = check_actuation(m, inputs)
+    dof = mobility.analyze(m).dof
+    assert check.dof == dof <= 3
+    assert (check.verdict == SINGULAR) == (locked_dof(m, inputs) > 0) == (len(inputs) < len(names))  # one free joint moves the hand
+    assert check.uncontrolled_twists.shape[0] == locked_dof(m, inputs)
+    if check.verdict == SINGULAR:
+        return
+    assert check.verdict == (REDUNDANT if len(inputs) > dof else VALID)
+    if check.verdict == REDUNDANT:
+        movers = _movers(check)
+        assert movers is not None  # a serial arm has no loop: every joint rate is set on its own, nothing fights
+        for name in inputs:  # an input moves the self-motion exactly when locking it alone leaves the hand its freedoms
+            assert (name in movers) == (locked_dof(m, [name]) == dof), (name, movers)
+
+
+def test_a_7r_arm_driven_at_every_joint_is_held_and_drives_its_self_motion():
+    rng = np.random.default_rng(7)
+    links = ["g"] + [f"l{i}" for i in range(1, 7)] + ["hand"]
+    m = Mechanism("7R arm", "g", "hand", tuple(
+        Joint(f"J{i + 1}", "R", (links[i], links[i + 1]), axis=tuple(rng.normal(size=3)), point=tuple(rng.normal(size=3))) for i in range(7)))
+    names = [j.name for j in m.joints]
+    check = check_actuation(m, names)
+    assert (check.dof, check.verdict, check.uncontrolled_twists.shape[0], locked_dof(m, names)) == (6, REDUNDANT, 0, 0)
+    assert all(i.axis is None for i in check.inputs)  # none has a wrench of its own: each is produced by the other six
+    assert _movers(check) == names  # a generic 7R arm's self-motion turns every joint
+    six = check_actuation(m, names[:6])  # J7 left free turns the hand: singular by both routes
+    assert six.verdict == SINGULAR and six.uncontrolled_twists.shape[0] == locked_dof(m, names[:6]) == 1
+    ranked = enumerate_actuations(m, mode="any", k=7).combinations
+    assert [(c.inputs, c.verdict) for c in ranked] == [(tuple(names), REDUNDANT)]  # the enumeration agrees
+
+
+def test_four_inputs_of_a_planar_four_bar_fight_by_both_routes():
+    m = _four_bar()
+    check = check_actuation(m, ["A", "D"])
+    assert check.verdict == REDUNDANT and _movers(check) is None
+    assert check.explanation == "2 inputs for 1 DOF: 1 more than needed (they must be coordinated or they fight each other)"
+    assert not _independent_by_locking(m, ["A", "D"])
+
+
 def test_serial_arm_is_one_limb():
     R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)  # noqa: E731
     arm = Mechanism("planar RR", "g", "hand", (R("A", "g", "upper", (0, 0, 0)), R("B", "upper", "hand", (1, 0, 0))))

@@ -1021,3 +1021,28 @@ def test_a_full_turn_that_reaches_another_assembly_is_a_seam_at_that_line_only()
 def test_a_full_turn_that_comes_back_has_no_seam(name, vary):
     r = sweep(mobility.load(MECHANISMS / name), vary)
     assert r.seams.shape == (0, 2) and "seams" not in sweep_summary(r)
+
+
+def test_arms_driven_at_every_joint_have_the_one_pose_verdict_and_margin_at_every_pose():
+    # A planar 4R arm and a spatial 7R arm, every joint driven: a joint whose motion the others produce has no
+    # wrench of its own, and what holds the arm is the limb with all its inputs locked (both routes; the batch
+    # said "actuation-singular" with every pose's inputs "useless", as the one-pose check did).
+    rng = np.random.default_rng(RNG_SEED)
+    seven = "\n".join(
+        f"  - {{name: J{i + 1}, type: R, links: [{'g' if i == 0 else f'l{i}'}, {'hand' if i == 6 else f'l{i + 1}'}], "
+        f"axis: {rng.normal(size=3).round(3).tolist()}, point: {rng.normal(size=3).round(3).tolist()}, actuated: true}}"
+        for i in range(7)
+    )
+    planar = """
+  - {name: J1, type: R, links: [g, a], axis: [0, 0, 1], point: [0, 0, 0], actuated: true}
+  - {name: J2, type: R, links: [a, b], axis: [0, 0, 1], point: [1, 0, 0], actuated: true}
+  - {name: J3, type: R, links: [b, c], axis: [0, 0, 1], point: [2, 0.5, 0], actuated: true}
+  - {name: J4, type: R, links: [c, hand], axis: [0, 0, 1], point: [3, 0, 0], actuated: true}"""
+    for joints, vary in ((planar, "J2=-30:30:7"), (seven, "J3=-20:20:5")):
+        m = mobility.loads(f"name: arm\nground: g\nend_effector: hand\njoints:{joints if joints.startswith(chr(10)) else chr(10) + joints}\n")
+        result = sweep(m, vary)
+        assert set(result.verdict) == {"redundant"}
+        for i in range(result.size):
+            assert_pose_matches_one_pose_routes(result, i)
+            check = mobility.check_actuation(result.mechanism_at(i), tol=result.tolerance)
+            assert result.actuation_margin[i] == pytest.approx(check.margin.smallest_kept, rel=1e-6, abs=1e-12)

@@ -12,7 +12,10 @@ Everything here is in the normalised coordinates of
     effector can still move along ``6 - r`` directions, the twists reciprocal
     to all those wrenches (reported as the *uncontrolled* directions);
   - ``redundant``: ``r = 6`` and ``n > d`` (more inputs than DOF; they must be
-    coordinated or they fight each other).
+    coordinated or they fight each other, unless each can be set on its own,
+    which a rigid mechanism's loop closure tells: the extra inputs then drive
+    motions that leave the end effector still, a self-motion or a serial
+    singularity, and the explanation says so).
 * **actuation conditioning** ``kappa``: the inverse condition number
   ``s_min / s_max`` of the ``n x d`` map ``G`` from the end effector's twists
   to the input rates, ``G[i, k] = (a_i o t_k) / (a_i o $_i)``, where ``t_k`` is
@@ -29,7 +32,7 @@ Everything here is in the normalised coordinates of
   freedom (``d = 0``, e.g. a slider-crank's slider at a dead centre) the map
   is empty and ``kappa`` is 1 by convention: there is nothing to control, and
   the inputs, which still move the mechanism, are ``redundant`` for the end
-  effector.
+  effector (without fighting: they drive a motion that leaves it still).
 
 :func:`assess_wrenches` gives the verdict of bare wrenches (fast, for
 enumerations); :func:`assess_inputs` the full :class:`ActuationCheck` of named
@@ -173,6 +176,7 @@ def assess_wrenches(
     twists: np.ndarray,
     constraints: np.ndarray,
     tol: Tolerance = DEFAULT_TOLERANCE,
+    held: np.ndarray | None = None,
 ) -> Assessment:
     """Verdict and conditioning of a choice of inputs from its actuation wrenches.
 
@@ -188,6 +192,11 @@ def assess_wrenches(
     constraints : ndarray, shape (6, 6 - d)
         Orthonormal basis of its constraint wrench system.
     tol : Tolerance
+    held : ndarray, shape (6, k), optional
+        Wrenches that locking the inputs adds beyond their own wrenches (the
+        constraint system of a limb with all its inputs locked, where an
+        input has no wrench of its own:
+        :meth:`~mobility.actuation.rigid_pose.RigidPose.locked_wrenches`).
 
     Returns
     -------
@@ -195,7 +204,7 @@ def assess_wrenches(
     """
     dof = twists.shape[1]
     present = [(w, r) for w, r in zip(wrenches, rates) if w is not None]
-    stack = np.concatenate([constraints] + [w[:, None] for w, _ in present], axis=1)
+    stack = np.concatenate([constraints] + [w[:, None] for w, _ in present] + ([] if held is None else [held]), axis=1)
     if stack.shape[1]:
         u, s, _ = svd(stack)
         decision = decide_rank(s, tol)
@@ -246,6 +255,8 @@ def assess_inputs(
     *,
     warnings: Sequence[str] = (),
     length_unit: str = "",
+    idle_inputs: Sequence[str] | None = None,
+    held: np.ndarray | None = None,
 ) -> ActuationCheck:
     """The full verdict on named inputs, written in the global frame (rigid and flexure alike).
 
@@ -261,6 +272,14 @@ def assess_inputs(
     warnings : sequence of str
         Warnings to report before those of the assessment.
     length_unit : str
+    idle_inputs : sequence of str, optional
+        Given when the inputs can be set independently of one another over
+        the mechanism's motions (a rigid mechanism's loop closure tells):
+        the inputs that move the mechanism without moving the end effector.
+        More inputs than DOF are then not told to fight each other but to
+        drive idle motions (a self-motion, or a serial singularity).
+    held : ndarray, shape (6, k), optional
+        As for :func:`assess_wrenches`.
 
     Returns
     -------
@@ -275,7 +294,7 @@ def assess_inputs(
     >>> check.verdict, check.pattern, check.inputs[0].axis.kind
     ('valid', '1T', 'force')
     """
-    a = assess_wrenches([i.wrench for i in inputs], [i.rate for i in inputs], spaces.twists, spaces.constraints, tol)
+    a = assess_wrenches([i.wrench for i in inputs], [i.rate for i in inputs], spaces.twists, spaces.constraints, tol, held)
     norm, reference = spaces.normalisation, spaces.reference
     out_inputs = []
     useless = []
@@ -320,7 +339,7 @@ def assess_inputs(
         uncontrolled_twists=twist_rows,
         margin=a.decision,
         conditioning=a.conditioning,
-        explanation=_explanation(a.verdict, len(inputs), dof, a.decision.rank, useless),
+        explanation=_explanation(a.verdict, len(inputs), dof, a.decision.rank, useless, idle_inputs),
         warnings=tuple(warns),
         length_unit=length_unit,
         length_scale=norm.size,
@@ -344,15 +363,31 @@ def _wrench_in_world(wrench_n: np.ndarray, norm: Normalisation, reference: np.nd
     return world, axis
 
 
-def _explanation(verdict: str, n: int, dof: int, rank: int, useless: Sequence[str]) -> str:
-    """One sentence on a verdict."""
+def _explanation(verdict: str, n: int, dof: int, rank: int, useless: Sequence[str], idle_inputs: Sequence[str] | None = None) -> str:
+    """One sentence on a verdict.
+
+    Examples
+    --------
+    >>> _explanation(REDUNDANT, 4, 3, 6, ())
+    '4 inputs for 3 DOF: 1 more than needed (they must be coordinated or they fight each other)'
+    >>> _explanation(REDUNDANT, 1, 0, 6, (), ["A"])
+    '1 input for 0 DOF, yet the inputs do not fight: each moves the mechanism on its own, and A moves it without moving the end effector (a self-motion of the mechanism, or a serial singularity where the end effector has lost a freedom at this pose)'
+    """
     if verdict == VALID:
         return (
             f"the {n} actuation wrench(es) and the {6 - dof} constraint wrench(es) span all six dimensions: "
             "with the inputs locked the end effector cannot move"
         )
+    inputs = f"{n} input{'' if n == 1 else 's'} for {dof} DOF"
+    if verdict == REDUNDANT and idle_inputs:
+        movers = ", ".join(idle_inputs)
+        return (
+            f"{inputs}, yet the inputs do not fight: each moves the mechanism on its own, and {movers} "
+            f"move{'s' if len(idle_inputs) == 1 else ''} it without moving the end effector "
+            "(a self-motion of the mechanism, or a serial singularity where the end effector has lost a freedom at this pose)"
+        )
     if verdict == REDUNDANT:
-        return f"{n} inputs for {dof} DOF: {n - dof} more than needed (they must be coordinated or they fight each other)"
+        return f"{inputs}: {n - dof} more than needed (they must be coordinated or they fight each other)"
     text = f"actuation and constraint wrenches span only {rank} of 6 dimensions: with the inputs locked the end effector can still move along {6 - rank} direction(s)"
     if n < dof:
         text += f" (fewer inputs, {n}, than DOF, {dof})"

@@ -24,11 +24,14 @@ import itertools
 import math
 from typing import Iterable, Sequence
 
+import numpy as np
 
+from ..core.linalg import singular_values, svd
+from ..core.loop_closure import loop_closure
 from ..core.model import Mechanism, joint_names, require_mechanism, require_no_repeats
 from ..core.poses import DEFAULT_STEP, require_pose_count, sample_poses
 from ..core.screws import motion_pattern
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank, require_tolerance
 from ..core.topology import joints_of
 from ..errors import MechanismError, RequestError, clipped, name_list
 from .assessment import Assessment, InputWrench, assess_inputs, assess_wrenches
@@ -210,7 +213,8 @@ def enumerate_actuations(
             warnings.append(f"the end effector has {spaces.dof} DOF at pose {index} ({pose_list[index][0]}), {dof} at the given pose")
         for c, found in zip(combos, per_combo):
             got = [state.wrench(j, 0) for j in c]
-            found.append(assess_wrenches([g[0] for g in got], [g[1] for g in got], spaces.twists, spaces.constraints, tol))
+            held = state.locked_wrenches([(j, 0) for j in c])
+            found.append(assess_wrenches([g[0] for g in got], [g[1] for g in got], spaces.twists, spaces.constraints, tol, held))
     joints = mechanism.joints
     results = [combine_poses(tuple(joints[j].name for j in c), combination_type(joints[j].type for j in c), f) for c, f in zip(combos, per_combo)]
     ranked, groups = rank_combinations(results)
@@ -245,7 +249,53 @@ def _inputs_of(pose: RigidPose, names: Sequence[str]) -> list[InputWrench]:
 
 def _assess_at(pose: RigidPose, names: Sequence[str], warnings: Sequence[str] = ()) -> ActuationCheck:
     m = pose.mechanism
-    return assess_inputs(m.name, "rigid", _inputs_of(pose, names), pose.spaces, pose.tol, warnings=warnings, length_unit=m.length_unit)
+    inputs = _inputs_of(pose, names)
+    idle = _idle_inputs(pose, names) if len(inputs) > pose.spaces.dof else None
+    held = pose.locked_wrenches(_freedoms(pose.mechanism, names))
+    return assess_inputs(m.name, "rigid", inputs, pose.spaces, pose.tol, warnings=warnings, length_unit=m.length_unit, idle_inputs=idle, held=held)
+
+
+def _freedoms(mechanism: Mechanism, names: Sequence[str]) -> list[tuple[int, int]]:
+    """``(joint, freedom)`` of every input of the named joints (known names, checked before)."""
+    index = {j.name: i for i, j in enumerate(mechanism.joints)}
+    return [(index[name], k) for name in names for k in range(mechanism.joints[index[name]].dof)]
+
+
+def _idle_inputs(pose: RigidPose, names: Sequence[str]) -> tuple[str, ...] | None:
+    """The inputs that move the mechanism without moving the end effector, when the inputs can be set independently.
+
+    From the loop closure of the whole mechanism: the inputs' rows of its
+    joint-rate basis have full rank when no input's rate is tied to the
+    others' (else None: they fight), and an input whose rate is not zero in
+    some motion that leaves the end effector still drives an idle motion.
+
+    Examples
+    --------
+    A slider-crank at its dead centre: the crank moves, the slider does not.
+
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
+    >>> m = Mechanism("slider-crank", "ground", "slider", (R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "rod", (1, 0, 0)),
+    ...     R("C", "rod", "slider", (3, 0, 0)), Joint("S", "P", ("slider", "ground"), axis=(1, 0, 0))))
+    >>> _idle_inputs(RigidPose(m), ["A"]), _idle_inputs(RigidPose(m), ["A", "S"])
+    (('A',), None)
+    """
+    closure = loop_closure(pose.mechanism, pose.tol)
+    offsets = closure.screws.offsets
+    index = {j.name: i for i, j in enumerate(pose.mechanism.joints)}
+    labels, columns = [], []
+    for name in names:
+        j = index[name]
+        dof = pose.mechanism.joints[j].dof
+        labels += [name if dof == 1 else f"{name}.{k}" for k in range(dof)]
+        columns += range(int(offsets[j]), int(offsets[j]) + dof)
+    rates = closure.joint_rates[columns]  # (inputs, mobility)
+    if rates.shape[1] < len(columns) or decide_rank(singular_values(rates), pose.tol).rank < len(columns):
+        return None
+    _, s, vt = svd(closure.end_effector_map @ closure.joint_rates)
+    idle = vt[decide_rank(s, pose.tol).rank :].T  # motions of the mechanism that leave the end effector still
+    moved = np.linalg.norm(rates @ idle, axis=1) if idle.size else np.zeros(len(columns))
+    return tuple(label for label, size in zip(labels, moved) if decide_rank(np.array([1.0, size]), pose.tol).rank == 2)
 
 
 def _require_same_mechanism(reference: Mechanism, pose: Mechanism, label: str) -> None:

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 from functools import cached_property
+from typing import Sequence
 
 import numpy as np
 
@@ -113,13 +114,43 @@ class RigidPose:
         wrench, rate, note = self.wrench(joint, freedom)
         return InputWrench(label, self.mechanism.joints[joint].type, self.limb_of.get(joint), wrench, rate, note)
 
+    def locked_wrenches(self, freedoms: Sequence[tuple[int, int]]) -> np.ndarray | None:
+        """The wrenches a limb exerts with all its inputs locked, for the limbs where an input has no actuation wrench of its own.
+
+        An input whose motion the other joints of its limb already produce (a
+        limb with a self-motion, such as a 7R arm, or joints in line) has no
+        wrench of its own, yet locking it with the others can still hold the
+        limb: what holds it then is the constraint system of the limb with
+        every input locked (an orthonormal basis, normalised coordinates).
+
+        Parameters
+        ----------
+        freedoms : sequence of (joint, freedom)
+            The inputs.
+
+        Returns
+        -------
+        ndarray, shape (6, k), or None
+            None when every input of every limb has its own wrench (or none
+            because it is not on a path between the ground and the end
+            effector).
+        """
+        lacking = {self.limb_of[j] for j, k in freedoms if j in self.limb_of and self.wrench(j, k)[2] == _DRIVEN_BY_OTHERS}
+        if not lacking:
+            return None
+        held = []
+        for limb in sorted(lacking):
+            columns = [int(self.screws.offsets[j]) + k for j, k in freedoms if self.limb_of.get(j) == limb]
+            held.append(evaluate_node(self.limbs[limb][0], _with_freedoms_locked(self.screws, columns), self.tol).wrenches)
+        return np.concatenate(held, axis=1)
+
     def _actuation_wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str]:
         if joint not in self.limb_of:
             return None, 1.0, _NOT_ON_A_PATH
         limb = self.limb_of[joint]
         node, value = self.limbs[limb]
         col = int(self.screws.offsets[joint]) + freedom
-        others = evaluate_node(node, _with_freedom_locked(self.screws, col), self.tol)
+        others = evaluate_node(node, _with_freedoms_locked(self.screws, [col]), self.tol)
         p = self.attachment(limb)
         to_attachment = adjoint(np.eye(3), -p)  # [a; b] -> [a; b - p x a]
         own = value.wrenches
@@ -144,9 +175,9 @@ class RigidPose:
         return a, rate, ""
 
 
-def _with_freedom_locked(screws: JointScrews, col: int) -> JointScrews:
-    """The same joint twists with column ``col`` set to zero (that freedom locked)."""
+def _with_freedoms_locked(screws: JointScrews, columns: Sequence[int]) -> JointScrews:
+    """The same joint twists with ``columns`` set to zero (those freedoms locked)."""
     masked = screws.twists.copy()
-    masked[:, col] = 0.0
+    masked[:, list(columns)] = 0.0
     o = screws.offsets
     return replace(screws, twists=masked, columns=tuple(masked[:, o[j] : o[j + 1]] for j in range(len(o) - 1)))

@@ -91,7 +91,9 @@ def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:
             out.append("    (none)")
     out.append(f"  verdict: {check.verdict.upper()}: {check.explanation}")
     if check.verdict != SINGULAR:
-        if check.dof <= 1:
+        if check.dof == 0:
+            legend = "no end-effector freedom to control: 1 by convention"
+        elif check.dof == 1:
             legend = "one end-effector freedom: 1 by definition; the rank margin below is the distance to an actuation singularity"
         else:
             legend = "1: isotropic, 0: the inputs' effects lose rank; it stays finite where they all vanish together: the rank margin below measures that"

@@ -158,6 +158,7 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
     world = mechanism.world_joints
     ee = mechanism.end_effector
     wrenches, rates = [], []
+    lacking = {}  # by limb: the poses where an input of it has no wrench of its own (the limb's other joints produce its motion)
     for joint, freedom in inputs.freedoms:
         w = np.zeros((count, 6))
         rate = np.ones(count)
@@ -189,13 +190,17 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
                 a = np.where((r < 0)[:, None], -a, a)
                 w = np.where(has[:, None], a, 0.0)
                 rate = np.where(has, np.abs(r), 1.0)
+            else:
+                has = np.zeros(count, dtype=bool)
+            lacking[limb_of[joint]] = lacking.get(limb_of[joint], np.zeros(count, dtype=bool)) | ~has
         wrenches.append(w)
         rates.append(rate)
     n = len(inputs.freedoms)
     dof = answers.dof
     present = np.stack([np.any(w != 0.0, axis=1) for w in wrenches], axis=1) if n else np.zeros((count, 0), dtype=bool)
-    stack = np.concatenate([value.wrenches] + [w[:, :, None] for w in wrenches], axis=2)
-    counts = (6 - dof) + present.sum(axis=1)
+    held, held_counts = _held(limbs, lacking, inputs, posed, tol)
+    stack = np.concatenate([value.wrenches] + [w[:, :, None] for w in wrenches] + held, axis=2)
+    counts = (6 - dof) + present.sum(axis=1) + held_counts
     decision = decide_ranks(_singular_values(stack), tol, np.minimum(counts, 6))
     code = np.where(decision.rank < 6, 0, np.where(n > dof, 1, 2))
     verdict = np.array([SINGULAR, REDUNDANT, VALID], dtype=object)[code]  # the three strings shared, not one per pose
@@ -214,3 +219,23 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
         with np.errstate(divide="ignore", invalid="ignore"):
             conditioning = np.where(ok, sv[rows, d] / sv[:, 0], conditioning)
     return BatchActuation(verdict, decision.rank, decision.smallest_kept, conditioning)
+
+
+def _held(limbs: list, lacking: dict[int, np.ndarray], inputs: ActuationInputs, posed: PosedScrews, tol: Tolerance) -> tuple[list[np.ndarray], np.ndarray]:
+    """The constraint wrenches of each limb with all its inputs locked, at the poses where one of its inputs has no wrench of its own.
+
+    As :meth:`mobility.actuation.rigid_pose.RigidPose.locked_wrenches` at one
+    pose: zero columns at the other poses, and how many columns each pose holds.
+    """
+    count = posed.twists.shape[0]
+    held, counts = [], np.zeros(count, dtype=int)
+    for limb, where in sorted(lacking.items()):
+        if not where.any():
+            continue
+        members = set(joints_of(limbs[limb][0]))
+        locked = posed.twists.copy()
+        locked[:, :, [posed.offsets[j] + k for j, k in inputs.freedoms if j in members]] = 0.0
+        value = evaluate_batch(limbs[limb][0], locked, posed.offsets, tol)
+        held.append(np.where(where[:, None, None], value.wrenches, 0.0))
+        counts += np.where(where, 6 - value.dim, 0)
+    return held, counts
