@@ -97,7 +97,7 @@ class RigidPose:
             node = self.limbs[limb][0]
             ee = self.mechanism.end_effector
             world = self.mechanism.world_joints
-            pts = [world[j].point for j in joints_of(node) if ee in world[j].links and world[j].point is not None]
+            pts = [point for j in joints_of(node) if ee in world[j].links and (point := world[j].point) is not None]
             norm = self.screws.normalisation
             self._attachments[limb] = norm.point_from_world(np.mean(pts, axis=0)) if pts else self.screws.reference
         return self._attachments[limb]

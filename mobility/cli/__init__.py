@@ -36,7 +36,7 @@ import pkgutil
 import sys
 import traceback
 import warnings
-from typing import Any, Sequence
+from typing import Any, NoReturn, Sequence
 
 from ..errors import MobilityError, RequestError, one_line
 from ..io.files import os_problem
@@ -59,7 +59,7 @@ def command_modules(names: Sequence[str] | None = None) -> list:
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> None:  # one line, exit 2 (the usage is one --help away)
+    def error(self, message: str) -> NoReturn:  # one line, exit 2 (the usage is one --help away)
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
@@ -143,7 +143,7 @@ def _discard_stdout() -> None:
     documentation of :mod:`signal` advises the same for ``SIGPIPE``.  A stream
     put in place of the process's own (a test's capture) is left alone.
     """
-    if sys.stdout is None or sys.stdout is not sys.__stdout__:
+    if sys.stdout is not sys.__stdout__ or sys.stdout is None:
         return
     try:
         fd = sys.stdout.fileno()

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..actuation import ENUMERATION_MODES, check_actuation, check_over_poses, enumerate_actuations
+from ..actuation import ENUMERATION_MODES, ActuationCheck, Enumeration, check_actuation, check_over_poses, enumerate_actuations
 from ..core.tolerance import Tolerance
 from ..errors import RequestError
 from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines, flexure_spaces, is_flexure_document, loads_flexure
@@ -108,13 +108,14 @@ def run(args: argparse.Namespace) -> int:
     if args.samples:
         extra = tuple(extra) + check_over_poses(mechanism, names, sampled_poses(args, mechanism), tol=tol)
     labels = list(args.pose) + [f"sampled pose {i + 1}" for i in range(len(extra) - len(args.pose))]
-    poses = list(zip(labels, extra))
-    print(actuation_json(check, poses) if args.json else actuation_text(check, poses))
+    checked = list(zip(labels, extra))
+    print(actuation_json(check, checked) if args.json else actuation_text(check, checked))
     return 0 if check.valid and all(c.valid for c in extra) else 1
 
 
 def _run_flexure(args: argparse.Namespace, mechanism: FlexureMechanism, names: list[str] | None, tol: Tolerance) -> int:
     spaces = flexure_spaces(mechanism, args.threshold, tol=tol)
+    answer: ActuationCheck | Enumeration
     if args.enumerate:
         answer = enumerate_force_lines(mechanism, args.k, threshold=args.threshold, tol=tol)
         ok = bool(answer.valid)

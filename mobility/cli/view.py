@@ -67,6 +67,6 @@ def run(args: argparse.Namespace) -> int:
     else:
         view = mechanism_view(mechanism, result)
     path = view.write_html(args.output)
-    poses = f", {len(view.frames)} poses" if len(view.frames) > 1 else ""
-    print(one_line(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility}{poses}"))
+    pose_count = f", {len(view.frames)} poses" if len(view.frames) > 1 else ""
+    print(one_line(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility}{pose_count}"))
     return 0

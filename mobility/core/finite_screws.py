@@ -86,9 +86,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import reduce
-from typing import Iterable, Sequence
+from typing import Iterable
 
 import numpy as np
+import numpy.typing as npt
 from scipy.spatial.transform import Rotation
 
 from ..errors import HalfTurnError, MechanismError, RequestError
@@ -144,7 +145,7 @@ def _shown(v: object) -> str:
     return str(v.tolist()) if isinstance(v, np.ndarray) else repr(v)
 
 
-def _screw(s: Sequence[float]) -> np.ndarray:
+def _screw(s: npt.ArrayLike) -> np.ndarray:
     a = np.asarray(s, dtype=float)
     if a.shape != (6,):
         raise RequestError(f"expected a 6-vector [w; v], got shape {a.shape}")
@@ -183,7 +184,7 @@ def finite_screw(axis: Iterable[float], point: Iterable[float], angle: float, tr
     return FiniteScrew.from_parameters(axis, point, angle, translation).vector
 
 
-def transform_from_finite_screw(screw: Sequence[float]) -> np.ndarray:
+def transform_from_finite_screw(screw: npt.ArrayLike) -> np.ndarray:
     """The 4x4 homogeneous matrix of the displacement with finite screw ``[w; v]``.
 
     This is the Cayley map of SE(3): ``R = (I - [w]/2)^-1 (I + [w]/2)`` and
@@ -233,7 +234,7 @@ def finite_screw_from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOL
     return FiniteScrew.from_transform(matrix, tol).vector
 
 
-def triangle_product(*screws: Sequence[float]) -> np.ndarray:
+def triangle_product(*screws: npt.ArrayLike) -> np.ndarray:
     """The screw triangle product ``S_1 △ S_2 △ ... △ S_k`` of finite screws (``S_k`` acts first).
 
     ``S_a △ S_b`` is displacement ``b`` followed by displacement ``a`` (fixed
@@ -268,7 +269,7 @@ def _triangle2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.concatenate([w, v]) / d
 
 
-def twist_from_finite_screw_rate(screw: Sequence[float], rate: Sequence[float]) -> np.ndarray:
+def twist_from_finite_screw_rate(screw: npt.ArrayLike, rate: npt.ArrayLike) -> np.ndarray:
     """The instantaneous twist ``[ω; v]`` of a motion whose finite screw is ``S`` with derivative ``dS``.
 
     The twist is ``d/dΔ [S(τ+Δ) △ (-S(τ))]`` at ``Δ = 0`` (spatial twist,
@@ -367,7 +368,7 @@ class FiniteScrew:
         return FiniteScrew(np.array([1.0, 0, 0, 0, 0, 0, 0, 0]))
 
     @staticmethod
-    def from_vector(screw: Sequence[float]) -> "FiniteScrew":
+    def from_vector(screw: npt.ArrayLike) -> "FiniteScrew":
         """From a quasi-vector ``[w; v]`` (any finite 6-vector is a displacement)."""
         s = _screw(screw)
         w, v = s[:3], s[3:]
@@ -598,25 +599,25 @@ class Limb:
     def __len__(self) -> int:
         return len(self.joints)
 
-    def _values(self, q: Sequence[float] | None) -> np.ndarray:
+    def _values(self, q: npt.ArrayLike | None) -> np.ndarray:
         values = np.zeros(len(self.joints)) if q is None else np.asarray(q, dtype=float).reshape(-1)
         if values.shape != (len(self.joints),):
             raise RequestError(f"expected {len(self.joints)} joint values, got {values.size}")
         return values
 
-    def factors(self, q: Sequence[float] | None = None) -> list[FiniteScrew]:
+    def factors(self, q: npt.ArrayLike | None = None) -> list[FiniteScrew]:
         """The joints' finite screws ``S_j(q_j)``, base first."""
         return [j.finite_screw(x) for j, x in zip(self.joints, self._values(q))]
 
-    def finite_screw(self, q: Sequence[float] | None = None) -> FiniteScrew:
+    def finite_screw(self, q: npt.ArrayLike | None = None) -> FiniteScrew:
         """``S_1(q1) △ S_2(q2) △ ... △ S_n(qn)`` (Eq. 7), homogeneous form."""
         return reduce(FiniteScrew.triangle, self.factors(q), FiniteScrew.identity())
 
-    def transform(self, q: Sequence[float] | None = None) -> np.ndarray:
+    def transform(self, q: npt.ArrayLike | None = None) -> np.ndarray:
         """4x4 displacement of the chain's end."""
         return self.finite_screw(q).transform()
 
-    def _raw_rates(self, q: Sequence[float] | None) -> tuple[np.ndarray, np.ndarray]:
+    def _raw_rates(self, q: npt.ArrayLike | None) -> tuple[np.ndarray, np.ndarray]:
         """The dual-quaternion product ``H = H_1 ... H_n`` and its partial derivatives (8 x n).
 
         By the product rule on the bilinear form, with ``dH_j/dq_j = ½ ξ_j H_j``
@@ -638,7 +639,7 @@ class Limb:
             rates[:, j] = _dqmul(_dqmul(left[j], 0.5 * _dqmul(_pure(joint.twist()), f)), right[j + 1])
         return left[-1], rates
 
-    def finite_screw_rates(self, q: Sequence[float] | None = None) -> np.ndarray:
+    def finite_screw_rates(self, q: npt.ArrayLike | None = None) -> np.ndarray:
         """Partial derivatives ``∂S_f/∂q_j`` of the quasi-vector (6 x n).
 
         Raises
@@ -648,7 +649,7 @@ class Limb:
         """
         return _quasi_vector_rates(*self._raw_rates(q))[1]
 
-    def twists(self, q: Sequence[float] | None = None) -> np.ndarray:
+    def twists(self, q: npt.ArrayLike | None = None) -> np.ndarray:
         """Joint twists at pose ``q`` (6 x n), as the derivative of the limb's finite screw.
 
         Column ``j`` is :func:`twist_from_finite_screw_rate` ``(S_f, ∂S_f/∂q_j)``
@@ -664,7 +665,7 @@ class Limb:
         s, d = _quasi_vector_rates(h, dh)
         return np.stack([twist_from_finite_screw_rate(s, d[:, j]) for j in range(n)], axis=1).reshape(6, n)
 
-    def moved(self, q: Sequence[float]) -> "Limb":
+    def moved(self, q: npt.ArrayLike) -> "Limb":
         """The same chain with pose ``q`` taken as its new initial configuration (axes carried along)."""
         values = self._values(q)
         out = []

@@ -80,12 +80,12 @@ def read_only(value: _T, *, copy: bool = True) -> _T:
             while isinstance(base, np.ndarray):
                 base.setflags(write=False)
                 base = base.base
-            return value  # type: ignore[return-value]
+            return value
         if _sealed(value):
             return value
         out = value.copy(order="K")
         out.setflags(write=False)
-        return out  # type: ignore[return-value]
+        return out
     if isinstance(value, tuple) and value:
         items = [read_only(x, copy=copy) for x in value]
         if all(a is b for a, b in zip(items, value)):

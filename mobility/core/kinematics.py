@@ -611,9 +611,9 @@ def _build(mechanism: Mechanism) -> Kinematics:
         factors = np.full((len(rows), length), 2 * n, dtype=int)
         signs = np.zeros((len(rows), length))
         for k, row in enumerate(rows):
-            for i, f in enumerate(loops[row]):
-                factors[k, i] = f.variable if f.sign > 0 else n + f.variable
-                signs[k, i] = f.sign
+            for i, factor in enumerate(loops[row]):
+                factors[k, i] = factor.variable if factor.sign > 0 else n + factor.variable
+                signs[k, i] = factor.sign
         groups.append((np.array(rows), factors, signs))
     return Kinematics(
         mechanism=mechanism,

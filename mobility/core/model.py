@@ -41,7 +41,7 @@ import sys
 from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
 from types import MappingProxyType
-from typing import Any, Callable, Iterable, Mapping, TypeVar
+from typing import Any, Callable, Iterable, Mapping, TypeVar, cast
 
 import numpy as np
 
@@ -279,25 +279,28 @@ class Joint:
         ['R', 'P']
         """
         t = self.type
+        # Each branch reads only the fields its type requires, which __post_init__ checked are set (_REQUIRED).
+        axis, point, pitch, axes = cast(Vector, self.axis), cast(Vector, self.point), cast(float, self.pitch), cast("tuple[Vector, Vector]", self.axes)
         if t == "R":
-            return (Freedom("R", self.axis, self.point),)
+            return (Freedom("R", axis, point),)
         if t == "P":
-            return (Freedom("P", self.axis),)
+            return (Freedom("P", axis),)
         if t == "H":
-            return (Freedom("H", self.axis, self.point, self.pitch),)
+            return (Freedom("H", axis, point, pitch),)
         if t == "C":
-            return (Freedom("R", self.axis, self.point), Freedom("P", self.axis))
+            return (Freedom("R", axis, point), Freedom("P", axis))
         if t == "U":
-            return (Freedom("R", self.axes[0], self.point), Freedom("R", self.axes[1], self.point))
+            return (Freedom("R", axes[0], point), Freedom("R", axes[1], point))
         if t == "S":
-            return tuple(Freedom("R", e, self.point) for e in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)))
+            return tuple(Freedom("R", e, point) for e in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)))
         # E: two translations in the plane, one rotation about the normal.
-        n = np.asarray(self.normal)
+        normal = cast(Vector, self.normal)
+        n = np.asarray(normal)
         u1 = np.cross(n, np.eye(3)[int(np.argmin(np.abs(n)))])
         u1 /= np.linalg.norm(u1)
         u2 = np.cross(n, u1)
         p = self.point if self.point is not None else (0.0, 0.0, 0.0)
-        return (Freedom("P", tuple(u1)), Freedom("P", tuple(u2)), Freedom("R", self.normal, p))
+        return (Freedom("P", tuple(u1)), Freedom("P", tuple(u2)), Freedom("R", normal, p))
 
     def transformed(self, tf: Transform, frame: str = WORLD) -> "Joint":
         """The same joint with its geometry mapped by ``tf`` and written in ``frame``."""
@@ -386,7 +389,8 @@ class Frame:
         [1.0, 1.0, 0.0]
         """
         rpy = require_vector(_listed(rpy), "rpy")
-        return Frame(name, require_vector(_listed(origin), "origin"), tuple(map(tuple, rotation_from_rpy(rpy))), parent)
+        rotation = cast("tuple[Vector, Vector, Vector]", tuple(map(tuple, rotation_from_rpy(rpy))))  # a 3x3 matrix
+        return Frame(name, require_vector(_listed(origin), "origin"), rotation, parent)
 
     @property
     def transform(self) -> Transform:

@@ -42,7 +42,7 @@ from .joint_screws import JointScrews
 from .linalg import left_svd, left_svds, svd
 from .screws import SWAP_ROWS
 from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
-from .topology import Bridge, JointNode, Node, Parallel
+from .topology import Bridge, JointNode, Node, Parallel, Series
 
 __all__ = ["SystemValue", "MarginTracker", "evaluate_node", "subtree_values"]
 
@@ -170,7 +170,7 @@ def _levels(node: Node) -> list[list[tuple[Node, list[Node]]]]:
     return levels
 
 
-def _composite_children(node: Node) -> list[Node]:
+def _composite_children(node: Series | Parallel | Bridge) -> list[Node]:
     """The children of ``node`` that get a value of their own (every child of a parallel node)."""
     if isinstance(node, Parallel):
         return list(node.children)
@@ -178,7 +178,7 @@ def _composite_children(node: Node) -> list[Node]:
     return [c for c in children if type(c) is not JointNode]
 
 
-def _matrix(node: Node, values: list[SystemValue], screws: JointScrews) -> np.ndarray:
+def _matrix(node: JointNode | Series | Parallel, values: list[SystemValue], screws: JointScrews) -> np.ndarray:
     """The matrix whose span a joint, series or parallel node is: twists stacked, or (parallel) constraint wrenches stacked."""
     if type(node) is JointNode:
         return screws.of_joint(node.index)
@@ -252,7 +252,9 @@ def subtree_values(node: Node, value: SystemValue) -> Iterator[tuple[Node, Syste
         yield n, v
         if isinstance(n, JointNode):
             continue
+        assert v is not None  # only a joint inside a series or a bridge has no value
         children = [c for _, _, c in n.edges] if isinstance(n, Bridge) else list(n.children)
+        paired: list[tuple[Node, SystemValue | None]]
         if isinstance(n, Parallel):  # a parallel node keeps every child's value
             paired = list(zip(children, v.children))
         else:  # series and bridge nodes keep the values of their composite children only

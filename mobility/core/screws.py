@@ -33,6 +33,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from .linalg import left_svd, rank, singular_values, svd
 from .tolerance import DEFAULT_TOLERANCE, SIGN_TIE, RankDecision, Tolerance, decide_rank
@@ -63,18 +64,18 @@ SWAP_ROWS = np.array([3, 4, 5, 0, 1, 2])
 """Row order with ``SWAP @ x == x[SWAP_ROWS]`` (cheaper than the product)."""
 
 
-def revolute_twist(axis: np.ndarray, point: np.ndarray) -> np.ndarray:
+def revolute_twist(axis: npt.ArrayLike, point: npt.ArrayLike) -> np.ndarray:
     """Unit twist of a rotation about the line through ``point`` along ``axis``: ``[s; p x s]``."""
     s = np.asarray(axis, dtype=float)
     return np.concatenate([s, np.cross(np.asarray(point, dtype=float), s)])
 
 
-def prismatic_twist(axis: np.ndarray) -> np.ndarray:
+def prismatic_twist(axis: npt.ArrayLike) -> np.ndarray:
     """Unit twist of a translation along ``axis``: ``[0; s]``."""
     return np.concatenate([np.zeros(3), np.asarray(axis, dtype=float)])
 
 
-def helical_twist(axis: np.ndarray, point: np.ndarray, pitch: float) -> np.ndarray:
+def helical_twist(axis: npt.ArrayLike, point: npt.ArrayLike, pitch: float) -> np.ndarray:
     """Unit twist of a screw motion: ``[s; p x s + h s]`` (pitch ``h`` in length per radian)."""
     s = np.asarray(axis, dtype=float)
     return np.concatenate([s, np.cross(np.asarray(point, dtype=float), s) + pitch * s])

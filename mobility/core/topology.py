@@ -39,13 +39,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 from functools import lru_cache
-from typing import Any, Callable, Union
+from typing import Any, Callable, Union, final
 
 from .model import Mechanism
 
 __all__ = ["JointNode", "Series", "Parallel", "Bridge", "Node", "Topology", "TreeEdge", "decompose", "describe", "joints_of", "spanning_tree"]
 
 
+@final  # never subclassed: ``type(n) is JointNode`` (the fast test the evaluation uses) is an isinstance test
 @dataclass(frozen=True)
 class JointNode:
     """A single joint (by index in :attr:`Mechanism.joints`)."""
@@ -186,10 +187,12 @@ def _same_tree(a: Node, b: Node) -> bool:
             if x != y:
                 return False
         elif isinstance(x, Bridge):
+            assert isinstance(y, Bridge)  # the same type as x (checked above)
             if (x.source, x.target, x.links) != (y.source, y.target, y.links) or [e[:2] for e in x.edges] != [e[:2] for e in y.edges]:
                 return False
             stack.extend(zip((n for _, _, n in x.edges), (n for _, _, n in y.edges)))
         else:
+            assert isinstance(y, (Series, Parallel))  # the same type as x (checked above)
             if len(x.children) != len(y.children):
                 return False
             stack.extend(zip(x.children, y.children))
@@ -261,7 +264,7 @@ def spanning_tree(mechanism: Mechanism) -> tuple[tuple[TreeEdge, ...], tuple[int
     """
     import networkx as nx  # needed only here and for graphs that do not reduce whole: slow to import
 
-    graph = nx.Graph()
+    graph: nx.Graph[str] = nx.Graph()
     for index, joint in enumerate(mechanism.joints):
         a, b = joint.links
         if graph.has_edge(a, b):
@@ -305,11 +308,11 @@ Edge = tuple[str, str, Node]
 
 @lru_cache(maxsize=512)
 def _decompose(signature: tuple[tuple[str, tuple[str, str]], ...], ground: str, end_effector: str) -> Topology:
-    edges = [(a, b, JointNode(i, name)) for i, (name, (a, b)) in enumerate(signature)]
+    edges: list[Edge] = [(a, b, JointNode(i, name)) for i, (name, (a, b)) in enumerate(signature)]
     links = {x for a, b, _ in edges for x in (a, b)}
     # A graph that reduces whole is one block with the virtual edge ground-end effector
     # (series and parallel steps keep two terminals), so nothing is detached.
-    root = _reduce(edges, ground, end_effector)
+    root: Node | None = _reduce(edges, ground, end_effector)
     detached = []
     if isinstance(root, Bridge):
         root = None
@@ -326,7 +329,7 @@ def _blocks(edges: list[Edge], s: str, t: str) -> list[tuple[list[Edge], bool]]:
     """Split the edges by biconnected block of the graph plus a virtual edge s-t."""
     import networkx as nx  # only for graphs that do not reduce whole
 
-    g = nx.Graph()
+    g: nx.Graph[str] = nx.Graph()
     g.add_edges_from((a, b) for a, b, _ in edges)
     g.add_edge(s, t)
     block_of: dict[frozenset[str], int] = {}

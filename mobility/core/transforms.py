@@ -26,8 +26,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import math
+from typing import Sequence
 
 import numpy as np
+import numpy.typing as npt
 
 __all__ = [
     "cross",
@@ -47,7 +49,7 @@ __all__ = [
 ]
 
 
-def skew(v: np.ndarray) -> np.ndarray:
+def skew(v: npt.ArrayLike) -> np.ndarray:
     """Return the 3x3 matrix ``[v]x`` with ``skew(v) @ u == np.cross(v, u)``.
 
     Examples
@@ -83,7 +85,7 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def rotation_from_rpy(rpy: tuple[float, float, float] | np.ndarray) -> np.ndarray:
+def rotation_from_rpy(rpy: Sequence[float] | np.ndarray) -> np.ndarray:
     """Rotation matrix ``Rz(yaw) @ Ry(pitch) @ Rx(roll)`` from angles in radians."""
     r, p, y = (float(a) for a in rpy)
     cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
@@ -96,7 +98,7 @@ def rotation_from_rpy(rpy: tuple[float, float, float] | np.ndarray) -> np.ndarra
     )
 
 
-def rotation_from_axis_angle(axis: np.ndarray, angle: float) -> np.ndarray:
+def rotation_from_axis_angle(axis: npt.ArrayLike, angle: float) -> np.ndarray:
     """Rotation by ``angle`` (radians) about the unit vector ``axis`` (Rodrigues).
 
     Examples
@@ -131,11 +133,11 @@ class Transform:
         rt = self.rotation.T
         return Transform(rt, -rt @ self.translation)
 
-    def apply_point(self, p: np.ndarray) -> np.ndarray:
+    def apply_point(self, p: npt.ArrayLike) -> np.ndarray:
         """Map a point from the child frame to the parent frame."""
         return self.rotation @ np.asarray(p, dtype=float) + self.translation
 
-    def apply_vector(self, v: np.ndarray) -> np.ndarray:
+    def apply_vector(self, v: npt.ArrayLike) -> np.ndarray:
         """Map a free vector (a direction) from the child frame to the parent frame."""
         return self.rotation @ np.asarray(v, dtype=float)
 
@@ -321,7 +323,7 @@ def _coefficients_many(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nd
     t = np.where(small, 1.0, theta)
     s, co = np.sin(t), np.cos(t)
     closed = ((1.0 - co) / t**2, (t - s) / t**3, (t**2 + 2.0 * co - 2.0) / (2.0 * t**4), (2.0 * t - 3.0 * s + t * co) / (2.0 * t**5))
-    return tuple(np.where(small, series, form) for series, form in zip((a, b, c, d), closed))  # type: ignore[return-value]
+    return tuple(np.where(small, series, form) for series, form in zip((a, b, c, d), closed))
 
 
 def _skews(v: np.ndarray) -> np.ndarray:

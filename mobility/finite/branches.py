@@ -19,6 +19,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import cast
 
 import numpy as np
 
@@ -88,6 +89,7 @@ def group_by_tangent(probes: tuple[Probe, ...], k: int) -> tuple[list[TangentGro
     groups: list[TangentGroup] = []
     for i in sorted(moved, key=lambda i: (probes[i].mobility, -(probes[i].dof or 0), -(probes[i].margin or 0.0))):
         p = probes[i]
+        assert p.tangent is not None and p.mobility is not None  # a probe that moved was examined where it arrived
         for g in groups:
             if same_tangent(g.tangent, p.tangent):
                 g.probes.append(i)
@@ -158,11 +160,13 @@ def examine_branch(plan: MovePlan, group: TangentGroup, probes: tuple[Probe, ...
     kin = plan.kinematics
     rep = probes[group.probes[0]]
     m1, n1 = rep.mobility, rep.tangent
+    assert m1 is not None and n1 is not None and rep.q is not None  # the group's probes moved and were examined
     local_plan = plan.local()
     local = tuple(probe(local_plan, rep.q, "local", d, examine=False) for _, d in probe_directions(canonical_basis(n1), rng, randoms=2, pairs=False))
-    dim, moves = rank_of_moves([p.achieved for p in local if p.moved])
+    dim, moves = rank_of_moves(cast("list[np.ndarray]", [p.achieved for p in local if p.moved]))  # a probe that moved has a direction
     nearby = analyze(kin.mechanism_at(rep.q), tol=plan.tol)
     warning = ""
+    tangent: np.ndarray | None
     if dim == m1:
         # a regular point of its branch: the screw route there gives the branch's DOF and pattern
         tangent, source = n1, "nearby pose"
@@ -170,7 +174,7 @@ def examine_branch(plan: MovePlan, group: TangentGroup, probes: tuple[Probe, ...
     else:
         # fewer moves than first-order motions along the whole branch: its tangent at the given
         # pose is where the second-order forms vanish identically, when they single it out
-        tangent = tangent_from_second_order(second, [probes[i].achieved for i in group.probes], dim)
+        tangent = tangent_from_second_order(second, cast("list[np.ndarray]", [probes[i].achieved for i in group.probes]), dim)
         if tangent is not None:
             source = "second-order forms"
             dof, pattern = end_effector_pattern(kin.end_effector_jacobian(np.zeros(kin.variable_count)) @ tangent, plan.tol)  # exact, at the given pose

@@ -31,9 +31,9 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Any, Mapping
+from typing import Any, Mapping, cast
 
-from ..core.model import WORLD, Frame
+from ..core.model import WORLD, Frame, Vector
 from ..core.transforms import rotation_from_axis_angle, rotation_from_rpy
 from ..errors import MechanismError, MechanismFileError, did_you_mean
 from .expressions import RESERVED_NAMES, evaluate
@@ -260,7 +260,7 @@ class DocumentReader:
             rotation = rotation_from_rpy((0.0, 0.0, 0.0))
         parent = self.identifier(fdata.get("parent", WORLD), path + ("parent",), "a frame name")
         try:
-            return Frame(name, origin, tuple(map(tuple, rotation)), parent)
+            return Frame(name, origin, cast("tuple[Vector, Vector, Vector]", tuple(map(tuple, rotation))), parent)  # a 3x3 matrix
         except MechanismError as exc:
             raise self.fail(path + tuple(parse_key(exc.key)), exc.message) from None
 

@@ -182,4 +182,4 @@ def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptio
     closures = None if out.closures is None else file_name(out.closures, "closures")
     if closures == "":
         raise RequestError("closures: an empty file name; expected the name of a closures file (or leave the option out)")
-    return replace(out, close=close_pairs(out.close), closures=closures, **flags)
+    return replace(out, close=close_pairs(out.close), closures=closures, floating=flags["floating"], ignore_unsupported=flags["ignore_unsupported"])

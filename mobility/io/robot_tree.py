@@ -54,7 +54,7 @@ import math
 from collections import deque
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Iterable
+from typing import Iterable, cast
 
 import numpy as np
 
@@ -313,7 +313,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
         by_body.setdefault(j.body, []).append(j)
     parents = {b.name: b.parent for b in tree.bodies}
     for body, chain in by_body.items():
-        start, end = link(parents[body]), link(body)
+        start, end = link(cast(str, parents[body])), link(body)  # a joint's body is not the root: it has a parent
         if len(chain) == 1 and start == end:
             notes.append(f"joint {clipped(chain[0].name)}{_at(chain[0].line)} cannot move: welds hold {clipped(body)} to {clipped(start)}; left out")
             continue
@@ -343,10 +343,10 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
         end_effector = link(ee_body)
         if end_effector == ground:
             raise MechanismFileError("end_effector", f"body {clipped(ee_body)!r} is rigidly attached to the ground {clipped(ground)!r} (no joint between them); expected a body that can move", file=tree.file)
-    for role, body in (("ground", ground_body if options.ground is not None else None), ("end effector", ee_body)):
-        members = [b.name for b in tree.bodies if body and b.name != body and groups.find(b.name) == groups.find(body)]
+    for role, named in (("ground", ground_body if options.ground is not None else None), ("end effector", ee_body)):
+        members = [b.name for b in tree.bodies if named and b.name != named and groups.find(b.name) == groups.find(named)]
         if members:
-            notes.append(f"{role} {clipped(body)} is one rigid link with {', '.join(clipped(n) for n in members[:6])}{' ...' if len(members) > 6 else ''}")
+            notes.append(f"{role} {clipped(named)} is one rigid link with {', '.join(clipped(n) for n in members[:6])}{' ...' if len(members) > 6 else ''}")
     limits = current_limits()
     if len(joints) > limits.max_joints:
         raise MechanismFileError("joints", f"{len(joints)} joints are more than the limit of {limits.max_joints} ({limits.hint('max_joints')})", file=tree.file)
@@ -403,8 +403,8 @@ def _ties_out_of_subtree(tree: RobotTree, free: set[str]) -> dict[str, str]:
     """For each body of ``free`` that an equality ties to a body outside its subtree, the equality (for a note)."""
     parents = {b.name: b.parent for b in tree.bodies}
     nearest: dict[str, str | None] = {}  # the nearest body of ``free`` at or above each body
-    for b in tree.bodies:  # parents come first
-        nearest[b.name] = b.name if b.name in free else nearest.get(b.parent) if b.parent else None
+    for item in tree.bodies:  # parents come first
+        nearest[item.name] = item.name if item.name in free else nearest.get(item.parent) if item.parent else None
 
     def free_above(name: str) -> list[str]:
         out, here = [], nearest.get(name)

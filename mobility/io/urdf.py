@@ -200,8 +200,10 @@ class _UrdfReader:
         if URDF_JOINT_KINDS[jtype] not in (None, "free") and math.hypot(*axis) == 0.0:
             raise self.fail(el.find("axis"), f"{key}/axis/@xyz", "expected a non-zero direction, got 0 0 0")
         if 0.0 < max(abs(a) for a in axis) < sys.float_info.min:  # subnormal: read with fewer digits than a double holds
-            raise self.fail(el.find("axis"), f"{key}/axis/@xyz", f"numbers below {sys.float_info.min:.3g}, the smallest normal double, do not keep "
-                            f"their direction in double precision; expected larger numbers (only the direction counts), got {clipped(el.find('axis').get('xyz', ''))!r}")
+            axis_element = el.find("axis")
+            assert axis_element is not None  # the default axis is not subnormal: these numbers were read from the element
+            raise self.fail(axis_element, f"{key}/axis/@xyz", f"numbers below {sys.float_info.min:.3g}, the smallest normal double, do not keep "
+                            f"their direction in double precision; expected larger numbers (only the direction counts), got {clipped(axis_element.get('xyz', ''))!r}")
         mimic = el.find("mimic")
         if mimic is not None and not mimic.get("joint"):
             raise self.fail(mimic, f"{key}/mimic", "missing attribute joint; expected <mimic joint=\"...\">")

@@ -163,9 +163,9 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
         return _Builder(loader, file, lim).document()
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
-        line = mark.line + 1 if mark is not None else None
+        mark_line = mark.line + 1 if mark is not None else None
         what = exc.problem or exc.context or "syntax error"
-        raise MechanismFileError("", f"YAML syntax error: {what}", file=file, line=line) from None
+        raise MechanismFileError("", f"YAML syntax error: {what}", file=file, line=mark_line) from None
     except yaml.YAMLError as exc:
         raise MechanismFileError("", f"YAML error: {' '.join(str(exc).split())}", file=file) from None
     finally:

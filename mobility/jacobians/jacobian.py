@@ -59,14 +59,14 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Any, Sequence
+from typing import Any, Sequence, cast
 
 import numpy as np
 
 from ..core.finite_screws import Limb
 from ..core.frozen import ReadOnlyArrays
 from ..core.joint_screws import Normalisation
-from ..core.model import Mechanism, require_mechanism
+from ..core.model import Mechanism, Vector, require_mechanism
 from ..core.screws import SWAP, adjoint, reciprocal_product, reciprocal_system, span_and_reciprocal
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale, clean_numbers, decide_rank, require_tolerance
 from ..errors import AnalysisError, HalfTurnError
@@ -251,7 +251,7 @@ def _scaled_model(model: ParallelModel, scale: float) -> ParallelModel:
     """``model`` with every length times ``scale`` (points and pitches; a power of two, so exactly)."""
     chains = []
     for c in model.chains:
-        joints = tuple(replace(j, point=tuple(float(x) * scale for x in j.point), pitch=j.pitch * scale) for j in c.limb.joints)
+        joints = tuple(replace(j, point=cast(Vector, tuple(float(x) * scale for x in j.point)), pitch=j.pitch * scale) for j in c.limb.joints)
         chains.append(Chain(Limb(joints), c.joints, c.freedoms, c.forward))
     return ParallelModel(model.mechanism, tuple(chains), model.actuated, model.labels)
 

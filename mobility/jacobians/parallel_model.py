@@ -274,8 +274,8 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
             incident.setdefault(link, []).append(i)
     for link, js in incident.items():
         if link not in (mechanism.ground, mechanism.end_effector) and len(js) != 2:
-            names = ", ".join(world[i].name for i in js)
-            raise MechanismError("joints", f"link {link!r} has {len(js)} joints ({names}); the Jacobian needs limbs that are serial chains from {mechanism.ground!r} to {mechanism.end_effector!r}")
+            listed = ", ".join(world[i].name for i in js)
+            raise MechanismError("joints", f"link {link!r} has {len(js)} joints ({listed}); the Jacobian needs limbs that are serial chains from {mechanism.ground!r} to {mechanism.end_effector!r}")
     chains = []
     for first in incident[mechanism.ground]:
         link, index = mechanism.ground, first

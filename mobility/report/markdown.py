@@ -27,7 +27,7 @@ from .text import fmt_number, fmt_vector, screw_text
 __all__ = ["markdown_report", "markdown_table", "md_escape", "md_code"]
 
 
-def md_escape(text: str) -> str:
+def md_escape(text: object) -> str:
     """Make ``text`` safe inside a Markdown table cell (pipes escaped, no line breaks).
 
     Examples

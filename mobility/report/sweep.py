@@ -110,6 +110,7 @@ def sweep_summary(result: SweepResult) -> str:
         out.append(line)
     left = result.regular[2] - len(result.axes) if result.regular is not None else 0
     if left > 0:
+        assert result.regular is not None  # nothing is left without a regular pose
         out.append(
             f"  note: {len(result.axes)} coordinate(s) driven for mobility {result.regular[2]}: the other {left} freedom(s) "
             "follow the solver (the smallest change from the neighbouring pose), so the path across the grid decides them"

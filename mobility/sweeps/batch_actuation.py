@@ -36,7 +36,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Sequence, cast
 
 import numpy as np
 
@@ -130,7 +130,8 @@ def _locked_limb(node: Node, posed: PosedScrews, col: int, tol: Tolerance) -> Ba
     same non-zero singular values, one SVD column fewer).
     """
     if isinstance(node, Series) and all(type(c) is JointNode for c in node.children):
-        columns = [c for child in node.children for c in range(posed.offsets[child.index], posed.offsets[child.index + 1]) if c != col]
+        joints = cast("tuple[JointNode, ...]", node.children)  # every child is a joint (tested above)
+        columns = [c for child in joints for c in range(posed.offsets[child.index], posed.offsets[child.index + 1]) if c != col]
         basis, wrenches, rank = span_batch(posed.twists[:, :, columns], np.full(posed.twists.shape[0], len(columns)), tol, None)
         return BatchValue(basis, rank, wrenches, np.zeros_like(rank))
     locked = posed.twists.copy()

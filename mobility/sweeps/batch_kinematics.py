@@ -353,7 +353,7 @@ class Evaluation:
         exps = bk._exponentials(q)
         self._count = exps.count
         values = []
-        self._chains = []
+        self._chains: list[tuple[Factors, list[Motion | None], Motion | None]] = []  # the end effector's with its pose (p, r)
         for loop in bk._loops:
             g, before = bk._chain(loop, exps)
             values.append(_soa_logs(g))

@@ -237,10 +237,10 @@ def _bridge(node: Bridge, screws: _Screws, tol: Tolerance, margin: MarginCollect
             bases.append(screws.of_joint(child.index))
             real.append(np.full(count, screws.dof(child.index)))
         else:
-            v = done[id(child)]
-            values.append(v)
-            bases.append(v.basis)
-            real.append(v.dim)
+            value = done[id(child)]
+            values.append(value)
+            bases.append(value.basis)
+            real.append(value.dim)
     inner = [x for x in node.links if x != node.source]
     col_of = {x: 6 * i for i, x in enumerate(inner)}
     n_link = 6 * len(inner)
@@ -257,6 +257,7 @@ def _bridge(node: Bridge, screws: _Screws, tol: Tolerance, margin: MarginCollect
         c += b.shape[2]
     real_cols = n_link + sum(real, np.zeros(count, dtype=int))
     _, s, vt = stacked_svd(a, full_v=True)
+    assert vt is not None  # asked for (full_v)
     d = decide_ranks(s, tol, np.minimum(real_cols, a.shape[1]))
     if margin is not None:
         margin.add(d)

@@ -602,10 +602,12 @@ def close_lines(
     """
     lines, count = line_targets.shape[:2]
     plain = walk is None or walk.plain
+    legs: tuple[tuple[np.ndarray, np.ndarray | None, bool], ...]
     if plain:
         width, start, stops = count, anchor, None
         legs = ((np.arange(anchor + 1, count), None, False), (np.arange(anchor - 1, -1, -1), None, False))
     else:
+        assert walk is not None  # not plain
         width, start, stops = walk.stops.size, int(walk.stop_of[anchor]), walk.stops
         legs = walk.legs()
     q, err, ok = _unsolved((lines, width), bk.variable_count)
@@ -617,6 +619,7 @@ def close_lines(
     for at, values, halts in legs:
         targets = line_targets[:, at if stops is None else stops[at]]
         if values is not None:
+            assert walk is not None  # values come from a walk's legs
             targets = targets.copy()
             targets[:, :, walk.position] = values
         halt = ok[:, at] if halts else None
@@ -630,6 +633,7 @@ def close_lines(
             ok[:, at] = ok[:, at] | lok
     if plain:
         return q, err, ok
+    assert walk is not None  # not plain
     return _spread_stops(bk, drive, walk, q, err, ok, line_targets, tol)
 
 

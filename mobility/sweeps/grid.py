@@ -40,7 +40,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from typing import Iterable, Mapping, Union
+from typing import Iterable, Mapping, Union, cast
 
 import numpy as np
 
@@ -265,7 +265,7 @@ def _bounds(where: str, start: object, stop: object, count: object) -> tuple[flo
         except ValueError:
             raise RequestError(f"{where}: {label} must be a number, got {clipped(str(text).strip())!r}") from None
         except OverflowError:  # an integer beyond the floats
-            raise RequestError(f"{where}: {label} must be a finite number, got an integer of {len(str(abs(text)))} digits") from None
+            raise RequestError(f"{where}: {label} must be a finite number, got an integer of {len(str(abs(cast(int, text))))} digits") from None
         if isinstance(text, bool) or not math.isfinite(x):
             raise RequestError(f"{where}: {label} must be a finite number, got {text!r}")
         values.append(x)

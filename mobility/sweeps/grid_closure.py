@@ -105,13 +105,13 @@ def fill(bk: BatchKinematics, plan: GridPlan, closure: GridClosure, *, tol: Tole
             for direction in (1, -1):
                 src = np.roll(grid_index, direction, axis=axis)  # the neighbour at index - direction
                 valid = np.ones(shape, dtype=bool)
-                edge = [slice(None)] * len(shape)
+                edge: list[slice | int] = [slice(None)] * len(shape)
                 edge[axis] = 0 if direction > 0 else -1
                 if not around:
                     valid[tuple(edge)] = False
                 src2 = np.roll(grid_index, 2 * direction, axis=axis)
                 valid2 = valid.copy()
-                edge2 = [slice(None)] * len(shape)
+                edge2: list[slice | int] = [slice(None)] * len(shape)
                 edge2[axis] = 1 if direction > 0 else -2
                 if shape[axis] > 1 and not around:
                     valid2[tuple(edge2)] = False

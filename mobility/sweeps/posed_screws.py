@@ -30,6 +30,7 @@ True
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -75,7 +76,7 @@ class PosedScrews:
         return (points - self.centres) / self.lengths[:, None]
 
 
-def joint_geometry(mechanism: Mechanism, motions: dict[str, Motion], centre: np.ndarray, length: float) -> list[dict[str, np.ndarray]]:
+def joint_geometry(mechanism: Mechanism, motions: dict[str, Motion], centre: np.ndarray, length: float) -> list[dict[str, Any]]:
     """The global geometry of every joint at every pose: ``point``, ``axis``, ``normal``, ``axes`` arrays of shape ``(N, 3)``.
 
     ``motions`` are the link displacements in the normalised coordinates
@@ -85,7 +86,7 @@ def joint_geometry(mechanism: Mechanism, motions: dict[str, Motion], centre: np.
     for joint in mechanism.world_joints:
         rot_a, shift_a = motions[joint.links[0]]
         rot_b, _ = motions[joint.links[1]]
-        geometry: dict[str, np.ndarray] = {}
+        geometry: dict[str, Any] = {}  # arrays (N, 3); "axes" a pair of them
         if joint.point is not None:
             p = (np.asarray(joint.point) - centre) / length
             geometry["point"] = centre + length * (np.einsum("ijn,j->ni", rot_a, p) + shift_a.T)
@@ -111,6 +112,7 @@ def _freedoms(joint_type: str, g: dict, count: int, pitch: float | None) -> list
     if joint_type == "P":
         return [(True, g["axis"], zero, 0.0)]
     if joint_type == "H":
+        assert pitch is not None  # an H joint has its pitch
         return [(False, g["axis"], g["point"], float(pitch))]
     if joint_type == "C":
         return [(False, g["axis"], g["point"], 0.0), (True, g["axis"], zero, 0.0)]

@@ -379,7 +379,7 @@ class SweepResult(ReadOnlyArrays):
                 with np.errstate(invalid="ignore"):
                     same = (code[1] >= 0) & (code[0] == code[1]) & (code[2] == code[1]) & np.isfinite(left + mid + right)
                     dip = same & (mid <= left) & (mid <= right) & (mid <= MARGIN_DIP * np.maximum(left, right))
-                candidates = [(i, m, (a, b)) for i, a, b, m in zip(at[dip].tolist(), left[dip].tolist(), right[dip].tolist(), mid[dip].tolist())]
+                candidates: list[tuple[int, float, tuple[float, ...]]] = [(i, m, (a, b)) for i, a, b, m in zip(at[dip].tolist(), left[dip].tolist(), right[dip].tolist(), mid[dip].tolist())]
                 for end, inner in ((0, 1), (n - 1, n - 2)):  # an end of the axis: falling towards it from its one neighbour
                     e, f = np.take(values, end, axis=axis), np.take(values, inner, axis=axis)
                     with np.errstate(invalid="ignore"):

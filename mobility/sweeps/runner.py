@@ -38,7 +38,7 @@ import threading
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Callable, Iterable, Iterator, Sequence
+from typing import Any, Callable, Iterable, Iterator, Sequence, cast
 from urllib.parse import urlsplit
 
 import numpy as np
@@ -256,7 +256,7 @@ class _Runner:
     def __init__(self, context: _Context, scheduler: Any, workers: int | None, progress: Progress | None) -> None:
         self.context = context
         self.progress = progress
-        self.client = None
+        self.client: Any = None  # a dask.distributed Client (untyped), or None
         self._owns_client = False
         if scheduler is not None:
             try:
@@ -518,7 +518,7 @@ UNANSWERED = {
 def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_size: int) -> dict[str, np.ndarray]:
     """The table's columns over the whole grid; polished poses replace theirs in ``closure.q`` (the sweep's own array)."""
     keys = [key for key in UNANSWERED if context.inputs is not None or key not in ("verdict", "conditioning", "actuation_margin")]
-    columns = {key: np.full(context.plan.size, *UNANSWERED[key]) for key in keys}
+    columns: dict[str, np.ndarray] = {key: np.full(context.plan.size, *UNANSWERED[key]) for key in keys}
     rows = np.flatnonzero(closure.assembled)
     pieces = max(math.ceil(rows.size / chunk_size), runner.workers if rows.size >= 2 * BLOCK * runner.workers else 1)
     groups = [rows[g] for g in _split(rows.size, pieces)] if rows.size else []
@@ -550,6 +550,6 @@ def _result(context: _Context, closure: GridClosure, columns: dict[str, np.ndarr
         residual=closure.residual,
         tolerance=context.tol,
         seams=find_seams(context.bk, context.plan, closure.q, closure.assembled, tol=context.tol),
-        **columns,
+        **cast("dict[str, Any]", columns),  # the table's columns, each a field of the result
         **actuation,
     )

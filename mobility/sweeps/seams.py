@@ -61,7 +61,7 @@ def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np
         Flat indices of the two grid points of each seam, in grid order of
         the lines (none when no axis covers a full turn).
     """
-    out = []
+    out: list[tuple[int, int]] = []
     drive = Drive.of(plan.axes, bk.variable_count)
     for walk in plan_walks(plan):
         if not walk.closed or walk.stops.size < 2 or walk.variable < 0:

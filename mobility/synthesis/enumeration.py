@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Any, Sequence
+from typing import Any, Sequence, cast
 
 import numpy as np
 
@@ -290,7 +290,7 @@ def synthesize(
         tested,
         verified,
         time.perf_counter() - start,
-        {label: tuple(float(x) for x in np.asarray(p) + centre) for label, p in points.items()},
+        {label: cast(Vector, tuple(float(x) for x in np.asarray(p) + centre)) for label, p in points.items()},  # 3-vectors
         directions,
     )
 

@@ -38,13 +38,16 @@ Examples
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import TYPE_CHECKING, Any, Callable, Iterator
 
 import pytest
 
 from .check import CheckResult, OtherDocument, check_file, check_paths, mechanism_files
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..errors import MechanismCheckFailed
+
+if TYPE_CHECKING:
+    from _pytest._code.code import TerminalRepr  # what pytest's own repr_failure returns besides text
 
 __all__ = [
     "MechanismCheckFailed",
@@ -192,7 +195,7 @@ class MechanismItem(pytest.Item):
         if not result.ok:
             raise MechanismCheckFailed(failure_text(result))
 
-    def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> str:
+    def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException], style: Any = None) -> str | TerminalRepr:
         if isinstance(excinfo.value, MechanismCheckFailed):
             return str(excinfo.value)
         return super().repr_failure(excinfo, style=style)

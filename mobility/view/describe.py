@@ -20,7 +20,7 @@ Examples
 from __future__ import annotations
 
 import html
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 
@@ -41,7 +41,7 @@ __all__ = [
 ]
 
 
-def _length(value: float | np.ndarray, scale: float, unit: str) -> str:
+def _length(value: Any, scale: float, unit: str) -> str:  # a number, or a vector (a sequence or an array)
     text = fmt_vector(value, scale) if np.ndim(value) else fmt_number(float(value), scale)
     return f"{text} {unit}" if unit else text
 

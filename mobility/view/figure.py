@@ -127,6 +127,7 @@ def _glyph_traces(g: Glyph, frame: int, visible: bool, offset: np.ndarray) -> li
                        "color": g.color, "opacity": g.opacity, "flatshading": True, "hoverinfo": "text", "hovertext": g.hover,
                        "lighting": {"ambient": 0.65, "diffuse": 0.6, "specular": 0.1}})
     if g.label:
+        assert g.label_at is not None  # a labelled glyph says where
         traces.append({"type": "scatter3d", "mode": "text", **_coords(g.label_at[None], offset), "text": [g.label],
                        "textfont": {"color": g.color, "size": 13}, "hoverinfo": "text", "hovertext": g.hover})
     for k, t in enumerate(traces):

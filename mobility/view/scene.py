@@ -219,7 +219,7 @@ def build_scene(mechanism: Mechanism, result: Result, drawing: float | None = No
 
 def _links(mechanism: Mechanism, sk) -> list[Glyph]:
     """The links, grouped by role (one glyph each for the ground, the end effector and the other links)."""
-    roles = {"ground": [], "end_effector": [], "link": []}
+    roles: dict[str, list[tuple[str, np.ndarray]]] = {"ground": [], "end_effector": [], "link": []}
     for link, idx in sk.link_joints.items():
         role = "ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"
         roles[role].append((link, unique_points(sk.points[list(idx)], SAME_POINT * sk.size)))
@@ -340,6 +340,7 @@ def viewpoint(scene: Scene) -> tuple[float, float]:
         if g.layer == "mechanism":
             joints.append(g.points)
         else:
+            assert g.label_at is not None  # every glyph of the answer is labelled
             important.append(g.label_at[None])
             directions.append(g.direction)
     context = np.concatenate(joints).reshape(-1, 3)

@@ -19,6 +19,7 @@ True
 from __future__ import annotations
 
 import math
+from typing import cast
 
 import numpy as np
 
@@ -60,7 +61,7 @@ def unique_points(p: np.ndarray, eps: float) -> np.ndarray:
         return np.array(out).reshape(-1, 3)
     from scipy.spatial import cKDTree
 
-    near = cKDTree(p).query_ball_point(p, eps * (1.0 + 1e-9), p=2.0)  # a hair wider; the exact test follows
+    near = cast(np.ndarray, cKDTree(p).query_ball_point(p, eps * (1.0 + 1e-9), p=2.0))  # a hair wider; the exact test follows; rows in: an array of lists out
     dropped = np.zeros(len(p), dtype=bool)
     for i in range(len(p)):
         if not dropped[i]:

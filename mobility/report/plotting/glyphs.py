@@ -184,6 +184,7 @@ def draw_joints(ax: Any, m: Mechanism, sk: Sketch, labels: bool, view: tuple[flo
         if j.type == "H":
             axes_segs.append(helix(x, np.asarray(j.axis), 0.025 * size, 0.1 * size))
         if j.type == "U":
+            assert j.axes is not None  # a U joint has its two axes
             axes_segs += [np.stack([x - 0.06 * size * np.asarray(a), x + 0.06 * size * np.asarray(a)]) for a in j.axes]
         if j.type == "E":
             e1, e2 = perpendiculars(np.asarray(j.normal))

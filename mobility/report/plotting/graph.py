@@ -10,7 +10,7 @@ nothing is evaluated again), so one can see why the answer is what it is.
 from __future__ import annotations
 
 import itertools
-from typing import TYPE_CHECKING, Any, Sequence
+from typing import TYPE_CHECKING, Any, Sequence, cast
 
 import numpy as np
 
@@ -181,7 +181,7 @@ class _JointGraph:
 
         self.mechanism = mechanism
         self.colors = colors
-        g = nx.MultiGraph()
+        g: nx.MultiGraph[str] = nx.MultiGraph()
         g.add_nodes_from(mechanism.links)
         for i, j in enumerate(mechanism.joints):
             g.add_edge(*j.links, key=i, name=j.name)
@@ -249,7 +249,7 @@ class _JointGraph:
         for u, v in {frozenset(e[:2]): e[:2] for e in g.edges(keys=True)}.values():
             # joints between the same two links share one label, one line each,
             # near the end in the wider layer, where labels have room
-            ks = sorted(g[u][v])
+            ks = cast("list[int]", sorted(g[u][v]))  # the edges' keys, joint indices (the stubs type them as nodes)
             text = "\n".join(f"{m.joints[k].name} ({m.joints[k].type})" for k in ks)
             t = 0.32 if len(self.layers[self.depth[u]]) > len(self.layers[self.depth[v]]) else 0.68
             x, y = (1.0 - t) * np.asarray(pos[u]) + t * np.asarray(pos[v])
@@ -288,7 +288,7 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str],
     import networkx as nx
 
     topo, systems = r.topology, r.node_systems
-    tree = nx.DiGraph()
+    tree: nx.DiGraph[int] = nx.DiGraph()
     tpos: dict[int, tuple[float, float]] = {}
     tnodes: dict[int, Node] = {}
     offset = 0.0

@@ -144,12 +144,12 @@ def _views_asked(views: Any) -> tuple[int | None, list[tuple[float, float]]]:
 
 def _chosen_views(sk: Sketch, answer: np.ndarray, directions: np.ndarray, count: int) -> list[tuple[float, float]]:
     """Views where the answer shows best; the joints and links matter too, but less (the freedoms are listed twice)."""
-    link_dirs = []
+    dirs = []
     for idx in sk.link_joints.values():
         u = unique_points(sk.points[list(idx)], SAME_POINT * sk.size)
         if len(u) == 2:
-            link_dirs.append((u[1] - u[0]) / np.linalg.norm(u[1] - u[0]))
-    link_dirs = thinned(np.array(link_dirs).reshape(-1, 3))
+            dirs.append((u[1] - u[0]) / np.linalg.norm(u[1] - u[0]))
+    link_dirs = thinned(np.array(dirs).reshape(-1, 3))
     return choose_views(answer, np.concatenate([directions, directions, link_dirs]), sk.size, count, context=sk.points)
 
 
@@ -189,12 +189,12 @@ def _draw_view(ax: Any, mechanism: Mechanism, r: Result, sk: Sketch, scene: Scen
         text = f"R{i + 1}" if g.pitch == 0 else f"R{i + 1}\nh = {g.pitch:.3g}{unit}/rad"
         ax.text(*g.label_at, text, color=COLORS["rotation"], fontsize=9, fontweight="bold", gid=f"mobility:rotation-label:{i}", ha="center", va="center", zorder=1e4)
     k0 = len(r.couples)
-    for i, g in enumerate(scene.forces):
-        d = (g.end - g.start) / np.linalg.norm(g.end - g.start)
-        ax.plot(*np.stack([g.start, g.end]).T, color=COLORS["force"], lw=2.6, alpha=0.8, gid=f"mobility:force:{i}")
-        cone(ax, g.end, d, head * 0.8, COLORS["force"], f"mobility:force:{i}:head")
-        text = f"W{k0 + i + 1}" if g.pitch == 0 else f"W{k0 + i + 1}  h = {g.pitch:.3g}"
-        ax.text(*(g.end + 0.03 * size * d), text, color=COLORS["force"], fontsize=8.5, gid=f"mobility:force-label:{i}", zorder=1e4)
+    for i, force in enumerate(scene.forces):
+        d = (force.end - force.start) / np.linalg.norm(force.end - force.start)
+        ax.plot(*np.stack([force.start, force.end]).T, color=COLORS["force"], lw=2.6, alpha=0.8, gid=f"mobility:force:{i}")
+        cone(ax, force.end, d, head * 0.8, COLORS["force"], f"mobility:force:{i}:head")
+        text = f"W{k0 + i + 1}" if force.pitch == 0 else f"W{k0 + i + 1}  h = {force.pitch:.3g}"
+        ax.text(*(force.end + 0.03 * size * d), text, color=COLORS["force"], fontsize=8.5, gid=f"mobility:force-label:{i}", zorder=1e4)
     for i, (s, e) in enumerate(scene.couples):
         arrow(ax, s, e, COLORS["couple"], f"mobility:couple:{i}", head=head * 0.8, both=True, lw=1.8, ls="--")
         ax.text(*(e + 0.03 * size * (e - s) / np.linalg.norm(e - s)), f"C{i + 1}", color=COLORS["couple"], fontsize=8.5, zorder=1e4)

@@ -178,8 +178,8 @@ def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
     _require_drawable(mechanism, joints, pts, located, norm.length)
     link_joints: dict[str, list[int]] = {}
     for i, j in enumerate(joints):
-        for x in j.links:
-            link_joints.setdefault(x, []).append(i)
+        for name in j.links:
+            link_joints.setdefault(name, []).append(i)
     if located.any():
         lp = pts[located]
         size = float(np.max(np.ptp(lp, axis=0)))
@@ -209,6 +209,7 @@ def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
                 pts[i] = 0.5 * (a + b)
             elif a is not None or b is not None:
                 x = a if a is not None else b
+                assert x is not None  # one of the two links has an anchor
                 direction = np.asarray(j.axis if j.axis is not None else (0.0, 0.0, 0.0), dtype=float)
                 away = x - ee_centre
                 if np.linalg.norm(away) <= ROUND_OFF * size:

@@ -6,9 +6,21 @@ same in every figure (and in other views that import them).
 
 from __future__ import annotations
 
+from typing import TypedDict
+
 __all__ = ["JOINT_STYLE", "COLORS", "LIMB_COLORS"]
 
-JOINT_STYLE = {
+
+class JointStyle(TypedDict):
+    """How one joint type is drawn (an entry of :data:`JOINT_STYLE`)."""
+
+    marker: str
+    s: int
+    facecolor: str
+    label: str
+
+
+JOINT_STYLE: dict[str, JointStyle] = {
     "R": {"marker": "o", "s": 46, "facecolor": "white", "label": "R revolute"},
     "P": {"marker": "s", "s": 46, "facecolor": "#ffe08a", "label": "P prismatic"},
     "H": {"marker": "8", "s": 52, "facecolor": "#c8e6c9", "label": "H helical"},
