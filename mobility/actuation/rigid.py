@@ -283,7 +283,8 @@ def _idle_inputs(pose: RigidPose, names: Sequence[str]) -> tuple[str, ...] | Non
     closure = loop_closure(pose.mechanism, pose.tol)
     offsets = closure.screws.offsets
     index = {j.name: i for i, j in enumerate(pose.mechanism.joints)}
-    labels, columns = [], []
+    labels: list[str] = []
+    columns: list[int] = []
     for name in names:
         j = index[name]
         dof = pose.mechanism.joints[j].dof

@@ -159,7 +159,7 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
     world = mechanism.world_joints
     ee = mechanism.end_effector
     wrenches, rates = [], []
-    lacking = {}  # by limb: the poses where an input of it has no wrench of its own (the limb's other joints produce its motion)
+    lacking: dict[int, np.ndarray] = {}  # by limb: the poses where an input of it has no wrench of its own (the limb's other joints produce its motion)
     for joint, freedom in inputs.freedoms:
         w = np.zeros((count, 6))
         rate = np.ones(count)
