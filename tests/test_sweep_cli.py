@@ -354,3 +354,13 @@ def test_a_picture_name_given_to_o_is_refused_with_the_option_that_draws_it(caps
     status, out, err = run(capsys, "sweep", PARALLELOGRAM, "--vary", "O1=0:360:5", "-o", target)
     assert (status, out) == (2, "") and not target.exists()  # was exit 0 and a text table in map.png
     assert err.strip() == f"mobility: -o {target}: -o writes the table (text, csv or json); a picture is drawn by --plot {target}"
+
+
+def test_a_summary_with_poses_not_assembled_does_not_say_the_grid_has_no_singular_pose():
+    # The crank of the four-bar reaches its limit near 34 deg, a singular pose of the loop; the grid points beyond
+    # it are not assembled, so "none on the grid" would claim what nobody looked at.
+    part = sweep_summary(mobility.sweep(mobility.load(FOUR_BAR), ["A=30:40:3"]))
+    assert "singular poses: none among the assembled poses; the 2 not assembled may hold some" in part
+    assert "none on the grid" not in part
+    whole = sweep_summary(mobility.sweep(mobility.load(FOUR_BAR), ["A=0:20:3"]))
+    assert "singular poses: none on the grid" in whole

@@ -143,8 +143,14 @@ def sweep_summary(result: SweepResult) -> str:
             out.append(f"    {describe_values(result, p.values)}: {'; '.join(p.reasons)}")
         if len(singular) > SUMMARY_SINGULAR_LIMIT:
             out.append(f"    ... and {len(singular) - SUMMARY_SINGULAR_LIMIT:,} more (see --format csv or json)")
-    else:
+    elif result.assembled.all():
         out.append("  singular poses: none on the grid")
+    else:  # the edge of the assembled region is where the loops reach a limit: a singular pose, which Newton closes poorly
+        missing = int(result.size - result.assembled.sum())
+        out.append(
+            f"  singular poses: none among the assembled poses; the {missing:,} not assembled may hold some "
+            "(where assembly ends the loops reach a limit, itself a singular pose)"
+        )
     dips = result.dips
     if dips:
         out.append(f"  margin dips ({len(dips):,}): a singularity with the same answer on both sides may lie next to these poses, between grid points; a finer grid there tells")
