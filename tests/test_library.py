@@ -13,11 +13,13 @@ import re
 
 import numpy as np
 import pytest
+from builders import transformed
 from conftest import MECHANISMS
 
 import mobility
 from mobility.core.loop_closure import loop_closure
 from mobility.core.screws import free_vector_subspace, same_subspace
+from mobility.core.transforms import Transform
 
 LIBRARY = (
     "3crr", "3prs", "3prs_tilted", "3rps", "3upu_singular", "4puu", "4puu_singular", "6sps", "6ups",
@@ -272,3 +274,32 @@ def test_non_series_parallel_graph_is_solved_as_a_bridge():
     r = mobility.analyze(load("stephenson_six_bar"))
     assert r.structure.startswith("bridge(")
     assert (r.dof, r.mobility) == (1, 1)
+
+
+P_LOOP = """
+name: loop of four sliders in space
+ground: g
+end_effector: c
+joints:
+  - {name: P1, type: P, links: [g, a], axis: [1, 0, 0]}
+  - {name: P2, type: P, links: [a, b], axis: [0, 1, 0]}
+  - {name: P3, type: P, links: [b, c], axis: [0, 0, 1]}
+  - {name: P4, type: P, links: [c, g], axis: [1, 1, 1]}
+"""
+
+
+@pytest.mark.parametrize("text, motion", [
+    (P_LOOP, "three couples: every joint only translates"),  # was "every joint moves in one plane or about one point"
+    ("four_bar", "every joint moves in one plane"),
+    ("planar_3rrr", "every joint moves in one plane"),
+    ("spherical_3rrr", "three forces through one point: every joint turns about it"),
+    ("agile_eye", "three forces through one point: every joint turns about it"),
+    ("bennett", None),  # three common wrenches, none of those kinds: the count alone
+])
+def test_the_explanation_names_the_common_motion_only_when_the_common_wrenches_show_it(text, motion):
+    m = mobility.loads(text) if text.startswith("\n") else load(text)
+    for scale in (1.0, 1000.0):  # the kinds are read in normalised coordinates: a scale changes nothing
+        r = mobility.analyze(transformed(m, Transform.identity(), scale))
+        said = r.gruebler_kutzbach_explanation
+        assert r.common_constraints == 3 and f"{3 * r.loops} of them come from 3 wrench(es) reciprocal to every joint twist" in said
+        assert (f"twist ({motion}):" in said) if motion else "twist: each loop" in said

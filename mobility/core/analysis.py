@@ -31,7 +31,7 @@ from .model import WORLD, Mechanism, require_mechanism
 from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis, pattern_of
 from .screw_systems import MarginTracker, SystemValue, evaluate_node, subtree_values
 from .screws import free_vector_subspace, span_and_reciprocal
-from .tolerance import DEFAULT_TOLERANCE, NEAR_LARGEST_FLOAT, Tolerance, require_tolerance
+from .tolerance import DEFAULT_TOLERANCE, NEAR_LARGEST_FLOAT, Tolerance, decide_rank, require_tolerance
 from .transforms import cross
 from .topology import JointNode, Node, Parallel, Topology, decompose, describe, joints_of
 
@@ -178,6 +178,33 @@ class _Detail:
 
     def common_constraints(self) -> int:
         return 6 - span_and_reciprocal(self.screws.twists, self.tol).dim
+
+    def common_motion(self) -> str:
+        """What three wrenches common to every joint say of the joints: ``"translation"``, ``"planar"``, ``"spherical"`` or ``""``.
+
+        Three couples: every joint only translates.  A force along ``n`` and
+        the couples normal to it: every joint moves in planes normal to
+        ``n``.  Three forces through one point ``p`` (the moments are
+        ``p x f``): every joint turns about ``p``.  Each is decided on the
+        orthonormal common wrenches (normalised coordinates) by the rank
+        policy; anything else, or another number of common wrenches, is ``""``.
+        """
+        common = span_and_reciprocal(self.screws.twists, self.tol).reciprocal
+        if common.shape[1] != 3:
+            return ""
+        forces, moments = common[:3], common[3:]
+        s = np.linalg.svd(forces, compute_uv=False)
+        rank = decide_rank(np.concatenate([[1.0], s]), self.tol).rank - 1  # the basis is orthonormal: an absolute threshold
+        if rank == 0:
+            return "translation"
+        if rank == 1:
+            u = np.linalg.svd(forces)[0][:, 0]  # the force's direction
+            couples = free_vector_subspace(common, self.tol)[0]  # (3, 2): the couples' axes
+            return "planar" if couples.shape[1] == 2 and decide_rank(np.array([1.0, float(np.linalg.norm(couples.T @ u))]), self.tol).rank == 1 else ""
+        if rank == 3:
+            skew = moments @ np.linalg.inv(forces)  # p x . when every wrench is a force through p
+            return "spherical" if decide_rank(np.array([1.0, float(np.linalg.norm(skew + skew.T))]), self.tol).rank == 1 else ""
+        return ""
 
     def limbs(self) -> tuple[LimbSystem, ...]:
         """Each branch of a top-level parallel connection, in its own frame.

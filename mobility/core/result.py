@@ -159,6 +159,8 @@ class ResultDetail(Protocol):
 
     def common_constraints(self) -> int: ...
 
+    def common_motion(self) -> str: ...
+
 
 @dataclass(frozen=True, eq=False)
 class Result(ReadOnlyArrays):
@@ -359,7 +361,11 @@ class Result(ReadOnlyArrays):
         )
         common = self.common_constraints * self.loops
         if common:
-            kind = {3: " (every joint moves in one plane or about one point)"}.get(self.common_constraints, "")
+            kind = {
+                "translation": " (three couples: every joint only translates)",
+                "planar": " (every joint moves in one plane)",
+                "spherical": " (three forces through one point: every joint turns about it)",
+            }.get(self.detail.common_motion(), "")
             text += (
                 f" {common} of them come from {self.common_constraints} wrench(es) reciprocal to every joint twist"
                 f"{kind}: each loop loses {self.common_constraints} equation(s)."
