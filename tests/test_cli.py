@@ -262,6 +262,22 @@ def test_idle_freedoms_off_the_path_and_inside_loops():
     assert (r.idle_dof, r.loops) == (1, 1) and idle_hint(r) == "joints inside the loops move against each other"
 
 
+@pytest.mark.parametrize("scale", [1.0, 1e-6, 1e6])
+def test_a_link_between_two_spherical_joints_at_one_point_is_not_called_a_rod(scale):
+    # Two S joints at one centre: the link between them turns freely about that point (3 idle freedoms), and
+    # there is no line through two centres to spin about (the hint said so); at distinct centres it is a rod.
+    from mobility import Joint, Mechanism
+    from mobility.report.idle import idle_hint
+
+    def chain(second):
+        return Mechanism("two S", "g", "b", (Joint("S1", "S", ("g", "a"), point=(scale, scale, scale)), Joint("S2", "S", ("a", "b"), point=second)))
+
+    r = mobility.analyze(chain((scale, scale, scale * (1 + 1e-14))))
+    assert r.idle_dof == 3 and idle_hint(r) == "a link held by two spherical joints at one point turns freely about it: 1 such link here"
+    rod = mobility.analyze(chain((scale, scale, 3 * scale)))
+    assert rod.idle_dof == 1 and idle_hint(rod) == "e.g. the spin of an S–S rod about the line through its two centres: 1 such rod here"
+
+
 @pytest.mark.parametrize("args, message", [
     (["plot", "--graph", "--constraints", "mechanisms/four_bar.yaml", "-o", "{tmp}/g.png"], "mobility: --constraints draws on the mechanism, not on the --graph picture"),
     (["plot", "mechanisms/four_bar.yaml", "-o", "{tmp}/no/such/dir/p.png"], "mobility: -o {tmp}/no/such/dir/p.png: cannot write there: the folder {tmp}/no/such/dir does not exist"),

@@ -22,10 +22,12 @@ Examples
 
 from __future__ import annotations
 
+import math
 from collections import defaultdict
 
 from ..core.model import Mechanism
 from ..core.result import Result
+from ..core.tolerance import DEFAULT_TOLERANCE
 from ..core.topology import JointNode, Node, Series, joints_of
 
 __all__ = ["spherical_chains", "idle_hint"]
@@ -45,13 +47,18 @@ def spherical_chains(mechanism: Mechanism) -> int:
     >>> spherical_chains(mobility.load("mechanisms/6sps.yaml")), spherical_chains(mobility.load("mechanisms/3rps.yaml"))
     (6, 0)
     """
+    return len(_chain_ends(mechanism))
+
+
+def _chain_ends(mechanism: Mechanism) -> dict[frozenset[str], tuple[int, int]]:
+    """Each chain of :func:`spherical_chains` (its links) with its two spherical joints."""
     joints = mechanism.joints
     at: dict[str, list[int]] = defaultdict(list)
     for i, j in enumerate(joints):
         for link in set(j.links):
             at[link].append(i)
     ends = {mechanism.ground, mechanism.end_effector}
-    found: set[frozenset[str]] = set()
+    found: dict[frozenset[str], tuple[int, int]] = {}
     for i, j in enumerate(joints):
         if j.type != "S" or j.links[0] == j.links[1]:
             continue
@@ -62,10 +69,10 @@ def spherical_chains(mechanism: Mechanism) -> int:
                 nxt = at[link][0] if at[link][1] == came else at[link][1]
                 a, b = joints[nxt].links
                 if joints[nxt].type == "S":
-                    found.add(frozenset(chain))
+                    found.setdefault(frozenset(chain), (i, nxt))
                     break
                 came, link = nxt, (b if a == link else a)
-    return len(found)
+    return found
 
 
 def _serial(node: Node) -> bool:
@@ -94,9 +101,15 @@ def idle_hint(result: Result) -> str:
     topology = getattr(detail, "topology", None)
     if mechanism is None or topology is None:
         return "joints move while the end effector stays still"
-    rods = spherical_chains(mechanism)
+    ends = _chain_ends(mechanism).values()
+    world = mechanism.world_joints
+    scale = getattr(detail, "tol", DEFAULT_TOLERANCE).rank * result.length_scale  # the rank policy's "same point", in the file's unit
+    pinned = sum(1 for a, b in ends if math.dist(world[a].point, world[b].point) <= scale)  # a link held by two S at one point turns freely
+    rods = len(ends) - pinned
     if rods:
         return f"e.g. the spin of an S–S rod about the line through its two centres: {rods} such rod{'s' if rods > 1 else ''} here"
+    if pinned:
+        return f"a link held by two spherical joints at one point turns freely about it: {pinned} such link{'s' if pinned > 1 else ''} here"
     systems = result.node_systems
     hints = []
     root = systems[topology.root]
