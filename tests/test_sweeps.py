@@ -745,6 +745,17 @@ def test_a_type_two_singularity_between_grid_points_is_a_margin_dip():
     assert json.loads(sweep_json(off))["margin_dips"][0]["column"] == "actuation_margin"
 
 
+def test_poses_a_hair_from_an_actuation_singularity_are_counted_near_it_as_the_one_pose_check_warns():
+    m = mobility.loads(flat_3rps())  # the legs in the platform's plane at z = 0: actuation-singular there
+    r = sweep(m, ["z=-0.0025:0.0025:3", "rx=0:0:1", "ry=0:0:1"])  # an actuation margin of 7.7e-6 on each side
+    assert r.verdict.tolist() == ["valid", "actuation-singular", "valid"]
+    warned = [any("near an actuation singularity" in w for w in mobility.check_actuation(r.mechanism_at(i), ["P1", "P2", "P3"]).warnings) for i in (0, 2)]
+    assert warned == [True, True]  # the second route: each pose checked on its own warns
+    assert "; near an actuation singularity: 2" in sweep_summary(r)  # (was not counted: "near-singular poses: 0" only)
+    far = sweep(m, ["z=10:20:3", "rx=0:0:1", "ry=0:0:1"])
+    assert "; near an actuation singularity: 0" in sweep_summary(far)
+
+
 def test_a_dead_centre_between_grid_points_and_at_the_grid_end_are_margin_dips():
     m = mobility.load(MECHANISMS / "slider_crank.yaml")  # dead centres at -60 and 120 degrees from the file's pose
     r = sweep(m, ["O=-59.75:120.25:181"])

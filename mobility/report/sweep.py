@@ -131,7 +131,11 @@ def sweep_summary(result: SweepResult) -> str:
         if np.isfinite(margins).any():
             lowest = first_least(margins, result.tolerance)
             where = "" if controlled.sum() == result.assembled.sum() else " of the poses not actuation-singular"
-            out.append(f"    actuation margin (distance to an actuation singularity): smallest{where} {float(margins[lowest]):.2e} at {describe_values(result, result.values[lowest])}")
+            near = int((margins < result.tolerance.near_singular).sum())  # as `mobility actuation` warns at one pose
+            out.append(
+                f"    actuation margin (distance to an actuation singularity): smallest{where} {float(margins[lowest]):.2e} "
+                f"at {describe_values(result, result.values[lowest])}; near an actuation singularity: {near:,}"
+            )
     margin = result.smallest_kept[result.assembled]
     worst = int(np.flatnonzero(result.assembled)[first_least(margin, result.tolerance)])
     near = int(result.near_singular[result.assembled].sum())
