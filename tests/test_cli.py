@@ -552,3 +552,13 @@ def test_comma_names_are_found_in_time_linear_in_the_option():
 def test_synthesize_write_refuses_an_empty_folder_name(capsys):
     assert main(["synthesize", "3T", "--write", ""]) == 2
     assert capsys.readouterr().err == "mobility: --write '': expected a folder name\n"
+
+
+def test_counts_of_one_are_written_in_the_singular():
+    from mobility import Joint, Mechanism
+    from mobility.report.text import text_report
+
+    slider = Mechanism("one slider", "g", "s", (Joint("P", "P", ("g", "s"), axis=(1, 0, 0)),))
+    assert "joints: 1 (1 freedom)" in text_report(mobility.analyze(slider))  # was "(1 freedoms)"
+    said = mobility.analyze(mobility.load(ROOT / "mechanisms" / "4puu.yaml")).gruebler_kutzbach_explanation  # one redundant constraint from its geometry
+    assert said.endswith(" 1 comes from the special geometry of the loops (parallel or intersecting axes, repeated constraints of parallel limbs).")

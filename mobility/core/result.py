@@ -372,7 +372,7 @@ class Result(ReadOnlyArrays):
             )
         rest = self.redundant_constraints - common
         if rest > 0:
-            text += f" {rest} come from the special geometry of the loops (parallel or intersecting axes, repeated constraints of parallel limbs)."
+            text += f" {rest} come{'s' if rest == 1 else ''} from the special geometry of the loops (parallel or intersecting axes, repeated constraints of parallel limbs)."
         return text
 
     def to_dict(self) -> dict[str, Any]:
