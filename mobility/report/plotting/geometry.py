@@ -2,9 +2,7 @@
 
 Examples
 --------
->>> import math
-
-import numpy as np
+>>> import numpy as np
 >>> e1, e2 = perpendiculars(np.array([0.0, 0, 2]))
 >>> float(e1 @ e2), float(e1 @ [0, 0, 1])
 (0.0, 0.0)
