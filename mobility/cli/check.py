@@ -24,7 +24,10 @@ from ..testing.flexure_check import flexure_document
 from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 20
-EXIT_STATUS = "0 every file passes, 1 a file disagrees with its expected block or has none, 2 a path or file is bad input (in the table, on its line)"
+EXIT_STATUS = (
+    "0 every file passes, 1 a file disagrees with its expected block or has none, "
+    "2 a path or file is bad input (in the table, on its line; it wins over disagreements)"
+)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -33,8 +36,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="analyse mechanism files and compare them with their expected blocks (exit 1 on a mismatch)",
         description=(
             "Analyse every mechanism file given (folders: every *.yaml/*.yml inside, recursively) and compare "
-            "it with its expected block (a flexure document is checked as one).  Exit status: 0 all pass, 1 a mismatch or a file without expected "
-            "block, 2 bad input (a bad file or path; wins over mismatches), 3 internal error."
+            "it with its expected block (a flexure document is checked as one)."
         ),
     )
     p.add_argument("paths", nargs="+", metavar="PATH", help="mechanism files or folders")
