@@ -1057,3 +1057,15 @@ def test_arms_driven_at_every_joint_have_the_one_pose_verdict_and_margin_at_ever
             assert_pose_matches_one_pose_routes(result, i)
             check = mobility.check_actuation(result.mechanism_at(i), tol=result.tolerance)
             assert result.actuation_margin[i] == pytest.approx(check.margin.smallest_kept, rel=1e-6, abs=1e-12)
+
+
+@pytest.mark.parametrize("huge, same, reached", [(3e17, 120.0, False), (1e18, 280.0, True), (5e19, 320.0, True), (-1e18, 80.0, False)])
+def test_a_huge_angle_is_the_angle_of_its_remainder(huge, same, reached):
+    # Whole turns were removed as round(x / 360) * 360, which is not exact beyond 2**53: 3e17 degrees (120 deg,
+    # where the four-bar's crank cannot go) was solved as the file's pose and reported assembled.
+    assert math.fmod(huge, 360.0) % 360.0 == same  # the remainder, exact in floating point
+    m = load("four_bar")  # the crank reaches -160.8 .. +34.0 deg from the file's pose
+    far, near = sweep(m, [f"A=0:{huge!r}:2"]), sweep(m, [f"A={same!r}:{same!r}:1"])
+    assert bool(far.assembled[1]) == bool(near.assembled[0]) == reached
+    if reached:
+        assert far.smallest_kept[1] == pytest.approx(near.smallest_kept[0], rel=1e-9)

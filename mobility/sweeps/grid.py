@@ -151,7 +151,7 @@ class SweepAxis:
     def anchor(self) -> int:
         """Index of the value nearest the file's pose (displacement 0, round the circle for an angle that wraps); the first of two as near."""
         values = self.values
-        distance = np.abs(values - whole_turns(values, self.period))
+        distance = np.abs(within_half_turn(values, self.period) if self.period else values)
         return int(np.flatnonzero(distance <= distance.min() + SAME_GRID_VALUE * self.step)[0])  # round-off must not pick between ties
 
     @property
@@ -174,10 +174,13 @@ class SweepAxis:
         values as one, :mod:`mobility.sweeps.walks`).
         """
         values = self.values
-        if self.period:
+        if self.period:  # by remainders, exact at any size (a value of 5e19 degrees is 140 degrees, not the file's pose)
             anchor = values[self.anchor]
-            near = anchor - whole_turns(anchor, self.period)  # the anchor's value, near the file's pose
-            values = values - whole_turns(values - near, self.period) if self.covers_turn else values - (anchor - near)
+            near = float(within_half_turn(anchor, self.period))  # the anchor's value, near the file's pose
+            if self.covers_turn:
+                values = near + within_half_turn(np.remainder(values, self.period) - near, self.period)
+            else:
+                values = near + within_half_turn(values - anchor, self.period) if abs(anchor) > TURNS_EXACT * self.period else values - (anchor - near)
         return values * self.scale
 
     @property
@@ -213,6 +216,22 @@ class GridPlan:
     def size(self) -> int:
         """Number of poses of the grid."""
         return math.prod(self.shape)
+
+
+TURNS_EXACT = 2.0**40
+"""Turns of an angle beyond which its values are reduced one by one (below, a range is moved as a whole, which keeps its order exactly)."""
+
+
+def within_half_turn(values: np.ndarray | float, period: float) -> np.ndarray:
+    """``values`` less whole turns, within half a turn of 0 (by remainders: exact at any size, unlike ``values / period``).
+
+    Examples
+    --------
+    >>> within_half_turn(np.array([350.0, -190.0, 5e19, 180.0]), 360.0).tolist()
+    [-10.0, 170.0, -40.0, 180.0]
+    """
+    r = np.remainder(values, period)
+    return np.where(r > 0.5 * period, r - period, r)
 
 
 def whole_turns(difference: np.ndarray, period: float) -> np.ndarray:
