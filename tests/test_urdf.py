@@ -203,7 +203,10 @@ J = '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xy
 
 @pytest.mark.parametrize("text, expected", [
     ('<robot name="r">\n<link name="a">\n</robot>', r":3: malformed XML: mismatched tag"),
-    ('<robot name="r" xmlns:xacro="x">\n<xacro:property name="l" value="1"/>\n</robot>', r":1: robot: a xacro file; expected a URDF: expand it first"),
+    ('<robot name="r" xmlns:xacro="x">\n<xacro:property name="l" value="1"/>\n</robot>', r":2: xacro:property: a xacro file; expected a URDF: expand it first"),
+    # xacro's namespace under another prefix: its macros were dropped and the rest analysed (exit 0, links missing)
+    ('<robot name="r" xmlns:x="http://www.ros.org/wiki/xacro">\n<link name="a"/><link name="b"/>\n' + J
+     + '\n<x:macro name="leg" params="p"><link name="${p}c"/></x:macro>\n<x:leg p="l"/>\n</robot>', r":4: x:macro: a xacro file; expected a URDF: expand it first"),
     ('<sdf version="1.6"/>', r":1: sdf: not a URDF file; expected the root element <robot>"),
     ('<robot name="r">\n<link name="a"/>\n<joint name="j" type="revolute">\n<parent link="a"/><child link="c"/></joint>\n</robot>',
      r":4: joint\[j\]/child: unknown link 'c'; expected a <link> of this robot"),

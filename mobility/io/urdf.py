@@ -98,6 +98,22 @@ def read_urdf(path: str | Path) -> RobotTree:
     return _UrdfReader(read_xml(file_name(path, "read_urdf"))).tree()
 
 
+def _xacro_element(root: ET.Element) -> ET.Element | None:
+    """The first element of the xacro language (``xacro:`` or any prefix declared for xacro's namespace), if any.
+
+    Examples
+    --------
+    >>> from mobility.io.xml_source import parse_xml
+    >>> tree = parse_xml('<robot xmlns:x="http://www.ros.org/wiki/xacro"><link name="a"/><x:macro name="m"/></robot>').root
+    >>> _xacro_element(tree).tag, _xacro_element(parse_xml('<robot><link name="a"/></robot>').root)
+    ('x:macro', None)
+    """
+    prefixes = {"xacro"}
+    for el in root.iter():  # the parser keeps prefixes in the tags and declarations as attributes
+        prefixes.update(k.partition(":")[2] for k, v in el.attrib.items() if k.startswith("xmlns:") and "xacro" in v.lower())
+    return next((el for el in root.iter() if el.tag.partition(":")[0] in prefixes and ":" in el.tag), None)
+
+
 class _UrdfReader:
     def __init__(self, doc: XmlDocument) -> None:
         self.doc = doc
@@ -107,8 +123,9 @@ class _UrdfReader:
 
     def tree(self) -> RobotTree:
         root = self.doc.root
-        if any(el.tag.startswith("xacro:") for el in root.iter()):
-            raise self.fail(root, root.tag, "a xacro file; expected a URDF: expand it first (xacro robot.urdf.xacro > robot.urdf)")
+        macro = _xacro_element(root)
+        if macro is not None:
+            raise self.fail(macro, macro.tag, "a xacro file; expected a URDF: expand it first (xacro robot.urdf.xacro > robot.urdf)")
         if root.tag != "robot":
             raise self.fail(root, root.tag, "not a URDF file; expected the root element <robot>")
         links = self.links(root)
