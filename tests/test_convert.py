@@ -154,3 +154,19 @@ def test_no_command_writes_over_a_file_the_model_includes(tmp_path, capsys, monk
     status, _, err = run(capsys, command, "model.xml", "-o", output, *extra)
     assert status == 2 and err.splitlines()[-1] == f"mobility: -o {output}: the same file as ./{output}, which would be overwritten"
     assert (tmp_path / output).read_text() == part
+
+
+@pytest.mark.parametrize("suffix, text, line, key", [
+    (".urdf", '<robot name="r">\n<link name="a"/><link name="b"/>\n<joint name=" " type="revolute"><parent link="a"/><child link="b"/>'
+     '<axis xyz="0 0 1"/></joint>\n</robot>\n', 3, "joint[' ']"),
+    (".xml", '<mujoco>\n<worldbody>\n<body name="&#10;">\n<joint name="j" type="hinge"/>\n<geom size="0.1"/>\n</body>\n</worldbody>\n</mujoco>\n',
+     3, "body['\\n']"),
+])
+def test_a_blank_name_in_a_robot_file_is_refused_at_its_line_by_every_command(capsys, tmp_path, suffix, text, line, key):
+    # analyze accepted it (a joint printed as nothing), convert refused it blaming the YAML it was writing
+    path = tmp_path / f"blank{suffix}"
+    path.write_text(text, encoding="utf-8")
+    for command in (["analyze"], ["convert", "-o", str(tmp_path / "out.yaml")], ["convert"]):
+        status, out, err = run(capsys, *command, str(path))
+        assert (status, out) == (2, "") and not (tmp_path / "out.yaml").exists(), (command, err)
+        assert err == f"mobility: {path}:{line}: {key}: a name of blank characters only; expected a visible name\n", (command, err)

@@ -102,6 +102,8 @@ def test_one_pivot_at_1e300_is_one_line_naming_the_link(tmp_path, where):
     with pytest.raises(MechanismFileError, match=r"joints\[\d\]\.point: the joints of link '\w+' \(\w, \w\) span") as caught:
         mobility.analyze(four_bar(points))
     assert "\n" not in str(caught.value)
+    far = "ABCD"[where]  # the joint that makes the size is named with its point, whichever link is refused
+    assert f"of the mechanism's size 4.33e+299 (set by joint '{far}' at [1e+300, 0, 0]): finer than" in str(caught.value)
     path = tmp_path / "far.yaml"
     path.write_text(four_bar_text(points))
     for command in (["analyze"], ["analyze", "--json"], ["analyze", "--finite"], ["actuation"]):

@@ -179,10 +179,14 @@ def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float
     joints = [int(j) for j, links in zip(table.located_joints, table.located_links) if link in links]
     written = ", ".join(mechanism.joints[j].name for j in joints)
     key, line = mechanism.joint_key(joints[0], "point")
+    located = table.located * scale
+    farthest = int(np.argmax(np.abs(located - located.mean(axis=0)).max(axis=1)))  # the joint whose point makes the size
+    far = mechanism.joints[int(table.located_joints[farthest])].name
+    where = ", ".join(f"{x / scale:.3g}" for x in located[farthest])
     raise MechanismFileError(
         key,
         f"the joints of link {name!r} ({written}) span {extent[bad[0]] / scale:.3g}, {extent[bad[0]] / length_s:.1e} of the mechanism's size "
-        f"{length_s / scale:.3g}: finer than the analysis can resolve ({RESOLUTION.inexact:.0e} of it); bring the far joints nearer or split the mechanism, "
+        f"{length_s / scale:.3g} (set by joint {far!r} at [{where}]): finer than the analysis can resolve ({RESOLUTION.inexact:.0e} of it); bring the far joints nearer or split the mechanism, "
         "or, if these joints meet at one point, write the same point for each",
         file=mechanism.source or "<string>",
         line=line,

@@ -286,6 +286,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
         ground or end-effector body, or a mechanism with nothing to move.
     """
     options = options or RobotOptions()
+    _refuse_blank_names(tree)
     notes = list(tree.notes)
     for item in tree.unsupported:
         if not options.ignore_unsupported:
@@ -509,3 +510,16 @@ def vector_tuple(v: Iterable[float]) -> Vector:
     if not all(math.isfinite(a) for a in (x, y, z)):
         raise MechanismError("", f"expected finite numbers, got {(x, y, z)!r}")
     return (x, y, z)
+
+
+def _refuse_blank_names(tree: RobotTree) -> None:
+    """Refuse a body, joint or closure named by blank characters only, at its line, as the project's format refuses it.
+
+    Such a name shows as nothing in every report, and a converted file
+    holding it would not read back.
+    """
+    named = [("body", b.name, b.line, tree.file) for b in tree.bodies] + [("joint", j.name, j.line, tree.file) for j in tree.joints]
+    named += [(c.what, c.joint.name, c.line, c.file or tree.file) for c in tree.closures]
+    for what, name, line, file in named:
+        if not name.strip():
+            raise MechanismFileError(f"{what}[{name!r}]", "a name of blank characters only; expected a visible name", file=file, line=line)
