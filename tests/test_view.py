@@ -356,6 +356,18 @@ def test_cli_takes_samples_or_a_sweep_not_both(capsys):
     assert capsys.readouterr().err == "mobility view: error: argument --samples: not allowed with argument --vary (see mobility view --help)\n"
 
 
+@pytest.mark.parametrize("samples", [200, 1000])
+def test_cli_refuses_more_samples_than_a_view_holds_before_any_work(tmp_path, capsys, monkeypatch, samples):
+    # it sampled the poses, then failed naming a Python keyword (max_poses=200) that the command line has not
+    import mobility.cli.view as command
+
+    monkeypatch.setattr(command, "sampled_poses", lambda *a: pytest.fail("the poses were sampled"))
+    target = tmp_path / "v.html"
+    assert main(["view", str(ROOT / "mechanisms" / "four_bar.yaml"), "-o", str(target), "--samples", str(samples)]) == 2
+    assert capsys.readouterr().err == f"mobility: --samples {samples}: a view shows at most 200 poses, the file's and 199 sampled; ask for fewer\n"
+    assert not target.exists()
+
+
 def test_cli_bad_file_names_file_line_and_key(write_yaml, tmp_path, capsys):
     path = write_yaml("name: x\nground: g\nend_effector: e\njoints:\n  - {name: A, type: R, links: [g, e], axis: [0, 0], point: [0, 0, 0]}\n")
     assert main(["view", str(path), "-o", str(tmp_path / "v.html")]) == 2

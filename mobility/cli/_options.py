@@ -66,7 +66,9 @@ def tolerance_from(args: argparse.Namespace) -> Tolerance:
     return Tolerance(rank=args.tol)
 
 
-def add_pose_sampler_options(parser: argparse.ArgumentParser, *, samples_help: str, samples_group: argparse._ActionsContainer | None = None) -> None:
+def add_pose_sampler_options(
+    parser: argparse.ArgumentParser, *, samples_help: str, samples_group: argparse._ActionsContainer | None = None, most: int | None = None
+) -> None:
     """Add ``--samples N``, ``--step`` and ``--seed``: further poses reached by moving the mechanism.
 
     The default ``--step`` is :data:`mobility.core.poses.DEFAULT_STEP`, that of
@@ -79,10 +81,14 @@ def add_pose_sampler_options(parser: argparse.ArgumentParser, *, samples_help: s
         What the subcommand does with the poses.
     samples_group : optional
         A group of ``parser`` (e.g. mutually exclusive) that ``--samples`` joins.
+    most : int, optional
+        The largest ``--samples`` the help names, when the command allows
+        fewer than :data:`MAX_SAMPLES` (which every command checks) and
+        checks it itself.
     """
     from ..core.poses import DEFAULT_STEP  # the finite kinematics: imported only by the commands that move
 
-    (samples_group or parser).add_argument("--samples", type=int, default=0, metavar="N", help=samples_help + f", 0 to {MAX_SAMPLES} (default: %(default)s)")
+    (samples_group or parser).add_argument("--samples", type=int, default=0, metavar="N", help=samples_help + f", 0 to {MAX_SAMPLES if most is None else most} (default: %(default)s)")
     parser.add_argument("--step", type=float, default=DEFAULT_STEP,
                         help="step of the pose sampler, in (0, 1]: a joint-space distance (radians, lengths over the mechanism's size) (default: %(default)g)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")

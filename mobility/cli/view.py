@@ -39,7 +39,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                        help="show the poses of a sweep, as for `mobility sweep` (repeat for a grid), with a slider; "
                        f"at most {MAX_POSES} poses are drawn, evenly spaced, every singular one kept")
     add_max_poses_option(p, what="with --vary: refuse a grid of more poses, as `mobility sweep` does")
-    add_pose_sampler_options(p, samples_help="also show N poses reached by moving the mechanism, with a slider", samples_group=poses)
+    add_pose_sampler_options(p, samples_help="also show N poses reached by moving the mechanism, with a slider", samples_group=poses, most=MAX_POSES - 1)
     add_tolerance_option(p)
     p.set_defaults(run=run)
 
@@ -50,6 +50,8 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError(f"{args.output}: expected a page name ending in .html or .htm (in any case)")
     require_new_output(args.output, "-o", args.file)
     max_poses = max_poses_from(args)
+    if args.samples >= MAX_POSES:  # the file's pose and the sampled ones, before any work
+        raise RequestError(f"--samples {args.samples}: a view shows at most {MAX_POSES} poses, the file's and {MAX_POSES - 1} sampled; ask for fewer")
     require_plotly()  # before any work
     mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
     if args.vary or args.samples:
