@@ -406,7 +406,7 @@ def test_deformable_bodies_are_unsupported():
       <body name="arm" pos="0 0 1"><joint name="j" axis="0 1 0"/><geom size="0.1"/></body>
       <flexcomp name="cloth" type="grid" count="3 3 1" spacing="0.1 0.1 0.1" pos="0 0 2" dim="2"/>
     </worldbody></mujoco>"""
-    with pytest.raises(MechanismFileError, match=r": flex: 1 deformable \(flex\) bodies are not supported; expected rigid bodies and joints; pass --ignore-unsupported"):
+    with pytest.raises(MechanismFileError, match=r"\.xml:3: flexcomp\[cloth\]: a deformable body, not supported \(not even left out: .*\); expected rigid bodies and joints"):
         read_robot(_write(text))
 
 
@@ -621,7 +621,7 @@ def test_included_files_are_found_as_mujoco_finds_them_and_named_in_errors(tmp_p
     ('<replicate count="20" offset="1 0 0">\n<body><geom size=".1"/><geom size=".2"/><site/></body></replicate>',
      r":3: replicate: 80 elements made by the count of <replicate>, <flexcomp> and <composite> \(count of <replicate> 20\) are more than the limit of 50 \(set MOBILITY_MAX_JOINTS"),
     ('<flexcomp name="cloth" type="grid" count="30 30 1" spacing=".1 .1 .1" dim="2"/>',
-     r":3: flexcomp: 900 elements made by the count of <replicate>, <flexcomp> and <composite> are more than the limit of 50"),
+     r":3: flexcomp\[cloth\]: a deformable body, not supported"),  # refused before its points are made
     ('<composite type="cable" count="1000 1 1"><joint kind="main"/></composite>', r":3: composite: 1000 elements made by the count"),
 ])
 def test_copies_are_counted_before_mujoco_makes_them(monkeypatch, body, expected):

@@ -78,7 +78,17 @@ class Limits:
         it: MuJoCo's parser takes time growing with the square of them
         (2.5 s for 10,000 named bodies, 20,000 elements).  The elements that the ``count``
         of ``<replicate>``, ``<flexcomp>`` and ``<composite>`` make are
-        bounded by ``max_joints``.
+        bounded by ``max_joints``.  An MJCF model's ``<connect>``, ``<weld>``
+        and other equalities count as joints: MuJoCo's constraint rows grow
+        with them as with the joints.
+    max_asset_values : int
+        Points that MuJoCo makes for the height fields and builtin meshes of
+        an MJCF model as it reads the file, all together, before anything
+        can be left out (a height field's ``nrow`` x ``ncol``, a builtin
+        mesh's resolutions multiplied): about 140 bytes each at most, so
+        that a 150-byte ``<hfield nrow="20000" ncol="20000">`` or ``<mesh
+        builtin="wedge" params="10000 10000 ...">`` (gigabytes) is refused
+        before MuJoCo reads it.
     max_expression_length : int
         Characters of one arithmetic expression.
     max_expression_depth : int
@@ -105,6 +115,7 @@ class Limits:
     max_joints: int = 5000
     max_frames: int = 5000
     max_elements: int = 20_000
+    max_asset_values: int = 1_000_000
     max_expression_length: int = 1000
     max_expression_depth: int = 100
     max_finite_joints: int = 50

@@ -42,7 +42,7 @@ from typing import Any, Iterator
 import numpy as np
 
 from ..core.model import Joint
-from ..core.tolerance import DEFAULT_TOLERANCE
+from ..core.tolerance import DEFAULT_TOLERANCE, characteristic_scale
 from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped
 from .files import read_capped
 from .mjcf_scan import MjcfScan, scan_mjcf
@@ -108,23 +108,50 @@ def read_mjcf(path: str | Path) -> RobotTree:
     doc = parse_xml(raw, file, mujoco=True)  # as MuJoCo's parser reads it: UTF-8, no DTD
     if doc.root.tag != "mujoco":
         raise doc.fail(doc.root, clipped(doc.root.tag), "not an MJCF file; expected the root element <mujoco>")
-    by_name = Path(file).suffix.lower() == ".xml"  # MuJoCo picks its reader by extension: other files are given as text
-    scan = scan_mjcf(doc, (os.path.dirname(file) or ".") if by_name else ".", size=len(raw))
+    folder = os.path.dirname(file) or "."
+    scan = scan_mjcf(doc, folder, size=len(raw))  # includes found beside the file, as MuJoCo finds them for a path
     mujoco = import_mujoco()
+    read, alias = _reader(mujoco, file, raw, scan)
+    if read is None:  # an old MuJoCo, given the text: it finds includes from the working directory
+        scan = scan_mjcf(doc, ".", size=len(raw))
+        read = lambda: mujoco.MjSpec.from_string(raw.decode("utf-8"))  # noqa: E731 -- UTF-8: checked
     said: list[str] = []
-    with _warnings_into(mujoco, said), warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")  # MuJoCo's compiler warnings become notes
-        read = (lambda: mujoco.MjSpec.from_file(file)) if by_name else (lambda: mujoco.MjSpec.from_string(raw.decode("utf-8")))  # UTF-8: checked
-        spec = _mujoco_call(read, file, scan)
-        _without_asset_files(mujoco, spec)
-        _without_mass_bounds(spec)
-        model = _mujoco_call(spec.compile, file, scan)
-        data = mujoco.MjData(model)
-        mujoco.mj_kinematics(model, data)
+    with _warnings_into(mujoco, said):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")  # MuJoCo's compiler warnings become notes
+            spec = _mujoco_call(read, file, scan, alias)
+            _without_asset_files(mujoco, spec)
+            _without_mass_bounds(spec)
+            _without_what_kinematics_ignores(mujoco, spec)
+            model = _mujoco_call(spec.compile, file, scan, alias)
+            data = mujoco.MjData(model)
+            mujoco.mj_kinematics(model, data)
+        tree = _MjcfTree(mujoco, spec, model, data, file).tree()  # its forward pass (the gaps) may warn too
     said += [str(w.message) for w in caught]
-    tree = _MjcfTree(mujoco, spec, model, data, file).tree()
     notes = [f"MuJoCo warns: {clipped(' '.join(text.split()), 200)}" for text in dict.fromkeys(said) if text.strip()]
     return replace(tree, notes=tree.notes + tuple(notes), files=scan.files)
+
+
+def _reader(mujoco: ModuleType, file: str, raw: bytes, scan: MjcfScan) -> tuple[Any, str | None]:
+    """How MuJoCo is to read the file so that it finds its includes beside it, and the name it is given under (``None``: its own).
+
+    MuJoCo picks its XML reader by the name's extension, case-sensitively:
+    a file named ``.xml`` is read by name.  Any other name (``FOUR.XML``,
+    ``arm.mjcf``) is given under a name ending in ``.xml`` in the same
+    folder, its text held in memory (MuJoCo's ``include`` files, looked up
+    before the disk), so that its ``<include>``s are found where a ``.xml``
+    file's would be.  The name is one that no included file has.  An old
+    MuJoCo without that argument: ``(None, None)``.
+    """
+    if file.endswith(".xml"):
+        return (lambda: mujoco.MjSpec.from_file(file)), None
+    if "include" not in (getattr(mujoco.MjSpec.from_file, "__doc__", "") or ""):
+        return None, None
+    taken = {os.path.basename(f) for f in scan.files} | {os.path.basename(file)}
+    alias, k = f"{file}.xml", 2
+    while os.path.basename(alias) in taken or os.path.lexists(alias):
+        alias, k = f"{file}.{k}.xml", k + 1
+    return (lambda: mujoco.MjSpec.from_file(alias, include={alias: raw})), alias
 
 
 def _not_utf8(name: str) -> bool:
@@ -157,12 +184,13 @@ def _warnings_into(mujoco: ModuleType, said: list[str]) -> Iterator[None]:
         setter(before)
 
 
-def _mujoco_call(call: Any, file: str, scan: MjcfScan) -> Any:
-    """Run a MuJoCo parse or compile step; its error becomes one line (see :func:`_mujoco_error`)."""
+def _mujoco_call(call: Any, file: str, scan: MjcfScan, alias: str | None = None) -> Any:
+    """Run a MuJoCo parse or compile step; its error becomes one line (see :func:`_mujoco_error`), the file named as given."""
     try:
         return call()
     except (ValueError, RuntimeError) as exc:  # MuJoCo's parse and compile errors
-        raise _mujoco_error(str(exc), file, scan) from None
+        text = str(exc).replace(alias, file) if alias else str(exc)
+        raise _mujoco_error(text, file, scan) from None
 
 
 def _mujoco_error(text: str, file: str, scan: MjcfScan) -> MechanismFileError:
@@ -217,6 +245,48 @@ def _without_mass_bounds(spec: Any) -> None:
         compiler.boundmass = 1e-6
     if not compiler.boundinertia:
         compiler.boundinertia = 1e-12
+
+
+_SIZES = ("nkey", "nuserdata", "memory", "njmax", "nconmax", "nstack",
+          *(f"nuser_{kind}" for kind in ("body", "jnt", "geom", "site", "cam", "tendon", "actuator", "sensor")))
+"""``<size>`` attributes, set back to MuJoCo's defaults (those of a new spec: their types differ between versions)."""
+
+
+def _without_what_kinematics_ignores(mujoco: ModuleType, spec: Any) -> None:
+    """Leave out what MuJoCo would allocate or compute for simulation only: kinematics at ``qpos0`` needs none of it.
+
+    A 100-byte file can otherwise cost minutes or gigabytes when compiled:
+    ``<size nkey="1000000">`` (a million keyframes), ``nuser_jnt`` or
+    ``nuserdata`` of 1e8 (numbers for every joint, for the data),
+    ``memory="100G"``, an actuator's or sensor's history buffer
+    (``nsample``), a sensor of a huge ``dim``, and ``<compiler><lengthrange
+    mode="all" inttotal="1e5">`` (MuJoCo simulates every actuator to find
+    its length range).  The ``<size>`` attributes get MuJoCo's defaults
+    (keyframes written in the file stay), sensors are removed, actuators
+    keep their transmission without history, no length range is computed.
+    ``fusestatic`` is turned off: every body the file names stays a body
+    (fusing a body without joints into its parent changes no kinematics,
+    but would make its name unknown to ``--end-effector``).
+    """
+    defaults = mujoco.MjSpec()
+    for attribute in _SIZES:
+        if hasattr(spec, attribute) and hasattr(defaults, attribute):
+            setattr(spec, attribute, getattr(defaults, attribute))
+    for sensor in list(getattr(spec, "sensors", [])):
+        if hasattr(spec, "delete"):  # newer MuJoCo; in older ones each element deletes itself
+            spec.delete(sensor)
+        else:
+            sensor.delete()
+    for actuator in getattr(spec, "actuators", []):
+        for attribute in ("delay", "nsample"):
+            if hasattr(actuator, attribute):
+                setattr(actuator, attribute, 0)
+    compiler = spec.compiler
+    modes = getattr(mujoco, "mjtLRMode", None)
+    if modes is not None and hasattr(compiler, "LRopt"):
+        compiler.LRopt.mode = modes.mjLRMODE_NONE
+    if hasattr(compiler, "fusestatic"):
+        compiler.fusestatic = False
 
 
 def _without_asset_files(mujoco: ModuleType, spec: Any) -> None:
@@ -346,7 +416,7 @@ class _MjcfTree:
         welds: list[Weld] = []
         unsupported: list[Unsupported] = []
         counts: dict[str, int] = {}
-        gaps = self.equality_gaps()
+        gaps = self.equality_gaps(notes)
         for k in range(m.neq):
             kind = int(m.eq_type[k])
             tag = {int(eq.mjEQ_CONNECT): "connect", int(eq.mjEQ_WELD): "weld", int(eq.mjEQ_JOINT): "joint", int(eq.mjEQ_TENDON): "tendon"}.get(kind, "flex")
@@ -382,30 +452,93 @@ class _MjcfTree:
             closures.append(Closure(joint, "connect", line))
         return closures, welds, unsupported
 
-    def equality_gaps(self) -> dict[int, str]:
-        """How far each active connect or weld is from holding at qpos0, by MuJoCo's own residuals, where it is.
+    def equality_gaps(self, notes: list[str]) -> dict[int, str]:
+        """How far each active connect or weld is from holding at qpos0, where it is; a note when the file turns equalities off.
 
         ``mj_forward`` on new data (at ``qpos0``) gives the constraint rows
-        (``efc_pos``); a connect's three rows are a distance, a weld's next
-        three a rotation.  A gap above ``Tolerance.rank`` of the model's size
-        (``stat.extent``), or of a radian, is reported: a connect between
-        sites that are apart, a weld whose ``relpose`` is not the written pose.
+        (``efc_pos``); a connect's or weld's first three are the distance
+        between its two points.  A weld's frames are compared by their
+        rotation: the angle of ``q2^-1 q1 relpose`` (``2 atan2(|v|, |w|)``,
+        in radians; MuJoCo's own rows hold ``sin(angle/2)`` times the
+        ``torquescale``).  A distance above ``Tolerance.rank`` of the
+        mechanism's characteristic length (of its joints' points, as the
+        analysis measures it: not MuJoCo's ``<statistic extent>``, which a
+        file may set at will), or an angle above ``Tolerance.rank`` radians,
+        is reported: a connect between sites that are apart, a weld whose
+        ``relpose`` is not the written pose.  The rows are made even where
+        the file's ``<option><flag>`` turns constraints or equalities off
+        (MuJoCo would then make none): a note says MuJoCo itself would not
+        enforce them.
         """
         m, mj = self.m, self.mj
-        if not m.neq:
+        kinds = (int(mj.mjtEq.mjEQ_CONNECT), int(mj.mjtEq.mjEQ_WELD))
+        closing = [k for k in range(m.neq) if m.eq_active0[k] and int(m.eq_type[k]) in kinds]
+        if not closing:
             return {}
-        data = mj.MjData(m)  # at qpos0; its own copy, so the kinematics read elsewhere stay as they are
-        mj.mj_forward(m, data)
+        bits = mj.mjtDisableBit
+        flags = int(m.opt.disableflags)
+        off = [name for name, bit in (("constraint", bits.mjDSBL_CONSTRAINT), ("equality", bits.mjDSBL_EQUALITY)) if flags & int(bit)]
+        if off:
+            said = " and ".join(f'<flag {name}="disable"/>' for name in off)
+            count = f"{len(closing)} connect/weld equalit{'y' if len(closing) == 1 else 'ies'}"
+            notes.append(f"the file turns equalities off (<option>{said}): MuJoCo itself would not enforce its {count}; "
+                         "analysed as written all the same")
+        quiet = int(bits.mjDSBL_CONTACT) | int(bits.mjDSBL_LIMIT) | int(bits.mjDSBL_FRICTIONLOSS)  # rows the gaps do not need
+        m.opt.disableflags = (flags & ~(int(bits.mjDSBL_CONSTRAINT) | int(bits.mjDSBL_EQUALITY))) | quiet
+        try:
+            data = mj.MjData(m)  # at qpos0; its own copy, so the kinematics read elsewhere stay as they are
+            mj.mj_forward(m, data)
+        finally:
+            m.opt.disableflags = flags
         rows = np.flatnonzero(np.asarray(data.efc_type[: data.nefc]) == int(mj.mjtConstraint.mjCNSTR_EQUALITY))
         ids, residual = np.asarray(data.efc_id)[rows], np.asarray(data.efc_pos)[rows]
-        size = max(float(m.stat.extent), 1e-300)
+        size = max(self.characteristic_length(closing), 1e-300)
         gaps: dict[int, str] = {}
-        for k in np.unique(ids).tolist():
+        for k in closing:
             own = residual[ids == k]
-            distance, turn = math.hypot(*own[:3]), math.hypot(*own[3:6])  # hypot: no overflow for a relpose near the largest float
-            if distance > DEFAULT_TOLERANCE.rank * size or turn > DEFAULT_TOLERANCE.rank:
-                gaps[int(k)] = f"its points are {distance:.3g} apart" + (f" and its frames {turn:.3g} rad" if turn > DEFAULT_TOLERANCE.rank else "")
+            distance = math.hypot(*own[:3]) if len(own) >= 3 else 0.0  # hypot: no overflow for a relpose near the largest float
+            angle = self.weld_angle(k) if int(m.eq_type[k]) == kinds[1] else 0.0
+            if distance > DEFAULT_TOLERANCE.rank * size or angle > DEFAULT_TOLERANCE.rank:
+                gaps[k] = f"its points are {distance:.3g} apart" + (
+                    f" and its frames {angle:.3g} rad ({math.degrees(angle):.3g} degrees) apart" if angle > DEFAULT_TOLERANCE.rank else "")
         return gaps
+
+    def characteristic_length(self, closing: list[int]) -> float:
+        """The mechanism's characteristic length at qpos0: of its joints' points and its connects' anchors (as the analysis measures it)."""
+        m, d = self.m, self.d
+        points = [np.asarray(d.xanchor[j], dtype=float) for j in range(m.njnt)]
+        for k in closing:
+            if int(m.eq_type[k]) == int(self.mj.mjtEq.mjEQ_CONNECT):
+                try:
+                    points.append(np.asarray(self.equality_bodies(k, "equality/connect", None)[2], dtype=float))
+                except MechanismFileError:
+                    continue  # an anchor that is not finite: refused with its name where the connect is read
+        finite = [p for p in points if np.all(np.isfinite(p))]
+        if not finite:
+            return 1.0
+        with np.errstate(all="ignore"):
+            return float(characteristic_scale(np.array(finite))[1])
+
+    def weld_angle(self, k: int) -> float:
+        """The angle (radians, 0 to pi) between a weld's two frames at qpos0, as its constraint compares them.
+
+        Body semantic: the rotation ``q2^-1 (q1 relpose)``; site semantic:
+        ``(q2 s2)^-1 (q1 s1)``, ``s`` the sites' quaternions in their bodies.
+        """
+        m, d = self.m, self.d
+        o1, o2 = int(m.eq_obj1id[k]), int(m.eq_obj2id[k])
+        if int(m.eq_objtype[k]) == int(self.mj.mjtObj.mjOBJ_SITE):
+            first = _quaternion_product(d.xquat[int(m.site_bodyid[o1])], m.site_quat[o1])
+            second = _quaternion_product(d.xquat[int(m.site_bodyid[o2])], m.site_quat[o2])
+        else:
+            first = _quaternion_product(d.xquat[o1], np.asarray(m.eq_data[k][6:10]))
+            second = np.asarray(d.xquat[o2], dtype=float)
+        conjugate = second * np.array([1.0, -1.0, -1.0, -1.0])
+        error = _quaternion_product(conjugate, first)
+        with np.errstate(all="ignore"):
+            sine = float(np.linalg.norm(error[1:]))
+        angle = 2.0 * math.atan2(sine, abs(float(error[0])))
+        return angle if math.isfinite(angle) else 0.0
 
     def equality_bodies(self, k: int, key: str, line: int | None) -> tuple[int, int, tuple[float, float, float]]:
         """The two bodies of a connect or weld, and the anchor in the global frame."""
@@ -421,3 +554,19 @@ class _MjcfTree:
 
 def _at(line: int | None) -> str:
     return f" (line {line})" if line is not None else ""
+
+
+def _quaternion_product(a: Any, b: Any) -> np.ndarray:
+    """The product ``a b`` of two quaternions ``(w, x, y, z)``, as MuJoCo's ``mju_mulQuat``.
+
+    Examples
+    --------
+    >>> _quaternion_product([0, 0, 0, 1], [0, 0, 0, 1]).tolist()  # half a turn about z, twice: a whole turn
+    [-1.0, 0.0, 0.0, 0.0]
+    """
+    w1, x1, y1, z1 = (float(v) for v in a)
+    w2, x2, y2, z2 = (float(v) for v in b)
+    return np.array([w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+                     w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+                     w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+                     w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2])

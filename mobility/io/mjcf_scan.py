@@ -13,11 +13,20 @@ the line of the element:
   limit, or larger than what remains of the size limit (the model and the
   files it includes are one document); a ``<model>`` asset file likewise
   when it exists;
-* more joints than the joint limit, more elements than the element limit,
-  or more elements made by the ``count`` of ``<replicate>``, ``<flexcomp>``
-  and ``<composite>`` than the joint limit, every copy counted (nested
-  replicates multiply), included files counted (see
-  :mod:`mobility.io.limits`);
+* more joints than the joint limit (each equality, ``<connect>``,
+  ``<weld>`` ..., counted as a joint: MuJoCo's constraint rows grow with
+  them), more elements than the element limit, or more elements made by
+  the ``count`` of ``<replicate>`` and ``<composite>`` than the joint
+  limit, every copy counted (nested replicates multiply), included files
+  counted (see :mod:`mobility.io.limits`); a negative ``count`` (MuJoCo
+  makes no copy of a ``<replicate count="-1">``, silently);
+* a ``<flexcomp>``: a deformable body, not supported, whose points MuJoCo
+  makes into bodies and joints (as many as the vertices of a mesh file it
+  reads, whatever its size, or from a named pipe, for ever);
+* height fields and builtin meshes whose points (``nrow`` x ``ncol``, the
+  resolutions of ``<mesh builtin>`` multiplied) pass the asset limit all
+  together: MuJoCo allocates them as it reads the file (gigabytes for a
+  line of XML), before anything can be left out;
 * a geometric attribute (``pos``, ``quat``, ``axis``, ``euler``, ...) that
   holds ``nan`` or ``inf``;
 * a direction that MuJoCo would silently replace (:data:`DIRECTIONS`): MuJoCo
@@ -108,6 +117,13 @@ Neither is refused when what MuJoCo uses is what was written (see
 :func:`_overflow_harmless`)."""
 
 _COUNTED = {"replicate", "flexcomp", "composite"}
+_RESOLUTIONS = {"supersphere": (1, 2), "supertorus": (1, 2), "wedge": (2, 1), "plate": (2, 1), "cone": (1, 1)}
+"""Builtin meshes MuJoCo makes as it reads the file: how many of their leading ``params`` are resolutions, and the power of each.
+
+The points it makes grow with the product of the resolutions (a
+supersphere's and a supertorus's one resolution squared: rings and
+segments); ``sphere`` and ``hemisphere`` are bounded by MuJoCo itself (4
+and 10 subdivisions)."""
 _HEX = re.compile(r"[+-]?0[xX]")
 
 
@@ -120,6 +136,8 @@ class MjcfScan:
     elements: int = 0
     joints: int = 0
     copies: int = 0
+    equalities: int = 0
+    asset_values: int = 0
 
 
 @dataclass
@@ -141,6 +159,7 @@ class _Context:
     in_world: bool = False
     chain: tuple[str, ...] = ()
     source: tuple[XmlDocument, Element] | None = None  # the innermost <replicate>, where its copies are refused
+    in_equality: bool = False  # the children of <equality>: each a constraint MuJoCo makes rows for
 
 
 @dataclass
@@ -151,7 +170,7 @@ class _Scanner:
     seen: dict[str, str] = field(default_factory=dict)
     includes: list[tuple[str, int | None]] = field(default_factory=list)
     files: list[str] = field(default_factory=list)
-    counts: dict[str, int] = field(default_factory=lambda: {"elements": 0, "joints": 0, "copies": 0})
+    counts: dict[str, int] = field(default_factory=lambda: {"elements": 0, "joints": 0, "copies": 0, "equalities": 0, "asset_values": 0})
     over: dict[str, _Over] = field(default_factory=dict)
 
     def walk(self, root: Element, context: _Context) -> None:
@@ -172,16 +191,40 @@ class _Scanner:
             self.count("copies", where.multiplier, at, where, doc)
         if tag in ("joint", "freejoint") and where.in_world:
             self.count("joints", where.multiplier, element, where)
+        if where.in_equality and tag != "include":  # a connect is a joint, a weld six constraint rows: counted as joints
+            self.counts["equalities"] += where.multiplier
+            self.count("joints", where.multiplier, element, where)
         if tag == "include":
             return self.included(element, where, "include")
         if tag == "model" and element.get("file"):
             return self.included(element, where, "model")
+        if tag == "flexcomp":
+            raise _unsupported_flexcomp(where.doc, element)
+        if tag in ("hfield", "mesh"):
+            self.asset_values(element, where)
         inner = where
         if tag in _COUNTED:
             inner = self.counted(element, where)
-        elif tag in ("worldbody", "default"):
-            inner = _Context(where.doc, where.multiplier, where.factors, tag == "worldbody", where.chain, where.source)
+        elif tag in ("worldbody", "default", "equality"):
+            inner = _Context(where.doc, where.multiplier, where.factors, tag == "worldbody", where.chain, where.source,
+                             in_equality=tag == "equality")
         return [(child, inner) for child in element]
+
+    def asset_values(self, element: Element, where: _Context) -> None:
+        """Count the points MuJoCo makes for a height field or a builtin mesh as it reads it; refuse them past the asset limit."""
+        made = _asset_points(element)
+        if made is None:
+            return
+        amount, how = made
+        self.counts["asset_values"] += amount * where.multiplier
+        limit = self.limits.max_asset_values
+        if self.counts["asset_values"] > limit:
+            total = self.counts["asset_values"]
+            others = f"; {total} with the height fields and builtin meshes before it" if total != amount else ""
+            name = element.get("name")
+            key = f"{clipped(element.tag)}[{clipped(name)}]" if name else clipped(element.tag)
+            raise where.doc.fail(element, key, f"{how}: {amount} points{others}, which MuJoCo allocates as it reads the file; expected "
+                                 f"at most the limit of {limit} ({self.limits.hint('max_asset_values')})")
 
     def count(self, what: str, amount: int, element: Element, where: _Context, doc: XmlDocument | None = None) -> None:
         """Add ``amount`` to the count ``what``; remember the element where it first passes its limit."""
@@ -192,7 +235,10 @@ class _Scanner:
 
     def counted(self, element: Element, where: _Context) -> _Context:
         """The context inside a ``<replicate>`` (its copies multiply), or the points of a ``<flexcomp>``/``<composite>``."""
-        factors = _counts(element.get("count", ""))
+        text = element.get("count", "")
+        if any(_negative(token) for token in text.split()):  # MuJoCo makes no copy of a <replicate count="-1">, and says nothing
+            raise where.doc.fail(element, f"{clipped(element.tag)}/@count", f"expected a count of 0 or more, got {clipped(text)!r}")
+        factors = _counts(text)
         total = math.prod(factors) if factors else 1
         if element.tag != "replicate":
             self.count("copies", total * where.multiplier, element, where)
@@ -222,7 +268,8 @@ class _Scanner:
             self.includes.append((doc.file, doc.line(element)))
         self.files.append(path)
         inner = parse_xml(read_capped(path, self.limits), os.path.normpath(path), mujoco=True)
-        context = _Context(inner, where.multiplier, where.factors, where.in_world and kind == "include", where.chain + (real,), where.source)
+        context = _Context(inner, where.multiplier, where.factors, where.in_world and kind == "include", where.chain + (real,), where.source,
+                           in_equality=where.in_equality and kind == "include")
         return [(child, context) for child in inner.root]
 
     def resolve(self, name: str, including: str) -> str | None:
@@ -261,6 +308,10 @@ class _Scanner:
         limit = getattr(self.limits, limit_name)
         noun = {"elements": "elements", "joints": "joints", "copies": "elements made by the count of <replicate>, <flexcomp> and <composite>"}[what]
         details = ["included files and copies counted"] if what == "elements" else []
+        equalities = self.counts["equalities"]
+        if what == "joints" and equalities:
+            noun = "joints and equalities"
+            details += [f"{equalities} of them <connect>, <weld> or other equalities, each counted as a joint"]
         details += [f"count of <replicate> {' x '.join(map(str, over.factors))}"] if over.factors else []
         detail = f" ({'; '.join(details)})" if details else ""
         raise over.doc.fail(over.element, clipped(over.element.tag),
@@ -296,7 +347,9 @@ def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = N
     scanner.seen[os.path.realpath(doc.file)] = "the model file itself"
     scanner.walk(doc.root, _Context(doc, chain=(os.path.realpath(doc.file),)))
     scanner.raise_first_over()
-    return MjcfScan(tuple(scanner.includes), tuple(scanner.files), scanner.counts["elements"], scanner.counts["joints"], scanner.counts["copies"])
+    counts = scanner.counts
+    return MjcfScan(tuple(scanner.includes), tuple(scanner.files), counts["elements"], counts["joints"], counts["copies"],
+                    counts["equalities"], counts["asset_values"])
 
 
 def _check_numbers(doc: XmlDocument, element: Element) -> None:
@@ -403,6 +456,60 @@ def _unit(vector: list[float]) -> list[float]:
     scaled = [x / largest for x in vector]
     length = math.hypot(*scaled)
     return [x / length for x in scaled]
+
+
+def _negative(token: str) -> bool:
+    """Whether a token of a ``count`` is a negative integer (as MuJoCo reads it: ``-1``, ``-01``)."""
+    try:
+        return int(token) < 0
+    except ValueError:
+        return False
+
+
+def _unsupported_flexcomp(doc: XmlDocument, element: Element) -> MechanismFileError:
+    """The error for a ``<flexcomp>``, at its line: refused before MuJoCo reads its file or makes its points."""
+    name = element.get("name")
+    key = f"flexcomp[{clipped(name)}]" if name else "flexcomp"
+    return doc.fail(element, key, "a deformable body, not supported (not even left out: MuJoCo would make bodies and joints of its "
+                    "points, reading its mesh file whatever its size); expected rigid bodies and joints (remove the <flexcomp>)")
+
+
+def _asset_points(element: Element) -> tuple[int, str] | None:
+    """How many points MuJoCo makes for a height field (``nrow`` x ``ncol``) or a builtin mesh as it reads it, and how it was counted.
+
+    ``None`` for anything else (a height field read from a file, which
+    MuJoCo reads only when compiling, and mobility never lets it; numbers
+    MuJoCo refuses itself).
+
+    Examples
+    --------
+    >>> from xml.etree.ElementTree import Element
+    >>> _asset_points(Element("hfield", nrow="20000", ncol="20000"))
+    (400000000, 'nrow x ncol = 20000 x 20000')
+    >>> _asset_points(Element("mesh", builtin="wedge", params="300 200 90 45 0.5"))
+    (60000, 'builtin wedge, resolutions 300 x 200 (params)')
+    >>> _asset_points(Element("mesh", file="arm.stl")) is None
+    True
+    """
+    if element.tag == "hfield":
+        try:
+            rows, columns = int(element.get("nrow", "0")), int(element.get("ncol", "0"))
+        except ValueError:
+            return None
+        if rows <= 0 or columns <= 0:
+            return None
+        return rows * columns, f"nrow x ncol = {rows} x {columns}"
+    builtin = (element.get("builtin") or "").strip()
+    if builtin not in _RESOLUTIONS:
+        return None
+    numbers = _numbers(element.get("params", ""))
+    count, power = _RESOLUTIONS[builtin]
+    if not numbers:
+        return None
+    resolutions = [max(0, int(x)) if math.isfinite(x) else 0 for x in numbers[:count]]  # MuJoCo casts them to int
+    points = math.prod(resolutions) ** power
+    shown = " x ".join(str(r) for r in resolutions) + (" squared" if power == 2 else "")
+    return points, f"builtin {builtin}, resolution{'s' if len(resolutions) > 1 else ''} {shown} (params)"
 
 
 def _counts(text: str) -> list[int]:

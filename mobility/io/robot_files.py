@@ -38,10 +38,10 @@ from pathlib import Path
 from typing import Any
 
 from ..core.model import Mechanism, bool_value
-from ..errors import MechanismFileError, RequestError
+from ..errors import MechanismFileError, RequestError, clipped
 from .closures import close_pairs, with_close_pairs, with_closures_file
 from .files import file_name
-from .robot_tree import ImportedRobot, RobotOptions, build_mechanism
+from .robot_tree import ImportedRobot, RobotOptions, RobotTree, build_mechanism, unique_name
 from .xml_source import read_xml, root_tag
 
 __all__ = ["robot_format", "is_robot_file", "read_robot", "load_robot", "refuse_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
@@ -124,7 +124,46 @@ def read_robot(path: str | Path, options: RobotOptions | None = None, **option_v
         tree = with_close_pairs(tree, options.close)
     if options.closures is not None:
         tree = with_closures_file(tree, options.closures)
-    return build_mechanism(tree, options)
+    return build_mechanism(_closures_named_apart(tree), options)
+
+
+def _closures_named_apart(tree: RobotTree) -> RobotTree:
+    """The tree with each closing joint named apart from the joints (and the other closing joints), with a note for each renamed.
+
+    A closing joint (an MJCF ``<connect>``, ``--close A B``, a joint of a
+    closures file) may be named like a joint of the file: MuJoCo keeps
+    connects and joints apart, the joint graph cannot.  It gets ``~2``,
+    ``~3``, ... as the made-up names do, and a note says so.  The names the
+    file's joints take (their own, ``.x`` ``.y`` ``.z`` of a free joint's
+    slides, and the ``~k`` of a clash among them) are set aside first.
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint
+    >>> from mobility.io.robot_tree import Body, Closure, TreeJoint
+    >>> tree = RobotTree("r", "r.xml", "MJCF", (Body("world", None), Body("a", "world"), Body("b", "a")),
+    ...                  (TreeJoint("A", "hinge", "a", (0, 0, 0), (0, 0, 1)),),
+    ...                  (Closure(Joint("A", "S", ("a", "b"), point=(0, 0, 0)), "connect", 9),))
+    >>> renamed = _closures_named_apart(tree)
+    >>> renamed.closures[0].joint.name, renamed.notes
+    ('A~2', ('connect A (line 9) is named like another joint: it is joint A~2 of the mechanism',))
+    """
+    if not tree.closures:
+        return tree
+    names = [name for j in tree.joints for name in ([f"{j.name}.{axis}" for axis in "xyz"] if j.kind == "free" else []) + [j.name]]
+    taken: set[str] = set()
+    for name in names:  # in the order the mechanism names them, each clash made ~2, ~3, ...
+        unique_name(name, taken)
+    taken.update(names)
+    closures, notes = [], []
+    for c in tree.closures:
+        name = unique_name(c.joint.name, taken)
+        if name != c.joint.name:
+            where = f" ({c.file + ', ' if c.file else ''}line {c.line})" if c.line is not None else ""
+            notes.append(f"{c.what} {clipped(c.joint.name)}{where} is named like another joint: it is joint {clipped(name)} of the mechanism")
+            c = replace(c, joint=replace(c.joint, name=name))
+        closures.append(c)
+    return replace(tree, closures=tuple(closures), notes=tree.notes + tuple(notes))
 
 
 def load_robot(path: str | Path, **option_values: Any) -> Mechanism:

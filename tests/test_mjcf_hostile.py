@@ -1,0 +1,309 @@
+"""MJCF files that would make MuJoCo wait, allocate without bound, or answer wrong: each refused in one line or read right.
+
+Found by an audit of the importer: a ``<flexcomp file>`` naming a pipe,
+``<size nkey="1000000">``, a 150-byte height field of gigabytes, thousands of
+``<connect>`` under a memory limit, equalities turned off by ``<option>``, a
+weld's angle given as ``sin(angle/2)``, an upper-case ``.XML``, a body fused
+away by ``fusestatic``, a closing joint renamed without a word.  Whatever may
+hang runs in a child process with a timeout, so that the old behaviour fails
+the test instead of stopping the suite.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import mujoco
+import pytest
+
+import mobility
+from mobility.errors import MechanismFileError
+from mobility.io.robot_files import read_robot
+
+ROOT = Path(__file__).resolve().parent.parent
+HISTORY = hasattr(mujoco.MjSpec().add_actuator(), "nsample")  # actuators' history buffers: newer MuJoCo only
+BUILTIN_MESHES = hasattr(mujoco, "mjtMeshBuiltin")  # <mesh builtin>: newer MuJoCo only
+ARM = '<body name="arm"><joint name="j" axis="0 0 1"/><geom size=".1"/></body>'
+
+FOUR_BAR = """<mujoco model="four">
+  {option}
+  <worldbody>
+    <body name="crank"><joint name="A" axis="0 0 1"/><geom size=".1"/>
+      <body name="coupler" pos="1 2 0"><joint name="B" axis="0 0 1"/><geom size=".1"/><site name="s1" pos="3 0.5 0"/></body>
+    </body>
+    <body name="rocker" pos="5 0 0"><joint name="D" axis="0 0 1"/><geom size=".1"/><site name="s2" pos="-1 {rocker_y} 0"/></body>
+  </worldbody>
+  <equality><connect name="C" site1="s1" site2="s2"/></equality>
+</mujoco>
+"""
+
+
+def _model(tmp_path: Path, text: str, name: str = "model.xml") -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def _cli(*args: str, cwd: Path, timeout: float = 30, env: dict[str, str] | None = None) -> subprocess.CompletedProcess:
+    """The command line in a child process: a wait for ever fails the test (timeout) instead of stopping the suite."""
+    environ = dict(os.environ, PYTHONPATH=str(ROOT), **(env or {}))
+    return subprocess.run([sys.executable, "-m", "mobility", *args], capture_output=True, text=True, cwd=cwd, timeout=timeout, env=environ)
+
+
+def _one_line_refusal(done: subprocess.CompletedProcess, expected: str) -> None:
+    assert (done.returncode, done.stdout) == (2, ""), done.stderr
+    assert done.stderr.count("\n") == 1 and done.stderr.startswith("mobility: "), done.stderr
+    assert expected in done.stderr, done.stderr
+
+
+# -- 1. files MuJoCo would read: a flexcomp's mesh file, and the asset files never opened ----------------------
+
+def test_a_flexcomp_reading_a_pipe_is_refused_at_its_line_without_waiting(tmp_path):
+    os.mkfifo(tmp_path / "cloth.obj")
+    _model(tmp_path, f'<mujoco>\n<worldbody>\n{ARM}\n<flexcomp name="f" type="mesh" file="cloth.obj" dim="2"/>\n</worldbody>\n</mujoco>\n')
+    done = _cli("analyze", "model.xml", cwd=tmp_path, timeout=20)
+    _one_line_refusal(done, "mobility: model.xml:4: flexcomp[f]: a deformable body, not supported")
+
+
+def test_a_flexcomp_is_refused_even_when_unsupported_elements_are_left_out(tmp_path):
+    # before: left out with a note, yet its 9 points stayed as 27 slide joints (mobility 28, a cloth vertex as end effector)
+    path = _model(tmp_path, f'<mujoco>\n<worldbody>\n{ARM}\n<flexcomp name="g" type="grid" count="3 3 1" spacing=".1 .1 .1" dim="2" pos="0 0 2"/>\n'
+                            '</worldbody>\n</mujoco>\n')
+    with pytest.raises(MechanismFileError, match=r"model\.xml:4: flexcomp\[g\]: a deformable body, not supported \(not even left out"):
+        read_robot(path, ignore_unsupported=True)
+
+
+def test_a_flex_on_rigid_bodies_is_still_left_out_with_a_note(tmp_path):
+    text = f"""<mujoco><worldbody>{ARM}
+      <body name="p1" pos="0 0 2"><geom size=".01"/></body><body name="p2" pos="1 0 2"><geom size=".01"/></body>
+    </worldbody><deformable><flex name="rod" dim="1" body="p1 p2" vertex="0 0 0 0 0 0" element="0 1"/></deformable></mujoco>"""
+    robot = read_robot(_model(tmp_path, text), ignore_unsupported=True)
+    assert any(n.startswith("left out flex (line 3): 1 deformable (flex) bodies are not supported") for n in robot.notes), robot.notes
+    assert mobility.analyze(robot.mechanism).mobility == 1
+
+
+def test_mesh_texture_height_field_and_skin_files_are_never_opened(tmp_path):
+    for name in ("arm.obj", "wood.png", "ground.png", "hand.skn"):
+        os.mkfifo(tmp_path / name)  # opening any of them would wait for ever
+    _model(tmp_path, """<mujoco><asset><mesh name="m" file="arm.obj"/><texture name="t" type="2d" file="wood.png"/>
+      <hfield name="h" file="ground.png" size="1 1 1 1"/></asset><deformable><skin name="s" file="hand.skn"/></deformable>
+      <worldbody><body name="arm"><joint name="j" axis="0 0 1"/><geom type="mesh" mesh="m"/></body></worldbody></mujoco>""")
+    done = _cli("analyze", "model.xml", cwd=tmp_path, timeout=20)
+    assert done.returncode == 0, done.stderr
+    assert "pattern: 1R" in done.stdout
+
+
+# -- 2. sizes MuJoCo allocates or computes for simulation only ---------------------------------------------------
+
+_PEAK = """
+import sys
+import mobility
+from mobility.io.robot_files import read_robot
+robot = read_robot(sys.argv[1])
+peak = [line.split()[1] for line in open("/proc/self/status") if line.startswith("VmHWM:")]  # this process's own peak (kB)
+print(mobility.analyze(robot.mechanism).mobility, int(peak[0]) // 1024)
+"""
+"""Reads a file in a child process; prints the mobility and the child's peak memory in MB (``VmHWM``: ``ru_maxrss``
+would count the memory of the test process it was forked from)."""
+
+
+@pytest.mark.parametrize("inside, outside", [
+    ('<size nkey="1000000"/>', ""),                 # a million keyframes: minutes
+    ('<size nuser_jnt="100000000"/>', ""),          # 800 MB of numbers for each joint
+    ('<size nuser_body="100000000"/>', ""),
+    ('<size nuserdata="100000000" memory="100G"/>', ""),
+    ('<size njmax="100000000" nconmax="100000000" nstack="100000000"/>', ""),
+    *([("", '<actuator><motor joint="j" nsample="16000000" delay="1"/><motor joint="j" nsample="16000000" delay="1"/></actuator>')]
+      if HISTORY else []),
+    ("", '<sensor><user dim="100000000" objtype="joint" objname="j" needstage="pos" datatype="real"/></sensor>'),
+    ('<compiler><lengthrange mode="all" useexisting="false" inttotal="100000" timestep="0.0001" interval="100000"/></compiler>',
+     '<actuator><motor joint="j"/></actuator>'),   # MuJoCo simulates each actuator for 1e9 steps
+])
+def test_what_only_simulation_needs_is_left_out_in_seconds_and_little_memory(tmp_path, inside, outside):
+    path = _model(tmp_path, f"<mujoco>{inside}<worldbody>{ARM}</worldbody>{outside}</mujoco>")
+    done = subprocess.run([sys.executable, "-c", _PEAK, str(path)], capture_output=True, text=True, timeout=20,
+                          env=dict(os.environ, PYTHONPATH=str(ROOT)), cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    mobility_, peak_mb = map(int, done.stdout.split())
+    assert mobility_ == 1 and peak_mb < 300, done.stdout
+
+
+def test_keyframes_written_in_the_file_are_kept(tmp_path):
+    path = _model(tmp_path, f'<mujoco><size nkey="5"/><worldbody>{ARM}</worldbody><keyframe><key name="k" qpos="0.5"/></keyframe></mujoco>')
+    assert mobility.analyze(read_robot(path).mechanism).mobility == 1
+
+
+def test_a_height_field_larger_than_the_asset_limit_is_refused_before_mujoco_allocates_it(tmp_path, monkeypatch):
+    text = f'<mujoco>\n<asset>\n<hfield name="h" nrow="2000" ncol="1000" size="1 1 1 1"/>\n</asset>\n<worldbody>{ARM}</worldbody>\n</mujoco>'
+    path = _model(tmp_path, text)
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(path)
+    assert str(err.value) == (f"{path}:3: hfield[h]: nrow x ncol = 2000 x 1000: 2000000 points, which MuJoCo allocates as it reads the file; "
+                              "expected at most the limit of 1000000 (set MOBILITY_MAX_ASSET_VALUES to raise it)")
+    monkeypatch.setenv("MOBILITY_MAX_ASSET_VALUES", "2000000")
+    assert mobility.analyze(read_robot(path).mechanism).mobility == 1
+
+
+def test_the_audited_height_field_is_one_line_at_once(tmp_path):
+    _model(tmp_path, f'<mujoco><asset><hfield name="h" nrow="20000" ncol="20000" size="1 1 1 1"/></asset><worldbody>{ARM}</worldbody></mujoco>')
+    _one_line_refusal(_cli("analyze", "model.xml", cwd=tmp_path, timeout=20), "model.xml:1: hfield[h]: nrow x ncol = 20000 x 20000: 400000000 points")
+
+
+def test_builtin_meshes_count_with_the_height_fields(tmp_path, monkeypatch):
+    monkeypatch.setenv("MOBILITY_MAX_ASSET_VALUES", "1000")
+    meshes = '<mesh name="a" builtin="plate" params="20 20"/>\n<mesh name="b" builtin="supersphere" params="30 1 1"/>\n'
+    path = _model(tmp_path, f"<mujoco>\n<asset>\n{meshes}</asset>\n<worldbody>{ARM}</worldbody>\n</mujoco>")
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(path)
+    assert str(err.value).endswith(":4: mesh[b]: builtin supersphere, resolution 30 squared (params): 900 points; 1300 with the height fields "
+                                   "and builtin meshes before it, which MuJoCo allocates as it reads the file; expected at most the limit of 1000 "
+                                   "(set MOBILITY_MAX_ASSET_VALUES to raise it)")
+    monkeypatch.setenv("MOBILITY_MAX_ASSET_VALUES", "1300")
+    if BUILTIN_MESHES:  # an older MuJoCo refuses the attribute itself
+        assert mobility.analyze(read_robot(path).mechanism).mobility == 1
+
+
+@pytest.mark.parametrize("count", ["-1", "2 -3"])
+def test_a_negative_replicate_count_is_refused_at_its_line(tmp_path, count):
+    # MuJoCo makes no copy of it and says nothing: before, "no joint can move" or a mechanism without the copies
+    path = _model(tmp_path, f'<mujoco>\n<worldbody>\n<body name="b"><joint/><geom size=".1"/></body>\n<replicate count="{count}" offset="1 0 0">\n'
+                            f'<body><joint/><geom size=".1"/></body>\n</replicate>\n</worldbody>\n</mujoco>\n')
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(path)
+    assert str(err.value) == f"{path}:4: replicate/@count: expected a count of 0 or more, got {count!r}"
+
+
+# -- 3. equalities count as joints ------------------------------------------------------------------------------
+
+def _chain_with_equalities(tmp_path: Path, joints: int, equality: str, count: int) -> Path:
+    bodies = "".join(f'<body name="b{k}" pos="{k} 0 0"><joint name="j{k}" axis="0 0 1"/><geom size=".1"/></body>' for k in range(joints))
+    equalities = "\n".join(equality.format(k=k % (joints - 1)) for k in range(count))  # bodies b0 ... b(n-2), each to the last
+    return _model(tmp_path, f"<mujoco>\n<worldbody>{bodies}</worldbody>\n<equality>\n{equalities}\n</equality>\n</mujoco>\n")
+
+
+@pytest.mark.parametrize("equality, line", [
+    ('<connect body1="b{k}" body2="world" anchor="0 0 0"/>', 10),  # the 7th: 4 joints and 7 equalities
+    ('<weld body1="b{k}" body2="b3"/>', 10),  # a weld makes no joint, but six constraint rows in MuJoCo
+])
+def test_equalities_count_toward_the_joint_limit_before_mujoco_reads_them(tmp_path, monkeypatch, equality, line):
+    monkeypatch.setenv("MOBILITY_MAX_JOINTS", "10")
+    path = _chain_with_equalities(tmp_path, 4, equality, 7)
+    with pytest.raises(MechanismFileError) as err:
+        read_robot(path)
+    tag = equality[1:].split()[0]
+    assert str(err.value) == (f"{path}:{line}: {tag}: 11 joints and equalities (7 of them <connect>, <weld> or other equalities, each counted "
+                              "as a joint) are more than the limit of 10 (set MOBILITY_MAX_JOINTS to raise it)")
+    monkeypatch.setenv("MOBILITY_MAX_JOINTS", "11")
+    assert read_robot(path).mechanism.joints
+
+
+# -- 4. the gap of a connect: whatever the options and the statistic say ------------------------------------------
+
+@pytest.mark.parametrize("flag", ["equality", "constraint"])
+def test_equalities_turned_off_still_have_their_gap_noted_and_the_switch_said(tmp_path, flag):
+    text = FOUR_BAR.format(option=f'<option><flag {flag}="disable"/></option>', rocker_y="3.5")  # the sites 1 apart
+    notes = read_robot(_model(tmp_path, text)).notes
+    assert f'the file turns equalities off (<option><flag {flag}="disable"/>): MuJoCo itself would not enforce its 1 connect/weld equality; ' \
+           "analysed as written all the same" in notes
+    assert any(n.startswith("connect C (line 9) does not hold at qpos0 (its points are 1 apart)") for n in notes), notes
+
+
+def test_the_gap_is_measured_against_the_mechanism_not_mujocos_statistic(tmp_path):
+    text = FOUR_BAR.format(option='<statistic extent="1e10"/>', rocker_y="3.5")
+    notes = read_robot(_model(tmp_path, text)).notes
+    assert any(n.startswith("connect C (line 9) does not hold at qpos0 (its points are 1 apart)") for n in notes), notes
+    assembled = FOUR_BAR.format(option='<statistic extent="1e-10"/>', rocker_y="2.5")  # the sites meet: nothing to say, whatever the extent
+    assert not any("does not hold" in n for n in read_robot(_model(tmp_path, assembled)).notes)
+
+
+# -- 5. a weld's angle in radians ---------------------------------------------------------------------------------
+
+WELD_OF_SITES = """<mujoco><worldbody>
+  <body name="a"><joint name="j" axis="0 0 1"/><geom size=".1"/><site name="sa" pos="1 0 0"/></body>
+  <body name="b" pos="2 0 0"><joint name="k" axis="0 0 1"/><geom size=".1"/><site name="sb" pos="-1 0 0" euler="0 0 {degrees}"/></body>
+</worldbody><equality><weld name="w" {extra}/></equality></mujoco>"""
+
+
+@pytest.mark.parametrize("degrees, extra, shown", [
+    (90, 'site1="sa" site2="sb"', "1.57 rad (90 degrees)"),        # was "0.707 rad": sin(45 degrees)
+    (180, 'site1="sa" site2="sb"', "3.14 rad (180 degrees)"),
+    (10, 'site1="sa" site2="sb" torquescale="3"', "0.175 rad (10 degrees)"),  # MuJoCo's residual is scaled by torquescale
+])
+def test_a_weld_gap_is_its_true_angle(tmp_path, degrees, extra, shown):
+    notes = read_robot(_model(tmp_path, WELD_OF_SITES.format(degrees=degrees, extra=extra))).notes
+    assert any(f"does not hold at qpos0 (its points are 0 apart and its frames {shown} apart)" in n for n in notes), notes
+
+
+def test_a_weld_by_relpose_has_its_angle_too(tmp_path):
+    text = WELD_OF_SITES.format(degrees=0, extra='body1="b" body2="a" relpose="-2 0 0 0.7071067811865476 0 0 0.7071067811865476"')
+    notes = read_robot(_model(tmp_path, text)).notes
+    assert any("(its points are 0 apart and its frames 1.57 rad (90 degrees) apart)" in n for n in notes), notes
+
+
+# -- 6. an upper-case .XML, and includes found beside any file ---------------------------------------------------
+
+@pytest.mark.parametrize("name", ["FOUR.XML", "four.Xml", "four.mjcf", "four"])
+def test_any_name_is_read_with_its_includes_found_beside_it(tmp_path, monkeypatch, name):
+    (tmp_path / "models" / "parts").mkdir(parents=True)
+    (tmp_path / "models" / "parts" / "hand.xml").write_text('<mujoco><body name="hand" pos="1 0 0"><joint name="h" axis="0 0 1"/>'
+                                                            '<geom size=".1"/></body></mujoco>')
+    path = tmp_path / "models" / name
+    path.write_text(f'<mujoco model="m"><worldbody>{ARM[:-7]}<include file="parts/hand.xml"/></body></worldbody></mujoco>')
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path / "elsewhere")  # includes are not looked for in the working directory
+    robot = read_robot(path)
+    assert [j.name for j in robot.mechanism.joints] == ["j", "h"]
+    assert [os.path.realpath(f) for f in robot.files] == [os.path.realpath(path), os.path.realpath(tmp_path / "models" / "parts" / "hand.xml")]
+
+
+def test_an_upper_case_name_is_checked_like_any_other(tmp_path):
+    os.mkfifo(tmp_path / "part.xml")
+    _model(tmp_path, "<mujoco>\n<worldbody>\n<include file='part.xml'/>\n</worldbody>\n</mujoco>\n", "ARM.XML")
+    _one_line_refusal(_cli("analyze", "ARM.XML", cwd=tmp_path, timeout=20), "mobility: ARM.XML:3: include: 'part.xml': a pipe or socket")
+
+
+# -- 7. fusestatic keeps every body the file names ----------------------------------------------------------------
+
+def test_a_body_fusestatic_would_fuse_away_can_be_the_end_effector(tmp_path):
+    text = """<mujoco><compiler fusestatic="true"/><worldbody><body name="base"><geom size=".1"/>
+      <body name="l1" pos="0 0 1"><joint name="j1" axis="0 0 1"/><geom size=".1"/><body name="tool" pos="1 0 0"><geom size=".1"/></body></body>
+    </body></worldbody></mujoco>"""
+    robot = read_robot(_model(tmp_path, text), end_effector="tool")
+    assert robot.mechanism.end_effector == "tool"
+    assert "end effector tool is one rigid link with l1" in robot.notes
+    assert mobility.analyze(robot.mechanism).pattern == "1R"
+
+
+# -- 8. a closing joint named like a joint: renamed, and said so -------------------------------------------------
+
+def test_a_connect_named_like_a_joint_is_renamed_with_a_note(tmp_path):
+    text = FOUR_BAR.format(option="", rocker_y="2.5").replace('<connect name="C"', '<connect name="A"')
+    robot = read_robot(_model(tmp_path, text))
+    assert "connect A (line 9) is named like another joint: it is joint A~2 of the mechanism" in robot.notes
+    assert [j.name for j in robot.mechanism.joints] == ["A", "B", "D", "A~2"]
+
+
+def test_a_close_pair_named_like_a_joint_is_renamed_with_a_note(tmp_path):
+    text = f'<mujoco><worldbody>{ARM[:-7]}<body name="tip" pos="1 0 0"><joint name="close_arm_tip" type="slide"/><geom size=".1"/>' \
+           '</body></body></worldbody></mujoco>'
+    robot = read_robot(_model(tmp_path, text), close=[("arm", "tip"), ("arm", "tip")])
+    notes = [n for n in robot.notes if "is named like another joint" in n]
+    assert notes == ["--close close_arm_tip is named like another joint: it is joint close_arm_tip~2 of the mechanism",
+                     "--close close_arm_tip is named like another joint: it is joint close_arm_tip~3 of the mechanism"]
+    assert [j.name for j in robot.mechanism.joints] == ["j", "close_arm_tip", "close_arm_tip~2", "close_arm_tip~3"]
+
+
+def test_a_closures_file_joint_named_like_a_joint_is_renamed_with_a_note(tmp_path):
+    closures = tmp_path / "closures.yaml"
+    closures.write_text(textwrap.dedent("""\
+        joints:
+          - {name: B, type: R, links: [coupler, rocker], axis: [0, 0, 1], point: [4, 2.5, 0]}
+        """))
+    text = FOUR_BAR.format(option="", rocker_y="2.5").replace('<equality><connect name="C" site1="s1" site2="s2"/></equality>', "")
+    robot = read_robot(_model(tmp_path, text), closures=closures)
+    assert f"closing joint B ({closures}, line 2) is named like another joint: it is joint B~2 of the mechanism" in robot.notes
+    assert mobility.analyze(robot.mechanism).mobility == 1
