@@ -525,16 +525,23 @@ class _MjcfTree:
         Body semantic: the rotation ``q2^-1 (q1 relpose)``; site semantic:
         ``(q2 s2)^-1 (q1 s1)``, ``s`` the sites' quaternions in their bodies.
         """
-        m, d = self.m, self.d
+        m, d, mj = self.m, self.d, self.mj
+
+        def product(a: Any, b: Any) -> np.ndarray:  # MuJoCo's own quaternion product, (w, x, y, z)
+            out = np.zeros(4)
+            mj.mju_mulQuat(out, np.asarray(a, dtype=float), np.asarray(b, dtype=float))
+            return out
+
         o1, o2 = int(m.eq_obj1id[k]), int(m.eq_obj2id[k])
-        if int(m.eq_objtype[k]) == int(self.mj.mjtObj.mjOBJ_SITE):
-            first = _quaternion_product(d.xquat[int(m.site_bodyid[o1])], m.site_quat[o1])
-            second = _quaternion_product(d.xquat[int(m.site_bodyid[o2])], m.site_quat[o2])
+        if int(m.eq_objtype[k]) == int(mj.mjtObj.mjOBJ_SITE):
+            first = product(d.xquat[int(m.site_bodyid[o1])], m.site_quat[o1])
+            second = product(d.xquat[int(m.site_bodyid[o2])], m.site_quat[o2])
         else:
-            first = _quaternion_product(d.xquat[o1], np.asarray(m.eq_data[k][6:10]))
+            first = product(d.xquat[o1], m.eq_data[k][6:10])
             second = np.asarray(d.xquat[o2], dtype=float)
-        conjugate = second * np.array([1.0, -1.0, -1.0, -1.0])
-        error = _quaternion_product(conjugate, first)
+        conjugate = np.zeros(4)
+        mj.mju_negQuat(conjugate, second)
+        error = product(conjugate, first)
         with np.errstate(all="ignore"):
             sine = float(np.linalg.norm(error[1:]))
         angle = 2.0 * math.atan2(sine, abs(float(error[0])))
@@ -554,19 +561,3 @@ class _MjcfTree:
 
 def _at(line: int | None) -> str:
     return f" (line {line})" if line is not None else ""
-
-
-def _quaternion_product(a: Any, b: Any) -> np.ndarray:
-    """The product ``a b`` of two quaternions ``(w, x, y, z)``, as MuJoCo's ``mju_mulQuat``.
-
-    Examples
-    --------
-    >>> _quaternion_product([0, 0, 0, 1], [0, 0, 0, 1]).tolist()  # half a turn about z, twice: a whole turn
-    [-1.0, 0.0, 0.0, 0.0]
-    """
-    w1, x1, y1, z1 = (float(v) for v in a)
-    w2, x2, y2, z2 = (float(v) for v in b)
-    return np.array([w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-                     w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-                     w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-                     w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2])
