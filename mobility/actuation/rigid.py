@@ -173,8 +173,9 @@ def enumerate_actuations(
     """
     mechanism = require_mechanism(mechanism, "enumerate_actuations")
     tol = require_tolerance(tol, "enumerate_actuations")
-    if mode not in ENUMERATION_MODES:
-        raise RequestError(f"mode must be 'limb' or 'any', got {clipped(repr(mode))}")
+    if not isinstance(mode, str) or mode not in ENUMERATION_MODES:
+        shown = clipped(repr(mode)) if isinstance(mode, str) else type(mode).__name__
+        raise RequestError(f"enumerate_actuations: mode must be 'limb' or 'any', got {shown}")
     given_k = None if k is None else inputs_per_combination(k, 0)
     samples = require_pose_count(samples, "samples")
     poses = _poses(poses, "enumerate_actuations")

@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import RequestError
+from ..errors import RequestError, clipped
 from .frozen import ReadOnlyArrays, read_only, read_only_cached_property
 from .joint_screws import JointScrews, joint_screws
 from .linalg import svd
@@ -148,8 +148,9 @@ def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, me
     """
     mechanism = require_mechanism(mechanism, "loop_closure")
     tol = require_tolerance(tol, "loop_closure")
-    if method not in ("auto", "svd", "chords"):
-        raise RequestError(f"method: expected 'auto', 'svd' or 'chords', got {method!r}")
+    if not isinstance(method, str) or method not in ("auto", "svd", "chords"):
+        shown = clipped(repr(method)) if isinstance(method, str) else type(method).__name__
+        raise RequestError(f"loop_closure: method: expected 'auto', 'svd' or 'chords', got {shown}")
     screws = joint_screws(mechanism)
     n = screws.twists.shape[1]
     tree, chords = spanning_tree(mechanism)

@@ -8,16 +8,16 @@ each step moves along a first-order motion and re-closes every loop with
 
 from __future__ import annotations
 
-import math
+import sys
 
 import numpy as np
 
-from ..errors import RequestError, clipped
+from ..errors import RequestError, clipped, one_line
 from .kinematics import kinematics
-from .model import Mechanism, integer_value, require_mechanism
+from .model import Mechanism, integer_value, real_value, require_mechanism
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 
-__all__ = ["sample_poses", "require_pose_count", "DEFAULT_STEP", "MAX_SAMPLED_POSES"]
+__all__ = ["sample_poses", "require_pose_count", "require_seed", "step_value", "shown_value", "DEFAULT_STEP", "MAX_STEP", "MAX_SAMPLED_POSES"]
 
 MAX_SAMPLED_POSES = 100_000
 """Most poses :func:`sample_poses` is asked for (each is a Newton solve and a rebuilt mechanism; the
@@ -26,6 +26,58 @@ command line's ``--samples`` stops at 1,000)."""
 DEFAULT_STEP = 0.1
 """The default step of :func:`sample_poses` (radians; lengths over the characteristic length), also the
 default ``--step`` of ``mobility actuation --samples`` and ``mobility view --samples``."""
+
+MAX_STEP = 1.0
+"""The largest step of a move, that of :func:`sample_poses` and each of the steps of
+:func:`mobility.finite.finite_mobility` (a joint-space distance: a radian, or the characteristic length),
+as the command line's ``--step`` in ``(0, 1]``: a larger move is no step along the motion (Newton from it
+would reach another assembly, and a step of ``1e300`` overflows)."""
+
+
+def shown_value(value: object) -> str:
+    """``value`` as a message quotes it: its ``repr``, clipped, on one line (the ``repr`` of an array spans lines).
+
+    Examples
+    --------
+    >>> print(shown_value("a" * 100), shown_value(np.eye(2)))
+    'aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa... array([[1., 0.],\\n       [0., 1.]])
+    """
+    try:
+        text = repr(value)
+    except ValueError:  # an int of more digits than Python writes (sys.get_int_max_str_digits)
+        text = f"an integer of more than {sys.get_int_max_str_digits():,} digits"
+    return one_line(clipped(text))
+
+
+def step_value(value: object) -> float | None:
+    """``value`` as a ``float`` when it is a step of a move: a real number (not a bool) in ``(0, MAX_STEP]``, else None.
+
+    Examples
+    --------
+    >>> step_value(np.float32(0.5)), step_value(0), step_value(1e300), step_value("0.1"), step_value(b"a")
+    (0.5, None, None, None, None)
+    """
+    number = real_value(value)
+    return number if number is not None and 0.0 < number <= MAX_STEP else None
+
+
+def require_seed(value: object, key: str = "seed") -> int:
+    """``value`` as the seed of a random choice: a non-negative integer (not a bool, not None); else a :class:`RequestError` naming ``key``.
+
+    None is refused: it would draw fresh randomness, and every result of the package is reproducible.
+
+    Examples
+    --------
+    >>> require_seed(np.int64(3))
+    3
+    >>> require_seed(None, "finite_mobility: seed")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: finite_mobility: seed: expected a non-negative integer, got None
+    """
+    seed = integer_value(value)
+    if seed is None or seed < 0:
+        raise RequestError(f"{key}: expected a non-negative integer, got {shown_value(value)}")
+    return seed
 
 
 def require_pose_count(value: object, key: str = "count") -> int:
@@ -41,7 +93,7 @@ def require_pose_count(value: object, key: str = "count") -> int:
     """
     count = integer_value(value)
     if count is None or not 0 <= count <= MAX_SAMPLED_POSES:
-        raise RequestError(f"{key}: expected a number of poses in [0, {MAX_SAMPLED_POSES:,}], got {clipped(repr(value))}")
+        raise RequestError(f"{key}: expected a number of poses in [0, {MAX_SAMPLED_POSES:,}], got {shown_value(value)}")
     return count
 
 
@@ -63,9 +115,10 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
         Number of poses wanted.
     step : float
         Joint-space distance of each move (radians; lengths over the
-        characteristic length), so the same for a scaled or moved file.
+        characteristic length), so the same for a scaled or moved file; in
+        ``(0, MAX_STEP]``, ``(0, 1]``.
     seed : int
-        Seed of the random directions.
+        Seed of the random directions, a non-negative integer (None is refused).
     tol : Tolerance
         The rank policy of the first-order motions and the closure threshold.
 
@@ -90,11 +143,15 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
     mechanism = require_mechanism(mechanism, "sample_poses")
     tol = require_tolerance(tol, "sample_poses")
     count = require_pose_count(count)
-    if isinstance(step, bool) or not isinstance(step, (int, float, np.integer, np.floating)) or not 0.0 < step < math.inf:
-        raise RequestError(f"step: expected a positive joint-space distance, got {clipped(repr(step))}")
-    if integer_value(seed) is None or seed < 0:
-        raise RequestError(f"seed: expected a non-negative integer, got {clipped(repr(seed))}")
-    rng = np.random.default_rng(seed)
+    h0 = step_value(step)
+    if h0 is None:
+        size = real_value(step) if integer_value(step) is None else integer_value(step)  # an int beyond the floats too
+        if size is not None and size > 0:
+            raise RequestError(f"sample_poses: step: expected a joint-space distance in (0, {MAX_STEP:g}] (radians; lengths over "
+                               f"the characteristic length), got {shown_value(step)}")
+        raise RequestError(f"step: expected a positive joint-space distance, got {shown_value(step)}")
+    step = h0
+    rng = np.random.default_rng(require_seed(seed))
     reached: list[Mechanism] = [mechanism]
     out: list[Mechanism] = []
     failures = 0

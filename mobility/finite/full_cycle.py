@@ -47,18 +47,22 @@ Examples
 
 from __future__ import annotations
 
+import itertools
+from typing import Any, Iterable
+
 import numpy as np
 
 from ..core.analysis import analyze
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism, integer_value, require_mechanism
+from ..core.poses import MAX_STEP, require_seed, shown_value, step_value
 from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import RequestError, clipped
+from ..errors import RequestError
 from .branches import examine_branch, group_by_tangent
 from .moves import MovePlan, probe, probe_directions
 from .orders import canonical_basis, first_order, second_order
-from .parameters import DEFAULT_STEPS
+from .parameters import DEFAULT_STEPS, MAX_RANDOMS, MAX_STEP_COUNT
 from .results import FiniteMobility, Probe, SecondOrder
 from .verdict import judge, no_motion
 
@@ -68,7 +72,7 @@ __all__ = ["finite_mobility"]
 def finite_mobility(
     mechanism: Mechanism,
     *,
-    steps: tuple[float, ...] = DEFAULT_STEPS,
+    steps: Iterable[float] = DEFAULT_STEPS,
     randoms: int | None = None,
     seed: int = 0,
     tol: Tolerance = DEFAULT_TOLERANCE,
@@ -78,16 +82,20 @@ def finite_mobility(
     Parameters
     ----------
     mechanism : Mechanism
-    steps : tuple of float
-        Increasing step sizes, dimensionless (radians; lengths over the
-        characteristic length).  The middle one (or the only one) is the
-        *probe step*: nearby poses are examined there.
+    steps : sequence of float
+        Step sizes, dimensionless (radians; lengths over the characteristic
+        length), sorted here: 1 to :data:`~mobility.finite.parameters.MAX_STEP_COUNT`
+        (10) numbers, each in ``(0, 1]`` (:data:`mobility.core.poses.MAX_STEP`).
+        The middle one (or the only one) is the *probe step*: nearby poses are
+        examined there.
     randoms : int, optional
-        Random combinations of the tangent basis to try, a non-negative
-        integer (default ``2 k + 2``, at most 14, for ``k`` instantaneous
-        freedoms).
+        Random combinations of the tangent basis to try, an integer from 0 to
+        :data:`~mobility.finite.parameters.MAX_RANDOMS` (1,000) (default
+        ``2 k + 2``, at most 14, for ``k`` instantaneous freedoms).
     seed : int
-        Seed of the random directions (results are reproducible).
+        Seed of the random directions, a non-negative integer: results are
+        reproducible (None, fresh randomness, is refused, as by
+        :func:`~mobility.core.poses.sample_poses`).
     tol : Tolerance
         Rank policy, as for :func:`mobility.analyze`, and the closure threshold.
 
@@ -98,8 +106,8 @@ def finite_mobility(
     Raises
     ------
     RequestError
-        When a step is not a positive number, or ``randoms`` not a
-        non-negative integer.
+        When ``steps`` is not 1 to 10 numbers in ``(0, 1]``, ``randoms`` not
+        an integer in ``[0, 1000]``, or ``seed`` not a non-negative integer.
 
     Examples
     --------
@@ -116,20 +124,21 @@ def finite_mobility(
     """
     mechanism = require_mechanism(mechanism, "finite_mobility")
     tol = require_tolerance(tol, "finite_mobility")
-    steps = _checked_steps(steps)
+    checked = _checked_steps(steps)
     if randoms is not None:
         count = integer_value(randoms)
-        if count is None or count < 0:
-            raise RequestError(f"randoms: expected a non-negative integer (random directions to try), got {clipped(repr(randoms))}")
+        if count is None or not 0 <= count <= MAX_RANDOMS:
+            raise RequestError(f"finite_mobility: randoms: expected a non-negative integer of at most {MAX_RANDOMS:,} (random directions to try), "
+                               f"got {shown_value(randoms)}")
         randoms = count
-    rng = np.random.default_rng(seed)  # one stream, drawn in a fixed order: second order, moves, branches
+    rng = np.random.default_rng(require_seed(seed, "finite_mobility: seed"))  # one stream, drawn in a fixed order: second order, moves, branches
     instant = analyze(mechanism, tol=tol)
     kin = kinematics(mechanism)
     here = first_order(kin, np.zeros(kin.variable_count), tol)
     warnings = _route_warnings(here.mobility, instant)
     if here.mobility == 0:
-        return no_motion(instant, steps, warnings)
-    plan = MovePlan.at_given_pose(kin, steps, tol, here.largest_dropped)
+        return no_motion(instant, checked, warnings)
+    plan = MovePlan.at_given_pose(kin, checked, tol, here.largest_dropped)
     basis = canonical_basis(here.tangent)
     second = second_order(kin, basis, rng, here.largest_dropped, tol) if kin.loop_count else None
     probes = _moves_from_given_pose(plan, basis, second, rng, randoms)
@@ -145,18 +154,29 @@ def finite_mobility(
         branches.append(branch)
         if warning:
             warnings.append(warning)
-    return judge(instant, here.mobility, branches, probes, second, steps, warnings, tol)
+    return judge(instant, here.mobility, branches, probes, second, checked, warnings, tol)
 
 
-def _checked_steps(steps: tuple[float, ...]) -> tuple[float, ...]:
-    """The steps sorted, or a :class:`~mobility.errors.RequestError`."""
+def _checked_steps(steps: Any) -> tuple[float, ...]:
+    """The steps sorted, or a :class:`~mobility.errors.RequestError`: 1 to ``MAX_STEP_COUNT`` numbers (not a string's characters nor a bytes' codes), each in ``(0, MAX_STEP]``.
+
+    Examples
+    --------
+    >>> _checked_steps(np.array([0.05, 0.001]))
+    (0.001, 0.05)
+    >>> _checked_steps(b"abc")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: finite_mobility: steps: expected positive numbers, each at most 1 (joint-space distances), 1 to 10 of them, got b'abc'
+    """
     try:
-        checked = tuple(sorted(float(h) for h in steps))
-    except (TypeError, ValueError):
-        raise RequestError(f"steps: expected positive numbers, got {steps!r}") from None
-    if not checked or not checked[0] > 0.0 or not np.all(np.isfinite(checked)):
-        raise RequestError(f"steps: expected positive numbers, got {steps!r}")
-    return checked
+        given = None if isinstance(steps, (str, bytes, bytearray, memoryview)) else list(itertools.islice(steps, MAX_STEP_COUNT + 1))
+    except TypeError:  # not iterable
+        given = None
+    values = [step_value(h) for h in given or ()]
+    if not given or len(given) > MAX_STEP_COUNT or any(h is None for h in values):
+        raise RequestError(f"finite_mobility: steps: expected positive numbers, each at most {MAX_STEP:g} (joint-space distances), "
+                           f"1 to {MAX_STEP_COUNT} of them, got {shown_value(steps)}")
+    return tuple(sorted(h for h in values if h is not None))
 
 
 def _route_warnings(k: int, instant: Result) -> list[str]:

@@ -16,6 +16,8 @@ from __future__ import annotations
 
 __all__ = [
     "DEFAULT_STEPS",
+    "MAX_STEP_COUNT",
+    "MAX_RANDOMS",
     "SAME_SUBSPACE",
     "MOVING_RANK",
     "NEARBY_RANK",
@@ -28,7 +30,17 @@ __all__ = [
 DEFAULT_STEPS = (1e-3, 1e-2, 5e-2)
 """Step sizes of the moves (joint-space distance).  Small enough that Newton
 starts close to the motion, large enough that a motion that does not exist
-leaves a residual of order ``h^2`` far above round-off."""
+leaves a residual of order ``h^2`` far above round-off.  Each is at most
+:data:`mobility.core.poses.MAX_STEP` (1, as ``--step``)."""
+
+MAX_STEP_COUNT = 10
+"""The most step sizes ``finite_mobility`` takes (every move is re-closed at
+each of them; three tell a motion from none)."""
+
+MAX_RANDOMS = 1000
+"""The most random directions ``finite_mobility`` tries besides the basis ones
+(the default tries at most 14; each is a move re-closed at every step, so a
+count far beyond this would not end)."""
 
 SAME_SUBSPACE = 0.95
 """Two tangent spaces of nearby poses belong to one branch when every principal

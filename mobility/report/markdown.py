@@ -20,6 +20,7 @@ from __future__ import annotations
 import re
 from typing import Iterable, Sequence
 
+from ..core.model import bool_value
 from ..core.result import Result, ScrewAxis, require_result
 from ..errors import RequestError
 from .text import fmt_number, fmt_vector, screw_text
@@ -138,6 +139,8 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
         Markdown text, ending without a newline.
     """
     result = require_result(result, "markdown_report")
+    if bool_value(limbs) is None:
+        raise RequestError(f"markdown_report: limbs: expected True or False, got {type(limbs).__name__}")
     s = result.length_scale
     unit = _unit(result)
     out = [f"# {md_escape(result.name)}", ""]

@@ -47,7 +47,9 @@ from typing import Any, Sequence, cast
 import numpy as np
 
 from ..core.finite_screws import Limb, ScrewJoint
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.model import integer_value, require_instance
+from ..core.poses import require_seed, shown_value
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import AnalysisError, SynthesisError
 from .generic_rank import generic_rank, sample_joint_values
 from .limb_types import CandidateJoint, SynthesizedLimb, limb_types
@@ -159,6 +161,23 @@ def candidate_joints(pattern: MotionPattern, generic_points: int, rng: np.random
     return out, dict(points), dict(directions)
 
 
+def _count(value: object, key: str, least: int) -> int:
+    """A count of :func:`synthesize`: an integer (not a bool) of at least ``least``, else a :class:`SynthesisError` naming ``key``.
+
+    Examples
+    --------
+    >>> _count(np.int64(2), "samples", 1)
+    2
+    >>> _count(2.5, "joints", 1)
+    Traceback (most recent call last):
+    mobility.errors.SynthesisError: synthesize: joints: expected an integer of at least 1, got 2.5
+    """
+    number = integer_value(value)
+    if number is None or number < least:
+        raise SynthesisError(f"synthesize: {key}: expected an integer of at least {least}, got {shown_value(value)}")
+    return number
+
+
 def synthesize(
     pattern: MotionPattern | str,
     *,
@@ -199,8 +218,12 @@ def synthesize(
     ------
     SynthesisError
         For a pattern with more than two factors (the rank route needs
-        ``M = G1 △ G2``), a joint count below 1, fewer than one sample per
-        rank decision or a negative number of verified samples.
+        ``M = G1 △ G2``), an unknown pattern name, a joint count below 1,
+        fewer than one sample per rank decision or a negative number of
+        verified samples (each count an integer).
+    RequestError
+        For a ``pattern`` neither a :class:`MotionPattern` nor a name, or a
+        ``seed`` not a non-negative integer.
     AnalysisError
         When the two routes disagree on a chain (the sample route finds a
         motion outside the pattern): the rank decisions were too close to call.
@@ -217,6 +240,12 @@ def synthesize(
     start = time.perf_counter()
     if isinstance(pattern, str):
         pattern = named_pattern(pattern)
+    pattern = require_instance(pattern, MotionPattern, "synthesize: pattern", "named_pattern, a name such as '2T3R',")
+    samples, verify_samples = _count(samples, "samples", 1), _count(verify_samples, "verify_samples", 0)
+    joints = None if joints is None else _count(joints, "joints", 1)
+    generic_points = None if generic_points is None else _count(generic_points, "generic_points", 0)
+    rng = np.random.default_rng(require_seed(seed, "synthesize: seed"))
+    tol = require_tolerance(tol, "synthesize")
     if len(pattern.factors) > 2:
         raise SynthesisError("synthesize needs a pattern of one or two factors (M = G1 △ G2)")
     # The pattern is searched with its points' centre at the origin (the set of limbs does not depend on where the
@@ -225,16 +254,11 @@ def synthesize(
     given = pattern
     centre = np.mean(np.asarray(pattern.points or [(0.0, 0.0, 0.0)], dtype=float), axis=0)
     pattern = pattern.translated(-centre)
-    if samples < 1 or verify_samples < 0:
-        raise SynthesisError(f"samples must be at least 1 and verify_samples not negative, got {samples} and {verify_samples}")
     dim = pattern.dim
-    n = dim if joints is None else int(joints)
-    if n < 1:
-        raise SynthesisError(f"joints: expected at least 1, got {n}")
+    n = dim if joints is None else joints
     if n > dim:  # n independent joints move in n dimensions: none lies in a pattern of fewer
         raise SynthesisError(f"joints: a chain of {n} independent one-DOF joints has {n} freedoms, more than the {dim} of {pattern.name}: "
                              f"no such chain lies in it; expected at most {dim} (a limb has {dim})")
-    rng = np.random.default_rng(seed)
     candidates, points, directions = candidate_joints(pattern, n if generic_points is None else generic_points, rng)
     outer_left = pattern.factors[0].generators()
     outer_right = pattern.factors[-1].generators()

@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 from functools import cached_property
+import itertools
 from typing import Any, Iterable, Sequence
 
 import numpy as np
@@ -40,6 +41,7 @@ from scipy.optimize import least_squares
 
 from ..core.finite_screws import FiniteScrew, ScrewJoint
 from ..core.linalg import singular_values
+from ..core.poses import shown_value
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale, decide_rank
 from ..core.transforms import rotation_from_axis_angle
 from ..errors import SynthesisError
@@ -56,17 +58,17 @@ def _vec(v: Iterable[float], what: str = "point") -> Vector:
     try:
         a = np.asarray(v, dtype=float).reshape(3)
     except (TypeError, ValueError):
-        raise SynthesisError(f"{what}: expected 3 numbers, got {v!r}") from None
+        raise SynthesisError(f"{what}: expected 3 numbers, got {shown_value(v)}") from None
     if not np.all(np.isfinite(a)):
         raise SynthesisError(f"{what}: expected 3 finite numbers, got {a.tolist()}")
     return (float(a[0]), float(a[1]), float(a[2]))
 
 
-def _unit(v: Iterable[float]) -> np.ndarray:
-    a = np.array(_vec(v, "direction"))
+def _unit(v: Iterable[float], what: str = "direction") -> np.ndarray:
+    a = np.array(_vec(v, what))
     biggest = float(np.abs(a).max())
     if biggest == 0.0:
-        raise SynthesisError(f"expected a non-zero finite direction, got {a.tolist()}")
+        raise SynthesisError(f"{what}: expected a non-zero finite direction, got {a.tolist()}")
     a = a / biggest  # first: the norm of (1e308, 1e308, 0) overflows, that of (1e-320, 0, 0) underflows
     return a / float(np.linalg.norm(a))
 
@@ -369,6 +371,9 @@ def _pattern_3t1r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] 
 PATTERNS = {"2T3R": _pattern_2t3r, "3T": _pattern_3t, "3R": _pattern_3r, "2T1R": _pattern_2t1r, "3T1R": _pattern_3t1r}
 """Named motion patterns: name -> function(point, directions) -> MotionPattern."""
 
+_MOST_DIRECTIONS = 16
+"""The directions :func:`named_pattern` reads of an iterable before it says there are too many (an endless generator ends)."""
+
 DIRECTION_COUNTS = {"2T3R": 2, "3T": 3, "3R": 0, "2T1R": 2, "3T1R": 3}
 """The number of directions each named pattern takes (its translation directions; 3T1R's third is also its rotation axis)."""
 
@@ -379,23 +384,34 @@ def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), direct
     Raises
     ------
     SynthesisError
-        For an unknown name or bad geometry.
+        For a name that is not a string, an unknown name or bad geometry.
 
     Examples
     --------
     >>> named_pattern("3t1r", point=(0, 0, 5)).factors[1].describe()
     'rotations about the line through (0, 0, 5) along (0, 0, 1)'
+    >>> named_pattern(None)
+    Traceback (most recent call last):
+    mobility.errors.SynthesisError: named_pattern: name: expected the name of a motion pattern (2T3R, 3T, 3R, 2T1R, 3T1R), got None
     """
+    if not isinstance(name, str):
+        raise SynthesisError(f"named_pattern: name: expected the name of a motion pattern ({', '.join(PATTERNS)}), got {shown_value(name)}")
     key = name.strip().upper()
     if key not in PATTERNS:
-        raise SynthesisError(f"unknown motion pattern {name!r}; expected one of {', '.join(PATTERNS)}")
-    kwargs: dict[str, Any] = {"point": _vec(point)}
+        raise SynthesisError(f"unknown motion pattern {shown_value(name)}; expected one of {', '.join(PATTERNS)}")
+    kwargs: dict[str, Any] = {"point": _vec(point, "named_pattern: point")}
     if directions is not None:
         wanted = DIRECTION_COUNTS[key]
-        given = tuple(_vec(_unit(d)) for d in directions)
+        try:
+            listed = None if isinstance(directions, (str, bytes, bytearray)) else list(itertools.islice(directions, _MOST_DIRECTIONS))
+        except TypeError:  # not iterable
+            listed = None
+        if listed is None:
+            raise SynthesisError(f"named_pattern: directions: expected a list of directions (3 numbers each), got {shown_value(directions)}")
+        given = tuple(_vec(_unit(d, "named_pattern: directions")) for d in listed)
         if len(given) != wanted:
             takes = "no directions" if wanted == 0 else f"{wanted} directions"
-            raise SynthesisError(f"the {key} pattern takes {takes}, got {len(given)}")
+            raise SynthesisError(f"the {key} pattern takes {takes}, got {len(given) if len(given) < _MOST_DIRECTIONS else f'{_MOST_DIRECTIONS} or more'}")
         if given and _direction_rank(given) < len(given):
             raise SynthesisError(f"the directions of the {key} pattern must be independent, got {[list(d) for d in given]}")
         kwargs["directions"] = given

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core.analysis import analyze
 from ..errors import RequestError
-from .views import MAX_POSES, View, ViewFrame, poses_view
+from .views import MAX_POSES, View, ViewFrame, poses_view, require_max_poses
 
 __all__ = ["sweep_view", "sweep_poses", "sweep_notes"]
 
@@ -87,6 +87,7 @@ def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
     sweep : SweepResult
         From :func:`mobility.sweep`.
     max_poses : int
+        At most this many poses are drawn, from 1 to :data:`~mobility.view.views.MAX_POSES`.
 
     Returns
     -------
@@ -95,13 +96,15 @@ def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
     Raises
     ------
     RequestError
-        When ``sweep`` is not a sweep result or no pose of it was assembled.
+        When ``sweep`` is not a sweep result or no pose of it was assembled,
+        or ``max_poses`` is not an integer from 1 to ``MAX_POSES``.
     """
     from ..report.sweep import describe_values  # here: the sweeps package loads only when a sweep is shown
 
     needed = ("assembled", "values", "singular", "mechanism_at", "tolerance", "axes")
     if not all(hasattr(sweep, a) for a in needed):
-        raise RequestError(f"expected a sweep result (mobility.sweep), got {type(sweep).__name__}")
+        raise RequestError(f"sweep_view: sweep: expected a sweep result (mobility.sweep), got {type(sweep).__name__}")
+    max_poses = require_max_poses(max_poses, "sweep_view")
     indices = sweep_poses(sweep, max_poses)
     if not indices:
         raise RequestError(f"{sweep.name}: no pose of the sweep was assembled; nothing to show")

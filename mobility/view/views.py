@@ -24,18 +24,21 @@ Examples
 
 from __future__ import annotations
 
-import os
+import itertools
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
+from collections.abc import Sized
 from typing import Any, Iterable
 
 from ..core.analysis import analyze
 from ..core.joint_screws import joint_screws
-from ..core.model import Mechanism, require_mechanism
+from ..core.model import Mechanism, integer_value, require_mechanism
+from ..core.poses import shown_value
 from ..core.result import Result, require_result_of
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError
+from ..report.plotting.backend import written_file_name
 from ..report.plotting.sketch import drawing_scale
 from ..report.text import text_report
 from .describe import header_lines, margin_text
@@ -44,7 +47,7 @@ from .notebook import offline_mimebundle
 from .page import page_html, require_plotly
 from .scene import Scene, build_scene
 
-__all__ = ["ViewFrame", "View", "mechanism_view", "poses_view", "MAX_POSES"]
+__all__ = ["ViewFrame", "View", "mechanism_view", "poses_view", "require_max_poses", "MAX_POSES"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,7 +135,7 @@ class View:
             naming the file as text), or the file cannot be written (the
             message says why).
         """
-        path = _html_path(path)
+        path = written_file_name(path, "write_html")
         text = self.to_html()
         try:
             path.write_text(text, encoding="utf-8")
@@ -166,26 +169,6 @@ class View:
         return f"<View of {self.name}: {len(self.frames)} pose(s)>"
 
 
-def _html_path(path: object) -> Path:
-    """``path`` as a :class:`~pathlib.Path` when it names a file as text (``str`` or ``os.PathLike``), else a :class:`RequestError`.
-
-    Examples
-    --------
-    >>> _html_path(b"view.html")
-    Traceback (most recent call last):
-    mobility.errors.RequestError: write_html: expected a file name (str or Path), got bytes
-    """
-    try:
-        name = os.fspath(path) if isinstance(path, (str, os.PathLike)) else None
-    except TypeError:  # an __fspath__ that returns neither str nor bytes
-        name = None
-    if not isinstance(name, str):
-        raise RequestError(f"write_html: expected a file name (str or Path), got {type(path).__name__}")
-    if "\x00" in name:
-        raise RequestError("write_html: expected a file name without a NUL character")
-    return Path(name)
-
-
 def mechanism_view(mechanism: Mechanism, result: Result | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> View:
     """The 3D view of ``mechanism`` at its pose with its end effector's freedoms and constraints.
 
@@ -217,16 +200,32 @@ MAX_POSES = 200
 """The most poses one view holds (every pose is in the page; pick a subset of a large sweep)."""
 
 
+def require_max_poses(value: object, caller: str) -> int:
+    """``value`` as the ``max_poses`` of a view: an integer (not a bool) from 1 to :data:`MAX_POSES`; else a :class:`RequestError` naming ``caller``.
+
+    Examples
+    --------
+    >>> require_max_poses(None, "sweep_view")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: sweep_view: max_poses: expected an integer from 1 to 200 (poses a view holds), got None
+    """
+    count = integer_value(value)
+    if count is None or not 1 <= count <= MAX_POSES:
+        raise RequestError(f"{caller}: max_poses: expected an integer from 1 to {MAX_POSES} (poses a view holds), got {shown_value(value)}")
+    return count
+
+
 def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSES, notes: Iterable[str] = ()) -> View:
     """A 3D view of several poses with a slider: each pose's freedoms, constraints, pattern and margin.
 
     Parameters
     ----------
     frames : iterable of ViewFrame or (Mechanism, Result, label)
-        In slider order.
+        In slider order (for one mechanism, see :func:`mechanism_view`).
     max_poses : int
-        Refuse more poses than this: each one is drawn into the page, which
-        grows (about 40 kB a pose) and slows down with every pose.
+        Refuse more poses than this, from 1 to :data:`MAX_POSES`: each one is
+        drawn into the page, which grows (about 40 kB a pose) and slows down
+        with every pose.
     notes : iterable of str
         Further lines of the header, true of every pose (:attr:`View.notes`).
 
@@ -237,8 +236,10 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
     Raises
     ------
     RequestError
-        When there is no frame, more than ``max_poses``, or a frame is not a
-        mechanism with its result (the result of analysing that mechanism).
+        When ``frames`` is not an iterable of frames, there is no frame, more
+        than ``max_poses``, or a frame is not a mechanism with its result (the
+        result of analysing that mechanism); when ``max_poses`` is not an
+        integer from 1 to :data:`MAX_POSES`, or ``notes`` not strings.
 
     Examples
     --------
@@ -249,8 +250,17 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
     >>> len(v.frames), v.figure_dict["layout"]["sliders"][0]["steps"][2]["label"]
     (3, 'pose 2')
     """
+    max_poses = require_max_poses(max_poses, "poses_view")
+    notes = _notes(notes)
+    try:
+        given = None if isinstance(frames, (Mechanism, ViewFrame, str, bytes)) else iter(frames)
+    except TypeError:  # not iterable
+        given = None
+    if given is None:
+        hint = " (for one pose: [ViewFrame(...)], or mechanism_view)" if isinstance(frames, (Mechanism, ViewFrame)) else ""
+        raise RequestError(f"poses_view: frames: expected an iterable of ViewFrames or (mechanism, result, label) tuples, got {type(frames).__name__}{hint}")
     out = []
-    for k, f in enumerate(frames):
+    for k, f in enumerate(itertools.islice(given, max_poses + 1)):  # one more tells there are too many (an endless generator ends)
         if not isinstance(f, ViewFrame):
             if not (isinstance(f, tuple) and len(f) in (2, 3)):
                 raise RequestError(f"frame {k}: expected a ViewFrame or a (mechanism, result, label) tuple, got {type(f).__name__}")
@@ -262,7 +272,21 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
     if not out:
         raise RequestError("a view needs at least one pose")
     if len(out) > max_poses:
-        raise RequestError(f"{len(out)} poses is more than a view holds (max_poses={max_poses}); show a subset, e.g. every k-th pose")
+        count = len(frames) if isinstance(frames, Sized) else f"{len(out)} or more"
+        raise RequestError(f"{count} poses is more than a view holds (max_poses={max_poses}); show a subset, e.g. every k-th pose")
     # one drawing scale for every pose (1 for a mechanism of an everyday size), so that the poses share their axes
     drawing = drawing_scale(joint_screws(out[0].mechanism).normalisation.length)
-    return View(tuple(out), tuple(build_scene(f.mechanism, f.result, drawing) for f in out), tuple(str(n) for n in notes))
+    return View(tuple(out), tuple(build_scene(f.mechanism, f.result, drawing) for f in out), notes)
+
+
+def _notes(notes: object) -> tuple[str, ...]:
+    """The ``notes`` of :func:`poses_view`: an iterable of strings (not one string), else a :class:`RequestError`."""
+    listed = None
+    if not isinstance(notes, (str, bytes)):
+        try:
+            listed = tuple(itertools.islice(notes, MAX_POSES + 1))  # type: ignore[call-overload]
+        except TypeError:
+            listed = None
+    if listed is None or len(listed) > MAX_POSES or not all(isinstance(n, str) for n in listed):
+        raise RequestError(f"poses_view: notes: expected a list of lines (strings), got {shown_value(notes)}")
+    return listed

@@ -10,21 +10,30 @@ state); one left as a notebook cell's value shows itself as PNG.
 from __future__ import annotations
 
 import io
+import os
 import re
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
+from ...core.model import integer_value, real_value
+from ...core.poses import shown_value
 from ...errors import PlotFormatError, PlottingUnavailableError, RequestError
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
-__all__ = ["FORMATS", "require_matplotlib", "new_figure", "picture_path", "save_figure"]
+__all__ = ["FORMATS", "DPI_RANGE", "FIGSIZE_RANGE", "require_matplotlib", "new_figure", "require_figsize", "written_file_name", "picture_path", "save_figure"]
 
 FORMATS = (".png", ".svg", ".pdf")
 """File types :func:`save_figure` writes (by suffix)."""
+
+DPI_RANGE = (20, 600)
+"""The resolutions :func:`save_figure` takes (dots per inch), as ``mobility plot --dpi``."""
+
+FIGSIZE_RANGE = (1.0, 30.0)
+"""The width and the height of a figure (inches) the pictures take: 30 inches at 600 dpi is 18,000 pixels a side."""
 
 
 def require_matplotlib() -> Any:
@@ -99,6 +108,52 @@ def new_figure(figsize: tuple[float, float], **options: Any) -> "Figure":
     return _figure_class()(figsize=figsize, **options)
 
 
+def require_figsize(value: object, caller: str) -> tuple[float, float] | None:
+    """``value`` as the ``figsize`` of a picture: None (the picture's own size), or a width and a height in :data:`FIGSIZE_RANGE` inches; else a :class:`RequestError` naming ``caller``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> require_figsize(np.array([8, 6]), "plot_graph")
+    (8.0, 6.0)
+    >>> require_figsize(5, "plot_mechanism")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: plot_mechanism: figsize: expected None or (width, height) in inches, each from 1 to 30, got 5
+    """
+    if value is None:
+        return None
+    size = None
+    if not isinstance(value, (str, bytes)):
+        try:
+            size = [real_value(x) for x in value]  # type: ignore[attr-defined]
+        except TypeError:  # not iterable
+            size = None
+    low, high = FIGSIZE_RANGE
+    if size is None or len(size) != 2 or not all(x is not None and low <= x <= high for x in size):
+        raise RequestError(f"{caller}: figsize: expected None or (width, height) in inches, each from {low:g} to {high:g}, got {shown_value(value)}")
+    return (float(size[0]), float(size[1]))  # type: ignore[arg-type]
+
+
+def written_file_name(path: object, what: str) -> Path:
+    """``path`` as the :class:`~pathlib.Path` of a file to write when it names one as text (``str`` or ``os.PathLike``, no NUL), else a :class:`RequestError` naming ``what``.
+
+    Examples
+    --------
+    >>> written_file_name(b"view.html", "write_html")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: write_html: expected a file name (str or Path), got bytes
+    """
+    try:
+        name = os.fspath(path) if isinstance(path, (str, os.PathLike)) else None
+    except TypeError:  # an __fspath__ that returns neither str nor bytes
+        name = None
+    if not isinstance(name, str):
+        raise RequestError(f"{what}: expected a file name (str or Path), got {type(path).__name__}")
+    if "\x00" in name:
+        raise RequestError(f"{what}: expected a file name without a NUL character")
+    return Path(name)
+
+
 def picture_path(path: str | Path, what: str = "") -> Path:
     """``path`` as a :class:`~pathlib.Path`, once its suffix names a type :func:`save_figure` writes.
 
@@ -114,6 +169,8 @@ def picture_path(path: str | Path, what: str = "") -> Path:
     ------
     PlotFormatError
         For a suffix other than those of :data:`FORMATS`.
+    RequestError
+        When ``path`` is not a file name (:func:`written_file_name`).
 
     Examples
     --------
@@ -124,7 +181,7 @@ def picture_path(path: str | Path, what: str = "") -> Path:
     ...
     mobility.errors.PlotFormatError: --plot out.gif: cannot tell the picture type; expected a name ending in .png, .svg, .pdf
     """
-    p = Path(path)
+    p = written_file_name(path, what.strip() or "picture_path")
     if p.suffix.lower() not in FORMATS:
         raise PlotFormatError(f"{what}{path}: cannot tell the picture type; expected a name ending in {', '.join(FORMATS)}")
     return p
@@ -158,14 +215,22 @@ def glyphs_summarised() -> Iterator[None]:
 def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background; returns the path.
 
+    ``dpi`` is an integer in :data:`DPI_RANGE` (20 to 600, as ``mobility plot --dpi``).
+
     Raises
     ------
     PlotFormatError
         For another suffix (:func:`picture_path`).
+    RequestError
+        When ``fig`` is not a figure, ``path`` not a file name, or ``dpi`` not an integer from 20 to 600.
     """
     if not callable(getattr(fig, "savefig", None)):
         raise RequestError(f"save_figure: expected a matplotlib Figure, got {type(fig).__name__}")
-    p = picture_path(path)
+    p = picture_path(written_file_name(path, "save_figure: path"))
+    low, high = DPI_RANGE
+    dots = integer_value(dpi)
+    if dots is None or not low <= dots <= high:
+        raise RequestError(f"save_figure: dpi: expected an integer from {low} to {high} (dots per inch), got {shown_value(dpi)}")
     with glyphs_summarised():
-        fig.savefig(p, dpi=dpi, facecolor="white")
+        fig.savefig(p, dpi=dots, facecolor="white")
     return p

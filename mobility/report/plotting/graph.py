@@ -19,7 +19,7 @@ from ...core.model import Mechanism, require_mechanism
 from ...core.result import Result, require_same_mechanism
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ...core.topology import Bridge, JointNode, Node, Parallel, Series, joints_of
-from .backend import new_figure, require_matplotlib
+from .backend import new_figure, require_figsize, require_matplotlib
 from .style import COLORS, LIMB_COLORS
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -125,6 +125,7 @@ def plot_graph(
         Its analysis (the tree and the values drawn; of this mechanism at
         this pose); computed with ``tol`` when not given.
     figsize : (width, height) in inches, optional
+        Each from 1 to 30 (:data:`~mobility.report.plotting.backend.FIGSIZE_RANGE`).
     tol : Tolerance
 
     Returns
@@ -137,10 +138,12 @@ def plot_graph(
     PlottingUnavailableError
         When matplotlib is not installed.
     RequestError
-        When ``result`` analysed another mechanism than ``mechanism``.
+        When ``result`` analysed another mechanism than ``mechanism``, or
+        ``figsize`` is not a width and a height in range.
     """
     mechanism = require_mechanism(mechanism, "plot_graph")
     tol = require_tolerance(tol, "plot_graph")
+    size = require_figsize(figsize, "plot_graph")
     if result is not None:
         require_same_mechanism(mechanism, result, "plot_graph")
     require_matplotlib()
@@ -152,7 +155,7 @@ def plot_graph(
     graph = _JointGraph(mechanism, colors)
     leaves = len(joints_of(topo.root)) + sum(len(joints_of(d)) for d in topo.detached)
     w = max(10.0, min(26.0, 3.2 + 0.55 * max(leaves, 2 * graph.widest_layer)))
-    fig = new_figure(figsize or (w, 6.4))
+    fig = new_figure(size or (w, 6.4))
     labelled = len(mechanism.joints) <= LABELLED_JOINTS
     graph.draw(fig.add_axes((0.01, 0.08, 0.40, 0.82)), labelled)
     _draw_tree(fig.add_axes((0.43, 0.08, 0.56, 0.82)), r, mechanism, colors, labelled)

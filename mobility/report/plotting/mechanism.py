@@ -24,11 +24,12 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 
 from ...core.analysis import analyze
-from ...core.model import Mechanism, integer_value, require_mechanism
+from ...core.model import Mechanism, bool_value, integer_value, require_mechanism
+from ...core.poses import shown_value
 from ...core.result import Result, require_result_of
 from ...errors import RequestError, clipped
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from .backend import new_figure, require_matplotlib
+from .backend import new_figure, require_figsize, require_matplotlib
 from .geometry import SAME_POINT, unique_points
 from .glyphs import arrow, cone, draw_joints, draw_links, rotation_mark, triad
 from .scene import Scene, build_scene
@@ -39,7 +40,10 @@ from .views import MAX_VIEWS, choose_views, thinned, view_axes
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
-__all__ = ["plot_mechanism"]
+__all__ = ["plot_mechanism", "MAX_TITLE"]
+
+MAX_TITLE = 500
+"""The most characters of a title drawn (a longer one is cut, ``...`` marking the cut); the lines that do not fit the figure are cut too."""
 
 
 def plot_mechanism(
@@ -75,8 +79,11 @@ def plot_mechanism(
         Write joint names (up to 40 joints).
     legend : bool
     title : str, optional
-        Default: name, DOF, pattern and mobility.
+        Default: name, DOF, pattern and mobility.  Wrapped to the figure's
+        width; cut (``...``) beyond :data:`MAX_TITLE` characters or the lines
+        the figure has room for.
     figsize : (width, height) in inches, optional
+        Each from 1 to 30 (:data:`~mobility.report.plotting.backend.FIGSIZE_RANGE`).
     tol : Tolerance
 
     Returns
@@ -89,32 +96,40 @@ def plot_mechanism(
     PlottingUnavailableError
         When matplotlib is not installed.
     RequestError
-        When ``result`` is not a :class:`Result` of ``mechanism``, or
+        When ``result`` is not a :class:`Result` of ``mechanism``,
         ``views`` is neither a number of views in range nor a list of
-        ``(elev, azim)`` pairs.
+        ``(elev, azim)`` pairs, ``constraints``, ``labels`` or ``legend`` is
+        not a bool, ``title`` not a string (or None), or ``figsize`` not a
+        width and a height in range.
     """
     mechanism = require_mechanism(mechanism, "plot_mechanism")
     tol = require_tolerance(tol, "plot_mechanism")
     count, given = _views_asked(views)
+    for key, flag in (("constraints", constraints), ("labels", labels), ("legend", legend)):
+        if bool_value(flag) is None:
+            raise RequestError(f"plot_mechanism: {key}: expected True or False, got {shown_value(flag)}")
+    if title is not None and not isinstance(title, str):
+        raise RequestError(f"plot_mechanism: title: expected a str or None, got {type(title).__name__}")
+    size = require_figsize(figsize, "plot_mechanism")
     r = require_result_of(mechanism, result, "plot_mechanism") if result is not None else None
     require_matplotlib()
     r = r if r is not None else analyze(mechanism, tol=tol)
     sk = sketch(mechanism)
-    scene = build_scene(r, sk, constraints)
+    scene = build_scene(r, sk, bool(constraints))
     answer = np.concatenate([sk.end_effector_centre[None], *scene.important_points()])
     important = np.concatenate([sk.points, answer])
     view_list = given if count is None else _chosen_views(sk, answer, scene.directions(), count)
     if scene.couples:  # place the couples again, now that the views are known
-        scene = build_scene(r, sk, constraints, eyes=np.array([view_axes(e, a)[0] for e, a in view_list]))
+        scene = build_scene(r, sk, bool(constraints), eyes=np.array([view_axes(e, a)[0] for e, a in view_list]))
     extent = np.concatenate([important, sk.points])
-    fig = new_figure(figsize or (6.2 * len(view_list), 6.6))
+    fig = new_figure(size or (6.2 * len(view_list), 6.6))
     for k, view in enumerate(view_list):
         ax = _view_axes3d(fig, k, view_list, extent, sk.size)
-        _draw_view(ax, mechanism, r, sk, scene, labels, view)
+        _draw_view(ax, mechanism, r, sk, scene, bool(labels), view)
     if legend:
         _legend(fig, mechanism, sk, scene)
     unit = f", lengths in {r.length_unit}" if r.length_unit else ""
-    _title(fig, title if title is not None else f"{r.name}: end effector {r.dof} DOF ({r.pattern}), mobility {r.mobility}{unit}", legend)
+    _title(fig, title if title is not None else f"{r.name}: end effector {r.dof} DOF ({r.pattern}), mobility {r.mobility}{unit}", bool(legend))
     return fig
 
 
@@ -224,8 +239,14 @@ def _legend(fig: "Figure", mechanism: Mechanism, sk: Sketch, scene: Scene) -> No
 
 
 def _title(fig: "Figure", text: str, legend: bool) -> None:
-    """The title, wrapped to the figure's width, with room kept for it and the legend."""
-    wrapped = textwrap.fill(text, width=max(40, int(fig.get_figwidth() * 10.5)))
+    """The title, wrapped to the figure's width and cut to the lines that leave half the height to the views, with room kept for it and the legend."""
+    width = max(40, int(fig.get_figwidth() * 10.5))
+    most = 1 + int(0.4 * fig.get_figheight() / 0.22)  # lines whose room (0.22 inch each) keeps the top at 0.5 or above
+    lines = textwrap.wrap(clipped(text, MAX_TITLE), width=width) or [""]
+    if len(lines) > most:
+        lines = lines[:most]
+        lines[-1] = clipped(lines[-1] + " ...", width)
+    wrapped = "\n".join(lines)
     fig.suptitle(wrapped, fontsize=11)
     top = 0.9 - 0.22 * wrapped.count("\n") / fig.get_figheight()  # room for a title on several lines
     fig.subplots_adjust(left=0.0, right=1.0, top=top, bottom=0.1 if legend else 0.02, wspace=0.0)
