@@ -33,6 +33,7 @@ True
 from __future__ import annotations
 
 import re
+import sys
 from typing import Iterable
 
 _BIDI = "\u202a-\u202e\u2066-\u2069"
@@ -57,6 +58,7 @@ __all__ = [
     "did_you_mean",
     "one_line",
     "clipped",
+    "shown_argument",
     "control_character_problem",
     "TERMINAL_CONTROL",
 ]
@@ -142,6 +144,23 @@ def control_character_problem(text: str, where: str, *, also: re.Pattern[str] | 
     if bad is None:
         return None
     return f"control character {bad.group()!r} (code {ord(bad.group())}) is not allowed in {where}"
+
+
+def shown_argument(value: object) -> str:
+    """An argument as a message quotes it: its ``repr``, clipped, on one line (the ``repr`` of an array spans lines).
+
+    Examples
+    --------
+    >>> print(shown_argument("a" * 100), shown_argument([[1.0, 0.0], [0.0, 1.0]]))
+    'aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa... [[1.0, 0.0], [0.0, 1.0]]
+    >>> shown_argument(10**5000)
+    'an integer of more than 4,300 digits'
+    """
+    try:
+        text = repr(value)
+    except ValueError:  # an int of more digits than Python writes (sys.get_int_max_str_digits)
+        text = f"an integer of more than {sys.get_int_max_str_digits():,} digits"
+    return one_line(clipped(text))
 
 
 def clipped(text: object, most: int = 40) -> str:

@@ -86,11 +86,11 @@ def add_pose_sampler_options(
         fewer than :data:`MAX_SAMPLES` (which every command checks) and
         checks it itself.
     """
-    from ..core.poses import DEFAULT_STEP  # the finite kinematics: imported only by the commands that move
+    from ..core.poses import DEFAULT_STEP, MAX_STEP  # the finite kinematics: imported only by the commands that move
 
     (samples_group or parser).add_argument("--samples", type=int, default=0, metavar="N", help=samples_help + f", 0 to {MAX_SAMPLES if most is None else most} (default: %(default)s)")
     parser.add_argument("--step", type=float, default=DEFAULT_STEP,
-                        help="step of the pose sampler, in (0, 1]: a joint-space distance (radians, lengths over the mechanism's size) (default: %(default)g)")
+                        help=f"step of the pose sampler, in (0, {MAX_STEP:g}]: a joint-space distance (radians, lengths over the mechanism's size) (default: %(default)g)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
 
 
@@ -114,8 +114,10 @@ MAX_SAMPLES = 1000
 
 def require_sampler_options(args: argparse.Namespace) -> None:
     """``--samples`` in ``[0, MAX_SAMPLES]``, ``--seed`` not negative, ``--step`` in ``(0, 1]`` (a joint-space distance), else a :class:`RequestError`."""
-    if not (0 <= args.samples <= MAX_SAMPLES) or not (0.0 < args.step <= 1.0) or args.seed < 0:
-        raise RequestError(f"--samples must lie in [0, {MAX_SAMPLES}], --seed must not be negative and --step must lie in (0, 1]; "
+    from ..core.poses import MAX_STEP
+
+    if not (0 <= args.samples <= MAX_SAMPLES) or not (0.0 < args.step <= MAX_STEP) or args.seed < 0:
+        raise RequestError(f"--samples must lie in [0, {MAX_SAMPLES}], --seed must not be negative and --step must lie in (0, {MAX_STEP:g}]; "
                            f"got {args.samples}, {args.seed} and {args.step!r}")
 
 

@@ -6,6 +6,7 @@ import argparse
 
 from ..core.analysis import analyze
 from ..errors import MechanismFileError, PlotFormatError, RequestError, one_line
+from ..report.plotting.backend import DPI_RANGE
 from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, require_new_output, tolerance_from
 
 ORDER = 30
@@ -25,7 +26,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--graph", action="store_true", help="draw the joint graph and its series/parallel tree instead")
     p.add_argument("--views", type=int, default=2, choices=(1, 2, 3), help="number of viewpoints (default: %(default)s)")
     p.add_argument("--no-labels", action="store_true", help="leave out the joint names")
-    p.add_argument("--dpi", type=int, default=150, help="resolution of a PNG, 20 to 600 dots per inch (default: %(default)s)")
+    p.add_argument("--dpi", type=int, default=150, help=f"resolution of a PNG, {DPI_RANGE[0]} to {DPI_RANGE[1]} dots per inch (default: %(default)s)")
     add_tolerance_option(p)
     p.set_defaults(run=run)
 
@@ -46,8 +47,8 @@ def run(args: argparse.Namespace) -> int:
     from ..report.plotting import picture_path, plot_graph, plot_mechanism, save_figure
 
     tol = tolerance_from(args)
-    if not 20 <= args.dpi <= 600:
-        raise RequestError(f"--dpi must lie in [20, 600], got {args.dpi}")
+    if not DPI_RANGE[0] <= args.dpi <= DPI_RANGE[1]:
+        raise RequestError(f"--dpi must lie in [{DPI_RANGE[0]}, {DPI_RANGE[1]}], got {args.dpi}")
     picture_path(args.output)  # before any work
     require_new_output(args.output, "-o", args.file)
     if args.graph and args.constraints:

@@ -8,16 +8,14 @@ each step moves along a first-order motion and re-closes every loop with
 
 from __future__ import annotations
 
-import sys
-
 import numpy as np
 
-from ..errors import RequestError, clipped, one_line
+from ..errors import RequestError, shown_argument
 from .kinematics import kinematics
 from .model import Mechanism, integer_value, real_value, require_mechanism
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 
-__all__ = ["sample_poses", "require_pose_count", "require_seed", "step_value", "shown_value", "DEFAULT_STEP", "MAX_STEP", "MAX_SAMPLED_POSES"]
+__all__ = ["sample_poses", "require_pose_count", "require_seed", "step_value", "DEFAULT_STEP", "MAX_STEP", "MAX_SAMPLED_POSES"]
 
 MAX_SAMPLED_POSES = 100_000
 """Most poses :func:`sample_poses` is asked for (each is a Newton solve and a rebuilt mechanism; the
@@ -32,21 +30,6 @@ MAX_STEP = 1.0
 :func:`mobility.finite.finite_mobility` (a joint-space distance: a radian, or the characteristic length),
 as the command line's ``--step`` in ``(0, 1]``: a larger move is no step along the motion (Newton from it
 would reach another assembly, and a step of ``1e300`` overflows)."""
-
-
-def shown_value(value: object) -> str:
-    """``value`` as a message quotes it: its ``repr``, clipped, on one line (the ``repr`` of an array spans lines).
-
-    Examples
-    --------
-    >>> print(shown_value("a" * 100), shown_value(np.eye(2)))
-    'aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa... array([[1., 0.],\\n       [0., 1.]])
-    """
-    try:
-        text = repr(value)
-    except ValueError:  # an int of more digits than Python writes (sys.get_int_max_str_digits)
-        text = f"an integer of more than {sys.get_int_max_str_digits():,} digits"
-    return one_line(clipped(text))
 
 
 def step_value(value: object) -> float | None:
@@ -76,7 +59,7 @@ def require_seed(value: object, key: str = "seed") -> int:
     """
     seed = integer_value(value)
     if seed is None or seed < 0:
-        raise RequestError(f"{key}: expected a non-negative integer, got {shown_value(value)}")
+        raise RequestError(f"{key}: expected a non-negative integer, got {shown_argument(value)}")
     return seed
 
 
@@ -93,7 +76,7 @@ def require_pose_count(value: object, key: str = "count") -> int:
     """
     count = integer_value(value)
     if count is None or not 0 <= count <= MAX_SAMPLED_POSES:
-        raise RequestError(f"{key}: expected a number of poses in [0, {MAX_SAMPLED_POSES:,}], got {shown_value(value)}")
+        raise RequestError(f"{key}: expected a number of poses in [0, {MAX_SAMPLED_POSES:,}], got {shown_argument(value)}")
     return count
 
 
@@ -148,8 +131,8 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
         size = real_value(step) if integer_value(step) is None else integer_value(step)  # an int beyond the floats too
         if size is not None and size > 0:
             raise RequestError(f"sample_poses: step: expected a joint-space distance in (0, {MAX_STEP:g}] (radians; lengths over "
-                               f"the characteristic length), got {shown_value(step)}")
-        raise RequestError(f"step: expected a positive joint-space distance, got {shown_value(step)}")
+                               f"the characteristic length), got {shown_argument(step)}")
+        raise RequestError(f"step: expected a positive joint-space distance, got {shown_argument(step)}")
     step = h0
     rng = np.random.default_rng(require_seed(seed))
     reached: list[Mechanism] = [mechanism]

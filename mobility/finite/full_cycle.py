@@ -55,10 +55,10 @@ import numpy as np
 from ..core.analysis import analyze
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism, integer_value, require_mechanism
-from ..core.poses import MAX_STEP, require_seed, shown_value, step_value
+from ..core.poses import MAX_STEP, require_seed, step_value
 from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import RequestError
+from ..errors import RequestError, shown_argument
 from .branches import examine_branch, group_by_tangent
 from .moves import MovePlan, probe, probe_directions
 from .orders import canonical_basis, first_order, second_order
@@ -129,7 +129,7 @@ def finite_mobility(
         count = integer_value(randoms)
         if count is None or not 0 <= count <= MAX_RANDOMS:
             raise RequestError(f"finite_mobility: randoms: expected a non-negative integer of at most {MAX_RANDOMS:,} (random directions to try), "
-                               f"got {shown_value(randoms)}")
+                               f"got {shown_argument(randoms)}")
         randoms = count
     rng = np.random.default_rng(require_seed(seed, "finite_mobility: seed"))  # one stream, drawn in a fixed order: second order, moves, branches
     instant = analyze(mechanism, tol=tol)
@@ -175,7 +175,7 @@ def _checked_steps(steps: Any) -> tuple[float, ...]:
     values = [step_value(h) for h in given or ()]
     if not given or len(given) > MAX_STEP_COUNT or any(h is None for h in values):
         raise RequestError(f"finite_mobility: steps: expected positive numbers, each at most {MAX_STEP:g} (joint-space distances), "
-                           f"1 to {MAX_STEP_COUNT} of them, got {shown_value(steps)}")
+                           f"1 to {MAX_STEP_COUNT} of them, got {shown_argument(steps)}")
     return tuple(sorted(h for h in values if h is not None))
 
 

@@ -48,9 +48,9 @@ import numpy as np
 
 from ..core.finite_screws import Limb, ScrewJoint
 from ..core.model import integer_value, require_instance
-from ..core.poses import require_seed, shown_value
+from ..core.poses import require_seed
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import AnalysisError, SynthesisError
+from ..errors import AnalysisError, SynthesisError, shown_argument
 from .generic_rank import generic_rank, sample_joint_values
 from .limb_types import CandidateJoint, SynthesizedLimb, limb_types
 from .patterns import MotionPattern, Vector, named_pattern
@@ -174,7 +174,7 @@ def _count(value: object, key: str, least: int) -> int:
     """
     number = integer_value(value)
     if number is None or number < least:
-        raise SynthesisError(f"synthesize: {key}: expected an integer of at least {least}, got {shown_value(value)}")
+        raise SynthesisError(f"synthesize: {key}: expected an integer of at least {least}, got {shown_argument(value)}")
     return number
 
 

@@ -41,10 +41,9 @@ from scipy.optimize import least_squares
 
 from ..core.finite_screws import FiniteScrew, ScrewJoint
 from ..core.linalg import singular_values
-from ..core.poses import shown_value
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale, decide_rank
 from ..core.transforms import rotation_from_axis_angle
-from ..errors import SynthesisError
+from ..errors import SynthesisError, shown_argument
 from .generic_rank import generic_rank
 
 __all__ = ["Vector", "PatternFactor", "MotionPattern", "PATTERNS", "named_pattern"]
@@ -58,7 +57,7 @@ def _vec(v: Iterable[float], what: str = "point") -> Vector:
     try:
         a = np.asarray(v, dtype=float).reshape(3)
     except (TypeError, ValueError):
-        raise SynthesisError(f"{what}: expected 3 numbers, got {shown_value(v)}") from None
+        raise SynthesisError(f"{what}: expected 3 numbers, got {shown_argument(v)}") from None
     if not np.all(np.isfinite(a)):
         raise SynthesisError(f"{what}: expected 3 finite numbers, got {a.tolist()}")
     return (float(a[0]), float(a[1]), float(a[2]))
@@ -395,10 +394,10 @@ def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), direct
     mobility.errors.SynthesisError: named_pattern: name: expected the name of a motion pattern (2T3R, 3T, 3R, 2T1R, 3T1R), got None
     """
     if not isinstance(name, str):
-        raise SynthesisError(f"named_pattern: name: expected the name of a motion pattern ({', '.join(PATTERNS)}), got {shown_value(name)}")
+        raise SynthesisError(f"named_pattern: name: expected the name of a motion pattern ({', '.join(PATTERNS)}), got {shown_argument(name)}")
     key = name.strip().upper()
     if key not in PATTERNS:
-        raise SynthesisError(f"unknown motion pattern {shown_value(name)}; expected one of {', '.join(PATTERNS)}")
+        raise SynthesisError(f"unknown motion pattern {shown_argument(name)}; expected one of {', '.join(PATTERNS)}")
     kwargs: dict[str, Any] = {"point": _vec(point, "named_pattern: point")}
     if directions is not None:
         wanted = DIRECTION_COUNTS[key]
@@ -407,7 +406,7 @@ def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), direct
         except TypeError:  # not iterable
             listed = None
         if listed is None:
-            raise SynthesisError(f"named_pattern: directions: expected a list of directions (3 numbers each), got {shown_value(directions)}")
+            raise SynthesisError(f"named_pattern: directions: expected a list of directions (3 numbers each), got {shown_argument(directions)}")
         given = tuple(_vec(_unit(d, "named_pattern: directions")) for d in listed)
         if len(given) != wanted:
             takes = "no directions" if wanted == 0 else f"{wanted} directions"

@@ -34,10 +34,9 @@ from typing import Any, Iterable
 from ..core.analysis import analyze
 from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism, integer_value, require_mechanism
-from ..core.poses import shown_value
 from ..core.result import Result, require_result_of
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import MissingExtraError, RequestError
+from ..errors import MissingExtraError, RequestError, shown_argument
 from ..report.plotting.backend import written_file_name
 from ..report.plotting.sketch import drawing_scale
 from ..report.text import text_report
@@ -211,7 +210,7 @@ def require_max_poses(value: object, caller: str) -> int:
     """
     count = integer_value(value)
     if count is None or not 1 <= count <= MAX_POSES:
-        raise RequestError(f"{caller}: max_poses: expected an integer from 1 to {MAX_POSES} (poses a view holds), got {shown_value(value)}")
+        raise RequestError(f"{caller}: max_poses: expected an integer from 1 to {MAX_POSES} (poses a view holds), got {shown_argument(value)}")
     return count
 
 
@@ -288,5 +287,5 @@ def _notes(notes: object) -> tuple[str, ...]:
         except TypeError:
             listed = None
     if listed is None or len(listed) > MAX_POSES or not all(isinstance(n, str) for n in listed):
-        raise RequestError(f"poses_view: notes: expected a list of lines (strings), got {shown_value(notes)}")
+        raise RequestError(f"poses_view: notes: expected a list of lines (strings), got {shown_argument(notes)}")
     return listed

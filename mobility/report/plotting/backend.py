@@ -18,8 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
 from ...core.model import integer_value, real_value
-from ...core.poses import shown_value
-from ...errors import PlotFormatError, PlottingUnavailableError, RequestError
+from ...errors import PlotFormatError, PlottingUnavailableError, RequestError, shown_argument
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -130,7 +129,7 @@ def require_figsize(value: object, caller: str) -> tuple[float, float] | None:
             size = None
     low, high = FIGSIZE_RANGE
     if size is None or len(size) != 2 or not all(x is not None and low <= x <= high for x in size):
-        raise RequestError(f"{caller}: figsize: expected None or (width, height) in inches, each from {low:g} to {high:g}, got {shown_value(value)}")
+        raise RequestError(f"{caller}: figsize: expected None or (width, height) in inches, each from {low:g} to {high:g}, got {shown_argument(value)}")
     return (float(size[0]), float(size[1]))  # type: ignore[arg-type]
 
 
@@ -230,7 +229,7 @@ def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     low, high = DPI_RANGE
     dots = integer_value(dpi)
     if dots is None or not low <= dots <= high:
-        raise RequestError(f"save_figure: dpi: expected an integer from {low} to {high} (dots per inch), got {shown_value(dpi)}")
+        raise RequestError(f"save_figure: dpi: expected an integer from {low} to {high} (dots per inch), got {shown_argument(dpi)}")
     with glyphs_summarised():
         fig.savefig(p, dpi=dots, facecolor="white")
     return p

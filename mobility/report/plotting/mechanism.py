@@ -25,9 +25,8 @@ import numpy as np
 
 from ...core.analysis import analyze
 from ...core.model import Mechanism, bool_value, integer_value, require_mechanism
-from ...core.poses import shown_value
 from ...core.result import Result, require_result_of
-from ...errors import RequestError, clipped
+from ...errors import RequestError, clipped, shown_argument
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from .backend import new_figure, require_figsize, require_matplotlib
 from .geometry import SAME_POINT, unique_points
@@ -107,7 +106,7 @@ def plot_mechanism(
     count, given = _views_asked(views)
     for key, flag in (("constraints", constraints), ("labels", labels), ("legend", legend)):
         if bool_value(flag) is None:
-            raise RequestError(f"plot_mechanism: {key}: expected True or False, got {shown_value(flag)}")
+            raise RequestError(f"plot_mechanism: {key}: expected True or False, got {shown_argument(flag)}")
     if title is not None and not isinstance(title, str):
         raise RequestError(f"plot_mechanism: title: expected a str or None, got {type(title).__name__}")
     size = require_figsize(figsize, "plot_mechanism")
