@@ -25,10 +25,10 @@ Examples
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sized
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
-from collections.abc import Sized
 from typing import Any, Iterable
 
 from ..core.analysis import analyze
