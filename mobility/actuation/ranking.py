@@ -29,7 +29,7 @@ import numpy as np
 
 from ..core.model import integer_value
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, first_least
-from ..errors import RequestError, clipped
+from ..errors import RequestError, shown_argument
 from .assessment import Assessment
 from .results import SINGULAR, VALID, VERDICTS, Combination, TypeGroup
 
@@ -148,7 +148,7 @@ def inputs_per_combination(k: object, default: int) -> int:
         return default
     number = integer_value(k)
     if number is None:
-        raise RequestError(f"k must be an integer (inputs per combination), got {clipped(repr(k))}")
+        raise RequestError(f"k must be an integer (inputs per combination), got {shown_argument(k)}")
     if number < 0:
         raise RequestError(f"k must be non-negative (inputs per combination), got {number}")
     return number

@@ -33,7 +33,7 @@ from ..core.poses import DEFAULT_STEP, require_pose_count, sample_poses
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank, require_tolerance
 from ..core.topology import joints_of
-from ..errors import MechanismError, RequestError, clipped, name_list
+from ..errors import MechanismError, RequestError, name_list, shown_argument
 from .assessment import Assessment, InputWrench, assess_inputs, assess_wrenches
 from .ranking import combination_type, combinations_count, combine_poses, inputs_per_combination, limit_combinations, rank_combinations
 from .results import ActuationCheck, Enumeration
@@ -174,7 +174,7 @@ def enumerate_actuations(
     mechanism = require_mechanism(mechanism, "enumerate_actuations")
     tol = require_tolerance(tol, "enumerate_actuations")
     if not isinstance(mode, str) or mode not in ENUMERATION_MODES:
-        shown = clipped(repr(mode)) if isinstance(mode, str) else type(mode).__name__
+        shown = shown_argument(mode) if isinstance(mode, str) else type(mode).__name__
         raise RequestError(f"enumerate_actuations: mode must be 'limb' or 'any', got {shown}")
     given_k = None if k is None else inputs_per_combination(k, 0)
     samples = require_pose_count(samples, "samples")

@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import RequestError, clipped
+from ..errors import RequestError, shown_argument
 from .frozen import ReadOnlyArrays, read_only, read_only_cached_property
 from .joint_screws import JointScrews, joint_screws
 from .linalg import svd
@@ -149,7 +149,7 @@ def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, me
     mechanism = require_mechanism(mechanism, "loop_closure")
     tol = require_tolerance(tol, "loop_closure")
     if not isinstance(method, str) or method not in ("auto", "svd", "chords"):
-        shown = clipped(repr(method)) if isinstance(method, str) else type(method).__name__
+        shown = shown_argument(method) if isinstance(method, str) else type(method).__name__
         raise RequestError(f"loop_closure: method: expected 'auto', 'svd' or 'chords', got {shown}")
     screws = joint_screws(mechanism)
     n = screws.twists.shape[1]

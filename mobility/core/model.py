@@ -45,7 +45,7 @@ from typing import Any, Callable, Iterable, Mapping, TypeVar, cast
 
 import numpy as np
 
-from ..errors import MechanismError, RequestError, clipped, did_you_mean, name_list
+from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, binary_scale, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
 
@@ -142,7 +142,7 @@ def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
     except (TypeError, ValueError):
         raise MechanismError(key, f"expected a list of 3 numbers, got {value!r}") from None
     if arr.shape != (3,):
-        n = arr.size if arr.ndim == 1 else "a nested list" if arr.ndim > 1 else clipped(repr(value))
+        n = arr.size if arr.ndim == 1 else "a nested list" if arr.ndim > 1 else shown_argument(value)
         raise MechanismError(key, f"expected a list of 3 numbers, got {n}")
     if not np.all(np.isfinite(arr)):
         raise MechanismError(key, f"expected 3 finite numbers, got {value!r}")
@@ -217,7 +217,7 @@ class Joint:
         if not isinstance(self.name, str) or not self.name:
             raise MechanismError("name", f"expected a non-empty string, got {self.name!r}")
         if not isinstance(self.type, str) or self.type not in JOINT_DOF:
-            raise MechanismError("type", f"unknown joint type {clipped(repr(self.type))}; expected one of {', '.join(JOINT_DOF)}")
+            raise MechanismError("type", f"unknown joint type {shown_argument(self.type)}; expected one of {', '.join(JOINT_DOF)}")
         links = tuple(self.links) if isinstance(self.links, (list, tuple)) else None
         if links is None or len(links) != 2 or not all(isinstance(x, str) and x for x in links):
             raise MechanismError("links", f"expected two link names, got {self.links!r}")
@@ -244,7 +244,7 @@ class Joint:
             except OverflowError:
                 raise MechanismError("pitch", "expected a finite number, got an integer too large for a float") from None
             except (TypeError, ValueError):
-                raise MechanismError("pitch", f"expected a number, got {clipped(repr(self.pitch))}") from None
+                raise MechanismError("pitch", f"expected a number, got {shown_argument(self.pitch)}") from None
             if not math.isfinite(pitch):
                 raise MechanismError("pitch", f"expected a finite number, got {self.pitch!r}")
             object.__setattr__(self, "pitch", pitch)
@@ -262,7 +262,7 @@ class Joint:
             raise MechanismError("frame", f"expected a frame name, got {self.frame!r}")
         actuated = bool_value(self.actuated)
         if actuated is None:
-            raise MechanismError("actuated", f"expected true or false, got {clipped(repr(self.actuated))}")
+            raise MechanismError("actuated", f"expected true or false, got {shown_argument(self.actuated)}")
         object.__setattr__(self, "actuated", actuated)
 
     @property
@@ -476,7 +476,7 @@ def require_expected_integer(value: Any, key: str, *, signed: bool = False, show
     """
     number = integer_value(value)
     if number is None or (not signed and number < 0):
-        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {(shown or _shown)(value)}")
+        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {(shown or shown_argument)(value)}")
     return number
 
 
@@ -494,13 +494,8 @@ def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str
     if value == 0 and type(value) is int:
         return "0"
     if not isinstance(value, str) or not value or not EXPECTED_PATTERN.fullmatch(value):
-        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got {(shown or _shown)(value)}')
+        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got {(shown or shown_argument)(value)}')
     return value
-
-
-def _shown(value: Any) -> str:
-    """A value in a message: its ``repr``, clipped."""
-    return clipped(repr(value))
 
 
 _EXPECTED_COUNTS = ("dof", "mobility", "redundant_constraints", "idle_dof")
@@ -554,14 +549,14 @@ class Expected:
         if self.translations is not None:
             rows = _listed(self.translations)
             if not isinstance(rows, tuple):
-                raise MechanismError("translations", f"expected a list of 3-vectors, got {_shown(self.translations)}")
+                raise MechanismError("translations", f"expected a list of 3-vectors, got {shown_argument(self.translations)}")
             object.__setattr__(self, "translations", tuple(require_vector(_listed(v), f"translations[{i}]") for i, v in enumerate(rows)))
         if not isinstance(self.extra, Mapping):
             raise MechanismError("extra", f"expected a mapping of further expected keys, got {type(self.extra).__name__}")
         extra = dict(self.extra)  # a copy: the caller's mapping may change afterwards
         for key in extra:
             if not isinstance(key, str) or not key:
-                raise MechanismError("extra", f"expected keys that are names (non-empty strings), got {_shown(key)}")
+                raise MechanismError("extra", f"expected keys that are names (non-empty strings), got {shown_argument(key)}")
             if key in self.__dataclass_fields__:
                 raise MechanismError(f"extra.{key}", f"{key!r} is a field of Expected: give it as Expected({key}=...)")
         object.__setattr__(self, "extra", extra)
@@ -778,7 +773,7 @@ class Mechanism:
         """
         transforms = self._frame_transforms
         if not isinstance(name, str) or name not in transforms:
-            raise RequestError(f"frame_transform: no frame named {clipped(repr(name))}{did_you_mean(name, transforms)}; the frames are {name_list(transforms)}")
+            raise RequestError(f"frame_transform: no frame named {shown_argument(name)}{did_you_mean(name, transforms)}; the frames are {name_list(transforms)}")
         return transforms[name]
 
     @cached_property

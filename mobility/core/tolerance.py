@@ -39,7 +39,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..errors import RequestError, clipped
+from ..errors import RequestError, shown_argument
 
 __all__ = [
     "first_least",
@@ -117,7 +117,7 @@ class Tolerance:
                 except OverflowError:  # an integer beyond the floats
                     pass
             if not math.isfinite(number):
-                raise RequestError(f"Tolerance: {name} must be a finite number, got {clipped(repr(value))}")
+                raise RequestError(f"Tolerance: {name} must be a finite number, got {shown_argument(value)}")
             object.__setattr__(self, name, number)
         if not (0.0 < self.inexact <= self.rank < self.near_singular < 1.0):
             raise RequestError("tolerances must satisfy 0 < inexact <= rank < near_singular < 1")

@@ -36,7 +36,7 @@ from ..core.result import ScrewAxis
 from ..core.screws import SWAP_ROWS, motion_pattern
 from ..core.model import real_value
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers, require_tolerance
-from ..errors import RequestError, clipped
+from ..errors import RequestError, shown_argument
 from .compliance import compliance_matrix, normalised_energy_form
 from .model import FlexureMechanism, require_flexure
 
@@ -167,7 +167,7 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
     if threshold is None:
         threshold = mechanism.threshold if mechanism.threshold is not None else DEFAULT_THRESHOLD
     elif real_value(threshold) is None:
-        raise RequestError(f"threshold must be a number between 0 and 1, got {clipped(repr(threshold))}")
+        raise RequestError(f"threshold must be a number between 0 and 1, got {shown_argument(threshold)}")
     if not (0.0 < threshold < 1.0):
         raise RequestError(f"threshold must lie between 0 and 1, got {threshold!r}")
     compliance = compliance_matrix(mechanism)

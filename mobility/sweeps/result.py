@@ -51,7 +51,7 @@ from ..core.frozen import ReadOnlyArrays, read_only, read_only_cached_property
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
 from ..core.tolerance import DEFAULT_TOLERANCE, MARGIN_DIP, Tolerance, clean_numbers
-from ..errors import RequestError, clipped
+from ..errors import RequestError, shown_argument
 from .grid import SweepAxis
 
 __all__ = ["GridPoint", "SingularPose", "MarginDip", "SweepResult", "COLUMNS"]
@@ -272,7 +272,7 @@ class SweepResult(ReadOnlyArrays):
             return self.values[:, self.names.index(name)]
         if isinstance(name, str) and name in self.columns:
             return getattr(self, name)
-        raise RequestError(f"no column {clipped(repr(name))}; expected one of: {', '.join(self.columns)}")
+        raise RequestError(f"no column {shown_argument(name)}; expected one of: {', '.join(self.columns)}")
 
     @property
     def columns(self) -> tuple[str, ...]:
@@ -410,7 +410,7 @@ class SweepResult(ReadOnlyArrays):
 
     def _require_index(self, index: Any, what: str) -> None:
         if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not -self.size <= index < self.size:
-            raise RequestError(f"{what}: expected a grid point index in 0..{self.size - 1}, got {clipped(repr(index))}")
+            raise RequestError(f"{what}: expected a grid point index in 0..{self.size - 1}, got {shown_argument(index)}")
 
     def row(self, index: int) -> dict[str, Any]:
         """One row of the table as a dict (JSON-ready).

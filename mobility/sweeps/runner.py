@@ -46,7 +46,7 @@ import numpy as np
 from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism, integer_value
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import MissingExtraError, RequestError, clipped
+from ..errors import MissingExtraError, RequestError, clipped, shown_argument
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
 from .batch_kinematics import BatchKinematics
 from .seams import find_seams
@@ -457,7 +457,7 @@ def _positive_integer(key: str, value: Any) -> int:
     """``value`` as an ``int`` when it is a positive integer (an ``int`` or a numpy integer, not a bool), else a :class:`RequestError`."""
     number = integer_value(value)
     if number is None or number < 1:
-        raise RequestError(f"sweep: {key} must be a positive integer, got {clipped(repr(value))}")
+        raise RequestError(f"sweep: {key} must be a positive integer, got {shown_argument(value)}")
     return number
 
 

@@ -153,7 +153,7 @@ def _views_asked(views: Any) -> tuple[int | None, list[tuple[float, float]]]:
             given = []
     if (count is not None and 1 <= count <= MAX_VIEWS) or (given and all(math.isfinite(e) and math.isfinite(a) for e, a in given)):
         return count, given
-    raise RequestError(f"plot_mechanism: views: expected a number of views from 1 to {MAX_VIEWS}, or a list of (elev, azim) pairs in degrees, got {clipped(repr(views))}")
+    raise RequestError(f"plot_mechanism: views: expected a number of views from 1 to {MAX_VIEWS}, or a list of (elev, azim) pairs in degrees, got {shown_argument(views)}")
 
 
 def _chosen_views(sk: Sketch, answer: np.ndarray, directions: np.ndarray, count: int) -> list[tuple[float, float]]:
