@@ -48,20 +48,32 @@ def _read_everything(obj: object) -> None:
                 getattr(obj, name)
 
 
-def _arrays(obj: object, path: str = "result"):
-    """Every ndarray reachable from ``obj`` through results, tuples and mappings, each with its path; reads everything first."""
+def _walk(obj: object, path: str, members):
+    """Every ndarray reachable from ``obj`` through tuples, lists, dicts and what ``members(obj)`` gives (``(name, value)`` pairs), with its path."""
     if isinstance(obj, np.ndarray):
         yield path, obj
     elif isinstance(obj, (tuple, list)):
         for i, x in enumerate(obj):
-            yield from _arrays(x, f"{path}[{i}]")
+            yield from _walk(x, f"{path}[{i}]", members)
     elif isinstance(obj, dict):
         for k, x in obj.items():
-            yield from _arrays(x, f"{path}[{k!r}]")
-    elif isinstance(obj, ReadOnlyArrays):
-        _read_everything(obj)
-        for name, value in vars(obj).items():
-            yield from _arrays(value, f"{path}.{name}")
+            yield from _walk(x, f"{path}[{k!r}]", members)
+    else:
+        for name, value in members(obj):
+            yield from _walk(value, f"{path}.{name}", members)
+
+
+def _result_members(obj: object):
+    """The attributes of a ReadOnlyArrays result, every property read first; nothing of another object."""
+    if not isinstance(obj, ReadOnlyArrays):
+        return ()
+    _read_everything(obj)
+    return list(vars(obj).items())
+
+
+def _arrays(obj: object, path: str = "result"):
+    """Every ndarray reachable from ``obj`` through results, tuples and mappings, each with its path; reads everything first."""
+    return _walk(obj, path, _result_members)
 
 
 def _writable(obj: object) -> list[str]:
@@ -400,21 +412,18 @@ def test_the_loop_closure_jacobian_flexure_and_assessment_classes_hold_read_only
         assert inspect.getattr_static(cls, "__setstate__") is ReadOnlyArrays.__setstate__, cls
 
 
-def _arrays_outside_results(obj: object, path: str = "result"):
-    """The ndarrays reachable from ``obj`` through tuples, lists, dicts and dataclasses that are not ReadOnlyArrays results."""
+def _plain_members(obj: object):
+    """The fields of a dataclass that is not a ReadOnlyArrays result; nothing of another object."""
     import dataclasses
 
-    if isinstance(obj, np.ndarray):
-        yield path
-    elif isinstance(obj, (tuple, list)):
-        for i, x in enumerate(obj):
-            yield from _arrays_outside_results(x, f"{path}[{i}]")
-    elif isinstance(obj, dict):
-        for k, x in obj.items():
-            yield from _arrays_outside_results(x, f"{path}[{k!r}]")
-    elif dataclasses.is_dataclass(obj) and not isinstance(obj, (type, ReadOnlyArrays)):
-        for f in dataclasses.fields(obj):
-            yield from _arrays_outside_results(getattr(obj, f.name), f"{path}.{f.name}")
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, (type, ReadOnlyArrays)):
+        return [(f.name, getattr(obj, f.name)) for f in dataclasses.fields(obj)]
+    return ()
+
+
+def _arrays_outside_results(obj: object, path: str = "result"):
+    """The paths of the ndarrays reachable from ``obj`` through tuples, lists, dicts and dataclasses that are not ReadOnlyArrays results."""
+    return [p for p, _ in _walk(obj, path, _plain_members)]
 
 
 def test_the_results_that_are_not_read_only_arrays_hold_no_array():
