@@ -40,7 +40,7 @@ from ..errors import MechanismFileError, RequestError, clipped, control_characte
 from .files import file_name, is_regular_file, read_capped
 from .limits import Limits, current_limits
 
-__all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag"]
+__all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag", "underflow_problem"]
 
 
 _CHUNK = 1 << 16
@@ -50,6 +50,8 @@ _OTHER_BOMS = ((b"\xff\xfe\x00\x00", "UTF-32"), (b"\x00\x00\xfe\xff", "UTF-32"),
 _TAG = re.compile(rb"<[^\s/>]+")
 _ATTRIBUTE = re.compile(rb"\s+([^\s=/>]+)\s*=\s*(\"[^\"]*\"|'[^']*')")
 _XML_SPACE = re.compile(rb"[\t\r\n]")
+_EXPONENT = re.compile(r"[eE]")
+_HEX_PREFIX = re.compile(r"[+-]?0[xX]")
 
 
 @dataclass(frozen=True, eq=False)
@@ -190,6 +192,38 @@ def _raw_value(source: bytes, start: int, name: bytes) -> bytes | None:
         if attribute.group(1) == name:
             return attribute.group(2)[1:-1]
         at = attribute.end()
+    return None
+
+
+def underflow_problem(words: list[str], values: list[float]) -> str | None:
+    """What is wrong with numbers written non-zero that read as 0 (too small for a double: ``1e-400``), or ``None``.
+
+    ``float`` (and MuJoCo's ``strtod``) read such a number as 0 without a
+    word; the expression evaluator of mechanism files refuses an underflow,
+    and so do the readers of MJCF and URDF, in one line.
+
+    Parameters
+    ----------
+    words : list of str
+        The numbers as written (decimal, or hexadecimal as ``0x1p-3``).
+    values : list of float
+        What they read as, one for each word.
+
+    Examples
+    --------
+    >>> underflow_problem(["0", "0.0e9", "-0x0p3", "1e-310"], [0.0, 0.0, -0.0, 1e-310]) is None
+    True
+    >>> underflow_problem(["1", "-1e-400"], [1.0, -0.0])
+    "'-1e-400' is too small for a double and reads as 0 (a number below about 4.9e-324 in size underflows); expected 0 or a larger number"
+    """
+    for word, value in zip(words, values):
+        if value != 0.0:
+            continue
+        hexadecimal = _HEX_PREFIX.match(word)
+        mantissa = word[hexadecimal.end():].partition("p")[0].partition("P")[0] if hexadecimal else _EXPONENT.split(word)[0]
+        if any(c not in "+-.0" for c in mantissa):
+            return (f"{clipped(word)!r} is too small for a double and reads as 0 (a number below about 4.9e-324 in size underflows); "
+                    "expected 0 or a larger number")
     return None
 
 
