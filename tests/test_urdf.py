@@ -245,7 +245,7 @@ def test_bad_urdf_is_one_line(tmp_path, text, expected):
     ("joints:\n  - {name: C, type: S, links: [coupler, rockr], point: [0, 0, 0]}\n", r"closures\.yaml:2: joints\[0\]\.links\[1\]: no body named 'rockr' \(did you mean 'rocker'\?\) in four_bar\.urdf"),
     ("joints:\n  - {name: C, type: S, links: [coupler, rocker], point: [0, 0, 0], frame: tip}\n", r"closures\.yaml:2: joints\[0\]\.frame: unknown frame 'tip'; expected 'world' or a body of four_bar\.urdf"),
     ("joint:\n  - {name: C}\n", r"closures\.yaml:1: joint: unknown key in a closures file \(did you mean 'joints'\?\)"),
-    ("description: nothing\n", r"closures\.yaml:1: missing required key 'joints'"),
+    ("description: nothing\n", r"closures\.yaml:1: joints: missing required key"),
     ("joints:\n  - {name: C, type: R, links: [coupler, rocker], point: [0, 0, 0]}\n", r"closures\.yaml:2: joints\[0\]\.axis: missing"),
     ("joints: []\n", r"closures\.yaml:1: joints: expected at least one closing joint"),  # was read as closing nothing
 ])

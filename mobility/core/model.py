@@ -41,12 +41,12 @@ import sys
 from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
 from types import MappingProxyType
-from typing import Any, Callable, Iterable, Mapping, TypeVar, cast
+from typing import Any, Callable, Iterable, Mapping, Sequence, TypeVar, cast
 
 import numpy as np
 
 from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
-from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, binary_scale, characteristic_scale
+from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, binary_scale, characteristic_scale, decide_rank
 from .transforms import Transform, rotation_from_rpy
 
 __all__ = [
@@ -66,6 +66,7 @@ __all__ = [
     "bool_value",
     "require_expected_integer",
     "require_expected_pattern",
+    "expected_basis_problem",
     "EXPECTED_PATTERN",
     "require_graph_names",
     "require_unique_names",
@@ -231,7 +232,9 @@ class Joint:
             if key in need and value is None:
                 raise MechanismError(key, f"missing; a joint of type {self.type} needs {', '.join(need)}")
             if key not in allowed and value is not None:
-                raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {', '.join(need)})")
+                optional = _OPTIONAL.get(self.type, ())
+                takes = ", ".join(need) + (f", and optionally {', '.join(optional)}" if optional else "")
+                raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {takes})")
         if self.axis is not None:
             object.__setattr__(self, "axis", require_vector(self.axis, "axis", direction=True))
         if self.normal is not None:
@@ -456,8 +459,12 @@ EXPECTED_KEYS: dict[str, str] = {
 EXPECTED_PATTERN = re.compile(r"0|([1-3]T)?([1-3]R)?")
 """An expected motion pattern: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (matched whole).
 
-A twist system of more than 3 dimensions always holds a translation, so ``m``
-is at most 3 too.
+These are the patterns :func:`mobility.analyze` reports, ``"0"`` for no
+motion.  The contract writes a pattern ``{nT}T{nR}R`` with a zero part
+dropped, which for no motion drops both: the empty string ``""`` is
+accepted as the same pattern (:func:`require_expected_pattern` reads it as
+``"0"``).  A twist system of more than 3 dimensions always holds a
+translation, so ``m`` is at most 3 too.
 """
 
 
@@ -481,21 +488,51 @@ def require_expected_integer(value: Any, key: str, *, signed: bool = False, show
 
 
 def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str] | None = None) -> str:
-    """An expected motion pattern (:data:`EXPECTED_PATTERN`; the integer ``0`` is ``"0"``), else a :class:`MechanismError` naming ``key``.
+    """An expected motion pattern (:data:`EXPECTED_PATTERN`; the integer ``0`` and the contract's ``""`` are ``"0"``), else a :class:`MechanismError` naming ``key``.
 
     Examples
     --------
-    >>> require_expected_pattern("1T2R", "pattern"), require_expected_pattern(0, "pattern")
-    ('1T2R', '0')
+    >>> require_expected_pattern("1T2R", "pattern"), require_expected_pattern(0, "pattern"), require_expected_pattern("", "pattern")
+    ('1T2R', '0', '0')
     >>> require_expected_pattern("4R", "pattern")
     Traceback (most recent call last):
-    mobility.errors.MechanismError: pattern: expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got '4R'
+    mobility.errors.MechanismError: pattern: expected a pattern such as "3T", "1T2R", "3R" or "0" (no motion; also written ""), at most 3T and 3R, got '4R'
     """
-    if value == 0 and type(value) is int:
+    if (type(value) is int and value == 0) or (isinstance(value, str) and value == ""):
         return "0"
-    if not isinstance(value, str) or not value or not EXPECTED_PATTERN.fullmatch(value):
-        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got {(shown or shown_argument)(value)}')
+    if not isinstance(value, str) or not EXPECTED_PATTERN.fullmatch(value):
+        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (no motion; also written ""), at most 3T and 3R, got {(shown or shown_argument)(value)}')
     return value
+
+
+def expected_basis_problem(vectors: Sequence[Vector]) -> tuple[int, str] | None:
+    """Why ``vectors`` are not a basis of directions (an expected ``translations``): the index of the first bad one and what is wrong; ``None`` when they are one.
+
+    A direction must be non-zero, and each must be independent of those
+    before it (the contract asks for a basis): the rank of the unit
+    directions is decided by the one policy
+    (:func:`~mobility.core.tolerance.decide_rank`), so directions that differ
+    only by round-off are dependent.  An empty list is a basis (of no
+    translation).
+
+    Examples
+    --------
+    >>> expected_basis_problem([(0.0, 0.0, 1.0), (1.0, 0.0, 0.0)]) is None
+    True
+    >>> expected_basis_problem([(0.0, 0.0, 1.0), (0.0, 0.0, 2.0)])
+    (1, 'linearly dependent on the directions before it; expected a basis (independent directions)')
+    >>> expected_basis_problem([(0.0, 0.0, 0.0)])
+    (0, 'expected a non-zero direction, got [0, 0, 0]')
+    """
+    units: list[Vector] = []
+    for i, v in enumerate(vectors):
+        try:
+            units.append(require_vector(v, "", direction=True))
+        except MechanismError as exc:
+            return i, exc.message
+        if decide_rank(np.linalg.svd(np.array(units), compute_uv=False)).rank < len(units):
+            return i, "linearly dependent on the directions before it; expected a basis (independent directions)"
+    return None
 
 
 _EXPECTED_COUNTS = ("dof", "mobility", "redundant_constraints", "idle_dof")
@@ -515,8 +552,9 @@ class Expected:
     Raises
     ------
     MechanismError
-        Naming the key whose value is of the wrong kind, or an ``extra`` key
-        that is one of the fields.
+        Naming the key whose value is of the wrong kind (``translations``
+        that are not a basis: :func:`expected_basis_problem`), or an
+        ``extra`` key that is one of the fields.
 
     Examples
     --------
@@ -550,7 +588,11 @@ class Expected:
             rows = _listed(self.translations)
             if not isinstance(rows, tuple):
                 raise MechanismError("translations", f"expected a list of 3-vectors, got {shown_argument(self.translations)}")
-            object.__setattr__(self, "translations", tuple(require_vector(_listed(v), f"translations[{i}]") for i, v in enumerate(rows)))
+            translations = tuple(require_vector(_listed(v), f"translations[{i}]") for i, v in enumerate(rows))
+            problem = expected_basis_problem(translations)
+            if problem is not None:
+                raise MechanismError(f"translations[{problem[0]}]", problem[1])
+            object.__setattr__(self, "translations", translations)
         if not isinstance(self.extra, Mapping):
             raise MechanismError("extra", f"expected a mapping of further expected keys, got {type(self.extra).__name__}")
         extra = dict(self.extra)  # a copy: the caller's mapping may change afterwards
@@ -689,24 +731,32 @@ class Mechanism:
             self._require_resolved_pitches()
 
     def _require_resolved_pitches(self) -> None:
-        """Refuse a helical joint whose rotation is below the resolution of the analysis.
+        """Refuse a helical pitch so much larger than the joint points' spread that no scale resolves both.
 
-        A screw of pitch ``p`` in a mechanism of size ``L`` (:func:`~mobility.core.tolerance.characteristic_scale`)
-        turns by ``L / p`` of its motion; below :attr:`~mobility.core.tolerance.Tolerance.rank`
-        that rotation cannot be told from round-off, and the joint would be
-        counted sometimes as a screw, sometimes as a slider.
+        The characteristic length of a mechanism with a pitch ``h`` larger
+        than the spread ``d`` of its joint points is ``L = sqrt(d h)``
+        (:func:`~mobility.core.tolerance.characteristic_scale`): the screw
+        turns by ``L / h`` of its motion and the points stand ``d / L``
+        apart, both ``sqrt(d / h)``.  Below
+        :attr:`~mobility.core.tolerance.Tolerance.rank` (``h / d`` above
+        1e16) neither can be told from round-off, and the joint would be
+        counted sometimes as a screw, sometimes as a slider.  The ratio, not
+        the unit, decides: a file scaled by any factor is accepted or
+        refused alike.
         """
         table = self.freedom_table
         pitches = np.abs(table.pitches)
         largest = float(pitches.max())
-        length = characteristic_scale(table.located, pitches[pitches != 0.0])[1]
+        length = characteristic_scale(table.located, pitches=pitches[pitches != 0.0])[1]
         if largest * DEFAULT_TOLERANCE.rank <= length:
             return
+        spread = characteristic_scale(table.located)[1]  # the points do not coincide, or the length would be the pitch
         index = int(np.searchsorted(table.offsets, int(np.argmax(pitches)), side="right")) - 1
         raise MechanismError(
             f"joints[{index}].pitch",
-            f"pitch {largest:.6g} is {largest / length:.1e} times the mechanism's size {length:.3g}: the joint's rotation "
-            f"({length / largest:.1e} of its motion) is finer than the analysis can resolve ({DEFAULT_TOLERANCE.rank:.0e}); write it as a P joint",
+            f"pitch {largest:.6g} is {largest / spread:.1e} times the spread of the joint points {spread:.3g} (their RMS distance from their centroid): "
+            f"beyond {DEFAULT_TOLERANCE.rank**-2:.0e} no scale resolves both the screw's rotation and the points' offsets; "
+            "write the points that are meant to coincide as one point, or bring the pitch and the spread within that ratio",
         )
 
     def _frames_cannot_overflow(self) -> bool:

@@ -96,7 +96,9 @@ class DocumentReader:
             What it is, in messages: ``"a joint"``.
         allowed : tuple of str
         required : tuple
-            Each a key, or a tuple of keys of which one is enough (the message names the first).
+            Each a key, or a tuple of keys of which one is enough.  A missing
+            one is an error at its key path (the first of a tuple, the others
+            named in the message), on the line of the mapping that lacks it.
         described : str, optional
             What a mapping is expected to hold, when ``value`` is not one (default ``what``).
 
@@ -106,14 +108,15 @@ class DocumentReader:
         >>> r.record({"name": "A"}, ("joints", 0), "a joint", ("name", "type"), ("name", "type"))
         Traceback (most recent call last):
         ...
-        mobility.errors.MechanismFileError: j.yaml: joints[0]: missing required key 'type' of a joint
+        mobility.errors.MechanismFileError: j.yaml: joints[0].type: missing required key of a joint
         """
         data = self.mapping(value, path, described or what)
         self.check_keys(data, allowed, path, what)
         for key in required:
             choices = key if isinstance(key, tuple) else (key,)
             if not any(k in data for k in choices):
-                raise self.fail(path, f"missing required key {choices[0]!r}" + (f" of {what}" if path else ""))
+                alternatives = f" (or {', '.join(choices[1:])})" if len(choices) > 1 else ""
+                raise self.fail(path + (choices[0],), "missing required key" + (f" of {what}" if path else "") + alternatives)
         return data
 
     def document(self, data: Any, what: str, allowed: tuple[str, ...], required: Required) -> Mapping[str, Any]:
