@@ -27,7 +27,7 @@ from ..errors import RequestError
 from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines, flexure_spaces, is_flexure_document, loads_flexure
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
-from ..io.limits import require_size
+from ..io.limits import require_size, require_work
 from ._options import (
     MECHANISM_FILE_HELP,
     OPTION_SPELLING,
@@ -98,6 +98,7 @@ def run(args: argparse.Namespace) -> int:
         require_size(mechanism, "max_enumerated_joints", "--enumerate", args.file)
     if args.samples:
         require_size(mechanism, "max_moving_joints", "--samples", args.file)
+        require_work(mechanism, args.samples, f"--samples {args.samples}", args.file)
     if args.enumerate:
         poses = [read_mechanism(args, p)[0] for p in args.pose]
         found = enumerate_actuations(mechanism, mode=args.mode or "limb", k=args.k, poses=poses, samples=args.samples, step=args.step, seed=args.seed, tol=tol)

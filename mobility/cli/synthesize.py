@@ -18,6 +18,7 @@ from pathlib import Path
 from ..errors import RequestError, SynthesisError
 from ..report.synthesis import synthesis_json, synthesis_text, written_files_text
 from ..synthesis import PATTERNS, named_pattern, synthesize, write_pkm_files
+from ..synthesis.enumeration import MAX_SAMPLES, MAX_VERIFY_SAMPLES
 
 ORDER = 50
 EXIT_STATUS = "0 a limb type is found, 1 none is, 2 bad input (one line on standard error)"
@@ -43,11 +44,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(run=run)
 
 
-MAX_SAMPLES = 30
-"""Largest ``--samples``: random poses per rank decision (3 decide every bundled pattern; 30 take 2T3R about 6 s)."""
-
-MAX_VERIFY = 10
-"""Largest ``--verify``: each verified sample fits every kept limb's motions by the pattern (10 take 2T3R about 20 s)."""
+MAX_VERIFY = MAX_VERIFY_SAMPLES
+"""Largest ``--verify`` (the library's bound on ``verify_samples``)."""
 
 
 def _vector(text: str, what: str) -> tuple[float, float, float]:

@@ -14,7 +14,9 @@ joints, the deepest nests 7 levels) and low enough that every command on a
 file at the limits takes a few seconds and a few hundred MB (measured on two
 cores: ``analyze``, ``check``, ``actuation``, ``jacobian``, ``convert``,
 ``plot`` and ``view`` of 5,000 joints take at most 4 s and 230 MB; the
-command-specific limits are where their commands reach about 4 s).  Each limit
+command-specific limits are where their commands reach about 4 s; the
+budget of poses times joints, ``max_moving_work``, where they reach 4 to
+25 s).  Each limit
 can be raised for a run by an environment variable ``MOBILITY_<FIELD>``
 (``MOBILITY_MAX_JOINTS=20000``), or for one call by passing
 ``limits=Limits(...)`` to :func:`mobility.io.loader.load`.
@@ -42,7 +44,7 @@ from typing import Mapping
 from ..core.model import Mechanism
 from ..errors import MechanismFileError, RequestError
 
-__all__ = ["Limits", "DEFAULT_LIMITS", "current_limits", "require_size"]
+__all__ = ["Limits", "DEFAULT_LIMITS", "current_limits", "require_size", "require_work"]
 
 
 @dataclass(frozen=True)
@@ -106,6 +108,15 @@ class Limits:
         Joints of a mechanism whose inputs ``actuation --enumerate``
         searches: each candidate's actuation wrench is found against its
         whole limb, so the time grows with the square of the joints.
+    max_moving_work : int
+        Poses times joints of the poses that ``--samples`` (``actuation``,
+        ``view``) and ``view --vary`` move and analyse one by one (a view
+        draws at most 200 of a grid's poses): each pose is closed, analysed
+        (and drawn) on its own, in time growing about with the joints.  At
+        5,000 (16 poses of a 300-joint chain: ``actuation`` 4 s, ``view`` 7
+        s; 227 poses of the 22-joint H4, whose four loops are closed at each:
+        ``actuation`` 23 s) every bundled mechanism can be viewed at the 199
+        sampled poses a view holds.
     """
 
     max_file_bytes: int = 4 * 1024 * 1024
@@ -121,6 +132,7 @@ class Limits:
     max_finite_joints: int = 50
     max_moving_joints: int = 300
     max_enumerated_joints: int = 200
+    max_moving_work: int = 5_000
 
     @staticmethod
     def variable(name: str) -> str:
@@ -189,3 +201,42 @@ def require_size(mechanism: Mechanism, limit: str, what: str, file: str) -> None
     count = len(mechanism.joints)
     if count > bound:
         raise MechanismFileError("joints", f"{count} joints are more than the limit of {bound} for {what} ({limits.hint(limit)})", file=file)
+
+
+def require_work(mechanism: Mechanism, poses: int, what: str, file: str) -> None:
+    """Refuse, in one line, a request to move ``mechanism`` into more poses than :attr:`Limits.max_moving_work` allows for its joints.
+
+    Checked before the work starts (after :func:`require_size`): the product
+    of the poses asked for and the mechanism's joints is what the time and
+    the memory of ``--samples`` and ``view --vary`` grow with.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    poses : int
+        The poses the request moves and analyses one by one.
+    what : str
+        The request, as the user wrote it (``"--samples 1000"``).
+    file : str
+        The file, named in the message.
+
+    Raises
+    ------
+    RequestError
+        ``WHAT: N poses x J joints of FILE = P pose-joints, more than the limit of L (ask for fewer poses, or set MOBILITY_MAX_MOVING_WORK to raise it)``.
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint
+    >>> chain = Mechanism("chain", "L0", "L300", tuple(Joint(f"J{i}", "R", (f"L{i}", f"L{i + 1}"), axis=(0, 0, 1), point=(i, 0, 0)) for i in range(300)))
+    >>> require_work(chain, 16, "--samples 16", "chain.yaml")
+    >>> require_work(chain, 1000, "--samples 1000", "chain.yaml")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: --samples 1000: 1,000 poses x 300 joints of chain.yaml = 300,000 pose-joints, more than the limit of 5,000 (ask for fewer poses, or set MOBILITY_MAX_MOVING_WORK to raise it)
+    """
+    limits = current_limits()
+    joints = len(mechanism.joints)
+    work = poses * joints
+    if work > limits.max_moving_work:
+        raise RequestError(f"{what}: {poses:,} poses x {joints:,} joints of {file} = {work:,} pose-joints, more than the limit of "
+                           f"{limits.max_moving_work:,} (ask for fewer poses, or {limits.hint('max_moving_work')})")
