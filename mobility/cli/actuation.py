@@ -34,9 +34,11 @@ from ._options import (
     add_mechanism_file,
     add_pose_sampler_options,
     add_tolerance_option,
+    integer_option,
     is_robot_description,
     load_mechanism,
     names_from,
+    number_option,
     require_sampler_options,
     read_mechanism,
     robot_options_from,
@@ -58,11 +60,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + ", or flexure document (YAML)")
     p.add_argument("--enumerate", action="store_true", help="check every combination of inputs, grouped by type and ranked")
     p.add_argument("--mode", choices=ENUMERATION_MODES, default=None, help="enumeration: one joint per limb (default) or any K joints")
-    p.add_argument("--k", type=int, default=None, help="inputs per combination with --mode any (default: the DOF)")
+    p.add_argument("--k", type=integer_option, default=None, help="inputs per combination with --mode any (default: the DOF)")
     p.add_argument("--inputs", default=None, help="comma-separated joint (or actuator) names to check instead of those marked actuated")
     p.add_argument("--pose", action="append", default=[], metavar="FILE", help="another pose of the same mechanism, read as FILE is (repeatable)")
     add_pose_sampler_options(p, samples_help="also check N poses reached by moving the mechanism (mobility.core.poses.sample_poses)")
-    p.add_argument("--threshold", type=float, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
+    p.add_argument("--threshold", type=number_option, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
     add_tolerance_option(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)

@@ -45,7 +45,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence, TypeVar, cast
 
 import numpy as np
 
-from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
+from ..errors import MechanismError, RequestError, did_you_mean, name_list, name_problem, shown_argument
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, binary_scale, characteristic_scale, decide_rank
 from .transforms import Transform, rotation_from_rpy
 
@@ -69,6 +69,9 @@ __all__ = [
     "expected_basis_problem",
     "EXPECTED_PATTERN",
     "require_graph_names",
+    "require_name",
+    "number_from_text",
+    "integer_from_text",
     "require_unique_names",
     "require_no_repeats",
     "joint_names",
@@ -136,6 +139,9 @@ def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
             raise MechanismError(key, "expected 3 finite numbers, got an integer too large for a float") from None
         if math.isfinite(x) and math.isfinite(y) and math.isfinite(z):
             return (x, y, z)
+    items = value.tolist() if isinstance(value, np.ndarray) and value.dtype.kind in "bUSO" else value
+    if isinstance(items, (list, tuple)) and any(isinstance(x, (bool, np.bool_)) or (isinstance(x, str) and not x.isascii()) for x in items):
+        raise MechanismError(key, f"expected a list of 3 numbers (not true or false, digits in ASCII), got {shown_argument(value)}")
     try:
         arr = np.asarray(value, dtype=float)
     except OverflowError:
@@ -215,13 +221,14 @@ class Joint:
     actuated: bool = False
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise MechanismError("name", f"expected a non-empty string, got {self.name!r}")
+        require_name(self.name, "name", "a non-empty string")
         if not isinstance(self.type, str) or self.type not in JOINT_DOF:
             raise MechanismError("type", f"unknown joint type {shown_argument(self.type)}; expected one of {', '.join(JOINT_DOF)}")
         links = tuple(self.links) if isinstance(self.links, (list, tuple)) else None
         if links is None or len(links) != 2 or not all(isinstance(x, str) and x for x in links):
             raise MechanismError("links", f"expected two link names, got {self.links!r}")
+        for k, link in enumerate(links):
+            require_name(link, f"links[{k}]", "a link name")
         if links[0] == links[1]:
             raise MechanismError("links", f"a joint must join two different links, got {links[0]!r} twice")
         object.__setattr__(self, "links", links)
@@ -243,7 +250,7 @@ class Joint:
             object.__setattr__(self, "point", require_vector(self.point, "point"))
         if self.pitch is not None:
             try:
-                pitch = float(self.pitch)
+                pitch = number_from_text(self.pitch) if isinstance(self.pitch, str) else float(_not_bool(self.pitch))
             except OverflowError:
                 raise MechanismError("pitch", "expected a finite number, got an integer too large for a float") from None
             except (TypeError, ValueError):
@@ -261,8 +268,7 @@ class Joint:
             if sine < PARALLEL_AXES:
                 raise MechanismError("axes", "the two axes of a U joint must not be parallel")
             object.__setattr__(self, "axes", (a1, a2))
-        if not isinstance(self.frame, str) or not self.frame:
-            raise MechanismError("frame", f"expected a frame name, got {self.frame!r}")
+        require_name(self.frame, "frame", "a frame name")
         actuated = bool_value(self.actuated)
         if actuated is None:
             raise MechanismError("actuated", f"expected true or false, got {shown_argument(self.actuated)}")
@@ -340,8 +346,7 @@ class Frame:
     parent: str = WORLD
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise MechanismError("name", f"expected a frame name, got {self.name!r}")
+        require_name(self.name, "name", "a frame name")
         object.__setattr__(self, "origin", require_vector(self.origin, "origin"))
         try:
             rot = np.asarray(self.rotation, dtype=float)
@@ -355,8 +360,7 @@ class Frame:
         if (np.abs(rot @ rot.T - _IDENTITY) > _ORTHONORMAL_LIMIT).any() or determinant < 0:
             raise MechanismError("rotation", "expected a proper rotation matrix")
         object.__setattr__(self, "rotation", tuple(map(tuple, rows)))
-        if not isinstance(self.parent, str) or not self.parent:
-            raise MechanismError("parent", f"expected a frame name, got {self.parent!r}")
+        require_name(self.parent, "parent", "a frame name")
 
     @staticmethod
     def from_rpy(name: str, origin: Iterable[float] = (0, 0, 0), rpy: Iterable[float] = (0, 0, 0), parent: str = WORLD) -> "Frame":
@@ -964,6 +968,55 @@ def bool_value(value: Any) -> bool | None:
     return bool(value) if isinstance(value, (bool, np.bool_)) else None
 
 
+def _not_bool(value: Any) -> Any:
+    """``value``, unless it is a bool (``True`` is not the number 1 here): then a ``TypeError``, as ``float`` raises for what is not a number."""
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"expected a number, got {value!r}")
+    return value
+
+
+def number_from_text(text: str) -> float:
+    """The number written in ``text``, as ``float`` reads it, but in ASCII only.
+
+    The one reader of a number written as text (an option of the command
+    line, an environment variable, a string given for a number): ``float``
+    alone reads the digits of every script (``"١"`` is 1) and spaces of
+    every kind, which no one types meaning a number.
+
+    Raises
+    ------
+    ValueError
+        When ``text`` holds a character that is not ASCII, or is not a number.
+
+    Examples
+    --------
+    >>> number_from_text(" 1e-9 ")
+    1e-09
+    >>> number_from_text("\u0661")
+    Traceback (most recent call last):
+    ValueError: expected a number written in ASCII digits, got '\u0661'
+    """
+    if not text.isascii():
+        raise ValueError(f"expected a number written in ASCII digits, got {shown_argument(text)}")
+    return float(text)
+
+
+def integer_from_text(text: str) -> int:
+    """The integer written in ``text``, as ``int`` reads it (base 10), but in ASCII only (see :func:`number_from_text`).
+
+    Examples
+    --------
+    >>> integer_from_text("20000")
+    20000
+    >>> integer_from_text("\u0661\u0660")
+    Traceback (most recent call last):
+    ValueError: expected an integer written in ASCII digits, got '\u0661\u0660'
+    """
+    if not text.isascii():
+        raise ValueError(f"expected an integer written in ASCII digits, got {shown_argument(text)}")
+    return int(text)
+
+
 def require_mechanism(value: object, caller: str) -> Mechanism:
     """``value`` when it is a :class:`Mechanism`, else a :class:`~mobility.errors.RequestError` naming ``caller``.
 
@@ -1003,10 +1056,34 @@ def require_graph_names(graph: Any, node: str) -> None:
     Traceback (most recent call last):
     mobility.errors.MechanismError: end_effector: expected the name of a link (a non-empty string), got ''
     """
-    for key, what in (("name", "a non-empty string"), ("ground", f"the name of a {node} (a non-empty string)"), ("end_effector", f"the name of a {node} (a non-empty string)")):
-        value = getattr(graph, key)
-        if not isinstance(value, str) or not value:
-            raise MechanismError(key, f"expected {what}, got {value!r}")
+    if not isinstance(graph.name, str) or not graph.name:  # a title, which a robot file may take from its file's name: held to the rule of names where a file writes it
+        raise MechanismError("name", f"expected a non-empty string, got {graph.name!r}")
+    for key in ("ground", "end_effector"):
+        require_name(getattr(graph, key), key, f"the name of a {node} (a non-empty string)")
+
+
+def require_name(value: Any, key: str, expected: str) -> None:
+    """``value`` must be a name: a non-empty string without control, format or line-break characters (:func:`~mobility.errors.name_problem`).
+
+    Parameters
+    ----------
+    value : Any
+    key : str
+        The key of the error (``"name"``, ``"links[0]"``).
+    expected : str
+        What a name there is, when ``value`` is not a non-empty string (``"a frame name"``).
+
+    Examples
+    --------
+    >>> require_name("hip\\tleft", "name", "a joint name")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: name: a tab '\\t' (U+0009) is not allowed in a name
+    """
+    if not isinstance(value, str) or not value:
+        raise MechanismError(key, f"expected {expected}, got {value!r}")
+    problem = name_problem(value)
+    if problem is not None:
+        raise MechanismError(key, problem)
 
 
 def joint_names(value: Any, key: str) -> list[str]:

@@ -41,8 +41,8 @@ import os
 from dataclasses import dataclass, fields
 from typing import Mapping
 
-from ..core.model import Mechanism
-from ..errors import MechanismFileError, RequestError
+from ..core.model import Mechanism, integer_from_text, integer_value
+from ..errors import MechanismFileError, RequestError, shown_argument
 
 __all__ = ["Limits", "DEFAULT_LIMITS", "current_limits", "require_size", "require_work"]
 
@@ -55,8 +55,9 @@ class Limits:
     ----------
     max_file_bytes : int
         Size of a file (bytes; characters for text given directly).  A file is
-        read with this cap, so ``/dev/zero`` ends in an error, not in a full
-        memory.
+        read with this cap, so a file growing as it is read ends in an error,
+        not in a full memory (a device, ``/dev/zero``, is refused before it
+        is opened).
     max_depth : int
         Nesting depth of the YAML document (a mapping or a list inside
         another counts one level), and of the ``<include>`` elements of an
@@ -134,6 +135,23 @@ class Limits:
     max_enumerated_joints: int = 200
     max_moving_work: int = 5_000
 
+    def __post_init__(self) -> None:
+        """Every field a positive integer (``int`` or a numpy integer; not a bool, a float or a string), else a :class:`~mobility.errors.RequestError`.
+
+        Examples
+        --------
+        >>> Limits(max_file_bytes=-1)
+        Traceback (most recent call last):
+        ...
+        mobility.errors.RequestError: Limits: max_file_bytes: expected a positive integer, got -1
+        """
+        for f in fields(self):
+            value = getattr(self, f.name)
+            number = integer_value(value)
+            if number is None or number < 1:
+                raise RequestError(f"Limits: {f.name}: expected a positive integer, got {shown_argument(value)}")
+            object.__setattr__(self, f.name, number)
+
     @staticmethod
     def variable(name: str) -> str:
         """The environment variable of the field ``name`` (``MOBILITY_MAX_JOINTS``)."""
@@ -159,11 +177,11 @@ class Limits:
             if raw is None:
                 continue
             try:
-                value = int(raw.strip())
+                value = integer_from_text(raw.strip())  # digits in ASCII: int() alone reads "١٠" as 10
             except ValueError:
                 value = 0
             if value < 1:
-                raise RequestError(f"{cls.variable(f.name)}: expected a positive integer, got {raw!r}")
+                raise RequestError(f"{cls.variable(f.name)}: expected a positive integer, got {shown_argument(raw)}")
             changed[f.name] = value
         return cls(**changed) if changed else DEFAULT_LIMITS
 

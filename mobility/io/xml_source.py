@@ -36,8 +36,8 @@ from pathlib import Path
 from typing import Any, BinaryIO
 from xml.parsers import expat
 
-from ..errors import MechanismFileError, RequestError, clipped, control_character_problem
-from .files import file_name, is_regular_file, read_capped
+from ..errors import MechanismFileError, RequestError, clipped, control_character_problem, name_problem
+from .files import file_name, is_regular_file, open_regular, read_capped
 from .limits import Limits, current_limits
 
 __all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag", "underflow_problem"]
@@ -52,6 +52,8 @@ _ATTRIBUTE = re.compile(rb"\s+([^\s=/>]+)\s*=\s*(\"[^\"]*\"|'[^']*')")
 _XML_SPACE = re.compile(rb"[\t\r\n]")
 _EXPONENT = re.compile(r"[eE]")
 _HEX_PREFIX = re.compile(r"[+-]?0[xX]")
+_NAME_ATTRIBUTES = frozenset({"name", "model"})
+"""The attributes that name something (``<joint name>``, ``<mujoco model>``): held to :func:`~mobility.errors.name_problem`."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,6 +125,8 @@ def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False
     def start(tag: str, attrs: dict[str, str]) -> None:
         for key, value in attrs.items():
             problem = control_character_problem(value, "an attribute")
+            if problem is None and key in _NAME_ATTRIBUTES and value.strip():  # a name (of a body, link, joint, the robot): the rule of every name (&#13; is a line break); a blank one is the robot readers' to refuse
+                problem = name_problem(value, "a name")
             if problem is not None:  # a character reference (&#x9b;) can make what a terminal obeys
                 raise MechanismFileError(f"{clipped(tag)}.{clipped(key)}", problem, file=file, line=parser.CurrentLineNumber)
         if mujoco and "file" in attrs:
@@ -279,7 +283,7 @@ def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
 
     parser.StartElementHandler = start
     try:
-        with open(path, "rb") as handle:
+        with open_regular(path) as handle:  # without waiting: /proc/kmsg is a regular file whose reading waits
             _feed_until_found(handle, parser, found, current_limits(limits).max_file_bytes)
     except (OSError, StopIteration, expat.ExpatError, LookupError, ValueError):
         pass
@@ -291,10 +295,10 @@ def _feed_until_found(handle: BinaryIO, parser: Any, found: list[str], cap: int)
     size = 0
     while not found and size <= cap:
         chunk = handle.read(min(_CHUNK, cap + 1 - size))
+        if not chunk:  # the end, or nothing to read without waiting (None)
+            return
         if size == 0 and not _starts_like_xml(chunk):
             return  # not XML
-        if not chunk:
-            return
         size += len(chunk)
         parser.Parse(chunk, False)
 
