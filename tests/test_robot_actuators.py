@@ -234,8 +234,8 @@ def test_a_urdf_number_that_underflows_to_zero_is_refused(tmp_path, capsys, fiel
     numbers = {"xyz": "0 0 1", "rpy": "0 0 0", "axis": "0 0 1", field: values}
     path = write(tmp_path, UNDER_URDF.format(**numbers), "u.urdf")
     line = one_line_error(capsys, ["analyze", str(path)])
-    assert line == (f"mobility: {path}:5: {key}: '{word}' is too small for a double and reads as 0 (a number below about 4.9e-324 in size "
-                    f"underflows); expected 0 or a larger number, got '{values}'")
+    assert line == (f"mobility: {path}:5: {key}: the number '{word}' underflows: it is below the smallest float (4.94e-324) "
+                    f"and would read as {float(word)!r}; expected 0 or a larger number, got '{values}'")
 
 
 def test_urdf_zeros_and_subnormal_numbers_are_read(tmp_path):
@@ -264,7 +264,7 @@ UNDER_MJCF = """<mujoco>
 def test_an_mjcf_number_that_underflows_to_zero_is_refused(tmp_path, capsys, attribute, kind, gear, line, key, word):
     path = write(tmp_path, UNDER_MJCF.format(attribute=attribute, kind=kind, gear=gear), "u.xml")
     message = one_line_error(capsys, ["analyze", str(path)])
-    assert message.startswith(f"mobility: {path}:{line}: {key}: '{word}' is too small for a double and reads as 0")
+    assert message.startswith(f"mobility: {path}:{line}: {key}: the number '{word}' underflows: it is below the smallest float")
     with pytest.raises(MechanismFileError):
         read_robot(path)
 

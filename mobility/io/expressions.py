@@ -33,6 +33,7 @@ import ast
 import keyword
 import math
 import operator
+import re
 import sys
 from functools import lru_cache
 from typing import Any, Callable, Mapping
@@ -90,6 +91,9 @@ _NEVER_ZERO = {operator.mul, operator.truediv, operator.pow, math.exp, math.sqrt
 
 _SMALLEST_NORMAL = sys.float_info.min
 
+_HEX_PREFIX = re.compile(r"[+-]?0[xX]")
+"""How a hexadecimal float (``0x1p-3``, as MuJoCo and ``float.fromhex`` read it) begins."""
+
 # Instructions of a compiled expression (tuples, so a program is hashable and cacheable).
 _NUMBER, _NAME, _APPLY = 0, 1, 2
 
@@ -100,26 +104,29 @@ Program = tuple[tuple[Any, ...], ...]
 def literal_problem(written: str, value: float) -> str | None:
     """Why the number ``written`` cannot be read as ``value``, its ``float``: it overflows to infinity or underflows to zero; else None.
 
-    The one rule for a number written out, in a YAML value (``1.0e-400``) and
-    in an expression (``2 * 1e-400``): the expression evaluator refuses a
-    product that underflows, so a literal that does is refused too, rather
-    than silently read as 0.  (A subnormal number, ``5e-324``, is what was
+    The one rule for a number written out, in a YAML value (``1.0e-400``), in
+    an expression (``2 * 1e-400``) and in an MJCF or URDF attribute (decimal,
+    or hexadecimal as ``0x1p-3``): the expression evaluator refuses a product
+    that underflows, so a literal that does is refused too, rather than
+    silently read as 0.  (A subnormal number, ``5e-324``, is what was
     written, to the precision floats have there.)  The words ``inf`` and
     ``nan`` are for the caller to refuse.
 
     Examples
     --------
     >>> literal_problem("1e-400", 0.0)
-    "the number '1e-400' underflows: it is below the smallest float (4.94e-324) and would read as 0.0; write the lengths in a larger unit"
-    >>> literal_problem("0.0e-400", 0.0) is None, literal_problem("1e400", math.inf)
-    (True, "the number '1e400' is too large for a float (it would read as inf)")
+    "the number '1e-400' underflows: it is below the smallest float (4.94e-324) and would read as 0.0"
+    >>> literal_problem("0.0e-400", 0.0) is None, literal_problem("-0x0p3", -0.0) is None, literal_problem("1e400", math.inf)
+    (True, True, "the number '1e400' is too large for a float (it would read as inf)")
     """
     if math.isinf(value) and any(c.isdigit() for c in written):
         return f"the number {_shown(written)!r} is too large for a float (it would read as {value!r})"
-    mantissa = written.lower().partition("e")[0]
-    if value == 0.0 and any(c in "123456789" for c in mantissa):
-        return (f"the number {_shown(written)!r} underflows: it is below the smallest float ({sys.float_info.min * sys.float_info.epsilon:.3g}) "
-                f"and would read as {value!r}; write the lengths in a larger unit")
+    if value != 0.0:
+        return None
+    hexadecimal = _HEX_PREFIX.match(written)
+    mantissa = written[hexadecimal.end():].lower().partition("p")[0] if hexadecimal else written.lower().partition("e")[0]
+    if any(c in "123456789abcdef" for c in mantissa.lower()) if hexadecimal else any(c in "123456789" for c in mantissa):
+        return f"the number {_shown(written)!r} underflows: it is below the smallest float ({sys.float_info.min * sys.float_info.epsilon:.3g}) and would read as {value!r}"
     return None
 
 

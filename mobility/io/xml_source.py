@@ -37,6 +37,7 @@ from typing import Any, BinaryIO
 from xml.parsers import expat
 
 from ..errors import MechanismFileError, RequestError, clipped, control_character_problem, name_problem
+from .expressions import literal_problem
 from .files import file_name, is_regular_file, open_regular, read_capped
 from .limits import Limits, current_limits
 
@@ -50,8 +51,6 @@ _OTHER_BOMS = ((b"\xff\xfe\x00\x00", "UTF-32"), (b"\x00\x00\xfe\xff", "UTF-32"),
 _TAG = re.compile(rb"<[^\s/>]+")
 _ATTRIBUTE = re.compile(rb"\s+([^\s=/>]+)\s*=\s*(\"[^\"]*\"|'[^']*')")
 _XML_SPACE = re.compile(rb"[\t\r\n]")
-_EXPONENT = re.compile(r"[eE]")
-_HEX_PREFIX = re.compile(r"[+-]?0[xX]")
 _NAME_ATTRIBUTES = frozenset({"name", "model"})
 """The attributes that name something (``<joint name>``, ``<mujoco model>``): held to :func:`~mobility.errors.name_problem`."""
 
@@ -203,8 +202,8 @@ def underflow_problem(words: list[str], values: list[float]) -> str | None:
     """What is wrong with numbers written non-zero that read as 0 (too small for a double: ``1e-400``), or ``None``.
 
     ``float`` (and MuJoCo's ``strtod``) read such a number as 0 without a
-    word; the expression evaluator of mechanism files refuses an underflow,
-    and so do the readers of MJCF and URDF, in one line.
+    word; the readers of MJCF and URDF refuse it in one line, by the rule of
+    mechanism files (:func:`~mobility.io.expressions.literal_problem`).
 
     Parameters
     ----------
@@ -218,16 +217,12 @@ def underflow_problem(words: list[str], values: list[float]) -> str | None:
     >>> underflow_problem(["0", "0.0e9", "-0x0p3", "1e-310"], [0.0, 0.0, -0.0, 1e-310]) is None
     True
     >>> underflow_problem(["1", "-1e-400"], [1.0, -0.0])
-    "'-1e-400' is too small for a double and reads as 0 (a number below about 4.9e-324 in size underflows); expected 0 or a larger number"
+    "the number '-1e-400' underflows: it is below the smallest float (4.94e-324) and would read as -0.0; expected 0 or a larger number"
     """
     for word, value in zip(words, values):
-        if value != 0.0:
-            continue
-        hexadecimal = _HEX_PREFIX.match(word)
-        mantissa = word[hexadecimal.end():].partition("p")[0].partition("P")[0] if hexadecimal else _EXPONENT.split(word)[0]
-        if any(c not in "+-.0" for c in mantissa):
-            return (f"{clipped(word)!r} is too small for a double and reads as 0 (a number below about 4.9e-324 in size underflows); "
-                    "expected 0 or a larger number")
+        problem = literal_problem(word, value) if value == 0.0 else None
+        if problem is not None:
+            return f"{problem}; expected 0 or a larger number"
     return None
 
 
