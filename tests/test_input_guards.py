@@ -9,6 +9,7 @@ numbers; ``Limits`` took any value; a YAML number that underflows was read as 0.
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -145,6 +146,18 @@ def test_a_robot_name_holding_a_character_reference_to_a_line_break_is_refused(t
     with pytest.raises(MechanismFileError) as info:
         mobility.load(path)
     assert (info.value.key, info.value.message) == ("joint.name", "a line separator '\\u2028' (U+2028) is not allowed in a name")
+
+
+def test_a_robot_named_after_a_file_name_holding_a_line_break_is_named_on_one_line(tmp_path):
+    # a robot without a name attribute is named after its file; a file name may hold a line break, a name may not
+    for source, suffix, unnamed in ((HAND / "four_bar.urdf", ".urdf", re.compile(r'<robot name="[^"]*"')),
+                                    (HAND / "four_bar.xml", ".xml", re.compile(r'<mujoco model="[^"]*"'))):
+        text = source.read_text(encoding="utf-8")
+        text = unnamed.sub(unnamed.pattern.split(" ")[0], text, count=1)
+        path = tmp_path / f"two\nlines\u2028{suffix}"
+        path.write_text(text, encoding="utf-8")
+        name = mobility.load(path).name
+        assert name == "two\\nlines\\u2028", (source, name)
 
 
 def test_names_given_in_code_follow_the_same_rule():

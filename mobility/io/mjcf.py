@@ -48,7 +48,7 @@ import numpy as np
 
 from ..core.model import Joint
 from ..core.tolerance import DEFAULT_TOLERANCE, characteristic_scale
-from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped
+from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped, one_line
 from .files import read_capped
 from .mjcf_actuators import actuator_inputs
 from .mjcf_scan import MjcfScan, scan_mjcf
@@ -371,7 +371,7 @@ class _MjcfTree:
         for i in range(m.nbody):
             if m.body_mocapid[i] >= 0:
                 notes.append(f"mocap body {clipped(self.body_names[i])}{_at(self.lines['body'].get(i))} is moved only by the simulation: treated as fixed")
-        name = self.spec.modelname if self.spec.modelname and self.spec.modelname != "MuJoCo Model" else Path(self.file).stem
+        name = self.spec.modelname if self.spec.modelname and self.spec.modelname != "MuJoCo Model" else one_line(Path(self.file).stem)  # a file name may hold a line break; a name may not
         version = getattr(mj, "__version__", "")
         return RobotTree(name, self.file, "MJCF", bodies, joints, tuple(closures), tuple(welds), tuple(unsupported), tuple(notes),
                          pose=f"qpos0, as MuJoCo {version} compiles it".replace("  ", " "))

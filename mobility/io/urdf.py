@@ -71,7 +71,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core.transforms import Transform, rotation_from_rpy
-from ..errors import clipped, did_you_mean
+from ..errors import clipped, did_you_mean, one_line
 from .files import file_name
 from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml, underflow_problem
@@ -163,7 +163,7 @@ class _UrdfReader:
             frame = poses[j["child"]]
             axis = None if kind == "free" else vector_tuple(frame.apply_vector(j["axis"]))
             tree_joints.append(TreeJoint(j["name"], kind, j["child"], vector_tuple(frame.translation), axis, j["name"] in actuated, self.doc.line(j["element"])))
-        name = root.get("name") or Path(self.doc.file).stem
+        name = root.get("name") or one_line(Path(self.doc.file).stem)  # a file name may hold a line break; a name may not
         return RobotTree(name, self.doc.file, "URDF", bodies, tuple(tree_joints), unsupported=tuple(unsupported), notes=tuple(notes))
 
     def links(self, root: ET.Element) -> dict[str, ET.Element]:
