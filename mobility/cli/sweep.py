@@ -99,6 +99,8 @@ def run(args: argparse.Namespace) -> int:
         require_drawable(len(args.vary), f"--plot {args.plot}: ")
     if args.chunk_size < 1:
         raise RequestError(f"--chunk-size must be at least 1, got {args.chunk_size}")
+    if args.workers is not None and args.scheduler is not None:
+        raise RequestError("--workers sets the threads of this process; with --scheduler the cluster's workers run the chunks: give one of them")
     if args.workers is not None and not 1 <= args.workers <= MAX_WORKERS:
         raise RequestError(f"--workers must be between 1 and {MAX_WORKERS} (threads of this process; for more, use --scheduler), got {clipped(str(args.workers))}")
     mechanism = load_mechanism(args, outputs=((args.output, "-o"), (args.plot, "--plot")))
