@@ -52,7 +52,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "displaced from the file's pose (a joint moves its links[1] relative to links[0], right-handed about its axis); "
         "COUNT values, both ends included (repeat for a grid)",
     )
-    p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated)")
+    p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated); NAME.k names freedom k (from 0) of a multi-freedom joint")
     p.add_argument("--format", choices=sorted(FORMATS), default=None,
                    help="output: a summary, the table as CSV, or JSON (default: what the -o name ends with, .csv or .json, else the summary)")
     p.add_argument("--json", action="store_true", help="same as --format json")

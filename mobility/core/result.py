@@ -404,8 +404,11 @@ class Result(ReadOnlyArrays):
         root = self.topology.root
         if not isinstance(root, (Series, Parallel)):
             return []
+        mechanism = getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: nothing to attribute
+        if mechanism is None:
+            return []
         systems = self.node_systems
-        joints = self.detail.mechanism.joints
+        joints = mechanism.joints
         out: list[tuple[Node, int, int]] = []
         stack: list[Node] = list(root.children)
         while stack:
