@@ -34,11 +34,19 @@ from __future__ import annotations
 
 import re
 import sys
+import unicodedata
 from typing import Iterable
 
 _BIDI = "\u202a-\u202e\u2066-\u2069"
 """Characters that reorder the text around them on a terminal (bidirectional overrides, "Trojan source")."""
-_UNPRINTABLE = re.compile(f"[\x00-\x1f\x7f-\x9f{_BIDI}\ud800-\udfff]")  # lone surrogates: bytes of a file name no encoding decodes
+_UNSHOWN = {"Cc": "a control character", "Cf": "a format character (invisible, or reordering the text)", "Cs": "a lone surrogate",
+             "Zl": "a line separator", "Zp": "a paragraph separator"}
+"""The Unicode categories of the characters a message never shows raw and a name never holds, and what each is called.
+
+Controls (C0, C1: tab and line breaks among them), format characters (the
+bidirectional marks and overrides, zero-width characters), lone surrogates
+(bytes of a file name no encoding decodes) and the line and paragraph
+separators U+2028 and U+2029."""
 TERMINAL_CONTROL = re.compile(f"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x84\x86-\x9f{_BIDI}]")
 """Characters a terminal obeys rather than shows: C0 and C1 controls but tab and line breaks (LF, CR, NEL), DEL, bidirectional overrides."""
 
@@ -60,6 +68,7 @@ __all__ = [
     "clipped",
     "shown_argument",
     "control_character_problem",
+    "name_problem",
     "TERMINAL_CONTROL",
 ]
 
@@ -101,10 +110,12 @@ def did_you_mean(name: object, names: Iterable[object]) -> str:
 
 
 def one_line(text: str) -> str:
-    """``text`` safe to print as one terminal line: line breaks and control characters shown escaped.
+    """``text`` safe to print as one terminal line: line breaks, control and format characters shown escaped.
 
     A message may quote what a user typed (a file name, an option); an escape
-    sequence in it must reach the terminal as text, not as a command.
+    sequence in it must reach the terminal as text, not as a command, and a
+    line separator (U+2028), a bidirectional override (U+202E) or mark
+    (U+200E) must show as what it is (every character of ``_UNSHOWN``).
 
     Examples
     --------
@@ -112,16 +123,52 @@ def one_line(text: str) -> str:
     'bad.yaml: two\\\\nlines and \\\\x1b[31mred'
     >>> one_line("wrote bad\\udcff.csv")   # a file name's undecodable byte: printable in any encoding
     'wrote bad\\\\xff.csv'
+    >>> one_line("a\\u2028b\\u200e.yaml")
+    'a\\\\u2028b\\\\u200e.yaml'
     """
-    return _UNPRINTABLE.sub(_escaped, text)
+    if text.isprintable():  # the common case: no character of _UNSHOWN (nor any other Python would not print)
+        return text
+    return "".join(_escaped(char) if unicodedata.category(char) in _UNSHOWN else char for char in text)
 
 
-def _escaped(match: re.Match[str]) -> str:
+def _escaped(char: str) -> str:
     """A character of :func:`one_line` shown escaped: a byte no encoding decoded (``surrogateescape``) as ``\\xNN``, the rest as Python writes it."""
-    char = match.group()
     if "\udc80" <= char <= "\udcff":
         return f"\\x{ord(char) - 0xDC00:02x}"
     return repr(char)[1:-1]
+
+
+def name_problem(text: str, what: str = "a name") -> str | None:
+    """What is wrong with the name ``text`` if it holds a character no name may hold, else None.
+
+    The one rule for every name a user chooses (of a link, joint, frame,
+    body, element, actuator, of the mechanism itself), in every format: no
+    control character (tab and line breaks included), no format character
+    (the bidirectional marks and overrides, zero-width characters), no line
+    or paragraph separator (U+2028, U+2029), no lone surrogate.  A name is
+    printed in tables and messages, one line each: such a character would
+    break the line, hide itself or reorder the text around it.
+
+    Examples
+    --------
+    >>> name_problem("left knee") is None, name_problem("连杆") is None
+    (True, True)
+    >>> print(name_problem("knee\\r", "a joint name"))
+    a line break '\\r' (U+000D) is not allowed in a joint name
+    >>> print(name_problem("a\\u202eb"))
+    a format character (invisible, or reordering the text) '\\u202e' (U+202E) is not allowed in a name
+    """
+    if text.isprintable():
+        return None
+    for char in text:
+        kind = _UNSHOWN.get(unicodedata.category(char))
+        if kind is not None:
+            if char == "\t":
+                kind = "a tab"
+            elif char in "\n\r\x85":
+                kind = "a line break"
+            return f"{kind} {char!r} (U+{ord(char):04X}) is not allowed in {what}"
+    return None
 
 
 def control_character_problem(text: str, where: str, *, also: re.Pattern[str] | None = None) -> str | None:

@@ -103,7 +103,7 @@ def test_translations_are_compared_as_subspaces(write_yaml):
     assert status("[[1, 0, 0]]") == "fail"  # a line inside the plane is not the plane
     assert status("[]") == "fail"
     zero = check_file(write_yaml(PLANAR + "expected: {translations: [[0, 0, 0]]}\n"))
-    assert zero.status == "fail" and "zero vector" in zero.message
+    assert zero.status == "error" and zero.message.endswith("expected.translations[0]: expected a non-zero direction, got [0, 0, 0]")  # bad input, not a failed check
 
 
 def test_expected_translations_of_any_finite_size_are_directions(write_yaml):
@@ -113,7 +113,9 @@ def test_expected_translations_of_any_finite_size_are_directions(write_yaml):
         warnings.simplefilter("error")  # the norm of [0, 1e308, 1e308] squared overflowed (a numpy warning, then a wrong direction)
         assert check_file(write_yaml(text.replace("translations: [[0, 0, 1]]", "translations: [[0, -1.7e308, 1.7e308]]"))).message == (
             "translations: found the span of [[0, 0, 1]], expected the span of [[0, -1.7e+308, 1.7e+308]]")
-        assert check_file(write_yaml(text.replace("translations: [[0, 0, 1]]", "translations: [[0, 0, 1.7e308], [0, 0, 5e-324]]"))).ok
+        assert check_file(write_yaml(text.replace("translations: [[0, 0, 1]]", "translations: [[0, 0, 5e-324]]"))).ok
+        dependent = check_file(write_yaml(text.replace("translations: [[0, 0, 1]]", "translations: [[0, 0, 1.7e308], [0, 0, 5e-324]]")))
+        assert dependent.status == "error" and "expected.translations[1]: linearly dependent" in dependent.message  # not a basis
 
 
 def test_no_translation_is_written_as_an_empty_list():

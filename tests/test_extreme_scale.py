@@ -229,8 +229,8 @@ def test_a_pitch_is_the_characteristic_length_only_of_coincident_points():
     pitch = np.array([2.5])
     third = np.full((3, 3), 0.1)  # the mean of three 0.1s is not 0.1: a spread of round-off, ~1e-17
     assert characteristic_scale(third, pitch)[1] == 2.5 and characteristic_scale(third)[1] == 1.0
-    # points a micrometre apart beside a pitch of 10 m are a mechanism of that size, not of the pitch's
-    # (the pitch is then refused by the model: its rotation is below resolution)
+    # points a micrometre apart beside another length of 10 m are a mechanism of that size, not of the length's
+    # (a helical pitch, given as pitches=, raises the size to their geometric mean: tests/test_spec_conformance.py)
     tiny = np.array([[0.0, 0, 0], [1e-6, 0, 0]])
     assert characteristic_scale(tiny, np.array([1e4]))[1] == pytest.approx(5e-7)
     assert characteristic_scales(tiny[None], np.array([1e4]))[1].tolist() == [characteristic_scale(tiny, np.array([1e4]))[1]]

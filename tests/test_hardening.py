@@ -188,10 +188,10 @@ def test_a_terminal_is_refused_rather_than_read_until_someone_types(capsys):
     try:
         terminal = os.ttyname(follower)
         with time_bound(10):
-            with pytest.raises(MechanismFileError, match=f"^{terminal}: is a terminal, expected a mechanism file$"):
+            with pytest.raises(MechanismFileError, match=f"^{terminal}: is a device \\(a terminal, /dev/zero...\\), not a regular file; expected a mechanism file$"):
                 mobility.load(terminal)
             assert main(["analyze", terminal]) == 2
-        assert capsys.readouterr().err.strip() == f"mobility: {terminal}: is a terminal, expected a mechanism file"
+        assert capsys.readouterr().err.strip() == f"mobility: {terminal}: is a device (a terminal, /dev/zero...), not a regular file; expected a mechanism file"
     finally:
         os.close(leader)
         os.close(follower)
@@ -199,8 +199,11 @@ def test_a_terminal_is_refused_rather_than_read_until_someone_types(capsys):
 
 def test_dev_zero_and_big_files_stop_at_the_size_limit(tmp_path):
     with time_bound(10):
+        with pytest.raises(MechanismFileError, match="^/dev/zero: is a device .*not a regular file; expected a mechanism file$"):
+            mobility.load("/dev/zero")  # refused before it is opened (a device may never end, or wait for ever)
+        (tmp_path / "huge.yaml").write_bytes(b"#" * (4194304 + 1))
         with pytest.raises(MechanismFileError, match="larger than the limit of 4194304 bytes"):
-            mobility.load("/dev/zero")
+            mobility.load(tmp_path / "huge.yaml")
         path = write(tmp_path, HEAD + ONE_JOINT + "description: " + "x" * 500 + "\n")
         assert mobility.load(path).description == "x" * 500
         with pytest.raises(MechanismFileError, match="larger than the limit of 300 bytes"):

@@ -305,6 +305,6 @@ def test_a_screw_input_of_large_pitch_is_judged_as_the_actuation_check_judges_it
 
 
 def test_a_pitch_whose_rotation_is_below_resolution_is_refused_at_its_line():
-    with pytest.raises(MechanismError, match=r"<string>:34: limbs\[0\]\.joints\[0\]\.pitch: pitch 1e\+12 is 4\.6e\+09 times the mechanism's size 219.*write it as a P joint"):
-        _three_hrs(1e12)
-    assert _three_hrs(1e10).joints[0].pitch == 1e10  # 4.6e7 times the size: resolved, and analysed
+    with pytest.raises(MechanismError, match=r"<string>:34: limbs\[0\]\.joints\[0\]\.pitch: pitch 1e\+19 is 4\.6e\+16 times the spread of the joint points 219 .*beyond 1e\+16"):
+        _three_hrs(1e19)
+    assert mobility.analyze(_three_hrs(1e12)).pattern == "3R"  # 4.6e9 times the spread: resolved, and analysed

@@ -156,7 +156,7 @@ def test_bad_input_names_file_line_key(write_yaml, body, line, key, words):
 
 def test_missing_required_key(write_yaml):
     err = error_of(write_yaml, "joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\n", head="name: t\nground: g\n")
-    assert err.message == "missing required key 'end_effector'"
+    assert err.key == "end_effector" and err.message == "missing required key"  # the error names the key path
     assert err.line == 1
 
 

@@ -39,7 +39,7 @@ def test_the_file_format_page_fragments_load_when_completed():
     parameters, limbs = re.findall(r"```yaml\n(.*?)```", text, re.S)[:2]
     m = mobility.loads("name: doc\nground: g\nend_effector: l1\n" + parameters)
     assert m.world_joints[0].axis == pytest.approx((0.0, -math.sin(math.radians(60)), math.cos(math.radians(60))))
-    m = mobility.loads("name: doc\nground: base\nend_effector: leg1\nparameters: {h: 0.5}\n" + limbs)
+    m = mobility.loads("name: doc\nground: base\nend_effector: leg1\n" + limbs)  # the block defines its parameter h itself
     assert [j.name for j in m.world_joints] == ["P1", "R1", "P2", "R2", "P3", "R3"]
     # the third limb's frame is turned by 240 degrees about z: its R axis [0, 1, 0] becomes [-sin 240, cos 240, 0]
     assert m.world_joints[5].axis == pytest.approx((-math.sin(math.radians(240)), math.cos(math.radians(240)), 0.0))

@@ -19,7 +19,7 @@ import sys
 from pathlib import Path
 from typing import Any, Collection, NamedTuple
 
-from ..core.model import Mechanism
+from ..core.model import Mechanism, integer_from_text, number_from_text
 from ..core.tolerance import Tolerance
 from ..errors import RequestError, one_line
 from ..io.files import os_problem, refuse_pipe
@@ -43,13 +43,29 @@ __all__ = [
     "add_max_poses_option",
     "max_poses_from",
     "require_option_for",
+    "number_option",
+    "integer_option",
 ]
+
+
+def number_option(text: str) -> float:
+    """The ``type`` of an option that takes a number: ``float``, but digits in ASCII only (``--tol \u0661e-9`` is refused; :func:`~mobility.core.model.number_from_text`)."""
+    return number_from_text(text)
+
+
+def integer_option(text: str) -> int:
+    """The ``type`` of an option that takes an integer: ``int``, but digits in ASCII only (:func:`~mobility.core.model.integer_from_text`)."""
+    return integer_from_text(text)
+
+
+number_option.__name__ = "float"  # argparse names the type in its message: "invalid float value: 'x'"
+integer_option.__name__ = "int"
 
 
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--tol``, the relative rank threshold of the tolerance policy."""
     base = Tolerance()
-    parser.add_argument("--tol", type=float, default=base.rank,
+    parser.add_argument("--tol", type=number_option, default=base.rank,
                         help=f"relative rank threshold, in [{base.inexact:g}, {base.near_singular:g}) (default: %(default)g)")
 
 
@@ -89,17 +105,17 @@ def add_pose_sampler_options(
     """
     from ..core.poses import DEFAULT_STEP, MAX_STEP  # the finite kinematics: imported only by the commands that move
 
-    (samples_group or parser).add_argument("--samples", type=int, default=0, metavar="N", help=samples_help + f", 0 to {MAX_SAMPLES if most is None else most} (default: %(default)s)")
-    parser.add_argument("--step", type=float, default=DEFAULT_STEP,
+    (samples_group or parser).add_argument("--samples", type=integer_option, default=0, metavar="N", help=samples_help + f", 0 to {MAX_SAMPLES if most is None else most} (default: %(default)s)")
+    parser.add_argument("--step", type=number_option, default=DEFAULT_STEP,
                         help=f"step of the pose sampler, in (0, {MAX_STEP:g}]: a joint-space distance (radians, lengths over the mechanism's size) (default: %(default)g)")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the pose sampler (default: %(default)d)")
+    parser.add_argument("--seed", type=integer_option, default=0, help="seed of the pose sampler (default: %(default)d)")
 
 
 def add_max_poses_option(parser: argparse.ArgumentParser, *, what: str = "refuse a larger grid") -> None:
     """Add ``--max-poses N``, the largest grid of a ``--vary`` sweep (default :data:`mobility.sweeps.DEFAULT_MAX_POSES`, as ``mobility sweep``)."""
     from ..sweeps import DEFAULT_MAX_POSES  # the sweeps: imported only by the commands that vary joints
 
-    parser.add_argument("--max-poses", type=int, default=DEFAULT_MAX_POSES, metavar="N", help=what + " (default: %(default)d)")
+    parser.add_argument("--max-poses", type=integer_option, default=DEFAULT_MAX_POSES, metavar="N", help=what + " (default: %(default)d)")
 
 
 def max_poses_from(args: argparse.Namespace) -> int:

@@ -28,16 +28,18 @@ from ..errors import RequestError
 from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines, flexure_spaces, is_flexure_document, loads_flexure
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
-from ..io.limits import require_size
+from ..io.limits import require_size, require_work
 from ._options import (
     MECHANISM_FILE_HELP,
     OPTION_SPELLING,
     add_mechanism_file,
     add_pose_sampler_options,
     add_tolerance_option,
+    integer_option,
     is_robot_description,
     load_mechanism,
     names_from,
+    number_option,
     require_option_for,
     require_sampler_options,
     read_mechanism,
@@ -60,12 +62,12 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + ", or flexure document (YAML)")
     p.add_argument("--enumerate", action="store_true", help="check every combination of inputs, grouped by type and ranked")
     p.add_argument("--mode", choices=ENUMERATION_MODES, default=None, help="enumeration: one joint per limb (default) or any K joints")
-    p.add_argument("--k", type=int, default=None, help="inputs per combination with --mode any (default: the DOF)")
+    p.add_argument("--k", type=integer_option, default=None, help="inputs per combination with --mode any (default: the DOF)")
     p.add_argument("--inputs", default=None, help="comma-separated joint (or actuator) names to check instead of those marked actuated; "
                    "NAME.k names freedom k (from 0, as reported) of a multi-freedom joint")
     p.add_argument("--pose", action="append", default=[], metavar="FILE", help="another pose of the same mechanism, read as FILE is (repeatable)")
     add_pose_sampler_options(p, samples_help="also check N poses reached by moving the mechanism (mobility.core.poses.sample_poses)")
-    p.add_argument("--threshold", type=float, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
+    p.add_argument("--threshold", type=number_option, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
     add_tolerance_option(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)
@@ -105,6 +107,7 @@ def run(args: argparse.Namespace) -> int:
         require_size(mechanism, "max_enumerated_joints", "--enumerate", args.file)
     if args.samples:
         require_size(mechanism, "max_moving_joints", "--samples", args.file)
+        require_work(mechanism, args.samples, f"--samples {args.samples}", args.file)
     if args.enumerate:
         poses = [_pose(args, p) for p in args.pose]
         found = enumerate_actuations(mechanism, mode=args.mode or "limb", k=args.k, poses=poses, samples=args.samples, step=args.step, seed=args.seed, tol=tol)

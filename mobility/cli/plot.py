@@ -7,7 +7,7 @@ import argparse
 from ..core.analysis import analyze
 from ..errors import MechanismFileError, PlotFormatError, RequestError, one_line
 from ..report.plotting.backend import DPI_RANGE
-from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, require_new_output, tolerance_from
+from ._options import add_mechanism_file, integer_option, add_tolerance_option, load_mechanism, require_new_output, tolerance_from
 
 ORDER = 30
 
@@ -24,9 +24,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("-o", "--output", required=True, help="picture to write; the type follows the suffix: .png, .svg or .pdf")
     p.add_argument("--constraints", action="store_true", help="also draw the constraint wrenches (force lines, couples)")
     p.add_argument("--graph", action="store_true", help="draw the joint graph and its series/parallel tree instead")
-    p.add_argument("--views", type=int, default=2, choices=(1, 2, 3), help="number of viewpoints (default: %(default)s)")
+    p.add_argument("--views", type=integer_option, default=2, choices=(1, 2, 3), help="number of viewpoints (default: %(default)s)")
     p.add_argument("--no-labels", action="store_true", help="leave out the joint names")
-    p.add_argument("--dpi", type=int, default=150, help=f"resolution of a PNG, {DPI_RANGE[0]} to {DPI_RANGE[1]} dots per inch (default: %(default)s)")
+    p.add_argument("--dpi", type=integer_option, default=150, help=f"resolution of a PNG, {DPI_RANGE[0]} to {DPI_RANGE[1]} dots per inch (default: %(default)s)")
     add_tolerance_option(p)
     p.set_defaults(run=run)
 

@@ -21,7 +21,7 @@ from ..report.sweep import sweep_csv_pieces, sweep_json_pieces, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, SweepResult, sweep
 from ..sweeps.batch_actuation import actuated_inputs
 from ..io.limits import require_size
-from ._options import add_max_poses_option, add_mechanism_file, add_tolerance_option, load_mechanism, max_poses_from, names_from, require_new_output, tolerance_from
+from ._options import add_max_poses_option, add_mechanism_file, integer_option, add_tolerance_option, load_mechanism, max_poses_from, names_from, require_new_output, tolerance_from
 
 ORDER = 35
 
@@ -59,8 +59,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("-o", "--output", default=None, metavar="FILE", help="write the table to FILE (a line saying so is printed instead; '-': standard output; pictures: --plot)")
     p.add_argument("--plot", default=None, metavar="FILE", help="also draw the sweep (.png, .svg or .pdf): a curve, a map, or slices of a 3-D grid")
     add_max_poses_option(p)
-    p.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE, help="poses per chunk of work (default: %(default)d)")
-    p.add_argument("--workers", type=int, default=None, help=f"threads in this process, at most {MAX_WORKERS} (default: the number of CPUs)")
+    p.add_argument("--chunk-size", type=integer_option, default=DEFAULT_CHUNK_SIZE, help="poses per chunk of work (default: %(default)d)")
+    p.add_argument("--workers", type=integer_option, default=None, help=f"threads in this process, at most {MAX_WORKERS} (default: the number of CPUs)")
     p.add_argument("--scheduler", default=None, metavar="ADDRESS", help="run the chunks on a dask.distributed scheduler (needs mobility[dask])")
     bar = p.add_mutually_exclusive_group()
     bar.add_argument("--progress", dest="progress", action="store_true", default=None, help="show a progress bar on stderr (needs mobility[progress])")

@@ -18,7 +18,8 @@ from pathlib import Path
 from ..errors import RequestError, SynthesisError
 from ..report.synthesis import synthesis_json, synthesis_text, written_files_text
 from ..synthesis import PATTERNS, named_pattern, synthesize, write_pkm_files
-from ._options import require_option_for
+from ..synthesis.enumeration import MAX_SAMPLES, MAX_VERIFY_SAMPLES
+from ._options import integer_option, number_option, require_option_for
 
 ORDER = 50
 EXIT_STATUS = "0 a limb type is found, 1 none is, 2 bad input (one line on standard error)"
@@ -32,28 +33,25 @@ def register(sub: argparse._SubParsersAction) -> None:
         "(finite screws, Sun et al. 2018).  Patterns: " + ", ".join(PATTERNS) + ".",
     )
     p.add_argument("pattern", help="motion pattern: " + ", ".join(PATTERNS))
-    p.add_argument("--joints", type=int, default=None, help="one-DOF joints per limb (default: the pattern's dimension)")
+    p.add_argument("--joints", type=integer_option, default=None, help="one-DOF joints per limb (default: the pattern's dimension)")
     p.add_argument("--point", default="0,0,0", metavar="X,Y,Z", help="the pattern's point O, in mm like the files --write writes (default: %(default)s)")
     p.add_argument("--directions", default=None, metavar="X,Y,Z;X,Y,Z", help="the pattern's translation directions, ';'-separated (default: the coordinate axes)")
-    p.add_argument("--samples", type=int, default=3, help="random poses per rank decision, at most 30 (default: %(default)d)")
-    p.add_argument("--verify", type=int, default=2, help="finite motions of each kept limb fitted by the pattern, at most 10 (default: %(default)d; 0 skips)")
-    p.add_argument("--seed", type=int, default=0, help="seed of every random choice (default: %(default)d)")
+    p.add_argument("--samples", type=integer_option, default=3, help="random poses per rank decision, at most 30 (default: %(default)d)")
+    p.add_argument("--verify", type=integer_option, default=2, help="finite motions of each kept limb fitted by the pattern, at most 10 (default: %(default)d; 0 skips)")
+    p.add_argument("--seed", type=integer_option, default=0, help="seed of every random choice (default: %(default)d)")
     p.add_argument("--write", default=None, metavar="DIR", help="assemble a PKM of each limb type with four 6-DOF limbs and write mechanism files there")
     p.add_argument("--other", choices=("UPS", "SPRR"), default="UPS", help="the 6-DOF limbs of --write (default: %(default)s)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)
 
 
-MAX_SAMPLES = 30
-"""Largest ``--samples``: random poses per rank decision (3 decide every bundled pattern; 30 take 2T3R about 6 s)."""
-
-MAX_VERIFY = 10
-"""Largest ``--verify``: each verified sample fits every kept limb's motions by the pattern (10 take 2T3R about 20 s)."""
+MAX_VERIFY = MAX_VERIFY_SAMPLES
+"""Largest ``--verify`` (the library's bound on ``verify_samples``)."""
 
 
 def _vector(text: str, what: str) -> tuple[float, float, float]:
     try:
-        parts = [float(x) for x in text.split(",")]
+        parts = [number_option(x) for x in text.split(",")]
     except ValueError:
         raise SynthesisError(f"{what}: expected three comma-separated numbers, got {text!r}") from None
     if len(parts) != 3:

@@ -10,10 +10,11 @@ from __future__ import annotations
 import argparse
 
 from ..core.analysis import analyze
+from ..core.model import Mechanism
 from ..errors import RequestError, one_line
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
-from ..io.limits import require_size
+from ..io.limits import require_size, require_work
 from ._options import (add_max_poses_option, add_mechanism_file, add_pose_sampler_options, add_tolerance_option, load_mechanism, max_poses_from,
                        require_new_output, require_option_for, sampled_poses, tolerance_from)
 
@@ -44,6 +45,16 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(run=run)
 
 
+def _poses_shown(args: argparse.Namespace, mechanism: Mechanism, max_poses: int) -> tuple[int, str]:
+    """The poses that ``--samples`` or ``--vary`` moves and analyses one by one (a view of a grid draws at most :data:`MAX_POSES` of them), and the option as given."""
+    if not args.vary:
+        return args.samples, f"--samples {args.samples}"
+    from ..sweeps import plan_grid  # the sweeps: only for --vary
+
+    size = plan_grid(mechanism, args.vary, max_poses=max_poses).size
+    return min(size, MAX_POSES), f"--vary (a grid of {size:,} poses, {min(size, MAX_POSES):,} of them drawn)"
+
+
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if not args.output.lower().endswith(PAGE_SUFFIXES):
@@ -59,6 +70,7 @@ def run(args: argparse.Namespace) -> int:
     mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
     if args.vary or args.samples:
         require_size(mechanism, "max_moving_joints", "--vary" if args.vary else "--samples", args.file)
+        require_work(mechanism, *_poses_shown(args, mechanism, max_poses), args.file)
     poses = sampled_poses(args, mechanism)
     result = analyze(mechanism, tol=tol)
     if args.vary:

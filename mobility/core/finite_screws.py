@@ -84,6 +84,7 @@ True
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import reduce
 from typing import Iterable
@@ -92,7 +93,7 @@ import numpy as np
 import numpy.typing as npt
 from scipy.spatial.transform import Rotation
 
-from ..errors import HalfTurnError, MechanismError, RequestError
+from ..errors import HalfTurnError, MechanismError, RequestError, shown_argument
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale
 from .transforms import cross, skew
 
@@ -124,7 +125,7 @@ def _unit_or_none(v: Iterable[float]) -> np.ndarray | None:
     """``v`` scaled to unit length; ``None`` when it is not three finite numbers or is zero."""
     try:
         a = np.asarray(v, dtype=float).reshape(3)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         return None
     if not np.all(np.isfinite(a)) or not np.any(a):
         return None
@@ -141,15 +142,61 @@ def _unit(v: Iterable[float], what: str) -> np.ndarray:
 
 
 def _shown(v: object) -> str:
-    """A value as the error messages show it (a list for arrays)."""
-    return str(v.tolist()) if isinstance(v, np.ndarray) else repr(v)
+    """A value as the error messages show it (a list for arrays), clipped to one line."""
+    if isinstance(v, np.ndarray) and v.size <= 16:
+        return shown_argument(v.tolist())
+    if isinstance(v, np.ndarray):
+        return f"an array of shape {v.shape}"
+    return shown_argument(v)
 
 
-def _screw(s: npt.ArrayLike) -> np.ndarray:
-    a = np.asarray(s, dtype=float)
-    if a.shape != (6,):
-        raise RequestError(f"expected a 6-vector [w; v], got shape {a.shape}")
+def _numbers(value: object, count: int, what: str, expected: str = "") -> np.ndarray:
+    """``value`` as ``count`` finite floats (shape ``(count,)``), else a :class:`~mobility.errors.RequestError` naming ``what``.
+
+    Examples
+    --------
+    >>> _numbers([1, 2, 3], 3, "point").tolist()
+    [1.0, 2.0, 3.0]
+    >>> _numbers([1, float("nan"), 3], 3, "point")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: point: expected 3 finite numbers, got [1, nan, 3]
+    """
+    expected = expected or f"{count} finite numbers"
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise RequestError(f"{what}: expected {expected}, got {_shown(value)}") from None
+    if a.shape != (count,):
+        got = _shown(value) if a.ndim == 0 else f"shape {a.shape}" if isinstance(value, np.ndarray) or a.ndim != 1 else f"{a.size} numbers"
+        raise RequestError(f"{what}: expected {expected}, got {got}")
+    if not np.all(np.isfinite(a)):
+        raise RequestError(f"{what}: expected {expected}, got {_shown(value)}")
     return a
+
+
+def _number(value: object, what: str) -> float:
+    """``value`` as a finite float (a real number, not a string or a bool), else a :class:`~mobility.errors.RequestError` naming ``what``.
+
+    Examples
+    --------
+    >>> _number(2, "angle")
+    2.0
+    >>> _number("2", "angle")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: angle: expected a finite number, got '2'
+    """
+    if not isinstance(value, (bool, np.bool_, str, bytes, list, tuple, np.ndarray)) or (isinstance(value, np.ndarray) and value.ndim == 0):
+        try:
+            number = float(value)  # type: ignore[arg-type]
+        except (TypeError, ValueError, OverflowError):
+            number = math.nan
+        if math.isfinite(number):
+            return number
+    raise RequestError(f"{what}: expected a finite number, got {_shown(value)}")
+
+
+def _screw(s: npt.ArrayLike, what: str = "screw") -> np.ndarray:
+    return _numbers(s, 6, what, "a 6-vector [w; v] of finite numbers")
 
 
 def finite_screw(axis: Iterable[float], point: Iterable[float], angle: float, translation: float = 0.0) -> np.ndarray:
@@ -255,18 +302,23 @@ def triangle_product(*screws: npt.ArrayLike) -> np.ndarray:
     """
     if not screws:
         return np.zeros(6)
-    return reduce(_triangle2, (_screw(s) for s in screws))
+    return reduce(_triangle2, [_screw(s, f"screws[{i}]") for i, s in enumerate(screws)])
 
 
 def _triangle2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     wa, va, wb, vb = a[:3], a[3:], b[:3], b[3:]
-    d = 1.0 - 0.25 * float(wa @ wb)
-    # scal q of the product, relative to the unit dual quaternions: d / sqrt((1 + |wa|²/4)(1 + |wb|²/4))
-    if abs(d) <= QUATERNION_ROUND_OFF * np.sqrt((1.0 + 0.25 * wa @ wa) * (1.0 + 0.25 * wb @ wb)):
+    with np.errstate(over="ignore", invalid="ignore"):
+        d = 1.0 - 0.25 * float(wa @ wb)
+        # scal q of the product, relative to the unit dual quaternions: d / sqrt((1 + |wa|²/4)(1 + |wb|²/4))
+        scale = float(np.sqrt((1.0 + 0.25 * wa @ wa) * (1.0 + 0.25 * wb @ wb)))
+        w = wa + wb + 0.5 * cross(wa, wb)
+        v = va + vb + 0.5 * (cross(wa, vb) + cross(va, wb)) - 0.25 * float(wa @ va) * wb - 0.25 * float(wb @ vb) * wa
+        out = np.concatenate([w, v]) / d if d != 0.0 else np.full(6, np.inf)
+    if not (np.isfinite(d) and np.isfinite(scale) and np.all(np.isfinite(w)) and np.all(np.isfinite(v))):
+        raise RequestError("screws: the triangle product of these finite screws overflows double precision (expected screws of moderate size)")
+    if abs(d) <= QUATERNION_ROUND_OFF * scale or not np.all(np.isfinite(out)):
         raise HalfTurnError("the triangle product is a half-turn (1 - wa·wb/4 = 0): it has no finite quasi-vector; use FiniteScrew")
-    w = wa + wb + 0.5 * cross(wa, wb)
-    v = va + vb + 0.5 * (cross(wa, vb) + cross(va, wb)) - 0.25 * float(wa @ va) * wb - 0.25 * float(wb @ vb) * wa
-    return np.concatenate([w, v]) / d
+    return out
 
 
 def twist_from_finite_screw_rate(screw: npt.ArrayLike, rate: npt.ArrayLike) -> np.ndarray:
@@ -288,7 +340,7 @@ def twist_from_finite_screw_rate(screw: npt.ArrayLike, rate: npt.ArrayLike) -> n
     [0.0, 0.0, 1.0, 0.0, -1.0, 0.0]
     """
     s = _screw(screw)
-    ds = _screw(rate)
+    ds = _screw(rate, "rate")
     w, v, dw, dv = s[:3], s[3:], ds[:3], ds[3:]
     k = 1.0 + 0.25 * float(w @ w)
     omega = dw + 0.5 * cross(w, dw)
@@ -354,9 +406,9 @@ class FiniteScrew:
     homogeneous: np.ndarray = field(repr=False)
 
     def __post_init__(self) -> None:
-        h = np.asarray(self.homogeneous, dtype=float).reshape(8)
-        if not np.all(np.isfinite(h)) or np.linalg.norm(h[:4]) == 0.0:
-            raise RequestError("a finite screw needs a non-zero finite rotation quaternion")
+        h = _numbers(self.homogeneous, 8, "homogeneous", "8 finite numbers, a dual quaternion (q, q0) with q non-zero")
+        if not np.any(h[:4]):
+            raise RequestError("homogeneous: a finite screw needs a non-zero finite rotation quaternion q, got q = 0")
         h = _canonical(h)
         h.setflags(write=False)
         object.__setattr__(self, "homogeneous", h)
@@ -372,15 +424,20 @@ class FiniteScrew:
         """From a quasi-vector ``[w; v]`` (any finite 6-vector is a displacement)."""
         s = _screw(screw)
         w, v = s[:3], s[3:]
-        return FiniteScrew(np.concatenate([[1.0], 0.5 * w, [-0.25 * float(w @ v)], 0.5 * v]))
+        with np.errstate(over="ignore", invalid="ignore"):
+            h = np.concatenate([[1.0], 0.5 * w, [-0.25 * float(w @ v)], 0.5 * v])
+        if not np.all(np.isfinite(h)):
+            raise RequestError(f"screw: expected a 6-vector [w; v] whose product w·v is a finite number, got {_shown(s)}")
+        return FiniteScrew(h)
 
     @staticmethod
     def from_parameters(axis: Iterable[float], point: Iterable[float], angle: float, translation: float = 0.0) -> "FiniteScrew":
         """Rotation ``angle`` about the line through ``point`` along ``axis``, translation ``translation`` along it."""
         s = _unit(axis, "axis")
-        r = np.asarray(point, dtype=float).reshape(3)
-        c, sn = np.cos(0.5 * float(angle)), np.sin(0.5 * float(angle))
-        t = float(translation)
+        r = _numbers(point, 3, "point")
+        theta = _number(angle, "angle")
+        c, sn = np.cos(0.5 * theta), np.sin(0.5 * theta)
+        t = _number(translation, "translation")
         q = np.concatenate([[c], sn * s])
         q0 = np.concatenate([[-0.5 * t * sn], 0.5 * t * c * s + sn * cross(r, s)])
         return FiniteScrew(np.concatenate([q, q0]))
@@ -399,9 +456,12 @@ class FiniteScrew:
         RequestError
             When the matrix is not a proper rigid displacement.
         """
-        m = np.asarray(matrix, dtype=float)
+        try:
+            m = np.asarray(matrix, dtype=float)
+        except (TypeError, ValueError, OverflowError):
+            m = np.empty(0)
         if m.shape != (4, 4) or not np.all(np.isfinite(m)):
-            raise RequestError("expected a 4x4 matrix of finite numbers")
+            raise RequestError(f"matrix: expected a 4x4 matrix of finite numbers, got {_shown(matrix)}")
         rot = m[:3, :3]
         off = max(float(np.max(np.abs(rot @ rot.T - np.eye(3)))), float(np.max(np.abs(m[3] - [0.0, 0.0, 0.0, 1.0]))))
         if off > tol.rank or np.linalg.det(rot) < 0:
@@ -474,6 +534,8 @@ class FiniteScrew:
     # -- algebra ------------------------------------------------------------
     def triangle(self, other: "FiniteScrew") -> "FiniteScrew":
         """``self △ other``: ``other`` first, then ``self`` (matrix ``T_self @ T_other``)."""
+        if not isinstance(other, FiniteScrew):
+            raise RequestError(f"other: expected a FiniteScrew, got {type(other).__name__}")
         return FiniteScrew(_dqmul(self.homogeneous, other.homogeneous))
 
     def inverse(self) -> "FiniteScrew":
@@ -541,15 +603,24 @@ class ScrewJoint:
         object.__setattr__(self, "axis", tuple(float(x) for x in axis))
         try:
             pt = np.asarray(self.point, dtype=float).reshape(3)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise MechanismError("point", f"expected 3 numbers, got {_shown(self.point)}") from None
         if self.kind == "P":
             pt = np.zeros(3)
+        elif not np.all(np.isfinite(pt)):
+            raise MechanismError("point", f"expected 3 finite numbers, got {_shown(self.point)}")
         object.__setattr__(self, "point", tuple(float(x) for x in pt))
-        object.__setattr__(self, "pitch", float(self.pitch) if self.kind == "H" else 0.0)
+        pitch = 0.0
+        if self.kind == "H":
+            try:
+                pitch = _number(self.pitch, "pitch")
+            except RequestError as err:
+                raise MechanismError("pitch", str(err).removeprefix("pitch: ")) from None
+        object.__setattr__(self, "pitch", pitch)
 
     def finite_screw(self, value: float) -> FiniteScrew:
         """Finite screw of the joint displaced by ``value`` (homogeneous form)."""
+        value = _number(value, "value")
         if self.kind == "P":
             return FiniteScrew.from_parameters(self.axis, self.point, 0.0, value)
         return FiniteScrew.from_parameters(self.axis, self.point, value, self.pitch * value)
@@ -600,9 +671,16 @@ class Limb:
         return len(self.joints)
 
     def _values(self, q: npt.ArrayLike | None) -> np.ndarray:
-        values = np.zeros(len(self.joints)) if q is None else np.asarray(q, dtype=float).reshape(-1)
+        if q is None:
+            return np.zeros(len(self.joints))
+        try:
+            values = np.asarray(q, dtype=float).reshape(-1)
+        except (TypeError, ValueError, OverflowError):
+            raise RequestError(f"q: expected {len(self.joints)} finite joint values, got {_shown(q)}") from None
         if values.shape != (len(self.joints),):
-            raise RequestError(f"expected {len(self.joints)} joint values, got {values.size}")
+            raise RequestError(f"q: expected {len(self.joints)} joint values, got {values.size}")
+        if not np.all(np.isfinite(values)):
+            raise RequestError(f"q: expected {len(self.joints)} finite joint values, got {_shown(q)}")
         return values
 
     def factors(self, q: npt.ArrayLike | None = None) -> list[FiniteScrew]:

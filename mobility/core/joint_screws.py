@@ -196,7 +196,7 @@ def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float
 def _build(mechanism: Mechanism) -> JointScrews:
     table = mechanism.freedom_table
     pitches = table.pitches
-    centre, length = characteristic_scale(table.located, pitches[pitches != 0.0])
+    centre, length = characteristic_scale(table.located, pitches=pitches[pitches != 0.0])
     if not math.isfinite(length):
         key, line = mechanism.joint_key(int(table.located_joints[np.argmax(np.abs(table.located).max(axis=1))]), "point")  # the farthest
         raise MechanismFileError(

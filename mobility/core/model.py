@@ -45,8 +45,8 @@ from typing import Any, Callable, Iterable, Mapping, Sequence, TypeVar, cast
 
 import numpy as np
 
-from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
-from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, binary_scale, characteristic_scale
+from ..errors import MechanismError, RequestError, did_you_mean, name_list, name_problem, shown_argument
+from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, binary_scale, characteristic_scale, decide_rank
 from .transforms import Transform, rotation_from_rpy
 
 __all__ = [
@@ -66,8 +66,12 @@ __all__ = [
     "bool_value",
     "require_expected_integer",
     "require_expected_pattern",
+    "expected_basis_problem",
     "EXPECTED_PATTERN",
     "require_graph_names",
+    "require_name",
+    "number_from_text",
+    "integer_from_text",
     "require_unique_names",
     "require_no_repeats",
     "joint_names",
@@ -136,6 +140,9 @@ def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
             raise MechanismError(key, "expected 3 finite numbers, got an integer too large for a float") from None
         if math.isfinite(x) and math.isfinite(y) and math.isfinite(z):
             return (x, y, z)
+    items = value.tolist() if isinstance(value, np.ndarray) and value.dtype.kind in "bUSO" else value
+    if isinstance(items, (list, tuple)) and any(isinstance(x, (bool, np.bool_)) or (isinstance(x, str) and not x.isascii()) for x in items):
+        raise MechanismError(key, f"expected a list of 3 numbers (not true or false, digits in ASCII), got {shown_argument(value)}")
     try:
         arr = np.asarray(value, dtype=float)
     except OverflowError:
@@ -215,13 +222,14 @@ class Joint:
     actuated: bool = False
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise MechanismError("name", f"expected a non-empty string, got {self.name!r}")
+        require_name(self.name, "name", "a non-empty string")
         if not isinstance(self.type, str) or self.type not in JOINT_DOF:
             raise MechanismError("type", f"unknown joint type {shown_argument(self.type)}; expected one of {', '.join(JOINT_DOF)}")
         links = tuple(self.links) if isinstance(self.links, (list, tuple)) else None
         if links is None or len(links) != 2 or not all(isinstance(x, str) and x for x in links):
             raise MechanismError("links", f"expected two link names, got {self.links!r}")
+        for k, link in enumerate(links):
+            require_name(link, f"links[{k}]", "a link name")
         if links[0] == links[1]:
             raise MechanismError("links", f"a joint must join two different links, got {links[0]!r} twice")
         object.__setattr__(self, "links", links)
@@ -232,7 +240,9 @@ class Joint:
             if key in need and value is None:
                 raise MechanismError(key, f"missing; a joint of type {self.type} needs {', '.join(need)}")
             if key not in allowed and value is not None:
-                raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {', '.join(need)})")
+                optional = _OPTIONAL.get(self.type, ())
+                takes = ", ".join(need) + (f", and optionally {', '.join(optional)}" if optional else "")
+                raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {takes})")
         if self.axis is not None:
             object.__setattr__(self, "axis", require_vector(self.axis, "axis", direction=True))
         if self.normal is not None:
@@ -241,7 +251,7 @@ class Joint:
             object.__setattr__(self, "point", require_vector(self.point, "point"))
         if self.pitch is not None:
             try:
-                pitch = float(self.pitch)
+                pitch = number_from_text(self.pitch) if isinstance(self.pitch, str) else float(_not_bool(self.pitch))
             except OverflowError:
                 raise MechanismError("pitch", "expected a finite number, got an integer too large for a float") from None
             except (TypeError, ValueError):
@@ -259,8 +269,7 @@ class Joint:
             if sine < PARALLEL_AXES:
                 raise MechanismError("axes", "the two axes of a U joint must not be parallel")
             object.__setattr__(self, "axes", (a1, a2))
-        if not isinstance(self.frame, str) or not self.frame:
-            raise MechanismError("frame", f"expected a frame name, got {self.frame!r}")
+        require_name(self.frame, "frame", "a frame name")
         actuated = bool_value(self.actuated)
         if actuated is None:
             raise MechanismError("actuated", f"expected true or false, got {shown_argument(self.actuated)}")
@@ -338,8 +347,7 @@ class Frame:
     parent: str = WORLD
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise MechanismError("name", f"expected a frame name, got {self.name!r}")
+        require_name(self.name, "name", "a frame name")
         object.__setattr__(self, "origin", require_vector(self.origin, "origin"))
         try:
             rot = np.asarray(self.rotation, dtype=float)
@@ -353,8 +361,7 @@ class Frame:
         if (np.abs(rot @ rot.T - _IDENTITY) > _ORTHONORMAL_LIMIT).any() or determinant < 0:
             raise MechanismError("rotation", "expected a proper rotation matrix")
         object.__setattr__(self, "rotation", tuple(map(tuple, rows)))
-        if not isinstance(self.parent, str) or not self.parent:
-            raise MechanismError("parent", f"expected a frame name, got {self.parent!r}")
+        require_name(self.parent, "parent", "a frame name")
 
     @staticmethod
     def from_rpy(name: str, origin: Iterable[float] = (0, 0, 0), rpy: Iterable[float] = (0, 0, 0), parent: str = WORLD) -> "Frame":
@@ -457,8 +464,12 @@ EXPECTED_KEYS: dict[str, str] = {
 EXPECTED_PATTERN = re.compile(r"0|([1-3]T)?([1-3]R)?")
 """An expected motion pattern: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (matched whole).
 
-A twist system of more than 3 dimensions always holds a translation, so ``m``
-is at most 3 too.
+These are the patterns :func:`mobility.analyze` reports, ``"0"`` for no
+motion.  The contract writes a pattern ``{nT}T{nR}R`` with a zero part
+dropped, which for no motion drops both: the empty string ``""`` is
+accepted as the same pattern (:func:`require_expected_pattern` reads it as
+``"0"``).  A twist system of more than 3 dimensions always holds a
+translation, so ``m`` is at most 3 too.
 """
 
 
@@ -482,21 +493,51 @@ def require_expected_integer(value: Any, key: str, *, signed: bool = False, show
 
 
 def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str] | None = None) -> str:
-    """An expected motion pattern (:data:`EXPECTED_PATTERN`; the integer ``0`` is ``"0"``), else a :class:`MechanismError` naming ``key``.
+    """An expected motion pattern (:data:`EXPECTED_PATTERN`; the integer ``0`` and the contract's ``""`` are ``"0"``), else a :class:`MechanismError` naming ``key``.
 
     Examples
     --------
-    >>> require_expected_pattern("1T2R", "pattern"), require_expected_pattern(0, "pattern")
-    ('1T2R', '0')
+    >>> require_expected_pattern("1T2R", "pattern"), require_expected_pattern(0, "pattern"), require_expected_pattern("", "pattern")
+    ('1T2R', '0', '0')
     >>> require_expected_pattern("4R", "pattern")
     Traceback (most recent call last):
-    mobility.errors.MechanismError: pattern: expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got '4R'
+    mobility.errors.MechanismError: pattern: expected a pattern such as "3T", "1T2R", "3R" or "0" (no motion; also written ""), at most 3T and 3R, got '4R'
     """
-    if value == 0 and type(value) is int:
+    if (type(value) is int and value == 0) or (isinstance(value, str) and value == ""):
         return "0"
-    if not isinstance(value, str) or not value or not EXPECTED_PATTERN.fullmatch(value):
-        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (at most 3T and 3R), got {(shown or shown_argument)(value)}')
+    if not isinstance(value, str) or not EXPECTED_PATTERN.fullmatch(value):
+        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (no motion; also written ""), at most 3T and 3R, got {(shown or shown_argument)(value)}')
     return value
+
+
+def expected_basis_problem(vectors: Sequence[Vector]) -> tuple[int, str] | None:
+    """Why ``vectors`` are not a basis of directions (an expected ``translations``): the index of the first bad one and what is wrong; ``None`` when they are one.
+
+    A direction must be non-zero, and each must be independent of those
+    before it (the contract asks for a basis): the rank of the unit
+    directions is decided by the one policy
+    (:func:`~mobility.core.tolerance.decide_rank`), so directions that differ
+    only by round-off are dependent.  An empty list is a basis (of no
+    translation).
+
+    Examples
+    --------
+    >>> expected_basis_problem([(0.0, 0.0, 1.0), (1.0, 0.0, 0.0)]) is None
+    True
+    >>> expected_basis_problem([(0.0, 0.0, 1.0), (0.0, 0.0, 2.0)])
+    (1, 'linearly dependent on the directions before it; expected a basis (independent directions)')
+    >>> expected_basis_problem([(0.0, 0.0, 0.0)])
+    (0, 'expected a non-zero direction, got [0, 0, 0]')
+    """
+    units: list[Vector] = []
+    for i, v in enumerate(vectors):
+        try:
+            units.append(require_vector(v, "", direction=True))
+        except MechanismError as exc:
+            return i, exc.message
+        if decide_rank(np.linalg.svd(np.array(units), compute_uv=False)).rank < len(units):
+            return i, "linearly dependent on the directions before it; expected a basis (independent directions)"
+    return None
 
 
 _EXPECTED_COUNTS = ("dof", "mobility", "redundant_constraints", "idle_dof")
@@ -516,8 +557,9 @@ class Expected:
     Raises
     ------
     MechanismError
-        Naming the key whose value is of the wrong kind, or an ``extra`` key
-        that is one of the fields.
+        Naming the key whose value is of the wrong kind (``translations``
+        that are not a basis: :func:`expected_basis_problem`), or an
+        ``extra`` key that is one of the fields.
 
     Examples
     --------
@@ -551,7 +593,11 @@ class Expected:
             rows = _listed(self.translations)
             if not isinstance(rows, tuple):
                 raise MechanismError("translations", f"expected a list of 3-vectors, got {shown_argument(self.translations)}")
-            object.__setattr__(self, "translations", tuple(require_vector(_listed(v), f"translations[{i}]") for i, v in enumerate(rows)))
+            translations = tuple(require_vector(_listed(v), f"translations[{i}]") for i, v in enumerate(rows))
+            problem = expected_basis_problem(translations)
+            if problem is not None:
+                raise MechanismError(f"translations[{problem[0]}]", problem[1])
+            object.__setattr__(self, "translations", translations)
         if not isinstance(self.extra, Mapping):
             raise MechanismError("extra", f"expected a mapping of further expected keys, got {type(self.extra).__name__}")
         extra = dict(self.extra)  # a copy: the caller's mapping may change afterwards
@@ -690,24 +736,32 @@ class Mechanism:
             self._require_resolved_pitches()
 
     def _require_resolved_pitches(self) -> None:
-        """Refuse a helical joint whose rotation is below the resolution of the analysis.
+        """Refuse a helical pitch so much larger than the joint points' spread that no scale resolves both.
 
-        A screw of pitch ``p`` in a mechanism of size ``L`` (:func:`~mobility.core.tolerance.characteristic_scale`)
-        turns by ``L / p`` of its motion; below :attr:`~mobility.core.tolerance.Tolerance.rank`
-        that rotation cannot be told from round-off, and the joint would be
-        counted sometimes as a screw, sometimes as a slider.
+        The characteristic length of a mechanism with a pitch ``h`` larger
+        than the spread ``d`` of its joint points is ``L = sqrt(d h)``
+        (:func:`~mobility.core.tolerance.characteristic_scale`): the screw
+        turns by ``L / h`` of its motion and the points stand ``d / L``
+        apart, both ``sqrt(d / h)``.  Below
+        :attr:`~mobility.core.tolerance.Tolerance.rank` (``h / d`` above
+        1e16) neither can be told from round-off, and the joint would be
+        counted sometimes as a screw, sometimes as a slider.  The ratio, not
+        the unit, decides: a file scaled by any factor is accepted or
+        refused alike.
         """
         table = self.freedom_table
         pitches = np.abs(table.pitches)
         largest = float(pitches.max())
-        length = characteristic_scale(table.located, pitches[pitches != 0.0])[1]
+        length = characteristic_scale(table.located, pitches=pitches[pitches != 0.0])[1]
         if largest * DEFAULT_TOLERANCE.rank <= length:
             return
+        spread = characteristic_scale(table.located)[1]  # the points do not coincide, or the length would be the pitch
         index = int(np.searchsorted(table.offsets, int(np.argmax(pitches)), side="right")) - 1
         raise MechanismError(
             f"joints[{index}].pitch",
-            f"pitch {largest:.6g} is {largest / length:.1e} times the mechanism's size {length:.3g}: the joint's rotation "
-            f"({length / largest:.1e} of its motion) is finer than the analysis can resolve ({DEFAULT_TOLERANCE.rank:.0e}); write it as a P joint",
+            f"pitch {largest:.6g} is {largest / spread:.1e} times the spread of the joint points {spread:.3g} (their RMS distance from their centroid): "
+            f"beyond {DEFAULT_TOLERANCE.rank**-2:.0e} no scale resolves both the screw's rotation and the points' offsets; "
+            "write the points that are meant to coincide as one point, or bring the pitch and the spread within that ratio",
         )
 
     def _frames_cannot_overflow(self) -> bool:
@@ -915,6 +969,55 @@ def bool_value(value: Any) -> bool | None:
     return bool(value) if isinstance(value, (bool, np.bool_)) else None
 
 
+def _not_bool(value: Any) -> Any:
+    """``value``, unless it is a bool (``True`` is not the number 1 here): then a ``TypeError``, as ``float`` raises for what is not a number."""
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"expected a number, got {value!r}")
+    return value
+
+
+def number_from_text(text: str) -> float:
+    """The number written in ``text``, as ``float`` reads it, but in ASCII only.
+
+    The one reader of a number written as text (an option of the command
+    line, an environment variable, a string given for a number): ``float``
+    alone reads the digits of every script (``"١"`` is 1) and spaces of
+    every kind, which no one types meaning a number.
+
+    Raises
+    ------
+    ValueError
+        When ``text`` holds a character that is not ASCII, or is not a number.
+
+    Examples
+    --------
+    >>> number_from_text(" 1e-9 ")
+    1e-09
+    >>> number_from_text("\u0661")
+    Traceback (most recent call last):
+    ValueError: expected a number written in ASCII digits, got '\u0661'
+    """
+    if not text.isascii():
+        raise ValueError(f"expected a number written in ASCII digits, got {shown_argument(text)}")
+    return float(text)
+
+
+def integer_from_text(text: str) -> int:
+    """The integer written in ``text``, as ``int`` reads it (base 10), but in ASCII only (see :func:`number_from_text`).
+
+    Examples
+    --------
+    >>> integer_from_text("20000")
+    20000
+    >>> integer_from_text("\u0661\u0660")
+    Traceback (most recent call last):
+    ValueError: expected an integer written in ASCII digits, got '\u0661\u0660'
+    """
+    if not text.isascii():
+        raise ValueError(f"expected an integer written in ASCII digits, got {shown_argument(text)}")
+    return int(text)
+
+
 def require_mechanism(value: object, caller: str) -> Mechanism:
     """``value`` when it is a :class:`Mechanism`, else a :class:`~mobility.errors.RequestError` naming ``caller``.
 
@@ -954,10 +1057,34 @@ def require_graph_names(graph: Any, node: str) -> None:
     Traceback (most recent call last):
     mobility.errors.MechanismError: end_effector: expected the name of a link (a non-empty string), got ''
     """
-    for key, what in (("name", "a non-empty string"), ("ground", f"the name of a {node} (a non-empty string)"), ("end_effector", f"the name of a {node} (a non-empty string)")):
-        value = getattr(graph, key)
-        if not isinstance(value, str) or not value:
-            raise MechanismError(key, f"expected {what}, got {value!r}")
+    if not isinstance(graph.name, str) or not graph.name:  # a title, which a robot file may take from its file's name: held to the rule of names where a file writes it
+        raise MechanismError("name", f"expected a non-empty string, got {graph.name!r}")
+    for key in ("ground", "end_effector"):
+        require_name(getattr(graph, key), key, f"the name of a {node} (a non-empty string)")
+
+
+def require_name(value: Any, key: str, expected: str) -> None:
+    """``value`` must be a name: a non-empty string without control, format or line-break characters (:func:`~mobility.errors.name_problem`).
+
+    Parameters
+    ----------
+    value : Any
+    key : str
+        The key of the error (``"name"``, ``"links[0]"``).
+    expected : str
+        What a name there is, when ``value`` is not a non-empty string (``"a frame name"``).
+
+    Examples
+    --------
+    >>> require_name("hip\\tleft", "name", "a joint name")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: name: a tab '\\t' (U+0009) is not allowed in a name
+    """
+    if not isinstance(value, str) or not value:
+        raise MechanismError(key, f"expected {expected}, got {value!r}")
+    problem = name_problem(value)
+    if problem is not None:
+        raise MechanismError(key, problem)
 
 
 def joint_names(value: Any, key: str) -> list[str]:

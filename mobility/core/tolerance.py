@@ -345,13 +345,17 @@ BINARY_EXPONENT = 1021
 """The largest ``|k|`` of :func:`binary_scale`: ``2**k`` and ``2**-k`` are normal floats."""
 
 
-def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None, pitches: np.ndarray | None = None) -> tuple[np.ndarray, float]:
     """Centre and characteristic length of a mechanism.
 
     The centre is the centroid of the joint points; the length is the RMS
-    distance of those points from it, or, when all points coincide (to
-    :data:`COINCIDENT_POINTS`), the largest other length given (helical
-    pitches); 1.0 when there is none.
+    distance ``d`` of those points from it, or, when all points coincide (to
+    :data:`COINCIDENT_POINTS`), the largest other length given (``lengths``
+    and ``pitches``); 1.0 when there is none.  A helical pitch ``h`` above
+    ``d`` raises the length to ``L = sqrt(d h)``: a screw turns by ``L / h``
+    of its motion and the points stand ``d / L`` apart, both ``sqrt(d / h)``,
+    so both are resolved (above :attr:`Tolerance.rank`) up to ``h / d =
+    1 / rank**2`` (1e16), where ``L = d`` would lose the rotation at 1e8.
     Both follow the mechanism under scaling and rigid motion, which is what
     makes the rank decisions invariant.  They are computed on the points
     scaled by :func:`binary_scale` (nothing is squared before it), so any
@@ -363,7 +367,11 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) 
     points : ndarray, shape (n, 3)
         Joint points in the global frame.
     lengths : ndarray, optional
-        Other lengths of the mechanism (absolute values are used).
+        Other lengths of the mechanism (absolute values are used), taken
+        only when the points coincide.
+    pitches : ndarray, optional
+        Helical pitches (absolute values are used): taken when the points
+        coincide, and raising the length as above.
 
     Returns
     -------
@@ -378,10 +386,13 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) 
     ([0.0, 0.0, 0.0], 1.0)
     >>> characteristic_scale(np.array([[1e200, 0, 0], [-1e200, 0, 0]]))[1], characteristic_scale(np.array([[1e-250, 0, 0], [0, 0, 0]]))[1]
     (1e+200, 5e-251)
+    >>> round(characteristic_scale(np.array([[1.0, 0, 0], [-1.0, 0, 0]]), pitches=np.array([100.0]))[1], 12)
+    10.0
     """
     pts = np.asarray(points, dtype=float).reshape(-1, 3)
     n = len(pts)
-    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
+    pitch = _largest(pitches)
+    other = max(_largest(lengths), pitch)
     scale = binary_scale(pts, other)
     if n == 0:
         centre = np.zeros(3)
@@ -392,12 +403,21 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None) 
         d = scaled - centre
         radius = float(np.sqrt(np.einsum("ij,ij->", d, d) / n))
         centre /= scale
-        radius /= scale
-    if radius > COINCIDENT_POINTS * float(np.abs(centre).max(initial=0.0)):
-        return centre, radius
+    if radius / scale > COINCIDENT_POINTS * float(np.abs(centre).max(initial=0.0)):
+        return centre, float(_balanced(np.array(radius), pitch * scale)) / scale
     if other > 0.0:
         return centre, other
     return centre, 1.0
+
+
+def _largest(lengths: np.ndarray | None) -> float:
+    """The largest magnitude of ``lengths``; 0.0 when there is none."""
+    return 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
+
+
+def _balanced(radius: np.ndarray, pitch: Any) -> np.ndarray:
+    """``radius`` raised to ``sqrt(radius * pitch)`` where ``pitch`` is larger: on :func:`binary_scale`'d lengths (the same bits at any power-of-two scale), without overflow."""
+    return np.where(pitch > radius, np.sqrt(radius) * np.sqrt(pitch), radius)
 
 
 def clean_numbers(value: Any, scale: float = 1.0, tol: Tolerance = DEFAULT_TOLERANCE) -> Any:
@@ -527,15 +547,15 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     return RankDecisions(rank, kept, dropped)
 
 
-def characteristic_scales(points: np.ndarray, lengths: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+def characteristic_scales(points: np.ndarray, lengths: np.ndarray | None = None, pitches: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """:func:`characteristic_scale` of many poses of one mechanism at once.
 
     Parameters
     ----------
     points : ndarray, shape (N, n, 3)
         The joint points of each pose, global frame.
-    lengths : ndarray, optional
-        Other lengths of the mechanism (the same for every pose).
+    lengths, pitches : ndarray, optional
+        Other lengths and helical pitches of the mechanism (the same for every pose).
 
     Returns
     -------
@@ -551,10 +571,11 @@ def characteristic_scales(points: np.ndarray, lengths: np.ndarray | None = None)
     """
     pts = np.asarray(points, dtype=float)
     count, n = pts.shape[0], pts.shape[1]
-    other = 0.0 if lengths is None or len(lengths) == 0 else float(np.abs(lengths).max())
+    pitch = _largest(pitches)
+    other = max(_largest(lengths), pitch)
     if n == 0:
         centres = np.zeros((count, 3))
-        radius = np.zeros(count)
+        radius = balanced = np.zeros(count)
     else:
         # each pose scaled by its own power of two, as characteristic_scale does
         big = np.maximum(np.abs(pts).reshape(count, -1).max(axis=1), other)
@@ -564,8 +585,10 @@ def characteristic_scales(points: np.ndarray, lengths: np.ndarray | None = None)
         centres = scaled.sum(axis=1) / n
         d = scaled - centres[:, None, :]
         with np.errstate(over="ignore"):  # infinite only when the radius exceeds the largest float
-            radius = np.sqrt(np.einsum("kij,kij->k", d, d) / n) / scale
+            scaled_radius = np.sqrt(np.einsum("kij,kij->k", d, d) / n)
+            radius = scaled_radius / scale
+            balanced = _balanced(scaled_radius, pitch * scale) / scale
         centres /= scale[:, None]
     fallback = other if other > 0.0 else 1.0
     spread = radius > COINCIDENT_POINTS * (np.abs(centres).max(axis=1) if n else 0.0)
-    return centres, np.where(spread, radius, fallback)
+    return centres, np.where(spread, balanced, fallback)

@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from ..core.joint_screws import Normalisation
-from ..core.model import Expected, require_ground_and_end_effector, require_instance, require_vector, require_graph_names, require_unique_names
+from ..core.model import Expected, require_ground_and_end_effector, require_instance, require_name, require_vector, require_graph_names, require_unique_names
 from ..core.tolerance import characteristic_scale
 from ..errors import MechanismError, name_list
 
@@ -116,11 +116,12 @@ class Rod:
     material: Material
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise MechanismError("name", f"expected a non-empty string, got {self.name!r}")
+        require_name(self.name, "name", "a non-empty string")
         b = tuple(self.bodies) if isinstance(self.bodies, (list, tuple)) else ()
         if len(b) != 2 or not all(isinstance(x, str) and x for x in b):
             raise MechanismError("bodies", f"expected two body names, got {self.bodies!r}")
+        for k, body in enumerate(b):
+            require_name(body, f"bodies[{k}]", "a body name")
         if b[0] == b[1]:
             raise MechanismError("bodies", f"an element must join two different bodies, got {b[0]!r} twice")
         object.__setattr__(self, "bodies", b)
@@ -171,8 +172,7 @@ class ForceLine:
     actuated: bool = False
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise MechanismError("name", f"expected a non-empty string, got {self.name!r}")
+        require_name(self.name, "name", "a non-empty string")
         object.__setattr__(self, "point", require_vector(self.point, "point"))
         object.__setattr__(self, "direction", require_vector(self.direction, "direction", direction=True))
         if not isinstance(self.actuated, bool):

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-from ..core.model import Expected, require_expected_integer, require_expected_pattern
+from ..core.model import Expected, expected_basis_problem, require_expected_integer, require_expected_pattern
 from ..errors import MechanismError
 from .reader import DocumentReader, describe_value, shown_value
 from .yaml_source import KeyPath, format_key
@@ -49,7 +49,7 @@ def _integer(value: Any, key: str, *, signed: bool = False) -> int:
 
 
 def _pattern(value: Any, key: str) -> str:
-    """An expected pattern (:data:`~mobility.core.model.EXPECTED_PATTERN`; also an unquoted ``0``), checked as :class:`~mobility.core.model.Expected` checks it."""
+    """An expected pattern (:data:`~mobility.core.model.EXPECTED_PATTERN`; also an unquoted ``0`` and the contract's ``""``), checked as :class:`~mobility.core.model.Expected` checks it."""
     return require_expected_pattern(value, key, shown=shown_value)
 
 
@@ -96,7 +96,9 @@ def read_expected(reader: DocumentReader, value: Any, keys: tuple[str, ...]) -> 
     Raises
     ------
     MechanismFileError
-        On an unknown key or a value of the wrong kind.
+        On an unknown key or a value of the wrong kind; on ``translations``
+        that are not a basis (a zero direction, or one dependent on those
+        before it), at that direction's line.
     """
     path: KeyPath = ("expected",)
     data = reader.mapping(value, path, "expected results")
@@ -109,6 +111,9 @@ def read_expected(reader: DocumentReader, value: Any, keys: tuple[str, ...]) -> 
             if not isinstance(raw, list):
                 raise reader.fail(kpath, f"expected a list of 3-vectors, got {describe_value(raw)}")
             fields[key] = tuple(reader.vector(v, kpath + (i,)) for i, v in enumerate(raw))
+            problem = expected_basis_problem(fields[key])
+            if problem is not None:
+                raise reader.fail(kpath + (problem[0],), problem[1])
             continue
         validator = EXPECTED_VALIDATORS.get(key)
         try:

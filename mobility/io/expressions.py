@@ -40,7 +40,7 @@ from typing import Any, Callable, Mapping
 from ..errors import name_list
 from .limits import DEFAULT_LIMITS
 
-__all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression"]
+__all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression", "literal_problem"]
 
 FUNCTIONS: Mapping[str, Callable[..., float]] = {
     "abs": abs,
@@ -97,8 +97,34 @@ Program = tuple[tuple[Any, ...], ...]
 """A compiled expression: ``(_NUMBER, x)``, ``(_NAME, name)`` or ``(_APPLY, function, arity)``, in postfix order."""
 
 
-def _children(node: ast.AST, text: str) -> tuple[list[ast.AST], tuple[Any, ...] | None]:
-    """The operands of ``node`` and the instruction it becomes after them (``None``: no instruction)."""
+def literal_problem(written: str, value: float) -> str | None:
+    """Why the number ``written`` cannot be read as ``value``, its ``float``: it overflows to infinity or underflows to zero; else None.
+
+    The one rule for a number written out, in a YAML value (``1.0e-400``) and
+    in an expression (``2 * 1e-400``): the expression evaluator refuses a
+    product that underflows, so a literal that does is refused too, rather
+    than silently read as 0.  (A subnormal number, ``5e-324``, is what was
+    written, to the precision floats have there.)  The words ``inf`` and
+    ``nan`` are for the caller to refuse.
+
+    Examples
+    --------
+    >>> literal_problem("1e-400", 0.0)
+    "the number '1e-400' underflows: it is below the smallest float (4.94e-324) and would read as 0.0; write the lengths in a larger unit"
+    >>> literal_problem("0.0e-400", 0.0) is None, literal_problem("1e400", math.inf)
+    (True, "the number '1e400' is too large for a float (it would read as inf)")
+    """
+    if math.isinf(value) and any(c.isdigit() for c in written):
+        return f"the number {_shown(written)!r} is too large for a float (it would read as {value!r})"
+    mantissa = written.lower().partition("e")[0]
+    if value == 0.0 and any(c in "123456789" for c in mantissa):
+        return (f"the number {_shown(written)!r} underflows: it is below the smallest float ({sys.float_info.min * sys.float_info.epsilon:.3g}) "
+                f"and would read as {value!r}; write the lengths in a larger unit")
+    return None
+
+
+def _children(node: ast.AST, text: str, source: str = "") -> tuple[list[ast.AST], tuple[Any, ...] | None]:
+    """The operands of ``node`` and the instruction it becomes after them (``None``: no instruction); ``text`` is the expression as messages show it, ``source`` as parsed."""
     if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)) and not isinstance(node.value, bool):
         try:
             value = float(node.value)
@@ -106,6 +132,9 @@ def _children(node: ast.AST, text: str) -> tuple[list[ast.AST], tuple[Any, ...] 
             raise ValueError(f"a number in {text!r} is too large") from None
         if not math.isfinite(value):
             raise ValueError(f"a number in {text!r} is too large (not finite)")
+        problem = literal_problem(ast.get_source_segment(source, node) or "", value) if isinstance(node.value, float) and value == 0.0 else None
+        if problem is not None:
+            raise ValueError(f"expression {text!r}: {problem}")
         return [], (_NUMBER, value)
     if isinstance(node, ast.Name):
         return [], (_NAME, node.id)
@@ -179,7 +208,7 @@ def compile_expression(text: str, max_length: int = DEFAULT_LIMITS.max_expressio
             continue
         if depth > max_depth:
             raise ValueError(f"expression {shown!r} is nested deeper than the limit of {max_depth} levels (set MOBILITY_MAX_EXPRESSION_DEPTH to raise it)")
-        operands, instruction = _children(node, shown)
+        operands, instruction = _children(node, shown, source)
         if instruction is not None:
             pending.append((node, depth, instruction))
         pending.extend((child, depth + 1, None) for child in reversed(operands))

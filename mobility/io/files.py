@@ -1,4 +1,10 @@
-"""Reading document files within the size limit, whatever they are (a FIFO, ``/dev/zero``, a huge file, a symbolic link loop).
+"""Reading document files within the size limit, whatever they are (a FIFO, ``/dev/zero``, ``/dev/kmsg``, a huge file, a symbolic link loop).
+
+Only a regular file is read: a pipe, a socket, a terminal or any other
+device is refused before it is opened (reading ``/dev/kmsg`` or a FIFO
+waits for ever), and the file is opened without waiting
+(``O_NONBLOCK``) and looked at again once open, so that a pipe put in its
+place in between is refused too.
 
 Also how a path is named in a message: :func:`os_problem` puts an
 ``OSError`` in words, :func:`printable_name` escapes the bytes of a file
@@ -14,7 +20,7 @@ b'name: m'
 >>> read_capped("/dev/zero")
 Traceback (most recent call last):
 ...
-mobility.errors.MechanismFileError: /dev/zero: larger than the limit of 4194304 bytes for a document (set MOBILITY_MAX_FILE_BYTES to raise it)
+mobility.errors.MechanismFileError: /dev/zero: is a device (a terminal, /dev/zero...), not a regular file; expected a mechanism file
 >>> os.unlink(f.name)
 """
 
@@ -25,11 +31,12 @@ import os
 import stat
 import sys
 from pathlib import Path
+from typing import BinaryIO
 
 from ..errors import MechanismFileError, RequestError, clipped, one_line
 from .limits import Limits, current_limits
 
-__all__ = ["read_capped", "file_name", "refuse_pipe", "is_regular_file", "os_problem", "printable_name"]
+__all__ = ["read_capped", "open_regular", "file_name", "refuse_pipe", "is_regular_file", "os_problem", "printable_name"]
 
 
 def os_problem(exc: OSError) -> str:
@@ -152,38 +159,88 @@ def file_name(value: object, what: str) -> str:
     return name
 
 
-def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
-    """The bytes of a document file, read with the size cap of ``limits`` (never more than the cap plus one chunk).
+def _not_regular(mode: int) -> str | None:
+    """What a file of type bits ``mode`` is, when it is not a regular file (``None`` for a regular one)."""
+    if stat.S_ISREG(mode):
+        return None
+    if stat.S_ISDIR(mode):
+        return "is a directory"
+    if stat.S_ISFIFO(mode) or stat.S_ISSOCK(mode):
+        return "is a pipe or socket"
+    return "is a device (a terminal, /dev/zero...), not a regular file"
+
+
+def open_regular(path: str | Path, expected: str = "a mechanism file") -> BinaryIO:
+    """``path`` opened for reading in binary, when it is a regular file; anything else refused in one line before it is opened.
+
+    A pipe, a socket, a terminal or another device (``/dev/kmsg``, whose
+    reading waits for the kernel's next message) is refused from its
+    ``stat``: opening a FIFO waits for a writer.  The file is then opened
+    with ``O_NONBLOCK`` (opening never waits) and its type checked again on
+    the open descriptor, so that a pipe swapped in between is refused too.
+
+    Parameters
+    ----------
+    path : str or Path
+    expected : str
+        What the file should be, for the message (``"a mechanism file"``).
 
     Raises
     ------
     MechanismFileError
-        One line naming the file: missing, a directory, a terminal,
-        unreadable or larger than the limit.
+        One line naming the file: missing, a directory, a pipe, a device, a
+        symbolic link loop or unreadable.
     """
-    name = file_name(path, "read")  # never a descriptor of the caller's (an int), nor a NUL in a name
-    cap = current_limits(limits).max_file_bytes
-    refuse_pipe(path)
+    name = file_name(path, "read")  # never a descriptor of the caller's (an int), nor a NUL in a name; a message escapes what is not text
     try:
-        with open(path, "rb") as stream:
-            if stream.isatty():  # reading would wait for someone to type the file
-                raise MechanismFileError("", "is a terminal, expected a mechanism file", file=name)
+        what = _not_regular(os.stat(name).st_mode)
+        if what is None:
+            flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_BINARY", 0)
+            fd = os.open(name, flags)
+            try:
+                what = _not_regular(os.fstat(fd).st_mode)
+            except OSError:
+                os.close(fd)
+                raise
+            if what is None:
+                return os.fdopen(fd, "rb")
+            os.close(fd)
+    except FileNotFoundError:
+        raise MechanismFileError("", "no such file", file=name) from None
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            raise MechanismFileError("", f"is {os_problem(exc)}, expected {expected}", file=name) from None
+        raise MechanismFileError("", f"cannot read: {os_problem(exc)}", file=name) from None
+    joined = "; " if what.endswith("not a regular file") else ", "
+    raise MechanismFileError("", f"{what}{joined}expected {expected}", file=name)
+
+
+def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
+    """The bytes of a regular file, read with the size cap of ``limits`` (never more than the cap plus one chunk).
+
+    Raises
+    ------
+    MechanismFileError
+        One line naming the file: missing, a directory, a pipe, a terminal
+        or other device (:func:`open_regular`), unreadable or larger than
+        the limit.
+    """
+    cap = current_limits(limits).max_file_bytes
+    with open_regular(path) as stream:
+        name = os.fspath(path)
+        try:
             chunks, size = [], 0
             while size <= cap:  # in chunks: read(cap + 1) would allocate the whole cap for every file
                 chunk = stream.read(min(1 << 16, cap + 1 - size))
+                if chunk is None:  # nothing to read yet (/proc/kmsg): reading it would wait
+                    raise MechanismFileError("", "cannot read without waiting (a file of the kernel that is read as it is written); expected a mechanism file", file=name)
                 if not chunk:
                     break
                 chunks.append(chunk)
                 size += len(chunk)
             raw = b"".join(chunks)
-    except FileNotFoundError:
-        raise MechanismFileError("", "no such file", file=name) from None
-    except IsADirectoryError:
-        raise MechanismFileError("", "is a directory, expected a mechanism file", file=name) from None
-    except OSError as exc:
-        if exc.errno == errno.ELOOP:
-            raise MechanismFileError("", f"is {os_problem(exc)}, expected a mechanism file", file=name) from None
-        raise MechanismFileError("", f"cannot read: {os_problem(exc)}", file=name) from None
+        except OSError as exc:
+            raise MechanismFileError("", f"cannot read: {os_problem(exc)}", file=name) from None
     if len(raw) > cap:
         raise MechanismFileError("", f"larger than the limit of {cap} bytes for a document (set MOBILITY_MAX_FILE_BYTES to raise it)", file=name)
     return raw

@@ -14,7 +14,9 @@ joints, the deepest nests 7 levels) and low enough that every command on a
 file at the limits takes a few seconds and a few hundred MB (measured on two
 cores: ``analyze``, ``check``, ``actuation``, ``jacobian``, ``convert``,
 ``plot`` and ``view`` of 5,000 joints take at most 4 s and 230 MB; the
-command-specific limits are where their commands reach about 4 s).  Each limit
+command-specific limits are where their commands reach about 4 s; the
+budget of poses times joints, ``max_moving_work``, where they reach 4 to
+25 s).  Each limit
 can be raised for a run by an environment variable ``MOBILITY_<FIELD>``
 (``MOBILITY_MAX_JOINTS=20000``), or for one call by passing
 ``limits=Limits(...)`` to :func:`mobility.io.loader.load`.
@@ -39,10 +41,10 @@ import os
 from dataclasses import dataclass, fields
 from typing import Mapping
 
-from ..core.model import Mechanism
-from ..errors import MechanismFileError, RequestError
+from ..core.model import Mechanism, integer_from_text, integer_value
+from ..errors import MechanismFileError, RequestError, shown_argument
 
-__all__ = ["Limits", "DEFAULT_LIMITS", "current_limits", "require_size"]
+__all__ = ["Limits", "DEFAULT_LIMITS", "current_limits", "require_size", "require_work"]
 
 
 @dataclass(frozen=True)
@@ -53,8 +55,9 @@ class Limits:
     ----------
     max_file_bytes : int
         Size of a file (bytes; characters for text given directly).  A file is
-        read with this cap, so ``/dev/zero`` ends in an error, not in a full
-        memory.
+        read with this cap, so a file growing as it is read ends in an error,
+        not in a full memory (a device, ``/dev/zero``, is refused before it
+        is opened).
     max_depth : int
         Nesting depth of the YAML document (a mapping or a list inside
         another counts one level), and of the ``<include>`` elements of an
@@ -106,6 +109,15 @@ class Limits:
         Joints of a mechanism whose inputs ``actuation --enumerate``
         searches: each candidate's actuation wrench is found against its
         whole limb, so the time grows with the square of the joints.
+    max_moving_work : int
+        Poses times joints of the poses that ``--samples`` (``actuation``,
+        ``view``) and ``view --vary`` move and analyse one by one (a view
+        draws at most 200 of a grid's poses): each pose is closed, analysed
+        (and drawn) on its own, in time growing about with the joints.  At
+        5,000 (16 poses of a 300-joint chain: ``actuation`` 4 s, ``view`` 7
+        s; 227 poses of the 22-joint H4, whose four loops are closed at each:
+        ``actuation`` 23 s) every bundled mechanism can be viewed at the 199
+        sampled poses a view holds.
     """
 
     max_file_bytes: int = 4 * 1024 * 1024
@@ -121,6 +133,24 @@ class Limits:
     max_finite_joints: int = 50
     max_moving_joints: int = 300
     max_enumerated_joints: int = 200
+    max_moving_work: int = 5_000
+
+    def __post_init__(self) -> None:
+        """Every field a positive integer (``int`` or a numpy integer; not a bool, a float or a string), else a :class:`~mobility.errors.RequestError`.
+
+        Examples
+        --------
+        >>> Limits(max_file_bytes=-1)
+        Traceback (most recent call last):
+        ...
+        mobility.errors.RequestError: Limits: max_file_bytes: expected a positive integer, got -1
+        """
+        for f in fields(self):
+            value = getattr(self, f.name)
+            number = integer_value(value)
+            if number is None or number < 1:
+                raise RequestError(f"Limits: {f.name}: expected a positive integer, got {shown_argument(value)}")
+            object.__setattr__(self, f.name, number)
 
     @staticmethod
     def variable(name: str) -> str:
@@ -147,11 +177,11 @@ class Limits:
             if raw is None:
                 continue
             try:
-                value = int(raw.strip())
+                value = integer_from_text(raw.strip())  # digits in ASCII: int() alone reads "١٠" as 10
             except ValueError:
                 value = 0
             if value < 1:
-                raise RequestError(f"{cls.variable(f.name)}: expected a positive integer, got {raw!r}")
+                raise RequestError(f"{cls.variable(f.name)}: expected a positive integer, got {shown_argument(raw)}")
             changed[f.name] = value
         return cls(**changed) if changed else DEFAULT_LIMITS
 
@@ -189,3 +219,42 @@ def require_size(mechanism: Mechanism, limit: str, what: str, file: str) -> None
     count = len(mechanism.joints)
     if count > bound:
         raise MechanismFileError("joints", f"{count} joints are more than the limit of {bound} for {what} ({limits.hint(limit)})", file=file)
+
+
+def require_work(mechanism: Mechanism, poses: int, what: str, file: str) -> None:
+    """Refuse, in one line, a request to move ``mechanism`` into more poses than :attr:`Limits.max_moving_work` allows for its joints.
+
+    Checked before the work starts (after :func:`require_size`): the product
+    of the poses asked for and the mechanism's joints is what the time and
+    the memory of ``--samples`` and ``view --vary`` grow with.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    poses : int
+        The poses the request moves and analyses one by one.
+    what : str
+        The request, as the user wrote it (``"--samples 1000"``).
+    file : str
+        The file, named in the message.
+
+    Raises
+    ------
+    RequestError
+        ``WHAT: N poses x J joints of FILE = P pose-joints, more than the limit of L (ask for fewer poses, or set MOBILITY_MAX_MOVING_WORK to raise it)``.
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint
+    >>> chain = Mechanism("chain", "L0", "L300", tuple(Joint(f"J{i}", "R", (f"L{i}", f"L{i + 1}"), axis=(0, 0, 1), point=(i, 0, 0)) for i in range(300)))
+    >>> require_work(chain, 16, "--samples 16", "chain.yaml")
+    >>> require_work(chain, 1000, "--samples 1000", "chain.yaml")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: --samples 1000: 1,000 poses x 300 joints of chain.yaml = 300,000 pose-joints, more than the limit of 5,000 (ask for fewer poses, or set MOBILITY_MAX_MOVING_WORK to raise it)
+    """
+    limits = current_limits()
+    joints = len(mechanism.joints)
+    work = poses * joints
+    if work > limits.max_moving_work:
+        raise RequestError(f"{what}: {poses:,} poses x {joints:,} joints of {file} = {work:,} pose-joints, more than the limit of "
+                           f"{limits.max_moving_work:,} (ask for fewer poses, or {limits.hint('max_moving_work')})")

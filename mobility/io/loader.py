@@ -328,7 +328,7 @@ class _MechanismReader(DocumentReader):
             if index in self.names:
                 raise self.fail(path + ("index",), f"{index!r} is already a parameter; choose another name for the index")
             if "joints" not in limb:
-                raise self.fail(path, "missing required key 'joints' of a limb pattern")
+                raise self.fail(path + ("joints",), "missing required key of a limb pattern")
             if not isinstance(limb["joints"], list):
                 raise self.fail(path + ("joints",), f"expected a list of joints, got {describe_value(limb['joints'])}")
             total += copies * len(limb["joints"])

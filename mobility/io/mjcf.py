@@ -12,7 +12,12 @@ joint's anchor and axis in the global frame, each body's parent.
 * an ``<equality><connect>`` is a spherical joint between its two bodies at
   its anchor (written on ``body1``, or ``site1``); a ``<weld>`` makes its two
   bodies one rigid link; an equality inactive at start is left out (a note);
-* a joint driven by an actuator (joint transmission) is marked actuated;
+* one actuator is one input, as MuJoCo counts it (``nu``): a hinge or slide
+  an actuator drives (joint transmission) is marked actuated (several on one
+  joint: one input, a note); an actuator on a ball joint is the rotation
+  about its gear's axis, an input of the joint's own
+  (:mod:`mobility.io.mjcf_actuators`); one on a free joint (a six-number
+  gear, which no joint freedom expresses) is not supported;
   actuators driving tendons, sites or bodies mark nothing (a note);
 * joint and tendon equalities and deformable (flex) bodies are not supported:
   each is an error of one line naming its line, unless ``ignore_unsupported``;
@@ -45,7 +50,9 @@ from ..core.model import Joint
 from ..core.tolerance import DEFAULT_TOLERANCE, characteristic_scale
 from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped
 from .files import read_capped
+from .mjcf_actuators import actuator_inputs
 from .mjcf_scan import MjcfScan, scan_mjcf
+from .robot_actuators import BallActuator
 from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, rotation_tuple, unique_name, vector_tuple
 from .xml_source import parse_xml
 
@@ -349,9 +356,9 @@ class _MjcfTree:
         m, mj = self.m, self.mj
         bodies = tuple(self.body(i) for i in range(m.nbody))
         notes: list[str] = []
-        actuated = self.actuated_joints(notes)
-        joints = tuple(self.joint(i, i in actuated) for i in range(m.njnt))
         unsupported: list[Unsupported] = []
+        actuated, balls = actuator_inputs(self, notes, unsupported)
+        joints = tuple(self.joint(i, i in actuated, balls.get(i, ())) for i in range(m.njnt))
         if m.nflex:
             flexes = list(getattr(self.spec, "flexes", []))
             unsupported.append(Unsupported("flex", f"{m.nflex} deformable (flex) bodies are not supported; expected rigid bodies and joints",
@@ -386,29 +393,22 @@ class _MjcfTree:
             raise MechanismFileError(key, f"MuJoCo computes it at qpos0 as {exc.message.removeprefix('expected finite numbers, got ')}; {_FINITE}",
                                      file=self.file, line=line) from None
 
-    def joint(self, i: int, actuated: bool) -> TreeJoint:
-        m, d, types = self.m, self.d, self.mj.mjtJoint
+    def joint_name(self, i: int) -> str:
+        """The name of joint ``i``: its own, or made of its body's (``body_joint``, ``body_joint1`` for the second of a body's joints)."""
+        m = self.m
         body = int(m.jnt_bodyid[i])
         index = i - int(m.body_jntadr[body])
-        name = self.name("mjOBJ_JOINT", i) or (f"{self.body_names[body]}_joint" + (str(index) if m.body_jntnum[body] > 1 else ""))
+        return self.name("mjOBJ_JOINT", i) or (f"{self.body_names[body]}_joint" + (str(index) if m.body_jntnum[body] > 1 else ""))
+
+    def joint(self, i: int, actuated: bool, actuators: tuple[BallActuator, ...] = ()) -> TreeJoint:
+        m, d, types = self.m, self.d, self.mj.mjtJoint
+        body = int(m.jnt_bodyid[i])
+        name = self.joint_name(i)
         kind = {int(types.mjJNT_HINGE): "hinge", int(types.mjJNT_SLIDE): "slide", int(types.mjJNT_BALL): "ball", int(types.mjJNT_FREE): "free"}[int(m.jnt_type[i])]
         line, key = self.lines["joint"].get(i), f"joint[{clipped(name)}]"
         axis = self.finite(d.xaxis[i], key, line) if kind in ("hinge", "slide") else None
         point = self.finite(d.xpos[body] if kind == "free" else d.xanchor[i], key, line)
-        return TreeJoint(name, kind, self.body_names[body], point, axis, actuated, line)
-
-    def actuated_joints(self, notes: list[str]) -> set[int]:
-        m, trn = self.m, self.mj.mjtTrn
-        out: set[int] = set()
-        for a in range(m.nu):
-            kind = int(m.actuator_trntype[a])
-            if kind in (int(trn.mjTRN_JOINT), int(trn.mjTRN_JOINTINPARENT)):
-                out.add(int(m.actuator_trnid[a][0]))
-                continue
-            aname = self.name("mjOBJ_ACTUATOR", a) or f"actuator{a}"
-            what = {int(trn.mjTRN_TENDON): "a tendon", int(trn.mjTRN_SITE): "a site", int(trn.mjTRN_BODY): "a body", int(trn.mjTRN_SLIDERCRANK): "a slider-crank"}.get(kind, "no joint")
-            notes.append(f"actuator {clipped(aname)}{_at(self.lines['actuator'].get(a))} drives {what}, not a joint: no joint is marked actuated for it")
-        return out
+        return TreeJoint(name, kind, self.body_names[body], point, axis, actuated, line, actuators)
 
     def equalities(self, notes: list[str]) -> tuple[list[Closure], list[Weld], list[Unsupported]]:
         m, eq = self.m, self.mj.mjtEq

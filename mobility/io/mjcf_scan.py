@@ -27,8 +27,10 @@ the line of the element:
   resolutions of ``<mesh builtin>`` multiplied) pass the asset limit all
   together: MuJoCo allocates them as it reads the file (gigabytes for a
   line of XML), before anything can be left out;
-* a geometric attribute (``pos``, ``quat``, ``axis``, ``euler``, ...) that
-  holds ``nan`` or ``inf``;
+* a geometric attribute (``pos``, ``quat``, ``axis``, ``euler``, ...), or an
+  actuator's ``gear``, that holds ``nan`` or ``inf``, or a number written
+  non-zero that reads as 0 (``1e-400``, too small for a double: MuJoCo reads
+  it as 0 without a word);
 * a direction that MuJoCo would silently replace (:data:`DIRECTIONS`): MuJoCo
   normalizes ``quat``, the axis of ``axisangle``, ``zaxis``, a joint's
   ``axis``, the direction of ``fromto`` and the quaternion of a weld's
@@ -86,7 +88,7 @@ from xml.etree.ElementTree import Element
 from ..errors import MechanismFileError, clipped
 from .files import read_capped, refuse_pipe
 from .limits import Limits, current_limits
-from .xml_source import XmlDocument, parse_xml
+from .xml_source import XmlDocument, parse_xml, underflow_problem
 
 __all__ = ["scan_mjcf", "MjcfScan", "GEOMETRY_ATTRIBUTES", "DIRECTIONS", "MUJOCO_EPS"]
 
@@ -353,14 +355,16 @@ def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = N
 
 
 def _check_numbers(doc: XmlDocument, element: Element) -> None:
-    """Refuse a geometric attribute holding ``nan`` or ``inf`` (``1e400`` reads as ``inf``), or a direction MuJoCo would replace (:data:`DIRECTIONS`)."""
+    """Refuse a geometric attribute (or an actuator's ``gear``) holding ``nan`` or ``inf`` (``1e400`` reads as ``inf``), a number written
+    non-zero that reads as 0 (``1e-400``), or a direction MuJoCo would replace (:data:`DIRECTIONS`)."""
     for attribute, value in element.attrib.items():
-        if attribute not in GEOMETRY_ATTRIBUTES:
+        if attribute not in GEOMETRY_ATTRIBUTES and attribute != "gear":
             continue
         numbers = _numbers(value)
         if numbers is None:
             continue  # not numbers: MuJoCo says what it expected
-        problem = "expected finite numbers" if not all(math.isfinite(x) for x in numbers) else _direction_problem(attribute, numbers)
+        problem = ("expected finite numbers" if not all(math.isfinite(x) for x in numbers) else
+                   underflow_problem(value.split(), numbers) or _direction_problem(attribute, numbers))
         if problem is not None:
             name = element.get("name")
             key = f"{clipped(element.tag)}[{clipped(name)}]/@{attribute}" if name else f"{clipped(element.tag)}/@{attribute}"

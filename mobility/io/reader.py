@@ -35,7 +35,7 @@ from typing import Any, Mapping, cast
 
 from ..core.model import WORLD, Frame, Vector
 from ..core.transforms import rotation_from_axis_angle, rotation_from_rpy
-from ..errors import MechanismError, MechanismFileError, did_you_mean
+from ..errors import MechanismError, MechanismFileError, did_you_mean, name_problem
 from .expressions import RESERVED_NAMES, evaluate
 from .limits import Limits, current_limits
 from .yaml_source import KeyPath, Positions, format_key
@@ -96,7 +96,9 @@ class DocumentReader:
             What it is, in messages: ``"a joint"``.
         allowed : tuple of str
         required : tuple
-            Each a key, or a tuple of keys of which one is enough (the message names the first).
+            Each a key, or a tuple of keys of which one is enough.  A missing
+            one is an error at its key path (the first of a tuple, the others
+            named in the message), on the line of the mapping that lacks it.
         described : str, optional
             What a mapping is expected to hold, when ``value`` is not one (default ``what``).
 
@@ -106,14 +108,15 @@ class DocumentReader:
         >>> r.record({"name": "A"}, ("joints", 0), "a joint", ("name", "type"), ("name", "type"))
         Traceback (most recent call last):
         ...
-        mobility.errors.MechanismFileError: j.yaml: joints[0]: missing required key 'type' of a joint
+        mobility.errors.MechanismFileError: j.yaml: joints[0].type: missing required key of a joint
         """
         data = self.mapping(value, path, described or what)
         self.check_keys(data, allowed, path, what)
         for key in required:
             choices = key if isinstance(key, tuple) else (key,)
             if not any(k in data for k in choices):
-                raise self.fail(path, f"missing required key {choices[0]!r}" + (f" of {what}" if path else ""))
+                alternatives = f" (or {', '.join(choices[1:])})" if len(choices) > 1 else ""
+                raise self.fail(path + (choices[0],), "missing required key" + (f" of {what}" if path else "") + alternatives)
         return data
 
     def document(self, data: Any, what: str, allowed: tuple[str, ...], required: Required) -> Mapping[str, Any]:
@@ -136,7 +139,7 @@ class DocumentReader:
     def name_and_description(self, doc: Mapping[str, Any]) -> tuple[str, str]:
         """The document's ``name`` (a number is taken as its text) and its ``description`` (default empty)."""
         title = doc["name"]
-        name = self.string(str(title) if isinstance(title, (int, float)) and not isinstance(title, bool) else title, ("name",))
+        name = self.checked_name(self.string(str(title) if isinstance(title, (int, float)) and not isinstance(title, bool) else title, ("name",)), ("name",), "the name of the mechanism")
         description = doc.get("description", "")
         if not isinstance(description, str):
             raise self.fail(("description",), f"expected a string, got {describe_value(description)}")
@@ -177,11 +180,26 @@ class DocumentReader:
         return value
 
     def identifier(self, value: Any, path: KeyPath, what: str = "a name") -> str:
-        """A name of a link, joint or frame: a non-empty string (a number or ``true`` must be quoted)."""
+        """A name of a link, joint or frame: a non-empty string (a number or ``true`` must be quoted), without control, format or line-break characters (:meth:`checked_name`)."""
         if isinstance(value, str) and value.strip():
-            return value
+            return self.checked_name(value, path, what)
         hint = "; write it in quotes if it is a name" if isinstance(value, (bool, int, float)) else ""
         raise self.fail(path, f"expected {what} (a string), got {describe_value(value)}{hint}")
+
+    def checked_name(self, value: str, path: KeyPath, what: str) -> str:
+        """``value``, a name, refused when it holds a character no name may hold (:func:`~mobility.errors.name_problem`: a tab, a line break, a bidirectional override...).
+
+        Examples
+        --------
+        >>> DocumentReader("n.yaml", Positions({})).checked_name("knee\\u2028", ("joints", 0, "name"), "a joint name")
+        Traceback (most recent call last):
+        ...
+        mobility.errors.MechanismFileError: n.yaml: joints[0].name: a line separator '\\u2028' (U+2028) is not allowed in a joint name
+        """
+        problem = name_problem(value, what)
+        if problem is not None:
+            raise self.fail(path, problem)
+        return value
 
     def units(self, value: Any) -> str:
         if value is None:
@@ -215,7 +233,7 @@ class DocumentReader:
         frames = self.mapping(value, ("frames",), "frame names to frames")
         if len(frames) > self.limits.max_frames:
             raise self.fail(("frames",), f"{len(frames)} frames are more than the limit of {self.limits.max_frames} ({self.limits.hint('max_frames')})")
-        return [self.frame(str(fname), fdata, ("frames", fname), self.names) for fname, fdata in frames.items()]
+        return [self.frame(self.checked_name(str(fname), ("frames", fname), "a frame name"), fdata, ("frames", fname), self.names) for fname, fdata in frames.items()]
 
     def check_frame_chains(self, frames: list[Frame]) -> None:
         """Bound the chains of ``parent`` frames by the depth limit (unknown parents and cycles are the model's to report)."""

@@ -41,7 +41,7 @@ from ..core.model import Mechanism, bool_value
 from ..errors import MechanismFileError, RequestError, clipped
 from .closures import close_pairs, with_close_pairs, with_closures_file
 from .files import file_name
-from .robot_tree import ImportedRobot, RobotOptions, RobotTree, build_mechanism, unique_name
+from .robot_tree import ImportedRobot, RobotOptions, RobotTree, build_mechanism, model_joint_names, unique_name
 from .xml_source import read_xml, root_tag
 
 __all__ = ["robot_format", "is_robot_file", "read_robot", "load_robot", "refuse_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
@@ -135,7 +135,8 @@ def _closures_named_apart(tree: RobotTree) -> RobotTree:
     connects and joints apart, the joint graph cannot.  It gets ``~2``,
     ``~3``, ... as the made-up names do, and a note says so.  The names the
     file's joints take (their own, ``.x`` ``.y`` ``.z`` of a free joint's
-    slides, and the ``~k`` of a clash among them) are set aside first.
+    slides, ``joint.actuator`` of a driven ball joint's R joints, and the
+    ``~k`` of a clash among them) are set aside first.
 
     Examples
     --------
@@ -150,7 +151,7 @@ def _closures_named_apart(tree: RobotTree) -> RobotTree:
     """
     if not tree.closures:
         return tree
-    names = [name for j in tree.joints for name in ([f"{j.name}.{axis}" for axis in "xyz"] if j.kind == "free" else []) + [j.name]]
+    names = [name for j in tree.joints for name in model_joint_names(j)]
     taken: set[str] = set()
     for name in names:  # in the order the mechanism names them, each clash made ~2, ~3, ...
         unique_name(name, taken)

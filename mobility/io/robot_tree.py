@@ -14,7 +14,10 @@ and :func:`build_mechanism` turns it into a
   body nearest the root (or after the body named as ground or end effector);
 * a body with several joints (MJCF allows it) hangs by a chain of joints
   through virtual links named ``body/joint``;
-* ``hinge`` is R, ``slide`` P, ``ball`` S, ``planar`` E; a ``free`` (or URDF
+* ``hinge`` is R, ``slide`` P, ``ball`` S, ``planar`` E; a ball joint
+  driven by actuators is a chain of joints through its centre, an R joint
+  (actuated) about each actuator's axis and a U or R joint for the rest
+  (:mod:`mobility.io.robot_actuators`): one input per actuator; a ``free`` (or URDF
   ``floating``) joint is treated as fixed unless ``floating=True``, or unless
   an equality (a weld or a closing joint) ties its body's subtree to a body
   outside it (the mechanism holds that body: it is no floating base); it then
@@ -61,6 +64,7 @@ import numpy as np
 from ..core.model import Joint, Mechanism
 from ..errors import MechanismError, MechanismFileError, clipped, did_you_mean
 from .limits import current_limits
+from .robot_actuators import BallActuator, ball_chain, ball_chain_names
 
 __all__ = [
     "Body",
@@ -76,6 +80,7 @@ __all__ = [
     "rotation_tuple",
     "vector_tuple",
     "unique_name",
+    "model_joint_names",
 ]
 
 Vector = tuple[float, float, float]
@@ -108,6 +113,9 @@ class TreeJoint:
 
     ``kind`` is one of :data:`JOINT_KINDS`; ``axis`` is the hinge or slide
     direction, or the normal of a planar joint; ``point`` the anchor.
+    ``actuated`` marks a hinge or slide driven by an actuator (one input);
+    ``actuators`` are the inputs of a ball joint, one per actuator (a ball
+    joint with none is one S joint, unactuated).
     """
 
     name: str
@@ -117,6 +125,7 @@ class TreeJoint:
     axis: Vector | None = None
     actuated: bool = False
     line: int | None = None
+    actuators: tuple[BallActuator, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -321,8 +330,13 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
         here = start
         for k, j in enumerate(chain):
             there = end if k == len(chain) - 1 else unique_name(f"{body}/{j.name}", link_names)
-            joints += _model_joints(tree, j, here, there, used, link_names)
+            made = _model_joints(tree, j, here, there, used, link_names)
+            joints += made
             here = there
+            if j.kind == "ball" and j.actuators:
+                shown = ", ".join(f"{joint.type} {clipped(joint.name)}{' (actuated)' if joint.actuated else ''}" for joint in made)
+                notes.append(f"ball joint {clipped(j.name)}{_at(j.line)} has {len(j.actuators)} input{'s' if len(j.actuators) > 1 else ''}, "
+                             f"one per actuator: it is the joints {shown} through its centre")
 
     for c in tree.closures:
         a, b = (link(n) for n in c.joint.links)
@@ -452,8 +466,25 @@ def _group_names(tree: RobotTree, groups: _Groups, preferred: list[str]) -> dict
     return names
 
 
+def model_joint_names(j: TreeJoint) -> list[str]:
+    """The names the model joints of one tree joint take (before clashes are resolved), in chain order.
+
+    Examples
+    --------
+    >>> free = TreeJoint("root", "free", "base", (0, 0, 0))
+    >>> ball = TreeJoint("s", "ball", "arm", (0, 0, 0), actuators=(BallActuator("m", (0, 0, 1)),))
+    >>> model_joint_names(free), model_joint_names(ball)
+    (['root.x', 'root.y', 'root.z', 'root'], ['s', 's.m'])
+    """
+    if j.kind == "free":
+        return [f"{j.name}.{axis}" for axis in "xyz"] + [j.name]
+    if j.kind == "ball" and j.actuators:
+        return ball_chain_names(j.name, j.actuators)
+    return [j.name]
+
+
 def _model_joints(tree: RobotTree, j: TreeJoint, a: str, b: str, used: set[str], link_names: set[str]) -> list[Joint]:
-    """The model joints of one tree joint from link ``a`` to link ``b`` (a free joint: P, P, P, S)."""
+    """The model joints of one tree joint from link ``a`` to link ``b`` (a free joint: P, P, P, S; a driven ball: R and U joints)."""
     try:
         kind = JOINT_KINDS[j.kind]
         if kind == "free":
@@ -463,6 +494,13 @@ def _model_joints(tree: RobotTree, j: TreeJoint, a: str, b: str, used: set[str],
                 out.append(Joint(unique_name(f"{j.name}.{letter}", used), "P", (here, there), axis=tuple(axis), actuated=j.actuated))
                 here = there
             out.append(Joint(unique_name(j.name, used), "S", (here, b), point=j.point, actuated=j.actuated))
+            return out
+        if kind == "S" and j.actuators:  # one input per actuator: a chain through the centre (mobility.io.robot_actuators)
+            out, here, chain = [], a, ball_chain(j.name, j.point, j.actuators)
+            for k, joint in enumerate(chain):
+                there = b if k == len(chain) - 1 else unique_name(f"{j.body}/{joint.name}", link_names)
+                out.append(replace(joint, name=unique_name(joint.name, used), links=(here, there)))
+                here = there
             return out
         name = unique_name(j.name, used)
         if kind == "R":

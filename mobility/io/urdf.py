@@ -9,7 +9,10 @@ child frame is the parent frame composed with the origin.
 * ``revolute`` and ``continuous`` joints are R, ``prismatic`` P, ``planar``
   E (normal = axis), ``floating`` a free joint (fixed unless ``--floating``),
   ``fixed`` joins its two links into one rigid link;
-* a joint named in a ``<transmission>`` is marked actuated;
+* a joint named in a ``<transmission>`` is marked actuated: one input, so a
+  ``revolute``, ``continuous`` or ``prismatic`` joint; on a ``planar`` or
+  ``floating`` joint (several coordinates) it is not supported, on a
+  ``fixed`` one it drives nothing (a note);
 * a ``<mimic>`` joint couples two joints, which the model cannot express:
   an error of one line, or with ``ignore_unsupported`` a note (each joint then
   counts as free);
@@ -20,7 +23,8 @@ Numbers are plain ASCII decimals, as MuJoCo's URDF compiler reads them
 (``1``, ``-0.5``, ``.5``, ``1e-3``), separated by spaces, tabs or line
 breaks; what Python's ``float`` alone would take (``1_0``, digits of other
 scripts, a no-break space between numbers) is refused, as are ``nan`` and
-``inf``.  An element a joint holds once (``<parent>``, ``<axis>``,
+``inf``, and a number written non-zero that reads as 0 (``1e-400``: too
+small for a double).  An element a joint holds once (``<parent>``, ``<axis>``,
 ``<origin>``...) is refused when repeated, as MuJoCo refuses it, rather
 than read from its first copy.
 
@@ -70,7 +74,7 @@ from ..core.transforms import Transform, rotation_from_rpy
 from ..errors import clipped, did_you_mean
 from .files import file_name
 from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, rotation_tuple, vector_tuple
-from .xml_source import XmlDocument, read_xml
+from .xml_source import XmlDocument, read_xml, underflow_problem
 
 __all__ = ["read_urdf", "URDF_JOINT_KINDS"]
 
@@ -146,8 +150,10 @@ class _UrdfReader:
             raise self.fail(links[unreached[0]], f"link[{clipped(unreached[0])}]", "not reached from the root link: the joints form a cycle; expected a tree")
         bodies = tuple(Body(name, parent_joint[name]["parent"] if name in parent_joint else None, vector_tuple(poses[name].translation),
                             rotation_tuple(poses[name].rotation), self.doc.line(links[name])) for name in order)
-        actuated = self.transmissions(root, {j["name"] for j in joints})
-        tree_joints, unsupported = [], []
+        tree_joints: list[TreeJoint] = []
+        unsupported: list[Unsupported] = []
+        notes: list[str] = []
+        actuated = self.transmissions(root, {j["name"]: j["type"] for j in joints}, unsupported, notes)
         for j in joints:
             if j["mimic"] is not None:
                 unsupported.append(Unsupported(f"joint[{clipped(j['name'])}]/mimic", f"joint {clipped(j['name'])!r} mimics joint {clipped(j['mimic'])!r} (a coupling of joints) is not supported; expected independent joints", self.doc.line(j["element"].find("mimic"))))
@@ -158,7 +164,7 @@ class _UrdfReader:
             axis = None if kind == "free" else vector_tuple(frame.apply_vector(j["axis"]))
             tree_joints.append(TreeJoint(j["name"], kind, j["child"], vector_tuple(frame.translation), axis, j["name"] in actuated, self.doc.line(j["element"])))
         name = root.get("name") or Path(self.doc.file).stem
-        return RobotTree(name, self.doc.file, "URDF", bodies, tuple(tree_joints), unsupported=tuple(unsupported))
+        return RobotTree(name, self.doc.file, "URDF", bodies, tuple(tree_joints), unsupported=tuple(unsupported), notes=tuple(notes))
 
     def links(self, root: ET.Element) -> dict[str, ET.Element]:
         links: dict[str, ET.Element] = {}
@@ -245,6 +251,9 @@ class _UrdfReader:
         values = [float(x) for x in words] if all(_NUMBER.fullmatch(x) for x in words) else []
         if len(values) != 3 or not all(math.isfinite(v) for v in values):
             raise self.fail(el, key, f"expected 3 numbers, got {clipped(text)!r}")
+        problem = underflow_problem(words, values)
+        if problem is not None:
+            raise self.fail(el, key, f"{problem}, got {clipped(text)!r}")
         return (values[0], values[1], values[2])
 
     def poses(self, root_link: str, joints: list[dict]) -> tuple[list[str], dict[str, Transform]]:
@@ -273,14 +282,37 @@ class _UrdfReader:
                             f"the frame of link {clipped(j['child'])!r}, the origins from the root composed, is not finite; expected origins whose sum stays finite")
         return frame
 
-    def transmissions(self, root: ET.Element, joint_names: set[str]) -> set[str]:
+    def transmissions(self, root: ET.Element, joint_types: dict[str, str], unsupported: list[Unsupported], notes: list[str]) -> set[str]:
+        """The joints driven by a ``<transmission>``: each a revolute, continuous or prismatic joint, one input.
+
+        A transmission drives one joint coordinate.  On a ``fixed`` joint it
+        drives nothing: a note.  A ``planar`` or ``floating`` joint has no one
+        coordinate (three, six), and marking it actuated would make each of
+        its freedoms an input: unsupported.
+        """
         out: set[str] = set()
         for t in root.findall("transmission"):
+            tname = t.get("name", "")
             for j in t.findall("joint"):
                 name = j.get("name")
+                key = f"transmission[{clipped(tname)}]/joint"
                 if not name:
-                    raise self.fail(j, f"transmission[{clipped(t.get('name', ''))}]/joint", "missing attribute name; expected <joint name=\"...\">")
-                if name not in joint_names:
-                    raise self.fail(j, f"transmission[{clipped(t.get('name', ''))}]/joint", f"unknown joint {clipped(name)!r}; expected a <joint> of this robot")
-                out.add(name)
+                    raise self.fail(j, key, "missing attribute name; expected <joint name=\"...\">")
+                if name not in joint_types:
+                    raise self.fail(j, key, f"unknown joint {clipped(name)!r}{did_you_mean(name, joint_types)}; expected a <joint> of this robot")
+                jtype = joint_types[name]
+                line = self.doc.line(j)
+                if jtype == "fixed":
+                    notes.append(f"transmission {clipped(tname)}{_at(line)} drives the fixed joint {clipped(name)}, which cannot move: no input for it")
+                elif jtype in ("planar", "floating"):
+                    freedoms = "three (two translations and a rotation)" if jtype == "planar" else "six"
+                    unsupported.append(Unsupported(key, f"a transmission on the {jtype} joint {clipped(name)} is not supported: a transmission is one input "
+                                                   f"along one joint coordinate, and a {jtype} joint has {freedoms}, each of which an actuated joint of the "
+                                                   "model would make an input; expected a revolute, continuous or prismatic joint", line))
+                else:
+                    out.add(name)
         return out
+
+
+def _at(line: int | None) -> str:
+    return f" (line {line})" if line is not None else ""

@@ -129,7 +129,7 @@ def _size(mechanism: Mechanism) -> float:
     joints = mechanism.world_joints
     points = [j.point for j in joints if j.point is not None]
     pitches = [j.pitch for j in joints if j.pitch is not None]
-    return characteristic_scale(np.array(points, dtype=float).reshape(-1, 3), np.array(pitches, dtype=float))[1]
+    return characteristic_scale(np.array(points, dtype=float).reshape(-1, 3), pitches=np.array(pitches, dtype=float))[1]
 
 
 def require_written_faithfully(mechanism: Mechanism, text: str, where: str) -> None:

@@ -36,11 +36,11 @@ from pathlib import Path
 from typing import Any, BinaryIO
 from xml.parsers import expat
 
-from ..errors import MechanismFileError, RequestError, clipped, control_character_problem
-from .files import file_name, is_regular_file, read_capped
+from ..errors import MechanismFileError, RequestError, clipped, control_character_problem, name_problem
+from .files import file_name, is_regular_file, open_regular, read_capped
 from .limits import Limits, current_limits
 
-__all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag"]
+__all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag", "underflow_problem"]
 
 
 _CHUNK = 1 << 16
@@ -50,6 +50,10 @@ _OTHER_BOMS = ((b"\xff\xfe\x00\x00", "UTF-32"), (b"\x00\x00\xfe\xff", "UTF-32"),
 _TAG = re.compile(rb"<[^\s/>]+")
 _ATTRIBUTE = re.compile(rb"\s+([^\s=/>]+)\s*=\s*(\"[^\"]*\"|'[^']*')")
 _XML_SPACE = re.compile(rb"[\t\r\n]")
+_EXPONENT = re.compile(r"[eE]")
+_HEX_PREFIX = re.compile(r"[+-]?0[xX]")
+_NAME_ATTRIBUTES = frozenset({"name", "model"})
+"""The attributes that name something (``<joint name>``, ``<mujoco model>``): held to :func:`~mobility.errors.name_problem`."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -121,6 +125,8 @@ def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False
     def start(tag: str, attrs: dict[str, str]) -> None:
         for key, value in attrs.items():
             problem = control_character_problem(value, "an attribute")
+            if problem is None and key in _NAME_ATTRIBUTES and value.strip():  # a name (of a body, link, joint, the robot): the rule of every name (&#13; is a line break); a blank one is the robot readers' to refuse
+                problem = name_problem(value, "a name")
             if problem is not None:  # a character reference (&#x9b;) can make what a terminal obeys
                 raise MechanismFileError(f"{clipped(tag)}.{clipped(key)}", problem, file=file, line=parser.CurrentLineNumber)
         if mujoco and "file" in attrs:
@@ -193,6 +199,38 @@ def _raw_value(source: bytes, start: int, name: bytes) -> bytes | None:
     return None
 
 
+def underflow_problem(words: list[str], values: list[float]) -> str | None:
+    """What is wrong with numbers written non-zero that read as 0 (too small for a double: ``1e-400``), or ``None``.
+
+    ``float`` (and MuJoCo's ``strtod``) read such a number as 0 without a
+    word; the expression evaluator of mechanism files refuses an underflow,
+    and so do the readers of MJCF and URDF, in one line.
+
+    Parameters
+    ----------
+    words : list of str
+        The numbers as written (decimal, or hexadecimal as ``0x1p-3``).
+    values : list of float
+        What they read as, one for each word.
+
+    Examples
+    --------
+    >>> underflow_problem(["0", "0.0e9", "-0x0p3", "1e-310"], [0.0, 0.0, -0.0, 1e-310]) is None
+    True
+    >>> underflow_problem(["1", "-1e-400"], [1.0, -0.0])
+    "'-1e-400' is too small for a double and reads as 0 (a number below about 4.9e-324 in size underflows); expected 0 or a larger number"
+    """
+    for word, value in zip(words, values):
+        if value != 0.0:
+            continue
+        hexadecimal = _HEX_PREFIX.match(word)
+        mantissa = word[hexadecimal.end():].partition("p")[0].partition("P")[0] if hexadecimal else _EXPONENT.split(word)[0]
+        if any(c not in "+-.0" for c in mantissa):
+            return (f"{clipped(word)!r} is too small for a double and reads as 0 (a number below about 4.9e-324 in size underflows); "
+                    "expected 0 or a larger number")
+    return None
+
+
 def read_xml(path: str | Path) -> XmlDocument:
     """Read and parse an XML file (see :func:`parse_xml`).
 
@@ -245,7 +283,7 @@ def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
 
     parser.StartElementHandler = start
     try:
-        with open(path, "rb") as handle:
+        with open_regular(path) as handle:  # without waiting: /proc/kmsg is a regular file whose reading waits
             _feed_until_found(handle, parser, found, current_limits(limits).max_file_bytes)
     except (OSError, StopIteration, expat.ExpatError, LookupError, ValueError):
         pass
@@ -257,10 +295,10 @@ def _feed_until_found(handle: BinaryIO, parser: Any, found: list[str], cap: int)
     size = 0
     while not found and size <= cap:
         chunk = handle.read(min(_CHUNK, cap + 1 - size))
+        if not chunk:  # the end, or nothing to read without waiting (None)
+            return
         if size == 0 and not _starts_like_xml(chunk):
             return  # not XML
-        if not chunk:
-            return
         size += len(chunk)
         parser.Parse(chunk, False)
 

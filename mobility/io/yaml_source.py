@@ -38,6 +38,7 @@ mobility.errors.MechanismFileError: m.yaml:1: a: unsupported YAML tag '!vec'; me
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -47,6 +48,7 @@ from typing import Any
 import yaml
 
 from ..errors import TERMINAL_CONTROL, MechanismFileError, RequestError, clipped, control_character_problem
+from .expressions import literal_problem
 from .files import read_capped
 from .limits import Limits, current_limits
 
@@ -322,9 +324,14 @@ class _Builder:
         if construct is None:  # tags of the resolver with no value of their own ('=' and '<<' as values)
             return value
         try:
-            return construct(self.loader, yaml.ScalarNode(tag, value, event.start_mark, event.end_mark))
+            result = construct(self.loader, yaml.ScalarNode(tag, value, event.start_mark, event.end_mark))
         except (ValueError, TypeError, AttributeError, OverflowError, KeyError):
             raise self.fail(path, line, f"cannot read {clipped(value)!r} as {_KIND.get(tag, tag)}") from None
+        if type(result) is float and (result == 0.0 or math.isinf(result)):
+            problem = literal_problem(value, result)  # 1e-400 would read as 0.0, 1e400 as inf: as the expressions refuse it
+            if problem is not None:
+                raise self.fail(path, line, problem)
+        return result
 
     def check_collection_tag(self, event: Any, path: KeyPath, line: int, is_mapping: bool) -> None:
         tag = event.tag

@@ -35,10 +35,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..core.tolerance import SAME_GRID_VALUE
-from ..errors import RequestError
+from ..errors import RequestError, clipped
 from ..sweeps import SweepAxis, SweepResult
 from ..sweeps.grid import whole_turns
 from .plotting.backend import new_figure, require_matplotlib
+from .plotting.style import MAX_TITLE, drawn_name
 from .text import fmt_number
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -137,16 +138,22 @@ def require_drawable(coordinates: int, what: str = "") -> None:
 def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
     """A picture of ``result``: a curve, a map or slices (see the module docstring).
 
+    The default title is the mechanism's name; it and the coordinates' names
+    are cut to :data:`~mobility.report.plotting.style.MAX_LABEL` characters
+    (``title`` to :data:`~mobility.report.plotting.style.MAX_TITLE`).
+
     Raises
     ------
     RequestError
-        For a sweep of more than three coordinates.
+        For a sweep of more than three coordinates, or a ``title`` not a str (or None).
     PlottingUnavailableError
         When matplotlib is not installed.
     """
+    if title is not None and not isinstance(title, str):
+        raise RequestError(f"plot_sweep: title: expected a str or None, got {type(title).__name__}")
     k = len(result.axes)
     require_drawable(k)
-    title = result.name if title is None else title
+    title = drawn_name(result.name) if title is None else clipped(title, MAX_TITLE)
     if k == 1:
         fig = _curve(result, title)
     elif k == 2:
@@ -161,6 +168,11 @@ def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
         fig.text(0.5, 0.5, "no pose of the grid could be assembled", ha="center", va="center", fontsize="large",
                  bbox={"facecolor": "white", "edgecolor": "0.5"}, gid="mobility:sweep:nothing")
     return fig
+
+
+def _axis_label(axis: SweepAxis) -> str:
+    """``"O1 [deg]"``, the name cut to :data:`~mobility.report.plotting.style.MAX_LABEL` characters (a name may be megabytes long)."""
+    return f"{drawn_name(axis.name)} [{axis.unit}]" if axis.unit else drawn_name(axis.name)
 
 
 UNASSEMBLED = "0.85"
@@ -201,7 +213,7 @@ def _curve(result: SweepResult, title: str) -> "Figure":
     shown = shown[np.isfinite(shown) & (shown > 0)]
     if shown.size:  # at least a factor of 4: a flat curve would leave the log scale a range of 1e-16 (no ticks, a tilted line)
         bottom.set_ylim(shown.min() / 2.0, min(shown.max() * 2.0, 10.0))
-    bottom.set_xlabel(axis.label)
+    bottom.set_xlabel(_axis_label(axis))
     bottom.set_ylabel("relative value")
     step = (x[1] - x[0]) if len(x) > 1 else 1.0
     for panel in (top, bottom):
@@ -247,8 +259,8 @@ def _map(ax: Any, result: SweepResult, index: np.ndarray, limits: tuple[float, f
         ax.scatter(x[i], y[j], marker="x", color="tab:red", s=28, label="singular pose", gid="mobility:sweep:singular", zorder=3)
     if present.size > 1:
         ax.scatter([], [], marker="s", color="none", edgecolor="0.3", label="regions (white outlines): " + "; ".join(labels[c] for c in present.astype(int)))
-    ax.set_xlabel(a0.label)
-    ax.set_ylabel(a1.label)
+    ax.set_xlabel(_axis_label(a0))
+    ax.set_ylabel(_axis_label(a1))
     handles, _ = ax.get_legend_handles_labels()
     if missing.any():
         handles.append(_unassembled_patch())
@@ -305,7 +317,7 @@ def choose_slices(result: SweepResult, most: int = MAX_SLICES) -> tuple[tuple[in
     third = result.axes[2]
     count = third.count
     if count <= most:
-        return tuple(range(count)), f"all {count} values of {third.name}"
+        return tuple(range(count)), f"all {count} values of {drawn_name(third.name)}"
     home = _at_file_pose(third)
     chosen = [] if home is None else [home]
     holding = sorted({int(np.unravel_index(p.index, result.shape)[2]) for p in result.singular})
@@ -321,7 +333,7 @@ def choose_slices(result: SweepResult, most: int = MAX_SLICES) -> tuple[tuple[in
         parts.append(f"the {len(holding)} value{plural} holding singular poses" if shown == len(holding) else f"{shown} of the {len(holding)} values holding singular poses")
     if len(chosen) > len(singular) + (home is not None):
         parts.append("then values spread over the range" if parts else "values spread over the range")
-    return tuple(sorted(chosen)), f"{len(chosen)} of {count} values of {third.name}: " + "; ".join(parts)
+    return tuple(sorted(chosen)), f"{len(chosen)} of {count} values of {drawn_name(third.name)}: " + "; ".join(parts)
 
 
 def _slices(result: SweepResult, title: str) -> "Figure":
@@ -341,7 +353,7 @@ def _slices(result: SweepResult, title: str) -> "Figure":
     for ax, k in zip(axes, chosen):
         mesh = _map(ax, result, grid[:, :, k], limits)
         marks = (["file's pose"] if k == home else []) + ([f"{on_slice[k]} singular"] if on_slice[k] else [])
-        ax.set_title(f"{third.name} = {fmt_number(float(third.values[k]), third.extent)}{unit}" + (f" ({', '.join(marks)})" if marks else ""), fontsize="medium")
+        ax.set_title(f"{drawn_name(third.name)} = {fmt_number(float(third.values[k]), third.extent)}{unit}" + (f" ({', '.join(marks)})" if marks else ""), fontsize="medium")
     for ax in axes[len(chosen) :]:
         ax.set_visible(False)
     if mesh is not None:

@@ -46,7 +46,7 @@ import numpy as np
 
 from ..core.joint_screws import joint_screws
 from ..core.kinematics import kinematics
-from ..core.model import Mechanism
+from ..core.model import Mechanism, integer_from_text, number_from_text
 from ..core.tolerance import SAME_GRID_VALUE, SWEEP_REACH
 from ..errors import RequestError, clipped, name_list
 
@@ -280,7 +280,7 @@ def _bounds(where: str, start: object, stop: object, count: object) -> tuple[flo
     values = []
     for label, text in (("START", start), ("STOP", stop)):
         try:
-            x = float(str(text).strip()) if not isinstance(text, (int, float)) or isinstance(text, bool) else float(text)
+            x = number_from_text(str(text).strip()) if not isinstance(text, (int, float)) or isinstance(text, bool) else float(text)
         except ValueError:
             raise RequestError(f"{where}: {label} must be a number, got {clipped(str(text).strip())!r}") from None
         except OverflowError:  # an integer beyond the floats
@@ -289,7 +289,7 @@ def _bounds(where: str, start: object, stop: object, count: object) -> tuple[flo
             raise RequestError(f"{where}: {label} must be a finite number, got {text!r}")
         values.append(x)
     try:
-        n = int(str(count).strip()) if not isinstance(count, int) or isinstance(count, bool) else count
+        n = integer_from_text(str(count).strip()) if not isinstance(count, int) or isinstance(count, bool) else count
     except ValueError:
         raise RequestError(f"{where}: COUNT must be an integer, got {str(count).strip()!r}") from None
     if isinstance(count, bool) or (isinstance(count, float) and count != int(count)):

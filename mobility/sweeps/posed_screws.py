@@ -156,7 +156,7 @@ def posed_screws(bk: BatchKinematics, q: np.ndarray) -> PosedScrews:
     located = [g["point"] for g in geometry if "point" in g]
     on_end_effector = [g["point"] for j, g in zip(mechanism.world_joints, geometry) if "point" in g and mechanism.end_effector in j.links]
     pitch_a = np.array(pitches, dtype=float)
-    centres, lengths = characteristic_scales(np.stack(located, axis=1) if located else np.zeros((count, 0, 3)), pitch_a[pitch_a != 0.0])
+    centres, lengths = characteristic_scales(np.stack(located, axis=1) if located else np.zeros((count, 0, 3)), pitches=pitch_a[pitch_a != 0.0])
     ax = np.stack(axes, axis=2)  # (N, 3, f)
     pt = np.stack(points, axis=2)
     moment = (np.cross(pt - centres[:, :, None], ax, axis=1) + pitch_a * ax) / lengths[:, None, None]

@@ -29,10 +29,11 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..core.analysis import analyze, gruebler_kutzbach
-from ..core.model import Joint, Mechanism
+from ..core.model import Joint, Mechanism, integer_value, real_value, require_instance
 from ..core.screws import helical_twist, prismatic_twist
 from ..core.linalg import rank
-from ..errors import RequestError, SynthesisError, name_list
+from ..errors import RequestError, SynthesisError, name_list, shown_argument
+from ..io.limits import current_limits
 from ..io.writer import mechanism_to_yaml
 from .enumeration import SynthesisResult
 from .limb_types import CandidateJoint, joint_groups
@@ -99,15 +100,33 @@ def assemble_pkm(
     ``height``.  Every 6-DOF limb's P is actuated, and so is the first P of
     the synthesized limb (its last R if it has none; none if it has neither).
 
+    ``copies`` is at least 1, and so few that the PKM has no more joints than
+    a mechanism file may (:attr:`~mobility.io.limits.Limits.max_joints`,
+    ``MOBILITY_MAX_JOINTS``); the lengths are finite and positive, the angles
+    finite.
+
     Raises
     ------
     SynthesisError
         For an unknown ``other`` limb, a ``structure`` that is not in
         ``result``, or a limb singular at its home pose.
+    RequestError
+        For an argument of the wrong type or out of its range (each named).
     """
+    result = require_instance(result, SynthesisResult, "assemble_pkm: result", "mobility.synthesize")
     if other not in ("UPS", "SPRR"):
-        raise SynthesisError(f"other: expected UPS or SPRR, got {other!r}")
+        raise SynthesisError(f"other: expected UPS or SPRR, got {shown_argument(other)}")
+    if not isinstance(structure, str):
+        raise RequestError(f"assemble_pkm: structure: expected the name of a limb type of the result (a str), got {type(structure).__name__}")
+    if name is not None and not isinstance(name, str):
+        raise RequestError(f"assemble_pkm: name: expected a str or None, got {type(name).__name__}")
     found = result.structure(structure)
+    copies = _copies(copies, result.joints, 3 if other == "UPS" else 4)
+    base_radius, platform_radius, height = (_length(v, key) for v, key in ((base_radius, "base_radius"), (platform_radius, "platform_radius"), (height, "height")))
+    twist = real_value(twist_deg)
+    if twist is None:
+        raise RequestError(f"assemble_pkm: twist_deg: expected a finite number of degrees, got {shown_argument(twist_deg)}")
+    pattern = _twist_pattern(twist_pattern)
     plane = tuple(k for k in result.directions if k.startswith("s"))
     s1 = np.array(result.directions.get("s1", (0.0, 0.0, 1.0)))
     # any axis not along s1 gives a normal to it; 0.9 only keeps the cross product well away from zero
@@ -135,7 +154,7 @@ def assemble_pkm(
     joints = [replace(j, actuated=j is acted) for j in joints]
     for i in range(copies):
         phi = math.radians(45.0 + 360.0 * i / copies)
-        psi = phi + math.radians(twist_deg) * twist_pattern[i % len(twist_pattern)]
+        psi = phi + math.radians(twist) * pattern[i % len(pattern)]
         a = origin + np.array([base_radius * math.cos(phi), base_radius * math.sin(phi), 0.0])
         b = origin + np.array([platform_radius * math.cos(psi), platform_radius * math.sin(psi), height])
         tangent_a = np.array([-math.sin(phi), math.cos(phi), 0.0])
@@ -157,6 +176,53 @@ def assemble_pkm(
                 Joint(f"R{k}b", "R", (f"L{k}c", "platform"), axis=tuple(up), point=tuple(b)),
             ]
     return Mechanism(name or f"{found.name}-{copies}({other})", "base", "platform", tuple(joints))
+
+
+def _copies(value: object, limb_joints: int, per_copy: int) -> int:
+    """``copies`` of :func:`assemble_pkm`: an integer from 1 to as many as keep the PKM within the joints a file may have; else a :class:`RequestError`.
+
+    Examples
+    --------
+    >>> _copies(4, 5, 3)
+    4
+    >>> _copies(0, 5, 3)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: assemble_pkm: copies: expected an integer from 1 to 1665 (5 joints of the limb and 3 per copy within the limit of 5000 joints: set MOBILITY_MAX_JOINTS to raise it), got 0
+    """
+    limits = current_limits()
+    most = max(1, (limits.max_joints - limb_joints) // per_copy)
+    number = integer_value(value)
+    if number is None or not 1 <= number <= most:
+        raise RequestError(f"assemble_pkm: copies: expected an integer from 1 to {most} ({limb_joints} joints of the limb and {per_copy} per copy "
+                           f"within the limit of {limits.max_joints} joints: {limits.hint('max_joints')}), got {shown_argument(value)}")
+    return number
+
+
+def _length(value: object, key: str) -> float:
+    """A length of :func:`assemble_pkm`: a finite positive number, else a :class:`RequestError` naming ``key``."""
+    number = real_value(value)
+    if number is None or number <= 0.0:
+        raise RequestError(f"assemble_pkm: {key}: expected a finite positive length, got {shown_argument(value)}")
+    return number
+
+
+def _twist_pattern(value: object) -> tuple[float, ...]:
+    """``twist_pattern`` of :func:`assemble_pkm`: a non-empty sequence of finite numbers (at most 1000), else a :class:`RequestError`.
+
+    Examples
+    --------
+    >>> _twist_pattern(())
+    Traceback (most recent call last):
+    mobility.errors.RequestError: assemble_pkm: twist_pattern: expected a non-empty sequence of finite numbers (at most 1000), got ()
+    """
+    numbers: list[float | None] = []
+    if isinstance(value, Sequence) and not isinstance(value, (str, bytes)) and len(value) <= 1000:
+        numbers = [real_value(x) for x in value]
+    elif isinstance(value, np.ndarray) and value.ndim == 1 and value.size <= 1000:
+        numbers = [real_value(x) for x in value.tolist()]
+    if not numbers or any(x is None for x in numbers):
+        raise RequestError(f"assemble_pkm: twist_pattern: expected a non-empty sequence of finite numbers (at most 1000), got {shown_argument(value)}")
+    return tuple(x for x in numbers if x is not None)
 
 
 def pkm_document(result: SynthesisResult, structure: str, *, other: str = "UPS", **geometry: Any) -> tuple[Mechanism, str]:

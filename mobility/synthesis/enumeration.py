@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Any, Sequence, cast
+from typing import Any, Iterable, Sequence, cast
 
 import numpy as np
 
@@ -55,7 +55,16 @@ from .generic_rank import generic_rank, sample_joint_values
 from .limb_types import CandidateJoint, SynthesizedLimb, limb_types
 from .patterns import MotionPattern, Vector, named_pattern
 
-__all__ = ["SynthesisResult", "candidate_joints", "synthesize", "generates"]
+__all__ = ["SynthesisResult", "candidate_joints", "synthesize", "generates", "MAX_SAMPLES", "MAX_VERIFY_SAMPLES", "MAX_GENERIC_POINTS"]
+
+MAX_SAMPLES = 30
+"""Largest ``samples`` of :func:`synthesize` (``mobility synthesize --samples``): random poses per rank decision (3 decide every bundled pattern; 30 take 2T3R about 6 s)."""
+
+MAX_VERIFY_SAMPLES = 10
+"""Largest ``verify_samples`` (``--verify``): each verified sample fits every kept limb's motions by the pattern (10 take 2T3R about 20 s)."""
+
+MAX_GENERIC_POINTS = 50
+"""Largest ``generic_points``: each adds one candidate R joint per direction, tested once; a chain of ``n`` joints uses at most ``n`` of them."""
 
 
 @dataclass(frozen=True)
@@ -161,20 +170,24 @@ def candidate_joints(pattern: MotionPattern, generic_points: int, rng: np.random
     return out, dict(points), dict(directions)
 
 
-def _count(value: object, key: str, least: int) -> int:
-    """A count of :func:`synthesize`: an integer (not a bool) of at least ``least``, else a :class:`SynthesisError` naming ``key``.
+def _count(value: object, key: str, least: int, most: int | None = None, caller: str = "synthesize") -> int:
+    """A count of :func:`synthesize`: an integer (not a bool) from ``least`` to ``most``, else a :class:`SynthesisError` naming ``key``.
 
     Examples
     --------
-    >>> _count(np.int64(2), "samples", 1)
+    >>> _count(np.int64(2), "samples", 1, MAX_SAMPLES)
     2
     >>> _count(2.5, "joints", 1)
     Traceback (most recent call last):
     mobility.errors.SynthesisError: synthesize: joints: expected an integer of at least 1, got 2.5
+    >>> _count(10**400, "samples", 1, MAX_SAMPLES)
+    Traceback (most recent call last):
+    mobility.errors.SynthesisError: synthesize: samples: expected an integer from 1 to 30, got 100000000000000000000000000000000000...
     """
     number = integer_value(value)
-    if number is None or number < least:
-        raise SynthesisError(f"synthesize: {key}: expected an integer of at least {least}, got {shown_argument(value)}")
+    if number is None or number < least or (most is not None and number > most):
+        expected = f"of at least {least}" if most is None else f"from {least} to {most}"
+        raise SynthesisError(f"{caller}: {key}: expected an integer {expected}, got {shown_argument(value)}")
     return number
 
 
@@ -199,12 +212,13 @@ def synthesize(
         that: fewer give the chains whose motions lie in the pattern, the
         parts of limbs).
     generic_points : int, optional
-        Generic points for R axes off the pattern's points (default: ``joints``).
+        Generic points for R axes off the pattern's points (default: ``joints``;
+        at most :data:`MAX_GENERIC_POINTS`).
     samples : int
-        Random poses per generic-rank decision (at least 1).
+        Random poses per generic-rank decision (from 1 to :data:`MAX_SAMPLES`).
     verify_samples : int
         Random finite motions of each kept joint sequence fitted by the pattern
-        (the sample route); 0 skips it.
+        (the sample route), at most :data:`MAX_VERIFY_SAMPLES`; 0 skips it.
     seed : int
         Seed of every random choice (generic points, poses, fit starts).
     tol : Tolerance
@@ -219,8 +233,8 @@ def synthesize(
     SynthesisError
         For a pattern with more than two factors (the rank route needs
         ``M = G1 △ G2``), an unknown pattern name, a joint count below 1,
-        fewer than one sample per rank decision or a negative number of
-        verified samples (each count an integer).
+        or a count of samples, verified samples or generic points out of its
+        range (each count an integer).
     RequestError
         For a ``pattern`` neither a :class:`MotionPattern` nor a name, or a
         ``seed`` not a non-negative integer.
@@ -241,9 +255,9 @@ def synthesize(
     if isinstance(pattern, str):
         pattern = named_pattern(pattern)
     pattern = require_instance(pattern, MotionPattern, "synthesize: pattern", "named_pattern, a name such as '2T3R',")
-    samples, verify_samples = _count(samples, "samples", 1), _count(verify_samples, "verify_samples", 0)
+    samples, verify_samples = _count(samples, "samples", 1, MAX_SAMPLES), _count(verify_samples, "verify_samples", 0, MAX_VERIFY_SAMPLES)
     joints = None if joints is None else _count(joints, "joints", 1)
-    generic_points = None if generic_points is None else _count(generic_points, "generic_points", 0)
+    generic_points = None if generic_points is None else _count(generic_points, "generic_points", 0, MAX_GENERIC_POINTS)
     rng = np.random.default_rng(require_seed(seed, "synthesize: seed"))
     tol = require_tolerance(tol, "synthesize")
     if len(pattern.factors) > 2:
@@ -334,12 +348,15 @@ def generates(pattern: MotionPattern, joints: Sequence[ScrewJoint], *, samples: 
     >>> generates(p, S + [P1, P2]), generates(p, [P1, P2] + S)                      # SP1P2 yes; P1P2S no
     (True, False)
     """
+    pattern = require_instance(pattern, MotionPattern, "generates: pattern", "named_pattern")
     if len(pattern.factors) > 2:
         raise SynthesisError("the rank route needs a pattern of one or two factors (M = G1 △ G2)")
-    if samples < 1:
-        raise SynthesisError(f"samples must be at least 1, got {samples}")
-    chain = tuple(joints)
-    rng = np.random.default_rng(seed)
+    samples = _count(samples, "samples", 1, MAX_SAMPLES, "generates")
+    chain = tuple(joints) if not isinstance(joints, (str, bytes)) and isinstance(joints, Iterable) else None
+    if chain is None or not all(isinstance(j, ScrewJoint) for j in chain):
+        raise SynthesisError(f"generates: joints: expected a sequence of ScrewJoint, got {shown_argument(joints)}")
+    rng = np.random.default_rng(require_seed(seed, "generates: seed"))
+    tol = require_tolerance(tol, "generates")
     dim = pattern.dim
     outer = generic_rank(pattern.factors[0].generators() + chain + pattern.factors[-1].generators(), rng, samples, pattern.length, tol)
     return outer == dim and generic_rank(chain, rng, samples, pattern.length, tol) == dim

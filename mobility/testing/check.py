@@ -13,7 +13,9 @@ How each key is compared:
   ``gruebler_kutzbach``: equality with the :class:`~mobility.core.result.Result`;
 * ``translations``: as subspaces (same dimension, and stacking the expected
   and found bases adds no dimension), with the rank policy of
-  :mod:`mobility.core.tolerance`; an empty list means "no translation";
+  :mod:`mobility.core.tolerance`; an empty list means "no translation" (a
+  zero or dependent direction is refused when the file is read: an input
+  error, exit status 2, not a failed check);
 * ``full_cycle_dof``, ``full_cycle_mobility``, ``finite_verdict``: equality
   with :func:`mobility.finite.finite_mobility`, computed only when one of them
   is present (it costs more than the screw analysis);
@@ -72,7 +74,7 @@ from ..io.files import file_name, os_problem, printable_name
 from ..io.limits import current_limits, require_size
 from ..io.loader import load, read_mechanism
 from ..io.yaml_source import Positions, parse_yaml, read_text
-from ..core.model import Mechanism, require_mechanism
+from ..core.model import Mechanism, expected_basis_problem, require_mechanism
 from ..core.result import Result
 from ..core.screws import same_subspace
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, clean_numbers, require_tolerance
@@ -311,18 +313,28 @@ def _finite(key: str) -> Comparator:
 def compare_translations(found: np.ndarray, expected: Any, tol: Tolerance) -> Comparison:
     """An expected translation basis (rows) compared with the ``found`` one as subspaces.
 
+    Raises
+    ------
+    RequestError
+        When ``expected`` is not a basis (a zero row, or one dependent on
+        those before it): an input error, not a failed check.  A file's
+        ``expected`` block is refused for it when read.
+
     Examples
     --------
     >>> compare_translations(np.array([[0.0, 0.0, 1.0]]), [[0, 0, 5]], DEFAULT_TOLERANCE).ok
     True
     >>> compare_translations(np.zeros((0, 3)), [[1, 0, 0]], DEFAULT_TOLERANCE).describe()
     'translations: found the span of [], expected the span of [[1, 0, 0]]'
+    >>> compare_translations(np.zeros((0, 3)), [[0, 0, 0]], DEFAULT_TOLERANCE)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: compare_translations: expected[0]: expected a non-zero direction, got [0, 0, 0]
     """
     rows = np.asarray(expected, dtype=float).reshape(-1, 3)
-    largest = np.abs(rows).max(axis=1, initial=0.0)
+    problem = expected_basis_problem([(float(x), float(y), float(z)) for x, y, z in rows.tolist()])
+    if problem is not None:
+        raise RequestError(f"compare_translations: expected[{problem[0]}]: {problem[1]}")
     actual = clean_numbers(found)
-    if np.any(largest == 0.0):
-        return Comparison("translations", rows.tolist(), actual, False, "an expected translation is the zero vector")
     scaled = rows * np.array([binary_scale(row) for row in rows]).reshape(-1, 1)  # before squaring: any finite vector has a direction
     unit = scaled / np.linalg.norm(scaled, axis=1)[:, None]
     if len(unit) == 0 or len(found) == 0:

@@ -15,7 +15,7 @@ import numpy as np
 from ...core.model import Mechanism
 from .geometry import SAME_POINT, helix, perpendiculars, plate_ring, unique_points
 from .sketch import Sketch
-from .style import COLORS, JOINT_STYLE
+from .style import COLORS, JOINT_STYLE, drawn_name
 from .views import view_axes
 
 __all__ = ["cone", "arrow", "rotation_mark", "link_shape", "draw_link", "draw_links", "joint_scale", "draw_joints", "triad", "LINK_WIDTHS", "LINK_ARTISTS", "ROOMY_JOINTS"]
@@ -201,7 +201,7 @@ def draw_joints(ax: Any, m: Mechanism, sk: Sketch, labels: bool, view: tuple[flo
         _, sx, sy = view_axes(*view)
         off = 0.03 * size * (0.8 * sx + 0.6 * sy)  # up and to the right on the screen, whatever the view
         for i, name in enumerate(sk.names):
-            ax.text(*(sk.points[i] + off), name, fontsize=6.5, color="#263238", gid=f"mobility:joint-label:{name}", zorder=1e4)
+            ax.text(*(sk.points[i] + off), drawn_name(name), fontsize=6.5, color="#263238", gid=f"mobility:joint-label:{name}", zorder=1e4)
 
 
 def triad(ax: Any, elev: float, azim: float) -> None:

@@ -17,10 +17,11 @@ import numpy as np
 from ...core.analysis import analyze
 from ...core.model import Mechanism, require_mechanism
 from ...core.result import Result, require_same_mechanism
+from ...errors import RequestError
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ...core.topology import Bridge, JointNode, Node, Parallel, Series, joints_of
 from .backend import new_figure, require_figsize, require_matplotlib
-from .style import COLORS, LIMB_COLORS
+from .style import COLORS, LIMB_COLORS, drawn_name
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -138,13 +139,14 @@ def plot_graph(
     PlottingUnavailableError
         When matplotlib is not installed.
     RequestError
-        When ``result`` analysed another mechanism than ``mechanism``, or
+        When ``result`` is not a :class:`Result` of ``mechanism``, or
         ``figsize`` is not a width and a height in range.
     """
     mechanism = require_mechanism(mechanism, "plot_graph")
     tol = require_tolerance(tol, "plot_graph")
     size = require_figsize(figsize, "plot_graph")
     if result is not None:
+        _require_result_like(result)
         require_same_mechanism(mechanism, result, "plot_graph")
     require_matplotlib()
     from matplotlib.lines import Line2D
@@ -168,8 +170,25 @@ def plot_graph(
         handles += [Line2D([], [], color=LIMB_COLORS[k % len(LIMB_COLORS)], lw=2.2, label=f"branch {k + 1}") for k in range(min(len(branches), len(LIMB_COLORS)))]
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), frameon=False, fontsize=8)
     unlabelled = "" if labelled else f" (names left out: more than {LABELLED_JOINTS} joints)"
-    fig.suptitle(f"{r.name}: mobility {r.mobility}, end effector {r.dof} DOF ({r.pattern}), {r.loops} loop(s){unlabelled}", fontsize=11)
+    fig.suptitle(f"{drawn_name(r.name)}: mobility {r.mobility}, end effector {r.dof} DOF ({r.pattern}), {r.loops} loop(s){unlabelled}", fontsize=11)
     return fig
+
+
+_RESULT_FIELDS = ("topology", "node_systems", "name", "mobility", "dof", "pattern", "loops")
+"""What :func:`plot_graph` reads of a result."""
+
+
+def _require_result_like(value: object) -> None:
+    """A :class:`RequestError` unless ``value`` is a :class:`Result`, or stands for one (has every field the picture reads).
+
+    Examples
+    --------
+    >>> _require_result_like(5)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: plot_graph: result: expected a Result (from mobility.analyze) or None, got int
+    """
+    if not isinstance(value, Result) and not all(hasattr(value, key) for key in _RESULT_FIELDS):
+        raise RequestError(f"plot_graph: result: expected a Result (from mobility.analyze) or None, got {type(value).__name__}")
 
 
 class _JointGraph:
@@ -232,7 +251,7 @@ class _JointGraph:
             self._draw_lines(ax)
             return
         for x, fc in zip(g.nodes, node_color):  # each link's name in a box of its role's colour
-            nx.draw_networkx_labels(g, pos, labels={x: x}, ax=ax, font_size=7, bbox={"boxstyle": "round,pad=0.3", "fc": fc, "ec": "#37474f", "lw": 0.8})
+            nx.draw_networkx_labels(g, pos, labels={x: drawn_name(x)}, ax=ax, font_size=7, bbox={"boxstyle": "round,pad=0.3", "fc": fc, "ec": "#37474f", "lw": 0.8})
         seen: dict[frozenset[str], int] = {}
         for u, v, k, data in g.edges(keys=True, data=True):
             n_same = g.number_of_edges(u, v)
@@ -253,7 +272,7 @@ class _JointGraph:
             # joints between the same two links share one label, one line each,
             # near the end in the wider layer, where labels have room
             ks = cast("list[int]", sorted(g[u][v]))  # the edges' keys, joint indices (the stubs type them as nodes)
-            text = "\n".join(f"{m.joints[k].name} ({m.joints[k].type})" for k in ks)
+            text = "\n".join(f"{drawn_name(m.joints[k].name)} ({m.joints[k].type})" for k in ks)
             t = 0.32 if len(self.layers[self.depth[u]]) > len(self.layers[self.depth[v]]) else 0.68
             x, y = (1.0 - t) * np.asarray(pos[u]) + t * np.asarray(pos[v])
             ax.text(x, y, text, fontsize=6.5, color=colors.get(ks[0], "#37474f"), ha="center", va="center", bbox=label_box, zorder=3)
@@ -280,7 +299,7 @@ class _JointGraph:
 def _node_label(n: Node, dof: int, idle: int, mechanism: Mechanism) -> tuple[str, str]:
     """The kind of a tree node and its label: the joint's name and type, or the node's kind, dimension and idle count."""
     if isinstance(n, JointNode):
-        return "joint", f"{n.name}\n{mechanism.joints[n.index].type}"
+        return "joint", f"{drawn_name(n.name)}\n{mechanism.joints[n.index].type}"
     idle_text = f", idle {idle}" if idle else ""
     kind, mark = ("series", "—") if isinstance(n, Series) else ("parallel", "∥") if isinstance(n, Parallel) else ("bridge", "⊠")
     return kind, f"{mark} {kind}\ndim {dof}{idle_text}"
@@ -321,7 +340,7 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str],
     for key, n in tnodes.items() if labelled else ():  # a bridge's connections join named links: say which
         if isinstance(n, Bridge):
             for u, v, child in n.edges:
-                bridge_edges[(key, id(child))] = f"{u}–{v}"
+                bridge_edges[(key, id(child))] = f"{drawn_name(u)}–{drawn_name(v)}"
     if bridge_edges:
         nx.draw_networkx_edge_labels(tree, tpos, edge_labels=bridge_edges, ax=ax, font_size=6, label_pos=0.7, rotate=False, bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none"})
     x0, y0 = tpos[id(topo.root)]

@@ -33,7 +33,7 @@ from .geometry import SAME_POINT, unique_points
 from .glyphs import arrow, cone, draw_joints, draw_links, rotation_mark, triad
 from .scene import Scene, build_scene
 from .sketch import Sketch, sketch
-from .style import COLORS, JOINT_STYLE
+from .style import COLORS, JOINT_STYLE, MAX_TITLE, drawn_name
 from .views import MAX_VIEWS, choose_views, thinned, view_axes
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -41,8 +41,6 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["plot_mechanism", "MAX_TITLE"]
 
-MAX_TITLE = 500
-"""The most characters of a title drawn (a longer one is cut, ``...`` marking the cut); the lines that do not fit the figure are cut too."""
 
 
 def plot_mechanism(
@@ -78,7 +76,8 @@ def plot_mechanism(
         Write joint names (up to 40 joints).
     legend : bool
     title : str, optional
-        Default: name, DOF, pattern and mobility.  Wrapped to the figure's
+        Default: name (cut to :data:`~mobility.report.plotting.style.MAX_LABEL`
+        characters), DOF, pattern and mobility.  Wrapped to the figure's
         width; cut (``...``) beyond :data:`MAX_TITLE` characters or the lines
         the figure has room for.
     figsize : (width, height) in inches, optional
@@ -128,7 +127,7 @@ def plot_mechanism(
     if legend:
         _legend(fig, mechanism, sk, scene)
     unit = f", lengths in {r.length_unit}" if r.length_unit else ""
-    _title(fig, title if title is not None else f"{r.name}: end effector {r.dof} DOF ({r.pattern}), mobility {r.mobility}{unit}", bool(legend))
+    _title(fig, title if title is not None else f"{drawn_name(r.name)}: end effector {r.dof} DOF ({r.pattern}), mobility {r.mobility}{unit}", bool(legend))
     return fig
 
 

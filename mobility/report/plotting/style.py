@@ -8,7 +8,32 @@ from __future__ import annotations
 
 from typing import TypedDict
 
-__all__ = ["JOINT_STYLE", "COLORS", "LIMB_COLORS"]
+from ...errors import clipped
+
+__all__ = ["JOINT_STYLE", "COLORS", "LIMB_COLORS", "MAX_LABEL", "MAX_TITLE", "drawn_name"]
+
+MAX_TITLE = 500
+"""The most characters of a title drawn (a longer one is cut, ``...`` marking the cut); the lines that do not fit the figure are cut too."""
+
+MAX_LABEL = 40
+"""The most characters of a name (a link's, a joint's, a mechanism's, a swept coordinate's) that a picture writes.
+
+A name may be as long as a file allows (megabytes): matplotlib lays out and
+renders every glyph of a text, so one name of 200,000 characters takes
+a minute to draw.  The pictures write its start, the cut marked by ``...``;
+the text reports keep every name whole.
+"""
+
+
+def drawn_name(name: object) -> str:
+    """``name`` as a picture writes it: at most :data:`MAX_LABEL` characters, a longer one cut and marked by ``...``.
+
+    Examples
+    --------
+    >>> drawn_name("crank"), len(drawn_name("J" * 200_000)), drawn_name("J" * 200_000)[-4:]
+    ('crank', 40, 'J...')
+    """
+    return clipped(name, MAX_LABEL)
 
 
 class JointStyle(TypedDict):
