@@ -248,8 +248,6 @@ joints:
 
 
 def test_names_in_markdown_start_no_heading_and_break_no_table(tmp_path, capsys):
-    from mobility.report.markdown import md_code, md_heading, md_line
-
     path = tmp_path / "inject.yaml"
     path.write_text(INJECTED, encoding="utf-8")
     status, out, _ = run(capsys, "analyze", path, "--format", "md")
@@ -263,6 +261,8 @@ def test_names_in_markdown_start_no_heading_and_break_no_table(tmp_path, capsys)
         cells = {line.replace("\\|", "").count("|") for line in table.splitlines()}
         assert len(cells) == 1  # every row as many cells as the header
     assert markdown_report(mobility.analyze(mobility.loads(INJECTED))) == out.rstrip("\n")
+    from mobility.report.markdown import md_code, md_heading, md_line
+
     # text given to one Markdown line keeps to it, whatever reaches it (a name from the model holds no line break;
     # a warning or a hand-made result might): no "## " can start a heading of its own
     assert md_code("A\n## B") == "`A ## B`" and md_line("x\r\n# y\u2028z") == "x # y z" and md_heading("a\n## b #") == "a ## b \\#"
