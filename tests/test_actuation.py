@@ -691,4 +691,4 @@ def test_the_enumeration_shows_the_margin_that_kappa_does_not_see():
     assert sliders.to_dict()["margin"] == sliders.margin
     header, row = [line for line in enumeration_text(found).splitlines() if "worst margin" in line or "P1 P2 P3" in line][:2]
     assert header.rstrip().endswith("worst margin") and row.split()[-1] == f"{sliders.margin:.2g}"
-    assert "rank margin below measures that" in actuation_text(check)
+    assert "actuation margin below measures that" in actuation_text(check)

@@ -60,7 +60,7 @@ def test_four_bar_rotates_about_instantaneous_centre():
     (rot,) = r.rotations
     assert np.allclose(rot.axis, Z) and np.allclose(rot.point[:2], centre)
     assert r.common_constraints == 3
-    assert "3 wrench(es) reciprocal to every joint twist" in r.gruebler_kutzbach_explanation
+    assert "3 wrenches reciprocal to every joint twist" in r.gruebler_kutzbach_explanation
 
 
 def test_parallelogram_coupler_translates():

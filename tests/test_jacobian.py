@@ -186,8 +186,8 @@ joints:
   - {name: U, type: U, links: [a, g], point: [0, 0, 0], axes: [[0, 1, 0], [0, 0, 1]]}
 """
     )
-    a = jacobian(fwd, actuated=["U.1", "U.2", "P"])
-    b = jacobian(rev, actuated=["U.1", "U.2", "P"])
+    a = jacobian(fwd, actuated=["U.0", "U.1", "P"])
+    b = jacobian(rev, actuated=["U.0", "U.1", "P"])
     assert a.dof == b.dof == 3
     assert same_subspace(a.platform_twists.T, b.platform_twists.T)
     model = parallel_model(rev, actuated=["P"])

@@ -27,12 +27,28 @@ Everything here is in the normalised coordinates of
   a unit twist of the end effector in any direction needs the same input
   speed and falls to 0 where ``G`` loses rank unevenly; being a ratio, it
   stays finite where every input's effect vanishes at once (and is 1 for one
-  freedom), so the distance to an actuation singularity is the margin of the
-  verdict's rank decision, not ``kappa``.  When the end effector has no
+  freedom), so the distance to an actuation singularity is the *actuation
+  margin* below, not ``kappa``.  When the end effector has no
   freedom (``d = 0``, e.g. a slider-crank's slider at a dead centre) the map
   is empty and ``kappa`` is 1 by convention: there is nothing to control, and
   the inputs, which still move the mechanism, are ``redundant`` for the end
   effector (without fighting: they drive a motion that leaves it still).
+* **actuation margin**: the smaller of the verdict's rank margin and the
+  ``d``-th singular value of the ``n x d`` map
+  ``H[i, k] = rho_i (a_i o t_k)``, unit ``a_i`` and the input's
+  *transmission* ``rho_i = |a_i o $_i| / (|a_i| |$_i|)`` (the cosine-like
+  factor of the power its twist puts through its wrench: 0 where the
+  actuation wrench passes through the input's own axis, a serial
+  singularity of its limb, as a four-bar's crank at the toggle that leaves
+  the rocker still).  Every factor is at most 1 in normalised coordinates,
+  so the margin does not change when the mechanism is scaled or moved.  It
+  falls to 0 at both kinds of actuation singularity: where the locked
+  inputs no longer hold the end effector (``H`` loses rank with the verdict's
+  wrenches) and where an input stops driving it (``rho_i = 0``).  It is 0
+  when actuation-singular, and when the end effector has no freedom for
+  inputs to drive (``d = 0``, ``n > 0``); where an input has no actuation
+  wrench of its own (it is held only with the others of its limb) it is the
+  verdict's rank margin.
 
 :func:`assess_wrenches` gives the verdict of bare wrenches (fast, for
 enumerations); :func:`assess_inputs` the full :class:`ActuationCheck` of named
@@ -136,6 +152,10 @@ class InputWrench(ReadOnlyArrays):
         wrench has unit force).
     note : str
         Why there is no wrench, if there is none.
+    transmission : float
+        ``|a o $| / (|a| |$|)``, in ``[0, 1]``: 0 where the input's twist
+        puts no power through its wrench (the rate of a force line's unit
+        wrench, whose twist is a unit translation along it).
     """
 
     name: str
@@ -144,6 +164,12 @@ class InputWrench(ReadOnlyArrays):
     wrench: np.ndarray | None
     rate: float = 1.0
     note: str = ""
+    transmission: float | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.transmission is None:  # a force line's: its rate, that of a unit wrench against a unit translation along it
+            object.__setattr__(self, "transmission", min(abs(float(self.rate)), 1.0))
 
 
 @dataclass(frozen=True, eq=False)
@@ -161,6 +187,9 @@ class Assessment(ReadOnlyArrays):
         ``kappa``; 0 when actuation-singular.
     in_constraint : tuple of bool
         Per input: it has no wrench, or its wrench lies in the constraint space.
+    actuation_margin : float
+        The distance to an actuation singularity (module docstring); 0 when
+        actuation-singular.
     """
 
     verdict: str
@@ -168,6 +197,7 @@ class Assessment(ReadOnlyArrays):
     uncontrolled: np.ndarray
     conditioning: float
     in_constraint: tuple[bool, ...]
+    actuation_margin: float = 1.0
 
 
 def assess_wrenches(
@@ -177,8 +207,9 @@ def assess_wrenches(
     constraints: np.ndarray,
     tol: Tolerance = DEFAULT_TOLERANCE,
     held: np.ndarray | None = None,
+    transmissions: Sequence[float] | None = None,
 ) -> Assessment:
-    """Verdict and conditioning of a choice of inputs from its actuation wrenches.
+    """Verdict, conditioning and actuation margin of a choice of inputs from its actuation wrenches.
 
     Parameters
     ----------
@@ -197,6 +228,10 @@ def assess_wrenches(
         constraint system of a limb with all its inputs locked, where an
         input has no wrench of its own:
         :meth:`~mobility.actuation.rigid_pose.RigidPose.locked_wrenches`).
+    transmissions : sequence of float, optional
+        ``|a o $| / (|a| |$|)`` of each input (:class:`InputWrench`); default:
+        each input's rate, at most 1 (force lines: unit wrenches, unit
+        translations along them).
 
     Returns
     -------
@@ -224,7 +259,35 @@ def assess_wrenches(
     conditioning = 0.0
     if verdict != SINGULAR:
         conditioning = 1.0 if dof == 0 else _conditioning(present, twists)
-    return Assessment(verdict, decision, uncontrolled, conditioning, in_constraint)
+    rho = [min(abs(float(r)), 1.0) for r in rates] if transmissions is None else [float(t) for t in transmissions]
+    margin = _actuation_margin(verdict, decision, [(w, t) for w, t in zip(wrenches, rho) if w is not None], len(wrenches), twists)
+    return Assessment(verdict, decision, uncontrolled, conditioning, in_constraint, margin)
+
+
+def _actuation_margin(verdict: str, decision: RankDecision, present: Sequence[tuple[np.ndarray, float]], n: int, twists: np.ndarray) -> float:
+    """The ``d``-th singular value of ``H[i, k] = rho_i (a_i o t_k)`` (module docstring), with its conventions.
+
+    Examples
+    --------
+    One input on one freedom: the product of the input's transmission and of
+    how much of its wrench the freedom sees.
+
+    >>> t = np.eye(6)[:, [3]]  # a translation along x
+    >>> _actuation_margin(VALID, RankDecision(6, 1.0), [(np.eye(6)[0], 0.5)], 1, t)
+    0.5
+    >>> _actuation_margin(VALID, RankDecision(6, 1.0), [(np.eye(6)[0], 0.0)], 1, t)  # the input drives nothing
+    0.0
+    >>> _actuation_margin(VALID, RankDecision(6, 0.25), [(np.eye(6)[0], 1.0)], 1, t)  # the verdict's rank margin, when smaller
+    0.25
+    """
+    dof = twists.shape[1]
+    if verdict == SINGULAR or (dof == 0 and n > 0):
+        return 0.0
+    if dof == 0 or len(present) < n:  # nothing to drive, or an input held only with the others of its limb
+        return float(decision.smallest_kept)
+    h = np.array([t * (w[SWAP_ROWS] @ twists) for w, t in present]).reshape(-1, dof)
+    sv = singular_values(h)
+    return min(float(sv[dof - 1]), float(decision.smallest_kept)) if sv.size >= dof else 0.0
 
 
 def _lies_in(wrench: np.ndarray, constraints: np.ndarray, tol: Tolerance) -> bool:
@@ -294,7 +357,8 @@ def assess_inputs(
     >>> check.verdict, check.pattern, check.inputs[0].axis.kind
     ('valid', '1T', 'force')
     """
-    a = assess_wrenches([i.wrench for i in inputs], [i.rate for i in inputs], spaces.twists, spaces.constraints, tol, held)
+    a = assess_wrenches([i.wrench for i in inputs], [i.rate for i in inputs], spaces.twists, spaces.constraints, tol, held,
+                        [float(i.transmission or 0.0) for i in inputs])
     norm, reference = spaces.normalisation, spaces.reference
     out_inputs = []
     useless = []
@@ -323,6 +387,8 @@ def assess_inputs(
         warns.append(
             f"near an actuation singularity: relative singular value {a.decision.smallest_kept:.2e} of the actuation and constraint wrenches"
         )
+    elif a.verdict != SINGULAR and a.actuation_margin < tol.near_singular:
+        warns.append(f"near an actuation singularity: actuation margin {a.actuation_margin:.2e} (the inputs barely drive the end effector, if at all)")
     return ActuationCheck(
         name=name,
         kind=kind,
@@ -343,6 +409,7 @@ def assess_inputs(
         warnings=tuple(warns),
         length_unit=length_unit,
         length_scale=norm.size,
+        actuation_margin=a.actuation_margin,
     )
 
 
@@ -375,7 +442,7 @@ def _explanation(verdict: str, n: int, dof: int, rank: int, useless: Sequence[st
     """
     if verdict == VALID:
         return (
-            f"the {n} actuation wrench(es) and the {6 - dof} constraint wrench(es) span all six dimensions: "
+            f"the {_counted(n, 'actuation wrench', 'es')} and the {_counted(6 - dof, 'constraint wrench', 'es')} span all six dimensions: "
             "with the inputs locked the end effector cannot move"
         )
     inputs = f"{n} input{'' if n == 1 else 's'} for {dof} DOF"
@@ -388,9 +455,20 @@ def _explanation(verdict: str, n: int, dof: int, rank: int, useless: Sequence[st
         )
     if verdict == REDUNDANT:
         return f"{inputs}: {n - dof} more than needed (they must be coordinated or they fight each other)"
-    text = f"actuation and constraint wrenches span only {rank} of 6 dimensions: with the inputs locked the end effector can still move along {6 - rank} direction(s)"
+    text = f"actuation and constraint wrenches span only {rank} of 6 dimensions: with the inputs locked the end effector can still move along {_counted(6 - rank, 'direction')}"
     if n < dof:
         text += f" (fewer inputs, {n}, than DOF, {dof})"
     if useless:
-        text += "; useless input(s): " + ", ".join(useless)
+        text += f"; useless input{'' if len(useless) == 1 else 's'}: " + ", ".join(useless)
     return text
+
+
+def _counted(n: int, word: str, plural: str = "s") -> str:
+    """``n`` and ``word``, in the plural unless ``n`` is 1.
+
+    Examples
+    --------
+    >>> _counted(1, "actuation wrench", "es"), _counted(5, "constraint wrench", "es"), _counted(0, "direction")
+    ('1 actuation wrench', '5 constraint wrenches', '0 directions')
+    """
+    return f"{n} {word}{'' if n == 1 else plural}"

@@ -74,7 +74,7 @@ def combine_poses(inputs: tuple[str, ...], type: str, per_pose: Sequence[Assessm
     conditioning = [a.conditioning for a in per_pose]
     k = first_least(conditioning)
     failures = tuple((i, v) for i, v in enumerate(verdicts) if v != VALID)
-    margins = [a.decision.smallest_kept if a.verdict != SINGULAR else np.inf for a in per_pose]
+    margins = [a.actuation_margin if a.verdict != SINGULAR else np.inf for a in per_pose]
     m = first_least(margins)
     margin = float(min(margins[m], 1.0))
     return Combination(inputs, type, worst, len(per_pose) - len(failures), len(per_pose), float(conditioning[k]), k, failures, margin, m)

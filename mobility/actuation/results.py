@@ -123,8 +123,9 @@ class ActuationCheck(ReadOnlyArrays):
     uncontrolled_twists : ndarray, shape (6 - rank, 6)
         Basis of those twists (rows ``[w; v]``, global frame).
     margin : RankDecision
-        Of the rank decision: a small ``smallest_kept`` means near an
-        actuation singularity.
+        Of the verdict's rank decision (the actuation and constraint
+        wrenches together): a small ``smallest_kept`` means near a pose
+        where the locked inputs no longer hold the end effector.
     conditioning : float
         The actuation conditioning ``kappa`` (see :mod:`mobility.actuation`);
         0 when the verdict is actuation-singular.
@@ -134,6 +135,11 @@ class ActuationCheck(ReadOnlyArrays):
     length_unit : str
     length_scale : float
         For rounding output.
+    actuation_margin : float
+        The distance to an actuation singularity (see
+        :mod:`mobility.actuation.assessment`): 0 where the locked inputs do
+        not hold the end effector, and where an input stops driving it (a
+        crank at the toggle of a four-bar whose rocker is driven).
     """
 
     name: str
@@ -155,6 +161,7 @@ class ActuationCheck(ReadOnlyArrays):
     warnings: tuple[str, ...] = ()
     length_unit: str = ""
     length_scale: float = 1.0
+    actuation_margin: float = 1.0
 
     @property
     def valid(self) -> bool:
@@ -174,6 +181,7 @@ class ActuationCheck(ReadOnlyArrays):
             "rank": self.rank,
             "conditioning": self.conditioning,
             "margin": {"smallest_kept": self.margin.smallest_kept, "largest_dropped": self.margin.largest_dropped},
+            "actuation_margin": self.actuation_margin,
             "inputs": [i.to_dict(s) for i in self.inputs],
             "constraints": {
                 "couples": clean_numbers(self.constraint_couples),
@@ -212,10 +220,10 @@ class Combination:
     failures : tuple of (int, str)
         ``(pose index, verdict)`` for every pose where it is not valid.
     margin : float
-        Smallest rank margin of the verdict over the poses where it is not
+        Smallest actuation margin over the poses where the verdict is not
         actuation-singular (the distance to an actuation singularity, which
         ``conditioning`` does not see when every input's effect vanishes at
-        once); 1.0 when there is none.
+        once, nor with one freedom); at most 1.0, and 1.0 when there is none.
     margin_pose : int
         Index of the pose where it is smallest.
     """
@@ -274,7 +282,8 @@ class Enumeration:
     mode : str
         ``"limb"`` (one joint per limb), ``"any"`` (any ``k`` candidates).
     k : int
-        Inputs per combination (``"any"`` mode; the number of limbs otherwise).
+        Inputs per combination (``"any"`` mode; otherwise the number of
+        limbs, or the DOF for a single loop with more limbs than DOF).
     combinations : tuple of Combination
         Ranked: valid ones first by decreasing conditioning, then redundant,
         then actuation-singular ones.
@@ -283,6 +292,8 @@ class Enumeration:
     poses : tuple of str
         A label for each pose visited (index 0: the given pose).
     warnings : tuple of str
+    limbs : int
+        The rigid mechanism's limbs (0 for a flexure).
     """
 
     name: str
@@ -295,6 +306,7 @@ class Enumeration:
     groups: tuple[TypeGroup, ...]
     poses: tuple[str, ...]
     warnings: tuple[str, ...] = ()
+    limbs: int = 0
 
     @property
     def valid(self) -> tuple[Combination, ...]:
@@ -310,6 +322,7 @@ class Enumeration:
             "pattern": self.pattern,
             "mode": self.mode,
             "k": self.k,
+            "limbs": self.limbs,
             "poses": list(self.poses),
             "groups": [g.to_dict() for g in self.groups],
             "combinations": [c.to_dict() for c in self.combinations],

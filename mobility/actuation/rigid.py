@@ -28,12 +28,12 @@ import numpy as np
 
 from ..core.linalg import singular_values, svd
 from ..core.loop_closure import loop_closure
-from ..core.model import Mechanism, joint_names, require_mechanism, require_no_repeats
+from ..core.model import Mechanism, joint_freedoms, joint_names, require_mechanism, require_no_repeats
 from ..core.poses import DEFAULT_STEP, require_pose_count, sample_poses
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank, require_tolerance
 from ..core.topology import joints_of
-from ..errors import MechanismError, RequestError, name_list, shown_argument
+from ..errors import MechanismError, RequestError, shown_argument
 from .assessment import Assessment, InputWrench, assess_inputs, assess_wrenches
 from .ranking import combination_type, combinations_count, combine_poses, inputs_per_combination, limit_combinations, rank_combinations
 from .results import ActuationCheck, Enumeration
@@ -42,7 +42,7 @@ from .rigid_pose import RigidPose
 __all__ = ["check_actuation", "check_over_poses", "enumerate_actuations", "ENUMERATION_MODES"]
 
 ENUMERATION_MODES = ("limb", "any")
-"""``"limb"``: one joint in each limb (the paper's enumeration); ``"any"``: any ``k`` candidates."""
+"""``"limb"``: one joint in each limb (the paper's enumeration; in DOF of them for a single loop with more limbs); ``"any"``: any ``k`` candidates."""
 
 
 def check_actuation(mechanism: Mechanism, actuated: Sequence[str] | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> ActuationCheck:
@@ -53,7 +53,8 @@ def check_actuation(mechanism: Mechanism, actuated: Sequence[str] | None = None,
     mechanism : Mechanism
     actuated : sequence of str, optional
         Joint names; default: the joints marked ``actuated: true``.  Every
-        freedom of a multi-DOF joint is one input.
+        freedom of a multi-DOF joint is one input, labelled ``NAME.k`` (``k``
+        from 0), and such a label names that freedom alone.
     tol : Tolerance
 
     Returns
@@ -131,13 +132,15 @@ def enumerate_actuations(
     mechanism : Mechanism
         The given pose (pose 0).
     mode : {"limb", "any"}
-        ``"limb"``: one joint in each limb (the paper's enumeration);
+        ``"limb"``: one joint in each limb (the paper's enumeration); for a
+        single loop with more limbs than DOF (a four-bar seen from its
+        coupler: two limbs, one DOF), one joint in each of DOF limbs;
         ``"any"``: any ``k`` candidates.
     k : int, optional
         Inputs per combination (an ``int`` or a numpy integer).  In
         ``"any"`` mode, default: the DOF.  In ``"limb"`` mode it is the
-        number of limbs, fixed by the mode: leave it out (a ``k`` that
-        differs is refused).
+        number of limbs (the DOF, when smaller, for a single loop), fixed
+        by the mode: leave it out (a ``k`` that differs is refused).
     poses : sequence of Mechanism
         Further poses of the same mechanism (listed by the user).
     samples : int
@@ -182,8 +185,10 @@ def enumerate_actuations(
     warnings: list[str] = []
     first = RigidPose(mechanism, tol)
     dof = first.spaces.dof
-    if mode == "limb" and given_k is not None and given_k != len(first.limbs):
-        raise RequestError(f"k: mode 'limb' takes one input in each limb, {len(first.limbs)} here, got k={given_k} (leave k out, or use mode 'any')")
+    links = {link for j in mechanism.joints for link in j.links}
+    limb_k = _limb_inputs(len(first.limbs), dof, single_loop=len(mechanism.joints) - len(links) == 0)
+    if mode == "limb" and given_k is not None and given_k != limb_k:
+        raise RequestError(f"k: mode 'limb' takes one input in each limb, {limb_k} here, got k={given_k} (leave k out, or use mode 'any')")
     pose_list: list[tuple[str, Mechanism]] = [("given pose", mechanism)]
     for i, p in enumerate(poses):
         label = p.source or f"pose {i + 1}"
@@ -194,10 +199,11 @@ def enumerate_actuations(
         pose_list += [(f"sampled pose {i + 1}", p) for i, p in enumerate(sampled)]
     candidates = [[j for j in joints_of(node) if mechanism.joints[j].dof == 1] for node, _ in first.limbs]
     if mode == "limb":
-        k = len(first.limbs)
+        k = limb_k
         warnings += [f"limb {i + 1} has no one-freedom joint to actuate" for i, c in enumerate(candidates) if not c]
-        limit_combinations(math.prod(len(c) for c in candidates), "check chosen inputs, or use mode 'any' with a small k")
-        combos: Iterable[tuple[int, ...]] = itertools.product(*candidates)
+        driven = list(itertools.combinations(candidates, k))  # k of the limbs: all of them, unless there are more limbs than DOF
+        limit_combinations(sum(math.prod(len(c) for c in chosen) for chosen in driven), "check chosen inputs, or use mode 'any' with a small k")
+        combos: Iterable[tuple[int, ...]] = itertools.chain.from_iterable(itertools.product(*chosen) for chosen in driven)
     else:
         flat = sorted(j for c in candidates for j in c)
         k = dof if given_k is None else given_k
@@ -215,12 +221,30 @@ def enumerate_actuations(
         for c, found in zip(combos, per_combo):
             got = [state.wrench(j, 0) for j in c]
             held = state.locked_wrenches([(j, 0) for j in c])
-            found.append(assess_wrenches([g[0] for g in got], [g[1] for g in got], spaces.twists, spaces.constraints, tol, held))
+            found.append(assess_wrenches([g[0] for g in got], [g[1] for g in got], spaces.twists, spaces.constraints, tol, held,
+                                         [state.transmission(j, 0) for j in c]))
     joints = mechanism.joints
     results = [combine_poses(tuple(joints[j].name for j in c), combination_type(joints[j].type for j in c), f) for c, f in zip(combos, per_combo)]
     ranked, groups = rank_combinations(results)
     pattern = motion_pattern(first.spaces.twists, tol)
-    return Enumeration(mechanism.name, "rigid", dof, pattern, mode, k, ranked, groups, tuple(label for label, _ in pose_list), tuple(warnings))
+    return Enumeration(mechanism.name, "rigid", dof, pattern, mode, k, ranked, groups, tuple(label for label, _ in pose_list), tuple(warnings), len(first.limbs))
+
+
+def _limb_inputs(limbs: int, dof: int, *, single_loop: bool) -> int:
+    """Inputs per combination of mode ``"limb"``: one in each limb, or in ``dof`` of them for a single loop with more limbs than DOF.
+
+    A single loop seen from a link of it (a four-bar's coupler: two limbs, one
+    DOF) is driven by one joint in one of its two paths; one in each would
+    make every combination redundant.  A mechanism of several loops keeps
+    one input in each limb (the paper's enumeration; the report points to
+    mode ``"any"`` when none is valid).
+
+    Examples
+    --------
+    >>> _limb_inputs(3, 3, single_loop=False), _limb_inputs(2, 1, single_loop=True), _limb_inputs(4, 3, single_loop=False)
+    (3, 1, 4)
+    """
+    return dof if single_loop and 0 < dof < limbs else limbs
 
 
 def _poses(poses: Iterable[Mechanism], caller: str) -> list[Mechanism]:
@@ -235,17 +259,9 @@ def _actuated_names(mechanism: Mechanism, actuated: Sequence[str] | None) -> lis
 
 
 def _inputs_of(pose: RigidPose, names: Sequence[str]) -> list[InputWrench]:
-    """An :class:`InputWrench` for every freedom of the named joints."""
-    joints = pose.mechanism.joints
-    index = {j.name: i for i, j in enumerate(joints)}
-    out = []
+    """An :class:`InputWrench` for every freedom named (a joint: each of its freedoms; ``NAME.k``: freedom ``k``)."""
     require_no_repeats(names, "actuated")
-    for name in names:
-        if name not in index:
-            raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {name_list(index)}")
-        j = joints[index[name]]
-        out += [pose.input_wrench(index[name], k, name if j.dof == 1 else f"{name}.{k}") for k in range(j.dof)]
-    return out
+    return [pose.input_wrench(j, k, label) for j, k, label in joint_freedoms(pose.mechanism, names)]
 
 
 def _assess_at(pose: RigidPose, names: Sequence[str], warnings: Sequence[str] = ()) -> ActuationCheck:
@@ -257,9 +273,8 @@ def _assess_at(pose: RigidPose, names: Sequence[str], warnings: Sequence[str] = 
 
 
 def _freedoms(mechanism: Mechanism, names: Sequence[str]) -> list[tuple[int, int]]:
-    """``(joint, freedom)`` of every input of the named joints (known names, checked before)."""
-    index = {j.name: i for i, j in enumerate(mechanism.joints)}
-    return [(index[name], k) for name in names for k in range(mechanism.joints[index[name]].dof)]
+    """``(joint, freedom)`` of every input named (known names, checked before)."""
+    return [(j, k) for j, k, _ in joint_freedoms(mechanism, names)]
 
 
 def _idle_inputs(pose: RigidPose, names: Sequence[str]) -> tuple[str, ...] | None:
@@ -283,14 +298,9 @@ def _idle_inputs(pose: RigidPose, names: Sequence[str]) -> tuple[str, ...] | Non
     """
     closure = loop_closure(pose.mechanism, pose.tol)
     offsets = closure.screws.offsets
-    index = {j.name: i for i, j in enumerate(pose.mechanism.joints)}
-    labels: list[str] = []
-    columns: list[int] = []
-    for name in names:
-        j = index[name]
-        dof = pose.mechanism.joints[j].dof
-        labels += [name if dof == 1 else f"{name}.{k}" for k in range(dof)]
-        columns += range(int(offsets[j]), int(offsets[j]) + dof)
+    chosen = joint_freedoms(pose.mechanism, names)
+    labels = [label for _, _, label in chosen]
+    columns = [int(offsets[j]) + k for j, k, _ in chosen]
     rates = closure.joint_rates[columns]  # (inputs, mobility)
     if rates.shape[1] < len(columns) or decide_rank(singular_values(rates), pose.tol).rank < len(columns):
         return None

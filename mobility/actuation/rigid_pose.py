@@ -84,7 +84,7 @@ class RigidPose:
             self.limbs = [(root, self.root)]
         self.limb_of: dict[int, int] = {j: k for k, (node, _) in enumerate(self.limbs) for j in joints_of(node)}
         self._attachments: dict[int, np.ndarray] = {}
-        self._wrenches: dict[tuple[int, int], tuple[np.ndarray | None, float, str]] = {}
+        self._wrenches: dict[tuple[int, int], tuple[np.ndarray | None, float, str, float]] = {}
 
     @cached_property
     def spaces(self) -> EndEffectorSpaces:
@@ -104,6 +104,14 @@ class RigidPose:
 
     def wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str]:
         """Unit actuation wrench (normalised) of one freedom of a joint, its rate ``a o $``, and a note."""
+        wrench, rate, note, _ = self._wrench(joint, freedom)
+        return wrench, rate, note
+
+    def transmission(self, joint: int, freedom: int) -> float:
+        """``|a o $| / (|a| |$|)`` of one freedom of a joint, in ``[0, 1]``: 0 where its twist puts no power through its actuation wrench (or it has none)."""
+        return self._wrench(joint, freedom)[3]
+
+    def _wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str, float]:
         key = (joint, freedom)
         if key not in self._wrenches:
             self._wrenches[key] = self._actuation_wrench(joint, freedom)
@@ -111,8 +119,8 @@ class RigidPose:
 
     def input_wrench(self, joint: int, freedom: int, label: str) -> InputWrench:
         """The :class:`InputWrench` of one freedom of a joint, named ``label``."""
-        wrench, rate, note = self.wrench(joint, freedom)
-        return InputWrench(label, self.mechanism.joints[joint].type, self.limb_of.get(joint), wrench, rate, note)
+        wrench, rate, note, transmission = self._wrench(joint, freedom)
+        return InputWrench(label, self.mechanism.joints[joint].type, self.limb_of.get(joint), wrench, rate, note, transmission)
 
     def locked_wrenches(self, freedoms: Sequence[tuple[int, int]]) -> np.ndarray | None:
         """The wrenches a limb exerts with all its inputs locked, for the limbs where an input has no actuation wrench of its own.
@@ -144,9 +152,9 @@ class RigidPose:
             held.append(evaluate_node(self.limbs[limb][0], _with_freedoms_locked(self.screws, columns), self.tol).wrenches)
         return np.concatenate(held, axis=1)
 
-    def _actuation_wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str]:
+    def _actuation_wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str, float]:
         if joint not in self.limb_of:
-            return None, 1.0, _NOT_ON_A_PATH
+            return None, 1.0, _NOT_ON_A_PATH, 0.0
         limb = self.limb_of[joint]
         node, value = self.limbs[limb]
         col = int(self.screws.offsets[joint]) + freedom
@@ -159,10 +167,10 @@ class RigidPose:
             q, _ = np.linalg.qr(to_attachment @ own)
             w_other = w_other - q @ (q.T @ w_other)
         if w_other.shape[1] == 0:
-            return None, 1.0, _DRIVEN_BY_OTHERS
+            return None, 1.0, _DRIVEN_BY_OTHERS, 0.0
         u, s, _ = svd(w_other)
         if decide_rank(s, self.tol).rank == 0:
-            return None, 1.0, _DRIVEN_BY_OTHERS
+            return None, 1.0, _DRIVEN_BY_OTHERS, 0.0
         a = np.linalg.solve(to_attachment, u[:, 0])
         a /= np.linalg.norm(a)
         twist = self.screws.twists[:, col]
@@ -172,7 +180,7 @@ class RigidPose:
         rate = float(a[SWAP_ROWS] @ twist)
         if rate < 0:
             a, rate = -a, -rate
-        return a, rate, ""
+        return a, rate, "", min(rate / float(np.linalg.norm(twist)), 1.0)
 
 
 def _with_freedoms_locked(screws: JointScrews, columns: Sequence[int]) -> JointScrews:

@@ -41,7 +41,7 @@ from typing import Any, NoReturn, Sequence
 from ..errors import MobilityError, RequestError, one_line
 from ..io.files import os_problem
 
-__all__ = ["main", "build_parser", "command_modules", "command_names", "SUCCESS_OR_BAD_INPUT"]
+__all__ = ["main", "build_parser", "command_modules", "command_names", "options_given", "SUCCESS_OR_BAD_INPUT"]
 
 SUCCESS_OR_BAD_INPUT = "0 success, 2 bad input (one line on standard error)"
 """The exit statuses of a command without a verdict; a module with one says its own in ``EXIT_STATUS`` (shown by its ``--help``)."""
@@ -89,6 +89,39 @@ def _command_asked(argv: Sequence[str]) -> list[str] | None:
         if word in ("-h", "--help"):
             return None
     return None
+
+
+def options_given(argv: Sequence[str]) -> frozenset[str]:
+    """The destinations (``max_poses``, ``step``...) of the options typed in ``argv``, not left at their defaults.
+
+    ``argv`` is parsed again with every default suppressed, so that an option
+    given with its default value (``--step 0.1``) counts as given: a command
+    refuses an option that its other options would leave unread
+    (:func:`mobility.cli._options.require_option_for`).
+
+    Examples
+    --------
+    >>> sorted(options_given(["view", "f.yaml", "-o", "v.html", "--step", "0.1"]))
+    ['command', 'file', 'output', 'run', 'step']
+    """
+    parser = build_parser(_command_asked(argv))
+    seen: set[int] = set()
+
+    def suppress(p: argparse.ArgumentParser) -> None:
+        if id(p) in seen:
+            return
+        seen.add(id(p))
+        for action in p._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                for child in action.choices.values():
+                    suppress(child)
+            action.default = argparse.SUPPRESS
+
+    suppress(parser)
+    try:
+        return frozenset(vars(parser.parse_args(argv)))
+    except SystemExit:  # pragma: no cover - argv was parsed once already
+        return frozenset()
 
 
 class _GuardedOutput:
@@ -237,6 +270,7 @@ def _run(argv: list[str]) -> int:
         with contextlib.redirect_stdout(out):
             try:
                 args = build_parser(_command_asked(argv)).parse_args(argv)
+                args.given_options = options_given(argv)
                 return int(args.run(args) or 0)
             finally:  # --help and --version too (their SystemExit passes through, unless the flush fails)
                 out.flush()

@@ -42,6 +42,7 @@ __all__ = [
     "require_new_output",
     "add_max_poses_option",
     "max_poses_from",
+    "require_option_for",
     "number_option",
     "integer_option",
 ]
@@ -334,3 +335,20 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
             same = False
         if same:
             raise RequestError(f"{option} {output}: the same file as {given}, which would be overwritten")
+
+
+def require_option_for(args: argparse.Namespace, dest: str, option: str, needs: str, present: bool, what: str) -> None:
+    """Refuse ``option`` typed without ``needs`` (``present`` tells whether that is given): it would be left unread.
+
+    An option is given when :func:`mobility.cli.options_given` found it typed
+    on the command line (``args.given_options``), whatever its value.
+
+    Examples
+    --------
+    >>> args = argparse.Namespace(given_options=frozenset({"max_poses"}))
+    >>> require_option_for(args, "max_poses", "--max-poses", "--vary", False, "it bounds the grid of a sweep")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: --max-poses needs --vary (it bounds the grid of a sweep); give --vary too, or leave --max-poses out
+    """
+    if not present and dest in getattr(args, "given_options", ()):
+        raise RequestError(f"{option} needs {needs} ({what}); give {needs} too, or leave {option} out")

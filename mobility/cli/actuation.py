@@ -22,6 +22,7 @@ from __future__ import annotations
 import argparse
 
 from ..actuation import ENUMERATION_MODES, ActuationCheck, Enumeration, check_actuation, check_over_poses, enumerate_actuations
+from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
 from ..errors import RequestError
 from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines, flexure_spaces, is_flexure_document, loads_flexure
@@ -39,6 +40,7 @@ from ._options import (
     load_mechanism,
     names_from,
     number_option,
+    require_option_for,
     require_sampler_options,
     read_mechanism,
     robot_options_from,
@@ -61,7 +63,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--enumerate", action="store_true", help="check every combination of inputs, grouped by type and ranked")
     p.add_argument("--mode", choices=ENUMERATION_MODES, default=None, help="enumeration: one joint per limb (default) or any K joints")
     p.add_argument("--k", type=integer_option, default=None, help="inputs per combination with --mode any (default: the DOF)")
-    p.add_argument("--inputs", default=None, help="comma-separated joint (or actuator) names to check instead of those marked actuated")
+    p.add_argument("--inputs", default=None, help="comma-separated joint (or actuator) names to check instead of those marked actuated; "
+                   "NAME.k names freedom k (from 0, as reported) of a multi-freedom joint")
     p.add_argument("--pose", action="append", default=[], metavar="FILE", help="another pose of the same mechanism, read as FILE is (repeatable)")
     add_pose_sampler_options(p, samples_help="also check N poses reached by moving the mechanism (mobility.core.poses.sample_poses)")
     p.add_argument("--threshold", type=number_option, default=None, help="flexure: relative compliance above which a direction is free (default: the file's, else 0.01)")
@@ -75,6 +78,8 @@ def run(args: argparse.Namespace) -> int:
     if args.threshold is not None and not (0.0 < args.threshold < 1.0):
         raise RequestError("--threshold must lie between 0 and 1")
     require_sampler_options(args)
+    for dest in ("step", "seed"):
+        require_option_for(args, dest, f"--{dest}", "--samples", bool(args.samples), "it sets how the sampled poses are reached")
     if args.k is not None and not (0 <= args.k <= 6):
         raise RequestError(f"--k must lie in [0, 6] (inputs per combination, at most the 6 freedoms of a body), got {args.k}")
     if not args.enumerate and (args.mode is not None or args.k is not None):
@@ -85,6 +90,8 @@ def run(args: argparse.Namespace) -> int:
         text = read_text(args.file)
         data, _ = parse_yaml(text, args.file)
         if is_flexure_document(data):
+            if args.mode is not None:
+                raise RequestError(f"--mode chooses how a rigid mechanism's joints are combined (one per limb, or any); the actuators of the flexure document {args.file} are combined as any --k of them")
             if args.pose or args.samples:
                 raise RequestError("--pose and --samples apply to rigid mechanisms only (a flexure is analysed at its one pose)")
             given = sorted(robot_options_from(args))
@@ -102,18 +109,33 @@ def run(args: argparse.Namespace) -> int:
         require_size(mechanism, "max_moving_joints", "--samples", args.file)
         require_work(mechanism, args.samples, f"--samples {args.samples}", args.file)
     if args.enumerate:
-        poses = [read_mechanism(args, p)[0] for p in args.pose]
+        poses = [_pose(args, p) for p in args.pose]
         found = enumerate_actuations(mechanism, mode=args.mode or "limb", k=args.k, poses=poses, samples=args.samples, step=args.step, seed=args.seed, tol=tol)
         print(enumeration_json(found) if args.json else enumeration_text(found))
         return 0 if found.valid else 1
     check = check_actuation(mechanism, names, tol=tol)
-    extra = check_over_poses(mechanism, names, [read_mechanism(args, p)[0] for p in args.pose], tol=tol) if args.pose else ()
+    extra = check_over_poses(mechanism, names, [_pose(args, p) for p in args.pose], tol=tol) if args.pose else ()
     if args.samples:
         extra = tuple(extra) + check_over_poses(mechanism, names, sampled_poses(args, mechanism), tol=tol)
     labels = list(args.pose) + [f"sampled pose {i + 1}" for i in range(len(extra) - len(args.pose))]
     checked = list(zip(labels, extra))
     print(actuation_json(check, checked) if args.json else actuation_text(check, checked))
     return 0 if check.valid and all(c.valid for c in extra) else 1
+
+
+def _pose(args: argparse.Namespace, path: str) -> Mechanism:
+    """The mechanism of ``--pose path``, read as FILE is, with its robot options.
+
+    A YAML pose of a robot description read with options (``--close``) is
+    refused here, naming the pose: reading it would blame the options, as if
+    they were wrong for FILE.
+    """
+    given = sorted(robot_options_from(args))
+    if given and not is_robot_description(path):
+        options = ", ".join(OPTION_SPELLING[k] for k in given)
+        raise RequestError(f"--pose {path}: a mechanism file (YAML), while FILE {args.file} is a robot description read with {options}; "
+                           "a pose is read as FILE is, with the same options: give the pose as a robot description too")
+    return read_mechanism(args, path).mechanism
 
 
 def _run_flexure(args: argparse.Namespace, mechanism: FlexureMechanism, names: list[str] | None, tol: Tolerance) -> int:

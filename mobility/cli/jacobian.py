@@ -27,7 +27,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "J $ = [actuated rates; 0] for the platform twist $ = [w; v].",
     )
     add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + " whose limbs are serial chains")
-    p.add_argument("--actuated", default=None, metavar="A,B,...", help="actuated joints (default: those marked actuated: true); NAME.k picks the k-th freedom of a multi-DOF joint")
+    p.add_argument("--actuated", default=None, metavar="A,B,...", help="actuated joints (default: those marked actuated: true); NAME.k picks freedom k (from 0, as reports label it) of a multi-DOF joint")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     add_tolerance_option(p)
     p.set_defaults(run=run)

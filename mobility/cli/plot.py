@@ -51,8 +51,10 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError(f"--dpi must lie in [{DPI_RANGE[0]}, {DPI_RANGE[1]}], got {args.dpi}")
     picture_path(args.output)  # before any work
     require_new_output(args.output, "-o", args.file)
-    if args.graph and args.constraints:
-        raise RequestError("--constraints draws on the mechanism, not on the --graph picture")
+    given: frozenset[str] = getattr(args, "given_options", frozenset())  # the options typed (mobility.cli.options_given)
+    drawn = [option for option, on in (("--constraints", args.constraints), ("--views", "views" in given), ("--no-labels", args.no_labels)) if on]
+    if args.graph and drawn:
+        raise RequestError(f"{' and '.join(drawn)} draw{'s' if len(drawn) == 1 else ''} on the mechanism, not on the --graph picture")
     try:
         mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
     except MechanismFileError:

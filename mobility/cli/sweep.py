@@ -52,7 +52,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         "displaced from the file's pose (a joint moves its links[1] relative to links[0], right-handed about its axis); "
         "COUNT values, both ends included (repeat for a grid)",
     )
-    p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated)")
+    p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated); NAME.k names freedom k (from 0) of a multi-freedom joint")
     p.add_argument("--format", choices=sorted(FORMATS), default=None,
                    help="output: a summary, the table as CSV, or JSON (default: what the -o name ends with, .csv or .json, else the summary)")
     p.add_argument("--json", action="store_true", help="same as --format json")
@@ -99,6 +99,8 @@ def run(args: argparse.Namespace) -> int:
         require_drawable(len(args.vary), f"--plot {args.plot}: ")
     if args.chunk_size < 1:
         raise RequestError(f"--chunk-size must be at least 1, got {args.chunk_size}")
+    if args.workers is not None and args.scheduler is not None:
+        raise RequestError("--workers sets the threads of this process; with --scheduler the cluster's workers run the chunks: give one of them")
     if args.workers is not None and not 1 <= args.workers <= MAX_WORKERS:
         raise RequestError(f"--workers must be between 1 and {MAX_WORKERS} (threads of this process; for more, use --scheduler), got {clipped(str(args.workers))}")
     mechanism = load_mechanism(args, outputs=((args.output, "-o"), (args.plot, "--plot")))

@@ -19,7 +19,7 @@ from ..errors import RequestError, SynthesisError
 from ..report.synthesis import synthesis_json, synthesis_text, written_files_text
 from ..synthesis import PATTERNS, named_pattern, synthesize, write_pkm_files
 from ..synthesis.enumeration import MAX_SAMPLES, MAX_VERIFY_SAMPLES
-from ._options import integer_option, number_option
+from ._options import integer_option, number_option, require_option_for
 
 ORDER = 50
 EXIT_STATUS = "0 a limb type is found, 1 none is, 2 bad input (one line on standard error)"
@@ -76,6 +76,7 @@ def run(args: argparse.Namespace) -> int:
     if args.samples > MAX_SAMPLES or args.verify > MAX_VERIFY or args.seed < 0 or (args.joints is not None and not 1 <= args.joints <= 8):
         raise RequestError(f"--samples must be at most {MAX_SAMPLES}, --verify at most {MAX_VERIFY}, --seed not negative and --joints in [1, 8]; "
                            f"got {args.samples}, {args.verify}, {args.seed} and {args.joints}")
+    require_option_for(args, "other", "--other", "--write", args.write is not None, "it chooses the 6-DOF limbs of the PKMs --write assembles")
     directions = None if args.directions is None else [_vector(d, "--directions") for d in args.directions.split(";")]
     pattern = named_pattern(args.pattern, point=_vector(args.point, "--point"), directions=directions)
     if args.write is not None:  # before the search: a folder that cannot take the files is refused now

@@ -16,7 +16,7 @@ from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
 from ..io.limits import require_size, require_work
 from ._options import (add_max_poses_option, add_mechanism_file, add_pose_sampler_options, add_tolerance_option, load_mechanism, max_poses_from,
-                       require_new_output, sampled_poses, tolerance_from)
+                       require_new_output, require_option_for, sampled_poses, tolerance_from)
 
 ORDER = 31
 
@@ -61,6 +61,9 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError(f"{args.output}: expected a page name ending in .html or .htm (in any case)")
     require_new_output(args.output, "-o", args.file)
     max_poses = max_poses_from(args)
+    require_option_for(args, "max_poses", "--max-poses", "--vary", bool(args.vary), "it bounds the grid of the poses a --vary sweep shows")
+    for dest in ("step", "seed"):
+        require_option_for(args, dest, f"--{dest}", "--samples", bool(args.samples), "it sets how the sampled poses are reached")
     if args.samples >= MAX_POSES:  # the file's pose and the sampled ones, before any work
         raise RequestError(f"--samples {args.samples}: a view shows at most {MAX_POSES} poses, the file's and {MAX_POSES - 1} sampled; ask for fewer")
     require_plotly()  # before any work

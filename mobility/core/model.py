@@ -75,6 +75,7 @@ __all__ = [
     "require_unique_names",
     "require_no_repeats",
     "joint_names",
+    "joint_freedoms",
     "require_ground_and_end_effector",
     "WORLD",
 ]
@@ -1123,6 +1124,56 @@ def require_no_repeats(names: Iterable[str], key: str) -> None:
         if name in seen:
             raise MechanismError(key, f"{name!r} is given twice; name each input once")
         seen.add(name)
+
+
+def joint_freedoms(mechanism: "Mechanism", names: Sequence[str], key: str = "actuated") -> list[tuple[int, int, str]]:
+    """``(joint index, freedom, label)`` of every input named: a joint gives each of its freedoms, ``NAME.k`` its freedom ``k``.
+
+    Freedoms are numbered from 0, as every report labels them: the inputs
+    of a spherical joint ``S1`` are ``S1.0``, ``S1.1`` and ``S1.2``, and each of
+    those names is accepted back.  A one-freedom joint's label is its name.
+
+    Raises
+    ------
+    MechanismError
+        When a name is neither a joint nor ``JOINT.k`` of a multi-freedom
+        joint with ``k`` in ``0 .. dof - 1``, or names a freedom twice
+        (``S1`` and ``S1.0``).
+
+    Examples
+    --------
+    >>> m = Mechanism("m", "g", "b", (Joint("S", "S", ("g", "a"), point=(0, 0, 0)), Joint("P", "P", ("a", "b"), axis=(1, 0, 0))))
+    >>> [label for _, _, label in joint_freedoms(m, ["S", "P"])], joint_freedoms(m, ["S.2"])
+    (['S.0', 'S.1', 'S.2', 'P'], [(0, 2, 'S.2')])
+    >>> joint_freedoms(m, ["S.3"])
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: actuated: 'S.3': joint 'S' has freedoms S.0 to S.2
+    """
+    index = {j.name: i for i, j in enumerate(mechanism.joints)}
+    out: list[tuple[int, int, str]] = []
+    seen: dict[tuple[int, int], str] = {}
+    for name in names:
+        if name in index:
+            j = index[name]
+            dof = mechanism.joints[j].dof
+            chosen = [(j, k, name if dof == 1 else f"{name}.{k}") for k in range(dof)]
+        else:
+            base, dot, sub = name.rpartition(".")
+            if not dot or base not in index:
+                raise MechanismError(key, f"unknown joint {name!r}; expected one of: {name_list(index)} (JOINT.k names freedom k, from 0, of a multi-freedom joint)")
+            j = index[base]
+            dof = mechanism.joints[j].dof
+            if dof == 1:
+                raise MechanismError(key, f"{name!r}: joint {base!r} has one freedom; name it {base!r}")
+            if not (sub.isascii() and sub.isdigit() and int(sub) < dof):
+                raise MechanismError(key, f"{name!r}: joint {base!r} has freedoms {base}.0 to {base}.{dof - 1}")
+            chosen = [(j, int(sub), f"{base}.{int(sub)}")]
+        for j, k, label in chosen:
+            if (j, k) in seen:
+                raise MechanismError(key, f"{name!r} names freedom {label!r} again (given by {seen[(j, k)]!r}); name each input once")
+            seen[(j, k)] = name
+        out += chosen
+    return out
 
 
 def require_unique_names(items: Iterable[Any], key: str, what: str) -> None:

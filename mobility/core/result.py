@@ -26,7 +26,7 @@ from .frozen import ReadOnlyArrays, read_only_cached_property
 from .model import Mechanism
 from .screws import pattern_of
 from .tolerance import clean_numbers
-from .topology import Node, Topology
+from .topology import Bridge, Node, Parallel, Series, Topology, describe, joints_of
 
 __all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultDetail", "pattern_of", "require_result",
            "require_result_of", "require_same_mechanism"]
@@ -353,11 +353,13 @@ class Result(ReadOnlyArrays):
         if self.redundant_constraints == 0:
             return ""
         rank = self.joint_freedoms - self.mobility
+        redundant = self.redundant_constraints
+        loops = "the 1 independent loop imposes" if self.loops == 1 else f"each of the {self.loops} independent loops imposes"
         text = (
-            f"Grübler–Kutzbach assumes each of the {self.loops} independent loop(s) imposes 6 independent "
+            f"Grübler–Kutzbach assumes {loops} 6 independent "
             f"constraints ({6 * self.loops} in all); the loop-closure equations have rank {rank}, so "
-            f"{self.redundant_constraints} constraint(s) are redundant and the mobility is "
-            f"{self.gruebler_kutzbach} + {self.redundant_constraints} = {self.mobility}."
+            f"{redundant} constraint{' is' if redundant == 1 else 's are'} redundant and the mobility is "
+            f"{self.gruebler_kutzbach} + {redundant} = {self.mobility}."
         )
         common = self.common_constraints * self.loops
         if common:
@@ -366,14 +368,61 @@ class Result(ReadOnlyArrays):
                 "planar": " (every joint moves in one plane)",
                 "spherical": " (three forces through one point: every joint turns about it)",
             }.get(self.detail.common_motion(), "")
+            each = self.common_constraints
             text += (
-                f" {common} of them come from {self.common_constraints} wrench(es) reciprocal to every joint twist"
-                f"{kind}: each loop loses {self.common_constraints} equation(s)."
+                f" {common} of them come{'s' if common == 1 else ''} from {each} wrench{'' if each == 1 else 'es'} reciprocal to every joint twist"
+                f"{kind}: {'the loop loses' if self.loops == 1 else 'each loop loses'} {each} equation{'' if each == 1 else 's'}."
             )
         rest = self.redundant_constraints - common
+        inner = [(node, loops, redundant - self.common_constraints * loops) for node, loops, redundant in self._inner_loops()]
+        inner = [(node, loops, beyond) for node, loops, beyond in inner if beyond > 0]
+        within = min(sum(beyond for _, _, beyond in inner), rest)
+        if within > 0:
+            shown = [describe(node) for node, _, _ in inner[:3]] + ([f"{len(inner) - 3} more"] if len(inner) > 3 else [])
+            counts = sorted({beyond for _, _, beyond in inner})
+            share = f"{counts[0]} each" if len(counts) == 1 else "between them"
+            more = " more" if common else ""
+            text += (
+                f" {within}{more} come{'s' if within == 1 else ''} from {'the loop' if len(inner) == 1 else f'{len(inner)} sub-networks of loops'} "
+                f"inside the limbs, whose joints share further constraint wrenches (planar loops such as parallelograms, "
+                f"spherical loops): {'; '.join(shown)} ({share}{', beyond those common to every joint' if common else ''})."
+            )
+            rest -= within
         if rest > 0:
-            text += f" {rest} come{'s' if rest == 1 else ''} from the special geometry of the loops (parallel or intersecting axes, repeated constraints of parallel limbs)."
+            other = " other" if within > 0 else ""
+            text += f" {rest} come{'s' if rest == 1 else ''} from the special geometry of the{other} loops (parallel or intersecting axes, repeated constraints of parallel limbs)."
         return text
+
+    def _inner_loops(self) -> list[tuple[Node, int, int]]:
+        """``(node, loops, redundant constraints)`` of each outermost sub-network of loops below the top of the tree (a parallelogram in a limb).
+
+        Its redundant constraints are its mobility with one end link held, from
+        :attr:`node_systems`, less its own Grübler–Kutzbach count: they are
+        redundant constraints of the whole mechanism too, the sub-networks
+        sharing no loop.
+        """
+        root = self.topology.root
+        if not isinstance(root, (Series, Parallel)):
+            return []
+        mechanism = getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: nothing to attribute
+        if mechanism is None:
+            return []
+        systems = self.node_systems
+        joints = mechanism.joints
+        out: list[tuple[Node, int, int]] = []
+        stack: list[Node] = list(root.children)
+        while stack:
+            node = stack.pop(0)
+            if isinstance(node, Series):
+                stack[:0] = list(node.children)
+            elif isinstance(node, (Parallel, Bridge)) and node in systems:
+                members = joints_of(node)
+                links = {link for j in members for link in joints[j].links}
+                loops = len(members) - len(links) + 1
+                count = 6 * (len(links) - 1 - len(members)) + sum(joints[j].dof for j in members)
+                if loops > 0:
+                    out.append((node, loops, systems[node].mobility - count))
+        return out
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON form: the spec's Result keys plus the whole-mechanism numbers."""

@@ -46,6 +46,8 @@ mobility.errors.MechanismFileError: wire.yaml:8: elements[0].radius: expected a 
 
 from __future__ import annotations
 
+import math
+import sys
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -178,6 +180,9 @@ class _FlexureReader(DocumentReader):
         data = self.record(raw, path, "a material", MATERIAL_KEYS, MATERIAL_KEYS, described="a material with E and nu")
         e = self.number(data["E"], path + ("E",))
         nu = self.number(data["nu"], path + ("nu",))
+        if math.isfinite(e) and not math.isfinite(e * modulus):  # finite as written, past the largest float once in pascals
+            raise self.fail(path + ("E",), f"{e:g} (units.modulus) is {e:g} x {modulus:g} Pa, beyond the largest float ({sys.float_info.max:.3g} Pa); "
+                                           "expected a Young's modulus that a float holds in pascals")
         try:
             return Material(str(path[-1]), e * modulus, nu)
         except MechanismError as exc:

@@ -44,7 +44,7 @@ from pathlib import Path
 from typing import Any, Callable, Mapping
 
 from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
-from ..errors import MechanismError, RequestError
+from ..errors import MechanismError, RequestError, shown_argument
 from .expected import read_expected
 from .files import file_name
 from .expressions import RESERVED_NAMES
@@ -287,7 +287,10 @@ class _MechanismReader(DocumentReader):
                             text = written[m.group(1)] = str(int(v)) if v == int(v) else repr(v)
                         return text
 
-                    return _SUBST_RE.sub(one, s)
+                    done = _SUBST_RE.sub(one, s)
+                    if "{" in done or "}" in done:  # else every copy would get the same name, refused as a duplicate
+                        raise self.fail(p, f"{shown_argument(s)}: an unbalanced brace; write each substituted expression in a pair, as 'P{{i+1}}'")
+                    return done
 
                 frame_name = None
                 if "frame" in limb:

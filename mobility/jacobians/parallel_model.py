@@ -25,10 +25,10 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
-from ..core.model import Joint, Mechanism, joint_names, require_mechanism, require_no_repeats
+from ..core.model import Joint, Mechanism, joint_freedoms, joint_names, require_mechanism, require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale
 from ..core.transforms import cross, skew
-from ..errors import AnalysisError, MechanismError, RequestError, name_list
+from ..errors import AnalysisError, MechanismError, RequestError
 
 __all__ = ["Chain", "ParallelModel", "parallel_model", "joint_values"]
 
@@ -69,8 +69,8 @@ class ParallelModel:
     actuated : tuple of (int, int)
         ``(chain, position in the chain)`` of each actuated freedom.
     labels : tuple of str
-        Name of each actuated freedom (the joint name; ``name.k`` for the k-th
-        freedom of a multi-DOF joint).
+        Name of each actuated freedom (the joint name; ``name.k`` for freedom
+        ``k``, from 0, of a multi-DOF joint).
     """
 
     mechanism: Mechanism
@@ -254,8 +254,9 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
         Every link other than the ground and the end effector must have
         exactly two joints (limbs are serial chains).
     actuated : sequence of str, optional
-        Names of the actuated joints (``name.k`` picks the k-th freedom of a
-        multi-DOF joint, from 1); default: the joints marked ``actuated``.
+        Names of the actuated joints (``name.k`` picks freedom ``k`` of a
+        multi-DOF joint, from 0, as every report labels it); default: the
+        joints marked ``actuated``.
 
     Raises
     ------
@@ -295,7 +296,7 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
                 freedoms.reverse()
             for k, f in freedoms:
                 axis = np.asarray(f.axis) if forward else -np.asarray(f.axis)
-                screw_joints.append(ScrewJoint(f.kind, tuple(axis), f.point, f.pitch, f"{joint.name}.{k + 1}" if joint.dof > 1 else joint.name))
+                screw_joints.append(ScrewJoint(f.kind, tuple(axis), f.point, f.pitch, f"{joint.name}.{k}" if joint.dof > 1 else joint.name))
                 jidx.append(index)
                 fidx.append(k)
                 fwd.append(forward)
@@ -313,21 +314,11 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
         raise MechanismError("joints", "no actuated joint: mark joints with 'actuated: true' or name them (--actuated A,B,...)")
     act: list[tuple[int, int]] = []
     labels: list[str] = []
-    by_name = {j.name: i for i, j in enumerate(mechanism.joints)}
     require_no_repeats(names, "actuated")
-    for name in names:
-        base, _, sub = name.partition(".")
-        if base not in by_name:
-            raise MechanismError("actuated", f"unknown joint {base!r}; expected one of {name_list(by_name)}")
-        index = by_name[base]
-        joint = mechanism.joints[index]
-        ks = range(joint.dof) if not sub else [int(sub) - 1] if sub.isdigit() and 1 <= int(sub) <= joint.dof else None
-        if ks is None:
-            raise MechanismError("actuated", f"{name!r}: joint {base!r} has freedoms 1..{joint.dof}")
-        for k in ks:
-            where = [(c, p) for c, chain in enumerate(chains) for p, (ji, fi) in enumerate(zip(chain.joints, chain.freedoms)) if ji == index and fi == k]
-            if not where:
-                raise MechanismError("actuated", f"joint {base!r} is on no limb from {mechanism.ground!r} to {mechanism.end_effector!r}")
-            act.append(where[0])
-            labels.append(f"{base}.{k + 1}" if joint.dof > 1 else base)
+    for index, k, label in joint_freedoms(mechanism, names):  # NAME.k: freedom k (from 0) of a multi-freedom joint, as every report labels it
+        where = [(c, p) for c, chain in enumerate(chains) for p, (ji, fi) in enumerate(zip(chain.joints, chain.freedoms)) if ji == index and fi == k]
+        if not where:
+            raise MechanismError("actuated", f"joint {mechanism.joints[index].name!r} is on no limb from {mechanism.ground!r} to {mechanism.end_effector!r}")
+        act.append(where[0])
+        labels.append(label)
     return ParallelModel(mechanism, tuple(chains), tuple(act), tuple(labels))

@@ -21,9 +21,10 @@ RR arm
     C2  couple about [0, 1, 0]
     W3  force along [1, 0, 0] through [1, 0, 0]
     W4  force along [0, 0, 1] through [1, 0, 0]
-  verdict: ACTUATION-SINGULAR: actuation and constraint wrenches span only 5 of 6 dimensions: with the inputs locked the end effector can still move along 1 direction(s) (fewer inputs, 1, than DOF, 2)
+  verdict: ACTUATION-SINGULAR: actuation and constraint wrenches span only 5 of 6 dimensions: with the inputs locked the end effector can still move along 1 direction (fewer inputs, 1, than DOF, 2)
   uncontrolled directions (the end effector still moves with every input locked):
     rotation about [0, 0, 1] through [1, 0, 0]
+  actuation margin: 0.00e+00   (0 at an actuation singularity: the locked inputs do not hold the end effector, or an input does not drive it)
   rank margin: smallest kept relative singular value 1.00e+00
 """
 
@@ -94,14 +95,15 @@ def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:
         if check.dof == 0:
             legend = "no end-effector freedom to control: 1 by convention"
         elif check.dof == 1:
-            legend = "one end-effector freedom: 1 by definition; the rank margin below is the distance to an actuation singularity"
+            legend = "one end-effector freedom: 1 by definition; the actuation margin below is the distance to an actuation singularity"
         else:
-            legend = "1: isotropic, 0: the inputs' effects lose rank; it stays finite where they all vanish together: the rank margin below measures that"
+            legend = "1: isotropic, 0: the inputs' effects lose rank; it stays finite where they all vanish together: the actuation margin below measures that"
         out.append(f"  actuation conditioning kappa = {check.conditioning:.3g}   ({legend})")
     if check.uncontrolled_twists.shape[0]:
         out.append("  uncontrolled directions (the end effector still moves with every input locked):")
         out += [f"    translation along {fmt_vector(t)}" for t in check.uncontrolled_translations]
         out += [f"    {_motion(r, s, unit)}" for r in check.uncontrolled_rotations]
+    out.append(f"  actuation margin: {check.actuation_margin:.2e}   (0 at an actuation singularity: the locked inputs do not hold the end effector, or an input does not drive it)")
     out.append(f"  rank margin: smallest kept relative singular value {check.margin.smallest_kept:.2e}")
     out += [f"  warning: {w}" for w in check.warnings]
     if poses:
@@ -133,7 +135,12 @@ def actuation_json(check: ActuationCheck, poses: PoseChecks = ()) -> str:
 
 def enumeration_text(found: Enumeration) -> str:
     """The table of ``--enumerate``: counts per type, then every combination ranked."""
-    how = "one actuated joint per limb" if found.mode == "limb" else f"any {found.k} input(s)"
+    if found.mode != "limb":
+        how = f"any {found.k} input(s)"
+    elif found.limbs > found.k:
+        how = f"one actuated joint in each of {found.k} of the {found.limbs} limbs"
+    else:
+        how = "one actuated joint per limb"
     out = [] if found.kind == "flexure" else [found.name]
     out.append(
         f"  {found.dof} DOF ({found.pattern}); {how}: {len(found.combinations)} combination(s), "
@@ -153,7 +160,8 @@ def enumeration_text(found: Enumeration) -> str:
         out.append("  poses: " + "; ".join(f"{i}: {p}" for i, p in enumerate(found.poses)))
     out += [f"  warning: {w}" for w in found.warnings]
     if not found.valid:
-        out.append("  no combination is valid at every pose")
+        hint = f" (one joint per limb; mode 'any', --mode any, tries any {found.dof} of the joints)" if found.mode == "limb" and found.kind == "rigid" else ""
+        out.append(f"  no combination is valid at every pose{hint}")
     elif found.valid[0].verdict == VALID:
         best = found.valid[0]
         out.append(f"  best: {' '.join(best.inputs)} ({best.type}), worst-pose actuation conditioning {best.conditioning:.3g}")

@@ -25,7 +25,22 @@ from ..core.result import Result, ScrewAxis, require_result
 from ..errors import RequestError
 from .text import fmt_number, fmt_vector, screw_text
 
-__all__ = ["markdown_report", "markdown_table", "md_escape", "md_code"]
+__all__ = ["markdown_report", "markdown_table", "md_escape", "md_line", "md_heading", "md_code"]
+
+
+_LINE_BREAKS = re.compile("\r\n|[\n\r\v\f\x1c\x1d\x1e\x85\u2028\u2029]")
+"""Every character that ends a line (``str.splitlines``'s list): text put into one Markdown line may hold none."""
+
+
+def md_line(text: object) -> str:
+    """``text`` on one line (each line break a space): a name holding ``"\\n## "`` cannot start a heading or any block.
+
+    Examples
+    --------
+    >>> md_line("a\\n## b\\r\\nc")
+    'a ## b c'
+    """
+    return _LINE_BREAKS.sub(" ", str(text))
 
 
 def md_escape(text: object) -> str:
@@ -36,20 +51,32 @@ def md_escape(text: object) -> str:
     >>> md_escape("a|b\\nc")
     'a\\\\|b c'
     """
-    return str(text).replace("\\", "\\\\").replace("|", "\\|").replace("\r", " ").replace("\n", " ")
+    return md_line(str(text).replace("\\", "\\\\").replace("|", "\\|"))
+
+
+def md_heading(text: object) -> str:
+    """``text`` as the words of a heading: one line, pipes escaped, and a trailing ``#`` kept (escaped: it would close the heading).
+
+    Examples
+    --------
+    >>> md_heading("#1 arm #")
+    '#1 arm \\\\#'
+    """
+    escaped = md_escape(text)
+    return escaped[:-1] + "\\#" if escaped.endswith("#") else escaped
 
 
 def md_code(text: str) -> str:
-    """``text`` as a Markdown code span, whatever backticks it holds (CommonMark: a fence longer than any run inside).
+    """``text`` as a Markdown code span on one line, whatever backticks it holds (CommonMark: a fence longer than any run inside).
 
     Examples
     --------
     >>> md_code("series(A,B)"), md_code("series(D`t,C)")
     ('`series(A,B)`', '``series(D`t,C)``')
-    >>> md_code("`x")
-    '`` `x ``'
+    >>> md_code("`x"), md_code("A\\n## B")
+    ('`` `x ``', '`A ## B`')
     """
-    text = str(text)
+    text = md_line(text)
     longest = max((len(run) for run in re.findall("`+", text)), default=0)
     fence = "`" * (longest + 1)
     pad = " " if text.startswith("`") or text.endswith("`") else ""
@@ -143,7 +170,7 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
         raise RequestError(f"markdown_report: limbs: expected True or False, got {type(limbs).__name__}")
     s = result.length_scale
     unit = _unit(result)
-    out = [f"# {md_escape(result.name)}", ""]
+    out = [f"# {md_heading(result.name)}", ""]
     moving = "cannot move (at first order)" if result.dof == 0 else f"has **{result.dof}** DOF, motion pattern **{result.pattern}**"
     out.append(f"The end effector {moving}; the whole mechanism has mobility **{result.mobility}**.")
     out.append("")
@@ -177,7 +204,7 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     ]
     out.append(markdown_table(["quantity", "formula", "value"], counts, align="llr"))
     if result.gruebler_kutzbach_explanation:
-        out += ["", f"Why Grübler–Kutzbach differs: {result.gruebler_kutzbach_explanation}"]
+        out += ["", f"Why Grübler–Kutzbach differs: {md_line(result.gruebler_kutzbach_explanation)}"]
     out += ["", f"Structure (series/parallel decomposition): {md_code(result.structure)}"]
     if limbs and result.limbs:
         out += ["", f"## Limbs ({len(result.limbs)}), each in its own frame", ""]
@@ -194,6 +221,6 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     ]
     if result.warnings:
         out.append("")
-        out += [f"> **Warning:** {w}" for w in result.warnings]
+        out += [f"> **Warning:** {md_line(w)}" for w in result.warnings]
     return "\n".join(out)
 

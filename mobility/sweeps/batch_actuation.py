@@ -41,11 +41,11 @@ from typing import Sequence, cast
 import numpy as np
 
 from ..actuation import REDUNDANT, SINGULAR, VALID
-from ..core.model import Mechanism, joint_names, require_no_repeats
+from ..core.model import Mechanism, joint_freedoms, joint_names, require_no_repeats
 from ..core.screws import SWAP_ROWS
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_ranks
+from ..core.tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
 from ..core.topology import JointNode, Node, Parallel, Series, decompose, joints_of
-from ..errors import AnalysisError, MechanismError, name_list
+from ..errors import AnalysisError
 from .batch_systems import BatchValue, PoseAnswers, evaluate_batch, span_batch, stacked_svd
 from .posed_screws import PosedScrews
 
@@ -77,13 +77,8 @@ def actuated_inputs(mechanism: Mechanism, names: Sequence[str] | None = None) ->
         When a name is not a joint of the mechanism.
     """
     chosen = [j.name for j in mechanism.joints if j.actuated] if names is None else joint_names(names, "actuated")
-    index = {j.name: i for i, j in enumerate(mechanism.joints)}
-    freedoms = []
     require_no_repeats(chosen, "actuated")
-    for name in chosen:
-        if name not in index:
-            raise MechanismError("actuated", f"unknown joint {name!r}; expected one of: {name_list(index)}")
-        freedoms += [(index[name], k) for k in range(mechanism.joints[index[name]].dof)]
+    freedoms = [(j, k) for j, k, _ in joint_freedoms(mechanism, chosen)]  # NAME.k: freedom k of a multi-freedom joint
     return ActuationInputs(tuple(chosen), tuple(freedoms))
 
 
@@ -97,8 +92,8 @@ class BatchActuation:
     rank : ndarray of int
         Rank of the constraint and actuation wrenches together.
     margin : ndarray of float
-        Smallest kept relative singular value of that decision (small: near
-        an actuation singularity).
+        The actuation margin of :func:`mobility.check_actuation` (0 at an
+        actuation singularity, small near one).
     conditioning : ndarray of float
     """
 
@@ -158,11 +153,12 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
     limb_of = {j: k for k, (node, _) in enumerate(limbs) for j in joints_of(node)}
     world = mechanism.world_joints
     ee = mechanism.end_effector
-    wrenches, rates = [], []
+    wrenches, rates, transmissions = [], [], []
     lacking: dict[int, np.ndarray] = {}  # by limb: the poses where an input of it has no wrench of its own (the limb's other joints produce its motion)
     for joint, freedom in inputs.freedoms:
         w = np.zeros((count, 6))
         rate = np.ones(count)
+        transmission = np.zeros(count)
         if joint in limb_of:
             node, limb = limbs[limb_of[joint]]
             col = posed.offsets[joint] + freedom
@@ -191,11 +187,13 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
                 a = np.where((r < 0)[:, None], -a, a)
                 w = np.where(has[:, None], a, 0.0)
                 rate = np.where(has, np.abs(r), 1.0)
+                transmission = np.where(has, np.minimum(np.abs(r) / np.linalg.norm(twist, axis=1), 1.0), 0.0)
             else:
                 has = np.zeros(count, dtype=bool)
             lacking[limb_of[joint]] = lacking.get(limb_of[joint], np.zeros(count, dtype=bool)) | ~has
         wrenches.append(w)
         rates.append(rate)
+        transmissions.append(transmission)
     n = len(inputs.freedoms)
     dof = answers.dof
     present = np.stack([np.any(w != 0.0, axis=1) for w in wrenches], axis=1) if n else np.zeros((count, 0), dtype=bool)
@@ -219,7 +217,30 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
         ok = regular & finite & (dof > 0) & (present.sum(axis=1) >= dof) & (sv[:, 0] > 0)
         with np.errstate(divide="ignore", invalid="ignore"):
             conditioning = np.where(ok, sv[rows, d] / sv[:, 0], conditioning)
-    return BatchActuation(verdict, decision.rank, decision.smallest_kept, conditioning)
+    return BatchActuation(verdict, decision.rank, _actuation_margin(decision, wrenches, transmissions, present, value.basis, dof, regular), conditioning)
+
+
+def _actuation_margin(decision: RankDecisions, wrenches: list[np.ndarray], transmissions: list[np.ndarray], present: np.ndarray,
+                      basis: np.ndarray, dof: np.ndarray, regular: np.ndarray) -> np.ndarray:
+    """The actuation margin of :func:`mobility.check_actuation` at every pose: ``s_d`` of ``H[i, k] = rho_i (a_i o t_k)``, at most the rank margin.
+
+    0 where actuation-singular or where the end effector has no freedom for
+    the inputs to drive; the rank margin where an input has no wrench of its
+    own (:mod:`mobility.actuation.assessment`).
+    """
+    count, n = present.shape
+    margin = np.where(regular, decision.smallest_kept, 0.0)
+    if n == 0:
+        return margin
+    margin = np.where(dof == 0, 0.0, margin)
+    full = regular & (dof > 0) & present.all(axis=1)
+    if basis.shape[2] and full.any():
+        a = np.stack(wrenches, axis=1)  # (N, n, 6)
+        h = (a[:, :, SWAP_ROWS] @ basis) * np.stack(transmissions, axis=1)[:, :, None]
+        sv = _singular_values(h)
+        d = np.clip(dof - 1, 0, sv.shape[1] - 1)
+        margin = np.where(full, np.where(dof <= sv.shape[1], np.minimum(sv[np.arange(count), d], margin), 0.0), margin)
+    return margin
 
 
 def _held(limbs: list, lacking: dict[int, np.ndarray], inputs: ActuationInputs, posed: PosedScrews, tol: Tolerance) -> tuple[list[np.ndarray], np.ndarray]:
