@@ -58,6 +58,19 @@ def _exact_counts(axes_points_pitches: list[tuple[tuple[float, ...], tuple[float
     return dof, dof - np.linalg.matrix_rank(t[:3])
 
 
+ONE_WIRE = """\
+name: one wire
+units: {length: mm, modulus: GPa}
+ground: base
+end_effector: stage
+materials:
+  steel: {E: 200, nu: 0.3}
+elements:
+  - {name: w1, type: rod, bodies: [base, stage], axis: [0, 0, 1], length: 100, radius: 1, material: steel}
+"""
+"""A flexure document of one wire, to which a test adds its ``expected`` block."""
+
+
 @pytest.mark.parametrize("scale", SCALES)
 def test_a_tiny_mechanism_with_a_helical_joint_loads_and_counts_alike_at_every_scale(scale):
     # the H joint's pitch is 2e9 times the spread of the joint points: it was refused ("write it as a P joint"),
@@ -150,17 +163,7 @@ def test_an_expected_translation_basis_is_checked_in_code_and_in_flexure_documen
     assert Expected(translations=()).translations == ()  # no translation
     with pytest.raises(RequestError, match=r"^compare_translations: expected\[1\]: linearly dependent"):
         compare_translations(np.eye(3)[:1], [[1, 0, 0], [3, 0, 0]], mobility.Tolerance())
-    flexure = """\
-name: one wire
-units: {length: mm, modulus: GPa}
-ground: base
-end_effector: stage
-materials:
-  steel: {E: 200, nu: 0.3}
-elements:
-  - {name: w1, type: rod, bodies: [base, stage], axis: [0, 0, 1], length: 100, radius: 1, material: steel}
-expected: {translations: [[0, 0, 1], [0, 0, -1]]}
-"""
+    flexure = ONE_WIRE + "expected: {translations: [[0, 0, 1], [0, 0, -1]]}\n"
     with pytest.raises(MechanismFileError, match=r"^w\.yaml:9: expected\.translations\[1\]: linearly dependent"):
         loads_flexure(flexure, file="w.yaml")
 
@@ -261,16 +264,6 @@ def test_a_p_joint_takes_a_point_and_the_message_and_the_page_say_so():
 
 
 def test_a_flexure_document_may_expect_no_motion_as_the_contract_writes_it():
-    text = """\
-name: one wire
-units: {length: mm, modulus: GPa}
-ground: base
-end_effector: stage
-materials:
-  steel: {E: 200, nu: 0.3}
-elements:
-  - {name: w1, type: rod, bodies: [base, stage], axis: [0, 0, 1], length: 100, radius: 1, material: steel}
-expected: {pattern: ""}
-"""
+    text = ONE_WIRE + 'expected: {pattern: ""}\n'
     doc = loads_flexure(text, file="w.yaml")
     assert doc.expected is not None and doc.expected.pattern == "0"
