@@ -133,7 +133,8 @@ def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
     Traceback (most recent call last):
     mobility.errors.MechanismError: point: expected a list of 3 numbers, got 2
     """
-    if not direction and type(value) in (tuple, list) and len(value) == 3 and all(type(x) in (float, int) for x in value):
+    plain = type(value) in (tuple, list) and len(value) == 3 and all(type(x) in (float, int) for x in value)  # no bool, no text
+    if plain and not direction:
         try:  # the common case, without numpy's per-call overhead
             x, y, z = (float(x) for x in value)
         except OverflowError:
@@ -141,7 +142,7 @@ def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
         if math.isfinite(x) and math.isfinite(y) and math.isfinite(z):
             return (x, y, z)
     items = value.tolist() if isinstance(value, np.ndarray) and value.dtype.kind in "bUSO" else value
-    if isinstance(items, (list, tuple)) and any(isinstance(x, (bool, np.bool_)) or (isinstance(x, str) and not x.isascii()) for x in items):
+    if not plain and isinstance(items, (list, tuple)) and any(isinstance(x, (bool, np.bool_)) or (isinstance(x, str) and not x.isascii()) for x in items):
         raise MechanismError(key, f"expected a list of 3 numbers (not true or false, digits in ASCII), got {shown_argument(value)}")
     try:
         arr = np.asarray(value, dtype=float)
@@ -535,7 +536,7 @@ def expected_basis_problem(vectors: Sequence[Vector]) -> tuple[int, str] | None:
             units.append(require_vector(v, "", direction=True))
         except MechanismError as exc:
             return i, exc.message
-        if decide_rank(np.linalg.svd(np.array(units), compute_uv=False)).rank < len(units):
+        if len(units) > 1 and decide_rank(np.linalg.svd(np.array(units), compute_uv=False)).rank < len(units):  # one non-zero direction is a basis
             return i, "linearly dependent on the directions before it; expected a basis (independent directions)"
     return None
 
@@ -1080,6 +1081,8 @@ def require_name(value: Any, key: str, expected: str) -> None:
     Traceback (most recent call last):
     mobility.errors.MechanismError: name: a tab '\\t' (U+0009) is not allowed in a name
     """
+    if type(value) is str and value.isprintable() and value:  # the common case, at one call's cost
+        return
     if not isinstance(value, str) or not value:
         raise MechanismError(key, f"expected {expected}, got {value!r}")
     problem = name_problem(value)

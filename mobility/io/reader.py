@@ -196,7 +196,7 @@ class DocumentReader:
         ...
         mobility.errors.MechanismFileError: n.yaml: joints[0].name: a line separator '\\u2028' (U+2028) is not allowed in a joint name
         """
-        problem = name_problem(value, what)
+        problem = None if value.isprintable() else name_problem(value, what)  # printable: the common case, at one call's cost
         if problem is not None:
             raise self.fail(path, problem)
         return value
