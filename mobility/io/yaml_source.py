@@ -160,18 +160,43 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
     if bad is not None:
         line = text.count("\n", 0, bad.start()) + 1
         raise MechanismFileError("", control_character_problem(bad.group(), "YAML", also=_NOT_PRINTABLE) or "", file=file, line=line)
-    loader = _EventSource(text)
     try:
-        return _Builder(loader, file, lim).document()
+        return _events_built(_EventSource, text, file, lim)
     except yaml.MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
-        mark_line = mark.line + 1 if mark is not None else None
-        what = exc.problem or exc.context or "syntax error"
-        raise MechanismFileError("", f"YAML syntax error: {what}", file=file, line=mark_line) from None
+        if exc.problem != _LIBYAML_NESTING or _EventSource is yaml.SafeLoader:
+            raise _syntax_error(exc, file) from None
+    # libyaml (from PyYAML 6.0.4) refuses 1,000 open brackets while it reads ahead, before the first of them
+    # reaches the builder: the pure-Python parser reads the same events without that bound, so that the
+    # builder's own depth limit (MOBILITY_MAX_DEPTH) decides, naming the key and the line as for any limit.
+    try:
+        return _events_built(yaml.SafeLoader, text, file, lim)
+    except yaml.MarkedYAMLError as exc:
+        raise _syntax_error(exc, file) from None
+
+
+_LIBYAML_NESTING = "exceeded maximum nesting depth"
+"""libyaml's problem when more than its 1,000 flow collections are open at once."""
+
+
+def _events_built(source: Any, text: str, file: str, limits: Limits) -> tuple[Any, Positions]:
+    """The document of ``text`` read from the events of the parser class ``source`` (libyaml's, or PyYAML's in Python)."""
+    loader = source(text)
+    try:
+        return _Builder(loader, file, limits).document()
+    except yaml.MarkedYAMLError:
+        raise
     except yaml.YAMLError as exc:
         raise MechanismFileError("", f"YAML error: {' '.join(str(exc).split())}", file=file) from None
     finally:
         loader.dispose()
+
+
+def _syntax_error(exc: yaml.MarkedYAMLError, file: str) -> MechanismFileError:
+    """The one-line error of a YAML syntax error, at its line."""
+    mark = exc.problem_mark or exc.context_mark
+    mark_line = mark.line + 1 if mark is not None else None
+    what = exc.problem or exc.context or "syntax error"
+    return MechanismFileError("", f"YAML syntax error: {what}", file=file, line=mark_line)
 
 
 def _add_to(frame: list[Any], value: Any, size: int) -> None:
