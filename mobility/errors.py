@@ -63,6 +63,7 @@ __all__ = [
     "MissingExtraError",
     "PlottingUnavailableError",
     "name_list",
+    "counted",
     "did_you_mean",
     "one_line",
     "clipped",
@@ -71,6 +72,17 @@ __all__ = [
     "name_problem",
     "TERMINAL_CONTROL",
 ]
+
+
+def counted(n: int, word: str, plural: str = "s") -> str:
+    """``n`` and ``word``, in the plural unless ``n`` is 1: the count of a message or a report.
+
+    Examples
+    --------
+    >>> counted(1, "pose"), counted(8, "combination"), counted(5, "constraint wrench", "es"), counted(0, "direction")
+    ('1 pose', '8 combinations', '5 constraint wrenches', '0 directions')
+    """
+    return f"{n} {word}{'' if n == 1 else plural}"
 
 
 def name_list(names: Iterable[object], *, most: int = 12, empty: str = "(none)") -> str:

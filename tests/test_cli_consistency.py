@@ -126,7 +126,7 @@ def test_the_same_options_with_what_they_need_are_read(tmp_path, capsys):
 def test_limb_mode_drives_a_single_loop_with_one_joint_as_mode_any_does(capsys):
     status, out, _ = run(capsys, "actuation", FOUR_BAR, "--enumerate")
     assert status == 0  # was 1: every pair of joints "redundant", no combination valid
-    assert "one actuated joint in each of 1 of the 2 limbs: 4 combination(s)" in out
+    assert "one actuated joint in each of 1 of the 2 limbs: 4 combinations" in out
     status, out, _ = run(capsys, "actuation", FOUR_BAR, "--enumerate", "--json")
     found = json.loads(out)
     assert (found["mode"], found["k"], found["limbs"]) == ("limb", 1, 2)
@@ -136,6 +136,23 @@ def test_limb_mode_drives_a_single_loop_with_one_joint_as_mode_any_does(capsys):
     anywhere = {c.inputs: c.verdict for c in enumerate_actuations(m, mode="any").combinations}
     assert anywhere == limb  # the two modes agree on a single loop
     assert all(locked_dof(m, list(inputs)) == 0 for inputs in limb)  # the second route: each joint locked holds the loop
+
+
+def test_limb_mode_drives_dof_of_the_limbs_when_several_loops_have_more_limbs_than_dof(capsys):
+    # the Tricept: three UPS legs and a passive central UP leg, 3 DOF; one input in each of the four legs was
+    # "redundant" (nothing valid); the machine is driven by its three UPS legs
+    tricept = ROOT / "mechanisms" / "tricept.yaml"
+    status, out, _ = run(capsys, "actuation", tricept, "--enumerate")
+    assert status == 0 and "one actuated joint in each of 3 of the 4 limbs: 4 combinations, checked at 1 pose" in out
+    m = mobility.load(tricept)
+    found = enumerate_actuations(m)
+    assert (found.k, found.limbs) == (3, 4)
+    assert found.combinations[0].inputs == ("P1", "P2", "P3") and found.combinations[0].verdict == "valid"
+    limb = {c.inputs: c.verdict for c in found.combinations}
+    assert len(limb) == 4 and set(limb.values()) == {"valid"}
+    anywhere = {c.inputs: c.verdict for c in enumerate_actuations(m, mode="any").combinations}
+    assert all(anywhere[inputs] == verdict for inputs, verdict in limb.items())  # the same verdict in mode any
+    assert all(locked_dof(m, list(inputs)) == 0 for inputs in limb)  # the second route: the three locked hold the platform
 
 
 def test_limb_mode_finding_nothing_points_to_mode_any(tmp_path, capsys):

@@ -328,13 +328,14 @@ def test_a_command_beyond_its_limit_names_the_limit_and_its_variable(tmp_path, m
         assert status == 2 and "more than the limit of 11" in err and "MOBILITY_MAX_MOVING_JOINTS" in err, (args, err)
 
 
-def test_an_enumeration_too_large_to_count_in_a_machine_integer_is_refused(tmp_path, monkeypatch):
-    # two candidates (P, R) in each of 70 limbs: 2**70 combinations, beyond 64-bit integers (once counted as 0)
+def test_an_enumeration_too_large_is_refused_with_its_exact_count_before_any_is_listed(tmp_path, monkeypatch):
+    # two candidates (P, R) in each of 70 limbs, 3 DOF: one in each of 3 limbs, C(70, 3) * 2**3 combinations,
+    # counted limb by limb (the 54,740 choices of limbs are never listed); once 2**70, one in every limb
     monkeypatch.setenv("MOBILITY_MAX_ENUMERATED_JOINTS", "1000")
     path = tmp_path / "prs.yaml"
     path.write_text(yaml_text(prs(70)), encoding="utf-8")
     status, out, err = run_cli(["actuation", "--enumerate", str(path)])
-    assert status == 2 and f"{2**70} combinations to try" in err and err.count("\n") == 1
+    assert status == 2 and f"mobility: {math.comb(70, 3) * 2**3} combinations to try" in err and err.count("\n") == 1
 
 
 # -- the answers at scale, by a second route ------------------------------------------------------

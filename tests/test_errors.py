@@ -39,7 +39,7 @@ def test_every_error_class_is_a_mobility_error():
     assert {"MobilityError", "MechanismFileError", "RequestError", "MissingExtraError"} <= names  # the scan sees the classes
     assert [c.__name__ for c in ERROR_CLASSES if not issubclass(c, MobilityError)] == []
     # the classes, and the helpers of a message: names, a close name, one line, a value cut short, an argument quoted, a control character found
-    helpers = {"name_list", "did_you_mean", "one_line", "clipped", "shown_argument", "control_character_problem", "name_problem", "TERMINAL_CONTROL"}
+    helpers = {"name_list", "did_you_mean", "one_line", "clipped", "shown_argument", "control_character_problem", "name_problem", "counted", "TERMINAL_CONTROL"}
     assert set(errors.__all__) == names | helpers
 
 

@@ -78,7 +78,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..core.analysis import screw_system_in_frame
-from ..errors import AnalysisError
+from ..errors import AnalysisError, counted
 from ..core.frozen import ReadOnlyArrays, read_only
 from ..core.joint_screws import Normalisation
 from ..core.linalg import singular_values, svd
@@ -442,7 +442,7 @@ def _explanation(verdict: str, n: int, dof: int, rank: int, useless: Sequence[st
     """
     if verdict == VALID:
         return (
-            f"the {_counted(n, 'actuation wrench', 'es')} and the {_counted(6 - dof, 'constraint wrench', 'es')} span all six dimensions: "
+            f"the {counted(n, 'actuation wrench', 'es')} and the {counted(6 - dof, 'constraint wrench', 'es')} span all six dimensions: "
             "with the inputs locked the end effector cannot move"
         )
     inputs = f"{n} input{'' if n == 1 else 's'} for {dof} DOF"
@@ -455,20 +455,10 @@ def _explanation(verdict: str, n: int, dof: int, rank: int, useless: Sequence[st
         )
     if verdict == REDUNDANT:
         return f"{inputs}: {n - dof} more than needed (they must be coordinated or they fight each other)"
-    text = f"actuation and constraint wrenches span only {rank} of 6 dimensions: with the inputs locked the end effector can still move along {_counted(6 - rank, 'direction')}"
+    text = f"actuation and constraint wrenches span only {rank} of 6 dimensions: with the inputs locked the end effector can still move along {counted(6 - rank, 'direction')}"
     if n < dof:
         text += f" (fewer inputs, {n}, than DOF, {dof})"
     if useless:
         text += f"; useless input{'' if len(useless) == 1 else 's'}: " + ", ".join(useless)
     return text
 
-
-def _counted(n: int, word: str, plural: str = "s") -> str:
-    """``n`` and ``word``, in the plural unless ``n`` is 1.
-
-    Examples
-    --------
-    >>> _counted(1, "actuation wrench", "es"), _counted(5, "constraint wrench", "es"), _counted(0, "direction")
-    ('1 actuation wrench', '5 constraint wrenches', '0 directions')
-    """
-    return f"{n} {word}{'' if n == 1 else plural}"

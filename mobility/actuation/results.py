@@ -283,7 +283,7 @@ class Enumeration:
         ``"limb"`` (one joint per limb), ``"any"`` (any ``k`` candidates).
     k : int
         Inputs per combination (``"any"`` mode; otherwise the number of
-        limbs, or the DOF for a single loop with more limbs than DOF).
+        limbs, or the DOF when there are more limbs than DOF).
     combinations : tuple of Combination
         Ranked: valid ones first by decreasing conditioning, then redundant,
         then actuation-singular ones.

@@ -21,7 +21,6 @@ Examples
 from __future__ import annotations
 
 import itertools
-import math
 from typing import Iterable, Sequence
 
 import numpy as np
@@ -42,7 +41,7 @@ from .rigid_pose import RigidPose
 __all__ = ["check_actuation", "check_over_poses", "enumerate_actuations", "ENUMERATION_MODES"]
 
 ENUMERATION_MODES = ("limb", "any")
-"""``"limb"``: one joint in each limb (the paper's enumeration; in DOF of them for a single loop with more limbs); ``"any"``: any ``k`` candidates."""
+"""``"limb"``: one joint in each limb (the paper's enumeration; in DOF of them when there are more limbs than DOF); ``"any"``: any ``k`` candidates."""
 
 
 def check_actuation(mechanism: Mechanism, actuated: Sequence[str] | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> ActuationCheck:
@@ -132,14 +131,14 @@ def enumerate_actuations(
     mechanism : Mechanism
         The given pose (pose 0).
     mode : {"limb", "any"}
-        ``"limb"``: one joint in each limb (the paper's enumeration); for a
-        single loop with more limbs than DOF (a four-bar seen from its
-        coupler: two limbs, one DOF), one joint in each of DOF limbs;
-        ``"any"``: any ``k`` candidates.
+        ``"limb"``: one joint in each limb (the paper's enumeration); with
+        more limbs than DOF (a four-bar seen from its coupler: two limbs, one
+        DOF; the Tricept's four legs, three DOF), one joint in each of DOF
+        limbs, the others passive; ``"any"``: any ``k`` candidates.
     k : int, optional
         Inputs per combination (an ``int`` or a numpy integer).  In
         ``"any"`` mode, default: the DOF.  In ``"limb"`` mode it is the
-        number of limbs (the DOF, when smaller, for a single loop), fixed
+        number of limbs (the DOF, when smaller), fixed
         by the mode: leave it out (a ``k`` that differs is refused).
     poses : sequence of Mechanism
         Further poses of the same mechanism (listed by the user).
@@ -185,8 +184,7 @@ def enumerate_actuations(
     warnings: list[str] = []
     first = RigidPose(mechanism, tol)
     dof = first.spaces.dof
-    links = {link for j in mechanism.joints for link in j.links}
-    limb_k = _limb_inputs(len(first.limbs), dof, single_loop=len(mechanism.joints) - len(links) == 0)
+    limb_k = _limb_inputs(len(first.limbs), dof)
     if mode == "limb" and given_k is not None and given_k != limb_k:
         raise RequestError(f"k: mode 'limb' takes one input in each limb, {limb_k} here, got k={given_k} (leave k out, or use mode 'any')")
     pose_list: list[tuple[str, Mechanism]] = [("given pose", mechanism)]
@@ -201,8 +199,8 @@ def enumerate_actuations(
     if mode == "limb":
         k = limb_k
         warnings += [f"limb {i + 1} has no one-freedom joint to actuate" for i, c in enumerate(candidates) if not c]
-        driven = list(itertools.combinations(candidates, k))  # k of the limbs: all of them, unless there are more limbs than DOF
-        limit_combinations(sum(math.prod(len(c) for c in chosen) for chosen in driven), "check chosen inputs, or use mode 'any' with a small k")
+        limit_combinations(_limb_combinations(candidates, k), "check chosen inputs, or use mode 'any' with a small k")
+        driven = itertools.combinations(candidates, k)  # k of the limbs: all of them, unless there are more limbs than DOF
         combos: Iterable[tuple[int, ...]] = itertools.chain.from_iterable(itertools.product(*chosen) for chosen in driven)
     else:
         flat = sorted(j for c in candidates for j in c)
@@ -230,21 +228,42 @@ def enumerate_actuations(
     return Enumeration(mechanism.name, "rigid", dof, pattern, mode, k, ranked, groups, tuple(label for label, _ in pose_list), tuple(warnings), len(first.limbs))
 
 
-def _limb_inputs(limbs: int, dof: int, *, single_loop: bool) -> int:
-    """Inputs per combination of mode ``"limb"``: one in each limb, or in ``dof`` of them for a single loop with more limbs than DOF.
+def _limb_inputs(limbs: int, dof: int) -> int:
+    """Inputs per combination of mode ``"limb"``: one in each limb, or in ``dof`` of them when there are more limbs than DOF.
 
-    A single loop seen from a link of it (a four-bar's coupler: two limbs, one
-    DOF) is driven by one joint in one of its two paths; one in each would
-    make every combination redundant.  A mechanism of several loops keeps
-    one input in each limb (the paper's enumeration; the report points to
-    mode ``"any"`` when none is valid).
+    A mechanism with more limbs than DOF (a four-bar seen from its coupler:
+    two limbs, one DOF; the Tricept's three UPS legs and its passive central
+    UP leg, three DOF; the 4-PUU, three DOF) is driven by one joint in each
+    of ``dof`` limbs, the others passive; one in each limb would make every
+    combination redundant.  With as many limbs as DOF or fewer, every limb
+    gets one input (the paper's enumeration).
 
     Examples
     --------
-    >>> _limb_inputs(3, 3, single_loop=False), _limb_inputs(2, 1, single_loop=True), _limb_inputs(4, 3, single_loop=False)
-    (3, 1, 4)
+    >>> _limb_inputs(3, 3), _limb_inputs(2, 1), _limb_inputs(4, 3), _limb_inputs(2, 3)
+    (3, 1, 3, 2)
     """
-    return dof if single_loop and 0 < dof < limbs else limbs
+    return dof if 0 < dof < limbs else limbs
+
+
+def _limb_combinations(candidates: Sequence[Sequence[int]], k: int) -> int:
+    """How many combinations mode ``"limb"`` tries: one candidate in each of ``k`` of the limbs.
+
+    The sum over the ``k``-subsets of limbs of the product of their
+    candidate counts (the elementary symmetric polynomial of degree ``k``),
+    counted limb by limb in exact integers, so that it is known before any
+    subset is listed (70 limbs of two candidates, ``k`` = 3: 437,920).
+
+    Examples
+    --------
+    >>> _limb_combinations([[0, 1], [2, 3], [4, 5]], 2), _limb_combinations([[0, 1]] * 70, 70) == 2**70
+    (12, True)
+    """
+    counts = [1] + [0] * k  # counts[j]: choices of one candidate in each of j limbs among those seen so far
+    for limb in candidates:
+        for j in range(k, 0, -1):
+            counts[j] += counts[j - 1] * len(limb)
+    return counts[k]
 
 
 def _poses(poses: Iterable[Mechanism], caller: str) -> list[Mechanism]:

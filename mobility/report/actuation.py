@@ -35,6 +35,7 @@ from typing import Any, Sequence
 
 from ..actuation import SINGULAR, VALID, ActuationCheck, Enumeration
 from ..core.result import ScrewAxis
+from ..errors import counted
 from ..flexure import FlexureSpaces
 from .text import fmt_number, fmt_vector, screw_text
 
@@ -135,16 +136,11 @@ def actuation_json(check: ActuationCheck, poses: PoseChecks = ()) -> str:
 
 def enumeration_text(found: Enumeration) -> str:
     """The table of ``--enumerate``: counts per type, then every combination ranked."""
-    if found.mode != "limb":
-        how = f"any {found.k} input(s)"
-    elif found.limbs > found.k:
-        how = f"one actuated joint in each of {found.k} of the {found.limbs} limbs"
-    else:
-        how = "one actuated joint per limb"
+    how = f"any {counted(found.k, 'input')}" if found.mode != "limb" else _limb_choice(found).replace("one joint", "one actuated joint")
     out = [] if found.kind == "flexure" else [found.name]
     out.append(
-        f"  {found.dof} DOF ({found.pattern}); {how}: {len(found.combinations)} combination(s), "
-        f"checked at {len(found.poses)} pose(s)"
+        f"  {found.dof} DOF ({found.pattern}); {how}: {counted(len(found.combinations), 'combination')}, "
+        f"checked at {counted(len(found.poses), 'pose')}"
     )
     out.append("  type            valid / total")
     out += [f"  {g.type:<15} {g.valid:>5} / {g.total}" for g in found.groups]
@@ -160,7 +156,7 @@ def enumeration_text(found: Enumeration) -> str:
         out.append("  poses: " + "; ".join(f"{i}: {p}" for i, p in enumerate(found.poses)))
     out += [f"  warning: {w}" for w in found.warnings]
     if not found.valid:
-        hint = f" (one joint per limb; mode 'any', --mode any, tries any {found.dof} of the joints)" if found.mode == "limb" and found.kind == "rigid" else ""
+        hint = f" ({_limb_choice(found)}; mode 'any', --mode any, tries any {found.dof} of the joints)" if found.mode == "limb" and found.kind == "rigid" else ""
         out.append(f"  no combination is valid at every pose{hint}")
     elif found.valid[0].verdict == VALID:
         best = found.valid[0]
@@ -207,3 +203,8 @@ def flexure_json(spaces: FlexureSpaces, answer: ActuationCheck | Enumeration) ->
 
 def _dumps(payload: dict[str, Any]) -> str:
     return json.dumps(payload, indent=2, ensure_ascii=False)
+
+
+def _limb_choice(found: Enumeration) -> str:
+    """How mode ``"limb"`` chose the inputs of ``found``: one joint per limb, or in each of DOF of the limbs."""
+    return f"one joint in each of {found.k} of the {found.limbs} limbs" if found.limbs > found.k else "one joint per limb"
