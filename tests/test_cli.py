@@ -221,7 +221,7 @@ def test_pose_sampler_step_has_one_default():
 
 
 def _idle_line(out: str) -> str:
-    return next(line for line in out.splitlines() if "motion(s) of the joints leave the end effector still" in line)
+    return next(line for line in out.splitlines() if " of the joints leave the end effector still" in line)
 
 
 @pytest.mark.parametrize("name, rods", [("rssr.yaml", 1), ("6sps.yaml", 6), ("delta.yaml", 6), ("h4.yaml", 8)])
@@ -238,7 +238,7 @@ def test_idle_freedoms_of_s_s_rods_are_their_spins(capsys, name, rods):
 def test_idle_freedoms_of_a_serial_arm_are_its_self_motion(capsys):
     status, out, _ = run(capsys, "analyze", ROOT / "tests" / "data" / "robots" / "robosuite" / "xarm7_robot.xml")
     assert status == 0 and "S–S" not in out
-    assert _idle_line(out) == ("    idle DOF: 2 motion(s) of the joints leave the end effector still "
+    assert _idle_line(out) == ("    idle DOF: 2 motions of the joints leave the end effector still "
                                "(a self-motion of the serial chain, redundant at this pose: its 7 joint freedoms give the end effector 5 DOF)")
     status, out, _ = run(capsys, "analyze", ROOT / "tests" / "data" / "robots" / "rtb_data" / "puma560_robot.urdf")
     assert status == 0 and "S–S" not in out and _idle_line(out).endswith("its 6 joint freedoms give the end effector 5 DOF)")
@@ -469,7 +469,7 @@ def test_a_sweep_written_to_a_csv_or_json_name_is_written_in_that_format(tmp_pat
         assert main(["sweep", four_bar, "--vary", "A=0:10:3", "-o", str(tmp_path / name)]) == 0
     assert (tmp_path / "map.csv").read_text().startswith("A [deg],dof,pattern,mobility")
     assert json.loads((tmp_path / "map.JSON").read_text())["poses"] == 3
-    assert (tmp_path / "map.txt").read_text().startswith("planar four-bar: sweep of 1 coordinate(s), 3 poses")
+    assert (tmp_path / "map.txt").read_text().startswith("planar four-bar: sweep of 1 coordinate, 3 poses")
     assert main(["sweep", four_bar, "--vary", "A=0:10:3", "--format", "text", "-o", str(tmp_path / "summary.csv")]) == 0  # --format decides
     assert (tmp_path / "summary.csv").read_text().startswith("planar four-bar: sweep")
 
@@ -520,7 +520,7 @@ def test_characters_the_pictures_font_lacks_are_one_note_not_a_page_of_warnings(
     assert main(["plot", str(path), "-o", str(tmp_path / "uni.png")]) == 0
     out, err = capsys.readouterr()
     assert out.startswith("wrote ") and (tmp_path / "uni.png").stat().st_size > 0
-    assert err == "mobility: note: the picture's font has no glyph for 2 character(s) of the names (连杆): drawn as boxes\n"
+    assert err == "mobility: note: the picture's font has no glyph for 2 characters of the names (连杆): drawn as boxes\n"
 
 
 def test_convert_to_standard_output_writes_utf8_yaml_that_reads_back_whatever_the_terminal(tmp_path):

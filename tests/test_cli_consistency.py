@@ -8,12 +8,15 @@ import csv
 import io
 import json
 import math
+import re
+import tokenize
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import mobility
+from mobility import errors
 from mobility.actuation import check_actuation, enumerate_actuations, locked_dof
 from mobility.cli import main
 from mobility.core.loop_closure import loop_closure
@@ -247,6 +250,17 @@ def test_explanations_count_in_the_singular_and_the_plural():
     assert verdict.startswith("the 1 actuation wrench and the 5 constraint wrenches span")
     for text in (said, verdict, check_actuation(mobility.load(RPS), ["P1", "P2"]).explanation):
         assert "(s)" not in text and "(es)" not in text
+
+
+def test_no_message_or_report_counts_with_a_parenthesised_plural():
+    # "1 freedom(s)", "3 wrench(es)": every count in a message or a report is written through errors.counted
+    found = []
+    for path in sorted((ROOT / "mobility").rglob("*.py")):
+        for token in tokenize.generate_tokens(io.StringIO(path.read_text(encoding="utf-8")).readline):
+            if token.type == tokenize.STRING and not token.string.lstrip("rbfuRBFU").startswith(('"""', "'''")) and re.search(r"[a-z]\((?:e)?s\)", re.sub(r"\{[^{}]*\}", "", token.string)):  # not in {expressions}
+                found.append(f"{path.relative_to(ROOT)}:{token.start[0]}: {token.string}")
+    assert found == []
+    assert errors.counted(1, "wrench", "es") == "1 wrench" and errors.counted(3, "wrench", "es") == "3 wrenches"
 
 
 # --- 6. Markdown: names cannot inject blocks ---------------------------------------------------------------------

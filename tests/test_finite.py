@@ -530,4 +530,4 @@ def test_a_wrist_in_gimbal_lock_is_singular_for_the_end_effector_only():
     assert mobility.analyze(tilted).dof == 3
     swept = mobility.sweep(wrist, ["J2=-10:10:5"])  # a third: the batched screws across the lock
     assert swept.dof.tolist() == [3, 3, 2, 3, 3]
-    assert [(p.values, p.reasons) for p in swept.singular] == [((0.0,), ("the end effector loses 1 freedom(s) while the mechanism still moves (a serial singularity): 2 DOF (2R)",))]
+    assert [(p.values, p.reasons) for p in swept.singular] == [((0.0,), ("the end effector loses 1 freedom while the mechanism still moves (a serial singularity): 2 DOF (2R)",))]

@@ -39,8 +39,8 @@ def test_summary_names_the_change_points(capsys):
     assert "assembled: 361 of 361 poses" in out
     assert "359  DOF 1  1T      mobility 1" in out and "2  DOF 2  1T1R    mobility 2" in out
     assert "singular poses (2):" in out
-    assert "O1=120 deg: the end effector gains 1 freedom(s): 2 DOF (1T1R); the mechanism gains 1 freedom(s): mobility 2" in out
-    assert "O1=300 deg" in out and "between 4 pair(s) of neighbouring poses" in out
+    assert "O1=120 deg: the end effector gains 1 freedom: 2 DOF (1T1R); the mechanism gains 1 freedom: mobility 2" in out
+    assert "O1=300 deg" in out and "between 4 pairs of neighbouring poses" in out
 
 
 def test_csv_has_a_header_then_one_row_per_pose(capsys):
@@ -70,7 +70,7 @@ def test_coordinates_show_the_digits_that_tell_neighbours_apart(capsys, vary, sh
 
 def test_summary_says_when_freedoms_are_left_to_the_solver(capsys):
     status, out, _ = run(capsys, "sweep", TSAI, "--vary", "P1=-30:30:3", "--vary", "P2=-30:30:3")
-    assert status == 0 and "note: 2 coordinate(s) driven for mobility 3: the other 1 freedom(s) follow the solver" in out
+    assert status == 0 and "note: 2 coordinates driven for mobility 3: the other 1 freedom follow the solver" in out
     status, out, _ = run(capsys, "sweep", TSAI, "--vary", "P1=-30:30:3", "--vary", "P2=-30:30:3", "--vary", "P3=0:0:1")
     assert status == 0 and "note:" not in out
 

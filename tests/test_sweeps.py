@@ -1011,7 +1011,7 @@ def test_a_full_turn_whose_free_joint_drifts_is_reported_as_a_seam():
     assert r.seams.tolist() == [[359, 0]]
     jumps = [np.linalg.norm(_point(r, i + 1, "P") - _point(r, i, "P")) for i in (357, 358)]
     assert max(jumps) < 20.0 and np.linalg.norm(_point(r, 0, "P") - _point(r, 359, "P")) > 100.0  # mm: a step, then a jump
-    assert "seams: at 1 pair(s) of neighbouring poses a full turn comes back on another pose" in sweep_summary(r)
+    assert "seams: at 1 pair of neighbouring poses a full turn comes back on another pose" in sweep_summary(r)
     assert "    A1=359 deg -> A1=0 deg" in sweep_summary(r)
     assert json.loads(sweep_json(r))["seams"] == [{"from": 359, "to": 0}]
 

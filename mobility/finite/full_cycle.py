@@ -58,7 +58,7 @@ from ..core.model import Mechanism, integer_value, require_mechanism
 from ..core.poses import MAX_STEP, require_seed, step_value
 from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import RequestError, shown_argument
+from ..errors import RequestError, counted, shown_argument
 from .branches import examine_branch, group_by_tangent
 from .moves import MovePlan, probe, probe_directions
 from .orders import canonical_basis, first_order, second_order
@@ -145,7 +145,7 @@ def finite_mobility(
     groups, set_aside = group_by_tangent(probes, here.mobility)
     if set_aside:
         warnings.append(
-            f"{set_aside} move(s) reached poses as singular as the given one "
+            f"{counted(set_aside, 'move')} reached poses as singular as the given one "
             f"(mobility {here.mobility}: a singular locus through the pose); they are not counted as a branch"
         )
     branches = []

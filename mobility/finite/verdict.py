@@ -17,6 +17,7 @@ from typing import Any
 
 from ..core.result import Result
 from ..core.tolerance import Tolerance
+from ..errors import counted
 from .results import Branch, FiniteMobility, Probe, SecondOrder
 
 __all__ = ["no_motion", "judge"]
@@ -108,7 +109,7 @@ def _cannot_move_text(instant: Result, k: int, probes: tuple[Probe, ...], second
     smallest = min((p.residuals[0] for p in probes), default=float("nan"))
     if second is not None and second.obstructed:
         order2 = (
-            f" The second-order test agrees: no first-order motion keeps the {second.cokernel} dependent loop equation(s) "
+            f" The second-order test agrees: no first-order motion keeps the {counted(second.cokernel, 'dependent loop equation')} "
             f"closed to second order (least violation {second.least_violation:.2e} relative)."
         )
     elif second is not None:
@@ -116,7 +117,7 @@ def _cannot_move_text(instant: Result, k: int, probes: tuple[Probe, ...], second
     else:
         order2 = ""
     return (
-        f"The screw route finds {k} first-order motion(s) (end-effector DOF {instant.dof}), but none is a finite motion: "
+        f"The screw route finds {counted(k, 'first-order motion')} (end-effector DOF {instant.dof}), but none is a finite motion: "
         f"in {len(probes)} directions, Newton does not re-close the loops at every step {_steps_text(steps)} "
         f"(smallest residual left at step {steps[0]:g}: {smallest:.2e}; closed means below {tol.closure:.0e}).{order2} "
         "The pose cannot move at all."
@@ -133,7 +134,7 @@ def _verdict_text(instant: Result, k: int, branches: list[Branch], probes: tuple
     if len(branches) > 1:
         return "bifurcation", (
             f"{len(branches)} branches of finite motion meet at this pose (a bifurcation, or change point): {summary}. "
-            f"The {k} first-order motion(s) of the screw route are the union of their tangents; {numbers}. "
+            f"The {counted(k, 'first-order motion')} of the screw route {'is' if k == 1 else 'are'} the union of their tangents; {numbers}. "
             f"No single motion has all {k} freedoms: each branch has at most {top.dimension}."
         )
     if top.dimension == k and top.dof == instant.dof and top.pattern == instant.pattern:
@@ -150,9 +151,9 @@ def _verdict_text(instant: Result, k: int, branches: list[Branch], probes: tuple
             f"poses ({top.dof}) than at this one ({instant.dof}): the pose is singular for the end effector, not for the mechanism."
         )
     text = (
-        f"The finite motion has {top.dimension} of the {k} first-order freedom(s) and end-effector DOF {top.dof} "
+        f"The finite motion has {top.dimension} of the {counted(k, 'first-order freedom')} and end-effector DOF {top.dof} "
         f"({top.pattern}) instead of {instant.dof} ({instant.pattern}): {numbers}; {summary}."
     )
     if second is not None and second.directions.shape[1]:
-        text += f" Second order: {second.directions.shape[1]} direction line(s) pass."
+        text += f" Second order: {counted(second.directions.shape[1], 'direction line')} pass{'es' if second.directions.shape[1] == 1 else ''}."
     return "instantaneous-only", text

@@ -38,7 +38,7 @@ import numpy as np
 
 from ..core.model import WORLD, Joint
 from ..core.transforms import Transform
-from ..errors import MechanismFileError, RequestError, did_you_mean
+from ..errors import MechanismFileError, RequestError, counted, did_you_mean
 from .files import file_name
 from .loader import _MechanismReader
 from .robot_tree import Closure, RobotTree
@@ -147,4 +147,4 @@ def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
             body = bodies[joint.frame]
             joint = joint.transformed(Transform(np.array(body.rotation), np.array(body.origin)))
         closures.append(Closure(joint, "closing joint", positions.line(source), file))
-    return tree.with_closures(closures, notes=[f"{len(closures)} closing joint(s) from {file}"], files=[file])
+    return tree.with_closures(closures, notes=[f"{counted(len(closures), 'closing joint')} from {file}"], files=[file])

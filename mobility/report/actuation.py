@@ -176,13 +176,13 @@ def flexure_spaces_text(spaces: FlexureSpaces) -> str:
     out.append(f"  compliance eigenvalues, relative to the largest ({spaces.largest:.3g} per N in coordinates scaled by L = {fmt_number(spaces.length)} {unit}):")
     out.append("    " + "  ".join(f"{v:.3g}" for v in spaces.eigenvalues))
     out.append(
-        f"  threshold {spaces.threshold:g}: {spaces.dof} freedom(s) above it, {6 - spaces.dof} constraint(s) at or below "
+        f"  threshold {spaces.threshold:g}: {counted(spaces.dof, 'freedom')} above it, {counted(6 - spaces.dof, 'constraint')} at or below "
         f"(nearest eigenvalues {spaces.gap[0]:.3g} and {spaces.gap[1]:.3g})"
     )
     out.append(f"  freedom space: {spaces.dof} DOF ({spaces.pattern})")
     out += [f"    translation along {fmt_vector(t)}" for t in spaces.freedom_translations]
     out += [f"    {_motion(r, s, unit)}" for r in spaces.freedom_rotations]
-    out.append(f"  constraint space: {6 - spaces.dof} wrench(es)")
+    out.append(f"  constraint space: {counted(6 - spaces.dof, 'wrench', 'es')}")
     out += [f"    couple about {fmt_vector(c)}" for c in spaces.constraint_couples]
     out += [f"    {_line(f, s, unit)}" for f in spaces.constraint_forces]
     out += [f"  warning: {w}" for w in spaces.warnings]

@@ -20,6 +20,8 @@ from __future__ import annotations
 import json
 from typing import TYPE_CHECKING
 
+from ..errors import counted
+
 if TYPE_CHECKING:  # pragma: no cover
     from ..finite.results import FiniteMobility, SecondOrder
 
@@ -47,14 +49,14 @@ def finite_report(f: "FiniteMobility") -> str:
         f"  full-cycle:    DOF {f.full_cycle_dof} ({f.full_cycle_pattern}), mobility {f.full_cycle_mobility}",
     ]
     if f.instantaneous_only_dof or f.instantaneous_only_mobility:
-        out.append(f"  instantaneous only: {f.instantaneous_only_dof} end-effector DOF, {f.instantaneous_only_mobility} freedom(s) of the mechanism")
+        out.append(f"  instantaneous only: {f.instantaneous_only_dof} end-effector DOF, {counted(f.instantaneous_only_mobility, 'freedom')} of the mechanism")
     if f.probes:
         out.append(
             f"  moves: {f.moved} of {len(f.probes)} directions re-closed at every step ({', '.join(f'{h:g}' for h in f.steps)}; "
             f"radians, lengths over the characteristic length)"
         )
     if f.second_order is not None:
-        out.append(f"  second order: {f.second_order.cokernel} dependent loop equation(s); {_second_order_text(f.second_order)}")
+        out.append(f"  second order: {counted(f.second_order.cokernel, 'dependent loop equation')}; {_second_order_text(f.second_order)}")
     out += [f"  branch {i + 1}: {b.describe()}" for i, b in enumerate(f.branches)]
     out.append("  " + f.explanation)
     out += [f"  warning: {w}" for w in f.warnings]
@@ -65,7 +67,7 @@ def _second_order_text(so: "SecondOrder") -> str:
     if so.obstructed:
         return f"obstructed (least violation {so.least_violation:.2e}, relative): no direction survives"
     if so.directions.shape[1]:
-        return f"{so.directions.shape[1]} direction line(s) survive"
+        return f"{counted(so.directions.shape[1], 'direction line')} survive{'s' if so.directions.shape[1] == 1 else ''}"
     return "every first-order motion survives"
 
 

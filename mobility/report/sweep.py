@@ -36,6 +36,7 @@ import numpy as np
 
 from ..actuation import SINGULAR
 from ..core.tolerance import first_least
+from ..errors import counted
 from ..sweeps import SweepResult
 from .text import fmt_number
 
@@ -88,7 +89,7 @@ def _range(axis) -> str:
 def sweep_summary(result: SweepResult) -> str:
     """The text summary printed by ``mobility sweep``."""
     kind = "pose coordinate" if all(a.kind == "pose" for a in result.axes) else "coordinate"
-    out = [f"{result.name}: sweep of {len(result.axes)} {kind}(s), {result.size:,} poses"]
+    out = [f"{result.name}: sweep of {counted(len(result.axes), kind)}, {result.size:,} poses"]
     out += [f"  {_range(a)}" for a in result.axes]
     assembled = int(result.assembled.sum())
     line = f"  assembled: {assembled:,} of {result.size:,} poses"
@@ -112,7 +113,7 @@ def sweep_summary(result: SweepResult) -> str:
     if left > 0:
         assert result.regular is not None  # nothing is left without a regular pose
         out.append(
-            f"  note: {len(result.axes)} coordinate(s) driven for mobility {result.regular[2]}: the other {left} freedom(s) "
+            f"  note: {counted(len(result.axes), 'coordinate')} driven for mobility {result.regular[2]}: the other {counted(left, 'freedom')} "
             "follow the solver (the smallest change from the neighbouring pose), so the path across the grid decides them"
         )
     if result.actuated:
@@ -168,14 +169,14 @@ def sweep_summary(result: SweepResult) -> str:
     changes = result.changes
     classes = result.classes()
     if len(changes):
-        out.append(f"  the answer changes between {len(changes):,} pair(s) of neighbouring poses:")
+        out.append(f"  the answer changes between {len(changes):,} pair{'' if len(changes) == 1 else 's'} of neighbouring poses:")
         for a, b, _ in changes[: SUMMARY_SINGULAR_LIMIT // 2]:
             out.append(f"    {describe_values(result, result.values[a])} ({_answer(classes[a])}) -> {describe_values(result, result.values[b])} ({_answer(classes[b])})")
         if len(changes) > SUMMARY_SINGULAR_LIMIT // 2:
             out.append(f"    ... and {len(changes) - SUMMARY_SINGULAR_LIMIT // 2:,} more")
     seams = result.seams
     if len(seams):
-        out.append(f"  seams: at {len(seams):,} pair(s) of neighbouring poses a full turn comes back on another pose "
+        out.append(f"  seams: at {len(seams):,} pair{'' if len(seams) == 1 else 's'} of neighbouring poses a full turn comes back on another pose "
                    "(no small motion joins them: free joints drifted, or another assembly was reached):")
         for a, b in seams[: SUMMARY_SINGULAR_LIMIT // 2]:
             out.append(f"    {describe_values(result, result.values[a])} -> {describe_values(result, result.values[b])}")

@@ -19,7 +19,7 @@ import numpy as np
 
 from ..core.result import Result, ScrewAxis, require_result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
-from ..errors import AnalysisError
+from ..errors import AnalysisError, counted
 from .idle import idle_hint
 
 __all__ = ["fmt_number", "fmt_vector", "screw_text", "text_report", "json_report"]
@@ -115,7 +115,7 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
     if result.gruebler_kutzbach_explanation:
         out.append("    why G–K differs: " + result.gruebler_kutzbach_explanation)
     if result.idle_dof:
-        out.append(f"    idle DOF: {result.idle_dof} motion(s) of the joints leave the end effector still ({idle_hint(result)})")
+        out.append(f"    idle DOF: {counted(result.idle_dof, 'motion')} of the joints leave the end effector still ({idle_hint(result)})")
     out.append(f"  structure: {result.structure}")
     out.append(
         f"  margin: smallest kept singular value {result.margin.smallest_kept:.2e}, "

@@ -48,7 +48,7 @@ from ..core.joint_screws import joint_screws
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism, integer_from_text, number_from_text
 from ..core.tolerance import SAME_GRID_VALUE, SWEEP_REACH
-from ..errors import RequestError, clipped, name_list
+from ..errors import RequestError, clipped, counted, name_list
 
 __all__ = [
     "POSE_COORDINATES",
@@ -272,7 +272,7 @@ def parse_vary(spec: str) -> tuple[str, float, float, int]:
         raise RequestError(f"{where}: expected NAME=START:STOP:COUNT (e.g. O1=0:360:361)")
     parts = match["range"].split(":")
     if len(parts) != 3:
-        raise RequestError(f"{where}: expected NAME=START:STOP:COUNT, got {len(parts)} part(s) after '='")
+        raise RequestError(f"{where}: expected NAME=START:STOP:COUNT, got {counted(len(parts), 'part')} after '='")
     return (match["name"],) + _bounds(where, parts[0], parts[1], parts[2])
 
 

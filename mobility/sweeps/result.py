@@ -51,7 +51,7 @@ from ..core.frozen import ReadOnlyArrays, read_only, read_only_cached_property
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
 from ..core.tolerance import DEFAULT_TOLERANCE, MARGIN_DIP, Tolerance, clean_numbers
-from ..errors import RequestError, shown_argument
+from ..errors import RequestError, counted, shown_argument
 from .grid import SweepAxis
 
 __all__ = ["GridPoint", "SingularPose", "MarginDip", "SweepResult", "COLUMNS"]
@@ -324,11 +324,11 @@ class SweepResult(ReadOnlyArrays):
         for i in np.flatnonzero(gains | dead | lost):
             reasons = []
             if self.dof[i] > dof0:
-                reasons.append(f"the end effector gains {self.dof[i] - dof0} freedom(s): {self.dof[i]} DOF ({self.pattern[i]})")
+                reasons.append(f"the end effector gains {counted(self.dof[i] - dof0, 'freedom')}: {self.dof[i]} DOF ({self.pattern[i]})")
             if dead[i]:
-                reasons.append(f"the end effector loses {dof0 - self.dof[i]} freedom(s) while the mechanism still moves ({kind}): {self.dof[i]} DOF ({self.pattern[i]})")
+                reasons.append(f"the end effector loses {counted(dof0 - self.dof[i], 'freedom')} while the mechanism still moves ({kind}): {self.dof[i]} DOF ({self.pattern[i]})")
             if self.mobility[i] > mob0:
-                reasons.append(f"the mechanism gains {self.mobility[i] - mob0} freedom(s): mobility {self.mobility[i]}")
+                reasons.append(f"the mechanism gains {counted(self.mobility[i] - mob0, 'freedom')}: mobility {self.mobility[i]}")
             if lost[i]:
                 reasons.append(f"the inputs {', '.join(self.actuated)} are actuation-singular")
             verdict = str(self.verdict[i]) if self.actuated else ""

@@ -36,7 +36,7 @@ from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism, integer_value, require_mechanism
 from ..core.result import Result, require_result_of
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import MissingExtraError, RequestError, shown_argument
+from ..errors import MissingExtraError, RequestError, counted, shown_argument
 from ..report.plotting.backend import written_file_name
 from ..report.plotting.sketch import drawing_scale
 from ..report.text import text_report
@@ -165,7 +165,7 @@ class View:
         return bundle
 
     def __repr__(self) -> str:
-        return f"<View of {self.name}: {len(self.frames)} pose(s)>"
+        return f"<View of {self.name}: {counted(len(self.frames), 'pose')}>"
 
 
 def mechanism_view(mechanism: Mechanism, result: Result | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> View:

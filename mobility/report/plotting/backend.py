@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
 from ...core.model import integer_value, real_value
-from ...errors import PlotFormatError, PlottingUnavailableError, RequestError, shown_argument
+from ...errors import PlotFormatError, PlottingUnavailableError, RequestError, counted, shown_argument
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -208,7 +208,7 @@ def glyphs_summarised() -> Iterator[None]:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     if missing:
         shown = "".join(dict.fromkeys(missing))
-        warnings.warn(f"the picture's font has no glyph for {len(shown)} character(s) of the names ({shown}): drawn as boxes", UserWarning, stacklevel=3)
+        warnings.warn(f"the picture's font has no glyph for {counted(len(shown), 'character')} of the names ({shown}): drawn as boxes", UserWarning, stacklevel=3)
 
 
 def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:

@@ -17,7 +17,7 @@ import numpy as np
 from ...core.analysis import analyze
 from ...core.model import Mechanism, require_mechanism
 from ...core.result import Result, require_same_mechanism
-from ...errors import RequestError
+from ...errors import RequestError, counted
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ...core.topology import Bridge, JointNode, Node, Parallel, Series, joints_of
 from .backend import new_figure, require_figsize, require_matplotlib
@@ -170,7 +170,7 @@ def plot_graph(
         handles += [Line2D([], [], color=LIMB_COLORS[k % len(LIMB_COLORS)], lw=2.2, label=f"branch {k + 1}") for k in range(min(len(branches), len(LIMB_COLORS)))]
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), frameon=False, fontsize=8)
     unlabelled = "" if labelled else f" (names left out: more than {LABELLED_JOINTS} joints)"
-    fig.suptitle(f"{drawn_name(r.name)}: mobility {r.mobility}, end effector {r.dof} DOF ({r.pattern}), {r.loops} loop(s){unlabelled}", fontsize=11)
+    fig.suptitle(f"{drawn_name(r.name)}: mobility {r.mobility}, end effector {r.dof} DOF ({r.pattern}), {counted(r.loops, 'loop')}{unlabelled}", fontsize=11)
     return fig
 
 
