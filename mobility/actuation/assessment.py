@@ -445,7 +445,7 @@ def _explanation(verdict: str, n: int, dof: int, rank: int, useless: Sequence[st
             f"the {counted(n, 'actuation wrench', 'es')} and the {counted(6 - dof, 'constraint wrench', 'es')} span all six dimensions: "
             "with the inputs locked the end effector cannot move"
         )
-    inputs = f"{n} input{'' if n == 1 else 's'} for {dof} DOF"
+    inputs = f"{counted(n, 'input')} for {dof} DOF"
     if verdict == REDUNDANT and idle_inputs:
         movers = ", ".join(idle_inputs)
         return (

@@ -67,6 +67,7 @@ __all__ = [
     "require_expected_integer",
     "require_expected_pattern",
     "expected_basis_problem",
+    "independent_of",
     "EXPECTED_PATTERN",
     "require_graph_names",
     "require_name",
@@ -533,12 +534,26 @@ def expected_basis_problem(vectors: Sequence[Vector]) -> tuple[int, str] | None:
     units: list[Vector] = []
     for i, v in enumerate(vectors):
         try:
-            units.append(require_vector(v, "", direction=True))
+            unit = require_vector(v, "", direction=True)
         except MechanismError as exc:
             return i, exc.message
-        if len(units) > 1 and decide_rank(np.linalg.svd(np.array(units), compute_uv=False)).rank < len(units):  # one non-zero direction is a basis
+        if not independent_of(units, unit):
             return i, "linearly dependent on the directions before it; expected a basis (independent directions)"
+        units.append(unit)
     return None
+
+
+def independent_of(directions: Sequence[Vector], direction: Vector) -> bool:
+    """Whether the unit ``direction`` is independent of the independent unit ``directions``, by the one rank policy.
+
+    Examples
+    --------
+    >>> independent_of([], (0.0, 0.0, 1.0)), independent_of([(0.0, 0.0, 1.0)], (0.0, 0.0, -1.0))
+    (True, False)
+    """
+    if not directions:  # one non-zero direction is a basis
+        return True
+    return decide_rank(np.linalg.svd(np.array([*directions, direction]), compute_uv=False)).rank > len(directions)
 
 
 _EXPECTED_COUNTS = ("dof", "mobility", "redundant_constraints", "idle_dof")

@@ -13,6 +13,7 @@ does it for one value).
 
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass, field
 from dataclasses import fields as dataclass_fields
 from functools import cached_property
@@ -21,7 +22,7 @@ from typing import Any, Mapping, NamedTuple, Protocol
 
 import numpy as np
 
-from ..errors import RequestError, clipped
+from ..errors import RequestError, clipped, counted
 from .frozen import ReadOnlyArrays, read_only_cached_property
 from .model import Mechanism
 from .screws import pattern_of
@@ -370,8 +371,8 @@ class Result(ReadOnlyArrays):
             }.get(self.detail.common_motion(), "")
             each = self.common_constraints
             text += (
-                f" {common} of them come{'s' if common == 1 else ''} from {each} wrench{'' if each == 1 else 'es'} reciprocal to every joint twist"
-                f"{kind}: {'the loop loses' if self.loops == 1 else 'each loop loses'} {each} equation{'' if each == 1 else 's'}."
+                f" {common} of them come{'s' if common == 1 else ''} from {counted(each, 'wrench', 'es')} reciprocal to every joint twist"
+                f"{kind}: {'the loop loses' if self.loops == 1 else 'each loop loses'} {counted(each, 'equation')}."
             )
         rest = self.redundant_constraints - common
         inner = [(node, loops, redundant - self.common_constraints * loops) for node, loops, redundant in self._inner_loops()]
@@ -410,11 +411,11 @@ class Result(ReadOnlyArrays):
         systems = self.node_systems
         joints = mechanism.joints
         out: list[tuple[Node, int, int]] = []
-        stack: list[Node] = list(root.children)
+        stack: deque[Node] = deque(root.children)  # in tree order, without recursion
         while stack:
-            node = stack.pop(0)
+            node = stack.popleft()
             if isinstance(node, Series):
-                stack[:0] = list(node.children)
+                stack.extendleft(reversed(node.children))
             elif isinstance(node, (Parallel, Bridge)) and node in systems:
                 members = joints_of(node)
                 links = {link for j in members for link in joints[j].links}

@@ -124,8 +124,8 @@ def literal_problem(written: str, value: float) -> str | None:
     if value != 0.0:
         return None
     hexadecimal = _HEX_PREFIX.match(written)
-    mantissa = written[hexadecimal.end():].lower().partition("p")[0] if hexadecimal else written.lower().partition("e")[0]
-    if any(c in "123456789abcdef" for c in mantissa.lower()) if hexadecimal else any(c in "123456789" for c in mantissa):
+    mantissa, digits = (written[hexadecimal.end():].lower().partition("p")[0], "123456789abcdef") if hexadecimal else (written.lower().partition("e")[0], "123456789")
+    if any(c in digits for c in mantissa):
         return f"the number {_shown(written)!r} underflows: it is below the smallest float ({sys.float_info.min * sys.float_info.epsilon:.3g}) and would read as {value!r}"
     return None
 

@@ -53,7 +53,7 @@ from .files import read_capped
 from .mjcf_actuators import actuator_inputs
 from .mjcf_scan import MjcfScan, scan_mjcf
 from .robot_actuators import BallActuator
-from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, rotation_tuple, unique_name, vector_tuple
+from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name, vector_tuple
 from .xml_source import parse_xml
 
 __all__ = ["read_mjcf", "import_mujoco"]
@@ -367,10 +367,10 @@ class _MjcfTree:
         unsupported += more
         for i in range(m.ntendon):
             tname = self.name("mjOBJ_TENDON", i) or f"tendon{i}"
-            notes.append(f"tendon {clipped(tname)}{_at(self.lines['tendon'].get(i))} is not imported: a tendon is not a joint (only an equality on it would constrain the mechanism)")
+            notes.append(f"tendon {clipped(tname)}{at_line(self.lines['tendon'].get(i))} is not imported: a tendon is not a joint (only an equality on it would constrain the mechanism)")
         for i in range(m.nbody):
             if m.body_mocapid[i] >= 0:
-                notes.append(f"mocap body {clipped(self.body_names[i])}{_at(self.lines['body'].get(i))} is moved only by the simulation: treated as fixed")
+                notes.append(f"mocap body {clipped(self.body_names[i])}{at_line(self.lines['body'].get(i))} is moved only by the simulation: treated as fixed")
         name = self.spec.modelname if self.spec.modelname and self.spec.modelname != "MuJoCo Model" else one_line(Path(self.file).stem)  # a file name may hold a line break; a name may not
         version = getattr(mj, "__version__", "")
         return RobotTree(name, self.file, "MJCF", bodies, joints, tuple(closures), tuple(welds), tuple(unsupported), tuple(notes),
@@ -424,7 +424,7 @@ class _MjcfTree:
             name = self.name("mjOBJ_EQUALITY", k) or f"{tag}{counts[tag] - 1}"
             line = self.lines["equality"].get(k)
             if not m.eq_active0[k]:
-                notes.append(f"equality {tag} {clipped(name)}{_at(line)} is inactive at start: left out")
+                notes.append(f"equality {tag} {clipped(name)}{at_line(line)} is inactive at start: left out")
                 continue
             if tag in ("joint", "tendon"):
                 kind_name = "mjOBJ_JOINT" if tag == "joint" else "mjOBJ_TENDON"
@@ -437,13 +437,13 @@ class _MjcfTree:
             b1, b2, anchor = self.equality_bodies(k, f"equality/{tag}[{clipped(name)}]", line)
             if k in gaps:
                 held = "a spherical joint at its first point" if tag == "connect" else "the two bodies welded as they are placed"
-                notes.append(f"{tag} {clipped(name)}{_at(line)} does not hold at qpos0 ({gaps[k]}): the file is not assembled there; "
+                notes.append(f"{tag} {clipped(name)}{at_line(line)} does not hold at qpos0 ({gaps[k]}): the file is not assembled there; "
                              f"analysed as {held}")
             if tag == "weld":
                 welds.append(Weld(name, (self.body_names[b1], self.body_names[b2]), line))
                 continue
             if b1 == b2:
-                notes.append(f"connect {clipped(name)}{_at(line)} joins body {clipped(self.body_names[b1])} to itself: left out")
+                notes.append(f"connect {clipped(name)}{at_line(line)} joins body {clipped(self.body_names[b1])} to itself: left out")
                 continue
             try:
                 joint = Joint(name, "S", (self.body_names[b1], self.body_names[b2]), point=anchor)
@@ -558,6 +558,3 @@ class _MjcfTree:
             anchor = d.xpos[o1] + rotation @ np.asarray(m.eq_data[k][:3])
         return o1, o2, self.finite(anchor, key, line)
 
-
-def _at(line: int | None) -> str:
-    return f" (line {line})" if line is not None else ""

@@ -28,11 +28,10 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from ..core.model import require_vector
-from ..core.tolerance import decide_rank
+from ..core.model import independent_of, require_vector
 from ..errors import MechanismError, MechanismFileError, clipped
 from .robot_actuators import BallActuator
-from .robot_tree import Unsupported
+from .robot_tree import Unsupported, at_line
 
 __all__ = ["actuator_inputs"]
 
@@ -66,7 +65,7 @@ def actuator_inputs(model: CompiledModel, notes: list[str], unsupported: list[Un
         if kind not in (int(trn.mjTRN_JOINT), int(trn.mjTRN_JOINTINPARENT)):
             what = {int(trn.mjTRN_TENDON): "a tendon", int(trn.mjTRN_SITE): "a site", int(trn.mjTRN_BODY): "a body",
                     int(trn.mjTRN_SLIDERCRANK): "a slider-crank"}.get(kind, "no joint")
-            notes.append(f"actuator {clipped(aname)}{_at(line)} drives {what}, not a joint: no joint is marked actuated for it")
+            notes.append(f"actuator {clipped(aname)}{at_line(line)} drives {what}, not a joint: no joint is marked actuated for it")
             continue
         joint = int(m.actuator_trnid[a][0])
         jtype, jname, key = int(m.jnt_type[joint]), model.joint_name(joint), f"actuator[{clipped(aname)}]"
@@ -83,7 +82,7 @@ def actuator_inputs(model: CompiledModel, notes: list[str], unsupported: list[Un
                 balls.setdefault(joint, []).append(ball)
         else:
             out.add(joint)
-            drivers.setdefault(joint, []).append(f"{clipped(aname)}{_at(line)}")
+            drivers.setdefault(joint, []).append(f"{clipped(aname)}{at_line(line)}")
     for joint, names in drivers.items():
         if len(names) > 1:
             notes.append(f"actuators {', '.join(names)} all drive joint {clipped(model.joint_name(joint))}: one input (its one freedom), not {len(names)}")
@@ -110,14 +109,11 @@ def _independent(joint: str, inputs: list[BallActuator], notes: list[str]) -> tu
     """The inputs of a ball joint whose axes are independent of those before them; a note for each other one."""
     kept: list[BallActuator] = []
     for ball in inputs:
-        if decide_rank(np.linalg.svd(np.array([k.axis for k in kept] + [ball.axis]), compute_uv=False)).rank > len(kept):
+        if independent_of([k.axis for k in kept], ball.axis):
             kept.append(ball)
             continue
         others = ", ".join(clipped(k.name) for k in kept)
-        notes.append(f"actuator {clipped(ball.name)}{_at(ball.line)} turns the ball joint {clipped(joint)} about an axis "
+        notes.append(f"actuator {clipped(ball.name)}{at_line(ball.line)} turns the ball joint {clipped(joint)} about an axis "
                      f"that actuator{'s' if len(kept) > 1 else ''} {others} already drive{'' if len(kept) > 1 else 's'}: it adds no input")
     return tuple(kept)
 
-
-def _at(line: int | None) -> str:
-    return f" (line {line})" if line is not None else ""

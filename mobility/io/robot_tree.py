@@ -62,7 +62,7 @@ from typing import Iterable, cast
 import numpy as np
 
 from ..core.model import Joint, Mechanism
-from ..errors import MechanismError, MechanismFileError, clipped, did_you_mean
+from ..errors import MechanismError, MechanismFileError, clipped, counted, did_you_mean
 from .limits import current_limits
 from .robot_actuators import BallActuator, ball_chain, ball_chain_names
 
@@ -79,6 +79,7 @@ __all__ = [
     "JOINT_KINDS",
     "rotation_tuple",
     "vector_tuple",
+    "at_line",
     "unique_name",
     "model_joint_names",
 ]
@@ -300,7 +301,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     for item in tree.unsupported:
         if not options.ignore_unsupported:
             raise MechanismFileError(item.key, f"{item.message}; {IGNORE_HINT}", file=tree.file, line=item.line)
-        notes.append(f"left out {item.key}{_at(item.line)}: {item.message}")
+        notes.append(f"left out {item.key}{at_line(item.line)}: {item.message}")
 
     ground_body = tree.body(options.ground, "ground").name if options.ground is not None else tree.bodies[0].name
     ee_body = tree.body(options.end_effector, "end_effector").name if options.end_effector is not None else None
@@ -325,7 +326,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     for body, chain in by_body.items():
         start, end = link(cast(str, parents[body])), link(body)  # a joint's body is not the root: it has a parent
         if len(chain) == 1 and start == end:
-            notes.append(f"joint {clipped(chain[0].name)}{_at(chain[0].line)} cannot move: welds hold {clipped(body)} to {clipped(start)}; left out")
+            notes.append(f"joint {clipped(chain[0].name)}{at_line(chain[0].line)} cannot move: welds hold {clipped(body)} to {clipped(start)}; left out")
             continue
         here = start
         for k, j in enumerate(chain):
@@ -335,13 +336,13 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
             here = there
             if j.kind == "ball" and j.actuators:
                 shown = ", ".join(f"{joint.type} {clipped(joint.name)}{' (actuated)' if joint.actuated else ''}" for joint in made)
-                notes.append(f"ball joint {clipped(j.name)}{_at(j.line)} has {len(j.actuators)} input{'s' if len(j.actuators) > 1 else ''}, "
+                notes.append(f"ball joint {clipped(j.name)}{at_line(j.line)} has {counted(len(j.actuators), 'input')}, "
                              f"one per actuator: it is the joints {shown} through its centre")
 
     for c in tree.closures:
         a, b = (link(n) for n in c.joint.links)
         if a == b:
-            notes.append(f"{c.what} {clipped(c.joint.name)}{_at(c.line)} joins two bodies of one rigid link ({clipped(a)}): it constrains nothing; left out")
+            notes.append(f"{c.what} {clipped(c.joint.name)}{at_line(c.line)} joins two bodies of one rigid link ({clipped(a)}): it constrains nothing; left out")
             continue
         try:
             joints.append(replace(c.joint, name=unique_name(c.joint.name, used), links=(a, b)))
@@ -374,7 +375,14 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files)
 
 
-def _at(line: int | None) -> str:
+def at_line(line: int | None) -> str:
+    """`` (line N)`` after what a note names, or nothing when the line is unknown.
+
+    Examples
+    --------
+    >>> "joint A" + at_line(9), "joint A" + at_line(None)
+    ('joint A (line 9)', 'joint A')
+    """
     return f" (line {line})" if line is not None else ""
 
 
@@ -408,9 +416,9 @@ def _free_joints_kept(tree: RobotTree, options: RobotOptions, notes: list[str]) 
     ties = _ties_out_of_subtree(tree, set(free))
     for body, j in free.items():
         if body in ties:
-            notes.append(f"free joint {clipped(j.name)}{_at(j.line)} of body {clipped(body)} keeps its 6 freedoms: {ties[body]}")
+            notes.append(f"free joint {clipped(j.name)}{at_line(j.line)} of body {clipped(body)} keeps its 6 freedoms: {ties[body]}")
         else:
-            notes.append(f"free joint {clipped(j.name)}{_at(j.line)} of body {clipped(body)} treated as fixed (use --floating to keep its 6 freedoms)")
+            notes.append(f"free joint {clipped(j.name)}{at_line(j.line)} of body {clipped(body)} treated as fixed (use --floating to keep its 6 freedoms)")
     return set(ties)
 
 
@@ -429,8 +437,8 @@ def _ties_out_of_subtree(tree: RobotTree, free: set[str]) -> dict[str, str]:
             here = nearest.get(above) if above else None
         return out
 
-    equalities = [(w.bodies, f"weld {clipped(w.name)}{_at(w.line)}") for w in tree.welds]
-    equalities += [(c.joint.links, f"{c.what} {clipped(c.joint.name)}{_at(c.line)}") for c in tree.closures]
+    equalities = [(w.bodies, f"weld {clipped(w.name)}{at_line(w.line)}") for w in tree.welds]
+    equalities += [(c.joint.links, f"{c.what} {clipped(c.joint.name)}{at_line(c.line)}") for c in tree.closures]
     ties: dict[str, str] = {}
     for (a, b), what in equalities:
         above_a, above_b = free_above(a), free_above(b)
@@ -451,7 +459,7 @@ def _rigid_groups(tree: RobotTree, kept: set[str], notes: list[str]) -> _Groups:
             groups.union(b.parent, b.name)
     for w in tree.welds:
         if groups.find(w.bodies[0]) != groups.find(w.bodies[1]):
-            notes.append(f"weld {clipped(w.name)}{_at(w.line)} makes {clipped(w.bodies[0])} and {clipped(w.bodies[1])} one rigid link")
+            notes.append(f"weld {clipped(w.name)}{at_line(w.line)} makes {clipped(w.bodies[0])} and {clipped(w.bodies[1])} one rigid link")
         groups.union(*w.bodies)
     return groups
 

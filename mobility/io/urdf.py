@@ -73,7 +73,7 @@ import numpy as np
 from ..core.transforms import Transform, rotation_from_rpy
 from ..errors import clipped, did_you_mean, one_line
 from .files import file_name
-from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, rotation_tuple, vector_tuple
+from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml, underflow_problem
 
 __all__ = ["read_urdf", "URDF_JOINT_KINDS"]
@@ -303,7 +303,7 @@ class _UrdfReader:
                 jtype = joint_types[name]
                 line = self.doc.line(j)
                 if jtype == "fixed":
-                    notes.append(f"transmission {clipped(tname)}{_at(line)} drives the fixed joint {clipped(name)}, which cannot move: no input for it")
+                    notes.append(f"transmission {clipped(tname)}{at_line(line)} drives the fixed joint {clipped(name)}, which cannot move: no input for it")
                 elif jtype in ("planar", "floating"):
                     freedoms = "three (two translations and a rotation)" if jtype == "planar" else "six"
                     unsupported.append(Unsupported(key, f"a transmission on the {jtype} joint {clipped(name)} is not supported: a transmission is one input "
@@ -313,6 +313,3 @@ class _UrdfReader:
                     out.add(name)
         return out
 
-
-def _at(line: int | None) -> str:
-    return f" (line {line})" if line is not None else ""

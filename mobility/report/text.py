@@ -110,7 +110,7 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
     out.append(f"    mobility M = {result.mobility}   (Grübler–Kutzbach count: {result.gruebler_kutzbach})")
     out.append(
         f"    redundant constraints: {result.redundant_constraints}   idle DOF: {result.idle_dof}   "
-        f"loops: {result.loops}   links: {result.links}   joints: {result.joints} ({result.joint_freedoms} freedom{'' if result.joint_freedoms == 1 else 's'})"
+        f"loops: {result.loops}   links: {result.links}   joints: {result.joints} ({counted(result.joint_freedoms, 'freedom')})"
     )
     if result.gruebler_kutzbach_explanation:
         out.append("    why G–K differs: " + result.gruebler_kutzbach_explanation)

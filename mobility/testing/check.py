@@ -69,7 +69,7 @@ from typing import Any, Callable, Iterable, Sequence
 import numpy as np
 
 from ..core.analysis import analyze
-from ..errors import MobilityError, RequestError
+from ..errors import MobilityError, RequestError, counted
 from ..io.files import file_name, os_problem, printable_name
 from ..io.limits import current_limits, require_size
 from ..io.loader import load, read_mechanism
@@ -259,7 +259,7 @@ class CheckReport:
         errors = self.count("error")
         return (
             f"{self.count('pass')} passed, {self.count('fail')} failed, "
-            f"{self.count('missing')} without expected block, {errors} error{'' if errors == 1 else 's'}"
+            f"{self.count('missing')} without expected block, {counted(errors, 'error')}"
         )
 
     def to_dict(self) -> dict[str, Any]:
