@@ -10,6 +10,19 @@ from mobility.core.model import Frame, Joint, Mechanism
 from mobility.core.transforms import Transform, rotation_from_axis_angle
 
 
+ONE_WIRE_FLEXURE = """\
+name: one wire
+units: {length: mm, modulus: GPa}
+ground: base
+end_effector: stage
+materials:
+  steel: {E: 200, nu: 0.3}
+elements:
+  - {name: w1, type: rod, bodies: [base, stage], axis: [0, 0, 1], length: 100, radius: 1, material: steel}
+"""
+"""A flexure document of one steel wire from the base to the stage, to which a test adds or changes keys."""
+
+
 THREE_RPS_YAML = """
 name: 3-RPS
 ground: base

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from builders import ONE_WIRE_FLEXURE
 
 from mobility.actuation import SINGULAR, VALID
 from mobility.cli import main
@@ -408,16 +409,7 @@ def test_moving_the_flexure_rigidly_moves_its_spaces(flexure):
 # ---------------------------------------------------------------------------
 
 
-GOOD = """\
-name: one wire
-units: {length: mm, modulus: GPa}
-ground: base
-end_effector: stage
-materials:
-  steel: {E: 200, nu: 0.3}
-elements:
-  - {name: w1, type: rod, bodies: [base, stage], axis: [0, 0, 1], length: 100, radius: 1, material: steel}
-"""
+GOOD = ONE_WIRE_FLEXURE
 
 
 @pytest.mark.parametrize(

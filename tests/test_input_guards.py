@@ -132,20 +132,17 @@ def test_a_frame_name_holding_a_line_break_is_refused():
 
 
 def test_a_robot_name_holding_a_character_reference_to_a_line_break_is_refused(tmp_path):
-    urdf = (HAND / "four_bar.urdf").read_text(encoding="utf-8").replace('<link name="coupler"', '<link name="coupler&#13;"', 1)
-    assert "&#13;" in urdf
-    path = tmp_path / "r.urdf"
-    path.write_text(urdf, encoding="utf-8")
-    with pytest.raises(MechanismFileError) as info:
-        mobility.load(path)
-    assert (info.value.key, info.value.message) == ("link.name", "a line break '\\r' (U+000D) is not allowed in a name")
-    mjcf = (HAND / "four_bar.xml").read_text(encoding="utf-8").replace('<joint name="B"/>', '<joint name="B&#x2028;"/>')
-    assert "&#x2028;" in mjcf
-    path = tmp_path / "m.xml"
-    path.write_text(mjcf, encoding="utf-8")
-    with pytest.raises(MechanismFileError) as info:
-        mobility.load(path)
-    assert (info.value.key, info.value.message) == ("joint.name", "a line separator '\\u2028' (U+2028) is not allowed in a name")
+    for source, written, reference, key, message in (
+        ("four_bar.urdf", '<link name="coupler"', '<link name="coupler&#13;"', "link.name", "a line break '\\r' (U+000D) is not allowed in a name"),
+        ("four_bar.xml", '<joint name="B"/>', '<joint name="B&#x2028;"/>', "joint.name", "a line separator '\\u2028' (U+2028) is not allowed in a name"),
+    ):
+        text = (HAND / source).read_text(encoding="utf-8")
+        assert written in text
+        path = tmp_path / source
+        path.write_text(text.replace(written, reference, 1), encoding="utf-8")
+        with pytest.raises(MechanismFileError) as info:
+            mobility.load(path)
+        assert (info.value.key, info.value.message) == (key, message)
 
 
 def test_a_robot_named_after_a_file_name_holding_a_line_break_is_named_on_one_line(tmp_path):

@@ -15,6 +15,7 @@ import re
 import numpy as np
 import pytest
 import yaml
+from builders import ONE_WIRE_FLEXURE
 from conftest import ROOT
 
 import mobility
@@ -58,16 +59,7 @@ def _exact_counts(axes_points_pitches: list[tuple[tuple[float, ...], tuple[float
     return dof, dof - np.linalg.matrix_rank(t[:3])
 
 
-ONE_WIRE = """\
-name: one wire
-units: {length: mm, modulus: GPa}
-ground: base
-end_effector: stage
-materials:
-  steel: {E: 200, nu: 0.3}
-elements:
-  - {name: w1, type: rod, bodies: [base, stage], axis: [0, 0, 1], length: 100, radius: 1, material: steel}
-"""
+ONE_WIRE = ONE_WIRE_FLEXURE
 """A flexure document of one wire, to which a test adds its ``expected`` block."""
 
 

@@ -1013,9 +1013,7 @@ def number_from_text(text: str) -> float:
     Traceback (most recent call last):
     ValueError: expected a number written in ASCII digits, got '\u0661'
     """
-    if not text.isascii():
-        raise ValueError(f"expected a number written in ASCII digits, got {shown_argument(text)}")
-    return float(text)
+    return float(_in_ascii(text, "a number"))
 
 
 def integer_from_text(text: str) -> int:
@@ -1029,9 +1027,14 @@ def integer_from_text(text: str) -> int:
     Traceback (most recent call last):
     ValueError: expected an integer written in ASCII digits, got '\u0661\u0660'
     """
+    return int(_in_ascii(text, "an integer"))
+
+
+def _in_ascii(text: str, what: str) -> str:
+    """``text`` when it is ASCII, else a ``ValueError`` saying ``what`` (``"a number"``) it should be, in ASCII digits."""
     if not text.isascii():
-        raise ValueError(f"expected an integer written in ASCII digits, got {shown_argument(text)}")
-    return int(text)
+        raise ValueError(f"expected {what} written in ASCII digits, got {shown_argument(text)}")
+    return text
 
 
 def require_mechanism(value: object, caller: str) -> Mechanism:
