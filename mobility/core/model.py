@@ -46,7 +46,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence, TypeVar, cast
 import numpy as np
 
 from ..errors import MechanismError, RequestError, did_you_mean, name_list, name_problem, shown_argument
-from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, binary_scale, characteristic_scale, decide_rank
+from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, UNIT_ROUND_OFF, binary_scale, characteristic_scale, decide_rank
 from .transforms import Transform, rotation_from_rpy
 
 __all__ = [
@@ -162,7 +162,11 @@ def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
             raise MechanismError(key, "expected a non-zero direction, got [0, 0, 0]")
         if not 1e-140 < largest < 1e140:  # its square could underflow or overflow: scale it by a power of two first (exact)
             arr = arr * binary_scale(arr)
-        arr = arr / math.sqrt(float(arr @ arr))
+        x, y, z = arr.tolist()
+        size = math.hypot(x, y, z)  # the same on every machine (``arr @ arr`` sums in the order of the BLAS kernel the CPU picks)
+        if abs(size - 1.0) > UNIT_ROUND_OFF:  # a direction already of unit length to round-off is kept as written: it reads back to the bit
+            x, y, z = x / size, y / size, z / size
+        return (x, y, z)
     return (float(arr[0]), float(arr[1]), float(arr[2]))
 
 

@@ -19,7 +19,8 @@ typed with few digits).  Both are reported, never hidden.
 
 Below the policy, the fixed constants that decide no count (checks of a
 description, the solvers' stopping rules, ties of the readable forms) are
-kept here too, each with the reason for its value.
+kept here too, each with the reason for its value.  One module, longer than
+most, because its point is that every number of the kind stands in one place.
 
 Examples
 --------
@@ -202,6 +203,21 @@ squared row of the Jacobian: far below every kept singular value squared, so
 it only keeps the normal equations of a singular pose solvable (the same role
 as :data:`NEWTON_RCOND` for the one-pose solver); whether loops closed is
 judged by :attr:`Tolerance.closure`."""
+
+VALUE_TIE = 1e-9
+"""Values within this fraction of the smallest are a tie for :func:`first_least`,
+broken by the first in order: a readability choice far above the round-off
+of margins and conditioning numbers (1e-12 relative seen at mirror poses),
+so that round-off never names the pose.  Not a rank decision: no count
+depends on it."""
+
+UNIT_ROUND_OFF = 4 * sys.float_info.epsilon
+"""A direction whose length differs from 1 by at most this (a few units of the
+last place) is already a unit vector and is kept as written, not divided by
+its length again: dividing by a length that round-off puts one unit of the
+last place from 1 would change the last bit, so a direction written to a file
+and read back would not be the same to the bit.  Round-off, not a decision:
+no count depends on it."""
 
 WRITE_DRIFT = 1e-9
 """Largest change of a joint's geometry that writing a mechanism file and
@@ -457,22 +473,23 @@ def clean_numbers(value: Any, scale: float = 1.0, tol: Tolerance = DEFAULT_TOLER
     return value
 
 
-def first_least(values: Any, tol: Tolerance = DEFAULT_TOLERANCE) -> int:
-    """Index of the first of the smallest values, values within round-off of the smallest counting as equal.
+def first_least(values: Any) -> int:
+    """Index of the first of the smallest values, values within :data:`VALUE_TIE` of the smallest counting as equal.
 
     Where several poses tie (a symmetric mechanism's margin at mirror poses),
-    the one named does not then depend on the last bit of a LAPACK routine.
+    the one named is the first in the order given, never the one the last
+    bits of a LAPACK routine favour: mirror poses' margins differ by round-off
+    amplified by the conditioning (1e-12 relative on the parallelogram, and
+    by how much depends on the BLAS kernel the CPU selects).
 
     Parameters
     ----------
     values : array_like of float
         Not empty; NaN counts as larger than any number.
-    tol : Tolerance
-        ``tol.round_off`` (relative to the smallest value's size) decides a tie.
 
     Examples
     --------
-    >>> first_least([0.3, 0.1 + 1e-17, 0.1, 0.2])
+    >>> first_least([0.3, 0.1 + 1e-12, 0.1, 0.2])
     1
     >>> first_least([2.0, float("nan"), 1.0])
     2
@@ -482,7 +499,7 @@ def first_least(values: Any, tol: Tolerance = DEFAULT_TOLERANCE) -> int:
     least = float(a.min())
     if not np.isfinite(least):
         return int(np.argmin(a))
-    return int(np.flatnonzero(a <= least + tol.round_off * abs(least))[0])
+    return int(np.flatnonzero(a <= least + VALUE_TIE * abs(least))[0])
 
 
 # ---------------------------------------------------------------------------

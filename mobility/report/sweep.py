@@ -94,7 +94,7 @@ def sweep_summary(result: SweepResult) -> str:
     assembled = int(result.assembled.sum())
     line = f"  assembled: {assembled:,} of {result.size:,} poses"
     if assembled:
-        line += f" (largest loop-closure residual {float(result.residual[result.assembled].max()):.1e})"
+        line += f" (every loop closed to {result.tolerance.closure:.0e})"  # the bound; each pose's residual, round-off, is in its column
     out.append(line)
     if assembled < result.size:
         out.append(f"  not assembled: {result.size - assembled:,} poses (no closed pose reached there; see the 'assembled' column)")
@@ -122,7 +122,7 @@ def sweep_summary(result: SweepResult) -> str:
         finite = result.assembled & np.isfinite(result.conditioning)
         if finite.any():
             kappa = result.conditioning[finite]
-            worst = int(np.flatnonzero(finite)[first_least(kappa, result.tolerance)])
+            worst = int(np.flatnonzero(finite)[first_least(kappa)])
             out.append(
                 f"    conditioning kappa: median {fmt_number(float(np.median(kappa)), digits=3)}, "
                 f"smallest {fmt_number(float(kappa.min()), digits=3)} at {describe_values(result, result.values[worst])}"
@@ -130,7 +130,7 @@ def sweep_summary(result: SweepResult) -> str:
         controlled = result.assembled & (result.verdict != SINGULAR)  # at a singular pose the margin is that of a lower rank
         margins = np.where(controlled, result.actuation_margin, np.inf)
         if np.isfinite(margins).any():
-            lowest = first_least(margins, result.tolerance)
+            lowest = first_least(margins)
             where = "" if controlled.sum() == result.assembled.sum() else " of the poses not actuation-singular"
             near = int((margins < result.tolerance.near_singular).sum())  # as `mobility actuation` warns at one pose
             out.append(
@@ -138,7 +138,7 @@ def sweep_summary(result: SweepResult) -> str:
                 f"at {describe_values(result, result.values[lowest])}; near an actuation singularity: {near:,}"
             )
     margin = result.smallest_kept[result.assembled]
-    worst = int(np.flatnonzero(result.assembled)[first_least(margin, result.tolerance)])
+    worst = int(np.flatnonzero(result.assembled)[first_least(margin)])
     near = int(result.near_singular[result.assembled].sum())
     out.append(f"  rank margin: smallest kept relative singular value {float(margin.min()):.2e} at {describe_values(result, result.values[worst])}; near-singular poses: {near:,}")
     singular = result.singular
