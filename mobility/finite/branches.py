@@ -164,7 +164,7 @@ def examine_branch(plan: MovePlan, group: TangentGroup, probes: tuple[Probe, ...
     local_plan = plan.local()
     local = tuple(probe(local_plan, rep.q, "local", d, examine=False) for _, d in probe_directions(canonical_basis(n1), rng, randoms=2, pairs=False))
     dim, moves = rank_of_moves(cast("list[np.ndarray]", [p.achieved for p in local if p.moved]))  # a probe that moved has a direction
-    nearby = analyze(kin.mechanism_at(rep.q), tol=plan.tol)
+    nearby = analyze(kin.mechanism_at(rep.q), tol=plan.nearby_tol)  # a pose Newton closed, judged as the moves judge nearby poses
     warning = ""
     tangent: np.ndarray | None
     if dim == m1:
