@@ -47,6 +47,7 @@ CORE_LAYERS = {
     "screw_systems": 4, "loop_closure": 4, "canonical": 4, "kinematics": 4,
     "result": 5, "poses": 5,
     "analysis": 6,
+    "closures": 7,
 }
 # ... and screw algebra knows no model, the topology no geometry.
 CORE_APART = {

@@ -225,6 +225,7 @@ class ReadMechanism(NamedTuple):
     mechanism: Mechanism
     notes: tuple[str, ...]
     files: tuple[str, ...]
+    closures: tuple[str, ...] = ()
 
 
 def read_mechanism(args: argparse.Namespace, path: str | None = None) -> ReadMechanism:
@@ -250,7 +251,7 @@ def read_mechanism(args: argparse.Namespace, path: str | None = None) -> ReadMec
 
     robot = read_robot(path, **options)
     closures = options.get("closures")
-    return ReadMechanism(robot.mechanism, tuple(robot.notes), tuple(robot.files) + ((str(closures),) if closures else ()))
+    return ReadMechanism(robot.mechanism, tuple(robot.notes), tuple(robot.files) + ((str(closures),) if closures else ()), robot.closures)
 
 
 def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> Mechanism:
@@ -259,12 +260,17 @@ def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs
     Each ``(output, option)`` of ``outputs`` is refused (:func:`require_new_output`)
     when it would overwrite a file read for the mechanism.
     """
+    return read_with_notes(args, path, outputs=outputs).mechanism
+
+
+def read_with_notes(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> ReadMechanism:
+    """:func:`read_mechanism`, its notes written to stderr and its outputs checked as :func:`load_mechanism` does."""
     read = read_mechanism(args, path)
     for output, option in outputs:
         require_new_output(output, option, *read.files)
     for note in read.notes:
         print(f"mobility: note: {one_line(note)}", file=sys.stderr)
-    return read.mechanism
+    return read
 
 
 def names_from(text: str | None, known: Collection[str] = (), option: str = "--inputs") -> list[str] | None:

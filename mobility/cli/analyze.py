@@ -8,7 +8,7 @@ from ..core.analysis import analyze
 from ..errors import RequestError
 from ..report.text import json_report, text_report
 from ..io.limits import require_size
-from ._options import add_mechanism_file, add_tolerance_option, load_mechanism, tolerance_from
+from ._options import add_mechanism_file, add_tolerance_option, read_with_notes, tolerance_from
 
 ORDER = 10
 
@@ -42,12 +42,18 @@ def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if args.json and args.format not in ("text", "json"):
         raise RequestError(f"--json and --format {args.format}: choose one output format")
-    mechanism = load_mechanism(args)
+    read = read_with_notes(args)
+    mechanism = read.mechanism
     if args.finite:
         require_size(mechanism, "max_finite_joints", "--finite", args.file)
     result = analyze(mechanism, tol=tol)
     fmt = "json" if args.json else args.format
     text = FORMATS[fmt](result, args)
+    if read.closures:  # a robot file's closed loops: which of each closure's rows the rest already imposes
+        from ..core.closures import closure_advice
+        from ..report.closures import with_closures
+
+        text = with_closures(text, fmt, closure_advice(mechanism, read.closures, tol=tol))
     if args.finite:
         # imported only when asked: the finite analysis pulls in scipy.optimize, slow to import
         from ..finite.full_cycle import finite_mobility

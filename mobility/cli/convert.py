@@ -46,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError(f"-o {args.output!r}: expected a name for the YAML file (such as model.yaml), not empty nor with a robot description's extension "
                            f"({', '.join(sorted(ROBOT_SUFFIXES))}), which would be read back as XML")
     require_new_output(args.output, "-o", args.file, args.closures)
-    mechanism, notes, files = read_mechanism(args)
+    mechanism, notes, files, _ = read_mechanism(args)
     require_new_output(args.output, "-o", *files)  # nor a file the model includes
     description = " ".join([mechanism.description] + [f"Note: {n}." for n in notes]).strip()
     expected = None

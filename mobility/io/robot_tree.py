@@ -255,6 +255,8 @@ class ImportedRobot:
     notes: tuple[str, ...] = ()
     format: str = ""
     files: tuple[str, ...] = ()
+    closures: tuple[str, ...] = ()
+    """The joints that close loops (an MJCF ``connect``, a pair closed with ``--close`` or a closures file)."""
 
 
 @dataclass
@@ -339,6 +341,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
                 notes.append(f"ball joint {clipped(j.name)}{at_line(j.line)} has {counted(len(j.actuators), 'input')}, "
                              f"one per actuator: it is the joints {shown} through its centre")
 
+    closing: list[str] = []
     for c in tree.closures:
         a, b = (link(n) for n in c.joint.links)
         if a == b:
@@ -346,6 +349,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
             continue
         try:
             joints.append(replace(c.joint, name=unique_name(c.joint.name, used), links=(a, b)))
+            closing.append(joints[-1].name)
         except MechanismError as exc:
             raise MechanismFileError(clipped(c.joint.name), exc.message, file=c.file or tree.file, line=c.line) from None
 
@@ -372,7 +376,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
                               description=description, length_unit=tree.length_unit, source=tree.file)
     except MechanismError as exc:
         raise MechanismFileError(exc.key, exc.message, file=tree.file) from None
-    return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files)
+    return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files, tuple(closing))
 
 
 def at_line(line: int | None) -> str:
