@@ -34,12 +34,11 @@ extensions = [
     "numpydoc",
 ]
 
-templates_path = ["_templates"]
 exclude_patterns = ["_build"]
 html_theme = "alabaster"
 html_static_path: list[str] = []
 
-autosummary_generate = True
+autosummary_generate = False
 autodoc_member_order = "bysource"
 autodoc_default_options = {"show-inheritance": True}
 numpydoc_show_class_members = False
@@ -48,21 +47,39 @@ numpydoc_class_members_toctree = False
 nitpicky = True
 default_role = "py:obj"
 
-autosummary_ignore_module_all = True
 
 
-def _exports() -> dict[str, list[str]]:
-    """The ``__all__`` of each package of ``mobility``: the names its page lists."""
+def _module_pages(app: Any) -> None:
+    """Write one page per module of ``mobility`` into ``generated/``: the module's docstring and its
+    members (its ``__all__``); a package's page lists the names it exports and its modules.
+
+    Written here rather than by autosummary's recursion, which takes a submodule for the function of
+    the same name that its package exports (``mobility.jacobians.jacobian``).
+    """
     import pkgutil
 
-    found = {"mobility": list(mobility.__all__)}
-    for info in pkgutil.walk_packages(mobility.__path__, "mobility."):
-        if info.ispkg:
-            found[info.name] = list(getattr(importlib.import_module(info.name), "__all__", []))
-    return found
-
-
-autosummary_context = {"exports": _exports()}
+    out = Path(app.srcdir) / "generated"
+    out.mkdir(exist_ok=True)
+    names = ["mobility"] + [info.name for info in pkgutil.walk_packages(mobility.__path__, "mobility.")
+                            if not any(part.startswith("_") for part in info.name.split("."))]
+    for name in names:
+        module = importlib.import_module(name)
+        title = f"``{name}``"
+        lines = [title, "=" * len(title), "", f".. automodule:: {name}", "   :members:", "   :show-inheritance:"]
+        if hasattr(module, "__path__"):
+            lines.append("   :ignore-module-all:")
+            exported = list(getattr(module, "__all__", []))
+            if exported:
+                lines += ["", ".. rubric:: Exported names", "",
+                          f"Defined in the modules below; ``from {name} import NAME`` works for each.", "",
+                          ".. autosummary::", ""] + [f"   {item}" for item in exported]
+            children = [n for n in names if n.rpartition(".")[0] == name]
+            if children:
+                lines += ["", ".. rubric:: Modules", "", ".. toctree::", "   :maxdepth: 1", ""] + [f"   {child}" for child in children]
+        text = "\n".join(lines) + "\n"
+        page = out / f"{name}.rst"
+        if not page.exists() or page.read_text() != text:
+            page.write_text(text)
 
 # Names of Python and of the dependencies that a docstring or a type hint mentions: with no inventory
 # of theirs to link to, these (and only these) stay plain text.  A name of ``mobility`` is never here.
@@ -144,4 +161,5 @@ def _resolve_exported(app: Any, env: Any, node: Any, contnode: Any) -> Any:
 
 
 def setup(app: Any) -> None:
+    app.connect("builder-inited", _module_pages)
     app.connect("missing-reference", _resolve_exported)
