@@ -13,7 +13,9 @@ package, as the only ones left unresolved.
 """
 
 import importlib
+import re
 import sys
+import types
 from pathlib import Path
 from typing import Any
 
@@ -87,7 +89,7 @@ _EXTERNAL_MODULES = (
     "numpy", "np", "scipy", "networkx", "yaml", "plotly", "matplotlib", "mpl_toolkits", "mujoco", "dask",
     "tqdm", "pytest", "_pytest", "IPython", "PIL", "playwright",
     "typing", "collections", "pathlib", "os", "io", "re", "types", "functools", "xml", "argparse", "math",
-    "multiprocessing", "concurrent", "dataclasses", "enum", "fractions", "itertools", "json", "sys", "warnings",
+    "multiprocessing", "concurrent", "copy", "dataclasses", "enum", "fractions", "itertools", "json", "sys", "warnings",
 )
 _BUILTINS = (
     "object", "type", "None", "NoneType", "bool", "int", "float", "complex", "str", "bytes", "tuple", "list",
@@ -98,6 +100,8 @@ _BUILTINS = (
 nitpick_ignore_regex = [
     (r"py:.*", r"(%s)(\..*)?" % "|".join(_EXTERNAL_MODULES)),
     (r"py:.*", r"(%s)" % "|".join(_BUILTINS)),
+    # written as bare names in annotations that Python cannot evaluate (imported for type checking only)
+    (r"py:class", r"Path|Figure|Axes"),
 ]
 
 
@@ -129,37 +133,102 @@ def _defined_names(env: Any) -> dict[tuple[int, str], str]:
     return found
 
 
-def _resolve_exported(app: Any, env: Any, node: Any, contnode: Any) -> Any:
-    """A reference to a re-exported name (``mobility.analyze``, ``mobility.actuation.check_actuation``,
-    or ``Result`` inside ``mobility``) leads to the one place it is documented: the module defining it.
+def _documented(env: Any, name: str) -> str | None:
+    """The name under which the object ``name`` leads to is documented, or ``None``.
 
-    Only a name that imports as the very object documented there resolves; any other reference stays
-    unresolved, and the nitpicky build fails on it.
+    A name documented as written is its own answer; a re-exported one (``mobility.analyze``,
+    ``mobility.actuation.check_actuation``) answers the defining module's name, where it is documented.
+    """
+    entry = env.get_domain("py").objects.get(name)
+    if entry is not None and not entry.aliased:
+        return name
+    value = _python_object(name)
+    if value is None:
+        return None
+    if not hasattr(env, "_mobility_defined"):
+        env._mobility_defined = _defined_names(env)
+    return env._mobility_defined.get((id(value), name.rpartition(".")[2]))
+
+
+def _ours(value: Any) -> bool:
+    """Whether a value found in a module of ``mobility`` is the package's own (not an imported module,
+    class or function of Python or of a dependency)."""
+    if isinstance(value, types.ModuleType):
+        return value.__name__.startswith("mobility")
+    module = getattr(value, "__module__", None)
+    return not isinstance(module, str) or module.startswith("mobility")
+
+
+def _owner(env: Any, name: str) -> str | None:
+    """The documented object nearest above ``name`` that really has it as a member: a class for its
+    dataclass field (``Tolerance.closure``), a module for a constant without a docstring or a private
+    helper (``mobility.sweeps.continuation.RETURN_STEPS``, ``_walks_back``).  ``None`` when a step of
+    the name does not exist."""
+    parent, _, member = name.rpartition(".")
+    if not parent.startswith("mobility"):
+        return None
+    owner = _python_object(parent)
+    if owner is None:
+        return None
+    fields = set(getattr(owner, "__dataclass_fields__", {})) | set(getattr(owner, "__annotations__", {}))
+    if member not in fields:
+        value = getattr(owner, member, None)
+        if value is None or not _ours(value):
+            return None
+    return _documented(env, parent) or _owner(env, parent)
+
+
+def _resolve_exported(app: Any, env: Any, node: Any, contnode: Any) -> Any:
+    """Resolve what the Python domain could not, to the place the object is documented.
+
+    A re-exported name (``mobility.analyze``, or ``Result`` inside ``mobility``) leads to the module
+    defining it; a dataclass field, a constant without a docstring or a private helper leads to the
+    class or module that has it.  Every step of the name must exist in the package: a reference to a
+    name that does not exist (misspelt, moved, removed) stays unresolved, and the nitpicky build fails
+    on it.
     """
     if node.get("refdomain") != "py":
         return None
     target = node.get("reftarget", "")
-    scopes = [target] if target.startswith("mobility.") else []
-    for prefix in (node.get("py:class"), node.get("py:module")):
-        if prefix and prefix.startswith("mobility"):
-            scopes.append(f"{node.get('py:module')}.{prefix}.{target}" if prefix == node.get("py:class") and node.get("py:module") else f"{prefix}.{target}")
-    if not scopes:
+    if " | " in target:
+        # a union written in a string (a forward reference, ``"CheckResult | None"``): shown as
+        # written when every member of it resolves
+        members = [member.strip() for member in target.split("|")]
+        return contnode if all(member == "None" or _found(env, node, member) for member in members) else None
+    found = _found(env, node, target)
+    if found is None or found == target:
         return None
-    if not hasattr(env, "_mobility_defined"):
-        env._mobility_defined = _defined_names(env)
-    domain = env.get_domain("py")
+    return env.get_domain("py").resolve_xref(env, node["refdoc"], app.builder, "obj", found, node, contnode)
+
+
+def _found(env: Any, node: Any, target: str) -> str | None:
+    """Where ``target``, read in the module (and class) of the reference, is documented, or ``None``."""
+    module, cls = node.get("py:module"), node.get("py:class")
+    scopes = [target] if target.startswith("mobility") else []
+    if module and module.startswith("mobility"):
+        if cls:
+            scopes.append(f"{module}.{cls}.{target}")
+        scopes.append(f"{module}.{target}")
     for scope in scopes:
-        value = _python_object(scope)
-        if value is None:
-            continue
-        defined = env._mobility_defined.get((id(value), scope.rpartition(".")[2]))
-        if defined is not None and defined != scope:
-            node["reftarget"] = defined
-            return domain.resolve_xref(env, node["refdoc"], app.builder, node["reftype"], defined, node, contnode) \
-                or domain.resolve_any_xref and domain.resolve_xref(env, node["refdoc"], app.builder, "obj", defined, node, contnode)
+        found = _documented(env, scope) or _owner(env, scope)
+        if found is not None:
+            return found
+    return None
+
+
+def _signature(app: Any, what: str, name: str, obj: Any, options: Any, signature: str | None, return_annotation: str | None) -> Any:
+    """Two signatures Sphinx cannot read as written: a type alias (``Motion = tuple[ndarray, ndarray]``,
+    which numpydoc takes for a class and fails on) has none, and a dataclass field's ``default_factory``
+    shows as ``...`` rather than ``<factory>`` (which is not Python, so Sphinx split the signature at
+    every comma, inside brackets too)."""
+    if isinstance(obj, types.GenericAlias):
+        return ()  # a result (numpydoc's is not asked) that gives no signature
+    if signature and "<factory>" in signature:
+        return re.sub(r"=\s*<factory>", "=...", signature), return_annotation
     return None
 
 
 def setup(app: Any) -> None:
+    app.connect("autodoc-process-signature", _signature, priority=400)
     app.connect("builder-inited", _module_pages)
     app.connect("missing-reference", _resolve_exported)

@@ -84,7 +84,7 @@ def assemble_pkm(
     twist_pattern: Sequence[float] = (1.0, 0.0, 1.0, 2.0),
     name: str | None = None,
 ) -> Mechanism:
-    """A PKM of one synthesized limb and ``copies`` 6-DOF limbs, as a :class:`Mechanism`.
+    """A PKM of one synthesized limb and ``copies`` 6-DOF limbs, as a :class:`~mobility.core.model.Mechanism`.
 
     The first realisation of ``structure`` (a name in ``result``) is used as
     found, with the pattern's point ``O`` where the pattern put it (the base
