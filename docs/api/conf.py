@@ -45,6 +45,13 @@ autodoc_member_order = "bysource"
 autodoc_default_options = {"show-inheritance": True}
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
+# numpydoc's checks of a docstring's structure, warnings (so errors) too: an unknown section (a misspelt
+# "Return"), sections out of order, a documented parameter the signature does not have (renamed or
+# removed), parameters out of order, a parameter line without the space before its colon.
+numpydoc_validation_checks = {"GL06", "GL07", "PR02", "PR03", "PR10"}
+# A constant that is an instance (of a dataclass) is validated against its class's docstring, with no
+# signature to hold the parameters: its class is validated where it is documented.
+numpydoc_validation_exclude = {r"\.DEFAULT_TOLERANCE$"}
 
 nitpicky = True
 default_role = "py:obj"
@@ -82,6 +89,9 @@ def _module_pages(app: Any) -> None:
         page = out / f"{name}.rst"
         if not page.exists() or page.read_text() != text:
             page.write_text(text)
+    for page in out.glob("*.rst"):
+        if page.stem not in names:  # a module since removed or renamed
+            page.unlink()
 
 # Names of Python and of the dependencies that a docstring or a type hint mentions: with no inventory
 # of theirs to link to, these (and only these) stay plain text.  A name of ``mobility`` is never here.

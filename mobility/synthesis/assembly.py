@@ -232,16 +232,16 @@ def pkm_document(result: SynthesisResult, structure: str, *, other: str = "UPS",
     pattern, mobility the Grübler-Kutzbach count), and :func:`mobility.analyze`
     must agree before the text is returned.
 
+    Returns
+    -------
+    mechanism : Mechanism
+    text : str
+
     Raises
     ------
     SynthesisError
         When the limb cannot be assembled at its home pose, or the analyzer
         disagrees with the expected values.
-
-    Returns
-    -------
-    mechanism : Mechanism
-    text : str
     """
     mechanism = assemble_pkm(result, structure, other=other, **geometry)
     found = result.structure(structure)
