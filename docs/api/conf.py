@@ -16,6 +16,7 @@ import importlib
 import re
 import sys
 import types
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -238,7 +239,27 @@ def _signature(app: Any, what: str, name: str, obj: Any, options: Any, signature
     return None
 
 
+def _numpydoc_problems() -> None:
+    """numpydoc reports what it cannot parse (an unknown section such as a misspelt ``Return``, an
+    underline of the wrong length) as Python warnings, which Sphinx would print and let pass: each one
+    becomes a Sphinx warning here, so an error of the build, every time it occurs."""
+    from sphinx.util import logging as sphinx_logging
+
+    logger = sphinx_logging.getLogger("numpydoc")
+    shown = warnings.showwarning
+
+    def show(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: str | None = None) -> None:
+        if "numpydoc" in Path(filename).parts or "numpydoc" in filename:
+            logger.warning("%s", " ".join(str(message).split()))
+        else:
+            shown(message, category, filename, lineno, file, line)
+
+    warnings.filterwarnings("always", category=UserWarning, module=r"numpydoc\..*")
+    warnings.showwarning = show
+
+
 def setup(app: Any) -> None:
+    _numpydoc_problems()
     app.connect("autodoc-process-signature", _signature, priority=400)
     app.connect("builder-inited", _module_pages)
     app.connect("missing-reference", _resolve_exported)
