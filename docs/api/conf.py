@@ -4,6 +4,8 @@ Build from the repository root (``.ci/docs`` does, in CI)::
 
     python -m sphinx -b html -W --keep-going -n docs/api build/api
 
+(``.ci/docs`` adds ``-E``: every page read afresh, so that no warning stays hidden in a cached one.)
+
 ``-W`` turns every warning into an error and ``-n`` (nitpicky) makes every
 cross-reference that leads nowhere a warning, so a broken docstring or a
 reference to a name that does not exist fails the build.  No inventory of
@@ -58,7 +60,6 @@ nitpicky = True
 default_role = "py:obj"
 
 
-
 def _module_pages(app: Any) -> None:
     """Write one page per module of ``mobility`` into ``generated/``: the module's docstring and its
     members (its ``__all__``); a package's page lists the names it exports and its modules.
@@ -93,6 +94,8 @@ def _module_pages(app: Any) -> None:
     for page in out.glob("*.rst"):
         if page.stem not in names:  # a module since removed or renamed
             page.unlink()
+    _DEFINED.clear()
+
 
 # Names of Python and of the dependencies that a docstring or a type hint mentions: with no inventory
 # of theirs to link to, these (and only these) stay plain text.  A name of ``mobility`` is never here.
@@ -116,8 +119,15 @@ nitpick_ignore_regex = [
 ]
 
 
+_MISSING = object()
+"""What :func:`_python_object` returns for a name that leads nowhere."""
+
+_DEFINED: dict[tuple[int, str], str] = {}
+""":func:`_defined_names` of this build (object identities hold for one process only: never pickled)."""
+
+
 def _python_object(name: str) -> Any:
-    """The object a dotted ``mobility`` name leads to (importing its modules), or ``None``."""
+    """The object a dotted ``mobility`` name leads to (importing its modules), or ``_MISSING``."""
     parts = name.split(".")
     for cut in range(len(parts), 0, -1):
         try:
@@ -128,9 +138,9 @@ def _python_object(name: str) -> Any:
             for part in parts[cut:]:
                 value = getattr(value, part)
         except AttributeError:
-            return None
+            return _MISSING
         return value
-    return None
+    return _MISSING
 
 
 def _defined_names(env: Any) -> dict[tuple[int, str], str]:
@@ -139,7 +149,7 @@ def _defined_names(env: Any) -> dict[tuple[int, str], str]:
     for name, entry in env.get_domain("py").objects.items():
         if name.startswith("mobility.") and not entry.aliased:
             value = _python_object(name)
-            if value is not None:
+            if value is not _MISSING:
                 found.setdefault((id(value), name.rpartition(".")[2]), name)
     return found
 
@@ -154,11 +164,11 @@ def _documented(env: Any, name: str) -> str | None:
     if entry is not None and not entry.aliased:
         return name
     value = _python_object(name)
-    if value is None:
+    if value is _MISSING:
         return None
-    if not hasattr(env, "_mobility_defined"):
-        env._mobility_defined = _defined_names(env)
-    return env._mobility_defined.get((id(value), name.rpartition(".")[2]))
+    if not _DEFINED:
+        _DEFINED.update(_defined_names(env))
+    return _DEFINED.get((id(value), name.rpartition(".")[2]))
 
 
 def _ours(value: Any) -> bool:
@@ -179,12 +189,12 @@ def _owner(env: Any, name: str) -> str | None:
     if not parent.startswith("mobility"):
         return None
     owner = _python_object(parent)
-    if owner is None:
+    if owner is _MISSING:
         return None
     fields = set(getattr(owner, "__dataclass_fields__", {})) | set(getattr(owner, "__annotations__", {}))
     if member not in fields:
-        value = getattr(owner, member, None)
-        if value is None or not _ours(value):
+        value = getattr(owner, member, _MISSING)
+        if value is _MISSING or not _ours(value):
             return None
     return _documented(env, parent) or _owner(env, parent)
 
