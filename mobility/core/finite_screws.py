@@ -282,7 +282,7 @@ def finite_screw_from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOL
 
 
 def triangle_product(*screws: npt.ArrayLike) -> np.ndarray:
-    """The screw triangle product ``S_1 △ S_2 △ ... △ S_k`` of finite screws (``S_k`` acts first).
+    """The screw triangle product ``S_1 △ S_2 △ … △ S_k`` of finite screws (``S_k`` acts first).
 
     ``S_a △ S_b`` is displacement ``b`` followed by displacement ``a`` (fixed
     frame), i.e. the matrix ``T_a @ T_b``; closed form in the module docstring.

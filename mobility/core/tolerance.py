@@ -76,6 +76,9 @@ __all__ = [
 class Tolerance:
     """Every threshold of the package, all relative and dimensionless.
 
+    Each is a real number (a numpy float too, stored as a ``float``); a bool
+    or a string is refused.
+
     Parameters
     ----------
     rank : float
@@ -92,9 +95,6 @@ class Tolerance:
     round_off : float
         Numbers below ``round_off`` times their scale are shown as 0
         (:func:`clean_numbers`).
-
-    Each is a real number (a numpy float too, stored as a ``float``); a bool
-    or a string is refused.
 
     Examples
     --------

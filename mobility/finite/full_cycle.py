@@ -19,10 +19,10 @@ module of this package:
    second-order directions) and each step, re-close every loop by Newton; a
    direction moves when the loops close (the policy's
    :attr:`~mobility.core.tolerance.Tolerance.closure`) at every step;
-4. **nearby poses** and 5. **branch dimension**
-   (:mod:`~mobility.finite.branches`): the poses reached are grouped by their
-   tangent spaces into branches, and each branch's finite mobility, DOF and
-   pattern are measured from one of its poses;
+4. **nearby poses** (:mod:`~mobility.finite.branches`): the poses reached
+   are grouped by their tangent spaces into branches;
+5. **branch dimension** (the same module): each branch's finite mobility, DOF
+   and pattern are measured from one of its poses;
 6. **verdict** (:mod:`~mobility.finite.verdict`): ``full-cycle``,
    ``instantaneous-only``, ``cannot-move`` or ``bifurcation``, with an
    explanation holding the numbers.

@@ -71,7 +71,7 @@ class BatchValue:
 
 
 class MarginCollector:
-    """Worst margins over the rank decisions of each pose (as :class:`mobility.core.screw_systems.Margin`)."""
+    """Worst margins over the rank decisions of each pose (as :class:`mobility.core.result.Margin`)."""
 
     def __init__(self, count: int) -> None:
         self.smallest_kept = np.ones(count)
@@ -155,7 +155,7 @@ class _Screws:
 
 
 def evaluate_batch(node: Node, twists: np.ndarray, offsets: tuple[int, ...], tol: Tolerance = DEFAULT_TOLERANCE, margin: MarginCollector | None = None) -> BatchValue:
-    """:func:`mobility.core.screw_systems.evaluate` of ``node`` at every pose.
+    """:func:`mobility.core.screw_systems.evaluate_node` of ``node`` at every pose.
 
     Parameters
     ----------

@@ -84,7 +84,7 @@ def assemble_pkm(
     twist_pattern: Sequence[float] = (1.0, 0.0, 1.0, 2.0),
     name: str | None = None,
 ) -> Mechanism:
-    """A PKM of one synthesized limb and ``copies`` 6-DOF limbs, as a :class:`Mechanism`.
+    """A PKM of one synthesized limb and ``copies`` 6-DOF limbs, as a :class:`~mobility.core.model.Mechanism`.
 
     The first realisation of ``structure`` (a name in ``result``) is used as
     found, with the pattern's point ``O`` where the pattern put it (the base
@@ -232,16 +232,16 @@ def pkm_document(result: SynthesisResult, structure: str, *, other: str = "UPS",
     pattern, mobility the Grübler-Kutzbach count), and :func:`mobility.analyze`
     must agree before the text is returned.
 
+    Returns
+    -------
+    mechanism : Mechanism
+    text : str
+
     Raises
     ------
     SynthesisError
         When the limb cannot be assembled at its home pose, or the analyzer
         disagrees with the expected values.
-
-    Returns
-    -------
-    mechanism : Mechanism
-    text : str
     """
     mechanism = assemble_pkm(result, structure, other=other, **geometry)
     found = result.structure(structure)

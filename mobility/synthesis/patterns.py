@@ -172,7 +172,7 @@ class PatternFactor:
 
 @dataclass(frozen=True)
 class MotionPattern:
-    """A set of finite motions ``S_f = F_1 △ F_2 △ ... △ F_k`` (``F_k`` acts first).
+    """A set of finite motions ``S_f = F_1 △ F_2 △ … △ F_k`` (``F_k`` acts first).
 
     Parameters
     ----------
@@ -378,7 +378,7 @@ DIRECTION_COUNTS = {"2T3R": 2, "3T": 3, "3R": 0, "2T1R": 2, "3T1R": 3}
 
 
 def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), directions: Sequence[Iterable[float]] | None = None) -> MotionPattern:
-    """A named motion pattern (see :data:`PATTERNS`) at ``point`` with the given directions.
+    """A named motion pattern (see :data:`~mobility.synthesis.patterns.PATTERNS`) at ``point`` with the given directions.
 
     Raises
     ------

@@ -1,7 +1,7 @@
 """Regression checks of mechanism files against their ``expected`` block.
 
 :func:`check_paths` (``mobility check``) and the pytest plugin
-(:func:`mechanism_tests`, ``pytest --mobility-check``).
+(:func:`~mobility.testing.pytest_plugin.mechanism_tests`, ``pytest --mobility-check``).
 """
 
 from .check import CheckReport, CheckResult, Comparison, check_file, check_mechanism, check_paths

@@ -14,7 +14,7 @@ Modules, each with one job (those marked * need no matplotlib):
     viewpoints where nothing important overlaps.
 ``scene`` *
     where the freedoms and constraint wrenches are drawn.
-``geometry`` *, ``style`` *
+``geometry`` * and ``style`` *
     small vector helpers; joint symbols and colours.
 ``glyphs``
     the 3D drawing primitives (arrows, rotation marks, links, joints).
