@@ -260,3 +260,32 @@ def test_robot_options_left_at_their_defaults_do_not_make_a_yaml_file_a_robot(wr
 def test_loads_refuses_a_file_name_for_messages_that_is_not_one(file):
     with pytest.raises(mobility.errors.RequestError, match=rf"^loads: file: expected a file name \(str or Path\), got {type(file).__name__}$"):
         mobility.loads(HEAD + "joints: []\n", file=file)
+
+
+# --- a field of another joint type: named as such, with the field this type takes ---------------------------
+
+_GEOMETRY = {"axis": "[0, 0, 1]", "point": "[0, 0, 0]", "pitch": "0.5", "axes": "[[1, 0, 0], [0, 1, 0]]", "normal": "[0, 0, 1]"}
+_TAKES = {"R": ("axis", "point"), "P": ("axis",), "H": ("axis", "point", "pitch"), "C": ("axis", "point"), "U": ("point", "axes"), "S": ("point",), "E": ("normal",)}
+_OPTIONAL = {"P": ("point",), "E": ("point",)}
+
+
+@pytest.mark.parametrize("jtype", sorted(_TAKES))
+def test_a_field_of_another_joint_type_is_named_as_such(write_yaml, jtype):
+    need = _TAKES[jtype]
+    for key, value in _GEOMETRY.items():
+        if key in need + _OPTIONAL.get(jtype, ()):
+            continue
+        fields = ", ".join(f"{k}: {_GEOMETRY[k]}" for k in need)
+        wrong = "[0, 0, 1]" if key == "axes" else value  # written as the type's own field would be: as a user who mixed them up
+        err = error_of(write_yaml, f"joints:\n  - {{name: A, type: {jtype}, links: [g, e], {fields}, {key}: {wrong}}}\n")
+        assert err.key == f"joints[0].{key}" and err.line == 5, str(err)
+        owners = [t for t, n in _TAKES.items() if key in n + _OPTIONAL.get(t, ())]
+        assert f"not a field of a joint of type {jtype} (it takes {', '.join(need)}" in err.message, str(err)
+        assert f"of a joint of type {owners[0]}" in err.message if len(owners) == 1 else f"is a field of joints of type {', '.join(owners)}" in err.message, str(err)
+        assert "expected two directions" not in err.message and "list of 3" not in err.message, str(err)
+
+
+def test_axes_on_a_revolute_joint_points_at_axis(write_yaml):
+    err = error_of(write_yaml, "joints:\n  - {name: A, type: R, links: [g, e], axes: [0, 0, 1], point: [0, 0, 0]}\n")
+    assert str(err) == (f"{err.file}:5: joints[0].axes: not a field of a joint of type R (it takes axis, point): "
+                        "axes holds the two directions of a joint of type U; write its direction as axis: [x, y, z]")

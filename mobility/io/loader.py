@@ -43,7 +43,7 @@ import re
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
-from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
+from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
 from ..errors import MechanismError, RequestError, shown_argument
 from .expected import read_expected
 from .files import file_name
@@ -59,6 +59,9 @@ JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes"
 LIMB_KEYS = ("copies", "index", "frame", "joints")
 _TYPE_NAMES = {name: letter for letter, name in JOINT_TYPES.items()}
 _SUBST_RE = re.compile(r"\{([^{}]*)\}")
+_FIELD_WORDS = {"axis": "direction", "point": "point", "pitch": "pitch", "axes": "two directions", "normal": "plane normal"}
+_WRITTEN_AS = {"axis": "axis: [x, y, z]", "axes": "axes: [[x, y, z], [x, y, z]]", "normal": "normal: [x, y, z]"}
+"""How a joint's direction is written, in the message of a field its type does not take."""
 
 
 def is_flexure_document(data: Any) -> bool:
@@ -240,6 +243,7 @@ class _MechanismReader(DocumentReader):
         if not isinstance(links, list) or len(links) != 2:
             raise self.fail(path + ("links",), f"expected two link names [a, b], got {describe_value(links)}")
         links = tuple(text(self.identifier(x, path + ("links", k), "a link name"), path + ("links", k)) for k, x in enumerate(links))
+        self.fields_of_type(data, jtype, path)
         fields: dict[str, Any] = {}
         for key in ("axis", "point", "normal"):
             if key in data:
@@ -259,6 +263,31 @@ class _MechanismReader(DocumentReader):
             return Joint(name, jtype, links, frame=text(frame, path + ("frame",)), actuated=actuated, **fields)
         except MechanismError as exc:
             raise self.fail(path + parse_key(exc.key), exc.message) from None
+
+    def fields_of_type(self, data: Mapping[str, Any], jtype: str, path: KeyPath) -> None:
+        """Refuse a geometry field that joint type ``jtype`` does not take, naming the types it belongs to and what this type takes.
+
+        Checked before any field is read, so that ``axes: [0, 0, 1]`` on an R
+        joint is not answered as a malformed pair of U-joint directions.
+
+        Examples
+        --------
+        >>> from mobility.io.yaml_source import Positions
+        >>> _MechanismReader("j.yaml", Positions({}), None).fields_of_type({"axes": [0, 0, 1]}, "R", ("joints", 0))
+        Traceback (most recent call last):
+        ...
+        mobility.errors.MechanismFileError: j.yaml: joints[0].axes: not a field of a joint of type R (it takes axis, point): axes holds the two directions of a joint of type U; write its direction as axis: [x, y, z]
+        """
+        need, optional = JOINT_FIELDS[jtype]
+        for key in _FIELD_WORDS:
+            if key not in data or key in need + optional:
+                continue
+            owners = [t for t, (n, o) in JOINT_FIELDS.items() if key in n + o]
+            takes = ", ".join(need) + (f", and optionally {', '.join(optional)}" if optional else "")  # as the model says it of a joint built in code
+            owner = f"holds the {_FIELD_WORDS[key]} of a joint of type {owners[0]}" if len(owners) == 1 else f"is a field of joints of type {', '.join(owners)}"
+            direction = next((k for k in _WRITTEN_AS if k in need), None)
+            hint = f"; write its {_FIELD_WORDS[direction]} as {_WRITTEN_AS[direction]}" if direction and key in _WRITTEN_AS else ""
+            raise self.fail(path + (key,), f"not a field of a joint of type {jtype} (it takes {takes}): {key} {owner}{hint}")
 
     def limbs(self, value: Any, joints_before: int = 0, frames_before: int = 0) -> tuple[list[Frame], list[Joint], list[KeyPath]]:
         frames: list[Frame] = []
