@@ -52,7 +52,7 @@ def finite_report(f: "FiniteMobility") -> str:
         out.append(f"  instantaneous only: {f.instantaneous_only_dof} end-effector DOF, {counted(f.instantaneous_only_mobility, 'freedom')} of the mechanism")
     if f.probes:
         out.append(
-            f"  moves: {f.moved} of {len(f.probes)} directions re-closed at every step ({', '.join(f'{h:g}' for h in f.steps)}; "
+            f"  moves: {f.moved} of {counted(len(f.probes), 'direction')} re-closed at every step ({', '.join(f'{h:g}' for h in f.steps)}; "
             f"radians, lengths over the characteristic length)"
         )
     if f.second_order is not None:

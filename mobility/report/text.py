@@ -115,7 +115,7 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
     if result.gruebler_kutzbach_explanation:
         out.append("    why G–K differs: " + result.gruebler_kutzbach_explanation)
     if result.idle_dof:
-        out.append(f"    idle DOF: {counted(result.idle_dof, 'motion')} of the joints leave the end effector still ({idle_hint(result)})")
+        out.append(f"    idle DOF: {counted(result.idle_dof, 'motion')} of the joints {'leaves' if result.idle_dof == 1 else 'leave'} the end effector still ({idle_hint(result)})")
     out.append(f"  structure: {result.structure}")
     out.append(
         f"  margin: smallest kept singular value {result.margin.smallest_kept:.2e}, "
