@@ -339,6 +339,20 @@ def test_reports_with_counts_of_one_agree_in_the_singular():
     assert "the other 1 freedom follows the solver (the smallest change from the neighbouring pose), so the path across the grid decides it" in left
 
 
+def test_reports_say_the_centre_and_the_margins_in_a_designers_words():
+    from mobility.report.text import text_report
+
+    r = mobility.analyze(mobility.load(MECHANISMS / "3prs_tilted.yaml"))
+    centre = "[0.292623, -0.608285, 0]"
+    kept, dropped = f"{r.margin.smallest_kept:.2e}", f"{r.margin.largest_dropped:.2e}"
+    for text in (text_report(r), markdown_report(r)):
+        assert f"the end effector's centre is at {centre}; each axis is" in text  # a centre, not a point of the axis
+        assert f"centre {centre}" not in text
+        assert re.search(rf"[Dd]istance to a singularity: {kept}\s+\(1 far from one, 0 where the count changes", text)
+        assert re.search(rf"[Dd]eparture from the special geometry: {dropped}\s+\(0 or round-off when it is exact", text)
+        assert "margin: smallest kept" not in text and "Rank margin" not in text
+
+
 # --- 6. Markdown: names cannot inject blocks ---------------------------------------------------------------------
 
 

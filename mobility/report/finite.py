@@ -45,7 +45,7 @@ def finite_report(f: "FiniteMobility") -> str:
         "finite motion (instantaneous or full-cycle):",
         f"  verdict: {f.verdict}",
         f"  instantaneous: DOF {f.instantaneous_dof} ({f.instantaneous_pattern}), mobility {f.instantaneous_mobility}"
-        f"   (margin: smallest kept singular value {f.margin.smallest_kept:.2e})",
+        f"   (distance to a singularity: {f.margin.smallest_kept:.2e})",
         f"  full-cycle:    DOF {f.full_cycle_dof} ({f.full_cycle_pattern}), mobility {f.full_cycle_mobility}",
     ]
     if f.instantaneous_only_dof or f.instantaneous_only_mobility:
