@@ -140,7 +140,7 @@ def sweep_summary(result: SweepResult) -> str:
     margin = result.smallest_kept[result.assembled]
     worst = int(np.flatnonzero(result.assembled)[first_least(margin)])
     near = int(result.near_singular[result.assembled].sum())
-    out.append(f"  rank margin: smallest kept relative singular value {float(margin.min()):.2e} at {describe_values(result, result.values[worst])}; near-singular poses: {near:,}")
+    out.append(f"  distance to a singularity (1 far from one, 0 where the count changes): smallest {float(margin.min()):.2e} at {describe_values(result, result.values[worst])}; near-singular poses: {near:,}")
     singular = result.singular
     if singular:
         out.append(f"  singular poses ({len(singular):,}):")
