@@ -40,11 +40,12 @@ mobility.errors.MechanismFileError: slider.yaml:6: joints[0].axis: expected a li
 from __future__ import annotations
 
 import re
+import warnings
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
 from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
-from ..errors import MechanismError, RequestError, shown_argument
+from ..errors import MechanismError, RequestError, clipped, did_you_mean, shown_argument
 from .expected import read_expected
 from .files import file_name
 from .expressions import RESERVED_NAMES
@@ -193,7 +194,7 @@ class _MechanismReader(DocumentReader):
             raise self.fail(("joints",), "expected at least one joint")
         expected = read_expected(self, doc["expected"], tuple(EXPECTED_KEYS)) if "expected" in doc else None
         try:
-            return Mechanism(
+            mechanism = Mechanism(
                 name=name,
                 ground=self.identifier(doc["ground"], ("ground",), "a link name"),
                 end_effector=self.identifier(doc["end_effector"], ("end_effector",), "a link name"),
@@ -207,6 +208,35 @@ class _MechanismReader(DocumentReader):
             )
         except MechanismError as exc:
             raise self.fail(self.source_path(exc.key, sources), exc.message) from None
+        for note in dict.fromkeys(self.link_notes(mechanism, sources) + self.angle_notes()):  # a limb's copies: each note once
+            warnings.warn(note, UserWarning, stacklevel=2)
+        return mechanism
+
+    def link_notes(self, mechanism: Mechanism, sources: list[KeyPath]) -> list[str]:
+        """Warnings on link names that look misspelt: a link only one joint names, close to the name of a link the mechanism holds by more.
+
+        A link named once ends a chain; when its name is close to another
+        link's (``slidr`` beside ``slider``), the joint most likely meant that
+        link, and the file describes another mechanism, silently.  Names of a
+        numbered family (``tip1``, ``tip2``) are not taken for misspellings of
+        each other.
+        """
+        uses: dict[str, int] = {}
+        for j in mechanism.joints:
+            for link in j.links:
+                uses[link] = uses.get(link, 0) + 1
+        held = [link for link, n in uses.items() if n > 1 or link in (mechanism.ground, mechanism.end_effector)]
+        notes = []
+        for j, path in zip(mechanism.joints, sources):
+            for k, link in enumerate(j.links):
+                if uses[link] != 1 or link in (mechanism.ground, mechanism.end_effector):
+                    continue
+                family = re.sub(r"\d+", "#", link)
+                hint = did_you_mean(link, [other for other in held if re.sub(r"\d+", "#", other) != family])
+                if hint:
+                    notes.append(str(self.fail(path + ("links", k), f"link {clipped(link)!r} is named by this joint only{hint}: "
+                                                                     "a misspelt link name makes a link of its own, and another mechanism")))
+        return notes
 
     def source_path(self, key: str, sources: list[KeyPath]) -> KeyPath:
         """Key path in the file of a model error key such as ``joints[4].name``."""
