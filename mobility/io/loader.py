@@ -60,6 +60,8 @@ JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes"
 LIMB_KEYS = ("copies", "index", "frame", "joints")
 _TYPE_NAMES = {name: letter for letter, name in JOINT_TYPES.items()}
 _SUBST_RE = re.compile(r"\{([^{}]*)\}")
+MOST_LINKS_NAMED_ONCE = 64
+"""Most links named by one joint only for which a file is searched for a misspelt link name (more: a generated file)."""
 _FIELD_WORDS = {"axis": "direction", "point": "point", "pitch": "pitch", "axes": "two directions", "normal": "plane normal"}
 _WRITTEN_AS = {"axis": "axis: [x, y, z]", "axes": "axes: [[x, y, z], [x, y, z]]", "normal": "normal: [x, y, z]"}
 """How a joint's direction is written, in the message of a field its type does not take."""
@@ -219,20 +221,26 @@ class _MechanismReader(DocumentReader):
         link's (``slidr`` beside ``slider``), the joint most likely meant that
         link, and the file describes another mechanism, silently.  Names of a
         numbered family (``tip1``, ``tip2``) are not taken for misspellings of
-        each other.
+        each other.  A file with more than :data:`MOST_LINKS_NAMED_ONCE` links
+        named once is a generated one, not typed by hand: it is not searched
+        (each search compares a name with every held link's).
         """
         uses: dict[str, int] = {}
         for j in mechanism.joints:
             for link in j.links:
                 uses[link] = uses.get(link, 0) + 1
-        held = [link for link, n in uses.items() if n > 1 or link in (mechanism.ground, mechanism.end_effector)]
+        ends = (mechanism.ground, mechanism.end_effector)
+        once = [link for link, n in uses.items() if n == 1 and link not in ends]
+        if not once or len(once) > MOST_LINKS_NAMED_ONCE:
+            return []
+        family = {link: re.sub(r"\d+", "#", link) for link in uses}
+        held = [link for link, n in uses.items() if n > 1 or link in ends]
         notes = []
         for j, path in zip(mechanism.joints, sources):
             for k, link in enumerate(j.links):
-                if uses[link] != 1 or link in (mechanism.ground, mechanism.end_effector):
+                if uses[link] != 1 or link in ends:
                     continue
-                family = re.sub(r"\d+", "#", link)
-                hint = did_you_mean(link, [other for other in held if re.sub(r"\d+", "#", other) != family])
+                hint = did_you_mean(link, [other for other in held if family[other] != family[link]])
                 if hint:
                     notes.append(str(self.fail(path + ("links", k), f"link {clipped(link)!r} is named by this joint only{hint}: "
                                                                      "a misspelt link name makes a link of its own, and another mechanism")))
