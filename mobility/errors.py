@@ -74,15 +74,17 @@ __all__ = [
 ]
 
 
-def counted(n: int, word: str, plural: str = "s") -> str:
-    """``n`` and ``word``, in the plural unless ``n`` is 1: the count of a message or a report.
+def counted(n: int, word: str, plural: str = "s", *, grouped: bool = False) -> str:
+    """``n`` and ``word``, in the plural unless ``n`` is 1: the count of a message or a report (``grouped``: thousands separated by commas).
 
     Examples
     --------
     >>> counted(1, "pose"), counted(8, "combination"), counted(5, "constraint wrench", "es"), counted(0, "direction")
     ('1 pose', '8 combinations', '5 constraint wrenches', '0 directions')
+    >>> counted(12000, "pose", grouped=True), counted(1, "pose", grouped=True)
+    ('12,000 poses', '1 pose')
     """
-    return f"{n} {word}{'' if n == 1 else plural}"
+    return f"{n:,} {word}{'' if n == 1 else plural}" if grouped else f"{n} {word}{'' if n == 1 else plural}"
 
 
 def name_list(names: Iterable[object], *, most: int = 12, empty: str = "(none)") -> str:

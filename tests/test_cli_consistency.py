@@ -4,6 +4,7 @@ Markdown stays the document it claims to be."""
 
 from __future__ import annotations
 
+import ast
 import csv
 import io
 import json
@@ -261,6 +262,95 @@ def test_no_message_or_report_counts_with_a_parenthesised_plural():
                 found.append(f"{path.relative_to(ROOT)}:{token.start[0]}: {token.string}")
     assert found == []
     assert errors.counted(1, "wrench", "es") == "1 wrench" and errors.counted(3, "wrench", "es") == "3 wrenches"
+
+
+def _counted_nouns(trees: dict[Path, ast.Module]) -> set[str]:
+    """The nouns the package counts (the last word of every ``counted(n, "noun")``), in the singular."""
+    return {n.args[1].value.split()[-1] for tree in trees.values() for n in ast.walk(tree)
+            if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "counted" and len(n.args) >= 2
+            and isinstance(n.args[1], ast.Constant) and isinstance(n.args[1].value, str)}
+
+
+_PLURAL_VERBS = ("are", "were", "have", "follow", "leave", "remain", "span", "survive", "stay", "move", "lie", "meet", "pass", "make", "give")
+"""Verbs in the plural form: after a count written through counted (which may be 1), the verb must follow the count too."""
+
+
+_NEVER_ONE = {
+    ("mobility/view/describe.py", "len(results)"): "the poses of a view of several poses (one pose is described above it)",
+    ("mobility/view/sweep.py", "size"): "a sweep of more poses than are drawn",
+}
+"""Counts formatted by hand that the code around them keeps above 1."""
+
+
+def _formatted_count_problems(trees: dict[Path, ast.Module]) -> list[str]:
+    """Counts formatted by hand before a plural noun (``f"{n} poses"``: "1 poses"), and counts through counted followed by a plural verb ("1 freedom follow")."""
+    nouns = _counted_nouns(trees)
+    plurals = {w + "s" for w in nouns} | {w + "es" for w in nouns}
+    found = []
+    for path, tree in trees.items():
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.JoinedStr):
+                continue
+            parts = node.values
+            whole = "".join(p.value if isinstance(p, ast.Constant) else "{}" for p in parts)
+            for k, part in enumerate(parts):
+                if not isinstance(part, ast.FormattedValue) or k + 1 == len(parts) or not isinstance(parts[k + 1], ast.Constant):
+                    continue
+                after = "".join(p.value if isinstance(p, ast.Constant) else "{}" for p in parts[k + 1:])
+                is_counted = isinstance(part.value, ast.Call) and isinstance(part.value.func, ast.Name) and part.value.func.id == "counted"
+                where = f"{path.relative_to(ROOT)}:{part.lineno}: {{{ast.unparse(part.value)}}}{after[:40]}"
+                word = re.match(r" ([a-z]+)\b", after)
+                if not is_counted and word and word.group(1) in plurals and "than the limit" not in whole and "more than" not in whole and (  # a count above a limit is never 1
+                        (str(path.relative_to(ROOT)), ast.unparse(part.value)) not in _NEVER_ONE):
+                    found.append(where)
+                clause = re.split(r"[,;:(){]", after, maxsplit=1)[0]
+                before = "".join(p.value if isinstance(p, ast.Constant) else "{}" for p in parts[:k])
+                verb = re.search(rf"\b({'|'.join(_PLURAL_VERBS)})\b", clause)
+                if is_counted and verb and not before.endswith("and the ") and not after[verb.end():].startswith("{"):  # "pass{es}": agreed
+                    found.append(where)
+    return found
+
+
+def test_no_count_formatted_by_hand_before_a_plural_and_no_plural_verb_after_a_count():
+    # "not assembled: 1 poses", "the other 1 freedom follow": counts built by formatting, which a scan of constants cannot see
+    trees = {path: ast.parse(path.read_text(encoding="utf-8")) for path in sorted((ROOT / "mobility").rglob("*.py"))}
+    assert {"pose", "freedom", "motion"} <= _counted_nouns(trees)
+    assert _formatted_count_problems(trees) == []
+    planted = {ROOT / "mobility" / "planted.py": ast.parse('f"not assembled: {n:,} poses"; f"the other {counted(k, \'freedom\')} follow the solver"; '
+                                                            'f"{counted(k, \'motion\')} of the joints leave"; f"{counted(k, \'line\')} pass{s}"; '
+                                                            'f"{count} joints are more than the limit"')}
+    assert [p.split(": ", 1)[1] for p in _formatted_count_problems({**trees, **planted}) if "planted" in p] == [
+        "{n} poses", "{counted(k, 'freedom')} follow the solver", "{counted(k, 'motion')} of the joints leave"]
+
+
+def test_reports_with_counts_of_one_agree_in_the_singular():
+    from mobility.report.sweep import sweep_summary
+    from mobility.report.text import text_report
+
+    # one idle motion: a slider beside a four-bar, off the path to the end effector
+    idle = mobility.loads(Path(FOUR_BAR).read_text(encoding="utf-8").replace("expected:", "  - {name: X, type: P, links: [ground, probe], axis: [1, 0, 0]}\nexpected:"))
+    said = text_report(mobility.analyze(idle))
+    assert "idle DOF: 1 motion of the joints leaves the end effector still" in said
+    # one pose that cannot close (the parallelogram's O2 held while O1 turns)
+    one = sweep_summary(sweep(mobility.load(MECHANISMS / "parallelogram.yaml"), ["O1=10:10:1", "O2=0:0:1"]))
+    assert "assembled: 0 of 1 pose" in one and "not assembled: 1 pose (" in one and "sweep of 2 coordinates, 1 pose" in one
+    # one freedom left to the solver: two of the three prismatic joints of the 3-UPU driven
+    left = sweep_summary(sweep(mobility.load(MECHANISMS / "3upu_singular.yaml"), ["P1=-30:30:3", "P2=-30:30:3"]))
+    assert "the other 1 freedom follows the solver (the smallest change from the neighbouring pose), so the path across the grid decides it" in left
+
+
+def test_reports_say_the_centre_and_the_margins_in_a_designers_words():
+    from mobility.report.text import text_report
+
+    r = mobility.analyze(mobility.load(MECHANISMS / "3prs_tilted.yaml"))
+    centre = "[0.292623, -0.608285, 0]"
+    kept, dropped = f"{r.margin.smallest_kept:.2e}", f"{r.margin.largest_dropped:.2e}"
+    for text in (text_report(r), markdown_report(r)):
+        assert f"the end effector's centre is at {centre}; each axis is" in text  # a centre, not a point of the axis
+        assert f"centre {centre}" not in text
+        assert re.search(rf"[Dd]istance to a singularity: {kept}\s+\(1 far from one, 0 where the count changes", text)
+        assert re.search(rf"[Dd]eparture from the special geometry: {dropped}\s+\(0 or round-off when it is exact", text)
+        assert "margin: smallest kept" not in text and "Rank margin" not in text
 
 
 # --- 6. Markdown: names cannot inject blocks ---------------------------------------------------------------------

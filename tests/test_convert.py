@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -11,6 +12,7 @@ import pytest
 import mobility
 from mobility.cli import main
 from mobility.io.robot_files import read_robot
+from mobility.io.writer import mechanism_to_yaml
 
 DATA = Path(__file__).parent / "data" / "robots"
 HAND = DATA / "hand"
@@ -170,3 +172,13 @@ def test_a_blank_name_in_a_robot_file_is_refused_at_its_line_by_every_command(ca
         status, out, err = run(capsys, *command, str(path))
         assert (status, out) == (2, "") and not (tmp_path / "out.yaml").exists(), (command, err)
         assert err == f"mobility: {path}:{line}: {key}: a name of blank characters only; expected a visible name\n", (command, err)
+
+
+def test_convert_writes_no_digits_of_round_off(capsys):
+    # the parallelogram's joint points are sums of body positions: 0.1 - 0.07 was written 0.030000000000000013
+    status, out, _ = run(capsys, "convert", HAND / "parallelogram.xml")
+    assert status == 0 and "point: [0.03, " in out
+    numbers = re.findall(r"-?\d+\.\d+(?:e-?\d+)?", out)
+    assert numbers and not [x for x in numbers if re.search(r"(?:0{6,}|9{6,})\d{1,3}$", x.split("e")[0])]  # no 0.15000000000000002
+    joints = lambda text: [line for line in text.splitlines() if line.startswith("  - {")]  # noqa: E731
+    assert joints(mechanism_to_yaml(mobility.loads(out))) == joints(out)  # idempotent: written again as the same text

@@ -9,6 +9,7 @@ import pytest
 import mobility
 from mobility.errors import MechanismError, MechanismFileError
 from mobility.io.expressions import evaluate
+from conftest import MECHANISMS
 
 HEAD = """\
 name: test
@@ -260,3 +261,122 @@ def test_robot_options_left_at_their_defaults_do_not_make_a_yaml_file_a_robot(wr
 def test_loads_refuses_a_file_name_for_messages_that_is_not_one(file):
     with pytest.raises(mobility.errors.RequestError, match=rf"^loads: file: expected a file name \(str or Path\), got {type(file).__name__}$"):
         mobility.loads(HEAD + "joints: []\n", file=file)
+
+
+# --- a field of another joint type: named as such, with the field this type takes ---------------------------
+
+_GEOMETRY = {"axis": "[0, 0, 1]", "point": "[0, 0, 0]", "pitch": "0.5", "axes": "[[1, 0, 0], [0, 1, 0]]", "normal": "[0, 0, 1]"}
+_TAKES = {"R": ("axis", "point"), "P": ("axis",), "H": ("axis", "point", "pitch"), "C": ("axis", "point"), "U": ("point", "axes"), "S": ("point",), "E": ("normal",)}
+_OPTIONAL = {"P": ("point",), "E": ("point",)}
+
+
+@pytest.mark.parametrize("jtype", sorted(_TAKES))
+def test_a_field_of_another_joint_type_is_named_as_such(write_yaml, jtype):
+    need = _TAKES[jtype]
+    for key, value in _GEOMETRY.items():
+        if key in need + _OPTIONAL.get(jtype, ()):
+            continue
+        fields = ", ".join(f"{k}: {_GEOMETRY[k]}" for k in need)
+        wrong = "[0, 0, 1]" if key == "axes" else value  # written as the type's own field would be: as a user who mixed them up
+        err = error_of(write_yaml, f"joints:\n  - {{name: A, type: {jtype}, links: [g, e], {fields}, {key}: {wrong}}}\n")
+        assert err.key == f"joints[0].{key}" and err.line == 5, str(err)
+        owners = [t for t, n in _TAKES.items() if key in n + _OPTIONAL.get(t, ())]
+        assert f"not a field of a joint of type {jtype} (it takes {', '.join(need)}" in err.message, str(err)
+        assert f"of a joint of type {owners[0]}" in err.message if len(owners) == 1 else f"is a field of joints of type {', '.join(owners)}" in err.message, str(err)
+        assert "expected two directions" not in err.message and "list of 3" not in err.message, str(err)
+
+
+def test_axes_on_a_revolute_joint_points_at_axis(write_yaml):
+    err = error_of(write_yaml, "joints:\n  - {name: A, type: R, links: [g, e], axes: [0, 0, 1], point: [0, 0, 0]}\n")
+    assert str(err) == (f"{err.file}:5: joints[0].axes: not a field of a joint of type R (it takes axis, point): "
+                        "axes holds the two directions of a joint of type U; write its direction as axis: [x, y, z]")
+
+
+# --- warnings: a misspelt link name, angles in radians in a file read in degrees -----------------------------
+
+SLIDER_CRANK = """\
+name: slider-crank
+ground: ground
+end_effector: slider
+joints:
+  - {name: A, type: R, links: [ground, crank], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, links: [crank, rod], axis: [0, 0, 1], point: [1, 1, 0]}
+  - {name: C, type: R, links: [rod, slider], axis: [0, 0, 1], point: [3, 0, 0]}
+  - {name: D, type: P, links: [slider, ground], axis: [1, 0, 0]}
+"""
+
+
+def notes_of(path) -> list[str]:
+    """The warnings loading ``path`` gives, as text."""
+    import warnings
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mobility.load(path)
+    return [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+
+
+def test_a_misspelt_link_name_is_a_warning_with_the_name_meant(write_yaml):
+    path = write_yaml(SLIDER_CRANK.replace("links: [rod, slider]", "links: [rod, slidr]"))
+    assert notes_of(path) == [f"{path}:7: joints[2].links[1]: link 'slidr' is named by this joint only (did you mean 'slider'?): "
+                              "a misspelt link name makes a link of its own, and another mechanism"]
+    assert notes_of(write_yaml(SLIDER_CRANK)) == []
+
+
+def test_a_link_named_once_on_purpose_is_no_warning(write_yaml):
+    # a probe off the path, the numbered tips of fingers, the end effector itself: named once, as meant
+    body = SLIDER_CRANK + "  - {name: E, type: P, links: [ground, probe], axis: [0, 1, 0]}\n"
+    body += "  - {name: F1, type: R, links: [rod, tip1], axis: [0, 0, 1], point: [2, 0, 0]}\n  - {name: F2, type: R, links: [rod, tip2], axis: [0, 0, 1], point: [2, 1, 0]}\n"
+    assert notes_of(write_yaml(body)) == []
+    assert [notes_of(path) for path in sorted(MECHANISMS.glob("*.yaml"))] == [[] for _ in MECHANISMS.glob("*.yaml")]
+
+
+def test_the_command_line_shows_the_warning_and_still_answers(write_yaml, capsys):
+    from mobility.cli import main
+
+    path = write_yaml(SLIDER_CRANK.replace("links: [rod, slider]", "links: [rod, slidr]"))
+    assert main(["analyze", str(path)]) == 0
+    out, err = capsys.readouterr()
+    assert "idle DOF: 3" in out
+    assert err == (f"mobility: note: {path}:7: joints[2].links[1]: link 'slidr' is named by this joint only (did you mean 'slider'?): "
+                   "a misspelt link name makes a link of its own, and another mechanism\n")
+
+
+LEGS = """\
+name: three legs
+ground: base
+end_effector: leg0
+{units}parameters: {{step: 2*pi/3}}
+limbs:
+  - copies: 3
+    frame: {{rpy: [0, 0, "{angle}"]}}
+    joints:
+      - {{name: "R{{i}}", type: R, links: [base, "leg{{i}}"], axis: [1, 0, 0], point: [1, 0, 0]}}
+"""
+
+
+@pytest.mark.parametrize("angle", ["2*pi/3*i", "step*i", "tau/3*i"])
+def test_an_angle_in_radians_in_a_file_read_in_degrees_is_a_warning(write_yaml, angle):
+    path = write_yaml(LEGS.format(units="", angle=angle))
+    notes = notes_of(path)
+    assert len(notes) == 1 and notes[0].startswith(f"{path}:7: limbs[0].frame.rpy[2]: the angle {angle!r} uses pi, but the file's angles are in degrees"), notes
+    assert "it turns by 2.0944 deg; if 2.0944 rad (120 deg) was meant, write the angle in degrees" in notes[0], notes
+
+
+@pytest.mark.parametrize("units, angle", [("units: {angle: rad}\n", "2*pi/3*i"), ("", "120*i"), ("", "degrees(pi/3)*i"), ("units: {angle: deg}\n", "degrees(step)*i")])
+def test_angles_in_their_files_unit_are_no_warning(write_yaml, units, angle):
+    assert notes_of(write_yaml(LEGS.format(units=units, angle=angle))) == []
+
+
+@pytest.mark.parametrize("frame, key, hint", [
+    ("{rpy: [0, 0, 1.5708]}", "frames.f.rpy[2]", "this one turns by only 1.5708 deg; if 1.5708 rad (90.0002 deg) was meant, give units: {angle: rad}"),
+    ("{axis: [0, 0, 1], angle: 0.7854}", "frames.f.angle", "if 0.7854 rad (45.0001 deg) was meant"),
+])
+def test_every_angle_as_small_as_radians_in_a_degrees_file_is_a_warning(write_yaml, frame, key, hint):
+    path = write_yaml(HEAD + f"frames:\n  f: {frame}\n" + "joints:\n  - {name: A, type: R, links: [g, e], axis: [1, 0, 0], point: [0, 0, 0], frame: f}\n")
+    notes = notes_of(path)
+    assert len(notes) == 1 and notes[0].startswith(f"{path}:5: {key}: every angle of the file is at most 2π (6.283), as in radians, but the file's angles are in degrees"), notes
+    assert hint in notes[0], notes
+    # a tilt of a round number of degrees, or one angle beyond 2π: degrees, as meant
+    for fine in (frame.replace("1.5708", "5").replace("0.7854", "2.5"), frame.replace("[0, 0, 1.5708]", "[0, 90, 1.5708]").replace("0.7854", "45")):
+        assert notes_of(write_yaml(HEAD + f"frames:\n  f: {fine}\n" + "joints:\n  - {name: A, type: R, links: [g, e], axis: [1, 0, 0], point: [0, 0, 0], frame: f}\n")) == []

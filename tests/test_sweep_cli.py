@@ -70,7 +70,7 @@ def test_coordinates_show_the_digits_that_tell_neighbours_apart(capsys, vary, sh
 
 def test_summary_says_when_freedoms_are_left_to_the_solver(capsys):
     status, out, _ = run(capsys, "sweep", TSAI, "--vary", "P1=-30:30:3", "--vary", "P2=-30:30:3")
-    assert status == 0 and "note: 2 coordinates driven for mobility 3: the other 1 freedom follow the solver" in out
+    assert status == 0 and "note: 2 coordinates driven for mobility 3: the other 1 freedom follows the solver" in out
     status, out, _ = run(capsys, "sweep", TSAI, "--vary", "P1=-30:30:3", "--vary", "P2=-30:30:3", "--vary", "P3=0:0:1")
     assert status == 0 and "note:" not in out
 

@@ -46,3 +46,33 @@ def test_round_off_is_written_as_zero_relative_to_the_mechanism():
     text = mechanism_to_yaml(tiny)
     assert "point: [1e-250, 2e-250, 0]" in text  # not rounded to zero: the whole mechanism is that small
     assert mobility.analyze(mobility.loads(text)).pattern == "1R"
+
+
+def test_the_last_digits_of_round_off_are_not_written():
+    z = (0.0, 0.0, 1.0)
+    m = mobility.Mechanism("sums", "g", "b", (
+        mobility.Joint("A", "R", ("g", "a"), axis=z, point=(0.0, 0.1, 0.1 + 0.05)),   # 0.15000000000000002
+        mobility.Joint("B", "R", ("a", "b"), axis=z, point=(0.1 + 0.2, 1.0 - 0.9, 0.1)),  # 0.30000000000000004, 0.09999999999999998
+        mobility.Joint("C", "H", ("b", "c"), axis=z, point=(1.0 / 3.0, 0.0, 0.0), pitch=0.7 + 0.1)))  # 0.7999999999999999
+    text = mechanism_to_yaml(m)
+    assert "point: [0, 0.1, 0.15]" in text and "point: [0.3, 0.1, 0.1]" in text and "pitch: 0.8" in text
+    assert "point: [0.3333333333333333, 0, 0]" in text  # a number without round-off keeps its digits
+    back = mobility.loads(text)
+    assert same_joints(m, back, 10.0)  # equal up to round-off
+    assert mechanism_to_yaml(back) == text  # idempotent: what was read is written as the same text
+    assert same_joints(back, mobility.loads(mechanism_to_yaml(back)))  # and the second round trip to the bit
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.integers(-10**7, 10**7), st.integers(-10**7, 10**7))
+def test_a_sum_of_lengths_is_written_as_its_decimal_and_read_back_to_the_same_text(ia, ib):
+    # lengths written to the millimetre, in metres, added up as a robot file's body positions are: the sum's noise is not written
+    from fractions import Fraction
+
+    from mobility.io.writer import _number
+
+    a, b = ia / 1000, ib / 1000
+    size = max(abs(a), abs(b), 1e-3)  # the mechanism is as large as its numbers
+    text = _number(a + b, size)
+    assert float(text) == float(Fraction(ia + ib, 1000))  # the decimal that was meant, not 0.15000000000000002
+    assert _number(float(text), size) == text  # written again as the same text

@@ -32,7 +32,7 @@ from ..core.poses import DEFAULT_STEP, require_pose_count, sample_poses
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank, require_tolerance
 from ..core.topology import joints_of
-from ..errors import MechanismError, RequestError, shown_argument
+from ..errors import MechanismError, RequestError, counted, shown_argument
 from .assessment import Assessment, InputWrench, assess_inputs, assess_wrenches
 from .ranking import combination_type, combinations_count, combine_poses, inputs_per_combination, limit_combinations, rank_combinations
 from .results import ActuationCheck, Enumeration
@@ -208,7 +208,7 @@ def enumerate_actuations(
         combinations_count(len(flat), k, "choose a smaller k or mode 'limb'")
         combos = itertools.combinations(flat, k)
     if k != dof:
-        warnings.append(f"{k} inputs per combination for {dof} DOF: none can be valid ({'redundant' if k > dof else 'too few'})")
+        warnings.append(f"{counted(k, 'input')} per combination for {dof} DOF: none can be valid ({'redundant' if k > dof else 'too few'})")
     combos = [tuple(c) for c in combos]
     states = [first] + [RigidPose(p, tol) for _, p in pose_list[1:]]
     per_combo: list[list[Assessment]] = [[] for _ in combos]

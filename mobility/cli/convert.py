@@ -15,7 +15,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..errors import MechanismFileError, RequestError, one_line
+from ..errors import MechanismFileError, RequestError, counted, one_line
 from ._options import add_mechanism_file, read_mechanism, require_new_output
 
 __all__ = ["register", "run"]
@@ -66,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
             Path(args.output).write_text(text, encoding="utf-8")
         except OSError as exc:
             raise MechanismFileError("--output", f"cannot write the file ({exc.strerror or exc})", file=args.output) from None
-        print(one_line(f"mobility: wrote {args.output} ({len(mechanism.joints)} joints, {len(mechanism.links)} links)"), file=sys.stderr)
+        print(one_line(f"mobility: wrote {args.output} ({counted(len(mechanism.joints), 'joint')}, {counted(len(mechanism.links), 'link')})"), file=sys.stderr)
     else:
         _write_utf8(text)
     return 0

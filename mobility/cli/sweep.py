@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 from typing import Iterable, Iterator, TextIO
 
-from ..errors import MechanismError, RequestError, clipped, one_line
+from ..errors import MechanismError, RequestError, clipped, counted, one_line
 from ..report.plotting import FORMATS as PICTURE_FORMATS, picture_path, save_figure
 from ..report.sweep import sweep_csv_pieces, sweep_json_pieces, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, SweepResult, sweep
@@ -130,7 +130,7 @@ def run(args: argparse.Namespace) -> int:
                 _write_pieces(handle, pieces)
         except OSError as exc:
             raise RequestError(f"-o {args.output}: cannot write it ({exc.strerror or exc})") from None
-        print(one_line(f"wrote {args.output}: {result.size:,} poses of {result.name} ({fmt})"))
+        print(one_line(f"wrote {args.output}: {counted(result.size, 'pose', grouped=True)} of {result.name} ({fmt})"))
     else:
         _write_pieces(sys.stdout, pieces)
     if args.plot is not None:

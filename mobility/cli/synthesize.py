@@ -15,7 +15,7 @@ import argparse
 import os
 from pathlib import Path
 
-from ..errors import RequestError, SynthesisError
+from ..errors import RequestError, SynthesisError, counted
 from ..report.synthesis import synthesis_json, synthesis_text, written_files_text
 from ..synthesis import PATTERNS, named_pattern, synthesize, write_pkm_files
 from ..synthesis.enumeration import MAX_SAMPLES, MAX_VERIFY_SAMPLES
@@ -82,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
     if args.write is not None:  # before the search: a folder that cannot take the files is refused now
         _require_folder_to_write(args.write)
         if args.joints is not None and args.joints != pattern.dim:
-            raise RequestError(f"--write assembles PKMs from limbs of {pattern.dim} joints (the dimension of {pattern.name}); --joints {args.joints} gives parts of limbs")
+            raise RequestError(f"--write assembles PKMs from limbs of {counted(pattern.dim, 'joint')} (the dimension of {pattern.name}); --joints {args.joints} gives parts of limbs")
     result = synthesize(pattern, joints=args.joints, samples=args.samples, verify_samples=args.verify, seed=args.seed)
     try:
         written, skipped = write_pkm_files(result, args.write, other=args.other) if args.write else ((), ())

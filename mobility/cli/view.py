@@ -11,7 +11,7 @@ import argparse
 
 from ..core.analysis import analyze
 from ..core.model import Mechanism
-from ..errors import RequestError, one_line
+from ..errors import RequestError, counted, one_line
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
 from ..io.limits import require_size, require_work
@@ -38,7 +38,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     poses = p.add_mutually_exclusive_group()
     poses.add_argument("--vary", action="append", default=[], metavar="NAME=START:STOP:COUNT",
                        help="show the poses of a sweep, as for `mobility sweep` (repeat for a grid), with a slider; "
-                       f"at most {MAX_POSES} poses are drawn, evenly spaced, every singular one kept")
+                       f"it draws at most {counted(MAX_POSES, 'pose')}, evenly spaced, every singular one kept")
     add_max_poses_option(p, what="with --vary: refuse a grid of more poses, as `mobility sweep` does")
     add_pose_sampler_options(p, samples_help="also show N poses reached by moving the mechanism, with a slider", samples_group=poses, most=MAX_POSES - 1)
     add_tolerance_option(p)
@@ -52,7 +52,7 @@ def _poses_shown(args: argparse.Namespace, mechanism: Mechanism, max_poses: int)
     from ..sweeps import plan_grid  # the sweeps: only for --vary
 
     size = plan_grid(mechanism, args.vary, max_poses=max_poses).size
-    return min(size, MAX_POSES), f"--vary (a grid of {size:,} poses, {min(size, MAX_POSES):,} of them drawn)"
+    return min(size, MAX_POSES), f"--vary (a grid of {counted(size, 'pose', grouped=True)}, {min(size, MAX_POSES):,} of them drawn)"
 
 
 def run(args: argparse.Namespace) -> int:
@@ -65,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
     for dest in ("step", "seed"):
         require_option_for(args, dest, f"--{dest}", "--samples", bool(args.samples), "it sets how the sampled poses are reached")
     if args.samples >= MAX_POSES:  # the file's pose and the sampled ones, before any work
-        raise RequestError(f"--samples {args.samples}: a view shows at most {MAX_POSES} poses, the file's and {MAX_POSES - 1} sampled; ask for fewer")
+        raise RequestError(f"--samples {args.samples}: a view shows at most {counted(MAX_POSES, 'pose')}, the file's and {MAX_POSES - 1} sampled; ask for fewer")
     require_plotly()  # before any work
     mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
     if args.vary or args.samples:
@@ -84,6 +84,6 @@ def run(args: argparse.Namespace) -> int:
     else:
         view = mechanism_view(mechanism, result)
     path = view.write_html(args.output)
-    pose_count = f", {len(view.frames)} poses" if len(view.frames) > 1 else ""
+    pose_count = f", {counted(len(view.frames), 'pose')}" if len(view.frames) > 1 else ""
     print(one_line(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility}{pose_count}"))
     return 0

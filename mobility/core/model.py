@@ -52,6 +52,7 @@ from .transforms import Transform, rotation_from_rpy
 __all__ = [
     "JOINT_TYPES",
     "JOINT_DOF",
+    "JOINT_FIELDS",
     "Freedom",
     "FreedomTable",
     "Joint",
@@ -119,6 +120,8 @@ _REQUIRED: Mapping[str, tuple[str, ...]] = {
     "E": ("normal",),
 }
 _OPTIONAL: Mapping[str, tuple[str, ...]] = {"P": ("point",), "E": ("point",)}
+JOINT_FIELDS: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = MappingProxyType({t: (need, _OPTIONAL.get(t, ())) for t, need in _REQUIRED.items()})
+"""Geometry fields each joint type takes: those it requires, and those it may also carry."""
 
 Vector = tuple[float, float, float]
 

@@ -390,8 +390,8 @@ class Result(ReadOnlyArrays):
             )
             rest -= within
         if rest > 0:
-            other = " other" if within > 0 else ""
-            text += f" {rest} come{'s' if rest == 1 else ''} from the special geometry of the{other} loops (parallel or intersecting axes, repeated constraints of parallel limbs)."
+            other = "other " if within > 0 else ""
+            text += f" {rest} come{'s' if rest == 1 else ''} from the special geometry of the {other}loops (parallel or intersecting axes, repeated constraints of parallel limbs)."
         return text
 
     def _inner_loops(self) -> list[tuple[Node, int, int]]:

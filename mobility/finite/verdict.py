@@ -118,7 +118,7 @@ def _cannot_move_text(instant: Result, k: int, probes: tuple[Probe, ...], second
         order2 = ""
     return (
         f"The screw route finds {counted(k, 'first-order motion')} (end-effector DOF {instant.dof}), but none is a finite motion: "
-        f"in {len(probes)} directions, Newton does not re-close the loops at every step {_steps_text(steps)} "
+        f"in {counted(len(probes), 'direction')}, Newton does not re-close the loops at every step {_steps_text(steps)} "
         f"(smallest residual left at step {steps[0]:g}: {smallest:.2e}; closed means below {tol.closure:.0e}).{order2} "
         "The pose cannot move at all."
     )
@@ -130,12 +130,12 @@ def _verdict_text(instant: Result, k: int, branches: list[Branch], probes: tuple
     moved = sum(p.moved for p in probes)
     worst = max((p.residuals[-1] for p in probes if p.moved), default=0.0)
     summary = "; ".join(f"branch {i + 1}: {b.describe()}" for i, b in enumerate(branches))
-    numbers = f"{moved} of {len(probes)} directions moved at steps {_steps_text(steps)} (loops re-closed to {worst:.1e} or better)"
+    numbers = f"{moved} of {counted(len(probes), 'direction')} moved at steps {_steps_text(steps)} (loops re-closed to {worst:.1e} or better)"
     if len(branches) > 1:
         return "bifurcation", (
             f"{len(branches)} branches of finite motion meet at this pose (a bifurcation, or change point): {summary}. "
             f"The {counted(k, 'first-order motion')} of the screw route {'is' if k == 1 else 'are'} the union of their tangents; {numbers}. "
-            f"No single motion has all {k} freedoms: each branch has at most {top.dimension}."
+            f"No single motion has all {counted(k, 'freedom')}: each branch has at most {top.dimension}."
         )
     if top.dimension == k and top.dof == instant.dof and top.pattern == instant.pattern:
         return "full-cycle", f"Every first-order motion is a finite one: {numbers}; {summary}. The instantaneous answer holds for finite motion."

@@ -49,7 +49,7 @@ from ..core.linalg import rank
 from ..core.model import require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale
 from ..core.transforms import skew
-from ..errors import MechanismError, name_list
+from ..errors import MechanismError, counted, name_list
 from .model import FlexureMechanism, ForceLine
 from .spaces import FlexureSpaces, flexure_spaces
 
@@ -129,7 +129,7 @@ def enumerate_force_lines(mechanism: FlexureMechanism, k: int | None = None, *, 
     if not candidates:
         warnings.append("the document lists no candidate actuators")
     if k != spaces.dof:
-        warnings.append(f"{k} inputs per combination for {spaces.dof} DOF: none can be valid")
+        warnings.append(f"{counted(k, 'input')} per combination for {spaces.dof} DOF: none can be valid")
     return Enumeration(mechanism.name, "flexure", spaces.dof, spaces.pattern, "any", k, ranked, groups, ("given pose",), tuple(warnings))
 
 

@@ -41,7 +41,7 @@ from typing import Any, Callable, Mapping
 from ..errors import name_list
 from .limits import DEFAULT_LIMITS
 
-__all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression", "literal_problem"]
+__all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression", "literal_problem", "uses_radians"]
 
 FUNCTIONS: Mapping[str, Callable[..., float]] = {
     "abs": abs,
@@ -278,6 +278,28 @@ def _run(program: Program, names: Mapping[str, float], text: str) -> float:
 def _unknown_name(name: str, text: str, names: Mapping[str, float]) -> ValueError:
     known = name_list(sorted(names))
     return ValueError(f"unknown name {name!r} in {_shown(text)!r}; parameters defined: {known}")
+
+
+_GIVE_DEGREES = frozenset(id(FUNCTIONS[name]) for name in ("degrees", "acosd", "asind", "atand", "atan2d"))
+"""The functions whose result is in degrees."""
+
+
+def uses_radians(text: str, radian_names: frozenset[str] | set[str] = frozenset(), *, max_length: int = DEFAULT_LIMITS.max_expression_length,
+                 max_depth: int = DEFAULT_LIMITS.max_expression_depth) -> bool:
+    """True when expression ``text`` is written in radians: it uses ``pi`` or ``tau`` (or a parameter of ``radian_names``) and no function that gives degrees.
+
+    For the warning on an angle of a file read in degrees: ``"2*pi/3*i"`` there
+    is 2.09 degrees, not 120.  ``"degrees(pi/3)"`` is 60 degrees, as meant.
+
+    Examples
+    --------
+    >>> uses_radians("2*pi/3*i"), uses_radians("120*i"), uses_radians("degrees(pi/3)"), uses_radians("step*i", {"step"})
+    (True, False, False, True)
+    """
+    program = compile_expression(text, max_length, max_depth)
+    names = {op[1] for op in program if op[0] == _NAME}
+    in_degrees = any(op[0] == _APPLY and id(op[1]) in _GIVE_DEGREES for op in program)
+    return not in_degrees and bool(names & ({"pi", "tau"} | set(radian_names)))
 
 
 def evaluate(text: str, names: Mapping[str, float], *, max_length: int = DEFAULT_LIMITS.max_expression_length, max_depth: int = DEFAULT_LIMITS.max_expression_depth) -> float:

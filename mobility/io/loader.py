@@ -40,11 +40,12 @@ mobility.errors.MechanismFileError: slider.yaml:6: joints[0].axis: expected a li
 from __future__ import annotations
 
 import re
+import warnings
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
-from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
-from ..errors import MechanismError, RequestError, shown_argument
+from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
+from ..errors import MechanismError, RequestError, clipped, did_you_mean, shown_argument
 from .expected import read_expected
 from .files import file_name
 from .expressions import RESERVED_NAMES
@@ -59,6 +60,11 @@ JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes"
 LIMB_KEYS = ("copies", "index", "frame", "joints")
 _TYPE_NAMES = {name: letter for letter, name in JOINT_TYPES.items()}
 _SUBST_RE = re.compile(r"\{([^{}]*)\}")
+MOST_LINKS_NAMED_ONCE = 64
+"""Most links named by one joint only for which a file is searched for a misspelt link name (more: a generated file)."""
+_FIELD_WORDS = {"axis": "direction", "point": "point", "pitch": "pitch", "axes": "two directions", "normal": "plane normal"}
+_WRITTEN_AS = {"axis": "axis: [x, y, z]", "axes": "axes: [[x, y, z], [x, y, z]]", "normal": "normal: [x, y, z]"}
+"""How a joint's direction is written, in the message of a field its type does not take."""
 
 
 def is_flexure_document(data: Any) -> bool:
@@ -190,7 +196,7 @@ class _MechanismReader(DocumentReader):
             raise self.fail(("joints",), "expected at least one joint")
         expected = read_expected(self, doc["expected"], tuple(EXPECTED_KEYS)) if "expected" in doc else None
         try:
-            return Mechanism(
+            mechanism = Mechanism(
                 name=name,
                 ground=self.identifier(doc["ground"], ("ground",), "a link name"),
                 end_effector=self.identifier(doc["end_effector"], ("end_effector",), "a link name"),
@@ -204,6 +210,41 @@ class _MechanismReader(DocumentReader):
             )
         except MechanismError as exc:
             raise self.fail(self.source_path(exc.key, sources), exc.message) from None
+        for note in dict.fromkeys(self.link_notes(mechanism, sources) + self.angle_notes()):  # a limb's copies: each note once
+            warnings.warn(note, UserWarning, stacklevel=2)
+        return mechanism
+
+    def link_notes(self, mechanism: Mechanism, sources: list[KeyPath]) -> list[str]:
+        """Warnings on link names that look misspelt: a link only one joint names, close to the name of a link the mechanism holds by more.
+
+        A link named once ends a chain; when its name is close to another
+        link's (``slidr`` beside ``slider``), the joint most likely meant that
+        link, and the file describes another mechanism, silently.  Names of a
+        numbered family (``tip1``, ``tip2``) are not taken for misspellings of
+        each other.  A file with more than :data:`MOST_LINKS_NAMED_ONCE` links
+        named once is a generated one, not typed by hand: it is not searched
+        (each search compares a name with every held link's).
+        """
+        uses: dict[str, int] = {}
+        for j in mechanism.joints:
+            for link in j.links:
+                uses[link] = uses.get(link, 0) + 1
+        ends = (mechanism.ground, mechanism.end_effector)
+        once = [link for link, n in uses.items() if n == 1 and link not in ends]
+        if not once or len(once) > MOST_LINKS_NAMED_ONCE:
+            return []
+        family = {link: re.sub(r"\d+", "#", link) for link in uses}
+        held = [link for link, n in uses.items() if n > 1 or link in ends]
+        notes = []
+        for j, path in zip(mechanism.joints, sources):
+            for k, link in enumerate(j.links):
+                if uses[link] != 1 or link in ends:
+                    continue
+                hint = did_you_mean(link, [other for other in held if family[other] != family[link]])
+                if hint:
+                    notes.append(str(self.fail(path + ("links", k), f"link {clipped(link)!r} is named by this joint only{hint}: "
+                                                                     "a misspelt link name makes a link of its own, and another mechanism")))
+        return notes
 
     def source_path(self, key: str, sources: list[KeyPath]) -> KeyPath:
         """Key path in the file of a model error key such as ``joints[4].name``."""
@@ -240,6 +281,7 @@ class _MechanismReader(DocumentReader):
         if not isinstance(links, list) or len(links) != 2:
             raise self.fail(path + ("links",), f"expected two link names [a, b], got {describe_value(links)}")
         links = tuple(text(self.identifier(x, path + ("links", k), "a link name"), path + ("links", k)) for k, x in enumerate(links))
+        self.fields_of_type(data, jtype, path)
         fields: dict[str, Any] = {}
         for key in ("axis", "point", "normal"):
             if key in data:
@@ -259,6 +301,31 @@ class _MechanismReader(DocumentReader):
             return Joint(name, jtype, links, frame=text(frame, path + ("frame",)), actuated=actuated, **fields)
         except MechanismError as exc:
             raise self.fail(path + parse_key(exc.key), exc.message) from None
+
+    def fields_of_type(self, data: Mapping[str, Any], jtype: str, path: KeyPath) -> None:
+        """Refuse a geometry field that joint type ``jtype`` does not take, naming the types it belongs to and what this type takes.
+
+        Checked before any field is read, so that ``axes: [0, 0, 1]`` on an R
+        joint is not answered as a malformed pair of U-joint directions.
+
+        Examples
+        --------
+        >>> from mobility.io.yaml_source import Positions
+        >>> _MechanismReader("j.yaml", Positions({}), None).fields_of_type({"axes": [0, 0, 1]}, "R", ("joints", 0))
+        Traceback (most recent call last):
+        ...
+        mobility.errors.MechanismFileError: j.yaml: joints[0].axes: not a field of a joint of type R (it takes axis, point): axes holds the two directions of a joint of type U; write its direction as axis: [x, y, z]
+        """
+        need, optional = JOINT_FIELDS[jtype]
+        for key in _FIELD_WORDS:
+            if key not in data or key in need + optional:
+                continue
+            owners = [t for t, (n, o) in JOINT_FIELDS.items() if key in n + o]
+            takes = ", ".join(need) + (f", and optionally {', '.join(optional)}" if optional else "")  # as the model says it of a joint built in code
+            owner = f"holds the {_FIELD_WORDS[key]} of a joint of type {owners[0]}" if len(owners) == 1 else f"is a field of joints of type {', '.join(owners)}"
+            direction = next((k for k in _WRITTEN_AS if k in need), None)
+            hint = f"; write its {_FIELD_WORDS[direction]} as {_WRITTEN_AS[direction]}" if direction and key in _WRITTEN_AS else ""
+            raise self.fail(path + (key,), f"not a field of a joint of type {jtype} (it takes {takes}): {key} {owner}{hint}")
 
     def limbs(self, value: Any, joints_before: int = 0, frames_before: int = 0) -> tuple[list[Frame], list[Joint], list[KeyPath]]:
         frames: list[Frame] = []

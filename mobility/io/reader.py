@@ -36,7 +36,7 @@ from typing import Any, Mapping, cast
 from ..core.model import WORLD, Frame, Vector
 from ..core.transforms import rotation_from_axis_angle, rotation_from_rpy
 from ..errors import MechanismError, MechanismFileError, did_you_mean, name_problem
-from .expressions import RESERVED_NAMES, evaluate
+from .expressions import RESERVED_NAMES, evaluate, uses_radians
 from .limits import Limits, current_limits
 from .yaml_source import KeyPath, Positions, format_key
 
@@ -68,6 +68,10 @@ class DocumentReader:
         self.frame_paths: dict[str, KeyPath] = {}
         self.names: dict[str, float] = {}
         self.angle_scale = math.pi / 180.0
+        self.angle_unit_given = False
+        self.radian_parameters: set[str] = set()
+        self.angles: list[tuple[KeyPath, Any, float]] = []
+        """Every angle read (a frame's ``rpy`` component or ``angle``): where, as written, its value in the file's unit."""
 
     # -- errors -----------------------------------------------------------
     def fail(self, path: KeyPath, message: str) -> MechanismFileError:
@@ -207,6 +211,7 @@ class DocumentReader:
         units = self.mapping(value, ("units",), "units")
         self.check_keys(units, ("angle", "length"), ("units",), "units")
         angle = units.get("angle", "deg")
+        self.angle_unit_given = "angle" in units
         if angle in ("deg", "degree", "degrees"):
             self.angle_scale = math.pi / 180.0
         elif angle in ("rad", "radian", "radians"):
@@ -226,6 +231,8 @@ class DocumentReader:
             if not NAME_RE.match(key) or key in RESERVED_NAMES:
                 raise self.fail(("parameters", key), "expected a parameter name (letters, digits, _; not pi, tau, e or a function name)")
             self.names[key] = self.number(raw, ("parameters", key))
+            if isinstance(raw, str) and self.in_radians(raw):
+                self.radian_parameters.add(key)
 
     def frames(self, value: Any) -> list[Frame]:
         if value is None:
@@ -256,6 +263,51 @@ class DocumentReader:
                 raise self.fail(path, f"frames chained through more than the limit of {limit} parents ({self.limits.hint('max_depth')})")
             # otherwise an unknown parent or a cycle, which the model reports
 
+    def in_radians(self, text: str) -> bool:
+        """True when expression ``text`` is written in radians (:func:`~mobility.io.expressions.uses_radians`, the file's parameters in radians counted)."""
+        lim = self.limits
+        return uses_radians(text, self.radian_parameters, max_length=lim.max_expression_length, max_depth=lim.max_expression_depth)
+
+    def angle_notes(self) -> list[str]:
+        """Warnings on the angles of a file read in degrees that look written in radians, each ``file:line: key: what``.
+
+        An angle expression that uses ``pi`` (``"2*pi/3*i"``: 2.09 degrees,
+        not 120), or, when no angle does, every angle at most 2π with one
+        that is not a round number of degrees (``1.5708``).
+
+        Examples
+        --------
+        >>> from mobility.io.yaml_source import parse_yaml
+        >>> data, positions = parse_yaml("frames:\\n  leg: {rpy: [0, 0, 'pi/2']}\\n", "legs.yaml")
+        >>> r = DocumentReader("legs.yaml", positions)
+        >>> _ = r.frames(data["frames"])
+        >>> r.angle_notes()
+        ["legs.yaml:2: frames.leg.rpy[2]: the angle 'pi/2' uses pi, but the file's angles are in degrees (the default; units: {angle: deg}): it turns by 1.5708 deg; if 1.5708 rad (90 deg) was meant, write the angle in degrees, or give units: {angle: rad} if every angle of the file is in radians"]
+        """
+        if self.angle_scale == 1.0 or not self.angles:
+            return []
+        unit = "the default; units: {angle: deg}" if not self.angle_unit_given else "units: {angle: deg}"
+        notes: dict[KeyPath, str] = {}
+        for path, written, value in self.angles:
+            if isinstance(written, str) and (path not in notes or notes[path] == "") and self.in_radians(written):
+                if value == 0.0:
+                    notes.setdefault(path, "")  # a limb's first copy (i = 0): the next copy says how far it turns
+                    continue
+                notes[path] = (f"the angle {written!r} uses pi, but the file's angles are in degrees ({unit}): it turns by {value:.6g} deg; "
+                               f"if {value:.6g} rad ({math.degrees(value):.6g} deg) was meant, write the angle in degrees, "
+                               "or give units: {angle: rad} if every angle of the file is in radians")
+        if notes:
+            return [str(self.fail(path, text)) for path, text in notes.items() if text]
+        turning = [(path, written, value) for path, written, value in self.angles if value != 0.0]
+        if not turning or any(abs(value) > math.tau * (1 + 1e-9) for _, _, value in turning):
+            return []
+        bare = [(path, value) for path, written, value in turning if not isinstance(written, str) and value * 2 != round(value * 2)]
+        if not bare:  # every angle a round number of degrees (a tilt of 3 or 2.5 degrees): as meant
+            return []
+        path, value = max(bare, key=lambda item: abs(item[1]))
+        return [str(self.fail(path, f"every angle of the file is at most 2π (6.283), as in radians, but the file's angles are in degrees ({unit}): "
+                                    f"this one turns by only {value:g} deg; if {value:g} rad ({math.degrees(value):.6g} deg) was meant, give units: {{angle: rad}}"))]
+
     def frame(self, name: str, data: Any, path: KeyPath, names: Mapping[str, float]) -> Frame:
         fdata = self.mapping(data if data is not None else {}, path, "a frame with origin, rpy, parent")
         self.frame_paths.setdefault(name, path)
@@ -265,6 +317,8 @@ class DocumentReader:
             raise self.fail(path, "give either rpy or axis and angle, not both")
         if "rpy" in fdata:
             rpy = self.vector(fdata["rpy"], path + ("rpy",), names)
+            written = fdata["rpy"]
+            self.angles += [(path + ("rpy", k), written[k], rpy[k]) for k in range(3)]
             rotation = rotation_from_rpy(tuple(a * self.angle_scale for a in rpy))
         elif "axis" in fdata or "angle" in fdata:
             if "axis" not in fdata or "angle" not in fdata:
@@ -273,7 +327,9 @@ class DocumentReader:
             norm = math.hypot(*axis)  # no overflow for large components
             if norm == 0.0:
                 raise self.fail(path + ("axis",), "expected a non-zero direction, got [0, 0, 0]")
-            rotation = rotation_from_axis_angle([a / norm for a in axis], self.number(fdata["angle"], path + ("angle",), names) * self.angle_scale)
+            angle = self.number(fdata["angle"], path + ("angle",), names)
+            self.angles.append((path + ("angle",), fdata["angle"], angle))
+            rotation = rotation_from_axis_angle([a / norm for a in axis], angle * self.angle_scale)
         else:
             rotation = rotation_from_rpy((0.0, 0.0, 0.0))
         parent = self.identifier(fdata.get("parent", WORLD), path + ("parent",), "a frame name")

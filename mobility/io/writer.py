@@ -2,10 +2,14 @@
 
 The text follows version 1 of the format (plus ``actuated``), one joint per
 line in flow style, every joint in the global frame, and loads back with
-:func:`mobility.loads` to the same joints: every number is written to its last
-bit, except round-off (below the policy's ``round_off`` of the mechanism's
-characteristic length, or of 1 for a direction), which is written as 0.  Used by ``mobility convert`` and by
-the type synthesis to write the mechanisms it assembles.
+:func:`mobility.loads` to the same joints up to round-off: round-off (below
+the policy's ``round_off`` of the mechanism's characteristic length, or of 1
+for a direction) is written as 0, and every number as the shortest decimal
+within a few units of its last place (or of the mechanism's size), so that a
+sum of lengths is written ``0.15``, not ``0.15000000000000002``.  Writing
+what was read gives the same text again, and the second round trip is exact
+to the bit.  Used by ``mobility convert`` and by the type synthesis to write
+the mechanisms it assembles.
 
 Examples
 --------
@@ -27,6 +31,7 @@ True
 from __future__ import annotations
 
 import json
+import math
 import re
 from typing import Any, Iterable
 
@@ -34,7 +39,7 @@ import numpy as np
 import yaml
 
 from ..core.model import Mechanism
-from ..core.tolerance import WRITE_DRIFT, characteristic_scale, clean_numbers
+from ..core.tolerance import DEFAULT_TOLERANCE, WRITE_DRIFT, characteristic_scale, clean_numbers
 from ..errors import MechanismFileError
 
 __all__ = ["mechanism_to_yaml", "yaml_scalar", "require_written_faithfully"]
@@ -62,12 +67,66 @@ def yaml_scalar(value: Any) -> str:
     return json.dumps(text, ensure_ascii=False)  # a JSON string is a YAML double-quoted scalar
 
 
+NOISE_ULPS = 4
+"""How many units in the last place of a number (or of the mechanism's size) a written number may move to drop the digits of round-off."""
+
+
 def _number(x: float, scale: float = 1.0) -> str:
-    """``x`` to the last bit (the shortest text that reads back to the same float), round-off written as 0."""
-    x = clean_numbers(float(x), scale)
+    """``x`` as the shortest decimal within round-off of it, round-off written as 0; writing what it reads back to gives the same text.
+
+    Round-off below ``tol.round_off`` of ``scale`` is written as 0
+    (:func:`~mobility.core.tolerance.clean_numbers`); the last digits of a
+    sum of lengths (``0.1 + 0.05 = 0.15000000000000002``) are dropped: the
+    shortest decimal within :data:`NOISE_ULPS` units in the last place of
+    the number, or of ``scale``, whichever is larger, is written.  The text
+    is a fixed point: the number it reads back to is written as the same
+    text, so a second round trip is exact to the bit.
+
+    Examples
+    --------
+    >>> _number(0.1 + 0.05), _number(0.1 + 0.2), _number(1 / 3), _number(10.1 - 10, 10.0), _number(1e-20)
+    ('0.15', '0.3', '0.333333333333333', '0.1', '0')
+    >>> _number(2.0**60), _number(-0.0), _number(1e-250, 1e-250)
+    ('1.152921504606847e+18', '0', '1e-250')
+    """
+    text = _written(float(x), scale)
+    for _ in range(17):  # each pass keeps or shortens the text: a fixed point within 17 digits
+        again = _written(float(text), scale)
+        if again == text:
+            break
+        text = again
+    return text
+
+
+def _written(x: float, scale: float) -> str:
+    """One pass of :func:`_number`: the shortest decimal of ``x`` within round-off of it."""
+    x = clean_numbers(x, scale)
+    if x == 0.0:
+        return "0"
+    room = NOISE_ULPS * max(math.ulp(x), math.ulp(scale))
+    for digits in range(1, 17):
+        y = float(f"{x:.{digits}g}")
+        if abs(y - x) <= room:
+            x = y
+            break
     if x.is_integer() and abs(x) < 2.0**53:
         return str(int(x))
     return repr(x)
+
+
+def _direction(v: Iterable[float]) -> str:
+    """A unit direction: each component the shortest decimal within units of its own last place, round-off written as 0, when they still make a vector of unit length (read as written); else to the last bit."""
+    exact = [float(x) for x in v]
+    short = [_number(x, 0.0) if abs(x) >= DEFAULT_TOLERANCE.round_off else "0" for x in exact]  # within units of its own last place
+    if math.hypot(*exact) == 1.0 and math.hypot(*(float(t) for t in short)) != 1.0:
+        return "[" + ", ".join(_bits(x) for x in exact) + "]"  # shorter digits would be normalised on reading: another vector
+    return "[" + ", ".join(short) + "]"
+
+
+def _bits(x: float) -> str:
+    """``x`` to the last bit, round-off of a unit direction written as 0."""
+    x = clean_numbers(x, 1.0)
+    return str(int(x)) if x.is_integer() and abs(x) < 2.0**53 else repr(x)
 
 
 def _vector(v: Iterable[float], scale: float = 1.0) -> str:
@@ -107,15 +166,15 @@ def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: 
     for j in joints:
         fields = [f"name: {yaml_scalar(j.name)}", f"type: {j.type}", f"links: [{yaml_scalar(j.links[0])}, {yaml_scalar(j.links[1])}]"]
         if j.axis is not None:
-            fields.append(f"axis: {_vector(j.axis)}")
+            fields.append(f"axis: {_direction(j.axis)}")
         if j.axes is not None:
-            fields.append(f"axes: [{_vector(j.axes[0])}, {_vector(j.axes[1])}]")
+            fields.append(f"axes: [{_direction(j.axes[0])}, {_direction(j.axes[1])}]")
         if j.point is not None and j.type != "P":
             fields.append(f"point: {_vector(j.point, size)}")
         if j.pitch is not None:
             fields.append(f"pitch: {_number(j.pitch, size)}")
         if j.normal is not None:
-            fields.append(f"normal: {_vector(j.normal)}")
+            fields.append(f"normal: {_direction(j.normal)}")
         if j.actuated:
             fields.append("actuated: true")
         lines.append("  - {" + ", ".join(fields) + "}")

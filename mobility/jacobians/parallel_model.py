@@ -28,7 +28,7 @@ from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
 from ..core.model import Joint, Mechanism, joint_freedoms, joint_names, require_mechanism, require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale
 from ..core.transforms import cross, skew
-from ..errors import AnalysisError, MechanismError, RequestError
+from ..errors import AnalysisError, MechanismError, RequestError, counted
 
 __all__ = ["Chain", "ParallelModel", "parallel_model", "joint_values"]
 
@@ -276,7 +276,7 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
     for link, js in incident.items():
         if link not in (mechanism.ground, mechanism.end_effector) and len(js) != 2:
             listed = ", ".join(world[i].name for i in js)
-            raise MechanismError("joints", f"link {link!r} has {len(js)} joints ({listed}); the Jacobian needs limbs that are serial chains from {mechanism.ground!r} to {mechanism.end_effector!r}")
+            raise MechanismError("joints", f"link {link!r} has {counted(len(js), 'joint')} ({listed}); the Jacobian needs limbs that are serial chains from {mechanism.ground!r} to {mechanism.end_effector!r}")
     chains = []
     for first in incident[mechanism.ground]:
         link, index = mechanism.ground, first

@@ -45,14 +45,14 @@ def finite_report(f: "FiniteMobility") -> str:
         "finite motion (instantaneous or full-cycle):",
         f"  verdict: {f.verdict}",
         f"  instantaneous: DOF {f.instantaneous_dof} ({f.instantaneous_pattern}), mobility {f.instantaneous_mobility}"
-        f"   (margin: smallest kept singular value {f.margin.smallest_kept:.2e})",
+        f"   (distance to a singularity: {f.margin.smallest_kept:.2e})",
         f"  full-cycle:    DOF {f.full_cycle_dof} ({f.full_cycle_pattern}), mobility {f.full_cycle_mobility}",
     ]
     if f.instantaneous_only_dof or f.instantaneous_only_mobility:
         out.append(f"  instantaneous only: {f.instantaneous_only_dof} end-effector DOF, {counted(f.instantaneous_only_mobility, 'freedom')} of the mechanism")
     if f.probes:
         out.append(
-            f"  moves: {f.moved} of {len(f.probes)} directions re-closed at every step ({', '.join(f'{h:g}' for h in f.steps)}; "
+            f"  moves: {f.moved} of {counted(len(f.probes), 'direction')} re-closed at every step ({', '.join(f'{h:g}' for h in f.steps)}; "
             f"radians, lengths over the characteristic length)"
         )
     if f.second_order is not None:

@@ -179,8 +179,8 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     if result.dof:
         out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}/rad"], _freedom_rows(result)))
         out.append("")
-        out.append("Translations: an orthonormal basis of the pure translations. Rotations: principal screws, each axis "
-                   f"given through its point nearest the end effector's centre {fmt_vector(result.reference_point, s)}.")
+        out.append("Translations: an orthonormal basis of the pure translations. Rotations: principal screws (the end effector's centre "
+                   f"is at {fmt_vector(result.reference_point, s)}; each axis is given through its point nearest it).")
     else:
         out.append("None.")
     out.append("")
@@ -216,8 +216,9 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
         out.append(markdown_table(["limb", "structure", "frame", "DOF", "idle", "freedoms", "constraint wrenches"], limb_rows, align="rllrrll"))
     out += [
         "",
-        f"Rank margin: smallest kept singular value {result.margin.smallest_kept:.2e}, "
-        f"largest dropped {result.margin.largest_dropped:.2e} (relative).",
+        f"Distance to a singularity: {result.margin.smallest_kept:.2e} (1 far from one, 0 where the count changes: the smallest kept "
+        f"singular value, relative). Departure from the special geometry: {result.margin.largest_dropped:.2e} (0 or round-off when it "
+        "is exact: the largest dropped singular value, relative).",
     ]
     if result.warnings:
         out.append("")

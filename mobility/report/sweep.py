@@ -89,15 +89,15 @@ def _range(axis) -> str:
 def sweep_summary(result: SweepResult) -> str:
     """The text summary printed by ``mobility sweep``."""
     kind = "pose coordinate" if all(a.kind == "pose" for a in result.axes) else "coordinate"
-    out = [f"{result.name}: sweep of {counted(len(result.axes), kind)}, {result.size:,} poses"]
+    out = [f"{result.name}: sweep of {counted(len(result.axes), kind)}, {counted(result.size, 'pose', grouped=True)}"]
     out += [f"  {_range(a)}" for a in result.axes]
     assembled = int(result.assembled.sum())
-    line = f"  assembled: {assembled:,} of {result.size:,} poses"
+    line = f"  assembled: {assembled:,} of {counted(result.size, 'pose', grouped=True)}"
     if assembled:
         line += f" (every loop closed to {result.tolerance.closure:.0e})"  # the bound; each pose's residual, round-off, is in its column
     out.append(line)
     if assembled < result.size:
-        out.append(f"  not assembled: {result.size - assembled:,} poses (no closed pose reached there; see the 'assembled' column)")
+        out.append(f"  not assembled: {counted(result.size - assembled, 'pose', grouped=True)} (no closed pose reached there; see the 'assembled' column)")
     if not assembled:
         return "\n".join(out)
     out.append("  poses per answer (end-effector DOF, pattern, mobility):")
@@ -114,7 +114,7 @@ def sweep_summary(result: SweepResult) -> str:
         assert result.regular is not None  # nothing is left without a regular pose
         out.append(
             f"  note: {counted(len(result.axes), 'coordinate')} driven for mobility {result.regular[2]}: the other {counted(left, 'freedom')} "
-            "follow the solver (the smallest change from the neighbouring pose), so the path across the grid decides them"
+            f"{'follows' if left == 1 else 'follow'} the solver (the smallest change from the neighbouring pose), so the path across the grid decides {'it' if left == 1 else 'them'}"
         )
     if result.actuated:
         verdicts = ", ".join(f"{v} at {n:,}" for v, n in result.verdict_counts().items())
@@ -140,7 +140,7 @@ def sweep_summary(result: SweepResult) -> str:
     margin = result.smallest_kept[result.assembled]
     worst = int(np.flatnonzero(result.assembled)[first_least(margin)])
     near = int(result.near_singular[result.assembled].sum())
-    out.append(f"  rank margin: smallest kept relative singular value {float(margin.min()):.2e} at {describe_values(result, result.values[worst])}; near-singular poses: {near:,}")
+    out.append(f"  distance to a singularity (1 far from one, 0 where the count changes): smallest {float(margin.min()):.2e} at {describe_values(result, result.values[worst])}; near-singular poses: {near:,}")
     singular = result.singular
     if singular:
         out.append(f"  singular poses ({len(singular):,}):")

@@ -35,7 +35,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..core.tolerance import SAME_GRID_VALUE
-from ..errors import RequestError, clipped
+from ..errors import RequestError, clipped, counted
 from ..sweeps import SweepAxis, SweepResult
 from ..sweeps.grid import whole_turns
 from .plotting.backend import new_figure, require_matplotlib
@@ -131,7 +131,7 @@ def require_drawable(coordinates: int, what: str = "") -> None:
     mobility.errors.RequestError: --plot out.png: a sweep of 4 coordinates cannot be drawn; plots show 1 (curve), 2 (map) or 3 (slices)
     """
     if coordinates > 3:
-        raise RequestError(f"{what}a sweep of {coordinates} coordinates cannot be drawn; plots show 1 (curve), 2 (map) or 3 (slices)")
+        raise RequestError(f"{what}a sweep of {counted(coordinates, 'coordinate')} cannot be drawn; plots show 1 (curve), 2 (map) or 3 (slices)")
     require_matplotlib()
 
 

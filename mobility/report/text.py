@@ -22,7 +22,7 @@ from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers
 from ..errors import AnalysisError, counted
 from .idle import idle_hint
 
-__all__ = ["fmt_number", "fmt_vector", "screw_text", "text_report", "json_report"]
+__all__ = ["fmt_number", "fmt_vector", "screw_text", "margin_lines", "text_report", "json_report"]
 
 
 def fmt_number(x: float, scale: float = 1.0, digits: int = 6, tol: Tolerance = DEFAULT_TOLERANCE) -> str:
@@ -79,6 +79,25 @@ def _axis_line(label: str, a: ScrewAxis, scale: float, unit: str) -> str:
     return f"    {label:<3} axis {fmt_vector(a.axis)}  through {fmt_vector(a.point, scale)}  pitch {pitch}  ({a.kind})"
 
 
+def margin_lines(result: Result) -> list[str]:
+    """How far the pose is from a change of the count, and how far the geometry is from the special one the count relies on, in words and numbers.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> first, second = margin_lines(mobility.analyze(mobility.load("mechanisms/four_bar.yaml")))
+    >>> print(first)
+      distance to a singularity: 3.46e-01   (1 far from one, 0 where the count changes: the smallest kept singular value, relative)
+    >>> second.split(":")[0]  # its number is round-off here, which differs between BLAS builds
+    '  departure from the special geometry'
+    """
+    margin = result.margin
+    return [
+        f"  distance to a singularity: {margin.smallest_kept:.2e}   (1 far from one, 0 where the count changes: the smallest kept singular value, relative)",
+        f"  departure from the special geometry: {margin.largest_dropped:.2e}   (0 or round-off when it is exact: the largest dropped singular value, relative)",
+    ]
+
+
 def text_report(result: Result, *, limbs: bool = False) -> str:
     """The report printed by ``mobility analyze``.
 
@@ -96,7 +115,7 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
         out.append("  translations (orthonormal basis):")
         out += [f"    T{i + 1}  {fmt_vector(t)}" for i, t in enumerate(result.translations)]
     if result.rotations:
-        out.append(f"  rotations (axis through its point nearest the end effector's centre {fmt_vector(result.reference_point, s)}):")
+        out.append(f"  rotations (the end effector's centre is at {fmt_vector(result.reference_point, s)}; each axis is shown through its point nearest it):")
         out += [_axis_line(f"R{i + 1}", a, s, unit) for i, a in enumerate(result.rotations)]
     if result.dof == 0:
         out.append("  the end effector cannot move (at first order)")
@@ -115,12 +134,9 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
     if result.gruebler_kutzbach_explanation:
         out.append("    why G–K differs: " + result.gruebler_kutzbach_explanation)
     if result.idle_dof:
-        out.append(f"    idle DOF: {counted(result.idle_dof, 'motion')} of the joints leave the end effector still ({idle_hint(result)})")
+        out.append(f"    idle DOF: {counted(result.idle_dof, 'motion')} of the joints {'leaves' if result.idle_dof == 1 else 'leave'} the end effector still ({idle_hint(result)})")
     out.append(f"  structure: {result.structure}")
-    out.append(
-        f"  margin: smallest kept singular value {result.margin.smallest_kept:.2e}, "
-        f"largest dropped {result.margin.largest_dropped:.2e} (relative)"
-    )
+    out += margin_lines(result)
     out += [f"  warning: {w}" for w in result.warnings]
     if limbs and result.limbs:
         out.append("  limbs (each in its own frame):")

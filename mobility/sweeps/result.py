@@ -232,7 +232,7 @@ class SweepResult(ReadOnlyArrays):
         """
         regular = self.regular
         found = f"regular: DOF {regular[0]} {regular[1]} mobility {regular[2]}" + (f" {regular[3]}" if regular[3] else "") if regular else "no answer"
-        return (f"SweepResult({self.name!r}, {self.size:,} poses over {' x '.join(self.names)}, "
+        return (f"SweepResult({self.name!r}, {counted(self.size, 'pose', grouped=True)} over {' x '.join(self.names)}, "
                 f"{int(self.assembled.sum()):,} assembled, {found}, {len(self.singular)} singular)")
 
     # -- the grid ----------------------------------------------------------------

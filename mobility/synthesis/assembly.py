@@ -32,7 +32,7 @@ from ..core.analysis import analyze, gruebler_kutzbach
 from ..core.model import Joint, Mechanism, integer_value, real_value, require_instance
 from ..core.screws import helical_twist, prismatic_twist
 from ..core.linalg import rank
-from ..errors import RequestError, SynthesisError, name_list, shown_argument
+from ..errors import RequestError, SynthesisError, counted, name_list, shown_argument
 from ..io.limits import current_limits
 from ..io.writer import mechanism_to_yaml
 from .enumeration import SynthesisResult
@@ -193,8 +193,8 @@ def _copies(value: object, limb_joints: int, per_copy: int) -> int:
     most = max(1, (limits.max_joints - limb_joints) // per_copy)
     number = integer_value(value)
     if number is None or not 1 <= number <= most:
-        raise RequestError(f"assemble_pkm: copies: expected an integer from 1 to {most} ({limb_joints} joints of the limb and {per_copy} per copy "
-                           f"within the limit of {limits.max_joints} joints: {limits.hint('max_joints')}), got {shown_argument(value)}")
+        raise RequestError(f"assemble_pkm: copies: expected an integer from 1 to {most} ({counted(limb_joints, 'joint')} of the limb and {per_copy} per copy "
+                           f"within the limit of {counted(limits.max_joints, 'joint')}: {limits.hint('max_joints')}), got {shown_argument(value)}")
     return number
 
 
@@ -290,7 +290,7 @@ def write_pkm_files(result: SynthesisResult, folder: str | Path, *, other: str =
     """
     path = Path(folder)
     if result.joints != result.pattern.dim:
-        raise RequestError(f"{folder}: a PKM is assembled from limbs of {result.pattern.dim} joints (the dimension of {result.pattern.name}); "
+        raise RequestError(f"{folder}: a PKM is assembled from limbs of {counted(result.pattern.dim, 'joint')} (the dimension of {result.pattern.name}); "
                            f"these chains have {result.joints}")
     written: list[str] = []
     skipped: list[str] = []

@@ -50,7 +50,7 @@ from ..core.finite_screws import Limb, ScrewJoint
 from ..core.model import integer_value, require_instance
 from ..core.poses import require_seed
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..errors import AnalysisError, SynthesisError, shown_argument
+from ..errors import AnalysisError, SynthesisError, counted, shown_argument
 from .generic_rank import generic_rank, sample_joint_values
 from .limb_types import CandidateJoint, SynthesizedLimb, limb_types
 from .patterns import MotionPattern, Vector, named_pattern
@@ -120,7 +120,7 @@ class SynthesisResult:
             if s.name == name:
                 return s
         found = ", ".join(s.name for s in self.structures) or "none"
-        raise SynthesisError(f"no limb type {name!r} in the synthesis of {self.pattern.name} with {self.joints} joints; found: {found}")
+        raise SynthesisError(f"no limb type {name!r} in the synthesis of {self.pattern.name} with {counted(self.joints, 'joint')}; found: {found}")
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""

@@ -43,7 +43,7 @@ from ..core.finite_screws import FiniteScrew, ScrewJoint
 from ..core.linalg import singular_values
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale, decide_rank
 from ..core.transforms import rotation_from_axis_angle
-from ..errors import SynthesisError, shown_argument
+from ..errors import SynthesisError, counted, shown_argument
 from .generic_rank import generic_rank
 
 __all__ = ["Vector", "PatternFactor", "MotionPattern", "PATTERNS", "named_pattern"]
@@ -114,7 +114,8 @@ class PatternFactor:
         object.__setattr__(self, "directions", dirs)
         need = {"rotations": (0, 0), "rotation": (1, 1), "translations": (1, 3)}[self.kind]
         if not need[0] <= len(dirs) <= need[1]:
-            raise SynthesisError(f"a {self.kind} factor takes {need[0]}..{need[1]} directions, got {len(dirs)}")
+            takes = {"rotations": "no direction", "rotation": "one direction", "translations": "1 to 3 directions"}[self.kind]
+            raise SynthesisError(f"a {self.kind} factor takes {takes}, got {len(dirs)}")
         if dirs and _direction_rank(dirs) < len(dirs):
             raise SynthesisError("the directions of a translations factor must be independent")
 
@@ -409,7 +410,7 @@ def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), direct
             raise SynthesisError(f"named_pattern: directions: expected a list of directions (3 numbers each), got {shown_argument(directions)}")
         given = tuple(_vec(_unit(d, "named_pattern: directions")) for d in listed)
         if len(given) != wanted:
-            takes = "no directions" if wanted == 0 else f"{wanted} directions"
+            takes = "no directions" if wanted == 0 else counted(wanted, 'direction')
             raise SynthesisError(f"the {key} pattern takes {takes}, got {len(given) if len(given) < _MOST_DIRECTIONS else f'{_MOST_DIRECTIONS} or more'}")
         if given and _direction_rank(given) < len(given):
             raise SynthesisError(f"the directions of the {key} pattern must be independent, got {[list(d) for d in given]}")
