@@ -27,6 +27,7 @@ import json
 import numpy as np
 
 from ..jacobians import JacobianResult, clean_screw, wrench_axis
+from ..errors import counted
 from .text import fmt_number, fmt_vector
 
 __all__ = ["wrench_line", "jacobian_text", "jacobian_json"]
@@ -78,11 +79,11 @@ def jacobian_text(result: JacobianResult, unit: str = "") -> str:
         out.append(f"    {lab:<{width}}" + "".join(f"{c:>{column}}" for c in row))
     rows = result.matrix.shape[0]
     if result.singular:
-        why = f"rank {result.rank} < 6" + (f", {rows} rows" if rows != 6 else "")
+        why = f"rank {result.rank} < 6" + (f", {counted(rows, 'row')}" if rows != 6 else "")
         out.append(f"  J is singular ({why}): the actuated joints do not control the platform at this pose")
     elif result.twist_map is None:  # regular with more rows than 6: redundant actuation
         out.append(f"  condition number (normalised coordinates): {fmt_number(result.condition)}")
-        out.append(f"  J has rank 6 with {rows} rows: the platform is controlled, redundantly ({result.redundant} input"
+        out.append(f"  J has rank 6 with {counted(rows, 'row')}: the platform is controlled, redundantly ({result.redundant} input"
                    f"{'s' if result.redundant > 1 else ''} more than needed); the actuated rates must agree, J [w; v] = [rates; 0]")
     else:
         out.append(f"  condition number (normalised coordinates): {fmt_number(result.condition)}")
