@@ -7,6 +7,7 @@ environment and runs the command there (``.ci/run``).
 """
 
 import importlib.metadata
+import json
 import re
 import subprocess
 import sys
@@ -82,7 +83,7 @@ def test_the_library_is_inside_the_package_and_the_clone_paths_name_the_same_fil
 
 def test_library_path_reads_as_the_loader_expects():
     m = mobility.load(library.path("3prs"))
-    assert (m.name, mobility.analyze(m).pattern) == ("3-PRS parallel head (Sprint Z3)", "1T2R")
+    assert (m.name, mobility.analyze(m).pattern) == ("3-PRS parallel head (Sprint Z3), symmetric pose", "1T2R")
     assert library.path("3prs.yaml") == library.path("3prs")
     assert mobility.load_flexure(library.path("three_rod")).name == "three-rod spherical flexure (actuation example)"
 
@@ -109,9 +110,9 @@ def test_import_mobility_reaches_the_library():
 
 def test_check_library_checks_every_bundled_file(capsys):
     status, out, err = run(capsys, "check", "--library", "--json")
-    report = __import__("json").loads(out)
+    report = json.loads(out)
     assert (status, err) == (0, "")
-    assert [r["file"] for r in report["results"]] == [str(p) for p in library.paths()]
+    assert [r["path"] for r in report["results"]] == [str(p) for p in library.paths()]
     assert {r["status"] for r in report["results"]} == {"pass"} and len(report["results"]) == 59
     status, out, _ = run(capsys, "check", "--library")
     assert status == 0 and out.rstrip().endswith("59 passed, 0 failed, 0 without expected block, 0 errors")
