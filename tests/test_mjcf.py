@@ -674,9 +674,7 @@ def test_a_number_that_is_not_finite_is_refused_at_its_line(attributes, expected
 
 def test_mujoco_warnings_become_notes_and_never_reach_the_terminal(tmp_path, monkeypatch, capfd):
     monkeypatch.chdir(tmp_path)  # MuJoCo would also write MUJOCO_LOG.TXT here
-    # The NaN sits in the joint's user data, which no MuJoCo release computes with: a NaN damping warns in MuJoCo 4,
-    # but MuJoCo 3.3's compiler refuses it ("Nan, Inf or huge value in QACC at DOF 0. The simulation is unstable").
-    text = (HAND / "four_bar.xml").read_text().replace('<joint name="B"/>', '<joint name="B" user="nan" range="-inf inf"/>')
+    text = (HAND / "four_bar.xml").read_text().replace('<joint name="B"/>', '<joint name="B" damping="nan" range="-inf inf"/>')
     robot = read_robot(_write(text))
     assert "MuJoCo warns: XML contains a 'NaN'. Please check it carefully." in robot.notes
     assert mobility.analyze(robot.mechanism).mobility == 1
