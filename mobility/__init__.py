@@ -25,6 +25,12 @@ first use of one of their names, so ``import mobility`` stays light:
 >>> mobility.check_mechanism(m.replace(expected=mobility.Expected(dof=1, pattern="1R"))).status
 'pass'
 
+The library of classic mechanisms ships inside the package
+(:mod:`mobility.library`), so its files are there without a clone:
+
+>>> mobility.analyze(mobility.load(mobility.library.path("3prs"))).pattern
+'1T2R'
+
 Inside IPython (a notebook) a :class:`Result` displays itself as its
 interactive 3D view (:mod:`mobility.view`).
 """
@@ -52,8 +58,10 @@ from .core.loop_closure import LoopClosure, loop_closure
 from .core.model import Expected, Frame, Joint, Mechanism
 from .core.result import LimbSystem, Margin, Result, ScrewAxis
 from .core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from . import library
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
+"""The version of the package: the one place it is written (``pyproject.toml`` reads it, ``mobility --version`` prints it)."""
 
 _LAZY = {
     # regression checks (mobility check)
@@ -100,6 +108,8 @@ __all__ = [
     "Margin",
     "Tolerance",
     "DEFAULT_TOLERANCE",
+    # the bundled library of classic mechanisms and flexure examples (mobility.library.path("3prs"))
+    "library",
     # every error class of mobility.errors: what the package raises on purpose
     "MobilityError",
     "MechanismError",

@@ -27,7 +27,7 @@ Examples
 >>> isinstance(err, ValueError)
 True
 >>> str(MissingExtraError("plotting", "matplotlib", "plot"))
-"plotting needs matplotlib, which is not installed: pip install 'mobility[plot]'"
+"plotting needs matplotlib, which is not installed: pip install 'mechanism-mobility[plot]'"
 """
 
 from __future__ import annotations
@@ -71,7 +71,13 @@ __all__ = [
     "control_character_problem",
     "name_problem",
     "TERMINAL_CONTROL",
+    "DISTRIBUTION",
 ]
+
+DISTRIBUTION = "mechanism-mobility"
+"""The name the package is installed by (``pip install mechanism-mobility``); it is imported, and run, as ``mobility``.
+
+Every install hint names it: ``mobility`` on the package index is another, unrelated project."""
 
 
 def counted(n: int, word: str, plural: str = "s", *, grouped: bool = False) -> str:
@@ -355,7 +361,7 @@ class MissingExtraError(MobilityError, ImportError):
     package : str
         The package that is missing (``"matplotlib"``).
     extra : str
-        The extra of :mod:`mobility` that installs it (``"plot"``).
+        The extra of the distribution (:data:`DISTRIBUTION`) that installs it (``"plot"``).
     detail : str
         More about what failed to import, if anything; left out when it only says that ``package``
         itself is missing ("No module named 'mujoco'"), which the message says already.
@@ -368,7 +374,7 @@ class MissingExtraError(MobilityError, ImportError):
         if detail.startswith(f"No module named '{package.split('[')[0]}"):
             detail = ""
         more = f" ({detail})" if detail else ""
-        super().__init__(f"{feature} needs {package}, which is not installed{more}: pip install 'mobility[{extra}]'")
+        super().__init__(f"{feature} needs {package}, which is not installed{more}: pip install '{DISTRIBUTION}[{extra}]'")
 
 
 class PlottingUnavailableError(MissingExtraError):

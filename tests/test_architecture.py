@@ -33,8 +33,9 @@ ALLOWED = {
     "report": "errors core finite actuation flexure synthesis jacobians sweeps testing",
     "view": "errors core report sweeps",
     "testing": "errors core io finite actuation flexure",
-    "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps report view testing",
-    "__init__": "errors core io finite actuation flexure synthesis jacobians sweeps report view testing",
+    "library": "errors",
+    "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps report view testing library",
+    "__init__": "errors core io finite actuation flexure synthesis jacobians sweeps report view testing library",
     "__main__": "cli",
 }
 

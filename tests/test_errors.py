@@ -38,8 +38,10 @@ def test_every_error_class_is_a_mobility_error():
     names = {c.__name__ for c in ERROR_CLASSES}
     assert {"MobilityError", "MechanismFileError", "RequestError", "MissingExtraError"} <= names  # the scan sees the classes
     assert [c.__name__ for c in ERROR_CLASSES if not issubclass(c, MobilityError)] == []
-    # the classes, and the helpers of a message: names, a close name, one line, a value cut short, an argument quoted, a control character found
-    helpers = {"name_list", "did_you_mean", "one_line", "clipped", "shown_argument", "control_character_problem", "name_problem", "counted", "TERMINAL_CONTROL"}
+    # the classes, and the helpers of a message: names, a close name, one line, a value cut short, an argument quoted, a control character found,
+    # and the name the package is installed by (install hints)
+    helpers = {"name_list", "did_you_mean", "one_line", "clipped", "shown_argument", "control_character_problem", "name_problem", "counted",
+               "TERMINAL_CONTROL", "DISTRIBUTION"}
     assert set(errors.__all__) == names | helpers
 
 
@@ -65,7 +67,7 @@ def test_the_command_line_prints_each_error_on_one_line_with_status_2(cls, monke
 def test_a_missing_extra_says_what_to_install(monkeypatch, capsys, tmp_path):
     monkeypatch.setitem(sys.modules, "plotly.io", None)  # importing it now fails as if plotly were absent
     assert main(["view", str(MECHANISMS / "four_bar.yaml"), "-o", str(tmp_path / "v.html")]) == 2
-    assert capsys.readouterr().err == "mobility: the 3D view needs plotly, which is not installed: pip install 'mobility[view]'\n"
+    assert capsys.readouterr().err == "mobility: the 3D view needs plotly, which is not installed: pip install 'mechanism-mobility[view]'\n"
     assert not (tmp_path / "v.html").exists()
 
 
@@ -110,12 +112,12 @@ def test_name_lists_in_messages_stay_short():
 
 def test_a_missing_extra_says_what_to_install_without_repeating_the_import_error():
     plain = errors.MissingExtraError("reading MJCF files", "mujoco", "mujoco", "No module named 'mujoco'")
-    assert str(plain) == "reading MJCF files needs mujoco, which is not installed: pip install 'mobility[mujoco]'"
+    assert str(plain) == "reading MJCF files needs mujoco, which is not installed: pip install 'mechanism-mobility[mujoco]'"
     dask = errors.MissingExtraError("running a sweep on a dask cluster", "dask[distributed]", "dask", "No module named 'dask.distributed'")
-    assert str(dask) == "running a sweep on a dask cluster needs dask[distributed], which is not installed: pip install 'mobility[dask]'"
+    assert str(dask) == "running a sweep on a dask cluster needs dask[distributed], which is not installed: pip install 'mechanism-mobility[dask]'"
     # another module failing inside the package is worth saying
     broken = errors.MissingExtraError("the 3D view", "plotly", "view", "No module named 'narwhals'")
-    assert str(broken).endswith("which is not installed (No module named 'narwhals'): pip install 'mobility[view]'")
+    assert str(broken).endswith("which is not installed (No module named 'narwhals'): pip install 'mechanism-mobility[view]'")
 
 
 @pytest.mark.parametrize("call, message", [

@@ -426,7 +426,7 @@ def test_without_mujoco_the_message_says_what_to_install(monkeypatch):
     with pytest.raises(MissingExtraError) as err:
         read_robot(HAND / "four_bar.xml")
     assert str(err.value).startswith("reading MJCF files needs mujoco, which is not installed")
-    assert str(err.value).endswith("pip install 'mobility[mujoco]'")
+    assert str(err.value).endswith("pip install 'mechanism-mobility[mujoco]'")
 
 
 def test_format_by_extension_or_content(tmp_path):

@@ -377,12 +377,12 @@ def test_missing_matplotlib_is_one_line_with_the_install_hint(tmp_path, capsys, 
     src.write_text(RPS)
     for name in ("matplotlib", "matplotlib.figure", "mpl_toolkits", "mpl_toolkits.mplot3d"):
         monkeypatch.setitem(sys.modules, name, None)  # import raises ImportError
-    with pytest.raises(PlottingUnavailableError, match=re.escape("pip install 'mobility[plot]'")):
+    with pytest.raises(PlottingUnavailableError, match=re.escape("pip install 'mechanism-mobility[plot]'")):
         plot_mechanism(mobility.loads(RPS))
     out = tmp_path / "x.png"
     assert main(["plot", str(src), "-o", str(out)]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "pip install 'mobility[plot]'" in err and "Traceback" not in err
+    assert err.count("\n") == 1 and "pip install 'mechanism-mobility[plot]'" in err and "Traceback" not in err
     assert not out.exists()
     assert issubclass(PlottingUnavailableError, mobility.MobilityError)
 
@@ -406,7 +406,7 @@ print('STATUS', main(['plot', {str(src)!r}, '-o', {str(tmp_path / 'x.png')!r}]))
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     assert "STATUS 2" in done.stdout
-    assert done.stderr.strip() == "mobility: plotting needs matplotlib, which is not installed: pip install 'mobility[plot]'"
+    assert done.stderr.strip() == "mobility: plotting needs matplotlib, which is not installed: pip install 'mechanism-mobility[plot]'"
 
 
 # -- any size, any scale ----------------------------------------------------------------------------

@@ -229,7 +229,7 @@ def test_a_picture_that_cannot_be_drawn_is_refused_before_the_sweep(capsys, monk
     monkeypatch.setitem(sys.modules, "matplotlib", None)  # matplotlib not installed
     status, out, err = run(capsys, "sweep", PARALLELOGRAM, "--vary", "O1=0:360:5", "--plot", target)
     assert status == 2 and out == "" and err.count("\n") == 1
-    assert "plotting needs matplotlib, which is not installed" in err and "pip install 'mobility[plot]'" in err
+    assert "plotting needs matplotlib, which is not installed" in err and "pip install 'mechanism-mobility[plot]'" in err
     assert not target.exists()
 
 

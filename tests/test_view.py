@@ -246,13 +246,13 @@ def test_without_plotly_the_view_says_what_to_install(monkeypatch):
     view = mechanism_view(m, r)
     with pytest.raises(MissingExtraError) as err:
         view.to_html()
-    assert str(err.value) == "the 3D view needs plotly, which is not installed: pip install 'mobility[view]'"
+    assert str(err.value) == "the 3D view needs plotly, which is not installed: pip install 'mechanism-mobility[view]'"
     bundle = view._repr_mimebundle_()  # a notebook falls back to text, with the hint
-    assert list(bundle) == ["text/plain"] and "pattern: 1R" in bundle["text/plain"] and "mobility[view]" in bundle["text/plain"]
+    assert list(bundle) == ["text/plain"] and "pattern: 1R" in bundle["text/plain"] and "mechanism-mobility[view]" in bundle["text/plain"]
     err_out = io.StringIO()
     monkeypatch.setattr(sys, "stderr", err_out)
     assert main(["view", str(MECHANISMS / "four_bar.yaml"), "-o", "x.html"]) == 2
-    assert err_out.getvalue() == "mobility: the 3D view needs plotly, which is not installed: pip install 'mobility[view]'\n"
+    assert err_out.getvalue() == "mobility: the 3D view needs plotly, which is not installed: pip install 'mechanism-mobility[view]'\n"
 
 
 # ---------------------------------------------------------------------------

@@ -11,6 +11,10 @@ A flexure document found among the files (``docs/actuation.md``) is read and
 checked as one (:func:`mobility.testing.flexure_check.flexure_document`): its
 errors are the file's errors, and its ``expected`` block is compared with its
 freedom space and actuation verdict.
+
+``--library`` checks the library bundled with the package
+(:func:`mobility.library.folders`: the classic mechanisms and the flexure
+examples), with no clone needed; it may be given with paths of one's own.
 """
 
 from __future__ import annotations
@@ -18,6 +22,8 @@ from __future__ import annotations
 import argparse
 import json
 
+from .. import library
+from ..errors import RequestError
 from ..report.check import check_table
 from ..testing.check import check_paths
 from ..testing.flexure_check import flexure_document
@@ -39,7 +45,9 @@ def register(sub: argparse._SubParsersAction) -> None:
             "it with its expected block (a flexure document is checked as one)."
         ),
     )
-    p.add_argument("paths", nargs="+", metavar="PATH", help="mechanism files or folders")
+    p.add_argument("paths", nargs="*", metavar="PATH", help="mechanism files or folders")
+    p.add_argument("--library", action="store_true",
+                   help="check the library bundled with the package (its classic mechanisms and flexure examples), before any PATH")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
     add_tolerance_option(p)
     p.set_defaults(run=run)
@@ -47,6 +55,9 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
-    report = check_paths(args.paths, tol=tol, others=(flexure_document,))
+    if not args.paths and not args.library:
+        raise RequestError("check: give a mechanism file or folder (PATH), or --library for the bundled library")
+    paths = [*(library.folders() if args.library else ()), *args.paths]
+    report = check_paths(paths, tol=tol, others=(flexure_document,))
     print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else check_table(report))
     return report.exit_status

@@ -31,7 +31,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Write one self-contained HTML page with the mechanism in 3D: links, joints by type, the end effector, "
         "its freedoms (translation arrows, rotation axes with their pitch) and constraint wrenches (force lines, couples), "
         "each layer switchable, hover text with each screw's numbers. Rotate, zoom and pan with the mouse. "
-        "Needs plotly (pip install 'mobility[view]').",
+        "Needs plotly (pip install 'mechanism-mobility[view]').",
     )
     add_mechanism_file(p)
     p.add_argument("-o", "--output", required=True, help="page to write (a name ending in .html or .htm, in any case)")

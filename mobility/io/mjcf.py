@@ -3,7 +3,7 @@
 MJCF has defaults and classes, frames, ``ref`` positions, ``xyaxes``,
 ``zaxis`` and Euler sequences, ``<include>``, ``<replicate>`` and attached
 models: rather than re-implement its compiler, this module asks MuJoCo (the
-``mujoco`` package, the ``mobility[mujoco]`` extra) to compile the file, then
+``mujoco`` package, the ``mechanism-mobility[mujoco]`` extra) to compile the file, then
 reads the compiled model at the pose ``qpos0`` (``mj_kinematics``): each
 joint's anchor and axis in the global frame, each body's parent.
 

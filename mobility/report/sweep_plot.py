@@ -11,7 +11,7 @@
 * **slices**: the same map at up to :data:`MAX_SLICES` values of the third
   coordinate, the slices holding singular poses first.
 
-matplotlib is optional (``pip install 'mobility[plot]'``); figures are built
+matplotlib is optional (``pip install 'mechanism-mobility[plot]'``); figures are built
 without :mod:`matplotlib.pyplot` by the pictures' backend
 (:mod:`mobility.report.plotting.backend`), and
 :func:`~mobility.report.plotting.save_figure` writes them.  Every drawn

@@ -12,7 +12,7 @@ The work has two stages, each cut into chunks that run independently:
 
 Chunks run in this process (on ``workers`` threads: the stacked LAPACK calls
 release the GIL), or on a dask.distributed cluster when a scheduler is given
-(``pip install 'mobility[dask]'``): a ``distributed.Client``, or the address
+(``pip install 'mechanism-mobility[dask]'``): a ``distributed.Client``, or the address
 of a running scheduler.  Within a chunk the poses are processed in blocks of
 :data:`BLOCK` so that the stacked arrays stay in cache.
 
@@ -342,7 +342,7 @@ def _split(count: int, pieces: int) -> list[np.ndarray]:
 
 
 def tqdm_progress() -> Progress:
-    """A progress bar on stderr for each stage (needs tqdm: ``pip install 'mobility[progress]'``).
+    """A progress bar on stderr for each stage (needs tqdm: ``pip install 'mechanism-mobility[progress]'``).
 
     Raises
     ------

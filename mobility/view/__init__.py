@@ -9,7 +9,7 @@ mobility in the header; rotate, zoom and pan with the mouse.  In Jupyter a
 :class:`~mobility.core.result.Result` (and a :class:`View`) shows itself as
 that view.  Several poses (or a sweep's) get a slider.
 
-Needs plotly (``pip install 'mobility[view]'``); the scene itself
+Needs plotly (``pip install 'mechanism-mobility[view]'``); the scene itself
 (:mod:`~mobility.view.scene`) is computed without it.
 
 Modules

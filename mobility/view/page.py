@@ -8,7 +8,7 @@ With several poses the header's answer follows the slider: a short script
 writes the answer of the pose shown.  :func:`figure_html` is the figure
 alone, as offline, for a notebook's HTML output.
 
-plotly is an optional extra (``pip install 'mobility[view]'``);
+plotly is an optional extra (``pip install 'mechanism-mobility[view]'``);
 :func:`require_plotly` says so in one line when it is missing.
 """
 

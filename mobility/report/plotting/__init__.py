@@ -4,7 +4,7 @@
 :func:`mobility.analyze` on its end effector; :func:`plot_graph` draws the
 joint graph beside the series/parallel tree the analysis reduced it to;
 :func:`save_figure` writes either (or a sweep's picture) as PNG, SVG or PDF.  matplotlib is optional
-(``pip install 'mobility[plot]'``), imported only when a picture is drawn.
+(``pip install 'mechanism-mobility[plot]'``), imported only when a picture is drawn.
 
 Modules, each with one job (those marked * need no matplotlib):
 

@@ -1,6 +1,6 @@
 """matplotlib, optional: import it on first use, build figures without pyplot, save them.
 
-matplotlib is an optional extra (``pip install 'mobility[plot]'``): it is
+matplotlib is an optional extra (``pip install 'mechanism-mobility[plot]'``): it is
 imported only when a picture is drawn, and
 :class:`~mobility.errors.PlottingUnavailableError` says how to get it when it
 is missing.  Figures are built without :mod:`matplotlib.pyplot` (no global
