@@ -37,6 +37,7 @@ from ..core.model import Mechanism, integer_value, require_mechanism
 from ..core.result import Result, require_result_of
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError, counted, shown_argument
+from ..outputs import atomic_output
 from ..report.plotting.backend import written_file_name
 from ..report.plotting.sketch import drawing_scale
 from ..report.text import text_report
@@ -137,7 +138,8 @@ class View:
         path = written_file_name(path, "write_html")
         text = self.to_html()
         try:
-            path.write_text(text, encoding="utf-8")
+            with atomic_output(path) as handle:  # the previous page intact until the new one is whole
+                handle.write(text)
         except OSError as exc:
             raise RequestError(f"cannot write {path}: {exc.strerror or exc}") from None
         return path
