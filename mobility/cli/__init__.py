@@ -35,6 +35,7 @@ import argparse
 import codecs
 import contextlib
 import importlib
+import logging
 import os
 import pkgutil
 import signal
@@ -259,9 +260,34 @@ def main(argv: Sequence[str] | None = None) -> int:
     whole_process = argv is None  # the command is the program: once its output is in place, it ends as it succeeded
     argv = list(sys.argv[1:] if argv is None else argv)
     _escape_what_cannot_be_encoded()
-    with _stderr_or_nothing(), warnings.catch_warnings(), terminate_as_interrupt(), interrupts_end_at_commit(to_the_end=whole_process):
+    with _stderr_or_nothing(), warnings.catch_warnings(), _log_lines_as_notes(), terminate_as_interrupt(), interrupts_end_at_commit(to_the_end=whole_process):
         warnings.showwarning = _warning_as_a_note
         return _run(argv)
+
+
+class _NoteHandler(logging.Handler):
+    """A library's log record of warning level or above (matplotlib's about its cache folder...) written as one ``mobility: note:`` line."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        try:
+            print(f"mobility: note: {one_line(record.getMessage())}", file=sys.stderr)
+        except Exception:  # a message that cannot be formatted or written: dropped, never a traceback
+            pass
+
+
+@contextlib.contextmanager
+def _log_lines_as_notes() -> Any:
+    """For the length of a command, log records that would reach standard error (Python's last-resort handler) become note lines."""
+    root = logging.getLogger()
+    if root.handlers:  # the program that called main() chose where its logs go
+        yield
+        return
+    handler = _NoteHandler(logging.WARNING)
+    root.addHandler(handler)
+    try:
+        yield
+    finally:
+        root.removeHandler(handler)
 
 
 def _warning_as_a_note(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: str | None = None) -> None:
