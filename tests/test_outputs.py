@@ -126,3 +126,16 @@ def test_the_atomic_output_keeps_permissions_follows_links_and_writes_devices_in
             handle.write(b"partial")
             1 / 0
     assert target.read_text() == "new\n" and sorted(p.name for p in tmp_path.iterdir()) == ["kept.csv", "link.csv"]
+
+
+def test_an_interrupted_sweep_stops_its_chunks_in_flight_at_once(tmp_path):
+    """Chunks of 400,000 poses on two threads: the interrupt used to wait for every chunk in flight (a minute on a busy machine)."""
+    child = _start("sweep", str(ROOT / "mechanisms" / "3prs.yaml"), "--vary", "P1=-30:30:200", "--vary", "P2=-30:30:200", "--vary", "P3=-30:30:100",
+                   "--max-poses", "10000000", "--no-progress", "--chunk-size", "400000", "--workers", "2", cwd=tmp_path)
+    time.sleep(6.0)  # the grid planned, its chunks at work
+    assert child.poll() is None
+    sent = time.monotonic()
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=120)
+    assert (child.returncode, err, out) == (130, "mobility: interrupted\n", "")
+    assert time.monotonic() - sent < 3.0

@@ -69,6 +69,9 @@ BLOCK = 8192
 IN_FLIGHT = 2
 """Chunks per worker handed out at a time (the rest wait, unbuilt, so memory stays bounded)."""
 
+WAKE_SECONDS = 0.1
+"""How often a sweep waiting for its chunks looks for an interrupt (Ctrl-C)."""
+
 MAX_WORKERS = 256
 """Most threads a sweep runs its chunks on in this process (more only wait for the same cores)."""
 
@@ -356,7 +359,9 @@ class _Runner:
         try:
             running = {pool.submit(_stoppable, stop, function, self.context, *chunk): i for i, chunk in itertools.islice(numbered, limit)}
             while running:
-                finished, _ = wait(running, return_when=FIRST_COMPLETED)
+                # a short timeout: a signal taken by another thread (numpy's) does not wake a wait without one, and an
+                # interrupt then waited for the next chunk to finish (minutes for a big one)
+                finished, _ = wait(running, timeout=WAKE_SECONDS, return_when=FIRST_COMPLETED)
                 for future in finished:
                     i = running.pop(future)
                     for j, chunk in itertools.islice(numbered, 1):
