@@ -109,7 +109,7 @@ def _temporary(target: str, binary: bool, encoding: str | None) -> tuple[str, IO
         except FileExistsError:
             continue
     try:
-        handle = os.fdopen(fd, "wb" if binary else "w", encoding=None if binary else encoding, newline=None if binary else "")
+        handle = os.fdopen(fd, "wb" if binary else "w", encoding=None if binary else encoding)
     except BaseException:
         os.close(fd)
         os.unlink(temp)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import Iterable, Iterator, TextIO
+from typing import IO, Iterable, Iterator
 
 from ..errors import MechanismError, RequestError, clipped, one_line
 from ..outputs import atomic_output
@@ -159,7 +159,7 @@ def _format_of(output: str | None) -> str:
     return suffix if suffix in ("csv", "json") else "text"
 
 
-def _write_pieces(handle: TextIO, pieces: Iterable[str]) -> None:
+def _write_pieces(handle: IO[str], pieces: Iterable[str]) -> None:
     """Write the pieces of an output as they come, ending it with a newline."""
     last = ""
     for piece in pieces:

@@ -178,6 +178,7 @@ class _Scanner:
                                                             "world_joints": 0})
     over: dict[str, _Over] = field(default_factory=dict)
     models: dict[str, tuple[int, int]] = field(default_factory=dict)  # a <model>'s elements and joints, by name: what each <attach> copies
+    waiting: dict[str, list[tuple[Element, _Context]]] = field(default_factory=dict)  # <attach>es met before their <model>
 
     def walk(self, root: Element, context: _Context) -> None:
         """Every element under ``root`` (iteratively: a deep file must not exhaust Python's stack)."""
@@ -259,9 +260,11 @@ class _Scanner:
 
     def attached(self, element: Element, where: _Context) -> None:
         """Count the copy of a ``<model>`` that an ``<attach>`` makes (its elements and joints), before MuJoCo makes it."""
-        made = self.models.get(element.get("model", ""))
-        if made is None:
-            return  # a model not declared before it: MuJoCo says so
+        name = element.get("model", "")
+        made = self.models.get(name)
+        if made is None:  # its <model> comes later in the file (an <asset> after the <worldbody>): counted when it is read
+            self.waiting.setdefault(name, []).append((element, where))
+            return
         elements, joints = made
         self.count("copies", elements * where.multiplier, element, where)
         self.count("elements", elements * where.multiplier, element, where)
@@ -295,7 +298,10 @@ class _Scanner:
             model_dir = os.path.dirname(path) or "."
             elements = sum(1 for _ in inner.root.iter())
             joints = sum(1 for e in inner.root.iter() if e.tag in ("joint", "freejoint"))
-            self.models[element.get("name") or Path(name).stem] = (elements, joints)
+            model_name = element.get("name") or Path(name).stem
+            self.models[model_name] = (elements, joints)
+            for attach, at in self.waiting.pop(model_name, []):
+                self.attached(attach, at)
         context = _Context(inner, where.multiplier, where.factors, where.in_world and kind == "include", where.chain + (real,), where.source,
                            in_equality=where.in_equality and kind == "include", model_dir=model_dir)
         return [(child, context) for child in inner.root]
