@@ -240,7 +240,7 @@ def _where(file: str, line: int, key: str, scan: MjcfScan) -> tuple[str, int | N
 
 
 def _require_kept(scan: MjcfScan, model: Any, file: str) -> None:
-    """Refuse a model from which MuJoCo dropped, while reading it, an equality or a joint that the file declares.
+    """Refuse a model from which MuJoCo dropped, while reading it, an equality, a joint or a body that the file declares.
 
     MuJoCo drops without a word a ``<connect>`` (or another equality) that
     names a body or a site inside a ``<replicate>``, which it renames
@@ -261,9 +261,10 @@ def _require_kept(scan: MjcfScan, model: Any, file: str) -> None:
                                  f"MuJoCo kept {model.neq}: it drops an equality naming a body or site inside a <replicate>, which it renames "
                                  "(rocker becomes rocker0); expected every equality kept (name the copy, or move the body out of the <replicate>)",
                                  file=file)
-    if model.njnt < scan.world_joints:
-        raise MechanismFileError("joint", f"the file declares {counted(scan.world_joints, 'joint')}, MuJoCo kept {model.njnt}; "
-                                 "expected every joint kept", file=file)
+    for key, declared, kept in (("joint", scan.world_joints, model.njnt), ("body", scan.world_bodies, model.nbody - 1)):  # body 0: the world
+        if kept < declared:
+            noun = counted(declared, key) if key == "joint" else f"{declared} {'body' if declared == 1 else 'bodies'}"
+            raise MechanismFileError(key, f"the file declares {noun}, MuJoCo kept {kept}; expected every {key} kept", file=file)
 
 
 def _without_mass_bounds(spec: Any) -> None:

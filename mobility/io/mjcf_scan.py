@@ -131,7 +131,11 @@ _HEX = re.compile(r"[+-]?0[xX]")
 
 @dataclass(frozen=True)
 class MjcfScan:
-    """What the scan found: every ``<include>`` (the including file and the line), the files read (included files, ``<model>`` files) and the counts, copies included."""
+    """What the scan found: every ``<include>`` (the including file and the line), the files read (included files, ``<model>`` files) and the counts, copies included.
+
+    ``equalities``, ``world_joints`` and ``world_bodies`` are what the file
+    declares (in the world, copies of ``<replicate>`` counted): the compiled
+    model must keep at least as many (:func:`mobility.io.mjcf.read_mjcf`)."""
 
     includes: tuple[tuple[str, int | None], ...] = ()
     files: tuple[str, ...] = ()
@@ -141,6 +145,7 @@ class MjcfScan:
     equalities: int = 0
     asset_values: int = 0
     world_joints: int = 0
+    world_bodies: int = 0
 
 
 @dataclass
@@ -175,7 +180,7 @@ class _Scanner:
     includes: list[tuple[str, int | None]] = field(default_factory=list)
     files: list[str] = field(default_factory=list)
     counts: dict[str, int] = field(default_factory=lambda: {"elements": 0, "joints": 0, "copies": 0, "equalities": 0, "asset_values": 0,
-                                                            "world_joints": 0})
+                                                            "world_joints": 0, "world_bodies": 0})
     over: dict[str, _Over] = field(default_factory=dict)
     models: dict[str, tuple[int, int]] = field(default_factory=dict)  # a <model>'s elements and joints, by name: what each <attach> copies
     waiting: dict[str, list[tuple[Element, _Context]]] = field(default_factory=dict)  # <attach>es met before their <model>
@@ -199,6 +204,8 @@ class _Scanner:
         if tag in ("joint", "freejoint") and where.in_world:
             self.count("joints", where.multiplier, element, where)
             self.counts["world_joints"] += where.multiplier
+        if tag == "body" and where.in_world:
+            self.counts["world_bodies"] += where.multiplier
         if tag == "attach":
             self.attached(element, where)
         if where.in_equality and tag != "include":  # a connect is a joint, a weld six constraint rows: counted as joints
@@ -383,7 +390,7 @@ def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = N
     scanner.raise_first_over()
     counts = scanner.counts
     return MjcfScan(tuple(scanner.includes), tuple(scanner.files), counts["elements"], counts["joints"], counts["copies"],
-                    counts["equalities"], counts["asset_values"], counts["world_joints"])
+                    counts["equalities"], counts["asset_values"], counts["world_joints"], counts["world_bodies"])
 
 
 def _check_numbers(doc: XmlDocument, element: Element) -> None:
