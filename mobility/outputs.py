@@ -39,7 +39,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import secrets
 import signal
 import stat
 import threading
@@ -102,7 +101,7 @@ def _temporary(target: str, binary: bool, encoding: str | None) -> tuple[str, IO
     """A new file beside ``target``, created with the permissions of a new file (``0o666`` less the umask), open for writing."""
     folder, name = os.path.split(target)
     while True:
-        temp = os.path.join(folder, f".{name}.{secrets.token_hex(4)}.tmp")
+        temp = os.path.join(folder, f".{name}.{os.urandom(4).hex()}.tmp")
         try:
             fd = os.open(temp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o666)
             break
