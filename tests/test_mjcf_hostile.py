@@ -392,3 +392,13 @@ def test_attach_copies_are_counted_when_the_model_comes_after_them(tmp_path):
     done = _bounded_cli(str(top), cwd=tmp_path, seconds=15)
     _one_line_refusal(done, "attach: ")
     assert "are more than the limit of 5000" in done.stderr
+
+
+def test_attach_copies_of_a_model_that_replicates_are_counted_with_its_copies(tmp_path):
+    sub = tmp_path / "sub"
+    sub.mkdir()
+    (sub / "rep.xml").write_text('<mujoco model="rep"><worldbody><body name="root"><replicate count="1000" offset="1 0 0">'
+                                 '<body name="l"><joint name="j" axis="0 0 1"/><geom size=".1"/></body></replicate></body></worldbody></mujoco>')
+    attaches = "".join(f'<body name="b{k}"><attach model="r" body="root" prefix="p{k}"/></body>' for k in range(8))
+    top = _model(tmp_path, f'<mujoco><asset><model name="r" file="sub/rep.xml"/></asset><worldbody>{attaches}</worldbody></mujoco>')
+    _one_line_refusal(_bounded_cli(str(top), cwd=tmp_path, seconds=15), "attach: ")

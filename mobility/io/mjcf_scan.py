@@ -303,8 +303,7 @@ class _Scanner:
         model_dir = where.model_dir
         if kind == "model":  # MuJoCo reads a sub-model's own includes from the sub-model's folder
             model_dir = os.path.dirname(path) or "."
-            elements = sum(1 for _ in inner.root.iter())
-            joints = sum(1 for e in inner.root.iter() if e.tag in ("joint", "freejoint"))
+            elements, joints = _made_by(inner.root)
             model_name = element.get("name") or Path(name).stem
             self.models[model_name] = (elements, joints)
             for attach, at in self.waiting.pop(model_name, []):
@@ -553,6 +552,28 @@ def _asset_points(element: Element) -> tuple[int, str] | None:
     points = math.prod(resolutions) ** power
     shown = " x ".join(str(r) for r in resolutions) + (" squared" if power == 2 else "")
     return points, f"builtin {builtin}, resolution{'s' if len(resolutions) > 1 else ''} {shown} (params)"
+
+
+def _made_by(root: Element) -> tuple[int, int]:
+    """The elements and the joints of a ``<model>`` file, each ``<replicate>``'s copies multiplied: what one ``<attach>`` of it makes.
+
+    Examples
+    --------
+    >>> from xml.etree.ElementTree import fromstring
+    >>> _made_by(fromstring('<mujoco><worldbody><replicate count="40 10"><body><joint/></body></replicate></worldbody></mujoco>'))
+    (803, 400)
+    """
+    elements = joints = 0
+    stack = [(root, 1)]
+    while stack:
+        element, multiplier = stack.pop()
+        elements += multiplier
+        joints += multiplier if element.tag in ("joint", "freejoint") else 0
+        if element.tag == "replicate":
+            factors = _counts(element.get("count", ""))
+            multiplier *= max(1, math.prod(factors)) if factors else 1
+        stack.extend((child, multiplier) for child in element)
+    return elements, joints
 
 
 def _counts(text: str) -> list[int]:
