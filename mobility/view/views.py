@@ -124,7 +124,9 @@ class View:
         return page_html(figure, self.name, self.answers, self.header)
 
     def write_html(self, path: str | Path) -> Path:
-        """Write :meth:`to_html` to ``path``; returns the path.
+        """Write :meth:`to_html` to ``path``, whole or not at all (:func:`mobility.outputs.atomic_output`); returns the path.
+
+        A failure or an interrupt leaves a page already at ``path`` as it was.
 
         Raises
         ------

@@ -213,7 +213,11 @@ def glyphs_summarised() -> Iterator[None]:
 
 
 def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
-    """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background; returns the path.
+    """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background, whole or not at all; returns the path.
+
+    The picture goes to a temporary file beside ``path``, renamed over it once
+    complete (:func:`mobility.outputs.atomic_output`): a failure or an
+    interrupt leaves a picture already at ``path`` as it was.
 
     ``dpi`` is an integer in :data:`DPI_RANGE` (20 to 600, as ``mobility plot --dpi``).
 
