@@ -997,7 +997,7 @@ def _not_bool(value: Any) -> Any:
 
 
 def number_from_text(text: str) -> float:
-    """The number written in ``text``, as ``float`` reads it, but in ASCII only.
+    """The number written in ``text``, as ``float`` reads it, but in ASCII only and without ``_`` (``float`` reads ``"1_0"`` as 10).
 
     The one reader of a number written as text (an option of the command
     line, an environment variable, a string given for a number): ``float``
