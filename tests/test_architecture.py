@@ -22,6 +22,7 @@ PACKAGE = Path(mobility.__file__).resolve().parent
 # Each folder and what it may import, one line each ("core.model": that module of core only).
 ALLOWED = {
     "errors": "",
+    "outputs": "",
     "core": "errors",
     "io": "errors core.model core.transforms core.tolerance",
     "finite": "errors core",
@@ -30,12 +31,12 @@ ALLOWED = {
     "synthesis": "errors core io",
     "jacobians": "errors core",
     "sweeps": "errors core actuation",
-    "report": "errors core finite actuation flexure synthesis jacobians sweeps testing",
-    "view": "errors core report sweeps",
+    "report": "errors core finite actuation flexure synthesis jacobians sweeps testing outputs",
+    "view": "errors core report sweeps outputs",
     "testing": "errors core io finite actuation flexure",
     "library": "errors",
-    "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps report view testing library",
-    "__init__": "errors core io finite actuation flexure synthesis jacobians sweeps report view testing library",
+    "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps report view testing library outputs",
+    "__init__": "errors core io finite actuation flexure synthesis jacobians sweeps report view testing library outputs",
     "__main__": "cli",
 }
 

@@ -481,7 +481,7 @@ def test_every_commands_help_lists_its_exit_statuses(command, status, capsys):
     with pytest.raises(SystemExit):
         main([command, "--help"])
     help_text = " ".join(capsys.readouterr().out.split())
-    assert "Exit status: 0" in help_text and status in help_text and help_text.endswith("3 an internal error; 130 interrupted.")
+    assert "Exit status: 0" in help_text and status in help_text and help_text.endswith("3 an internal error; 130 interrupted; 143 terminated.")
 
 
 def test_actuation_options_that_would_be_ignored_are_refused(capsys):

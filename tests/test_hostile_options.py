@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import os
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -131,3 +133,71 @@ def test_an_output_in_a_missing_folder_is_refused_before_any_work(command, suffi
     assert main(command[:1] + [FOUR_BAR] + command[1:] + [str(target)]) == 2
     out, err = capsys.readouterr()
     assert out == "" and err == f"mobility: {command[-1]} {target}: cannot write there: the folder {target.parent} does not exist\n"
+
+
+# -- issue 33: one number rule for options, environment and the API; limits whose cost stays in proportion --------
+
+@pytest.mark.parametrize("args, expected", [
+    (["sweep", FOUR_BAR, "--vary", "A=1_0:20:3"], "mobility: --vary 'A=1_0:20:3': START must be a number, got '1_0'"),
+    (["sweep", FOUR_BAR, "--vary", "A=0:20:1_0"], "mobility: --vary 'A=0:20:1_0': COUNT must be an integer, got '1_0'"),
+    (["analyze", "--tol", "1_0e-9", FOUR_BAR], "argument --tol: invalid float value: '1_0e-9'"),
+    (["sweep", FOUR_BAR, "--vary", "A=0:20:3", "--max-poses", "1_000"], "argument --max-poses: invalid int value: '1_000'"),
+])
+def test_a_number_with_an_underscore_is_refused_as_in_files(args, expected, capsys):
+    try:
+        status = main(args)
+    except SystemExit as stop:  # argparse's own refusal
+        status = stop.code
+    out, err = capsys.readouterr()
+    assert status == 2 and out == "" and err.count("\n") == 1 and expected in err, err
+
+
+@pytest.mark.parametrize("value", [" 5000 ", "5000\n", "5_000", "+5000"])
+def test_a_limit_variable_is_ascii_digits_only(value, monkeypatch, capsys):
+    monkeypatch.setenv("MOBILITY_MAX_JOINTS", value)
+    assert main(["analyze", FOUR_BAR]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and err.startswith("mobility: MOBILITY_MAX_JOINTS: expected a positive integer, got "), err
+
+
+def test_the_apis_text_numbers_follow_the_same_rule():
+    import numpy as np
+
+    from mobility import Joint
+    from mobility.errors import MechanismError
+
+    z = (0, 0, 1)
+    with pytest.raises(MechanismError, match="no '_'"):
+        Joint("H", "H", ("a", "b"), axis=np.array(["0", "0", "1_0"], dtype=object), point=(0, 0, 0), pitch=1)
+    with pytest.raises(MechanismError, match="pitch: expected a number"):
+        Joint("H", "H", ("a", "b"), axis=z, point=(0, 0, 0), pitch="1_0")
+    assert Joint("H", "H", ("a", "b"), axis=np.array(["0", "0", "2"], dtype=object), point=(0, 0, 0), pitch="1").axis == (0.0, 0.0, 1.0)
+
+
+def _child(*args: str, env: dict[str, str], seconds: float = 30) -> subprocess.CompletedProcess:
+    """The command line in a child whose address space is capped at 2 GiB, under a time bound."""
+    import resource
+
+    def cap() -> None:
+        resource.setrlimit(resource.RLIMIT_AS, (2 * 1024**3, 2 * 1024**3))
+
+    environ = {k: v for k, v in os.environ.items() if k != "MPLCONFIGDIR"}
+    environ.update(PYTHONPATH=str(ROOT), **env)
+    return subprocess.run([sys.executable, "-m", "mobility", *args], capture_output=True, text=True, cwd=ROOT, timeout=seconds,
+                          env=environ, preexec_fn=cap)
+
+
+def test_a_raised_depth_limit_keeps_the_cost_in_proportion(tmp_path):
+    deep = tmp_path / "deep.yaml"
+    deep.write_text("name: x\nground: g\nend_effector: c\njoints: " + "[" * 50_000 + "]" * 50_000 + "\n")  # 100 kB
+    done = _child("analyze", str(deep), env={"MOBILITY_MAX_DEPTH": "1000000"})  # past 90 s at 3 GB before
+    assert (done.returncode, done.stdout) == (2, "") and done.stderr.count("\n") == 1, done.stderr
+    assert "nested deeper than the limit of 1000 levels (the most a YAML document may nest whatever MOBILITY_MAX_DEPTH says" in done.stderr
+
+
+def test_a_librarys_log_line_becomes_a_note(tmp_path):
+    done = _child("plot", FOUR_BAR, "-o", str(tmp_path / "p.png"), env={"HOME": "/proc"}, seconds=120)
+    assert done.returncode == 0, done.stderr
+    lines = done.stderr.splitlines()
+    assert lines and all(line.startswith("mobility: note: ") for line in lines), done.stderr
+    assert any("Matplotlib created a temporary cache directory" in line for line in lines)

@@ -217,7 +217,9 @@ def test_an_environment_limit_in_other_digits_is_refused():
         Limits.from_environment({"MOBILITY_MAX_JOINTS": "\u0661\u0660"})
     done = run_cli("analyze", BAR, env={"MOBILITY_MAX_JOINTS": "\u0661\u0660"})
     assert done.returncode == 2 and done.stderr.startswith("mobility: MOBILITY_MAX_JOINTS: expected a positive integer")
-    assert Limits.from_environment({"MOBILITY_MAX_JOINTS": " 20000 "}).max_joints == 20000
+    with pytest.raises(RequestError, match="^MOBILITY_MAX_JOINTS: expected a positive integer, got ' 20000 '$"):  # issue 33: digits only, as files
+        Limits.from_environment({"MOBILITY_MAX_JOINTS": " 20000 "})
+    assert Limits.from_environment({"MOBILITY_MAX_JOINTS": "20000"}).max_joints == 20000
 
 
 def test_a_joint_refuses_other_digits_and_bools_for_numbers():

@@ -307,3 +307,98 @@ def test_a_closures_file_joint_named_like_a_joint_is_renamed_with_a_note(tmp_pat
     robot = read_robot(_model(tmp_path, text), closures=closures)
     assert f"closing joint B ({closures}, line 2) is named like another joint: it is joint B~2 of the mechanism" in robot.notes
     assert mobility.analyze(robot.mechanism).mobility == 1
+
+
+# -- 9. MuJoCo's own rules: where a sub-model's files are read, and every element that multiplies others (issue 33) --
+
+MEMORY_CAP = 2 * 1024**3
+"""The address space of a child that reads a hostile file: the old code grew past it (2.4 GB for 1000 x 1000 empty replicates)."""
+
+
+def _bounded_cli(*args: str, cwd: Path, seconds: float = 30, env: dict[str, str] | None = None) -> subprocess.CompletedProcess:
+    """:func:`_cli` in a child whose address space is capped at :data:`MEMORY_CAP`, under a time bound of ``seconds``."""
+    import resource
+
+    def cap() -> None:
+        resource.setrlimit(resource.RLIMIT_AS, (MEMORY_CAP, MEMORY_CAP))
+
+    environ = dict(os.environ, PYTHONPATH=str(ROOT), **(env or {}))
+    return subprocess.run([sys.executable, "-m", "mobility", "analyze", *args], capture_output=True, text=True, cwd=cwd,
+                          timeout=seconds, env=environ, preexec_fn=cap)
+
+
+def _sub_model(tmp_path: Path) -> Path:
+    """A model attaching a sub-model (``sub/inner.xml``) that includes ``part.xml``; MuJoCo reads it from ``sub/``."""
+    sub = tmp_path / "sub"
+    sub.mkdir()
+    (sub / "inner.xml").write_text('<mujoco model="inner"><worldbody><body name="b"><joint name="j" axis="0 0 1"/><geom size=".1"/>'
+                                   '<include file="part.xml"/></body></worldbody></mujoco>')
+    (tmp_path / "part.xml").write_text('<mujoco><geom size=".2"/></mujoco>')  # a harmless file of the same name beside the top model
+    return _model(tmp_path, '<mujoco model="top"><asset><model name="m" file="sub/inner.xml"/></asset><worldbody><body name="base">'
+                            '<joint name="r" axis="0 0 1"/><geom size=".1"/><attach model="m" body="b" prefix="a"/></body></worldbody></mujoco>')
+
+
+def test_a_file_a_sub_model_includes_is_checked_in_the_sub_models_folder(tmp_path):
+    top = _sub_model(tmp_path)
+    (tmp_path / "sub" / "part.xml").write_text('<mujoco><geom size=".2"/></mujoco>')
+    done = _bounded_cli(str(top), cwd=tmp_path)
+    assert done.returncode == 0 and "mobility M = 2" in done.stdout, done.stderr  # read right where it is harmless
+    (tmp_path / "sub" / "part.xml").unlink()
+    os.mkfifo(tmp_path / "sub" / "part.xml")  # MuJoCo opens this one: it would wait for ever
+    _one_line_refusal(_bounded_cli(str(top), cwd=tmp_path), "include: 'part.xml': a pipe or socket; expected a file to include")
+    (tmp_path / "sub" / "part.xml").unlink()
+    (tmp_path / "sub" / "part.xml").write_text("<mujoco><!--" + "x" * (6 * 1024 * 1024) + "--></mujoco>")
+    _one_line_refusal(_bounded_cli(str(top), cwd=tmp_path), "more than the limit of 4194304 bytes")
+
+
+@pytest.mark.parametrize("inside", ["", "<!-- nothing but a comment -->", "<replicate count=\"1000\"/>", "<replicate count=\"1000\"></replicate>"])
+def test_an_empty_replicate_is_counted_before_mujoco_makes_its_copies(tmp_path, inside):
+    count = "100000" if "replicate" not in inside else "1000"  # nested: 1000 x 1000 copies of nothing
+    text = f'<mujoco><worldbody>{ARM}\n<replicate count="{count}">{inside}</replicate></worldbody></mujoco>'
+    done = _bounded_cli(str(_model(tmp_path, text)), cwd=tmp_path, seconds=20)
+    _one_line_refusal(done, "elements made by the count of <replicate>")
+    assert "are more than the limit of 5000 (set MOBILITY_MAX_JOINTS to raise it)" in done.stderr
+
+
+def test_the_copies_attach_makes_are_counted_before_mujoco_reads_anything(tmp_path):
+    sub = tmp_path / "sub"
+    sub.mkdir()
+    chain = "".join(f'<body name="l{i}" pos="{i} 0 0"><joint name="j{i}" axis="0 0 1"/><geom size=".1"/></body>' for i in range(1000))  # 1,000 joints
+    (sub / "chain.xml").write_text(f'<mujoco model="chain"><worldbody><body name="root">{chain}</body></worldbody></mujoco>')
+    attaches = "".join(f'<body name="b{k}"><attach model="c" body="root" prefix="p{k}"/></body>' for k in range(8))
+    top = _model(tmp_path, f'<mujoco><asset><model name="c" file="sub/chain.xml"/></asset><worldbody>{attaches}</worldbody></mujoco>')
+    done = _bounded_cli(str(top), cwd=tmp_path, seconds=15)  # 24.6 s before: MuJoCo compiled every copy, then the joint limit refused it
+    _one_line_refusal(done, "attach: ")
+    assert "are more than the limit of 5000" in done.stderr
+
+
+def test_a_connect_mujoco_drops_is_an_error_not_a_wrong_answer(tmp_path):
+    text = FOUR_BAR.format(option="", rocker_y="2.5").replace('<body name="rocker"', '<replicate count="1"><body name="rocker"')
+    text = text.replace('<site name="s2" pos="-1 2.5 0"/></body>', '<site name="s2" pos="-1 2.5 0"/></body></replicate>')
+    assert "</replicate>" in text
+    done = _bounded_cli(str(_model(tmp_path, text)), cwd=tmp_path)  # mobility 3, DOF 2 before, without a word
+    _one_line_refusal(done, "equality: the file declares 1 equality (<connect>, <weld>, ...), MuJoCo kept 0")
+    done = _bounded_cli(str(_model(tmp_path, FOUR_BAR.format(option="", rocker_y="2.5"))), cwd=tmp_path)
+    assert done.returncode == 0 and "mobility M = 1" in done.stdout, done.stderr
+
+
+def test_attach_copies_are_counted_when_the_model_comes_after_them(tmp_path):
+    sub = tmp_path / "sub"
+    sub.mkdir()
+    chain = "".join(f'<body name="l{i}" pos="{i} 0 0"><joint name="j{i}" axis="0 0 1"/><geom size=".1"/></body>' for i in range(1000))  # 1,000 joints
+    (sub / "chain.xml").write_text(f'<mujoco model="chain"><worldbody><body name="root">{chain}</body></worldbody></mujoco>')
+    attaches = "".join(f'<body name="b{k}"><attach model="c" body="root" prefix="p{k}"/></body>' for k in range(8))
+    top = _model(tmp_path, f'<mujoco><worldbody>{attaches}</worldbody><asset><model name="c" file="sub/chain.xml"/></asset></mujoco>')
+    done = _bounded_cli(str(top), cwd=tmp_path, seconds=15)
+    _one_line_refusal(done, "attach: ")
+    assert "are more than the limit of 5000" in done.stderr
+
+
+def test_attach_copies_of_a_model_that_replicates_are_counted_with_its_copies(tmp_path):
+    sub = tmp_path / "sub"
+    sub.mkdir()
+    (sub / "rep.xml").write_text('<mujoco model="rep"><worldbody><body name="root"><replicate count="1000" offset="1 0 0">'
+                                 '<body name="l"><joint name="j" axis="0 0 1"/><geom size=".1"/></body></replicate></body></worldbody></mujoco>')
+    attaches = "".join(f'<body name="b{k}"><attach model="r" body="root" prefix="p{k}"/></body>' for k in range(8))
+    top = _model(tmp_path, f'<mujoco><asset><model name="r" file="sub/rep.xml"/></asset><worldbody>{attaches}</worldbody></mujoco>')
+    _one_line_refusal(_bounded_cli(str(top), cwd=tmp_path, seconds=15), "attach: ")

@@ -9,7 +9,11 @@ parses arguments and formats results.
 
 Exit status: 0 success, 1 a check failed, 2 bad input (one line naming file,
 line and key on stderr, never a traceback), 3 an internal error, 130 when
-interrupted (Ctrl-C: one line, ``mobility: interrupted``).  Standard output
+interrupted (Ctrl-C: one line, ``mobility: interrupted``), 143 when
+terminated (``SIGTERM``: ``mobility: terminated``).  Every output file is
+written whole or not at all (:mod:`mobility.outputs`): an interrupt or a
+failure leaves the previous file as it was; once an output is in place the
+command finishes, and an interrupt after that is dropped.  Standard output
 that cannot be written (a full disk) is bad input too: one line saying why,
 exit status 2; when its reader has gone away (``mobility check designs/ |
 head``) the rest of the output is dropped quietly and the command ends with
@@ -31,8 +35,10 @@ import argparse
 import codecs
 import contextlib
 import importlib
+import logging
 import os
 import pkgutil
+import signal
 import sys
 import traceback
 import warnings
@@ -40,6 +46,7 @@ from typing import Any, NoReturn, Sequence
 
 from ..errors import MobilityError, RequestError, one_line
 from ..io.files import os_problem
+from ..outputs import interrupting_signal, interrupts_end_at_commit, terminate_as_interrupt
 
 __all__ = ["main", "build_parser", "command_modules", "command_names", "options_given", "SUCCESS_OR_BAD_INPUT"]
 
@@ -75,7 +82,7 @@ def build_parser(commands: Sequence[str] | None = None) -> argparse.ArgumentPars
     for module in command_modules(commands):
         module.register(sub)
         command = sub.choices[module.__name__.rpartition(".")[2]]
-        command.epilog = f"Exit status: {getattr(module, 'EXIT_STATUS', SUCCESS_OR_BAD_INPUT)}; 3 an internal error; 130 interrupted."
+        command.epilog = f"Exit status: {getattr(module, 'EXIT_STATUS', SUCCESS_OR_BAD_INPUT)}; 3 an internal error; 130 interrupted; 143 terminated."
         # after the command too (`mobility analyze f --debug`), as the internal-error message suggests; unset unless given
         command.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show a traceback on internal errors")
     return parser
@@ -250,11 +257,37 @@ def main(argv: Sequence[str] | None = None) -> int:
     it is reported here (:class:`_GuardedOutput`), not at the interpreter's
     exit.
     """
+    whole_process = argv is None  # the command is the program: once its output is in place, it ends as it succeeded
     argv = list(sys.argv[1:] if argv is None else argv)
     _escape_what_cannot_be_encoded()
-    with _stderr_or_nothing(), warnings.catch_warnings():
+    with _stderr_or_nothing(), warnings.catch_warnings(), _log_lines_as_notes(), terminate_as_interrupt(), interrupts_end_at_commit(to_the_end=whole_process):
         warnings.showwarning = _warning_as_a_note
         return _run(argv)
+
+
+class _NoteHandler(logging.Handler):
+    """A library's log record of warning level or above (matplotlib's about its cache folder...) written as one ``mobility: note:`` line."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        try:
+            print(f"mobility: note: {one_line(record.getMessage())}", file=sys.stderr)
+        except Exception:  # a message that cannot be formatted or written: dropped, never a traceback
+            pass
+
+
+@contextlib.contextmanager
+def _log_lines_as_notes() -> Any:
+    """For the length of a command, log records that would reach standard error (Python's last-resort handler) become note lines."""
+    root = logging.getLogger()
+    if root.handlers:  # the program that called main() chose where its logs go
+        yield
+        return
+    handler = _NoteHandler(logging.WARNING)
+    root.addHandler(handler)
+    try:
+        yield
+    finally:
+        root.removeHandler(handler)
 
 
 def _warning_as_a_note(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: str | None = None) -> None:
@@ -277,9 +310,10 @@ def _run(argv: list[str]) -> int:
     except MobilityError as exc:
         print(f"mobility: {one_line(str(exc))}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:  # Ctrl-C: one line, the shell's status for SIGINT
-        print("mobility: interrupted", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt:  # Ctrl-C (or SIGTERM): one line, the shell's status for the signal
+        signum = interrupting_signal()
+        print("mobility: interrupted" if signum == signal.SIGINT else "mobility: terminated", file=sys.stderr)
+        return 128 + signum
     except MemoryError:  # a request too large for this machine: said in one line, like any request out of range
         print("mobility: out of memory: the request needs more memory than this machine has free; "
               "ask for less (a coarser grid or fewer poses: --max-poses; fewer samples)", file=sys.stderr)

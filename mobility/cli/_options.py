@@ -49,12 +49,12 @@ __all__ = [
 
 
 def number_option(text: str) -> float:
-    """The ``type`` of an option that takes a number: ``float``, but digits in ASCII only (``--tol \u0661e-9`` is refused; :func:`~mobility.core.model.number_from_text`)."""
+    """The ``type`` of an option that takes a number: ``float``, but digits in ASCII only, no ``_`` (``--tol \u0661e-9`` and ``--tol 1_0e-9`` are refused, as in a file; :func:`~mobility.core.model.number_from_text`)."""
     return number_from_text(text)
 
 
 def integer_option(text: str) -> int:
-    """The ``type`` of an option that takes an integer: ``int``, but digits in ASCII only (:func:`~mobility.core.model.integer_from_text`)."""
+    """The ``type`` of an option that takes an integer: ``int``, but digits in ASCII only, no ``_`` (:func:`~mobility.core.model.integer_from_text`)."""
     return integer_from_text(text)
 
 

@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 
 from ..errors import MechanismFileError, RequestError, counted, one_line
+from ..outputs import atomic_output
 from ._options import add_mechanism_file, read_mechanism, require_new_output
 
 __all__ = ["register", "run"]
@@ -63,7 +64,8 @@ def run(args: argparse.Namespace) -> int:
         print(f"mobility: note: {one_line(note)}", file=sys.stderr)
     if args.output:
         try:
-            Path(args.output).write_text(text, encoding="utf-8")
+            with atomic_output(args.output) as handle:  # the previous file intact until the new one is whole
+                handle.write(text)
         except OSError as exc:
             raise MechanismFileError("--output", f"cannot write the file ({exc.strerror or exc})", file=args.output) from None
         print(one_line(f"mobility: wrote {args.output} ({counted(len(mechanism.joints), 'joint')}, {counted(len(mechanism.links), 'link')})"), file=sys.stderr)

@@ -13,9 +13,10 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import Iterable, Iterator, TextIO
+from typing import IO, Iterable, Iterator
 
 from ..errors import MechanismError, RequestError, clipped, counted, one_line
+from ..outputs import atomic_output
 from ..report.plotting import FORMATS as PICTURE_FORMATS, picture_path, save_figure
 from ..report.sweep import sweep_csv_pieces, sweep_json_pieces, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, SweepResult, sweep
@@ -126,7 +127,7 @@ def run(args: argparse.Namespace) -> int:
     pieces = FORMATS[fmt](result)
     if args.output is not None:
         try:
-            with open(args.output, "w", encoding="utf-8") as handle:
+            with atomic_output(args.output) as handle:  # the previous file intact until the new one is whole
                 _write_pieces(handle, pieces)
         except OSError as exc:
             raise RequestError(f"-o {args.output}: cannot write it ({exc.strerror or exc})") from None
@@ -158,7 +159,7 @@ def _format_of(output: str | None) -> str:
     return suffix if suffix in ("csv", "json") else "text"
 
 
-def _write_pieces(handle: TextIO, pieces: Iterable[str]) -> None:
+def _write_pieces(handle: IO[str], pieces: Iterable[str]) -> None:
     """Write the pieces of an output as they come, ending it with a newline."""
     last = ""
     for piece in pieces:

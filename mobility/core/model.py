@@ -146,8 +146,8 @@ def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
         if math.isfinite(x) and math.isfinite(y) and math.isfinite(z):
             return (x, y, z)
     items = value.tolist() if isinstance(value, np.ndarray) and value.dtype.kind in "bUSO" else value
-    if not plain and isinstance(items, (list, tuple)) and any(isinstance(x, (bool, np.bool_)) or (isinstance(x, str) and not x.isascii()) for x in items):
-        raise MechanismError(key, f"expected a list of 3 numbers (not true or false, digits in ASCII), got {shown_argument(value)}")
+    if not plain and isinstance(items, (list, tuple)) and any(isinstance(x, (bool, np.bool_)) or (isinstance(x, str) and (not x.isascii() or "_" in x)) for x in items):
+        raise MechanismError(key, f"expected a list of 3 numbers (not true or false, digits in ASCII, no '_'), got {shown_argument(value)}")
     try:
         arr = np.asarray(value, dtype=float)
     except OverflowError:
@@ -1000,7 +1000,7 @@ def _not_bool(value: Any) -> Any:
 
 
 def number_from_text(text: str) -> float:
-    """The number written in ``text``, as ``float`` reads it, but in ASCII only.
+    """The number written in ``text``, as ``float`` reads it, but in ASCII only and without ``_`` (``float`` reads ``"1_0"`` as 10).
 
     The one reader of a number written as text (an option of the command
     line, an environment variable, a string given for a number): ``float``
@@ -1038,9 +1038,20 @@ def integer_from_text(text: str) -> int:
 
 
 def _in_ascii(text: str, what: str) -> str:
-    """``text`` when it is ASCII, else a ``ValueError`` saying ``what`` (``"a number"``) it should be, in ASCII digits."""
-    if not text.isascii():
-        raise ValueError(f"expected {what} written in ASCII digits, got {shown_argument(text)}")
+    """``text`` when it is ASCII without ``_``, else a ``ValueError`` saying ``what`` (``"a number"``) it should be, in ASCII digits.
+
+    Python's ``float`` and ``int`` read ``"1_0"`` as 10; a file's numbers
+    never hold an underscore, nor do an option's or a variable's.
+
+    Examples
+    --------
+    >>> _in_ascii("1_0e-9", "a number")
+    Traceback (most recent call last):
+    ValueError: expected a number written in ASCII digits (no '_'), got '1_0e-9'
+    """
+    if not text.isascii() or "_" in text:
+        underscore = " (no '_')" if "_" in text else ""
+        raise ValueError(f"expected {what} written in ASCII digits{underscore}, got {shown_argument(text)}")
     return text
 
 

@@ -176,8 +176,8 @@ class Limits:
             raw = env.get(cls.variable(f.name))
             if raw is None:
                 continue
-            try:
-                value = integer_from_text(raw.strip())  # digits in ASCII: int() alone reads "١٠" as 10
+            try:  # ASCII digits only: int() alone reads "١٠" as 10, "1_0" as 10, " 5000 " as 5000
+                value = integer_from_text(raw) if raw.isdigit() else 0
             except ValueError:
                 value = 0
             if value < 1:

@@ -48,7 +48,7 @@ import numpy as np
 
 from ..core.model import Joint
 from ..core.tolerance import DEFAULT_TOLERANCE, characteristic_scale
-from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped, one_line
+from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped, counted, one_line
 from .files import read_capped
 from .mjcf_actuators import actuator_inputs
 from .mjcf_scan import MjcfScan, scan_mjcf
@@ -131,6 +131,7 @@ def read_mjcf(path: str | Path) -> RobotTree:
             _without_mass_bounds(spec)
             _without_what_kinematics_ignores(mujoco, spec)
             model = _mujoco_call(spec.compile, file, scan, alias)
+            _require_kept(scan, model, file)
             data = mujoco.MjData(model)
             mujoco.mj_kinematics(model, data)
         tree = _MjcfTree(mujoco, spec, model, data, file).tree()  # its forward pass (the gaps) may warn too
@@ -236,6 +237,34 @@ def _where(file: str, line: int, key: str, scan: MjcfScan) -> tuple[str, int | N
     if file in holders or not holders:
         return file, line
     return (holders.pop(), line) if len(holders) == 1 else (file, None)
+
+
+def _require_kept(scan: MjcfScan, model: Any, file: str) -> None:
+    """Refuse a model from which MuJoCo dropped, while reading it, an equality, a joint or a body that the file declares.
+
+    MuJoCo drops without a word a ``<connect>`` (or another equality) that
+    names a body or a site inside a ``<replicate>``, which it renames
+    (``rocker`` becomes ``rocker0``): the loop it closed would be open, and
+    the answer wrong.  The scan counted what the file declares (copies
+    included); fewer in the compiled model is an error, never silent.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> _require_kept(MjcfScan(equalities=1, world_joints=3), SimpleNamespace(neq=0, njnt=3), "m.xml")
+    Traceback (most recent call last):
+    ...
+    mobility.errors.MechanismFileError: m.xml: equality: the file declares 1 equality (<connect>, <weld>, ...), MuJoCo kept 0: it drops an equality naming a body or site inside a <replicate>, which it renames (rocker becomes rocker0); expected every equality kept (name the copy, or move the body out of the <replicate>)
+    """
+    if model.neq < scan.equalities:
+        raise MechanismFileError("equality", f"the file declares {scan.equalities} equalit{'y' if scan.equalities == 1 else 'ies'} (<connect>, <weld>, ...), "
+                                 f"MuJoCo kept {model.neq}: it drops an equality naming a body or site inside a <replicate>, which it renames "
+                                 "(rocker becomes rocker0); expected every equality kept (name the copy, or move the body out of the <replicate>)",
+                                 file=file)
+    for key, declared, kept in (("joint", scan.world_joints, model.njnt), ("body", scan.world_bodies, model.nbody - 1)):  # body 0: the world
+        if kept < declared:
+            noun = counted(declared, key) if key == "joint" else f"{declared} {'body' if declared == 1 else 'bodies'}"
+            raise MechanismFileError(key, f"the file declares {noun}, MuJoCo kept {kept}; expected every {key} kept", file=file)
 
 
 def _without_mass_bounds(spec: Any) -> None:

@@ -131,7 +131,11 @@ _HEX = re.compile(r"[+-]?0[xX]")
 
 @dataclass(frozen=True)
 class MjcfScan:
-    """What the scan found: every ``<include>`` (the including file and the line), the files read (included files, ``<model>`` files) and the counts, copies included."""
+    """What the scan found: every ``<include>`` (the including file and the line), the files read (included files, ``<model>`` files) and the counts, copies included.
+
+    ``equalities``, ``world_joints`` and ``world_bodies`` are what the file
+    declares (in the world, copies of ``<replicate>`` counted): the compiled
+    model must keep at least as many (:func:`mobility.io.mjcf.read_mjcf`)."""
 
     includes: tuple[tuple[str, int | None], ...] = ()
     files: tuple[str, ...] = ()
@@ -140,6 +144,8 @@ class MjcfScan:
     copies: int = 0
     equalities: int = 0
     asset_values: int = 0
+    world_joints: int = 0
+    world_bodies: int = 0
 
 
 @dataclass
@@ -162,6 +168,7 @@ class _Context:
     chain: tuple[str, ...] = ()
     source: tuple[XmlDocument, Element] | None = None  # the innermost <replicate>, where its copies are refused
     in_equality: bool = False  # the children of <equality>: each a constraint MuJoCo makes rows for
+    model_dir: str = ""  # where MuJoCo finds the files named here: the model's folder, a sub-model's own inside a <model> file
 
 
 @dataclass
@@ -172,8 +179,11 @@ class _Scanner:
     seen: dict[str, str] = field(default_factory=dict)
     includes: list[tuple[str, int | None]] = field(default_factory=list)
     files: list[str] = field(default_factory=list)
-    counts: dict[str, int] = field(default_factory=lambda: {"elements": 0, "joints": 0, "copies": 0, "equalities": 0, "asset_values": 0})
+    counts: dict[str, int] = field(default_factory=lambda: {"elements": 0, "joints": 0, "copies": 0, "equalities": 0, "asset_values": 0,
+                                                            "world_joints": 0, "world_bodies": 0})
     over: dict[str, _Over] = field(default_factory=dict)
+    models: dict[str, tuple[int, int]] = field(default_factory=dict)  # a <model>'s elements and joints, by name: what each <attach> copies
+    waiting: dict[str, list[tuple[Element, _Context]]] = field(default_factory=dict)  # <attach>es met before their <model>
 
     def walk(self, root: Element, context: _Context) -> None:
         """Every element under ``root`` (iteratively: a deep file must not exhaust Python's stack)."""
@@ -193,6 +203,11 @@ class _Scanner:
             self.count("copies", where.multiplier, at, where, doc)
         if tag in ("joint", "freejoint") and where.in_world:
             self.count("joints", where.multiplier, element, where)
+            self.counts["world_joints"] += where.multiplier
+        if tag == "body" and where.in_world:
+            self.counts["world_bodies"] += where.multiplier
+        if tag == "attach":
+            self.attached(element, where)
         if where.in_equality and tag != "include":  # a connect is a joint, a weld six constraint rows: counted as joints
             self.counts["equalities"] += where.multiplier
             self.count("joints", where.multiplier, element, where)
@@ -209,7 +224,7 @@ class _Scanner:
             inner = self.counted(element, where)
         elif tag in ("worldbody", "default", "equality"):
             inner = _Context(where.doc, where.multiplier, where.factors, tag == "worldbody", where.chain, where.source,
-                             in_equality=tag == "equality")
+                             in_equality=tag == "equality", model_dir=where.model_dir)
         return [(child, inner) for child in element]
 
     def asset_values(self, element: Element, where: _Context) -> None:
@@ -242,22 +257,37 @@ class _Scanner:
             raise where.doc.fail(element, f"{clipped(element.tag)}/@count", f"expected a count of 0 or more, got {clipped(text)!r}")
         factors = _counts(text)
         total = math.prod(factors) if factors else 1
-        if element.tag != "replicate":
+        if element.tag != "replicate" or not len(element):  # an empty <replicate> (or one of comments) costs MuJoCo a copy each too
             self.count("copies", total * where.multiplier, element, where)
+        if element.tag != "replicate":
             self.count("elements", total * where.multiplier, element, where)
             return where
-        return _Context(where.doc, where.multiplier * total, where.factors + tuple(factors), where.in_world, where.chain, (where.doc, element))
+        return _Context(where.doc, where.multiplier * total, where.factors + tuple(factors), where.in_world, where.chain, (where.doc, element),
+                        where.in_equality, where.model_dir)
+
+    def attached(self, element: Element, where: _Context) -> None:
+        """Count the copy of a ``<model>`` that an ``<attach>`` makes (its elements and joints), before MuJoCo makes it."""
+        name = element.get("model", "")
+        made = self.models.get(name)
+        if made is None:  # its <model> comes later in the file (an <asset> after the <worldbody>): counted when it is read
+            self.waiting.setdefault(name, []).append((element, where))
+            return
+        elements, joints = made
+        self.count("copies", elements * where.multiplier, element, where)
+        self.count("elements", elements * where.multiplier, element, where)
+        if where.in_world:
+            self.count("joints", joints * where.multiplier, element, where)
 
     def included(self, element: Element, where: _Context, kind: str) -> list[tuple[Element, _Context]]:
         """Check the file of an ``<include>`` or ``<model>``; its elements, to visit in place of the element."""
         doc = where.doc
         name = element.get("file", "")
-        path = self.resolve(name, doc.file)
+        path = self.resolve(name, doc.file, where.model_dir or self.model_dir)
         fail = _failing(doc, element, kind, name)
         if path is None:
             if kind == "model":
                 return []  # MuJoCo says the asset is missing
-            raise fail(f"no such file (looked in {_dirs(self.model_dir, doc.file)}); expected a file to include")
+            raise fail(f"no such file (looked in {_dirs(where.model_dir or self.model_dir, doc.file)}); expected a file to include")
         self.check_file(path, fail, kind)
         real = os.path.realpath(path)
         if real in where.chain or (kind == "include" and real in self.seen):
@@ -270,15 +300,23 @@ class _Scanner:
             self.includes.append((doc.file, doc.line(element)))
         self.files.append(path)
         inner = parse_xml(read_capped(path, self.limits), os.path.normpath(path), mujoco=True)
+        model_dir = where.model_dir
+        if kind == "model":  # MuJoCo reads a sub-model's own includes from the sub-model's folder
+            model_dir = os.path.dirname(path) or "."
+            elements, joints = _made_by(inner.root)
+            model_name = element.get("name") or Path(name).stem
+            self.models[model_name] = (elements, joints)
+            for attach, at in self.waiting.pop(model_name, []):
+                self.attached(attach, at)
         context = _Context(inner, where.multiplier, where.factors, where.in_world and kind == "include", where.chain + (real,), where.source,
-                           in_equality=where.in_equality and kind == "include")
+                           in_equality=where.in_equality and kind == "include", model_dir=model_dir)
         return [(child, context) for child in inner.root]
 
-    def resolve(self, name: str, including: str) -> str | None:
-        """The path MuJoCo opens for ``name``: in the model's directory, else in the including file's; ``None`` if neither exists."""
+    def resolve(self, name: str, including: str, model_dir: str) -> str | None:
+        """The path MuJoCo opens for ``name``: in the (sub-)model's directory, else in the including file's; ``None`` if neither exists."""
         if not name:
             return None
-        for folder in (self.model_dir, os.path.dirname(including) or "."):
+        for folder in (model_dir, os.path.dirname(including) or "."):
             candidate = os.path.join(folder, name)
             if os.path.lexists(candidate):
                 return candidate
@@ -351,7 +389,7 @@ def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = N
     scanner.raise_first_over()
     counts = scanner.counts
     return MjcfScan(tuple(scanner.includes), tuple(scanner.files), counts["elements"], counts["joints"], counts["copies"],
-                    counts["equalities"], counts["asset_values"])
+                    counts["equalities"], counts["asset_values"], counts["world_joints"], counts["world_bodies"])
 
 
 def _check_numbers(doc: XmlDocument, element: Element) -> None:
@@ -514,6 +552,28 @@ def _asset_points(element: Element) -> tuple[int, str] | None:
     points = math.prod(resolutions) ** power
     shown = " x ".join(str(r) for r in resolutions) + (" squared" if power == 2 else "")
     return points, f"builtin {builtin}, resolution{'s' if len(resolutions) > 1 else ''} {shown} (params)"
+
+
+def _made_by(root: Element) -> tuple[int, int]:
+    """The elements and the joints of a ``<model>`` file, each ``<replicate>``'s copies multiplied: what one ``<attach>`` of it makes.
+
+    Examples
+    --------
+    >>> from xml.etree.ElementTree import fromstring
+    >>> _made_by(fromstring('<mujoco><worldbody><replicate count="40 10"><body><joint/></body></replicate></worldbody></mujoco>'))
+    (803, 400)
+    """
+    elements = joints = 0
+    stack = [(root, 1)]
+    while stack:
+        element, multiplier = stack.pop()
+        elements += multiplier
+        joints += multiplier if element.tag in ("joint", "freejoint") else 0
+        if element.tag == "replicate":
+            factors = _counts(element.get("count", ""))
+            multiplier *= max(1, math.prod(factors)) if factors else 1
+        stack.extend((child, multiplier) for child in element)
+    return elements, joints
 
 
 def _counts(text: str) -> list[int]:

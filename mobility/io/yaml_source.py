@@ -174,6 +174,14 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
         raise _syntax_error(exc, file) from None
 
 
+YAML_DEPTH_BOUND = 1000
+"""The most levels a YAML document may nest, whatever :attr:`Limits.max_depth` says.
+
+PyYAML's reader (the pure-Python one that takes over when libyaml refuses
+1,000 open flow collections) spends time growing with the square of the
+depth: a 100 kB file nested 50,000 deep ran past 90 s at 3 GB.  At this
+bound a document is read in about a second."""
+
 _LIBYAML_NESTING = "exceeded maximum nesting depth"
 """libyaml's problem when more than its 1,000 flow collections are open at once."""
 
@@ -238,7 +246,7 @@ class _Builder:
     def node_tree(self, get_event: Any) -> Any:
         """The value of the document's root node; events are read up to its end."""
         lines = self.lines
-        max_depth, max_nodes = self.limits.max_depth, self.limits.max_nodes
+        max_depth, max_nodes = min(self.limits.max_depth, YAML_DEPTH_BOUND), self.limits.max_nodes
         anchors = self.anchors
         # One frame per open collection: [container, path, nodes so far, anchor, pending key (None: expecting a key), is mapping]
         stack: list[list[Any]] = []
@@ -282,7 +290,9 @@ class _Builder:
                 is_mapping = cls is yaml.MappingStartEvent
                 self.check_collection_tag(event, path, line, is_mapping)
                 if len(stack) >= max_depth:
-                    raise MechanismFileError(format_key(path[:3]) + "...", f"nested deeper than the limit of {max_depth} levels (set MOBILITY_MAX_DEPTH to raise it)", file=self.file, line=line)
+                    how = ("set MOBILITY_MAX_DEPTH to raise it" if max_depth == self.limits.max_depth else
+                           "the most a YAML document may nest whatever MOBILITY_MAX_DEPTH says: the reader's time grows with the square of the depth")
+                    raise MechanismFileError(format_key(path[:3]) + "...", f"nested deeper than the limit of {max_depth} levels ({how})", file=self.file, line=line)
                 nodes += 1
                 stack.append([{} if is_mapping else [], path, 1, event.anchor, None, is_mapping])
                 continue

@@ -69,6 +69,9 @@ BLOCK = 8192
 IN_FLIGHT = 2
 """Chunks per worker handed out at a time (the rest wait, unbuilt, so memory stays bounded)."""
 
+WAKE_SECONDS = 0.1
+"""How often a sweep waiting for its chunks looks for an interrupt (Ctrl-C)."""
+
 MAX_WORKERS = 256
 """Most threads a sweep runs its chunks on in this process (more only wait for the same cores)."""
 
@@ -98,18 +101,43 @@ class _Context:
         vars(self).update(state)
 
 
+_STOP = threading.local()
+"""The event that tells a chunk running on a thread of this process to stop (set when the sweep is interrupted)."""
+
+
+def _stop_if_asked(_: int = 0) -> None:
+    """Raise :class:`KeyboardInterrupt` in a chunk whose sweep was interrupted: its work is dropped at the next step or block, not finished.
+
+    Without it an interrupted sweep waited for every chunk in flight (up to
+    :data:`IN_FLIGHT` per thread, a minute on a busy machine) before it ended.
+    """
+    event = getattr(_STOP, "event", None)
+    if event is not None and event.is_set():
+        raise KeyboardInterrupt("the sweep was interrupted")
+
+
+def _stoppable(event: threading.Event, function: Callable, *args: Any) -> Any:
+    """``function(*args)`` on a worker thread, stopping at its next step or block once ``event`` is set."""
+    _STOP.event = event
+    try:
+        return function(*args)
+    finally:
+        _STOP.event = None
+
+
 def close_chunk(context: _Context, starts_q: np.ndarray, starts_ok: np.ndarray, lines: np.ndarray, anchor: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Close a chunk of lines of the last axis by continuation (a task)."""
     axes = context.plan.axes
     drive = Drive.of(axes, context.bk.variable_count)
     walk = axis_walk(axes[-1], len(axes) - 1)
-    return close_lines(context.bk, drive, starts_q, starts_ok, targets_of(context.plan, lines), anchor, walk=walk, tol=context.tol)
+    return close_lines(context.bk, drive, starts_q, starts_ok, targets_of(context.plan, lines), anchor, walk=walk, tol=context.tol, on_step=_stop_if_asked)
 
 
 def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
     """Analyse a chunk of assembled poses (a task): the columns of the table."""
     parts = []
     for start in range(0, len(q), BLOCK):
+        _stop_if_asked()
         block = q[start : start + BLOCK]
         posed = posed_screws(context.bk, block)
         answers = analyse_poses(context.mechanism, posed, context.tol)
@@ -326,15 +354,22 @@ class _Runner:
                     submit(j, chunk)
                 yield i, future.result()
             return
-        with ThreadPoolExecutor(self.workers) as pool:
-            running = {pool.submit(function, self.context, *chunk): i for i, chunk in itertools.islice(numbered, limit)}
+        stop = threading.Event()
+        pool = ThreadPoolExecutor(self.workers)
+        try:
+            running = {pool.submit(_stoppable, stop, function, self.context, *chunk): i for i, chunk in itertools.islice(numbered, limit)}
             while running:
-                finished, _ = wait(running, return_when=FIRST_COMPLETED)
+                # a short timeout: a signal taken by another thread (numpy's) does not wake a wait without one, and an
+                # interrupt then waited for the next chunk to finish (minutes for a big one)
+                finished, _ = wait(running, timeout=WAKE_SECONDS, return_when=FIRST_COMPLETED)
                 for future in finished:
                     i = running.pop(future)
                     for j, chunk in itertools.islice(numbered, 1):
-                        running[pool.submit(function, self.context, *chunk)] = j
+                        running[pool.submit(_stoppable, stop, function, self.context, *chunk)] = j
                     yield i, future.result()
+        finally:  # an interrupt (or an error) stops the chunks in flight at their next step and drops those waiting
+            stop.set()
+            pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _split(count: int, pieces: int) -> list[np.ndarray]:

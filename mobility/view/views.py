@@ -37,6 +37,7 @@ from ..core.model import Mechanism, integer_value, require_mechanism
 from ..core.result import Result, require_result_of
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError, counted, shown_argument
+from ..outputs import atomic_output
 from ..report.plotting.backend import written_file_name
 from ..report.plotting.sketch import drawing_scale
 from ..report.text import text_report
@@ -123,7 +124,9 @@ class View:
         return page_html(figure, self.name, self.answers, self.header)
 
     def write_html(self, path: str | Path) -> Path:
-        """Write :meth:`to_html` to ``path``; returns the path.
+        """Write :meth:`to_html` to ``path``, whole or not at all (:func:`mobility.outputs.atomic_output`); returns the path.
+
+        A failure or an interrupt leaves a page already at ``path`` as it was.
 
         Raises
         ------
@@ -137,7 +140,8 @@ class View:
         path = written_file_name(path, "write_html")
         text = self.to_html()
         try:
-            path.write_text(text, encoding="utf-8")
+            with atomic_output(path) as handle:  # the previous page intact until the new one is whole
+                handle.write(text)
         except OSError as exc:
             raise RequestError(f"cannot write {path}: {exc.strerror or exc}") from None
         return path

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, Iterator
 
 from ...core.model import integer_value, real_value
 from ...errors import PlotFormatError, PlottingUnavailableError, RequestError, counted, shown_argument
+from ...outputs import atomic_output
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -212,7 +213,11 @@ def glyphs_summarised() -> Iterator[None]:
 
 
 def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
-    """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background; returns the path.
+    """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background, whole or not at all; returns the path.
+
+    The picture goes to a temporary file beside ``path``, renamed over it once
+    complete (:func:`mobility.outputs.atomic_output`): a failure or an
+    interrupt leaves a picture already at ``path`` as it was.
 
     ``dpi`` is an integer in :data:`DPI_RANGE` (20 to 600, as ``mobility plot --dpi``).
 
@@ -231,5 +236,6 @@ def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     if dots is None or not low <= dots <= high:
         raise RequestError(f"save_figure: dpi: expected an integer from {low} to {high} (dots per inch), got {shown_argument(dpi)}")
     with glyphs_summarised():
-        fig.savefig(p, dpi=dots, facecolor="white")
+        with atomic_output(p, binary=True) as handle:  # the previous picture intact until the new one is whole
+            fig.savefig(handle, format=p.suffix[1:].lower(), dpi=dots, facecolor="white")
     return p
