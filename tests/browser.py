@@ -177,12 +177,12 @@ SHOT_SIZE = (1400, 900)
 
 
 def small_png(png: bytes, path: Path) -> Path:
-    """Write a screenshot as a small PNG (64 colours: the view's flat colours and text stay sharp)."""
+    """Write a screenshot as a small PNG (256 colours: the view's flat colours and text stay sharp)."""
     import io
 
     from PIL import Image
 
-    image = Image.open(io.BytesIO(png)).convert("RGB").quantize(colors=64, method=Image.Quantize.MEDIANCUT)
+    image = Image.open(io.BytesIO(png)).convert("RGB").quantize(colors=256, method=Image.Quantize.FASTOCTREE)
     image.save(path, optimize=True)
     return path
 

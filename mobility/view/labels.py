@@ -104,7 +104,7 @@ class Framing:
             seen = np.asarray(drawn, dtype=float).reshape(-1, 3) - mid
             seen = seen[~np.isnan(seen).any(axis=1)]
             x, y = seen @ right, seen @ up  # about the box's middle, which is the scene's centre
-            zoom = min(FILL / max(float(np.max(np.abs(y))), 1e-300), FILL * WIDEST / max(float(np.max(np.abs(x))), 1e-300), 0.98 / tall, 0.98 * WIDEST / across)
+            zoom = min(FILL / max(float(np.max(np.abs(y))), 1e-300), FILL * WIDEST / max(float(np.max(np.abs(x))), 1e-300), 0.9 / tall, 0.9 * WIDEST / across)  # the box, and its ticks, in view
         aspect = tuple(float(f"{2.0 * h * zoom:.6g}") for h in half)
         eye = tuple(round(float(x), 4) for x in 2.0 * toward)
         return Framing(tuple(float(x) for x in mid - half), tuple(float(x) for x in mid + half), aspect,  # type: ignore[arg-type]
