@@ -144,16 +144,16 @@ def _nearest(points: np.ndarray, to: np.ndarray) -> np.ndarray:
 
 def _annotations(scene: Scene, framing: Framing, offset: np.ndarray, width: float) -> list[dict[str, Any]]:
     """The labels of ``scene``'s freedoms and constraints as plotly scene annotations, placed apart (:func:`place_labels`)."""
-    labelled = [g for g in scene.glyphs if g.label and g.label_at is not None]
+    labelled = [(g, g.label_at) for g in scene.glyphs if g.label and g.label_at is not None]
     if not labelled:
         return []
     # each label names the end of its glyph (its arrow's tip, its axis's end) nearest where the pictures write it
-    anchors = np.array([_nearest(g.path if len(g.path) else g.label_at[None], g.label_at) for g in labelled]) - offset
+    anchors = np.array([_nearest(g.path if len(g.path) else at[None], at) for g, at in labelled]) - offset
     lines = [g.path - offset for g in scene.glyphs if g.layer != "mechanism" and len(g.path)]
     links = [g.path - offset for g in scene.glyphs if g.layer == "mechanism" and len(g.path)]
-    places = place_labels(framing, anchors, [g.label for g in labelled], lines, links, width)
+    places = place_labels(framing, anchors, [g.label for g, _ in labelled], lines, links, width)
     out = []
-    for g, at, (ax, ay) in zip(labelled, anchors, places):
+    for (g, _), at, (ax, ay) in zip(labelled, anchors, places):
         x, y, z = (float(f"{v:.7g}") for v in at)
         out.append({"x": x, "y": y, "z": z, "text": plotly_text(g.label), "name": g.key, "showarrow": True, "arrowhead": 0,
                     "arrowwidth": 1.2, "arrowcolor": g.color, "ax": ax, "ay": ay, "xanchor": "center", "yanchor": "middle",

@@ -128,21 +128,10 @@ class Framing:
 
 
 def _hull(points: np.ndarray) -> np.ndarray:
-    """The convex hull of 2D points, counter-clockwise (monotone chain)."""
-    pts = sorted(map(tuple, np.round(points, 6)))
-    if len(pts) < 3:
-        return np.array(pts)
+    """The corners of the convex hull of 2D points, in order around it."""
+    from scipy.spatial import ConvexHull
 
-    def half(seq):
-        out: list[tuple[float, float]] = []
-        for p in seq:
-            while len(out) >= 2 and (out[-1][0] - out[-2][0]) * (p[1] - out[-2][1]) - (out[-1][1] - out[-2][1]) * (p[0] - out[-2][0]) <= 0:
-                out.pop()
-            out.append(p)
-        return out
-
-    lower, upper = half(pts), half(reversed(pts))
-    return np.array(lower[:-1] + upper[:-1])
+    return points[ConvexHull(points).vertices]
 
 
 def _inside(hull: np.ndarray, points: np.ndarray, margin: float) -> np.ndarray:
