@@ -749,7 +749,7 @@ def test_a_notebook_exported_to_html_shows_the_view_offline(tab, tmp_path):
         assert [u for u in cell.requests if not u.startswith("file:")] == []  # nothing left the file
         assert len(cell.glyphs()["freedoms"]) == 3 and len(cell.glyphs()["constraints"]) == 3
         assert len(cell.label_boxes()) == 6
-        box = cell.page.locator(f"#{element}").bounding_box()
+        box = cell.page.locator(f'[id="{element}"]').bounding_box()  # a uuid may start with a digit: not a CSS id
         picture = _pixels(cell.page.screenshot(clip=box))
         assert np.mean(np.linalg.norm(picture - 255.0, axis=2) > 30) > 0.005  # not blank
         assert _share_of(picture, "#1565c0") > 2e-4  # the rotations' blue is drawn
