@@ -198,35 +198,34 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
     drawn = _ink([framing.pixels(p) for p in lines])
     bars = _ink([framing.pixels(p) for p in links])
     half_w, half_h = 0.5 * width, 0.5 * framing.height
-    placed: list[tuple[float, float, float, float]] = []  # boxes: centre x, y, half width, half height
+    placed = np.zeros((0, 4))  # boxes: centre x, y, half width, half height
     out = []
-    angles = np.radians(np.arange(0, 360, 20))
+    # the places tried about an anchor: 18 directions, 5 gaps between the anchor and the box (nearer first, at equal cost)
+    gaps, angles = np.meshgrid([10.0, 24.0, 42.0, 66.0, 95.0], np.radians(np.arange(0, 360, 20)), indexing="ij")
+    gaps, d = gaps.ravel(), np.stack([np.cos(angles.ravel()), np.sin(angles.ravel())], axis=1)
+    signs = np.array([[sx, sy] for sx in (-1, 1) for sy in (-1, 1)], dtype=float)
     for (x0, y0), text in zip(at, texts):
         w, h = label_size(text)
-        best, best_cost = (0.0, -(0.5 * h + 12)), math.inf
+        with np.errstate(divide="ignore"):
+            reach = np.minimum(0.5 * w / np.abs(d[:, 0]), 0.5 * h / np.abs(d[:, 1]))  # from the box's centre to its edge along d
+        centres = np.array([x0, y0]) + (gaps + reach)[:, None] * d
+        corners = centres[:, None, :] + signs[None] * [0.5 * w, 0.5 * h]  # (candidates, 4, 2)
         away = np.array([x0, y0]) / (np.hypot(x0, y0) or 1.0)  # from the centre outwards
-        for gap in (10.0, 24.0, 42.0, 66.0, 95.0):
-            for t in angles:
-                d = np.array([math.cos(t), math.sin(t)])
-                reach = min(0.5 * w / abs(d[0]) if abs(d[0]) > 1e-9 else math.inf, 0.5 * h / abs(d[1]) if abs(d[1]) > 1e-9 else math.inf)
-                cx, cy = np.array([x0, y0]) + (gap + reach) * d
-                corners = np.array([[cx + sx * 0.5 * w, cy + sy * 0.5 * h] for sx in (-1, 1) for sy in (-1, 1)])
-                cost = 0.02 * gap - 0.5 * float(d @ away)
-                # outside the box's outline (where the tick labels are) or the scene: never, unless nothing else is left
-                cost += 400.0 * int(np.count_nonzero(~_inside(hull, corners, 4.0)))
-                cost += 400.0 * int(np.count_nonzero((np.abs(corners[:, 0]) > half_w - 4) | (np.abs(corners[:, 1]) > half_h - 4)))
-                for px, py, pw, ph in placed:
-                    ox = min(cx + 0.5 * w, px + pw) - max(cx - 0.5 * w, px - pw)
-                    oy = min(cy + 0.5 * h, py + ph) - max(cy - 0.5 * h, py - ph)
-                    if ox > -4 and oy > -4:  # touching or overlapping: at least 4 pixels apart
-                        cost += 1000.0 + 10.0 * max(ox + 4, 0) * max(oy + 4, 0)
-                m = 2.0
-                if len(drawn):
-                    cost += 1.0 * int(np.count_nonzero((np.abs(drawn[:, 0] - cx) < 0.5 * w + m) & (np.abs(drawn[:, 1] - cy) < 0.5 * h + m)))
-                if len(bars):
-                    cost += 2.0 * int(np.count_nonzero((np.abs(bars[:, 0] - cx) < 0.5 * w + m) & (np.abs(bars[:, 1] - cy) < 0.5 * h + m)))
-                if cost < best_cost:
-                    best, best_cost = (float(cx - x0), float(cy - y0)), cost
-        placed.append((x0 + best[0], y0 + best[1], 0.5 * w, 0.5 * h))
-        out.append((round(best[0], 1), round(best[1], 1)))
+        cost = 0.02 * gaps - 0.5 * (d @ away)
+        # outside the box's outline (where the tick labels are) or the scene: never, unless nothing else is left
+        cost += 400.0 * np.count_nonzero(~_inside(hull, corners.reshape(-1, 2), 4.0).reshape(-1, 4), axis=1)
+        cost += 400.0 * np.count_nonzero((np.abs(corners[..., 0]) > half_w - 4) | (np.abs(corners[..., 1]) > half_h - 4), axis=1)
+        if len(placed):  # touching or overlapping a placed label: at least 4 pixels apart
+            ox = np.minimum(centres[:, None, 0] + 0.5 * w, placed[:, 0] + placed[:, 2]) - np.maximum(centres[:, None, 0] - 0.5 * w, placed[:, 0] - placed[:, 2])
+            oy = np.minimum(centres[:, None, 1] + 0.5 * h, placed[:, 1] + placed[:, 3]) - np.maximum(centres[:, None, 1] - 0.5 * h, placed[:, 1] - placed[:, 3])
+            near = (ox > -4) & (oy > -4)
+            cost += np.sum(near * (1000.0 + 10.0 * np.maximum(ox + 4, 0) * np.maximum(oy + 4, 0)), axis=1)
+        for ink, weight in ((drawn, 1.0), (bars, 2.0)):  # the drawn lines under the box, the links' twice
+            if len(ink):
+                under = (np.abs(ink[None, :, 0] - centres[:, None, 0]) < 0.5 * w + 2) & (np.abs(ink[None, :, 1] - centres[:, None, 1]) < 0.5 * h + 2)
+                cost += weight * np.count_nonzero(under, axis=1)
+        k = int(np.argmin(cost))  # the first of the cheapest
+        best = centres[k] - [x0, y0]
+        placed = np.vstack([placed, [x0 + best[0], y0 + best[1], 0.5 * w, 0.5 * h]])
+        out.append((round(float(best[0]), 1), round(float(best[1]), 1)))
     return out
