@@ -150,15 +150,43 @@ def _inside(hull: np.ndarray, points: np.ndarray, margin: float) -> np.ndarray:
 
 
 def _ink(paths: list[np.ndarray], step: float = 3.0) -> np.ndarray:
-    """Points every ``step`` pixels along polylines (pixels; rows of NaN break a line)."""
-    out = [np.zeros((0, 2))]
+    """Points every ``step`` pixels (or closer) along polylines (pixels; rows of NaN break a line), all segments at once."""
+    starts, ends = [np.zeros((0, 2))], [np.zeros((0, 2))]
     for p in paths:
-        for a, b in zip(p[:-1], p[1:]):
-            if np.isnan(a).any() or np.isnan(b).any():
-                continue
-            n = max(int(np.hypot(*(b - a)) / step), 1)
-            out.append(a + np.linspace(0.0, 1.0, n + 1)[:, None] * (b - a))
-    return np.concatenate(out)
+        a, b = p[:-1], p[1:]
+        keep = ~(np.isnan(a).any(axis=1) | np.isnan(b).any(axis=1))
+        starts.append(a[keep])
+        ends.append(b[keep])
+    a, b = np.concatenate(starts), np.concatenate(ends)
+    if not len(a):
+        return np.zeros((0, 2))
+    pieces = np.maximum(np.ceil(np.hypot(*(b - a).T) / step), 1).astype(int)  # samples per segment, less one
+    which = np.repeat(np.arange(len(a)), pieces + 1)
+    first = np.concatenate([[0], np.cumsum(pieces + 1)[:-1]])
+    t = (np.arange(len(which)) - first[which]) / pieces[which]
+    return a[which] + t[:, None] * (b - a)[which]
+
+
+class _InkGrid:
+    """Ink counted on a grid of pixels, with its running sums: the ink inside any box in four look-ups."""
+
+    def __init__(self, points: np.ndarray, half_w: float, half_h: float, cell: float = 4.0) -> None:
+        self.cell, self.x0, self.y0 = cell, -half_w - 200.0, -half_h - 200.0
+        nx, ny = int((2 * half_w + 400) / cell) + 1, int((2 * half_h + 400) / cell) + 1
+        counts, _, _ = np.histogram2d(points[:, 0], points[:, 1], bins=(nx, ny),
+                                      range=((self.x0, self.x0 + nx * cell), (self.y0, self.y0 + ny * cell)))
+        self.sums = np.zeros((nx + 1, ny + 1))
+        self.sums[1:, 1:] = counts.cumsum(axis=0).cumsum(axis=1)
+
+    def inside(self, x_lo: np.ndarray, x_hi: np.ndarray, y_lo: np.ndarray, y_hi: np.ndarray) -> np.ndarray:
+        """The ink in each box (cells whose corner lies in it)."""
+        nx, ny = self.sums.shape[0] - 1, self.sums.shape[1] - 1
+        i0 = np.clip(np.ceil((x_lo - self.x0) / self.cell), 0, nx).astype(int)
+        i1 = np.clip(np.floor((x_hi - self.x0) / self.cell) + 1, 0, nx).astype(int)
+        j0 = np.clip(np.ceil((y_lo - self.y0) / self.cell), 0, ny).astype(int)
+        j1 = np.clip(np.floor((y_hi - self.y0) / self.cell) + 1, 0, ny).astype(int)
+        s = self.sums
+        return s[i1, j1] - s[i0, j1] - s[i1, j0] + s[i0, j0]
 
 
 def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines: list[np.ndarray], links: list[np.ndarray],
@@ -195,9 +223,9 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
     """
     at = framing.pixels(anchors)
     hull = _hull(framing.outline())
-    drawn = _ink([framing.pixels(p) for p in lines])
-    bars = _ink([framing.pixels(p) for p in links])
     half_w, half_h = 0.5 * width, 0.5 * framing.height
+    drawn = _InkGrid(_ink([framing.pixels(p) for p in lines]), half_w, half_h)
+    bars = _InkGrid(_ink([framing.pixels(p) for p in links]), half_w, half_h)
     placed = np.zeros((0, 4))  # boxes: centre x, y, half width, half height
     out = []
     # the places tried about an anchor: 18 directions, 5 gaps between the anchor and the box (nearer first, at equal cost)
@@ -220,10 +248,8 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
             oy = np.minimum(centres[:, None, 1] + 0.5 * h, placed[:, 1] + placed[:, 3]) - np.maximum(centres[:, None, 1] - 0.5 * h, placed[:, 1] - placed[:, 3])
             near = (ox > -4) & (oy > -4)
             cost += np.sum(near * (1000.0 + 10.0 * np.maximum(ox + 4, 0) * np.maximum(oy + 4, 0)), axis=1)
-        for ink, weight in ((drawn, 1.0), (bars, 2.0)):  # the drawn lines under the box, the links' twice
-            if len(ink):
-                under = (np.abs(ink[None, :, 0] - centres[:, None, 0]) < 0.5 * w + 2) & (np.abs(ink[None, :, 1] - centres[:, None, 1]) < 0.5 * h + 2)
-                cost += weight * np.count_nonzero(under, axis=1)
+        for grid, weight in ((drawn, 1.0), (bars, 2.0)):  # the drawn lines under the box, the links' twice
+            cost += weight * grid.inside(centres[:, 0] - 0.5 * w - 2, centres[:, 0] + 0.5 * w + 2, centres[:, 1] - 0.5 * h - 2, centres[:, 1] + 0.5 * h + 2)
         k = int(np.argmin(cost))  # the first of the cheapest
         best = centres[k] - [x0, y0]
         placed = np.vstack([placed, [x0 + best[0], y0 + best[1], 0.5 * w, 0.5 * h]])
