@@ -229,8 +229,8 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
     placed = np.zeros((0, 4))  # boxes: centre x, y, half width, half height
     out = []
     # the places tried about an anchor: 18 directions, 5 gaps between the anchor and the box (nearer first, at equal cost)
-    gaps, angles = np.meshgrid([10.0, 24.0, 42.0, 66.0, 95.0], np.radians(np.arange(0, 360, 20)), indexing="ij")
-    gaps, d = gaps.ravel(), np.stack([np.cos(angles.ravel()), np.sin(angles.ravel())], axis=1)
+    gap_grid, angles = np.meshgrid([10.0, 24.0, 42.0, 66.0, 95.0], np.radians(np.arange(0, 360, 20)), indexing="ij")
+    gaps, d = gap_grid.ravel(), np.stack([np.cos(angles.ravel()), np.sin(angles.ravel())], axis=1)
     signs = np.array([[sx, sy] for sx in (-1, 1) for sy in (-1, 1)], dtype=float)
     for (x0, y0), text in zip(at, texts):
         w, h = label_size(text)
