@@ -7,9 +7,10 @@ could reach the network switched off (the network is closed here, and a page
 that works offline must not need it).  A missing browser or Playwright is a
 failure, not a skip.
 
-Run as a script, it makes the README's screenshot the same way the tests do::
+Run as a script, it makes the screenshots of the docs the same way the tests do, at 1400x900::
 
     python tests/browser.py mechanisms/3prs_tilted.yaml docs/img/view.png
+    python tests/browser.py mechanisms/{3prs_tilted,3prs,delta,four_bar,bricard_orthogonal}.yaml docs/img
 """
 
 from __future__ import annotations
@@ -147,24 +148,66 @@ class Tab:
             self.element_id,
         )
 
+    def label_boxes(self) -> list[dict]:
+        """The labels of the freedoms and constraints shown: each one's text and its box on the page (the SVG of its annotation)."""
+        return self.page.evaluate(
+            """() => [...document.querySelectorAll('.annotation-text-g')].filter(e => e.getBoundingClientRect().width > 0).map(e => {
+                const r = e.getBoundingClientRect(); return {text: e.textContent, x: r.left, y: r.top, width: r.width, height: r.height}; })"""
+        )
+
+    def show_only(self, layers: tuple[str, ...], labels: bool) -> None:
+        """Show only the traces of ``layers`` (and the labels, or not), then wait for the WebGL frame: for pictures of parts of the view."""
+        self.page.evaluate(
+            """([id, layers, labels]) => { const gd = document.getElementById(id);
+                const visible = gd.data.map(t => t.meta && t.meta.frame === 0 && layers.includes(t.meta.layer));
+                Plotly.restyle(gd, {visible: visible});
+                const notes = gd.layout.scene.annotations || [];
+                const update = {}; notes.forEach((a, i) => { update['scene.annotations[' + i + '].visible'] = labels; });
+                return Plotly.relayout(gd, update); }""",
+            [self.element_id, list(layers), labels],
+        )
+        self.page.wait_for_timeout(400)
+
     def screenshot(self, path: Path | None = None, *, scene_only: bool = False) -> bytes:
         clip = self.scene_box() if scene_only else None
         return self.page.screenshot(path=str(path) if path else None, clip=clip, full_page=clip is None)
 
+SHOT_SIZE = (1400, 900)
+"""The window of the docs' screenshots of the view (docs/img/view-*.png), pixels."""
+
+
+def small_png(png: bytes, path: Path) -> Path:
+    """Write a screenshot as a small PNG (256 colours: the view's flat colours and text stay sharp)."""
+    import io
+
+    from PIL import Image
+
+    image = Image.open(io.BytesIO(png)).convert("RGB").quantize(colors=256, method=Image.Quantize.FASTOCTREE)
+    image.save(path, optimize=True)
+    return path
+
+
 def main(argv: list[str]) -> int:
-    """``python tests/browser.py MECHANISM.yaml OUT.png``: the screenshot of the view of a mechanism file."""
+    """``python tests/browser.py MECHANISM.yaml... OUT``: screenshots of the views of mechanism files at 1400x900.
+
+    With one file and ``OUT`` a ``.png``, that file; otherwise ``OUT`` is a
+    folder and each view is written there as ``view-<stem>.png``.
+    """
     import mobility
     from mobility.view import mechanism_view
 
-    source, out = Path(argv[0]), Path(argv[1])
-    with tempfile.TemporaryDirectory() as tmp, browser_context(width=1000, height=850) as context:
-        page_path = mechanism_view(mobility.load(source)).write_html(Path(tmp) / "view.html")
-        tab = Tab(context).open(page_path)
-        if tab.errors():
-            print(f"console errors: {tab.errors()}", file=sys.stderr)
-            return 1
-        tab.screenshot(out)
-    print(f"wrote {out}")
+    sources, out = [Path(a) for a in argv[:-1]], Path(argv[-1])
+    with tempfile.TemporaryDirectory() as tmp, browser_context(*SHOT_SIZE) as context:
+        tab = Tab(context)
+        for source in sources:
+            page_path = mechanism_view(mobility.load(source)).write_html(Path(tmp) / "view.html")
+            tab.open(page_path)
+            if tab.errors():
+                print(f"{source}: console errors: {tab.errors()}", file=sys.stderr)
+                return 1
+            target = out if out.suffix == ".png" else out / f"view-{source.stem}.png"
+            small_png(tab.page.screenshot(), target)
+            print(f"wrote {target}")
     return 0
 
 

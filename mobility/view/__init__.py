@@ -4,8 +4,9 @@
 self-contained HTML page: the mechanism at its pose (links, joints by type,
 the end effector), its end effector's freedoms (translation arrows, rotation
 axes with their pitch) and constraint wrenches (force lines, couples), each
-layer switchable, hover text with each screw's numbers, DOF, pattern and
-mobility in the header; rotate, zoom and pan with the mouse.  In Jupyter a
+layer switchable, labels placed clear of each other and of the axes' ticks,
+hover text with each screw's numbers and a table of them beside the plot,
+DOF, pattern and mobility in the header; rotate, zoom and pan with the mouse.  In Jupyter a
 :class:`~mobility.core.result.Result` (and a :class:`View`) shows itself as
 that view.  Several poses (or a sweep's) get a slider.
 
@@ -20,6 +21,9 @@ Modules
     hover text and titles.
 ``scene``
     the glyphs of one pose, in layers.
+``labels``
+    the first view's zoom and where each label sits, as the browser will
+    draw them (plotly's orthographic projection, computed here).
 ``figure``
     the plotly figure (a dict) of one or several poses.
 ``page``

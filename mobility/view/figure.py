@@ -40,12 +40,16 @@ import numpy as np
 from ..core.result import Result
 from ..errors import RequestError
 from .describe import margin_text, plotly_text, pose_title
+from .labels import LABEL_FONT, WIDEST, Framing, place_labels
 from .scene import Glyph, Scene, viewpoint
 
 __all__ = ["figure_dict", "axis_ticks", "LEGENDS", "ELEMENT_ID"]
 
 LEGENDS = {"mechanism": "legend", "freedoms": "legend2", "constraints": "legend3"}
 """The legend of each layer."""
+
+SCENE_WIDTH = 0.8
+"""Share of the figure's width the 3D scene takes; the legends stand at its right."""
 
 ELEMENT_ID = "mobility-view"
 """The id of the element that holds the figure in a page."""
@@ -126,28 +130,43 @@ def _glyph_traces(g: Glyph, frame: int, visible: bool, offset: np.ndarray) -> li
         traces.append({"type": "mesh3d", **_coords(v, offset), "i": f[:, 0].tolist(), "j": f[:, 1].tolist(), "k": f[:, 2].tolist(),
                        "color": g.color, "opacity": g.opacity, "flatshading": True, "hoverinfo": "text", "hovertext": g.hover,
                        "lighting": {"ambient": 0.65, "diffuse": 0.6, "specular": 0.1}})
-    if g.label:
-        assert g.label_at is not None  # a labelled glyph says where
-        traces.append({"type": "scatter3d", "mode": "text", **_coords(g.label_at[None], offset), "text": [g.label],
-                       "textfont": {"color": g.color, "size": 13}, "hoverinfo": "text", "hovertext": g.hover})
     for k, t in enumerate(traces):
         t.update(common)
         t["showlegend"] = k == 0
     return traces
 
 
-def _camera(elev_azim: tuple[float, float]) -> dict[str, Any]:
-    elev, azim = (math.radians(x) for x in elev_azim)
-    eye = 1.6 * np.array([math.cos(elev) * math.cos(azim), math.cos(elev) * math.sin(azim), math.sin(elev)])
-    return {"eye": dict(zip("xyz", (round(float(x), 4) for x in eye))), "up": {"x": 0, "y": 0, "z": 1},
-            "projection": {"type": "orthographic"}}
+def _nearest(points: np.ndarray, to: np.ndarray) -> np.ndarray:
+    """The row of ``points`` (rows of NaN skipped) nearest ``to``."""
+    drawn = points[~np.isnan(points).any(axis=1)]
+    return drawn[int(np.argmin(np.linalg.norm(drawn - to, axis=1)))]
+
+
+def _annotations(scene: Scene, framing: Framing, offset: np.ndarray, width: float) -> list[dict[str, Any]]:
+    """The labels of ``scene``'s freedoms and constraints as plotly scene annotations, placed apart (:func:`place_labels`)."""
+    labelled = [(g, g.label_at) for g in scene.glyphs if g.label and g.label_at is not None]
+    if not labelled:
+        return []
+    # each label names the end of its glyph (its arrow's tip, its axis's end) nearest where the pictures write it
+    anchors = np.array([_nearest(g.path if len(g.path) else at[None], at) for g, at in labelled]) - offset
+    lines = [g.path - offset for g in scene.glyphs if g.layer != "mechanism" and len(g.path)]
+    links = [g.path - offset for g in scene.glyphs if g.layer == "mechanism" and len(g.path)]
+    places = place_labels(framing, anchors, [g.label for g, _ in labelled], lines, links, width)
+    out = []
+    for (g, _), at, (ax, ay) in zip(labelled, anchors, places):
+        x, y, z = (float(f"{v:.7g}") for v in at)
+        out.append({"x": x, "y": y, "z": z, "text": plotly_text(g.label), "name": g.key, "showarrow": True, "arrowhead": 0,
+                    "arrowwidth": 1.2, "arrowcolor": g.color, "ax": ax, "ay": ay, "xanchor": "center", "yanchor": "middle",
+                    "font": {"color": g.color, "size": LABEL_FONT}, "bgcolor": "rgba(255,255,255,0.9)", "bordercolor": g.color,
+                    "borderwidth": 1, "borderpad": 2, "hovertext": g.hover, "captureevents": False})
+    return out
 
 
 def _title(result: Result, label: str, frames: int) -> str:
     return f"{plotly_text(pose_title(result, label))}<br><sup>{margin_text(result)}" + ("" if frames == 1 else "  ·  use the slider to walk through the poses") + "</sup>"
 
 
-def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 720) -> dict[str, Any]:
+def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 720, titled: bool = True) -> dict[str, Any]:
     """The plotly figure of one or several poses.
 
     Parameters
@@ -156,6 +175,9 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
         Each pose's scene, its analysis and its label (shown on the slider).
     height : int
         Pixels.
+    titled : bool
+        Whether the figure writes its title (a page whose header says it
+        all leaves it out, and the scene takes its room).
 
     Returns
     -------
@@ -178,37 +200,47 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
             owner += [k] * len(traces)
     unit = frames[0][1].length_unit
     drawing = frames[0][0].scale
-    low, high = mid - offset - half, mid - offset + half
+    first_scene, first_result, first_label = frames[0]
+    margin = {"l": 10, "r": 10, "t": 70 if titled else 10, "b": 10}
+    bottom = 0.16 if len(frames) > 1 else 0.0  # room for the slider
+    scene_height = (1.0 - bottom) * (height - margin["t"] - margin["b"])
+    drawn = [np.concatenate([g.extent() for g in s.glyphs]) for s, _, _ in frames]
+    framing = Framing.about(lower - offset, upper - offset, viewpoint(first_scene), scene_height, np.concatenate(drawn) - offset)
     axis = {
-        name: {"range": [float(f"{low[i]:.7g}"), float(f"{high[i]:.7g}")], "title": {"text": f"{name} ({unit})" if unit else name},
+        name: {"range": [float(f"{framing.low[i]:.7g}"), float(f"{framing.high[i]:.7g}")], "title": {"text": f"{name} ({unit})" if unit else name},
                "backgroundcolor": _BACKGROUND, "gridcolor": "#eceff1", "zerolinecolor": _AXIS, "showspikes": False,
-               **(axis_ticks(low[i], high[i], drawing, offset=float(offset[i])) if drawing != 1.0 or offset[i] else {})}
+               **(axis_ticks(framing.low[i], framing.high[i], drawing, offset=float(offset[i])) if drawing != 1.0 or offset[i] else {})}
         for i, name in enumerate("xyz")
     }
-    first_scene, first_result, first_label = frames[0]
-    legend_rows = {"legend": 0.135, "legend2": 0.09, "legend3": 0.045}
+    labels = [_annotations(scene, framing, offset, WIDEST * scene_height) for scene, _, _ in frames]
     layout: dict[str, Any] = {
-        "title": {"text": _title(first_result, first_label, len(frames)), "x": 0.01, "xanchor": "left", "font": {"size": 16}},
+        "title": {"text": _title(first_result, first_label, len(frames)) if titled else "", "x": 0.01, "xanchor": "left", "font": {"size": 16}},
         "height": height,
-        "margin": {"l": 10, "r": 10, "t": 70, "b": 10},
+        "margin": margin,
         "paper_bgcolor": _BACKGROUND,
         "uirevision": "mobility",
-        "scene": {**{f"{n}axis": a for n, a in axis.items()}, "aspectmode": "manual", "aspectratio": {"x": 1.15, "y": 1.15, "z": 1.15}, "camera": _camera(viewpoint(first_scene)),
-                  "domain": {"x": [0.0, 1.0], "y": [0.23 if len(frames) > 1 else 0.16, 1.0]}},
+        "scene": {**{f"{n}axis": a for n, a in axis.items()}, "aspectmode": "manual", "aspectratio": dict(zip("xyz", framing.aspect)),
+                  "camera": {"eye": dict(zip("xyz", framing.eye)), "up": {"x": 0, "y": 0, "z": 1}, "projection": {"type": "orthographic"}},
+                  "annotations": labels[0], "domain": {"x": [0.0, SCENE_WIDTH], "y": [bottom, 1.0]}},
     }
     counts = {"mechanism": "", "freedoms": f" ({first_result.dof})", "constraints": f" ({6 - first_result.dof})"}
+    # the legends one under the other at the right of the scene, each as high as its entries
+    plot_height = height - margin["t"] - margin["b"]
+    top = 1.0
     for layer, name in LEGENDS.items():
+        entries = len({g.key for s, _, _ in frames for g in s.layer(layer)})
         layout[name] = {
-            "title": {"text": f"<b>{layer}{counts[layer] if len(frames) == 1 else ''}</b>", "side": "left"},
-            "orientation": "h", "x": 0.0, "xanchor": "left", "y": legend_rows[name] + (0.07 if len(frames) > 1 else 0.0), "yanchor": "top",
+            "title": {"text": f"<b>{layer}{counts[layer] if len(frames) == 1 else ''}</b>", "side": "top"},
+            "orientation": "v", "x": SCENE_WIDTH + 0.01, "xanchor": "left", "y": top, "yanchor": "top",
             "groupclick": "togglegroup", "titleclick": "toggle", "titledoubleclick": "toggleothers", "bgcolor": "rgba(255,255,255,0.8)",
         }
+        top -= (30 + 29 * entries) / plot_height
     if len(frames) > 1:
         steps = []
         for k, (_, result, label) in enumerate(frames):
             steps.append({"label": plotly_text(label) if label else str(k + 1), "method": "update",
-                          "args": [{"visible": [o == k for o in owner]}, {"title.text": _title(result, label, len(frames))}]})
+                          "args": [{"visible": [o == k for o in owner]}, {"title.text": _title(result, label, len(frames)), "scene.annotations": labels[k]}]})
         # inset so that the labels of the end steps, centred on them, stay on the page
-        layout["sliders"] = [{"active": 0, "steps": steps, "x": 0.1, "len": 0.8, "y": 0.08, "yanchor": "top",
+        layout["sliders"] = [{"active": 0, "steps": steps, "x": 0.05, "len": 0.7, "y": 0.1, "yanchor": "top",
                               "currentvalue": {"prefix": "pose: ", "font": {"size": 13}}, "pad": {"t": 0, "b": 0}}]
     return {"data": data, "layout": layout}

@@ -24,6 +24,9 @@ from ..report.text import text_report
 
 __all__ = ["result_mimebundle", "sweep_mimebundle", "register_display", "offline_mimebundle", "NOTEBOOK_POSES"]
 
+PLOTLY_JSON = "application/vnd.plotly.v1+json"
+"""The mime type of plotly's JSON form (what plotly picks in a Jupyter kernel)."""
+
 NOTEBOOK_POSES = 60
 """Poses of a sweep shown in a notebook's slider (each is analysed again to be drawn)."""
 
@@ -44,6 +47,12 @@ def offline_mimebundle(figure: Any) -> dict[str, Any]:
     write files; every other renderer (``plotly_mimetype``, ``json``,
     ``png``...) gives its own form.  Renderers that open a browser are not
     display forms and are left out, as plotly does.
+
+    plotly's JSON form (``plotly_mimetype``, what plotly picks in a Jupyter
+    kernel) comes with that HTML fragment too: only a front end with
+    plotly's extension draws the JSON, while ``jupyter nbconvert --to html``,
+    GitHub and other viewers of a saved notebook draw the HTML (which makes
+    each view in a saved notebook about 4.8 MB: plotly.js is in it).
 
     Parameters
     ----------
@@ -66,6 +75,9 @@ def offline_mimebundle(figure: Any) -> dict[str, Any]:
             bundle["text/html"] = figure_html(fig_dict)
         elif hasattr(renderer, "to_mimebundle"):
             bundle.update(renderer.to_mimebundle(fig_dict))
+    if PLOTLY_JSON in bundle and "text/html" not in bundle:
+        # only a front end with plotly's extension draws the JSON: the HTML goes along for nbconvert, GitHub and other viewers
+        bundle["text/html"] = figure_html(fig_dict)
     return bundle
 
 

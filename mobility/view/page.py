@@ -21,7 +21,7 @@ from typing import Any, Sequence
 from ..errors import MissingExtraError
 from .figure import ELEMENT_ID
 
-__all__ = ["require_plotly", "page_html", "figure_html", "answer_script", "PLOTLY_CONFIG"]
+__all__ = ["require_plotly", "page_html", "figure_html", "answer_script", "screws_table", "LABELS_SCRIPT", "PLOTLY_CONFIG"]
 
 PLOTLY_CONFIG = {"displaylogo": False, "responsive": True, "scrollZoom": True}
 """The plotly.js options of the view: no logo, fills its page, the wheel zooms."""
@@ -39,7 +39,25 @@ header p { margin: 2px 0; font-size: 14px; }
 header .answer { font-size: 16px; }
 header .warning { color: #b71c1c; }
 header .help { color: #607d8b; font-size: 13px; }
+main { display: flex; align-items: flex-start; }
+main > .figure { flex: 1 1 auto; min-width: 0; }
+aside { order: 2; flex: 0 0 340px; box-sizing: border-box; max-height: 720px; overflow: auto; padding: 8px 14px; border-left: 1px solid #eceff1; font-size: 13px; }
+aside h2 { font-size: 14px; margin: 10px 0 4px; }
+aside table { border-collapse: collapse; width: 100%; }
+aside td { padding: 3px 4px; vertical-align: top; border-bottom: 1px solid #eceff1; }
+aside td.key { font-weight: bold; white-space: nowrap; }
+aside .numbers { font-family: ui-monospace, "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 12px; }
 """
+
+LABELS_SCRIPT = (
+    "var gd = document.getElementById('{plot_id}');\n"
+    "gd.on('plotly_restyle', function () { var shown = {}, update = {}, notes = (gd.layout.scene && gd.layout.scene.annotations) || [];\n"
+    "gd.data.forEach(function (t) { if (t.meta && t.visible === true) { shown[t.meta.key] = true; } });\n"
+    "notes.forEach(function (a, i) { var now = a.visible !== false, want = shown[a.name] === true;\n"
+    "if (now !== want) { update['scene.annotations[' + i + '].visible'] = want; } });\n"
+    "if (Object.keys(update).length) { Plotly.relayout(gd, update); } });"
+)
+"""The script that hides the label of a glyph hidden from its legend, and shows it again with it."""
 
 
 def require_plotly() -> Any:
@@ -63,16 +81,17 @@ def figure_html(figure: dict[str, Any], *, div_id: str | None = None, post_scrip
         The id of the figure's element (default: a new random one, so that
         several figures can share a notebook).
     post_script : sequence of str
-        Scripts run once the figure is drawn (``{plot_id}`` is the element's id).
+        Scripts run once the figure is drawn (``{plot_id}`` is the element's
+        id), after :data:`LABELS_SCRIPT`.
     """
     pio = require_plotly()
     return pio.to_html(figure, include_plotlyjs=True, include_mathjax=False, full_html=False, div_id=div_id, config=PLOTLY_CONFIG,
                        validate=False, default_height=f"{figure['layout'].get('height', 720)}px", default_width="100%",
-                       post_script=list(post_script) or None)
+                       post_script=[LABELS_SCRIPT, *post_script])
 
 
 def answer_script(answers: Sequence[str]) -> str:
-    """The script that writes, in the header's answer, the answer of the pose the slider shows.
+    """The script that writes, in the header's answer, the answer of the pose the slider shows, and shows its table of screws.
 
     ``answers[k]`` is the text of pose ``k`` (the order of the slider's
     steps).  The texts are written as JSON with every ``<``, ``>``, ``&``
@@ -84,7 +103,8 @@ def answer_script(answers: Sequence[str]) -> str:
     >>> print(answer_script(["a", "</script>"]))  # doctest: +NORMALIZE_WHITESPACE
     var gd = document.getElementById('{plot_id}'); var answers = ["a", "\\u003c/script\\u003e"];
     gd.on('plotly_sliderchange', function (e) { var k = e.slider.active;
-    var p = document.querySelector('header .answer'); if (p && answers[k] !== undefined) { p.textContent = answers[k]; } });
+    var p = document.querySelector('header .answer'); if (p && answers[k] !== undefined) { p.textContent = answers[k]; }
+    document.querySelectorAll('aside .screws').forEach(function (s, i) { s.hidden = i !== k; }); });
     """
     text = json.dumps(list(answers), ensure_ascii=True)
     for char in "<>&{}":
@@ -92,12 +112,43 @@ def answer_script(answers: Sequence[str]) -> str:
     return (
         f"var gd = document.getElementById('{{plot_id}}'); var answers = {text};\n"
         "gd.on('plotly_sliderchange', function (e) { var k = e.slider.active;\n"
-        "var p = document.querySelector('header .answer'); if (p && answers[k] !== undefined) { p.textContent = answers[k]; } });"
+        "var p = document.querySelector('header .answer'); if (p && answers[k] !== undefined) { p.textContent = answers[k]; }\n"
+        "document.querySelectorAll('aside .screws').forEach(function (s, i) { s.hidden = i !== k; }); });"
     )
 
 
-def page_html(figure: dict[str, Any], title: str, answers: Sequence[str], lines: Sequence[str]) -> str:
-    """The whole page: header, then the figure with plotly.js inline.
+def screws_table(scene: Any) -> str:
+    """The freedoms and constraints of a scene as an HTML table: each one's key in its colour, its kind and its numbers.
+
+    The numbers are the hover text's (:mod:`mobility.view.describe`): a
+    direction, or an axis with a point on it and a pitch, in the file's
+    units; the page shows them beside the plot.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> from mobility.view.scene import build_scene
+    >>> m = mobility.load("mechanisms/four_bar.yaml")
+    >>> text = screws_table(build_scene(m, mobility.analyze(m)))
+    >>> text.count("<tr"), "R1" in text, "axis [0, 0, 1]" in text
+    (6, True, True)
+    """
+    parts = []
+    for layer, heading in (("freedoms", "freedoms of the end effector"), ("constraints", "constraint wrenches on it")):
+        glyphs = scene.layer(layer)
+        rows = []
+        for g in glyphs:
+            lines = [html.escape(html.unescape(x)) for x in g.hover.split("<br>")]
+            kind = lines[0].split(" ", 1)[1] if " " in lines[0] else ""
+            rows.append(f'<tr data-key="{html.escape(g.key)}"><td class="key" style="color: {html.escape(g.color)}">{html.escape(g.key)}</td>'
+                        f'<td>{kind}<div class="numbers">{"<br>".join(lines[1:])}</div></td></tr>')
+        body = "\n".join(rows) if rows else '<tr><td colspan="2">none</td></tr>'
+        parts.append(f"<h2>{heading} ({len(glyphs)})</h2>\n<table>\n{body}\n</table>")
+    return "\n".join(parts)
+
+
+def page_html(figure: dict[str, Any], title: str, answers: Sequence[str], lines: Sequence[str], tables: Sequence[str] = ()) -> str:
+    """The whole page: header, then the figure with plotly.js inline, and beside it the table of its screws.
 
     Parameters
     ----------
@@ -112,15 +163,21 @@ def page_html(figure: dict[str, Any], title: str, answers: Sequence[str], lines:
     lines : sequence of str
         Further header lines, true of every pose; those starting with
         ``warning:`` are shown in red.
+    tables : sequence of str
+        Each pose's :func:`screws_table`, in the slider's order (the page shows
+        the one of the pose shown); none: no table.
     """
     scripts = [answer_script(answers)] if len(answers) > 1 else []
     body = figure_html(figure, div_id=ELEMENT_ID, post_script=scripts)
     paragraphs = "\n".join(
         f'<p class="{"warning" if line.startswith("warning:") else "detail"}">{html.escape(line)}</p>' for line in lines
     )
+    aside = "".join(f'<section class="screws"{"" if k == 0 else " hidden"}>\n{t}\n</section>\n' for k, t in enumerate(tables))
     return (
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         f"<title>{html.escape(title)}</title>\n<style>{_STYLE}</style>\n</head>\n<body>\n"
         f"<header>\n<h1>{html.escape(title)}</h1>\n<p class=\"answer\">{html.escape(answers[0])}</p>\n{paragraphs}\n"
-        f"<p class=\"help\">{html.escape(_HELP)}</p>\n</header>\n<main>\n{body}\n</main>\n</body>\n</html>\n"
+        f"<p class=\"help\">{html.escape(_HELP)}</p>\n</header>\n<main>\n"
+        # the table first: the figure, drawn as the page is read, then takes the width left beside it
+        + (f"<aside>\n{aside}</aside>\n" if tables else "") + f"<div class=\"figure\">\n{body}\n</div>\n</main>\n</body>\n</html>\n"
     )

@@ -44,7 +44,7 @@ from ..report.text import text_report
 from .describe import header_lines, margin_text
 from .figure import figure_dict as build_figure_dict
 from .notebook import offline_mimebundle
-from .page import page_html, require_plotly
+from .page import page_html, require_plotly, screws_table
 from .scene import Scene, build_scene
 
 __all__ = ["ViewFrame", "View", "mechanism_view", "poses_view", "require_max_poses", "MAX_POSES"]
@@ -119,9 +119,8 @@ class View:
         """The self-contained page (plotly.js inline; nothing fetched from the network)."""
         figure = self.figure_dict
         if len(self.frames) == 1:  # the page's header says it all; several poses keep the title the slider updates
-            layout = {**figure["layout"], "title": {"text": ""}, "margin": {**figure["layout"]["margin"], "t": 10}}
-            figure = {**figure, "layout": layout}
-        return page_html(figure, self.name, self.answers, self.header)
+            figure = build_figure_dict([(s, f.result, f.label) for s, f in zip(self.scenes, self.frames)], titled=False)
+        return page_html(figure, self.name, self.answers, self.header, [screws_table(s) for s in self.scenes])
 
     def write_html(self, path: str | Path) -> Path:
         """Write :meth:`to_html` to ``path``, whole or not at all (:func:`mobility.outputs.atomic_output`); returns the path.
