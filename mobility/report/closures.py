@@ -23,11 +23,10 @@ closures (how many constraint rows of each closing joint the rest of the mechani
 
 from __future__ import annotations
 
-import json
 from typing import TYPE_CHECKING, Sequence
 
 from ..errors import counted
-from .text import fmt_number, fmt_vector
+from .text import fmt_number, fmt_vector, with_section
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..core.closures import ClosureAdvice
@@ -68,11 +67,4 @@ def with_closures(report: str, fmt: str, advice: Sequence["ClosureAdvice"]) -> s
     """
     if not advice:
         return report
-    if fmt == "json":
-        data = json.loads(report)
-        data["closures"] = [a.to_dict() for a in advice]
-        return json.dumps(data, indent=2, ensure_ascii=False)
-    section = closures_report(advice)
-    if fmt == "md":
-        return report.rstrip("\n") + "\n\n## Closures\n\n```\n" + section + "\n```\n"
-    return report + "\n" + section
+    return with_section(report, fmt, "closures", [a.to_dict() for a in advice], "Closures", closures_report(advice))

@@ -17,10 +17,10 @@ Examples
 
 from __future__ import annotations
 
-import json
 from typing import TYPE_CHECKING
 
 from ..errors import counted
+from .text import with_section
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..finite.results import FiniteMobility, SecondOrder
@@ -93,11 +93,4 @@ def with_finite(report: str, fmt: str, finite: "FiniteMobility") -> str:
     >>> json.loads(with_finite('{"dof": 1}', "json", f))["finite"]["verdict"]
     'full-cycle'
     """
-    if fmt == "json":
-        data = json.loads(report)
-        data["finite"] = finite.to_dict()
-        return json.dumps(data, indent=2, ensure_ascii=False)
-    section = finite_report(finite)
-    if fmt == "md":
-        return report.rstrip("\n") + "\n\n## Finite motion\n\n```\n" + section + "\n```\n"
-    return report + "\n" + section
+    return with_section(report, fmt, "finite", finite.to_dict(), "Finite motion", finite_report(finite))

@@ -164,3 +164,33 @@ def json_report(result: Result) -> str:
         return json.dumps(result.to_dict(), indent=2, ensure_ascii=False, allow_nan=False)
     except ValueError:
         raise AnalysisError(f"the result of {result.name!r} holds a number that is not finite; it cannot be written as JSON") from None
+
+
+def with_section(report: str, fmt: str, key: str, value: Any, heading: str, section: str) -> str:
+    """A report of ``mobility analyze`` in format ``fmt`` with one more section.
+
+    Parameters
+    ----------
+    report : str
+        The report in format ``fmt``.
+    fmt : str
+        ``"json"``: ``value`` is added to the object under ``key``; ``"md"``:
+        ``section`` under the heading ``heading``, in a code block; any other
+        (``"text"``): ``section`` appended.
+    key, value, heading, section
+        The section in each form.
+
+    Examples
+    --------
+    >>> json.loads(with_section('{"dof": 1}', "json", "extra", [1], "Extra", "extra: 1"))
+    {'dof': 1, 'extra': [1]}
+    >>> with_section("report", "text", "extra", [1], "Extra", "extra: 1").splitlines()
+    ['report', 'extra: 1']
+    """
+    if fmt == "json":
+        data = json.loads(report)
+        data[key] = value
+        return json.dumps(data, indent=2, ensure_ascii=False)
+    if fmt == "md":
+        return report.rstrip("\n") + f"\n\n## {heading}\n\n```\n" + section + "\n```\n"
+    return report + "\n" + section
