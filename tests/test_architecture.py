@@ -28,7 +28,7 @@ ALLOWED = {
     "finite": "errors core",
     "actuation": "errors core",
     "flexure": "errors core io actuation",
-    "synthesis": "errors core io",
+    "synthesis": "errors core io outputs",
     "jacobians": "errors core",
     "sweeps": "errors core actuation",
     "report": "errors core finite actuation flexure synthesis jacobians sweeps testing outputs",

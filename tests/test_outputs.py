@@ -18,6 +18,7 @@ from pathlib import Path
 
 import pytest
 
+import mobility
 from mobility.outputs import atomic_output
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -139,3 +140,18 @@ def test_an_interrupted_sweep_stops_its_chunks_in_flight_at_once(tmp_path):
     out, err = child.communicate(timeout=120)
     assert (child.returncode, err, out) == (130, "mobility: interrupted\n", "")
     assert time.monotonic() - sent < 3.0
+
+
+def test_a_write_error_while_synthesize_writes_its_files_leaves_none_of_them(tmp_path):
+    # synthesize --write wrote each file with write_text: a full disk left a fragment, and the files before it
+    folder = tmp_path / "pkm"
+    folder.mkdir()
+    child = _start("synthesize", "2T3R", "--write", str(folder), cwd=tmp_path, preexec_fn=_file_limit(3000))  # some of its files are larger
+    out, err = child.communicate(timeout=120)
+    assert child.returncode == 2 and err.count("\n") == 1 and "File too large" in err, err
+    assert list(folder.iterdir()) == []  # no fragment, no temporary file, and none of the files written before the error
+    child = _start("synthesize", "2T3R", "--write", str(folder), cwd=tmp_path)  # without the limit: every file, whole
+    out, err = child.communicate(timeout=120)
+    assert child.returncode == 0, err
+    written = sorted(folder.iterdir())
+    assert len(written) >= 7 and all(mobility.load(p).name for p in written)

@@ -20,6 +20,7 @@ expected: {dof: 3, pattern: 3R, mobility: 3}
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 from dataclasses import replace
@@ -35,6 +36,7 @@ from ..core.linalg import rank
 from ..errors import RequestError, SynthesisError, counted, name_list, shown_argument
 from ..io.limits import current_limits
 from ..io.writer import mechanism_to_yaml
+from ..outputs import atomic_output
 from .enumeration import SynthesisResult
 from .limb_types import CandidateJoint, joint_groups
 
@@ -284,8 +286,10 @@ def write_pkm_files(result: SynthesisResult, folder: str | Path, *, other: str =
     ------
     RequestError
         When ``folder`` cannot be created (its parent must exist) or
-        written, when a file to write is already there (nothing is
-        overwritten: nothing is written then), or when the chains of
+        written (then no file of this call is left: each is written whole,
+        and those written before the error are removed), when a file to
+        write is already there (nothing is overwritten: nothing is written
+        then), or when the chains of
         ``result`` are shorter than the pattern's dimension (not limbs).
     """
     path = Path(folder)
@@ -307,9 +311,15 @@ def write_pkm_files(result: SynthesisResult, folder: str | Path, *, other: str =
         raise RequestError(f"{folder}: would overwrite {name_list(present, most=3)}; write to a new folder, or remove them first")
     try:
         path.mkdir(exist_ok=True)
-        for target, text in documents:
-            target.write_text(text, encoding="utf-8")
+        for target, text in documents:  # each file whole or not at all (mobility.outputs)
+            with atomic_output(target) as handle:
+                handle.write(text)
             written.append(str(target))
-    except OSError as exc:
-        raise RequestError(f"{folder}: cannot write mechanism files there ({exc.strerror or exc})") from None
+    except BaseException as exc:  # all or nothing: the files this call wrote are removed (a full disk, an interrupt)
+        for done in written:
+            with contextlib.suppress(OSError):
+                os.unlink(done)
+        if isinstance(exc, OSError):
+            raise RequestError(f"{folder}: cannot write mechanism files there ({exc.strerror or exc})") from None
+        raise
     return tuple(written), tuple(skipped)
