@@ -360,13 +360,15 @@ def test_an_empty_replicate_is_counted_before_mujoco_makes_its_copies(tmp_path, 
     assert "are more than the limit of 5000 (set MOBILITY_MAX_JOINTS to raise it)" in done.stderr
 
 
-def test_the_copies_attach_makes_are_counted_before_mujoco_reads_anything(tmp_path):
+@pytest.mark.parametrize("model_first", [True, False], ids=["model before the attaches", "model after them"])
+def test_the_copies_attach_makes_are_counted_before_mujoco_reads_anything(tmp_path, model_first):
     sub = tmp_path / "sub"
     sub.mkdir()
     chain = "".join(f'<body name="l{i}" pos="{i} 0 0"><joint name="j{i}" axis="0 0 1"/><geom size=".1"/></body>' for i in range(1000))  # 1,000 joints
     (sub / "chain.xml").write_text(f'<mujoco model="chain"><worldbody><body name="root">{chain}</body></worldbody></mujoco>')
     attaches = "".join(f'<body name="b{k}"><attach model="c" body="root" prefix="p{k}"/></body>' for k in range(8))
-    top = _model(tmp_path, f'<mujoco><asset><model name="c" file="sub/chain.xml"/></asset><worldbody>{attaches}</worldbody></mujoco>')
+    asset, world = '<asset><model name="c" file="sub/chain.xml"/></asset>', f"<worldbody>{attaches}</worldbody>"
+    top = _model(tmp_path, f"<mujoco>{asset + world if model_first else world + asset}</mujoco>")
     done = _bounded_cli(str(top), cwd=tmp_path, seconds=15)  # 24.6 s before: MuJoCo compiled every copy, then the joint limit refused it
     _one_line_refusal(done, "attach: ")
     assert "are more than the limit of 5000" in done.stderr
@@ -380,18 +382,6 @@ def test_a_connect_mujoco_drops_is_an_error_not_a_wrong_answer(tmp_path):
     _one_line_refusal(done, "equality: the file declares 1 equality (<connect>, <weld>, ...), MuJoCo kept 0")
     done = _bounded_cli(str(_model(tmp_path, FOUR_BAR.format(option="", rocker_y="2.5"))), cwd=tmp_path)
     assert done.returncode == 0 and "mobility M = 1" in done.stdout, done.stderr
-
-
-def test_attach_copies_are_counted_when_the_model_comes_after_them(tmp_path):
-    sub = tmp_path / "sub"
-    sub.mkdir()
-    chain = "".join(f'<body name="l{i}" pos="{i} 0 0"><joint name="j{i}" axis="0 0 1"/><geom size=".1"/></body>' for i in range(1000))  # 1,000 joints
-    (sub / "chain.xml").write_text(f'<mujoco model="chain"><worldbody><body name="root">{chain}</body></worldbody></mujoco>')
-    attaches = "".join(f'<body name="b{k}"><attach model="c" body="root" prefix="p{k}"/></body>' for k in range(8))
-    top = _model(tmp_path, f'<mujoco><worldbody>{attaches}</worldbody><asset><model name="c" file="sub/chain.xml"/></asset></mujoco>')
-    done = _bounded_cli(str(top), cwd=tmp_path, seconds=15)
-    _one_line_refusal(done, "attach: ")
-    assert "are more than the limit of 5000" in done.stderr
 
 
 def test_attach_copies_of_a_model_that_replicates_are_counted_with_its_copies(tmp_path):
