@@ -29,6 +29,19 @@ def write_yaml(tmp_path):
     return write
 
 
+@pytest.fixture
+def symlink_loop():
+    """Make ``folder/name`` -> ``folder/other-name`` -> ``folder/name``: looking it up never ends (ELOOP); return the path."""
+
+    def make(folder: Path, name: str) -> Path:
+        path, other = folder / name, folder / ("other-" + name)
+        path.symlink_to(other.name)
+        other.symlink_to(path.name)
+        return path
+
+    return make
+
+
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_makereport(item, call):
     """A test that skips fails: in CI nothing may skip, so a missing tool or extra is a failure that says so."""

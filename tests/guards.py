@@ -1,12 +1,41 @@
-"""What the tests of hostile and extreme input assert: an answer within a time bound, and only finite numbers in it."""
+"""What the tests of bad and extreme input assert, in one place: one line and exit 2, or an answer with finite numbers.
+
+One helper per kind of assertion; the test files of bad input (``test_bad_*.py``) and of extreme input
+(``test_extreme_*.py``, ``test_fuzz_files.py``) use these and no copy of their own:
+
+* :func:`raises_one_line` -- a call of the Python API raises one of the project's errors, of one line;
+* :func:`refused` -- a command ended in exit status 2 and one line ``mobility: ...`` on stderr, nothing on stdout,
+  no traceback (in-process by :func:`run_cli`, or in a child process by :func:`run_child`);
+* :func:`finite_numbers` -- an answer holds only finite numbers;
+* :func:`time_bound` -- the block ends within a time bound (a hang fails the test, it does not stop the suite);
+* :func:`run_all` and :func:`verdict` -- every command on one mechanism ends in exit 0 or 1 (an answer) whose
+  printed and written numbers are all finite, with nothing on stderr but notes; or in exit 2 and one line.
+"""
 
 from __future__ import annotations
 
 import contextlib
+import io
+import json
 import math
+import os
+import re
 import signal
+import subprocess
+import sys
 import time
-from typing import Any, Iterator
+import warnings
+from pathlib import Path
+from typing import Any, Callable, Iterator
+
+import pytest
+
+import mobility
+from mobility.core.model import Mechanism
+from mobility.errors import MobilityError
+
+PACKAGE_ROOT = str(Path(mobility.__file__).resolve().parent.parent)
+"""The folder holding the package under test: a child process imports it from there."""
 
 
 class TookTooLong(BaseException):
@@ -50,3 +79,82 @@ def finite_numbers(value: Any) -> bool:
         elif isinstance(item, float) and not math.isfinite(item):
             return False
     return True
+
+
+def raises_one_line(call: Callable[[], Any], cls: type[BaseException] = MobilityError, match: str | None = None, *,
+                    naming: tuple[str, ...] = (), shorter_than: int | None = None) -> Any:
+    """Run ``call``: it must raise a ``cls`` (one of the project's errors) whose message is one line; return the error.
+
+    ``match`` is searched in the message (``pytest.raises``); each word of ``naming`` (the function, the
+    argument) must be in it, and with ``shorter_than`` it must be shorter than that many characters.
+    """
+    with pytest.raises(cls, match=match) as info:
+        call()
+    message = str(info.value)
+    assert isinstance(info.value, MobilityError) and "\n" not in message, repr(info.value)
+    assert shorter_than is None or len(message) < shorter_than, message
+    assert all(word in message for word in naming), (naming, message)
+    return info.value
+
+
+def run_cli(*args: Any, seconds: float | None = None, warnings_as_errors: type[Warning] | None = None) -> subprocess.CompletedProcess[str]:
+    """``mobility ARGS`` in-process (:func:`mobility.cli.main`), its stdout and stderr captured.
+
+    An argparse refusal (``SystemExit``) is its exit status.  With ``seconds``, a run past the bound ends
+    with status -1 and the reason as its stderr; with ``warnings_as_errors``, such a warning raises (it
+    would otherwise reach stderr).
+    """
+    from mobility.cli import main
+
+    argv = [str(a) for a in args]
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.ExitStack() as stack:
+        if seconds is not None:
+            stack.enter_context(time_bound(seconds))
+        stack.enter_context(contextlib.redirect_stdout(out))
+        stack.enter_context(contextlib.redirect_stderr(err))
+        stack.enter_context(warnings.catch_warnings())
+        if warnings_as_errors is not None:
+            warnings.simplefilter("error", warnings_as_errors)
+        try:
+            status = main(argv)
+        except SystemExit as stop:  # argparse's own refusal
+            status = stop.code
+        except TookTooLong as exc:
+            if seconds is None:
+                raise
+            return subprocess.CompletedProcess(argv, -1, out.getvalue(), str(exc))
+    return subprocess.CompletedProcess(argv, status, out.getvalue(), err.getvalue())
+
+
+def run_child(*args: Any, env: dict[str, str] | None = None, cwd: Path | str | None = None, timeout: float = 60,
+              memory_cap: int | None = None, unset: tuple[str, ...] = ()) -> subprocess.CompletedProcess[str]:
+    """``mobility ARGS`` in a child process with the package under test, ended after ``timeout`` s (a hang fails, not waits).
+
+    ``memory_cap`` caps the child's address space (bytes, ``RLIMIT_AS``): a blow-up ends there in a
+    ``MemoryError`` instead of in the machine's swap.  ``unset`` names variables of this environment the
+    child does not get.
+    """
+    environ = {k: v for k, v in os.environ.items() if k not in unset}
+    environ.update(PYTHONPATH=PACKAGE_ROOT, **(env or {}))
+
+    def cap() -> None:
+        import resource
+
+        resource.setrlimit(resource.RLIMIT_AS, (memory_cap, memory_cap))
+
+    return subprocess.run([sys.executable, "-m", "mobility", *map(str, args)], capture_output=True, text=True, timeout=timeout,
+                          env=environ, cwd=cwd, stdin=subprocess.DEVNULL, preexec_fn=cap if memory_cap else None)
+
+
+def refused(done: subprocess.CompletedProcess[str], *, usage_error: bool = False) -> str:
+    """Assert a run of the command line refused its input: exit 2, nothing on stdout, one line ``mobility: ...`` on stderr.
+
+    With ``usage_error``, the line is argparse's own refusal of an option, ``mobility COMMAND: error: ...``.
+    Return that line (without its line break) for the test to check its words.
+    """
+    assert (done.returncode, done.stdout) == (2, ""), (done.returncode, done.stdout[-300:], done.stderr[-2000:])
+    assert done.stderr.count("\n") == 1 and done.stderr.endswith("\n") and "Traceback" not in done.stderr, done.stderr[-2000:]
+    prefix = r"mobility [a-z]+: error: " if usage_error else "mobility: "
+    assert re.match(prefix, done.stderr), done.stderr
+    return done.stderr[:-1]
