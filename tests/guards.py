@@ -158,3 +158,107 @@ def refused(done: subprocess.CompletedProcess[str], *, usage_error: bool = False
     prefix = r"mobility [a-z]+: error: " if usage_error else "mobility: "
     assert re.match(prefix, done.stderr), done.stderr
     return done.stderr[:-1]
+
+
+# -- every command on one mechanism: an answer with finite numbers, or one line and exit 2 ---------------------------
+
+
+RUN_BOUND = 60.0
+"""Seconds one command may take before the guard stops it (a hang, not a slow run: every run here
+takes a few seconds at most)."""
+
+
+def sweep_range(m: Mechanism) -> str:
+    """A small sweep of the first drivable joint: 5 degrees, or 1 % of the mechanism's size for a slider."""
+    joint = next(j for j in m.joints if j.type in "RPHC")
+    if joint.type != "P":
+        return f"{joint.name}=0:5:3"
+    from mobility.core.joint_screws import joint_screws
+
+    return f"{joint.name}=0:{0.01 * joint_screws(m).normalisation.length!r}:3"
+
+
+def commands(m: Mechanism, path: Path, out: Path) -> dict[str, list[str]]:
+    """Every command and option under test, on the file ``path``, writing into the folder ``out``."""
+    f = str(path)
+    return {
+        "analyze": ["analyze", "--json", f],
+        "analyze --finite": ["analyze", "--finite", f],
+        "check": ["check", "--json", f],
+        "actuation": ["actuation", "--json", f],
+        "actuation --enumerate": ["actuation", "--enumerate", "--json", f],
+        "actuation --samples": ["actuation", "--samples", "2", "--json", f],
+        "plot": ["plot", "--constraints", f, "-o", str(out / "picture.png"), "--dpi", "30"],
+        "plot --graph": ["plot", "--graph", f, "-o", str(out / "graph.png"), "--dpi", "30"],
+        "jacobian": ["jacobian", "--json", f],
+        "sweep": ["sweep", f, "--vary", sweep_range(m), "--json", "--no-progress"],
+        "view": ["view", f, "-o", str(out / "view.html")],
+        "view --samples": ["view", "--samples", "2", f, "-o", str(out / "samples.html")],
+        "convert": ["convert", f, "-o", str(out / "converted.yaml")],
+    }
+
+
+NON_FINITE = re.compile(r"(?<![\w.])(nan|-?inf|NaN|-?Infinity)(?![\w.])")
+
+
+def page_figure(html: str) -> Any:
+    """The figure (data and layout) that a page of ``mobility view`` hands to plotly."""
+    call = html.rindex("Plotly.newPlot(")
+    text = html[html.index("[", call):]
+    decoder = json.JSONDecoder()
+    data, end = decoder.raw_decode(text)
+    layout, _ = decoder.raw_decode(text[end:].lstrip(" ,\n"))
+    return {"data": data, "layout": layout}
+
+
+def written_numbers_are_finite(args: list[str]) -> str:
+    """'' when the file a run wrote (picture, page, converted file) is there and its numbers are finite, else why not."""
+    if "-o" not in args:
+        return ""
+    path = Path(args[args.index("-o") + 1])
+    if not path.exists() or path.stat().st_size == 0:
+        return f"{path.name} was not written"
+    if path.suffix == ".html":
+        figure = page_figure(path.read_text(encoding="utf-8"))
+        return "" if finite_numbers(figure) and "NaN" not in json.dumps(figure) else f"{path.name}: a number of the figure is not finite"
+    if path.suffix == ".yaml":
+        back = mobility.load(path)  # what was written reads back
+        numbers = [x for j in back.world_joints for v in (j.point, j.axis, j.normal) if v is not None for x in v]
+        return "" if all(math.isfinite(x) for x in numbers) else f"{path.name}: a number is not finite"
+    return ""
+
+
+def verdict(args: list[str], status: int, out: str, err: str) -> str:
+    """'' when the run ended as the contract says, else what went wrong (for the failure message)."""
+    if status == 2 and args[0] == "check" and not err:  # check reports a bad file in its table, one line each
+        rows = json.loads(out)["results"]
+        return "" if all(r["status"] != "error" or "\n" not in r["message"] for r in rows) else "check: an error of several lines"
+    if status == 2:
+        return "" if err.count("\n") == 1 and err.startswith("mobility: ") else f"exit 2 but stderr is not one line: {err[:300]!r}"
+    if status not in (0, 1):
+        return f"exit {status}: {err.strip()[:300]}"
+    noise = [line for line in err.splitlines() if not line.startswith(("mobility: note: ", "mobility: wrote "))]
+    if noise:
+        return f"exit {status} with stderr: {noise[0][:300]}"
+    try:
+        printed = json.loads(out)
+    except ValueError:
+        if NON_FINITE.search(out):
+            return f"a non-finite number printed: {NON_FINITE.search(out).group(0)!r}"
+    else:
+        if not finite_numbers(printed):
+            return "a non-finite number in the JSON printed"
+    return written_numbers_are_finite(args)
+
+
+def run_all(m: Mechanism, folder: Path) -> dict[str, tuple[int, str]]:
+    """Write ``m`` to ``folder`` and run every command on it: ``{command: (exit status, what went wrong or '')}``."""
+    path = folder / "mechanism.yaml"
+    from builders import yaml_text
+
+    path.write_text(yaml_text(m), encoding="utf-8")
+    outcome = {}
+    for name, args in commands(m, path, folder).items():
+        done = run_cli(*args, seconds=RUN_BOUND, warnings_as_errors=RuntimeWarning)  # a numpy warning would reach stderr
+        outcome[name] = (done.returncode, verdict(args, done.returncode, done.stdout, done.stderr))
+    return outcome

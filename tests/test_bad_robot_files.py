@@ -176,7 +176,7 @@ def test_a_height_field_larger_than_the_asset_limit_is_refused_before_mujoco_all
     path = _model(tmp_path, text)
     err = raises_one_line(lambda: read_robot(path), MechanismFileError)
     assert str(err) == (f"{path}:3: hfield[h]: nrow x ncol = 2000 x 1000: 2000000 points, which MuJoCo allocates as it reads the file; "
-                              "expected at most the limit of 1000000 (set MOBILITY_MAX_ASSET_VALUES to raise it)")
+                        "expected at most the limit of 1000000 (set MOBILITY_MAX_ASSET_VALUES to raise it)")
     monkeypatch.setenv("MOBILITY_MAX_ASSET_VALUES", "2000000")
     assert mobility.analyze(read_robot(path).mechanism).mobility == 1
 
@@ -192,8 +192,8 @@ def test_builtin_meshes_count_with_the_height_fields(tmp_path, monkeypatch):
     path = _model(tmp_path, f"<mujoco>\n<asset>\n{meshes}</asset>\n<worldbody>{ARM}</worldbody>\n</mujoco>")
     err = raises_one_line(lambda: read_robot(path), MechanismFileError)
     assert str(err).endswith(":4: mesh[b]: builtin supersphere, resolution 30 squared (params): 900 points; 1300 with the height fields "
-                                   "and builtin meshes before it, which MuJoCo allocates as it reads the file; expected at most the limit of 1000 "
-                                   "(set MOBILITY_MAX_ASSET_VALUES to raise it)")
+                             "and builtin meshes before it, which MuJoCo allocates as it reads the file; expected at most the limit of 1000 "
+                             "(set MOBILITY_MAX_ASSET_VALUES to raise it)")
     monkeypatch.setenv("MOBILITY_MAX_ASSET_VALUES", "1300")
     if BUILTIN_MESHES:  # an older MuJoCo refuses the attribute itself
         assert mobility.analyze(read_robot(path).mechanism).mobility == 1
@@ -226,7 +226,7 @@ def test_equalities_count_toward_the_joint_limit_before_mujoco_reads_them(tmp_pa
     err = raises_one_line(lambda: read_robot(path), MechanismFileError)
     tag = equality[1:].split()[0]
     assert str(err) == (f"{path}:{line}: {tag}: 11 joints and equalities (7 of them <connect>, <weld> or other equalities, each counted "
-                              "as a joint) are more than the limit of 10 (set MOBILITY_MAX_JOINTS to raise it)")
+                        "as a joint) are more than the limit of 10 (set MOBILITY_MAX_JOINTS to raise it)")
     monkeypatch.setenv("MOBILITY_MAX_JOINTS", "11")
     assert read_robot(path).mechanism.joints
 
