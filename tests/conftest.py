@@ -23,7 +23,7 @@ def write_yaml(tmp_path):
 
     def write(text: str, name: str = "m.yaml") -> Path:
         path = tmp_path / name
-        path.write_text(text)
+        path.write_text(text, encoding="utf-8")
         return path
 
     return write

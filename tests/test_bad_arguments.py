@@ -192,8 +192,8 @@ def test_mechanisms_and_expected_blocks_are_hashable_and_picklable(four_bar):
     ("max_joints", "5", "'5'"), ("max_file_bytes", -1, "-1"), ("max_depth", 0, "0"), ("max_nodes", True, "True"), ("max_copies", 2.0, "2.0"),
 ])
 def test_limits_refuse_what_is_not_a_positive_integer(field, value, shown):
-    info = raises_one_line(lambda: Limits(**{field: value}), RequestError)
-    assert str(info) == f"Limits: {field}: expected a positive integer, got {shown}"
+    error = raises_one_line(lambda: Limits(**{field: value}), RequestError)
+    assert str(error) == f"Limits: {field}: expected a positive integer, got {shown}"
 
 
 def test_limits_take_numpy_integers_as_ints():

@@ -43,12 +43,6 @@ HEAD = "name: t\nground: g\nend_effector: e\n"
 ONE_JOINT = "joints:\n  - {name: A, type: P, links: [g, e], axis: [0, 0, 1]}\n"
 
 
-def write(tmp_path: Path, text: str, name: str = "bad.yaml") -> Path:
-    path = tmp_path / name
-    path.write_text(text, encoding="utf-8")
-    return path
-
-
 # -- 1. what a file is: a device, a pipe, a link loop, its size, its name, its encoding -------------------
 
 
@@ -90,12 +84,12 @@ def test_a_terminal_is_refused_rather_than_read_until_someone_types():
         os.close(follower)
 
 
-def test_dev_zero_and_big_files_stop_at_the_size_limit(tmp_path):
+def test_dev_zero_and_big_files_stop_at_the_size_limit(tmp_path, write_yaml):
     with time_bound(10):
         raises_one_line(lambda: mobility.load("/dev/zero"), MechanismFileError, "^/dev/zero: is a device .*not a regular file; expected a mechanism file$")  # refused before it is opened (a device may never end, or wait for ever)
         (tmp_path / "huge.yaml").write_bytes(b"#" * (4194304 + 1))
         raises_one_line(lambda: mobility.load(tmp_path / "huge.yaml"), MechanismFileError, "larger than the limit of 4194304 bytes")
-        path = write(tmp_path, HEAD + ONE_JOINT + "description: " + "x" * 500 + "\n")
+        path = write_yaml(HEAD + ONE_JOINT + "description: " + "x" * 500 + "\n")
         assert mobility.load(path).description == "x" * 500
         raises_one_line(lambda: mobility.load(path, limits=Limits(max_file_bytes=300)), MechanismFileError, "larger than the limit of 300 bytes")
         raises_one_line(lambda: mobility.loads(path.read_text(), limits=Limits(max_file_bytes=300)), MechanismFileError, "larger than the limit of 300")
@@ -166,8 +160,8 @@ def test_a_message_escapes_line_separators_and_format_characters_of_a_path():
 def test_text_that_is_not_utf8_names_its_line(tmp_path):
     path = tmp_path / "latin1.yaml"
     path.write_bytes((HEAD + "description: caf\xe9\n").encode("latin-1"))
-    info = raises_one_line(lambda: read_text(path), MechanismFileError)
-    assert info.line == 4 and "not UTF-8" in info.message
+    error = raises_one_line(lambda: read_text(path), MechanismFileError)
+    assert error.line == 4 and "not UTF-8" in error.message
 
 
 # -- 2. the content of a YAML file: a corpus of malformed, extreme and hostile documents -------------------
@@ -238,9 +232,9 @@ CORPUS = {
 
 
 @pytest.mark.parametrize("case", sorted(CORPUS))
-def test_hostile_input_is_one_line_naming_file_line_and_key(tmp_path, case):
+def test_hostile_input_is_one_line_naming_file_line_and_key(write_yaml, case):
     text, line, key, words = CORPUS[case]
-    path = write(tmp_path, text)
+    path = write_yaml(text)
     with time_bound(10):
         err = raises_one_line(lambda: mobility.load(path), MechanismFileError, shorter_than=400)
     assert err.file == str(path) and err.line == line, str(err)
@@ -255,9 +249,9 @@ COMMANDS = [["analyze"], ["analyze", "--json"], ["check"], ["jacobian"], ["actua
 
 @pytest.mark.parametrize("command", COMMANDS, ids=lambda c: c[0])
 @pytest.mark.parametrize("case", ["400-digit integer", "billion laughs, unknown key", "NUL byte", "recursive alias", "20,000 copies", "type as a list"])
-def test_hostile_input_exits_2_with_one_line_from_every_command(tmp_path, command, case):
+def test_hostile_input_exits_2_with_one_line_from_every_command(tmp_path, write_yaml, command, case):
     text, line, _, words = CORPUS[case]
-    path = write(tmp_path, text)
+    path = write_yaml(text)
     args = [str(tmp_path / a) if a.endswith((".png", ".html")) else a for a in command]
     with time_bound(10):
         done = run_cli(*args, path)
@@ -269,11 +263,11 @@ def test_hostile_input_exits_2_with_one_line_from_every_command(tmp_path, comman
     assert f"{path}:{line}:" in shown and words in shown
 
 
-def test_check_over_a_folder_reports_each_bad_file_on_its_line_and_goes_on(tmp_path):
-    write(tmp_path, CORPUS["billion laughs, known key"][0], "a_bomb.yaml")
-    write(tmp_path, CORPUS["mapping nested 10,000 deep"][0], "b_deep.yaml")
-    write(tmp_path, BAR_TEXT, "c_good.yaml")
-    write(tmp_path, CORPUS["NUL byte"][0], "d_nul.yaml")
+def test_check_over_a_folder_reports_each_bad_file_on_its_line_and_goes_on(tmp_path, write_yaml):
+    write_yaml(CORPUS["billion laughs, known key"][0], "a_bomb.yaml")
+    write_yaml(CORPUS["mapping nested 10,000 deep"][0], "b_deep.yaml")
+    write_yaml(BAR_TEXT, "c_good.yaml")
+    write_yaml(CORPUS["NUL byte"][0], "d_nul.yaml")
     with time_bound(20):
         report = check_paths([tmp_path])
         done = run_cli("check", tmp_path)
@@ -314,9 +308,9 @@ def test_a_yaml_name_holding_a_control_or_format_character_is_refused_at_its_key
     title = BAR_TEXT.replace("name: planar four-bar", f'name: "planar{escape}four-bar"')
     assert joint != BAR_TEXT and link != BAR_TEXT and title != BAR_TEXT
     for text, key, what in ((joint, "joints[1].name", "a joint name"), (link, "joints[1].links[1]", "a link name"), (title, "name", "the name of the mechanism")):
-        info = raises_one_line(lambda: mobility.loads(text, file="m.yaml"), MechanismFileError)
-        assert (info.key, info.message) == (key, f"{described} is not allowed in {what}")
-        assert info.line == (1 if key == "name" else 12)
+        error = raises_one_line(lambda: mobility.loads(text, file="m.yaml"), MechanismFileError)
+        assert (error.key, error.message) == (key, f"{described} is not allowed in {what}")
+        assert error.line == (1 if key == "name" else 12)
 
 
 def test_a_frame_name_holding_a_line_break_is_refused():
@@ -336,8 +330,8 @@ def test_a_frame_name_holding_a_line_break_is_refused():
 def test_a_number_that_reads_as_zero_or_infinity_is_refused(written, message):
     text = BAR_TEXT.replace("point: [1, 2, 0]", f"point: [{written}, 2, 0]")
     assert text != BAR_TEXT
-    info = raises_one_line(lambda: mobility.loads(text, file="m.yaml"), MechanismFileError)
-    assert (info.line, info.key, info.message) == (12, "joints[1].point[0]", message)
+    error = raises_one_line(lambda: mobility.loads(text, file="m.yaml"), MechanismFileError)
+    assert (error.line, error.key, error.message) == (12, "joints[1].point[0]", message)
 
 
 def test_a_zero_written_small_and_a_subnormal_number_are_read():
@@ -349,7 +343,7 @@ def test_a_zero_written_small_and_a_subnormal_number_are_read():
 # -- 5. the reader's limits, raised by the environment and by argument -----------------------------------
 
 
-def test_limits_are_raised_by_the_environment_and_by_argument(tmp_path, monkeypatch):
+def test_limits_are_raised_by_the_environment_and_by_argument(write_yaml, monkeypatch):
     text = HEAD + "limbs: [{copies: 3, joints: [{name: 'P{i}', type: P, links: [g, 'l{i}'], axis: [0, 0, 1]}, {name: 'Q{i}', type: P, links: ['l{i}', e], axis: [0, 1, 0]}]}]\n"
     assert len(mobility.loads(text).joints) == 6
     raises_one_line(lambda: mobility.loads(text, limits=Limits(max_joints=5)), MechanismFileError, "6 joints in all, more than the limit of 5 .set MOBILITY_MAX_JOINTS")
@@ -359,7 +353,7 @@ def test_limits_are_raised_by_the_environment_and_by_argument(tmp_path, monkeypa
     assert len(mobility.loads(text).joints) == 6
     monkeypatch.setenv("MOBILITY_MAX_DEPTH", "none")
     raises_one_line(lambda: mobility.loads(text), RequestError, "MOBILITY_MAX_DEPTH: expected a positive integer")
-    assert "MOBILITY_MAX_DEPTH" in refused(run_cli("analyze", write(tmp_path, text)))
+    assert "MOBILITY_MAX_DEPTH" in refused(run_cli("analyze", write_yaml(text)))
 
 
 def expanded_nodes(value: Any) -> int:

@@ -73,8 +73,8 @@ def test_a_robot_name_holding_a_character_reference_to_a_line_break_is_refused(t
         assert written in text
         path = tmp_path / source
         path.write_text(text.replace(written, reference, 1), encoding="utf-8")
-        info = raises_one_line(lambda: mobility.load(path), MechanismFileError)
-        assert (info.key, info.message) == (key, message)
+        error = raises_one_line(lambda: mobility.load(path), MechanismFileError)
+        assert (error.key, error.message) == (key, message)
 
 
 def test_a_robot_named_after_a_file_name_holding_a_line_break_is_named_on_one_line(tmp_path):
