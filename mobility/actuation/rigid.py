@@ -27,7 +27,8 @@ import numpy as np
 
 from ..core.linalg import singular_values, svd
 from ..core.loop_closure import loop_closure
-from ..core.model import Mechanism, joint_freedoms, joint_names, require_mechanism, require_no_repeats
+from ..core.model import Mechanism, joint_freedoms, require_mechanism
+from ..core.validation import joint_names, require_no_repeats
 from ..core.poses import DEFAULT_STEP, require_pose_count, sample_poses
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank, require_tolerance

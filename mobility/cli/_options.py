@@ -19,7 +19,8 @@ import sys
 from pathlib import Path
 from typing import Any, Collection, NamedTuple
 
-from ..core.model import Mechanism, integer_from_text, number_from_text
+from ..core.model import Mechanism
+from ..core.validation import integer_from_text, number_from_text
 from ..core.tolerance import Tolerance
 from ..errors import RequestError, one_line
 from ..io.files import os_problem, refuse_pipe
@@ -49,12 +50,12 @@ __all__ = [
 
 
 def number_option(text: str) -> float:
-    """The ``type`` of an option that takes a number: ``float``, but digits in ASCII only, no ``_`` (``--tol \u0661e-9`` and ``--tol 1_0e-9`` are refused, as in a file; :func:`~mobility.core.model.number_from_text`)."""
+    """The ``type`` of an option that takes a number: ``float``, but digits in ASCII only, no ``_`` (``--tol \u0661e-9`` and ``--tol 1_0e-9`` are refused, as in a file; :func:`~mobility.core.validation.number_from_text`)."""
     return number_from_text(text)
 
 
 def integer_option(text: str) -> int:
-    """The ``type`` of an option that takes an integer: ``int``, but digits in ASCII only, no ``_`` (:func:`~mobility.core.model.integer_from_text`)."""
+    """The ``type`` of an option that takes an integer: ``int``, but digits in ASCII only, no ``_`` (:func:`~mobility.core.validation.integer_from_text`)."""
     return integer_from_text(text)
 
 

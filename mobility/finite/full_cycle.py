@@ -54,7 +54,8 @@ import numpy as np
 
 from ..core.analysis import analyze
 from ..core.kinematics import kinematics
-from ..core.model import Mechanism, integer_value, require_mechanism
+from ..core.model import Mechanism, require_mechanism
+from ..core.validation import integer_value
 from ..core.poses import MAX_STEP, require_seed, step_value
 from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance

@@ -41,7 +41,8 @@ import os
 from dataclasses import dataclass, fields
 from typing import Mapping
 
-from ..core.model import Mechanism, integer_from_text, integer_value
+from ..core.model import Mechanism
+from ..core.validation import integer_from_text, integer_value
 from ..errors import MechanismFileError, RequestError, shown_argument
 
 __all__ = ["Limits", "DEFAULT_LIMITS", "current_limits", "require_size", "require_work"]

@@ -37,7 +37,8 @@ from dataclasses import fields, replace
 from pathlib import Path
 from typing import Any
 
-from ..core.model import Mechanism, bool_value
+from ..core.model import Mechanism
+from ..core.validation import bool_value
 from ..errors import MechanismFileError, RequestError, clipped
 from .closures import close_pairs, with_close_pairs, with_closures_file
 from .files import file_name

@@ -25,7 +25,8 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
-from ..core.model import Joint, Mechanism, joint_freedoms, joint_names, require_mechanism, require_no_repeats
+from ..core.model import Joint, Mechanism, joint_freedoms, require_mechanism
+from ..core.validation import joint_names, require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale
 from ..core.transforms import cross, skew
 from ..errors import AnalysisError, MechanismError, RequestError, counted

@@ -20,7 +20,7 @@ from __future__ import annotations
 import re
 from typing import Iterable, Sequence
 
-from ..core.model import bool_value
+from ..core.validation import bool_value
 from ..core.result import Result, ScrewAxis, require_result
 from ..errors import RequestError
 from .text import fmt_number, fmt_vector, screw_text

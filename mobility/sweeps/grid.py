@@ -46,7 +46,8 @@ import numpy as np
 
 from ..core.joint_screws import joint_screws
 from ..core.kinematics import kinematics
-from ..core.model import Mechanism, integer_from_text, number_from_text
+from ..core.model import Mechanism
+from ..core.validation import integer_from_text, number_from_text
 from ..core.tolerance import SAME_GRID_VALUE, SWEEP_REACH
 from ..errors import RequestError, clipped, counted, name_list
 

@@ -44,7 +44,8 @@ from urllib.parse import urlsplit
 import numpy as np
 
 from ..core.joint_screws import joint_screws
-from ..core.model import Mechanism, integer_value
+from ..core.model import Mechanism
+from ..core.validation import integer_value
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError, clipped, shown_argument
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses

@@ -30,7 +30,8 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..core.analysis import analyze, gruebler_kutzbach
-from ..core.model import Joint, Mechanism, integer_value, real_value, require_instance
+from ..core.model import Joint, Mechanism
+from ..core.validation import integer_value, real_value, require_instance
 from ..core.screws import helical_twist, prismatic_twist
 from ..core.linalg import rank
 from ..errors import RequestError, SynthesisError, counted, name_list, shown_argument

@@ -47,7 +47,7 @@ from typing import Any, Iterable, Sequence, cast
 import numpy as np
 
 from ..core.finite_screws import Limb, ScrewJoint
-from ..core.model import integer_value, require_instance
+from ..core.validation import integer_value, require_instance
 from ..core.poses import require_seed
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import AnalysisError, SynthesisError, counted, shown_argument

@@ -74,7 +74,8 @@ from ..io.files import file_name, os_problem, printable_name
 from ..io.limits import current_limits, require_size
 from ..io.loader import load, read_mechanism
 from ..io.yaml_source import Positions, parse_yaml, read_text
-from ..core.model import Mechanism, expected_basis_problem, require_mechanism
+from ..core.expected import expected_basis_problem
+from ..core.model import Mechanism, require_mechanism
 from ..core.result import Result
 from ..core.screws import same_subspace
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, clean_numbers, require_tolerance

@@ -33,7 +33,8 @@ from typing import Any, Iterable
 
 from ..core.analysis import analyze
 from ..core.joint_screws import joint_screws
-from ..core.model import Mechanism, integer_value, require_mechanism
+from ..core.model import Mechanism, require_mechanism
+from ..core.validation import integer_value
 from ..core.result import Result, require_result_of
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError, counted, shown_argument

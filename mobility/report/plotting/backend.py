@@ -17,7 +17,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
-from ...core.model import integer_value, real_value
+from ...core.validation import integer_value, real_value
 from ...errors import PlotFormatError, PlottingUnavailableError, RequestError, counted, shown_argument
 from ...outputs import atomic_output
 

@@ -24,7 +24,8 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 
 from ...core.analysis import analyze
-from ...core.model import Mechanism, bool_value, integer_value, require_mechanism
+from ...core.model import Mechanism, require_mechanism
+from ...core.validation import bool_value, integer_value
 from ...core.result import Result, require_result_of
 from ...errors import RequestError, clipped, shown_argument
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
