@@ -205,7 +205,7 @@ def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
     for option, value, what in (("--ground", args.ground, "a body name"), ("--end-effector", args.end_effector, "a body name"),
                                 ("--closures", args.closures, "a file name")):
         if value == "":
-            raise RequestError(f"{option}: expected {what}, got an empty one")
+            raise RequestError(argument=option, expected=what, got="an empty one")
     values = {"ground": args.ground, "end_effector": args.end_effector, "floating": args.floating,
               "ignore_unsupported": args.ignore_unsupported, "close": tuple(tuple(p) for p in args.close), "closures": args.closures}
     return {k: v for k, v in values.items() if v not in (None, False, ())}

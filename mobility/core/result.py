@@ -466,7 +466,7 @@ def require_result(value: object, caller: str) -> Result:
     mobility.errors.RequestError: text_report: expected a Result (from mobility.analyze), got NoneType
     """
     if not isinstance(value, Result):
-        raise RequestError(f"{caller}: expected a Result (from mobility.analyze), got {type(value).__name__}")
+        raise RequestError(caller=caller, expected="a Result (from mobility.analyze)", got=type(value).__name__)
     return value
 
 

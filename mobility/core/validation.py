@@ -223,7 +223,7 @@ def require_instance(value: object, cls: type[_T], caller: str, reader: str) -> 
     mobility.errors.RequestError: label: expected a str (from str() or built in code), got int
     """
     if not isinstance(value, cls):
-        raise RequestError(f"{caller}: expected a {cls.__name__} (from {reader} or built in code), got {type(value).__name__}")
+        raise RequestError(caller=caller, expected=f"a {cls.__name__} (from {reader} or built in code)", got=type(value).__name__)
     return value
 
 

@@ -89,7 +89,7 @@ def load_flexure(path: str | Path) -> FlexureMechanism:
 def loads_flexure(text: str, file: str = "<string>") -> FlexureMechanism:
     """Load a flexure document from YAML text (see :func:`load_flexure`)."""
     if not isinstance(text, str):
-        raise RequestError(f"loads_flexure: expected the text of a flexure document (str), got {type(text).__name__}")
+        raise RequestError(caller="loads_flexure", expected="the text of a flexure document (str)", got=type(text).__name__)
     data, positions = parse_yaml(text, file)
     return read_flexure(data, positions, file)
 

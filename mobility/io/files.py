@@ -153,7 +153,7 @@ def file_name(value: object, what: str) -> str:
         except TypeError:  # an __fspath__ that returns neither str nor bytes
             name = None
     if not isinstance(name, str):
-        raise RequestError(f"{what}: expected a file name (str or Path), got {type(value).__name__}")
+        raise RequestError(caller=what, expected="a file name (str or Path)", got=type(value).__name__)
     if "\x00" in name:
         raise RequestError(one_line(f"{what}: expected a file name without a NUL character, got {clipped(name, 80)!r}"))
     return name

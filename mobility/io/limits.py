@@ -150,7 +150,7 @@ class Limits:
             value = getattr(self, f.name)
             number = integer_value(value)
             if number is None or number < 1:
-                raise RequestError(f"Limits: {f.name}: expected a positive integer, got {shown_argument(value)}")
+                raise RequestError(caller="Limits", argument=f.name, expected="a positive integer", got=shown_argument(value))
             object.__setattr__(self, f.name, number)
 
     @staticmethod
@@ -182,7 +182,7 @@ class Limits:
             except ValueError:
                 value = 0
             if value < 1:
-                raise RequestError(f"{cls.variable(f.name)}: expected a positive integer, got {shown_argument(raw)}")
+                raise RequestError(argument=cls.variable(f.name), expected="a positive integer", got=shown_argument(raw))
             changed[f.name] = value
         return cls(**changed) if changed else DEFAULT_LIMITS
 

@@ -146,7 +146,7 @@ def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) ->
     mobility.errors.RequestError: loads: expected the text of a mechanism file (str), got int
     """
     if not isinstance(text, str):
-        raise RequestError(f"loads: expected the text of a mechanism file (str), got {type(text).__name__}")
+        raise RequestError(caller="loads", expected="the text of a mechanism file (str)", got=type(text).__name__)
     file = file_name(file, "loads: file")
     limits = _limits_argument(limits)
     data, positions = parse_yaml(text, file, limits)
@@ -156,7 +156,7 @@ def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) ->
 def _limits_argument(limits: object) -> Limits:
     """``limits`` if it is a :class:`Limits`, the current limits for ``None``; a :class:`RequestError` otherwise."""
     if limits is not None and not isinstance(limits, Limits):
-        raise RequestError(f"limits: expected a Limits (mobility.io.limits.Limits) or None, got {type(limits).__name__}")
+        raise RequestError(argument="limits", expected="a Limits (mobility.io.limits.Limits) or None", got=type(limits).__name__)
     return current_limits(limits)
 
 

@@ -202,7 +202,7 @@ def refuse_robot_options(path: str | Path, option_values: dict[str, Any]) -> Non
 def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptions:
     """``options`` with ``values`` applied, each field checked: a :class:`RequestError` naming the first wrong one."""
     if options is not None and not isinstance(options, RobotOptions):
-        raise RequestError(f"options: expected a RobotOptions or None, got {type(options).__name__}")
+        raise RequestError(argument="options", expected="a RobotOptions or None", got=type(options).__name__)
     known = {f.name for f in fields(RobotOptions)}
     unknown = sorted(set(values) - known)
     if unknown:
@@ -211,14 +211,14 @@ def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptio
     for key in ("ground", "end_effector"):
         name = getattr(out, key)
         if name is not None and not isinstance(name, str):
-            raise RequestError(f"{key}: expected a body name (str), got {type(name).__name__}")
+            raise RequestError(argument=key, expected="a body name (str)", got=type(name).__name__)
         if name == "":  # not the same as leaving it out (the default body)
             raise RequestError(f"{key}: an empty body name; expected the name of a body (or leave the option out for the default)")
     flags = {}
     for key in ("floating", "ignore_unsupported"):
         flag = getattr(out, key)
         if flag is not None and bool_value(flag) is None:
-            raise RequestError(f"{key}: expected True or False, got {type(flag).__name__}")
+            raise RequestError(argument=key, expected="True or False", got=type(flag).__name__)
         flags[key] = bool(flag)  # None: the default, False; numpy.bool_ too
     closures = None if out.closures is None else file_name(out.closures, "closures")
     if closures == "":

@@ -152,7 +152,7 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
         construct listed in the module docstring.
     """
     if not isinstance(text, str):
-        raise RequestError(f"parse_yaml: expected the text of a document (str), got {type(text).__name__}")
+        raise RequestError(caller="parse_yaml", expected="the text of a document (str)", got=type(text).__name__)
     lim = current_limits(limits)
     if len(text) > lim.max_file_bytes:
         raise MechanismFileError("", f"a document of {len(text)} characters is larger than the limit of {lim.max_file_bytes} (set MOBILITY_MAX_FILE_BYTES to raise it)", file=file)

@@ -211,13 +211,13 @@ def joint_values(q: Any, chains: Sequence[Chain], key: str = "q") -> tuple[np.nd
     """
     expected = "one array of joint values per limb, as many as the limb's freedoms"
     if isinstance(q, (str, bytes)) or not isinstance(q, Iterable):
-        raise RequestError(f"{key}: expected {expected}, got {type(q).__name__}")
+        raise RequestError(argument=key, expected=expected, got=type(q).__name__)
     values = []
     for v in q:
         try:
             array = np.asarray(v, dtype=float)
         except (TypeError, ValueError, OverflowError):
-            raise RequestError(f"{key}: expected {expected} (numbers), got {type(v).__name__}") from None
+            raise RequestError(argument=key, expected=f"{expected} (numbers)", got=type(v).__name__) from None
         if array.ndim != 1 or not np.isfinite(array).all():
             raise RequestError(f"{key}: expected {expected} (finite numbers in a flat list)")
         values.append(array)

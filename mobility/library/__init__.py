@@ -121,7 +121,7 @@ def path(name: str) -> Path:
     True
     """
     if not isinstance(name, str):
-        raise RequestError(f"library.path: expected a name (str), got {type(name).__name__}")
+        raise RequestError(caller="library.path", expected="a name (str)", got=type(name).__name__)
     stem = name.removesuffix(SUFFIX)
     for folder, known in ((MECHANISMS, names()), (FLEXURE, flexure_names())):
         if stem in known:

@@ -273,7 +273,7 @@ def parse_vary(spec: str) -> tuple[str, float, float, int]:
         raise RequestError(f"{where}: expected NAME=START:STOP:COUNT (e.g. O1=0:360:361)")
     parts = match["range"].split(":")
     if len(parts) != 3:
-        raise RequestError(f"{where}: expected NAME=START:STOP:COUNT, got {counted(len(parts), 'part')} after '='")
+        raise RequestError(argument=where, expected="NAME=START:STOP:COUNT", got=f"{counted(len(parts), 'part')} after '='")
     return (match["name"],) + _bounds(where, parts[0], parts[1], parts[2])
 
 
@@ -309,14 +309,14 @@ def _requests(vary: VarySpec | Iterable) -> list[tuple[str, float, float, int]]:
     elif isinstance(vary, (list, tuple)):
         items = vary
     else:
-        raise RequestError(f"vary: expected NAME=START:STOP:COUNT, a list of them or of (name, start, stop, count), or a mapping, got {type(vary).__name__}")
+        raise RequestError(argument="vary", expected="NAME=START:STOP:COUNT, a list of them or of (name, start, stop, count), or a mapping", got=type(vary).__name__)
     out = []
     for item in items:
         if isinstance(item, str):
             out.append(parse_vary(item))
             continue
         if not isinstance(item, (tuple, list)) or len(item) != 4 or not isinstance(item[0], str):
-            raise RequestError(f"vary: expected NAME=START:STOP:COUNT or (name, start, stop, count), got {item!r}")
+            raise RequestError(argument="vary", expected="NAME=START:STOP:COUNT or (name, start, stop, count)", got=repr(item))
         out.append((item[0],) + _bounds(f"vary {item[0]!r}", *item[1:]))
     return out
 

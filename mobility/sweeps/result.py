@@ -410,7 +410,7 @@ class SweepResult(ReadOnlyArrays):
 
     def _require_index(self, index: Any, what: str) -> None:
         if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not -self.size <= index < self.size:
-            raise RequestError(f"{what}: expected a grid point index in 0..{self.size - 1}, got {shown_argument(index)}")
+            raise RequestError(caller=what, expected=f"a grid point index in 0..{self.size - 1}", got=shown_argument(index))
 
     def row(self, index: int) -> dict[str, Any]:
         """One row of the table as a dict (JSON-ready).

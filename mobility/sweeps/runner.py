@@ -464,7 +464,7 @@ def sweep(
         A scheduler without dask, or a progress bar without tqdm.
     """
     if not isinstance(mechanism, Mechanism):
-        raise RequestError(f"sweep: expected a Mechanism (from mobility.load), got {type(mechanism).__name__}")
+        raise RequestError(caller="sweep", expected="a Mechanism (from mobility.load)", got=type(mechanism).__name__)
     tol = require_tolerance(tol, "sweep")
     chunk_size, max_poses = (_positive_integer(key, value) for key, value in (("chunk_size", chunk_size), ("max_poses", max_poses)))
     workers = None if workers is None else _positive_integer("workers", workers)

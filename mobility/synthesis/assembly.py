@@ -118,17 +118,17 @@ def assemble_pkm(
     """
     result = require_instance(result, SynthesisResult, "assemble_pkm: result", "mobility.synthesize")
     if other not in ("UPS", "SPRR"):
-        raise SynthesisError(f"other: expected UPS or SPRR, got {shown_argument(other)}")
+        raise SynthesisError(caller="other", expected="UPS or SPRR", got=shown_argument(other))
     if not isinstance(structure, str):
-        raise RequestError(f"assemble_pkm: structure: expected the name of a limb type of the result (a str), got {type(structure).__name__}")
+        raise RequestError(caller="assemble_pkm", argument="structure", expected="the name of a limb type of the result (a str)", got=type(structure).__name__)
     if name is not None and not isinstance(name, str):
-        raise RequestError(f"assemble_pkm: name: expected a str or None, got {type(name).__name__}")
+        raise RequestError(caller="assemble_pkm", argument="name", expected="a str or None", got=type(name).__name__)
     found = result.structure(structure)
     copies = _copies(copies, result.joints, 3 if other == "UPS" else 4)
     base_radius, platform_radius, height = (_length(v, key) for v, key in ((base_radius, "base_radius"), (platform_radius, "platform_radius"), (height, "height")))
     twist = real_value(twist_deg)
     if twist is None:
-        raise RequestError(f"assemble_pkm: twist_deg: expected a finite number of degrees, got {shown_argument(twist_deg)}")
+        raise RequestError(caller="assemble_pkm", argument="twist_deg", expected="a finite number of degrees", got=shown_argument(twist_deg))
     pattern = _twist_pattern(twist_pattern)
     plane = tuple(k for k in result.directions if k.startswith("s"))
     s1 = np.array(result.directions.get("s1", (0.0, 0.0, 1.0)))
@@ -205,7 +205,7 @@ def _length(value: object, key: str) -> float:
     """A length of :func:`assemble_pkm`: a finite positive number, else a :class:`RequestError` naming ``key``."""
     number = real_value(value)
     if number is None or number <= 0.0:
-        raise RequestError(f"assemble_pkm: {key}: expected a finite positive length, got {shown_argument(value)}")
+        raise RequestError(caller="assemble_pkm", argument=key, expected="a finite positive length", got=shown_argument(value))
     return number
 
 
@@ -224,7 +224,7 @@ def _twist_pattern(value: object) -> tuple[float, ...]:
     elif isinstance(value, np.ndarray) and value.ndim == 1 and value.size <= 1000:
         numbers = [real_value(x) for x in value.tolist()]
     if not numbers or any(x is None for x in numbers):
-        raise RequestError(f"assemble_pkm: twist_pattern: expected a non-empty sequence of finite numbers (at most 1000), got {shown_argument(value)}")
+        raise RequestError(caller="assemble_pkm", argument="twist_pattern", expected="a non-empty sequence of finite numbers (at most 1000)", got=shown_argument(value))
     return tuple(x for x in numbers if x is not None)
 
 

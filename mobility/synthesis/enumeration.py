@@ -187,7 +187,7 @@ def _count(value: object, key: str, least: int, most: int | None = None, caller:
     number = integer_value(value)
     if number is None or number < least or (most is not None and number > most):
         expected = f"of at least {least}" if most is None else f"from {least} to {most}"
-        raise SynthesisError(f"{caller}: {key}: expected an integer {expected}, got {shown_argument(value)}")
+        raise SynthesisError(caller=caller, argument=key, expected=f"an integer {expected}", got=shown_argument(value))
     return number
 
 
@@ -354,7 +354,7 @@ def generates(pattern: MotionPattern, joints: Sequence[ScrewJoint], *, samples: 
     samples = _count(samples, "samples", 1, MAX_SAMPLES, "generates")
     chain = tuple(joints) if not isinstance(joints, (str, bytes)) and isinstance(joints, Iterable) else None
     if chain is None or not all(isinstance(j, ScrewJoint) for j in chain):
-        raise SynthesisError(f"generates: joints: expected a sequence of ScrewJoint, got {shown_argument(joints)}")
+        raise SynthesisError(caller="generates", argument="joints", expected="a sequence of ScrewJoint", got=shown_argument(joints))
     rng = np.random.default_rng(require_seed(seed, "generates: seed"))
     tol = require_tolerance(tol, "generates")
     dim = pattern.dim

@@ -554,7 +554,7 @@ def check_paths(paths: Sequence[str | Path], *, tol: Tolerance = DEFAULT_TOLERAN
     """
     if not isinstance(paths, (list, tuple)):
         one = " (one name is written [name])" if isinstance(paths, (str, os.PathLike)) else ""
-        raise RequestError(f"check_paths: expected a list of file or folder names, got {type(paths).__name__}{one}")
+        raise RequestError(caller="check_paths", expected="a list of file or folder names", got=f"{type(paths).__name__}{one}")
     for k, path in enumerate(paths):
         file_name(path, f"check_paths: paths[{k}]")
     results = []

@@ -106,9 +106,9 @@ def plot_mechanism(
     count, given = _views_asked(views)
     for key, flag in (("constraints", constraints), ("labels", labels), ("legend", legend)):
         if bool_value(flag) is None:
-            raise RequestError(f"plot_mechanism: {key}: expected True or False, got {shown_argument(flag)}")
+            raise RequestError(caller="plot_mechanism", argument=key, expected="True or False", got=shown_argument(flag))
     if title is not None and not isinstance(title, str):
-        raise RequestError(f"plot_mechanism: title: expected a str or None, got {type(title).__name__}")
+        raise RequestError(caller="plot_mechanism", argument="title", expected="a str or None", got=type(title).__name__)
     size = require_figsize(figsize, "plot_mechanism")
     r = require_result_of(mechanism, result, "plot_mechanism") if result is not None else None
     require_matplotlib()
@@ -153,7 +153,7 @@ def _views_asked(views: Any) -> tuple[int | None, list[tuple[float, float]]]:
             given = []
     if (count is not None and 1 <= count <= MAX_VIEWS) or (given and all(math.isfinite(e) and math.isfinite(a) for e, a in given)):
         return count, given
-    raise RequestError(f"plot_mechanism: views: expected a number of views from 1 to {MAX_VIEWS}, or a list of (elev, azim) pairs in degrees, got {shown_argument(views)}")
+    raise RequestError(caller="plot_mechanism", argument="views", expected=f"a number of views from 1 to {MAX_VIEWS}, or a list of (elev, azim) pairs in degrees", got=shown_argument(views))
 
 
 def _chosen_views(sk: Sketch, answer: np.ndarray, directions: np.ndarray, count: int) -> list[tuple[float, float]]:
