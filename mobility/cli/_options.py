@@ -17,14 +17,14 @@ import os
 import stat
 import sys
 from pathlib import Path
-from typing import Any, Collection, NamedTuple
+from typing import Any, Collection
 
 from ..core.model import Mechanism
 from ..core.validation import integer_from_text, number_from_text
 from ..core.tolerance import Tolerance
 from ..errors import RequestError, one_line
 from ..io.files import os_problem, refuse_pipe
-from ..io.loader import load
+from ..io.loader import FileRead, read_file
 
 __all__ = [
     "add_tolerance_option",
@@ -34,7 +34,6 @@ __all__ = [
     "MECHANISM_FILE_HELP",
     "add_mechanism_file",
     "robot_options_from",
-    "is_robot_description",
     "read_mechanism",
     "load_mechanism",
     "names_from",
@@ -211,25 +210,7 @@ def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
     return {k: v for k, v in values.items() if v not in (None, False, ())}
 
 
-def is_robot_description(path: str) -> bool:
-    """Whether ``path`` is a robot description (a YAML suffix is decided without importing the robot readers)."""
-    if Path(path).suffix.lower() in (".yaml", ".yml"):
-        return False
-    from ..io.robot_files import is_robot_file
-
-    return is_robot_file(path)
-
-
-class ReadMechanism(NamedTuple):
-    """A mechanism read for a command: the mechanism, the notes of its reading, and every file read for it."""
-
-    mechanism: Mechanism
-    notes: tuple[str, ...]
-    files: tuple[str, ...]
-    closures: tuple[str, ...] = ()
-
-
-def read_mechanism(args: argparse.Namespace, path: str | None = None) -> ReadMechanism:
+def read_mechanism(args: argparse.Namespace, path: str | None = None) -> FileRead:
     """The mechanism of ``path`` (default: ``args.file``), read with the robot options of ``args``, the notes of the reading and the files read.
 
     The files are the file itself, a URDF's closures side file and the files an
@@ -240,19 +221,9 @@ def read_mechanism(args: argparse.Namespace, path: str | None = None) -> ReadMec
     MechanismFileError
         When the file cannot be read (one line naming file, line and key).
     RequestError
-        When robot options are given for a mechanism file (YAML).
+        When robot options are given for a mechanism file (YAML), named as typed.
     """
-    path = args.file if path is None else path
-    options = robot_options_from(args)
-    if not is_robot_description(path):
-        if options:  # said with the options as typed (the library's message names its keywords)
-            raise RequestError(f"{', '.join(OPTION_SPELLING[k] for k in options)}: options of robot description files (MJCF, URDF), not of the mechanism file {path}")
-        return ReadMechanism(load(path), (), (path,))
-    from ..io.robot_files import read_robot  # XML readers (and MuJoCo for MJCF): only for robot files
-
-    robot = read_robot(path, **options)
-    closures = options.get("closures")
-    return ReadMechanism(robot.mechanism, tuple(robot.notes), tuple(robot.files) + ((str(closures),) if closures else ()), robot.closures)
+    return read_file(args.file if path is None else path, spelling=OPTION_SPELLING, **robot_options_from(args))
 
 
 def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> Mechanism:
@@ -264,7 +235,7 @@ def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs
     return read_with_notes(args, path, outputs=outputs).mechanism
 
 
-def read_with_notes(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> ReadMechanism:
+def read_with_notes(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> FileRead:
     """:func:`read_mechanism`, its notes written to stderr and its outputs checked as :func:`load_mechanism` does."""
     read = read_mechanism(args, path)
     for output, option in outputs:

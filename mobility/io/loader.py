@@ -42,7 +42,7 @@ from __future__ import annotations
 import re
 import warnings
 from pathlib import Path
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, NamedTuple
 
 from ..core.expected import EXPECTED_KEYS
 from ..core.model import JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
@@ -54,7 +54,7 @@ from .limits import Limits, current_limits
 from .reader import NAME_RE, DocumentReader, describe_value, parse_key, shown_value
 from .yaml_source import KeyPath, Positions, format_key, parse_yaml, read_text
 
-__all__ = ["load", "loads", "read_mechanism", "is_flexure_document", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
+__all__ = ["load", "loads", "read_file", "FileRead", "is_robot_description", "read_mechanism", "is_flexure_document", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
 
 TOP_LEVEL_KEYS = ("name", "description", "ground", "end_effector", "units", "frames", "joints", "expected", "parameters", "limbs")
 JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes", "normal", "actuated")
@@ -116,15 +116,61 @@ def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any
     >>> m.ground, m.end_effector, [j.name for j in m.joints]
     ('ground', 'coupler', ['A', 'B', 'C', 'D'])
     """
+    return read_file(path, limits=limits, **robot_options).mechanism
+
+
+class FileRead(NamedTuple):
+    """A mechanism read from a file, the notes of its reading, every file read for it (the file first) and the joints that close loops."""
+
+    mechanism: Mechanism
+    notes: tuple[str, ...] = ()
+    files: tuple[str, ...] = ()
+    closures: tuple[str, ...] = ()
+
+
+def is_robot_description(path: str | Path) -> bool:
+    """Whether ``path`` is read as a robot description (MJCF, URDF), the one place this is decided: a YAML suffix without importing the robot readers, else by extension or content.
+
+    Examples
+    --------
+    >>> is_robot_description("mechanisms/four_bar.yaml"), is_robot_description("arm.urdf")
+    (False, True)
+    """
+    if Path(path).suffix.lower() in (".yaml", ".yml"):
+        return False
+    from .robot_files import is_robot_file  # robot descriptions are read only when given
+
+    return is_robot_file(path)
+
+
+def read_file(path: str | Path, *, limits: Limits | None = None, spelling: Mapping[str, str] | None = None, **robot_options: Any) -> FileRead:
+    """:func:`load`, with the notes of the reading and the files read (the command line's reader).
+
+    ``spelling`` names the robot options as the caller's user wrote them
+    (``{"ground": "--ground"}``) when they are refused for a mechanism file
+    (YAML).
+
+    Examples
+    --------
+    >>> read = read_file("mechanisms/four_bar.yaml")
+    >>> read.mechanism.name, read.files
+    ('planar four-bar', ('mechanisms/four_bar.yaml',))
+    """
     file_name(path, "load")
     limits = _limits_argument(limits)
-    if robot_options or Path(path).suffix.lower() not in (".yaml", ".yml"):
-        from .robot_files import is_robot_file, load_robot, refuse_robot_options  # robot descriptions are read only when given
+    if not is_robot_description(path):
+        if robot_options:
+            from .robot_files import refuse_robot_options
 
-        if is_robot_file(path):
-            return load_robot(path, **robot_options)
-        refuse_robot_options(path, robot_options)
-    return loads(read_text(path, limits), file=str(path), limits=limits)
+            refuse_robot_options(path, robot_options, spelling)
+        return FileRead(loads(read_text(path, limits), file=str(path), limits=limits), files=(str(path),))
+    from .robot_files import read_robot
+
+    robot = read_robot(path, **robot_options)
+    closures = robot_options.get("closures")
+    return FileRead(robot.mechanism, tuple(robot.notes), tuple(robot.files) + ((str(closures),) if closures else ()), robot.closures)
+
+
 
 
 def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) -> Mechanism:

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from dataclasses import fields, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Mapping
 
 from ..core.model import Mechanism
 from ..core.validation import bool_value
@@ -45,7 +45,7 @@ from .files import file_name
 from .robot_tree import ImportedRobot, RobotOptions, RobotTree, build_mechanism, model_joint_names, unique_name
 from .xml_source import read_xml, root_tag
 
-__all__ = ["robot_format", "is_robot_file", "read_robot", "load_robot", "refuse_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
+__all__ = ["robot_format", "is_robot_file", "read_robot", "refuse_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
 
 ROBOT_SUFFIXES = {".urdf": "urdf", ".mjcf": "mjcf", ".xml": None}
 """Extensions of robot description files (``.xml``: MJCF or URDF, by its first element)."""
@@ -168,17 +168,11 @@ def _closures_named_apart(tree: RobotTree) -> RobotTree:
     return replace(tree, closures=tuple(closures), notes=tree.notes + tuple(notes))
 
 
-def load_robot(path: str | Path, **option_values: Any) -> Mechanism:
-    """The mechanism of an MJCF or URDF file (see :func:`read_robot`; the notes are dropped).
-
-    :func:`mobility.load` calls it for a robot description; a mechanism file
-    (YAML) with robot options is refused there (:func:`refuse_robot_options`).
-    """
-    return read_robot(path, **option_values).mechanism
-
-
-def refuse_robot_options(path: str | Path, option_values: dict[str, Any]) -> None:
+def refuse_robot_options(path: str | Path, option_values: dict[str, Any], spelling: Mapping[str, str] | None = None) -> None:
     """Refuse the robot options given for a mechanism file (YAML); options left at their defaults pass.
+
+    ``spelling`` names the options as the caller's user wrote them, in its
+    order (the command line's ``--ground``); by default by keyword, sorted.
 
     Raises
     ------
@@ -196,7 +190,8 @@ def refuse_robot_options(path: str | Path, option_values: dict[str, Any]) -> Non
     options, default = _options(None, option_values), RobotOptions()
     given = sorted(f.name for f in fields(RobotOptions) if getattr(options, f.name) != getattr(default, f.name))
     if given:
-        raise RequestError(f"{', '.join(given)}: options of robot description files (MJCF, URDF), not of the mechanism file {path}")
+        named = [spelling[k] for k in spelling if k in given] if spelling else given
+        raise RequestError(f"options of robot description files (MJCF, URDF), not of the mechanism file {path}", argument=", ".join(named))
 
 
 def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptions:
