@@ -16,7 +16,6 @@ import argparse
 import os
 import stat
 import sys
-from pathlib import Path
 from typing import Any, Collection
 
 from ..core.model import Mechanism

@@ -42,6 +42,9 @@ __all__ = [
     "integer_value",
     "real_value",
     "bool_value",
+    "require_integer",
+    "require_real",
+    "require_bool",
     "number_from_text",
     "integer_from_text",
 ]
@@ -148,6 +151,58 @@ def bool_value(value: Any) -> bool | None:
     (True, False, None)
     """
     return bool(value) if isinstance(value, (bool, np.bool_)) else None
+
+
+def require_integer(value: Any, expected: str, *, caller: str = "", argument: str = "", low: int | None = None, high: int | None = None,
+                    error: type[RequestError] = RequestError) -> int:
+    """``value`` as an ``int`` when it is an integer (:func:`integer_value`) from ``low`` to ``high``, else ``error`` with the fields given.
+
+    Examples
+    --------
+    >>> require_integer(np.int64(3), "an integer from 1 to 8", caller="view", argument="max_poses", low=1, high=8)
+    3
+    >>> require_integer(9, "an integer from 1 to 8", caller="view", argument="max_poses", low=1, high=8)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: view: max_poses: expected an integer from 1 to 8, got 9
+    """
+    number = integer_value(value)
+    if number is None or (low is not None and number < low) or (high is not None and number > high):
+        raise error(caller=caller, argument=argument, expected=expected, got=shown_argument(value))
+    return number
+
+
+def require_real(value: Any, expected: str, *, caller: str = "", argument: str = "", positive: bool = False) -> float:
+    """``value`` as a finite ``float`` when it is a real number (:func:`real_value`), positive if asked, else a :class:`~mobility.errors.RequestError` with the fields given.
+
+    Examples
+    --------
+    >>> require_real(np.float32(0.5), "a finite positive length", caller="assemble_pkm", argument="height", positive=True)
+    0.5
+    >>> require_real(True, "a finite number of degrees", caller="assemble_pkm", argument="twist_deg")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: assemble_pkm: twist_deg: expected a finite number of degrees, got True
+    """
+    number = real_value(value)
+    if number is None or (positive and number <= 0.0):
+        raise RequestError(caller=caller, argument=argument, expected=expected, got=shown_argument(value))
+    return number
+
+
+def require_bool(value: Any, *, caller: str = "", argument: str = "", got: str | None = None) -> bool:
+    """``value`` as a ``bool`` when it is one (:func:`bool_value`), else a :class:`~mobility.errors.RequestError` saying "expected True or False" (``got``: how the value is shown, default its ``repr``).
+
+    Examples
+    --------
+    >>> require_bool(np.True_, caller="plot_mechanism", argument="labels")
+    True
+    >>> require_bool(1, caller="plot_mechanism", argument="labels")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: plot_mechanism: labels: expected True or False, got 1
+    """
+    flag = bool_value(value)
+    if flag is None:
+        raise RequestError(caller=caller, argument=argument, expected="True or False", got=shown_argument(value) if got is None else got)
+    return flag
 
 
 def _not_bool(value: Any) -> Any:

@@ -37,8 +37,7 @@ from dataclasses import fields, replace
 from pathlib import Path
 from typing import Any, Mapping
 
-from ..core.model import Mechanism
-from ..core.validation import bool_value
+from ..core.validation import require_bool
 from ..errors import MechanismFileError, RequestError, clipped
 from .closures import close_pairs, with_close_pairs, with_closures_file
 from .files import file_name
@@ -212,9 +211,7 @@ def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptio
     flags = {}
     for key in ("floating", "ignore_unsupported"):
         flag = getattr(out, key)
-        if flag is not None and bool_value(flag) is None:
-            raise RequestError(argument=key, expected="True or False", got=type(flag).__name__)
-        flags[key] = bool(flag)  # None: the default, False; numpy.bool_ too
+        flags[key] = flag is not None and require_bool(flag, argument=key, got=type(flag).__name__)  # None: the default, False
     closures = None if out.closures is None else file_name(out.closures, "closures")
     if closures == "":
         raise RequestError("closures: an empty file name; expected the name of a closures file (or leave the option out)")

@@ -20,7 +20,7 @@ from __future__ import annotations
 import re
 from typing import Iterable, Sequence
 
-from ..core.validation import bool_value
+from ..core.validation import require_bool
 from ..core.result import Result, ScrewAxis, require_result
 from ..errors import RequestError
 from .text import fmt_number, fmt_vector, screw_text
@@ -166,8 +166,7 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
         Markdown text, ending without a newline.
     """
     result = require_result(result, "markdown_report")
-    if bool_value(limbs) is None:
-        raise RequestError(caller="markdown_report", argument="limbs", expected="True or False", got=type(limbs).__name__)
+    require_bool(limbs, caller="markdown_report", argument="limbs", got=type(limbs).__name__)
     s = result.length_scale
     unit = _unit(result)
     out = [f"# {md_heading(result.name)}", ""]

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core.analysis import analyze, gruebler_kutzbach
 from ..core.model import Joint, Mechanism
-from ..core.validation import integer_value, real_value, require_instance
+from ..core.validation import real_value, require_instance, require_integer, require_real
 from ..core.screws import helical_twist, prismatic_twist
 from ..core.linalg import rank
 from ..errors import RequestError, SynthesisError, counted, name_list, shown_argument
@@ -126,9 +126,7 @@ def assemble_pkm(
     found = result.structure(structure)
     copies = _copies(copies, result.joints, 3 if other == "UPS" else 4)
     base_radius, platform_radius, height = (_length(v, key) for v, key in ((base_radius, "base_radius"), (platform_radius, "platform_radius"), (height, "height")))
-    twist = real_value(twist_deg)
-    if twist is None:
-        raise RequestError(caller="assemble_pkm", argument="twist_deg", expected="a finite number of degrees", got=shown_argument(twist_deg))
+    twist = require_real(twist_deg, "a finite number of degrees", caller="assemble_pkm", argument="twist_deg")
     pattern = _twist_pattern(twist_pattern)
     plane = tuple(k for k in result.directions if k.startswith("s"))
     s1 = np.array(result.directions.get("s1", (0.0, 0.0, 1.0)))
@@ -194,19 +192,14 @@ def _copies(value: object, limb_joints: int, per_copy: int) -> int:
     """
     limits = current_limits()
     most = max(1, (limits.max_joints - limb_joints) // per_copy)
-    number = integer_value(value)
-    if number is None or not 1 <= number <= most:
-        raise RequestError(f"assemble_pkm: copies: expected an integer from 1 to {most} ({counted(limb_joints, 'joint')} of the limb and {per_copy} per copy "
-                           f"within the limit of {counted(limits.max_joints, 'joint')}: {limits.hint('max_joints')}), got {shown_argument(value)}")
-    return number
+    return require_integer(value, f"an integer from 1 to {most} ({counted(limb_joints, 'joint')} of the limb and {per_copy} per copy "
+                                  f"within the limit of {counted(limits.max_joints, 'joint')}: {limits.hint('max_joints')})",
+                           caller="assemble_pkm", argument="copies", low=1, high=most)
 
 
 def _length(value: object, key: str) -> float:
     """A length of :func:`assemble_pkm`: a finite positive number, else a :class:`RequestError` naming ``key``."""
-    number = real_value(value)
-    if number is None or number <= 0.0:
-        raise RequestError(caller="assemble_pkm", argument=key, expected="a finite positive length", got=shown_argument(value))
-    return number
+    return require_real(value, "a finite positive length", caller="assemble_pkm", argument=key, positive=True)
 
 
 def _twist_pattern(value: object) -> tuple[float, ...]:

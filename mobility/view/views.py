@@ -34,7 +34,7 @@ from typing import Any, Iterable
 from ..core.analysis import analyze
 from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism, require_mechanism
-from ..core.validation import integer_value
+from ..core.validation import require_integer
 from ..core.result import Result, require_result_of
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError, counted, shown_argument
@@ -212,10 +212,7 @@ def require_max_poses(value: object, caller: str) -> int:
     Traceback (most recent call last):
     mobility.errors.RequestError: sweep_view: max_poses: expected an integer from 1 to 200 (poses a view holds), got None
     """
-    count = integer_value(value)
-    if count is None or not 1 <= count <= MAX_POSES:
-        raise RequestError(caller=caller, argument="max_poses", expected=f"an integer from 1 to {MAX_POSES} (poses a view holds)", got=shown_argument(value))
-    return count
+    return require_integer(value, f"an integer from 1 to {MAX_POSES} (poses a view holds)", caller=caller, argument="max_poses", low=1, high=MAX_POSES)
 
 
 def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSES, notes: Iterable[str] = ()) -> View:

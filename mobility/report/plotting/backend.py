@@ -17,7 +17,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
-from ...core.validation import integer_value, real_value
+from ...core.validation import real_value, require_integer
 from ...errors import PlotFormatError, PlottingUnavailableError, RequestError, counted, shown_argument
 from ...outputs import atomic_output
 
@@ -232,9 +232,7 @@ def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
         raise RequestError(caller="save_figure", expected="a matplotlib Figure", got=type(fig).__name__)
     p = picture_path(written_file_name(path, "save_figure: path"))
     low, high = DPI_RANGE
-    dots = integer_value(dpi)
-    if dots is None or not low <= dots <= high:
-        raise RequestError(caller="save_figure", argument="dpi", expected=f"an integer from {low} to {high} (dots per inch)", got=shown_argument(dpi))
+    dots = require_integer(dpi, f"an integer from {low} to {high} (dots per inch)", caller="save_figure", argument="dpi", low=low, high=high)
     with glyphs_summarised():
         with atomic_output(p, binary=True) as handle:  # the previous picture intact until the new one is whole
             fig.savefig(handle, format=p.suffix[1:].lower(), dpi=dots, facecolor="white")

@@ -25,7 +25,7 @@ import numpy as np
 
 from ...core.analysis import analyze
 from ...core.model import Mechanism, require_mechanism
-from ...core.validation import bool_value, integer_value
+from ...core.validation import integer_value, require_bool
 from ...core.result import Result, require_result_of
 from ...errors import RequestError, clipped, shown_argument
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
@@ -105,8 +105,7 @@ def plot_mechanism(
     tol = require_tolerance(tol, "plot_mechanism")
     count, given = _views_asked(views)
     for key, flag in (("constraints", constraints), ("labels", labels), ("legend", legend)):
-        if bool_value(flag) is None:
-            raise RequestError(caller="plot_mechanism", argument=key, expected="True or False", got=shown_argument(flag))
+        require_bool(flag, caller="plot_mechanism", argument=key)
     if title is not None and not isinstance(title, str):
         raise RequestError(caller="plot_mechanism", argument="title", expected="a str or None", got=type(title).__name__)
     size = require_figsize(figsize, "plot_mechanism")
