@@ -20,7 +20,7 @@ from typing import Any, Collection
 
 from ..core.model import Mechanism
 from ..core.validation import integer_from_text, number_from_text
-from ..core.tolerance import Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..errors import RequestError, one_line
 from ..io.files import os_problem, refuse_pipe
 from ..io.loader import FileRead, read_file
@@ -63,23 +63,22 @@ integer_option.__name__ = "int"
 
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--tol``, the relative rank threshold of the tolerance policy."""
-    base = Tolerance()
-    parser.add_argument("--tol", type=number_option, default=base.rank,
-                        help=f"relative rank threshold, in [{base.inexact:g}, {base.near_singular:g}) (default: %(default)g)")
+    parser.add_argument("--tol", type=number_option, default=DEFAULT_TOLERANCE.rank,
+                        help=f"relative rank threshold, in [{DEFAULT_TOLERANCE.inexact:g}, {DEFAULT_TOLERANCE.near_singular:g}) (default: %(default)g)")
 
 
 def tolerance_from(args: argparse.Namespace) -> Tolerance:
-    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol``.
+    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol``, whose range the policy itself checks (``[inexact, near_singular)``).
 
     Raises
     ------
     RequestError
-        When the value lies outside ``[inexact, near_singular)`` of the policy.
+        Naming ``--tol`` and its range, when the policy refuses it.
     """
-    base = Tolerance()
-    if not (base.inexact <= args.tol < base.near_singular):
-        raise RequestError(f"--tol must lie in [{base.inexact:g}, {base.near_singular:g}), got {args.tol:g}")
-    return Tolerance(rank=args.tol)
+    try:
+        return Tolerance(rank=args.tol)
+    except RequestError:
+        raise RequestError(f"--tol must lie in [{DEFAULT_TOLERANCE.inexact:g}, {DEFAULT_TOLERANCE.near_singular:g}), got {args.tol:g}") from None
 
 
 def add_pose_sampler_options(
