@@ -22,7 +22,7 @@ from ..core.model import Mechanism
 from ..core.validation import integer_from_text, number_from_text
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..errors import RequestError, one_line
-from ..io.files import os_problem, refuse_pipe
+from ..io.files import os_problem, require_not_pipe
 from ..io.loader import FileRead, read_file
 
 __all__ = [
@@ -292,7 +292,7 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
         return
     if output.endswith(("/", os.sep)):  # `-o newdir/` would write a file called newdir
         raise RequestError(f"{option} {output}: expected a file name, not a folder (it ends with {output[-1]})")
-    if stat.S_ISDIR(refuse_pipe(output, f"a file to write for {option} (writing to a pipe would wait for a reader)")):
+    if stat.S_ISDIR(require_not_pipe(output, f"a file to write for {option} (writing to a pipe would wait for a reader)")):
         raise RequestError(f"{option} {output}: is a directory, expected a file to write")
     try:
         os.stat(output)

@@ -141,7 +141,7 @@ class _FlexureReader(DocumentReader):
         if value is None:
             return "m", 1.0
         units = self.mapping(value, ("units",), "units")
-        self.check_keys(units, ("angle", "length", "modulus"), ("units",), "units")
+        self.require_known_keys(units, ("angle", "length", "modulus"), ("units",), "units")
         self.units({k: v for k, v in units.items() if k == "angle"})
         length = units.get("length", "m")
         if not isinstance(length, str) or length not in LENGTH_UNITS:

@@ -102,7 +102,7 @@ def read_expected(reader: DocumentReader, value: Any, keys: tuple[str, ...]) -> 
     """
     path: KeyPath = ("expected",)
     data = reader.mapping(value, path, "expected results")
-    reader.check_keys(data, keys, path, "the expected block")
+    reader.require_known_keys(data, keys, path, "the expected block")
     fields: dict[str, Any] = {}
     extra: dict[str, Any] = {}
     for key, raw in data.items():

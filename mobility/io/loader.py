@@ -160,9 +160,9 @@ def read_file(path: str | Path, *, limits: Limits | None = None, spelling: Mappi
     limits = _limits_argument(limits)
     if not is_robot_description(path):
         if robot_options:
-            from .robot_files import refuse_robot_options
+            from .robot_files import require_no_robot_options
 
-            refuse_robot_options(path, robot_options, spelling)
+            require_no_robot_options(path, robot_options, spelling)
         return FileRead(loads(read_text(path, limits), file=str(path), limits=limits), files=(str(path),))
     from .robot_files import read_robot
 
@@ -236,7 +236,7 @@ class _MechanismReader(DocumentReader):
         joints, sources = self.joints(doc.get("joints", []), ("joints",), {}, None)
         limb_frames, limb_joints, limb_sources = self.limbs(doc.get("limbs"), len(joints), len(frames))
         frames += limb_frames
-        self.check_frame_chains(frames)
+        self.require_frame_chains(frames)
         joints += limb_joints
         sources += limb_sources
         if not joints:
@@ -427,7 +427,7 @@ class _MechanismReader(DocumentReader):
         for k, raw in enumerate(value):
             path: KeyPath = ("limbs", k)
             limb = self.mapping(raw, path, "a limb pattern with copies and joints")
-            self.check_keys(limb, LIMB_KEYS, path, "a limb pattern")
+            self.require_known_keys(limb, LIMB_KEYS, path, "a limb pattern")
             copies = limb.get("copies")
             if isinstance(copies, bool) or not isinstance(copies, int) or copies < 1:
                 raise self.fail(path + ("copies",), f"expected a positive integer, got {describe_value(copies)}")

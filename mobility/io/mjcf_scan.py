@@ -86,7 +86,7 @@ from pathlib import Path
 from xml.etree.ElementTree import Element
 
 from ..errors import MechanismFileError, clipped
-from .files import read_capped, refuse_pipe
+from .files import read_capped, require_not_pipe
 from .limits import Limits, current_limits
 from .xml_source import XmlDocument, parse_xml, underflow_problem
 
@@ -325,7 +325,7 @@ class _Scanner:
     def check_file(self, path: str, fail, kind: str) -> None:
         """A regular file, within what remains of the size limit."""
         try:
-            mode = refuse_pipe(path)
+            mode = require_not_pipe(path)
         except MechanismFileError:
             raise fail("a pipe or socket; expected a file to include") from None
         if not stat.S_ISREG(mode):

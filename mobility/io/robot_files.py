@@ -44,7 +44,7 @@ from .files import file_name
 from .robot_tree import ImportedRobot, RobotOptions, RobotTree, build_mechanism, model_joint_names, unique_name
 from .xml_source import read_xml, root_tag
 
-__all__ = ["robot_format", "is_robot_file", "read_robot", "refuse_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
+__all__ = ["robot_format", "is_robot_file", "read_robot", "require_no_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
 
 ROBOT_SUFFIXES = {".urdf": "urdf", ".mjcf": "mjcf", ".xml": None}
 """Extensions of robot description files (``.xml``: MJCF or URDF, by its first element)."""
@@ -167,7 +167,7 @@ def _closures_named_apart(tree: RobotTree) -> RobotTree:
     return replace(tree, closures=tuple(closures), notes=tree.notes + tuple(notes))
 
 
-def refuse_robot_options(path: str | Path, option_values: dict[str, Any], spelling: Mapping[str, str] | None = None) -> None:
+def require_no_robot_options(path: str | Path, option_values: dict[str, Any], spelling: Mapping[str, str] | None = None) -> None:
     """Refuse the robot options given for a mechanism file (YAML); options left at their defaults pass.
 
     ``spelling`` names the options as the caller's user wrote them, in its
@@ -180,8 +180,8 @@ def refuse_robot_options(path: str | Path, option_values: dict[str, Any], spelli
 
     Examples
     --------
-    >>> refuse_robot_options("arm.yaml", {"ground": None, "close": []})
-    >>> refuse_robot_options("arm.yaml", {"ground": "base", "floating": True})
+    >>> require_no_robot_options("arm.yaml", {"ground": None, "close": []})
+    >>> require_no_robot_options("arm.yaml", {"ground": "base", "floating": True})
     Traceback (most recent call last):
     ...
     mobility.errors.RequestError: floating, ground: options of robot description files (MJCF, URDF), not of the mechanism file arm.yaml
