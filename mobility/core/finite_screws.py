@@ -315,7 +315,7 @@ def _triangle2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
         v = va + vb + 0.5 * (cross(wa, vb) + cross(va, wb)) - 0.25 * float(wa @ va) * wb - 0.25 * float(wb @ vb) * wa
         out = np.concatenate([w, v]) / d if d != 0.0 else np.full(6, np.inf)
     if not (np.isfinite(d) and np.isfinite(scale) and np.all(np.isfinite(w)) and np.all(np.isfinite(v))):
-        raise RequestError("screws: the triangle product of these finite screws overflows double precision (expected screws of moderate size)")
+        raise RequestError("the triangle product of these finite screws overflows double precision (expected screws of moderate size)", caller="screws")
     if abs(d) <= QUATERNION_ROUND_OFF * scale or not np.all(np.isfinite(out)):
         raise HalfTurnError("the triangle product is a half-turn (1 - wa·wb/4 = 0): it has no finite quasi-vector; use FiniteScrew")
     return out

@@ -588,7 +588,7 @@ class Mechanism:
         """
         transforms = self._frame_transforms
         if not isinstance(name, str) or name not in transforms:
-            raise RequestError(f"frame_transform: no frame named {shown_argument(name)}{did_you_mean(name, transforms)}; the frames are {name_list(transforms)}")
+            raise RequestError(f"no frame named {shown_argument(name)}{did_you_mean(name, transforms)}; the frames are {name_list(transforms)}", caller="frame_transform")
         return transforms[name]
 
     @cached_property

@@ -132,7 +132,7 @@ class ParallelModel:
         """
         target = _finite_array(displacement, "assemble: displacement", "a 4x4 homogeneous transform of finite numbers")
         if target.shape != (4, 4):
-            raise RequestError(f"assemble: displacement must be a 4x4 homogeneous transform of finite numbers, got an array of shape {target.shape}")
+            raise RequestError(f"displacement must be a 4x4 homogeneous transform of finite numbers, got an array of shape {target.shape}", caller="assemble")
         starts = None if start is None else joint_values(start, self.chains, "start")
         length = self.length
         out = []

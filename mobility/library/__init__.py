@@ -127,4 +127,4 @@ def path(name: str) -> Path:
         if stem in known:
             return folder / f"{stem}{SUFFIX}"
     every = names() + flexure_names()
-    raise RequestError(f"library.path: no file named {clipped(name)!r} in the bundled library{did_you_mean(stem, every)}; names: {name_list(every)}")
+    raise RequestError(f"no file named {clipped(name)!r} in the bundled library{did_you_mean(stem, every)}; names: {name_list(every)}", caller="library.path")

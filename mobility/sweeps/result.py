@@ -405,7 +405,7 @@ class SweepResult(ReadOnlyArrays):
         """
         self._require_index(index, "mechanism_at")
         if not self.assembled[index]:
-            raise RequestError(f"mechanism_at: grid point {int(index)} ({', '.join(f'{n}={v:g}' for n, v in zip(self.names, self.values[index]))}) was not assembled; its loops do not close")
+            raise RequestError(f"grid point {int(index)} ({', '.join(f'{n}={v:g}' for n, v in zip(self.names, self.values[index]))}) was not assembled; its loops do not close", caller="mechanism_at")
         return kinematics(self.mechanism).mechanism_at(self.q[index])
 
     def _require_index(self, index: Any, what: str) -> None:

@@ -493,7 +493,7 @@ def _positive_integer(key: str, value: Any) -> int:
     """``value`` as an ``int`` when it is a positive integer (an ``int`` or a numpy integer, not a bool), else a :class:`RequestError`."""
     number = integer_value(value)
     if number is None or number < 1:
-        raise RequestError(f"sweep: {key} must be a positive integer, got {shown_argument(value)}")
+        raise RequestError(f"{key} must be a positive integer, got {shown_argument(value)}", caller="sweep")
     return number
 
 
@@ -502,7 +502,7 @@ def _require_scheduler(scheduler: Any) -> None:
     if scheduler is None or isinstance(scheduler, str):
         return
     if not (callable(getattr(scheduler, "submit", None)) and callable(getattr(scheduler, "scheduler_info", None))):
-        raise RequestError(f"sweep: scheduler must be a dask distributed.Client or a scheduler's address, got {type(scheduler).__name__}")
+        raise RequestError(f"scheduler must be a dask distributed.Client or a scheduler's address, got {type(scheduler).__name__}", caller="sweep")
 
 
 def _require_progress(progress: Any) -> None:
@@ -510,11 +510,11 @@ def _require_progress(progress: Any) -> None:
     if progress is None or isinstance(progress, bool):
         return
     if not callable(progress):
-        raise RequestError(f"sweep: progress must be True, False or a callable progress(stage, done, total), got {type(progress).__name__}")
+        raise RequestError(f"progress must be True, False or a callable progress(stage, done, total), got {type(progress).__name__}", caller="sweep")
     try:
         inspect.signature(progress).bind("stage", 0, 1)
     except TypeError:
-        raise RequestError("sweep: progress must accept three arguments, progress(stage, done, total)") from None
+        raise RequestError("progress must accept three arguments, progress(stage, done, total)", caller="sweep") from None
     except ValueError:  # no signature to read (some builtins): take it as it is
         pass
 

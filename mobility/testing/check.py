@@ -334,7 +334,7 @@ def compare_translations(found: np.ndarray, expected: Any, tol: Tolerance) -> Co
     rows = np.asarray(expected, dtype=float).reshape(-1, 3)
     problem = expected_basis_problem([(float(x), float(y), float(z)) for x, y, z in rows.tolist()])
     if problem is not None:
-        raise RequestError(f"compare_translations: expected[{problem[0]}]: {problem[1]}")
+        raise RequestError(problem[1], caller="compare_translations", argument=f"expected[{problem[0]}]")
     actual = clean_numbers(found)
     scaled = rows * np.array([binary_scale(row) for row in rows]).reshape(-1, 1)  # before squaring: any finite vector has a direction
     unit = scaled / np.linalg.norm(scaled, axis=1)[:, None]
