@@ -1,12 +1,16 @@
 """The value checkers of the package: one idiom, ``require_*``, that returns the value checked or raises.
 
-Every public function checks its arguments once, at its boundary, with these:
-each returns the value in the form the code below trusts (a ``float``, an
-``int``, a normalised direction, a tuple of names) or raises an error naming
-what was expected -- :class:`~mobility.errors.MechanismError` for a
-description's key, :class:`~mobility.errors.RequestError` for an argument.
-The ``*_value`` readers are the one test of "an integer", "a real number" and
-"a bool" they share (``None`` when the value is not one).
+A public function checks each argument once, at its boundary, with these;
+the code below it trusts what they return (a ``float``, an ``int``, a
+normalised direction, a tuple of names).  A refusal is an error with fields
+-- :class:`~mobility.errors.MechanismError` (a description's key and what
+is wrong) or :class:`~mobility.errors.RequestError` (caller, argument,
+expected, got) -- which writes its own message.  The ``*_value`` readers
+(:func:`integer_value`, :func:`real_value`, :func:`bool_value`) are the one
+test of "an integer", "a real number" and "a bool", that the ``require_*``
+build on; used directly only where many values are read at once.  A file
+reader, which names a file's line rather than an argument, builds its
+message from the ``*_problem`` helpers of :mod:`mobility.errors`.
 
 Examples
 --------

@@ -288,7 +288,7 @@ class _Scanner:
             if kind == "model":
                 return []  # MuJoCo says the asset is missing
             raise fail(f"no such file (looked in {_dirs(where.model_dir or self.model_dir, doc.file)}); expected a file to include")
-        self.check_file(path, fail, kind)
+        self.require_includable(path, fail, kind)
         real = os.path.realpath(path)
         if real in where.chain or (kind == "include" and real in self.seen):
             first = self.seen.get(real) or "the model file itself"
@@ -322,7 +322,7 @@ class _Scanner:
                 return candidate
         return None
 
-    def check_file(self, path: str, fail, kind: str) -> None:
+    def require_includable(self, path: str, fail, kind: str) -> None:
         """A regular file, within what remains of the size limit."""
         try:
             mode = require_not_pipe(path)
