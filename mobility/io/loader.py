@@ -163,7 +163,7 @@ def read_file(path: str | Path, *, limits: Limits | None = None, spelling: Mappi
             from .robot_files import require_no_robot_options
 
             require_no_robot_options(path, robot_options, spelling)
-        return FileRead(loads(read_text(path, limits), file=str(path), limits=limits), files=(str(path),))
+        return FileRead(_read_yaml(read_text(path, limits), str(path), limits), files=(str(path),))
     from .robot_files import read_robot
 
     robot = read_robot(path, **robot_options)
@@ -193,8 +193,11 @@ def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) ->
     """
     if not isinstance(text, str):
         raise RequestError(caller="loads", expected="the text of a mechanism file (str)", got=type(text).__name__)
-    file = file_name(file, "loads: file")
-    limits = _limits_argument(limits)
+    return _read_yaml(text, file_name(file, "loads: file"), _limits_argument(limits))
+
+
+def _read_yaml(text: str, file: str, limits: Limits) -> Mechanism:
+    """The mechanism of YAML ``text``, its arguments checked by :func:`load` or :func:`loads`."""
     data, positions = parse_yaml(text, file, limits)
     return read_mechanism(data, positions, file, limits=limits)
 
