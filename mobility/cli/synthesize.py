@@ -65,9 +65,9 @@ def _require_folder_to_write(folder: str) -> None:
         raise RequestError(f"--write {folder!r}: expected a folder name")
     where = Path(os.path.abspath(folder))
     if where.exists() and not where.is_dir():
-        raise RequestError(f"--write {folder}: is a file, expected a folder to write mechanism files in")
+        raise RequestError("is a file, expected a folder to write mechanism files in", argument=f"--write {folder}")
     if not where.exists() and not where.parent.is_dir():
-        raise RequestError(f"--write {folder}: cannot write there: the folder {where.parent} does not exist")
+        raise RequestError(f"cannot write there: the folder {where.parent} does not exist", argument=f"--write {folder}")
 
 
 def run(args: argparse.Namespace) -> int:

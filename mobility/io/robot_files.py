@@ -207,7 +207,7 @@ def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptio
         if name is not None and not isinstance(name, str):
             raise RequestError(argument=key, expected="a body name (str)", got=type(name).__name__)
         if name == "":  # not the same as leaving it out (the default body)
-            raise RequestError(f"{key}: an empty body name; expected the name of a body (or leave the option out for the default)")
+            raise RequestError("an empty body name; expected the name of a body (or leave the option out for the default)", argument=key)
     flags = {}
     for key in ("floating", "ignore_unsupported"):
         flag = getattr(out, key)

@@ -238,7 +238,7 @@ def _connect(distributed: Any, address: str) -> Any:
     """
     refused = _refused(address)
     if refused:
-        raise RequestError(f"--scheduler {address}: cannot reach a dask scheduler there ({refused})")
+        raise RequestError(f"cannot reach a dask scheduler there ({refused})", argument=f"--scheduler {address}")
     box: dict[str, Any] = {}
 
     def connect() -> None:
@@ -254,7 +254,7 @@ def _connect(distributed: Any, address: str) -> Any:
     if "client" in box:
         return box["client"]
     why = f"{type(box['error']).__name__}: {box['error']}" if "error" in box else f"no answer within {CONNECT_SECONDS:g} s"
-    raise RequestError(f"--scheduler {address}: cannot reach a dask scheduler there ({why})")
+    raise RequestError(f"cannot reach a dask scheduler there ({why})", argument=f"--scheduler {address}")
 
 
 def _refused(address: str) -> str:
@@ -300,7 +300,7 @@ class _Runner:
             self.workers = len(self.client.scheduler_info().get("workers", {}))
             if self.workers == 0:
                 self.close()
-                raise RequestError(f"--scheduler {scheduler}: the dask scheduler has no workers; start some (dask worker ADDRESS) and run again")
+                raise RequestError("the dask scheduler has no workers; start some (dask worker ADDRESS) and run again", argument=f"--scheduler {scheduler}")
             self._context_future = self.client.scatter(context, broadcast=True)
         else:
             self.workers = max(1, workers if workers is not None else (os.cpu_count() or 1))
