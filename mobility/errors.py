@@ -333,7 +333,7 @@ class RequestError(MobilityError, ValueError):
     The error carries what went wrong as fields and writes its message from
     them: ``caller: argument: expected EXPECTED, got GOT``, each part left out
     when it is empty, and ``problem`` (what is wrong, in words) where the
-    trouble is not a value out of its range, or after ``; `` as advice.
+    trouble is not a value out of its range, or after a semicolon, as advice.
 
     Parameters
     ----------

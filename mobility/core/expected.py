@@ -155,7 +155,7 @@ class Expected:
     keys (each compared by its comparator in
     :data:`mobility.testing.check.COMPARATORS`) and is copied, so the
     caller's mapping may change afterwards.  Hashable (over the fields and
-    the keys of ``extra``) and picklable, as a :class:`Mechanism` holding it is.
+    the keys of ``extra``) and picklable, as a :class:`~mobility.core.model.Mechanism` holding it is.
 
     Raises
     ------
