@@ -26,6 +26,7 @@ from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
 from ..errors import RequestError
 from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines, flexure_spaces, is_flexure_document, loads_flexure
+from ..io.loader import is_robot_description
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
 from ..io.limits import require_size, require_work
@@ -36,7 +37,6 @@ from ._options import (
     add_pose_sampler_options,
     add_tolerance_option,
     integer_option,
-    is_robot_description,
     load_mechanism,
     names_from,
     number_option,

@@ -131,12 +131,12 @@ def closure_advice(mechanism: Mechanism, joints: Iterable[str], *, tol: Toleranc
     """
     mechanism = require_mechanism(mechanism, "closure_advice")
     if isinstance(joints, (str, bytes)) or not isinstance(joints, Iterable):
-        raise RequestError(f"closure_advice: joints must be a list of joint names, got {shown_argument(joints)}")
+        raise RequestError(f"joints must be a list of joint names, got {shown_argument(joints)}", caller="closure_advice")
     names = list(joints)
     index = {j.name: i for i, j in enumerate(mechanism.joints)}
     for name in names:
         if name not in index:
-            raise RequestError(f"closure_advice: {shown_argument(name)} is not a joint of {mechanism.name!r}")
+            raise RequestError(f"{shown_argument(name)} is not a joint of {mechanism.name!r}", caller="closure_advice")
     screws = joint_screws(mechanism)
     rows, wrenches = _constraint_rows(mechanism, screws, tol)
     return tuple(_advice(mechanism, screws, rows, wrenches, index[name], tol) for name in names)

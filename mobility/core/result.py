@@ -466,7 +466,7 @@ def require_result(value: object, caller: str) -> Result:
     mobility.errors.RequestError: text_report: expected a Result (from mobility.analyze), got NoneType
     """
     if not isinstance(value, Result):
-        raise RequestError(f"{caller}: expected a Result (from mobility.analyze), got {type(value).__name__}")
+        raise RequestError(caller=caller, expected="a Result (from mobility.analyze)", got=type(value).__name__)
     return value
 
 
@@ -519,4 +519,4 @@ def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) ->
         name = clipped(repr(mechanism.name), 60)
         other = clipped(repr(getattr(analysed, "name", analysed)), 60)
         which = f"than {name} (of the same name, with other joints, pose or fields)" if other == name else f"({other}) than {name}"
-        raise RequestError(f"{caller}: the result is of another mechanism {which}; pass the result of analysing this one, or none")
+        raise RequestError(f"the result is of another mechanism {which}; pass the result of analysing this one, or none", caller=caller)

@@ -75,7 +75,7 @@ def close_pairs(value: object) -> tuple[tuple[str, str], ...]:
     if value is None:
         return ()
     if not isinstance(value, (list, tuple)):
-        raise RequestError(f"close: expected a list of pairs of body names [(A, B), ...], got {type(value).__name__}")
+        raise RequestError(caller="close", expected="a list of pairs of body names [(A, B), ...]", got=type(value).__name__)
     pairs = []
     for k, pair in enumerate(value):
         if isinstance(pair, (list, tuple)) and len(pair) == 2 and all(isinstance(name, str) for name in pair):
@@ -89,7 +89,7 @@ def close_pairs(value: object) -> tuple[tuple[str, str], ...]:
             got = f"{len(pair)} item{'s' if len(pair) != 1 else ''}"
         else:
             got = f"a pair of {type(pair[0]).__name__} and {type(pair[1]).__name__}"
-        raise RequestError(f"close[{k}]: expected a pair of body names (A, B), got {got}")
+        raise RequestError(argument=f"close[{k}]", expected="a pair of body names (A, B)", got=got)
     return tuple(pairs)
 
 

@@ -199,7 +199,7 @@ class _UrdfReader:
         if not name:
             raise self.fail(el, "joint", "missing attribute name; expected <joint name=\"...\" type=\"...\">")
         key = f"joint[{clipped(name)}]"
-        self.refuse_repeated(el, key)
+        self.require_once(el, key)
         jtype = el.get("type")
         if jtype is None:
             raise self.fail(el, f"{key}/@type", f"missing attribute type; expected one of {', '.join(URDF_JOINT_KINDS)}")
@@ -234,7 +234,7 @@ class _UrdfReader:
                 "origin": Transform(rotation_from_rpy(rpy), np.array(xyz)), "axis": np.array(axis) / (math.hypot(*axis) or 1.0),
                 "mimic": mimic.get("joint") if mimic is not None else None}
 
-    def refuse_repeated(self, el: ET.Element, key: str) -> None:
+    def require_once(self, el: ET.Element, key: str) -> None:
         """Refuse a second ``<parent>``, ``<axis>``... in the joint ``el``: its line, and the first one's."""
         first: dict[str, ET.Element] = {}
         for sub in el:

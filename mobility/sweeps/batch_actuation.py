@@ -41,7 +41,8 @@ from typing import Sequence, cast
 import numpy as np
 
 from ..actuation import REDUNDANT, SINGULAR, VALID
-from ..core.model import Mechanism, joint_freedoms, joint_names, require_no_repeats
+from ..core.model import Mechanism, joint_freedoms
+from ..core.validation import joint_names, require_no_repeats
 from ..core.screws import SWAP_ROWS
 from ..core.tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
 from ..core.topology import JointNode, Node, Parallel, Series, decompose, joints_of
