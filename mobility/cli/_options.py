@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, Collection, NamedTuple
 
 from ..core.model import Mechanism, integer_from_text, number_from_text
-from ..core.tolerance import Tolerance
+from ..core.tolerance import Tolerance, file_tolerance
 from ..errors import RequestError, one_line
 from ..io.files import os_problem, refuse_pipe
 from ..io.loader import load
@@ -65,12 +65,16 @@ integer_option.__name__ = "int"
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--tol``, the relative rank threshold of the tolerance policy."""
     base = Tolerance()
-    parser.add_argument("--tol", type=number_option, default=base.rank,
-                        help=f"relative rank threshold, in [{base.inexact:g}, {base.near_singular:g}) (default: %(default)g)")
+    parser.add_argument("--tol", type=number_option, default=None,
+                        help=f"relative rank threshold, in [{base.inexact:g}, {base.near_singular:g}) (default: {base.rank:g}, "
+                             "or more for a file whose numbers are rounded: never finer than the file)")
 
 
-def tolerance_from(args: argparse.Namespace) -> Tolerance:
-    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol``.
+def tolerance_from(args: argparse.Namespace, precision: float | None = None) -> Tolerance:
+    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol``; without it, the default never finer than ``precision``.
+
+    ``precision`` is the file's own (:attr:`~mobility.core.model.Mechanism.precision`):
+    see :func:`~mobility.core.tolerance.file_tolerance`.
 
     Raises
     ------
@@ -78,6 +82,8 @@ def tolerance_from(args: argparse.Namespace) -> Tolerance:
         When the value lies outside ``[inexact, near_singular)`` of the policy.
     """
     base = Tolerance()
+    if args.tol is None:
+        return file_tolerance(precision)
     if not (base.inexact <= args.tol < base.near_singular):
         raise RequestError(f"--tol must lie in [{base.inexact:g}, {base.near_singular:g}), got {args.tol:g}")
     return Tolerance(rank=args.tol)
