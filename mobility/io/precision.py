@@ -165,6 +165,10 @@ class DigitCounter:
         return Rounding(digits, largest(self.exponents["length"]), largest(self.exponents["angle"]))
 
 
+_SHOWN_GAP = 1e-12
+"""A gap below this is round-off of the reading itself, not worth a word."""
+
+
 @dataclass(frozen=True)
 class FilePrecision:
     """A file's precision and what it was found from.
@@ -194,7 +198,7 @@ class FilePrecision:
         parts = []
         if self.digits is not None:
             parts.append(f"numbers written with {self.digits} significant digits")
-        if self.gap > 0.0:
+        if self.gap > _SHOWN_GAP:
             parts.append(f"loops closing to {self.gap:.2g} of its size")
         return "; ".join(parts)
 
