@@ -162,10 +162,11 @@ singular value of a direction that the designer's mechanism holds exactly
 ``100 p`` every such direction is dropped, as the designer drew it; a
 direction kept at that threshold is far above anything the rounding can
 make (a freedom or a constraint of the mechanism itself).  On the
-published six-digit exports of the tests (``tests/data/cad``), the
-directions the rounding makes have singular values of 0.02 to 3 times
-``p`` and the mechanism's own freedoms 0.01 or more, so ``100 p`` lies
-between them with a factor of 30 or more on each side."""
+six-digit files of the tests (a published biped exported by
+onshape-to-robot, ``tests/data/robots/toddlerbot``, and the rounded
+mechanisms of ``tests/data/cad``), the directions the rounding makes have
+singular values of 0.001 to 0.6 times ``p``, and the mechanism's own are
+26 to 300 times ``100 p``."""
 
 PRECISION_CEILING = 1e-3
 """The highest rank threshold a file's precision raises the default to.

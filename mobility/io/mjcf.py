@@ -52,6 +52,7 @@ from ..errors import MechanismError, MechanismFileError, MissingExtraError, clip
 from .files import read_capped
 from .mjcf_actuators import actuator_inputs
 from .mjcf_scan import MjcfScan, scan_mjcf
+from .precision import mjcf_rounding
 from .robot_actuators import BallActuator
 from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name, vector_tuple
 from .xml_source import parse_xml
@@ -137,7 +138,8 @@ def read_mjcf(path: str | Path) -> RobotTree:
         tree = _MjcfTree(mujoco, spec, model, data, file).tree()  # its forward pass (the gaps) may warn too
     said += [str(w.message) for w in caught]
     notes = [f"MuJoCo warns: {clipped(' '.join(text.split()), 200)}" for text in dict.fromkeys(said) if text.strip()]
-    return replace(tree, notes=tree.notes + tuple(notes), files=scan.files, rounding=scan.rounding)
+    rounding = mjcf_rounding([doc.root, *(parse_xml(read_capped(f), f, mujoco=True).root for f in scan.files)])  # the digits of the file's own numbers
+    return replace(tree, notes=tree.notes + tuple(notes), files=scan.files, rounding=rounding)
 
 
 def _reader(mujoco: ModuleType, file: str, raw: bytes, scan: MjcfScan) -> tuple[Any, str | None]:

@@ -88,7 +88,6 @@ from xml.etree.ElementTree import Element
 from ..errors import MechanismFileError, clipped
 from .files import read_capped, refuse_pipe
 from .limits import Limits, current_limits
-from .precision import DigitCounter, Rounding
 from .xml_source import XmlDocument, parse_xml, underflow_problem
 
 __all__ = ["scan_mjcf", "MjcfScan", "GEOMETRY_ATTRIBUTES", "DIRECTIONS", "MUJOCO_EPS"]
@@ -147,8 +146,6 @@ class MjcfScan:
     asset_values: int = 0
     world_joints: int = 0
     world_bodies: int = 0
-    rounding: Rounding | None = None
-    """The digits the numbers placing bodies, joints, sites and equalities are rounded to (:mod:`mobility.io.precision`)."""
 
 
 @dataclass
@@ -187,8 +184,6 @@ class _Scanner:
     over: dict[str, _Over] = field(default_factory=dict)
     models: dict[str, tuple[int, int]] = field(default_factory=dict)  # a <model>'s elements and joints, by name: what each <attach> copies
     waiting: dict[str, list[tuple[Element, _Context]]] = field(default_factory=dict)  # <attach>es met before their <model>
-    digits: DigitCounter = field(default_factory=DigitCounter)
-    angle_scale: float = math.pi / 180.0  # MJCF's default <compiler angle="degree">
 
     def walk(self, root: Element, context: _Context) -> None:
         """Every element under ``root`` (iteratively: a deep file must not exhaust Python's stack)."""
@@ -202,10 +197,6 @@ class _Scanner:
         """Check one element; the elements to visit under it, each with its context."""
         tag = element.tag
         _check_numbers(where.doc, element)
-        if tag == "compiler" and element.get("angle") in ("radian", "degree"):
-            self.angle_scale = 1.0 if element.get("angle") == "radian" else math.pi / 180.0
-        if tag in _PLACING:
-            _count_digits(self.digits, element, self.angle_scale)
         self.count("elements", where.multiplier, element, where)
         if where.multiplier > 1:
             doc, at = where.source or (where.doc, element)
@@ -398,26 +389,7 @@ def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = N
     scanner.raise_first_over()
     counts = scanner.counts
     return MjcfScan(tuple(scanner.includes), tuple(scanner.files), counts["elements"], counts["joints"], counts["copies"],
-                    counts["equalities"], counts["asset_values"], counts["world_joints"], counts["world_bodies"], scanner.digits.rounding())
-
-
-_PLACING = frozenset({"body", "frame", "joint", "site", "connect", "weld"})
-"""Elements whose numbers place joints: counted for the file's precision (geoms, inertias and the rest are not)."""
-
-_DIGIT_KINDS = {"pos": ("length",), "anchor": ("length",), "quat": ("quat",), "axis": ("unit",), "zaxis": ("unit",), "xyaxes": ("unit",),
-                "euler": ("angle",), "axisangle": ("unit", "unit", "unit", "angle"), "relpose": ("length",) * 3 + ("quat",) * 4}
-"""What each number of a placing attribute is, for :class:`~mobility.io.precision.DigitCounter` (the last kind repeats)."""
-
-
-def _count_digits(digits: DigitCounter, element: Element, angle_scale: float) -> None:
-    """Add the numbers that place ``element`` to ``digits``, each as the kind of number it is (angles in the file's unit)."""
-    for attribute, kinds in _DIGIT_KINDS.items():
-        value = element.get(attribute)
-        if not value:
-            continue
-        for i, token in enumerate(value.split()):
-            kind = kinds[min(i, len(kinds) - 1)]
-            digits.add(token, kind, angle_scale if kind == "angle" else 1.0)
+                    counts["equalities"], counts["asset_values"], counts["world_joints"], counts["world_bodies"])
 
 
 def _check_numbers(doc: XmlDocument, element: Element) -> None:

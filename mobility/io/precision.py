@@ -53,13 +53,13 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from typing import Iterable
+from typing import Any, Iterable
 
 import numpy as np
 
 from ..core.tolerance import characteristic_scale
 
-__all__ = ["Rounding", "DigitCounter", "ROUNDED_DIGITS", "ASSEMBLED", "FilePrecision", "file_precision", "significant_digits"]
+__all__ = ["Rounding", "DigitCounter", "MJCF_PLACING", "MJCF_DIGIT_KINDS", "count_mjcf_digits", "mjcf_rounding", "ROUNDED_DIGITS", "ASSEMBLED", "FilePrecision", "file_precision", "significant_digits"]
 
 ROUNDED_DIGITS = 5
 """A file whose numbers have a median of at least this many significant digits is read as rounded to that many.
@@ -167,6 +167,50 @@ class DigitCounter:
 
 _SHOWN_GAP = 1e-12
 """A gap below this is round-off of the reading itself, not worth a word."""
+
+
+MJCF_PLACING = frozenset({"body", "frame", "joint", "site", "connect", "weld"})
+"""Elements whose numbers place joints: counted for the file's precision (geoms, inertias and the rest are not)."""
+
+MJCF_DIGIT_KINDS = {"pos": ("length",), "anchor": ("length",), "quat": ("quat",), "axis": ("unit",), "zaxis": ("unit",), "xyaxes": ("unit",),
+                "euler": ("angle",), "axisangle": ("unit", "unit", "unit", "angle"), "relpose": ("length",) * 3 + ("quat",) * 4}
+"""What each number of a placing attribute is, for :class:`~mobility.io.precision.DigitCounter` (the last kind repeats)."""
+
+
+def count_mjcf_digits(digits: DigitCounter, element: Any, angle_scale: float) -> None:
+    """Add the numbers that place ``element`` to ``digits``, each as the kind of number it is (angles in the file's unit)."""
+    for attribute, kinds in MJCF_DIGIT_KINDS.items():
+        value = element.get(attribute)
+        if not value:
+            continue
+        for i, token in enumerate(value.split()):
+            kind = kinds[min(i, len(kinds) - 1)]
+            digits.add(token, kind, angle_scale if kind == "angle" else 1.0)
+
+
+def mjcf_rounding(roots: Iterable[Any]) -> Rounding | None:
+    """The rounding of the numbers that place an MJCF model's bodies, joints, sites and equalities, in its file and the files it includes.
+
+    ``roots`` are the root elements of the documents; angles are in the
+    unit of ``<compiler angle>`` (MJCF's default: degrees).
+
+    Examples
+    --------
+    >>> from xml.etree.ElementTree import fromstring
+    >>> root = fromstring('<mujoco><compiler angle="radian"/><worldbody><body pos="0.0926361 0.0115732 0.0764594" '
+    ...                   'euler="2.35619 0 1.5708"><joint axis="0 0 1"/></body></worldbody></mujoco>')
+    >>> mjcf_rounding([root])
+    Rounding(digits=6, length=5e-08, angle=5e-06)
+    """
+    digits = DigitCounter()
+    scale = math.pi / 180.0
+    for root in roots:
+        for element in root.iter():
+            if element.tag == "compiler" and element.get("angle") in ("radian", "degree"):
+                scale = 1.0 if element.get("angle") == "radian" else math.pi / 180.0
+            if element.tag in MJCF_PLACING:
+                count_mjcf_digits(digits, element, scale)
+    return digits.rounding()
 
 
 @dataclass(frozen=True)
