@@ -144,3 +144,14 @@ def test_a_mechanism_refuses_a_precision_that_is_not_a_number_at_least_zero():
         with pytest.raises(MechanismError, match="precision"):
             Mechanism(m.name, m.ground, m.end_effector, m.joints, precision=bad)
     assert m.replace(precision=1e-6) == m and m.replace(precision=1e-6).precision == 1e-6  # not part of its value
+
+
+def test_a_precision_given_in_code_raises_the_threshold_up_to_its_ceiling_and_tol_still_decides():
+    m = mobility.load("mechanisms/four_bar.yaml").replace(precision=1e-4)  # coarser than 1e-3 / 100: the ceiling decides
+    r = mobility.analyze(m)
+    assert r.rank_threshold == 1e-3 and r.mobility == 1
+    assert r.precision_summary.startswith("the file is precise to 1.0e-04 of its size: ranks decided at 1.0e-03 (its ceiling) instead of 1e-08")
+    asked = mobility.analyze(m, tol=DEFAULT_TOLERANCE)
+    assert asked.rank_threshold == 1e-8 and "as asked (its precision would give 1.0e-03)" in asked.precision_summary
+    fine = m.replace(precision=1e-11)  # 100 x 1e-11 is below the default: nothing changes, nothing is said
+    assert mobility.analyze(fine).rank_threshold == 1e-8 and mobility.analyze(fine).precision_summary == ""

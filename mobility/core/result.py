@@ -26,7 +26,7 @@ from ..errors import RequestError, clipped, counted
 from .frozen import ReadOnlyArrays, read_only_cached_property
 from .model import Mechanism
 from .screws import pattern_of
-from .tolerance import DEFAULT_TOLERANCE, PRECISION_FACTOR, clean_numbers, file_tolerance
+from .tolerance import DEFAULT_TOLERANCE, PRECISION_CEILING, PRECISION_FACTOR, clean_numbers, file_tolerance
 from .topology import Bridge, Node, Parallel, Series, Topology, describe, joints_of
 
 __all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultDetail", "pattern_of", "require_result",
@@ -371,7 +371,7 @@ class Result(ReadOnlyArrays):
             return ""
         found = f"the file is precise to {precision:.1e} of its size"
         if self.rank_threshold == own:
-            factor = "its ceiling" if own < PRECISION_FACTOR * precision else f"{PRECISION_FACTOR:g} x its precision"
+            factor = "its ceiling" if own == PRECISION_CEILING < PRECISION_FACTOR * precision else f"{PRECISION_FACTOR:g} x its precision"
             return (f"{found}: ranks decided at {own:.1e} ({factor}) instead of {DEFAULT_TOLERANCE.rank:.0e}, "
                     "as its designer drew it; --tol decides at another threshold")
         return f"{found}: ranks decided at {self.rank_threshold:.1e} as asked (its precision would give {own:.1e}): its rounding may decide counts"

@@ -184,7 +184,7 @@ def file_tolerance(precision: float | None) -> Tolerance:
     The default (:data:`DEFAULT_TOLERANCE`) unless :data:`PRECISION_FACTOR`
     times ``precision`` (the file's own, relative to the mechanism's size,
     see :mod:`mobility.io.precision`) is above its rank threshold; then the
-    rank threshold is raised to it, at most to :data:`PRECISION_CEILING`,
+    rank threshold is raised to it (to two significant digits), at most to :data:`PRECISION_CEILING`,
     and the near-singular warning follows, ten times higher.  A file written
     by hand or with full precision (``precision`` ``None``, or below about
     1e-10) keeps the default: its answers are exactly those of the default
@@ -198,12 +198,12 @@ def file_tolerance(precision: float | None) -> Tolerance:
     >>> t = file_tolerance(5e-6)
     >>> t.rank, t.near_singular
     (0.0005, 0.005)
-    >>> file_tolerance(0.5).rank
-    0.001
+    >>> file_tolerance(0.5).rank, file_tolerance(5e-7).rank
+    (0.001, 5e-05)
     """
     if precision is None or not PRECISION_FACTOR * precision > DEFAULT_TOLERANCE.rank:
         return DEFAULT_TOLERANCE
-    rank = min(PRECISION_FACTOR * precision, PRECISION_CEILING)
+    rank = min(float(f"{PRECISION_FACTOR * precision:.2g}"), PRECISION_CEILING)  # two digits: an estimate, shown as one
     return Tolerance(rank=rank, near_singular=max(DEFAULT_TOLERANCE.near_singular, 10.0 * rank))
 
 
