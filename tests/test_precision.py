@@ -155,3 +155,10 @@ def test_a_precision_given_in_code_raises_the_threshold_up_to_its_ceiling_and_to
     assert asked.rank_threshold == 1e-8 and "as asked (its precision would give 1.0e-03)" in asked.precision_summary
     fine = m.replace(precision=1e-11)  # 100 x 1e-11 is below the default: nothing changes, nothing is said
     assert mobility.analyze(fine).rank_threshold == 1e-8 and mobility.analyze(fine).precision_summary == ""
+
+
+def test_a_urdf_written_with_seven_digits_is_read_as_such_and_its_open_chain_keeps_its_answer():
+    m = mobility.load(Path(__file__).parent / "data" / "robots" / "rtb_data" / "puma560_robot.urdf")
+    assert m.precision == 5e-07  # rpy written with seven digits (1.570796): half a unit of the seventh
+    default, strict = mobility.analyze(m), mobility.analyze(m, tol=STRICT)
+    assert default.rank_threshold == 5e-05 and (default.dof, default.mobility) == (strict.dof, strict.mobility) == (6, 6)
