@@ -712,7 +712,7 @@ class Mechanism:
     def __post_init__(self) -> None:
         if self.precision is not None:
             p = real_value(self.precision)
-            if p is None or not (math.isfinite(p) and p >= 0.0):
+            if p is None or p < 0.0:
                 raise MechanismError("precision", f"expected a finite number >= 0 or None, got {self.precision!r}")
             object.__setattr__(self, "precision", p)
         for key in ("joints", "frames"):
