@@ -20,7 +20,7 @@ from typing import Any, Collection
 
 from ..core.model import Mechanism
 from ..core.validation import integer_from_text, number_from_text
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, file_tolerance
 from ..errors import RequestError, one_line
 from ..io.files import os_problem, require_not_pipe
 from ..io.loader import FileRead, read_file
@@ -63,18 +63,24 @@ integer_option.__name__ = "int"
 
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--tol``, the relative rank threshold of the tolerance policy."""
-    parser.add_argument("--tol", type=number_option, default=DEFAULT_TOLERANCE.rank,
-                        help=f"relative rank threshold, in [{DEFAULT_TOLERANCE.inexact:g}, {DEFAULT_TOLERANCE.near_singular:g}) (default: %(default)g)")
+    parser.add_argument("--tol", type=number_option, default=None,
+                        help=f"relative rank threshold, in [{DEFAULT_TOLERANCE.inexact:g}, {DEFAULT_TOLERANCE.near_singular:g}) (default: {DEFAULT_TOLERANCE.rank:g}, "
+                             "or more for a file whose numbers are rounded: never finer than the file)")
 
 
-def tolerance_from(args: argparse.Namespace) -> Tolerance:
-    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol``, whose range the policy itself checks (``[inexact, near_singular)``).
+def tolerance_from(args: argparse.Namespace, precision: float | None = None) -> Tolerance:
+    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol`` (whose range the policy itself checks, ``[inexact, near_singular)``); without it, the default never finer than ``precision``.
+
+    ``precision`` is the file's own (:attr:`~mobility.core.model.Mechanism.precision`):
+    see :func:`~mobility.core.tolerance.file_tolerance`.
 
     Raises
     ------
     RequestError
         Naming ``--tol`` and its range, when the policy refuses it.
     """
+    if args.tol is None:
+        return file_tolerance(precision)
     try:
         return Tolerance(rank=args.tol)
     except RequestError:

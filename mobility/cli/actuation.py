@@ -102,6 +102,7 @@ def run(args: argparse.Namespace) -> int:
     if args.threshold is not None:  # it would be ignored: a rigid mechanism has no compliance
         raise RequestError(f"--threshold applies to flexure documents (their compliance), not to the rigid mechanism {args.file}")
     mechanism = load_mechanism(args)
+    tol = tolerance_from(args, mechanism.precision)
     names = names_from(args.inputs, [j.name for j in mechanism.joints])
     if args.enumerate:
         require_size(mechanism, "max_enumerated_joints", "--enumerate", args.file)

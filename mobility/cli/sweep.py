@@ -105,6 +105,7 @@ def run(args: argparse.Namespace) -> int:
     if args.workers is not None and not 1 <= args.workers <= MAX_WORKERS:
         raise RequestError(f"--workers must be between 1 and {MAX_WORKERS} (threads of this process; for more, use --scheduler), got {clipped(str(args.workers))}")
     mechanism = load_mechanism(args, outputs=((args.output, "-o"), (args.plot, "--plot")))
+    tol = tolerance_from(args, mechanism.precision)
     require_size(mechanism, "max_moving_joints", "a sweep", args.file)
     inputs = names_from(args.inputs, [j.name for j in mechanism.joints])
     if inputs is not None:

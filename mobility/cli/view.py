@@ -68,6 +68,7 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError(f"a view shows at most {counted(MAX_POSES, 'pose')}, the file's and {MAX_POSES - 1} sampled; ask for fewer", argument=f"--samples {args.samples}")
     require_plotly()  # before any work
     mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
+    tol = tolerance_from(args, mechanism.precision)
     if args.vary or args.samples:
         require_size(mechanism, "max_moving_joints", "--vary" if args.vary else "--samples", args.file)
         require_work(mechanism, *_poses_shown(args, mechanism, max_poses), args.file)

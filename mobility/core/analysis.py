@@ -31,7 +31,7 @@ from .model import WORLD, Mechanism, require_mechanism
 from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis, pattern_of
 from .screw_systems import MarginTracker, SystemValue, evaluate_node, subtree_values
 from .screws import free_vector_subspace, span_and_reciprocal
-from .tolerance import DEFAULT_TOLERANCE, NEAR_LARGEST_FLOAT, Tolerance, decide_rank, require_tolerance
+from .tolerance import NEAR_LARGEST_FLOAT, Tolerance, decide_rank, file_tolerance, require_tolerance
 from .transforms import cross
 from .topology import JointNode, Node, Parallel, Topology, decompose, describe, joints_of
 
@@ -51,15 +51,17 @@ def gruebler_kutzbach(mechanism: Mechanism) -> int:
     return 6 * (len(mechanism.links) - 1 - len(mechanism.joints)) + mechanism.freedom_count
 
 
-def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Result:
+def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
     """Analyse the mobility of ``mechanism`` at its pose.
 
     Parameters
     ----------
     mechanism : Mechanism
         From :func:`mobility.load` or built in code.
-    tol : Tolerance
-        Rank-decision policy (relative, dimensionless).
+    tol : Tolerance, optional
+        Rank-decision policy (relative, dimensionless), used as given.
+        Default: the default policy, never finer than the precision of the
+        mechanism's file (:func:`~mobility.core.tolerance.file_tolerance`).
 
     Returns
     -------
@@ -85,7 +87,7 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
     (1, '1R', 1, -2, 3)
     """
     mechanism = require_mechanism(mechanism, "analyze")
-    tol = require_tolerance(tol, "analyze")
+    tol = file_tolerance(mechanism.precision) if tol is None else require_tolerance(tol, "analyze")
     topology = per_object_cache(mechanism, "topology", lambda: decompose(mechanism))
     screws = joint_screws(mechanism)
     tracker = MarginTracker()

@@ -47,7 +47,7 @@ from ..errors import MechanismError, RequestError, did_you_mean, name_list, show
 from .expected import Expected
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
-from .validation import (Vector, _listed, _not_bool, bool_value, integer_value, number_from_text, require_graph_names, require_ground_and_end_effector,
+from .validation import (Vector, _listed, _not_bool, bool_value, integer_value, number_from_text, real_value, require_graph_names, require_ground_and_end_effector,
                          require_instance, require_name, require_unique_names, require_vector)
 
 __all__ = [
@@ -407,6 +407,12 @@ class Mechanism:
         mechanism once loaded (the loader fills it; empty for a mechanism
         built in code).  Not part of its value: equal mechanisms may come
         from different files.
+    precision : float or None
+        How precise the file's geometry is, relative to the mechanism's
+        size (see :mod:`mobility.io.precision`); ``None`` (built in code, a
+        file written by hand or with full precision): exact.  When no
+        tolerance is given, ranks are never decided finer than it
+        (:func:`~mobility.core.tolerance.file_tolerance`).  Not part of its value.
 
     Raises
     ------
@@ -438,8 +444,14 @@ class Mechanism:
     expected: Expected | None = None
     source: str = ""
     written_at: Mapping[str, tuple[str, int | None]] = field(default_factory=dict, compare=False, repr=False)
+    precision: float | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
+        if self.precision is not None:
+            p = real_value(self.precision)
+            if p is None or p < 0.0:
+                raise MechanismError("precision", f"expected a finite number >= 0 or None, got {self.precision!r}")
+            object.__setattr__(self, "precision", p)
         for key in ("joints", "frames"):
             value = getattr(self, key)
             if isinstance(value, (str, bytes, dict)) or not isinstance(value, Iterable):

@@ -103,16 +103,17 @@ def with_close_pairs(tree: RobotTree, pairs: Iterable[tuple[str, str]]) -> Robot
     RequestError
         When ``pairs`` is not a list of pairs of names (:func:`close_pairs`).
     """
-    closures, notes = [], []
+    closures, notes, gaps = [], [], []
     for a, b in close_pairs(pairs):
         first, second = tree.body(a, "close"), tree.body(b, "close")
         if first.name == second.name:
             raise MechanismFileError("close", f"expected two different bodies, got {a!r} twice", file=tree.file)
         gap = float(np.linalg.norm(np.subtract(first.origin, second.origin)))
+        gaps.append(gap)
         name = f"close_{a}_{b}"
         closures.append(Closure(Joint(name, "S", (a, b), point=first.origin), "--close"))
         notes.append(f"--close {a} {b}: spherical joint {name} at the origin of {a}; the origin of {b} is {gap:.3g} {tree.length_unit} from it")
-    return tree.with_closures(closures, notes=notes)
+    return tree.with_closures(closures, notes=notes, gaps=gaps)
 
 
 def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:

@@ -62,8 +62,10 @@ from typing import Iterable, cast
 import numpy as np
 
 from ..core.model import Joint, Mechanism
+from ..core.tolerance import DEFAULT_TOLERANCE, file_tolerance
 from ..errors import MechanismError, MechanismFileError, clipped, counted, did_you_mean
 from .limits import current_limits
+from .precision import Rounding, file_precision
 from .robot_actuators import BallActuator, ball_chain, ball_chain_names
 
 __all__ = [
@@ -182,6 +184,12 @@ class RobotTree:
     files : tuple of str
         The other files read for it: the files an MJCF model includes (and
         its ``<model>`` files), a closures file.
+    rounding : Rounding or None
+        The digits its numbers are rounded to (:mod:`mobility.io.precision`).
+    gaps : tuple of float
+        How far each loop closure misses at the pose, in ``length_unit``.
+    angle_gaps : tuple of float
+        How far each weld misses, in radians.
     """
 
     name: str
@@ -196,6 +204,9 @@ class RobotTree:
     pose: str = "all joint positions zero"
     length_unit: str = "m"
     files: tuple[str, ...] = ()
+    rounding: Rounding | None = None
+    gaps: tuple[float, ...] = ()
+    angle_gaps: tuple[float, ...] = ()
 
     def body(self, name: str, key: str) -> Body:
         """The body called ``name``; an error naming ``key`` and the close matches otherwise."""
@@ -207,10 +218,11 @@ class RobotTree:
         shown = ", ".join(clipped(n) for n in names[:12]) + (f", ... ({len(names)} bodies)" if len(names) > 12 else "")
         raise MechanismFileError(key, f"no body named {clipped(name)!r}{hint}; expected one of: {shown}", file=self.file)
 
-    def with_closures(self, closures: Iterable[Closure], welds: Iterable[Weld] = (), notes: Iterable[str] = (), files: Iterable[str] = ()) -> "RobotTree":
-        """The same tree with more closing joints, welds and notes (and the files they were read from)."""
+    def with_closures(self, closures: Iterable[Closure], welds: Iterable[Weld] = (), notes: Iterable[str] = (), files: Iterable[str] = (),
+                      gaps: Iterable[float] = ()) -> "RobotTree":
+        """The same tree with more closing joints, welds and notes (and the files they were read from, and how far the closures miss)."""
         return replace(self, closures=self.closures + tuple(closures), welds=self.welds + tuple(welds), notes=self.notes + tuple(notes),
-                       files=self.files + tuple(files))
+                       files=self.files + tuple(files), gaps=self.gaps + tuple(gaps))
 
 
 @dataclass(frozen=True)
@@ -371,9 +383,14 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     if len(joints) > limits.max_joints:
         raise MechanismFileError("joints", f"{len(joints)} joints are more than the limit of {limits.max_joints} ({limits.hint('max_joints')})", file=tree.file)
     description = f"Imported from the {tree.format} file {Path(tree.file).name} at the pose: {tree.pose}."
+    precision = file_precision(tree.rounding, tree.gaps, tree.angle_gaps, (j.point for j in joints))
+    rank = file_tolerance(precision.value).rank
+    if rank > DEFAULT_TOLERANCE.rank:
+        notes.append(f"the file is precise to about {precision.value:.1e} of its size ({precision.describe()}): "
+                     f"ranks are decided at {rank:.1e}, not finer (--tol decides at another threshold)")
     try:
         mechanism = Mechanism(name=tree.name, ground=ground, end_effector=end_effector, joints=tuple(joints),
-                              description=description, length_unit=tree.length_unit, source=tree.file)
+                              description=description, length_unit=tree.length_unit, source=tree.file, precision=precision.value)
     except MechanismError as exc:
         raise MechanismFileError(exc.key, exc.message, file=tree.file) from None
     return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files, tuple(closing))

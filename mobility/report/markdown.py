@@ -219,6 +219,8 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
         f"singular value, relative). Departure from the special geometry: {result.margin.largest_dropped:.2e} (0 or round-off when it "
         "is exact: the largest dropped singular value, relative).",
     ]
+    if result.precision_summary:
+        out += ["", f"Precision: {md_line(result.precision_summary)}."]
     if result.warnings:
         out.append("")
         out += [f"> **Warning:** {md_line(w)}" for w in result.warnings]
