@@ -522,7 +522,11 @@ class RankDecisions(NamedTuple):
     largest_dropped: np.ndarray
 
 
-def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: np.ndarray | None = None) -> RankDecisions:
+_ROW_BY_ROW = 8
+"""Up to this many rows, :func:`decide_ranks` decides row by row (the same numbers, less overhead)."""
+
+
+def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: int | np.ndarray | None = None) -> RankDecisions:
     """:func:`decide_rank` of every row of ``singular_values``, vectorised, with the same semantics.
 
     Parameters
@@ -530,10 +534,12 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     singular_values : ndarray, shape (N, k)
         Each row in decreasing order (as :func:`numpy.linalg.svd` returns a stack).
     tol : Tolerance
-    counts : ndarray of int, shape (N,), optional
+    counts : int or ndarray of int, shape (N,), optional
         How many leading values of each row are singular values of its
-        matrix; the others (the zero columns added to give every matrix of a
-        stack the same shape) are ignored, as if the row were shorter.
+        matrix (the number of columns of each matrix without the zero columns
+        added to give every matrix of a stack the same shape; a count beyond
+        the row's length means the whole row); the others are ignored, as if
+        the row were shorter.
 
     Returns
     -------
@@ -551,7 +557,11 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     """
     s = np.asarray(singular_values, dtype=float)
     n, k = s.shape
-    present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.minimum(np.asarray(counts), k))[:, None]
+    if n <= _ROW_BY_ROW:  # a few rows: the loop of decide_rank costs less than the array operations below
+        lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist()
+        rows = [decide_rank(row[:length], tol) for row, length in zip(s.tolist(), lengths)]
+        return RankDecisions(np.array([r.rank for r in rows], dtype=int), np.array([r.smallest_kept for r in rows]), np.array([r.largest_dropped for r in rows]))
+    present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.broadcast_to(np.minimum(counts, k), (n,)))[:, None]
     length = present.sum(axis=1)
     if k == 0:
         return RankDecisions(np.zeros(n, dtype=int), np.ones(n), np.zeros(n))

@@ -25,10 +25,11 @@ Examples
 >>> import mobility
 >>> from mobility.sweeps.batch_kinematics import BatchKinematics
 >>> from mobility.sweeps.posed_screws import posed_screws
->>> from mobility.sweeps.batch_systems import analyse_poses
+>>> from mobility.core.screw_systems import analyse_poses
+>>> from mobility.core.topology import decompose
 >>> m = mobility.load("mechanisms/actuation_3rps.yaml")
 >>> posed = posed_screws(BatchKinematics(m), np.zeros((1, 15)))
->>> a = actuation_at_poses(m, posed, analyse_poses(m, posed), actuated_inputs(m))
+>>> a = actuation_at_poses(m, posed, analyse_poses(decompose(m), posed.twists, posed.offsets), actuated_inputs(m))
 >>> a.verdict.tolist(), round(float(a.conditioning[0]), 3), round(mobility.check_actuation(m).conditioning, 3)
 (['valid'], 0.311, 0.311)
 """
@@ -42,11 +43,12 @@ import numpy as np
 
 from ..actuation import REDUNDANT, SINGULAR, VALID
 from ..core.model import Mechanism, joint_freedoms, joint_names, require_no_repeats
+from ..core.linalg import left_svds, singular_values
+from ..core.screw_systems import PoseAnswers, Systems, evaluate, span
 from ..core.screws import SWAP_ROWS
 from ..core.tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
 from ..core.topology import JointNode, Node, Parallel, Series, decompose, joints_of
 from ..errors import AnalysisError
-from .batch_systems import BatchValue, PoseAnswers, evaluate_batch, span_batch, stacked_svd
 from .posed_screws import PosedScrews
 
 __all__ = ["ActuationInputs", "actuated_inputs", "BatchActuation", "actuation_at_poses"]
@@ -110,14 +112,7 @@ def _shift(points: np.ndarray, screws: np.ndarray, sign: float) -> np.ndarray:
     return out
 
 
-def _singular_values(m: np.ndarray) -> np.ndarray:
-    try:
-        return np.linalg.svd(m, compute_uv=False)
-    except np.linalg.LinAlgError:
-        raise AnalysisError(f"the singular value decomposition of a stack of {m.shape[1]}x{m.shape[2]} matrices did not converge") from None
-
-
-def _locked_limb(node: Node, posed: PosedScrews, col: int, tol: Tolerance) -> BatchValue:
+def _locked_limb(node: Node, posed: PosedScrews, col: int, tol: Tolerance) -> Systems:
     """The limb's twist system with freedom ``col`` locked.
 
     Locking sets the freedom's twist to zero; in a limb that is a series of
@@ -127,11 +122,11 @@ def _locked_limb(node: Node, posed: PosedScrews, col: int, tol: Tolerance) -> Ba
     if isinstance(node, Series) and all(type(c) is JointNode for c in node.children):
         joints = cast("tuple[JointNode, ...]", node.children)  # every child is a joint (tested above)
         columns = [c for child in joints for c in range(posed.offsets[child.index], posed.offsets[child.index + 1]) if c != col]
-        basis, wrenches, rank = span_batch(posed.twists[:, :, columns], np.full(posed.twists.shape[0], len(columns)), tol, None)
-        return BatchValue(basis, rank, wrenches, np.zeros_like(rank))
+        basis, wrenches, rank = span(posed.twists[:, :, columns], np.full(posed.twists.shape[0], len(columns)), tol)
+        return Systems(basis, rank, wrenches, np.zeros_like(rank))
     locked = posed.twists.copy()
     locked[:, :, col] = 0.0
-    return evaluate_batch(node, locked, posed.offsets, tol)
+    return evaluate(node, locked, posed.offsets, tol)
 
 
 def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAnswers, inputs: ActuationInputs, tol: Tolerance = DEFAULT_TOLERANCE) -> BatchActuation:
@@ -142,7 +137,7 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
     mechanism : Mechanism
     posed : PosedScrews
     answers : PoseAnswers
-        :func:`~mobility.sweeps.batch_systems.analyse_poses` of the same poses.
+        :func:`~mobility.core.screw_systems.analyse_poses` of the same poses.
     inputs : ActuationInputs
     tol : Tolerance
     """
@@ -176,7 +171,7 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
                 w_other = w_other - q @ (np.swapaxes(q, 1, 2) @ w_other)
             other_count = 6 - others.dim
             if w_other.shape[2]:
-                u, s, _ = stacked_svd(w_other)
+                u, s, _ = left_svds(w_other)
                 has = (other_count > 0) & (decide_ranks(s, tol, np.minimum(other_count, 6)).rank > 0)
                 a = _shift(attach, u[:, :, :1], -1.0)[:, :, 0]
                 a /= np.linalg.norm(a, axis=1)[:, None]
@@ -200,7 +195,7 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
     held, held_counts = _held(limbs, lacking, inputs, posed, tol)
     stack = np.concatenate([value.wrenches] + [w[:, :, None] for w in wrenches] + held, axis=2)
     counts = (6 - dof) + present.sum(axis=1) + held_counts
-    decision = decide_ranks(_singular_values(stack), tol, np.minimum(counts, 6))
+    decision = decide_ranks(singular_values(stack), tol, np.minimum(counts, 6))
     code = np.where(decision.rank < 6, 0, np.where(n > dof, 1, 2))
     verdict = np.array([SINGULAR, REDUNDANT, VALID], dtype=object)[code]  # the three strings shared, not one per pose
     conditioning = np.zeros(count)
@@ -237,7 +232,7 @@ def _actuation_margin(decision: RankDecisions, wrenches: list[np.ndarray], trans
     if basis.shape[2] and full.any():
         a = np.stack(wrenches, axis=1)  # (N, n, 6)
         h = (a[:, :, SWAP_ROWS] @ basis) * np.stack(transmissions, axis=1)[:, :, None]
-        sv = _singular_values(h)
+        sv = singular_values(h)
         d = np.clip(dof - 1, 0, sv.shape[1] - 1)
         margin = np.where(full, np.where(dof <= sv.shape[1], np.minimum(sv[np.arange(count), d], margin), 0.0), margin)
     return margin
@@ -257,7 +252,7 @@ def _held(limbs: list, lacking: dict[int, np.ndarray], inputs: ActuationInputs, 
         members = set(joints_of(limbs[limb][0]))
         locked = posed.twists.copy()
         locked[:, :, [posed.offsets[j] + k for j, k in inputs.freedoms if j in members]] = 0.0
-        value = evaluate_batch(limbs[limb][0], locked, posed.offsets, tol)
+        value = evaluate(limbs[limb][0], locked, posed.offsets, tol)
         held.append(np.where(where[:, None, None], value.wrenches, 0.0))
         counts += np.where(where, 6 - value.dim, 0)
     return held, counts
