@@ -101,24 +101,17 @@ class Margins:
     """
 
     def __init__(self, count: int) -> None:
-        self.count = count
-        self._kept: list[np.ndarray] = []
-        self._dropped: list[np.ndarray] = []
+        self.smallest_kept = np.ones(count)
+        self.largest_dropped = np.zeros(count)
 
     def add(self, d: RankDecisions) -> None:
         """Take decisions into account: one per pose, or several stacks of one per pose, stack after stack."""
-        self._kept.append(d.smallest_kept)
-        self._dropped.append(d.largest_dropped)
-
-    @property
-    def smallest_kept(self) -> np.ndarray:
-        """The smallest kept singular value (relative) of each pose, 1.0 where none was kept."""
-        return np.concatenate(self._kept).reshape(-1, self.count).min(axis=0) if self._kept else np.ones(self.count)
-
-    @property
-    def largest_dropped(self) -> np.ndarray:
-        """The largest dropped singular value (relative) of each pose, 0.0 where none was dropped."""
-        return np.concatenate(self._dropped).reshape(-1, self.count).max(axis=0) if self._dropped else np.zeros(self.count)
+        count = len(self.smallest_kept)
+        kept, dropped = d.smallest_kept, d.largest_dropped
+        if len(kept) != count:
+            kept, dropped = kept.reshape(-1, count).min(axis=0), dropped.reshape(-1, count).max(axis=0)
+        np.minimum(self.smallest_kept, kept, out=self.smallest_kept)
+        np.maximum(self.largest_dropped, dropped, out=self.largest_dropped)
 
 
 def _extremes(rank: np.ndarray) -> tuple[int, int]:
@@ -209,7 +202,10 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
             else:
                 stack = np.concatenate([m for *_, m, _ in members])
                 listed = [c for *_, c in members]
-                counts = np.repeat(listed, count) if all(type(c) is int for c in listed) else np.concatenate([np.full(count, c) if type(c) is int else c for c in listed])
+                if any(type(c) is not int for c in listed):
+                    counts = np.concatenate([np.full(count, c) if type(c) is int else c for c in listed])
+                else:
+                    counts = listed if count == 1 else np.repeat(listed, count)
             u, s, _ = left_svds(stack)
             d = decide_ranks(s, tol, counts)
             margins.add(d)

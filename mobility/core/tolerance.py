@@ -36,7 +36,7 @@ import math
 import numbers
 import sys
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, Sequence
 
 import numpy as np
 
@@ -296,12 +296,12 @@ class RankDecision(NamedTuple):
     largest_dropped: float = 0.0
 
 
-def decide_rank(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecision:
+def decide_rank(singular_values: np.ndarray | Sequence[float], tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecision:
     """Decide the numerical rank from singular values sorted in decreasing order.
 
     Parameters
     ----------
-    singular_values : ndarray
+    singular_values : ndarray or sequence of float
         Singular values in decreasing order, as returned by :func:`numpy.linalg.svd`.
     tol : Tolerance
         The policy.
@@ -310,7 +310,7 @@ def decide_rank(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE)
     -------
     RankDecision
     """
-    s = singular_values.tolist() if isinstance(singular_values, np.ndarray) else list(singular_values)
+    s = singular_values.tolist() if isinstance(singular_values, np.ndarray) else singular_values
     if not s:
         return RankDecision(0)
     scale = s[0] if s[0] > 1.0 else 1.0
@@ -526,7 +526,7 @@ _ROW_BY_ROW = 8
 """Up to this many rows, :func:`decide_ranks` decides row by row (the same numbers, less overhead)."""
 
 
-def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: int | np.ndarray | None = None) -> RankDecisions:
+def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: int | Sequence[int] | np.ndarray | None = None) -> RankDecisions:
     """:func:`decide_rank` of every row of ``singular_values``, vectorised, with the same semantics.
 
     Parameters
@@ -534,7 +534,7 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     singular_values : ndarray, shape (N, k)
         Each row in decreasing order (as :func:`numpy.linalg.svd` returns a stack).
     tol : Tolerance
-    counts : int or ndarray of int, shape (N,), optional
+    counts : int, or sequence or ndarray of int, shape (N,), optional
         How many leading values of each row are singular values of its
         matrix (the number of columns of each matrix without the zero columns
         added to give every matrix of a stack the same shape; a count beyond
@@ -558,9 +558,10 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     s = np.asarray(singular_values, dtype=float)
     n, k = s.shape
     if n <= _ROW_BY_ROW:  # a few rows: the loop of decide_rank costs less than the array operations below
-        lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist()
+        lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist() if isinstance(counts, np.ndarray) else counts
         rows = [decide_rank(row[:length], tol) for row, length in zip(s.tolist(), lengths)]
-        return RankDecisions(np.array([r.rank for r in rows], dtype=int), np.array([r.smallest_kept for r in rows]), np.array([r.largest_dropped for r in rows]))
+        rank, kept, dropped = zip(*rows) if rows else ((), (), ())
+        return RankDecisions(np.array(rank, dtype=int), np.array(kept, dtype=float), np.array(dropped, dtype=float))
     present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.broadcast_to(np.minimum(counts, k), (n,)))[:, None]
     length = present.sum(axis=1)
     if k == 0:
