@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import dataclasses
+import json
 import math
+from typing import Any
 
 import numpy as np
 
@@ -124,6 +127,44 @@ def transformed(m: Mechanism, tf: Transform, scale: float = 1.0) -> Mechanism:
     return m.replace(joints=tuple(joints), frames=())
 
 
+def scaled(m: Mechanism, factor: float) -> Mechanism:
+    """``m`` with every length (points, pitches) times ``factor``, written in the global frame (every other field kept)."""
+    joints = []
+    for j in m.world_joints:
+        changes: dict[str, Any] = {}
+        if j.point is not None:
+            changes["point"] = tuple(float(x) * factor for x in j.point)
+        if j.pitch is not None:
+            changes["pitch"] = j.pitch * factor
+        joints.append(dataclasses.replace(j, **changes))
+    return m.replace(joints=tuple(joints), frames=())
+
+
+def yaml_text(m: Mechanism) -> str:
+    """A mechanism file with every number written in full (``repr``: nothing rounded at any scale)."""
+
+    def vec(v: Any) -> str:
+        return "[" + ", ".join(repr(float(x)) for x in v) + "]"
+
+    lines = [f"name: {json.dumps(m.name)}", f"ground: {m.ground}", f"end_effector: {m.end_effector}", "joints:"]
+    for j in m.world_joints:
+        fields = [f"name: {j.name}", f"type: {j.type}", f"links: [{j.links[0]}, {j.links[1]}]"]
+        if j.axis is not None:
+            fields.append(f"axis: {vec(j.axis)}")
+        if j.axes is not None:
+            fields.append(f"axes: [{vec(j.axes[0])}, {vec(j.axes[1])}]")
+        if j.point is not None and j.type != "P":
+            fields.append(f"point: {vec(j.point)}")
+        if j.pitch is not None:
+            fields.append(f"pitch: {float(j.pitch)!r}")
+        if j.normal is not None:
+            fields.append(f"normal: {vec(j.normal)}")
+        if j.actuated:
+            fields.append("actuated: true")
+        lines.append("  - {" + ", ".join(fields) + "}")
+    return "\n".join(lines) + "\n"
+
+
 def _geometry(j: Joint) -> dict:
     return {k: getattr(j, k) for k in ("axis", "point", "pitch", "axes", "normal") if getattr(j, k) is not None}
 
@@ -214,9 +255,12 @@ def normalised(m: Mechanism, screws_rows: np.ndarray) -> np.ndarray:
 Z = (0.0, 0.0, 1.0)
 
 
-def triangle_ladder(triangles: int) -> Mechanism:
-    """A planar ladder: ``A{i}: R [g, l{i}]`` on the ground line, ``B{i}: R [l{i}, l{i+1}]`` above it (every triangle rigid)."""
-    joints = [Joint(f"A{i}", "R", ("g", f"l{i}"), axis=Z, point=(float(i), 0.0, 0.0)) for i in range(triangles + 1)]
+def triangle_ladder(triangles: int, actuated: bool = False) -> Mechanism:
+    """A planar ladder: ``A{i}: R [g, l{i}]`` on the ground line, ``B{i}: R [l{i}, l{i+1}]`` above it (every triangle rigid).
+
+    With ``actuated``, the first pivot ``A0`` is an input.
+    """
+    joints = [Joint(f"A{i}", "R", ("g", f"l{i}"), axis=Z, point=(float(i), 0.0, 0.0), actuated=actuated and i == 0) for i in range(triangles + 1)]
     joints += [Joint(f"B{i}", "R", (f"l{i}", f"l{i + 1}"), axis=Z, point=(i + 0.5, 1.0 + 0.25 * math.sin(i), 0.0)) for i in range(triangles)]
     return Mechanism(f"ladder of {triangles}", "g", f"l{triangles}", tuple(joints))
 
@@ -232,12 +276,15 @@ def serial_chain(count: int) -> Mechanism:
     return Mechanism(f"chain of {count}", "g", "e", tuple(joints))
 
 
-def prs_limbs(limbs: int) -> Mechanism:
-    """A parallel mechanism of ``limbs`` P-R-S limbs around a circle (3 DOF, 1T2R, whatever the count)."""
+def prs_limbs(limbs: int, actuated: bool = False) -> Mechanism:
+    """A parallel mechanism of ``limbs`` P-R-S limbs around a circle (3 DOF, 1T2R, whatever the count).
+
+    With ``actuated``, the first three sliders are the inputs.
+    """
     joints = []
     for i in range(limbs):
         c, s = math.cos(2 * math.pi * i / limbs), math.sin(2 * math.pi * i / limbs)
-        joints.append(Joint(f"P{i}", "P", ("g", f"a{i}"), axis=Z))
+        joints.append(Joint(f"P{i}", "P", ("g", f"a{i}"), axis=Z, actuated=actuated and i < 3))
         joints.append(Joint(f"R{i}", "R", (f"a{i}", f"b{i}"), axis=(-s, c, 0.0), point=(c, s, 0.5)))
         joints.append(Joint(f"S{i}", "S", (f"b{i}", "e"), point=(0.5 * c, 0.5 * s, 1.0)))
     return Mechanism(f"{limbs}-PRS", "g", "e", tuple(joints))

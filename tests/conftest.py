@@ -23,10 +23,23 @@ def write_yaml(tmp_path):
 
     def write(text: str, name: str = "m.yaml") -> Path:
         path = tmp_path / name
-        path.write_text(text)
+        path.write_text(text, encoding="utf-8")
         return path
 
     return write
+
+
+@pytest.fixture
+def symlink_loop():
+    """Make ``folder/name`` -> ``folder/other-name`` -> ``folder/name``: looking it up never ends (ELOOP); return the path."""
+
+    def make(folder: Path, name: str) -> Path:
+        path, other = folder / name, folder / ("other-" + name)
+        path.symlink_to(other.name)
+        other.symlink_to(path.name)
+        return path
+
+    return make
 
 
 @pytest.hookimpl(hookwrapper=True)

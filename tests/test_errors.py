@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import concurrent.futures
+import copy
 import inspect
+import pickle
 import sys
 
 import pytest
@@ -198,3 +201,28 @@ def test_no_reader_takes_a_number_for_a_file_descriptor_of_the_caller(tmp_path):
         assert os.fstat(fd) and os.fstat(1)  # the caller's descriptors are still open
     finally:
         os.close(fd)
+
+
+# -- every error pickles and copies: it crosses a process pool ------------------------------------------------
+
+
+@pytest.mark.parametrize("error", [*SAMPLES.values(), errors.PlottingUnavailableError("broken")], ids=lambda e: type(e).__name__ + ("-detail" if str(e).endswith("broken") else ""))
+@pytest.mark.parametrize("how", ["pickle", "copy", "deepcopy"])
+def test_every_error_pickles_and_copies_with_its_message_and_attributes(error, how):
+    again = {"pickle": lambda e: pickle.loads(pickle.dumps(e)), "copy": copy.copy, "deepcopy": copy.deepcopy}[how](error)
+    assert type(again) is type(error) and again is not error
+    assert str(again) == str(error) and again.args == error.args and vars(again) == vars(error)
+
+
+def test_a_bad_document_in_a_worker_process_reaches_the_caller():
+    with concurrent.futures.ProcessPoolExecutor(1) as pool:
+        future = pool.submit(mobility.loads, "name: x\nground: g\n", "bad.yaml")
+        error = future.exception(timeout=120)
+        assert pool.submit(len, "ok").result(timeout=120) == 2  # the pool survived
+    assert type(error) is MechanismFileError and error.file == "bad.yaml" and str(error).startswith("bad.yaml")
+
+
+def test_every_error_class_is_exported_at_the_top_level():
+    for cls in ERROR_CLASSES:
+        assert getattr(mobility, cls.__name__) is cls and cls.__name__ in mobility.__all__
+    assert set(mobility.__all__) <= set(dir(mobility))

@@ -1,17 +1,25 @@
-"""MJCF files that would make MuJoCo wait, allocate without bound, or answer wrong: each refused in one line or read right.
+"""Bad robot files (MJCF, URDF): what would make MuJoCo wait, allocate without bound, or answer wrong is refused in one line or read right.
+
+Where a new test goes: a test of an element, attribute or name of a robot file (MJCF or URDF, and the
+closures file read with it) that is refused at its file:line, or that MuJoCo or the URDF reader would
+read wrong and the importer reads right (with a note), goes here.  It asserts a refusal with
+:func:`guards.raises_one_line` through :func:`mobility.io.robot_files.read_robot`, or with
+:func:`guards.refused` through the command line, in a child process (:func:`guards.run_child`) wherever
+the old behaviour could hang or exhaust memory: then the test fails instead of stopping the suite.  What
+holds for every file whatever its format (a device, a pipe, a size) goes in ``test_bad_files.py``; how a
+valid robot file is read, in ``test_mjcf.py`` and ``test_urdf.py``.
 
 Found by an audit of the importer: a ``<flexcomp file>`` naming a pipe,
 ``<size nkey="1000000">``, a 150-byte height field of gigabytes, thousands of
 ``<connect>`` under a memory limit, equalities turned off by ``<option>``, a
 weld's angle given as ``sin(angle/2)``, an upper-case ``.XML``, a body fused
-away by ``fusestatic``, a closing joint renamed without a word.  Whatever may
-hang runs in a child process with a timeout, so that the old behaviour fails
-the test instead of stopping the suite.
+away by ``fusestatic``, a closing joint renamed without a word.
 """
 
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 import textwrap
@@ -24,10 +32,15 @@ import mobility
 from mobility.errors import MechanismFileError
 from mobility.io.robot_files import read_robot
 
+from guards import PACKAGE_ROOT, raises_one_line, refused, run_child, run_cli
+
 ROOT = Path(__file__).resolve().parent.parent
+HAND = ROOT / "tests" / "data" / "robots" / "hand"
 HISTORY = hasattr(mujoco.MjSpec().add_actuator(), "nsample")  # actuators' history buffers: newer MuJoCo only
 BUILTIN_MESHES = hasattr(mujoco, "mjtMeshBuiltin")  # <mesh builtin>: newer MuJoCo only
 ARM = '<body name="arm"><joint name="j" axis="0 0 1"/><geom size=".1"/></body>'
+MEMORY_CAP = 2 * 1024**3
+"""The address space of a child that reads a hostile file: the old code grew past it (2.4 GB for 1000 x 1000 empty replicates)."""
 
 FOUR_BAR = """<mujoco model="four">
   {option}
@@ -48,16 +61,38 @@ def _model(tmp_path: Path, text: str, name: str = "model.xml") -> Path:
     return path
 
 
-def _cli(*args: str, cwd: Path, timeout: float = 30, env: dict[str, str] | None = None) -> subprocess.CompletedProcess:
-    """The command line in a child process: a wait for ever fails the test (timeout) instead of stopping the suite."""
-    environ = dict(os.environ, PYTHONPATH=str(ROOT), **(env or {}))
-    return subprocess.run([sys.executable, "-m", "mobility", *args], capture_output=True, text=True, cwd=cwd, timeout=timeout, env=environ)
+# -- 0. names and encodings of URDF and MJCF files -------------------------------------------------------
 
 
-def _one_line_refusal(done: subprocess.CompletedProcess, expected: str) -> None:
-    assert (done.returncode, done.stdout) == (2, ""), done.stderr
-    assert done.stderr.count("\n") == 1 and done.stderr.startswith("mobility: "), done.stderr
-    assert expected in done.stderr, done.stderr
+def test_a_robot_name_holding_a_character_reference_to_a_line_break_is_refused(tmp_path):
+    for source, written, reference, key, message in (
+        ("four_bar.urdf", '<link name="coupler"', '<link name="coupler&#13;"', "link.name", "a line break '\\r' (U+000D) is not allowed in a name"),
+        ("four_bar.xml", '<joint name="B"/>', '<joint name="B&#x2028;"/>', "joint.name", "a line separator '\\u2028' (U+2028) is not allowed in a name"),
+    ):
+        text = (HAND / source).read_text(encoding="utf-8")
+        assert written in text
+        path = tmp_path / source
+        path.write_text(text.replace(written, reference, 1), encoding="utf-8")
+        error = raises_one_line(lambda: mobility.load(path), MechanismFileError)
+        assert (error.key, error.message) == (key, message)
+
+
+def test_a_robot_named_after_a_file_name_holding_a_line_break_is_named_on_one_line(tmp_path):
+    # a robot without a name attribute is named after its file; a file name may hold a line break, a name may not
+    for source, suffix, unnamed in ((HAND / "four_bar.urdf", ".urdf", re.compile(r'<robot name="[^"]*"')),
+                                    (HAND / "four_bar.xml", ".xml", re.compile(r'<mujoco model="[^"]*"'))):
+        text = source.read_text(encoding="utf-8")
+        text = unnamed.sub(unnamed.pattern.split(" ")[0], text, count=1)
+        path = tmp_path / f"two\nlines\u2028{suffix}"
+        path.write_text(text, encoding="utf-8")
+        name = mobility.load(path).name
+        assert name == "two\\nlines\\u2028", (source, name)
+
+
+def test_an_xml_file_in_an_unknown_encoding_is_one_line(tmp_path):
+    path = tmp_path / "robot.urdf"
+    path.write_text('<?xml version="1.0" encoding="klingon"?>\n<robot name="r"><link name="a"/></robot>\n')
+    assert refused(run_cli("analyze", path)) == f"mobility: {path}:1: unreadable XML (unknown encoding: klingon); expected UTF-8 or another known encoding"
 
 
 # -- 1. files MuJoCo would read: a flexcomp's mesh file, and the asset files never opened ----------------------
@@ -65,16 +100,15 @@ def _one_line_refusal(done: subprocess.CompletedProcess, expected: str) -> None:
 def test_a_flexcomp_reading_a_pipe_is_refused_at_its_line_without_waiting(tmp_path):
     os.mkfifo(tmp_path / "cloth.obj")
     _model(tmp_path, f'<mujoco>\n<worldbody>\n{ARM}\n<flexcomp name="f" type="mesh" file="cloth.obj" dim="2"/>\n</worldbody>\n</mujoco>\n')
-    done = _cli("analyze", "model.xml", cwd=tmp_path, timeout=20)
-    _one_line_refusal(done, "mobility: model.xml:4: flexcomp[f]: a deformable body, not supported")
+    done = run_child("analyze", "model.xml", cwd=tmp_path, timeout=20)
+    assert "mobility: model.xml:4: flexcomp[f]: a deformable body, not supported" in refused(done)
 
 
 def test_a_flexcomp_is_refused_even_when_unsupported_elements_are_left_out(tmp_path):
     # before: left out with a note, yet its 9 points stayed as 27 slide joints (mobility 28, a cloth vertex as end effector)
     path = _model(tmp_path, f'<mujoco>\n<worldbody>\n{ARM}\n<flexcomp name="g" type="grid" count="3 3 1" spacing=".1 .1 .1" dim="2" pos="0 0 2"/>\n'
                             '</worldbody>\n</mujoco>\n')
-    with pytest.raises(MechanismFileError, match=r"model\.xml:4: flexcomp\[g\]: a deformable body, not supported \(not even left out"):
-        read_robot(path, ignore_unsupported=True)
+    raises_one_line(lambda: read_robot(path, ignore_unsupported=True), MechanismFileError, r"model\.xml:4: flexcomp\[g\]: a deformable body, not supported \(not even left out")
 
 
 def test_a_flex_on_rigid_bodies_is_still_left_out_with_a_note(tmp_path):
@@ -92,7 +126,7 @@ def test_mesh_texture_height_field_and_skin_files_are_never_opened(tmp_path):
     _model(tmp_path, """<mujoco><asset><mesh name="m" file="arm.obj"/><texture name="t" type="2d" file="wood.png"/>
       <hfield name="h" file="ground.png" size="1 1 1 1"/></asset><deformable><skin name="s" file="hand.skn"/></deformable>
       <worldbody><body name="arm"><joint name="j" axis="0 0 1"/><geom type="mesh" mesh="m"/></body></worldbody></mujoco>""")
-    done = _cli("analyze", "model.xml", cwd=tmp_path, timeout=20)
+    done = run_child("analyze", "model.xml", cwd=tmp_path, timeout=20)
     assert done.returncode == 0, done.stderr
     assert "pattern: 1R" in done.stdout
 
@@ -126,7 +160,7 @@ would count the memory of the test process it was forked from)."""
 def test_what_only_simulation_needs_is_left_out_in_seconds_and_little_memory(tmp_path, inside, outside):
     path = _model(tmp_path, f"<mujoco>{inside}<worldbody>{ARM}</worldbody>{outside}</mujoco>")
     done = subprocess.run([sys.executable, "-c", _PEAK, str(path)], capture_output=True, text=True, timeout=20,
-                          env=dict(os.environ, PYTHONPATH=str(ROOT)), cwd=tmp_path)
+                          env=dict(os.environ, PYTHONPATH=PACKAGE_ROOT), cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     mobility_, peak_mb = map(int, done.stdout.split())
     assert mobility_ == 1 and peak_mb < 300, done.stdout
@@ -140,28 +174,26 @@ def test_keyframes_written_in_the_file_are_kept(tmp_path):
 def test_a_height_field_larger_than_the_asset_limit_is_refused_before_mujoco_allocates_it(tmp_path, monkeypatch):
     text = f'<mujoco>\n<asset>\n<hfield name="h" nrow="2000" ncol="1000" size="1 1 1 1"/>\n</asset>\n<worldbody>{ARM}</worldbody>\n</mujoco>'
     path = _model(tmp_path, text)
-    with pytest.raises(MechanismFileError) as err:
-        read_robot(path)
-    assert str(err.value) == (f"{path}:3: hfield[h]: nrow x ncol = 2000 x 1000: 2000000 points, which MuJoCo allocates as it reads the file; "
-                              "expected at most the limit of 1000000 (set MOBILITY_MAX_ASSET_VALUES to raise it)")
+    err = raises_one_line(lambda: read_robot(path), MechanismFileError)
+    assert str(err) == (f"{path}:3: hfield[h]: nrow x ncol = 2000 x 1000: 2000000 points, which MuJoCo allocates as it reads the file; "
+                        "expected at most the limit of 1000000 (set MOBILITY_MAX_ASSET_VALUES to raise it)")
     monkeypatch.setenv("MOBILITY_MAX_ASSET_VALUES", "2000000")
     assert mobility.analyze(read_robot(path).mechanism).mobility == 1
 
 
 def test_the_audited_height_field_is_one_line_at_once(tmp_path):
     _model(tmp_path, f'<mujoco><asset><hfield name="h" nrow="20000" ncol="20000" size="1 1 1 1"/></asset><worldbody>{ARM}</worldbody></mujoco>')
-    _one_line_refusal(_cli("analyze", "model.xml", cwd=tmp_path, timeout=20), "model.xml:1: hfield[h]: nrow x ncol = 20000 x 20000: 400000000 points")
+    assert "model.xml:1: hfield[h]: nrow x ncol = 20000 x 20000: 400000000 points" in refused(run_child("analyze", "model.xml", cwd=tmp_path, timeout=20))
 
 
 def test_builtin_meshes_count_with_the_height_fields(tmp_path, monkeypatch):
     monkeypatch.setenv("MOBILITY_MAX_ASSET_VALUES", "1000")
     meshes = '<mesh name="a" builtin="plate" params="20 20"/>\n<mesh name="b" builtin="supersphere" params="30 1 1"/>\n'
     path = _model(tmp_path, f"<mujoco>\n<asset>\n{meshes}</asset>\n<worldbody>{ARM}</worldbody>\n</mujoco>")
-    with pytest.raises(MechanismFileError) as err:
-        read_robot(path)
-    assert str(err.value).endswith(":4: mesh[b]: builtin supersphere, resolution 30 squared (params): 900 points; 1300 with the height fields "
-                                   "and builtin meshes before it, which MuJoCo allocates as it reads the file; expected at most the limit of 1000 "
-                                   "(set MOBILITY_MAX_ASSET_VALUES to raise it)")
+    err = raises_one_line(lambda: read_robot(path), MechanismFileError)
+    assert str(err).endswith(":4: mesh[b]: builtin supersphere, resolution 30 squared (params): 900 points; 1300 with the height fields "
+                             "and builtin meshes before it, which MuJoCo allocates as it reads the file; expected at most the limit of 1000 "
+                             "(set MOBILITY_MAX_ASSET_VALUES to raise it)")
     monkeypatch.setenv("MOBILITY_MAX_ASSET_VALUES", "1300")
     if BUILTIN_MESHES:  # an older MuJoCo refuses the attribute itself
         assert mobility.analyze(read_robot(path).mechanism).mobility == 1
@@ -172,9 +204,8 @@ def test_a_negative_replicate_count_is_refused_at_its_line(tmp_path, count):
     # MuJoCo makes no copy of it and says nothing: before, "no joint can move" or a mechanism without the copies
     path = _model(tmp_path, f'<mujoco>\n<worldbody>\n<body name="b"><joint/><geom size=".1"/></body>\n<replicate count="{count}" offset="1 0 0">\n'
                             f'<body><joint/><geom size=".1"/></body>\n</replicate>\n</worldbody>\n</mujoco>\n')
-    with pytest.raises(MechanismFileError) as err:
-        read_robot(path)
-    assert str(err.value) == f"{path}:4: replicate/@count: expected a count of 0 or more, got {count!r}"
+    err = raises_one_line(lambda: read_robot(path), MechanismFileError)
+    assert str(err) == f"{path}:4: replicate/@count: expected a count of 0 or more, got {count!r}"
 
 
 # -- 3. equalities count as joints ------------------------------------------------------------------------------
@@ -192,11 +223,10 @@ def _chain_with_equalities(tmp_path: Path, joints: int, equality: str, count: in
 def test_equalities_count_toward_the_joint_limit_before_mujoco_reads_them(tmp_path, monkeypatch, equality, line):
     monkeypatch.setenv("MOBILITY_MAX_JOINTS", "10")
     path = _chain_with_equalities(tmp_path, 4, equality, 7)
-    with pytest.raises(MechanismFileError) as err:
-        read_robot(path)
+    err = raises_one_line(lambda: read_robot(path), MechanismFileError)
     tag = equality[1:].split()[0]
-    assert str(err.value) == (f"{path}:{line}: {tag}: 11 joints and equalities (7 of them <connect>, <weld> or other equalities, each counted "
-                              "as a joint) are more than the limit of 10 (set MOBILITY_MAX_JOINTS to raise it)")
+    assert str(err) == (f"{path}:{line}: {tag}: 11 joints and equalities (7 of them <connect>, <weld> or other equalities, each counted "
+                        "as a joint) are more than the limit of 10 (set MOBILITY_MAX_JOINTS to raise it)")
     monkeypatch.setenv("MOBILITY_MAX_JOINTS", "11")
     assert read_robot(path).mechanism.joints
 
@@ -263,7 +293,7 @@ def test_any_name_is_read_with_its_includes_found_beside_it(tmp_path, monkeypatc
 def test_an_upper_case_name_is_checked_like_any_other(tmp_path):
     os.mkfifo(tmp_path / "part.xml")
     _model(tmp_path, "<mujoco>\n<worldbody>\n<include file='part.xml'/>\n</worldbody>\n</mujoco>\n", "ARM.XML")
-    _one_line_refusal(_cli("analyze", "ARM.XML", cwd=tmp_path, timeout=20), "mobility: ARM.XML:3: include: 'part.xml': a pipe or socket")
+    assert "mobility: ARM.XML:3: include: 'part.xml': a pipe or socket" in refused(run_child("analyze", "ARM.XML", cwd=tmp_path, timeout=20))
 
 
 # -- 7. fusestatic keeps every body the file names ----------------------------------------------------------------
@@ -311,22 +341,6 @@ def test_a_closures_file_joint_named_like_a_joint_is_renamed_with_a_note(tmp_pat
 
 # -- 9. MuJoCo's own rules: where a sub-model's files are read, and every element that multiplies others (issue 33) --
 
-MEMORY_CAP = 2 * 1024**3
-"""The address space of a child that reads a hostile file: the old code grew past it (2.4 GB for 1000 x 1000 empty replicates)."""
-
-
-def _bounded_cli(*args: str, cwd: Path, seconds: float = 30, env: dict[str, str] | None = None) -> subprocess.CompletedProcess:
-    """:func:`_cli` in a child whose address space is capped at :data:`MEMORY_CAP`, under a time bound of ``seconds``."""
-    import resource
-
-    def cap() -> None:
-        resource.setrlimit(resource.RLIMIT_AS, (MEMORY_CAP, MEMORY_CAP))
-
-    environ = dict(os.environ, PYTHONPATH=str(ROOT), **(env or {}))
-    return subprocess.run([sys.executable, "-m", "mobility", "analyze", *args], capture_output=True, text=True, cwd=cwd,
-                          timeout=seconds, env=environ, preexec_fn=cap)
-
-
 def _sub_model(tmp_path: Path) -> Path:
     """A model attaching a sub-model (``sub/inner.xml``) that includes ``part.xml``; MuJoCo reads it from ``sub/``."""
     sub = tmp_path / "sub"
@@ -341,22 +355,22 @@ def _sub_model(tmp_path: Path) -> Path:
 def test_a_file_a_sub_model_includes_is_checked_in_the_sub_models_folder(tmp_path):
     top = _sub_model(tmp_path)
     (tmp_path / "sub" / "part.xml").write_text('<mujoco><geom size=".2"/></mujoco>')
-    done = _bounded_cli(str(top), cwd=tmp_path)
+    done = run_child("analyze", str(top), cwd=tmp_path, timeout=30, memory_cap=MEMORY_CAP)
     assert done.returncode == 0 and "mobility M = 2" in done.stdout, done.stderr  # read right where it is harmless
     (tmp_path / "sub" / "part.xml").unlink()
     os.mkfifo(tmp_path / "sub" / "part.xml")  # MuJoCo opens this one: it would wait for ever
-    _one_line_refusal(_bounded_cli(str(top), cwd=tmp_path), "include: 'part.xml': a pipe or socket; expected a file to include")
+    assert "include: 'part.xml': a pipe or socket; expected a file to include" in refused(run_child("analyze", str(top), cwd=tmp_path, timeout=30, memory_cap=MEMORY_CAP))
     (tmp_path / "sub" / "part.xml").unlink()
     (tmp_path / "sub" / "part.xml").write_text("<mujoco><!--" + "x" * (6 * 1024 * 1024) + "--></mujoco>")
-    _one_line_refusal(_bounded_cli(str(top), cwd=tmp_path), "more than the limit of 4194304 bytes")
+    assert "more than the limit of 4194304 bytes" in refused(run_child("analyze", str(top), cwd=tmp_path, timeout=30, memory_cap=MEMORY_CAP))
 
 
 @pytest.mark.parametrize("inside", ["", "<!-- nothing but a comment -->", "<replicate count=\"1000\"/>", "<replicate count=\"1000\"></replicate>"])
 def test_an_empty_replicate_is_counted_before_mujoco_makes_its_copies(tmp_path, inside):
     count = "100000" if "replicate" not in inside else "1000"  # nested: 1000 x 1000 copies of nothing
     text = f'<mujoco><worldbody>{ARM}\n<replicate count="{count}">{inside}</replicate></worldbody></mujoco>'
-    done = _bounded_cli(str(_model(tmp_path, text)), cwd=tmp_path, seconds=20)
-    _one_line_refusal(done, "elements made by the count of <replicate>")
+    done = run_child("analyze", str(_model(tmp_path, text)), cwd=tmp_path, timeout=20, memory_cap=MEMORY_CAP)
+    assert "elements made by the count of <replicate>" in refused(done)
     assert "are more than the limit of 5000 (set MOBILITY_MAX_JOINTS to raise it)" in done.stderr
 
 
@@ -369,8 +383,8 @@ def test_the_copies_attach_makes_are_counted_before_mujoco_reads_anything(tmp_pa
     attaches = "".join(f'<body name="b{k}"><attach model="c" body="root" prefix="p{k}"/></body>' for k in range(8))
     asset, world = '<asset><model name="c" file="sub/chain.xml"/></asset>', f"<worldbody>{attaches}</worldbody>"
     top = _model(tmp_path, f"<mujoco>{asset + world if model_first else world + asset}</mujoco>")
-    done = _bounded_cli(str(top), cwd=tmp_path, seconds=15)  # 24.6 s before: MuJoCo compiled every copy, then the joint limit refused it
-    _one_line_refusal(done, "attach: ")
+    done = run_child("analyze", str(top), cwd=tmp_path, timeout=15, memory_cap=MEMORY_CAP)  # 24.6 s before: MuJoCo compiled every copy, then the joint limit refused it
+    assert "attach: " in refused(done)
     assert "are more than the limit of 5000" in done.stderr
 
 
@@ -378,9 +392,9 @@ def test_a_connect_mujoco_drops_is_an_error_not_a_wrong_answer(tmp_path):
     text = FOUR_BAR.format(option="", rocker_y="2.5").replace('<body name="rocker"', '<replicate count="1"><body name="rocker"')
     text = text.replace('<site name="s2" pos="-1 2.5 0"/></body>', '<site name="s2" pos="-1 2.5 0"/></body></replicate>')
     assert "</replicate>" in text
-    done = _bounded_cli(str(_model(tmp_path, text)), cwd=tmp_path)  # mobility 3, DOF 2 before, without a word
-    _one_line_refusal(done, "equality: the file declares 1 equality (<connect>, <weld>, ...), MuJoCo kept 0")
-    done = _bounded_cli(str(_model(tmp_path, FOUR_BAR.format(option="", rocker_y="2.5"))), cwd=tmp_path)
+    done = run_child("analyze", str(_model(tmp_path, text)), cwd=tmp_path, timeout=30, memory_cap=MEMORY_CAP)  # mobility 3, DOF 2 before, without a word
+    assert "equality: the file declares 1 equality (<connect>, <weld>, ...), MuJoCo kept 0" in refused(done)
+    done = run_child("analyze", str(_model(tmp_path, FOUR_BAR.format(option="", rocker_y="2.5"))), cwd=tmp_path, timeout=30, memory_cap=MEMORY_CAP)
     assert done.returncode == 0 and "mobility M = 1" in done.stdout, done.stderr
 
 
@@ -391,4 +405,4 @@ def test_attach_copies_of_a_model_that_replicates_are_counted_with_its_copies(tm
                                  '<body name="l"><joint name="j" axis="0 0 1"/><geom size=".1"/></body></replicate></body></worldbody></mujoco>')
     attaches = "".join(f'<body name="b{k}"><attach model="r" body="root" prefix="p{k}"/></body>' for k in range(8))
     top = _model(tmp_path, f'<mujoco><asset><model name="r" file="sub/rep.xml"/></asset><worldbody>{attaches}</worldbody></mujoco>')
-    _one_line_refusal(_bounded_cli(str(top), cwd=tmp_path, seconds=15), "attach: ")
+    assert "attach: " in refused(run_child("analyze", str(top), cwd=tmp_path, timeout=15, memory_cap=MEMORY_CAP))
