@@ -29,7 +29,7 @@ from .canonical import canonical_form
 from .joint_screws import JointScrews, Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism, require_mechanism
 from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis
-from .screw_systems import PoseAnswers, Systems, analyse_poses, subtree_values
+from .screw_systems import PoseAnswers, analyse_poses, subtree_values
 from .screws import free_vector_subspace, span_and_reciprocal
 from .tolerance import DEFAULT_TOLERANCE, NEAR_LARGEST_FLOAT, Tolerance, decide_rank, require_tolerance
 from .transforms import cross
