@@ -310,17 +310,19 @@ def decide_rank(singular_values: np.ndarray | Sequence[float], tol: Tolerance = 
     -------
     RankDecision
     """
-    s = singular_values.tolist() if isinstance(singular_values, np.ndarray) else singular_values
+    return RankDecision(*_decide(singular_values.tolist() if isinstance(singular_values, np.ndarray) else singular_values, tol.rank))
+
+
+def _decide(s: Sequence[float], rtol: float) -> tuple[int, float, float]:
+    """Rank, smallest kept and largest dropped (relative) of singular values in decreasing order: the policy itself."""
     if not s:
-        return RankDecision(0)
+        return 0, 1.0, 0.0
     scale = s[0] if s[0] > 1.0 else 1.0
-    threshold = tol.rank * scale
-    rank = 0
-    while rank < len(s) and s[rank] > threshold:  # decreasing order
+    threshold = rtol * scale
+    rank, length = 0, len(s)
+    while rank < length and s[rank] > threshold:  # decreasing order
         rank += 1
-    kept = s[rank - 1] / scale if rank else 1.0
-    dropped = s[rank] / scale if rank < len(s) else 0.0
-    return RankDecision(rank, kept, dropped)
+    return rank, s[rank - 1] / scale if rank else 1.0, s[rank] / scale if rank < length else 0.0
 
 
 def binary_scale(*values: Any) -> float:
@@ -559,9 +561,9 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     n, k = s.shape
     if n <= _ROW_BY_ROW:  # a few rows: the loop of decide_rank costs less than the array operations below
         lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist() if isinstance(counts, np.ndarray) else counts
-        rows = [decide_rank(row[:length], tol) for row, length in zip(s.tolist(), lengths)]
-        rank, kept, dropped = zip(*rows) if rows else ((), (), ())
-        return RankDecisions(np.array(rank, dtype=int), np.array(kept, dtype=float), np.array(dropped, dtype=float))
+        rtol = tol.rank
+        table = np.array([_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths)], dtype=float).reshape(n, 3).T
+        return RankDecisions(table[0].astype(int), table[1], table[2])
     present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.broadcast_to(np.minimum(counts, k), (n,)))[:, None]
     length = present.sum(axis=1)
     if k == 0:
