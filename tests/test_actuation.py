@@ -499,7 +499,7 @@ def test_conditioning_does_not_depend_on_the_representative_of_an_actuation_wren
     for name, shift, scale in zip(["R1", "P2", "R3"], shifts, scales):
         joint = index[name]
         a, rate, _ = pose.wrench(joint, 0)
-        limb_constraints = pose.limbs[pose.limb_of[joint]][1].wrenches
+        limb_constraints = pose.limbs[pose.limb_of[joint]][1].wrenches[0]  # a stack of this one pose
         other = scale * a + limb_constraints @ np.full(limb_constraints.shape[1], shift)
         twist = pose.screws.twists[:, pose.screws.offsets[joint]]
         if name[0] == "R":

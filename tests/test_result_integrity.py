@@ -288,9 +288,10 @@ def test_what_a_mechanism_computes_of_itself_is_read_only_and_not_pickled():
     from mobility.core.joint_screws import joint_screws
 
     screws = joint_screws(m)
-    for array in (screws.normalisation.centre, screws.reference, screws.offsets, screws.reference_in_world, *screws.columns):
+    for array in (screws.normalisation.centre, screws.reference, screws.reference_in_world, *screws.columns):
         with pytest.raises(ValueError, match="read-only"):
             array[...] = 0
+    assert type(screws.offsets) is tuple and all(type(o) is int for o in screws.offsets)  # immutable by its kind
     again = pickle.loads(pickle.dumps(m))
     assert again == m and "_mobility_cache" not in vars(again) and "freedom_table" not in vars(again)
     assert not again.freedom_table.axes.flags.writeable  # recomputed read-only, not unpickled writable
@@ -345,7 +346,8 @@ def _coordinates(r: object) -> tuple[np.ndarray, ...]:
     """The arrays of the plain objects a result keeps to write its answers out (joint screws, a normalisation)."""
     if isinstance(r, mobility.LoopClosure):
         s = r.screws
-        return (s.twists, s.offsets, s.reference, *s.columns, s.reference_in_world, s.normalisation.centre)
+        assert type(s.offsets) is tuple  # immutable by its kind
+        return (s.twists, s.reference, *s.columns, s.reference_in_world, s.normalisation.centre)
     spaces = getattr(r, "normalised", r)
     return (spaces.normalisation.centre,) if hasattr(spaces, "normalisation") else ()
 

@@ -9,7 +9,7 @@ from builders import four_bar, normalised, random_mechanism, six_ups, three_prs
 import mobility
 from mobility.core.joint_screws import joint_screws
 from mobility.core.loop_closure import loop_closure
-from mobility.core.screw_systems import evaluate_node
+from mobility.core.screw_systems import evaluate
 from mobility.core.screws import same_subspace
 from mobility.core.topology import Bridge, JointNode, Parallel, Series, decompose, joints_of
 
@@ -23,8 +23,9 @@ def agree(m: mobility.Mechanism) -> tuple[int, int]:
     assert r.mobility == lc.mobility, m.name
     assert r.dof == lc.end_effector_twists.shape[1], m.name
     assert r.redundant_constraints == 6 * lc.loops - lc.rank, m.name
-    sp = evaluate_node(decompose(m).root, joint_screws(m))
-    assert same_subspace(sp.basis, lc.end_effector_twists), m.name
+    s = joint_screws(m)
+    sp = evaluate(decompose(m).root, s.twists[None], s.offsets)
+    assert same_subspace(sp.basis[0], lc.end_effector_twists), m.name
     # and the reported twists (global frame, file units) are the loop-closure ones mapped back
     assert same_subspace(normalised(m, r.twists), lc.end_effector_twists), m.name
     nodes_agree(m, r)

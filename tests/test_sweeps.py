@@ -25,7 +25,8 @@ from mobility.core.transforms import displacement_log, twist_exp
 from mobility.errors import MechanismError, RequestError
 from mobility.sweeps import SweepResult, plan_grid, sweep
 from mobility.sweeps.batch_kinematics import BatchKinematics, displacement_logs, rotation_logs
-from mobility.sweeps.batch_systems import analyse_poses
+from mobility.core.screw_systems import analyse_poses
+from mobility.core.topology import decompose
 from mobility.sweeps.continuation import Drive, residuals
 from mobility.sweeps.posed_screws import posed_screws
 from mobility.report.sweep import sweep_csv, sweep_json, sweep_summary
@@ -120,7 +121,8 @@ def test_batched_analysis_equals_analyze_on_random_closed_poses(name):
     for k, x in enumerate(q):
         for link, g in kin.link_displacements(x).items():
             assert np.allclose(moved[link][k], g, atol=1e-13)
-    answers = analyse_poses(m, posed_screws(bk, q))
+    posed = posed_screws(bk, q)
+    answers = analyse_poses(decompose(m), posed.twists, posed.offsets)
     for k, x in enumerate(q):
         direct = mobility.analyze(kin.mechanism_at(x))
         assert (answers.dof[k], answers.pattern[k], answers.mobility[k]) == (direct.dof, direct.pattern, direct.mobility)
@@ -711,9 +713,7 @@ def test_a_sweep_at_any_scale_is_the_sweep_scaled_without_a_warning():
 def test_a_deep_tree_is_evaluated_for_every_pose_without_recursion():
     import sys
 
-    from mobility.sweeps.batch_systems import evaluate_batch
-    from mobility.core.screw_systems import evaluate_node
-    from mobility.core.topology import decompose
+    from mobility.core.screw_systems import evaluate, per_pose
 
     z = (0.0, 0.0, 1.0)
     n = 1500  # a ladder of rigid triangles: series inside parallel 1,500 deep
@@ -723,9 +723,9 @@ def test_a_deep_tree_is_evaluated_for_every_pose_without_recursion():
     assert n > sys.getrecursionlimit()
     screws = joint_screws(m)
     twists = np.broadcast_to(screws.twists, (2, *screws.twists.shape))
-    value = evaluate_batch(decompose(m).root, np.ascontiguousarray(twists), tuple(int(x) for x in screws.offsets))
-    single = evaluate_node(decompose(m).root, screws)
-    assert value.dim.tolist() == [single.dim] * 2 and value.mobility.tolist() == [single.mobility] * 2 == [0, 0]
+    value = evaluate(decompose(m).root, np.ascontiguousarray(twists), screws.offsets)
+    single = evaluate(decompose(m).root, screws.twists[None], screws.offsets)
+    assert per_pose(value.dim, 2).tolist() == per_pose(single.dim, 1).tolist() * 2 and per_pose(value.mobility, 2).tolist() == per_pose(single.mobility, 1).tolist() * 2 == [0, 0]
 
 
 

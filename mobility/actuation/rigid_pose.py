@@ -30,26 +30,23 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import replace
 from functools import cached_property
 from typing import Sequence
 
 import numpy as np
 
 from ..core.joint_screws import JointScrews, joint_screws
-from ..core.linalg import svd
 from ..core.model import Mechanism
-from ..core.screw_systems import SystemValue, evaluate_node
-from ..core.screws import SWAP_ROWS, adjoint
-from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank
+from ..core.screw_systems import Systems, evaluate
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..core.topology import Node, Parallel, Topology, decompose, joints_of
 from .assessment import EndEffectorSpaces, InputWrench
+from .input_wrenches import input_wrenches
 
 __all__ = ["RigidPose"]
 
 _NOT_ON_A_PATH = "not on a path between the ground and the end effector"
 _DRIVEN_BY_OTHERS = "its motion is produced by the other joints of its limb: it cannot be driven on its own"
-
 
 class RigidPose:
     """What one pose of a rigid mechanism needs for actuation assessments, computed once.
@@ -63,9 +60,9 @@ class RigidPose:
     ----------
     topology : Topology
     screws : JointScrews
-    root : SystemValue
-        The end effector's twist system (normalised).
-    limbs : list of (Node, SystemValue)
+    root : Systems
+        The end effector's twist system (normalised; a stack of this one pose).
+    limbs : list of (Node, Systems)
         Each limb and its twist system.
     limb_of : dict of int to int
         The limb of each joint on a path between ground and end effector.
@@ -76,10 +73,10 @@ class RigidPose:
         self.tol = tol
         self.topology: Topology = decompose(mechanism)
         self.screws: JointScrews = joint_screws(mechanism)
-        self.root: SystemValue = evaluate_node(self.topology.root, self.screws, tol)
+        self.root: Systems = _evaluate(self.topology.root, self.screws.twists, self.screws.offsets, tol)
         root = self.topology.root
         if isinstance(root, Parallel):
-            self.limbs: list[tuple[Node, SystemValue]] = list(zip(root.children, self.root.children))
+            self.limbs: list[tuple[Node, Systems]] = list(zip(root.children, self.root.children))
         else:
             self.limbs = [(root, self.root)]
         self.limb_of: dict[int, int] = {j: k for k, (node, _) in enumerate(self.limbs) for j in joints_of(node)}
@@ -89,7 +86,7 @@ class RigidPose:
     @cached_property
     def spaces(self) -> EndEffectorSpaces:
         """The end effector's twist and constraint systems."""
-        return EndEffectorSpaces(self.root.basis, self.root.wrenches, self.screws.normalisation, self.screws.reference)
+        return EndEffectorSpaces(self.root.basis[0], self.root.wrenches[0], self.screws.normalisation, self.screws.reference)
 
     def attachment(self, limb: int) -> np.ndarray:
         """Normalised centroid of the points of the limb's joints on the end effector."""
@@ -148,8 +145,8 @@ class RigidPose:
             return None
         held = []
         for limb in sorted(lacking):
-            columns = [int(self.screws.offsets[j]) + k for j, k in freedoms if self.limb_of.get(j) == limb]
-            held.append(evaluate_node(self.limbs[limb][0], _with_freedoms_locked(self.screws, columns), self.tol).wrenches)
+            columns = [self.screws.offsets[j] + k for j, k in freedoms if self.limb_of.get(j) == limb]
+            held.append(_evaluate(self.limbs[limb][0], _with_freedoms_locked(self.screws, columns), self.screws.offsets, self.tol).wrenches[0])
         return np.concatenate(held, axis=1)
 
     def _actuation_wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str, float]:
@@ -157,35 +154,18 @@ class RigidPose:
             return None, 1.0, _NOT_ON_A_PATH, 0.0
         limb = self.limb_of[joint]
         node, value = self.limbs[limb]
-        col = int(self.screws.offsets[joint]) + freedom
-        others = evaluate_node(node, _with_freedoms_locked(self.screws, [col]), self.tol)
-        p = self.attachment(limb)
-        to_attachment = adjoint(np.eye(3), -p)  # [a; b] -> [a; b - p x a]
-        own = value.wrenches
-        w_other = to_attachment @ others.wrenches
-        if own.shape[1]:
-            q, _ = np.linalg.qr(to_attachment @ own)
-            w_other = w_other - q @ (q.T @ w_other)
-        if w_other.shape[1] == 0:
+        col = self.screws.offsets[joint] + freedom
+        w = input_wrenches(node, value, self.screws.twists[None], self.screws.offsets, col, self.attachment(limb)[None], self.tol)
+        if not w.has[0]:
             return None, 1.0, _DRIVEN_BY_OTHERS, 0.0
-        u, s, _ = svd(w_other)
-        if decide_rank(s, self.tol).rank == 0:
-            return None, 1.0, _DRIVEN_BY_OTHERS, 0.0
-        a = np.linalg.solve(to_attachment, u[:, 0])
-        a /= np.linalg.norm(a)
-        twist = self.screws.twists[:, col]
-        wn = float(np.linalg.norm(twist[:3]))
-        if wn > self.tol.rank:
-            twist = twist / wn  # unit angular rate (R, H); P columns are already unit linear rate
-        rate = float(a[SWAP_ROWS] @ twist)
-        if rate < 0:
-            a, rate = -a, -rate
-        return a, rate, "", min(rate / float(np.linalg.norm(twist)), 1.0)
+        return w.wrench[0], float(w.rate[0]), "", float(w.transmission[0])
 
+def _evaluate(node: Node, twists: np.ndarray, offsets: tuple[int, ...], tol: Tolerance) -> Systems:
+    """The screw systems of ``node`` at this one pose (a stack of one)."""
+    return evaluate(node, twists[None], offsets, tol)
 
-def _with_freedoms_locked(screws: JointScrews, columns: Sequence[int]) -> JointScrews:
-    """The same joint twists with ``columns`` set to zero (those freedoms locked)."""
+def _with_freedoms_locked(screws: JointScrews, columns: Sequence[int]) -> np.ndarray:
+    """The joint twists with ``columns`` set to zero (those freedoms locked)."""
     masked = screws.twists.copy()
     masked[:, list(columns)] = 0.0
-    o = screws.offsets
-    return replace(screws, twists=masked, columns=tuple(masked[:, o[j] : o[j + 1]] for j in range(len(o) - 1)))
+    return masked

@@ -28,8 +28,8 @@ from ..errors import AnalysisError
 from .canonical import canonical_form
 from .joint_screws import JointScrews, Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism, require_mechanism
-from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis, pattern_of
-from .screw_systems import MarginTracker, SystemValue, evaluate_node, subtree_values
+from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis
+from .screw_systems import PoseAnswers, analyse_poses, per_pose, subtree_values
 from .screws import free_vector_subspace, span_and_reciprocal
 from .tolerance import NEAR_LARGEST_FLOAT, Tolerance, decide_rank, file_tolerance, require_tolerance
 from .transforms import cross
@@ -47,7 +47,10 @@ def gruebler_kutzbach(mechanism: Mechanism) -> int:
     >>> gruebler_kutzbach(Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(1, 0, 0)),)))
     1
     """
-    mechanism = require_mechanism(mechanism, "gruebler_kutzbach")
+    return _gruebler_kutzbach(require_mechanism(mechanism, "gruebler_kutzbach"))
+
+
+def _gruebler_kutzbach(mechanism: Mechanism) -> int:
     return 6 * (len(mechanism.links) - 1 - len(mechanism.joints)) + mechanism.freedom_count
 
 
@@ -90,19 +93,11 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
     tol = file_tolerance(mechanism.precision) if tol is None else require_tolerance(tol, "analyze")
     topology = per_object_cache(mechanism, "topology", lambda: decompose(mechanism))
     screws = joint_screws(mechanism)
-    tracker = MarginTracker()
-    root = evaluate_node(topology.root, screws, tol, tracker)
-    detached = tuple(evaluate_node(node, screws, tol, tracker) for node in topology.detached)
-    mobility = root.mobility + sum(v.mobility for v in detached)
-    rotational = free_vector_subspace(root.basis, tol, coefficients=False)
-    tracker.add(rotational)
-    gk = gruebler_kutzbach(mechanism)
-    margin = Margin(
-        tracker.smallest_kept,
-        tracker.largest_dropped,
-        tracker.smallest_kept < tol.near_singular,
-        tracker.largest_dropped > tol.inexact,
-    )
+    answers = analyse_poses(topology, screws.twists[None], screws.offsets, tol)
+    gk = _gruebler_kutzbach(mechanism)
+    kept, dropped = answers.smallest_kept.item(), answers.largest_dropped.item()
+    dof, mobility = answers.dof.item(), answers.mobility.item()
+    margin = Margin(kept, dropped, kept < tol.near_singular, dropped > tol.inexact)
     warnings = []
     if margin.near_singular:
         warnings.append(
@@ -120,12 +115,12 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
     norm = screws.normalisation
     result = Result(
         name=mechanism.name,
-        dof=root.dim,
-        pattern=pattern_of(root.dim - rotational.rank, rotational.rank),
+        dof=dof,
+        pattern=answers.pattern[0],
         mobility=mobility,
         gruebler_kutzbach=gk,
         redundant_constraints=mobility - gk,
-        idle_dof=mobility - root.dim,
+        idle_dof=mobility - dof,
         loops=topology.loop_count,
         links=topology.link_count,
         joints=len(mechanism.joints),
@@ -136,9 +131,9 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
         length_unit=mechanism.length_unit,
         length_scale=norm.size,
         reference_point=screws.reference_in_world,
-        detail=_Detail(mechanism, topology, screws, root, detached, tol),
+        detail=_Detail(mechanism, topology, screws, answers, tol),
     )
-    if float(np.abs(norm.centre).max()) + norm.length > NEAR_LARGEST_FLOAT:
+    if norm.reach > NEAR_LARGEST_FLOAT:
         result.to_dict()  # its axes may lie past the largest float: said here, not when a lazy part is first read
     return result
 
@@ -150,33 +145,30 @@ class _Detail:
     children, and each detached network's), so nothing is evaluated twice.
     """
 
-    def __init__(
-        self, mechanism: Mechanism, topology: Topology, screws: JointScrews, root: SystemValue, detached: tuple[SystemValue, ...], tol: Tolerance
-    ) -> None:
+    def __init__(self, mechanism: Mechanism, topology: Topology, screws: JointScrews, answers: PoseAnswers, tol: Tolerance) -> None:
         self.mechanism = mechanism
         self.topology = topology
         self.screws = screws
-        self.root = root
-        self.detached = detached
+        self.answers = answers
         self.tol = tol
 
     def node_systems(self) -> dict[Node, NodeSystem]:
         """DOF and idle count of every node of the tree, read from the values the analysis computed."""
         out: dict[Node, NodeSystem] = {}
-        for top, value in zip((self.topology.root, *self.topology.detached), (self.root, *self.detached)):
+        for top, value in zip((self.topology.root, *self.topology.detached), (self.answers.root, *self.answers.detached)):
             for node, v in subtree_values(top, value):
                 if v is None:  # a joint inside a series or a bridge: its twists are independent
                     assert isinstance(node, JointNode)
                     out[node] = NodeSystem(self.mechanism.joints[node.index].dof, 0)
                 else:
-                    out[node] = NodeSystem(v.dim, v.idle)
+                    out[node] = NodeSystem(int(per_pose(v.dim, 1)[0]), int(per_pose(v.idle, 1)[0]))
         return out
 
     def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
-        return screw_system_in_frame(self.root.basis, self.screws.normalisation, self.screws.reference, ("rotation", "helical"), self.tol)
+        return screw_system_in_frame(self.answers.root.basis[0], self.screws.normalisation, self.screws.reference, ("rotation", "helical"), self.tol)
 
     def wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
-        return screw_system_in_frame(self.root.wrenches, self.screws.normalisation, self.screws.reference, ("force", "wrench"), self.tol)
+        return screw_system_in_frame(self.answers.root.wrenches[0], self.screws.normalisation, self.screws.reference, ("force", "wrench"), self.tol)
 
     def common_constraints(self) -> int:
         return 6 - span_and_reciprocal(self.screws.twists, self.tol).dim
@@ -219,7 +211,7 @@ class _Detail:
             return ()
         norm, tol = self.screws.normalisation, self.tol
         out = []
-        for node, value in zip(self.topology.root.children, self.root.children):  # a parallel node keeps every child's value
+        for node, value in zip(self.topology.root.children, self.answers.root.children):  # a parallel node keeps every child's value
             frames = {self.mechanism.joints[i].frame for i in joints_of(node)}
             frame = frames.pop() if len(frames) == 1 else WORLD
             tf = self.mechanism.frame_transform(frame)
@@ -227,9 +219,9 @@ class _Detail:
             local = Normalisation(rt @ (norm.centre - tf.translation), norm.length)
             rot6 = np.kron(np.eye(2), rt)
             reference = rt @ self.screws.reference
-            translations, rotations, twists = screw_system_in_frame(rot6 @ value.basis, local, reference, ("rotation", "helical"), tol)
-            couples, forces, wrenches = screw_system_in_frame(rot6 @ value.wrenches, local, reference, ("force", "wrench"), tol)
-            out.append(LimbSystem(describe(node), frame, value.dim, value.idle, translations, rotations, twists, couples, forces, wrenches))
+            translations, rotations, twists = screw_system_in_frame(rot6 @ value.basis[0], local, reference, ("rotation", "helical"), tol)
+            couples, forces, wrenches = screw_system_in_frame(rot6 @ value.wrenches[0], local, reference, ("force", "wrench"), tol)
+            out.append(LimbSystem(describe(node), frame, int(per_pose(value.dim, 1)[0]), int(per_pose(value.idle, 1)[0]), translations, rotations, twists, couples, forces, wrenches))
         return tuple(out)
 
 

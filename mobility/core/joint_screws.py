@@ -30,7 +30,7 @@ from .model import Mechanism
 from .tolerance import DEFAULT_TOLERANCE, binary_scale, characteristic_scale
 from .transforms import cross
 
-__all__ = ["Normalisation", "JointScrews", "joint_screws", "per_object_cache", "clear_cache"]
+__all__ = ["Normalisation", "JointScrews", "joint_screws", "unit_twists", "per_object_cache", "clear_cache"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -43,6 +43,11 @@ class Normalisation:
 
     centre: np.ndarray
     length: float
+
+    @cached_property
+    def reach(self) -> float:
+        """``length`` plus the largest coordinate of ``centre``: how far the mechanism reaches from the origin, in each coordinate."""
+        return float(np.abs(self.centre).max()) + self.length
 
     @cached_property
     def size(self) -> float:
@@ -85,7 +90,7 @@ class JointScrews:
     twists : ndarray, shape (6, n)
         Unit twist columns in normalised coordinates, joint after joint, each
         joint's freedoms in the order of :meth:`~mobility.core.model.Joint.freedoms`.
-    offsets : ndarray, shape (J + 1,)
+    offsets : tuple of int, length J + 1
         Columns of joint ``j`` are ``offsets[j]:offsets[j+1]``.
     normalisation : Normalisation
     reference : ndarray, shape (3,)
@@ -99,7 +104,7 @@ class JointScrews:
     """
 
     twists: np.ndarray
-    offsets: np.ndarray
+    offsets: tuple[int, ...]
     normalisation: Normalisation
     reference: np.ndarray
     columns: tuple[np.ndarray, ...]
@@ -137,6 +142,39 @@ def clear_cache(obj: object) -> None:
 def joint_screws(mechanism: Mechanism) -> JointScrews:
     """Unit joint twists of ``mechanism`` in normalised coordinates (cached per mechanism)."""
     return per_object_cache(mechanism, "joint_screws", lambda: _build(mechanism))
+
+
+def unit_twists(prismatic: np.ndarray, axes: np.ndarray, offsets: np.ndarray, pitches: np.ndarray, lengths: np.ndarray | float) -> np.ndarray:
+    """Unit twists ``[w; v]`` of elementary freedoms at a stack of poses, in normalised coordinates.
+
+    A turn (pitch ``h``) about ``axis`` through a point at ``offset`` from the
+    centre has ``w = axis``, ``v = (offset x axis + h axis) / length``; a
+    slide has ``w = 0``, ``v = axis``.  Each column is then scaled to unit norm.
+
+    Parameters
+    ----------
+    prismatic : ndarray of bool, shape (f,)
+    axes, offsets : ndarray, shape (N, 3, f)
+        Unit axes, and points less the centre of their pose.
+    pitches : ndarray, shape (f,)
+    lengths : float or ndarray, shape (N,)
+        The characteristic length of each pose.
+
+    Returns
+    -------
+    ndarray, shape (N, 6, f)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> unit_twists(np.array([False]), np.array([[[0.0], [0.0], [1.0]]]), np.array([[[1.0], [0.0], [0.0]]]), np.zeros(1), 1.0)[0, :, 0].round(6).tolist()
+    [0.0, 0.0, 0.707107, 0.0, -0.707107, 0.0]
+    """
+    length = np.reshape(lengths, (-1, 1, 1))
+    moment = (cross(offsets.swapaxes(0, 1), axes.swapaxes(0, 1)).swapaxes(0, 1) + pitches * axes) / length
+    tw = np.concatenate([np.where(prismatic, 0.0, axes), np.where(prismatic, axes, moment)], axis=1)
+    tw /= np.sqrt(np.einsum("nij,nij->nj", tw, tw))[:, None, :]
+    return tw
 
 
 RESOLUTION = DEFAULT_TOLERANCE
@@ -210,11 +248,7 @@ def _build(mechanism: Mechanism) -> JointScrews:
     scale = binary_scale(table.located, pitches)
     centre_s, length_s = centre * scale, length * scale
     _refuse_unresolved_links(mechanism, scale, length_s)
-    axes = table.axes
-    moment = (cross((table.points * scale - centre_s).T, axes.T).T + (pitches * scale)[:, None] * axes) / length_s
-    p = table.prismatic[:, None]
-    tw = np.concatenate([np.where(p, 0.0, axes), np.where(p, axes, moment)], axis=1).T
-    tw /= np.sqrt(np.einsum("ij,ij->j", tw, tw))  # unit columns
+    tw = unit_twists(table.prismatic, table.axes.T[None], (table.points * scale - centre_s).T[None], pitches * scale, length_s)[0]
     tw.setflags(write=False)
     centre.setflags(write=False)  # shared by every later analysis of this mechanism: nobody may write to it
     norm = Normalisation(centre, length)
@@ -227,6 +261,4 @@ def _build(mechanism: Mechanism) -> JointScrews:
         # finite, so a coordinate past the largest float is one that rounding took there: it is that float
         reference_in_world = np.clip((centre_s + length_s * reference) / scale, -sys.float_info.max, sys.float_info.max)
     reference_in_world.setflags(write=False)
-    offsets_array = np.array(offsets)
-    offsets_array.setflags(write=False)
-    return JointScrews(tw, offsets_array, norm, reference, columns, reference_in_world)
+    return JointScrews(tw, offsets, norm, reference, columns, reference_in_world)

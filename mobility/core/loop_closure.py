@@ -127,7 +127,7 @@ class LoopClosure(ReadOnlyArrays):
         super().__setstate__(state)
         screws = state.get("screws")
         if isinstance(screws, JointScrews):  # unpickled (or deep-copied) with the rest: new arrays, frozen in place
-            read_only((screws.twists, screws.offsets, screws.reference, screws.columns, screws.reference_in_world, screws.normalisation.centre), copy=False)
+            read_only((screws.twists, screws.reference, screws.columns, screws.reference_in_world, screws.normalisation.centre), copy=False)
 
 
 def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, method: str = "auto") -> LoopClosure:

@@ -1,8 +1,11 @@
-"""Screw systems of a decomposed mechanism: the series/parallel route.
+"""Screw systems of a decomposed mechanism at a stack of poses: the series/parallel route.
 
-Each node of the :mod:`~mobility.core.topology` tree gets the twist system of the
-relative motion of its two end links, and its *idle* count (motions of the
-joints inside that leave those two links still):
+The one engine of the package: :func:`mobility.analyze` calls it with a
+stack of one pose, the sweeps with thousands, the actuation checks with the
+joints they lock.  Each node of the :mod:`~mobility.core.topology` tree gets,
+at every pose of the stack, the twist system of the relative motion of its two
+end links and its *idle* count (motions of the joints inside that leave those
+two links still):
 
 * joint: the span of its twists, idle 0;
 * series: the span of the children's twists (union of twists);
@@ -15,8 +18,18 @@ joints inside that leave those two links still):
   solutions; idle = children's idle + solutions that leave the target still.
 
 The mobility of a network is ``dimension + idle``.  Everything is computed in
-normalised coordinates (:mod:`mobility.core.joint_screws`); every rank decision goes
-through the one tolerance policy and its margin is kept.
+normalised coordinates (:mod:`mobility.core.joint_screws`); every rank
+decision is the one policy (:func:`~mobility.core.tolerance.decide_ranks`)
+and its margin is kept, pose by pose.
+
+A system whose rank differs from pose to pose is kept as a fixed-shape
+``(N, 6, k)`` array whose columns beyond each pose's rank are zero: zero
+columns change no span and no non-zero singular value, and each decision
+leaves them out of its count.  Where the rank is the same at every pose (one
+pose always) the arrays have exactly the rank's width.  The nodes are taken
+level by level from the leaves (no recursion: a ladder of loops thousands
+deep costs what a flat tree does), and the matrices of one level with the
+same shape (the limbs of a parallel mechanism) go to LAPACK as one stack.
 
 Examples
 --------
@@ -26,128 +39,248 @@ Examples
 >>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
 >>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
 ...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
->>> v = evaluate_node(decompose(m).root, joint_screws(m))
->>> v.dim, v.idle
-(1, 0)
+>>> s = joint_screws(m)
+>>> v = evaluate(decompose(m).root, s.twists[None], s.offsets)
+>>> v.dim, v.idle, v.basis.shape
+(1, 0, (1, 6, 1))
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Iterator, NamedTuple
+from typing import Iterator, NamedTuple, Sequence
 
 import numpy as np
 
-from .joint_screws import JointScrews
-from .linalg import left_svd, left_svds, svd
-from .screws import SWAP_ROWS
-from .tolerance import DEFAULT_TOLERANCE, RankDecision, Tolerance, decide_rank
-from .topology import Bridge, JointNode, Node, Parallel, Series
+from .joint_screws import per_object_cache
+from .linalg import left_svds, singular_values
+from .screws import SWAP_ROWS, pattern_of
+from .tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
+from .topology import Bridge, JointNode, Node, Parallel, Series, Topology
 
-__all__ = ["SystemValue", "MarginTracker", "evaluate_node", "subtree_values"]
-
-
-@dataclass
-class MarginTracker:
-    """The worst margins met so far over a series of rank decisions (mutable; see :class:`~mobility.core.tolerance.RankDecision`).
-
-    The analysis turns it into the frozen :class:`~mobility.core.result.Margin` of its result.
-
-    Examples
-    --------
-    >>> from mobility.core.tolerance import RankDecision
-    >>> t = MarginTracker()
-    >>> t.add(RankDecision(2, 0.5, 1e-16)); t.add(RankDecision(1, 0.9, 1e-13))
-    >>> t.smallest_kept, t.largest_dropped
-    (0.5, 1e-13)
-    """
-
-    smallest_kept: float = 1.0
-    largest_dropped: float = 0.0
-
-    def add(self, d: RankDecision) -> None:
-        """Take one more decision into account."""
-        if d.smallest_kept < self.smallest_kept:
-            self.smallest_kept = d.smallest_kept
-        if d.largest_dropped > self.largest_dropped:
-            self.largest_dropped = d.largest_dropped
+__all__ = ["Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "PoseAnswers", "analyse_poses"]
 
 
-class SystemValue(NamedTuple):
-    """Twist system of a node, in normalised coordinates.
+class Systems(NamedTuple):
+    """Twist system of a node at ``N`` poses (normalised coordinates of each pose).
 
     Attributes
     ----------
-    basis : ndarray, shape (6, d)
-        Orthonormal basis of the twist system.
-    wrenches : ndarray, shape (6, 6 - d)
-        Basis of the constraint wrench system (reciprocal to ``basis``).
-    idle : int
-        Motions inside the node that leave its two end links still.
-    children : tuple of SystemValue
-        Values of the composite children (every child for a parallel node).
+    basis : ndarray, shape (N, 6, k)
+        Orthonormal basis of the twist system, columns beyond ``dim`` zero.
+    dim : int or ndarray of int, shape (N,)
+        The dimension at each pose; an int when it is the same at every pose
+        (always for one pose), which broadcasts as the array would, at no
+        cost per pose (:func:`per_pose` gives the array).
+    wrenches : ndarray, shape (N, 6, k')
+        Orthonormal basis of the constraint wrenches (``6 - dim`` columns, then zeros).
+    idle : int or ndarray of int, shape (N,)
+        Motions inside the node that leave its two end links still (an int
+        as ``dim`` is).
+    children : tuple of Systems
+        The values of the composite children (every child for a parallel node).
     """
 
     basis: np.ndarray
+    dim: np.ndarray
     wrenches: np.ndarray
-    idle: int
-    children: tuple["SystemValue", ...] = ()
+    idle: np.ndarray
+    children: tuple["Systems", ...] = ()
 
     @property
-    def dim(self) -> int:
-        """Dimension of the twist system."""
-        return self.basis.shape[1]
-
-    @property
-    def mobility(self) -> int:
+    def mobility(self) -> np.ndarray:
         """Mobility of the network with one end link fixed."""
-        return self.basis.shape[1] + self.idle
+        return self.dim + self.idle
 
 
-def _span(m: np.ndarray, tol: Tolerance, margin: MarginTracker) -> tuple[np.ndarray, np.ndarray]:
-    """Orthonormal basis of the column span of ``m`` and its reciprocal system (one SVD, left vectors only)."""
-    u, s = left_svd(m)
-    d = decide_rank(s, tol)
-    margin.add(d)
-    return u[:, : d.rank], u[SWAP_ROWS, d.rank :]
+class Margins:
+    """The worst margins over the rank decisions of each pose (as :class:`mobility.core.result.Margin` has them).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> m = Margins(2)
+    >>> m.add(RankDecisions(np.array([2, 1, 1, 1]), np.array([0.5, 1.0, 0.9, 0.2]), np.array([1e-16, 0.0, 1e-13, 0.0])))
+    >>> m.smallest_kept.tolist(), m.largest_dropped.tolist()
+    ([0.5, 0.2], [1e-13, 0.0])
+    """
+
+    def __init__(self, count: int) -> None:
+        self.count = count
+        self._kept: list[np.ndarray] = []
+        self._dropped: list[np.ndarray] = []
+
+    def add(self, d: RankDecisions) -> None:
+        """Take decisions into account: one per pose, or several stacks of one per pose, stack after stack."""
+        self._kept.append(d.smallest_kept)
+        self._dropped.append(d.largest_dropped)
+
+    @property
+    def smallest_kept(self) -> np.ndarray:
+        """The smallest kept singular value (relative) of each pose, 1.0 where none was kept."""
+        if not self._kept:
+            return np.ones(self.count)
+        return np.concatenate(self._kept).reshape(-1, self.count).min(axis=0)
+
+    @property
+    def largest_dropped(self) -> np.ndarray:
+        """The largest dropped singular value (relative) of each pose, 0.0 where none was dropped."""
+        if not self._dropped:
+            return np.zeros(self.count)
+        return np.concatenate(self._dropped).reshape(-1, self.count).max(axis=0)
 
 
-def evaluate_node(node: Node, screws: JointScrews, tol: Tolerance = DEFAULT_TOLERANCE, margin: MarginTracker | None = None) -> SystemValue:
-    """Twist system, wrench system and idle count of ``node``.
+def _extremes(rank: np.ndarray) -> tuple[int, int]:
+    """The least and the greatest rank of a stack (of a few, in Python: less overhead)."""
+    if len(rank) > 8:
+        return int(rank.min()), int(rank.max())
+    ranks = rank.tolist()
+    return min(ranks), max(ranks)
 
-    The nodes are evaluated level by level from the leaves (no recursion, so
-    a tree nested as deep as a long ladder of loops costs what a flat one
-    does), and the matrices of one level that have the same shape (the limbs
-    of a parallel mechanism) are decomposed by one call
-    (:func:`~mobility.core.linalg.left_svds`): the same numbers as one call
-    each, without paying the call's overhead once per limb.
+
+def _split(u: np.ndarray, swapped: np.ndarray, rank: np.ndarray, low: int, high: int) -> tuple[np.ndarray, np.ndarray]:
+    """The span (first ``rank`` left singular vectors ``u``) and its reciprocal (the rest of ``swapped``, ``u`` with rows swapped) of each matrix of a stack, ranks from ``low`` to ``high``."""
+    if low == high:
+        return u[:, :, :low], swapped[:, :, low:]
+    span_ = u[:, :, :high] * (np.arange(high) < rank[:, None])[:, None, :]
+    index = rank[:, None] + np.arange(6 - low)
+    reciprocal = np.take_along_axis(swapped, np.minimum(index, 5)[:, None, :], axis=2) * (index < 6)[:, None, :]
+    return span_, reciprocal
+
+
+def span(m: np.ndarray, counts: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, margins: Margins | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Span of the columns of each ``m[i]`` and its reciprocal system, by one stacked SVD.
+
+    Parameters
+    ----------
+    m : ndarray, shape (N, 6, k)
+    counts : ndarray of int, shape (N,)
+        The number of columns each matrix has without its zero padding.
+
+    Returns
+    -------
+    span : ndarray, shape (N, 6, max rank)
+        Orthonormal basis, columns beyond each rank zero.
+    reciprocal : ndarray, shape (N, 6, 6 - min rank)
+        Basis of the reciprocal system (``6 - rank`` columns, then zeros).
+    rank : ndarray of int, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> z = np.zeros((1, 6, 2)); z[0, 2, 0] = z[0, 2, 1] = 1.0   # one rotation about z, twice
+    >>> basis, reciprocal, rank = span(z, np.array([2]))
+    >>> rank.tolist(), basis.shape, reciprocal.shape
+    ([1], (1, 6, 1), (1, 6, 5))
+    """
+    if len(m) == 0:
+        return np.zeros((0, 6, 0)), np.zeros((0, 6, 0)), np.zeros(0, dtype=int)
+    u, s, _ = left_svds(m)
+    d = decide_ranks(s, tol, counts)
+    if margins is not None:
+        margins.add(d)
+    return (*_split(u, u[:, SWAP_ROWS], d.rank, *_extremes(d.rank)), d.rank)
+
+
+def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolerance = DEFAULT_TOLERANCE, margins: Margins | None = None) -> Systems:
+    """Twist system, wrench system and idle count of ``node`` at every pose of a stack.
 
     Parameters
     ----------
     node : Node
-        A node of the decomposition.
-    screws : JointScrews
-        Joint twists of the mechanism.
+        A node of :func:`mobility.core.topology.decompose`.
+    twists : ndarray, shape (N, 6, f)
+        Unit joint twists of each pose, in its normalised coordinates (a
+        locked freedom has a zero column).
+    offsets : sequence of int
+        Columns of joint ``j``: ``offsets[j]:offsets[j+1]``.
     tol : Tolerance
         The rank policy.
-    margin : MarginTracker, optional
+    margins : Margins, optional
         Collects the margins of every rank decision made.
     """
-    if margin is None:
-        margin = MarginTracker()
-    values: dict[int, SystemValue] = {}  # by id of the node
-    for level in _levels(node):
-        pending = []
-        for n, children in level:
-            if isinstance(n, Bridge):
-                values[id(n)] = _bridge(n, [values[id(c)] for c in children], screws, tol, margin)
+    count = twists.shape[0]
+    if margins is None:
+        margins = Margins(count)
+    values: dict[int, Systems] = {}  # by id of the node
+    for level in _plan(node, tuple(offsets)):
+        same_shape: dict[int, list[tuple[Step, list[Systems], np.ndarray, int | np.ndarray]]] = {}
+        for step in level:
+            kids = [values[id(c)] for c in step.children]
+            if isinstance(step.node, Bridge):
+                values[id(step.node)] = _bridge(step.node, kids, twists, offsets, tol, margins)
             else:
-                pending.append((n, children, _matrix(n, [values[id(c)] for c in children], screws)))
-        for (n, children, m), (u, s) in zip(pending, left_svds([m for _, _, m in pending])):
-            d = decide_rank(s, tol)
-            margin.add(d)
-            values[id(n)] = _value(n, [values[id(c)] for c in children], m, u, d.rank)
+                m, counts = _matrix(step, kids, twists)
+                same_shape.setdefault(m.shape[2], []).append((step, kids, m, counts))
+        for members in same_shape.values():
+            if len(members) == 1:
+                stack, counts = members[0][2], members[0][3]
+            else:
+                stack = np.concatenate([m for *_, m, _ in members])
+                listed = [c for *_, c in members]
+                if any(type(c) is not int for c in listed):
+                    counts = np.concatenate([np.full(count, c) if type(c) is int else c for c in listed])
+                else:
+                    counts = listed if count == 1 else np.repeat(listed, count)
+            u, s, _ = left_svds(stack)
+            d = decide_ranks(s, tol, counts)
+            margins.add(d)
+            low, high = _extremes(d.rank)
+            swapped = u[:, SWAP_ROWS]
+            if low == high:  # one rank at every pose: the spans of the whole stack at once, the rank an int
+                span_, reciprocal = u[:, :, :low], swapped[:, :, low:]
+                if len(members) == 1:
+                    values[id(members[0][0].node)] = _value(members[0][0].node, members[0][1], span_, reciprocal, low, counts)
+                    continue
+            for i, (step, kids, m, c) in enumerate(members):
+                rows = slice(i * count, (i + 1) * count)
+                if low == high:
+                    values[id(step.node)] = _value(step.node, kids, span_[rows], reciprocal[rows], low, c)
+                else:  # each node as wide as its own greatest rank
+                    rank = d.rank[rows]
+                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], swapped[rows], rank, *_extremes(rank)), rank, c)
     return values[id(node)]
+
+
+class Step(NamedTuple):
+    """One node of the tree as :func:`evaluate` takes it: its composite children, and where its matrix's joint columns are.
+
+    ``parts`` (joint and series nodes) lists the blocks of the node's matrix in
+    order: a ``slice`` of the joint twist columns (consecutive joints merged
+    into one), or the index in ``children`` of a composite child, whose basis
+    goes there.
+    """
+
+    node: Node
+    children: tuple[Node, ...]
+    parts: tuple[slice | int, ...]
+    joint_columns: int
+
+
+def _plan(node: Node, offsets: tuple[int, ...]) -> list[list[Step]]:
+    """The steps of the tree below ``node`` grouped by height, leaves first (what depends on the graph only, computed once per node)."""
+    plans = per_object_cache(node, "screw_system_plan", dict)
+    if offsets not in plans:
+        plans[offsets] = [[_step(n, children, offsets) for n, children in level] for level in _levels(node)]
+    return plans[offsets]
+
+
+def _step(node: Node, children: list[Node], offsets: tuple[int, ...]) -> Step:
+    if isinstance(node, (Parallel, Bridge)):
+        return Step(node, tuple(children), (), 0)
+    parts: list[slice | int] = []
+    composite = 0
+    for c in (node,) if type(node) is JointNode else node.children:
+        if type(c) is JointNode:
+            lo, hi = offsets[c.index], offsets[c.index + 1]
+            last = parts[-1] if parts else None
+            if isinstance(last, slice) and last.stop == lo:
+                parts[-1] = slice(last.start, hi)
+            else:
+                parts.append(slice(lo, hi))
+        else:
+            parts.append(composite)
+            composite += 1
+    return Step(node, tuple(children), tuple(parts), sum(p.stop - p.start for p in parts if isinstance(p, slice)))
 
 
 def _levels(node: Node) -> list[list[tuple[Node, list[Node]]]]:
@@ -178,58 +311,73 @@ def _composite_children(node: Series | Parallel | Bridge) -> list[Node]:
     return [c for c in children if type(c) is not JointNode]
 
 
-def _matrix(node: JointNode | Series | Parallel, values: list[SystemValue], screws: JointScrews) -> np.ndarray:
-    """The matrix whose span a joint, series or parallel node is: twists stacked, or (parallel) constraint wrenches stacked."""
-    if type(node) is JointNode:
-        return screws.of_joint(node.index)
-    if isinstance(node, Parallel):
-        return np.concatenate([v.wrenches for v in values], axis=1)
-    composite = iter(values)
-    joint_columns = screws.columns
-    return np.concatenate([joint_columns[c.index] if type(c) is JointNode else next(composite).basis for c in node.children], axis=1)
+def _joint(twists: np.ndarray, offsets: Sequence[int], index: int) -> np.ndarray:
+    return twists[:, :, offsets[index] : offsets[index + 1]]
 
 
-def _value(node: Node, values: list[SystemValue], m: np.ndarray, u: np.ndarray, rank: int) -> SystemValue:
-    """The value of a joint, series or parallel node from the left singular vectors of its matrix and its rank."""
-    span, reciprocal = u[:, :rank], u[SWAP_ROWS, rank:]
-    if type(node) is JointNode:
-        return SystemValue(span, reciprocal, 0)
-    idle = sum(v.idle for v in values)
+def _matrix(step: Step, values: list[Systems], twists: np.ndarray) -> tuple[np.ndarray, int | np.ndarray]:
+    """The stack whose span a joint, series or parallel node is (twists, or for a parallel node constraint wrenches), and its real column counts (an int when the same at every pose)."""
+    if isinstance(step.node, Parallel):
+        return np.concatenate([v.wrenches for v in values], axis=2), 6 * len(values) - sum(v.dim for v in values)
+    blocks = [twists[:, :, p] if type(p) is slice else values[p].basis for p in step.parts]
+    m = blocks[0] if len(blocks) == 1 else np.concatenate(blocks, axis=2)
+    return m, step.joint_columns + sum(v.dim for v in values) if values else step.joint_columns
+
+
+def _value(node: Node, values: list[Systems], span_: np.ndarray, reciprocal: np.ndarray, rank: int | np.ndarray, counts: int | np.ndarray) -> Systems:
+    """The value of a joint, series or parallel node from the span of its matrix, its reciprocal, its rank and its column count."""
     if isinstance(node, Parallel):  # the span of the constraint wrenches; its reciprocal is the twist system
-        return SystemValue(reciprocal, span, idle, tuple(values))
-    return SystemValue(span, reciprocal, idle + m.shape[1] - rank, tuple(values))
+        return Systems(reciprocal, 6 - rank, span_, sum(v.idle for v in values), tuple(values))
+    if type(node) is JointNode:  # its twists are independent: no idle motion
+        return Systems(span_, rank, reciprocal, 0)
+    return Systems(span_, rank, reciprocal, counts - rank + sum(v.idle for v in values), tuple(values))
 
 
-def _bridge(node: Bridge, values: list[SystemValue], screws: JointScrews, tol: Tolerance, margin: MarginTracker) -> SystemValue:
+def _bridge(node: Bridge, values: list[Systems], twists: np.ndarray, offsets: Sequence[int], tol: Tolerance, margins: Margins) -> Systems:
     """Loop closure of a network that does not reduce (incidence form), from the values of its composite connections."""
+    count = twists.shape[0]
     composite = iter(values)
-    bases = [screws.of_joint(child.index) if type(child) is JointNode else next(composite).basis for _, _, child in node.edges]
+    bases, real = [], []
+    for _, _, child in node.edges:
+        if type(child) is JointNode:
+            bases.append(_joint(twists, offsets, child.index))
+            real.append(offsets[child.index + 1] - offsets[child.index])
+        else:
+            value = next(composite)
+            bases.append(value.basis)
+            real.append(value.dim)
     inner = [x for x in node.links if x != node.source]
     col_of = {x: 6 * i for i, x in enumerate(inner)}
     n_link = 6 * len(inner)
-    n_coord = sum(b.shape[1] for b in bases)
-    a = np.zeros((6 * len(node.edges), n_link + n_coord))
+    a = np.zeros((count, 6 * len(node.edges), n_link + sum(b.shape[2] for b in bases)))
     c = n_link
     for row, ((u, v, _), b) in enumerate(zip(node.edges, bases)):
         r = slice(6 * row, 6 * row + 6)
         if v != node.source:
-            a[r, col_of[v] : col_of[v] + 6] += np.eye(6)
+            a[:, r, col_of[v] : col_of[v] + 6] += np.eye(6)
         if u != node.source:
-            a[r, col_of[u] : col_of[u] + 6] -= np.eye(6)
-        a[r, c : c + b.shape[1]] = -b
-        c += b.shape[1]
-    _, s, vt = svd(a)
-    d = decide_rank(s, tol)
-    margin.add(d)
-    solutions = vt[d.rank :].T
-    target = solutions[col_of[node.target] : col_of[node.target] + 6]
-    basis, wrenches = _span(target, tol, margin)
-    idle = sum(v.idle for v in values) + solutions.shape[1] - basis.shape[1]
-    return SystemValue(basis, wrenches, idle, tuple(values))
+            a[:, r, col_of[u] : col_of[u] + 6] -= np.eye(6)
+        a[:, r, c : c + b.shape[2]] = -b
+        c += b.shape[2]
+    real_cols = n_link + sum(real, np.zeros(count, dtype=int))
+    _, s, vt = left_svds(a, full_v=True)
+    assert vt is not None  # asked for (full_v)
+    d = decide_ranks(s, tol, real_cols)
+    margins.add(d)
+    # the null vectors; a padding column's own (it moves no link) leaves the target's span as it is
+    low, high = _extremes(d.rank)
+    solutions = np.swapaxes(vt[:, low:], 1, 2)
+    if high != low:
+        solutions = solutions * (np.arange(low, vt.shape[1]) >= d.rank[:, None])[:, None, :]
+    target = solutions[:, col_of[node.target] : col_of[node.target] + 6]
+    real_solutions = real_cols - d.rank
+    basis, wrenches, rank = span(target, real_solutions, tol, margins)
+    idle = sum((v.idle for v in values), np.zeros(count, dtype=int)) + real_solutions - rank
+    return Systems(basis, rank, wrenches, idle, tuple(values))
 
 
-def subtree_values(node: Node, value: SystemValue) -> Iterator[tuple[Node, SystemValue | None]]:
-    """Every node of the subtree of ``node`` (parents first) with its value from :func:`evaluate_node`.
+def subtree_values(node: Node, value: Systems) -> Iterator[tuple[Node, Systems | None]]:
+    """Every node of the subtree of ``node`` (parents first) with its value from :func:`evaluate`.
 
     A joint inside a series or a bridge has no value of its own (its twists
     enter its parent's matrix directly): ``None`` is given for it.
@@ -242,11 +390,11 @@ def subtree_values(node: Node, value: SystemValue) -> Iterator[tuple[Node, Syste
     >>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
     >>> m = Mechanism("two limbs", "g", "e", (R("A1", "g", "x", (0, 0, 0)), R("A2", "x", "e", (1, 0, 0)),
     ...                                      R("B1", "g", "y", (0, 1, 0)), R("B2", "y", "e", (1, 1, 0))))
-    >>> root = decompose(m).root
-    >>> [(describe(n), None if v is None else v.dim) for n, v in subtree_values(root, evaluate_node(root, joint_screws(m)))]
+    >>> root, s = decompose(m).root, joint_screws(m)
+    >>> [(describe(n), None if v is None else v.dim) for n, v in subtree_values(root, evaluate(root, s.twists[None], s.offsets))]
     [('parallel(series(A1,A2), series(B1,B2))', 1), ('series(A1,A2)', 2), ('A1', None), ('A2', None), ('series(B1,B2)', 2), ('B1', None), ('B2', None)]
     """
-    stack: list[tuple[Node, SystemValue | None]] = [(node, value)]
+    stack: list[tuple[Node, Systems | None]] = [(node, value)]
     while stack:
         n, v = stack.pop()
         yield n, v
@@ -254,10 +402,110 @@ def subtree_values(node: Node, value: SystemValue) -> Iterator[tuple[Node, Syste
             continue
         assert v is not None  # only a joint inside a series or a bridge has no value
         children = [c for _, _, c in n.edges] if isinstance(n, Bridge) else list(n.children)
-        paired: list[tuple[Node, SystemValue | None]]
+        paired: list[tuple[Node, Systems | None]]
         if isinstance(n, Parallel):  # a parallel node keeps every child's value
             paired = list(zip(children, v.children))
         else:  # series and bridge nodes keep the values of their composite children only
             values = iter(v.children)
             paired = [(c, None if isinstance(c, JointNode) else next(values)) for c in children]
         stack.extend(reversed(paired))
+
+
+def direction_ranks(basis: np.ndarray, dim: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecisions:
+    """How many independent directions (rotations, for a twist system) each orthonormal screw basis of a stack holds.
+
+    The rank decision of the direction parts ``basis[:, :3]``; the basis is
+    orthonormal, so its singular values are at most 1 (up to round-off) and
+    the threshold is absolute.  The margin tells how close a screw is to
+    becoming a free vector (1.0 when there is no direction to lose).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> cylindrical = np.zeros((1, 6, 2)); cylindrical[0, 2, 0] = cylindrical[0, 5, 1] = 1.0
+    >>> direction_ranks(cylindrical, np.array([2])).rank.tolist()
+    [1]
+    """
+    count = basis.shape[0]
+    if basis.shape[2] == 0:
+        return RankDecisions(np.zeros(count, dtype=int), np.ones(count), np.zeros(count))
+    return decide_ranks(singular_values(basis[:, :3]), tol, dim)
+
+
+def per_pose(value: int | np.ndarray, count: int) -> np.ndarray:
+    """``value`` (an int when the same at every pose, or an array) as an array of ``count`` values.
+
+    Examples
+    --------
+    >>> per_pose(3, 2).tolist(), per_pose(np.array([1, 2]), 2).tolist()
+    ([3, 3], [1, 2])
+    """
+    return np.full(count, value) if type(value) is int else value
+
+
+_PATTERNS = np.array([[pattern_of(d - r, r) if r <= d else "" for r in range(7)] for d in range(7)], dtype=object)  # by (DOF, rotations)
+
+
+class PoseAnswers(NamedTuple):
+    """The counts and margins of :func:`mobility.analyze` at every pose of a stack (arrays of length ``N``).
+
+    Attributes
+    ----------
+    dof, mobility, rotations : ndarray of int
+        End-effector DOF, mobility of the whole mechanism, rotational freedoms.
+    pattern : ndarray of str
+    smallest_kept, largest_dropped : ndarray of float
+        The margin over every rank decision of the pose.
+    near_singular, inexact : ndarray of bool
+    root : Systems
+        The twist system of the ground-to-end-effector network, with its children.
+    detached : tuple of Systems
+        Those of the networks not on a path between ground and end effector.
+    """
+
+    dof: np.ndarray
+    pattern: np.ndarray
+    mobility: np.ndarray
+    rotations: np.ndarray
+    smallest_kept: np.ndarray
+    largest_dropped: np.ndarray
+    near_singular: np.ndarray
+    inexact: np.ndarray
+    root: Systems
+    detached: tuple[Systems, ...] = ()
+
+
+def analyse_poses(topology: Topology, twists: np.ndarray, offsets: Sequence[int], tol: Tolerance = DEFAULT_TOLERANCE) -> PoseAnswers:
+    """The counts and margins of :func:`mobility.analyze` at every pose of a stack of joint twists.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> from mobility.core.topology import decompose
+    >>> from mobility.core.joint_screws import joint_screws
+    >>> m = mobility.load("mechanisms/3prs.yaml")
+    >>> s = joint_screws(m)
+    >>> answers = analyse_poses(decompose(m), s.twists[None], s.offsets)
+    >>> answers.dof.tolist(), answers.pattern.tolist(), answers.mobility.tolist()
+    ([3], ['1T2R'], [3])
+    """
+    count = twists.shape[0]
+    margins = Margins(count)
+    root = evaluate(topology.root, twists, offsets, tol, margins)
+    detached = tuple(evaluate(n, twists, offsets, tol, margins) for n in topology.detached)
+    rotational = direction_ranks(root.basis, root.dim, tol)
+    margins.add(rotational)
+    dof, rot = per_pose(root.dim, count), rotational.rank
+    kept, dropped = margins.smallest_kept, margins.largest_dropped
+    return PoseAnswers(
+        dof=dof,
+        pattern=_PATTERNS[dof, rot],
+        mobility=per_pose(sum((v.mobility for v in detached), root.mobility), count),
+        rotations=rot,
+        smallest_kept=kept,
+        largest_dropped=dropped,
+        near_singular=kept < tol.near_singular,
+        inexact=dropped > tol.inexact,
+        root=root,
+        detached=detached,
+    )

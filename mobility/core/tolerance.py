@@ -36,7 +36,7 @@ import math
 import numbers
 import sys
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, Sequence
 
 import numpy as np
 
@@ -358,12 +358,12 @@ class RankDecision(NamedTuple):
     largest_dropped: float = 0.0
 
 
-def decide_rank(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecision:
+def decide_rank(singular_values: np.ndarray | Sequence[float], tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecision:
     """Decide the numerical rank from singular values sorted in decreasing order.
 
     Parameters
     ----------
-    singular_values : ndarray
+    singular_values : ndarray or sequence of float
         Singular values in decreasing order, as returned by :func:`numpy.linalg.svd`.
     tol : Tolerance
         The policy.
@@ -372,17 +372,19 @@ def decide_rank(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE)
     -------
     RankDecision
     """
-    s = singular_values.tolist() if isinstance(singular_values, np.ndarray) else list(singular_values)
+    return RankDecision(*_decide(singular_values.tolist() if isinstance(singular_values, np.ndarray) else singular_values, tol.rank))
+
+
+def _decide(s: Sequence[float], rtol: float) -> tuple[int, float, float]:
+    """Rank, smallest kept and largest dropped (relative) of singular values in decreasing order: the policy itself."""
     if not s:
-        return RankDecision(0)
+        return 0, 1.0, 0.0
     scale = s[0] if s[0] > 1.0 else 1.0
-    threshold = tol.rank * scale
-    rank = 0
-    while rank < len(s) and s[rank] > threshold:  # decreasing order
+    threshold = rtol * scale
+    rank, length = 0, len(s)
+    while rank < length and s[rank] > threshold:  # decreasing order
         rank += 1
-    kept = s[rank - 1] / scale if rank else 1.0
-    dropped = s[rank] / scale if rank < len(s) else 0.0
-    return RankDecision(rank, kept, dropped)
+    return rank, s[rank - 1] / scale if rank else 1.0, s[rank] / scale if rank < length else 0.0
 
 
 def binary_scale(*values: Any) -> float:
@@ -584,7 +586,11 @@ class RankDecisions(NamedTuple):
     largest_dropped: np.ndarray
 
 
-def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: np.ndarray | None = None) -> RankDecisions:
+_ROW_BY_ROW = 8
+"""Up to this many rows, :func:`decide_ranks` decides row by row (the same numbers, less overhead)."""
+
+
+def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: int | Sequence[int] | np.ndarray | None = None) -> RankDecisions:
     """:func:`decide_rank` of every row of ``singular_values``, vectorised, with the same semantics.
 
     Parameters
@@ -592,10 +598,12 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     singular_values : ndarray, shape (N, k)
         Each row in decreasing order (as :func:`numpy.linalg.svd` returns a stack).
     tol : Tolerance
-    counts : ndarray of int, shape (N,), optional
+    counts : int, or sequence or ndarray of int, shape (N,), optional
         How many leading values of each row are singular values of its
-        matrix; the others (the zero columns added to give every matrix of a
-        stack the same shape) are ignored, as if the row were shorter.
+        matrix (the number of columns of each matrix without the zero columns
+        added to give every matrix of a stack the same shape; a count beyond
+        the row's length means the whole row); the others are ignored, as if
+        the row were shorter.
 
     Returns
     -------
@@ -613,7 +621,12 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     """
     s = np.asarray(singular_values, dtype=float)
     n, k = s.shape
-    present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.minimum(np.asarray(counts), k))[:, None]
+    if n <= _ROW_BY_ROW:  # a few rows: the loop of decide_rank costs less than the array operations below
+        lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist() if isinstance(counts, np.ndarray) else counts
+        rtol = tol.rank
+        table = np.array([_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths)], dtype=float).reshape(n, 3).T
+        return RankDecisions(table[0].astype(int), table[1], table[2])
+    present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.broadcast_to(np.minimum(counts, k), (n,)))[:, None]
     length = present.sum(axis=1)
     if k == 0:
         return RankDecisions(np.zeros(n, dtype=int), np.ones(n), np.zeros(n))

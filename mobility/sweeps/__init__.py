@@ -15,9 +15,10 @@ Modules, in data-flow order:
     forward kinematics of many poses; the order each axis is walked in
     (angles that wrap); Newton and continuation along lines of the grid;
     the whole grid, with the poses the lines missed tried again.
-``posed_screws``, ``batch_systems``, ``batch_actuation``
-    each pose's joint twists; the series/parallel screw systems, counts and
-    margins; the actuation verdict and conditioning, all stacked.
+``posed_screws``, ``batch_actuation``
+    each pose's joint twists (their screw systems, counts and margins are
+    :mod:`mobility.core.screw_systems`'s, the one engine); the actuation
+    verdict and conditioning, all stacked.
 ``seams``
     where a walk round a full turn comes back on another pose.
 ``result``, ``runner``

@@ -1,13 +1,11 @@
 """The actuation verdict and conditioning of one choice of inputs, at many poses at once.
 
 The definitions are those of :mod:`mobility.actuation` (Li, Shan, Yu and Ke,
-2021), re-derived here on stacks of poses:
+2021), on stacks of poses:
 
-* the *actuation wrench* of an input (one freedom of an actuated joint) is
-  reciprocal to every other twist of its limb and not to its own: the
-  constraint wrenches of the limb with that freedom locked, less the limb's
-  own constraint wrenches (made orthogonal to them in coordinates centred
-  where the limb meets the end effector), first left singular vector;
+* the *actuation wrench* of an input (one freedom of an actuated joint):
+  :func:`mobility.actuation.input_wrenches.input_wrenches`, the computation
+  :func:`mobility.check_actuation` makes at one pose;
 * the *verdict* comes from one rank decision on the end effector's
   constraint wrenches and the actuation wrenches together: ``valid`` (rank 6,
   as many inputs as DOF), ``redundant`` (rank 6, more inputs),
@@ -25,10 +23,11 @@ Examples
 >>> import mobility
 >>> from mobility.sweeps.batch_kinematics import BatchKinematics
 >>> from mobility.sweeps.posed_screws import posed_screws
->>> from mobility.sweeps.batch_systems import analyse_poses
+>>> from mobility.core.screw_systems import analyse_poses
+>>> from mobility.core.topology import decompose
 >>> m = mobility.load("mechanisms/actuation_3rps.yaml")
 >>> posed = posed_screws(BatchKinematics(m), np.zeros((1, 15)))
->>> a = actuation_at_poses(m, posed, analyse_poses(m, posed), actuated_inputs(m))
+>>> a = actuation_at_poses(m, posed, analyse_poses(decompose(m), posed.twists, posed.offsets), actuated_inputs(m))
 >>> a.verdict.tolist(), round(float(a.conditioning[0]), 3), round(mobility.check_actuation(m).conditioning, 3)
 (['valid'], 0.311, 0.311)
 """
@@ -36,18 +35,19 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Sequence, cast
+from typing import Sequence
 
 import numpy as np
 
 from ..actuation import REDUNDANT, SINGULAR, VALID
+from ..actuation.input_wrenches import input_wrenches
 from ..core.model import Mechanism, joint_freedoms
 from ..core.validation import joint_names, require_no_repeats
+from ..core.linalg import singular_values
+from ..core.screw_systems import PoseAnswers, evaluate
 from ..core.screws import SWAP_ROWS
 from ..core.tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
-from ..core.topology import JointNode, Node, Parallel, Series, decompose, joints_of
-from ..errors import AnalysisError
-from .batch_systems import BatchValue, PoseAnswers, evaluate_batch, span_batch, stacked_svd
+from ..core.topology import Parallel, decompose, joints_of
 from .posed_screws import PosedScrews
 
 __all__ = ["ActuationInputs", "actuated_inputs", "BatchActuation", "actuation_at_poses"]
@@ -104,37 +104,6 @@ class BatchActuation:
     conditioning: np.ndarray
 
 
-def _shift(points: np.ndarray, screws: np.ndarray, sign: float) -> np.ndarray:
-    """``[a; b] -> [a; b - sign * p x a]`` for stacks of screws ``(N, 6, k)`` and points ``(N, 3)``."""
-    out = screws.copy()
-    out[:, 3:] -= sign * np.cross(points[:, :, None], screws[:, :3], axis=1)
-    return out
-
-
-def _singular_values(m: np.ndarray) -> np.ndarray:
-    try:
-        return np.linalg.svd(m, compute_uv=False)
-    except np.linalg.LinAlgError:
-        raise AnalysisError(f"the singular value decomposition of a stack of {m.shape[1]}x{m.shape[2]} matrices did not converge") from None
-
-
-def _locked_limb(node: Node, posed: PosedScrews, col: int, tol: Tolerance) -> BatchValue:
-    """The limb's twist system with freedom ``col`` locked.
-
-    Locking sets the freedom's twist to zero; in a limb that is a series of
-    joints the column is simply left out of the stack (the same span and the
-    same non-zero singular values, one SVD column fewer).
-    """
-    if isinstance(node, Series) and all(type(c) is JointNode for c in node.children):
-        joints = cast("tuple[JointNode, ...]", node.children)  # every child is a joint (tested above)
-        columns = [c for child in joints for c in range(posed.offsets[child.index], posed.offsets[child.index + 1]) if c != col]
-        basis, wrenches, rank = span_batch(posed.twists[:, :, columns], np.full(posed.twists.shape[0], len(columns)), tol, None)
-        return BatchValue(basis, rank, wrenches, np.zeros_like(rank))
-    locked = posed.twists.copy()
-    locked[:, :, col] = 0.0
-    return evaluate_batch(node, locked, posed.offsets, tol)
-
-
 def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAnswers, inputs: ActuationInputs, tol: Tolerance = DEFAULT_TOLERANCE) -> BatchActuation:
     """The verdict and conditioning of ``inputs`` at every pose of ``posed``.
 
@@ -143,7 +112,7 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
     mechanism : Mechanism
     posed : PosedScrews
     answers : PoseAnswers
-        :func:`~mobility.sweeps.batch_systems.analyse_poses` of the same poses.
+        :func:`~mobility.core.screw_systems.analyse_poses` of the same poses.
     inputs : ActuationInputs
     tol : Tolerance
     """
@@ -157,40 +126,12 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
     wrenches, rates, transmissions = [], [], []
     lacking: dict[int, np.ndarray] = {}  # by limb: the poses where an input of it has no wrench of its own (the limb's other joints produce its motion)
     for joint, freedom in inputs.freedoms:
-        w = np.zeros((count, 6))
-        rate = np.ones(count)
-        transmission = np.zeros(count)
+        w, rate, transmission = np.zeros((count, 6)), np.ones(count), np.zeros(count)
         if joint in limb_of:
             node, limb = limbs[limb_of[joint]]
-            col = posed.offsets[joint] + freedom
-            others = _locked_limb(node, posed, col, tol)
             on_ee = [world[j].name for j in joints_of(node) if ee in world[j].links and world[j].point is not None]
-            if on_ee:
-                attach = posed.normalised(np.mean([posed.points[n] for n in on_ee], axis=0))
-            else:
-                attach = posed.reference
-            w_other = _shift(attach, others.wrenches, 1.0)
-            own_count = 6 - limb.dim
-            if limb.wrenches.shape[2]:
-                q, _ = np.linalg.qr(_shift(attach, limb.wrenches, 1.0))
-                q = q * (np.arange(q.shape[2]) < own_count[:, None])[:, None, :]
-                w_other = w_other - q @ (np.swapaxes(q, 1, 2) @ w_other)
-            other_count = 6 - others.dim
-            if w_other.shape[2]:
-                u, s, _ = stacked_svd(w_other)
-                has = (other_count > 0) & (decide_ranks(s, tol, np.minimum(other_count, 6)).rank > 0)
-                a = _shift(attach, u[:, :, :1], -1.0)[:, :, 0]
-                a /= np.linalg.norm(a, axis=1)[:, None]
-                twist = posed.twists[:, :, col].copy()
-                wn = np.linalg.norm(twist[:, :3], axis=1)
-                twist[wn > tol.rank] /= wn[wn > tol.rank, None]
-                r = np.einsum("ni,ni->n", a[:, SWAP_ROWS], twist)
-                a = np.where((r < 0)[:, None], -a, a)
-                w = np.where(has[:, None], a, 0.0)
-                rate = np.where(has, np.abs(r), 1.0)
-                transmission = np.where(has, np.minimum(np.abs(r) / np.linalg.norm(twist, axis=1), 1.0), 0.0)
-            else:
-                has = np.zeros(count, dtype=bool)
+            attach = posed.normalised(np.mean([posed.points[n] for n in on_ee], axis=0)) if on_ee else posed.reference
+            w, rate, transmission, has = input_wrenches(node, limb, posed.twists, posed.offsets, posed.offsets[joint] + freedom, attach, tol)
             lacking[limb_of[joint]] = lacking.get(limb_of[joint], np.zeros(count, dtype=bool)) | ~has
         wrenches.append(w)
         rates.append(rate)
@@ -201,7 +142,7 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
     held, held_counts = _held(limbs, lacking, inputs, posed, tol)
     stack = np.concatenate([value.wrenches] + [w[:, :, None] for w in wrenches] + held, axis=2)
     counts = (6 - dof) + present.sum(axis=1) + held_counts
-    decision = decide_ranks(_singular_values(stack), tol, np.minimum(counts, 6))
+    decision = decide_ranks(singular_values(stack), tol, np.minimum(counts, 6))
     code = np.where(decision.rank < 6, 0, np.where(n > dof, 1, 2))
     verdict = np.array([SINGULAR, REDUNDANT, VALID], dtype=object)[code]  # the three strings shared, not one per pose
     conditioning = np.zeros(count)
@@ -238,7 +179,7 @@ def _actuation_margin(decision: RankDecisions, wrenches: list[np.ndarray], trans
     if basis.shape[2] and full.any():
         a = np.stack(wrenches, axis=1)  # (N, n, 6)
         h = (a[:, :, SWAP_ROWS] @ basis) * np.stack(transmissions, axis=1)[:, :, None]
-        sv = _singular_values(h)
+        sv = singular_values(h)
         d = np.clip(dof - 1, 0, sv.shape[1] - 1)
         margin = np.where(full, np.where(dof <= sv.shape[1], np.minimum(sv[np.arange(count), d], margin), 0.0), margin)
     return margin
@@ -258,7 +199,7 @@ def _held(limbs: list, lacking: dict[int, np.ndarray], inputs: ActuationInputs, 
         members = set(joints_of(limbs[limb][0]))
         locked = posed.twists.copy()
         locked[:, :, [posed.offsets[j] + k for j, k in inputs.freedoms if j in members]] = 0.0
-        value = evaluate_batch(limbs[limb][0], locked, posed.offsets, tol)
+        value = evaluate(limbs[limb][0], locked, posed.offsets, tol)
         held.append(np.where(where[:, None, None], value.wrenches, 0.0))
         counts += np.where(where, 6 - value.dim, 0)
     return held, counts

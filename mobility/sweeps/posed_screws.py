@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from ..core.model import Mechanism
+from ..core.joint_screws import unit_twists
 from ..core.tolerance import characteristic_scales
 from .batch_kinematics import BatchKinematics, Motion
 
@@ -159,10 +160,7 @@ def posed_screws(bk: BatchKinematics, q: np.ndarray) -> PosedScrews:
     centres, lengths = characteristic_scales(np.stack(located, axis=1) if located else np.zeros((count, 0, 3)), pitches=pitch_a[pitch_a != 0.0])
     ax = np.stack(axes, axis=2)  # (N, 3, f)
     pt = np.stack(points, axis=2)
-    moment = (np.cross(pt - centres[:, :, None], ax, axis=1) + pitch_a * ax) / lengths[:, None, None]
-    p = np.array(prismatic, dtype=bool)
-    tw = np.concatenate([np.where(p, 0.0, ax), np.where(p, ax, moment)], axis=1)
-    tw /= np.sqrt(np.einsum("nij,nij->nj", tw, tw))[:, None, :]
+    tw = unit_twists(np.array(prismatic, dtype=bool), ax, pt - centres[:, :, None], pitch_a, lengths)
     if on_end_effector:
         reference = (np.mean(np.stack(on_end_effector, axis=1), axis=1) - centres) / lengths[:, None]
     else:

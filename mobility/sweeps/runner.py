@@ -7,7 +7,7 @@ The work has two stages, each cut into chunks that run independently:
    closed by continuation; then the poses still missing are tried from their
    neighbours (in-process, on the few that are left);
 2. **analysis**: the assembled poses, cut into chunks, go through
-   :mod:`~mobility.sweeps.posed_screws`, :mod:`~mobility.sweeps.batch_systems`
+   :mod:`~mobility.sweeps.posed_screws`, :mod:`~mobility.core.screw_systems`
    and, when inputs are chosen, :mod:`~mobility.sweeps.batch_actuation`.
 
 Chunks run in this process (on ``workers`` threads: the stacked LAPACK calls
@@ -46,12 +46,13 @@ import numpy as np
 from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism
 from ..core.validation import integer_value
+from ..core.screw_systems import analyse_poses
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
+from ..core.topology import Topology, decompose
 from ..errors import MissingExtraError, RequestError, clipped, shown_argument
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
 from .batch_kinematics import BatchKinematics
 from .seams import find_seams
-from .batch_systems import analyse_poses
 from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, residuals, seed_grid, targets_of
 from .grid_closure import fill
 from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
@@ -93,9 +94,14 @@ class _Context:
     def bk(self) -> BatchKinematics:
         return BatchKinematics(self.mechanism, joint_screws(self.mechanism).reference)
 
+    @cached_property
+    def topology(self) -> Topology:
+        return decompose(self.mechanism)
+
     def __getstate__(self) -> dict:
         state = dict(vars(self))
         state.pop("bk", None)  # rebuilt where it is used
+        state.pop("topology", None)
         return state
 
     def __setstate__(self, state: dict) -> None:
@@ -141,7 +147,7 @@ def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
         _stop_if_asked()
         block = q[start : start + BLOCK]
         posed = posed_screws(context.bk, block)
-        answers = analyse_poses(context.mechanism, posed, context.tol)
+        answers = analyse_poses(context.topology, posed.twists, posed.offsets, context.tol)
         out = {
             "dof": answers.dof,
             "pattern": answers.pattern,
