@@ -451,28 +451,48 @@ class PoseAnswers(NamedTuple):
 
     Attributes
     ----------
-    dof, mobility, rotations : ndarray of int
-        End-effector DOF, mobility of the whole mechanism, rotational freedoms.
-    pattern : ndarray of str
-    smallest_kept, largest_dropped : ndarray of float
-        The margin over every rank decision of the pose.
-    near_singular, inexact : ndarray of bool
     root : Systems
         The twist system of the ground-to-end-effector network, with its children.
     detached : tuple of Systems
         Those of the networks not on a path between ground and end effector.
+    rotations : ndarray of int
+        Rotational freedoms of the end effector.
+    smallest_kept, largest_dropped : ndarray of float
+        The margin over every rank decision of the pose.
+    tol : Tolerance
+        The policy that decided.
+    dof, mobility : ndarray of int
+        End-effector DOF, mobility of the whole mechanism (properties).
+    pattern : ndarray of str
+    near_singular, inexact : ndarray of bool
     """
 
-    dof: np.ndarray
-    pattern: np.ndarray
-    mobility: np.ndarray
+    root: Systems
+    detached: tuple[Systems, ...]
     rotations: np.ndarray
     smallest_kept: np.ndarray
     largest_dropped: np.ndarray
-    near_singular: np.ndarray
-    inexact: np.ndarray
-    root: Systems
-    detached: tuple[Systems, ...] = ()
+    tol: Tolerance
+
+    @property
+    def dof(self) -> np.ndarray:
+        return per_pose(self.root.dim, len(self.rotations))
+
+    @property
+    def mobility(self) -> np.ndarray:
+        return per_pose(sum((v.mobility for v in self.detached), self.root.mobility), len(self.rotations))
+
+    @property
+    def pattern(self) -> np.ndarray:
+        return _PATTERNS[self.root.dim, self.rotations]
+
+    @property
+    def near_singular(self) -> np.ndarray:
+        return self.smallest_kept < self.tol.near_singular
+
+    @property
+    def inexact(self) -> np.ndarray:
+        return self.largest_dropped > self.tol.inexact
 
 
 def analyse_poses(topology: Topology, twists: np.ndarray, offsets: Sequence[int], tol: Tolerance = DEFAULT_TOLERANCE) -> PoseAnswers:
@@ -495,17 +515,4 @@ def analyse_poses(topology: Topology, twists: np.ndarray, offsets: Sequence[int]
     detached = tuple(evaluate(n, twists, offsets, tol, margins) for n in topology.detached)
     rotational = direction_ranks(root.basis, root.dim, tol)
     margins.add(rotational)
-    dof, rot = per_pose(root.dim, count), rotational.rank
-    kept, dropped = margins.smallest_kept, margins.largest_dropped
-    return PoseAnswers(
-        dof=dof,
-        pattern=_PATTERNS[dof, rot],
-        mobility=per_pose(sum((v.mobility for v in detached), root.mobility), count),
-        rotations=rot,
-        smallest_kept=kept,
-        largest_dropped=dropped,
-        near_singular=kept < tol.near_singular,
-        inexact=dropped > tol.inexact,
-        root=root,
-        detached=detached,
-    )
+    return PoseAnswers(root, detached, rotational.rank, margins.smallest_kept, margins.largest_dropped, tol)
