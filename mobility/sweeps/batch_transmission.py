@@ -16,7 +16,7 @@ Examples
 >>> import mobility
 >>> t = check_transmission(mobility.load("mechanisms/3prs.yaml"))
 >>> round(t.lti, 3), round(t.cti, 3), t.good
-(0.943, 0.943, True)
+(0.943, 1.0, True)
 """
 
 from __future__ import annotations
