@@ -32,12 +32,12 @@ ALLOWED = {
     "jacobians": "errors core",
     "sweeps": "errors core actuation transmission",
     "transmission": "errors core actuation",
-    "report": "errors core finite actuation flexure synthesis jacobians sweeps testing outputs",
+    "report": "errors core finite actuation flexure synthesis jacobians sweeps transmission testing outputs",
     "view": "errors core report sweeps outputs",
     "testing": "errors core io finite actuation flexure",
     "library": "errors",
-    "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps report view testing library outputs",
-    "__init__": "errors core io finite actuation flexure synthesis jacobians sweeps report view testing library outputs",
+    "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps transmission report view testing library outputs",
+    "__init__": "errors core io finite actuation flexure synthesis jacobians sweeps transmission report view testing library outputs",
     "__main__": "cli",
 }
 
