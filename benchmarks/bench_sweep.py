@@ -17,9 +17,13 @@ assembled).  Rows:
   file's inputs (P1, P2, P3).  Baseline: rebuild, ``analyze`` and
   :func:`mobility.check_actuation` per pose;
 * **whole sweep**: :func:`mobility.sweep` from the file (continuation, Newton
-  on every pose, analysis and actuation).  Baseline: per pose, re-closing the
-  loops with :meth:`Kinematics.close` from the neighbouring pose, rebuilding,
-  ``analyze`` and ``check_actuation``.
+  on every pose, analysis, actuation and the transmission indices).  Baseline:
+  per pose, re-closing the loops with :meth:`Kinematics.close` from the
+  neighbouring pose, rebuilding, ``analyze`` and ``check_actuation``;
+* **sweep with indices**: the same whole sweep against itself with
+  ``transmission=False`` (no ``iti``, ``oti``, ``lti``, ``cti`` columns), the
+  two timed in turn in the same run: the cost of the transmission indices
+  (:mod:`mobility.transmission`); the ratio is with over without (at most 1.5).
 
 Times are medians of ``--repeat`` runs, wall clock and CPU time of the
 process (all its threads; the batched runs use ``--workers`` threads,
@@ -95,6 +99,8 @@ def main() -> None:
     result = found["result"]
     assert result.assembled.all() and result.counts() == {(3, "1T2R", 3): size}, "every pose assembled, 3 DOF 1T2R"
     log(f"  whole sweep: {t_whole:.2f} s (CPU {c_whole:.2f} s)")
+    t_bare, c_bare = timed(lambda: sweep(m, vary, workers=args.workers, transmission=False), args.repeat)
+    log(f"  whole sweep without the transmission indices: {t_bare:.2f} s (CPU {c_bare:.2f} s), with: {t_whole:.2f} s: ratio {t_whole / t_bare:.2f}")
 
     plan = plan_grid(m, vary)
     q = np.array(result.q)
@@ -141,6 +147,7 @@ def main() -> None:
     print("|---|---:|---:|---|---:|")
     for label, batched, cpu, baseline, how in rows:
         print(f"| {label} | {batched:.2f} s | {cpu:.2f} s ({cpu / size * 1e6:.0f} µs/pose) | {baseline:.0f} s ({baseline / size * 1e3:.2f} ms/pose): {how} | {baseline / batched:.0f}x |")
+    print(f"| sweep with transmission indices vs without (same run) | {t_whole:.2f} s | {c_whole:.2f} s | without: {t_bare:.2f} s (CPU {c_bare:.2f} s) | {t_whole / t_bare:.2f}x (with / without) |")
     print(f"\nload average while it ran (1, 5, 15 min): {', '.join(f'{x:.1f}' for x in os.getloadavg())} on {os.cpu_count()} CPUs")
 
 
