@@ -36,7 +36,7 @@ from .batch_kinematics import BatchKinematics
 from .batch_systems import PoseAnswers, analyse_poses
 from .posed_screws import PosedScrews, posed_screws
 
-__all__ = ["transmission_at_poses", "check_transmission"]
+__all__ = ["transmission_at_poses", "transmission_columns", "check_transmission", "require_threshold", "GOOD_TRANSMISSION"]
 
 
 def _depths(mechanism: Mechanism) -> dict[str, int]:
@@ -193,3 +193,10 @@ def require_threshold(value: object, what: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) or not 0.0 <= float(value) <= 1.0:
         raise RequestError(f"{what}: threshold must be a number in [0, 1], got {value!r}")
     return float(value)
+
+
+def transmission_columns(mechanism: Mechanism, posed: PosedScrews, answers: PoseAnswers, actuation: BatchActuation,
+                         inputs: ActuationInputs, tol: Tolerance = DEFAULT_TOLERANCE) -> dict[str, np.ndarray]:
+    """The sweep's transmission columns ``iti``, ``oti`` (smallest over the inputs), ``lti``, ``cti`` of these poses."""
+    t = transmission_at_poses(mechanism, posed, answers, actuation, inputs, tol)
+    return {"iti": t.iti_min, "oti": t.oti_min, "lti": t.lti, "cti": t.cti}

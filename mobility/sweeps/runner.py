@@ -51,13 +51,12 @@ from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_pose
 from .batch_kinematics import BatchKinematics
 from .seams import find_seams
 from .batch_systems import analyse_poses
-from .batch_transmission import require_threshold, transmission_at_poses
+from .batch_transmission import GOOD_TRANSMISSION, require_threshold, transmission_columns
 from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, residuals, seed_grid, targets_of
 from .grid_closure import fill
 from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
 from .posed_screws import posed_screws
-from .result import SweepResult
-from ..transmission import GOOD_TRANSMISSION
+from .result import TRANSMISSION, SweepResult
 from .walks import axis_walk
 
 __all__ = ["sweep", "analyse_joint_variables", "tqdm_progress", "DEFAULT_CHUNK_SIZE", "BLOCK", "MAX_WORKERS", "Progress"]
@@ -89,8 +88,7 @@ class _Context:
     plan: GridPlan
     tol: Tolerance
     inputs: ActuationInputs | None
-    transmission: bool = True
-    threshold: float = GOOD_TRANSMISSION
+    transmission: float | None = GOOD_TRANSMISSION  # the good-transmission threshold; None: no transmission indices
 
     @cached_property
     def bk(self) -> BatchKinematics:
@@ -157,9 +155,7 @@ def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
         if context.inputs is not None:
             act = actuation_at_poses(context.mechanism, posed, answers, context.inputs, context.tol)
             out.update(verdict=act.verdict, conditioning=act.conditioning, actuation_margin=act.margin)
-            if context.transmission:
-                t = transmission_at_poses(context.mechanism, posed, answers, act, context.inputs, context.tol)
-                out.update(iti=t.iti_min, oti=t.oti_min, lti=t.lti, cti=t.cti)
+            out.update(transmission_columns(context.mechanism, posed, answers, act, context.inputs, context.tol) if context.transmission is not None else {})
         parts.append(out)
     if not parts:
         return {}
@@ -201,7 +197,7 @@ def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Se
     loops, e.g. rows of :attr:`SweepResult.q`).  Columns: ``dof``,
     ``pattern``, ``mobility``, ``smallest_kept``, ``largest_dropped``,
     ``near_singular``, ``inexact`` and, when ``actuated`` names inputs (or
-    the file marks some), ``verdict``, ``conditioning``, ``actuation_margin``.
+    the file marks some), ``verdict``, ``conditioning``, ``actuation_margin``, ``iti``, ``oti``, ``lti``, ``cti``.
 
     Examples
     --------
@@ -456,11 +452,8 @@ def sweep(
     progress : bool or callable, optional
         ``True``: a progress bar on stderr (tqdm); a callable
         ``progress(stage, done, total)``; default: none.
-    transmission : bool
-        With inputs, also the transmission indices of :mod:`mobility.transmission`
-        (columns ``iti``, ``oti``, ``lti``, ``cti``); ``False`` leaves them out.
-    good_threshold : float
-        The good-transmission threshold (``LTI >= good_threshold``), 0.7 as published.
+    transmission, good_threshold : bool, float
+        With inputs, also the indices of :mod:`mobility.transmission` (``False``: not), and their good-transmission threshold (0.7).
 
     Returns
     -------
@@ -486,14 +479,14 @@ def sweep(
                            "for more, run the chunks on a dask cluster (scheduler)")
     _require_scheduler(scheduler)
     _require_progress(progress)
-    threshold = require_threshold(good_threshold, "sweep: good_threshold")
     plan = plan_grid(mechanism, vary, max_poses=max_poses)
     marked = any(j.actuated for j in mechanism.joints)
     inputs = actuated_inputs(mechanism, actuated) if (actuated is not None or marked) else None
     if inputs is not None and not inputs.freedoms:
         inputs = None
     report = tqdm_progress() if progress is True else (progress or None)
-    context = _Context(mechanism, plan, tol, inputs, bool(transmission), threshold)
+    threshold = require_threshold(good_threshold, "sweep: good_threshold")
+    context = _Context(mechanism, plan, tol, inputs, threshold if transmission and inputs is not None else None)
     runner = _Runner(context, scheduler, workers, report)
     try:
         closure = _close(context, runner, chunk_size)
@@ -561,22 +554,14 @@ UNANSWERED = {
     "verdict": ("", object),
     "conditioning": (np.nan, float),
     "actuation_margin": (np.nan, float),
-    "iti": (np.nan, float),
-    "oti": (np.nan, float),
-    "lti": (np.nan, float),
-    "cti": (np.nan, float),
+    **dict.fromkeys(TRANSMISSION, (np.nan, float)),
 }
 """Each column's value (and type) at a pose that is not analysed (not assembled, or no input chosen)."""
 
 
-TRANSMISSION_COLUMNS = ("iti", "oti", "lti", "cti")
-"""The transmission columns (:mod:`mobility.transmission`): with inputs, unless the sweep is told not to."""
-
-
 def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_size: int) -> dict[str, np.ndarray]:
     """The table's columns over the whole grid; polished poses replace theirs in ``closure.q`` (the sweep's own array)."""
-    keys = [key for key in UNANSWERED if context.inputs is not None or key not in ("verdict", "conditioning", "actuation_margin")]
-    keys = [key for key in keys if (context.inputs is not None and context.transmission) or key not in TRANSMISSION_COLUMNS]
+    keys = [key for key in UNANSWERED if (context.inputs is not None or key not in ("verdict", "conditioning", "actuation_margin")) and (key not in TRANSMISSION or context.transmission is not None)]
     columns: dict[str, np.ndarray] = {key: np.full(context.plan.size, *UNANSWERED[key]) for key in keys}
     rows = np.flatnonzero(closure.assembled)
     pieces = max(math.ceil(rows.size / chunk_size), runner.workers if rows.size >= 2 * BLOCK * runner.workers else 1)
@@ -601,8 +586,6 @@ def _result(context: _Context, closure: GridClosure, columns: dict[str, np.ndarr
             conditioning=columns.pop("conditioning"),
             actuation_margin=columns.pop("actuation_margin"),
         )
-        if context.transmission:
-            actuation.update({key: columns.pop(key) for key in TRANSMISSION_COLUMNS}, good_threshold=context.threshold)
     return SweepResult(
         mechanism=context.mechanism,
         axes=context.plan.axes,
@@ -610,6 +593,7 @@ def _result(context: _Context, closure: GridClosure, columns: dict[str, np.ndarr
         assembled=closure.assembled,
         residual=closure.residual,
         tolerance=context.tol,
+        good_threshold=GOOD_TRANSMISSION if context.transmission is None else context.transmission,
         seams=find_seams(context.bk, context.plan, closure.q, closure.assembled, tol=context.tol),
         **cast("dict[str, Any]", columns),  # the table's columns, each a field of the result
         **actuation,
