@@ -265,9 +265,57 @@ def _output_twists(g: np.ndarray, basis: np.ndarray) -> np.ndarray:
     return basis @ adj
 
 
+def _at_point(screws: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Screws ``(N, 6, k)`` written about points ``(N, 3)``: a wrench's moment there (``m - P x f``), or a twist's velocity (``v + omega x P``)."""
+    out = screws.copy()
+    out[:, 3:] -= np.cross(points[:, :, None], screws[:, :3], axis=1)
+    return out
+
+
+def _orthonormal(screws: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """An orthonormal basis of the first ``counts`` columns of each stack member (the other columns zero)."""
+    if screws.shape[2] == 1:
+        size = np.linalg.norm(screws[:, :, 0], axis=1)
+        return screws / np.where(size > 0, size, 1.0)[:, None, None] * (counts > 0)[:, None, None]
+    q, _ = np.linalg.qr(screws)
+    return q * (np.arange(q.shape[2]) < counts[:, None])[:, None, :]
+
+
+def _pair_index(wrenches: np.ndarray, own: np.ndarray, twists: np.ndarray, released: np.ndarray, point: np.ndarray) -> np.ndarray:
+    """How well a limb's constraint system resists the twists released without it: the least power coefficient over their principal pairs.
+
+    Both systems are written about the limb's point ``point`` and paired by
+    the singular vectors of their power matrix (the pairs do not depend on the
+    bases; one wrench and one twist: the pair itself).
+    """
+    if twists.shape[2] == 0 or wrenches.shape[2] == 0:  # nothing released (or no constraint) at any pose
+        return np.zeros(wrenches.shape[0])
+    qc = _orthonormal(_at_point(wrenches, point), own)
+    qr = _orthonormal(_at_point(twists, point), released)
+    zero = np.zeros(3)
+    if qc.shape[2] == 1 and qr.shape[2] == 1:
+        return power_coefficient(qc[:, :, 0], qr[:, :, 0], zero)
+    u, _, vt = _svd(np.swapaxes(qc, 1, 2) @ qr[:, SWAP_ROWS, :])
+    pairs = min(qc.shape[2], qr.shape[2])
+    c = qc @ u[:, :, :pairs]
+    t = qr @ np.swapaxes(vt, 1, 2)[:, :, :pairs]
+    values = power_coefficient(np.swapaxes(c, 1, 2), np.swapaxes(t, 1, 2), zero)  # (N, pairs)
+    valid = np.arange(pairs)[None, :] < np.minimum(own, released)[:, None]
+    return np.where(valid, values, np.inf).min(axis=1)
+
+
 def _limb_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], points: np.ndarray, actuation: np.ndarray,
-                present: np.ndarray, tol: Tolerance) -> np.ndarray:
-    """The constraint transmission index of every limb at every pose, ``(N, L)``."""
+                present: np.ndarray, degenerate: np.ndarray, tol: Tolerance) -> np.ndarray:
+    """The constraint transmission index of every limb at every pose, ``(N, L)``.
+
+    The twists released by limb ``j`` are those reciprocal to every
+    actuation wrench and every other limb's constraint wrenches (its
+    constraints removed, the inputs locked).  Without redundancy (six
+    wrenches in all, every one present: a 3-PRS, a 3-RPS) they are columns of
+    the adjugate of the square power matrix, one SVD for every limb;
+    otherwise one SVD per limb finds them with the rank decision of the
+    analysis.
+    """
     count = actuation.shape[0]
     limbs = len(wrenches)
     out = np.full((count, limbs), np.nan)
@@ -275,33 +323,34 @@ def _limb_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], po
         return out
     a_cols = np.swapaxes(actuation, 1, 2)  # (N, 6, n)
     n_present = present.sum(axis=1)
-    everything = np.concatenate([a_cols, *wrenches], axis=2)
-    _, s_all, _ = _svd(everything)
-    full_rank = decide_ranks(s_all, tol, np.minimum(n_present + sum(counts), s_all.shape[1])).rank
-    degenerate = full_rank < 6
+    widths = [w.shape[2] for w in wrenches]
+    square = a_cols.shape[2] + sum(widths) == 6 and bool(present.all()) and all(bool(np.all(c == k)) for c, k in zip(counts, widths))
+    if square:
+        power = np.swapaxes(np.concatenate([a_cols, *wrenches], axis=2)[:, SWAP_ROWS, :], 1, 2)  # row l: the power of wrench l on a twist
+        adj = _output_twists(power, np.broadcast_to(np.eye(6), (count, 6, 6)))
+        edges = np.cumsum([a_cols.shape[2], *widths])
     for j in range(limbs):
         own = counts[j]
         if not np.any(own > 0):
             continue
-        others = np.concatenate([a_cols] + [w for k, w in enumerate(wrenches) if k != j], axis=2)
-        other_counts = n_present + sum((c for k, c in enumerate(counts) if k != j), np.zeros(count, dtype=int))
-        if others.shape[2]:
-            u, s, _ = _svd(others, full=True)
-            rank = decide_ranks(s, tol, np.minimum(other_counts, s.shape[1])).rank
+        if square:
+            released_twists = adj[:, :, edges[j] : edges[j + 1]]
+            released = own.copy()
         else:
-            u, rank = np.broadcast_to(np.eye(6), (count, 6, 6)), np.zeros(count, dtype=int)
-        released = 6 - rank
-        t = np.take_along_axis(u[:, SWAP_ROWS, :], np.minimum(rank, 5)[:, None, None], axis=2)[:, :, 0]  # reciprocal to every other wrench
-        p = points[:, j]
-        c = wrenches[j].copy()
-        c[:, 3:] -= np.cross(p[:, :, None], c[:, :3], axis=1)  # moments about the limb's point
-        q, _ = np.linalg.qr(c)
-        q = q * (np.arange(q.shape[2]) < own[:, None])[:, None, :]
-        t_p = np.concatenate([t[:, :3], t[:, 3:] + np.cross(t[:, :3], p)], axis=1)
-        dual = t_p[:, SWAP_ROWS]  # [v_P; omega]: the wrench whose power on t_P is its Euclidean product
-        c_star = np.einsum("nij,nj->ni", q, np.einsum("nji,nj->ni", q, dual))
-        value = power_coefficient(c_star, t_p, np.zeros(3))
-        value = np.where(released >= 2, 0.0, value)
+            others = np.concatenate([a_cols] + [w for k, w in enumerate(wrenches) if k != j], axis=2)
+            other_counts = n_present + sum((c for k, c in enumerate(counts) if k != j), np.zeros(count, dtype=int))
+            if others.shape[2]:
+                u, s, _ = _svd(others, full=True)
+                rank = decide_ranks(s, tol, np.minimum(other_counts, s.shape[1])).rank
+            else:
+                u, rank = np.broadcast_to(np.eye(6), (count, 6, 6)), np.zeros(count, dtype=int)
+            released = 6 - rank
+            low = int(rank.min())
+            released_twists = u[:, SWAP_ROWS, low:] * (np.arange(low, 6)[None, :] >= rank[:, None])[:, None, :]  # reciprocal to every other wrench
+            order = np.argsort(np.arange(low, 6)[None, :] < rank[:, None], axis=1, kind="stable")  # each pose's columns first
+            released_twists = np.take_along_axis(released_twists, order[:, None, :], axis=2)
+        value = _pair_index(wrenches[j], own, released_twists, released, points[:, j])
+        value = np.where(released > own, 0.0, value)
         value = np.where(degenerate & (released >= 1), 0.0, value)
         out[:, j] = np.where((own > 0) & (released >= 1), value, np.nan)
     return out
@@ -345,8 +394,10 @@ def transmission_indices(
     limb_points : ndarray, shape (N, L, 3)
         Where each limb meets the end effector.
     singular : ndarray of bool, shape (N,), optional
-        The poses the actuation verdict finds actuation-singular: their
-        output indices are 0 exactly.
+        The poses where the rank decision of the actuation verdict finds the
+        actuation and constraint wrenches together of rank below 6 (the
+        wrench system degenerate): their output and constraint indices are 0
+        exactly.
     tol : Tolerance
 
     Returns
@@ -401,5 +452,6 @@ def transmission_indices(
         oti = np.where(singular[:, None] & ~np.isnan(oti), 0.0, oti)
         lti = np.where(singular & ~np.isnan(lti), 0.0, lti)
     points = np.zeros((count, len(limb_wrenches), 3)) if limb_points is None else limb_points
-    cti_limbs = _limb_index(list(limb_wrenches), [np.asarray(c) for c in limb_counts], points, actuation, present, tol)
+    degenerate = np.zeros(count, dtype=bool) if singular is None else singular
+    cti_limbs = _limb_index(list(limb_wrenches), [np.asarray(c) for c in limb_counts], points, actuation, present, degenerate, tol)
     return BatchTransmission(iti, oti, lti, cti_limbs, _nanmin(cti_limbs))
