@@ -149,3 +149,30 @@ def test_cli_sweep_reports_the_good_transmission_workspace(capsys):
     assert main(["sweep", f"{MECH}/3prs.yaml", "--vary", "P1=-20:20:3", "--good-transmission", "2"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "--good-transmission must be a number in [0, 1]" in err
+
+
+def test_five_bar_output_index_is_the_sine_of_the_distal_links_angle_and_vanishes_where_the_sweep_finds_singular_poses():
+    # Liu et al.: eta = |sin psi|, psi the angle between the distal links; planar_5r.yaml has them at 90 deg, so psi = 90 deg - P
+    r = mobility.sweep(load("planar_5r"), ["A1=-10:30:9", "P=40:100:13"])
+    ok = r.assembled
+    assert ok.sum() > 50
+    assert np.allclose(r.oti[ok], np.abs(np.cos(np.radians(r.values[ok, 1]))), atol=1e-9)
+    singular = [p.index for p in r.singular]
+    assert singular and all(r.lti[i] == 0.0 and r.oti[i] == 0.0 for i in singular)
+    share = r.good_transmission()
+    assert share == pytest.approx(float(np.mean(np.abs(np.cos(np.radians(r.values[ok, 1]))) >= 0.7)))
+
+
+def test_maps_outline_the_good_transmission_workspace():
+    from mobility.report.sweep_plot import plot_sweep
+
+    r = mobility.sweep(load("planar_5r"), ["A1=-10:30:9", "P=30:60:7"])
+    fig = plot_sweep(r)
+    outlines = [a for ax in fig.axes for a in ax.get_children() if a.get_gid() == "mobility:sweep:good-transmission"]
+    assert len(outlines) == 1
+    line = mobility.sweep(load("planar_5r"), ["P=0:90:10"])
+    curve = plot_sweep(line)
+    lti = next(x for x in curve.axes[1].get_lines() if x.get_label().startswith("local transmission index"))
+    y = np.asarray(lti.get_ydata(), dtype=float)
+    assert np.isnan(y[-1]) and line.lti[-1] == 0.0  # the singular pose: 0, off the log scale
+    assert np.allclose(y[:-1], line.lti[:-1]) and np.all(line.lti[:-1] > 0)
