@@ -176,3 +176,13 @@ def test_maps_outline_the_good_transmission_workspace():
     y = np.asarray(lti.get_ydata(), dtype=float)
     assert np.isnan(y[-1]) and line.lti[-1] == 0.0  # the singular pose: 0, off the log scale
     assert np.allclose(y[:-1], line.lti[:-1]) and np.all(line.lti[:-1] > 0)
+
+
+def test_the_views_slider_labels_each_pose_with_its_indices():
+    from mobility.view import sweep_view
+
+    r = mobility.sweep(load("3prs"), ["P1=-20:20:3"])
+    labels = [f.label for f in sweep_view(r).frames]
+    assert labels == [f"P1={v:g} mm, LTI {r.lti[i]:.3f}, CTI {r.cti[i]:.3f}" for i, v in enumerate((-20, 0, 20))]
+    bare = mobility.sweep(load("3prs"), ["P1=-20:20:3"], transmission=False)
+    assert [f.label for f in sweep_view(bare).frames] == ["P1=-20 mm", "P1=0 mm", "P1=20 mm"]
