@@ -186,3 +186,15 @@ def test_the_views_slider_labels_each_pose_with_its_indices():
     assert labels == [f"P1={v:g} mm, LTI {r.lti[i]:.3f}, CTI {r.cti[i]:.3f}" for i, v in enumerate((-20, 0, 20))]
     bare = mobility.sweep(load("3prs"), ["P1=-20:20:3"], transmission=False)
     assert [f.label for f in sweep_view(bare).frames] == ["P1=-20 mm", "P1=0 mm", "P1=20 mm"]
+
+
+@pytest.mark.parametrize("q, message", [
+    ([math.nan] * 15, "finite"),
+    ("abc", "numbers"),
+    ([5.0] + [0.0] * 14, "do not close the loops"),
+])
+def test_check_transmission_takes_only_a_closed_pose(q, message):
+    with pytest.raises(RequestError, match=message):
+        check_transmission(load("3prs"), q=q)
+    r = mobility.sweep(load("3prs"), ["P1=-20:20:3"])
+    assert check_transmission(load("3prs"), q=r.q[0]).lti == pytest.approx(float(r.lti[0]), abs=1e-12)

@@ -26,6 +26,7 @@ from typing import Sequence
 
 import numpy as np
 
+from ..core.kinematics import kinematics
 from ..core.model import Mechanism
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..core.topology import Parallel, decompose, joints_of
@@ -130,7 +131,8 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
     actuated : sequence of str, optional
         The actuated joints (default: those the file marks ``actuated: true``).
     q : array_like, optional
-        Joint variables of the pose (closing every loop; default: the file's pose).
+        Joint variables of the pose, as a row of :attr:`SweepResult.q`
+        (closing every loop; default: the file's pose).
     threshold : float
         The good-transmission threshold (``LTI >= threshold``), 0.7 as published.
     tol : Tolerance
@@ -142,7 +144,8 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
     Raises
     ------
     RequestError
-        No input chosen, a threshold outside [0, 1], or ``q`` of the wrong shape.
+        No input chosen, a threshold outside [0, 1], or ``q`` not a closed
+        pose (the wrong count, a number not finite, a loop left open).
     MechanismError
         An actuated name that is not a joint.
 
@@ -161,12 +164,7 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
     if not inputs.freedoms:
         raise RequestError("check_transmission: no input chosen; mark joints `actuated: true` in the file or name them (actuated=[...])")
     bk = BatchKinematics(mechanism)
-    if q is None:
-        stack = np.zeros((1, bk.variable_count))
-    else:
-        stack = np.asarray(q, dtype=float).reshape(1, -1)
-        if stack.shape[1] != bk.variable_count:
-            raise RequestError(f"check_transmission: q: expected {bk.variable_count} joint variables, got {stack.shape[1]}")
+    stack = np.zeros((1, bk.variable_count)) if q is None else _closed_pose(mechanism, q, bk.variable_count)
     posed = posed_screws(bk, stack)
     answers = analyse_poses(mechanism, posed, tol)
     act = actuation_at_poses(mechanism, posed, answers, inputs, tol)
@@ -186,6 +184,28 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
         cti=float(t.cti[0]),
         threshold=threshold,
     )
+
+
+CLOSED = 1e-6
+"""The largest loop-closure residual (dimensionless) of joint variables given to :func:`check_transmission`."""
+
+
+def _closed_pose(mechanism: Mechanism, q: object, count: int) -> np.ndarray:
+    """``q`` as one row of joint variables that close every loop, else a :class:`RequestError`."""
+    try:
+        row = np.asarray(q, dtype=float).reshape(1, -1)
+    except (TypeError, ValueError):
+        raise RequestError(f"check_transmission: q: expected {count} joint variables (numbers), got {type(q).__name__}") from None
+    if row.shape[1] != count:
+        raise RequestError(f"check_transmission: q: expected {count} joint variables, got {row.shape[1]}")
+    if not np.all(np.isfinite(row)):
+        raise RequestError("check_transmission: q: expected finite joint variables, got NaN or infinity")
+    residual = kinematics(mechanism).residual(row[0])
+    worst = float(np.max(np.abs(residual))) if residual.size else 0.0
+    if worst > CLOSED:
+        raise RequestError(f"check_transmission: q: the joint variables do not close the loops (residual {worst:.1e}); "
+                           "give a closed pose, such as a row of SweepResult.q")
+    return row
 
 
 def require_threshold(value: object, what: str) -> float:
