@@ -127,6 +127,10 @@ def test_sweep_columns_threshold_and_leaving_them_out():
     assert np.array_equal(bare.conditioning, r.conditioning)
     with pytest.raises(RequestError, match="good_threshold"):
         mobility.sweep(m, ["P1=-60:60:7"], good_threshold=1.5)
+    with pytest.raises(RequestError, match="transmission must be True or False"):
+        mobility.sweep(m, ["P1=-60:60:7"], transmission="no")
+    with pytest.raises(RequestError, match="good_threshold"):  # also without inputs: a bad request is refused, not ignored
+        mobility.sweep(load("parallelogram"), ["O1=0:10:2"], good_threshold=float("nan"))
 
 
 def test_check_transmission_refuses_bad_requests():

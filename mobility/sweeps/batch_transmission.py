@@ -37,7 +37,7 @@ from .batch_kinematics import BatchKinematics
 from .batch_systems import PoseAnswers, analyse_poses
 from .posed_screws import PosedScrews, posed_screws
 
-__all__ = ["transmission_at_poses", "transmission_columns", "check_transmission", "require_threshold", "GOOD_TRANSMISSION"]
+__all__ = ["transmission_at_poses", "transmission_columns", "check_transmission", "require_threshold", "transmission_threshold", "GOOD_TRANSMISSION"]
 
 
 def _depths(mechanism: Mechanism) -> dict[str, int]:
@@ -206,6 +206,20 @@ def _closed_pose(mechanism: Mechanism, q: object, count: int) -> np.ndarray:
         raise RequestError(f"check_transmission: q: the joint variables do not close the loops (residual {worst:.1e}); "
                            "give a closed pose, such as a row of SweepResult.q")
     return row
+
+
+def transmission_threshold(transmission: object, good_threshold: object, inputs: bool) -> float | None:
+    """The sweep's request checked: its good-transmission threshold when it computes the indices (inputs chosen), else None.
+
+    Raises
+    ------
+    RequestError
+        ``transmission`` not a bool, or ``good_threshold`` not a number in [0, 1].
+    """
+    if not isinstance(transmission, (bool, np.bool_)):
+        raise RequestError(f"sweep: transmission must be True or False, got {transmission!r}")
+    threshold = require_threshold(good_threshold, "sweep: good_threshold")
+    return threshold if transmission and inputs else None
 
 
 def require_threshold(value: object, what: str) -> float:

@@ -51,7 +51,7 @@ from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_pose
 from .batch_kinematics import BatchKinematics
 from .seams import find_seams
 from .batch_systems import analyse_poses
-from .batch_transmission import GOOD_TRANSMISSION, require_threshold, transmission_columns
+from .batch_transmission import GOOD_TRANSMISSION, transmission_columns, transmission_threshold
 from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, residuals, seed_grid, targets_of
 from .grid_closure import fill
 from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
@@ -485,8 +485,7 @@ def sweep(
     if inputs is not None and not inputs.freedoms:
         inputs = None
     report = tqdm_progress() if progress is True else (progress or None)
-    threshold = require_threshold(good_threshold, "sweep: good_threshold")
-    context = _Context(mechanism, plan, tol, inputs, threshold if transmission and inputs is not None else None)
+    context = _Context(mechanism, plan, tol, inputs, transmission_threshold(transmission, good_threshold, inputs is not None))
     runner = _Runner(context, scheduler, workers, report)
     try:
         closure = _close(context, runner, chunk_size)
