@@ -57,12 +57,17 @@ def test_puu_input_index_and_redundant_actuation_takes_the_best_inputs():
     assert chosen == pytest.approx([dx / 300] * 3, abs=1e-9)
 
 
-def test_constraint_singularity_of_the_4puu_gives_exactly_zero():
+def test_constraint_singularity_of_the_4puu_gives_exactly_zero_and_a_small_index_beside_it():
     t = check_transmission(load("4puu_singular"))
     assert t.cti == 0.0 and t.lti == 0.0
-    assert all(c == 0.0 for c in t.cti_limbs)
-    regular = check_transmission(load("3prs"))
-    assert regular.cti > 0.9
+    assert all(c == 0.0 or math.isnan(c) for c in t.cti_limbs)
+    r = mobility.sweep(load("4puu_singular"), ["P1=-2:2:5"])
+    singular = [p.index for p in r.singular]
+    assert singular == [2] and r.cti[2] == 0.0 and r.lti[2] == 0.0
+    assert np.all((r.cti[[0, 1, 3, 4]] > 0) & (r.cti[[0, 1, 3, 4]] < 1e-5))  # 1 mm from it: close to a constraint singularity
+    regular = mobility.sweep(load("4puu"), ["P1=-20:20:5"])  # overconstrained and redundantly actuated: the best square choice
+    assert np.all(regular.cti > 0.8) and np.all(regular.lti > 0.4)
+    assert check_transmission(load("3prs")).cti > 0.9
 
 
 def test_indices_fall_to_exactly_zero_at_the_singular_poses_of_the_sweep():
@@ -107,9 +112,9 @@ def test_indices_are_invariant_to_units_and_frames(scale, a, b, c, shift, name):
     m = load(name)
     base = check_transmission(m)
     moved = check_transmission(_moved(m, scale, _rotation(a, b, c), np.asarray(shift)))
-    pairs = [(base.lti, moved.lti), (base.cti, moved.cti), *zip(base.cti_limbs, moved.cti_limbs)]
-    if not any(math.isnan(x) for x in base.iti):  # with redundant inputs the best choice may tie (a symmetric pose): only LTI is defined then
-        pairs += [*zip(base.iti, moved.iti), *zip(base.oti, moved.oti)]
+    pairs = [(base.lti, moved.lti), (base.cti, moved.cti)]
+    if not any(math.isnan(x) for x in base.iti + base.cti_limbs):  # a redundant system's best choice may tie (a symmetric pose): only its least index is defined then
+        pairs += [*zip(base.iti, moved.iti), *zip(base.oti, moved.oti), *zip(base.cti_limbs, moved.cti_limbs)]
     for x, y in pairs:
         assert (math.isnan(x) and math.isnan(y)) or x == pytest.approx(y, abs=1e-7)
 

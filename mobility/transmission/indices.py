@@ -52,10 +52,14 @@ With the actuation wrench (transmission wrench screw, TWS) ``a_i`` of input
   (2018); ``CTI = min_j CTI_j``.  A limb with several constraint wrenches
   acts on ``$_O,j`` through the one of its system that does the most work per
   unit norm at ``C`` (the projection of ``$_O,j`` on the system), whatever
-  basis the analysis chose; a limb whose constraints the other limbs and
-  the locked inputs make redundant resists nothing alone and has no index
-  (NaN; ``CTI`` is NaN when every limb is redundant, an overconstrained
-  mechanism such as a 4-PUU).
+  basis the analysis chose (the principal pairs of the two systems).  In a
+  redundant wrench system (more inputs than freedoms, or more constraint
+  wrenches than the ``6 - DOF`` needed: the overconstrained 4-PUU, planar
+  limbs in space) no limb's constraint is needed alone; as for ``LTI`` the
+  best non-redundant choice of inputs and whole limbs is taken (the largest
+  least index over the choices, at most :data:`MAX_CHOICES` of them), and a
+  limb left out, or one whose constraints stay redundant, has no index (NaN;
+  ``CTI`` is NaN when no limb has one).
 
 Distance to singularity: ``LTI`` (0 exactly at an actuation singularity:
 an input one, ``ITI = 0``, or an output one, ``OTI = 0``) and ``CTI`` (0
@@ -165,7 +169,7 @@ class BatchTransmission:
         actuation singularity (0 there).
     cti_limbs : ndarray, shape (N, L)
         Constraint transmission index of each limb (NaN: the limb imposes no
-        constraint, or its constraints are redundant).
+        constraint, is redundant, or is left out of the best choice).
     cti : ndarray, shape (N,)
         ``min`` over the limbs: the distance to a constraint singularity (0 there).
     """
@@ -356,6 +360,61 @@ def _limb_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], po
     return out
 
 
+MAX_CHOICES = 64
+"""The most choices (of inputs and of limbs) :func:`transmission_indices` tries in a redundant wrench system."""
+
+
+def _best_choice_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], points: np.ndarray, actuation: np.ndarray,
+                       present: np.ndarray, degenerate: np.ndarray, dim: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The constraint indices of the best non-redundant choice of inputs and limbs, where the wrench system is redundant.
+
+    With more inputs than freedoms, or more constraint wrenches than the
+    ``6 - DOF`` the end effector needs (an overconstrained mechanism: a
+    4-PUU, planar limbs in space), no single limb's constraint is needed
+    alone and Liu's index is not defined.  As for the output index, the
+    sub-mechanism that transmits best is taken: every choice of ``DOF``
+    inputs and of whole limbs with ``6 - DOF`` constraint wrenches in all
+    (a square system), the limbs' indices in it, and the choice whose least
+    index is largest.  Returns the indices ``(N, L)`` (NaN for a limb left
+    out) and the poses where such a choice was made.
+    """
+    count, n = actuation.shape[0], actuation.shape[1]
+    limbs = len(wrenches)
+    out = np.full((count, limbs), np.nan)
+    done = np.zeros(count, dtype=bool)
+    widths = [w.shape[2] for w in wrenches]
+    full = present.all(axis=1) & np.all([c == k for c, k in zip(counts, widths)], axis=0) if limbs else np.zeros(count, dtype=bool)
+    for d in np.unique(dim[full]).tolist():
+        need = 6 - d
+        if d == 0 or n < d or (n == d and sum(widths) == need):
+            continue
+        groups = [s for k in range(1, limbs + 1) for s in combinations(range(limbs), k) if sum(widths[j] for j in s) == need]
+        inputs = list(combinations(range(n), d))
+        if not groups or len(groups) * len(inputs) > MAX_CHOICES:
+            continue
+        rows = np.flatnonzero(full & (dim == d))
+        a_cols = np.swapaxes(actuation[rows], 1, 2)
+        best = np.full(rows.size, -1.0)
+        values = np.full((rows.size, limbs), np.nan)
+        for chosen in inputs:
+            for group in groups:
+                stack = np.concatenate([a_cols[:, :, list(chosen)]] + [wrenches[j][rows] for j in group], axis=2)
+                adj = _output_twists(np.swapaxes(stack[:, SWAP_ROWS, :], 1, 2), np.broadcast_to(np.eye(6), (rows.size, 6, 6)))
+                edges = np.cumsum([d, *(widths[j] for j in group)])
+                kappa = np.full((rows.size, limbs), np.nan)
+                for k, j in enumerate(group):
+                    own = np.full(rows.size, widths[j])
+                    kappa[:, j] = _pair_index(wrenches[j][rows], own, adj[:, :, edges[k] : edges[k + 1]], own, points[rows, j])
+                score = np.nanmin(kappa, axis=1)
+                better = score > best
+                best = np.where(better, score, best)
+                values[better] = kappa[better]
+        values = np.where(degenerate[rows][:, None] & ~np.isnan(values), 0.0, values)
+        out[rows] = values
+        done[rows] = True
+    return out, done
+
+
 def transmission_indices(
     actuation: np.ndarray,
     input_twists: np.ndarray,
@@ -453,5 +512,8 @@ def transmission_indices(
         lti = np.where(singular & ~np.isnan(lti), 0.0, lti)
     points = np.zeros((count, len(limb_wrenches), 3)) if limb_points is None else limb_points
     degenerate = np.zeros(count, dtype=bool) if singular is None else singular
-    cti_limbs = _limb_index(list(limb_wrenches), [np.asarray(c) for c in limb_counts], points, actuation, present, degenerate, tol)
+    counts = [np.asarray(c) for c in limb_counts]
+    cti_limbs = _limb_index(list(limb_wrenches), counts, points, actuation, present, degenerate, tol)
+    chosen, done = _best_choice_index(list(limb_wrenches), counts, points, actuation, present, degenerate, dim)
+    cti_limbs = np.where(done[:, None], chosen, cti_limbs)
     return BatchTransmission(iti, oti, lti, cti_limbs, _nanmin(cti_limbs))
