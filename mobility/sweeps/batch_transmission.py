@@ -105,12 +105,11 @@ def transmission_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: Pos
         out_points.append(out)
     n = len(inputs.freedoms)
     wrenches = actuation.wrenches if actuation.wrenches is not None else np.zeros((count, n, 6))
-    stack = (lambda xs, shape: np.stack(xs, axis=1) if xs else np.zeros(shape))
     return transmission_indices(
         wrenches,
         np.stack(twists, axis=2) if twists else np.zeros((count, 6, 0)),
-        stack(in_points, (count, 0, 3)),
-        stack(out_points, (count, 0, 3)),
+        np.stack(in_points, axis=1) if in_points else np.zeros((count, 0, 3)),
+        np.stack(out_points, axis=1) if out_points else np.zeros((count, 0, 3)),
         value.basis,
         value.dim,
         [limb.wrenches for _, limb in limbs] if len(limbs) > 1 else [],
