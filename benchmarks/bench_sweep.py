@@ -82,7 +82,7 @@ def threaded(m: mobility.Mechanism, q: np.ndarray, workers: int, actuated: list[
 
     parts = np.array_split(q, workers)
     with ThreadPoolExecutor(workers) as pool:
-        list(pool.map(lambda part: analyse_joint_variables(m, part, actuated=actuated), parts))
+        list(pool.map(lambda part: analyse_joint_variables(m, part, actuated=actuated, transmission=False), parts))
 
 
 def main() -> None:

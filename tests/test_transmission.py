@@ -207,3 +207,12 @@ def test_check_transmission_takes_only_a_closed_pose(q, message):
         check_transmission(load("3prs"), q=q)
     r = mobility.sweep(load("3prs"), ["P1=-20:20:3"])
     assert check_transmission(load("3prs"), q=r.q[0]).lti == pytest.approx(float(r.lti[0]), abs=1e-12)
+
+
+def test_analyse_joint_variables_gives_the_indices_unless_told_not_to():
+    from mobility.sweeps import analyse_joint_variables
+
+    r = mobility.sweep(load("3prs"), ["P1=-20:20:3"])
+    columns = analyse_joint_variables(load("3prs"), np.asarray(r.q))
+    assert np.allclose(columns["lti"], r.lti) and np.allclose(columns["cti"], r.cti)
+    assert "lti" not in analyse_joint_variables(load("3prs"), np.asarray(r.q), transmission=False)

@@ -190,14 +190,14 @@ def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> di
     return {**columns, "polished": doubtful, "q_polished": polished, "residual_polished": residual}
 
 
-def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> dict[str, np.ndarray]:
+def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE, transmission: bool = True) -> dict[str, np.ndarray]:
     """The sweep's analysis of given poses: the table's columns for joint variables ``q`` ``(N, n)``.
 
     The poses are taken as they are (no loop closure: ``q`` should close the
     loops, e.g. rows of :attr:`SweepResult.q`).  Columns: ``dof``,
     ``pattern``, ``mobility``, ``smallest_kept``, ``largest_dropped``,
     ``near_singular``, ``inexact`` and, when ``actuated`` names inputs (or
-    the file marks some), ``verdict``, ``conditioning``, ``actuation_margin``, ``iti``, ``oti``, ``lti``, ``cti``.
+    the file marks some), ``verdict``, ``conditioning``, ``actuation_margin`` and (unless ``transmission=False``) ``iti``, ``oti``, ``lti``, ``cti``.
 
     Examples
     --------
@@ -209,7 +209,7 @@ def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Se
     plan = GridPlan((), joint_screws(mechanism).normalisation.length)
     marked = any(j.actuated for j in mechanism.joints)
     inputs = actuated_inputs(mechanism, actuated) if (actuated is not None or marked) else None
-    return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs is not None and inputs.freedoms else None), np.asarray(q, dtype=float))
+    return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs is not None and inputs.freedoms else None, GOOD_TRANSMISSION if transmission else None), np.asarray(q, dtype=float))
 
 
 CONNECT_SECONDS = 10.0
