@@ -32,7 +32,7 @@ ALLOWED = {
     "jacobians": "errors core",
     "sweeps": "errors core actuation transmission",
     "transmission": "errors core actuation",
-    "report": "errors core finite actuation flexure synthesis jacobians sweeps transmission testing outputs",
+    "report": "errors core finite actuation flexure synthesis jacobians sweeps testing outputs",
     "view": "errors core report sweeps outputs",
     "testing": "errors core io finite actuation flexure",
     "library": "errors",
