@@ -17,9 +17,14 @@ assembled).  Rows:
   file's inputs (P1, P2, P3).  Baseline: rebuild, ``analyze`` and
   :func:`mobility.check_actuation` per pose;
 * **whole sweep**: :func:`mobility.sweep` from the file (continuation, Newton
-  on every pose, analysis and actuation).  Baseline: per pose, re-closing the
-  loops with :meth:`Kinematics.close` from the neighbouring pose, rebuilding,
-  ``analyze`` and ``check_actuation``.
+  on every pose, analysis, actuation and the transmission indices).  Baseline:
+  per pose, re-closing the loops with :meth:`Kinematics.close` from the
+  neighbouring pose, rebuilding, ``analyze`` and ``check_actuation``;
+* **sweep with indices**: the same whole sweep against itself with
+  ``transmission=False`` (no ``iti``, ``oti``, ``lti``, ``cti`` columns), the
+  two run in turn (with, without, with, ...) in the same run: the cost of the
+  transmission indices (:mod:`mobility.transmission`); the ratios are with
+  over without, of the medians (at most 1.5).
 
 Times are medians of ``--repeat`` runs, wall clock and CPU time of the
 process (all its threads; the batched runs use ``--workers`` threads,
@@ -65,13 +70,19 @@ def timed(fn, repeat: int) -> tuple[float, float]:
     return statistics.median(walls), statistics.median(cpus)
 
 
+def alternated(with_, without, repeat: int) -> tuple[float, float, float, float]:
+    """Medians of wall and CPU time of two functions run in turn ``repeat`` times each (the same load on both)."""
+    a = [timed(with_, 1) + timed(without, 1) for _ in range(repeat)]
+    return tuple(statistics.median(run[k] for run in a) for k in range(4))  # type: ignore[return-value]
+
+
 def threaded(m: mobility.Mechanism, q: np.ndarray, workers: int, actuated: list[str]) -> None:
     """The analysis of ``q`` cut in one part per thread, as :func:`mobility.sweep` runs it."""
     from concurrent.futures import ThreadPoolExecutor
 
     parts = np.array_split(q, workers)
     with ThreadPoolExecutor(workers) as pool:
-        list(pool.map(lambda part: analyse_joint_variables(m, part, actuated=actuated), parts))
+        list(pool.map(lambda part: analyse_joint_variables(m, part, actuated=actuated, transmission=False), parts))
 
 
 def main() -> None:
@@ -91,10 +102,12 @@ def main() -> None:
     log(f"3-PRS, grid {n1} x {n2} x {n3} = {size:,} poses, {args.workers} worker thread(s), {args.repeat} runs")
 
     found = {}
-    t_whole, c_whole = timed(lambda: found.update(result=sweep(m, vary, workers=args.workers)), args.repeat)
+    t_whole, c_whole, t_bare, c_bare = alternated(lambda: found.update(result=sweep(m, vary, workers=args.workers)),
+                                                  lambda: sweep(m, vary, workers=args.workers, transmission=False), args.repeat)
     result = found["result"]
     assert result.assembled.all() and result.counts() == {(3, "1T2R", 3): size}, "every pose assembled, 3 DOF 1T2R"
     log(f"  whole sweep: {t_whole:.2f} s (CPU {c_whole:.2f} s)")
+    log(f"  whole sweep without the transmission indices: {t_bare:.2f} s (CPU {c_bare:.2f} s): with / without {t_whole / t_bare:.2f} (CPU {c_whole / c_bare:.2f})")
 
     plan = plan_grid(m, vary)
     q = np.array(result.q)
@@ -141,6 +154,7 @@ def main() -> None:
     print("|---|---:|---:|---|---:|")
     for label, batched, cpu, baseline, how in rows:
         print(f"| {label} | {batched:.2f} s | {cpu:.2f} s ({cpu / size * 1e6:.0f} µs/pose) | {baseline:.0f} s ({baseline / size * 1e3:.2f} ms/pose): {how} | {baseline / batched:.0f}x |")
+    print(f"| sweep with transmission indices vs without (same run) | {t_whole:.2f} s | {c_whole:.2f} s | without: {t_bare:.2f} s (CPU {c_bare:.2f} s) | {t_whole / t_bare:.2f}x wall, {c_whole / c_bare:.2f}x CPU (with / without) |")
     print(f"\nload average while it ran (1, 5, 15 min): {', '.join(f'{x:.1f}' for x in os.getloadavg())} on {os.cpu_count()} CPUs")
 
 

@@ -86,6 +86,8 @@ _LAZY = {
     "markdown_report": "report.markdown",
     # sweeps: mobility, singularity and actuation maps over a grid of poses
     "sweep": "sweeps", "SweepResult": "sweeps",
+    # motion/force transmission indices (ITI, OTI, LTI, CTI) at one pose
+    "check_transmission": "sweeps.batch_transmission", "TransmissionCheck": "transmission",
     # robot description files (MJCF, URDF): the mechanism with the notes of its reading
     "read_robot": "io.robot_files",
     # the interactive 3D view

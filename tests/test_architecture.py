@@ -30,13 +30,14 @@ ALLOWED = {
     "flexure": "errors core io actuation",
     "synthesis": "errors core io outputs",
     "jacobians": "errors core",
-    "sweeps": "errors core actuation",
+    "sweeps": "errors core actuation transmission",
+    "transmission": "errors core actuation",
     "report": "errors core finite actuation flexure synthesis jacobians sweeps testing outputs",
     "view": "errors core report sweeps outputs",
     "testing": "errors core io finite actuation flexure",
     "library": "errors",
-    "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps report view testing library outputs",
-    "__init__": "errors core io finite actuation flexure synthesis jacobians sweeps report view testing library outputs",
+    "cli": "__init__ errors core io finite actuation flexure synthesis jacobians sweeps transmission report view testing library outputs",
+    "__init__": "errors core io finite actuation flexure synthesis jacobians sweeps transmission report view testing library outputs",
     "__main__": "cli",
 }
 

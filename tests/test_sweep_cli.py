@@ -48,13 +48,14 @@ def test_csv_has_a_header_then_one_row_per_pose(capsys):
     rows = list(csv.reader(io.StringIO(out)))
     assert status == 0
     assert rows[0][:5] == ["P1 [mm]", "P2 [mm]", "dof", "pattern", "mobility"]
-    assert rows[0][-3:] == ["verdict", "conditioning", "actuation_margin"]
+    assert rows[0][-7:] == ["verdict", "conditioning", "actuation_margin", "iti", "oti", "lti", "cti"]
     assert len(rows) == 1 + 12
     assert [(r[0], r[1]) for r in rows[1:5]] == [("-20", "-20"), ("-20", "-6.66667"), ("-20", "6.66667"), ("-20", "20")]
     r = mobility.sweep(mobility.load(THREE_PRS), ["P1=-20:20:3", "P2=-20:20:4"])
     for row, i in zip(rows[1:], range(12)):
-        assert (int(row[2]), row[3], int(row[4]), row[-3]) == (r.dof[i], r.pattern[i], r.mobility[i], r.verdict[i])
-        assert float(row[-2]) == pytest.approx(r.conditioning[i], rel=1e-5)
+        assert (int(row[2]), row[3], int(row[4]), row[-7]) == (r.dof[i], r.pattern[i], r.mobility[i], r.verdict[i])
+        assert float(row[-6]) == pytest.approx(r.conditioning[i], rel=1e-5)
+        assert float(row[-2]) == pytest.approx(r.lti[i], rel=1e-5)
 
 
 @pytest.mark.parametrize("vary, shown", [

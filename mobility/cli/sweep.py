@@ -21,6 +21,7 @@ from ..report.plotting import FORMATS as PICTURE_FORMATS, picture_path, save_fig
 from ..report.sweep import sweep_csv_pieces, sweep_json_pieces, sweep_summary
 from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, SweepResult, sweep
 from ..sweeps.batch_actuation import actuated_inputs
+from ..transmission import GOOD_TRANSMISSION
 from ..io.limits import require_size
 from ._options import add_max_poses_option, add_mechanism_file, integer_option, add_tolerance_option, load_mechanism, max_poses_from, names_from, require_new_output, tolerance_from
 
@@ -66,6 +67,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     bar = p.add_mutually_exclusive_group()
     bar.add_argument("--progress", dest="progress", action="store_true", default=None, help="show a progress bar on stderr (needs mechanism-mobility[progress])")
     bar.add_argument("--no-progress", dest="progress", action="store_false", help="never show a progress bar")
+    p.add_argument("--good-transmission", type=float, default=GOOD_TRANSMISSION, metavar="LTI",
+                   help="the good-transmission threshold of the local transmission index (default: %(default)g, as published)")
+    p.add_argument("--no-transmission", action="store_true", help="leave out the transmission indices (columns iti, oti, lti, cti)")
     add_tolerance_option(p)
     p.set_defaults(run=run)
 
@@ -98,6 +102,8 @@ def run(args: argparse.Namespace) -> int:
 
         picture_path(args.plot, "--plot ")
         require_drawable(len(args.vary), f"--plot {args.plot}: ")
+    if not 0.0 <= args.good_transmission <= 1.0:
+        raise RequestError(f"--good-transmission must be a number in [0, 1], got {args.good_transmission:g}")
     if args.chunk_size < 1:
         raise RequestError(f"--chunk-size must be at least 1, got {args.chunk_size}")
     if args.workers is not None and args.scheduler is not None:
@@ -123,6 +129,8 @@ def run(args: argparse.Namespace) -> int:
         scheduler=args.scheduler,
         workers=args.workers,
         progress=_progress_wanted(args.progress),
+        transmission=not args.no_transmission,
+        good_threshold=args.good_transmission,
     )
     fmt = "json" if args.json else args.format or _format_of(args.output)
     pieces = FORMATS[fmt](result)

@@ -137,6 +137,7 @@ def sweep_summary(result: SweepResult) -> str:
                 f"    actuation margin (distance to an actuation singularity): smallest{where} {float(margins[lowest]):.2e} "
                 f"at {describe_values(result, result.values[lowest])}; near an actuation singularity: {near:,}"
             )
+        out += transmission_lines(result)
     margin = result.smallest_kept[result.assembled]
     worst = int(np.flatnonzero(result.assembled)[first_least(margin)])
     near = int(result.near_singular[result.assembled].sum())
@@ -192,7 +193,26 @@ def _answer(c: tuple[int, str, int, str] | None) -> str:
     return f"DOF {dof} {pattern}, mobility {mobility}" + (f", {verdict}" if verdict else "")
 
 
-ANSWER_COLUMNS = ("dof", "pattern", "mobility", "smallest_kept", "largest_dropped", "near_singular", "inexact", "verdict", "conditioning", "actuation_margin")
+def transmission_lines(result: SweepResult) -> list[str]:
+    """The summary of the transmission indices (:mod:`mobility.transmission`): LTI, CTI and the good-transmission workspace."""
+    if not result.has_transmission:
+        return []
+    out = []
+    for column, what in (("lti", "local transmission index LTI (distance to an actuation singularity)"),
+                         ("cti", "constraint transmission index CTI (distance to a constraint singularity)")):
+        values = np.where(result.assembled, np.asarray(getattr(result, column), dtype=float), np.nan)
+        if np.isfinite(values).any():
+            lowest = first_least(np.where(np.isfinite(values), values, np.inf))
+            out.append(f"    {what}: median {float(np.nanmedian(values)):.3f}, smallest {float(values[lowest]):.3f} at {describe_values(result, result.values[lowest])}")
+    share = result.good_transmission()
+    if np.isfinite(share):
+        good = int(round(share * int(result.assembled.sum())))
+        out.append(f"    good-transmission workspace (LTI >= {result.good_threshold:g}): {100 * share:.1f}% of the assembled poses ({good:,})")
+    return out
+
+
+ANSWER_COLUMNS = ("dof", "pattern", "mobility", "smallest_kept", "largest_dropped", "near_singular", "inexact", "verdict", "conditioning", "actuation_margin",
+                  "iti", "oti", "lti", "cti")
 """Columns that are an answer of the analysis: empty cells where a pose is not assembled."""
 
 

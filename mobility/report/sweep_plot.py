@@ -7,7 +7,9 @@
 * **map**: the colour is the actuation conditioning when inputs are chosen,
   else the rank margin (log10); the regions of each answer (DOF, pattern,
   mobility, verdict) are outlined, singular poses marked with red crosses,
-  poses not assembled left grey;
+  poses not assembled left grey; with the transmission indices the
+  good-transmission workspace (``LTI >= threshold``) is outlined dashed
+  (``"mobility:sweep:good-transmission"``) and a curve shows the LTI;
 * **slices**: the same map at up to :data:`MAX_SLICES` values of the third
   coordinate, the slices holding singular poses first.
 
@@ -209,6 +211,8 @@ def _curve(result: SweepResult, title: str) -> "Figure":
         bottom.semilogy(x, np.where(ok & ~_gains(result), result.smallest_kept, np.nan), color="tab:green", label="rank margin (smallest kept)", gid="mobility:sweep:curve")
     if result.actuated:
         bottom.semilogy(x, np.where(ok & (result.conditioning > 0), result.conditioning, np.nan), color="tab:purple", label="actuation conditioning κ", gid="mobility:sweep:curve")
+    if result.has_transmission:
+        bottom.semilogy(x, np.where(ok & (result.lti > 0), result.lti, np.nan), color="tab:brown", label=f"local transmission index LTI (good >= {result.good_threshold:g})", gid="mobility:sweep:curve")
     shown = np.concatenate([np.asarray(line.get_ydata(), dtype=float) for line in bottom.get_lines()] or [np.zeros(0)])
     shown = shown[np.isfinite(shown) & (shown > 0)]
     if shown.size:  # at least a factor of 4: a flat curve would leave the log scale a range of 1e-16 (no ticks, a tilted line)
@@ -252,6 +256,11 @@ def _map(ax: Any, result: SweepResult, index: np.ndarray, limits: tuple[float, f
     present = np.unique(code[code >= 0])
     if present.size > 1 and len(x) > 1 and len(y) > 1:
         ax.contour(x, y, np.ma.masked_less(code, 0).T, levels=np.arange(-0.5, present.max() + 1.0), colors="white", linewidths=1.2).set_gid("mobility:sweep:regions")
+    if result.has_transmission and len(x) > 1 and len(y) > 1:
+        good = np.where(result.assembled[index], np.nan_to_num(np.asarray(result.lti, dtype=float)[index], nan=0.0), 0.0)
+        if (good >= result.good_threshold).any() and (good < result.good_threshold).any():
+            ax.contour(x, y, good.T, levels=[result.good_threshold], colors="black", linestyles="dashed", linewidths=1.2).set_gid("mobility:sweep:good-transmission")
+            ax.plot([], [], color="black", linestyle="dashed", label=f"good transmission: LTI >= {result.good_threshold:g} (dashed outline)")
     singular = [p.index for p in result.singular]
     where = np.isin(index, singular)
     if where.any():

@@ -96,12 +96,16 @@ class BatchActuation:
         The actuation margin of :func:`mobility.check_actuation` (0 at an
         actuation singularity, small near one).
     conditioning : ndarray of float
+    wrenches : ndarray, shape (N, n, 6)
+        The unit actuation wrench of each input (zeros where it has none),
+        for :mod:`mobility.transmission`.
     """
 
     verdict: np.ndarray
     rank: np.ndarray
     margin: np.ndarray
     conditioning: np.ndarray
+    wrenches: np.ndarray | None = None
 
 
 def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAnswers, inputs: ActuationInputs, tol: Tolerance = DEFAULT_TOLERANCE) -> BatchActuation:
@@ -159,7 +163,8 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
         ok = regular & finite & (dof > 0) & (present.sum(axis=1) >= dof) & (sv[:, 0] > 0)
         with np.errstate(divide="ignore", invalid="ignore"):
             conditioning = np.where(ok, sv[rows, d] / sv[:, 0], conditioning)
-    return BatchActuation(verdict, decision.rank, _actuation_margin(decision, wrenches, transmissions, present, value.basis, dof, regular), conditioning)
+    margin = _actuation_margin(decision, wrenches, transmissions, present, value.basis, dof, regular)
+    return BatchActuation(verdict, decision.rank, margin, conditioning, np.stack(wrenches, axis=1) if n else np.zeros((count, 0, 6)))
 
 
 def _actuation_margin(decision: RankDecisions, wrenches: list[np.ndarray], transmissions: list[np.ndarray], present: np.ndarray,

@@ -54,7 +54,7 @@ from ..core.tolerance import DEFAULT_TOLERANCE, MARGIN_DIP, Tolerance, clean_num
 from ..errors import RequestError, counted, shown_argument
 from .grid import SweepAxis
 
-__all__ = ["GridPoint", "SingularPose", "MarginDip", "SweepResult", "COLUMNS"]
+__all__ = ["GridPoint", "SingularPose", "MarginDip", "SweepResult", "COLUMNS", "TRANSMISSION"]
 
 COLUMNS = (
     "dof",
@@ -69,8 +69,15 @@ COLUMNS = (
     "verdict",
     "conditioning",
     "actuation_margin",
+    "iti",
+    "oti",
+    "lti",
+    "cti",
 )
-"""Columns of a sweep's table after the varied coordinates (the actuation ones only when inputs are chosen)."""
+"""Columns of a sweep's table after the varied coordinates (the actuation ones only when inputs are chosen, the transmission ones then too unless left out)."""
+
+TRANSMISSION = ("iti", "oti", "lti", "cti")
+"""The transmission columns (:mod:`mobility.transmission`)."""
 
 
 @dataclass(frozen=True)
@@ -191,6 +198,13 @@ class SweepResult(ReadOnlyArrays):
     conditioning, actuation_margin : ndarray of float
         Actuation conditioning ``kappa`` and the margin of the verdict's rank
         decision (NaN where not assembled or no input chosen).
+    iti, oti, lti, cti : ndarray of float
+        The transmission indices of :mod:`mobility.transmission` (smallest
+        input and output index over the inputs, local transmission index,
+        constraint transmission index; NaN where not assembled or no index);
+        empty when no input is chosen or the sweep left them out.
+    good_threshold : float
+        The good-transmission threshold (``LTI >= good_threshold``; 0.7 as published).
     tolerance : Tolerance
     seams : ndarray of int, shape (k, 2)
         Pairs of grid points, the last stop and the anchor of a line round a
@@ -214,6 +228,11 @@ class SweepResult(ReadOnlyArrays):
     verdict: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=object))
     conditioning: np.ndarray = field(default_factory=lambda: np.zeros(0))
     actuation_margin: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    iti: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    oti: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    lti: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    cti: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    good_threshold: float = 0.7
     tolerance: Tolerance = DEFAULT_TOLERANCE
     seams: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=int))
 
@@ -278,7 +297,34 @@ class SweepResult(ReadOnlyArrays):
     def columns(self) -> tuple[str, ...]:
         """The columns of the table: the coordinates, then :data:`COLUMNS` (actuation ones only with inputs)."""
         own = COLUMNS if self.actuated else COLUMNS[: COLUMNS.index("verdict")]
+        if not self.has_transmission:
+            own = tuple(c for c in own if c not in TRANSMISSION)
         return self.names + own
+
+    @property
+    def has_transmission(self) -> bool:
+        """Whether the table has the transmission columns (inputs chosen, indices not left out)."""
+        return bool(self.actuated) and self.lti.size == self.size
+
+    def good_transmission(self, threshold: float | None = None) -> float:
+        """The good-transmission workspace: the share of the assembled poses with ``LTI >= threshold`` (default :attr:`good_threshold`).
+
+        NaN without transmission columns or assembled poses.  The region is
+        ``r.grid("lti") >= threshold``.
+
+        Examples
+        --------
+        >>> import mobility
+        >>> r = mobility.sweep(mobility.load("mechanisms/3prs.yaml"), ["P1=-20:20:3"])
+        >>> r.good_transmission(), r.good_transmission(0.99)
+        (1.0, 0.0)
+        """
+        limit = self.good_threshold if threshold is None else float(threshold)
+        ok = self.assembled
+        if not self.has_transmission or not ok.any():
+            return float("nan")
+        with np.errstate(invalid="ignore"):
+            return float(np.mean(self.lti[ok] >= limit))
 
     # -- what the sweep found ----------------------------------------------------------
     def classes(self) -> list[tuple[int, str, int, str] | None]:
@@ -436,6 +482,8 @@ class SweepResult(ReadOnlyArrays):
         )
         if self.actuated:
             out.update(verdict=str(self.verdict[index]) if ok else None, conditioning=_number(self.conditioning[index]), actuation_margin=_number(self.actuation_margin[index]))
+        if self.has_transmission:
+            out.update({key: _number(getattr(self, key)[index]) for key in TRANSMISSION})
         return out
 
     def to_dict(self) -> dict[str, Any]:
@@ -459,6 +507,10 @@ class SweepResult(ReadOnlyArrays):
             "changes": [{"from": int(a), "to": int(b), "axis": self.names[int(k)]} for a, b, k in self.changes],
             "seams": [{"from": int(a), "to": int(b)} for a, b in self.seams],
             "margin_dips": [d.to_dict(self.names) for d in self.dips],
+            **({"transmission": {"good_threshold": self.good_threshold, "good_share": _number(self.good_transmission()),
+                                 "lti_min": _number(np.nanmin(self.lti[self.assembled])) if np.isfinite(self.lti[self.assembled]).any() else None,
+                                 "cti_min": _number(np.nanmin(self.cti[self.assembled])) if np.isfinite(self.cti[self.assembled]).any() else None}}
+               if self.has_transmission else {}),
             "tolerance": {"rank": self.tolerance.rank, "near_singular": self.tolerance.near_singular, "closure": self.tolerance.closure},
         }
 

@@ -48,16 +48,17 @@ from ..core.model import Mechanism
 from ..core.validation import integer_value
 from ..core.screw_systems import analyse_poses
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..core.topology import Topology, decompose
+from ..core.topology import decompose
 from ..errors import MissingExtraError, RequestError, clipped, shown_argument
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
 from .batch_kinematics import BatchKinematics
 from .seams import find_seams
+from .batch_transmission import GOOD_TRANSMISSION, transmission_columns, transmission_threshold
 from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, residuals, seed_grid, targets_of
 from .grid_closure import fill
 from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
 from .posed_screws import posed_screws
-from .result import SweepResult
+from .result import TRANSMISSION, SweepResult
 from .walks import axis_walk
 
 __all__ = ["sweep", "analyse_joint_variables", "tqdm_progress", "DEFAULT_CHUNK_SIZE", "BLOCK", "MAX_WORKERS", "Progress"]
@@ -89,19 +90,15 @@ class _Context:
     plan: GridPlan
     tol: Tolerance
     inputs: ActuationInputs | None
+    transmission: float | None = GOOD_TRANSMISSION  # the good-transmission threshold; None: no transmission indices
 
     @cached_property
     def bk(self) -> BatchKinematics:
         return BatchKinematics(self.mechanism, joint_screws(self.mechanism).reference)
 
-    @cached_property
-    def topology(self) -> Topology:
-        return decompose(self.mechanism)
-
     def __getstate__(self) -> dict:
         state = dict(vars(self))
         state.pop("bk", None)  # rebuilt where it is used
-        state.pop("topology", None)
         return state
 
     def __setstate__(self, state: dict) -> None:
@@ -147,7 +144,7 @@ def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
         _stop_if_asked()
         block = q[start : start + BLOCK]
         posed = posed_screws(context.bk, block)
-        answers = analyse_poses(context.topology, posed.twists, posed.offsets, context.tol)
+        answers = analyse_poses(decompose(context.mechanism), posed.twists, posed.offsets, context.tol)
         out = {
             "dof": answers.dof,
             "pattern": answers.pattern,
@@ -160,6 +157,7 @@ def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
         if context.inputs is not None:
             act = actuation_at_poses(context.mechanism, posed, answers, context.inputs, context.tol)
             out.update(verdict=act.verdict, conditioning=act.conditioning, actuation_margin=act.margin)
+            out.update(transmission_columns(context.mechanism, posed, answers, act, context.inputs, context.tol) if context.transmission is not None else {})
         parts.append(out)
     if not parts:
         return {}
@@ -194,14 +192,14 @@ def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> di
     return {**columns, "polished": doubtful, "q_polished": polished, "residual_polished": residual}
 
 
-def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> dict[str, np.ndarray]:
+def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE, transmission: bool = True) -> dict[str, np.ndarray]:
     """The sweep's analysis of given poses: the table's columns for joint variables ``q`` ``(N, n)``.
 
     The poses are taken as they are (no loop closure: ``q`` should close the
     loops, e.g. rows of :attr:`SweepResult.q`).  Columns: ``dof``,
     ``pattern``, ``mobility``, ``smallest_kept``, ``largest_dropped``,
     ``near_singular``, ``inexact`` and, when ``actuated`` names inputs (or
-    the file marks some), ``verdict``, ``conditioning``, ``actuation_margin``.
+    the file marks some), ``verdict``, ``conditioning``, ``actuation_margin`` and (unless ``transmission=False``) ``iti``, ``oti``, ``lti``, ``cti``.
 
     Examples
     --------
@@ -213,7 +211,7 @@ def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Se
     plan = GridPlan((), joint_screws(mechanism).normalisation.length)
     marked = any(j.actuated for j in mechanism.joints)
     inputs = actuated_inputs(mechanism, actuated) if (actuated is not None or marked) else None
-    return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs is not None and inputs.freedoms else None), np.asarray(q, dtype=float))
+    return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs is not None and inputs.freedoms else None, GOOD_TRANSMISSION if transmission else None), np.asarray(q, dtype=float))
 
 
 CONNECT_SECONDS = 10.0
@@ -419,6 +417,8 @@ def sweep(
     scheduler: Any = None,
     workers: int | None = None,
     progress: bool | Progress | None = None,
+    transmission: bool = True,
+    good_threshold: float = GOOD_TRANSMISSION,
 ) -> SweepResult:
     """Mobility, singularities and actuation over a grid of poses.
 
@@ -454,6 +454,8 @@ def sweep(
     progress : bool or callable, optional
         ``True``: a progress bar on stderr (tqdm); a callable
         ``progress(stage, done, total)``; default: none.
+    transmission, good_threshold : bool, float
+        With inputs, also the indices of :mod:`mobility.transmission` (``False``: not), and their good-transmission threshold (0.7).
 
     Returns
     -------
@@ -485,7 +487,7 @@ def sweep(
     if inputs is not None and not inputs.freedoms:
         inputs = None
     report = tqdm_progress() if progress is True else (progress or None)
-    context = _Context(mechanism, plan, tol, inputs)
+    context = _Context(mechanism, plan, tol, inputs, transmission_threshold(transmission, good_threshold, inputs is not None))
     runner = _Runner(context, scheduler, workers, report)
     try:
         closure = _close(context, runner, chunk_size)
@@ -553,13 +555,14 @@ UNANSWERED = {
     "verdict": ("", object),
     "conditioning": (np.nan, float),
     "actuation_margin": (np.nan, float),
+    **dict.fromkeys(TRANSMISSION, (np.nan, float)),
 }
 """Each column's value (and type) at a pose that is not analysed (not assembled, or no input chosen)."""
 
 
 def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_size: int) -> dict[str, np.ndarray]:
     """The table's columns over the whole grid; polished poses replace theirs in ``closure.q`` (the sweep's own array)."""
-    keys = [key for key in UNANSWERED if context.inputs is not None or key not in ("verdict", "conditioning", "actuation_margin")]
+    keys = [key for key in UNANSWERED if (context.inputs is not None or key not in ("verdict", "conditioning", "actuation_margin")) and (key not in TRANSMISSION or context.transmission is not None)]
     columns: dict[str, np.ndarray] = {key: np.full(context.plan.size, *UNANSWERED[key]) for key in keys}
     rows = np.flatnonzero(closure.assembled)
     pieces = max(math.ceil(rows.size / chunk_size), runner.workers if rows.size >= 2 * BLOCK * runner.workers else 1)
@@ -591,6 +594,7 @@ def _result(context: _Context, closure: GridClosure, columns: dict[str, np.ndarr
         assembled=closure.assembled,
         residual=closure.residual,
         tolerance=context.tol,
+        good_threshold=GOOD_TRANSMISSION if context.transmission is None else context.transmission,
         seams=find_seams(context.bk, context.plan, closure.q, closure.assembled, tol=context.tol),
         **cast("dict[str, Any]", columns),  # the table's columns, each a field of the result
         **actuation,

@@ -9,8 +9,12 @@ passes through each change of pattern.  The header of the page says how many
 of the sweep's poses are drawn, and why the others are not
 (:func:`sweep_notes`: not assembled, or left out by the thinning).
 
+Each label also gives the pose's local and constraint transmission indices
+when the sweep has them (:mod:`mobility.transmission`).
+
 Only the sweep result's public attributes are used (``size``, ``assembled``,
-``values``, ``singular``, ``mechanism_at``, ``tolerance``, ``axes``); the
+``values``, ``singular``, ``mechanism_at``, ``tolerance``, ``axes``,
+``has_transmission``, ``lti``, ``cti``); the
 sweeps package is imported only when a sweep is shown.
 
 Examples
@@ -33,7 +37,7 @@ from ..core.analysis import analyze
 from ..errors import RequestError
 from .views import MAX_POSES, View, ViewFrame, poses_view, require_max_poses
 
-__all__ = ["sweep_view", "sweep_poses", "sweep_notes"]
+__all__ = ["sweep_view", "sweep_poses", "sweep_notes", "transmission_label"]
 
 
 def sweep_poses(sweep: Any, max_poses: int = MAX_POSES) -> list[int]:
@@ -79,6 +83,22 @@ def sweep_notes(sweep: Any, shown: int) -> list[str]:
     return [f"{shown:,} of the sweep's {size:,} poses drawn: " + "; ".join(why)]
 
 
+def transmission_label(sweep: Any, index: int) -> str:
+    """What the slider's label adds at a pose of a sweep with transmission indices: its LTI and CTI (``""`` without them).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> import numpy as np
+    >>> transmission_label(SimpleNamespace(has_transmission=True, lti=np.array([0.8123]), cti=np.array([np.nan])), 0)
+    ', LTI 0.812'
+    """
+    if not getattr(sweep, "has_transmission", False):
+        return ""
+    parts = [f"{name} {float(value):.3f}" for name, value in (("LTI", sweep.lti[index]), ("CTI", sweep.cti[index])) if np.isfinite(value)]
+    return "".join(f", {p}" for p in parts)
+
+
 def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
     """The view of a sweep's poses with a slider (at most ``max_poses`` of them).
 
@@ -111,5 +131,5 @@ def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
     frames = []
     for i in indices:
         mechanism = sweep.mechanism_at(i)
-        frames.append(ViewFrame(mechanism, analyze(mechanism, tol=sweep.tolerance), describe_values(sweep, sweep.values[i])))
+        frames.append(ViewFrame(mechanism, analyze(mechanism, tol=sweep.tolerance), describe_values(sweep, sweep.values[i]) + transmission_label(sweep, i)))
     return poses_view(frames, max_poses=max_poses, notes=sweep_notes(sweep, len(frames)))
