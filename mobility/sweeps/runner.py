@@ -8,13 +8,13 @@ The work has two stages, each cut into chunks that run independently:
    neighbours (in-process, on the few that are left);
 2. **analysis**: the assembled poses, cut into chunks, go through
    :mod:`~mobility.sweeps.posed_screws`, :mod:`~mobility.core.screw_systems`
-   and, when inputs are chosen, :mod:`~mobility.sweeps.batch_actuation`.
+   and, when inputs are chosen, :mod:`~mobility.sweeps.batch_actuation` and
+   :mod:`~mobility.sweeps.batch_transmission`.
 
 Chunks run in this process (on ``workers`` threads: the stacked LAPACK calls
 release the GIL), or on a dask.distributed cluster when a scheduler is given
-(``pip install 'mechanism-mobility[dask]'``): a ``distributed.Client``, or the address
-of a running scheduler.  Within a chunk the poses are processed in blocks of
-:data:`BLOCK` so that the stacked arrays stay in cache.
+(``pip install 'mechanism-mobility[dask]'``): a ``distributed.Client``, or the
+address of a running scheduler; within a chunk, in blocks of :data:`BLOCK`.
 
 Examples
 --------
