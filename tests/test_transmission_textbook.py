@@ -94,10 +94,7 @@ def test_four_bar_least_transmission_is_at_the_crank_angle_of_the_closed_form(tm
     assert oti[TURN.index(180.0)] == pytest.approx(math.sqrt(1.0 - cos_max**2), abs=1e-9)
 
 
-# Not at the dead centres (0 and 180 deg): there the slider is instantaneously locked (the end effector has no
-# freedom), ITI is 0 but the library reports LTI as NaN, not 0 (reported to the owner of mobility.transmission).
-@pytest.mark.parametrize("phi", [p for p in TURN if p % 180])
-def test_slider_crank_output_index_is_the_cosine_of_the_pressure_angle(tmp_path, phi):
+def _slider_crank(tmp_path, phi: float):
     p = math.radians(phi)
     ax, ay = R * math.cos(p), R * math.sin(p)
     xb = ax + math.sqrt(L**2 - ay**2)
@@ -107,7 +104,20 @@ def test_slider_crank_output_index_is_the_cosine_of_the_pressure_angle(tmp_path,
         f"{{name: B, type: R, links: [rod, slider], axis: [0, 0, 1], point: [{xb!r}, 0, 0]}}",
         "{name: G, type: P, links: [slider, ground], axis: [1, 0, 0]}",
     ]
-    t = check_transmission(_write(tmp_path, "slider_crank", joints, "slider"))
+    return check_transmission(_write(tmp_path, "slider_crank", joints, "slider")), p, ax, ay, xb
+
+
+# Not at the dead centres (0 and 180 deg): there the slider is instantaneously locked (see the next test).
+@pytest.mark.parametrize("phi", [p for p in TURN if p % 180])
+def test_slider_crank_output_index_is_the_cosine_of_the_pressure_angle(tmp_path, phi):
+    t, p, ax, ay, xb = _slider_crank(tmp_path, phi)
     assert t.oti[0] == pytest.approx(math.sqrt(1.0 - (R * math.sin(p) / L) ** 2), abs=1e-9)
     assert t.iti[0] == pytest.approx(_sine(np.array([ax, ay]), np.array([xb - ax, -ay])), abs=1e-9)
     assert t.lti == pytest.approx(min(t.iti[0], t.oti[0]), abs=1e-12)
+
+
+@pytest.mark.parametrize("phi", [0.0, 180.0])
+def test_at_a_dead_centre_every_index_is_zero(tmp_path, phi):
+    # crank and rod aligned: the slider is locked for an instant, the input moves no output
+    t = _slider_crank(tmp_path, phi)[0]
+    assert (t.iti[0], t.oti[0], t.lti) == (pytest.approx(0.0, abs=1e-12), 0.0, 0.0)

@@ -41,7 +41,8 @@ With the actuation wrench (transmission wrench screw, TWS) ``a_i`` of input
   output transmission index ``eta_i`` of Wang et al. (2010);
 * ``LTI = min_i min(ITI_i, OTI_i)``, the local transmission index; the
   *good-transmission workspace* is where ``LTI >= 0.7`` (Wang et al., 2010,
-  after the transmission angle of Tao's 40 deg-140 deg rule: ``sin 45.57 deg = 0.7``);
+  after the transmission angle of Tao's 40 deg-140 deg rule: ``cos 45.57 deg = 0.7``, a pressure angle of at most
+  45.57 deg, a transmission angle between 44.43 deg and 135.57 deg);
   with more inputs than freedoms (redundant actuation) ``LTI`` is that of the
   best non-redundant choice of inputs (the largest over the subsets);
 * ``CTI_j = tau_C(c_j, $_O,j)`` of the constraint wrench ``c_j`` of limb ``j``
@@ -482,9 +483,9 @@ def transmission_indices(
     dim = np.asarray(dim)
     for d in np.unique(dim).tolist():
         rows = np.flatnonzero(dim == d)
-        if d == 0 or n == 0:
+        if n == 0:
             continue
-        if n < d:  # fewer inputs than freedoms: a freedom moves unactuated
+        if d == 0 or n < d:  # the inputs move no output (a dead centre: the output locked for an instant), or a freedom moves unactuated
             oti[rows] = 0.0
             lti[rows] = 0.0
             continue
