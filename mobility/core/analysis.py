@@ -28,8 +28,8 @@ from ..errors import AnalysisError
 from .canonical import canonical_form
 from .joint_screws import JointScrews, Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism, require_mechanism
-from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis
-from .screw_systems import PoseAnswers, analyse_poses, per_pose, subtree_values
+from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis, pattern_of
+from .screw_systems import PoseAnswers, analyse_poses, at_pose, subtree_values
 from .screws import free_vector_subspace, span_and_reciprocal
 from .tolerance import NEAR_LARGEST_FLOAT, Tolerance, decide_rank, file_tolerance, require_tolerance
 from .transforms import cross
@@ -96,7 +96,8 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
     answers = analyse_poses(topology, screws.twists[None], screws.offsets, tol)
     gk = _gruebler_kutzbach(mechanism)
     kept, dropped = answers.smallest_kept.item(), answers.largest_dropped.item()
-    dof, mobility = answers.dof.item(), answers.mobility.item()
+    dof, rotations = at_pose(answers.root.dim), int(answers.rotations[0])
+    mobility = at_pose(answers.root.mobility) + sum(at_pose(v.mobility) for v in answers.detached)
     margin = Margin(kept, dropped, kept < tol.near_singular, dropped > tol.inexact)
     warnings = []
     if margin.near_singular:
@@ -116,7 +117,7 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
     result = Result(
         name=mechanism.name,
         dof=dof,
-        pattern=answers.pattern[0],
+        pattern=pattern_of(dof - rotations, rotations),
         mobility=mobility,
         gruebler_kutzbach=gk,
         redundant_constraints=mobility - gk,
@@ -161,7 +162,7 @@ class _Detail:
                     assert isinstance(node, JointNode)
                     out[node] = NodeSystem(self.mechanism.joints[node.index].dof, 0)
                 else:
-                    out[node] = NodeSystem(int(per_pose(v.dim, 1)[0]), int(per_pose(v.idle, 1)[0]))
+                    out[node] = NodeSystem(at_pose(v.dim), at_pose(v.idle))
         return out
 
     def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
@@ -221,7 +222,7 @@ class _Detail:
             reference = rt @ self.screws.reference
             translations, rotations, twists = screw_system_in_frame(rot6 @ value.basis[0], local, reference, ("rotation", "helical"), tol)
             couples, forces, wrenches = screw_system_in_frame(rot6 @ value.wrenches[0], local, reference, ("force", "wrench"), tol)
-            out.append(LimbSystem(describe(node), frame, int(per_pose(value.dim, 1)[0]), int(per_pose(value.idle, 1)[0]), translations, rotations, twists, couples, forces, wrenches))
+            out.append(LimbSystem(describe(node), frame, at_pose(value.dim), at_pose(value.idle), translations, rotations, twists, couples, forces, wrenches))
         return tuple(out)
 
 

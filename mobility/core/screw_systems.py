@@ -57,7 +57,7 @@ from .screws import SWAP_ROWS, pattern_of
 from .tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
 from .topology import Bridge, JointNode, Node, Parallel, Series, Topology
 
-__all__ = ["Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "PoseAnswers", "analyse_poses"]
+__all__ = ["Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "at_pose", "PoseAnswers", "analyse_poses"]
 
 
 PerPose = Union[int, np.ndarray]
@@ -449,6 +449,17 @@ def per_pose(value: PerPose, count: int) -> np.ndarray:
     ([3, 3], [1, 2])
     """
     return value if isinstance(value, np.ndarray) else np.full(count, value)
+
+
+def at_pose(value: PerPose, index: int = 0) -> int:
+    """The count of pose ``index`` of a :data:`PerPose` (an int when the same at every pose, or an array).
+
+    Examples
+    --------
+    >>> at_pose(3), at_pose(np.array([1, 2]), 1)
+    (3, 2)
+    """
+    return value if type(value) is int else int(value[index])
 
 
 _PATTERNS = np.array([[pattern_of(d - r, r) if r <= d else "" for r in range(7)] for d in range(7)], dtype=object)  # by (DOF, rotations)
