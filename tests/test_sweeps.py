@@ -24,7 +24,8 @@ from mobility.core.tolerance import characteristic_scale, characteristic_scales,
 from mobility.core.transforms import displacement_log, twist_exp
 from mobility.errors import MechanismError, RequestError
 from mobility.sweeps import SweepResult, plan_grid, sweep
-from mobility.sweeps.batch_kinematics import BatchKinematics, displacement_logs, rotation_logs
+from mobility.core.transforms import displacement_logs, rotation_logs
+from mobility.sweeps.batch_kinematics import BatchKinematics
 from mobility.sweeps.batch_systems import analyse_poses
 from mobility.sweeps.continuation import Drive, residuals
 from mobility.sweeps.posed_screws import posed_screws
@@ -952,7 +953,7 @@ def test_a_full_turn_is_walked_in_one_direction_so_neighbours_are_joined_by_moti
 
 def true_residuals(r: SweepResult) -> np.ndarray:
     """The largest loop residual component of every row's stored joint variables (and of its pose coordinates), pose by pose."""
-    bk = BatchKinematics(r.mechanism, joint_screws(r.mechanism).reference)  # the reference point of pose coordinates, as the sweep's
+    bk = kinematics(r.mechanism)  # the reference point of pose coordinates is the sweep's
     drive = Drive.of(r.axes, bk.variable_count)
     index = np.unravel_index(np.arange(r.size), r.shape)
     targets = np.stack([a.internal[i] for a, i in zip(r.axes, index)], axis=-1)

@@ -9,13 +9,9 @@ coordinates.
 At a grid point the driven coordinates have given values (see
 :mod:`mobility.sweeps.grid`): a driven joint's variable is fixed; a pose
 coordinate is one more equation.  The other variables are solved so that
-every loop closes (:class:`~mobility.sweeps.batch_kinematics.BatchKinematics`):
-Gauss–Newton with minimum-norm steps, batched over poses: the step
-``J^T (J J^T + mu I)^-1 r`` with a damping ``mu`` far below every kept
-singular value, so a rank-deficient Jacobian (at a change point, or the
-dependent rows of a planar loop) still gives the minimum-norm step, and the
-step lies in the row space of ``J``: round-off never drifts a pose along the
-motions the drive leaves free.  A pose is *assembled* when every residual component is
+every loop closes by the one Newton's method of the package
+(:func:`mobility.core.kinematics.newton`, on every pose of a stack at once,
+the driven variables held and the pose coordinates as equations).  A pose is *assembled* when every residual component is
 at most ``Tolerance.closure`` (radians, lengths over the characteristic length).
 
 Continuation: the grid is solved one axis at a time, from the file's pose
@@ -50,9 +46,10 @@ continuous along the walk.
 Examples
 --------
 >>> import mobility
+>>> from mobility.core.kinematics import kinematics
 >>> from mobility.sweeps.grid import plan_grid
 >>> m = mobility.load("mechanisms/parallelogram.yaml")
->>> plan, bk = plan_grid(m, ["O1=0:90:7"]), BatchKinematics(m)
+>>> plan, bk = plan_grid(m, ["O1=0:90:7"]), kinematics(m)
 >>> line = targets_of(plan, line_layout(plan.shape, 0))
 >>> q, residual, assembled = close_lines(bk, Drive.of(plan.axes, bk.variable_count), np.zeros((1, bk.variable_count)), np.array([True]), line, 0)
 >>> bool(assembled.all()), float(residual.max()) < 1e-12
@@ -67,8 +64,10 @@ from typing import Callable
 
 import numpy as np
 
-from ..core.tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, SAME_GRID_VALUE, Tolerance, decide_ranks
-from .batch_kinematics import BatchKinematics, Evaluation
+from ..core.tolerance import DEFAULT_TOLERANCE, SAME_GRID_VALUE, Tolerance, decide_ranks
+from ..core.kinematics import MAX_ITERATIONS, Equations, Evaluation, Kinematics, min_norm_steps
+from ..core.kinematics import newton as close_stack
+from ..core.kinematics import polish as polish_stack
 from .grid import GridPlan, SweepAxis, whole_turns
 from .walks import AxisWalk, plan_walks
 
@@ -77,12 +76,6 @@ __all__ = ["Drive", "GridClosure", "newton", "polish", "close_lines", "seed_grid
 MAX_PIECES = 2000
 """Grid steps at most on the way from the file's pose to the grid's anchor point; a grid
 farther away is approached in longer steps (and is not assembled if Newton cannot follow)."""
-
-MAX_ITERATIONS = 12
-"""Newton steps at most for one solve."""
-
-POLISHED = 0.1
-"""A pose whose residual is below this fraction of ``Tolerance.closure`` needs no polishing step."""
 
 EXTRAPOLATION = ((1.0,), (2.0, -1.0), (3.0, -3.0, 1.0), (4.0, -6.0, 4.0, -1.0))
 """Predictor from the last 1, 2, 3 or 4 points of a line (polynomial extrapolation, error of order 1 to 4 in the step)."""
@@ -128,6 +121,11 @@ class Drive:
         free[variables] = False
         return cls(np.array(joints, dtype=int), variables, np.array(pose, dtype=int), np.array([axes[i].variable for i in pose], dtype=int), free)
 
+    @property
+    def equations(self) -> Equations:
+        """The equations of Newton's method: the free variables and the fixed pose coordinates (whose goals are ``targets[:, pose]``)."""
+        return Equations(self.free, self.components)
+
     def apply(self, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
         """``q`` with the driven joint variables set to their targets."""
         q = np.array(q, dtype=float)
@@ -136,17 +134,13 @@ class Drive:
         return q
 
 
-def _evaluate(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray):
+def _evaluate(bk: Kinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, Evaluation]:
     """The loops' and pose equations' residual ``(m, N)``, and the evaluation that gives their Jacobian."""
-    evaluation = bk.evaluate(q, drive.components)
-    values = evaluation.values
-    if drive.pose.size:
-        values[values.shape[0] - drive.pose.size :] -= targets[:, drive.pose].T
-    return values, evaluation
+    return drive.equations.values(bk, q, targets[:, drive.pose])
 
 
 def newton(
-    bk: BatchKinematics,
+    bk: Kinematics,
     drive: Drive,
     start: np.ndarray,
     targets: np.ndarray,
@@ -155,154 +149,22 @@ def newton(
     max_move: np.ndarray | float = np.inf,
     max_iter: int = MAX_ITERATIONS,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Close every loop of many poses by Gauss–Newton with minimum-norm steps.
+    """Close every loop of many poses at their driven values ``targets`` ``(N, axes)`` (:func:`mobility.core.kinematics.newton`).
 
-    Parameters
-    ----------
-    bk : BatchKinematics
-    drive : Drive
-    start : ndarray, shape (N, n)
-        Starting joint variables (the driven ones are overwritten by the targets).
-    targets : ndarray, shape (N, axes)
-        Values of the driven coordinates (internal units).
-    tol : Tolerance
-        ``tol.closure`` is the largest residual component of an assembled pose.
-    max_move : float or ndarray (N,)
-        A solve that wanders farther than this from its start has failed (it
-        would reach another assembly, not the nearby one).
-    max_iter : int
-
-    Returns
-    -------
-    q : ndarray, shape (N, n)
-        The best iterate of each pose.
-    residual : ndarray, shape (N,)
-        Its largest residual component.
-    assembled : ndarray of bool, shape (N,)
+    Returns the best iterate of each pose ``(N, n)``, its largest residual
+    component ``(N,)`` and whether it is assembled.
     """
-    # A solve that diverges (a target far beyond the mechanism's size, or a pose with no assembly near it)
-    # overflows: its iterates turn non-finite and are dropped (err = inf, the move refused), so numpy's
-    # warnings would only repeat what the result says (not assembled).
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        best_q, best = _newton_loop(bk, drive, start, targets, tol, max_move, max_iter)
-    return best_q, best, best <= tol.closure
+    out = close_stack(bk, drive.apply(start, targets), targets[:, drive.pose], drive.equations, tol=tol, max_move=max_move, max_iter=max_iter)
+    return out.q, out.residual, out.converged
 
 
-def _newton_loop(
-    bk: BatchKinematics,
-    drive: Drive,
-    start: np.ndarray,
-    targets: np.ndarray,
-    tol: Tolerance,
-    max_move: np.ndarray | float,
-    max_iter: int,
-) -> tuple[np.ndarray, np.ndarray]:
-    """The iterations of :func:`newton`: the best iterate of each pose and its largest residual component."""
-    q0 = drive.apply(start, targets)
-    count = len(q0)
-    q = q0.copy()
-    best_q, best = q.copy(), np.full(count, np.inf)
-    stalled = np.zeros(count, dtype=int)
-    active = np.arange(count)
-    max_move = np.broadcast_to(np.asarray(max_move, dtype=float), (count,))
-    for iteration in range(max_iter + 1):
-        if active.size == 0:
-            break
-        r, evaluation = _evaluate(bk, drive, q[active], targets[active])
-        err = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(active.size)
-        err = np.where(np.isfinite(err), err, np.inf)
-        better = err < best[active]
-        halved = err < 0.5 * best[active]
-        stalled[active] = np.where(halved, 0, stalled[active] + 1)
-        best_q[active[better]] = q[active[better]]
-        best[active[better]] = err[better]
-        b, st = best[active], stalled[active]
-        # done: near round-off, or closed and no longer gaining (a last step polishes a pose near a singularity)
-        done = (b <= POLISHED * tol.closure) | ((b <= tol.closure) & (st > 0))
-        keep = np.flatnonzero(~done & (st < 4) & (iteration < max_iter) & bool(drive.free.any()) & (r.shape[0] > 0))
-        if keep.size == 0:
-            break
-        jac = _free_jacobians(evaluation, drive, keep)
-        active, r = active[keep], r[:, keep]
-        # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
-        # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
-        step = _min_norm_steps(jac, r)
-        moved = q[active].copy()
-        moved[:, drive.free] += step
-        finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
-        q[active[finite]] = moved[finite]
-        active = active[finite]
-    return best_q, best
-
-
-POLISH_STEPS = 2
-"""Newton steps of :func:`polish` (each from a residual in extended precision)."""
-
-_EXTENDED = np.finfo(np.longdouble).eps < np.finfo(float).eps
-"""Whether this platform's ``numpy.longdouble`` holds more digits than float64 (x86: 64-bit mantissa)."""
-
-
-def polish(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
-    """Closed poses refined by Newton steps whose residual is evaluated in extended precision.
-
-    Near a singularity the closure equations are ill-conditioned: with a
-    smallest singular value ``s`` of their Jacobian, the round-off of a
-    float64 residual (about 1e-16) leaves the joint variables uncertain by
-    ``1e-16 / s`` along the near-singular motion, and the screw systems of the
-    pose amplify that again by ``1 / s``.  A parallelogram 0.01 degree from
-    its change point (``s`` about 2e-4) then shows its coupler tilted by 1e-12
-    rad and a pure translation with a rotational part of 1e-8, at the rank
-    tolerance.  Residuals in ``numpy.longdouble`` (on x86 three more digits)
-    take that uncertainty below the float64 rounding of the variables
-    themselves; the steps are solved in float64 (the residual is tiny).  A
-    step that does not lower the extended residual is not taken.  Where
-    ``longdouble`` is float64 (some platforms) nothing changes.
-
-    Parameters
-    ----------
-    q : ndarray, shape (N, n)
-        Closed poses (assembled rows).
-    targets : ndarray, shape (N, axes)
-        Their driven values (internal units).
-
-    Returns
-    -------
-    ndarray, shape (N, n)
-        The refined poses (float64), driven variables unchanged.
-    """
-    if not _EXTENDED or len(q) == 0 or not drive.free.any():
-        return q
-    exact, wanted = np.asarray(q, dtype=np.longdouble), np.asarray(targets, dtype=np.longdouble)
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        r, evaluation = _evaluate(bk, drive, exact, wanted)
-        if r.shape[0] == 0:
-            return q
-        err = np.abs(r).max(axis=0)
-        for _ in range(POLISH_STEPS):
-            j = _free_jacobians(evaluation, drive).astype(float)  # the step in float64: the residual is what needs the digits
-            trial = exact.copy()
-            trial[:, drive.free] += _min_norm_steps(j, np.asarray(r, dtype=float))
-            r_trial, evaluation = _evaluate(bk, drive, trial, wanted)
-            err_trial = np.abs(r_trial).max(axis=0)
-            better = np.isfinite(err_trial) & (err_trial < err)
-            if not better.any():
-                break
-            exact[better], err[better] = trial[better], err_trial[better]
-            r, evaluation = (r_trial, evaluation) if better.all() else _evaluate(bk, drive, exact, wanted)
-    return exact.astype(float)
-
-
-def _min_norm_steps(j: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """The damped minimum-norm Newton steps ``-J^T (J J^T + mu I)^-1 r`` of stacked systems ``j`` ``(N, m, free)``, ``r`` ``(m, N)``."""
-    equations = j.shape[1]
-    gram = j @ j.swapaxes(1, 2)
-    diagonal = gram.reshape(len(gram), -1)[:, :: equations + 1]
-    diagonal += (NEWTON_DAMPING * diagonal.sum(axis=1) / equations + 1e-300)[:, None]
-    return -(j.swapaxes(1, 2) @ np.linalg.solve(gram, np.ascontiguousarray(r.T)[:, :, None]))[:, :, 0]
+def polish(bk: Kinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """Closed poses ``q`` at their driven values refined in extended precision (:func:`mobility.core.kinematics.polish`)."""
+    return polish_stack(bk, q, targets[:, drive.pose], drive.equations)
 
 
 def _advance(
-    bk: BatchKinematics,
+    bk: Kinematics,
     drive: Drive,
     base_q: np.ndarray,
     base_t: np.ndarray,
@@ -363,7 +225,7 @@ failure halves the next sub-step, so the shortest tried is ``2**-(SUBSTEP_HALVIN
 
 
 def _substeps(
-    bk: BatchKinematics,
+    bk: Kinematics,
     drive: Drive,
     base_q: np.ndarray,
     base_t: np.ndarray,
@@ -429,7 +291,7 @@ def _substeps(
     return q, err, ok
 
 
-def _linear_step_lengths(bk: BatchKinematics, drive: Drive, base_q: np.ndarray, targets: np.ndarray, tol: Tolerance) -> np.ndarray:
+def _linear_step_lengths(bk: Kinematics, drive: Drive, base_q: np.ndarray, targets: np.ndarray, tol: Tolerance) -> np.ndarray:
     """Length of the first Newton step from each assembled ``base_q`` to ``targets`` (the linearised motion), 0 at a fold.
 
     Where the closure equations keep their rank (``Tolerance.rank``), the
@@ -450,7 +312,7 @@ def _linear_step_lengths(bk: BatchKinematics, drive: Drive, base_q: np.ndarray, 
         if jac.shape[1] <= jac.shape[2] and finite.any():  # no more equations than free variables, and none lost
             full[finite] = ~_folds(np.linalg.svd(jac[finite], compute_uv=False), tol)[1]
         if full.any():
-            lengths[full] = np.linalg.norm(_min_norm_steps(jac[full], r[:, full]), axis=1)
+            lengths[full] = np.linalg.norm(min_norm_steps(jac[full], r[:, full]), axis=1)
     return np.where(np.isfinite(lengths), lengths, 0.0)
 
 
@@ -459,7 +321,7 @@ FOLD_REACH = (0.3, 1.0, 3.0)
 
 
 def _off_a_fold(
-    bk: BatchKinematics,
+    bk: Kinematics,
     drive: Drive,
     base_q: np.ndarray,
     base_t: np.ndarray,
@@ -533,14 +395,14 @@ def _folds(sv: np.ndarray, tol: Tolerance) -> tuple[np.ndarray, np.ndarray]:
 
 def _free_jacobians(evaluation: Evaluation, drive: Drive, rows: np.ndarray | None = None) -> np.ndarray:
     """The closure Jacobians of the poses (all, or ``rows``) over the free variables, stacked ``(N, m, free)``."""
-    return np.ascontiguousarray(np.moveaxis(evaluation.jacobian(rows)[:, drive.free], -1, 0))
+    return drive.equations.jacobians(evaluation, rows)
 
 
 RETURN_STEPS = 4
 """Steps of the walk back from a pose found off a fold to the fold's drive values (:func:`_walks_back`)."""
 
 
-def walk_between(bk: BatchKinematics, drive: Drive, q: np.ndarray, start: np.ndarray, goal: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
+def walk_between(bk: Kinematics, drive: Drive, q: np.ndarray, start: np.ndarray, goal: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
     """The poses reached from ``q`` (closed at drive values ``start``) by :data:`RETURN_STEPS` Newton solves on the straight way to ``goal``."""
     cur = q
     for k in range(1, RETURN_STEPS + 1):
@@ -548,7 +410,7 @@ def walk_between(bk: BatchKinematics, drive: Drive, q: np.ndarray, start: np.nda
     return cur
 
 
-def _walks_back(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray, base_q: np.ndarray, base_t: np.ndarray, tol: Tolerance) -> np.ndarray:
+def _walks_back(bk: Kinematics, drive: Drive, q: np.ndarray, targets: np.ndarray, base_q: np.ndarray, base_t: np.ndarray, tol: Tolerance) -> np.ndarray:
     """Whether each closed pose ``q`` (at ``targets``) lies on a branch through ``base_q``: walking back comes home.
 
     A pose found off a fold is kept only when continuation from it back to
@@ -565,7 +427,7 @@ def _walks_back(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.nd
 
 
 def close_lines(
-    bk: BatchKinematics,
+    bk: Kinematics,
     drive: Drive,
     start_q: np.ndarray,
     start_ok: np.ndarray,
@@ -638,7 +500,7 @@ def close_lines(
 
 
 def _spread_stops(
-    bk: BatchKinematics, drive: Drive, walk: AxisWalk, q: np.ndarray, err: np.ndarray, ok: np.ndarray, line_targets: np.ndarray, tol: Tolerance
+    bk: Kinematics, drive: Drive, walk: AxisWalk, q: np.ndarray, err: np.ndarray, ok: np.ndarray, line_targets: np.ndarray, tol: Tolerance
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Every point of the lines takes the pose of its stop, its driven angle turned by whole turns to its own value."""
     lines, count = line_targets.shape[:2]
@@ -649,7 +511,7 @@ def _spread_stops(
 
 
 def retarget(
-    bk: BatchKinematics, drive: Drive, q: np.ndarray, residual: np.ndarray, assembled: np.ndarray, targets: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE
+    bk: Kinematics, drive: Drive, q: np.ndarray, residual: np.ndarray, assembled: np.ndarray, targets: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Poses with their driven joint variables set to ``targets`` (the same joint states whole turns away); the residual of every changed assembled pose measured again.
 
@@ -672,7 +534,7 @@ def retarget(
     return moved, residual, assembled
 
 
-def residuals(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
+def residuals(bk: Kinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
     """The largest residual component of each pose ``q`` ``(N, n)`` at its driven values ``targets`` (loops and pose equations); infinite where not finite."""
     out = np.empty(len(q))
     for start in range(0, len(q), EVALUATION_BLOCK):  # a line of a 1-D sweep may hold millions of poses
@@ -694,7 +556,7 @@ def _unsolved(shape: tuple[int, ...], n: int) -> tuple[np.ndarray, np.ndarray, n
 
 
 def _leg(
-    bk: BatchKinematics,
+    bk: Kinematics,
     drive: Drive,
     start_q: np.ndarray,
     start_ok: np.ndarray,
@@ -861,7 +723,7 @@ class GridClosure:
     assembled: np.ndarray
 
 
-def seed_grid(bk: BatchKinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE) -> GridClosure:
+def seed_grid(bk: Kinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE) -> GridClosure:
     """Every point whose last coordinate is at its anchor, by continuation (the starts of the last axis's lines).
 
     Returns a :class:`GridClosure` over the whole grid where only those

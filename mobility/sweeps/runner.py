@@ -48,7 +48,7 @@ from ..core.model import Mechanism, integer_value
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError, clipped, shown_argument
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
-from .batch_kinematics import BatchKinematics
+from ..core.kinematics import Kinematics, kinematics
 from .seams import find_seams
 from .batch_systems import analyse_poses
 from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, residuals, seed_grid, targets_of
@@ -89,8 +89,8 @@ class _Context:
     inputs: ActuationInputs | None
 
     @cached_property
-    def bk(self) -> BatchKinematics:
-        return BatchKinematics(self.mechanism, joint_screws(self.mechanism).reference)
+    def bk(self) -> Kinematics:
+        return kinematics(self.mechanism)
 
     def __getstate__(self) -> dict:
         state = dict(vars(self))

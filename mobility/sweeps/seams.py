@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.tolerance import DEFAULT_TOLERANCE, SEAM_GAP, Tolerance
-from .batch_kinematics import BatchKinematics
+from ..core.kinematics import Kinematics
 from .continuation import Drive, line_layout, targets_of, walk_between
 from .grid import GridPlan
 from .posed_screws import posed_screws
@@ -43,12 +43,12 @@ from .walks import plan_walks
 __all__ = ["find_seams"]
 
 
-def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
+def find_seams(bk: Kinematics, plan: GridPlan, q: np.ndarray, assembled: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
     """The pairs of grid points, ``(last stop, anchor)`` of a line round a full turn, that no small motion joins.
 
     Parameters
     ----------
-    bk : BatchKinematics
+    bk : Kinematics
     plan : GridPlan
     q : ndarray, shape (size, n)
         The joint variables of every grid point (flat, C order).
@@ -86,7 +86,7 @@ def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np
     return np.array(sorted(out), dtype=int).reshape(-1, 2)
 
 
-def _pose_gap(bk: BatchKinematics, q: np.ndarray, other: np.ndarray) -> np.ndarray:
+def _pose_gap(bk: Kinematics, q: np.ndarray, other: np.ndarray) -> np.ndarray:
     """The largest difference between the joint twists of two sets of poses (unit columns, normalised coordinates), per pose.
 
     The joints' lines, not the links' displacements: a link that spins idly
