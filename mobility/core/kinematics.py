@@ -352,7 +352,9 @@ class Kinematics:
         the metric of ``q``) of the joint rates that close every loop to first
         order.
         """
-        jac = self.loop_jacobian(self._stack(q)[0][0])
+        # + 0.0: a signed zero (the sign of a product's round-off) is a plain zero, whose null space LAPACK completes
+        # the same way whatever the file's scale (-0.0 and 0.0 steer its reflections apart)
+        jac = self.loop_jacobian(self._stack(q)[0][0]) + 0.0
         n = self.variable_count
         if jac.shape[0] == 0:
             return RankDecision(0), np.eye(n)
