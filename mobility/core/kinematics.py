@@ -200,6 +200,8 @@ class Kinematics:
     _k2: np.ndarray = field(repr=False)
     _kp: np.ndarray = field(repr=False)
     _k2p: np.ndarray = field(repr=False)
+    _loop_groups: tuple = field(repr=False)  # (loop indices, their factors padded with None to one length), loops of about one length together
+    _loop_alone: tuple = field(repr=False)  # the same, each loop alone
 
     @property
     def variable_count(self) -> int:
@@ -245,28 +247,36 @@ class Kinematics:
         return _Exponentials(self, q.T)
 
     @staticmethod
-    def _chain(factors: tuple[Factor, ...], exps: "_Exponentials") -> tuple[Motion, list[Motion | None]]:
-        """Product of ``factors`` and the partial product before each factor (``None``: the identity)."""
+    def _chain(group: tuple[tuple[Factor | None, ...], ...], exps: "_Exponentials") -> tuple[Motion, list[Motion | None]]:
+        """Products of a group of factor chains of one length (``None`` pads a shorter one), the ``G`` chains' poses side by side
+        (``(3, 3, G N)``), and the partial products before each position (``None``: the identity)."""
         g: Motion | None = None
         before: list[Motion | None] = []
-        for f in factors:
+        for i in range(len(group[0])):
             before.append(g)
-            g = compose(g, exps.factor(f.variable, f.sign))
-        return (_identity(exps.count) if g is None else g), before
+            g = compose(g, exps.gather([chain[i] for chain in group]))
+        return (_identity(exps.count * len(group)) if g is None else g), before
 
-    def _columns(self, factors: tuple[Factor, ...], before: list[Motion | None], rows: np.ndarray | None, count: int) -> np.ndarray:
-        """Right-trivialised derivative ``(6, n, len(rows))`` of a product from its partial products."""
-        cols = np.zeros((6, self.variable_count, count))
-        for f, g in zip(factors, before):
-            x = f.sign * self._rows[f.variable]
+    def _columns(self, group: tuple[tuple[Factor | None, ...], ...], before: list[Motion | None], rows: np.ndarray | None, count: int) -> np.ndarray:
+        """Right-trivialised derivatives ``(6, n, G, len(rows))`` of a group's products from their partial products."""
+        n, size = self.variable_count, len(group)
+        cols = np.zeros((6, n + 1, size, count))  # a padding factor's column is the last, dropped
+        chains = np.arange(size)
+        for i, g in enumerate(before):
+            factors = [chain[i] for chain in group]
+            variables = np.array([n if f is None else f.variable for f in factors])
+            x = np.array([np.zeros(6) if f is None else f.sign * self._rows[f.variable] for f in factors])  # (G, 6)
             if g is None:
-                cols[:, f.variable] = x[:, None]
+                cols[:, variables, chains] = x.T[:, :, None]
                 continue
-            rot, shift = (g[0], g[1]) if rows is None else (g[0][:, :, rows], g[1][:, rows])
+            rot, shift = g
+            if rows is not None:
+                rot, shift = rot.reshape(3, 3, size, -1)[..., rows].reshape(3, 3, -1), shift.reshape(3, size, -1)[..., rows].reshape(3, -1)
+            x = x[0] if size == 1 else np.repeat(x.T, count, axis=1)  # each chain's twist at each of its poses
             w = rotate(rot, x[:3])
-            cols[:3, f.variable] = w
-            cols[3:, f.variable] = stacked_cross(shift, w) + rotate(rot, x[3:])
-        return cols
+            cols[:3, variables, chains] = w.reshape(3, size, count)
+            cols[3:, variables, chains] = (stacked_cross(shift, w) + rotate(rot, x[3:])).reshape(3, size, count)
+        return cols[:, :n]
 
     def link_motions(self, q: np.ndarray) -> dict[str, Motion]:
         """Displacement of every link, stacked pose index last: rotation ``(3, 3, N)`` and translation ``(3, N)``."""
@@ -340,8 +350,8 @@ class Kinematics:
         """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q`` (``(6, n)``)."""
         stack, single = self._stack(q)
         exps = self._exponentials(stack)
-        path = self.paths[self.mechanism.end_effector]
-        cols = np.moveaxis(self._columns(path, self._chain(path, exps)[1], None, exps.count), -1, 0)
+        group = (self.paths[self.mechanism.end_effector],)
+        cols = np.moveaxis(self._columns(group, self._chain(group, exps)[1], None, exps.count)[:, :, 0], -1, 0)
         return cols[0] if single else cols
 
     # -- first-order and second-order structure ------------------------------
@@ -528,6 +538,13 @@ class _Exponentials:
         self.rot, self.shift = rot, shift
         self._inverse: dict[int, Motion] = {}
 
+    def gather(self, factors: list[Factor | None]) -> Motion:
+        """The factors' exponentials (``None``: the identity), side by side: ``(3, 3, G N)``."""
+        if len(factors) == 1 and factors[0] is not None:
+            return self.factor(factors[0].variable, factors[0].sign)
+        parts = [_identity(self.count) if f is None else self.factor(f.variable, f.sign) for f in factors]
+        return np.stack([p[0] for p in parts], axis=2).reshape(3, 3, -1), np.stack([p[1] for p in parts], axis=1).reshape(3, -1)
+
     def factor(self, variable: int, sign: float) -> Motion:
         if sign > 0:
             return self.rot[variable], self.shift[variable]
@@ -553,33 +570,39 @@ class Evaluation:
     def __init__(self, kin: Kinematics, q: np.ndarray, components: np.ndarray | None) -> None:
         self._kin = kin
         exps = kin._exponentials(q)
-        self._count = exps.count
-        values = []
-        self._chains: list[tuple[tuple[Factor, ...], list[Motion | None], tuple[np.ndarray, np.ndarray] | None]] = []  # the end effector's with its pose (p, r)
-        for loop in kin.loops:
-            g, before = kin._chain(loop, exps)
-            values.append(twist_logs(g))
-            self._chains.append((loop, before, None))
+        self._count = count = exps.count
+        blocks: list[np.ndarray] = [np.zeros((6, count))] * kin.loop_count
+        # loops of about one length side by side while the stack is small (fewer, larger array operations), else each alone
+        plan = kin._loop_groups if count <= GROUPED_POSES else kin._loop_alone
+        self._chains: list[tuple[tuple[int, ...], tuple, list[Motion | None], tuple[np.ndarray, np.ndarray] | None]] = []  # the end effector's with its pose (p, r)
+        for loops, group in plan:
+            g, before = kin._chain(group, exps)
+            logs = twist_logs(g).reshape(6, len(group), count)
+            for k, loop in enumerate(loops):
+                blocks[loop] = logs[:, k]
+            self._chains.append((loops, group, before, None))
         self._components = None if components is None or not len(components) else np.asarray(components)
         if self._components is not None:
-            path = kin.paths[kin.mechanism.end_effector]
-            (rot, shift), before = kin._chain(path, exps)
+            group = (kin.paths[kin.mechanism.end_effector],)
+            (rot, shift), before = kin._chain(group, exps)
             p = rotate(rot, kin.reference) + shift
             r = rotation_logs_last(rot)
-            values.append(np.concatenate([p - kin.reference[:, None], r])[self._components])
-            self._chains.append((path, before, (p, r)))
-        self.values = np.concatenate(values) if values else np.zeros((0, self._count))
+            blocks.append(np.concatenate([p - kin.reference[:, None], r])[self._components])
+            self._chains.append(((), group, before, (p, r)))
+        self.values = np.concatenate(blocks) if blocks else np.zeros((0, count))
 
     def jacobian(self, rows: np.ndarray | None = None) -> np.ndarray:
         """The Jacobian ``(m, n, len(rows))`` of the chosen poses (all by default)."""
         kin = self._kin
         count = self._count if rows is None else len(rows)
-        blocks = []
-        for factors, before, pose in self._chains:
-            cols = kin._columns(factors, before, rows, count)
+        blocks: list[np.ndarray] = [np.zeros(0)] * kin.loop_count
+        for loops, group, before, pose in self._chains:
+            cols = kin._columns(group, before, rows, count)
             if pose is None:
-                blocks.append(cols)
+                for k, loop in enumerate(loops):
+                    blocks[loop] = cols[:, :, k]
                 continue
+            cols = cols[:, :, 0]
             p, r = pose if rows is None else (pose[0][:, rows], pose[1][:, rows])
             omega = cols[:3]
             dp = cols[3:] + stacked_cross(omega, p[:, None, :])  # point velocity v + w x p
@@ -588,6 +611,10 @@ class Evaluation:
         if not blocks:
             return np.zeros((0, kin.variable_count, count))
         return np.concatenate(blocks)
+
+
+GROUPED_POSES = 256
+"""Stacks of at most this many poses evaluate loops of about one length side by side (:class:`Evaluation`); larger ones each loop alone."""
 
 
 # ---------------------------------------------------------------------------
@@ -905,6 +932,14 @@ def _build(mechanism: Mechanism) -> Kinematics:
         skip_b = sum(offsets[j + 1] - offsets[j] for j in pb[:common])
         inverse_b = tuple(Factor(f.variable, -f.sign) for f in reversed(paths[b][skip_b:]))
         loops.append(paths[a][skip_a:] + joint_factors(index, True) + inverse_b)
+    # loops grouped by length within a factor of two (so padding at most doubles the work)
+    by_length: dict[int, list[int]] = {}
+    for row, loop in enumerate(loops):
+        by_length.setdefault(max(len(loop), 1).bit_length(), []).append(row)
+    groups = []
+    for rows in by_length.values():
+        length = max(len(loops[r]) for r in rows)
+        groups.append((tuple(rows), tuple(tuple(loops[r]) + (None,) * (length - len(loops[r])) for r in rows)))
     return Kinematics(
         mechanism=mechanism,
         normalisation=norm,
@@ -925,4 +960,6 @@ def _build(mechanism: Mechanism) -> Kinematics:
         _k2=(k @ k)[..., None],
         _kp=np.einsum("vij,vj->vi", k, nearest)[:, :, None],
         _k2p=np.einsum("vij,vj->vi", k @ k, nearest)[:, :, None],
+        _loop_groups=tuple(groups),
+        _loop_alone=tuple(((row,), (tuple(loop),)) for row, loop in enumerate(loops)),
     )
