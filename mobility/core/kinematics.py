@@ -200,8 +200,11 @@ class Kinematics:
     _k2: np.ndarray = field(repr=False)
     _kp: np.ndarray = field(repr=False)
     _k2p: np.ndarray = field(repr=False)
-    _loop_groups: tuple = field(repr=False)  # (loop indices, their factors padded with None to one length), loops of about one length together
-    _loop_alone: tuple = field(repr=False)  # the same, each loop alone
+    _inverted: np.ndarray = field(repr=False)  # the variables whose exponential is also needed inverted
+    _inverse: dict[int, int] = field(repr=False)  # the table index of each one's inverse
+    _loop_groups: tuple["_Chains", ...] = field(repr=False)  # loops of about one length together
+    _loop_alone: tuple["_Chains", ...] = field(repr=False)  # each loop alone
+    _end_effector: "_Chains" = field(repr=False)  # the end effector's path
 
     @property
     def variable_count(self) -> int:
@@ -247,35 +250,33 @@ class Kinematics:
         return _Exponentials(self, q.T)
 
     @staticmethod
-    def _chain(group: tuple[tuple[Factor | None, ...], ...], exps: "_Exponentials") -> tuple[Motion, list[Motion | None]]:
-        """Products of a group of factor chains of one length (``None`` pads a shorter one), the ``G`` chains' poses side by side
-        (``(3, 3, G N)``), and the partial products before each position (``None``: the identity)."""
+    def _chain(chains: "_Chains", exps: "_Exponentials") -> tuple[Motion, list[Motion | None]]:
+        """Products of ``G`` chains of factors of one length, their poses side by side (``(3, 3, G N)``), and the
+        partial products before each position (``None``: the identity)."""
         g: Motion | None = None
         before: list[Motion | None] = []
-        for i in range(len(group[0])):
+        for factors in chains.factors:
             before.append(g)
-            g = compose(g, exps.gather([chain[i] for chain in group]))
-        return (_identity(exps.count * len(group)) if g is None else g), before
+            g = compose(g, exps.gather(factors))
+        return (_identity(exps.count * chains.size) if g is None else g), before
 
-    def _columns(self, group: tuple[tuple[Factor | None, ...], ...], before: list[Motion | None], rows: np.ndarray | None, count: int) -> np.ndarray:
-        """Right-trivialised derivatives ``(6, n, G, len(rows))`` of a group's products from their partial products."""
-        n, size = self.variable_count, len(group)
+    def _columns(self, chains: "_Chains", before: list[Motion | None], rows: np.ndarray | None, count: int) -> np.ndarray:
+        """Right-trivialised derivatives ``(6, n, G, len(rows))`` of chains' products from their partial products, all positions at once."""
+        n, size, x = self.variable_count, chains.size, chains.twists
         cols = np.zeros((6, n + 1, size, count))  # a padding factor's column is the last, dropped
-        chains = np.arange(size)
-        for i, g in enumerate(before):
-            factors = [chain[i] for chain in group]
-            variables = np.array([n if f is None else f.variable for f in factors])
-            x = np.array([np.zeros(6) if f is None else f.sign * self._rows[f.variable] for f in factors])  # (G, 6)
-            if g is None:
-                cols[:, variables, chains] = x.T[:, :, None]
-                continue
-            rot, shift = g
+        if not before:
+            return cols[:, :n]
+        which = np.arange(size)
+        cols[:, chains.variables[0], which] = x[:, 0, :, None]  # the identity before the first factor
+        if len(before) > 1:
+            rot = np.stack([g[0] for g in before[1:]], axis=2).reshape(3, 3, len(before) - 1, size, -1)  # type: ignore[index]
+            shift = np.stack([g[1] for g in before[1:]], axis=1).reshape(3, len(before) - 1, size, -1)  # type: ignore[index]
             if rows is not None:
-                rot, shift = rot.reshape(3, 3, size, -1)[..., rows].reshape(3, 3, -1), shift.reshape(3, size, -1)[..., rows].reshape(3, -1)
-            x = x[0] if size == 1 else np.repeat(x.T, count, axis=1)  # each chain's twist at each of its poses
+                rot, shift = rot[..., rows], shift[..., rows]
+            x = x[:, 1:, :, None]
             w = rotate(rot, x[:3])
-            cols[:3, variables, chains] = w.reshape(3, size, count)
-            cols[3:, variables, chains] = (stacked_cross(shift, w) + rotate(rot, x[3:])).reshape(3, size, count)
+            cols[:3, chains.variables[1:], which] = w
+            cols[3:, chains.variables[1:], which] = stacked_cross(shift, w) + rotate(rot, x[3:])
         return cols[:, :n]
 
     def link_motions(self, q: np.ndarray) -> dict[str, Motion]:
@@ -350,8 +351,8 @@ class Kinematics:
         """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q`` (``(6, n)``)."""
         stack, single = self._stack(q)
         exps = self._exponentials(stack)
-        group = (self.paths[self.mechanism.end_effector],)
-        cols = np.moveaxis(self._columns(group, self._chain(group, exps)[1], None, exps.count)[:, :, 0], -1, 0)
+        chains = self._end_effector
+        cols = np.moveaxis(self._columns(chains, self._chain(chains, exps)[1], None, exps.count)[:, :, 0], -1, 0)
         return cols[0] if single else cols
 
     # -- first-order and second-order structure ------------------------------
@@ -522,36 +523,55 @@ def _identity(count: int) -> Motion:
     return np.broadcast_to(np.eye(3)[..., None], (3, 3, count)), np.zeros((3, count))
 
 
+@dataclass(frozen=True, eq=False)
+class _Chains:
+    """``G`` products of factors (loops, or the end effector's path), padded to one length by the identity.
+
+    ``factors[i, g]``: the index of chain ``g``'s ``i``-th factor among the
+    exponentials of :class:`_Exponentials` (forward ones, inverse ones, the
+    identity); ``variables[i, g]`` its variable (``n`` for padding);
+    ``twists[:, i, g]`` its signed twist (zero for padding).
+    """
+
+    loops: tuple[int, ...]
+    factors: np.ndarray
+    variables: np.ndarray
+    twists: np.ndarray
+
+    @property
+    def size(self) -> int:
+        return self.factors.shape[1]
+
+
 class _Exponentials:
-    """``exp(q_i x_i)`` of every variable of a stack (Rodrigues), its inverse computed when first asked."""
+    """``exp(q_i x_i)`` of every variable of a stack (Rodrigues) and the inverse of those that need one, as one table."""
 
     def __init__(self, kin: Kinematics, q: np.ndarray) -> None:  # q: (n, N)
         self.count = q.shape[1]
+        self._inverse = kin._inverse
         sin, one_minus_cos = np.sin(q), 1.0 - np.cos(q)
-        rot = kin._k * sin[:, None, None, :] + kin._k2 * one_minus_cos[:, None, None, :]
+        rot = kin._k * sin[None, None] + kin._k2 * one_minus_cos[None, None]  # (3, 3, n, N)
         # about the line through p: shift = (I - R) p + h q a, and (I - R) p = -(sin K p + (1 - cos) K^2 p)
-        shift = -(kin._kp * sin[:, None, :] + kin._k2p * one_minus_cos[:, None, :]) + (kin._pitches[:, None] * q)[:, None, :] * kin._axes[:, :, None]
-        rot += np.eye(3)[None, :, :, None]
+        shift = -(kin._kp * sin[None] + kin._k2p * one_minus_cos[None]) + (kin._pitches[:, None] * q)[None] * kin._axes.T[:, :, None]
+        rot += np.eye(3)[:, :, None, None]
         prismatic = kin._prismatic
-        rot[prismatic] = np.eye(3)[:, :, None]
-        shift[prismatic] = q[prismatic][:, None, :] * kin._axes[prismatic][:, :, None]
-        self.rot, self.shift = rot, shift
-        self._inverse: dict[int, Motion] = {}
-
-    def gather(self, factors: list[Factor | None]) -> Motion:
-        """The factors' exponentials (``None``: the identity), side by side: ``(3, 3, G N)``."""
-        if len(factors) == 1 and factors[0] is not None:
-            return self.factor(factors[0].variable, factors[0].sign)
-        parts = [_identity(self.count) if f is None else self.factor(f.variable, f.sign) for f in factors]
-        return np.stack([p[0] for p in parts], axis=2).reshape(3, 3, -1), np.stack([p[1] for p in parts], axis=1).reshape(3, -1)
+        rot[:, :, prismatic] = np.eye(3)[:, :, None, None]
+        shift[:, prismatic] = q[prismatic][None] * kin._axes[prismatic].T[:, :, None]
+        inverted = kin._inverted
+        turned = np.swapaxes(rot[:, :, inverted], 0, 1)
+        eye = _identity(self.count)
+        self.rot = np.concatenate([rot, turned, eye[0][:, :, None]], axis=2)
+        self.shift = np.concatenate([shift, -rotate(turned, shift[:, inverted]), eye[1][:, None]], axis=1)
 
     def factor(self, variable: int, sign: float) -> Motion:
-        if sign > 0:
-            return self.rot[variable], self.shift[variable]
-        if variable not in self._inverse:
-            rt = np.swapaxes(self.rot[variable], 0, 1)
-            self._inverse[variable] = (rt, -rotate(rt, self.shift[variable]))
-        return self._inverse[variable]
+        index = variable if sign > 0 else self._inverse[variable]
+        return self.rot[:, :, index], self.shift[:, index]
+
+    def gather(self, factors: np.ndarray) -> Motion:
+        """The exponentials of the table indices ``factors`` ``(G,)``, side by side: ``(3, 3, G N)``."""
+        if len(factors) == 1:
+            return self.rot[:, :, factors[0]], self.shift[:, factors[0]]
+        return self.rot[:, :, factors].reshape(3, 3, -1), self.shift[:, factors].reshape(3, -1)
 
 
 class Evaluation:
@@ -574,21 +594,20 @@ class Evaluation:
         blocks: list[np.ndarray] = [np.zeros((6, count))] * kin.loop_count
         # loops of about one length side by side while the stack is small (fewer, larger array operations), else each alone
         plan = kin._loop_groups if count <= GROUPED_POSES else kin._loop_alone
-        self._chains: list[tuple[tuple[int, ...], tuple, list[Motion | None], tuple[np.ndarray, np.ndarray] | None]] = []  # the end effector's with its pose (p, r)
-        for loops, group in plan:
-            g, before = kin._chain(group, exps)
-            logs = twist_logs(g).reshape(6, len(group), count)
-            for k, loop in enumerate(loops):
+        self._chains: list[tuple[_Chains, list[Motion | None], tuple[np.ndarray, np.ndarray] | None]] = []  # the end effector's with its pose (p, r)
+        for chains in plan:
+            g, before = kin._chain(chains, exps)
+            logs = twist_logs(g).reshape(6, chains.size, count)
+            for k, loop in enumerate(chains.loops):
                 blocks[loop] = logs[:, k]
-            self._chains.append((loops, group, before, None))
+            self._chains.append((chains, before, None))
         self._components = None if components is None or not len(components) else np.asarray(components)
         if self._components is not None:
-            group = (kin.paths[kin.mechanism.end_effector],)
-            (rot, shift), before = kin._chain(group, exps)
+            (rot, shift), before = kin._chain(kin._end_effector, exps)
             p = rotate(rot, kin.reference) + shift
             r = rotation_logs_last(rot)
             blocks.append(np.concatenate([p - kin.reference[:, None], r])[self._components])
-            self._chains.append(((), group, before, (p, r)))
+            self._chains.append((kin._end_effector, before, (p, r)))
         self.values = np.concatenate(blocks) if blocks else np.zeros((0, count))
 
     def jacobian(self, rows: np.ndarray | None = None) -> np.ndarray:
@@ -596,10 +615,10 @@ class Evaluation:
         kin = self._kin
         count = self._count if rows is None else len(rows)
         blocks: list[np.ndarray] = [np.zeros(0)] * kin.loop_count
-        for loops, group, before, pose in self._chains:
-            cols = kin._columns(group, before, rows, count)
+        for chains, before, pose in self._chains:
+            cols = kin._columns(chains, before, rows, count)
             if pose is None:
-                for k, loop in enumerate(loops):
+                for k, loop in enumerate(chains.loops):
                     blocks[loop] = cols[:, :, k]
                 continue
             cols = cols[:, :, 0]
@@ -932,14 +951,25 @@ def _build(mechanism: Mechanism) -> Kinematics:
         skip_b = sum(offsets[j + 1] - offsets[j] for j in pb[:common])
         inverse_b = tuple(Factor(f.variable, -f.sign) for f in reversed(paths[b][skip_b:]))
         loops.append(paths[a][skip_a:] + joint_factors(index, True) + inverse_b)
+    inverted = sorted({f.variable for chain in (*paths.values(), *loops) for f in chain if f.sign < 0})
+    inverse = {v: n + i for i, v in enumerate(inverted)}
+    rows = np.vstack([twists.T, np.zeros((1, 6))])  # a padding factor's twist is zero
+
+    def chains(indices: tuple[int, ...], members: list[tuple[Factor, ...]]) -> _Chains:
+        length = max([len(c) for c in members] + [0])
+        factors = np.full((length, len(members)), n + len(inverted), dtype=int)  # the identity pads
+        variables = np.full((length, len(members)), n, dtype=int)
+        signs = np.zeros((length, len(members)))
+        for g, chain in enumerate(members):
+            for i, f in enumerate(chain):
+                factors[i, g] = f.variable if f.sign > 0 else inverse[f.variable]
+                variables[i, g], signs[i, g] = f.variable, f.sign
+        return _Chains(indices, factors, variables, (signs[..., None] * rows[variables]).transpose(2, 0, 1))
+
     # loops grouped by length within a factor of two (so padding at most doubles the work)
     by_length: dict[int, list[int]] = {}
     for row, loop in enumerate(loops):
         by_length.setdefault(max(len(loop), 1).bit_length(), []).append(row)
-    groups = []
-    for rows in by_length.values():
-        length = max(len(loops[r]) for r in rows)
-        groups.append((tuple(rows), tuple(tuple(loops[r]) + (None,) * (length - len(loops[r])) for r in rows)))
     return Kinematics(
         mechanism=mechanism,
         normalisation=norm,
@@ -956,10 +986,13 @@ def _build(mechanism: Mechanism) -> Kinematics:
         _axes=unit,
         _pitches=np.where(np.array(kinds) == "H", np.einsum("ij,ij->i", w, v), 0.0),
         _prismatic=is_p,
-        _k=k[..., None],
-        _k2=(k @ k)[..., None],
-        _kp=np.einsum("vij,vj->vi", k, nearest)[:, :, None],
-        _k2p=np.einsum("vij,vj->vi", k @ k, nearest)[:, :, None],
-        _loop_groups=tuple(groups),
-        _loop_alone=tuple(((row,), (tuple(loop),)) for row, loop in enumerate(loops)),
+        _k=k.transpose(1, 2, 0)[..., None],
+        _k2=(k @ k).transpose(1, 2, 0)[..., None],
+        _kp=np.einsum("vij,vj->vi", k, nearest).T[:, :, None],
+        _k2p=np.einsum("vij,vj->vi", k @ k, nearest).T[:, :, None],
+        _inverted=np.array(inverted, dtype=int),
+        _inverse=inverse,
+        _loop_groups=tuple(chains(tuple(rows_), [loops[r] for r in rows_]) for rows_ in by_length.values()),
+        _loop_alone=tuple(chains((row,), [loop]) for row, loop in enumerate(loops)),
+        _end_effector=chains((), [paths[mechanism.end_effector]]),
     )
