@@ -442,9 +442,9 @@ class Kinematics:
         Closure
             ``converged`` tells whether it closed; never raises for a failure
             to close (the caller decides what that means).  Unlike a sweep's
-            solves, it keeps stepping while Newton still gains after closing (a
-            small residual near a singular pose can leave the pose itself off by
-            residual / sigma_min).
+            solves, it keeps stepping while Newton still gains after closing, down
+            to the round-off of the residual (a small residual near a singular
+            pose can leave the pose itself off by residual / sigma_min).
         """
         q = self._stack(q)[0][0]
         n = self.variable_count
@@ -453,7 +453,7 @@ class Kinematics:
         else:
             equations = Equations(linear=np.asarray(constraints[0], dtype=float).reshape(-1, n))
             goals = np.asarray(constraints[1], dtype=float).reshape(1, -1)
-        out = newton(self, q[None], goals, equations, tol=tol, max_move=np.inf if max_move is None else max_move, max_iter=max_iter, polished=0.0)
+        out = newton(self, q[None], goals, equations, tol=tol, max_move=np.inf if max_move is None else max_move, max_iter=max_iter, polished=ROUND_OFF / tol.closure, accelerate=True)
         history = tuple(float(e) for e in out.history[0] if not np.isnan(e))
         return Closure(out.q[0], float(out.residual[0]), len(history) - 1, bool(out.converged[0]), history)
 
@@ -717,6 +717,13 @@ POLISHED = 0.1
 STALLED = 4
 """A pose stops after this many steps in a row that did not halve its best residual."""
 
+ROUND_OFF = float(np.finfo(float).eps)
+"""A residual below this (the round-off of numbers of about one) has nothing left to gain (:meth:`Kinematics.close`)."""
+
+LINEAR_RATIO = (0.15, 0.35)
+"""Newton's residual shrinking by a ratio in this range at two steps running (about 1/4: the
+error halves, the residual is quadratic in it) is the mark of a singular root."""
+
 
 def newton(
     kin: Kinematics,
@@ -728,6 +735,7 @@ def newton(
     max_move: np.ndarray | float = np.inf,
     max_iter: int = MAX_ITERATIONS,
     polished: float = POLISHED,
+    accelerate: bool = False,
 ) -> Closures:
     """Close every loop of a stack of poses by Gauss–Newton with damped minimum-norm steps.
 
@@ -757,6 +765,11 @@ def newton(
         would reach another assembly, not the nearby one).
     max_iter : int
     polished : float
+    accelerate : bool
+        Double the step of a pose whose residual shrank by a ratio in
+        :data:`LINEAR_RATIO` at the last two steps (Newton at a singular
+        root): it removes the leading error term, the same poses in half the
+        steps.
 
     Returns
     -------
@@ -766,12 +779,20 @@ def newton(
     # overflows: its iterates turn non-finite and are dropped (err = inf, the move refused), so numpy's
     # warnings would only repeat what the result says (not closed).
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        best_q, best, history = _newton_loop(kin, np.array(start, dtype=float), goals, equations, tol, max_move, max_iter, polished)
+        best_q, best, history = _newton_loop(kin, np.array(start, dtype=float), goals, equations, tol, max_move, max_iter, polished, accelerate)
     return Closures(best_q, best, best <= tol.closure, history)
 
 
 def _newton_loop(
-    kin: Kinematics, q0: np.ndarray, goals: np.ndarray, equations: Equations, tol: Tolerance, max_move: np.ndarray | float, max_iter: int, polished: float
+    kin: Kinematics,
+    q0: np.ndarray,
+    goals: np.ndarray,
+    equations: Equations,
+    tol: Tolerance,
+    max_move: np.ndarray | float,
+    max_iter: int,
+    polished: float,
+    accelerate: bool,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The iterations of :func:`newton`: the best iterate of each pose, its largest residual component, the history."""
     count = len(q0)
@@ -807,6 +828,11 @@ def _newton_loop(
         # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
         # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
         step = min_norm_steps(jac, r)
+        if accelerate and len(history) >= 3:
+            before, last, now = (h[active] for h in history[-3:])
+            low, high = LINEAR_RATIO
+            # at a singular root Newton halves the error each step (the residual shrinks by about 1/4): the doubled step removes it
+            step[(low <= last / before) & (last / before <= high) & (low <= now / last) & (now / last <= high)] *= 2.0
         moved = q[active].copy()
         moved[:, free] += step
         finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
