@@ -250,17 +250,17 @@ class Kinematics:
         return _Exponentials(self, q.T)
 
     @staticmethod
-    def _chain(chains: "_Chains", exps: "_Exponentials") -> tuple[Motion, list[Motion | None]]:
-        """Products of ``G`` chains of factors of one length, their poses side by side (``(3, 3, G N)``), and the
-        partial products before each position (``None``: the identity)."""
-        g: Motion | None = None
-        before: list[Motion | None] = []
+    def _chain(chains: "_Chains", exps: "_Exponentials") -> tuple[np.ndarray, list[np.ndarray | None]]:
+        """Products of ``G`` chains of factors of one length as frames ``[R | t]``, their poses side by side
+        (``(3, 4, G N)``), and the partial products before each position (``None``: the identity)."""
+        g: np.ndarray | None = None
+        before: list[np.ndarray | None] = []
         for factors in chains.factors:
             before.append(g)
             g = compose(g, exps.gather(factors))
         return (_identity(exps.count * chains.size) if g is None else g), before
 
-    def _columns(self, chains: "_Chains", before: list[Motion | None], rows: np.ndarray | None, count: int) -> np.ndarray:
+    def _columns(self, chains: "_Chains", before: list[np.ndarray | None], rows: np.ndarray | None, count: int) -> np.ndarray:
         """Right-trivialised derivatives ``(6, n, G, len(rows))`` of chains' products from their partial products, all positions at once."""
         n, size, x = self.variable_count, chains.size, chains.twists
         cols = np.zeros((6, n + 1, size, count))  # a padding factor's column is the last, dropped
@@ -269,10 +269,10 @@ class Kinematics:
         which = np.arange(size)
         cols[:, chains.variables[0], which] = x[:, 0, :, None]  # the identity before the first factor
         if len(before) > 1:
-            rot = np.stack([g[0] for g in before[1:]], axis=2).reshape(3, 3, len(before) - 1, size, -1)  # type: ignore[index]
-            shift = np.stack([g[1] for g in before[1:]], axis=1).reshape(3, len(before) - 1, size, -1)  # type: ignore[index]
+            frames = np.stack(before[1:], axis=2).reshape(3, 4, len(before) - 1, size, -1)  # type: ignore[arg-type]
             if rows is not None:
-                rot, shift = rot[..., rows], shift[..., rows]
+                frames = frames[..., rows]
+            rot, shift = frames[:, :3], frames[:, 3]
             x = x[:, 1:, :, None]
             w = rotate(rot, x[:3])
             cols[:3, chains.variables[1:], which] = w
@@ -283,13 +283,13 @@ class Kinematics:
         """Displacement of every link, stacked pose index last: rotation ``(3, 3, N)`` and translation ``(3, N)``."""
         q, _ = self._stack(q)
         exps = self._exponentials(q)
-        out: dict[str, Motion] = {self.mechanism.ground: _identity(exps.count)}
+        frames = {self.mechanism.ground: _identity(exps.count)}
         for parent, child, step in self._steps:
-            g = out[parent]
+            g = frames[parent]
             for f in step:
                 g = compose(g, exps.factor(f.variable, f.sign))
-            out[child] = g
-        return out
+            frames[child] = g
+        return {link: (g[:, :3], g[:, 3]) for link, g in frames.items()}
 
     def link_displacements(self, q: np.ndarray) -> dict[str, np.ndarray]:
         """Displacement ``g_L`` (4x4, normalised coordinates; ``(N, 4, 4)`` for a stack) of every link at ``q``.
@@ -518,9 +518,9 @@ def _keep_coincident_points(given: Sequence[Joint], moved: list[Joint]) -> tuple
     return tuple(moved)
 
 
-def _identity(count: int) -> Motion:
-    """``count`` identity displacements."""
-    return np.broadcast_to(np.eye(3)[..., None], (3, 3, count)), np.zeros((3, count))
+def _identity(count: int) -> np.ndarray:
+    """``count`` identity displacements as frames ``[I | 0]`` ``(3, 4, count)``."""
+    return np.broadcast_to(np.eye(3, 4)[..., None], (3, 4, count))
 
 
 @dataclass(frozen=True, eq=False)
@@ -557,21 +557,21 @@ class _Exponentials:
         prismatic = kin._prismatic
         rot[:, :, prismatic] = np.eye(3)[:, :, None, None]
         shift[:, prismatic] = q[prismatic][None] * kin._axes[prismatic].T[:, :, None]
-        inverted = kin._inverted
+        inverted, n = kin._inverted, len(q)
         turned = np.swapaxes(rot[:, :, inverted], 0, 1)
-        eye = _identity(self.count)
-        self.rot = np.concatenate([rot, turned, eye[0][:, :, None]], axis=2)
-        self.shift = np.concatenate([shift, -rotate(turned, shift[:, inverted]), eye[1][:, None]], axis=1)
+        self.table = table = np.empty((3, 4, n + len(inverted) + 1, self.count), dtype=rot.dtype)  # frames [R | t]
+        table[:, :3, :n], table[:, 3, :n] = rot, shift
+        table[:, :3, n:-1], table[:, 3, n:-1] = turned, -rotate(turned, shift[:, inverted])
+        table[:, :, -1] = np.eye(3, 4)[..., None]
 
-    def factor(self, variable: int, sign: float) -> Motion:
-        index = variable if sign > 0 else self._inverse[variable]
-        return self.rot[:, :, index], self.shift[:, index]
+    def factor(self, variable: int, sign: float) -> np.ndarray:
+        return self.table[:, :, variable if sign > 0 else self._inverse[variable]]
 
-    def gather(self, factors: np.ndarray) -> Motion:
-        """The exponentials of the table indices ``factors`` ``(G,)``, side by side: ``(3, 3, G N)``."""
+    def gather(self, factors: np.ndarray) -> np.ndarray:
+        """The exponentials of the table indices ``factors`` ``(G,)``, side by side: ``(3, 4, G N)``."""
         if len(factors) == 1:
-            return self.rot[:, :, factors[0]], self.shift[:, factors[0]]
-        return self.rot[:, :, factors].reshape(3, 3, -1), self.shift[:, factors].reshape(3, -1)
+            return self.table[:, :, factors[0]]
+        return self.table[:, :, factors].reshape(3, 4, -1)
 
 
 class Evaluation:
@@ -594,16 +594,17 @@ class Evaluation:
         blocks: list[np.ndarray] = [np.zeros((6, count))] * kin.loop_count
         # loops of about one length side by side while the stack is small (fewer, larger array operations), else each alone
         plan = kin._loop_groups if count <= GROUPED_POSES else kin._loop_alone
-        self._chains: list[tuple[_Chains, list[Motion | None], tuple[np.ndarray, np.ndarray] | None]] = []  # the end effector's with its pose (p, r)
+        self._chains: list[tuple[_Chains, list[np.ndarray | None], tuple[np.ndarray, np.ndarray] | None]] = []  # the end effector's with its pose (p, r)
         for chains in plan:
             g, before = kin._chain(chains, exps)
-            logs = twist_logs(g).reshape(6, chains.size, count)
+            logs = twist_logs((g[:, :3], g[:, 3])).reshape(6, chains.size, count)
             for k, loop in enumerate(chains.loops):
                 blocks[loop] = logs[:, k]
             self._chains.append((chains, before, None))
         self._components = None if components is None or not len(components) else np.asarray(components)
         if self._components is not None:
-            (rot, shift), before = kin._chain(kin._end_effector, exps)
+            g, before = kin._chain(kin._end_effector, exps)
+            rot, shift = g[:, :3], g[:, 3]
             p = rotate(rot, kin.reference) + shift
             r = rotation_logs_last(rot)
             blocks.append(np.concatenate([p - kin.reference[:, None], r])[self._components])

@@ -431,13 +431,16 @@ def rotate(rot: np.ndarray, v: np.ndarray) -> np.ndarray:
     return rot[:, 0] * v[0] + rot[:, 1] * v[1] + rot[:, 2] * v[2]
 
 
-def compose(g: Motion | None, h: Motion) -> Motion:
-    """``g h`` of stacked displacements (``None`` is the identity)."""
+def compose(g: np.ndarray | None, h: np.ndarray) -> np.ndarray:
+    """``g h`` of stacked displacements held as frames ``[R | t]`` ``(3, 4, ...)`` (``None`` is the identity).
+
+    The translation column is ``R t_h + t_g`` summed in the order of :func:`rotate`.
+    """
     if g is None:
         return h
-    rot, shift = g
-    turned = rot[:, 0, None] * h[0][0] + rot[:, 1, None] * h[0][1] + rot[:, 2, None] * h[0][2]
-    return turned, rotate(rot, h[1]) + shift
+    out = g[:, 0, None] * h[0] + g[:, 1, None] * h[1] + g[:, 2, None] * h[2]
+    out[:, 3] += g[:, 3]
+    return out
 
 
 def _series(theta: np.ndarray, coefficients: tuple[float, ...], closed) -> np.ndarray:
