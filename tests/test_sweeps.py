@@ -25,7 +25,6 @@ from mobility.core.transforms import displacement_log, twist_exp
 from mobility.errors import MechanismError, RequestError
 from mobility.sweeps import SweepResult, plan_grid, sweep
 from mobility.core.transforms import displacement_logs, rotation_logs
-from mobility.sweeps.batch_kinematics import BatchKinematics
 from mobility.sweeps.batch_systems import analyse_poses
 from mobility.sweeps.continuation import Drive, residuals
 from mobility.sweeps.posed_screws import posed_screws
@@ -115,7 +114,7 @@ def test_batched_analysis_equals_analyze_on_random_closed_poses(name):
         if closed.converged:
             qs.append(closed.q)
     q = np.array(qs)
-    bk = BatchKinematics(m)
+    bk = kinematics(m)
     assert np.allclose(bk.residual(q), [kin.residual(x) for x in q], atol=1e-13)
     moved = bk.link_displacements(q)
     for k, x in enumerate(q):
@@ -131,7 +130,7 @@ def test_batched_analysis_equals_analyze_on_random_closed_poses(name):
 def test_posed_twists_at_the_given_pose_are_the_joint_screws():
     for name in ("3prs", "tricept", "h4", "4puu"):
         m = load(name)
-        posed = posed_screws(BatchKinematics(m), np.zeros((1, kinematics(m).variable_count)))
+        posed = posed_screws(kinematics(m), np.zeros((1, kinematics(m).variable_count)))
         js = joint_screws(m)
         assert np.allclose(posed.twists[0], js.twists, atol=1e-14)
         assert np.allclose(posed.centres[0], js.normalisation.centre) and posed.lengths[0] == pytest.approx(js.normalisation.length)
@@ -992,7 +991,7 @@ def test_a_sweep_does_not_depend_on_its_chunk_size():
     whole, cut = sweep(m, ["x=-20:20:9", "rz=-5:5:3"]), sweep(m, ["x=-20:20:9", "rz=-5:5:3"], chunk_size=1)
     for column in ("q", "residual", "assembled"):
         assert np.array_equal(getattr(whole, column), getattr(cut, column)), column
-    bk = BatchKinematics(m)
+    bk = kinematics(m)
     q = np.random.default_rng(RNG_SEED).normal(size=(7, bk.variable_count))
     together = bk.evaluate(q, np.arange(6))
     for i in range(7):
