@@ -26,7 +26,7 @@ from mobility.errors import MechanismError, RequestError
 from mobility.sweeps import SweepResult, plan_grid, sweep
 from mobility.core.transforms import displacement_logs, rotation_logs
 from mobility.sweeps.batch_systems import analyse_poses
-from mobility.sweeps.continuation import Drive, residuals
+from mobility.sweeps.steps import Drive, residuals
 from mobility.sweeps.posed_screws import posed_screws
 from mobility.report.sweep import sweep_csv, sweep_json, sweep_summary
 

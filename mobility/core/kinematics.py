@@ -200,8 +200,6 @@ class Kinematics:
     _k2: np.ndarray = field(repr=False)
     _kp: np.ndarray = field(repr=False)
     _k2p: np.ndarray = field(repr=False)
-    _inverted: np.ndarray = field(repr=False)  # the variables whose exponential is also needed inverted
-    _inverse: dict[int, int] = field(repr=False)  # the table index of each one's inverse
     _loop_groups: tuple["_Chains", ...] = field(repr=False)  # loops of about one length together
     _loop_alone: tuple["_Chains", ...] = field(repr=False)  # each loop alone
     _end_effector: "_Chains" = field(repr=False)  # the end effector's path
@@ -255,28 +253,36 @@ class Kinematics:
         (``(3, 4, G N)``), and the partial products before each position (``None``: the identity)."""
         g: np.ndarray | None = None
         before: list[np.ndarray | None] = []
-        for factors in chains.factors:
+        for factors in chains.steps:
             before.append(g)
             g = compose(g, exps.gather(factors))
         return (_identity(exps.count * chains.size) if g is None else g), before
 
     def _columns(self, chains: "_Chains", before: list[np.ndarray | None], rows: np.ndarray | None, count: int) -> np.ndarray:
-        """Right-trivialised derivatives ``(6, n, G, len(rows))`` of chains' products from their partial products, all positions at once."""
+        """Right-trivialised derivatives ``(6, n, G, len(rows))`` of chains' products from their partial products.
+
+        The positions are taken all at once for a small stack (fewer array
+        operations), one at a time for a large one (no copies of the partial
+        products); each pose's numbers are the same either way.
+        """
         n, size, x = self.variable_count, chains.size, chains.twists
         cols = np.zeros((6, n + 1, size, count))  # a padding factor's column is the last, dropped
         if not before:
             return cols[:, :n]
         which = np.arange(size)
         cols[:, chains.variables[0], which] = x[:, 0, :, None]  # the identity before the first factor
-        if len(before) > 1:
-            frames = np.stack(before[1:], axis=2).reshape(3, 4, len(before) - 1, size, -1)  # type: ignore[arg-type]
+        block = len(before) if size * count <= GROUPED_POSES else 1
+        for start in range(1, len(before), block):
+            part = before[start : start + block]
+            frames = (part[0][:, :, None] if len(part) == 1 else np.stack(part, axis=2)).reshape(3, 4, len(part), size, -1)  # type: ignore[index, arg-type]
             if rows is not None:
                 frames = frames[..., rows]
-            rot, shift = frames[:, :3], frames[:, 3]
-            x = x[:, 1:, :, None]
-            w = rotate(rot, x[:3])
-            cols[:3, chains.variables[1:], which] = w
-            cols[3:, chains.variables[1:], which] = stacked_cross(shift, w) + rotate(rot, x[3:])
+            turns = x[:, start : start + len(part), :, None]
+            rot = frames[:, :3]
+            w = rotate(rot, turns[:3])
+            variables = chains.variables[start : start + len(part)]
+            cols[:3, variables, which] = w
+            cols[3:, variables, which] = stacked_cross(frames[:, 3], w) + rotate(rot, turns[3:])
         return cols[:, :n]
 
     def link_motions(self, q: np.ndarray) -> dict[str, Motion]:
@@ -527,51 +533,61 @@ def _identity(count: int) -> np.ndarray:
 class _Chains:
     """``G`` products of factors (loops, or the end effector's path), padded to one length by the identity.
 
-    ``factors[i, g]``: the index of chain ``g``'s ``i``-th factor among the
-    exponentials of :class:`_Exponentials` (forward ones, inverse ones, the
-    identity); ``variables[i, g]`` its variable (``n`` for padding);
-    ``twists[:, i, g]`` its signed twist (zero for padding).
+    ``steps[i][g]``: chain ``g``'s ``i``-th factor (``None`` for padding);
+    ``variables[i, g]`` its variable (``n`` for padding); ``twists[:, i, g]``
+    its signed twist (zero for padding).
     """
 
     loops: tuple[int, ...]
-    factors: np.ndarray
+    steps: tuple[tuple[Factor | None, ...], ...]
     variables: np.ndarray
     twists: np.ndarray
 
     @property
     def size(self) -> int:
-        return self.factors.shape[1]
+        return self.variables.shape[1]
 
 
 class _Exponentials:
-    """``exp(q_i x_i)`` of every variable of a stack (Rodrigues) and the inverse of those that need one, as one table."""
+    """``exp(q_i x_i)`` of every variable of a stack (Rodrigues), its inverse computed when first asked."""
 
     def __init__(self, kin: Kinematics, q: np.ndarray) -> None:  # q: (n, N)
         self.count = q.shape[1]
-        self._inverse = kin._inverse
         sin, one_minus_cos = np.sin(q), 1.0 - np.cos(q)
-        rot = kin._k * sin[None, None] + kin._k2 * one_minus_cos[None, None]  # (3, 3, n, N)
+        frames = np.empty((len(q), 3, 4, self.count), dtype=np.result_type(q.dtype, np.float64))
+        rot, shift = frames[:, :, :3], frames[:, :, 3]
+        # written in place term by term (the same sums, in the same order; numpy is slower with a fresh array as out)
+        np.multiply(kin._k, sin[:, None, None, :], out=rot)
+        rot += kin._k2 * one_minus_cos[:, None, None, :]
         # about the line through p: shift = (I - R) p + h q a, and (I - R) p = -(sin K p + (1 - cos) K^2 p)
-        shift = -(kin._kp * sin[None] + kin._k2p * one_minus_cos[None]) + (kin._pitches[:, None] * q)[None] * kin._axes.T[:, :, None]
-        rot += np.eye(3)[:, :, None, None]
+        np.multiply(kin._kp, sin[:, None, :], out=shift)
+        shift += kin._k2p * one_minus_cos[:, None, :]
+        np.negative(shift, out=shift)
+        shift += (kin._pitches[:, None] * q)[:, None, :] * kin._axes[:, :, None]
+        rot += np.eye(3)[None, :, :, None]
         prismatic = kin._prismatic
-        rot[:, :, prismatic] = np.eye(3)[:, :, None, None]
-        shift[:, prismatic] = q[prismatic][None] * kin._axes[prismatic].T[:, :, None]
-        inverted, n = kin._inverted, len(q)
-        turned = np.swapaxes(rot[:, :, inverted], 0, 1)
-        self.table = table = np.empty((3, 4, n + len(inverted) + 1, self.count), dtype=rot.dtype)  # frames [R | t]
-        table[:, :3, :n], table[:, 3, :n] = rot, shift
-        table[:, :3, n:-1], table[:, 3, n:-1] = turned, -rotate(turned, shift[:, inverted])
-        table[:, :, -1] = np.eye(3, 4)[..., None]
+        rot[prismatic] = np.eye(3)[:, :, None]
+        shift[prismatic] = q[prismatic][:, None, :] * kin._axes[prismatic][:, :, None]
+        self.frames = frames  # the forward exponentials as frames [R | t], (n, 3, 4, N)
+        self._inverse: dict[int, np.ndarray] = {}
 
     def factor(self, variable: int, sign: float) -> np.ndarray:
-        return self.table[:, :, variable if sign > 0 else self._inverse[variable]]
+        if sign > 0:
+            return self.frames[variable]
+        if variable not in self._inverse:
+            g = self.frames[variable]
+            inverse = np.empty_like(g)
+            inverse[:, :3] = np.swapaxes(g[:, :3], 0, 1)
+            inverse[:, 3] = -rotate(inverse[:, :3], g[:, 3])
+            self._inverse[variable] = inverse
+        return self._inverse[variable]
 
-    def gather(self, factors: np.ndarray) -> np.ndarray:
-        """The exponentials of the table indices ``factors`` ``(G,)``, side by side: ``(3, 4, G N)``."""
-        if len(factors) == 1:
-            return self.table[:, :, factors[0]]
-        return self.table[:, :, factors].reshape(3, 4, -1)
+    def gather(self, factors: list[Factor | None]) -> np.ndarray:
+        """The exponentials of ``G`` factors (``None``: the identity), side by side: ``(3, 3, G N)``."""
+        if len(factors) == 1 and factors[0] is not None:
+            return self.factor(factors[0].variable, factors[0].sign)
+        parts = [_identity(self.count) if f is None else self.factor(f.variable, f.sign) for f in factors]
+        return np.stack(parts, axis=2).reshape(3, 4, -1)
 
 
 class Evaluation:
@@ -978,20 +994,14 @@ def _build(mechanism: Mechanism) -> Kinematics:
         skip_b = sum(offsets[j + 1] - offsets[j] for j in pb[:common])
         inverse_b = tuple(Factor(f.variable, -f.sign) for f in reversed(paths[b][skip_b:]))
         loops.append(paths[a][skip_a:] + joint_factors(index, True) + inverse_b)
-    inverted = sorted({f.variable for chain in (*paths.values(), *loops) for f in chain if f.sign < 0})
-    inverse = {v: n + i for i, v in enumerate(inverted)}
     rows = np.vstack([twists.T, np.zeros((1, 6))])  # a padding factor's twist is zero
 
     def chains(indices: tuple[int, ...], members: list[tuple[Factor, ...]]) -> _Chains:
         length = max([len(c) for c in members] + [0])
-        factors = np.full((length, len(members)), n + len(inverted), dtype=int)  # the identity pads
-        variables = np.full((length, len(members)), n, dtype=int)
-        signs = np.zeros((length, len(members)))
-        for g, chain in enumerate(members):
-            for i, f in enumerate(chain):
-                factors[i, g] = f.variable if f.sign > 0 else inverse[f.variable]
-                variables[i, g], signs[i, g] = f.variable, f.sign
-        return _Chains(indices, factors, variables, (signs[..., None] * rows[variables]).transpose(2, 0, 1))
+        padded = [tuple(c) + (None,) * (length - len(c)) for c in members]
+        variables = np.array([[n if f is None else f.variable for f in step] for step in zip(*padded)], dtype=int).reshape(length, len(members))
+        signs = np.array([[0.0 if f is None else f.sign for f in step] for step in zip(*padded)]).reshape(length, len(members))
+        return _Chains(indices, tuple(zip(*padded)), variables, (signs[..., None] * rows[variables]).transpose(2, 0, 1))
 
     # loops grouped by length within a factor of two (so padding at most doubles the work)
     by_length: dict[int, list[int]] = {}
@@ -1013,12 +1023,10 @@ def _build(mechanism: Mechanism) -> Kinematics:
         _axes=unit,
         _pitches=np.where(np.array(kinds) == "H", np.einsum("ij,ij->i", w, v), 0.0),
         _prismatic=is_p,
-        _k=k.transpose(1, 2, 0)[..., None],
-        _k2=(k @ k).transpose(1, 2, 0)[..., None],
-        _kp=np.einsum("vij,vj->vi", k, nearest).T[:, :, None],
-        _k2p=np.einsum("vij,vj->vi", k @ k, nearest).T[:, :, None],
-        _inverted=np.array(inverted, dtype=int),
-        _inverse=inverse,
+        _k=k[..., None],
+        _k2=(k @ k)[..., None],
+        _kp=np.einsum("vij,vj->vi", k, nearest)[:, :, None],
+        _k2p=np.einsum("vij,vj->vi", k @ k, nearest)[:, :, None],
         _loop_groups=tuple(chains(tuple(rows_), [loops[r] for r in rows_]) for rows_ in by_length.values()),
         _loop_alone=tuple(chains((row,), [loop]) for row, loop in enumerate(loops)),
         _end_effector=chains((), [paths[mechanism.end_effector]]),

@@ -11,10 +11,13 @@ Modules, in data-flow order:
 
 ``grid``
     the request: coordinates, ranges, units, checked against the mechanism.
-``batch_kinematics``, ``walks``, ``continuation``, ``grid_closure``
-    forward kinematics of many poses; the order each axis is walked in
-    (angles that wrap); Newton and continuation along lines of the grid;
-    the whole grid, with the poses the lines missed tried again.
+``walks``, ``steps``, ``continuation``, ``grid_closure``
+    the order each axis is walked in (angles that wrap); one continuation
+    step of many poses (the kinematics and Newton's method are
+    :mod:`mobility.core.kinematics`', for a stack of poses), with its retries;
+    continuation along lines of the grid; the whole grid, with the poses the
+    lines missed tried again.  (``batch_kinematics`` only names the core's
+    kinematics for the stacked screw systems.)
 ``posed_screws``, ``batch_systems``, ``batch_actuation``
     each pose's joint twists; the series/parallel screw systems, counts and
     margins; the actuation verdict and conditioning, all stacked.

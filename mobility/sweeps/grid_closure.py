@@ -33,7 +33,8 @@ import numpy as np
 
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from ..core.kinematics import Kinematics
-from .continuation import Drive, GridClosure, _advance, anchors, close_lines, line_layout, retarget, seed_grid, targets_of
+from .continuation import GridClosure, anchors, close_lines, line_layout, retarget, seed_grid, targets_of
+from .steps import Drive, _advance
 from .grid import GridPlan, whole_turns
 from .walks import AxisWalk, axis_walk, plan_walks
 

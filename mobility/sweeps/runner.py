@@ -51,7 +51,8 @@ from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_pose
 from ..core.kinematics import Kinematics, kinematics
 from .seams import find_seams
 from .batch_systems import analyse_poses
-from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, residuals, seed_grid, targets_of
+from .continuation import GridClosure, close_lines, line_layout, anchors, seed_grid, targets_of
+from .steps import Drive, polish, residuals
 from .grid_closure import fill
 from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
 from .posed_screws import posed_screws
@@ -170,7 +171,7 @@ def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> di
     the tolerance policy (``near_singular`` or ``inexact``: a singular value
     between ``Tolerance.inexact`` and ``Tolerance.near_singular``, where the
     round-off of a float64 loop closure can decide it) is polished
-    (:func:`~mobility.sweeps.continuation.polish`) and analysed again; the
+    (:func:`~mobility.sweeps.steps.polish`) and analysed again; the
     others, almost every pose of a sweep, are not touched.
     """
     columns = analyse_chunk(context, q)

@@ -12,8 +12,8 @@ two poses a grid step apart that no small motion joins, which the answers
 alone may not show.
 
 :func:`find_seams` walks from the last stop of each closed line to its
-anchor's drive values (:data:`~mobility.sweeps.continuation.RETURN_STEPS` Newton steps,
-:func:`~mobility.sweeps.continuation.walk_between`) and compares the pose reached with the anchor's, joint by joint (their
+anchor's drive values (:data:`~mobility.sweeps.steps.RETURN_STEPS` Newton steps,
+:func:`~mobility.sweeps.steps.walk_between`) and compares the pose reached with the anchor's, joint by joint (their
 unit twists in normalised coordinates, so that a link spinning idly is the
 same pose): they differ by more than :data:`~mobility.core.tolerance.SEAM_GAP`
 at a seam.  Only lines walked all the way round are looked at (a line with a
@@ -35,7 +35,8 @@ import numpy as np
 
 from ..core.tolerance import DEFAULT_TOLERANCE, SEAM_GAP, Tolerance
 from ..core.kinematics import Kinematics
-from .continuation import Drive, line_layout, targets_of, walk_between
+from .continuation import line_layout, targets_of
+from .steps import Drive, walk_between
 from .grid import GridPlan
 from .posed_screws import posed_screws
 from .walks import plan_walks
