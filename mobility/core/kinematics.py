@@ -582,8 +582,8 @@ class _Exponentials:
             self._inverse[variable] = inverse
         return self._inverse[variable]
 
-    def gather(self, factors: list[Factor | None]) -> np.ndarray:
-        """The exponentials of ``G`` factors (``None``: the identity), side by side: ``(3, 3, G N)``."""
+    def gather(self, factors: Sequence[Factor | None]) -> np.ndarray:
+        """The exponentials of ``G`` factors (``None``: the identity), side by side: ``(3, 4, G N)``."""
         if len(factors) == 1 and factors[0] is not None:
             return self.factor(factors[0].variable, factors[0].sign)
         parts = [_identity(self.count) if f is None else self.factor(f.variable, f.sign) for f in factors]
