@@ -335,23 +335,20 @@ class Kinematics:
         jac = np.moveaxis(self.evaluate(stack).jacobian(), -1, 0)
         return jac[0] if single else jac
 
-    def linearize(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`residual` and :meth:`jacobian` at ``q``, computed together."""
+    def jacobian(self, q: np.ndarray) -> np.ndarray:
+        """Exact derivative of :meth:`residual` at ``q``, shape ``(6 * loops, n)`` (``(N, 6 * loops, n)`` for a stack).
+
+        The right-trivialised Jacobian corrected by the inverse differential of
+        the exponential at each loop's residual.
+        """
         stack, single = self._stack(q)
         evaluation = self.evaluate(stack)
         r, jac = evaluation.values, evaluation.jacobian()  # (6L, N), (6L, n, N)
         loops, count, n = self.loop_count, len(stack), self.variable_count
-        if loops:
-            derivative = dexps(r.reshape(loops, 6, count).transpose(0, 2, 1).reshape(-1, 6))  # (L N, 6, 6)
-            turned = jac.reshape(loops, 6, n, count).transpose(0, 3, 1, 2).reshape(-1, 6, n)
-            jac = np.linalg.solve(derivative, turned).reshape(loops, count, 6, n).transpose(1, 0, 2, 3).reshape(count, 6 * loops, n)
-        else:
-            jac = np.zeros((count, 0, n))
-        return (r[:, 0], jac[0]) if single else (r.T, jac)
-
-    def jacobian(self, q: np.ndarray) -> np.ndarray:
-        """Exact derivative of :meth:`residual` at ``q``, shape ``(6 * loops, n)`` (``(N, 6 * loops, n)`` for a stack)."""
-        return self.linearize(q)[1]
+        derivative = dexps(r.reshape(loops, 6, count).transpose(0, 2, 1).reshape(-1, 6))  # (L N, 6, 6)
+        turned = jac.reshape(loops, 6, n, count).transpose(0, 3, 1, 2).reshape(-1, 6, n)
+        exact = np.linalg.solve(derivative, turned).reshape(loops, count, 6, n).transpose(1, 0, 2, 3).reshape(count, 6 * loops, n)
+        return exact[0] if single else exact
 
     def end_effector_jacobian(self, q: np.ndarray) -> np.ndarray:
         """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q`` (``(6, n)``)."""
@@ -792,26 +789,7 @@ def newton(
     -------
     Closures
     """
-    # A solve that diverges (a target far beyond the mechanism's size, or a pose with no assembly near it)
-    # overflows: its iterates turn non-finite and are dropped (err = inf, the move refused), so numpy's
-    # warnings would only repeat what the result says (not closed).
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        best_q, best, history = _newton_loop(kin, np.array(start, dtype=float), goals, equations, tol, max_move, max_iter, polished, accelerate)
-    return Closures(best_q, best, best <= tol.closure, history)
-
-
-def _newton_loop(
-    kin: Kinematics,
-    q0: np.ndarray,
-    goals: np.ndarray,
-    equations: Equations,
-    tol: Tolerance,
-    max_move: np.ndarray | float,
-    max_iter: int,
-    polished: float,
-    accelerate: bool,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The iterations of :func:`newton`: the best iterate of each pose, its largest residual component, the history."""
+    q0 = np.array(start, dtype=float)
     count = len(q0)
     q = q0.copy()
     best_q, best = q.copy(), np.full(count, np.inf)
@@ -820,42 +798,46 @@ def _newton_loop(
     max_move = np.broadcast_to(np.asarray(max_move, dtype=float), (count,))
     free = equations.mask(kin.variable_count)
     movable = bool(free.any())
-    history = []
-    for iteration in range(max_iter + 1):
-        if active.size == 0:
-            break
-        r, evaluation = equations.values(kin, q[active], goals[active])
-        err = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(active.size)
-        err = np.where(np.isfinite(err), err, np.inf)
-        history.append(np.full(count, np.nan))
-        history[-1][active] = err
-        better = err < best[active]
-        halved = err < 0.5 * best[active]
-        stalled[active] = np.where(halved, 0, stalled[active] + 1)
-        best_q[active[better]] = q[active[better]]
-        best[active[better]] = err[better]
-        b, st = best[active], stalled[active]
-        # done: near round-off, or closed and no longer gaining (a last step polishes a pose near a singularity)
-        done = (b <= polished * tol.closure) | ((b <= tol.closure) & (st > 0))
-        keep = np.flatnonzero(~done & (st < STALLED) & (iteration < max_iter) & movable & (r.shape[0] > 0))
-        if keep.size == 0:
-            break
-        jac = equations.jacobians(evaluation, keep)
-        active, r = active[keep], r[:, keep]
-        # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
-        # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
-        step = min_norm_steps(jac, r)
-        if accelerate and len(history) >= 3:
-            before, last, now = (h[active] for h in history[-3:])
-            low, high = LINEAR_RATIO
-            # at a singular root Newton halves the error each step (the residual shrinks by about 1/4): the doubled step removes it
-            step[(low <= last / before) & (last / before <= high) & (low <= now / last) & (now / last <= high)] *= 2.0
-        moved = q[active].copy()
-        moved[:, free] += step
-        finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
-        q[active[finite]] = moved[finite]
-        active = active[finite]
-    return best_q, best, np.array(history).T
+    history: list[np.ndarray] = []
+    # A solve that diverges (a target far beyond the mechanism's size, or a pose with no assembly near it)
+    # overflows: its iterates turn non-finite and are dropped (err = inf, the move refused), so numpy's
+    # warnings would only repeat what the result says (not closed).
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        for iteration in range(max_iter + 1):
+            if active.size == 0:
+                break
+            r, evaluation = equations.values(kin, q[active], goals[active])
+            err = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(active.size)
+            err = np.where(np.isfinite(err), err, np.inf)
+            history.append(np.full(count, np.nan))
+            history[-1][active] = err
+            better = err < best[active]
+            halved = err < 0.5 * best[active]
+            stalled[active] = np.where(halved, 0, stalled[active] + 1)
+            best_q[active[better]] = q[active[better]]
+            best[active[better]] = err[better]
+            b, st = best[active], stalled[active]
+            # done: near round-off, or closed and no longer gaining (a last step polishes a pose near a singularity)
+            done = (b <= polished * tol.closure) | ((b <= tol.closure) & (st > 0))
+            keep = np.flatnonzero(~done & (st < STALLED) & (iteration < max_iter) & movable & (r.shape[0] > 0))
+            if keep.size == 0:
+                break
+            jac = equations.jacobians(evaluation, keep)
+            active, r = active[keep], r[:, keep]
+            # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
+            # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
+            step = min_norm_steps(jac, r)
+            if accelerate and len(history) >= 3:
+                before, last, now = (h[active] for h in history[-3:])
+                low, high = LINEAR_RATIO
+                # at a singular root Newton halves the error each step (the residual shrinks by about 1/4): the doubled step removes it
+                step[(low <= last / before) & (last / before <= high) & (low <= now / last) & (now / last <= high)] *= 2.0
+            moved = q[active].copy()
+            moved[:, free] += step
+            finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
+            q[active[finite]] = moved[finite]
+            active = active[finite]
+    return Closures(best_q, best, best <= tol.closure, np.array(history).T)
 
 
 def min_norm_steps(j: np.ndarray, r: np.ndarray) -> np.ndarray:

@@ -381,23 +381,13 @@ def dexps(x: np.ndarray) -> np.ndarray:
     True
     """
     x = np.asarray(x, dtype=float)
-    coefficients = _coefficients_many(np.sqrt(np.einsum("ij,ij->i", x[:, :3], x[:, :3])))
-    w = _skews(x[:, :3])
-    ww = w @ w
-    jac = np.eye(3) + coefficients[0][:, None, None] * w + coefficients[1][:, None, None] * ww
-    return _dexps(w, ww, _skews(x[:, 3:]), jac, coefficients)
-
-
-def _dexps(w: np.ndarray, ww: np.ndarray, v: np.ndarray, jac: np.ndarray, coefficients: tuple[np.ndarray, ...]) -> np.ndarray:
-    """:func:`dexp` from ``skew(w)``, its square, ``skew(v)``, the left Jacobian and the angle's series."""
-    _, b, c, d = (u[:, None, None] for u in coefficients)
-    wv, vw = w @ v, v @ w
+    _, b, c, d = coefficients = [u[:, None, None] for u in _coefficients_many(np.sqrt(np.einsum("ij,ij->i", x[:, :3], x[:, :3])))]
+    w, v = _skews(x[:, :3]), _skews(x[:, 3:])
+    ww, wv, vw = w @ w, w @ v, v @ w
     wvw = wv @ w
-    q = 0.5 * v + b * (wv + vw + wvw) + c * (ww @ v + v @ ww - 3.0 * wvw) + d * (wvw @ w + w @ wvw)
-    out = np.zeros((len(w), 6, 6))
-    out[:, :3, :3] = jac
-    out[:, 3:, 3:] = jac
-    out[:, 3:, :3] = q
+    out = np.zeros((len(x), 6, 6))
+    out[:, :3, :3] = out[:, 3:, 3:] = np.eye(3) + coefficients[0] * w + b * ww
+    out[:, 3:, :3] = 0.5 * v + b * (wv + vw + wvw) + c * (ww @ v + v @ ww - 3.0 * wvw) + d * (wvw @ w + w @ wvw)
     return out
 
 

@@ -265,7 +265,7 @@ def _linear_step_lengths(bk: Kinematics, drive: Drive, base_q: np.ndarray, targe
         lengths = np.zeros(len(base_q))
         if r.shape[0] == 0 or not drive.free.any():
             return lengths
-        jac = _free_jacobians(evaluation, drive)
+        jac = drive.equations.jacobians(evaluation)
         full = np.zeros(len(base_q), dtype=bool)
         finite = np.all(np.isfinite(jac), axis=(1, 2)) & np.all(np.isfinite(r), axis=0)
         if jac.shape[1] <= jac.shape[2] and finite.any():  # no more equations than free variables, and none lost
@@ -313,7 +313,7 @@ def _off_a_fold(
         return q, err, ok
     with np.errstate(over="ignore", invalid="ignore"):
         _, evaluation = _evaluate(bk, drive, base_q, base_t)
-        _, sv, vt = np.linalg.svd(_free_jacobians(evaluation, drive), full_matrices=True)
+        _, sv, vt = np.linalg.svd(drive.equations.jacobians(evaluation), full_matrices=True)
         step = np.abs(targets - base_t).max(axis=1)
     free = int(drive.free.sum())
     # (N, free): where the equations lose rank, the right singular vectors the rank decision drops (with those
@@ -350,11 +350,6 @@ def _folds(sv: np.ndarray, tol: Tolerance) -> tuple[np.ndarray, np.ndarray]:
     """
     rank = decide_ranks(sv, tol).rank if sv.shape[1] else np.zeros(len(sv), dtype=int)
     return rank, rank < sv.shape[1]
-
-
-def _free_jacobians(evaluation: Evaluation, drive: Drive, rows: np.ndarray | None = None) -> np.ndarray:
-    """The closure Jacobians of the poses (all, or ``rows``) over the free variables, stacked ``(N, m, free)``."""
-    return drive.equations.jacobians(evaluation, rows)
 
 
 RETURN_STEPS = 4
