@@ -476,8 +476,8 @@ class Kinematics:
             ga, gb = g[joint.links[0]], g[joint.links[1]]
 
             def point(p: tuple[float, float, float] | None, disp: np.ndarray = ga) -> tuple[float, ...] | None:
-                if p is None:
-                    return None
+                if p is None or np.array_equal(disp, _EYE4):  # a link that did not move (the ground) keeps its points exactly
+                    return None if p is None else tuple(float(x) for x in p)
                 pn = norm.point_from_world(np.asarray(p))
                 return tuple(float(x) for x in norm.point_to_world(disp[:3, :3] @ pn + disp[:3, 3]))
 
@@ -490,6 +490,8 @@ class Kinematics:
             joints.append(_replace(joint, **changes))
         return self.mechanism.replace(joints=_keep_coincident_points(self.mechanism.world_joints, joints), frames=(), expected=None)
 
+
+_EYE4 = np.eye(4)
 
 POINT_FIXED_IN_BOTH = frozenset("RUS")
 """Joint types whose point stays fixed in both links (they only turn about it); a C, H, P or E joint moves it along the other."""
