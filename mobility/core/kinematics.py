@@ -456,7 +456,7 @@ class Kinematics:
         else:
             equations = Equations(linear=np.asarray(constraints[0], dtype=float).reshape(-1, n))
             goals = np.asarray(constraints[1], dtype=float).reshape(1, -1)
-        out = newton(self, q[None], goals, equations, tol=tol, max_move=np.inf if max_move is None else max_move, max_iter=max_iter, polished=ROUND_OFF / tol.closure, accelerate=True)
+        out = newton(self, q[None], goals, equations, tol=tol, max_move=np.inf if max_move is None else max_move, max_iter=max_iter, polished=ROUND_OFF / tol.closure, accelerate=True, patience=CLOSE_STALLED)
         history = tuple(float(e) for e in out.history[0] if not np.isnan(e))
         return Closure(out.q[0], float(out.residual[0]), len(history) - 1, bool(out.converged[0]), history)
 
@@ -731,7 +731,12 @@ POLISHED = 0.1
 """A pose whose residual is below this fraction of ``Tolerance.closure`` needs no further step (a sweep's solves)."""
 
 STALLED = 4
-"""A pose stops after this many steps in a row that did not halve its best residual."""
+"""A pose of a sweep stops after this many steps in a row that did not halve its best residual
+(:meth:`Kinematics.close`, one pose at a time, allows :data:`CLOSE_STALLED`)."""
+
+CLOSE_STALLED = 6
+"""Steps in a row that do not halve the best residual before :meth:`Kinematics.close` gives up:
+Newton from a start off every branch of a singular pose can lose ground for a few steps first."""
 
 ROUND_OFF = float(np.finfo(float).eps)
 """A residual below this (the round-off of numbers of about one) has nothing left to gain (:meth:`Kinematics.close`)."""
@@ -752,6 +757,7 @@ def newton(
     max_iter: int = MAX_ITERATIONS,
     polished: float = POLISHED,
     accelerate: bool = False,
+    patience: int = STALLED,
 ) -> Closures:
     """Close every loop of a stack of poses by Gauss–Newton with damped minimum-norm steps.
 
@@ -781,6 +787,8 @@ def newton(
         would reach another assembly, not the nearby one).
     max_iter : int
     polished : float
+    patience : int
+        Steps in a row that do not halve a pose's best residual before it stops.
     accelerate : bool
         Double the step of a pose whose residual shrank by a ratio in
         :data:`LINEAR_RATIO` at the last two steps (Newton at a singular
@@ -821,7 +829,7 @@ def newton(
             b, st = best[active], stalled[active]
             # done: near round-off, or closed and no longer gaining (a last step polishes a pose near a singularity)
             done = (b <= polished * tol.closure) | ((b <= tol.closure) & (st > 0))
-            keep = np.flatnonzero(~done & (st < STALLED) & (iteration < max_iter) & movable & (r.shape[0] > 0))
+            keep = np.flatnonzero(~done & (st < patience) & (iteration < max_iter) & movable & (r.shape[0] > 0))
             if keep.size == 0:
                 break
             jac = equations.jacobians(evaluation, keep)
