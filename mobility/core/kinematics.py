@@ -336,18 +336,9 @@ class Kinematics:
         return jac[0] if single else jac
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
-        """Exact derivative of :meth:`residual` at ``q``, shape ``(6 * loops, n)`` (``(N, 6 * loops, n)`` for a stack).
-
-        The right-trivialised Jacobian corrected by the inverse differential of
-        the exponential at each loop's residual.
-        """
+        """Exact derivative of :meth:`residual` at ``q``, shape ``(6 * loops, n)`` (``(N, 6 * loops, n)`` for a stack)."""
         stack, single = self._stack(q)
-        evaluation = self.evaluate(stack)
-        r, jac = evaluation.values, evaluation.jacobian()  # (6L, N), (6L, n, N)
-        loops, count, n = self.loop_count, len(stack), self.variable_count
-        derivative = dexps(r.reshape(loops, 6, count).transpose(0, 2, 1).reshape(-1, 6))  # (L N, 6, 6)
-        turned = jac.reshape(loops, 6, n, count).transpose(0, 3, 1, 2).reshape(-1, 6, n)
-        exact = np.linalg.solve(derivative, turned).reshape(loops, count, 6, n).transpose(1, 0, 2, 3).reshape(count, 6 * loops, n)
+        exact = Equations(exact=True).jacobians(self.evaluate(stack))
         return exact[0] if single else exact
 
     def end_effector_jacobian(self, q: np.ndarray) -> np.ndarray:
@@ -452,9 +443,9 @@ class Kinematics:
         q = self._stack(q)[0][0]
         n = self.variable_count
         if constraints is None:
-            equations, goals = Equations(), np.zeros((1, 0))
+            equations, goals = Equations(exact=True), np.zeros((1, 0))
         else:
-            equations = Equations(linear=np.asarray(constraints[0], dtype=float).reshape(-1, n))
+            equations = Equations(linear=np.asarray(constraints[0], dtype=float).reshape(-1, n), exact=True)
             goals = np.asarray(constraints[1], dtype=float).reshape(1, -1)
         out = newton(self, q[None], goals, equations, tol=tol, max_move=np.inf if max_move is None else max_move, max_iter=max_iter, polished=ROUND_OFF / tol.closure, accelerate=True, patience=CLOSE_STALLED)
         history = tuple(float(e) for e in out.history[0] if not np.isnan(e))
@@ -672,11 +663,17 @@ class Equations:
     linear : ndarray, shape (k, n), optional
         Extra linear equations ``A q = b``, ``b`` the last ``k`` columns of
         the goals.
+    exact : bool
+        The loops' Jacobian is their exact derivative (the right-trivialised
+        one corrected by the inverse differential of the exponential at each
+        loop's residual), not the right-trivialised one (exact at a closed
+        pose, and cheaper).
     """
 
     free: np.ndarray | None = None
     components: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
     linear: np.ndarray | None = None
+    exact: bool = False
 
     def mask(self, n: int) -> np.ndarray:
         """The free variables as a mask of ``n``."""
@@ -695,8 +692,14 @@ class Equations:
 
     def jacobians(self, evaluation: Evaluation, rows: np.ndarray | None = None) -> np.ndarray:
         """The Jacobians of :meth:`values` (all poses, or ``rows``) over the free variables, stacked ``(N, m, free)``."""
-        free = self.mask(evaluation._kin.variable_count)
+        kin = evaluation._kin
+        free = self.mask(kin.variable_count)
         jac = np.moveaxis(evaluation.jacobian(rows)[:, free], -1, 0)
+        if self.exact and kin.loop_count:
+            count, loops, width = len(jac), kin.loop_count, jac.shape[2]
+            r = evaluation.values[: 6 * loops] if rows is None else evaluation.values[: 6 * loops, rows]
+            derivative = dexps(np.asarray(r, dtype=float).T.reshape(-1, 6))  # (N L, 6, 6)
+            jac[:, : 6 * loops] = np.linalg.solve(derivative, jac[:, : 6 * loops].reshape(-1, 6, width)).reshape(count, 6 * loops, width)
         if self.linear is not None:
             jac = np.concatenate([jac, np.broadcast_to(self.linear[:, free], (len(jac),) + self.linear[:, free].shape)], axis=1)
         return np.ascontiguousarray(jac)
