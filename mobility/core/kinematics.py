@@ -532,10 +532,7 @@ class _Chains:
     steps: tuple[tuple[Factor | None, ...], ...]
     variables: np.ndarray
     twists: np.ndarray
-
-    @property
-    def size(self) -> int:
-        return self.variables.shape[1]
+    size: int  # G
 
 
 class _Exponentials:
@@ -996,7 +993,7 @@ def _build(mechanism: Mechanism) -> Kinematics:
         padded = [tuple(c) + (None,) * (length - len(c)) for c in members]
         variables = np.array([[n if f is None else f.variable for f in step] for step in zip(*padded)], dtype=int).reshape(length, len(members))
         signs = np.array([[0.0 if f is None else f.sign for f in step] for step in zip(*padded)]).reshape(length, len(members))
-        return _Chains(indices, tuple(zip(*padded)), variables, (signs[..., None] * rows[variables]).transpose(2, 0, 1))
+        return _Chains(indices, tuple(zip(*padded)), variables, (signs[..., None] * rows[variables]).transpose(2, 0, 1), len(members))
 
     # loops grouped by length within a factor of two (so padding at most doubles the work)
     by_length: dict[int, list[int]] = {}

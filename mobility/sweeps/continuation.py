@@ -55,10 +55,10 @@ import numpy as np
 from ..core.kinematics import Kinematics
 from ..core.tolerance import DEFAULT_TOLERANCE, SAME_GRID_VALUE, Tolerance
 from .grid import GridPlan, whole_turns
-from .steps import Drive, _advance, polish, residuals, walk_between
+from .steps import Drive, _advance, residuals
 from .walks import AxisWalk, plan_walks
 
-__all__ = ["Drive", "GridClosure", "polish", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget", "residuals", "walk_between"]
+__all__ = ["GridClosure", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget"]
 
 MAX_PIECES = 2000
 """Grid steps at most on the way from the file's pose to the grid's anchor point; a grid

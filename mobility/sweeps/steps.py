@@ -8,14 +8,7 @@ solved so that every loop closes by the one Newton's method of the package
 A pose is *assembled* when every residual component is at most
 ``Tolerance.closure`` (radians, lengths over the characteristic length).
 
-A step of a line (:func:`_advance`, from assembled poses to the next driven
-values) that fails is retried allowing the length of the linearised step
-(:func:`_linear_step_lengths`), then walked from its base in sub-steps,
-halved where one fails (:func:`_substeps`: the poses a finer grid reaches,
-whatever the grid step), then off a fold when the base is one
-(:func:`_off_a_fold`, whose poses must walk back to that base:
-:func:`_walks_back`).  The residual returned for a pose not assembled is that
-of the joint variables returned with it.
+A step of a line that fails is retried (:func:`_advance`): a wider move, sub-steps, off a fold.
 
 Examples
 --------
