@@ -238,3 +238,20 @@ def test_kinematics_is_invariant_to_scale_and_rigid_motion(name):
             if ja.point is not None:
                 expected = scale * np.asarray(ja.point) if scale != 1.0 else tf.apply_point(ja.point)
                 assert np.allclose(jb.point, expected, atol=1e-9 * scale)
+
+
+@pytest.mark.parametrize("name", sorted(MECHANISMS))
+def test_one_pose_is_a_stack_of_one(name):
+    # Kinematics takes one pose (n,) or a stack (N, n): a pose's numbers are the same bits alone or in a stack
+    kin = kinematics(MECHANISMS[name]())
+    q = 0.3 * np.random.default_rng(7).normal(size=(5, kin.variable_count))
+    for method in ("residual", "jacobian", "loop_jacobian", "end_effector_jacobian"):
+        stacked = getattr(kin, method)(q)
+        assert stacked.shape[0] == 5
+        for i, x in enumerate(q):
+            assert np.array_equal(stacked[i], getattr(kin, method)(x)), method
+    links = kin.link_displacements(q)
+    for i, x in enumerate(q):
+        assert all(np.array_equal(links[link][i], g) for link, g in kin.link_displacements(x).items())
+    with pytest.raises(RequestError, match=rf"expected joint variables of shape \(N, {kin.variable_count}\)"):
+        kin.residual(np.zeros((2, kin.variable_count + 1)))

@@ -24,10 +24,10 @@ from mobility.core.tolerance import characteristic_scale, characteristic_scales,
 from mobility.core.transforms import displacement_log, twist_exp
 from mobility.errors import MechanismError, RequestError
 from mobility.sweeps import SweepResult, plan_grid, sweep
-from mobility.sweeps.batch_kinematics import BatchKinematics, displacement_logs, rotation_logs
+from mobility.core.transforms import displacement_logs, rotation_logs
 from mobility.core.screw_systems import analyse_poses
 from mobility.core.topology import decompose
-from mobility.sweeps.continuation import Drive, residuals
+from mobility.sweeps.steps import Drive, residuals
 from mobility.sweeps.posed_screws import posed_screws
 from mobility.report.sweep import sweep_csv, sweep_json, sweep_summary
 
@@ -115,7 +115,7 @@ def test_batched_analysis_equals_analyze_on_random_closed_poses(name):
         if closed.converged:
             qs.append(closed.q)
     q = np.array(qs)
-    bk = BatchKinematics(m)
+    bk = kinematics(m)
     assert np.allclose(bk.residual(q), [kin.residual(x) for x in q], atol=1e-13)
     moved = bk.link_displacements(q)
     for k, x in enumerate(q):
@@ -132,7 +132,7 @@ def test_batched_analysis_equals_analyze_on_random_closed_poses(name):
 def test_posed_twists_at_the_given_pose_are_the_joint_screws():
     for name in ("3prs", "tricept", "h4", "4puu"):
         m = load(name)
-        posed = posed_screws(BatchKinematics(m), np.zeros((1, kinematics(m).variable_count)))
+        posed = posed_screws(kinematics(m), np.zeros((1, kinematics(m).variable_count)))
         js = joint_screws(m)
         assert np.allclose(posed.twists[0], js.twists, atol=1e-14)
         assert np.allclose(posed.centres[0], js.normalisation.centre) and posed.lengths[0] == pytest.approx(js.normalisation.length)
@@ -952,7 +952,7 @@ def test_a_full_turn_is_walked_in_one_direction_so_neighbours_are_joined_by_moti
 
 def true_residuals(r: SweepResult) -> np.ndarray:
     """The largest loop residual component of every row's stored joint variables (and of its pose coordinates), pose by pose."""
-    bk = BatchKinematics(r.mechanism, joint_screws(r.mechanism).reference)  # the reference point of pose coordinates, as the sweep's
+    bk = kinematics(r.mechanism)  # the reference point of pose coordinates is the sweep's
     drive = Drive.of(r.axes, bk.variable_count)
     index = np.unravel_index(np.arange(r.size), r.shape)
     targets = np.stack([a.internal[i] for a, i in zip(r.axes, index)], axis=-1)
@@ -991,7 +991,7 @@ def test_a_sweep_does_not_depend_on_its_chunk_size():
     whole, cut = sweep(m, ["x=-20:20:9", "rz=-5:5:3"]), sweep(m, ["x=-20:20:9", "rz=-5:5:3"], chunk_size=1)
     for column in ("q", "residual", "assembled"):
         assert np.array_equal(getattr(whole, column), getattr(cut, column)), column
-    bk = BatchKinematics(m)
+    bk = kinematics(m)
     q = np.random.default_rng(RNG_SEED).normal(size=(7, bk.variable_count))
     together = bk.evaluate(q, np.arange(6))
     for i in range(7):

@@ -183,7 +183,7 @@ def _ours(value: Any) -> bool:
 def _owner(env: Any, name: str) -> str | None:
     """The documented object nearest above ``name`` that really has it as a member: a class for its
     dataclass field (``Tolerance.closure``), a module for a constant without a docstring or a private
-    helper (``mobility.sweeps.continuation.RETURN_STEPS``, ``_walks_back``).  ``None`` when a step of
+    helper (``mobility.sweeps.steps.RETURN_STEPS``, ``_walks_back``).  ``None`` when a step of
     the name does not exist."""
     parent, _, member = name.rpartition(".")
     if not parent.startswith("mobility"):

@@ -1,9 +1,12 @@
-"""Finite motion of a mechanism: joint variables, forward kinematics and loop closure.
+"""Finite motion of a mechanism, for one pose or a stack of many: forward kinematics, loop closure, Newton.
 
 One module, longer than most, because it is one concept that reads better
 whole: the joint variables, the link displacements, the loop residuals, their
 Jacobians and the Newton closure all stand on one spanning tree and one set of
-normalised coordinates, held by one :class:`Kinematics` object.
+normalised coordinates, held by one :class:`Kinematics` object.  Every
+method takes the joint variables of one pose, ``q`` of shape ``(n,)``, or of
+a stack of poses, ``(N, n)`` (as SciPy's ``Rotation`` is one rotation or
+many): one pose is a stack of one, and nothing loops over poses.
 
 The screw route (:func:`mobility.analyze`) answers at one pose.  This module
 moves the mechanism: it is the finite counterpart of
@@ -22,20 +25,24 @@ moves the mechanism: it is the finite counterpart of
   ``S``: rotations about x, y, z; ``E``: two translations, then the rotation).
   Twists ``x_i`` are taken at the given pose, in normalised coordinates.
 * **Forward kinematics** along a breadth-first spanning tree from the ground:
-  the displacement ``g_L`` of each link (a 4x4 homogeneous matrix mapping the
-  link's points from the given pose to the moved one, normalised coordinates)
-  is the product of the joint motions on its tree path.
+  the displacement ``g_L`` of each link (mapping the link's points from the
+  given pose to the moved one, normalised coordinates) is the product of the
+  joint motions on its tree path.  Stacked displacements are held pose index
+  last (:data:`~mobility.core.transforms.Motion`) and multiplied in a fixed
+  order, so each pose's numbers are the same bits whatever the stack around it.
 * **Loop closure**: each joint off the tree (a *chord*, from ``a`` to ``b``)
   closes one loop, ``g_a E_c(q_c) g_b^-1 = I``.  The residual of the loop is
-  the matrix logarithm of that product
-  (:func:`~mobility.core.transforms.displacement_log`), a twist ``[w; v]`` (6 numbers; the
-  common part of the two tree paths cancels).  Its Jacobian is the
-  right-trivialised loop Jacobian (the joint twists at the moved pose, the
-  same equations as :mod:`mobility.core.loop_closure`) corrected by the inverse
-  of the differential of the exponential, so it is the exact derivative.
-* **Re-closure**: Gauss–Newton with minimum-norm steps (least squares) from a
-  guess, optionally with extra linear equations ``A q = b`` (used to fix the
-  progress along a direction).
+  the matrix logarithm of that product (a twist ``[w; v]``, 6 numbers; the
+  common part of the two tree paths cancels).  Its right-trivialised Jacobian
+  (the joint twists at the moved pose, the same equations as
+  :mod:`mobility.core.loop_closure`) is exact at a closed pose;
+  :meth:`Kinematics.jacobian` corrects it by the inverse of the differential
+  of the exponential, so it is the exact derivative everywhere.
+* **Re-closure** (:func:`newton`): Gauss–Newton with damped minimum-norm
+  steps, on every pose of a stack at once, with some variables held
+  (:class:`Equations`), pose coordinates of the end effector fixed, or extra
+  linear equations ``A q = b`` (the progress along a direction);
+  :meth:`Kinematics.close` is its stack of one.
 * **Moved mechanism**: :meth:`Kinematics.mechanism_at` builds a new
   :class:`~mobility.core.model.Mechanism` at the pose ``q``: each joint's geometry
   is carried by the link it belongs to (a ``U`` joint's first axis by
@@ -61,6 +68,8 @@ Examples
 >>> moved = kin.mechanism_at(closed.q)
 >>> bool(np.isclose(np.linalg.norm(np.subtract(moved.joints[1].point, moved.joints[0].point)), np.sqrt(5)))
 True
+>>> kin.residual(np.stack([np.zeros(4), closed.q])).shape   # a stack of poses
+(2, 6)
 """
 
 from __future__ import annotations
@@ -74,15 +83,21 @@ import numpy as np
 from ..errors import RequestError
 from .joint_screws import Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Joint, Mechanism
-from .tolerance import DEFAULT_TOLERANCE, NEWTON_RCOND, RankDecision, Tolerance, decide_rank
+from .tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, RankDecision, Tolerance, decide_rank
 from .topology import spanning_tree
-from .transforms import bracket, cross, displacement_log, displacement_logs, skew
+from .transforms import Motion, bracket, compose, dexps, inverse_left_jacobian_times, rotate, rotation_logs_last, skew, stacked_cross, twist_logs
 
 __all__ = [
     "Factor",
     "Closure",
+    "Closures",
+    "Equations",
+    "Evaluation",
     "Kinematics",
     "kinematics",
+    "newton",
+    "polish",
+    "min_norm_steps",
 ]
 
 
@@ -131,7 +146,8 @@ class Kinematics:
 
     Build it with :func:`kinematics`.  All twists and displacements are in the
     normalised coordinates of the tolerance policy (origin at the mechanism's
-    centre, lengths over ``L``).
+    centre, lengths over ``L``).  Every method taking ``q`` takes one pose
+    ``(n,)`` or a stack ``(N, n)`` and answers in kind.
 
     Attributes
     ----------
@@ -159,6 +175,10 @@ class Kinematics:
         For each chord, the product around its loop (from the links' common
         ancestor, through the chord, and back), whose value is the identity
         when the loop closes.
+    reference : ndarray, shape (3,)
+        The end effector's reference point (normalised coordinates of the
+        given pose) whose displacement the pose coordinates of
+        :meth:`evaluate` measure.
     """
 
     mechanism: Mechanism
@@ -170,13 +190,19 @@ class Kinematics:
     chords: tuple[int, ...]
     paths: dict[str, tuple[Factor, ...]] = field(repr=False)
     loops: tuple[tuple[Factor, ...], ...] = field(repr=False)
-    _points: np.ndarray = field(repr=False)
+    reference: np.ndarray = field(repr=False)
+    _steps: tuple[tuple[str, str, tuple[Factor, ...]], ...] = field(repr=False)
+    _rows: np.ndarray = field(repr=False)  # twists.T
     _axes: np.ndarray = field(repr=False)
     _pitches: np.ndarray = field(repr=False)
-    _skews: np.ndarray = field(repr=False)
-    _skews2: np.ndarray = field(repr=False)
     _prismatic: np.ndarray = field(repr=False)
-    _loop_groups: tuple = field(repr=False)
+    _k: np.ndarray = field(repr=False)  # skew(axis), skew(axis)^2, skew(axis) p and skew(axis)^2 p of each variable (p: the axis's point nearest the origin)
+    _k2: np.ndarray = field(repr=False)
+    _kp: np.ndarray = field(repr=False)
+    _k2p: np.ndarray = field(repr=False)
+    _loop_groups: tuple["_Chains", ...] = field(repr=False)  # loops of about one length together
+    _loop_alone: tuple["_Chains", ...] = field(repr=False)  # each loop alone
+    _end_effector: "_Chains" = field(repr=False)  # the end effector's path
 
     @property
     def variable_count(self) -> int:
@@ -187,6 +213,11 @@ class Kinematics:
     def loop_count(self) -> int:
         """Number of independent loops (chords)."""
         return len(self.chords)
+
+    @property
+    def model(self) -> "Kinematics":
+        """Itself (the name the stacked screw systems read its normalisation by)."""
+        return self
 
     def variables_of(self, joint: int | str) -> slice:
         """Slice of ``q`` holding the variables of a joint (index or name)."""
@@ -199,152 +230,136 @@ class Kinematics:
             raise RequestError(f"joint: expected a joint name or an index below {len(names)}, got {joint!r}")
         return slice(int(self.offsets[index]), int(self.offsets[index + 1]))
 
-    # -- products of exponentials -------------------------------------------
-    def _factor_exps(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``exp(q_i x_i)`` and its inverse for every variable, each of shape ``(n, 4, 4)`` (Rodrigues, vectorised)."""
-        q = np.asarray(q, dtype=float)
-        sin, one_minus_cos = np.sin(q), 1.0 - np.cos(q)
-        rot = np.eye(3) + sin[:, None, None] * self._skews + one_minus_cos[:, None, None] * self._skews2
-        rot[self._prismatic] = np.eye(3)
-        p = self._points
-        shift = p - np.einsum("nij,nj->ni", rot, p) + (self._pitches * q)[:, None] * self._axes
-        shift[self._prismatic] = q[self._prismatic, None] * self._axes[self._prismatic]
-        exps = np.zeros((len(q), 4, 4))
-        exps[:, 3, 3] = 1.0
-        exps[:, :3, :3] = rot
-        exps[:, :3, 3] = shift
-        inverses = exps.copy()
-        inverses[:, :3, :3] = rot.transpose(0, 2, 1)
-        inverses[:, :3, 3] = -np.einsum("nji,nj->ni", rot, shift)
-        return exps, inverses
+    # -- products of exponentials, pose index last ----------------------------------
+    def _stack(self, q: np.ndarray) -> tuple[np.ndarray, bool]:
+        """``q`` as a stack ``(N, n)`` (``numpy.longdouble`` kept, else float64) and whether it was one pose."""
+        q = np.asarray(q)
+        q = q if q.dtype == np.longdouble else np.asarray(q, dtype=float)
+        n = self.variable_count
+        if q.ndim == 2:
+            if q.shape[1] != n:
+                raise RequestError(f"expected joint variables of shape (N, {n}), got {q.shape}")
+            return q, False
+        if q.size != n:
+            raise RequestError(f"expected {n} joint variables, got {q.size}")
+        return q.reshape(1, n), True
+
+    def _exponentials(self, q: np.ndarray) -> "_Exponentials":
+        return _Exponentials(self, q.T)
 
     @staticmethod
-    def _product(factors: tuple[Factor, ...], exps: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
-        g = np.eye(4)
-        forward, backward = exps
-        for f in factors:
-            g = g @ (forward[f.variable] if f.sign > 0 else backward[f.variable])
-        return g
+    def _chain(chains: "_Chains", exps: "_Exponentials") -> tuple[np.ndarray, list[np.ndarray | None]]:
+        """Products of ``G`` chains of factors of one length as frames ``[R | t]``, their poses side by side
+        (``(3, 4, G N)``), and the partial products before each position (``None``: the identity)."""
+        g: np.ndarray | None = None
+        before: list[np.ndarray | None] = []
+        for factors in chains.steps:
+            before.append(g)
+            g = compose(g, exps.gather(factors))
+        return (_identity(exps.count * chains.size) if g is None else g), before
 
-    def _check(self, q: np.ndarray) -> np.ndarray:
-        q = np.asarray(q, dtype=float).reshape(-1)
-        if q.shape != (self.variable_count,):
-            raise RequestError(f"expected {self.variable_count} joint variables, got {q.size}")
-        return q
+    def _columns(self, chains: "_Chains", before: list[np.ndarray | None], rows: np.ndarray | None, count: int) -> np.ndarray:
+        """Right-trivialised derivatives ``(6, n, G, len(rows))`` of chains' products from their partial products.
+
+        The positions are taken all at once for a small stack (fewer array
+        operations), one at a time for a large one (no copies of the partial
+        products); each pose's numbers are the same either way.
+        """
+        n, size, x = self.variable_count, chains.size, chains.twists
+        cols = np.zeros((6, n + 1, size, count))  # a padding factor's column is the last, dropped
+        if not before:
+            return cols[:, :n]
+        which = np.arange(size)
+        cols[:, chains.variables[0], which] = x[:, 0, :, None]  # the identity before the first factor
+        block = len(before) if size * count <= GROUPED_POSES else 1
+        for start in range(1, len(before), block):
+            part = before[start : start + block]
+            frames = (part[0][:, :, None] if len(part) == 1 else np.stack(part, axis=2)).reshape(3, 4, len(part), size, -1)  # type: ignore[index, arg-type]
+            if rows is not None:
+                frames = frames[..., rows]
+            turns = x[:, start : start + len(part), :, None]
+            rot = frames[:, :3]
+            w = rotate(rot, turns[:3])
+            variables = chains.variables[start : start + len(part)]
+            cols[:3, variables, which] = w
+            cols[3:, variables, which] = stacked_cross(frames[:, 3], w) + rotate(rot, turns[3:])
+        return cols[:, :n]
+
+    def link_motions(self, q: np.ndarray) -> dict[str, Motion]:
+        """Displacement of every link, stacked pose index last: rotation ``(3, 3, N)`` and translation ``(3, N)``."""
+        q, _ = self._stack(q)
+        exps = self._exponentials(q)
+        frames = {self.mechanism.ground: _identity(exps.count)}
+        for parent, child, step in self._steps:
+            g = frames[parent]
+            for f in step:
+                g = compose(g, exps.factor(f.variable, f.sign))
+            frames[child] = g
+        return {link: (g[:, :3], g[:, 3]) for link, g in frames.items()}
 
     def link_displacements(self, q: np.ndarray) -> dict[str, np.ndarray]:
-        """Displacement ``g_L`` (4x4, normalised coordinates) of every link at ``q``.
+        """Displacement ``g_L`` (4x4, normalised coordinates; ``(N, 4, 4)`` for a stack) of every link at ``q``.
 
         ``g_L`` maps a point of link ``L`` at the given pose to where it is at
         ``q`` (the ground's is the identity).
         """
-        q = self._check(q)
-        exps = self._factor_exps(q)
-        return {link: self._product(path, exps) for link, path in self.paths.items()}
+        _, single = self._stack(q)
+        out = {}
+        for link, (rot, shift) in self.link_motions(q).items():
+            g = np.zeros((rot.shape[-1], 4, 4))
+            g[:, :3, :3] = np.moveaxis(rot, -1, 0)
+            g[:, :3, 3] = shift.T
+            g[:, 3, 3] = 1.0
+            out[link] = g[0] if single else g
+        return out
 
-    def loop_displacements(self, q: np.ndarray) -> list[np.ndarray]:
-        """For each chord ``c`` from ``a`` to ``b``: ``g_a E_c(q_c) g_b^-1`` (identity when closed)."""
-        q = self._check(q)
-        exps = self._factor_exps(q)
-        return [self._product(loop, exps) for loop in self.loops]
+    # -- loops and the end effector ----------------------------------------------------
+    def evaluate(self, q: np.ndarray, components: np.ndarray | None = None) -> "Evaluation":
+        """The loop residuals (and pose coordinates ``components``) of a stack now, their Jacobian later and only for the poses that need it."""
+        return Evaluation(self, self._stack(q)[0], components)
 
     def residual(self, q: np.ndarray) -> np.ndarray:
-        """Loop-closure residual at ``q``: the logarithm of each loop product, stacked (``6 * loops``)."""
-        if not self.loops:
-            self._check(q)
-            return np.zeros(0)
-        return np.concatenate([displacement_log(g) for g in self.loop_displacements(q)])
-
-    def _spatial(self, factors: tuple[Factor, ...], exps: tuple[np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-        """Product ``G`` of ``factors`` and its right-trivialised derivative ``(dG G^-1)`` per variable."""
-        cols = np.zeros((6, self.variable_count))
-        if not factors:
-            return np.eye(4), cols
-        forward, backward = exps
-        before = np.empty((len(factors), 4, 4))
-        g = np.eye(4)
-        for i, f in enumerate(factors):
-            before[i] = g
-            g = g @ (forward[f.variable] if f.sign > 0 else backward[f.variable])
-        variables = [f.variable for f in factors]  # each variable at most once in a path or loop
-        x = self.twists[:, variables].T * np.array([f.sign for f in factors])[:, None]
-        rot, shift = before[:, :3, :3], before[:, :3, 3]
-        w = np.einsum("mij,mj->mi", rot, x[:, :3])
-        v = cross(shift.T, w.T).T + np.einsum("mij,mj->mi", rot, x[:, 3:])
-        cols[:, variables] = np.concatenate([w, v], axis=1).T
-        return g, cols
+        """Loop-closure residual at ``q``: the logarithm of each loop product, stacked (``6 * loops``; ``(N, 6 * loops)`` for a stack)."""
+        stack, single = self._stack(q)
+        values = self.evaluate(stack).values.T
+        return values[0] if single else values
 
     def loop_jacobian(self, q: np.ndarray) -> np.ndarray:
-        """Right-trivialised loop Jacobian at ``q``: rows ``(dL L^-1)`` of each loop product ``L``.
+        """Right-trivialised loop Jacobian at ``q``: rows ``(dL L^-1)`` of each loop product ``L`` (``(6 * loops, n)``).
 
         At a closed pose these are the loop-closure equations of
         :mod:`mobility.core.loop_closure` written with the joint twists at the moved
         pose (up to the sign and the column scaling of unit twists).
         """
-        q = self._check(q)
-        exps = self._factor_exps(q)
-        rows = [self._spatial(loop, exps)[1] for loop in self.loops]
-        return np.vstack(rows) if rows else np.zeros((0, self.variable_count))
+        stack, single = self._stack(q)
+        jac = np.moveaxis(self.evaluate(stack).jacobian(), -1, 0)
+        return jac[0] if single else jac
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
-        """Exact derivative of :meth:`residual` at ``q``, shape ``(6 * loops, n)``."""
-        return self.linearize(q)[1]
-
-    def linearize(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`residual` and :meth:`jacobian` at ``q``, computed together."""
-        q = self._check(q)
-        if not self.loops:
-            return np.zeros(0), np.zeros((0, self.variable_count))
-        forward, backward = self._factor_exps(q)
-        table = np.concatenate([forward, backward, np.eye(4)[None]])
-        residual = np.empty((self.loop_count, 6))
-        rows = np.empty((self.loop_count, 6, self.variable_count))
-        for loops, factors, signs in self._loop_groups:
-            residual[loops], rows[loops] = self._linearize_loops(table, factors, signs)
-        return residual.reshape(-1), rows.reshape(-1, self.variable_count)
-
-    def _linearize_loops(self, table: np.ndarray, factors: np.ndarray, signs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Residuals and exact derivatives of loops of about one length, all at once.
-
-        ``factors[l, i]`` indexes the matrix of loop ``l``'s ``i``-th factor in
-        ``table`` (forward exponentials, backward ones, the identity that pads
-        a shorter loop), ``signs`` its sign (0 for padding).  The products are
-        taken position by position over all the loops, then the logarithms and
-        the derivatives of the exponential as stacks.
-        """
-        n = self.variable_count
-        count, length = factors.shape
-        matrices = table[factors]  # (loops, length, 4, 4)
-        before = np.empty((count, length, 4, 4))
-        g = np.broadcast_to(np.eye(4), (count, 4, 4))
-        for i in range(length):
-            before[:, i] = g
-            g = g @ matrices[:, i]
-        variables = factors % n
-        x = self.twists.T[variables] * signs[..., None]  # a padding factor has sign 0
-        turned = before[..., :3, :3] @ x.reshape(count, length, 2, 3).transpose(0, 1, 3, 2)  # R w and R v of each factor's twist
-        w = turned[..., 0]
-        v = cross(before[..., :3, 3].T, w.T).T + turned[..., 1]
-        cols = np.zeros((count, n + 1, 6))
-        cols[np.arange(count)[:, None], np.where(signs != 0.0, variables, n)] = np.concatenate([w, v], axis=-1)
-        r, derivative = displacement_logs(g, with_dexp=True)
-        return r, np.linalg.solve(derivative, cols[:, :n].transpose(0, 2, 1))
+        """Exact derivative of :meth:`residual` at ``q``, shape ``(6 * loops, n)`` (``(N, 6 * loops, n)`` for a stack)."""
+        stack, single = self._stack(q)
+        exact = Equations(exact=True).jacobians(self.evaluate(stack))
+        return exact[0] if single else exact
 
     def end_effector_jacobian(self, q: np.ndarray) -> np.ndarray:
-        """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q``."""
-        q = self._check(q)
-        exps = self._factor_exps(q)
-        return self._spatial(self.paths[self.mechanism.end_effector], exps)[1]
+        """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q`` (``(6, n)``)."""
+        stack, single = self._stack(q)
+        exps = self._exponentials(stack)
+        chains = self._end_effector
+        cols = np.moveaxis(self._columns(chains, self._chain(chains, exps)[1], None, exps.count)[:, :, 0], -1, 0)
+        return cols[0] if single else cols
 
     # -- first-order and second-order structure ------------------------------
     def rank_decision(self, q: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[RankDecision, np.ndarray]:
-        """Rank of the loop Jacobian at ``q`` (unit-norm columns, the tolerance policy) and its null space.
+        """Rank of the loop Jacobian at one pose ``q`` (unit-norm columns, the tolerance policy) and its null space.
 
         Returns the decision and an orthonormal basis (``n x mobility``, in
         the metric of ``q``) of the joint rates that close every loop to first
         order.
         """
-        jac = self.loop_jacobian(q)
+        # + 0.0: a signed zero (the sign of a product's round-off) is a plain zero, whose null space LAPACK completes
+        # the same way whatever the file's scale (-0.0 and 0.0 steer its reflections apart)
+        jac = self.loop_jacobian(self._stack(q)[0][0]) + 0.0
         n = self.variable_count
         if jac.shape[0] == 0:
             return RankDecision(0), np.eye(n)
@@ -398,7 +413,7 @@ class Kinematics:
         max_iter: int = 40,
         max_move: float | None = None,
     ) -> Closure:
-        """Re-close every loop by Gauss–Newton with minimum-norm steps, starting from ``q``.
+        """Re-close every loop of one pose by :func:`newton` (a stack of one), starting from ``q``.
 
         Parameters
         ----------
@@ -420,47 +435,21 @@ class Kinematics:
         -------
         Closure
             ``converged`` tells whether it closed; never raises for a failure
-            to close (the caller decides what that means).
+            to close (the caller decides what that means).  Unlike a sweep's
+            solves, it keeps stepping while Newton still gains after closing, down
+            to the round-off of the residual (a small residual near a singular
+            pose can leave the pose itself off by residual / sigma_min).
         """
-        q = self._check(q).copy()
-        closed = tol.closure
-        start = q.copy()
+        q = self._stack(q)[0][0]
+        n = self.variable_count
         if constraints is None:
-            a = np.zeros((0, self.variable_count))
-            b = np.zeros(0)
+            equations, goals = Equations(exact=True), np.zeros((1, 0))
         else:
-            a = np.asarray(constraints[0], dtype=float).reshape(-1, self.variable_count)
-            b = np.asarray(constraints[1], dtype=float).reshape(-1)
-        best_q, best_err = q.copy(), np.inf
-        history: list[float] = []
-        stalled = 0
-        polish = 0
-        for iteration in range(max_iter + 1):
-            r, jac = self.linearize(q)
-            f = np.concatenate([r, a @ q - b])
-            err = float(np.max(np.abs(f))) if f.size else 0.0
-            history.append(err)
-            improved = err < 0.5 * best_err
-            if err < best_err:
-                stalled = 0 if improved else stalled + 1
-                best_q, best_err = q.copy(), err
-            else:
-                stalled += 1
-            if best_err <= closed:
-                # closed; polish while Newton still gains (a small residual near a
-                # singular pose can leave the pose itself off by residual / sigma_min)
-                polish += 1
-                if not improved or polish > 3 or err == 0.0:
-                    break
-            if iteration == max_iter or stalled >= 6:
-                break
-            step = np.linalg.lstsq(np.vstack([jac, a]), -f, rcond=NEWTON_RCOND)[0]
-            if _converging_linearly(history):
-                step = 2.0 * step  # at a singular root Newton halves the error each step: the doubled step removes it
-            q = q + step
-            if not np.all(np.isfinite(q)) or (max_move is not None and np.linalg.norm(q - start) > max_move):
-                break
-        return Closure(best_q, best_err, len(history) - 1, best_err <= closed, tuple(history))
+            equations = Equations(linear=np.asarray(constraints[0], dtype=float).reshape(-1, n), exact=True)
+            goals = np.asarray(constraints[1], dtype=float).reshape(1, -1)
+        out = newton(self, q[None], goals, equations, tol=tol, max_move=np.inf if max_move is None else max_move, max_iter=max_iter, polished=ROUND_OFF / tol.closure, accelerate=True, patience=CLOSE_STALLED)
+        history = tuple(float(e) for e in out.history[0] if not np.isnan(e))
+        return Closure(out.q[0], float(out.residual[0]), len(history) - 1, bool(out.converged[0]), history)
 
     # -- the moved mechanism -------------------------------------------------------
     def mechanism_at(self, q: np.ndarray) -> Mechanism:
@@ -478,8 +467,8 @@ class Kinematics:
             ga, gb = g[joint.links[0]], g[joint.links[1]]
 
             def point(p: tuple[float, float, float] | None, disp: np.ndarray = ga) -> tuple[float, ...] | None:
-                if p is None:
-                    return None
+                if p is None or np.array_equal(disp, _EYE4):  # a link that did not move (the ground) keeps its points exactly
+                    return None if p is None else tuple(float(x) for x in p)
                 pn = norm.point_from_world(np.asarray(p))
                 return tuple(float(x) for x in norm.point_to_world(disp[:3, :3] @ pn + disp[:3, 3]))
 
@@ -492,6 +481,8 @@ class Kinematics:
             joints.append(_replace(joint, **changes))
         return self.mechanism.replace(joints=_keep_coincident_points(self.mechanism.world_joints, joints), frames=(), expected=None)
 
+
+_EYE4 = np.eye(4)
 
 POINT_FIXED_IN_BOTH = frozenset("RUS")
 """Joint types whose point stays fixed in both links (they only turn about it); a C, H, P or E joint moves it along the other."""
@@ -523,17 +514,407 @@ def _keep_coincident_points(given: Sequence[Joint], moved: list[Joint]) -> tuple
     return tuple(moved)
 
 
+def _identity(count: int) -> np.ndarray:
+    """``count`` identity displacements as frames ``[I | 0]`` ``(3, 4, count)``."""
+    return np.broadcast_to(np.eye(3, 4)[..., None], (3, 4, count))
+
+
+@dataclass(frozen=True, eq=False)
+class _Chains:
+    """``G`` products of factors (loops, or the end effector's path), padded to one length by the identity.
+
+    ``steps[i][g]``: chain ``g``'s ``i``-th factor (``None`` for padding);
+    ``variables[i, g]`` its variable (``n`` for padding); ``twists[:, i, g]``
+    its signed twist (zero for padding).
+    """
+
+    loops: tuple[int, ...]
+    steps: tuple[tuple[Factor | None, ...], ...]
+    variables: np.ndarray
+    twists: np.ndarray
+    size: int  # G
+
+
+class _Exponentials:
+    """``exp(q_i x_i)`` of every variable of a stack (Rodrigues), its inverse computed when first asked."""
+
+    def __init__(self, kin: Kinematics, q: np.ndarray) -> None:  # q: (n, N)
+        self.count = q.shape[1]
+        sin, one_minus_cos = np.sin(q), 1.0 - np.cos(q)
+        frames = np.empty((len(q), 3, 4, self.count), dtype=np.result_type(q.dtype, np.float64))
+        rot, shift = frames[:, :, :3], frames[:, :, 3]
+        # written in place term by term (the same sums, in the same order; numpy is slower with a fresh array as out)
+        np.multiply(kin._k, sin[:, None, None, :], out=rot)
+        rot += kin._k2 * one_minus_cos[:, None, None, :]
+        # about the line through p: shift = (I - R) p + h q a, and (I - R) p = -(sin K p + (1 - cos) K^2 p)
+        np.multiply(kin._kp, sin[:, None, :], out=shift)
+        shift += kin._k2p * one_minus_cos[:, None, :]
+        np.negative(shift, out=shift)
+        shift += (kin._pitches[:, None] * q)[:, None, :] * kin._axes[:, :, None]
+        rot += np.eye(3)[None, :, :, None]
+        prismatic = kin._prismatic
+        rot[prismatic] = np.eye(3)[:, :, None]
+        shift[prismatic] = q[prismatic][:, None, :] * kin._axes[prismatic][:, :, None]
+        self.frames = frames  # the forward exponentials as frames [R | t], (n, 3, 4, N)
+        self._inverse: dict[int, np.ndarray] = {}
+
+    def factor(self, variable: int, sign: float) -> np.ndarray:
+        if sign > 0:
+            return self.frames[variable]
+        if variable not in self._inverse:
+            g = self.frames[variable]
+            inverse = np.empty_like(g)
+            inverse[:, :3] = np.swapaxes(g[:, :3], 0, 1)
+            inverse[:, 3] = -rotate(inverse[:, :3], g[:, 3])
+            self._inverse[variable] = inverse
+        return self._inverse[variable]
+
+    def gather(self, factors: Sequence[Factor | None]) -> np.ndarray:
+        """The exponentials of ``G`` factors (``None``: the identity), side by side: ``(3, 4, G N)``."""
+        if len(factors) == 1 and factors[0] is not None:
+            return self.factor(factors[0].variable, factors[0].sign)
+        parts = [_identity(self.count) if f is None else self.factor(f.variable, f.sign) for f in factors]
+        return np.stack(parts, axis=2).reshape(3, 4, -1)
+
+
+class Evaluation:
+    """The loop residuals (and pose coordinates) of a stack of poses, with what their Jacobian needs kept.
+
+    Attributes
+    ----------
+    values : ndarray, shape (m, N)
+        The residual of each loop (6 numbers), then the pose coordinates asked
+        for (0..5 for x, y, z, rx, ry, rz: the displacement of the
+        :attr:`Kinematics.reference` point and the rotation vector, normalised
+        coordinates).  Their Jacobian, per unit joint rate, right-trivialised
+        for the loops (exact at a closed pose), comes from :meth:`jacobian`.
+    """
+
+    def __init__(self, kin: Kinematics, q: np.ndarray, components: np.ndarray | None) -> None:
+        self._kin = kin
+        exps = kin._exponentials(q)
+        self._count = count = exps.count
+        blocks: list[np.ndarray] = [np.zeros((6, count))] * kin.loop_count
+        # loops of about one length side by side while the stack is small (fewer, larger array operations), else each alone
+        plan = kin._loop_groups if count <= GROUPED_POSES else kin._loop_alone
+        self._chains: list[tuple[_Chains, list[np.ndarray | None], tuple[np.ndarray, np.ndarray] | None]] = []  # the end effector's with its pose (p, r)
+        for chains in plan:
+            g, before = kin._chain(chains, exps)
+            logs = twist_logs((g[:, :3], g[:, 3])).reshape(6, chains.size, count)
+            for k, loop in enumerate(chains.loops):
+                blocks[loop] = logs[:, k]
+            self._chains.append((chains, before, None))
+        self._components = None if components is None or not len(components) else np.asarray(components)
+        if self._components is not None:
+            g, before = kin._chain(kin._end_effector, exps)
+            rot, shift = g[:, :3], g[:, 3]
+            p = rotate(rot, kin.reference) + shift
+            r = rotation_logs_last(rot)
+            blocks.append(np.concatenate([p - kin.reference[:, None], r])[self._components])
+            self._chains.append((kin._end_effector, before, (p, r)))
+        self.values = np.concatenate(blocks) if blocks else np.zeros((0, count))
+
+    def jacobian(self, rows: np.ndarray | None = None) -> np.ndarray:
+        """The Jacobian ``(m, n, len(rows))`` of the chosen poses (all by default)."""
+        kin = self._kin
+        count = self._count if rows is None else len(rows)
+        blocks: list[np.ndarray] = [np.zeros(0)] * kin.loop_count
+        for chains, before, pose in self._chains:
+            cols = kin._columns(chains, before, rows, count)
+            if pose is None:
+                for k, loop in enumerate(chains.loops):
+                    blocks[loop] = cols[:, :, k]
+                continue
+            cols = cols[:, :, 0]
+            p, r = pose if rows is None else (pose[0][:, rows], pose[1][:, rows])
+            omega = cols[:3]
+            dp = cols[3:] + stacked_cross(omega, p[:, None, :])  # point velocity v + w x p
+            dr = inverse_left_jacobian_times(r, omega)
+            blocks.append(np.concatenate([dp, dr])[self._components])
+        if not blocks:
+            return np.zeros((0, kin.variable_count, count))
+        return np.concatenate(blocks)
+
+
+GROUPED_POSES = 256
+"""Stacks of at most this many poses evaluate loops of about one length side by side (:class:`Evaluation`); larger ones each loop alone."""
+
+
+# ---------------------------------------------------------------------------
+# Newton's method, on a stack of poses
+# ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class Equations:
+    """What a Newton solve closes besides the loops, and the variables it moves.
+
+    Attributes
+    ----------
+    free : ndarray of bool, shape (n,), optional
+        The variables solved for (default: all); the others keep their
+        starting values.
+    components : ndarray of int
+        Pose coordinates of the end effector fixed (0..5: x, y, z, rx, ry, rz,
+        see :class:`Evaluation`), their values the first columns of the goals.
+    linear : ndarray, shape (k, n), optional
+        Extra linear equations ``A q = b``, ``b`` the last ``k`` columns of
+        the goals.
+    exact : bool
+        The loops' Jacobian is their exact derivative (the right-trivialised
+        one corrected by the inverse differential of the exponential at each
+        loop's residual), not the right-trivialised one (exact at a closed
+        pose, and cheaper).
+    """
+
+    free: np.ndarray | None = None
+    components: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    linear: np.ndarray | None = None
+    exact: bool = False
+
+    def mask(self, n: int) -> np.ndarray:
+        """The free variables as a mask of ``n``."""
+        return np.ones(n, dtype=bool) if self.free is None else self.free
+
+    def values(self, kin: Kinematics, q: np.ndarray, goals: np.ndarray) -> tuple[np.ndarray, Evaluation]:
+        """Every equation's residual ``(m, N)`` at the poses ``q`` ``(N, n)`` and their ``goals``, and the evaluation that gives their Jacobian."""
+        evaluation = kin.evaluate(q, self.components)
+        values = evaluation.values
+        fixed = len(self.components)
+        if fixed:
+            values[values.shape[0] - fixed :] -= goals[:, :fixed].T
+        if self.linear is not None:
+            values = np.concatenate([values, self.linear @ q.T - goals[:, fixed:].T])
+        return values, evaluation
+
+    def jacobians(self, evaluation: Evaluation, rows: np.ndarray | None = None) -> np.ndarray:
+        """The Jacobians of :meth:`values` (all poses, or ``rows``) over the free variables, stacked ``(N, m, free)``."""
+        kin = evaluation._kin
+        free = self.mask(kin.variable_count)
+        jac = np.moveaxis(evaluation.jacobian(rows)[:, free], -1, 0)
+        if self.exact and kin.loop_count:
+            count, loops, width = len(jac), kin.loop_count, jac.shape[2]
+            r = evaluation.values[: 6 * loops] if rows is None else evaluation.values[: 6 * loops, rows]
+            derivative = dexps(np.asarray(r, dtype=float).T.reshape(-1, 6))  # (N L, 6, 6)
+            jac[:, : 6 * loops] = np.linalg.solve(derivative, jac[:, : 6 * loops].reshape(-1, 6, width)).reshape(count, 6 * loops, width)
+        if self.linear is not None:
+            jac = np.concatenate([jac, np.broadcast_to(self.linear[:, free], (len(jac),) + self.linear[:, free].shape)], axis=1)
+        return np.ascontiguousarray(jac)
+
+
+@dataclass(frozen=True, eq=False)
+class Closures:
+    """Outcome of :func:`newton` on a stack of poses.
+
+    Attributes
+    ----------
+    q : ndarray, shape (N, n)
+        The best iterate of each pose.
+    residual : ndarray, shape (N,)
+        Its largest residual component.
+    converged : ndarray of bool, shape (N,)
+        ``residual <= tol.closure``.
+    history : ndarray, shape (N, steps + 1)
+        The largest residual component before each step (NaN once a pose stopped).
+    """
+
+    q: np.ndarray
+    residual: np.ndarray
+    converged: np.ndarray
+    history: np.ndarray
+
+
+MAX_ITERATIONS = 12
+"""Newton steps at most for one solve of a sweep."""
+
+POLISHED = 0.1
+"""A pose whose residual is below this fraction of ``Tolerance.closure`` needs no further step (a sweep's solves)."""
+
+STALLED = 4
+"""A pose of a sweep stops after this many steps in a row that did not halve its best residual
+(:meth:`Kinematics.close`, one pose at a time, allows :data:`CLOSE_STALLED`)."""
+
+CLOSE_STALLED = 6
+"""Steps in a row that do not halve the best residual before :meth:`Kinematics.close` gives up:
+Newton from a start off every branch of a singular pose can lose ground for a few steps first."""
+
+ROUND_OFF = float(np.finfo(float).eps)
+"""A residual below this (the round-off of numbers of about one) has nothing left to gain (:meth:`Kinematics.close`)."""
+
 LINEAR_RATIO = (0.15, 0.35)
 """Newton's residual shrinking by a ratio in this range at two steps running (about 1/4: the
 error halves, the residual is quadratic in it) is the mark of a singular root."""
 
 
-def _converging_linearly(history: list[float]) -> bool:
-    """Whether the last three residuals shrank by about 1/4 at each step (Newton at a singular root)."""
-    if len(history) < 3 or history[-3] == 0.0 or history[-2] == 0.0:
-        return False
-    low, high = LINEAR_RATIO
-    return low <= history[-2] / history[-3] <= high and low <= history[-1] / history[-2] <= high
+def newton(
+    kin: Kinematics,
+    start: np.ndarray,
+    goals: np.ndarray,
+    equations: Equations = Equations(),
+    *,
+    tol: Tolerance = DEFAULT_TOLERANCE,
+    max_move: np.ndarray | float = np.inf,
+    max_iter: int = MAX_ITERATIONS,
+    polished: float = POLISHED,
+    accelerate: bool = False,
+    patience: int = STALLED,
+) -> Closures:
+    """Close every loop of a stack of poses by Gauss–Newton with damped minimum-norm steps.
+
+    The step ``J^T (J J^T + mu I)^-1 r`` (:func:`min_norm_steps`) has a
+    damping ``mu`` far below every kept singular value, so a rank-deficient
+    Jacobian (at a change point, or the dependent rows of a planar loop)
+    still gives the minimum-norm step, and the step lies in the row space of
+    ``J``: round-off never drifts a pose along the motions the equations
+    leave free.  A pose is done when its residual is below ``polished *
+    tol.closure``, or closed and no longer halving (a last step polishes a
+    pose near a singularity), or after :data:`STALLED` steps that did not
+    halve it.
+
+    Parameters
+    ----------
+    kin : Kinematics
+    start : ndarray, shape (N, n)
+        Starting joint variables (the variables not free keep them).
+    goals : ndarray, shape (N, c + k)
+        Values of the fixed pose coordinates, then right-hand sides of the
+        linear equations (:class:`Equations`).
+    equations : Equations
+    tol : Tolerance
+        ``tol.closure`` is the largest residual component of a closed pose.
+    max_move : float or ndarray (N,)
+        A solve that wanders farther than this from its start has failed (it
+        would reach another assembly, not the nearby one).
+    max_iter : int
+    polished : float
+    patience : int
+        Steps in a row that do not halve a pose's best residual before it stops.
+    accelerate : bool
+        Double the step of a pose whose residual shrank by a ratio in
+        :data:`LINEAR_RATIO` at the last two steps (Newton at a singular
+        root): it removes the leading error term, the same poses in half the
+        steps.
+
+    Returns
+    -------
+    Closures
+    """
+    q0 = np.array(start, dtype=float)
+    count = len(q0)
+    q = q0.copy()
+    best_q, best = q.copy(), np.full(count, np.inf)
+    stalled = np.zeros(count, dtype=int)
+    active = np.arange(count)
+    max_move = np.broadcast_to(np.asarray(max_move, dtype=float), (count,))
+    free = equations.mask(kin.variable_count)
+    movable = bool(free.any())
+    history: list[np.ndarray] = []
+    # A solve that diverges (a target far beyond the mechanism's size, or a pose with no assembly near it)
+    # overflows: its iterates turn non-finite and are dropped (err = inf, the move refused), so numpy's
+    # warnings would only repeat what the result says (not closed).
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        for iteration in range(max_iter + 1):
+            if active.size == 0:
+                break
+            r, evaluation = equations.values(kin, q[active], goals[active])
+            err = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(active.size)
+            err = np.where(np.isfinite(err), err, np.inf)
+            history.append(np.full(count, np.nan))
+            history[-1][active] = err
+            better = err < best[active]
+            halved = err < 0.5 * best[active]
+            stalled[active] = np.where(halved, 0, stalled[active] + 1)
+            best_q[active[better]] = q[active[better]]
+            best[active[better]] = err[better]
+            b, st = best[active], stalled[active]
+            # done: near round-off, or closed and no longer gaining (a last step polishes a pose near a singularity)
+            done = (b <= polished * tol.closure) | ((b <= tol.closure) & (st > 0))
+            keep = np.flatnonzero(~done & (st < patience) & (iteration < max_iter) & movable & (r.shape[0] > 0))
+            if keep.size == 0:
+                break
+            jac = equations.jacobians(evaluation, keep)
+            active, r = active[keep], r[:, keep]
+            # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
+            # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
+            step = min_norm_steps(jac, r)
+            if accelerate and len(history) >= 3:
+                before, last, now = (h[active] for h in history[-3:])
+                low, high = LINEAR_RATIO
+                # at a singular root Newton halves the error each step (the residual shrinks by about 1/4): the doubled step removes it
+                step[(low <= last / before) & (last / before <= high) & (low <= now / last) & (now / last <= high)] *= 2.0
+            moved = q[active].copy()
+            moved[:, free] += step
+            finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
+            q[active[finite]] = moved[finite]
+            active = active[finite]
+    return Closures(best_q, best, best <= tol.closure, np.array(history).T)
+
+
+def min_norm_steps(j: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """The damped minimum-norm Newton steps ``-J^T (J J^T + mu I)^-1 r`` of stacked systems ``j`` ``(N, m, free)``, ``r`` ``(m, N)``."""
+    equations = j.shape[1]
+    gram = j @ j.swapaxes(1, 2)
+    diagonal = gram.reshape(len(gram), -1)[:, :: equations + 1]
+    diagonal += (NEWTON_DAMPING * diagonal.sum(axis=1) / equations + 1e-300)[:, None]
+    return -(j.swapaxes(1, 2) @ np.linalg.solve(gram, np.ascontiguousarray(r.T)[:, :, None]))[:, :, 0]
+
+
+POLISH_STEPS = 2
+"""Newton steps of :func:`polish` (each from a residual in extended precision)."""
+
+_EXTENDED = np.finfo(np.longdouble).eps < np.finfo(float).eps
+"""Whether this platform's ``numpy.longdouble`` holds more digits than float64 (x86: 64-bit mantissa)."""
+
+
+def polish(kin: Kinematics, q: np.ndarray, goals: np.ndarray, equations: Equations = Equations()) -> np.ndarray:
+    """Closed poses refined by Newton steps whose residual is evaluated in extended precision.
+
+    Near a singularity the closure equations are ill-conditioned: with a
+    smallest singular value ``s`` of their Jacobian, the round-off of a
+    float64 residual (about 1e-16) leaves the joint variables uncertain by
+    ``1e-16 / s`` along the near-singular motion, and the screw systems of the
+    pose amplify that again by ``1 / s``.  A parallelogram 0.01 degree from
+    its change point (``s`` about 2e-4) then shows its coupler tilted by 1e-12
+    rad and a pure translation with a rotational part of 1e-8, at the rank
+    tolerance.  Residuals in ``numpy.longdouble`` (on x86 three more digits)
+    take that uncertainty below the float64 rounding of the variables
+    themselves; the steps are solved in float64 (the residual is tiny).  A
+    step that does not lower the extended residual is not taken.  Where
+    ``longdouble`` is float64 (some platforms) nothing changes.
+
+    Parameters
+    ----------
+    q : ndarray, shape (N, n)
+        Closed poses.
+    goals : ndarray, shape (N, c + k)
+        Their goals (:func:`newton`).
+
+    Returns
+    -------
+    ndarray, shape (N, n)
+        The refined poses (float64), the variables not free unchanged.
+    """
+    free = equations.mask(kin.variable_count)
+    if not _EXTENDED or len(q) == 0 or not free.any():
+        return q
+    exact, wanted = np.asarray(q, dtype=np.longdouble), np.asarray(goals, dtype=np.longdouble)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        r, evaluation = equations.values(kin, exact, wanted)
+        if r.shape[0] == 0:
+            return q
+        err = np.abs(r).max(axis=0)
+        for _ in range(POLISH_STEPS):
+            j = equations.jacobians(evaluation).astype(float)  # the step in float64: the residual is what needs the digits
+            trial = exact.copy()
+            trial[:, free] += min_norm_steps(j, np.asarray(r, dtype=float))
+            r_trial, evaluation = equations.values(kin, trial, wanted)
+            err_trial = np.abs(r_trial).max(axis=0)
+            better = np.isfinite(err_trial) & (err_trial < err)
+            if not better.any():
+                break
+            exact[better], err[better] = trial[better], err_trial[better]
+            r, evaluation = (r_trial, evaluation) if better.all() else equations.values(kin, exact, wanted)
+    return exact.astype(float)
 
 
 def kinematics(mechanism: Mechanism) -> Kinematics:
@@ -551,7 +932,8 @@ def kinematics(mechanism: Mechanism) -> Kinematics:
 
 
 def _build(mechanism: Mechanism) -> Kinematics:
-    norm = joint_screws(mechanism).normalisation
+    screws = joint_screws(mechanism)
+    norm, norm_reference = screws.normalisation, screws.reference
     kinds, axes, points, pitches, offsets = [], [], [], [], [0]
     for joint in mechanism.world_joints:
         for f in joint.freedoms():
@@ -571,7 +953,11 @@ def _build(mechanism: Mechanism) -> Kinematics:
     v = np.where(is_p[:, None], axes_a, np.cross(points_a, axes_a) + pitch_a[:, None] * axes_a)
     twists = np.concatenate([w, v], axis=1).T.copy()
     twists.setflags(write=False)
-    skews = np.array([skew(a) for a in axes_a]).reshape(n, 3, 3)
+    # the model of the exponentials, from the twists: the axis, its point nearest the origin, the pitch
+    w, v = twists[:3].T, twists[3:].T
+    unit = np.where(is_p[:, None], v, w)
+    nearest = np.where(is_p[:, None], 0.0, np.cross(w, v))
+    k = np.array([skew(a) for a in unit]).reshape(-1, 3, 3)
 
     # the spanning tree from the ground that mobility.core.loop_closure uses
     tree_edges, chords = spanning_tree(mechanism)
@@ -600,21 +986,19 @@ def _build(mechanism: Mechanism) -> Kinematics:
         skip_b = sum(offsets[j + 1] - offsets[j] for j in pb[:common])
         inverse_b = tuple(Factor(f.variable, -f.sign) for f in reversed(paths[b][skip_b:]))
         loops.append(paths[a][skip_a:] + joint_factors(index, True) + inverse_b)
-    # the loops as tables of the index of each factor's matrix among [forward (n), backward (n), identity],
-    # grouped by length within a factor of two (so padding at most doubles the work)
+    rows = np.vstack([twists.T, np.zeros((1, 6))])  # a padding factor's twist is zero
+
+    def chains(indices: tuple[int, ...], members: list[tuple[Factor, ...]]) -> _Chains:
+        length = max([len(c) for c in members] + [0])
+        padded = [tuple(c) + (None,) * (length - len(c)) for c in members]
+        variables = np.array([[n if f is None else f.variable for f in step] for step in zip(*padded)], dtype=int).reshape(length, len(members))
+        signs = np.array([[0.0 if f is None else f.sign for f in step] for step in zip(*padded)]).reshape(length, len(members))
+        return _Chains(indices, tuple(zip(*padded)), variables, (signs[..., None] * rows[variables]).transpose(2, 0, 1), len(members))
+
+    # loops grouped by length within a factor of two (so padding at most doubles the work)
     by_length: dict[int, list[int]] = {}
     for row, loop in enumerate(loops):
         by_length.setdefault(max(len(loop), 1).bit_length(), []).append(row)
-    groups = []
-    for rows in by_length.values():
-        length = max(len(loops[r]) for r in rows)
-        factors = np.full((len(rows), length), 2 * n, dtype=int)
-        signs = np.zeros((len(rows), length))
-        for k, row in enumerate(rows):
-            for i, factor in enumerate(loops[row]):
-                factors[k, i] = factor.variable if factor.sign > 0 else n + factor.variable
-                signs[k, i] = factor.sign
-        groups.append((np.array(rows), factors, signs))
     return Kinematics(
         mechanism=mechanism,
         normalisation=norm,
@@ -625,11 +1009,17 @@ def _build(mechanism: Mechanism) -> Kinematics:
         chords=chords,
         paths=paths,
         loops=tuple(tuple(loop) for loop in loops),
-        _points=points_a,
-        _axes=axes_a,
-        _pitches=pitch_a,
-        _skews=skews,
-        _skews2=skews @ skews,
+        reference=norm_reference,
+        _steps=tuple((e.parent, e.child, paths[e.child][len(paths[e.parent]) :]) for e in tree_edges),
+        _rows=twists.T.copy(),
+        _axes=unit,
+        _pitches=np.where(np.array(kinds) == "H", np.einsum("ij,ij->i", w, v), 0.0),
         _prismatic=is_p,
-        _loop_groups=tuple(groups),
+        _k=k[..., None],
+        _k2=(k @ k)[..., None],
+        _kp=np.einsum("vij,vj->vi", k, nearest)[:, :, None],
+        _k2p=np.einsum("vij,vj->vi", k @ k, nearest)[:, :, None],
+        _loop_groups=tuple(chains(tuple(rows_), [loops[r] for r in rows_]) for rows_ in by_length.values()),
+        _loop_alone=tuple(chains((row,), [loop]) for row, loop in enumerate(loops)),
+        _end_effector=chains((), [paths[mechanism.end_effector]]),
     )

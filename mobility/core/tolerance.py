@@ -57,7 +57,6 @@ __all__ = [
     "NORM_TIE",
     "COINCIDENT_POINTS",
     "MARGIN_DIP",
-    "NEWTON_RCOND",
     "NEWTON_DAMPING",
     "SOLVER_STOP",
     "WRITE_DRIFT",
@@ -252,18 +251,11 @@ NORM_TIE = 1e-12
 are a tie, broken by the lowest index (the same readability choice, for the
 greedy basis of :func:`~mobility.core.canonical.readable_basis`)."""
 
-NEWTON_RCOND = 1e-12
-"""Singular values of a Newton system below this fraction of the largest are
-ignored when its minimum-norm step is solved (``numpy.linalg.lstsq``'s
-``rcond``): a safeguard of the linear solver a few digits above machine
-precision, not a rank decision (no count depends on it; whether the loops
-closed is judged by :attr:`~mobility.core.tolerance.Tolerance.closure`)."""
-
 NEWTON_DAMPING = 1e-14
-"""Damping of the batched Newton steps of a sweep, relative to the mean
-squared row of the Jacobian: far below every kept singular value squared, so
-it only keeps the normal equations of a singular pose solvable (the same role
-as :data:`NEWTON_RCOND` for the one-pose solver); whether loops closed is
+"""Damping of Newton's steps (:func:`mobility.core.kinematics.newton`), relative
+to the mean squared row of the Jacobian: far below every kept singular value
+squared, so it only keeps the normal equations of a singular pose solvable, a
+safeguard of the linear solver, not a rank decision; whether loops closed is
 judged by :attr:`Tolerance.closure`."""
 
 VALUE_TIE = 1e-9

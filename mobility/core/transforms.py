@@ -45,7 +45,14 @@ __all__ = [
     "bracket",
     "dexp",
     "displacement_logs",
+    "rotation_logs",
     "dexps",
+    "Motion",
+    "compose",
+    "rotate",
+    "twist_logs",
+    "rotation_logs_last",
+    "inverse_left_jacobian_times",
 ]
 
 
@@ -335,38 +342,32 @@ def _skews(v: np.ndarray) -> np.ndarray:
     return out
 
 
-def displacement_logs(g: np.ndarray, *, with_dexp: bool = False) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+def displacement_logs(g: np.ndarray) -> np.ndarray:
     """:func:`displacement_log` of each displacement of a stack ``g`` (shape (k, 4, 4)), shape (k, 6).
-
-    With ``with_dexp``, also :func:`dexps` of the twists found (shape (k, 6, 6)),
-    sharing the series of their rotation angles.
 
     Examples
     --------
     >>> import numpy as np
-    >>> x = np.array([[0.1, -0.2, 0.3, 1.0, 2.0, -0.5], [0.0, 0.0, 0.0, 1.0, 0.0, 0.0]])
-    >>> logs, derivatives = displacement_logs(np.stack([twist_exp(t) for t in x]), with_dexp=True)
-    >>> bool(np.allclose(logs, x)), bool(np.allclose(derivatives, dexps(x)))
-    (True, True)
+    >>> x = np.array([[0.1, -0.2, 0.3, 1.0, 2.0, -0.5], [0, 0, 1e-9, 1, 0, 0]])
+    >>> bool(np.allclose(displacement_logs(np.array([twist_exp(r) for r in x])), x, rtol=1e-14, atol=1e-15))
+    True
     """
-    g = np.asarray(g, dtype=float)
-    rot = g[:, :3, :3]
-    axis2 = np.stack([rot[:, 2, 1] - rot[:, 1, 2], rot[:, 0, 2] - rot[:, 2, 0], rot[:, 1, 0] - rot[:, 0, 1]], axis=1)  # 2 sin(t) u
-    sine2 = np.sqrt(np.einsum("ij,ij->i", axis2, axis2))
-    theta = np.arctan2(0.5 * sine2, 0.5 * (np.trace(rot, axis1=1, axis2=2) - 1.0))
-    w = axis2 / (2.0 * np.sinc(theta / np.pi))[:, None]
-    for i in np.flatnonzero(theta > 3.0):  # near a half turn: the closed form loses digits
-        w[i] = rotation_log(rot[i])
-    coefficients = _coefficients_many(np.sqrt(np.einsum("ij,ij->i", w, w)))
-    a, b = coefficients[0][:, None, None], coefficients[1][:, None, None]
-    k = _skews(w)
-    kk = k @ k
-    jac = np.eye(3) + a * k + b * kk
-    v = np.linalg.solve(jac, g[:, :3, 3:])[:, :, 0]
-    x = np.concatenate([w, v], axis=1)
-    if not with_dexp:
-        return x
-    return x, _dexps(k, kk, _skews(v), jac, coefficients)
+    g = np.moveaxis(np.asarray(g, dtype=float), 0, -1)
+    return twist_logs((g[:3, :3], g[:3, 3])).T
+
+
+def rotation_logs(rot: np.ndarray) -> np.ndarray:
+    """Rotation vectors of a stack of rotation matrices ``(k, 3, 3)`` (closed form, scipy near a half turn).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> w = np.array([[0.1, -0.2, 0.3], [0.0, 0.0, 3.1]])
+    >>> g = np.stack([twist_exp(np.concatenate([x, [0, 0, 0]])) for x in w])
+    >>> bool(np.allclose(rotation_logs(g[:, :3, :3]), w))
+    True
+    """
+    return rotation_logs_last(np.moveaxis(np.asarray(rot, dtype=float), 0, -1)).T
 
 
 def dexps(x: np.ndarray) -> np.ndarray:
@@ -380,21 +381,102 @@ def dexps(x: np.ndarray) -> np.ndarray:
     True
     """
     x = np.asarray(x, dtype=float)
-    coefficients = _coefficients_many(np.sqrt(np.einsum("ij,ij->i", x[:, :3], x[:, :3])))
-    w = _skews(x[:, :3])
-    ww = w @ w
-    jac = np.eye(3) + coefficients[0][:, None, None] * w + coefficients[1][:, None, None] * ww
-    return _dexps(w, ww, _skews(x[:, 3:]), jac, coefficients)
-
-
-def _dexps(w: np.ndarray, ww: np.ndarray, v: np.ndarray, jac: np.ndarray, coefficients: tuple[np.ndarray, ...]) -> np.ndarray:
-    """:func:`dexp` from ``skew(w)``, its square, ``skew(v)``, the left Jacobian and the angle's series."""
-    _, b, c, d = (u[:, None, None] for u in coefficients)
-    wv, vw = w @ v, v @ w
+    _, b, c, d = coefficients = [u[:, None, None] for u in _coefficients_many(np.sqrt(np.einsum("ij,ij->i", x[:, :3], x[:, :3])))]
+    w, v = _skews(x[:, :3]), _skews(x[:, 3:])
+    ww, wv, vw = w @ w, w @ v, v @ w
     wvw = wv @ w
-    q = 0.5 * v + b * (wv + vw + wvw) + c * (ww @ v + v @ ww - 3.0 * wvw) + d * (wvw @ w + w @ wvw)
-    out = np.zeros((len(w), 6, 6))
-    out[:, :3, :3] = jac
-    out[:, 3:, 3:] = jac
-    out[:, 3:, :3] = q
+    out = np.zeros((len(x), 6, 6))
+    out[:, :3, :3] = out[:, 3:, 3:] = np.eye(3) + coefficients[0] * w + b * ww
+    out[:, 3:, :3] = 0.5 * v + b * (wv + vw + wvw) + c * (ww @ v + v @ ww - 3.0 * wvw) + d * (wvw @ w + w @ wvw)
     return out
+
+
+# ---------------------------------------------------------------------------
+# many displacements, pose index last (the stacked kinematics)
+# ---------------------------------------------------------------------------
+#
+# Every product below is written as elementwise products summed in a fixed
+# order, so that each pose's numbers are the same bits whatever the stack
+# around it: ``einsum`` and ``matmul`` pick their inner loops (and fused
+# multiply-adds) by the arrays' sizes, which made a pose's round-off, and
+# through a Newton solve that cannot close the pose it stops at, depend on how
+# many poses were solved with it (the chunk size of a sweep).
+
+Motion = tuple[np.ndarray, np.ndarray]
+"""Displacements of many poses, pose index last: rotations ``(3, 3, N)`` and translations ``(3, N)``."""
+
+
+def stacked_cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product along the first axis (components first)."""
+    return np.array((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]))
+
+
+def stacked_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a . b`` along the first axis (components first), in a fixed order."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def rotate(rot: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``rot v`` for rotations ``(3, 3, N)`` and vectors ``(3, N)`` (or one vector ``(3,)``), in a fixed order."""
+    return rot[:, 0] * v[0] + rot[:, 1] * v[1] + rot[:, 2] * v[2]
+
+
+def compose(g: np.ndarray | None, h: np.ndarray) -> np.ndarray:
+    """``g h`` of stacked displacements held as frames ``[R | t]`` ``(3, 4, ...)`` (``None`` is the identity).
+
+    The translation column is ``R t_h + t_g`` summed in the order of :func:`rotate`.
+    """
+    if g is None:
+        return h
+    out = g[:, 0, None] * h[0] + g[:, 1, None] * h[1] + g[:, 2, None] * h[2]
+    out[:, 3] += g[:, 3]
+    return out
+
+
+def _series(theta: np.ndarray, coefficients: tuple[float, ...], closed) -> np.ndarray:
+    """A function of ``theta`` by its Taylor series in ``theta^2`` below 1, by ``closed(theta)`` above."""
+    t2 = theta * theta
+    out = np.zeros_like(theta)
+    for c in reversed(coefficients):
+        out = out * t2 + c
+    big = theta >= 1.0
+    if np.any(big):
+        out[big] = closed(theta[big])
+    return out
+
+
+# 1 - x cot x = sum 2^(2k) |B_2k| x^(2k) / (2k)!  with x = t/2, in powers t^(2k-2)
+_BERNOULLI = (1 / 6, 1 / 30, 1 / 42, 1 / 30, 5 / 66, 691 / 2730, 7 / 6, 3617 / 510, 43867 / 798)
+_COT_SERIES = tuple(b / _FACTORIALS[2 * k] for k, b in enumerate(_BERNOULLI, start=1))
+
+
+def rotation_logs_last(rot: np.ndarray) -> np.ndarray:
+    """Rotation vectors ``(3, N)`` of rotations ``(3, 3, N)`` (closed form, scipy near a half turn)."""
+    axis2 = np.array((rot[2, 1] - rot[1, 2], rot[0, 2] - rot[2, 0], rot[1, 0] - rot[0, 1]))  # 2 sin(t) u
+    sine2 = np.sqrt(stacked_dot(axis2, axis2))
+    theta = np.arctan2(0.5 * sine2, 0.5 * (rot[0, 0] + rot[1, 1] + rot[2, 2] - 1.0))
+    out = axis2 / (2.0 * np.sinc(theta / np.pi))
+    near_half_turn = theta > 3.0
+    if np.any(near_half_turn):
+        from scipy.spatial.transform import Rotation  # near a half turn only; slow to import
+
+        out[:, near_half_turn] = Rotation.from_matrix(np.moveaxis(np.asarray(rot[:, :, near_half_turn], dtype=float), -1, 0)).as_rotvec().T
+    return out
+
+
+def inverse_left_jacobian_times(w: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``J_l(w)^-1 x`` for rotation vectors ``w`` ``(3, N)`` and vectors ``x`` ``(3, N)`` or ``(3, k, N)``.
+
+    ``J_l^-1 = I - W/2 + c W^2`` with ``c = (1 - (t/2) cot(t/2)) / t^2``.
+    """
+    c = _series(np.sqrt(stacked_dot(w, w)), _COT_SERIES, lambda t: (1.0 - 0.5 * t / np.tan(0.5 * t)) / t**2)
+    if x.ndim == 3:
+        w = w[:, None, :]
+    wx = stacked_cross(w, x)
+    return x - 0.5 * wx + c * stacked_cross(w, wx)
+
+
+def twist_logs(g: Motion) -> np.ndarray:
+    """Twists ``[w; v]`` ``(6, N)`` with ``exp(twist) = g`` of stacked displacements."""
+    w = rotation_logs_last(g[0])
+    return np.concatenate([w, inverse_left_jacobian_times(w, g[1])])

@@ -11,14 +11,16 @@ Modules, in data-flow order:
 
 ``grid``
     the request: coordinates, ranges, units, checked against the mechanism.
-``batch_kinematics``, ``walks``, ``continuation``, ``grid_closure``
-    forward kinematics of many poses; the order each axis is walked in
-    (angles that wrap); Newton and continuation along lines of the grid;
-    the whole grid, with the poses the lines missed tried again.
-``posed_screws``, ``batch_actuation``
+``walks``, ``steps``, ``continuation``, ``grid_closure``
+    the order each axis is walked in (angles that wrap); one continuation
+    step of many poses (the kinematics and Newton's method are
+    :mod:`mobility.core.kinematics`', for a stack of poses), with its retries;
+    continuation along lines of the grid; the whole grid, with the poses the
+    lines missed tried again.
+``posed_screws``, ``batch_actuation``, ``batch_transmission``
     each pose's joint twists (their screw systems, counts and margins are
     :mod:`mobility.core.screw_systems`'s, the one engine); the actuation
-    verdict and conditioning, all stacked.
+    verdict and conditioning; the transmission indices, all stacked.
 ``seams``
     where a walk round a full turn comes back on another pose.
 ``result``, ``runner``

@@ -21,12 +21,12 @@ Examples
 --------
 >>> import numpy as np
 >>> import mobility
->>> from mobility.sweeps.batch_kinematics import BatchKinematics
+>>> from mobility.core.kinematics import kinematics
 >>> from mobility.sweeps.posed_screws import posed_screws
 >>> from mobility.core.screw_systems import analyse_poses
 >>> from mobility.core.topology import decompose
 >>> m = mobility.load("mechanisms/actuation_3rps.yaml")
->>> posed = posed_screws(BatchKinematics(m), np.zeros((1, 15)))
+>>> posed = posed_screws(kinematics(m), np.zeros((1, 15)))
 >>> a = actuation_at_poses(m, posed, analyse_poses(decompose(m), posed.twists, posed.offsets), actuated_inputs(m))
 >>> a.verdict.tolist(), round(float(a.conditioning[0]), 3), round(mobility.check_actuation(m).conditioning, 3)
 (['valid'], 0.311, 0.311)

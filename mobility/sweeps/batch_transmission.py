@@ -34,7 +34,6 @@ from ..core.topology import Parallel, decompose, joints_of
 from ..errors import RequestError
 from ..transmission import GOOD_TRANSMISSION, BatchTransmission, TransmissionCheck, transmission_indices
 from .batch_actuation import ActuationInputs, BatchActuation, actuated_inputs, actuation_at_poses
-from .batch_kinematics import BatchKinematics
 from .posed_screws import PosedScrews, posed_screws
 
 __all__ = ["transmission_at_poses", "transmission_columns", "check_transmission", "require_threshold", "transmission_threshold", "GOOD_TRANSMISSION"]
@@ -161,7 +160,7 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
     inputs = actuated_inputs(mechanism, actuated)
     if not inputs.freedoms:
         raise RequestError("check_transmission: no input chosen; mark joints `actuated: true` in the file or name them (actuated=[...])")
-    bk = BatchKinematics(mechanism)
+    bk = kinematics(mechanism)
     stack = np.zeros((1, bk.variable_count)) if q is None else _closed_pose(mechanism, q, bk.variable_count)
     posed = posed_screws(bk, stack)
     answers = analyse_poses(decompose(mechanism), posed.twists, posed.offsets, tol)

@@ -1,22 +1,9 @@
-"""Closing every loop at every point of a grid: batched Newton and continuation.
+"""Closing every loop at every point of a grid: continuation along lines.
 
-One module, longer than most, because it is one algorithm that reads better
-whole: the batched Newton step, the continuation of lines with its retries
-(smaller steps, off a fold), the two-level walk of long lines and the seeding
-of a grid call each other and share the :class:`Drive` of the driven
-coordinates.
-
-At a grid point the driven coordinates have given values (see
-:mod:`mobility.sweeps.grid`): a driven joint's variable is fixed; a pose
-coordinate is one more equation.  The other variables are solved so that
-every loop closes (:class:`~mobility.sweeps.batch_kinematics.BatchKinematics`):
-Gauss–Newton with minimum-norm steps, batched over poses: the step
-``J^T (J J^T + mu I)^-1 r`` with a damping ``mu`` far below every kept
-singular value, so a rank-deficient Jacobian (at a change point, or the
-dependent rows of a planar loop) still gives the minimum-norm step, and the
-step lies in the row space of ``J``: round-off never drifts a pose along the
-motions the drive leaves free.  A pose is *assembled* when every residual component is
-at most ``Tolerance.closure`` (radians, lengths over the characteristic length).
+At a grid point the driven coordinates have given values; the other
+variables are solved so that every loop closes, one continuation step of
+many poses at a time (:mod:`mobility.sweeps.steps`: Newton at the driven
+values, and its retries).
 
 Continuation: the grid is solved one axis at a time, from the file's pose
 (``q = 0``) outwards.  The *anchor* of an axis is its value nearest the
@@ -29,11 +16,8 @@ Newton solve is the cubic predictor ``4 q[i-1] - 6 q[i-2] + 4 q[i-3] - q[i-4]``
 (lower orders while fewer points are known: the secant ``2 q[i-1] - q[i-2]``
 after two), which keeps the continuation on its branch through a change
 point and leaves one Newton step to do.  A point that fails is retried
-allowing the length of the linearised step, then walked from its last
-assembled neighbour in sub-steps, halved where one fails (:func:`_substeps`:
-the poses a finer grid reaches, whatever the grid step), then off a fold
-when that neighbour is one (:func:`_off_a_fold`, whose poses must walk back
-to that neighbour: :func:`_walks_back`); the points still missing at
+(:func:`mobility.sweeps.steps._advance`: a wider move, sub-steps from its last
+assembled neighbour, off a fold); the points still missing at
 the end are tried again from any assembled neighbour on any axis
 (:func:`mobility.sweeps.grid_closure.fill`), layer after layer.  A point that cannot
 be assembled stays in the grid with ``assembled`` false and the best
@@ -50,9 +34,10 @@ continuous along the walk.
 Examples
 --------
 >>> import mobility
+>>> from mobility.core.kinematics import kinematics
 >>> from mobility.sweeps.grid import plan_grid
 >>> m = mobility.load("mechanisms/parallelogram.yaml")
->>> plan, bk = plan_grid(m, ["O1=0:90:7"]), BatchKinematics(m)
+>>> plan, bk = plan_grid(m, ["O1=0:90:7"]), kinematics(m)
 >>> line = targets_of(plan, line_layout(plan.shape, 0))
 >>> q, residual, assembled = close_lines(bk, Drive.of(plan.axes, bk.variable_count), np.zeros((1, bk.variable_count)), np.array([True]), line, 0)
 >>> bool(assembled.all()), float(residual.max()) < 1e-12
@@ -67,22 +52,17 @@ from typing import Callable
 
 import numpy as np
 
-from ..core.tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, SAME_GRID_VALUE, Tolerance, decide_ranks
-from .batch_kinematics import BatchKinematics, Evaluation
-from .grid import GridPlan, SweepAxis, whole_turns
+from ..core.kinematics import Kinematics
+from ..core.tolerance import DEFAULT_TOLERANCE, SAME_GRID_VALUE, Tolerance
+from .grid import GridPlan, whole_turns
+from .steps import Drive, _advance, residuals
 from .walks import AxisWalk, plan_walks
 
-__all__ = ["Drive", "GridClosure", "newton", "polish", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget", "residuals", "walk_between"]
+__all__ = ["GridClosure", "close_lines", "seed_grid", "line_layout", "anchors", "targets_of", "retarget"]
 
 MAX_PIECES = 2000
 """Grid steps at most on the way from the file's pose to the grid's anchor point; a grid
 farther away is approached in longer steps (and is not assembled if Newton cannot follow)."""
-
-MAX_ITERATIONS = 12
-"""Newton steps at most for one solve."""
-
-POLISHED = 0.1
-"""A pose whose residual is below this fraction of ``Tolerance.closure`` needs no polishing step."""
 
 EXTRAPOLATION = ((1.0,), (2.0, -1.0), (3.0, -3.0, 1.0), (4.0, -6.0, 4.0, -1.0))
 """Predictor from the last 1, 2, 3 or 4 points of a line (polynomial extrapolation, error of order 1 to 4 in the step)."""
@@ -94,478 +74,8 @@ HOMOTOPY_STEP = 0.1
 """Largest step (radians, lengths over the characteristic length) from the file's pose to a grid of one point."""
 
 
-@dataclass(frozen=True)
-class Drive:
-    """How the driven coordinates enter the equations.
-
-    Attributes
-    ----------
-    joints : ndarray of int
-        Axis positions that drive a joint variable, and
-    variables : ndarray of int
-        the variable each drives.
-    pose : ndarray of int
-        Axis positions that are pose coordinates, and
-    components : ndarray of int
-        the component (0..5) each fixes.
-    free : ndarray of bool, shape (n,)
-        The variables solved for.
-    """
-
-    joints: np.ndarray
-    variables: np.ndarray
-    pose: np.ndarray
-    components: np.ndarray
-    free: np.ndarray
-
-    @classmethod
-    def of(cls, axes: tuple[SweepAxis, ...], variable_count: int) -> "Drive":
-        """The drive of a grid's axes."""
-        joints = [i for i, a in enumerate(axes) if a.kind == "joint"]
-        pose = [i for i, a in enumerate(axes) if a.kind == "pose"]
-        free = np.ones(variable_count, dtype=bool)
-        variables = np.array([axes[i].variable for i in joints], dtype=int)
-        free[variables] = False
-        return cls(np.array(joints, dtype=int), variables, np.array(pose, dtype=int), np.array([axes[i].variable for i in pose], dtype=int), free)
-
-    def apply(self, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
-        """``q`` with the driven joint variables set to their targets."""
-        q = np.array(q, dtype=float)
-        if self.joints.size:
-            q[:, self.variables] = targets[:, self.joints]
-        return q
-
-
-def _evaluate(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray):
-    """The loops' and pose equations' residual ``(m, N)``, and the evaluation that gives their Jacobian."""
-    evaluation = bk.evaluate(q, drive.components)
-    values = evaluation.values
-    if drive.pose.size:
-        values[values.shape[0] - drive.pose.size :] -= targets[:, drive.pose].T
-    return values, evaluation
-
-
-def newton(
-    bk: BatchKinematics,
-    drive: Drive,
-    start: np.ndarray,
-    targets: np.ndarray,
-    *,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    max_move: np.ndarray | float = np.inf,
-    max_iter: int = MAX_ITERATIONS,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Close every loop of many poses by Gauss–Newton with minimum-norm steps.
-
-    Parameters
-    ----------
-    bk : BatchKinematics
-    drive : Drive
-    start : ndarray, shape (N, n)
-        Starting joint variables (the driven ones are overwritten by the targets).
-    targets : ndarray, shape (N, axes)
-        Values of the driven coordinates (internal units).
-    tol : Tolerance
-        ``tol.closure`` is the largest residual component of an assembled pose.
-    max_move : float or ndarray (N,)
-        A solve that wanders farther than this from its start has failed (it
-        would reach another assembly, not the nearby one).
-    max_iter : int
-
-    Returns
-    -------
-    q : ndarray, shape (N, n)
-        The best iterate of each pose.
-    residual : ndarray, shape (N,)
-        Its largest residual component.
-    assembled : ndarray of bool, shape (N,)
-    """
-    # A solve that diverges (a target far beyond the mechanism's size, or a pose with no assembly near it)
-    # overflows: its iterates turn non-finite and are dropped (err = inf, the move refused), so numpy's
-    # warnings would only repeat what the result says (not assembled).
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        best_q, best = _newton_loop(bk, drive, start, targets, tol, max_move, max_iter)
-    return best_q, best, best <= tol.closure
-
-
-def _newton_loop(
-    bk: BatchKinematics,
-    drive: Drive,
-    start: np.ndarray,
-    targets: np.ndarray,
-    tol: Tolerance,
-    max_move: np.ndarray | float,
-    max_iter: int,
-) -> tuple[np.ndarray, np.ndarray]:
-    """The iterations of :func:`newton`: the best iterate of each pose and its largest residual component."""
-    q0 = drive.apply(start, targets)
-    count = len(q0)
-    q = q0.copy()
-    best_q, best = q.copy(), np.full(count, np.inf)
-    stalled = np.zeros(count, dtype=int)
-    active = np.arange(count)
-    max_move = np.broadcast_to(np.asarray(max_move, dtype=float), (count,))
-    for iteration in range(max_iter + 1):
-        if active.size == 0:
-            break
-        r, evaluation = _evaluate(bk, drive, q[active], targets[active])
-        err = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(active.size)
-        err = np.where(np.isfinite(err), err, np.inf)
-        better = err < best[active]
-        halved = err < 0.5 * best[active]
-        stalled[active] = np.where(halved, 0, stalled[active] + 1)
-        best_q[active[better]] = q[active[better]]
-        best[active[better]] = err[better]
-        b, st = best[active], stalled[active]
-        # done: near round-off, or closed and no longer gaining (a last step polishes a pose near a singularity)
-        done = (b <= POLISHED * tol.closure) | ((b <= tol.closure) & (st > 0))
-        keep = np.flatnonzero(~done & (st < 4) & (iteration < max_iter) & bool(drive.free.any()) & (r.shape[0] > 0))
-        if keep.size == 0:
-            break
-        jac = _free_jacobians(evaluation, drive, keep)
-        active, r = active[keep], r[:, keep]
-        # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
-        # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
-        step = _min_norm_steps(jac, r)
-        moved = q[active].copy()
-        moved[:, drive.free] += step
-        finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
-        q[active[finite]] = moved[finite]
-        active = active[finite]
-    return best_q, best
-
-
-POLISH_STEPS = 2
-"""Newton steps of :func:`polish` (each from a residual in extended precision)."""
-
-_EXTENDED = np.finfo(np.longdouble).eps < np.finfo(float).eps
-"""Whether this platform's ``numpy.longdouble`` holds more digits than float64 (x86: 64-bit mantissa)."""
-
-
-def polish(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
-    """Closed poses refined by Newton steps whose residual is evaluated in extended precision.
-
-    Near a singularity the closure equations are ill-conditioned: with a
-    smallest singular value ``s`` of their Jacobian, the round-off of a
-    float64 residual (about 1e-16) leaves the joint variables uncertain by
-    ``1e-16 / s`` along the near-singular motion, and the screw systems of the
-    pose amplify that again by ``1 / s``.  A parallelogram 0.01 degree from
-    its change point (``s`` about 2e-4) then shows its coupler tilted by 1e-12
-    rad and a pure translation with a rotational part of 1e-8, at the rank
-    tolerance.  Residuals in ``numpy.longdouble`` (on x86 three more digits)
-    take that uncertainty below the float64 rounding of the variables
-    themselves; the steps are solved in float64 (the residual is tiny).  A
-    step that does not lower the extended residual is not taken.  Where
-    ``longdouble`` is float64 (some platforms) nothing changes.
-
-    Parameters
-    ----------
-    q : ndarray, shape (N, n)
-        Closed poses (assembled rows).
-    targets : ndarray, shape (N, axes)
-        Their driven values (internal units).
-
-    Returns
-    -------
-    ndarray, shape (N, n)
-        The refined poses (float64), driven variables unchanged.
-    """
-    if not _EXTENDED or len(q) == 0 or not drive.free.any():
-        return q
-    exact, wanted = np.asarray(q, dtype=np.longdouble), np.asarray(targets, dtype=np.longdouble)
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        r, evaluation = _evaluate(bk, drive, exact, wanted)
-        if r.shape[0] == 0:
-            return q
-        err = np.abs(r).max(axis=0)
-        for _ in range(POLISH_STEPS):
-            j = _free_jacobians(evaluation, drive).astype(float)  # the step in float64: the residual is what needs the digits
-            trial = exact.copy()
-            trial[:, drive.free] += _min_norm_steps(j, np.asarray(r, dtype=float))
-            r_trial, evaluation = _evaluate(bk, drive, trial, wanted)
-            err_trial = np.abs(r_trial).max(axis=0)
-            better = np.isfinite(err_trial) & (err_trial < err)
-            if not better.any():
-                break
-            exact[better], err[better] = trial[better], err_trial[better]
-            r, evaluation = (r_trial, evaluation) if better.all() else _evaluate(bk, drive, exact, wanted)
-    return exact.astype(float)
-
-
-def _min_norm_steps(j: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """The damped minimum-norm Newton steps ``-J^T (J J^T + mu I)^-1 r`` of stacked systems ``j`` ``(N, m, free)``, ``r`` ``(m, N)``."""
-    equations = j.shape[1]
-    gram = j @ j.swapaxes(1, 2)
-    diagonal = gram.reshape(len(gram), -1)[:, :: equations + 1]
-    diagonal += (NEWTON_DAMPING * diagonal.sum(axis=1) / equations + 1e-300)[:, None]
-    return -(j.swapaxes(1, 2) @ np.linalg.solve(gram, np.ascontiguousarray(r.T)[:, :, None]))[:, :, 0]
-
-
-def _advance(
-    bk: BatchKinematics,
-    drive: Drive,
-    base_q: np.ndarray,
-    base_t: np.ndarray,
-    predicted: np.ndarray,
-    targets: np.ndarray,
-    tol: Tolerance,
-    retry: bool,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """One continuation step from assembled poses ``base_q`` (at ``base_t``) to ``targets``, retried in smaller steps.
-
-    A solve may move at most ``10 span + 0.05`` from its start, ``span`` being
-    the predicted move plus the drive's change: farther, it would reach
-    another assembly.  A retry also allows the length of the linearised step
-    from the base pose (:func:`_linear_step_lengths`): where the other joints
-    move many times faster than the driven ones (a poorly conditioned drive,
-    or a line's first step, predicted from one point only), the nearby
-    assembly lies that far.  A step still failing is walked from its base in
-    sub-steps (:func:`_substeps`), then, from a base at a fold, tried off the
-    fold (:func:`_off_a_fold`).
-
-    The residual returned for a pose not assembled is that of the joint
-    variables returned with it: the best a solve reached there.
-    """
-    with np.errstate(over="ignore", invalid="ignore"):  # an infinite span (a target beyond any size) allows any move
-        span = np.linalg.norm(predicted - base_q, axis=1) + np.linalg.norm(targets - base_t, axis=1)
-    q, err, ok = newton(bk, drive, predicted, targets, tol=tol, max_move=10.0 * span + 0.05)
-    if not retry:
-        return q, err, ok
-    failed = np.flatnonzero(~ok)
-    linear = np.zeros(len(q))
-    if failed.size:
-        linear[failed] = _linear_step_lengths(bk, drive, base_q[failed], targets[failed], tol)
-        wider = failed[linear[failed] > np.linalg.norm(predicted[failed] - base_q[failed], axis=1)]
-        if wider.size:  # the same step, allowed as far as the linearised step reaches
-            _keep_better(q, err, ok, wider, *newton(bk, drive, predicted[wider], targets[wider], tol=tol, max_move=10.0 * (span[wider] + linear[wider]) + 0.05))
-    failed = np.flatnonzero(~ok)
-    if failed.size:
-        _keep_better(q, err, ok, failed, *_substeps(bk, drive, base_q[failed], base_t[failed], predicted[failed], targets[failed], linear[failed], tol))
-    failed = np.flatnonzero(~ok)
-    if failed.size:
-        _keep_better(q, err, ok, failed, *_off_a_fold(bk, drive, base_q[failed], base_t[failed], targets[failed], tol))
-    return q, err, ok
-
-
-def _keep_better(q: np.ndarray, err: np.ndarray, ok: np.ndarray, rows: np.ndarray, new_q: np.ndarray, new_err: np.ndarray, new_ok: np.ndarray) -> None:
-    """In place: each of ``rows`` (not assembled) takes the new attempt if it assembles, or if it lowers the residual.
-
-    So the residual of a pose not assembled is always that of its joint variables.
-    """
-    take = new_ok | (new_err < err[rows])
-    q[rows[take]], err[rows[take]] = new_q[take], new_err[take]
-    ok[rows[new_ok]] = True
-
-
-SUBSTEP_HALVINGS = 4
-"""A failed step walked in sub-steps (:func:`_substeps`) gives up at its ``SUBSTEP_HALVINGS + 1``-th failed sub-step; each
-failure halves the next sub-step, so the shortest tried is ``2**-(SUBSTEP_HALVINGS + 1)`` of the step (1/32)."""
-
-
-def _substeps(
-    bk: BatchKinematics,
-    drive: Drive,
-    base_q: np.ndarray,
-    base_t: np.ndarray,
-    predicted: np.ndarray,
-    targets: np.ndarray,
-    linear: np.ndarray,
-    tol: Tolerance,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Failed steps walked from their base towards their targets in sub-steps, halving a sub-step that fails.
-
-    Each walk starts with half the step.  A sub-step that closes is taken (the
-    next one allowed twice as long, up to half the step); one that fails is
-    tried again half as long from the same pose.  Each sub-step is predicted
-    along the line's predictor (its share of ``predicted - base_q``), or, when
-    the line predicted from one point only (``predicted`` is the base), along
-    the secant of the walk's last sub-step.  A walk gives up at its
-    ``SUBSTEP_HALVINGS + 1``-th failure, so its work is bounded (a target
-    beyond a fold, which no walk reaches, costs a few solves).  Every sub-step is a plain continuation
-    step: its solve may move at most ``10 span + 0.05`` (``span``: its
-    predicted move, its drive's change and its share of the linearised step
-    ``linear``), and the drive moves monotonically from the base to the
-    target, so a walk cannot pass a fold onto the other assembly branch.
-
-    Where the other joints move many times faster than the driven ones (the
-    file's pose near a fold), a grid step can be too long for a first step
-    predicted from one point; the walk reaches the poses a finer grid reaches.
-
-    Returns
-    -------
-    q, residual, assembled
-        At the targets: the best attempt at each (its residual infinite and
-        ``q`` the base where no sub-step reached the target).
-    """
-    count = len(base_q)
-    cur_q, cur_t = base_q.copy(), base_t.copy()
-    tangent = predicted - base_q  # the move per whole step: the line's predictor, or (from one point) the walk's secant
-    secant = ~np.any(tangent != 0.0, axis=1)
-    done, size = np.zeros(count), np.full(count, 0.5)
-    failures = np.zeros(count, dtype=int)
-    q, err, ok = base_q.copy(), np.full(count, np.inf), np.zeros(count, dtype=bool)
-    active = np.arange(count)
-    while active.size:
-        reach = np.minimum(done[active] + size[active], 1.0)
-        part = reach - done[active]
-        t = base_t[active] + (targets[active] - base_t[active]) * reach[:, None]
-        guess = cur_q[active] + tangent[active] * part[:, None]
-        with np.errstate(over="ignore", invalid="ignore"):
-            move = np.linalg.norm(guess - cur_q[active], axis=1) + np.linalg.norm(t - cur_t[active], axis=1) + linear[active] * part
-        nq, nerr, nok = newton(bk, drive, guess, t, tol=tol, max_move=10.0 * move + 0.05)
-        final = reach >= 1.0
-        at_target = active[final]
-        _keep_better(q, err, ok, at_target, nq[final], nerr[final], nok[final])
-        took = active[nok]
-        along = nok & secant[active]
-        with np.errstate(over="ignore", invalid="ignore"):
-            tangent[active[along]] = (nq[along] - cur_q[active[along]]) / part[along, None]
-        cur_q[took], cur_t[took], done[took] = nq[nok], t[nok], reach[nok]
-        size[took] = np.minimum(2.0 * size[took], 0.5)
-        missed = active[~nok]
-        size[missed] *= 0.5
-        failures[missed] += 1
-        active = active[~(final & nok) & (failures[active] <= SUBSTEP_HALVINGS)]
-    return q, err, ok
-
-
-def _linear_step_lengths(bk: BatchKinematics, drive: Drive, base_q: np.ndarray, targets: np.ndarray, tol: Tolerance) -> np.ndarray:
-    """Length of the first Newton step from each assembled ``base_q`` to ``targets`` (the linearised motion), 0 at a fold.
-
-    Where the closure equations keep their rank (``Tolerance.rank``), the
-    step is the tangent of the branch through the base pose, scaled to the
-    drive's change.  Where they lose it (a fold, or a driven coordinate the
-    mechanism cannot change there), the linear equations have no solution and
-    the damped step's length means nothing: 0 is returned.
-    """
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        start = drive.apply(base_q, targets)
-        r, evaluation = _evaluate(bk, drive, start, targets)
-        lengths = np.zeros(len(base_q))
-        if r.shape[0] == 0 or not drive.free.any():
-            return lengths
-        jac = _free_jacobians(evaluation, drive)
-        full = np.zeros(len(base_q), dtype=bool)
-        finite = np.all(np.isfinite(jac), axis=(1, 2)) & np.all(np.isfinite(r), axis=0)
-        if jac.shape[1] <= jac.shape[2] and finite.any():  # no more equations than free variables, and none lost
-            full[finite] = ~_folds(np.linalg.svd(jac[finite], compute_uv=False), tol)[1]
-        if full.any():
-            lengths[full] = np.linalg.norm(_min_norm_steps(jac[full], r[:, full]), axis=1)
-    return np.where(np.isfinite(lengths), lengths, 0.0)
-
-
-FOLD_REACH = (0.3, 1.0, 3.0)
-"""Distances tried along a singular direction when a step leaves a fold, in units of ``sqrt(step)``."""
-
-
-def _off_a_fold(
-    bk: BatchKinematics,
-    drive: Drive,
-    base_q: np.ndarray,
-    base_t: np.ndarray,
-    targets: np.ndarray,
-    tol: Tolerance,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Steps that failed from a pose where the drive's Jacobian is singular, tried again off that pose.
-
-    At a fold of the driven coordinates (a leg length at its largest, a
-    dead centre) the nearby poses lie ``sqrt(step)`` away along the motion the
-    drive leaves free to first order, which Newton's minimum-norm step never
-    takes.  From each failed step's base pose, starts at ``+-c sqrt(step)``
-    along each such direction are given to Newton, for each ``c`` of
-    :data:`FOLD_REACH` in turn (all directions and both sides of one ``c``
-    solved together); the first that closes and walks back to the base
-    (:func:`_walks_back`), in the order ``c``, direction, ``+`` side first, is
-    kept.  A base pose whose Jacobian keeps its rank (``Tolerance.rank``) is no
-    fold: nothing is tried, so the continuation never leaves the file's
-    assembly branch across a fold it only approached.
-
-    Returns
-    -------
-    q, residual, assembled
-        The pose kept and its residual; where none is, the base and an
-        infinite residual (the poses refused belong to other assemblies).
-    """
-    count = len(base_q)
-    q, err, ok = base_q.copy(), np.full(count, np.inf), np.zeros(count, dtype=bool)
-    if not drive.free.any():
-        return q, err, ok
-    with np.errstate(over="ignore", invalid="ignore"):
-        _, evaluation = _evaluate(bk, drive, base_q, base_t)
-        _, sv, vt = np.linalg.svd(_free_jacobians(evaluation, drive), full_matrices=True)
-        step = np.abs(targets - base_t).max(axis=1)
-    free = int(drive.free.sum())
-    # (N, free): where the equations lose rank, the right singular vectors the rank decision drops (with those
-    # beyond the equations' count): motions free to first order.  Only a base pose singular by the policy's own rank decision (a file at a
-    # dead centre) is a fold to leave this way; one merely near a fold (the last grid point before a workspace
-    # boundary) is not: a start across the fold there would land on the other assembly branch and carry it
-    # into the grid
-    rank, fold = _folds(sv, tol)
-    singular = fold[:, None] & (np.arange(free)[None, :] >= rank[:, None]) & (np.isfinite(step) & (step > 0))[:, None]
-    for reach in FOLD_REACH:
-        rows, direction = np.nonzero(~ok[:, None] & singular)  # row-major: each row's directions in order
-        if rows.size == 0:
-            break
-        rows, direction = np.repeat(rows, 2), np.repeat(direction, 2)
-        sign = np.tile([1.0, -1.0], rows.size // 2)
-        length = sign * reach * np.sqrt(step[rows])
-        guess = base_q[rows].copy()
-        guess[:, drive.free] += length[:, None] * vt[rows, direction]
-        nq, nerr, nok = newton(bk, drive, guess, targets[rows], tol=tol, max_move=10.0 * np.abs(length) + 10.0 * step[rows] + 0.05)
-        closed = np.flatnonzero(nok)
-        if closed.size:
-            nok[closed] = _walks_back(bk, drive, nq[closed], targets[rows[closed]], base_q[rows[closed]], base_t[rows[closed]], tol)
-        for k in np.flatnonzero(nok):  # the first kept start of each row, in order
-            if not ok[rows[k]]:
-                q[rows[k]], err[rows[k]], ok[rows[k]] = nq[k], nerr[k], True
-    return q, err, ok
-
-
-def _folds(sv: np.ndarray, tol: Tolerance) -> tuple[np.ndarray, np.ndarray]:
-    """The rank of each stacked closure Jacobian (singular values ``(N, min(m, free))``) and whether it is a fold.
-
-    A fold: the equations lose rank by the policy's rank decision
-    (``Tolerance.rank``); more variables than equations is no fold by itself.
-    """
-    rank = decide_ranks(sv, tol).rank if sv.shape[1] else np.zeros(len(sv), dtype=int)
-    return rank, rank < sv.shape[1]
-
-
-def _free_jacobians(evaluation: Evaluation, drive: Drive, rows: np.ndarray | None = None) -> np.ndarray:
-    """The closure Jacobians of the poses (all, or ``rows``) over the free variables, stacked ``(N, m, free)``."""
-    return np.ascontiguousarray(np.moveaxis(evaluation.jacobian(rows)[:, drive.free], -1, 0))
-
-
-RETURN_STEPS = 4
-"""Steps of the walk back from a pose found off a fold to the fold's drive values (:func:`_walks_back`)."""
-
-
-def walk_between(bk: BatchKinematics, drive: Drive, q: np.ndarray, start: np.ndarray, goal: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
-    """The poses reached from ``q`` (closed at drive values ``start``) by :data:`RETURN_STEPS` Newton solves on the straight way to ``goal``."""
-    cur = q
-    for k in range(1, RETURN_STEPS + 1):
-        cur, _, _ = newton(bk, drive, cur, start + (goal - start) * (k / RETURN_STEPS), tol=tol)
-    return cur
-
-
-def _walks_back(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray, base_q: np.ndarray, base_t: np.ndarray, tol: Tolerance) -> np.ndarray:
-    """Whether each closed pose ``q`` (at ``targets``) lies on a branch through ``base_q``: walking back comes home.
-
-    A pose found off a fold is kept only when continuation from it back to
-    the base's drive values, in :data:`RETURN_STEPS` steps, ends nearer the
-    base than half its distance from it.  On a branch through the base (a
-    fold, a change point) the walk ends at the base; a pose of another
-    assembly, which a start far along a direction the drive leaves free can
-    reach when the driven coordinate cannot change at the base (a rotation of
-    a translational platform), walks back to a pose of its own branch.
-    """
-    cur = walk_between(bk, drive, q, targets, base_t, tol=tol)
-    with np.errstate(over="ignore", invalid="ignore"):
-        return np.linalg.norm(cur - base_q, axis=1) <= 0.5 * np.linalg.norm(q - base_q, axis=1)
-
-
 def close_lines(
-    bk: BatchKinematics,
+    bk: Kinematics,
     drive: Drive,
     start_q: np.ndarray,
     start_ok: np.ndarray,
@@ -638,7 +148,7 @@ def close_lines(
 
 
 def _spread_stops(
-    bk: BatchKinematics, drive: Drive, walk: AxisWalk, q: np.ndarray, err: np.ndarray, ok: np.ndarray, line_targets: np.ndarray, tol: Tolerance
+    bk: Kinematics, drive: Drive, walk: AxisWalk, q: np.ndarray, err: np.ndarray, ok: np.ndarray, line_targets: np.ndarray, tol: Tolerance
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Every point of the lines takes the pose of its stop, its driven angle turned by whole turns to its own value."""
     lines, count = line_targets.shape[:2]
@@ -649,7 +159,7 @@ def _spread_stops(
 
 
 def retarget(
-    bk: BatchKinematics, drive: Drive, q: np.ndarray, residual: np.ndarray, assembled: np.ndarray, targets: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE
+    bk: Kinematics, drive: Drive, q: np.ndarray, residual: np.ndarray, assembled: np.ndarray, targets: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Poses with their driven joint variables set to ``targets`` (the same joint states whole turns away); the residual of every changed assembled pose measured again.
 
@@ -672,29 +182,13 @@ def retarget(
     return moved, residual, assembled
 
 
-def residuals(bk: BatchKinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
-    """The largest residual component of each pose ``q`` ``(N, n)`` at its driven values ``targets`` (loops and pose equations); infinite where not finite."""
-    out = np.empty(len(q))
-    for start in range(0, len(q), EVALUATION_BLOCK):  # a line of a 1-D sweep may hold millions of poses
-        rows = slice(start, start + EVALUATION_BLOCK)
-        with np.errstate(over="ignore", invalid="ignore"):
-            r, _ = _evaluate(bk, drive, q[rows], targets[rows])
-            e = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(len(q[rows]))
-        out[rows] = np.where(np.isfinite(e), e, np.inf)
-    return out
-
-
-EVALUATION_BLOCK = 16384
-"""Poses evaluated together by :func:`residuals` (its stacked arrays take about 1 kB per pose and joint variable)."""
-
-
 def _unsolved(shape: tuple[int, ...], n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Joint variables, residuals and ``assembled`` of points not solved yet: zeros, infinite, false."""
     return np.zeros(shape + (n,)), np.full(shape, np.inf), np.zeros(shape, dtype=bool)
 
 
 def _leg(
-    bk: BatchKinematics,
+    bk: Kinematics,
     drive: Drive,
     start_q: np.ndarray,
     start_ok: np.ndarray,
@@ -861,7 +355,7 @@ class GridClosure:
     assembled: np.ndarray
 
 
-def seed_grid(bk: BatchKinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE) -> GridClosure:
+def seed_grid(bk: Kinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE) -> GridClosure:
     """Every point whose last coordinate is at its anchor, by continuation (the starts of the last axis's lines).
 
     Returns a :class:`GridClosure` over the whole grid where only those

@@ -17,10 +17,10 @@ coordinates equal) takes that pose (:mod:`mobility.sweeps.walks`).
 Examples
 --------
 >>> import mobility
->>> from mobility.sweeps.batch_kinematics import BatchKinematics
+>>> from mobility.core.kinematics import kinematics
 >>> from mobility.sweeps.grid import plan_grid
 >>> m = mobility.load("mechanisms/four_bar.yaml")  # the crank reaches -160.8 .. +34.0 deg from the file's pose
->>> closure = close_grid(BatchKinematics(m), plan_grid(m, ["A=0:360:13"]))
+>>> closure = close_grid(kinematics(m), plan_grid(m, ["A=0:360:13"]))
 >>> closure.assembled.tolist()  # 0, 30; then 210 .. 360, the same poses as -150 .. 0
 [True, True, False, False, False, False, False, True, True, True, True, True, True]
 """
@@ -32,8 +32,9 @@ from typing import Callable
 import numpy as np
 
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
-from .batch_kinematics import BatchKinematics
-from .continuation import Drive, GridClosure, _advance, anchors, close_lines, line_layout, retarget, seed_grid, targets_of
+from ..core.kinematics import Kinematics
+from .continuation import GridClosure, anchors, close_lines, line_layout, retarget, seed_grid, targets_of
+from .steps import Drive, _advance
 from .grid import GridPlan, whole_turns
 from .walks import AxisWalk, axis_walk, plan_walks
 
@@ -41,7 +42,7 @@ __all__ = ["close_grid", "fill"]
 
 
 def close_grid(
-    bk: BatchKinematics,
+    bk: Kinematics,
     plan: GridPlan,
     *,
     tol: Tolerance = DEFAULT_TOLERANCE,
@@ -73,7 +74,7 @@ def close_grid(
     return fill(bk, plan, GridClosure(q, err, ok), tol=tol)
 
 
-def fill(bk: BatchKinematics, plan: GridPlan, closure: GridClosure, *, tol: Tolerance = DEFAULT_TOLERANCE, max_passes: int | None = None) -> GridClosure:
+def fill(bk: Kinematics, plan: GridPlan, closure: GridClosure, *, tol: Tolerance = DEFAULT_TOLERANCE, max_passes: int | None = None) -> GridClosure:
     """Try the missing poses again from any assembled neighbour, layer after layer.
 
     Each pass takes every pose not assembled that has an assembled neighbour
@@ -157,7 +158,7 @@ def _turned_towards(plan: GridPlan, q: np.ndarray, targets: np.ndarray, goal: np
 
 
 def _congruent(
-    bk: BatchKinematics, drive: Drive, plan: GridPlan, walks: tuple[AxisWalk, ...], q: np.ndarray, err: np.ndarray, ok: np.ndarray, tol: Tolerance
+    bk: Kinematics, drive: Drive, plan: GridPlan, walks: tuple[AxisWalk, ...], q: np.ndarray, err: np.ndarray, ok: np.ndarray, tol: Tolerance
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Missing poses whose driven angle is congruent (modulo a turn) to an assembled pose's on the same line take its pose (in place)."""
     sources, places = [], []

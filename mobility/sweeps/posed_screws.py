@@ -20,9 +20,9 @@ Examples
 >>> import numpy as np
 >>> import mobility
 >>> from mobility.core.joint_screws import joint_screws
->>> from mobility.sweeps.batch_kinematics import BatchKinematics
+>>> from mobility.core.kinematics import kinematics
 >>> m = mobility.load("mechanisms/3prs.yaml")
->>> posed = posed_screws(BatchKinematics(m), np.zeros((1, 15)))
+>>> posed = posed_screws(kinematics(m), np.zeros((1, 15)))
 >>> bool(np.allclose(posed.twists[0], joint_screws(m).twists))
 True
 """
@@ -37,7 +37,8 @@ import numpy as np
 from ..core.model import Mechanism
 from ..core.joint_screws import unit_twists
 from ..core.tolerance import characteristic_scales
-from .batch_kinematics import BatchKinematics, Motion
+from ..core.kinematics import Kinematics
+from ..core.transforms import Motion
 
 __all__ = ["PosedScrews", "posed_screws", "joint_geometry"]
 
@@ -129,12 +130,12 @@ def _freedoms(joint_type: str, g: dict, count: int, pitch: float | None) -> list
     return [(True, u1, zero, 0.0), (True, u2, zero, 0.0), (False, n, g.get("point", zero), 0.0)]
 
 
-def posed_screws(bk: BatchKinematics, q: np.ndarray) -> PosedScrews:
+def posed_screws(bk: Kinematics, q: np.ndarray) -> PosedScrews:
     """Unit joint twists, each pose in its own normalised coordinates.
 
     Parameters
     ----------
-    bk : BatchKinematics
+    bk : Kinematics
     q : ndarray, shape (N, n)
         Joint variables of the poses.
 

@@ -51,10 +51,11 @@ from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..core.topology import decompose
 from ..errors import MissingExtraError, RequestError, clipped, shown_argument
 from .batch_actuation import ActuationInputs, actuated_inputs, actuation_at_poses
-from .batch_kinematics import BatchKinematics
+from ..core.kinematics import Kinematics, kinematics
 from .seams import find_seams
 from .batch_transmission import GOOD_TRANSMISSION, transmission_columns, transmission_threshold
-from .continuation import Drive, GridClosure, close_lines, line_layout, anchors, polish, residuals, seed_grid, targets_of
+from .continuation import GridClosure, close_lines, line_layout, anchors, seed_grid, targets_of
+from .steps import Drive, polish, residuals
 from .grid_closure import fill
 from .grid import DEFAULT_MAX_POSES, GridPlan, VarySpec, plan_grid
 from .posed_screws import posed_screws
@@ -93,8 +94,8 @@ class _Context:
     transmission: float | None = GOOD_TRANSMISSION  # the good-transmission threshold; None: no transmission indices
 
     @cached_property
-    def bk(self) -> BatchKinematics:
-        return BatchKinematics(self.mechanism, joint_screws(self.mechanism).reference)
+    def bk(self) -> Kinematics:
+        return kinematics(self.mechanism)
 
     def __getstate__(self) -> dict:
         state = dict(vars(self))
@@ -175,7 +176,7 @@ def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> di
     the tolerance policy (``near_singular`` or ``inexact``: a singular value
     between ``Tolerance.inexact`` and ``Tolerance.near_singular``, where the
     round-off of a float64 loop closure can decide it) is polished
-    (:func:`~mobility.sweeps.continuation.polish`) and analysed again; the
+    (:func:`~mobility.sweeps.steps.polish`) and analysed again; the
     others, almost every pose of a sweep, are not touched.
     """
     columns = analyse_chunk(context, q)

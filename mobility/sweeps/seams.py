@@ -12,8 +12,8 @@ two poses a grid step apart that no small motion joins, which the answers
 alone may not show.
 
 :func:`find_seams` walks from the last stop of each closed line to its
-anchor's drive values (:data:`~mobility.sweeps.continuation.RETURN_STEPS` Newton steps,
-:func:`~mobility.sweeps.continuation.walk_between`) and compares the pose reached with the anchor's, joint by joint (their
+anchor's drive values (:data:`~mobility.sweeps.steps.RETURN_STEPS` Newton steps,
+:func:`~mobility.sweeps.steps.walk_between`) and compares the pose reached with the anchor's, joint by joint (their
 unit twists in normalised coordinates, so that a link spinning idly is the
 same pose): they differ by more than :data:`~mobility.core.tolerance.SEAM_GAP`
 at a seam.  Only lines walked all the way round are looked at (a line with a
@@ -34,8 +34,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.tolerance import DEFAULT_TOLERANCE, SEAM_GAP, Tolerance
-from .batch_kinematics import BatchKinematics
-from .continuation import Drive, line_layout, targets_of, walk_between
+from ..core.kinematics import Kinematics
+from .continuation import line_layout, targets_of
+from .steps import Drive, walk_between
 from .grid import GridPlan
 from .posed_screws import posed_screws
 from .walks import plan_walks
@@ -43,12 +44,12 @@ from .walks import plan_walks
 __all__ = ["find_seams"]
 
 
-def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
+def find_seams(bk: Kinematics, plan: GridPlan, q: np.ndarray, assembled: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
     """The pairs of grid points, ``(last stop, anchor)`` of a line round a full turn, that no small motion joins.
 
     Parameters
     ----------
-    bk : BatchKinematics
+    bk : Kinematics
     plan : GridPlan
     q : ndarray, shape (size, n)
         The joint variables of every grid point (flat, C order).
@@ -86,7 +87,7 @@ def find_seams(bk: BatchKinematics, plan: GridPlan, q: np.ndarray, assembled: np
     return np.array(sorted(out), dtype=int).reshape(-1, 2)
 
 
-def _pose_gap(bk: BatchKinematics, q: np.ndarray, other: np.ndarray) -> np.ndarray:
+def _pose_gap(bk: Kinematics, q: np.ndarray, other: np.ndarray) -> np.ndarray:
     """The largest difference between the joint twists of two sets of poses (unit columns, normalised coordinates), per pose.
 
     The joints' lines, not the links' displacements: a link that spins idly
