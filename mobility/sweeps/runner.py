@@ -3,9 +3,8 @@
 The work has two stages, each cut into chunks that run independently:
 
 1. **closure** (:mod:`mobility.sweeps.continuation`): the starts of the lines
-   of the last axis are found in-process; then the lines, cut into chunks, are
-   closed by continuation; then the poses still missing are tried from their
-   neighbours (in-process, on the few that are left);
+   of the last axis are found in-process, the lines closed by continuation in
+   chunks, then the poses still missing tried from their neighbours;
 2. **analysis**: the assembled poses, cut into chunks, go through
    :mod:`~mobility.sweeps.posed_screws`, :mod:`~mobility.core.screw_systems`
    and, when inputs are chosen, :mod:`~mobility.sweeps.batch_actuation` and
