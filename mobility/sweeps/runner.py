@@ -5,10 +5,9 @@ The work has two stages, each cut into chunks that run independently:
 1. **closure** (:mod:`mobility.sweeps.continuation`): the starts of the lines
    of the last axis are found in-process, the lines closed by continuation in
    chunks, then the poses still missing tried from their neighbours;
-2. **analysis**: the assembled poses, cut into chunks, go through
-   :mod:`~mobility.sweeps.posed_screws`, :mod:`~mobility.core.screw_systems`
-   and, when inputs are chosen, :mod:`~mobility.sweeps.batch_actuation` and
-   :mod:`~mobility.sweeps.batch_transmission`.
+2. **analysis**: the assembled poses, in chunks, go through :mod:`~mobility.sweeps.posed_screws`,
+   :mod:`~mobility.core.screw_systems` and, when inputs are chosen,
+   :mod:`~mobility.sweeps.batch_actuation` and :mod:`~mobility.sweeps.batch_transmission`.
 
 Chunks run in this process (on ``workers`` threads: the stacked LAPACK calls
 release the GIL), or on a dask.distributed cluster when a scheduler is given
