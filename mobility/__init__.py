@@ -87,6 +87,8 @@ _LAZY = {
     "sweep": "sweeps", "SweepResult": "sweeps",
     # robot description files (MJCF, URDF): the mechanism with the notes of its reading
     "read_robot": "io.robot_files",
+    # coupled joints (gear pairs, mimic joints, joint equalities): Mechanism(..., couplings=(Coupling(...),))
+    "Coupling": "core.couplings",
     # the interactive 3D view
     "mechanism_view": "view", "poses_view": "view", "sweep_view": "view", "View": "view", "ViewFrame": "view",
 }

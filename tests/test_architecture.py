@@ -42,7 +42,7 @@ ALLOWED = {
 
 # Inside the core, data flows by layer: a module imports only modules of lower layers.
 CORE_LAYERS = {
-    "tolerance": 0, "transforms": 0, "frozen": 0,
+    "tolerance": 0, "transforms": 0, "frozen": 0, "couplings": 0,
     "linalg": 1, "model": 1, "finite_screws": 1,
     "screws": 2, "topology": 2,
     "joint_screws": 3,

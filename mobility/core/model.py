@@ -46,6 +46,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence, TypeVar, cast
 import numpy as np
 
 from ..errors import MechanismError, RequestError, did_you_mean, name_list, name_problem, shown_argument
+from .couplings import Coupling, check_couplings
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, UNIT_ROUND_OFF, binary_scale, characteristic_scale, decide_rank
 from .transforms import Transform, rotation_from_rpy
 
@@ -670,6 +671,9 @@ class Mechanism:
         mechanism once loaded (the loader fills it; empty for a mechanism
         built in code).  Not part of its value: equal mechanisms may come
         from different files.
+    couplings : tuple of Coupling
+        Linear relations between the rates of one-freedom joints
+        (:mod:`mobility.core.couplings`).
 
     Raises
     ------
@@ -701,6 +705,7 @@ class Mechanism:
     expected: Expected | None = None
     source: str = ""
     written_at: Mapping[str, tuple[str, int | None]] = field(default_factory=dict, compare=False, repr=False)
+    couplings: tuple[Coupling, ...] = ()
 
     def __post_init__(self) -> None:
         for key in ("joints", "frames"):
@@ -757,6 +762,7 @@ class Mechanism:
             self.world_joints  # noqa: B018 - every joint's geometry must stay finite in the global frame
         if any(j.type == "H" for j in self.joints):
             self._require_resolved_pitches()
+        object.__setattr__(self, "couplings", check_couplings(self.couplings, self.joints))
 
     def _require_resolved_pitches(self) -> None:
         """Refuse a helical pitch so much larger than the joint points' spread that no scale resolves both.
