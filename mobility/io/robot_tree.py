@@ -24,12 +24,14 @@ and :func:`build_mechanism` turns it into a
   becomes three P joints along x, y, z and an S joint;
 * a closing joint (an MJCF ``connect`` is a spherical joint at its anchor)
   joins the links of its two bodies;
+* a coupling of joint rates (an MJCF joint or fixed-tendon equality, a URDF
+  ``<mimic>``) becomes a :class:`~mobility.core.couplings.Coupling` of the
+  model joints of its hinges and slides;
 * the ground is the root body unless named; the end effector, unless named,
   is the body farthest from the ground (in joints), the last one in file
   order when several are as far.
 
-Elements the model cannot express (a coupling of joints, a tendon
-constraint) are listed in :attr:`RobotTree.unsupported`; each is an error of
+Elements the model cannot express (a spatial tendon, a flex body) are listed in :attr:`RobotTree.unsupported`; each is an error of
 one line unless ``ignore_unsupported=True``, when it is left out and said so
 in a note.  Nothing is dropped silently: every choice made for the user
 comes back in :attr:`ImportedRobot.notes`.
@@ -61,6 +63,7 @@ from typing import Iterable, cast
 
 import numpy as np
 
+from ..core.couplings import Coupling
 from ..core.model import Joint, Mechanism
 from ..errors import MechanismError, MechanismFileError, clipped, counted, did_you_mean
 from .limits import current_limits
@@ -149,6 +152,16 @@ class Weld:
 
 
 @dataclass(frozen=True)
+class TreeCoupling:
+    """``sum coefficients[j] * rate(joints[j]) = 0`` on hinges and slides of the tree (by name); ``key`` names the element for messages."""
+
+    key: str
+    joints: tuple[str, ...]
+    coefficients: tuple[float, ...]
+    line: int | None = None
+
+
+@dataclass(frozen=True)
 class Unsupported:
     """An element the joint-graph model cannot express: ``key`` names it, ``message`` says why."""
 
@@ -172,8 +185,8 @@ class RobotTree:
         Root first; every parent before its children.
     joints : tuple of TreeJoint
         In file order (the order of a body's joints is root-to-body).
-    closures, welds, unsupported
-        See :class:`Closure`, :class:`Weld`, :class:`Unsupported`.
+    closures, welds, unsupported, couplings
+        See :class:`Closure`, :class:`Weld`, :class:`Unsupported`, :class:`TreeCoupling`.
     notes : tuple of str
         What the reader wants the user to know.
     pose : str
@@ -196,6 +209,7 @@ class RobotTree:
     pose: str = "all joint positions zero"
     length_unit: str = "m"
     files: tuple[str, ...] = ()
+    couplings: tuple[TreeCoupling, ...] = ()
 
     def body(self, name: str, key: str) -> Body:
         """The body called ``name``; an error naming ``key`` and the close matches otherwise."""
@@ -317,6 +331,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
 
 
     joints: list[Joint] = []
+    model_name: dict[str, str] = {}  # of each hinge and slide of the tree that the mechanism holds
     used: set[str] = set()
     link_names = set(names.values())
     by_body: dict[str, list[TreeJoint]] = {}
@@ -335,6 +350,8 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
             there = end if k == len(chain) - 1 else unique_name(f"{body}/{j.name}", link_names)
             made = _model_joints(tree, j, here, there, used, link_names)
             joints += made
+            if j.kind in ("hinge", "slide"):
+                model_name[j.name] = made[0].name
             here = there
             if j.kind == "ball" and j.actuators:
                 shown = ", ".join(f"{joint.type} {clipped(joint.name)}{' (actuated)' if joint.actuated else ''}" for joint in made)
@@ -371,12 +388,32 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     if len(joints) > limits.max_joints:
         raise MechanismFileError("joints", f"{len(joints)} joints are more than the limit of {limits.max_joints} ({limits.hint('max_joints')})", file=tree.file)
     description = f"Imported from the {tree.format} file {Path(tree.file).name} at the pose: {tree.pose}."
+    couplings = _couplings(tree, model_name)
     try:
         mechanism = Mechanism(name=tree.name, ground=ground, end_effector=end_effector, joints=tuple(joints),
-                              description=description, length_unit=tree.length_unit, source=tree.file)
+                              description=description, length_unit=tree.length_unit, source=tree.file, couplings=couplings)
     except MechanismError as exc:
+        if exc.key.startswith("couplings["):  # couplings[k].joints[i]: the element that wrote it
+            k = int(exc.key[len("couplings["):].split("]", 1)[0])
+            raise MechanismFileError(tree.couplings[k].key, exc.message, file=tree.file, line=tree.couplings[k].line) from None
         raise MechanismFileError(exc.key, exc.message, file=tree.file) from None
     return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files, tuple(closing))
+
+
+def _couplings(tree: RobotTree, model_name: dict[str, str]) -> tuple[Coupling, ...]:
+    """The couplings of the tree on the model's joints; an error at the element's line for a joint the mechanism does not hold or a malformed one."""
+    out = []
+    for c in tree.couplings:
+        for name in c.joints:
+            if name not in model_name:
+                kinds = {j.name: j.kind for j in tree.joints}
+                why = f"a {kinds[name]} joint, not a hinge or slide" if name in kinds and kinds[name] not in ("hinge", "slide") else "a joint the mechanism does not hold (welded or fixed)"
+                raise MechanismFileError(c.key, f"couples joint {clipped(name)!r}, {why}; expected hinges and slides that move", file=tree.file, line=c.line)
+        try:
+            out.append(Coupling(tuple(model_name[n] for n in c.joints), c.coefficients))
+        except MechanismError as exc:
+            raise MechanismFileError(c.key, exc.message, file=tree.file, line=c.line) from None
+    return tuple(out)
 
 
 def at_line(line: int | None) -> str:
