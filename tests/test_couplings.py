@@ -7,11 +7,17 @@ equalities active.
 
 from __future__ import annotations
 
+import mujoco
 import numpy as np
 import pytest
+from conftest import MECHANISMS
+from test_mjcf import CONNECT, JOINT_EQ, WELD, MujocoRoute, assert_agrees_with_mujoco, mujoco_compile
 
 import mobility
 from mobility import Coupling, Joint, Mechanism
+from mobility.cli import main
+from mobility.io.robot_files import read_robot
+from mobility.io.writer import mechanism_to_yaml
 from mobility.core.screws import same_subspace
 from mobility.core.topology import Bridge, decompose
 from mobility.errors import MechanismError
@@ -131,3 +137,149 @@ def test_slides_coupled_like_the_fingers_of_a_parallel_gripper():
     r, _ = both_routes(m)
     assert (r.mobility, r.dof) == (2, 2)
     assert both_routes(Mechanism("gripper", "g", "left", joints))[0].mobility == 3
+
+
+# -- the YAML format ---------------------------------------------------------------------------
+
+GEARS = """name: gears
+ground: frame
+end_effector: b
+parameters: {ratio: 2}
+joints:
+  - {name: A, type: R, links: [frame, a], axis: [0, 0, 1], point: [0, 0, 0]}
+  - {name: B, type: R, links: [frame, b], axis: [0, 0, 1], point: [3, 0, 0]}
+couplings:
+  - {joints: [A, B], coefficients: [1, ratio]}
+"""
+
+
+def test_a_file_writes_couplings_with_expressions_and_convert_writes_them_back(tmp_path):
+    m = mobility.loads(GEARS)
+    assert m.couplings == (Coupling(("A", "B"), (1.0, 2.0)),)
+    assert mobility.analyze(m).mobility == 1
+    text = mechanism_to_yaml(m)
+    assert "couplings:\n  - {joints: [A, B], coefficients: [1, 2]}\n" in text
+    assert mobility.loads(text).couplings == m.couplings
+    source = tmp_path / "gears.yaml"
+    source.write_text(GEARS)
+    assert main(["convert", str(source), "-o", str(tmp_path / "out.yaml")]) == 0
+    assert mobility.load(tmp_path / "out.yaml").couplings == m.couplings
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("joints: [A, B]", "joints: [A, C]", "gears.yaml:9: couplings[0].joints[1]: unknown joint 'C'; expected one of: A, B"),
+    ("joints: [A, B]", "joints: [A, A]", "gears.yaml:9: couplings[0].joints[1]: joint 'A' is already in this coupling"),
+    ("coefficients: [1, ratio]", "coefficients: [0, ratio]", "gears.yaml:9: couplings[0].coefficients[0]: expected a non-zero number"),
+    ("coefficients: [1, ratio]", "coefficients: [1]", "gears.yaml:9: couplings[0].coefficients: expected one number per joint (2), got 1"),
+    ("coefficients: [1, ratio]", "coefficients: [1, radio]", "gears.yaml:9: couplings[0].coefficients[1]: "),
+    ("{joints: [A, B], coefficients: [1, ratio]}", "{joints: [A, B]}", "gears.yaml:9: couplings[0].coefficients: missing"),
+    ("type: R, links: [frame, b]", "type: S, links: [frame, b]", "gears.yaml:9: couplings[0].joints[1]: joint 'B' is of type S"),
+])
+def test_a_bad_coupling_in_a_file_is_one_line_naming_file_line_and_key(tmp_path, capsys, old, new, message):
+    path = tmp_path / "gears.yaml"
+    text = GEARS.replace(old, new)
+    if "type: S" in new:
+        text = text.replace("axis: [0, 0, 1], point: [3, 0, 0]", "point: [3, 0, 0]")
+    path.write_text(text)
+    assert main(["analyze", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and err.startswith("mobility: ") and f"{tmp_path}/{message}" in err, err
+
+
+# -- robot files and MuJoCo's constraint Jacobian ----------------------------------------------
+
+TENDON_EQ = int(mujoco.mjtEq.mjEQ_TENDON)
+EVERY_EQUALITY = (CONNECT, WELD, JOINT_EQ, TENDON_EQ)
+
+
+def finger(side: str, sign: float) -> tuple[str, str]:
+    """One finger of a Robotiq-like gripper (driver, coupler, spring link, follower: a planar five-bar closed by a connect), and its connect."""
+    x = lambda v: f"{sign * v:g}"  # noqa: E731
+    geom = '<geom size="0.004"/>'
+    body = f"""
+      <body name="{side}_driver" pos="{x(0.03)} 0 0"><joint name="{side}_driver_joint" axis="0 1 0"/>{geom}
+        <body name="{side}_coupler" pos="{x(0.01)} 0 0.05"><joint name="{side}_coupler_joint" axis="0 1 0"/>{geom}</body>
+      </body>
+      <body name="{side}_spring_link" pos="{x(0.015)} 0 0.01"><joint name="{side}_spring_joint" axis="0 1 0"/>{geom}
+        <body name="{side}_follower" pos="{x(0.01)} 0 0.05"><joint name="{side}_follower_joint" axis="0 1 0"/>{geom}</body>
+      </body>"""
+    connect = f'<connect name="{side}_loop" body1="{side}_coupler" body2="{side}_follower" anchor="{x(-0.005)} 0 0.04"/>'
+    return body, connect
+
+
+def robotiq_like(coupled: bool = True) -> str:
+    (left, c1), (right, c2) = finger("left", 1.0), finger("right", -1.0)
+    active = "" if coupled else ' active="false"'
+    return f"""<mujoco model="robotiq-like">
+  <worldbody><body name="base">{left}{right}
+  </body></worldbody>
+  <equality>{c1}{c2}
+    <joint name="drivers" joint1="right_driver_joint" joint2="left_driver_joint" polycoef="0 1 0 0 0"{active}/>
+  </equality>
+</mujoco>"""
+
+
+def write(tmp_path, name: str, text: str):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_a_robotiq_like_gripper_has_mobility_four_without_its_driver_coupling_and_three_with_it_as_mujoco_says(tmp_path):
+    free = read_robot(write(tmp_path, "free.xml", robotiq_like(coupled=False)))
+    coupled = read_robot(write(tmp_path, "coupled.xml", robotiq_like()))
+    assert free.mechanism.couplings == () and len(coupled.mechanism.couplings) == 1
+    assert mobility.analyze(free.mechanism).mobility == 4 == mobility.loop_closure(free.mechanism).mobility
+    assert mobility.analyze(coupled.mechanism).mobility == 3 == mobility.loop_closure(coupled.mechanism).mobility
+    assert assert_agrees_with_mujoco(free, *mujoco_compile(robotiq_like(coupled=False))).mobility == 4
+    assert assert_agrees_with_mujoco(coupled, *mujoco_compile(robotiq_like()), kinds=EVERY_EQUALITY).mobility == 3
+
+
+def test_a_nonlinear_joint_equality_acts_through_its_slope_at_qpos0_and_the_report_says_so(tmp_path, capsys):
+    text = robotiq_like().replace('polycoef="0 1 0 0 0"', 'polycoef="0 -2 0.5 0 0"')
+    robot = read_robot(write(tmp_path, "gripper.xml", text))
+    assert robot.mechanism.couplings[0].terms == (("right_driver_joint", 1.0), ("left_driver_joint", 2.0))
+    assert any("is not linear" in n and "slope at qpos0, -2" in n for n in robot.notes)
+    assert_agrees_with_mujoco(robot, *mujoco_compile(text), kinds=EVERY_EQUALITY)
+    assert main(["analyze", str(tmp_path / "gripper.xml")]) == 0
+    notes = [line for line in capsys.readouterr().err.splitlines() if "is not linear" in line]
+    assert len(notes) == 1 and notes[0].startswith("mobility: note: equality joint drivers (line ")
+
+
+def test_an_equality_that_holds_one_joint_still_or_mixes_a_slide_and_a_hinge_is_refused_at_its_line(tmp_path):
+    held = robotiq_like().replace(' joint2="left_driver_joint" polycoef="0 1 0 0 0"', "")
+    with pytest.raises(mobility.MechanismFileError, match=r"held\.xml:\d+: equality/joint\[drivers\]: an equality of joints \(right_driver_joint\) that holds right_driver_joint still"):
+        read_robot(write(tmp_path, "held.xml", held))
+    assert len(read_robot(tmp_path / "held.xml", ignore_unsupported=True).mechanism.couplings) == 0
+    mixed = robotiq_like().replace('<joint name="left_driver_joint" axis="0 1 0"/>', '<joint name="left_driver_joint" type="slide" axis="0 1 0"/>')
+    with pytest.raises(mobility.MechanismFileError, match=r"mixed\.xml:\d+: equality/joint\[drivers\]: joint 'left_driver_joint' is a slide \(P\) and joint 'right_driver_joint' is not"):
+        read_robot(write(tmp_path, "mixed.xml", mixed))
+
+
+def mjcf_of_tree(m: Mechanism) -> str:
+    """An MJCF of a tree of R joints (bodies at the origin, unrotated, so every joint is written in world coordinates), its couplings as fixed tendons held by equalities."""
+    children: dict[str, list[Joint]] = {}
+    for j in m.joints:
+        children.setdefault(j.links[0], []).append(j)
+
+    def bodies(link: str) -> str:
+        return "".join(f'<body name="{j.links[1]}"><joint name="{j.name}" pos="{" ".join(map(str, j.point))}" axis="{" ".join(map(str, j.axis))}"/>'
+                       f'<geom size="1"/>{bodies(j.links[1])}</body>' for j in children.get(link, []))
+
+    tendons = "".join(f'<fixed name="t{k}">' + "".join(f'<joint joint="{n}" coef="{c}"/>' for n, c in c_.terms) + "</fixed>" for k, c_ in enumerate(m.couplings))
+    equalities = "".join(f'<tendon tendon1="t{k}"/>' for k in range(len(m.couplings)))
+    return f'<mujoco model="{m.name}"><worldbody><body name="{m.ground}">{bodies(m.ground)}</body></worldbody>' \
+           f"<tendon>{tendons}</tendon><equality>{equalities}</equality></mujoco>"
+
+
+@pytest.mark.parametrize("stem", ["gear_pair", "bevel_differential", "coupled_finger"])
+def test_the_bundled_coupled_mechanisms_agree_with_mujoco_with_their_couplings_as_tendon_equalities(tmp_path, stem):
+    m = mobility.load(MECHANISMS / f"{stem}.yaml")
+    r, _ = both_routes(m)
+    text = mjcf_of_tree(m)
+    robot = read_robot(write(tmp_path, f"{stem}.xml", text), end_effector=m.end_effector)
+    assert len(robot.mechanism.couplings) == len(m.couplings)
+    route = assert_agrees_with_mujoco(robot, *mujoco_compile(text), kinds=EVERY_EQUALITY)
+    assert (route.mobility, route.dof) == (r.mobility, r.dof)
+    uncoupled = MujocoRoute(*mujoco_compile(text), m.end_effector, kinds=(CONNECT, WELD))
+    assert uncoupled.mobility == r.mobility + len(m.couplings)  # each coupling takes one freedom here
