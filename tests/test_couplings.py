@@ -283,3 +283,28 @@ def test_the_bundled_coupled_mechanisms_agree_with_mujoco_with_their_couplings_a
     assert (route.mobility, route.dof) == (r.mobility, r.dof)
     uncoupled = MujocoRoute(*mujoco_compile(text), m.end_effector, kinds=(CONNECT, WELD))
     assert uncoupled.mobility == r.mobility + len(m.couplings)  # each coupling takes one freedom here
+
+
+@pytest.mark.parametrize("seed", range(60))
+def test_random_mechanisms_with_couplings_agree_between_the_routes(seed):
+    """Random mechanisms (series, parallel, bridges, idle motions) with one or two couplings of their one-freedom joints."""
+    from builders import random_mechanism
+    from test_routes import agree
+
+    for k in range(seed * 100, seed * 100 + 100):  # the first random mechanism from here with two turns or two slides
+        m = random_mechanism(k, bridge=seed % 3 == 0)
+        turns = [j.name for j in m.joints if j.type in ("R", "H")]
+        slides = [j.name for j in m.joints if j.type == "P"]
+        if len(turns) >= 2 or len(slides) >= 2:
+            break
+    rng = np.random.default_rng(seed)
+    couplings = []
+    for names in (turns, slides):
+        if len(names) >= 2:
+            picked = rng.choice(names, size=min(len(names), int(rng.integers(2, 4))), replace=False)
+            couplings.append(Coupling(tuple(str(n) for n in picked), tuple(float(x) for x in rng.choice([-3, -1, 0.5, 1, 2], size=len(picked)))))
+    assert couplings, "every random mechanism has two turns or two slides"
+    coupled = Mechanism(m.name, m.ground, m.end_effector, m.joints, m.frames, couplings=tuple(couplings))
+    agree(coupled)
+    free = mobility.analyze(m).mobility
+    assert free - len(couplings) <= mobility.analyze(coupled).mobility <= free  # each coupling takes at most one freedom
