@@ -51,6 +51,7 @@ from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, UNIT_ROUND
 from .transforms import Transform, rotation_from_rpy
 
 __all__ = [
+    "Coupling",
     "JOINT_TYPES",
     "JOINT_DOF",
     "JOINT_FIELDS",

@@ -47,8 +47,7 @@ import warnings
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
-from ..core.couplings import Coupling
-from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
+from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Coupling, Frame, Joint, Mechanism
 from ..errors import MechanismError, RequestError, clipped, did_you_mean, shown_argument
 from .expected import read_expected
 from .files import file_name

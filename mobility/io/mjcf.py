@@ -56,7 +56,8 @@ from .mjcf_actuators import actuator_inputs
 from .mjcf_couplings import equality_coupling
 from .mjcf_scan import MjcfScan, scan_mjcf
 from .robot_actuators import BallActuator
-from .robot_tree import Body, Closure, RobotTree, TreeCoupling, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name, vector_tuple
+from .robot_couplings import TreeCoupling
+from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name, vector_tuple
 from .xml_source import parse_xml
 
 __all__ = ["read_mjcf", "import_mujoco"]

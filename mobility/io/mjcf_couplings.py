@@ -19,7 +19,8 @@ from __future__ import annotations
 
 from ..errors import clipped
 from .mjcf_actuators import CompiledModel
-from .robot_tree import TreeCoupling, Unsupported, at_line
+from .robot_couplings import TreeCoupling
+from .robot_tree import Unsupported, at_line
 
 __all__ = ["equality_coupling"]
 

@@ -63,11 +63,11 @@ from typing import Iterable, cast
 
 import numpy as np
 
-from ..core.couplings import Coupling
 from ..core.model import Joint, Mechanism
 from ..errors import MechanismError, MechanismFileError, clipped, counted, did_you_mean
 from .limits import current_limits
 from .robot_actuators import BallActuator, ball_chain, ball_chain_names
+from .robot_couplings import TreeCoupling, model_couplings
 
 __all__ = [
     "Body",
@@ -152,16 +152,6 @@ class Weld:
 
 
 @dataclass(frozen=True)
-class TreeCoupling:
-    """``sum coefficients[j] * rate(joints[j]) = 0`` on hinges and slides of the tree (by name); ``key`` names the element for messages."""
-
-    key: str
-    joints: tuple[str, ...]
-    coefficients: tuple[float, ...]
-    line: int | None = None
-
-
-@dataclass(frozen=True)
 class Unsupported:
     """An element the joint-graph model cannot express: ``key`` names it, ``message`` says why."""
 
@@ -186,7 +176,7 @@ class RobotTree:
     joints : tuple of TreeJoint
         In file order (the order of a body's joints is root-to-body).
     closures, welds, unsupported, couplings
-        See :class:`Closure`, :class:`Weld`, :class:`Unsupported`, :class:`TreeCoupling`.
+        See :class:`Closure`, :class:`Weld`, :class:`Unsupported`, :class:`~mobility.io.robot_couplings.TreeCoupling`.
     notes : tuple of str
         What the reader wants the user to know.
     pose : str
@@ -388,7 +378,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     if len(joints) > limits.max_joints:
         raise MechanismFileError("joints", f"{len(joints)} joints are more than the limit of {limits.max_joints} ({limits.hint('max_joints')})", file=tree.file)
     description = f"Imported from the {tree.format} file {Path(tree.file).name} at the pose: {tree.pose}."
-    couplings = _couplings(tree, model_name)
+    couplings = model_couplings(tree.couplings, {j.name: j.kind for j in tree.joints}, model_name, tree.file)
     try:
         mechanism = Mechanism(name=tree.name, ground=ground, end_effector=end_effector, joints=tuple(joints),
                               description=description, length_unit=tree.length_unit, source=tree.file, couplings=couplings)
@@ -398,22 +388,6 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
             raise MechanismFileError(tree.couplings[k].key, exc.message, file=tree.file, line=tree.couplings[k].line) from None
         raise MechanismFileError(exc.key, exc.message, file=tree.file) from None
     return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files, tuple(closing))
-
-
-def _couplings(tree: RobotTree, model_name: dict[str, str]) -> tuple[Coupling, ...]:
-    """The couplings of the tree on the model's joints; an error at the element's line for a joint the mechanism does not hold or a malformed one."""
-    out = []
-    for c in tree.couplings:
-        for name in c.joints:
-            if name not in model_name:
-                kinds = {j.name: j.kind for j in tree.joints}
-                why = f"a {kinds[name]} joint, not a hinge or slide" if name in kinds and kinds[name] not in ("hinge", "slide") else "a joint the mechanism does not hold (welded or fixed)"
-                raise MechanismFileError(c.key, f"couples joint {clipped(name)!r}, {why}; expected hinges and slides that move", file=tree.file, line=c.line)
-        try:
-            out.append(Coupling(tuple(model_name[n] for n in c.joints), c.coefficients))
-        except MechanismError as exc:
-            raise MechanismFileError(c.key, exc.message, file=tree.file, line=c.line) from None
-    return tuple(out)
 
 
 def at_line(line: int | None) -> str:

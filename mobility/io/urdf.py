@@ -74,7 +74,8 @@ import numpy as np
 from ..core.transforms import Transform, rotation_from_rpy
 from ..errors import clipped, did_you_mean, one_line
 from .files import file_name
-from .robot_tree import Body, RobotTree, TreeCoupling, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
+from .robot_couplings import TreeCoupling
+from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml, underflow_problem
 
 __all__ = ["read_urdf", "URDF_JOINT_KINDS"]
