@@ -237,8 +237,8 @@ def _chord_by_chord(equations: tuple[Terms, ...], screws: JointScrews, tol: Tole
     row_of: dict[int, int] = {}  # variable -> row of `basis`
     basis = np.zeros((0, 0))  # orthonormal basis of the rates of the variables met so far that close the loops so far
     kept, dropped, rank = 1.0, 0.0, 0
-    rows = [] if couplings is None else [(np.flatnonzero(c).tolist(), c[np.flatnonzero(c)][None]) for c in couplings]
-    for variables, block in [_columns(terms, screws) for terms in equations] + rows:
+    coupled = [] if couplings is None else [(np.flatnonzero(c).tolist(), c[np.flatnonzero(c)][None]) for c in couplings]
+    for variables, block in [_columns(terms, screws) for terms in equations] + coupled:
         new = [v for v in dict.fromkeys(variables) if v not in row_of]
         if new:
             grown = np.zeros((basis.shape[0] + len(new), basis.shape[1] + len(new)))

@@ -347,8 +347,8 @@ def _decompose(signature: tuple[tuple[str, tuple[str, str]], ...], ground: str, 
         assert isinstance(bridge, Bridge)  # two or more coupled joints stay apart
         position = {n.index: k for k, (_, _, n) in enumerate(bridge.edges) if isinstance(n, JointNode) and n.index in frozen}
         couplings = tuple((slides, tuple((position[i], x) for i, x in terms)) for slides, terms in coupled)
-        root = Bridge(bridge.source, bridge.target, bridge.links, bridge.edges, couplings)
-        return Topology(root, (), len(links), len(edges) - len(links) + 1, describe(root))
+        whole = Bridge(bridge.source, bridge.target, bridge.links, bridge.edges, couplings)
+        return Topology(whole, (), len(links), len(edges) - len(links) + 1, describe(whole))
     # A graph that reduces whole is one block with the virtual edge ground-end effector
     # (series and parallel steps keep two terminals), so nothing is detached.
     root: Node | None = _reduce(edges, ground, end_effector)
