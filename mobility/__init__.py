@@ -55,7 +55,7 @@ from .errors import (
 )
 from .io.loader import load, loads
 from .core.loop_closure import LoopClosure, loop_closure
-from .core.model import Expected, Frame, Joint, Mechanism
+from .core.model import Coupling, Expected, Frame, Joint, Mechanism
 from .core.result import LimbSystem, Margin, Result, ScrewAxis
 from .core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from . import library
@@ -87,8 +87,6 @@ _LAZY = {
     "sweep": "sweeps", "SweepResult": "sweeps",
     # robot description files (MJCF, URDF): the mechanism with the notes of its reading
     "read_robot": "io.robot_files",
-    # coupled joints (gear pairs, mimic joints, joint equalities): Mechanism(..., couplings=(Coupling(...),))
-    "Coupling": "core.couplings",
     # the interactive 3D view
     "mechanism_view": "view", "poses_view": "view", "sweep_view": "view", "View": "view", "ViewFrame": "view",
 }
@@ -102,6 +100,7 @@ __all__ = [
     "LoopClosure",
     "Mechanism",
     "Joint",
+    "Coupling",
     "Frame",
     "Expected",
     "Result",
