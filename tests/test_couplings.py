@@ -119,6 +119,8 @@ def test_a_coupling_that_a_loop_already_obeys_is_redundant_and_one_it_does_not_l
     assert lc_obeyed.rank == 3  # the coupling's row lies in the loop's
     locked, _ = both_routes(four_bar((Coupling(("A", "C"), (qc, qa)),)))
     assert (locked.mobility, locked.dof) == (0, 0)
+    assert (obeyed.gruebler_kutzbach, obeyed.redundant_constraints) == (-3, 4)  # the loop's 6 equations and the coupling's 1: rank 3
+    assert "6 independent constraints and the coupling of joints 1 (7 in all); the loop-closure equations have rank 3" in obeyed.gruebler_kutzbach_explanation
 
 
 def test_a_coupling_between_a_detached_chain_and_the_end_effector_drives_it():
