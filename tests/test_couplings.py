@@ -310,3 +310,10 @@ def test_random_mechanisms_with_couplings_agree_between_the_routes(seed):
     agree(coupled)
     free = mobility.analyze(m).mobility
     assert free - len(couplings) <= mobility.analyze(coupled).mobility <= free  # each coupling takes at most one freedom
+
+
+def test_full_cycle_mobility_refuses_coupled_joints_rather_than_let_them_turn_apart(capsys):
+    with pytest.raises(mobility.RequestError, match=r"finite_mobility: 'gears' couples joints \(A/B\)"):
+        mobility.finite_mobility(gear_pair())
+    assert main(["analyze", str(MECHANISMS / "gear_pair.yaml"), "--finite"]) == 2
+    assert capsys.readouterr().err.startswith("mobility: finite_mobility: 'spur gear pair' couples joints (A/B)")
