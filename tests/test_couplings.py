@@ -7,6 +7,8 @@ equalities active.
 
 from __future__ import annotations
 
+import re
+
 import mujoco
 import numpy as np
 import pytest
@@ -317,3 +319,21 @@ def test_full_cycle_mobility_refuses_coupled_joints_rather_than_let_them_turn_ap
         mobility.finite_mobility(gear_pair())
     assert main(["analyze", str(MECHANISMS / "gear_pair.yaml"), "--finite"]) == 2
     assert capsys.readouterr().err.startswith("mobility: finite_mobility: 'spur gear pair' couples joints (A/B)")
+
+
+def test_locking_a_coupled_joint_holds_the_joints_its_coupling_leaves_alone():
+    from mobility.actuation import lock_joints, locked_dof
+
+    finger = mobility.load(MECHANISMS / "coupled_finger.yaml")
+    locked = lock_joints(finger, ["PIP"])
+    assert [j.name for j in locked.joints] == ["MCP"] and locked.couplings == ()  # DIP follows PIP: held too
+    assert (locked_dof(finger, ["PIP"]), locked_dof(finger, ["MCP", "PIP"])) == (1, 0)
+    differential = mobility.load(MECHANISMS / "bevel_differential.yaml")
+    one_axle = lock_joints(differential, ["L"])
+    assert [c.joints for c in one_axle.couplings] == [("C", "S"), ("Rt", "C", "S")]
+    assert (locked_dof(differential, ["L"]), locked_dof(differential, ["L", "Rt"])) == (1, 0)
+    # the actuation verdicts of the screw route agree with locking: two inputs drive the finger, PIP and DIP together do not
+    text = (MECHANISMS / "coupled_finger.yaml").read_text()
+    marked = lambda *names: mobility.loads(re.sub(r"(\{name: (%s),.*?)\}" % "|".join(names), r"\1, actuated: true}", text).split("expected:")[0])  # noqa: E731
+    assert mobility.check_actuation(marked("MCP", "PIP")).verdict == "valid"
+    assert mobility.check_actuation(marked("PIP", "DIP")).verdict == "actuation-singular"
