@@ -108,6 +108,21 @@ def test_the_coordinates_of_unit_twists_are_the_joint_rates_times_their_twists_n
     assert abs(rates[0]) > 0.1  # a solution that moves
 
 
+def test_a_screw_driven_by_a_motor_keeps_its_coupling_in_natural_rates():
+    """An H joint's unit column is its twist per radian [w; (p - c) x w / L + h w / L] scaled by its norm, as an R joint's."""
+    joints = (R("M", "g", "motor", (0, 0, 0)), Joint("S", "H", ("g", "nut"), axis=(1, 0, 0), point=(2, 1, 0), pitch=0.5))
+    m = Mechanism("lead screw", "g", "nut", joints, couplings=(Coupling(("M", "S"), (2.0, -1.0)),))
+    r, lc = both_routes(m)
+    assert (r.mobility, r.dof) == (1, 1)
+    norm = lc.screws.normalisation
+    (x,) = lc.joint_rates.T
+    rates = []
+    for joint, xj in zip(m.joints, x):
+        v = (np.cross(np.subtract(joint.point, norm.centre), joint.axis) + (joint.pitch or 0.0) * np.asarray(joint.axis)) / norm.length
+        rates.append(xj / np.sqrt(1.0 + v @ v))
+    assert abs(2.0 * rates[0] - rates[1]) < 1e-12 * max(map(abs, rates)) and abs(rates[0]) > 0.1
+
+
 def test_a_coupling_that_a_loop_already_obeys_is_redundant_and_one_it_does_not_locks_the_loop():
     plain, _ = both_routes(four_bar())
     assert plain.mobility == 1
@@ -337,3 +352,19 @@ def test_locking_a_coupled_joint_holds_the_joints_its_coupling_leaves_alone():
     marked = lambda *names: mobility.loads(re.sub(r"(\{name: (%s),.*?)\}" % "|".join(names), r"\1, actuated: true}", text).split("expected:")[0])  # noqa: E731
     assert mobility.check_actuation(marked("MCP", "PIP")).verdict == "valid"
     assert mobility.check_actuation(marked("PIP", "DIP")).verdict == "actuation-singular"
+
+
+def test_coupling_rates_are_mujocos_where_the_joints_stand_at_different_distances_from_the_centre(tmp_path):
+    """A bent finger: the coupled joints' unit columns have different norms, so a coefficient taken on the unit coordinates would turn the fingertip's twist system; MuJoCo's rows are on the natural rates."""
+    joints = (R("MCP", "palm", "proximal", (0, 0, 0)), R("PIP", "proximal", "middle", (45, 10, 0)), R("DIP", "middle", "distal", (70, 30, 0)))
+    m = Mechanism("bent finger", "palm", "distal", joints, couplings=(Coupling(("DIP", "PIP"), (3.0, -2.0)),))
+    r, lc = both_routes(m)
+    assert (r.mobility, r.dof) == (2, 2)
+    text = mjcf_of_tree(m)
+    route = assert_agrees_with_mujoco(read_robot(write(tmp_path, "finger.xml", text), end_effector="distal"), *mujoco_compile(text), kinds=EVERY_EQUALITY)
+    model, data = mujoco_compile(text)
+    jac = np.asarray(data.efc_J[: data.nefc * model.nv]).reshape(data.nefc, model.nv)
+    scale = np.linalg.norm(lc.screws.twists[:3], axis=0)  # |u[:3]| = 1 / |T|: unit coordinates to radians
+    natural = lc.joint_rates * scale[:, None]
+    assert np.abs(jac @ natural).max() < 1e-12 * np.abs(natural).max()  # our rates close MuJoCo's rows
+    assert route.mobility == natural.shape[1] == 2
