@@ -55,7 +55,8 @@ from .errors import (
 )
 from .io.loader import load, loads
 from .core.loop_closure import LoopClosure, loop_closure
-from .core.model import Coupling, Expected, Frame, Joint, Mechanism
+from .core.expected import Expected
+from .core.model import Coupling, Frame, Joint, Mechanism
 from .core.result import LimbSystem, Margin, Result, ScrewAxis
 from .core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from . import library

@@ -328,7 +328,41 @@ class MechanismCheckFailed(MobilityError, AssertionError):
 
 
 class RequestError(MobilityError, ValueError):
-    """An argument of a function, or an option of the command line, is out of its range."""
+    """An argument of a function, or an option of the command line, is out of its range.
+
+    The error carries what went wrong as fields and writes its message from
+    them: ``caller: argument: expected EXPECTED, got GOT``, each part left out
+    when it is empty, and ``problem`` (what is wrong, in words) where the
+    trouble is not a value out of its range, or after a semicolon, as advice.
+
+    Parameters
+    ----------
+    problem : str
+        What is wrong, when it is not "expected ..., got ..."; a message written whole.
+    caller : str
+        The function or command that refuses (``"analyze"``).
+    argument : str
+        The argument or option refused (``"tol"``, ``"--samples"``).
+    expected : str
+        What it should be (``"a Tolerance"``).
+    got : str
+        What was given, as the message shows it (a clipped ``repr``:
+        :func:`shown_argument`, or a type name).
+
+    Examples
+    --------
+    >>> err = RequestError(caller="plot_mechanism", argument="title", expected="a str or None", got="int")
+    >>> str(err), err.argument, err.got
+    ('plot_mechanism: title: expected a str or None, got int', 'title', 'int')
+    >>> str(RequestError("choose one output format", argument="--json and --format csv"))
+    '--json and --format csv: choose one output format'
+    """
+
+    def __init__(self, problem: str = "", *, caller: str = "", argument: str = "", expected: str = "", got: object = "") -> None:
+        got = str(got)  # a count, say
+        self.problem, self.caller, self.argument, self.expected, self.got = problem, caller, argument, expected, got
+        said = f"expected {expected}" + (f", got {got}" if got else "") if expected else ""
+        super().__init__(": ".join(part for part in (caller, argument, "; ".join(p for p in (said, problem) if p)) if part))
 
 
 class SynthesisError(RequestError):

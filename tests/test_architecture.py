@@ -24,7 +24,7 @@ ALLOWED = {
     "errors": "",
     "outputs": "",
     "core": "errors",
-    "io": "errors core.model core.transforms core.tolerance",
+    "io": "errors core.model core.expected core.validation core.transforms core.tolerance",
     "finite": "errors core",
     "actuation": "errors core",
     "flexure": "errors core io actuation",
@@ -43,18 +43,20 @@ ALLOWED = {
 # Inside the core, data flows by layer: a module imports only modules of lower layers.
 CORE_LAYERS = {
     "tolerance": 0, "transforms": 0, "frozen": 0, "couplings": 0,
-    "linalg": 1, "model": 1, "finite_screws": 1,
-    "screws": 2, "topology": 2,
-    "joint_screws": 3,
-    "screw_systems": 4, "loop_closure": 4, "canonical": 4, "kinematics": 4,
-    "result": 5, "poses": 5,
-    "analysis": 6,
-    "closures": 7,
+    "validation": 1, "linalg": 1, "finite_screws": 1,
+    "expected": 2,
+    "model": 3,
+    "screws": 4, "topology": 4,
+    "joint_screws": 5,
+    "screw_systems": 6, "loop_closure": 6, "canonical": 6, "kinematics": 6,
+    "result": 7, "poses": 7,
+    "analysis": 8,
+    "closures": 9,
 }
 # ... and screw algebra knows no model, the topology no geometry.
 CORE_APART = {
-    "screws": {"model", "topology", "joint_screws"},
-    "canonical": {"model", "topology", "joint_screws"},
+    "screws": {"model", "expected", "topology", "joint_screws"},
+    "canonical": {"model", "expected", "topology", "joint_screws"},
 }
 
 

@@ -226,3 +226,36 @@ def test_every_error_class_is_exported_at_the_top_level():
     for cls in ERROR_CLASSES:
         assert getattr(mobility, cls.__name__) is cls and cls.__name__ in mobility.__all__
     assert set(mobility.__all__) <= set(dir(mobility))
+
+
+def test_a_request_error_carries_its_fields_and_writes_its_message_from_them():
+    import copy
+    import pickle
+
+    m = mobility.load(MECHANISMS / "four_bar.yaml")
+    with pytest.raises(RequestError) as caught:
+        mobility.analyze("four_bar.yaml")
+    err = caught.value
+    assert (err.caller, err.argument, err.expected, err.got) == ("analyze", "", "a Mechanism (from mobility.load or built in code)", "str")
+    with pytest.raises(RequestError) as caught:
+        mobility.plot_mechanism(m, labels=1)
+    assert (caught.value.caller, caught.value.argument, caught.value.got) == ("plot_mechanism", "labels", "1")
+    built = RequestError("give fewer", caller="sweep_view", argument="max_poses", expected="an integer from 1 to 200", got=0)
+    assert str(built) == "sweep_view: max_poses: expected an integer from 1 to 200, got 0; give fewer"  # a count of 0 is shown, not dropped
+    for copied in (pickle.loads(pickle.dumps(built)), copy.copy(built)):
+        assert (str(copied), copied.argument, copied.got, copied.problem) == (str(built), "max_poses", "0", "give fewer")
+    assert str(RequestError("--tol must lie in [1e-11, 1e-05), got 2")) == "--tol must lie in [1e-11, 1e-05), got 2"  # a message written whole
+
+
+def test_robot_options_for_a_yaml_file_are_refused_in_one_place_named_as_the_caller_wrote_them():
+    from mobility.io.loader import read_file
+
+    path = str(MECHANISMS / "four_bar.yaml")
+    with pytest.raises(RequestError) as caught:
+        mobility.load(path, floating=True, ground="base")
+    assert str(caught.value) == f"floating, ground: options of robot description files (MJCF, URDF), not of the mechanism file {path}"
+    with pytest.raises(RequestError) as caught:
+        read_file(path, spelling={"ground": "--ground", "floating": "--floating"}, floating=True, ground="base")
+    assert caught.value.argument == "--ground, --floating"  # the command line's order and spelling
+    read = read_file(path)
+    assert read.files == (path,) and read.notes == () and read.mechanism == mobility.load(path)

@@ -49,8 +49,9 @@ def test_the_version_is_written_in_one_place():
     assert "version" not in PROJECT and PROJECT["dynamic"] == ["version"]
     assert PYPROJECT["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "mobility.__version__"}
     assert importlib.metadata.version(DISTRIBUTION) == mobility.__version__  # what the installed metadata says
-    # the changelog's newest section is this version
-    assert re.findall(r"^## (\S+)", (ROOT / "CHANGELOG.md").read_text(encoding="utf-8"), re.M)[0] == mobility.__version__
+    # the changelog's newest released section is this version (below an "Unreleased" one, if any)
+    sections = re.findall(r"^## (\S+)", (ROOT / "CHANGELOG.md").read_text(encoding="utf-8"), re.M)
+    assert sections[1 if sections[0] == "Unreleased" else 0] == mobility.__version__
     # no other module writes a version of its own
     written = [str(p.relative_to(ROOT)) for p in (ROOT / "mobility").rglob("*.py")
                if re.search(r"^\s*(__version__|VERSION|version)\s*=\s*['\"]\d", p.read_text(encoding="utf-8"), re.M)]

@@ -20,7 +20,7 @@ from conftest import ROOT
 
 import mobility
 from mobility.cli import main
-from mobility.core.model import EXPECTED_PATTERN, Expected, require_expected_pattern
+from mobility.core.expected import EXPECTED_PATTERN, Expected, require_expected_pattern
 from mobility.core.screws import pattern_of
 from mobility.core.tolerance import characteristic_scale, characteristic_scales
 from mobility.errors import MechanismError, MechanismFileError, RequestError

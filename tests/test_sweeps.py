@@ -713,7 +713,7 @@ def test_a_sweep_at_any_scale_is_the_sweep_scaled_without_a_warning():
 def test_a_deep_tree_is_evaluated_for_every_pose_without_recursion():
     import sys
 
-    from mobility.core.screw_systems import evaluate
+    from mobility.core.screw_systems import evaluate, per_pose
 
     z = (0.0, 0.0, 1.0)
     n = 1500  # a ladder of rigid triangles: series inside parallel 1,500 deep
@@ -725,7 +725,7 @@ def test_a_deep_tree_is_evaluated_for_every_pose_without_recursion():
     twists = np.broadcast_to(screws.twists, (2, *screws.twists.shape))
     value = evaluate(decompose(m).root, np.ascontiguousarray(twists), screws.offsets)
     single = evaluate(decompose(m).root, screws.twists[None], screws.offsets)
-    assert value.dim.tolist() == single.dim.tolist() * 2 and value.mobility.tolist() == single.mobility.tolist() * 2 == [0, 0]
+    assert per_pose(value.dim, 2).tolist() == per_pose(single.dim, 1).tolist() * 2 and per_pose(value.mobility, 2).tolist() == per_pose(single.mobility, 1).tolist() * 2 == [0, 0]
 
 
 

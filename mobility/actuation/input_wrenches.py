@@ -122,7 +122,7 @@ def input_wrenches(node: Node, limb: Systems, twists: np.ndarray, offsets: Seque
     w_other = shift(attach, others.wrenches, 1.0)
     if limb.wrenches.shape[2]:
         q, _ = np.linalg.qr(shift(attach, limb.wrenches, 1.0))
-        q = q * (np.arange(q.shape[2]) < (6 - limb.dim)[:, None])[:, None, :]
+        q = q * (np.arange(q.shape[2]) < np.reshape(6 - limb.dim, (-1, 1)))[:, None, :]
         w_other = w_other - q @ (np.swapaxes(q, 1, 2) @ w_other)
     if w_other.shape[2] == 0:
         return InputWrenches(np.zeros((count, 6)), np.ones(count), np.zeros(count), np.zeros(count, dtype=bool))

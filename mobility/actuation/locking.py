@@ -22,7 +22,8 @@ from dataclasses import replace
 from typing import Iterable
 
 from ..core.loop_closure import loop_closure
-from ..core.model import Coupling, Mechanism, joint_names, require_mechanism, require_no_repeats
+from ..core.model import Coupling, Mechanism, require_mechanism
+from ..core.validation import joint_names, require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MechanismError
 

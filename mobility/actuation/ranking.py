@@ -27,7 +27,7 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-from ..core.model import integer_value
+from ..core.validation import integer_value
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, first_least
 from ..errors import RequestError, shown_argument
 from .assessment import Assessment

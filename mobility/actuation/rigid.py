@@ -27,7 +27,8 @@ import numpy as np
 
 from ..core.linalg import singular_values, svd
 from ..core.loop_closure import loop_closure
-from ..core.model import Mechanism, joint_freedoms, joint_names, require_mechanism, require_no_repeats
+from ..core.model import Mechanism, joint_freedoms, require_mechanism
+from ..core.validation import joint_names, require_no_repeats
 from ..core.poses import DEFAULT_STEP, require_pose_count, sample_poses
 from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank, require_tolerance
@@ -177,7 +178,7 @@ def enumerate_actuations(
     tol = require_tolerance(tol, "enumerate_actuations")
     if not isinstance(mode, str) or mode not in ENUMERATION_MODES:
         shown = shown_argument(mode) if isinstance(mode, str) else type(mode).__name__
-        raise RequestError(f"enumerate_actuations: mode must be 'limb' or 'any', got {shown}")
+        raise RequestError(f"mode must be 'limb' or 'any', got {shown}", caller="enumerate_actuations")
     given_k = None if k is None else inputs_per_combination(k, 0)
     samples = require_pose_count(samples, "samples")
     poses = _poses(poses, "enumerate_actuations")
@@ -269,7 +270,7 @@ def _limb_combinations(candidates: Sequence[Sequence[int]], k: int) -> int:
 def _poses(poses: Iterable[Mechanism], caller: str) -> list[Mechanism]:
     """``poses`` as a list, each a :class:`~mobility.core.model.Mechanism` (else a :class:`RequestError` naming it)."""
     if isinstance(poses, (str, bytes, Mechanism)) or not isinstance(poses, Iterable):
-        raise RequestError(f"{caller}: poses must be a sequence of Mechanisms, got {type(poses).__name__}")
+        raise RequestError(f"poses must be a sequence of Mechanisms, got {type(poses).__name__}", caller=caller)
     return [require_mechanism(p, f"{caller}: poses[{i}]") for i, p in enumerate(poses)]
 
 

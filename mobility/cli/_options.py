@@ -16,14 +16,14 @@ import argparse
 import os
 import stat
 import sys
-from pathlib import Path
-from typing import Any, Collection, NamedTuple
+from typing import Any, Collection
 
-from ..core.model import Mechanism, integer_from_text, number_from_text
-from ..core.tolerance import Tolerance
+from ..core.model import Mechanism
+from ..core.validation import integer_from_text, number_from_text
+from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, file_tolerance
 from ..errors import RequestError, one_line
-from ..io.files import os_problem, refuse_pipe
-from ..io.loader import load
+from ..io.files import os_problem, require_not_pipe
+from ..io.loader import FileRead, read_file
 
 __all__ = [
     "add_tolerance_option",
@@ -33,7 +33,6 @@ __all__ = [
     "MECHANISM_FILE_HELP",
     "add_mechanism_file",
     "robot_options_from",
-    "is_robot_description",
     "read_mechanism",
     "load_mechanism",
     "names_from",
@@ -49,12 +48,12 @@ __all__ = [
 
 
 def number_option(text: str) -> float:
-    """The ``type`` of an option that takes a number: ``float``, but digits in ASCII only, no ``_`` (``--tol \u0661e-9`` and ``--tol 1_0e-9`` are refused, as in a file; :func:`~mobility.core.model.number_from_text`)."""
+    """The ``type`` of an option that takes a number: ``float``, but digits in ASCII only, no ``_`` (``--tol \u0661e-9`` and ``--tol 1_0e-9`` are refused, as in a file; :func:`~mobility.core.validation.number_from_text`)."""
     return number_from_text(text)
 
 
 def integer_option(text: str) -> int:
-    """The ``type`` of an option that takes an integer: ``int``, but digits in ASCII only, no ``_`` (:func:`~mobility.core.model.integer_from_text`)."""
+    """The ``type`` of an option that takes an integer: ``int``, but digits in ASCII only, no ``_`` (:func:`~mobility.core.validation.integer_from_text`)."""
     return integer_from_text(text)
 
 
@@ -64,23 +63,28 @@ integer_option.__name__ = "int"
 
 def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--tol``, the relative rank threshold of the tolerance policy."""
-    base = Tolerance()
-    parser.add_argument("--tol", type=number_option, default=base.rank,
-                        help=f"relative rank threshold, in [{base.inexact:g}, {base.near_singular:g}) (default: %(default)g)")
+    parser.add_argument("--tol", type=number_option, default=None,
+                        help=f"relative rank threshold, in [{DEFAULT_TOLERANCE.inexact:g}, {DEFAULT_TOLERANCE.near_singular:g}) (default: {DEFAULT_TOLERANCE.rank:g}, "
+                             "or more for a file whose numbers are rounded: never finer than the file)")
 
 
-def tolerance_from(args: argparse.Namespace) -> Tolerance:
-    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol``.
+def tolerance_from(args: argparse.Namespace, precision: float | None = None) -> Tolerance:
+    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol`` (whose range the policy itself checks, ``[inexact, near_singular)``); without it, the default never finer than ``precision``.
+
+    ``precision`` is the file's own (:attr:`~mobility.core.model.Mechanism.precision`):
+    see :func:`~mobility.core.tolerance.file_tolerance`.
 
     Raises
     ------
     RequestError
-        When the value lies outside ``[inexact, near_singular)`` of the policy.
+        Naming ``--tol`` and its range, when the policy refuses it.
     """
-    base = Tolerance()
-    if not (base.inexact <= args.tol < base.near_singular):
-        raise RequestError(f"--tol must lie in [{base.inexact:g}, {base.near_singular:g}), got {args.tol:g}")
-    return Tolerance(rank=args.tol)
+    if args.tol is None:
+        return file_tolerance(precision)
+    try:
+        return Tolerance(rank=args.tol)
+    except RequestError:
+        raise RequestError(f"--tol must lie in [{DEFAULT_TOLERANCE.inexact:g}, {DEFAULT_TOLERANCE.near_singular:g}), got {args.tol:g}") from None
 
 
 def add_pose_sampler_options(
@@ -204,31 +208,13 @@ def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
     for option, value, what in (("--ground", args.ground, "a body name"), ("--end-effector", args.end_effector, "a body name"),
                                 ("--closures", args.closures, "a file name")):
         if value == "":
-            raise RequestError(f"{option}: expected {what}, got an empty one")
+            raise RequestError(argument=option, expected=what, got="an empty one")
     values = {"ground": args.ground, "end_effector": args.end_effector, "floating": args.floating,
               "ignore_unsupported": args.ignore_unsupported, "close": tuple(tuple(p) for p in args.close), "closures": args.closures}
     return {k: v for k, v in values.items() if v not in (None, False, ())}
 
 
-def is_robot_description(path: str) -> bool:
-    """Whether ``path`` is a robot description (a YAML suffix is decided without importing the robot readers)."""
-    if Path(path).suffix.lower() in (".yaml", ".yml"):
-        return False
-    from ..io.robot_files import is_robot_file
-
-    return is_robot_file(path)
-
-
-class ReadMechanism(NamedTuple):
-    """A mechanism read for a command: the mechanism, the notes of its reading, and every file read for it."""
-
-    mechanism: Mechanism
-    notes: tuple[str, ...]
-    files: tuple[str, ...]
-    closures: tuple[str, ...] = ()
-
-
-def read_mechanism(args: argparse.Namespace, path: str | None = None) -> ReadMechanism:
+def read_mechanism(args: argparse.Namespace, path: str | None = None) -> FileRead:
     """The mechanism of ``path`` (default: ``args.file``), read with the robot options of ``args``, the notes of the reading and the files read.
 
     The files are the file itself, a URDF's closures side file and the files an
@@ -239,19 +225,9 @@ def read_mechanism(args: argparse.Namespace, path: str | None = None) -> ReadMec
     MechanismFileError
         When the file cannot be read (one line naming file, line and key).
     RequestError
-        When robot options are given for a mechanism file (YAML).
+        When robot options are given for a mechanism file (YAML), named as typed.
     """
-    path = args.file if path is None else path
-    options = robot_options_from(args)
-    if not is_robot_description(path):
-        if options:  # said with the options as typed (the library's message names its keywords)
-            raise RequestError(f"{', '.join(OPTION_SPELLING[k] for k in options)}: options of robot description files (MJCF, URDF), not of the mechanism file {path}")
-        return ReadMechanism(load(path), (), (path,))
-    from ..io.robot_files import read_robot  # XML readers (and MuJoCo for MJCF): only for robot files
-
-    robot = read_robot(path, **options)
-    closures = options.get("closures")
-    return ReadMechanism(robot.mechanism, tuple(robot.notes), tuple(robot.files) + ((str(closures),) if closures else ()), robot.closures)
+    return read_file(args.file if path is None else path, spelling=OPTION_SPELLING, **robot_options_from(args))
 
 
 def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> Mechanism:
@@ -263,7 +239,7 @@ def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs
     return read_with_notes(args, path, outputs=outputs).mechanism
 
 
-def read_with_notes(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> ReadMechanism:
+def read_with_notes(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> FileRead:
     """:func:`read_mechanism`, its notes written to stderr and its outputs checked as :func:`load_mechanism` does."""
     read = read_mechanism(args, path)
     for output, option in outputs:
@@ -322,7 +298,7 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
         return
     if output.endswith(("/", os.sep)):  # `-o newdir/` would write a file called newdir
         raise RequestError(f"{option} {output}: expected a file name, not a folder (it ends with {output[-1]})")
-    if stat.S_ISDIR(refuse_pipe(output, f"a file to write for {option} (writing to a pipe would wait for a reader)")):
+    if stat.S_ISDIR(require_not_pipe(output, f"a file to write for {option} (writing to a pipe would wait for a reader)")):
         raise RequestError(f"{option} {output}: is a directory, expected a file to write")
     try:
         os.stat(output)

@@ -26,6 +26,7 @@ from ..core.model import Mechanism
 from ..core.tolerance import Tolerance
 from ..errors import RequestError
 from ..flexure import FlexureMechanism, check_force_lines, enumerate_force_lines, flexure_spaces, is_flexure_document, loads_flexure
+from ..io.loader import is_robot_description
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
 from ..io.limits import require_size, require_work
@@ -36,7 +37,6 @@ from ._options import (
     add_pose_sampler_options,
     add_tolerance_option,
     integer_option,
-    is_robot_description,
     load_mechanism,
     names_from,
     number_option,
@@ -102,6 +102,7 @@ def run(args: argparse.Namespace) -> int:
     if args.threshold is not None:  # it would be ignored: a rigid mechanism has no compliance
         raise RequestError(f"--threshold applies to flexure documents (their compliance), not to the rigid mechanism {args.file}")
     mechanism = load_mechanism(args)
+    tol = tolerance_from(args, mechanism.precision)
     names = names_from(args.inputs, [j.name for j in mechanism.joints])
     if args.enumerate:
         require_size(mechanism, "max_enumerated_joints", "--enumerate", args.file)

@@ -44,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError(f"--json and --format {args.format}: choose one output format")
     read = read_with_notes(args)
     mechanism = read.mechanism
+    tol = tolerance_from(args, mechanism.precision)
     if args.finite:
         require_size(mechanism, "max_finite_joints", "--finite", args.file)
     result = analyze(mechanism, tol=tol)

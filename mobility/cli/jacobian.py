@@ -36,6 +36,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     mechanism = load_mechanism(args)
+    tol = tolerance_from(args, mechanism.precision)
     names = names_from(args.actuated, [j.name for j in mechanism.joints], "--actuated")
     try:
         result = jacobian(mechanism, actuated=names, tol=tol)

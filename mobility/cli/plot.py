@@ -61,6 +61,7 @@ def run(args: argparse.Namespace) -> int:
         if _is_flexure(args.file):
             raise PlotFormatError(f"{args.file}: a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures") from None
         raise
+    tol = tolerance_from(args, mechanism.precision)
     result = analyze(mechanism, tol=tol)
     if args.graph:
         fig = plot_graph(mechanism, result, tol=tol)

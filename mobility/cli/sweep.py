@@ -90,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json and args.format not in (None, "json"):
         raise RequestError(f"--json and --format {args.format}: choose one output format")
     if args.output is not None and Path(args.output).suffix.lower() in PICTURE_FORMATS:
-        raise RequestError(f"-o {args.output}: -o writes the table (text, csv or json); a picture is drawn by --plot {args.output}")
+        raise RequestError(f"-o writes the table (text, csv or json); a picture is drawn by --plot {args.output}", argument=f"-o {args.output}")
     require_new_output(args.output, "-o", args.file)
     require_new_output(args.plot, "--plot", args.file, args.output)
     if args.plot is not None:  # before any work: a picture that cannot be drawn is refused now, not after the sweep
@@ -105,13 +105,14 @@ def run(args: argparse.Namespace) -> int:
     if args.workers is not None and not 1 <= args.workers <= MAX_WORKERS:
         raise RequestError(f"--workers must be between 1 and {MAX_WORKERS} (threads of this process; for more, use --scheduler), got {clipped(str(args.workers))}")
     mechanism = load_mechanism(args, outputs=((args.output, "-o"), (args.plot, "--plot")))
+    tol = tolerance_from(args, mechanism.precision)
     require_size(mechanism, "max_moving_joints", "a sweep", args.file)
     inputs = names_from(args.inputs, [j.name for j in mechanism.joints])
     if inputs is not None:
         try:
             actuated_inputs(mechanism, inputs)
         except MechanismError as exc:
-            raise RequestError(f"--inputs {args.inputs}: {exc.message}") from None
+            raise RequestError(exc.message, argument=f"--inputs {args.inputs}") from None
     result = sweep(
         mechanism,
         args.vary,
@@ -130,7 +131,7 @@ def run(args: argparse.Namespace) -> int:
             with atomic_output(args.output) as handle:  # the previous file intact until the new one is whole
                 _write_pieces(handle, pieces)
         except OSError as exc:
-            raise RequestError(f"-o {args.output}: cannot write it ({exc.strerror or exc})") from None
+            raise RequestError(f"cannot write it ({exc.strerror or exc})", argument=f"-o {args.output}") from None
         print(one_line(f"wrote {args.output}: {counted(result.size, 'pose', grouped=True)} of {result.name} ({fmt})"))
     else:
         _write_pieces(sys.stdout, pieces)
@@ -140,7 +141,7 @@ def run(args: argparse.Namespace) -> int:
         try:
             path = save_figure(plot_sweep(result), args.plot)
         except OSError as exc:
-            raise RequestError(f"--plot {args.plot}: cannot write it ({exc.strerror or exc})") from None
+            raise RequestError(f"cannot write it ({exc.strerror or exc})", argument=f"--plot {args.plot}") from None
         note = f"wrote {path}: {'curve' if len(result.axes) == 1 else 'map' if len(result.axes) == 2 else 'slices'} of {result.name}"
         # a table printed on stdout stays a clean table: the note goes to stderr then
         print(one_line(note), file=sys.stderr if (args.output is None and fmt != "text") else sys.stdout)

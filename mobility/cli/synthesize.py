@@ -53,9 +53,9 @@ def _vector(text: str, what: str) -> tuple[float, float, float]:
     try:
         parts = [number_option(x) for x in text.split(",")]
     except ValueError:
-        raise SynthesisError(f"{what}: expected three comma-separated numbers, got {text!r}") from None
+        raise SynthesisError(caller=what, expected="three comma-separated numbers", got=repr(text)) from None
     if len(parts) != 3:
-        raise SynthesisError(f"{what}: expected three comma-separated numbers, got {text!r}")
+        raise SynthesisError(caller=what, expected="three comma-separated numbers", got=repr(text))
     return (parts[0], parts[1], parts[2])
 
 
@@ -65,9 +65,9 @@ def _require_folder_to_write(folder: str) -> None:
         raise RequestError(f"--write {folder!r}: expected a folder name")
     where = Path(os.path.abspath(folder))
     if where.exists() and not where.is_dir():
-        raise RequestError(f"--write {folder}: is a file, expected a folder to write mechanism files in")
+        raise RequestError("is a file, expected a folder to write mechanism files in", argument=f"--write {folder}")
     if not where.exists() and not where.parent.is_dir():
-        raise RequestError(f"--write {folder}: cannot write there: the folder {where.parent} does not exist")
+        raise RequestError(f"cannot write there: the folder {where.parent} does not exist", argument=f"--write {folder}")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -65,9 +65,10 @@ def run(args: argparse.Namespace) -> int:
     for dest in ("step", "seed"):
         require_option_for(args, dest, f"--{dest}", "--samples", bool(args.samples), "it sets how the sampled poses are reached")
     if args.samples >= MAX_POSES:  # the file's pose and the sampled ones, before any work
-        raise RequestError(f"--samples {args.samples}: a view shows at most {counted(MAX_POSES, 'pose')}, the file's and {MAX_POSES - 1} sampled; ask for fewer")
+        raise RequestError(f"a view shows at most {counted(MAX_POSES, 'pose')}, the file's and {MAX_POSES - 1} sampled; ask for fewer", argument=f"--samples {args.samples}")
     require_plotly()  # before any work
     mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
+    tol = tolerance_from(args, mechanism.precision)
     if args.vary or args.samples:
         require_size(mechanism, "max_moving_joints", "--vary" if args.vary else "--samples", args.file)
         require_work(mechanism, *_poses_shown(args, mechanism, max_poses), args.file)

@@ -29,9 +29,9 @@ from .canonical import canonical_form
 from .joint_screws import JointScrews, Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Mechanism, require_mechanism
 from .result import LimbSystem, Margin, NodeSystem, Result, ScrewAxis
-from .screw_systems import PoseAnswers, analyse_poses, subtree_values
+from .screw_systems import PoseAnswers, analyse_poses, per_pose, subtree_values
 from .screws import free_vector_subspace, span_and_reciprocal
-from .tolerance import DEFAULT_TOLERANCE, NEAR_LARGEST_FLOAT, Tolerance, decide_rank, require_tolerance
+from .tolerance import NEAR_LARGEST_FLOAT, Tolerance, decide_rank, file_tolerance, require_tolerance
 from .transforms import cross
 from .topology import JointNode, Node, Parallel, Topology, decompose, describe, joints_of
 
@@ -47,19 +47,24 @@ def gruebler_kutzbach(mechanism: Mechanism) -> int:
     >>> gruebler_kutzbach(Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(1, 0, 0)),)))
     1
     """
-    mechanism = require_mechanism(mechanism, "gruebler_kutzbach")
+    return _gruebler_kutzbach(require_mechanism(mechanism, "gruebler_kutzbach"))
+
+
+def _gruebler_kutzbach(mechanism: Mechanism) -> int:
     return 6 * (len(mechanism.links) - 1 - len(mechanism.joints)) + mechanism.freedom_count - len(mechanism.couplings)
 
 
-def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Result:
+def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
     """Analyse the mobility of ``mechanism`` at its pose.
 
     Parameters
     ----------
     mechanism : Mechanism
         From :func:`mobility.load` or built in code.
-    tol : Tolerance
-        Rank-decision policy (relative, dimensionless).
+    tol : Tolerance, optional
+        Rank-decision policy (relative, dimensionless), used as given.
+        Default: the default policy, never finer than the precision of the
+        mechanism's file (:func:`~mobility.core.tolerance.file_tolerance`).
 
     Returns
     -------
@@ -85,12 +90,13 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
     (1, '1R', 1, -2, 3)
     """
     mechanism = require_mechanism(mechanism, "analyze")
-    tol = require_tolerance(tol, "analyze")
+    tol = file_tolerance(mechanism.precision) if tol is None else require_tolerance(tol, "analyze")
     topology = per_object_cache(mechanism, "topology", lambda: decompose(mechanism))
     screws = joint_screws(mechanism)
     answers = analyse_poses(topology, screws.twists[None], screws.offsets, tol)
-    gk = gruebler_kutzbach(mechanism)
-    kept, dropped = float(answers.smallest_kept[0]), float(answers.largest_dropped[0])
+    gk = _gruebler_kutzbach(mechanism)
+    kept, dropped = answers.smallest_kept.item(), answers.largest_dropped.item()
+    dof, mobility = answers.dof.item(), answers.mobility.item()
     margin = Margin(kept, dropped, kept < tol.near_singular, dropped > tol.inexact)
     warnings = []
     if margin.near_singular:
@@ -109,12 +115,12 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
     norm = screws.normalisation
     result = Result(
         name=mechanism.name,
-        dof=int(answers.dof[0]),
-        pattern=str(answers.pattern[0]),
-        mobility=int(answers.mobility[0]),
+        dof=dof,
+        pattern=answers.pattern[0],
+        mobility=mobility,
         gruebler_kutzbach=gk,
-        redundant_constraints=int(answers.mobility[0]) - gk,
-        idle_dof=int(answers.mobility[0] - answers.dof[0]),
+        redundant_constraints=mobility - gk,
+        idle_dof=mobility - dof,
         loops=topology.loop_count,
         links=topology.link_count,
         joints=len(mechanism.joints),
@@ -127,7 +133,7 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE) -> Resu
         reference_point=screws.reference_in_world,
         detail=_Detail(mechanism, topology, screws, answers, tol),
     )
-    if float(np.abs(norm.centre).max()) + norm.length > NEAR_LARGEST_FLOAT:
+    if norm.reach > NEAR_LARGEST_FLOAT:
         result.to_dict()  # its axes may lie past the largest float: said here, not when a lazy part is first read
     return result
 
@@ -155,7 +161,7 @@ class _Detail:
                     assert isinstance(node, JointNode)
                     out[node] = NodeSystem(self.mechanism.joints[node.index].dof, 0)
                 else:
-                    out[node] = NodeSystem(int(v.dim[0]), int(v.idle[0]))
+                    out[node] = NodeSystem(int(per_pose(v.dim, 1)[0]), int(per_pose(v.idle, 1)[0]))
         return out
 
     def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
@@ -215,7 +221,7 @@ class _Detail:
             reference = rt @ self.screws.reference
             translations, rotations, twists = screw_system_in_frame(rot6 @ value.basis[0], local, reference, ("rotation", "helical"), tol)
             couples, forces, wrenches = screw_system_in_frame(rot6 @ value.wrenches[0], local, reference, ("force", "wrench"), tol)
-            out.append(LimbSystem(describe(node), frame, int(value.dim[0]), int(value.idle[0]), translations, rotations, twists, couples, forces, wrenches))
+            out.append(LimbSystem(describe(node), frame, int(per_pose(value.dim, 1)[0]), int(per_pose(value.idle, 1)[0]), translations, rotations, twists, couples, forces, wrenches))
         return tuple(out)
 
 

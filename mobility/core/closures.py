@@ -54,7 +54,7 @@ from .linalg import svd
 from .model import Mechanism, require_mechanism
 from .result import ScrewAxis
 from .screws import SWAP_ROWS, span_and_reciprocal
-from .tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers, decide_rank
+from .tolerance import Tolerance, clean_numbers, decide_rank, file_tolerance, require_tolerance
 
 __all__ = ["ClosureAdvice", "closure_advice"]
 
@@ -107,7 +107,7 @@ class ClosureAdvice:
         }
 
 
-def closure_advice(mechanism: Mechanism, joints: Iterable[str], *, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[ClosureAdvice, ...]:
+def closure_advice(mechanism: Mechanism, joints: Iterable[str], *, tol: Tolerance | None = None) -> tuple[ClosureAdvice, ...]:
     """For each joint named, how many of its constraint rows are independent, and the redundant ones.
 
     Parameters
@@ -116,8 +116,9 @@ def closure_advice(mechanism: Mechanism, joints: Iterable[str], *, tol: Toleranc
     joints : iterable of str
         Names of the closing joints (any joints of the mechanism may be asked:
         a joint on no loop has every row independent).
-    tol : Tolerance
-        The rank policy.
+    tol : Tolerance, optional
+        The rank policy, used as given.  Default: as :func:`~mobility.analyze`
+        decides, never finer than the precision of the mechanism's file.
 
     Returns
     -------
@@ -130,13 +131,14 @@ def closure_advice(mechanism: Mechanism, joints: Iterable[str], *, tol: Toleranc
         When a name is not a joint of the mechanism.
     """
     mechanism = require_mechanism(mechanism, "closure_advice")
+    tol = file_tolerance(mechanism.precision) if tol is None else require_tolerance(tol, "closure_advice")
     if isinstance(joints, (str, bytes)) or not isinstance(joints, Iterable):
-        raise RequestError(f"closure_advice: joints must be a list of joint names, got {shown_argument(joints)}")
+        raise RequestError(f"joints must be a list of joint names, got {shown_argument(joints)}", caller="closure_advice")
     names = list(joints)
     index = {j.name: i for i, j in enumerate(mechanism.joints)}
     for name in names:
         if name not in index:
-            raise RequestError(f"closure_advice: {shown_argument(name)} is not a joint of {mechanism.name!r}")
+            raise RequestError(f"{shown_argument(name)} is not a joint of {mechanism.name!r}", caller="closure_advice")
     screws = joint_screws(mechanism)
     rows, wrenches = _constraint_rows(mechanism, screws, tol)
     return tuple(_advice(mechanism, screws, rows, wrenches, index[name], tol) for name in names)

@@ -137,7 +137,7 @@ def _unit(v: Iterable[float], what: str) -> np.ndarray:
     """``v`` as a unit vector; :class:`~mobility.errors.RequestError` naming ``what`` otherwise."""
     a = _unit_or_none(v)
     if a is None:
-        raise RequestError(f"{what}: expected a non-zero finite direction of 3 numbers, got {_shown(v)}")
+        raise RequestError(caller=what, expected="a non-zero finite direction of 3 numbers", got=_shown(v))
     return a
 
 
@@ -165,12 +165,12 @@ def _numbers(value: object, count: int, what: str, expected: str = "") -> np.nda
     try:
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError, OverflowError):
-        raise RequestError(f"{what}: expected {expected}, got {_shown(value)}") from None
+        raise RequestError(caller=what, expected=expected, got=_shown(value)) from None
     if a.shape != (count,):
         got = _shown(value) if a.ndim == 0 else f"shape {a.shape}" if isinstance(value, np.ndarray) or a.ndim != 1 else f"{a.size} numbers"
-        raise RequestError(f"{what}: expected {expected}, got {got}")
+        raise RequestError(caller=what, expected=expected, got=got)
     if not np.all(np.isfinite(a)):
-        raise RequestError(f"{what}: expected {expected}, got {_shown(value)}")
+        raise RequestError(caller=what, expected=expected, got=_shown(value))
     return a
 
 
@@ -192,7 +192,7 @@ def _number(value: object, what: str) -> float:
             number = math.nan
         if math.isfinite(number):
             return number
-    raise RequestError(f"{what}: expected a finite number, got {_shown(value)}")
+    raise RequestError(caller=what, expected="a finite number", got=_shown(value))
 
 
 def _screw(s: npt.ArrayLike, what: str = "screw") -> np.ndarray:
@@ -315,7 +315,7 @@ def _triangle2(a: np.ndarray, b: np.ndarray) -> np.ndarray:
         v = va + vb + 0.5 * (cross(wa, vb) + cross(va, wb)) - 0.25 * float(wa @ va) * wb - 0.25 * float(wb @ vb) * wa
         out = np.concatenate([w, v]) / d if d != 0.0 else np.full(6, np.inf)
     if not (np.isfinite(d) and np.isfinite(scale) and np.all(np.isfinite(w)) and np.all(np.isfinite(v))):
-        raise RequestError("screws: the triangle product of these finite screws overflows double precision (expected screws of moderate size)")
+        raise RequestError("the triangle product of these finite screws overflows double precision (expected screws of moderate size)", caller="screws")
     if abs(d) <= QUATERNION_ROUND_OFF * scale or not np.all(np.isfinite(out)):
         raise HalfTurnError("the triangle product is a half-turn (1 - wa·wb/4 = 0): it has no finite quasi-vector; use FiniteScrew")
     return out
@@ -427,7 +427,7 @@ class FiniteScrew:
         with np.errstate(over="ignore", invalid="ignore"):
             h = np.concatenate([[1.0], 0.5 * w, [-0.25 * float(w @ v)], 0.5 * v])
         if not np.all(np.isfinite(h)):
-            raise RequestError(f"screw: expected a 6-vector [w; v] whose product w·v is a finite number, got {_shown(s)}")
+            raise RequestError(caller="screw", expected="a 6-vector [w; v] whose product w·v is a finite number", got=_shown(s))
         return FiniteScrew(h)
 
     @staticmethod
@@ -461,7 +461,7 @@ class FiniteScrew:
         except (TypeError, ValueError, OverflowError):
             m = np.empty(0)
         if m.shape != (4, 4) or not np.all(np.isfinite(m)):
-            raise RequestError(f"matrix: expected a 4x4 matrix of finite numbers, got {_shown(matrix)}")
+            raise RequestError(argument="matrix", expected="a 4x4 matrix of finite numbers", got=_shown(matrix))
         rot = m[:3, :3]
         off = max(float(np.max(np.abs(rot @ rot.T - np.eye(3)))), float(np.max(np.abs(m[3] - [0.0, 0.0, 0.0, 1.0]))))
         if off > tol.rank or np.linalg.det(rot) < 0:
@@ -535,7 +535,7 @@ class FiniteScrew:
     def triangle(self, other: "FiniteScrew") -> "FiniteScrew":
         """``self △ other``: ``other`` first, then ``self`` (matrix ``T_self @ T_other``)."""
         if not isinstance(other, FiniteScrew):
-            raise RequestError(f"other: expected a FiniteScrew, got {type(other).__name__}")
+            raise RequestError(caller="other", expected="a FiniteScrew", got=type(other).__name__)
         return FiniteScrew(_dqmul(self.homogeneous, other.homogeneous))
 
     def inverse(self) -> "FiniteScrew":
@@ -676,11 +676,11 @@ class Limb:
         try:
             values = np.asarray(q, dtype=float).reshape(-1)
         except (TypeError, ValueError, OverflowError):
-            raise RequestError(f"q: expected {len(self.joints)} finite joint values, got {_shown(q)}") from None
+            raise RequestError(argument="q", expected=f"{len(self.joints)} finite joint values", got=_shown(q)) from None
         if values.shape != (len(self.joints),):
-            raise RequestError(f"q: expected {len(self.joints)} joint values, got {values.size}")
+            raise RequestError(argument="q", expected=f"{len(self.joints)} joint values", got=values.size)
         if not np.all(np.isfinite(values)):
-            raise RequestError(f"q: expected {len(self.joints)} finite joint values, got {_shown(q)}")
+            raise RequestError(argument="q", expected=f"{len(self.joints)} finite joint values", got=_shown(q))
         return values
 
     def factors(self, q: npt.ArrayLike | None = None) -> list[FiniteScrew]:

@@ -45,6 +45,11 @@ class Normalisation:
     length: float
 
     @cached_property
+    def reach(self) -> float:
+        """``length`` plus the largest coordinate of ``centre``: how far the mechanism reaches from the origin, in each coordinate."""
+        return float(np.abs(self.centre).max()) + self.length
+
+    @cached_property
     def size(self) -> float:
         """A length for rounding output: ``length + |centre|`` (the largest float if that overflows)."""
         scale = binary_scale(self.centre)

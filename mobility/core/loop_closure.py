@@ -158,7 +158,7 @@ def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, me
     tol = require_tolerance(tol, "loop_closure")
     if not isinstance(method, str) or method not in ("auto", "svd", "chords"):
         shown = shown_argument(method) if isinstance(method, str) else type(method).__name__
-        raise RequestError(f"loop_closure: method: expected 'auto', 'svd' or 'chords', got {shown}")
+        raise RequestError(caller="loop_closure", argument="method", expected="'auto', 'svd' or 'chords'", got=shown)
     screws = joint_screws(mechanism)
     n = screws.twists.shape[1]
     tree, chords = spanning_tree(mechanism)

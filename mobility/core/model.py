@@ -10,10 +10,11 @@ gives the same joints in the global frame ``world``.  Each joint type is a set
 of elementary freedoms (:meth:`Joint.freedoms`): rotations about lines,
 translations along directions, screw motions.
 
-One module, longer than most, because a description and the rules it checks
-on construction read better together: the ``require_*`` helpers at the end
-are the checks a :class:`Joint`, :class:`Frame` or :class:`Mechanism` (and
-the flexure model, which shares them) makes of itself.
+One module, longer than most, because each of :class:`Joint`, :class:`Frame`
+and :class:`Mechanism` checks itself on construction (the rules of the file
+format, with the value checkers of :mod:`mobility.core.validation`), and
+those rules read best beside the fields they check.  The regression check a
+mechanism may carry is :class:`~mobility.core.expected.Expected`.
 
 Examples
 --------
@@ -34,21 +35,21 @@ Examples
 from __future__ import annotations
 
 import math
-import numbers
-import operator
-import re
 import sys
 from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
 from types import MappingProxyType
-from typing import Any, Callable, Iterable, Mapping, Sequence, TypeVar, cast
+from typing import Any, Iterable, Mapping, Sequence, cast
 
 import numpy as np
 
-from ..errors import MechanismError, RequestError, did_you_mean, name_list, name_problem, shown_argument
+from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
 from .couplings import Coupling, check_couplings
-from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, UNIT_ROUND_OFF, binary_scale, characteristic_scale, decide_rank
+from .expected import Expected
+from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
+from .validation import (Vector, _listed, _not_bool, bool_value, integer_value, number_from_text, real_value, require_graph_names, require_ground_and_end_effector,
+                         require_instance, require_name, require_unique_names, require_vector)
 
 __all__ = [
     "Coupling",
@@ -59,32 +60,11 @@ __all__ = [
     "FreedomTable",
     "Joint",
     "Frame",
-    "Expected",
     "Mechanism",
     "require_mechanism",
-    "require_instance",
-    "require_vector",
-    "integer_value",
-    "real_value",
-    "bool_value",
-    "require_expected_integer",
-    "require_expected_pattern",
-    "expected_basis_problem",
-    "independent_of",
-    "EXPECTED_PATTERN",
-    "require_graph_names",
-    "require_name",
-    "number_from_text",
-    "integer_from_text",
-    "require_unique_names",
-    "require_no_repeats",
-    "joint_names",
     "joint_freedoms",
-    "require_ground_and_end_effector",
     "WORLD",
 ]
-
-_T = TypeVar("_T")
 
 _FAR = sys.float_info.max / 1e8
 """Coordinates below this cannot overflow when a few are added (the bound of :meth:`Mechanism._frames_cannot_overflow`)."""
@@ -124,55 +104,6 @@ _REQUIRED: Mapping[str, tuple[str, ...]] = {
 _OPTIONAL: Mapping[str, tuple[str, ...]] = {"P": ("point",), "E": ("point",)}
 JOINT_FIELDS: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = MappingProxyType({t: (need, _OPTIONAL.get(t, ())) for t, need in _REQUIRED.items()})
 """Geometry fields each joint type takes: those it requires, and those it may also carry."""
-
-Vector = tuple[float, float, float]
-
-
-def require_vector(value: Any, key: str, *, direction: bool = False) -> Vector:
-    """A 3-vector of finite numbers, normalised if it is a direction (any finite size: scaled before squaring); else a :class:`MechanismError`.
-
-    Examples
-    --------
-    >>> require_vector([0, 3e300, 4e300], "axis", direction=True)
-    (0.0, 0.6, 0.8)
-    >>> require_vector([1, 2], "point")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: point: expected a list of 3 numbers, got 2
-    """
-    plain = type(value) in (tuple, list) and len(value) == 3 and all(type(x) in (float, int) for x in value)  # no bool, no text
-    if plain and not direction:
-        try:  # the common case, without numpy's per-call overhead
-            x, y, z = (float(x) for x in value)
-        except OverflowError:
-            raise MechanismError(key, "expected 3 finite numbers, got an integer too large for a float") from None
-        if math.isfinite(x) and math.isfinite(y) and math.isfinite(z):
-            return (x, y, z)
-    items = value.tolist() if isinstance(value, np.ndarray) and value.dtype.kind in "bUSO" else value
-    if not plain and isinstance(items, (list, tuple)) and any(isinstance(x, (bool, np.bool_)) or (isinstance(x, str) and (not x.isascii() or "_" in x)) for x in items):
-        raise MechanismError(key, f"expected a list of 3 numbers (not true or false, digits in ASCII, no '_'), got {shown_argument(value)}")
-    try:
-        arr = np.asarray(value, dtype=float)
-    except OverflowError:
-        raise MechanismError(key, "expected 3 finite numbers, got an integer too large for a float") from None
-    except (TypeError, ValueError):
-        raise MechanismError(key, f"expected a list of 3 numbers, got {value!r}") from None
-    if arr.shape != (3,):
-        n = arr.size if arr.ndim == 1 else "a nested list" if arr.ndim > 1 else shown_argument(value)
-        raise MechanismError(key, f"expected a list of 3 numbers, got {n}")
-    if not np.all(np.isfinite(arr)):
-        raise MechanismError(key, f"expected 3 finite numbers, got {value!r}")
-    if direction:
-        largest = max(abs(x) for x in arr.tolist())
-        if largest == 0.0:
-            raise MechanismError(key, "expected a non-zero direction, got [0, 0, 0]")
-        if not 1e-140 < largest < 1e140:  # its square could underflow or overflow: scale it by a power of two first (exact)
-            arr = arr * binary_scale(arr)
-        x, y, z = arr.tolist()
-        size = math.hypot(x, y, z)  # the same on every machine (``arr @ arr`` sums in the order of the BLAS kernel the CPU picks)
-        if abs(size - 1.0) > UNIT_ROUND_OFF:  # a direction already of unit length to round-off is kept as written: it reads back to the bit
-            x, y, z = x / size, y / size, z / size
-        return (x, y, z)
-    return (float(arr[0]), float(arr[1]), float(arr[2]))
 
 
 @dataclass(frozen=True)
@@ -417,11 +348,6 @@ class Frame:
         return Transform(np.array(self.rotation), np.array(self.origin))
 
 
-def _listed(value: Any) -> Any:
-    """``value`` as a tuple when it is iterable (a generator too), else as it is (for :func:`require_vector` to refuse)."""
-    return tuple(value) if isinstance(value, Iterable) and not isinstance(value, (str, bytes, Mapping)) else value
-
-
 @dataclass(frozen=True, eq=False)
 class FreedomTable:
     """The elementary freedoms of every joint, in the global frame, as arrays.
@@ -456,195 +382,6 @@ class FreedomTable:
     located_links: np.ndarray
 
 
-EXPECTED_KEYS: dict[str, str] = {
-    "dof": "end-effector DOF (integer >= 0)",
-    "pattern": 'motion pattern such as "1T2R"',
-    "translations": "basis of the translation subspace (list of 3-vectors)",
-    "mobility": "DOF of the whole mechanism (integer >= 0)",
-    "redundant_constraints": "number of redundant constraints (integer >= 0)",
-    "idle_dof": "number of idle DOF (integer >= 0)",
-    "gruebler_kutzbach": "Grübler-Kutzbach count (integer)",
-    "full_cycle_dof": "end-effector DOF along the finite motion from this pose (integer >= 0; mobility analyze --finite)",
-    "full_cycle_mobility": "DOF of the whole mechanism along the finite motion (integer >= 0; mobility analyze --finite)",
-    "finite_verdict": "full-cycle, instantaneous-only, cannot-move or bifurcation (mobility analyze --finite)",
-    "actuation": "verdict of the joints marked actuated: valid, redundant or actuation-singular (mobility actuation)",
-}
-"""Keys an ``expected`` block may hold, with what each means."""
-
-
-EXPECTED_PATTERN = re.compile(r"0|([1-3]T)?([1-3]R)?")
-"""An expected motion pattern: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (matched whole).
-
-These are the patterns :func:`mobility.analyze` reports, ``"0"`` for no
-motion.  The contract writes a pattern ``{nT}T{nR}R`` with a zero part
-dropped, which for no motion drops both: the empty string ``""`` is
-accepted as the same pattern (:func:`require_expected_pattern` reads it as
-``"0"``).  A twist system of more than 3 dimensions always holds a
-translation, so ``m`` is at most 3 too.
-"""
-
-
-def require_expected_integer(value: Any, key: str, *, signed: bool = False, shown: Callable[[Any], str] | None = None) -> int:
-    """An expected count: an integer (Python or numpy, not a bool), non-negative unless ``signed``; else a :class:`MechanismError` naming ``key``.
-
-    ``shown`` writes the value in the message (default: its ``repr``, clipped).
-
-    Examples
-    --------
-    >>> require_expected_integer(np.int64(3), "dof")
-    3
-    >>> require_expected_integer("1", "dof")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: dof: expected a non-negative integer, got '1'
-    """
-    number = integer_value(value)
-    if number is None or (not signed and number < 0):
-        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {(shown or shown_argument)(value)}")
-    return number
-
-
-def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str] | None = None) -> str:
-    """An expected motion pattern (:data:`EXPECTED_PATTERN`; the integer ``0`` and the contract's ``""`` are ``"0"``), else a :class:`MechanismError` naming ``key``.
-
-    Examples
-    --------
-    >>> require_expected_pattern("1T2R", "pattern"), require_expected_pattern(0, "pattern"), require_expected_pattern("", "pattern")
-    ('1T2R', '0', '0')
-    >>> require_expected_pattern("4R", "pattern")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: pattern: expected a pattern such as "3T", "1T2R", "3R" or "0" (no motion; also written ""), at most 3T and 3R, got '4R'
-    """
-    if (type(value) is int and value == 0) or (isinstance(value, str) and value == ""):
-        return "0"
-    if not isinstance(value, str) or not EXPECTED_PATTERN.fullmatch(value):
-        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (no motion; also written ""), at most 3T and 3R, got {(shown or shown_argument)(value)}')
-    return value
-
-
-def expected_basis_problem(vectors: Sequence[Vector]) -> tuple[int, str] | None:
-    """Why ``vectors`` are not a basis of directions (an expected ``translations``): the index of the first bad one and what is wrong; ``None`` when they are one.
-
-    A direction must be non-zero, and each must be independent of those
-    before it (the contract asks for a basis): the rank of the unit
-    directions is decided by the one policy
-    (:func:`~mobility.core.tolerance.decide_rank`), so directions that differ
-    only by round-off are dependent.  An empty list is a basis (of no
-    translation).
-
-    Examples
-    --------
-    >>> expected_basis_problem([(0.0, 0.0, 1.0), (1.0, 0.0, 0.0)]) is None
-    True
-    >>> expected_basis_problem([(0.0, 0.0, 1.0), (0.0, 0.0, 2.0)])
-    (1, 'linearly dependent on the directions before it; expected a basis (independent directions)')
-    >>> expected_basis_problem([(0.0, 0.0, 0.0)])
-    (0, 'expected a non-zero direction, got [0, 0, 0]')
-    """
-    units: list[Vector] = []
-    for i, v in enumerate(vectors):
-        try:
-            unit = require_vector(v, "", direction=True)
-        except MechanismError as exc:
-            return i, exc.message
-        if not independent_of(units, unit):
-            return i, "linearly dependent on the directions before it; expected a basis (independent directions)"
-        units.append(unit)
-    return None
-
-
-def independent_of(directions: Sequence[Vector], direction: Vector) -> bool:
-    """Whether the unit ``direction`` is independent of the independent unit ``directions``, by the one rank policy.
-
-    Examples
-    --------
-    >>> independent_of([], (0.0, 0.0, 1.0)), independent_of([(0.0, 0.0, 1.0)], (0.0, 0.0, -1.0))
-    (True, False)
-    """
-    if not directions:  # one non-zero direction is a basis
-        return True
-    return decide_rank(np.linalg.svd(np.array([*directions, direction]), compute_uv=False)).rank > len(directions)
-
-
-_EXPECTED_COUNTS = ("dof", "mobility", "redundant_constraints", "idle_dof")
-
-
-@dataclass(frozen=True)
-class Expected:
-    """What a regression check compares an analysis against (all optional).
-
-    Each field is checked on construction, as the same key of a file's
-    ``expected`` block is (:data:`EXPECTED_KEYS`); ``extra`` holds further
-    keys (each compared by its comparator in
-    :data:`mobility.testing.check.COMPARATORS`) and is copied, so the
-    caller's mapping may change afterwards.  Hashable (over the fields and
-    the keys of ``extra``) and picklable, as a :class:`Mechanism` holding it is.
-
-    Raises
-    ------
-    MechanismError
-        Naming the key whose value is of the wrong kind (``translations``
-        that are not a basis: :func:`expected_basis_problem`), or an
-        ``extra`` key that is one of the fields.
-
-    Examples
-    --------
-    >>> e = Expected(dof=1, pattern="1R", extra={"actuation": "valid"})
-    >>> e.items()
-    [('dof', 1), ('pattern', '1R'), ('actuation', 'valid')]
-    >>> hash(e) == hash(Expected(dof=1, pattern="1R", extra={"actuation": "valid"}))
-    True
-    >>> Expected(dof="1")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: dof: expected a non-negative integer, got '1'
-    """
-
-    dof: int | None = None
-    pattern: str | None = None
-    translations: tuple[Vector, ...] | None = None
-    mobility: int | None = None
-    redundant_constraints: int | None = None
-    idle_dof: int | None = None
-    gruebler_kutzbach: int | None = None
-    extra: Mapping[str, Any] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        for key in _EXPECTED_COUNTS + ("gruebler_kutzbach",):
-            value = getattr(self, key)
-            if value is not None:
-                object.__setattr__(self, key, require_expected_integer(value, key, signed=key == "gruebler_kutzbach"))
-        if self.pattern is not None:
-            object.__setattr__(self, "pattern", require_expected_pattern(self.pattern, "pattern"))
-        if self.translations is not None:
-            rows = _listed(self.translations)
-            if not isinstance(rows, tuple):
-                raise MechanismError("translations", f"expected a list of 3-vectors, got {shown_argument(self.translations)}")
-            translations = tuple(require_vector(_listed(v), f"translations[{i}]") for i, v in enumerate(rows))
-            problem = expected_basis_problem(translations)
-            if problem is not None:
-                raise MechanismError(f"translations[{problem[0]}]", problem[1])
-            object.__setattr__(self, "translations", translations)
-        if not isinstance(self.extra, Mapping):
-            raise MechanismError("extra", f"expected a mapping of further expected keys, got {type(self.extra).__name__}")
-        extra = dict(self.extra)  # a copy: the caller's mapping may change afterwards
-        for key in extra:
-            if not isinstance(key, str) or not key:
-                raise MechanismError("extra", f"expected keys that are names (non-empty strings), got {shown_argument(key)}")
-            if key in self.__dataclass_fields__:
-                raise MechanismError(f"extra.{key}", f"{key!r} is a field of Expected: give it as Expected({key}=...)")
-        object.__setattr__(self, "extra", extra)
-
-    def __hash__(self) -> int:
-        # extra's values may be unhashable (lists); equal Expecteds have equal keys, which is all a hash needs
-        return hash((self.dof, self.pattern, self.translations, self.mobility, self.redundant_constraints,
-                     self.idle_dof, self.gruebler_kutzbach, frozenset(self.extra)))
-
-    def items(self) -> list[tuple[str, Any]]:
-        """The expectations that are set, as ``(key, value)`` pairs."""
-        out = [(k, getattr(self, k)) for k in EXPECTED_KEYS if hasattr(self, k) and getattr(self, k) is not None]
-        out.extend((k, v) for k, v in self.extra.items() if v is not None)
-        return out
-
-
 @dataclass(frozen=True)
 class Mechanism:
     """A mechanism: a joint graph with geometry at one pose.
@@ -675,6 +412,12 @@ class Mechanism:
     couplings : tuple of Coupling
         Linear relations between the rates of one-freedom joints
         (:mod:`mobility.core.couplings`).
+    precision : float or None
+        How precise the file's geometry is, relative to the mechanism's
+        size (see :mod:`mobility.io.precision`); ``None`` (built in code, a
+        file written by hand or with full precision): exact.  When no
+        tolerance is given, ranks are never decided finer than it
+        (:func:`~mobility.core.tolerance.file_tolerance`).  Not part of its value.
 
     Raises
     ------
@@ -707,8 +450,14 @@ class Mechanism:
     source: str = ""
     written_at: Mapping[str, tuple[str, int | None]] = field(default_factory=dict, compare=False, repr=False)
     couplings: tuple[Coupling, ...] = ()
+    precision: float | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
+        if self.precision is not None:
+            p = real_value(self.precision)
+            if p is None or p < 0.0:
+                raise MechanismError("precision", f"expected a finite number >= 0 or None, got {self.precision!r}")
+            object.__setattr__(self, "precision", p)
         for key in ("joints", "frames"):
             value = getattr(self, key)
             if isinstance(value, (str, bytes, dict)) or not isinstance(value, Iterable):
@@ -858,7 +607,7 @@ class Mechanism:
         """
         transforms = self._frame_transforms
         if not isinstance(name, str) or name not in transforms:
-            raise RequestError(f"frame_transform: no frame named {shown_argument(name)}{did_you_mean(name, transforms)}; the frames are {name_list(transforms)}")
+            raise RequestError(f"no frame named {shown_argument(name)}{did_you_mean(name, transforms)}; the frames are {name_list(transforms)}", caller="frame_transform")
         return transforms[name]
 
     @cached_property
@@ -952,116 +701,6 @@ class Mechanism:
         return replace(self, **changes)
 
 
-def integer_value(value: Any) -> int | None:
-    """``value`` as an ``int`` when it is an integer (``int``, a numpy integer, anything with ``__index__``) but not a bool, else None.
-
-    The one test of "an integer" of the API: ``3.0``, ``"3"`` and ``True``
-    are not, ``numpy.int64(3)`` is.
-
-    Examples
-    --------
-    >>> integer_value(np.int64(3)), integer_value(3.0), integer_value("3"), integer_value(True)
-    (3, None, None, None)
-    """
-    if isinstance(value, (bool, np.bool_)):
-        return None
-    try:
-        return operator.index(value)
-    except TypeError:
-        return None
-
-
-def real_value(value: Any) -> float | None:
-    """``value`` as a finite ``float`` when it is a real number (``int``, ``float``, a numpy number) but not a bool, else None.
-
-    Examples
-    --------
-    >>> real_value(np.float32(0.5)), real_value(2), real_value("0.1"), real_value(True), real_value(float("nan"))
-    (0.5, 2.0, None, None, None)
-    """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        return None
-    try:
-        number = float(value)
-    except OverflowError:  # an integer beyond the floats
-        return None
-    return number if math.isfinite(number) else None
-
-
-def bool_value(value: Any) -> bool | None:
-    """``value`` as a ``bool`` when it is one (``True``, ``False``, ``numpy.True_``...), else None (``1`` and ``"yes"`` are not).
-
-    Examples
-    --------
-    >>> bool_value(np.bool_(True)), bool_value(False), bool_value(1)
-    (True, False, None)
-    """
-    return bool(value) if isinstance(value, (bool, np.bool_)) else None
-
-
-def _not_bool(value: Any) -> Any:
-    """``value``, unless it is a bool (``True`` is not the number 1 here): then a ``TypeError``, as ``float`` raises for what is not a number."""
-    if isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"expected a number, got {value!r}")
-    return value
-
-
-def number_from_text(text: str) -> float:
-    """The number written in ``text``, as ``float`` reads it, but in ASCII only and without ``_`` (``float`` reads ``"1_0"`` as 10).
-
-    The one reader of a number written as text (an option of the command
-    line, an environment variable, a string given for a number): ``float``
-    alone reads the digits of every script (``"١"`` is 1) and spaces of
-    every kind, which no one types meaning a number.
-
-    Raises
-    ------
-    ValueError
-        When ``text`` holds a character that is not ASCII, or is not a number.
-
-    Examples
-    --------
-    >>> number_from_text(" 1e-9 ")
-    1e-09
-    >>> number_from_text("\u0661")
-    Traceback (most recent call last):
-    ValueError: expected a number written in ASCII digits, got '\u0661'
-    """
-    return float(_in_ascii(text, "a number"))
-
-
-def integer_from_text(text: str) -> int:
-    """The integer written in ``text``, as ``int`` reads it (base 10), but in ASCII only (see :func:`number_from_text`).
-
-    Examples
-    --------
-    >>> integer_from_text("20000")
-    20000
-    >>> integer_from_text("\u0661\u0660")
-    Traceback (most recent call last):
-    ValueError: expected an integer written in ASCII digits, got '\u0661\u0660'
-    """
-    return int(_in_ascii(text, "an integer"))
-
-
-def _in_ascii(text: str, what: str) -> str:
-    """``text`` when it is ASCII without ``_``, else a ``ValueError`` saying ``what`` (``"a number"``) it should be, in ASCII digits.
-
-    Python's ``float`` and ``int`` read ``"1_0"`` as 10; a file's numbers
-    never hold an underscore, nor do an option's or a variable's.
-
-    Examples
-    --------
-    >>> _in_ascii("1_0e-9", "a number")
-    Traceback (most recent call last):
-    ValueError: expected a number written in ASCII digits (no '_'), got '1_0e-9'
-    """
-    if not text.isascii() or "_" in text:
-        underscore = " (no '_')" if "_" in text else ""
-        raise ValueError(f"expected {what} written in ASCII digits{underscore}, got {shown_argument(text)}")
-    return text
-
-
 def require_mechanism(value: object, caller: str) -> Mechanism:
     """``value`` when it is a :class:`Mechanism`, else a :class:`~mobility.errors.RequestError` naming ``caller``.
 
@@ -1072,104 +711,6 @@ def require_mechanism(value: object, caller: str) -> Mechanism:
     mobility.errors.RequestError: analyze: expected a Mechanism (from mobility.load or built in code), got str
     """
     return require_instance(value, Mechanism, caller, "mobility.load")
-
-
-def require_instance(value: object, cls: type[_T], caller: str, reader: str) -> _T:
-    """``value`` when it is a ``cls``, else a :class:`~mobility.errors.RequestError` naming ``caller`` and where a ``cls`` comes from (``reader``).
-
-    Examples
-    --------
-    >>> require_instance(3, str, "label", "str()")
-    Traceback (most recent call last):
-    mobility.errors.RequestError: label: expected a str (from str() or built in code), got int
-    """
-    if not isinstance(value, cls):
-        raise RequestError(f"{caller}: expected a {cls.__name__} (from {reader} or built in code), got {type(value).__name__}")
-    return value
-
-
-# The checks every graph of bodies shares (this model and the flexure documents).
-
-
-def require_graph_names(graph: Any, node: str) -> None:
-    """``graph.name``, ``.ground`` and ``.end_effector`` must be non-empty strings (``node``: "link", "body").
-
-    Examples
-    --------
-    >>> from types import SimpleNamespace
-    >>> require_graph_names(SimpleNamespace(name="m", ground="g", end_effector=""), "link")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: end_effector: expected the name of a link (a non-empty string), got ''
-    """
-    if not isinstance(graph.name, str) or not graph.name:  # a title, which a robot file may take from its file's name: held to the rule of names where a file writes it
-        raise MechanismError("name", f"expected a non-empty string, got {graph.name!r}")
-    for key in ("ground", "end_effector"):
-        require_name(getattr(graph, key), key, f"the name of a {node} (a non-empty string)")
-
-
-def require_name(value: Any, key: str, expected: str) -> None:
-    """``value`` must be a name: a non-empty string without control, format or line-break characters (:func:`~mobility.errors.name_problem`).
-
-    Parameters
-    ----------
-    value : Any
-    key : str
-        The key of the error (``"name"``, ``"links[0]"``).
-    expected : str
-        What a name there is, when ``value`` is not a non-empty string (``"a frame name"``).
-
-    Examples
-    --------
-    >>> require_name("hip\\tleft", "name", "a joint name")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: name: a tab '\\t' (U+0009) is not allowed in a name
-    """
-    if type(value) is str and value.isprintable() and value:  # the common case, at one call's cost
-        return
-    if not isinstance(value, str) or not value:
-        raise MechanismError(key, f"expected {expected}, got {value!r}")
-    problem = name_problem(value)
-    if problem is not None:
-        raise MechanismError(key, problem)
-
-
-def joint_names(value: Any, key: str) -> list[str]:
-    """``value`` as a list of joint names: a list, tuple or other iterable of strings (not one string).
-
-    Examples
-    --------
-    >>> joint_names(("P1", "P2"), "actuated")
-    ['P1', 'P2']
-    >>> joint_names("P1", "actuated")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: actuated: expected a sequence of joint names, got the string 'P1' (write ['P1'])
-    """
-    if isinstance(value, str):
-        raise MechanismError(key, f"expected a sequence of joint names, got the string {value!r} (write [{value!r}])")
-    try:
-        names = list(value)
-    except TypeError:
-        raise MechanismError(key, f"expected a sequence of joint names, got {type(value).__name__}") from None
-    for name in names:
-        if not isinstance(name, str):
-            raise MechanismError(key, f"expected joint names (strings), got {name!r}")
-    return names
-
-
-def require_no_repeats(names: Iterable[str], key: str) -> None:
-    """No name of ``names`` (a choice of inputs, say) is given twice; ``key`` names the option or argument.
-
-    Examples
-    --------
-    >>> require_no_repeats(["P1", "P2", "P1"], "actuated")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: actuated: 'P1' is given twice; name each input once
-    """
-    seen: set[str] = set()
-    for name in names:
-        if name in seen:
-            raise MechanismError(key, f"{name!r} is given twice; name each input once")
-        seen.add(name)
 
 
 def joint_freedoms(mechanism: "Mechanism", names: Sequence[str], key: str = "actuated") -> list[tuple[int, int, str]]:
@@ -1220,37 +761,3 @@ def joint_freedoms(mechanism: "Mechanism", names: Sequence[str], key: str = "act
             seen[(j, k)] = name
         out += chosen
     return out
-
-
-def require_unique_names(items: Iterable[Any], key: str, what: str) -> None:
-    """No two of ``items`` (each with a ``name``) share a name; ``key`` is their list's key, ``what`` their kind.
-
-    Examples
-    --------
-    >>> from types import SimpleNamespace as N
-    >>> require_unique_names([N(name="A"), N(name="B"), N(name="A")], "joints", "joint")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: joints[2].name: duplicate joint name 'A' (first used by joints[0])
-    """
-    seen: dict[str, int] = {}
-    for i, item in enumerate(items):
-        first = seen.setdefault(item.name, i)
-        if first != i:
-            raise MechanismError(f"{key}[{i}].name", f"duplicate {what} name {item.name!r} (first used by {key}[{first}])")
-
-
-def require_ground_and_end_effector(graph: Any, nodes: Iterable[str], node: str, edge: str) -> None:
-    """The ground and the end effector of ``graph`` are two different ``nodes`` (joined by some ``edge``).
-
-    Examples
-    --------
-    >>> from types import SimpleNamespace as N
-    >>> require_ground_and_end_effector(N(ground="g", end_effector="e"), {"g", "l"}, "link", "joint")
-    Traceback (most recent call last):
-    mobility.errors.MechanismError: end_effector: link 'e' is not joined by any joint
-    """
-    for key in ("ground", "end_effector"):
-        if getattr(graph, key) not in nodes:
-            raise MechanismError(key, f"{node} {getattr(graph, key)!r} is not joined by any {edge}")
-    if graph.end_effector == graph.ground:
-        raise MechanismError("end_effector", "the end effector must differ from the ground")

@@ -12,7 +12,8 @@ import numpy as np
 
 from ..errors import RequestError, shown_argument
 from .kinematics import kinematics
-from .model import Mechanism, integer_value, real_value, require_mechanism
+from .model import Mechanism, require_mechanism
+from .validation import integer_value, real_value
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 
 __all__ = ["sample_poses", "require_pose_count", "require_seed", "step_value", "DEFAULT_STEP", "MAX_STEP", "MAX_SAMPLED_POSES"]

@@ -26,7 +26,7 @@ from ..errors import RequestError, clipped, counted
 from .frozen import ReadOnlyArrays, read_only_cached_property
 from .model import Mechanism
 from .screws import pattern_of
-from .tolerance import clean_numbers
+from .tolerance import DEFAULT_TOLERANCE, PRECISION_CEILING, PRECISION_FACTOR, clean_numbers, file_tolerance
 from .topology import Bridge, Node, Parallel, Series, Topology, describe, joints_of
 
 __all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultDetail", "pattern_of", "require_result",
@@ -344,6 +344,39 @@ class Result(ReadOnlyArrays):
         return MappingProxyType(self._node_systems)
 
     @property
+    def precision(self) -> float | None:
+        """The precision of the mechanism's file, relative to its size (:attr:`Mechanism.precision`); ``None``: exact."""
+        mechanism = getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: exact
+        return None if mechanism is None else mechanism.precision
+
+    @property
+    def rank_threshold(self) -> float:
+        """The relative rank threshold that decided the counts (:attr:`Tolerance.rank`)."""
+        tol = getattr(self.detail, "tol", None)
+        return DEFAULT_TOLERANCE.rank if tol is None else float(tol.rank)
+
+    @property
+    def precision_summary(self) -> str:
+        """What the file's precision did to the threshold, in one sentence; empty when it did nothing (an exact file).
+
+        Examples
+        --------
+        >>> import mobility
+        >>> mobility.analyze(mobility.load("mechanisms/four_bar.yaml")).precision_summary
+        ''
+        """
+        precision = self.precision
+        own = file_tolerance(precision).rank
+        if precision is None or own <= DEFAULT_TOLERANCE.rank:
+            return ""
+        found = f"the file is precise to {precision:.1e} of its size"
+        if self.rank_threshold == own:
+            factor = "its ceiling" if own == PRECISION_CEILING < PRECISION_FACTOR * precision else f"{PRECISION_FACTOR:g} x its precision"
+            return (f"{found}: ranks decided at {own:.1e} ({factor}) instead of {DEFAULT_TOLERANCE.rank:.0e}, "
+                    "as its designer drew it; --tol decides at another threshold")
+        return f"{found}: ranks decided at {self.rank_threshold:.1e} as asked (its precision would give {own:.1e}): its rounding may decide counts"
+
+    @property
     def translation_count(self) -> int:
         """Number of independent pure translations (nT)."""
         return int(self.pattern.split("T")[0]) if "T" in self.pattern else 0
@@ -455,7 +488,14 @@ class Result(ReadOnlyArrays):
             "limbs": [limb.to_dict(s) for limb in self.limbs],
             "length_unit": self.length_unit,
             "reference_point": clean_numbers(self.reference_point, s),
-        }
+        } | self._precision_dict()
+
+    def _precision_dict(self) -> dict[str, Any]:
+        """The ``precision`` key of the JSON form, when the file's precision changes the threshold (absent for an exact file)."""
+        if not self.precision_summary:
+            return {}
+        own = file_tolerance(self.precision).rank
+        return {"precision": {"value": self.precision, "rank_threshold": self.rank_threshold, "raised": self.rank_threshold == own}}
 
 
 def require_result(value: object, caller: str) -> Result:
@@ -468,7 +508,7 @@ def require_result(value: object, caller: str) -> Result:
     mobility.errors.RequestError: text_report: expected a Result (from mobility.analyze), got NoneType
     """
     if not isinstance(value, Result):
-        raise RequestError(f"{caller}: expected a Result (from mobility.analyze), got {type(value).__name__}")
+        raise RequestError(caller=caller, expected="a Result (from mobility.analyze)", got=type(value).__name__)
     return value
 
 
@@ -521,4 +561,4 @@ def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) ->
         name = clipped(repr(mechanism.name), 60)
         other = clipped(repr(getattr(analysed, "name", analysed)), 60)
         which = f"than {name} (of the same name, with other joints, pose or fields)" if other == name else f"({other}) than {name}"
-        raise RequestError(f"{caller}: the result is of another mechanism {which}; pass the result of analysing this one, or none")
+        raise RequestError(f"the result is of another mechanism {which}; pass the result of analysing this one, or none", caller=caller)

@@ -43,8 +43,8 @@ Examples
 ...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
 >>> s = joint_screws(m)
 >>> v = evaluate(decompose(m).root, s.twists[None], s.offsets)
->>> v.dim.tolist(), v.idle.tolist(), v.basis.shape
-([1], [0], (1, 6, 1))
+>>> v.dim, v.idle, v.basis.shape
+(1, 0, (1, 6, 1))
 """
 
 from __future__ import annotations
@@ -60,7 +60,7 @@ from .screws import SWAP_ROWS, pattern_of
 from .tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
 from .topology import Bridge, JointNode, Node, Parallel, Series, Topology
 
-__all__ = ["Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "PoseAnswers", "analyse_poses"]
+__all__ = ["Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "PoseAnswers", "analyse_poses"]
 
 
 class Systems(NamedTuple):
@@ -70,11 +70,15 @@ class Systems(NamedTuple):
     ----------
     basis : ndarray, shape (N, 6, k)
         Orthonormal basis of the twist system, columns beyond ``dim`` zero.
-    dim : ndarray of int, shape (N,)
+    dim : int or ndarray of int, shape (N,)
+        The dimension at each pose; an int when it is the same at every pose
+        (always for one pose), which broadcasts as the array would, at no
+        cost per pose (:func:`per_pose` gives the array).
     wrenches : ndarray, shape (N, 6, k')
         Orthonormal basis of the constraint wrenches (``6 - dim`` columns, then zeros).
-    idle : ndarray of int, shape (N,)
-        Motions inside the node that leave its two end links still.
+    idle : int or ndarray of int, shape (N,)
+        Motions inside the node that leave its two end links still (an int
+        as ``dim`` is).
     children : tuple of Systems
         The values of the composite children (every child for a parallel node).
     """
@@ -104,17 +108,28 @@ class Margins:
     """
 
     def __init__(self, count: int) -> None:
-        self.smallest_kept = np.ones(count)
-        self.largest_dropped = np.zeros(count)
+        self.count = count
+        self._kept: list[np.ndarray] = []
+        self._dropped: list[np.ndarray] = []
 
     def add(self, d: RankDecisions) -> None:
         """Take decisions into account: one per pose, or several stacks of one per pose, stack after stack."""
-        count = len(self.smallest_kept)
-        kept, dropped = d.smallest_kept, d.largest_dropped
-        if len(kept) != count:
-            kept, dropped = kept.reshape(-1, count).min(axis=0), dropped.reshape(-1, count).max(axis=0)
-        np.minimum(self.smallest_kept, kept, out=self.smallest_kept)
-        np.maximum(self.largest_dropped, dropped, out=self.largest_dropped)
+        self._kept.append(d.smallest_kept)
+        self._dropped.append(d.largest_dropped)
+
+    @property
+    def smallest_kept(self) -> np.ndarray:
+        """The smallest kept singular value (relative) of each pose, 1.0 where none was kept."""
+        if not self._kept:
+            return np.ones(self.count)
+        return np.concatenate(self._kept).reshape(-1, self.count).min(axis=0)
+
+    @property
+    def largest_dropped(self) -> np.ndarray:
+        """The largest dropped singular value (relative) of each pose, 0.0 where none was dropped."""
+        if not self._dropped:
+            return np.zeros(self.count)
+        return np.concatenate(self._dropped).reshape(-1, self.count).max(axis=0)
 
 
 def _extremes(rank: np.ndarray) -> tuple[int, int]:
@@ -212,10 +227,20 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
             u, s, _ = left_svds(stack)
             d = decide_ranks(s, tol, counts)
             margins.add(d)
-            low, high, swapped = *_extremes(d.rank), u[:, SWAP_ROWS]
+            low, high = _extremes(d.rank)
+            swapped = u[:, SWAP_ROWS]
+            if low == high:  # one rank at every pose: the spans of the whole stack at once, the rank an int
+                span_, reciprocal = u[:, :, :low], swapped[:, :, low:]
+                if len(members) == 1:
+                    values[id(members[0][0].node)] = _value(members[0][0].node, members[0][1], span_, reciprocal, low, counts)
+                    continue
             for i, (step, kids, m, c) in enumerate(members):
                 rows = slice(i * count, (i + 1) * count)
-                values[id(step.node)] = _value(step.node, kids, *_split(u[rows], swapped[rows], d.rank[rows], low, high), d.rank[rows], c)
+                if low == high:
+                    values[id(step.node)] = _value(step.node, kids, span_[rows], reciprocal[rows], low, c)
+                else:  # each node as wide as its own greatest rank
+                    rank = d.rank[rows]
+                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], swapped[rows], rank, *_extremes(rank)), rank, c)
     return values[id(node)]
 
 
@@ -302,16 +327,13 @@ def _matrix(step: Step, values: list[Systems], twists: np.ndarray) -> tuple[np.n
     return m, step.joint_columns + sum(v.dim for v in values) if values else step.joint_columns
 
 
-def _value(node: Node, values: list[Systems], span_: np.ndarray, reciprocal: np.ndarray, rank: np.ndarray, counts: int | np.ndarray) -> Systems:
-    """The value of a joint, series or parallel node from the span of its matrix, its reciprocal, and its rank."""
+def _value(node: Node, values: list[Systems], span_: np.ndarray, reciprocal: np.ndarray, rank: int | np.ndarray, counts: int | np.ndarray) -> Systems:
+    """The value of a joint, series or parallel node from the span of its matrix, its reciprocal, its rank and its column count."""
     if isinstance(node, Parallel):  # the span of the constraint wrenches; its reciprocal is the twist system
         return Systems(reciprocal, 6 - rank, span_, sum(v.idle for v in values), tuple(values))
-    if type(node) is JointNode:
-        return Systems(span_, rank, reciprocal, rank * 0)
-    idle = counts - rank
-    if values:
-        idle = idle + sum(v.idle for v in values)
-    return Systems(span_, rank, reciprocal, idle, tuple(values))
+    if type(node) is JointNode:  # its twists are independent: no idle motion
+        return Systems(span_, rank, reciprocal, 0)
+    return Systems(span_, rank, reciprocal, counts - rank + sum(v.idle for v in values), tuple(values))
 
 
 def _bridge(node: Bridge, values: list[Systems], twists: np.ndarray, offsets: Sequence[int], tol: Tolerance, margins: Margins) -> Systems:
@@ -377,7 +399,7 @@ def subtree_values(node: Node, value: Systems) -> Iterator[tuple[Node, Systems |
     >>> m = Mechanism("two limbs", "g", "e", (R("A1", "g", "x", (0, 0, 0)), R("A2", "x", "e", (1, 0, 0)),
     ...                                      R("B1", "g", "y", (0, 1, 0)), R("B2", "y", "e", (1, 1, 0))))
     >>> root, s = decompose(m).root, joint_screws(m)
-    >>> [(describe(n), None if v is None else int(v.dim[0])) for n, v in subtree_values(root, evaluate(root, s.twists[None], s.offsets))]
+    >>> [(describe(n), None if v is None else v.dim) for n, v in subtree_values(root, evaluate(root, s.twists[None], s.offsets))]
     [('parallel(series(A1,A2), series(B1,B2))', 1), ('series(A1,A2)', 2), ('A1', None), ('A2', None), ('series(B1,B2)', 2), ('B1', None), ('B2', None)]
     """
     stack: list[tuple[Node, Systems | None]] = [(node, value)]
@@ -412,13 +434,24 @@ def direction_ranks(basis: np.ndarray, dim: np.ndarray, tol: Tolerance = DEFAULT
     >>> direction_ranks(cylindrical, np.array([2])).rank.tolist()
     [1]
     """
-    count = len(dim)
+    count = basis.shape[0]
     if basis.shape[2] == 0:
         return RankDecisions(np.zeros(count, dtype=int), np.ones(count), np.zeros(count))
     return decide_ranks(singular_values(basis[:, :3]), tol, dim)
 
 
-_PATTERNS = np.array([pattern_of(t, r) for t in range(7) for r in range(7)], dtype=object)  # every (nT, nR) of a screw system
+def per_pose(value: int | np.ndarray, count: int) -> np.ndarray:
+    """``value`` (an int when the same at every pose, or an array) as an array of ``count`` values.
+
+    Examples
+    --------
+    >>> per_pose(3, 2).tolist(), per_pose(np.array([1, 2]), 2).tolist()
+    ([3, 3], [1, 2])
+    """
+    return np.full(count, value) if type(value) is int else value
+
+
+_PATTERNS = np.array([[pattern_of(d - r, r) if r <= d else "" for r in range(7)] for d in range(7)], dtype=object)  # by (DOF, rotations)
 
 
 class PoseAnswers(NamedTuple):
@@ -426,28 +459,48 @@ class PoseAnswers(NamedTuple):
 
     Attributes
     ----------
-    dof, mobility, rotations : ndarray of int
-        End-effector DOF, mobility of the whole mechanism, rotational freedoms.
-    pattern : ndarray of str
-    smallest_kept, largest_dropped : ndarray of float
-        The margin over every rank decision of the pose.
-    near_singular, inexact : ndarray of bool
     root : Systems
         The twist system of the ground-to-end-effector network, with its children.
     detached : tuple of Systems
         Those of the networks not on a path between ground and end effector.
+    rotations : ndarray of int
+        Rotational freedoms of the end effector.
+    smallest_kept, largest_dropped : ndarray of float
+        The margin over every rank decision of the pose.
+    tol : Tolerance
+        The policy that decided.
+    dof, mobility : ndarray of int
+        End-effector DOF, mobility of the whole mechanism (properties).
+    pattern : ndarray of str
+    near_singular, inexact : ndarray of bool
     """
 
-    dof: np.ndarray
-    pattern: np.ndarray
-    mobility: np.ndarray
+    root: Systems
+    detached: tuple[Systems, ...]
     rotations: np.ndarray
     smallest_kept: np.ndarray
     largest_dropped: np.ndarray
-    near_singular: np.ndarray
-    inexact: np.ndarray
-    root: Systems
-    detached: tuple[Systems, ...] = ()
+    tol: Tolerance
+
+    @property
+    def dof(self) -> np.ndarray:
+        return per_pose(self.root.dim, len(self.rotations))
+
+    @property
+    def mobility(self) -> np.ndarray:
+        return per_pose(sum((v.mobility for v in self.detached), self.root.mobility), len(self.rotations))
+
+    @property
+    def pattern(self) -> np.ndarray:
+        return _PATTERNS[self.root.dim, self.rotations]
+
+    @property
+    def near_singular(self) -> np.ndarray:
+        return self.smallest_kept < self.tol.near_singular
+
+    @property
+    def inexact(self) -> np.ndarray:
+        return self.largest_dropped > self.tol.inexact
 
 
 def analyse_poses(topology: Topology, twists: np.ndarray, offsets: Sequence[int], tol: Tolerance = DEFAULT_TOLERANCE) -> PoseAnswers:
@@ -470,17 +523,4 @@ def analyse_poses(topology: Topology, twists: np.ndarray, offsets: Sequence[int]
     detached = tuple(evaluate(n, twists, offsets, tol, margins) for n in topology.detached)
     rotational = direction_ranks(root.basis, root.dim, tol)
     margins.add(rotational)
-    dof, rot = root.dim, rotational.rank
-    kept, dropped = margins.smallest_kept, margins.largest_dropped
-    return PoseAnswers(
-        dof=dof,
-        pattern=_PATTERNS[(dof - rot) * 7 + rot],
-        mobility=sum((v.mobility for v in detached), root.mobility),
-        rotations=rot,
-        smallest_kept=kept,
-        largest_dropped=dropped,
-        near_singular=kept < tol.near_singular,
-        inexact=dropped > tol.inexact,
-        root=root,
-        detached=detached,
-    )
+    return PoseAnswers(root, detached, rotational.rank, margins.smallest_kept, margins.largest_dropped, tol)

@@ -47,6 +47,9 @@ __all__ = [
     "Tolerance",
     "DEFAULT_TOLERANCE",
     "require_tolerance",
+    "PRECISION_FACTOR",
+    "PRECISION_CEILING",
+    "file_tolerance",
     "PARALLEL_AXES",
     "ORTHONORMAL",
     "SIGN_TIE",
@@ -143,6 +146,65 @@ def require_tolerance(value: object, caller: str) -> Tolerance:
     if not isinstance(value, Tolerance):
         raise RequestError(f"{caller}: tol must be a Tolerance (e.g. Tolerance(rank=1e-9)), got {type(value).__name__}")
     return value
+
+
+PRECISION_FACTOR = 100.0
+"""How many times a file's own precision the rank threshold is raised to (:func:`file_tolerance`).
+
+A file whose numbers are rounded (a CAD export with six significant digits)
+places each joint's axis and point to about its precision ``p`` (relative
+to the mechanism's size; radians).  The errors of the numbers along a loop
+add up: a loop of up to some thirty frames, each placed by a few rounded
+numbers and carrying them over lever arms up to a few times the size (in
+normalised coordinates), misses by up to about ``100 p``; so does the
+singular value of a direction that the designer's mechanism holds exactly
+(parallel axes, axes through one point) but the rounded file does not.  At
+``100 p`` every such direction is dropped, as the designer drew it; a
+direction kept at that threshold is far above anything the rounding can
+make (a freedom or a constraint of the mechanism itself).  On the
+six-digit files of the tests (a published biped exported by
+onshape-to-robot, ``tests/data/robots/toddlerbot``, and the rounded
+mechanisms of ``tests/data/cad``), the directions the rounding makes have
+singular values of 0.001 to 0.6 times ``p``, and the mechanism's own are
+26 to 300 times ``100 p``."""
+
+PRECISION_CEILING = 1e-3
+"""The highest rank threshold a file's precision raises the default to.
+
+A file rounded to four digits or fewer, or whose loops close only to a
+part in 10^5, cannot tell a mechanism from its neighbours at all; past
+this threshold a pose within a tenth of a percent of a singularity would be
+called singular.  The report says what precision was found, and ``--tol``
+decides otherwise."""
+
+
+def file_tolerance(precision: float | None) -> Tolerance:
+    """The tolerance that decides the ranks of a mechanism when none is given: never finer than its file.
+
+    The default (:data:`DEFAULT_TOLERANCE`) unless :data:`PRECISION_FACTOR`
+    times ``precision`` (the file's own, relative to the mechanism's size,
+    see :mod:`mobility.io.precision`) is above its rank threshold; then the
+    rank threshold is raised to it (to two significant digits), at most to :data:`PRECISION_CEILING`,
+    and the near-singular warning follows, ten times higher.  A file written
+    by hand or with full precision (``precision`` ``None``, or below about
+    1e-10) keeps the default: its answers are exactly those of the default
+    policy.  A tolerance given explicitly (``--tol``, ``tol=``) is used as
+    it is.
+
+    Examples
+    --------
+    >>> file_tolerance(None) is DEFAULT_TOLERANCE, file_tolerance(1e-16) is DEFAULT_TOLERANCE
+    (True, True)
+    >>> t = file_tolerance(5e-6)
+    >>> t.rank, t.near_singular
+    (0.0005, 0.005)
+    >>> file_tolerance(0.5).rank, file_tolerance(5e-7).rank
+    (0.001, 5e-05)
+    """
+    if precision is None or not PRECISION_FACTOR * precision > DEFAULT_TOLERANCE.rank:
+        return DEFAULT_TOLERANCE
+    rank = min(float(f"{PRECISION_FACTOR * precision:.2g}"), PRECISION_CEILING)  # two digits: an estimate, shown as one
+    return Tolerance(rank=rank, near_singular=max(DEFAULT_TOLERANCE.near_singular, 10.0 * rank))
 
 
 # ---------------------------------------------------------------------------
@@ -310,17 +372,19 @@ def decide_rank(singular_values: np.ndarray | Sequence[float], tol: Tolerance = 
     -------
     RankDecision
     """
-    s = singular_values.tolist() if isinstance(singular_values, np.ndarray) else singular_values
+    return RankDecision(*_decide(singular_values.tolist() if isinstance(singular_values, np.ndarray) else singular_values, tol.rank))
+
+
+def _decide(s: Sequence[float], rtol: float) -> tuple[int, float, float]:
+    """Rank, smallest kept and largest dropped (relative) of singular values in decreasing order: the policy itself."""
     if not s:
-        return RankDecision(0)
+        return 0, 1.0, 0.0
     scale = s[0] if s[0] > 1.0 else 1.0
-    threshold = tol.rank * scale
-    rank = 0
-    while rank < len(s) and s[rank] > threshold:  # decreasing order
+    threshold = rtol * scale
+    rank, length = 0, len(s)
+    while rank < length and s[rank] > threshold:  # decreasing order
         rank += 1
-    kept = s[rank - 1] / scale if rank else 1.0
-    dropped = s[rank] / scale if rank < len(s) else 0.0
-    return RankDecision(rank, kept, dropped)
+    return rank, s[rank - 1] / scale if rank else 1.0, s[rank] / scale if rank < length else 0.0
 
 
 def binary_scale(*values: Any) -> float:
@@ -559,9 +623,9 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     n, k = s.shape
     if n <= _ROW_BY_ROW:  # a few rows: the loop of decide_rank costs less than the array operations below
         lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist() if isinstance(counts, np.ndarray) else counts
-        rows = [decide_rank(row[:length], tol) for row, length in zip(s.tolist(), lengths)]
-        rank, kept, dropped = zip(*rows) if rows else ((), (), ())
-        return RankDecisions(np.array(rank, dtype=int), np.array(kept, dtype=float), np.array(dropped, dtype=float))
+        rtol = tol.rank
+        table = np.array([_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths)], dtype=float).reshape(n, 3).T
+        return RankDecisions(table[0].astype(int), table[1], table[2])
     present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.broadcast_to(np.minimum(counts, k), (n,)))[:, None]
     length = present.sum(axis=1)
     if k == 0:

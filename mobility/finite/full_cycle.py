@@ -54,7 +54,8 @@ import numpy as np
 
 from ..core.analysis import analyze
 from ..core.kinematics import kinematics
-from ..core.model import Mechanism, integer_value, require_mechanism
+from ..core.model import Mechanism, require_mechanism
+from ..core.validation import require_integer
 from ..core.poses import MAX_STEP, require_seed, step_value
 from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
@@ -131,11 +132,8 @@ def finite_mobility(
     tol = require_tolerance(tol, "finite_mobility")
     checked = _checked_steps(steps)
     if randoms is not None:
-        count = integer_value(randoms)
-        if count is None or not 0 <= count <= MAX_RANDOMS:
-            raise RequestError(f"finite_mobility: randoms: expected a non-negative integer of at most {MAX_RANDOMS:,} (random directions to try), "
-                               f"got {shown_argument(randoms)}")
-        randoms = count
+        randoms = require_integer(randoms, f"a non-negative integer of at most {MAX_RANDOMS:,} (random directions to try)",
+                                  caller="finite_mobility", argument="randoms", low=0, high=MAX_RANDOMS)
     rng = np.random.default_rng(require_seed(seed, "finite_mobility: seed"))  # one stream, drawn in a fixed order: second order, moves, branches
     instant = analyze(mechanism, tol=tol)
     kin = kinematics(mechanism)

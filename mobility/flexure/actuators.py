@@ -46,7 +46,7 @@ from ..actuation import (
 )
 from ..core.joint_screws import Normalisation
 from ..core.linalg import rank
-from ..core.model import require_no_repeats
+from ..core.validation import require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, characteristic_scale
 from ..core.transforms import skew
 from ..errors import MechanismError, counted, name_list

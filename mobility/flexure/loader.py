@@ -89,7 +89,7 @@ def load_flexure(path: str | Path) -> FlexureMechanism:
 def loads_flexure(text: str, file: str = "<string>") -> FlexureMechanism:
     """Load a flexure document from YAML text (see :func:`load_flexure`)."""
     if not isinstance(text, str):
-        raise RequestError(f"loads_flexure: expected the text of a flexure document (str), got {type(text).__name__}")
+        raise RequestError(caller="loads_flexure", expected="the text of a flexure document (str)", got=type(text).__name__)
     data, positions = parse_yaml(text, file)
     return read_flexure(data, positions, file)
 
@@ -141,7 +141,7 @@ class _FlexureReader(DocumentReader):
         if value is None:
             return "m", 1.0
         units = self.mapping(value, ("units",), "units")
-        self.check_keys(units, ("angle", "length", "modulus"), ("units",), "units")
+        self.require_known_keys(units, ("angle", "length", "modulus"), ("units",), "units")
         self.units({k: v for k, v in units.items() if k == "angle"})
         length = units.get("length", "m")
         if not isinstance(length, str) or length not in LENGTH_UNITS:

@@ -30,7 +30,8 @@ from typing import Any
 import numpy as np
 
 from ..core.joint_screws import Normalisation
-from ..core.model import Expected, require_ground_and_end_effector, require_instance, require_name, require_vector, require_graph_names, require_unique_names
+from ..core.expected import Expected
+from ..core.validation import require_ground_and_end_effector, require_instance, require_name, require_vector, require_graph_names, require_unique_names
 from ..core.tolerance import characteristic_scale
 from ..errors import MechanismError, name_list
 

@@ -34,7 +34,7 @@ from ..core.analysis import screw_system_in_frame
 from ..core.frozen import ReadOnlyArrays
 from ..core.result import ScrewAxis
 from ..core.screws import SWAP_ROWS, motion_pattern
-from ..core.model import real_value
+from ..core.validation import real_value
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers, require_tolerance
 from ..errors import RequestError, shown_argument
 from .compliance import compliance_matrix, normalised_energy_form

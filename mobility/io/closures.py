@@ -75,7 +75,7 @@ def close_pairs(value: object) -> tuple[tuple[str, str], ...]:
     if value is None:
         return ()
     if not isinstance(value, (list, tuple)):
-        raise RequestError(f"close: expected a list of pairs of body names [(A, B), ...], got {type(value).__name__}")
+        raise RequestError(caller="close", expected="a list of pairs of body names [(A, B), ...]", got=type(value).__name__)
     pairs = []
     for k, pair in enumerate(value):
         if isinstance(pair, (list, tuple)) and len(pair) == 2 and all(isinstance(name, str) for name in pair):
@@ -89,7 +89,7 @@ def close_pairs(value: object) -> tuple[tuple[str, str], ...]:
             got = f"{len(pair)} item{'s' if len(pair) != 1 else ''}"
         else:
             got = f"a pair of {type(pair[0]).__name__} and {type(pair[1]).__name__}"
-        raise RequestError(f"close[{k}]: expected a pair of body names (A, B), got {got}")
+        raise RequestError(argument=f"close[{k}]", expected="a pair of body names (A, B)", got=got)
     return tuple(pairs)
 
 
@@ -103,16 +103,17 @@ def with_close_pairs(tree: RobotTree, pairs: Iterable[tuple[str, str]]) -> Robot
     RequestError
         When ``pairs`` is not a list of pairs of names (:func:`close_pairs`).
     """
-    closures, notes = [], []
+    closures, notes, gaps = [], [], []
     for a, b in close_pairs(pairs):
         first, second = tree.body(a, "close"), tree.body(b, "close")
         if first.name == second.name:
             raise MechanismFileError("close", f"expected two different bodies, got {a!r} twice", file=tree.file)
         gap = float(np.linalg.norm(np.subtract(first.origin, second.origin)))
+        gaps.append(gap)
         name = f"close_{a}_{b}"
         closures.append(Closure(Joint(name, "S", (a, b), point=first.origin), "--close"))
         notes.append(f"--close {a} {b}: spherical joint {name} at the origin of {a}; the origin of {b} is {gap:.3g} {tree.length_unit} from it")
-    return tree.with_closures(closures, notes=notes)
+    return tree.with_closures(closures, notes=notes, gaps=gaps)
 
 
 def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:

@@ -1,7 +1,7 @@
 """The ``expected`` block of a document: what a regression check compares an analysis with.
 
 Mechanism files and flexure documents may both carry one; each kind of
-document allows its own keys (:data:`~mobility.core.model.EXPECTED_KEYS` for
+document allows its own keys (:data:`~mobility.core.expected.EXPECTED_KEYS` for
 mechanisms, :data:`FLEXURE_EXPECTED_KEYS` for flexures), and every value is
 checked where it is read (:data:`EXPECTED_VALIDATORS`), so a misspelt key or a
 pattern such as ``"4R"`` is a one-line error at its line, not a check that
@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-from ..core.model import Expected, expected_basis_problem, require_expected_integer, require_expected_pattern
+from ..core.expected import Expected, expected_basis_problem, require_expected_integer, require_expected_pattern
 from ..errors import MechanismError
 from .reader import DocumentReader, describe_value, shown_value
 from .yaml_source import KeyPath, format_key
@@ -44,12 +44,12 @@ FLEXURE_EXPECTED_KEYS = ("dof", "pattern", "translations", "actuation")
 
 
 def _integer(value: Any, key: str, *, signed: bool = False) -> int:
-    """An expected count, checked as :class:`~mobility.core.model.Expected` checks it (the value shown as a file's)."""
+    """An expected count, checked as :class:`~mobility.core.expected.Expected` checks it (the value shown as a file's)."""
     return require_expected_integer(value, key, signed=signed, shown=shown_value)
 
 
 def _pattern(value: Any, key: str) -> str:
-    """An expected pattern (:data:`~mobility.core.model.EXPECTED_PATTERN`; also an unquoted ``0`` and the contract's ``""``), checked as :class:`~mobility.core.model.Expected` checks it."""
+    """An expected pattern (:data:`~mobility.core.expected.EXPECTED_PATTERN`; also an unquoted ``0`` and the contract's ``""``), checked as :class:`~mobility.core.expected.Expected` checks it."""
     return require_expected_pattern(value, key, shown=shown_value)
 
 
@@ -102,7 +102,7 @@ def read_expected(reader: DocumentReader, value: Any, keys: tuple[str, ...]) -> 
     """
     path: KeyPath = ("expected",)
     data = reader.mapping(value, path, "expected results")
-    reader.check_keys(data, keys, path, "the expected block")
+    reader.require_known_keys(data, keys, path, "the expected block")
     fields: dict[str, Any] = {}
     extra: dict[str, Any] = {}
     for key, raw in data.items():

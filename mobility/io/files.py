@@ -36,7 +36,7 @@ from typing import BinaryIO
 from ..errors import MechanismFileError, RequestError, clipped, one_line
 from .limits import Limits, current_limits
 
-__all__ = ["read_capped", "open_regular", "file_name", "refuse_pipe", "is_regular_file", "os_problem", "printable_name"]
+__all__ = ["read_capped", "open_regular", "file_name", "require_not_pipe", "is_regular_file", "os_problem", "printable_name"]
 
 
 def os_problem(exc: OSError) -> str:
@@ -82,7 +82,7 @@ def printable_name(name: str | os.PathLike[str]) -> str:
     return raw.decode(sys.getfilesystemencoding(), "backslashreplace")
 
 
-def refuse_pipe(path: str | Path, expected: str = "a mechanism file") -> int:
+def require_not_pipe(path: str | Path, expected: str = "a mechanism file") -> int:
     """The file type bits of ``path`` (0 if it cannot be stat-ed), refusing a pipe or socket without opening it.
 
     Opening a named pipe waits for a writer, possibly for ever: whatever
@@ -103,8 +103,8 @@ def refuse_pipe(path: str | Path, expected: str = "a mechanism file") -> int:
 
 
 def is_regular_file(path: str | Path) -> bool:
-    """Whether ``path`` is a regular file (a pipe or socket is refused, see :func:`refuse_pipe`); never opens it."""
-    return stat.S_ISREG(refuse_pipe(path))
+    """Whether ``path`` is a regular file (a pipe or socket is refused, see :func:`require_not_pipe`); never opens it."""
+    return stat.S_ISREG(require_not_pipe(path))
 
 
 def file_name(value: object, what: str) -> str:
@@ -153,7 +153,7 @@ def file_name(value: object, what: str) -> str:
         except TypeError:  # an __fspath__ that returns neither str nor bytes
             name = None
     if not isinstance(name, str):
-        raise RequestError(f"{what}: expected a file name (str or Path), got {type(value).__name__}")
+        raise RequestError(caller=what, expected="a file name (str or Path)", got=type(value).__name__)
     if "\x00" in name:
         raise RequestError(one_line(f"{what}: expected a file name without a NUL character, got {clipped(name, 80)!r}"))
     return name

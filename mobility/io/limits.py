@@ -41,7 +41,8 @@ import os
 from dataclasses import dataclass, fields
 from typing import Mapping
 
-from ..core.model import Mechanism, integer_from_text, integer_value
+from ..core.model import Mechanism
+from ..core.validation import integer_from_text, require_integer
 from ..errors import MechanismFileError, RequestError, shown_argument
 
 __all__ = ["Limits", "DEFAULT_LIMITS", "current_limits", "require_size", "require_work"]
@@ -146,11 +147,7 @@ class Limits:
         mobility.errors.RequestError: Limits: max_file_bytes: expected a positive integer, got -1
         """
         for f in fields(self):
-            value = getattr(self, f.name)
-            number = integer_value(value)
-            if number is None or number < 1:
-                raise RequestError(f"Limits: {f.name}: expected a positive integer, got {shown_argument(value)}")
-            object.__setattr__(self, f.name, number)
+            object.__setattr__(self, f.name, require_integer(getattr(self, f.name), "a positive integer", caller="Limits", argument=f.name, low=1))
 
     @staticmethod
     def variable(name: str) -> str:
@@ -181,7 +178,7 @@ class Limits:
             except ValueError:
                 value = 0
             if value < 1:
-                raise RequestError(f"{cls.variable(f.name)}: expected a positive integer, got {shown_argument(raw)}")
+                raise RequestError(argument=cls.variable(f.name), expected="a positive integer", got=shown_argument(raw))
             changed[f.name] = value
         return cls(**changed) if changed else DEFAULT_LIMITS
 

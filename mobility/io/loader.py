@@ -45,9 +45,10 @@ from __future__ import annotations
 import re
 import warnings
 from pathlib import Path
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, NamedTuple
 
-from ..core.model import EXPECTED_KEYS, JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Coupling, Frame, Joint, Mechanism
+from ..core.expected import EXPECTED_KEYS
+from ..core.model import JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Coupling, Frame, Joint, Mechanism
 from ..errors import MechanismError, RequestError, clipped, did_you_mean, shown_argument
 from .expected import read_expected
 from .files import file_name
@@ -56,7 +57,7 @@ from .limits import Limits, current_limits
 from .reader import NAME_RE, DocumentReader, describe_value, parse_key, shown_value
 from .yaml_source import KeyPath, Positions, format_key, parse_yaml, read_text
 
-__all__ = ["load", "loads", "read_mechanism", "is_flexure_document", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
+__all__ = ["load", "loads", "read_file", "FileRead", "is_robot_description", "read_mechanism", "is_flexure_document", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
 
 TOP_LEVEL_KEYS = ("name", "description", "ground", "end_effector", "units", "frames", "joints", "expected", "parameters", "limbs", "couplings")
 COUPLING_KEYS = ("joints", "coefficients")
@@ -119,15 +120,61 @@ def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any
     >>> m.ground, m.end_effector, [j.name for j in m.joints]
     ('ground', 'coupler', ['A', 'B', 'C', 'D'])
     """
+    return read_file(path, limits=limits, **robot_options).mechanism
+
+
+class FileRead(NamedTuple):
+    """A mechanism read from a file, the notes of its reading, every file read for it (the file first) and the joints that close loops."""
+
+    mechanism: Mechanism
+    notes: tuple[str, ...] = ()
+    files: tuple[str, ...] = ()
+    closures: tuple[str, ...] = ()
+
+
+def is_robot_description(path: str | Path) -> bool:
+    """Whether ``path`` is read as a robot description (MJCF, URDF), the one place this is decided: a YAML suffix without importing the robot readers, else by extension or content.
+
+    Examples
+    --------
+    >>> is_robot_description("mechanisms/four_bar.yaml"), is_robot_description("arm.urdf")
+    (False, True)
+    """
+    if Path(path).suffix.lower() in (".yaml", ".yml"):
+        return False
+    from .robot_files import is_robot_file  # robot descriptions are read only when given
+
+    return is_robot_file(path)
+
+
+def read_file(path: str | Path, *, limits: Limits | None = None, spelling: Mapping[str, str] | None = None, **robot_options: Any) -> FileRead:
+    """:func:`load`, with the notes of the reading and the files read (the command line's reader).
+
+    ``spelling`` names the robot options as the caller's user wrote them
+    (``{"ground": "--ground"}``) when they are refused for a mechanism file
+    (YAML).
+
+    Examples
+    --------
+    >>> read = read_file("mechanisms/four_bar.yaml")
+    >>> read.mechanism.name, read.files
+    ('planar four-bar', ('mechanisms/four_bar.yaml',))
+    """
     file_name(path, "load")
     limits = _limits_argument(limits)
-    if robot_options or Path(path).suffix.lower() not in (".yaml", ".yml"):
-        from .robot_files import is_robot_file, load_robot, refuse_robot_options  # robot descriptions are read only when given
+    if not is_robot_description(path):
+        if robot_options:
+            from .robot_files import require_no_robot_options
 
-        if is_robot_file(path):
-            return load_robot(path, **robot_options)
-        refuse_robot_options(path, robot_options)
-    return loads(read_text(path, limits), file=str(path), limits=limits)
+            require_no_robot_options(path, robot_options, spelling)
+        return FileRead(_read_yaml(read_text(path, limits), str(path), limits), files=(str(path),))
+    from .robot_files import read_robot
+
+    robot = read_robot(path, **robot_options)
+    closures = robot_options.get("closures")
+    return FileRead(robot.mechanism, tuple(robot.notes), tuple(robot.files) + ((str(closures),) if closures else ()), robot.closures)
+
+
 
 
 def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) -> Mechanism:
@@ -149,9 +196,12 @@ def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) ->
     mobility.errors.RequestError: loads: expected the text of a mechanism file (str), got int
     """
     if not isinstance(text, str):
-        raise RequestError(f"loads: expected the text of a mechanism file (str), got {type(text).__name__}")
-    file = file_name(file, "loads: file")
-    limits = _limits_argument(limits)
+        raise RequestError(caller="loads", expected="the text of a mechanism file (str)", got=type(text).__name__)
+    return _read_yaml(text, file_name(file, "loads: file"), _limits_argument(limits))
+
+
+def _read_yaml(text: str, file: str, limits: Limits) -> Mechanism:
+    """The mechanism of YAML ``text``, its arguments checked by :func:`load` or :func:`loads`."""
     data, positions = parse_yaml(text, file, limits)
     return read_mechanism(data, positions, file, limits=limits)
 
@@ -159,7 +209,7 @@ def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) ->
 def _limits_argument(limits: object) -> Limits:
     """``limits`` if it is a :class:`Limits`, the current limits for ``None``; a :class:`RequestError` otherwise."""
     if limits is not None and not isinstance(limits, Limits):
-        raise RequestError(f"limits: expected a Limits (mobility.io.limits.Limits) or None, got {type(limits).__name__}")
+        raise RequestError(argument="limits", expected="a Limits (mobility.io.limits.Limits) or None", got=type(limits).__name__)
     return current_limits(limits)
 
 
@@ -193,7 +243,7 @@ class _MechanismReader(DocumentReader):
         joints, sources = self.joints(doc.get("joints", []), ("joints",), {}, None)
         limb_frames, limb_joints, limb_sources = self.limbs(doc.get("limbs"), len(joints), len(frames))
         frames += limb_frames
-        self.check_frame_chains(frames)
+        self.require_frame_chains(frames)
         joints += limb_joints
         sources += limb_sources
         if not joints:
@@ -408,7 +458,7 @@ class _MechanismReader(DocumentReader):
         for k, raw in enumerate(value):
             path: KeyPath = ("limbs", k)
             limb = self.mapping(raw, path, "a limb pattern with copies and joints")
-            self.check_keys(limb, LIMB_KEYS, path, "a limb pattern")
+            self.require_known_keys(limb, LIMB_KEYS, path, "a limb pattern")
             copies = limb.get("copies")
             if isinstance(copies, bool) or not isinstance(copies, int) or copies < 1:
                 raise self.fail(path + ("copies",), f"expected a positive integer, got {describe_value(copies)}")

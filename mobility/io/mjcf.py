@@ -53,8 +53,9 @@ from ..core.tolerance import DEFAULT_TOLERANCE, characteristic_scale
 from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped, counted, one_line
 from .files import read_capped
 from .mjcf_actuators import actuator_inputs
-from .mjcf_couplings import equality_coupling
+from .mjcf_couplings import add_coupling, tendons_held
 from .mjcf_scan import MjcfScan, scan_mjcf
+from .precision import mjcf_rounding
 from .robot_actuators import BallActuator
 from .robot_couplings import TreeCoupling
 from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name, vector_tuple
@@ -141,7 +142,8 @@ def read_mjcf(path: str | Path) -> RobotTree:
         tree = _MjcfTree(mujoco, spec, model, data, file).tree()  # its forward pass (the gaps) may warn too
     said += [str(w.message) for w in caught]
     notes = [f"MuJoCo warns: {clipped(' '.join(text.split()), 200)}" for text in dict.fromkeys(said) if text.strip()]
-    return replace(tree, notes=tree.notes + tuple(notes), files=scan.files)
+    rounding = mjcf_rounding([doc.root, *(parse_xml(read_capped(f), f, mujoco=True).root for f in scan.files)])  # the digits of the file's own numbers
+    return replace(tree, notes=tree.notes + tuple(notes), files=scan.files, rounding=rounding)
 
 
 def _reader(mujoco: ModuleType, file: str, raw: bytes, scan: MjcfScan) -> tuple[Any, str | None]:
@@ -396,12 +398,11 @@ class _MjcfTree:
             flexes = list(getattr(self.spec, "flexes", []))
             unsupported.append(Unsupported("flex", f"{m.nflex} deformable (flex) bodies are not supported; expected rigid bodies and joints",
                                            _line(flexes[0]) if flexes else None))
+        self.gap_lengths: list[float] = []  # how far each connect and weld misses at qpos0 (equality_gaps)
+        self.gap_angles: list[float] = []
         closures, welds, more, couplings = self.equalities(notes)
         unsupported += more
-        held = {int(o) for k in range(m.neq) if m.eq_active0[k] and int(m.eq_type[k]) == int(mj.mjtEq.mjEQ_TENDON) for o in (m.eq_obj1id[k], m.eq_obj2id[k])}
-        for i in range(m.ntendon):
-            if i in held:
-                continue
+        for i in sorted(set(range(m.ntendon)) - tendons_held(self)):
             tname = self.name("mjOBJ_TENDON", i) or f"tendon{i}"
             notes.append(f"tendon {clipped(tname)}{at_line(self.lines['tendon'].get(i))} is not imported: a tendon is not a joint (only an equality on it would constrain the mechanism)")
         for i in range(m.nbody):
@@ -410,7 +411,8 @@ class _MjcfTree:
         name = self.spec.modelname if self.spec.modelname and self.spec.modelname != "MuJoCo Model" else one_line(Path(self.file).stem)  # a file name may hold a line break; a name may not
         version = getattr(mj, "__version__", "")
         return RobotTree(name, self.file, "MJCF", bodies, joints, tuple(closures), tuple(welds), tuple(unsupported), tuple(notes),
-                         pose=f"qpos0, as MuJoCo {version} compiles it".replace("  ", " "), couplings=tuple(couplings))
+                         pose=f"qpos0, as MuJoCo {version} compiles it".replace("  ", " "), gaps=tuple(self.gap_lengths), angle_gaps=tuple(self.gap_angles),
+                         couplings=tuple(couplings))
 
     def body(self, i: int) -> Body:
         """Body ``i`` at ``qpos0``: its parent, origin and rotation in the global frame."""
@@ -464,11 +466,7 @@ class _MjcfTree:
                 notes.append(f"equality {tag} {clipped(name)}{at_line(line)} is inactive at start: left out")
                 continue
             if tag in ("joint", "tendon"):
-                coupling = equality_coupling(self, k, tag, f"equality/{tag}[{clipped(name)}]", line, notes)
-                if isinstance(coupling, Unsupported):
-                    unsupported.append(coupling)
-                else:
-                    couplings.append(coupling)
+                add_coupling(self, k, tag, f"equality/{tag}[{clipped(name)}]", line, notes, couplings, unsupported)
                 continue
             if tag == "flex":
                 unsupported.append(Unsupported(f"equality/flex[{clipped(name)}]", "a flex equality is not supported; expected connect or weld", line))
@@ -537,6 +535,8 @@ class _MjcfTree:
             own = residual[ids == k]
             distance = math.hypot(*own[:3]) if len(own) >= 3 else 0.0  # hypot: no overflow for a relpose near the largest float
             angle = self.weld_angle(k) if int(m.eq_type[k]) == kinds[1] else 0.0
+            self.gap_lengths.append(distance)
+            self.gap_angles.append(angle)
             if distance > DEFAULT_TOLERANCE.rank * size or angle > DEFAULT_TOLERANCE.rank:
                 gaps[k] = f"its points are {distance:.3g} apart" + (
                     f" and its frames {angle:.3g} rad ({math.degrees(angle):.3g} degrees) apart" if angle > DEFAULT_TOLERANCE.rank else "")

@@ -28,7 +28,8 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from ..core.model import independent_of, require_vector
+from ..core.expected import independent_of
+from ..core.validation import require_vector
 from ..errors import MechanismError, MechanismFileError, clipped
 from .robot_actuators import BallActuator
 from .robot_tree import Unsupported, at_line

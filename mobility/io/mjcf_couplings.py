@@ -22,7 +22,7 @@ from .mjcf_actuators import CompiledModel
 from .robot_couplings import TreeCoupling
 from .robot_tree import Unsupported, at_line
 
-__all__ = ["equality_coupling"]
+__all__ = ["equality_coupling", "add_coupling", "tendons_held"]
 
 
 def equality_coupling(model: CompiledModel, k: int, tag: str, key: str, line: int | None, notes: list[str]) -> TreeCoupling | Unsupported:
@@ -56,3 +56,18 @@ def equality_coupling(model: CompiledModel, k: int, tag: str, key: str, line: in
         notes.append(f"equality {tag} {clipped(model.name('mjOBJ_EQUALITY', k) or key)}{at_line(line)} is not linear (polycoef {' '.join(f'{x:g}' for x in poly)}): "
                      f"its coupling acts through its slope at qpos0, {poly[1]:g}, and holds at this pose only")
     return TreeCoupling(key, tuple(model.joint_name(j) for j in terms), tuple(terms.values()), line)
+
+
+def add_coupling(model: CompiledModel, k: int, tag: str, key: str, line: int | None, notes: list[str], couplings: list[TreeCoupling], unsupported: list[Unsupported]) -> None:
+    """:func:`equality_coupling` of equality ``k``, added to ``couplings`` or to ``unsupported``."""
+    coupling = equality_coupling(model, k, tag, key, line, notes)
+    if isinstance(coupling, Unsupported):
+        unsupported.append(coupling)
+    else:
+        couplings.append(coupling)
+
+
+def tendons_held(model: CompiledModel) -> set[int]:
+    """The tendons an active tendon equality names (the others are notes of their own)."""
+    m, tendon = model.m, int(model.mj.mjtEq.mjEQ_TENDON)
+    return {int(o) for k in range(m.neq) if m.eq_active0[k] and int(m.eq_type[k]) == tendon for o in (m.eq_obj1id[k], m.eq_obj2id[k]) if o >= 0}

@@ -86,7 +86,7 @@ from pathlib import Path
 from xml.etree.ElementTree import Element
 
 from ..errors import MechanismFileError, clipped
-from .files import read_capped, refuse_pipe
+from .files import read_capped, require_not_pipe
 from .limits import Limits, current_limits
 from .xml_source import XmlDocument, parse_xml, underflow_problem
 
@@ -288,7 +288,7 @@ class _Scanner:
             if kind == "model":
                 return []  # MuJoCo says the asset is missing
             raise fail(f"no such file (looked in {_dirs(where.model_dir or self.model_dir, doc.file)}); expected a file to include")
-        self.check_file(path, fail, kind)
+        self.require_includable(path, fail, kind)
         real = os.path.realpath(path)
         if real in where.chain or (kind == "include" and real in self.seen):
             first = self.seen.get(real) or "the model file itself"
@@ -322,10 +322,10 @@ class _Scanner:
                 return candidate
         return None
 
-    def check_file(self, path: str, fail, kind: str) -> None:
+    def require_includable(self, path: str, fail, kind: str) -> None:
         """A regular file, within what remains of the size limit."""
         try:
-            mode = refuse_pipe(path)
+            mode = require_not_pipe(path)
         except MechanismFileError:
             raise fail("a pipe or socket; expected a file to include") from None
         if not stat.S_ISREG(mode):

@@ -77,7 +77,7 @@ class DocumentReader:
     def fail(self, path: KeyPath, message: str) -> MechanismFileError:
         return MechanismFileError(format_key(path), message, file=self.file, line=self.pos.line(path))
 
-    def check_keys(self, mapping: Mapping[str, Any], allowed: tuple[str, ...], path: KeyPath, what: str) -> None:
+    def require_known_keys(self, mapping: Mapping[str, Any], allowed: tuple[str, ...], path: KeyPath, what: str) -> None:
         for key in mapping:
             if key not in allowed:
                 raise self.fail(path + (key,), f"unknown key in {what}{did_you_mean(key, allowed)}; expected one of: {', '.join(allowed)}")
@@ -115,7 +115,7 @@ class DocumentReader:
         mobility.errors.MechanismFileError: j.yaml: joints[0].type: missing required key of a joint
         """
         data = self.mapping(value, path, described or what)
-        self.check_keys(data, allowed, path, what)
+        self.require_known_keys(data, allowed, path, what)
         for key in required:
             choices = key if isinstance(key, tuple) else (key,)
             if not any(k in data for k in choices):
@@ -209,7 +209,7 @@ class DocumentReader:
         if value is None:
             return ""
         units = self.mapping(value, ("units",), "units")
-        self.check_keys(units, ("angle", "length"), ("units",), "units")
+        self.require_known_keys(units, ("angle", "length"), ("units",), "units")
         angle = units.get("angle", "deg")
         self.angle_unit_given = "angle" in units
         if angle in ("deg", "degree", "degrees"):
@@ -242,7 +242,7 @@ class DocumentReader:
             raise self.fail(("frames",), f"{len(frames)} frames are more than the limit of {self.limits.max_frames} ({self.limits.hint('max_frames')})")
         return [self.frame(self.checked_name(str(fname), ("frames", fname), "a frame name"), fdata, ("frames", fname), self.names) for fname, fdata in frames.items()]
 
-    def check_frame_chains(self, frames: list[Frame]) -> None:
+    def require_frame_chains(self, frames: list[Frame]) -> None:
         """Bound the chains of ``parent`` frames by the depth limit (unknown parents and cycles are the model's to report)."""
         parents = {f.name: f.parent for f in frames}
         depth: dict[str, int] = {WORLD: 0}
@@ -311,7 +311,7 @@ class DocumentReader:
     def frame(self, name: str, data: Any, path: KeyPath, names: Mapping[str, float]) -> Frame:
         fdata = self.mapping(data if data is not None else {}, path, "a frame with origin, rpy, parent")
         self.frame_paths.setdefault(name, path)
-        self.check_keys(fdata, FRAME_KEYS + (("name",) if path[0] == "limbs" else ()), path, "a frame")
+        self.require_known_keys(fdata, FRAME_KEYS + (("name",) if path[0] == "limbs" else ()), path, "a frame")
         origin = self.vector(fdata["origin"], path + ("origin",), names) if "origin" in fdata else (0.0, 0.0, 0.0)
         if "rpy" in fdata and ("axis" in fdata or "angle" in fdata):
             raise self.fail(path, "give either rpy or axis and angle, not both")

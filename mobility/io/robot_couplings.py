@@ -9,9 +9,11 @@ took, each error naming the element and its line.
 
 Examples
 --------
->>> model_couplings((TreeCoupling("joint[r]/mimic", ("r", "l"), (1.0, -1.0), 5),), {"r": "slide", "l": "slide"}, {"r": "r", "l": "l"}, "g.urdf")
+>>> from mobility.core.model import Joint
+>>> slides = [Joint(n, "P", ("g", n), axis=(0, 1, 0)) for n in ("r", "l")]
+>>> model_couplings((TreeCoupling("joint[r]/mimic", ("r", "l"), (1.0, -1.0), 5),), {"r": "slide", "l": "slide"}, {"r": "r", "l": "l"}, "g.urdf", slides)
 (Coupling(joints=('r', 'l'), coefficients=(1.0, -1.0)),)
->>> model_couplings((TreeCoupling("joint[r]/mimic", ("r", "b"), (1.0, -1.0), 5),), {"r": "slide", "b": "ball"}, {"r": "r"}, "g.urdf")
+>>> model_couplings((TreeCoupling("joint[r]/mimic", ("r", "b"), (1.0, -1.0), 5),), {"r": "slide", "b": "ball"}, {"r": "r"}, "g.urdf", slides)
 Traceback (most recent call last):
 ...
 mobility.errors.MechanismFileError: g.urdf:5: joint[r]/mimic: couples joint 'b', a ball joint, not a hinge or slide; expected hinges and slides that move
@@ -20,9 +22,9 @@ mobility.errors.MechanismFileError: g.urdf:5: joint[r]/mimic: couples joint 'b',
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Iterable, Mapping
+from typing import Iterable, Mapping, Sequence
 
-from ..core.model import Coupling
+from ..core.model import Coupling, Joint, check_couplings
 from ..errors import MechanismError, MechanismFileError, clipped
 
 __all__ = ["TreeCoupling", "model_couplings"]
@@ -38,17 +40,19 @@ class TreeCoupling:
     line: int | None = None
 
 
-def model_couplings(couplings: Iterable[TreeCoupling], kinds: Mapping[str, str], model_name: Mapping[str, str], file: str) -> tuple[Coupling, ...]:
-    """The couplings on the model's joints (``model_name`` of each hinge and slide the mechanism holds; ``kinds`` of every tree joint).
+def model_couplings(couplings: Iterable[TreeCoupling], kinds: Mapping[str, str], model_name: Mapping[str, str], file: str, joints: Sequence[Joint]) -> tuple[Coupling, ...]:
+    """The couplings on the model's ``joints`` (``model_name`` of each hinge and slide the mechanism holds; ``kinds`` of every tree joint).
 
     Raises
     ------
     MechanismFileError
         At the element's line: a joint that is no hinge or slide, one the
-        mechanism does not hold (welded still), or a malformed coupling.
+        mechanism does not hold (welded still), a malformed coupling, or one
+        of slides and turns together.
     """
     out = []
-    for c in couplings:
+    listed = tuple(couplings)
+    for c in listed:
         for name in c.joints:
             if name not in model_name:
                 kind = kinds.get(name)
@@ -58,4 +62,8 @@ def model_couplings(couplings: Iterable[TreeCoupling], kinds: Mapping[str, str],
             out.append(Coupling(tuple(model_name[n] for n in c.joints), c.coefficients))
         except MechanismError as exc:
             raise MechanismFileError(c.key, exc.message, file=file, line=c.line) from None
-    return tuple(out)
+    try:
+        return check_couplings(out, joints)
+    except MechanismError as exc:  # couplings[k]...: the element that wrote it
+        c = listed[int(exc.key[len("couplings["):].split("]", 1)[0])]
+        raise MechanismFileError(c.key, exc.message, file=file, line=c.line) from None

@@ -35,16 +35,16 @@ from __future__ import annotations
 
 from dataclasses import fields, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Mapping
 
-from ..core.model import Mechanism, bool_value
+from ..core.validation import require_bool
 from ..errors import MechanismFileError, RequestError, clipped
 from .closures import close_pairs, with_close_pairs, with_closures_file
 from .files import file_name
 from .robot_tree import ImportedRobot, RobotOptions, RobotTree, build_mechanism, model_joint_names, unique_name
 from .xml_source import read_xml, root_tag
 
-__all__ = ["robot_format", "is_robot_file", "read_robot", "load_robot", "refuse_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
+__all__ = ["robot_format", "is_robot_file", "read_robot", "require_no_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
 
 ROBOT_SUFFIXES = {".urdf": "urdf", ".mjcf": "mjcf", ".xml": None}
 """Extensions of robot description files (``.xml``: MJCF or URDF, by its first element)."""
@@ -167,17 +167,11 @@ def _closures_named_apart(tree: RobotTree) -> RobotTree:
     return replace(tree, closures=tuple(closures), notes=tree.notes + tuple(notes))
 
 
-def load_robot(path: str | Path, **option_values: Any) -> Mechanism:
-    """The mechanism of an MJCF or URDF file (see :func:`read_robot`; the notes are dropped).
-
-    :func:`mobility.load` calls it for a robot description; a mechanism file
-    (YAML) with robot options is refused there (:func:`refuse_robot_options`).
-    """
-    return read_robot(path, **option_values).mechanism
-
-
-def refuse_robot_options(path: str | Path, option_values: dict[str, Any]) -> None:
+def require_no_robot_options(path: str | Path, option_values: dict[str, Any], spelling: Mapping[str, str] | None = None) -> None:
     """Refuse the robot options given for a mechanism file (YAML); options left at their defaults pass.
+
+    ``spelling`` names the options as the caller's user wrote them, in its
+    order (the command line's ``--ground``); by default by keyword, sorted.
 
     Raises
     ------
@@ -186,8 +180,8 @@ def refuse_robot_options(path: str | Path, option_values: dict[str, Any]) -> Non
 
     Examples
     --------
-    >>> refuse_robot_options("arm.yaml", {"ground": None, "close": []})
-    >>> refuse_robot_options("arm.yaml", {"ground": "base", "floating": True})
+    >>> require_no_robot_options("arm.yaml", {"ground": None, "close": []})
+    >>> require_no_robot_options("arm.yaml", {"ground": "base", "floating": True})
     Traceback (most recent call last):
     ...
     mobility.errors.RequestError: floating, ground: options of robot description files (MJCF, URDF), not of the mechanism file arm.yaml
@@ -195,13 +189,14 @@ def refuse_robot_options(path: str | Path, option_values: dict[str, Any]) -> Non
     options, default = _options(None, option_values), RobotOptions()
     given = sorted(f.name for f in fields(RobotOptions) if getattr(options, f.name) != getattr(default, f.name))
     if given:
-        raise RequestError(f"{', '.join(given)}: options of robot description files (MJCF, URDF), not of the mechanism file {path}")
+        named = [spelling[k] for k in spelling if k in given] if spelling else given
+        raise RequestError(f"options of robot description files (MJCF, URDF), not of the mechanism file {path}", argument=", ".join(named))
 
 
 def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptions:
     """``options`` with ``values`` applied, each field checked: a :class:`RequestError` naming the first wrong one."""
     if options is not None and not isinstance(options, RobotOptions):
-        raise RequestError(f"options: expected a RobotOptions or None, got {type(options).__name__}")
+        raise RequestError(argument="options", expected="a RobotOptions or None", got=type(options).__name__)
     known = {f.name for f in fields(RobotOptions)}
     unknown = sorted(set(values) - known)
     if unknown:
@@ -210,15 +205,13 @@ def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptio
     for key in ("ground", "end_effector"):
         name = getattr(out, key)
         if name is not None and not isinstance(name, str):
-            raise RequestError(f"{key}: expected a body name (str), got {type(name).__name__}")
+            raise RequestError(argument=key, expected="a body name (str)", got=type(name).__name__)
         if name == "":  # not the same as leaving it out (the default body)
-            raise RequestError(f"{key}: an empty body name; expected the name of a body (or leave the option out for the default)")
+            raise RequestError("an empty body name; expected the name of a body (or leave the option out for the default)", argument=key)
     flags = {}
     for key in ("floating", "ignore_unsupported"):
         flag = getattr(out, key)
-        if flag is not None and bool_value(flag) is None:
-            raise RequestError(f"{key}: expected True or False, got {type(flag).__name__}")
-        flags[key] = bool(flag)  # None: the default, False; numpy.bool_ too
+        flags[key] = flag is not None and require_bool(flag, argument=key, got=type(flag).__name__)  # None: the default, False
     closures = None if out.closures is None else file_name(out.closures, "closures")
     if closures == "":
         raise RequestError("closures: an empty file name; expected the name of a closures file (or leave the option out)")

@@ -24,9 +24,8 @@ and :func:`build_mechanism` turns it into a
   becomes three P joints along x, y, z and an S joint;
 * a closing joint (an MJCF ``connect`` is a spherical joint at its anchor)
   joins the links of its two bodies;
-* a coupling of joint rates (an MJCF joint or fixed-tendon equality, a URDF
-  ``<mimic>``) becomes a :class:`~mobility.core.couplings.Coupling` of the
-  model joints of its hinges and slides;
+* a coupling of joint rates (an MJCF joint or tendon equality, a URDF
+  ``<mimic>``) couples the model's joints (:mod:`mobility.io.robot_couplings`);
 * the ground is the root body unless named; the end effector, unless named,
   is the body farthest from the ground (in joints), the last one in file
   order when several are as far.
@@ -64,8 +63,10 @@ from typing import Iterable, cast
 import numpy as np
 
 from ..core.model import Joint, Mechanism
+from ..core.tolerance import DEFAULT_TOLERANCE, file_tolerance
 from ..errors import MechanismError, MechanismFileError, clipped, counted, did_you_mean
 from .limits import current_limits
+from .precision import Rounding, file_precision
 from .robot_actuators import BallActuator, ball_chain, ball_chain_names
 from .robot_couplings import TreeCoupling, model_couplings
 
@@ -185,6 +186,12 @@ class RobotTree:
     files : tuple of str
         The other files read for it: the files an MJCF model includes (and
         its ``<model>`` files), a closures file.
+    rounding : Rounding or None
+        The digits its numbers are rounded to (:mod:`mobility.io.precision`).
+    gaps : tuple of float
+        How far each loop closure misses at the pose, in ``length_unit``.
+    angle_gaps : tuple of float
+        How far each weld misses, in radians.
     """
 
     name: str
@@ -200,6 +207,9 @@ class RobotTree:
     length_unit: str = "m"
     files: tuple[str, ...] = ()
     couplings: tuple[TreeCoupling, ...] = ()
+    rounding: Rounding | None = None
+    gaps: tuple[float, ...] = ()
+    angle_gaps: tuple[float, ...] = ()
 
     def body(self, name: str, key: str) -> Body:
         """The body called ``name``; an error naming ``key`` and the close matches otherwise."""
@@ -211,10 +221,11 @@ class RobotTree:
         shown = ", ".join(clipped(n) for n in names[:12]) + (f", ... ({len(names)} bodies)" if len(names) > 12 else "")
         raise MechanismFileError(key, f"no body named {clipped(name)!r}{hint}; expected one of: {shown}", file=self.file)
 
-    def with_closures(self, closures: Iterable[Closure], welds: Iterable[Weld] = (), notes: Iterable[str] = (), files: Iterable[str] = ()) -> "RobotTree":
-        """The same tree with more closing joints, welds and notes (and the files they were read from)."""
+    def with_closures(self, closures: Iterable[Closure], welds: Iterable[Weld] = (), notes: Iterable[str] = (), files: Iterable[str] = (),
+                      gaps: Iterable[float] = ()) -> "RobotTree":
+        """The same tree with more closing joints, welds and notes (and the files they were read from, and how far the closures miss)."""
         return replace(self, closures=self.closures + tuple(closures), welds=self.welds + tuple(welds), notes=self.notes + tuple(notes),
-                       files=self.files + tuple(files))
+                       files=self.files + tuple(files), gaps=self.gaps + tuple(gaps))
 
 
 @dataclass(frozen=True)
@@ -378,14 +389,16 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     if len(joints) > limits.max_joints:
         raise MechanismFileError("joints", f"{len(joints)} joints are more than the limit of {limits.max_joints} ({limits.hint('max_joints')})", file=tree.file)
     description = f"Imported from the {tree.format} file {Path(tree.file).name} at the pose: {tree.pose}."
-    couplings = model_couplings(tree.couplings, {j.name: j.kind for j in tree.joints}, model_name, tree.file)
+    precision = file_precision(tree.rounding, tree.gaps, tree.angle_gaps, (j.point for j in joints))
+    rank = file_tolerance(precision.value).rank
+    if rank > DEFAULT_TOLERANCE.rank:
+        notes.append(f"the file is precise to about {precision.value:.1e} of its size ({precision.describe()}): "
+                     f"ranks are decided at {rank:.1e}, not finer (--tol decides at another threshold)")
+    couplings = model_couplings(tree.couplings, {j.name: j.kind for j in tree.joints}, model_name, tree.file, joints)
     try:
         mechanism = Mechanism(name=tree.name, ground=ground, end_effector=end_effector, joints=tuple(joints),
-                              description=description, length_unit=tree.length_unit, source=tree.file, couplings=couplings)
+                              description=description, length_unit=tree.length_unit, source=tree.file, precision=precision.value, couplings=couplings)
     except MechanismError as exc:
-        if exc.key.startswith("couplings["):  # couplings[k].joints[i]: the element that wrote it
-            k = int(exc.key[len("couplings["):].split("]", 1)[0])
-            raise MechanismFileError(tree.couplings[k].key, exc.message, file=tree.file, line=tree.couplings[k].line) from None
         raise MechanismFileError(exc.key, exc.message, file=tree.file) from None
     return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files, tuple(closing))
 

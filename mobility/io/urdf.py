@@ -74,6 +74,7 @@ import numpy as np
 from ..core.transforms import Transform, rotation_from_rpy
 from ..errors import clipped, did_you_mean, one_line
 from .files import file_name
+from .precision import DigitCounter
 from .robot_couplings import TreeCoupling
 from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml, underflow_problem
@@ -123,6 +124,7 @@ def _xacro_element(root: ET.Element) -> ET.Element | None:
 class _UrdfReader:
     def __init__(self, doc: XmlDocument) -> None:
         self.doc = doc
+        self.digits = DigitCounter()  # the numbers that place the joints, as written
 
     def fail(self, element: ET.Element | None, key: str, message: str) -> Exception:
         return self.doc.fail(element, key, message)
@@ -173,7 +175,8 @@ class _UrdfReader:
             axis = None if kind == "free" else vector_tuple(frame.apply_vector(j["axis"]))
             tree_joints.append(TreeJoint(j["name"], kind, j["child"], vector_tuple(frame.translation), axis, j["name"] in actuated, self.doc.line(j["element"])))
         name = root.get("name") or one_line(Path(self.doc.file).stem)  # a file name may hold a line break; a name may not
-        return RobotTree(name, self.doc.file, "URDF", bodies, tuple(tree_joints), unsupported=tuple(unsupported), notes=tuple(notes), couplings=tuple(couplings))
+        return RobotTree(name, self.doc.file, "URDF", bodies, tuple(tree_joints), unsupported=tuple(unsupported), notes=tuple(notes),
+                         rounding=self.digits.rounding(), couplings=tuple(couplings))
 
     def links(self, root: ET.Element) -> dict[str, ET.Element]:
         links: dict[str, ET.Element] = {}
@@ -208,7 +211,7 @@ class _UrdfReader:
         if not name:
             raise self.fail(el, "joint", "missing attribute name; expected <joint name=\"...\" type=\"...\">")
         key = f"joint[{clipped(name)}]"
-        self.refuse_repeated(el, key)
+        self.require_once(el, key)
         jtype = el.get("type")
         if jtype is None:
             raise self.fail(el, f"{key}/@type", f"missing attribute type; expected one of {', '.join(URDF_JOINT_KINDS)}")
@@ -229,6 +232,8 @@ class _UrdfReader:
         xyz = self.numbers(origin, "xyz", f"{key}/origin/@xyz", (0.0, 0.0, 0.0))
         rpy = self.numbers(origin, "rpy", f"{key}/origin/@rpy", (0.0, 0.0, 0.0))
         axis = self.numbers(el.find("axis"), "xyz", f"{key}/axis/@xyz", (1.0, 0.0, 0.0))
+        for part, attribute, kind in ((origin, "xyz", "length"), (origin, "rpy", "angle"), (el.find("axis"), "xyz", "unit")):
+            self.digits.add(part.get(attribute) if part is not None else None, kind)
         if URDF_JOINT_KINDS[jtype] not in (None, "free") and math.hypot(*axis) == 0.0:
             raise self.fail(el.find("axis"), f"{key}/axis/@xyz", "expected a non-zero direction, got 0 0 0")
         if 0.0 < max(abs(a) for a in axis) < sys.float_info.min:  # subnormal: read with fewer digits than a double holds
@@ -243,7 +248,7 @@ class _UrdfReader:
                 "origin": Transform(rotation_from_rpy(rpy), np.array(xyz)), "axis": np.array(axis) / (math.hypot(*axis) or 1.0),
                 "mimic": mimic.get("joint") if mimic is not None else None}
 
-    def refuse_repeated(self, el: ET.Element, key: str) -> None:
+    def require_once(self, el: ET.Element, key: str) -> None:
         """Refuse a second ``<parent>``, ``<axis>``... in the joint ``el``: its line, and the first one's."""
         first: dict[str, ET.Element] = {}
         for sub in el:

@@ -112,7 +112,7 @@ def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False
     mobility.errors.MechanismFileError: m.xml:1: <!DOCTYPE>: a document type declaration, which MuJoCo skips (it reads '&name;' as written, not the entity); expected MJCF without <!DOCTYPE>
     """
     if not isinstance(text, (str, bytes)):
-        raise RequestError(f"parse_xml: expected the text of an XML file (str or bytes), got {type(text).__name__}")
+        raise RequestError(caller="parse_xml", expected="the text of an XML file (str or bytes)", got=type(text).__name__)
     builder = ET.TreeBuilder()
     lines: dict[ET.Element, int] = {}
     parser = expat.ParserCreate()

@@ -152,7 +152,7 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
         construct listed in the module docstring.
     """
     if not isinstance(text, str):
-        raise RequestError(f"parse_yaml: expected the text of a document (str), got {type(text).__name__}")
+        raise RequestError(caller="parse_yaml", expected="the text of a document (str)", got=type(text).__name__)
     lim = current_limits(limits)
     if len(text) > lim.max_file_bytes:
         raise MechanismFileError("", f"a document of {len(text)} characters is larger than the limit of {lim.max_file_bytes} (set MOBILITY_MAX_FILE_BYTES to raise it)", file=file)
@@ -288,7 +288,7 @@ class _Builder:
                 value, size = anchors[event.anchor]
             else:  # a mapping or a sequence starts
                 is_mapping = cls is yaml.MappingStartEvent
-                self.check_collection_tag(event, path, line, is_mapping)
+                self.require_collection_tag(event, path, line, is_mapping)
                 if len(stack) >= max_depth:
                     how = ("set MOBILITY_MAX_DEPTH to raise it" if max_depth == self.limits.max_depth else
                            "the most a YAML document may nest whatever MOBILITY_MAX_DEPTH says: the reader's time grows with the square of the depth")
@@ -315,7 +315,7 @@ class _Builder:
             raise self.fail(path, line, _unsupported_tag(event.tag))
         key = event.value
         if event.style == '"':
-            self.check_printable(key, path, line)
+            self.require_printable(key, path, line)
         if key == "<<" and event.implicit[0]:
             raise self.fail(path + (key,), line, "YAML merge keys (<<) are not supported; write the keys out")
         if key in frame[0]:
@@ -329,7 +329,7 @@ class _Builder:
         """The value of a scalar: resolved as PyYAML's safe loader does, with every failure an error at its key."""
         value, tag = event.value, event.tag
         if event.style == '"':  # an escape (backslash-e, backslash-x1b) makes what the stream did not hold
-            self.check_printable(value, path, line)
+            self.require_printable(value, path, line)
         if tag is None or tag == "!":
             if not event.implicit[0]:  # quoted, or tagged '!': a string
                 return value
@@ -347,7 +347,7 @@ class _Builder:
             raise self.fail(path, line, ambiguous)
         return self.scalar_by_constructor(tag, event, path, line)
 
-    def check_printable(self, text: str, path: KeyPath, line: int) -> None:
+    def require_printable(self, text: str, path: KeyPath, line: int) -> None:
         """A string written with escapes must still hold no control character (an ESC would reach the terminal)."""
         problem = control_character_problem(text, "a value", also=_NOT_PRINTABLE)
         if problem is not None:
@@ -368,7 +368,7 @@ class _Builder:
                 raise self.fail(path, line, problem)
         return result
 
-    def check_collection_tag(self, event: Any, path: KeyPath, line: int, is_mapping: bool) -> None:
+    def require_collection_tag(self, event: Any, path: KeyPath, line: int, is_mapping: bool) -> None:
         tag = event.tag
         if tag is None or tag == "!" or tag == (_MAP if is_mapping else _SEQ):
             return

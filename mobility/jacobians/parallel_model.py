@@ -25,7 +25,8 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from ..core.finite_screws import FiniteScrew, Limb, ScrewJoint
-from ..core.model import Joint, Mechanism, joint_freedoms, joint_names, require_mechanism, require_no_repeats
+from ..core.model import Joint, Mechanism, joint_freedoms, require_mechanism
+from ..core.validation import joint_names, require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance, characteristic_scale
 from ..core.transforms import cross, skew
 from ..errors import AnalysisError, MechanismError, RequestError, counted
@@ -131,7 +132,7 @@ class ParallelModel:
         """
         target = _finite_array(displacement, "assemble: displacement", "a 4x4 homogeneous transform of finite numbers")
         if target.shape != (4, 4):
-            raise RequestError(f"assemble: displacement must be a 4x4 homogeneous transform of finite numbers, got an array of shape {target.shape}")
+            raise RequestError(f"displacement must be a 4x4 homogeneous transform of finite numbers, got an array of shape {target.shape}", caller="assemble")
         starts = None if start is None else joint_values(start, self.chains, "start")
         length = self.length
         out = []
@@ -210,13 +211,13 @@ def joint_values(q: Any, chains: Sequence[Chain], key: str = "q") -> tuple[np.nd
     """
     expected = "one array of joint values per limb, as many as the limb's freedoms"
     if isinstance(q, (str, bytes)) or not isinstance(q, Iterable):
-        raise RequestError(f"{key}: expected {expected}, got {type(q).__name__}")
+        raise RequestError(argument=key, expected=expected, got=type(q).__name__)
     values = []
     for v in q:
         try:
             array = np.asarray(v, dtype=float)
         except (TypeError, ValueError, OverflowError):
-            raise RequestError(f"{key}: expected {expected} (numbers), got {type(v).__name__}") from None
+            raise RequestError(argument=key, expected=f"{expected} (numbers)", got=type(v).__name__) from None
         if array.ndim != 1 or not np.isfinite(array).all():
             raise RequestError(f"{key}: expected {expected} (finite numbers in a flat list)")
         values.append(array)

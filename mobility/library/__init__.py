@@ -121,10 +121,10 @@ def path(name: str) -> Path:
     True
     """
     if not isinstance(name, str):
-        raise RequestError(f"library.path: expected a name (str), got {type(name).__name__}")
+        raise RequestError(caller="library.path", expected="a name (str)", got=type(name).__name__)
     stem = name.removesuffix(SUFFIX)
     for folder, known in ((MECHANISMS, names()), (FLEXURE, flexure_names())):
         if stem in known:
             return folder / f"{stem}{SUFFIX}"
     every = names() + flexure_names()
-    raise RequestError(f"library.path: no file named {clipped(name)!r} in the bundled library{did_you_mean(stem, every)}; names: {name_list(every)}")
+    raise RequestError(f"no file named {clipped(name)!r} in the bundled library{did_you_mean(stem, every)}; names: {name_list(every)}", caller="library.path")

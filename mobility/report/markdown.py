@@ -20,7 +20,7 @@ from __future__ import annotations
 import re
 from typing import Iterable, Sequence
 
-from ..core.model import bool_value
+from ..core.validation import require_bool
 from ..core.result import Result, ScrewAxis, require_result
 from ..errors import RequestError
 from .text import fmt_number, fmt_vector, screw_text
@@ -110,15 +110,15 @@ def markdown_table(header: Sequence[str], rows: Iterable[Sequence[object]], alig
     header = [md_escape(h) for h in header]
     align = align or "l" * len(header)
     if len(align) != len(header):
-        raise RequestError(f"align: expected one letter per column ({len(header)}), got {len(align)}")
+        raise RequestError(argument="align", expected=f"one letter per column ({len(header)})", got=len(align))
     rule = {"l": ":--", "r": "--:", "c": ":-:"}
     if not set(align) <= set(rule):
-        raise RequestError(f"align: expected letters l, r or c, got {align!r}")
+        raise RequestError(argument="align", expected="letters l, r or c", got=repr(align))
     lines = ["| " + " | ".join(header) + " |", "|" + "|".join(rule[a] for a in align) + "|"]
     for row in rows:
         cells = [md_escape(c) for c in row]
         if len(cells) != len(header):
-            raise RequestError(f"rows: expected {len(header)} cells in each row, got a row of {len(cells)}")
+            raise RequestError(argument="rows", expected=f"{len(header)} cells in each row", got=f"a row of {len(cells)}")
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
@@ -166,8 +166,7 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
         Markdown text, ending without a newline.
     """
     result = require_result(result, "markdown_report")
-    if bool_value(limbs) is None:
-        raise RequestError(f"markdown_report: limbs: expected True or False, got {type(limbs).__name__}")
+    require_bool(limbs, caller="markdown_report", argument="limbs", got=type(limbs).__name__)
     s = result.length_scale
     unit = _unit(result)
     out = [f"# {md_heading(result.name)}", ""]
@@ -220,6 +219,8 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
         f"singular value, relative). Departure from the special geometry: {result.margin.largest_dropped:.2e} (0 or round-off when it "
         "is exact: the largest dropped singular value, relative).",
     ]
+    if result.precision_summary:
+        out += ["", f"Precision: {md_line(result.precision_summary)}."]
     if result.warnings:
         out.append("")
         out += [f"> **Warning:** {md_line(w)}" for w in result.warnings]

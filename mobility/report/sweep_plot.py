@@ -150,7 +150,7 @@ def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
         When matplotlib is not installed.
     """
     if title is not None and not isinstance(title, str):
-        raise RequestError(f"plot_sweep: title: expected a str or None, got {type(title).__name__}")
+        raise RequestError(caller="plot_sweep", argument="title", expected="a str or None", got=type(title).__name__)
     k = len(result.axes)
     require_drawable(k)
     title = drawn_name(result.name) if title is None else clipped(title, MAX_TITLE)

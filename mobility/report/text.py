@@ -137,6 +137,7 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
         out.append(f"    idle DOF: {counted(result.idle_dof, 'motion')} of the joints {'leaves' if result.idle_dof == 1 else 'leave'} the end effector still ({idle_hint(result)})")
     out.append(f"  structure: {result.structure}")
     out += margin_lines(result)
+    out += [f"  precision: {result.precision_summary}"] if result.precision_summary else []
     out += [f"  warning: {w}" for w in result.warnings]
     if limbs and result.limbs:
         out.append("  limbs (each in its own frame):")

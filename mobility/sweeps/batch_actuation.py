@@ -41,7 +41,8 @@ import numpy as np
 
 from ..actuation import REDUNDANT, SINGULAR, VALID
 from ..actuation.input_wrenches import input_wrenches
-from ..core.model import Mechanism, joint_freedoms, joint_names, require_no_repeats
+from ..core.model import Mechanism, joint_freedoms
+from ..core.validation import joint_names, require_no_repeats
 from ..core.linalg import singular_values
 from ..core.screw_systems import PoseAnswers, evaluate
 from ..core.screws import SWAP_ROWS

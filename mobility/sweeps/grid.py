@@ -46,7 +46,8 @@ import numpy as np
 
 from ..core.joint_screws import joint_screws
 from ..core.kinematics import kinematics
-from ..core.model import Mechanism, integer_from_text, number_from_text
+from ..core.model import Mechanism
+from ..core.validation import integer_from_text, number_from_text
 from ..core.tolerance import SAME_GRID_VALUE, SWEEP_REACH
 from ..errors import RequestError, clipped, counted, name_list
 
@@ -272,7 +273,7 @@ def parse_vary(spec: str) -> tuple[str, float, float, int]:
         raise RequestError(f"{where}: expected NAME=START:STOP:COUNT (e.g. O1=0:360:361)")
     parts = match["range"].split(":")
     if len(parts) != 3:
-        raise RequestError(f"{where}: expected NAME=START:STOP:COUNT, got {counted(len(parts), 'part')} after '='")
+        raise RequestError(argument=where, expected="NAME=START:STOP:COUNT", got=f"{counted(len(parts), 'part')} after '='")
     return (match["name"],) + _bounds(where, parts[0], parts[1], parts[2])
 
 
@@ -282,20 +283,20 @@ def _bounds(where: str, start: object, stop: object, count: object) -> tuple[flo
         try:
             x = number_from_text(str(text).strip()) if not isinstance(text, (int, float)) or isinstance(text, bool) else float(text)
         except ValueError:
-            raise RequestError(f"{where}: {label} must be a number, got {clipped(str(text).strip())!r}") from None
+            raise RequestError(f"{label} must be a number, got {clipped(str(text).strip())!r}", argument=where) from None
         except OverflowError:  # an integer beyond the floats
-            raise RequestError(f"{where}: {label} must be a finite number, got an integer of {len(str(abs(cast(int, text))))} digits") from None
+            raise RequestError(f"{label} must be a finite number, got an integer of {len(str(abs(cast(int, text))))} digits", argument=where) from None
         if isinstance(text, bool) or not math.isfinite(x):
-            raise RequestError(f"{where}: {label} must be a finite number, got {text!r}")
+            raise RequestError(f"{label} must be a finite number, got {text!r}", argument=where)
         values.append(x)
     try:
         n = integer_from_text(str(count).strip()) if not isinstance(count, int) or isinstance(count, bool) else count
     except ValueError:
-        raise RequestError(f"{where}: COUNT must be an integer, got {str(count).strip()!r}") from None
+        raise RequestError(f"COUNT must be an integer, got {str(count).strip()!r}", argument=where) from None
     if isinstance(count, bool) or (isinstance(count, float) and count != int(count)):
-        raise RequestError(f"{where}: COUNT must be an integer, got {count!r}")
+        raise RequestError(f"COUNT must be an integer, got {count!r}", argument=where)
     if n < 1:
-        raise RequestError(f"{where}: COUNT must be at least 1, got {n}")
+        raise RequestError(f"COUNT must be at least 1, got {n}", argument=where)
     return values[0], values[1], n
 
 
@@ -308,14 +309,14 @@ def _requests(vary: VarySpec | Iterable) -> list[tuple[str, float, float, int]]:
     elif isinstance(vary, (list, tuple)):
         items = vary
     else:
-        raise RequestError(f"vary: expected NAME=START:STOP:COUNT, a list of them or of (name, start, stop, count), or a mapping, got {type(vary).__name__}")
+        raise RequestError(argument="vary", expected="NAME=START:STOP:COUNT, a list of them or of (name, start, stop, count), or a mapping", got=type(vary).__name__)
     out = []
     for item in items:
         if isinstance(item, str):
             out.append(parse_vary(item))
             continue
         if not isinstance(item, (tuple, list)) or len(item) != 4 or not isinstance(item[0], str):
-            raise RequestError(f"vary: expected NAME=START:STOP:COUNT or (name, start, stop, count), got {item!r}")
+            raise RequestError(argument="vary", expected="NAME=START:STOP:COUNT or (name, start, stop, count)", got=repr(item))
         out.append((item[0],) + _bounds(f"vary {item[0]!r}", *item[1:]))
     return out
 
@@ -328,7 +329,7 @@ def _require_finite(axis: SweepAxis, length: float) -> None:
     if not (np.all(np.isfinite(values)) and np.all(np.isfinite(internal))):
         where = f"--vary {axis.name}={axis.start:g}:{axis.stop:g}:{axis.count}"
         size = f" (the mechanism's size is {length:.3g}{' ' + axis.unit if axis.unit and axis.unit != 'deg' else ''})" if axis.unit != "deg" else ""
-        raise RequestError(f"{where}: its values do not fit in a float (in radians, or over the mechanism's size){size}; choose a smaller range")
+        raise RequestError(f"its values do not fit in a float (in radians, or over the mechanism's size){size}; choose a smaller range", argument=where)
 
 
 def _require_within_reach(axis: SweepAxis, length: float) -> None:
@@ -344,7 +345,7 @@ def _require_within_reach(axis: SweepAxis, length: float) -> None:
     else:
         unit = f" {axis.unit}" if axis.unit else ""
         limit = f"{SWEEP_REACH:,.0f} times the mechanism's size ({SWEEP_REACH * length:.4g}{unit}; its size is {length:.4g}{unit})"
-    raise RequestError(f"{where}: {farthest:g} is beyond what a sweep reaches from the file's pose, {limit}: there double precision cannot close the loops; choose a smaller range")
+    raise RequestError(f"{farthest:g} is beyond what a sweep reaches from the file's pose, {limit}: there double precision cannot close the loops; choose a smaller range", argument=where)
 
 
 def _require_one_rotation(axes: list[SweepAxis]) -> None:
@@ -401,10 +402,10 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
     for name, start, stop, count in requests:
         where = f"--vary {name}={start:g}:{stop:g}:{count}"
         if name in seen:
-            raise RequestError(f"{where}: {name} is varied twice")
+            raise RequestError(f"{name} is varied twice", argument=where)
         seen.add(name)
         if count > max_poses:  # before any array of that many values is made
-            raise RequestError(f"{where}: {count:,} values, more than --max-poses {max_poses:,}; raise --max-poses or use fewer points")
+            raise RequestError(f"{count:,} values, more than --max-poses {max_poses:,}; raise --max-poses or use fewer points", argument=where)
         if name in names:
             index = names.index(name)
             joint = mechanism.joints[index]

@@ -405,12 +405,12 @@ class SweepResult(ReadOnlyArrays):
         """
         self._require_index(index, "mechanism_at")
         if not self.assembled[index]:
-            raise RequestError(f"mechanism_at: grid point {int(index)} ({', '.join(f'{n}={v:g}' for n, v in zip(self.names, self.values[index]))}) was not assembled; its loops do not close")
+            raise RequestError(f"grid point {int(index)} ({', '.join(f'{n}={v:g}' for n, v in zip(self.names, self.values[index]))}) was not assembled; its loops do not close", caller="mechanism_at")
         return kinematics(self.mechanism).mechanism_at(self.q[index])
 
     def _require_index(self, index: Any, what: str) -> None:
         if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not -self.size <= index < self.size:
-            raise RequestError(f"{what}: expected a grid point index in 0..{self.size - 1}, got {shown_argument(index)}")
+            raise RequestError(caller=what, expected=f"a grid point index in 0..{self.size - 1}", got=shown_argument(index))
 
     def row(self, index: int) -> dict[str, Any]:
         """One row of the table as a dict (JSON-ready).

@@ -44,7 +44,8 @@ from urllib.parse import urlsplit
 import numpy as np
 
 from ..core.joint_screws import joint_screws
-from ..core.model import Mechanism, integer_value
+from ..core.model import Mechanism
+from ..core.validation import integer_value
 from ..core.screw_systems import analyse_poses
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..core.topology import Topology, decompose
@@ -243,7 +244,7 @@ def _connect(distributed: Any, address: str) -> Any:
     """
     refused = _refused(address)
     if refused:
-        raise RequestError(f"--scheduler {address}: cannot reach a dask scheduler there ({refused})")
+        raise RequestError(f"cannot reach a dask scheduler there ({refused})", argument=f"--scheduler {address}")
     box: dict[str, Any] = {}
 
     def connect() -> None:
@@ -259,7 +260,7 @@ def _connect(distributed: Any, address: str) -> Any:
     if "client" in box:
         return box["client"]
     why = f"{type(box['error']).__name__}: {box['error']}" if "error" in box else f"no answer within {CONNECT_SECONDS:g} s"
-    raise RequestError(f"--scheduler {address}: cannot reach a dask scheduler there ({why})")
+    raise RequestError(f"cannot reach a dask scheduler there ({why})", argument=f"--scheduler {address}")
 
 
 def _refused(address: str) -> str:
@@ -305,7 +306,7 @@ class _Runner:
             self.workers = len(self.client.scheduler_info().get("workers", {}))
             if self.workers == 0:
                 self.close()
-                raise RequestError(f"--scheduler {scheduler}: the dask scheduler has no workers; start some (dask worker ADDRESS) and run again")
+                raise RequestError("the dask scheduler has no workers; start some (dask worker ADDRESS) and run again", argument=f"--scheduler {scheduler}")
             self._context_future = self.client.scatter(context, broadcast=True)
         else:
             self.workers = max(1, workers if workers is not None else (os.cpu_count() or 1))
@@ -469,7 +470,7 @@ def sweep(
         A scheduler without dask, or a progress bar without tqdm.
     """
     if not isinstance(mechanism, Mechanism):
-        raise RequestError(f"sweep: expected a Mechanism (from mobility.load), got {type(mechanism).__name__}")
+        raise RequestError(caller="sweep", expected="a Mechanism (from mobility.load)", got=type(mechanism).__name__)
     tol = require_tolerance(tol, "sweep")
     chunk_size, max_poses = (_positive_integer(key, value) for key, value in (("chunk_size", chunk_size), ("max_poses", max_poses)))
     workers = None if workers is None else _positive_integer("workers", workers)
@@ -498,7 +499,7 @@ def _positive_integer(key: str, value: Any) -> int:
     """``value`` as an ``int`` when it is a positive integer (an ``int`` or a numpy integer, not a bool), else a :class:`RequestError`."""
     number = integer_value(value)
     if number is None or number < 1:
-        raise RequestError(f"sweep: {key} must be a positive integer, got {shown_argument(value)}")
+        raise RequestError(f"{key} must be a positive integer, got {shown_argument(value)}", caller="sweep")
     return number
 
 
@@ -507,7 +508,7 @@ def _require_scheduler(scheduler: Any) -> None:
     if scheduler is None or isinstance(scheduler, str):
         return
     if not (callable(getattr(scheduler, "submit", None)) and callable(getattr(scheduler, "scheduler_info", None))):
-        raise RequestError(f"sweep: scheduler must be a dask distributed.Client or a scheduler's address, got {type(scheduler).__name__}")
+        raise RequestError(f"scheduler must be a dask distributed.Client or a scheduler's address, got {type(scheduler).__name__}", caller="sweep")
 
 
 def _require_progress(progress: Any) -> None:
@@ -515,11 +516,11 @@ def _require_progress(progress: Any) -> None:
     if progress is None or isinstance(progress, bool):
         return
     if not callable(progress):
-        raise RequestError(f"sweep: progress must be True, False or a callable progress(stage, done, total), got {type(progress).__name__}")
+        raise RequestError(f"progress must be True, False or a callable progress(stage, done, total), got {type(progress).__name__}", caller="sweep")
     try:
         inspect.signature(progress).bind("stage", 0, 1)
     except TypeError:
-        raise RequestError("sweep: progress must accept three arguments, progress(stage, done, total)") from None
+        raise RequestError("progress must accept three arguments, progress(stage, done, total)", caller="sweep") from None
     except ValueError:  # no signature to read (some builtins): take it as it is
         pass
 

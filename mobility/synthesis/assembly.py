@@ -30,7 +30,8 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..core.analysis import analyze, gruebler_kutzbach
-from ..core.model import Joint, Mechanism, integer_value, real_value, require_instance
+from ..core.model import Joint, Mechanism
+from ..core.validation import real_value, require_instance, require_integer, require_real
 from ..core.screws import helical_twist, prismatic_twist
 from ..core.linalg import rank
 from ..errors import RequestError, SynthesisError, counted, name_list, shown_argument
@@ -117,17 +118,15 @@ def assemble_pkm(
     """
     result = require_instance(result, SynthesisResult, "assemble_pkm: result", "mobility.synthesize")
     if other not in ("UPS", "SPRR"):
-        raise SynthesisError(f"other: expected UPS or SPRR, got {shown_argument(other)}")
+        raise SynthesisError(caller="other", expected="UPS or SPRR", got=shown_argument(other))
     if not isinstance(structure, str):
-        raise RequestError(f"assemble_pkm: structure: expected the name of a limb type of the result (a str), got {type(structure).__name__}")
+        raise RequestError(caller="assemble_pkm", argument="structure", expected="the name of a limb type of the result (a str)", got=type(structure).__name__)
     if name is not None and not isinstance(name, str):
-        raise RequestError(f"assemble_pkm: name: expected a str or None, got {type(name).__name__}")
+        raise RequestError(caller="assemble_pkm", argument="name", expected="a str or None", got=type(name).__name__)
     found = result.structure(structure)
     copies = _copies(copies, result.joints, 3 if other == "UPS" else 4)
     base_radius, platform_radius, height = (_length(v, key) for v, key in ((base_radius, "base_radius"), (platform_radius, "platform_radius"), (height, "height")))
-    twist = real_value(twist_deg)
-    if twist is None:
-        raise RequestError(f"assemble_pkm: twist_deg: expected a finite number of degrees, got {shown_argument(twist_deg)}")
+    twist = require_real(twist_deg, "a finite number of degrees", caller="assemble_pkm", argument="twist_deg")
     pattern = _twist_pattern(twist_pattern)
     plane = tuple(k for k in result.directions if k.startswith("s"))
     s1 = np.array(result.directions.get("s1", (0.0, 0.0, 1.0)))
@@ -193,19 +192,14 @@ def _copies(value: object, limb_joints: int, per_copy: int) -> int:
     """
     limits = current_limits()
     most = max(1, (limits.max_joints - limb_joints) // per_copy)
-    number = integer_value(value)
-    if number is None or not 1 <= number <= most:
-        raise RequestError(f"assemble_pkm: copies: expected an integer from 1 to {most} ({counted(limb_joints, 'joint')} of the limb and {per_copy} per copy "
-                           f"within the limit of {counted(limits.max_joints, 'joint')}: {limits.hint('max_joints')}), got {shown_argument(value)}")
-    return number
+    return require_integer(value, f"an integer from 1 to {most} ({counted(limb_joints, 'joint')} of the limb and {per_copy} per copy "
+                                  f"within the limit of {counted(limits.max_joints, 'joint')}: {limits.hint('max_joints')})",
+                           caller="assemble_pkm", argument="copies", low=1, high=most)
 
 
 def _length(value: object, key: str) -> float:
     """A length of :func:`assemble_pkm`: a finite positive number, else a :class:`RequestError` naming ``key``."""
-    number = real_value(value)
-    if number is None or number <= 0.0:
-        raise RequestError(f"assemble_pkm: {key}: expected a finite positive length, got {shown_argument(value)}")
-    return number
+    return require_real(value, "a finite positive length", caller="assemble_pkm", argument=key, positive=True)
 
 
 def _twist_pattern(value: object) -> tuple[float, ...]:
@@ -223,7 +217,7 @@ def _twist_pattern(value: object) -> tuple[float, ...]:
     elif isinstance(value, np.ndarray) and value.ndim == 1 and value.size <= 1000:
         numbers = [real_value(x) for x in value.tolist()]
     if not numbers or any(x is None for x in numbers):
-        raise RequestError(f"assemble_pkm: twist_pattern: expected a non-empty sequence of finite numbers (at most 1000), got {shown_argument(value)}")
+        raise RequestError(caller="assemble_pkm", argument="twist_pattern", expected="a non-empty sequence of finite numbers (at most 1000)", got=shown_argument(value))
     return tuple(x for x in numbers if x is not None)
 
 

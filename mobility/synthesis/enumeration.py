@@ -47,7 +47,7 @@ from typing import Any, Iterable, Sequence, cast
 import numpy as np
 
 from ..core.finite_screws import Limb, ScrewJoint
-from ..core.model import integer_value, require_instance
+from ..core.validation import require_instance, require_integer
 from ..core.poses import require_seed
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import AnalysisError, SynthesisError, counted, shown_argument
@@ -184,11 +184,8 @@ def _count(value: object, key: str, least: int, most: int | None = None, caller:
     Traceback (most recent call last):
     mobility.errors.SynthesisError: synthesize: samples: expected an integer from 1 to 30, got 100000000000000000000000000000000000...
     """
-    number = integer_value(value)
-    if number is None or number < least or (most is not None and number > most):
-        expected = f"of at least {least}" if most is None else f"from {least} to {most}"
-        raise SynthesisError(f"{caller}: {key}: expected an integer {expected}, got {shown_argument(value)}")
-    return number
+    expected = f"of at least {least}" if most is None else f"from {least} to {most}"
+    return require_integer(value, f"an integer {expected}", caller=caller, argument=key, low=least, high=most, error=SynthesisError)
 
 
 def synthesize(
@@ -354,7 +351,7 @@ def generates(pattern: MotionPattern, joints: Sequence[ScrewJoint], *, samples: 
     samples = _count(samples, "samples", 1, MAX_SAMPLES, "generates")
     chain = tuple(joints) if not isinstance(joints, (str, bytes)) and isinstance(joints, Iterable) else None
     if chain is None or not all(isinstance(j, ScrewJoint) for j in chain):
-        raise SynthesisError(f"generates: joints: expected a sequence of ScrewJoint, got {shown_argument(joints)}")
+        raise SynthesisError(caller="generates", argument="joints", expected="a sequence of ScrewJoint", got=shown_argument(joints))
     rng = np.random.default_rng(require_seed(seed, "generates: seed"))
     tol = require_tolerance(tol, "generates")
     dim = pattern.dim

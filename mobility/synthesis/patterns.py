@@ -57,9 +57,9 @@ def _vec(v: Iterable[float], what: str = "point") -> Vector:
     try:
         a = np.asarray(v, dtype=float).reshape(3)
     except (TypeError, ValueError):
-        raise SynthesisError(f"{what}: expected 3 numbers, got {shown_argument(v)}") from None
+        raise SynthesisError(caller=what, expected="3 numbers", got=shown_argument(v)) from None
     if not np.all(np.isfinite(a)):
-        raise SynthesisError(f"{what}: expected 3 finite numbers, got {a.tolist()}")
+        raise SynthesisError(caller=what, expected="3 finite numbers", got=a.tolist())
     return (float(a[0]), float(a[1]), float(a[2]))
 
 
@@ -67,7 +67,7 @@ def _unit(v: Iterable[float], what: str = "direction") -> np.ndarray:
     a = np.array(_vec(v, what))
     biggest = float(np.abs(a).max())
     if biggest == 0.0:
-        raise SynthesisError(f"{what}: expected a non-zero finite direction, got {a.tolist()}")
+        raise SynthesisError(caller=what, expected="a non-zero finite direction", got=a.tolist())
     a = a / biggest  # first: the norm of (1e308, 1e308, 0) overflows, that of (1e-320, 0, 0) underflows
     return a / float(np.linalg.norm(a))
 
@@ -108,7 +108,7 @@ class PatternFactor:
 
     def __post_init__(self) -> None:
         if self.kind not in _FACTOR_KINDS:
-            raise SynthesisError(f"factor kind: expected one of {', '.join(_FACTOR_KINDS)}, got {self.kind!r}")
+            raise SynthesisError(argument="factor kind", expected=f"one of {', '.join(_FACTOR_KINDS)}", got=repr(self.kind))
         object.__setattr__(self, "point", _vec(self.point))
         dirs = tuple(_vec(_unit(d)) for d in self.directions)
         object.__setattr__(self, "directions", dirs)
@@ -395,7 +395,7 @@ def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), direct
     mobility.errors.SynthesisError: named_pattern: name: expected the name of a motion pattern (2T3R, 3T, 3R, 2T1R, 3T1R), got None
     """
     if not isinstance(name, str):
-        raise SynthesisError(f"named_pattern: name: expected the name of a motion pattern ({', '.join(PATTERNS)}), got {shown_argument(name)}")
+        raise SynthesisError(caller="named_pattern", argument="name", expected=f"the name of a motion pattern ({', '.join(PATTERNS)})", got=shown_argument(name))
     key = name.strip().upper()
     if key not in PATTERNS:
         raise SynthesisError(f"unknown motion pattern {shown_argument(name)}; expected one of {', '.join(PATTERNS)}")
@@ -407,7 +407,7 @@ def named_pattern(name: str, *, point: Iterable[float] = (0.0, 0.0, 0.0), direct
         except TypeError:  # not iterable
             listed = None
         if listed is None:
-            raise SynthesisError(f"named_pattern: directions: expected a list of directions (3 numbers each), got {shown_argument(directions)}")
+            raise SynthesisError(caller="named_pattern", argument="directions", expected="a list of directions (3 numbers each)", got=shown_argument(directions))
         given = tuple(_vec(_unit(d, "named_pattern: directions")) for d in listed)
         if len(given) != wanted:
             takes = "no directions" if wanted == 0 else counted(wanted, 'direction')

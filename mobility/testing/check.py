@@ -74,7 +74,8 @@ from ..io.files import file_name, os_problem, printable_name
 from ..io.limits import current_limits, require_size
 from ..io.loader import load, read_mechanism
 from ..io.yaml_source import Positions, parse_yaml, read_text
-from ..core.model import Mechanism, expected_basis_problem, require_mechanism
+from ..core.expected import expected_basis_problem
+from ..core.model import Mechanism, require_mechanism
 from ..core.result import Result
 from ..core.screws import same_subspace
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, clean_numbers, require_tolerance
@@ -333,7 +334,7 @@ def compare_translations(found: np.ndarray, expected: Any, tol: Tolerance) -> Co
     rows = np.asarray(expected, dtype=float).reshape(-1, 3)
     problem = expected_basis_problem([(float(x), float(y), float(z)) for x, y, z in rows.tolist()])
     if problem is not None:
-        raise RequestError(f"compare_translations: expected[{problem[0]}]: {problem[1]}")
+        raise RequestError(problem[1], caller="compare_translations", argument=f"expected[{problem[0]}]")
     actual = clean_numbers(found)
     scaled = rows * np.array([binary_scale(row) for row in rows]).reshape(-1, 1)  # before squaring: any finite vector has a direction
     unit = scaled / np.linalg.norm(scaled, axis=1)[:, None]
@@ -553,7 +554,7 @@ def check_paths(paths: Sequence[str | Path], *, tol: Tolerance = DEFAULT_TOLERAN
     """
     if not isinstance(paths, (list, tuple)):
         one = " (one name is written [name])" if isinstance(paths, (str, os.PathLike)) else ""
-        raise RequestError(f"check_paths: expected a list of file or folder names, got {type(paths).__name__}{one}")
+        raise RequestError(caller="check_paths", expected="a list of file or folder names", got=f"{type(paths).__name__}{one}")
     for k, path in enumerate(paths):
         file_name(path, f"check_paths: paths[{k}]")
     results = []

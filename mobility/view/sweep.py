@@ -103,7 +103,7 @@ def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
 
     needed = ("assembled", "values", "singular", "mechanism_at", "tolerance", "axes")
     if not all(hasattr(sweep, a) for a in needed):
-        raise RequestError(f"sweep_view: sweep: expected a sweep result (mobility.sweep), got {type(sweep).__name__}")
+        raise RequestError(caller="sweep_view", argument="sweep", expected="a sweep result (mobility.sweep)", got=type(sweep).__name__)
     max_poses = require_max_poses(max_poses, "sweep_view")
     indices = sweep_poses(sweep, max_poses)
     if not indices:

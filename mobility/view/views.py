@@ -33,7 +33,8 @@ from typing import Any, Iterable
 
 from ..core.analysis import analyze
 from ..core.joint_screws import joint_screws
-from ..core.model import Mechanism, integer_value, require_mechanism
+from ..core.model import Mechanism, require_mechanism
+from ..core.validation import require_integer
 from ..core.result import Result, require_result_of
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MissingExtraError, RequestError, counted, shown_argument
@@ -211,10 +212,7 @@ def require_max_poses(value: object, caller: str) -> int:
     Traceback (most recent call last):
     mobility.errors.RequestError: sweep_view: max_poses: expected an integer from 1 to 200 (poses a view holds), got None
     """
-    count = integer_value(value)
-    if count is None or not 1 <= count <= MAX_POSES:
-        raise RequestError(f"{caller}: max_poses: expected an integer from 1 to {MAX_POSES} (poses a view holds), got {shown_argument(value)}")
-    return count
+    return require_integer(value, f"an integer from 1 to {MAX_POSES} (poses a view holds)", caller=caller, argument="max_poses", low=1, high=MAX_POSES)
 
 
 def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSES, notes: Iterable[str] = ()) -> View:
@@ -260,15 +258,15 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
         given = None
     if given is None:
         hint = " (for one pose: [ViewFrame(...)], or mechanism_view)" if isinstance(frames, (Mechanism, ViewFrame)) else ""
-        raise RequestError(f"poses_view: frames: expected an iterable of ViewFrames or (mechanism, result, label) tuples, got {type(frames).__name__}{hint}")
+        raise RequestError(caller="poses_view", argument="frames", expected="an iterable of ViewFrames or (mechanism, result, label) tuples", got=f"{type(frames).__name__}{hint}")
     out = []
     for k, f in enumerate(itertools.islice(given, max_poses + 1)):  # one more tells there are too many (an endless generator ends)
         if not isinstance(f, ViewFrame):
             if not (isinstance(f, tuple) and len(f) in (2, 3)):
-                raise RequestError(f"frame {k}: expected a ViewFrame or a (mechanism, result, label) tuple, got {type(f).__name__}")
+                raise RequestError(argument=f"frame {k}", expected="a ViewFrame or a (mechanism, result, label) tuple", got=type(f).__name__)
             f = ViewFrame(*f)
         if not isinstance(f.mechanism, Mechanism) or not isinstance(f.result, Result):
-            raise RequestError(f"frame {k}: expected a Mechanism and its Result, got {type(f.mechanism).__name__} and {type(f.result).__name__}")
+            raise RequestError(argument=f"frame {k}", expected="a Mechanism and its Result", got=f"{type(f.mechanism).__name__} and {type(f.result).__name__}")
         require_result_of(f.mechanism, f.result, f"frame {k}")
         out.append(f)
     if not out:
@@ -290,5 +288,5 @@ def _notes(notes: object) -> tuple[str, ...]:
         except TypeError:
             listed = None
     if listed is None or len(listed) > MAX_POSES or not all(isinstance(n, str) for n in listed):
-        raise RequestError(f"poses_view: notes: expected a list of lines (strings), got {shown_argument(notes)}")
+        raise RequestError(caller="poses_view", argument="notes", expected="a list of lines (strings)", got=shown_argument(notes))
     return listed

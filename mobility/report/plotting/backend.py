@@ -17,7 +17,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
-from ...core.model import integer_value, real_value
+from ...core.validation import real_value, require_integer
 from ...errors import PlotFormatError, PlottingUnavailableError, RequestError, counted, shown_argument
 from ...outputs import atomic_output
 
@@ -130,7 +130,7 @@ def require_figsize(value: object, caller: str) -> tuple[float, float] | None:
             size = None
     low, high = FIGSIZE_RANGE
     if size is None or len(size) != 2 or not all(x is not None and low <= x <= high for x in size):
-        raise RequestError(f"{caller}: figsize: expected None or (width, height) in inches, each from {low:g} to {high:g}, got {shown_argument(value)}")
+        raise RequestError(caller=caller, argument="figsize", expected=f"None or (width, height) in inches, each from {low:g} to {high:g}", got=shown_argument(value))
     return (float(size[0]), float(size[1]))  # type: ignore[arg-type]
 
 
@@ -148,7 +148,7 @@ def written_file_name(path: object, what: str) -> Path:
     except TypeError:  # an __fspath__ that returns neither str nor bytes
         name = None
     if not isinstance(name, str):
-        raise RequestError(f"{what}: expected a file name (str or Path), got {type(path).__name__}")
+        raise RequestError(caller=what, expected="a file name (str or Path)", got=type(path).__name__)
     if "\x00" in name:
         raise RequestError(f"{what}: expected a file name without a NUL character")
     return Path(name)
@@ -229,12 +229,10 @@ def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
         When ``fig`` is not a figure, ``path`` not a file name, or ``dpi`` not an integer from 20 to 600.
     """
     if not callable(getattr(fig, "savefig", None)):
-        raise RequestError(f"save_figure: expected a matplotlib Figure, got {type(fig).__name__}")
+        raise RequestError(caller="save_figure", expected="a matplotlib Figure", got=type(fig).__name__)
     p = picture_path(written_file_name(path, "save_figure: path"))
     low, high = DPI_RANGE
-    dots = integer_value(dpi)
-    if dots is None or not low <= dots <= high:
-        raise RequestError(f"save_figure: dpi: expected an integer from {low} to {high} (dots per inch), got {shown_argument(dpi)}")
+    dots = require_integer(dpi, f"an integer from {low} to {high} (dots per inch)", caller="save_figure", argument="dpi", low=low, high=high)
     with glyphs_summarised():
         with atomic_output(p, binary=True) as handle:  # the previous picture intact until the new one is whole
             fig.savefig(handle, format=p.suffix[1:].lower(), dpi=dots, facecolor="white")

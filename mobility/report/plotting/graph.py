@@ -188,7 +188,7 @@ def _require_result_like(value: object) -> None:
     mobility.errors.RequestError: plot_graph: result: expected a Result (from mobility.analyze) or None, got int
     """
     if not isinstance(value, Result) and not all(hasattr(value, key) for key in _RESULT_FIELDS):
-        raise RequestError(f"plot_graph: result: expected a Result (from mobility.analyze) or None, got {type(value).__name__}")
+        raise RequestError(caller="plot_graph", argument="result", expected="a Result (from mobility.analyze) or None", got=type(value).__name__)
 
 
 class _JointGraph:

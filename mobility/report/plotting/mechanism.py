@@ -24,7 +24,8 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 
 from ...core.analysis import analyze
-from ...core.model import Mechanism, bool_value, integer_value, require_mechanism
+from ...core.model import Mechanism, require_mechanism
+from ...core.validation import integer_value, require_bool
 from ...core.result import Result, require_result_of
 from ...errors import RequestError, clipped, shown_argument
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
@@ -104,10 +105,9 @@ def plot_mechanism(
     tol = require_tolerance(tol, "plot_mechanism")
     count, given = _views_asked(views)
     for key, flag in (("constraints", constraints), ("labels", labels), ("legend", legend)):
-        if bool_value(flag) is None:
-            raise RequestError(f"plot_mechanism: {key}: expected True or False, got {shown_argument(flag)}")
+        require_bool(flag, caller="plot_mechanism", argument=key)
     if title is not None and not isinstance(title, str):
-        raise RequestError(f"plot_mechanism: title: expected a str or None, got {type(title).__name__}")
+        raise RequestError(caller="plot_mechanism", argument="title", expected="a str or None", got=type(title).__name__)
     size = require_figsize(figsize, "plot_mechanism")
     r = require_result_of(mechanism, result, "plot_mechanism") if result is not None else None
     require_matplotlib()
@@ -152,7 +152,7 @@ def _views_asked(views: Any) -> tuple[int | None, list[tuple[float, float]]]:
             given = []
     if (count is not None and 1 <= count <= MAX_VIEWS) or (given and all(math.isfinite(e) and math.isfinite(a) for e, a in given)):
         return count, given
-    raise RequestError(f"plot_mechanism: views: expected a number of views from 1 to {MAX_VIEWS}, or a list of (elev, azim) pairs in degrees, got {shown_argument(views)}")
+    raise RequestError(caller="plot_mechanism", argument="views", expected=f"a number of views from 1 to {MAX_VIEWS}, or a list of (elev, azim) pairs in degrees", got=shown_argument(views))
 
 
 def _chosen_views(sk: Sketch, answer: np.ndarray, directions: np.ndarray, count: int) -> list[tuple[float, float]]:

@@ -1,0 +1,223 @@
+"""The regression check a mechanism may carry: :class:`Expected`, and the rules of its keys.
+
+A file's ``expected`` block (or ``Mechanism(expected=Expected(...))``) says
+what an analysis of the mechanism must find; :mod:`mobility.testing.check`
+compares.  Each key is checked here once, on construction, by the same rules
+the file reader applies to the block (:mod:`mobility.io.expected`).
+
+Examples
+--------
+>>> Expected(dof=1, pattern="1R").items()
+[('dof', 1), ('pattern', '1R')]
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
+
+import numpy as np
+
+from ..errors import MechanismError, shown_argument
+from .tolerance import decide_rank
+from .validation import Vector, _listed, integer_value, require_vector
+
+__all__ = [
+    "Expected",
+    "EXPECTED_KEYS",
+    "EXPECTED_PATTERN",
+    "require_expected_integer",
+    "require_expected_pattern",
+    "expected_basis_problem",
+    "independent_of",
+]
+
+
+EXPECTED_KEYS: dict[str, str] = {
+    "dof": "end-effector DOF (integer >= 0)",
+    "pattern": 'motion pattern such as "1T2R"',
+    "translations": "basis of the translation subspace (list of 3-vectors)",
+    "mobility": "DOF of the whole mechanism (integer >= 0)",
+    "redundant_constraints": "number of redundant constraints (integer >= 0)",
+    "idle_dof": "number of idle DOF (integer >= 0)",
+    "gruebler_kutzbach": "Grübler-Kutzbach count (integer)",
+    "full_cycle_dof": "end-effector DOF along the finite motion from this pose (integer >= 0; mobility analyze --finite)",
+    "full_cycle_mobility": "DOF of the whole mechanism along the finite motion (integer >= 0; mobility analyze --finite)",
+    "finite_verdict": "full-cycle, instantaneous-only, cannot-move or bifurcation (mobility analyze --finite)",
+    "actuation": "verdict of the joints marked actuated: valid, redundant or actuation-singular (mobility actuation)",
+}
+"""Keys an ``expected`` block may hold, with what each means."""
+
+
+EXPECTED_PATTERN = re.compile(r"0|([1-3]T)?([1-3]R)?")
+"""An expected motion pattern: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (matched whole).
+
+These are the patterns :func:`mobility.analyze` reports, ``"0"`` for no
+motion.  The contract writes a pattern ``{nT}T{nR}R`` with a zero part
+dropped, which for no motion drops both: the empty string ``""`` is
+accepted as the same pattern (:func:`require_expected_pattern` reads it as
+``"0"``).  A twist system of more than 3 dimensions always holds a
+translation, so ``m`` is at most 3 too.
+"""
+
+
+def require_expected_integer(value: Any, key: str, *, signed: bool = False, shown: Callable[[Any], str] | None = None) -> int:
+    """An expected count: an integer (Python or numpy, not a bool), non-negative unless ``signed``; else a :class:`MechanismError` naming ``key``.
+
+    ``shown`` writes the value in the message (default: its ``repr``, clipped).
+
+    Examples
+    --------
+    >>> require_expected_integer(np.int64(3), "dof")
+    3
+    >>> require_expected_integer("1", "dof")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: dof: expected a non-negative integer, got '1'
+    """
+    number = integer_value(value)
+    if number is None or (not signed and number < 0):
+        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {(shown or shown_argument)(value)}")
+    return number
+
+
+def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str] | None = None) -> str:
+    """An expected motion pattern (:data:`EXPECTED_PATTERN`; the integer ``0`` and the contract's ``""`` are ``"0"``), else a :class:`MechanismError` naming ``key``.
+
+    Examples
+    --------
+    >>> require_expected_pattern("1T2R", "pattern"), require_expected_pattern(0, "pattern"), require_expected_pattern("", "pattern")
+    ('1T2R', '0', '0')
+    >>> require_expected_pattern("4R", "pattern")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: pattern: expected a pattern such as "3T", "1T2R", "3R" or "0" (no motion; also written ""), at most 3T and 3R, got '4R'
+    """
+    if (type(value) is int and value == 0) or (isinstance(value, str) and value == ""):
+        return "0"
+    if not isinstance(value, str) or not EXPECTED_PATTERN.fullmatch(value):
+        raise MechanismError(key, f'expected a pattern such as "3T", "1T2R", "3R" or "0" (no motion; also written ""), at most 3T and 3R, got {(shown or shown_argument)(value)}')
+    return value
+
+
+def expected_basis_problem(vectors: Sequence[Vector]) -> tuple[int, str] | None:
+    """Why ``vectors`` are not a basis of directions (an expected ``translations``): the index of the first bad one and what is wrong; ``None`` when they are one.
+
+    A direction must be non-zero, and each must be independent of those
+    before it (the contract asks for a basis): the rank of the unit
+    directions is decided by the one policy
+    (:func:`~mobility.core.tolerance.decide_rank`), so directions that differ
+    only by round-off are dependent.  An empty list is a basis (of no
+    translation).
+
+    Examples
+    --------
+    >>> expected_basis_problem([(0.0, 0.0, 1.0), (1.0, 0.0, 0.0)]) is None
+    True
+    >>> expected_basis_problem([(0.0, 0.0, 1.0), (0.0, 0.0, 2.0)])
+    (1, 'linearly dependent on the directions before it; expected a basis (independent directions)')
+    >>> expected_basis_problem([(0.0, 0.0, 0.0)])
+    (0, 'expected a non-zero direction, got [0, 0, 0]')
+    """
+    units: list[Vector] = []
+    for i, v in enumerate(vectors):
+        try:
+            unit = require_vector(v, "", direction=True)
+        except MechanismError as exc:
+            return i, exc.message
+        if not independent_of(units, unit):
+            return i, "linearly dependent on the directions before it; expected a basis (independent directions)"
+        units.append(unit)
+    return None
+
+
+def independent_of(directions: Sequence[Vector], direction: Vector) -> bool:
+    """Whether the unit ``direction`` is independent of the independent unit ``directions``, by the one rank policy.
+
+    Examples
+    --------
+    >>> independent_of([], (0.0, 0.0, 1.0)), independent_of([(0.0, 0.0, 1.0)], (0.0, 0.0, -1.0))
+    (True, False)
+    """
+    if not directions:  # one non-zero direction is a basis
+        return True
+    return decide_rank(np.linalg.svd(np.array([*directions, direction]), compute_uv=False)).rank > len(directions)
+
+
+_EXPECTED_COUNTS = ("dof", "mobility", "redundant_constraints", "idle_dof")
+
+
+@dataclass(frozen=True)
+class Expected:
+    """What a regression check compares an analysis against (all optional).
+
+    Each field is checked on construction, as the same key of a file's
+    ``expected`` block is (:data:`EXPECTED_KEYS`); ``extra`` holds further
+    keys (each compared by its comparator in
+    :data:`mobility.testing.check.COMPARATORS`) and is copied, so the
+    caller's mapping may change afterwards.  Hashable (over the fields and
+    the keys of ``extra``) and picklable, as a :class:`~mobility.core.model.Mechanism` holding it is.
+
+    Raises
+    ------
+    MechanismError
+        Naming the key whose value is of the wrong kind (``translations``
+        that are not a basis: :func:`expected_basis_problem`), or an
+        ``extra`` key that is one of the fields.
+
+    Examples
+    --------
+    >>> e = Expected(dof=1, pattern="1R", extra={"actuation": "valid"})
+    >>> e.items()
+    [('dof', 1), ('pattern', '1R'), ('actuation', 'valid')]
+    >>> hash(e) == hash(Expected(dof=1, pattern="1R", extra={"actuation": "valid"}))
+    True
+    >>> Expected(dof="1")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: dof: expected a non-negative integer, got '1'
+    """
+
+    dof: int | None = None
+    pattern: str | None = None
+    translations: tuple[Vector, ...] | None = None
+    mobility: int | None = None
+    redundant_constraints: int | None = None
+    idle_dof: int | None = None
+    gruebler_kutzbach: int | None = None
+    extra: Mapping[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        for key in _EXPECTED_COUNTS + ("gruebler_kutzbach",):
+            value = getattr(self, key)
+            if value is not None:
+                object.__setattr__(self, key, require_expected_integer(value, key, signed=key == "gruebler_kutzbach"))
+        if self.pattern is not None:
+            object.__setattr__(self, "pattern", require_expected_pattern(self.pattern, "pattern"))
+        if self.translations is not None:
+            rows = _listed(self.translations)
+            if not isinstance(rows, tuple):
+                raise MechanismError("translations", f"expected a list of 3-vectors, got {shown_argument(self.translations)}")
+            translations = tuple(require_vector(_listed(v), f"translations[{i}]") for i, v in enumerate(rows))
+            problem = expected_basis_problem(translations)
+            if problem is not None:
+                raise MechanismError(f"translations[{problem[0]}]", problem[1])
+            object.__setattr__(self, "translations", translations)
+        if not isinstance(self.extra, Mapping):
+            raise MechanismError("extra", f"expected a mapping of further expected keys, got {type(self.extra).__name__}")
+        extra = dict(self.extra)  # a copy: the caller's mapping may change afterwards
+        for key in extra:
+            if not isinstance(key, str) or not key:
+                raise MechanismError("extra", f"expected keys that are names (non-empty strings), got {shown_argument(key)}")
+            if key in self.__dataclass_fields__:
+                raise MechanismError(f"extra.{key}", f"{key!r} is a field of Expected: give it as Expected({key}=...)")
+        object.__setattr__(self, "extra", extra)
+
+    def __hash__(self) -> int:
+        # extra's values may be unhashable (lists); equal Expecteds have equal keys, which is all a hash needs
+        return hash((self.dof, self.pattern, self.translations, self.mobility, self.redundant_constraints,
+                     self.idle_dof, self.gruebler_kutzbach, frozenset(self.extra)))
+
+    def items(self) -> list[tuple[str, Any]]:
+        """The expectations that are set, as ``(key, value)`` pairs."""
+        out = [(k, getattr(self, k)) for k in EXPECTED_KEYS if hasattr(self, k) and getattr(self, k) is not None]
+        out.extend((k, v) for k, v in self.extra.items() if v is not None)
+        return out
