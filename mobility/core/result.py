@@ -351,7 +351,7 @@ class Result(ReadOnlyArrays):
 
     @property
     def rank_threshold(self) -> float:
-        """The relative rank threshold that decided the counts (:attr:`Tolerance.rank`)."""
+        """The relative rank threshold that decided the counts (:attr:`~mobility.core.tolerance.Tolerance.rank`)."""
         tol = getattr(self.detail, "tol", None)
         return DEFAULT_TOLERANCE.rank if tol is None else float(tol.rank)
 

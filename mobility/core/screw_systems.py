@@ -49,7 +49,7 @@ Examples
 
 from __future__ import annotations
 
-from typing import Iterator, NamedTuple, Sequence
+from typing import Iterator, NamedTuple, Sequence, Union, cast
 
 import numpy as np
 
@@ -61,6 +61,10 @@ from .tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
 from .topology import Bridge, JointNode, Node, Parallel, Series, Topology
 
 __all__ = ["Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "PoseAnswers", "analyse_poses"]
+
+
+PerPose = Union[int, np.ndarray]
+"""A count at each pose of a stack: an int when it is the same at every pose, else an array of one per pose."""
 
 
 class Systems(NamedTuple):
@@ -84,13 +88,13 @@ class Systems(NamedTuple):
     """
 
     basis: np.ndarray
-    dim: np.ndarray
+    dim: PerPose
     wrenches: np.ndarray
-    idle: np.ndarray
+    idle: PerPose
     children: tuple["Systems", ...] = ()
 
     @property
-    def mobility(self) -> np.ndarray:
+    def mobility(self) -> PerPose:
         """Mobility of the network with one end link fixed."""
         return self.dim + self.idle
 
@@ -150,7 +154,7 @@ def _split(u: np.ndarray, swapped: np.ndarray, rank: np.ndarray, low: int, high:
     return span_, reciprocal
 
 
-def span(m: np.ndarray, counts: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, margins: Margins | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def span(m: np.ndarray, counts: PerPose, tol: Tolerance = DEFAULT_TOLERANCE, margins: Margins | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Span of the columns of each ``m[i]`` and its reciprocal system, by one stacked SVD.
 
     Parameters
@@ -206,7 +210,7 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
         margins = Margins(count)
     values: dict[int, Systems] = {}  # by id of the node
     for level in _plan(node, tuple(offsets)):
-        same_shape: dict[int, list[tuple[Step, list[Systems], np.ndarray, int | np.ndarray]]] = {}
+        same_shape: dict[int, list[tuple[Step, list[Systems], np.ndarray, PerPose]]] = {}
         for step in level:
             kids = [values[id(c)] for c in step.children]
             if isinstance(step.node, Bridge):
@@ -215,24 +219,16 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
                 m, counts = _matrix(step, kids, twists)
                 same_shape.setdefault(m.shape[2], []).append((step, kids, m, counts))
         for members in same_shape.values():
-            if len(members) == 1:
-                stack, counts = members[0][2], members[0][3]
-            else:
-                stack = np.concatenate([m for *_, m, _ in members])
-                listed = [c for *_, c in members]
-                if any(type(c) is not int for c in listed):
-                    counts = np.concatenate([np.full(count, c) if type(c) is int else c for c in listed])
-                else:
-                    counts = listed if count == 1 else np.repeat(listed, count)
+            stack, stack_counts = _stacked(members, count)
             u, s, _ = left_svds(stack)
-            d = decide_ranks(s, tol, counts)
+            d = decide_ranks(s, tol, stack_counts)
             margins.add(d)
             low, high = _extremes(d.rank)
             swapped = u[:, SWAP_ROWS]
             if low == high:  # one rank at every pose: the spans of the whole stack at once, the rank an int
                 span_, reciprocal = u[:, :, :low], swapped[:, :, low:]
                 if len(members) == 1:
-                    values[id(members[0][0].node)] = _value(members[0][0].node, members[0][1], span_, reciprocal, low, counts)
+                    values[id(members[0][0].node)] = _value(members[0][0].node, members[0][1], span_, reciprocal, low, members[0][3])
                     continue
             for i, (step, kids, m, c) in enumerate(members):
                 rows = slice(i * count, (i + 1) * count)
@@ -242,6 +238,17 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
                     rank = d.rank[rows]
                     values[id(step.node)] = _value(step.node, kids, *_split(u[rows], swapped[rows], rank, *_extremes(rank)), rank, c)
     return values[id(node)]
+
+
+def _stacked(members: list[tuple[Step, list[Systems], np.ndarray, PerPose]], count: int) -> tuple[np.ndarray, PerPose | list[int]]:
+    """The matrices of same-shape nodes as one stack (node after node, each its ``count`` poses), and their column counts."""
+    if len(members) == 1:
+        return members[0][2], members[0][3]
+    stack = np.concatenate([m for *_, m, _ in members])
+    listed = [c for *_, c in members]
+    if all(type(c) is int for c in listed):
+        return stack, cast("list[int]", listed) if count == 1 else np.repeat(np.array(listed), count)
+    return stack, np.concatenate([per_pose(c, count) for c in listed])
 
 
 class Step(NamedTuple):
@@ -340,7 +347,8 @@ def _bridge(node: Bridge, values: list[Systems], twists: np.ndarray, offsets: Se
     """Loop closure of a network that does not reduce (incidence form), from the values of its composite connections."""
     count = twists.shape[0]
     composite = iter(values)
-    bases, real = [], []
+    bases: list[np.ndarray] = []
+    real: list[PerPose] = []
     for _, _, child in node.edges:
         if type(child) is JointNode:
             bases.append(_joint(twists, offsets, child.index))
@@ -419,7 +427,7 @@ def subtree_values(node: Node, value: Systems) -> Iterator[tuple[Node, Systems |
         stack.extend(reversed(paired))
 
 
-def direction_ranks(basis: np.ndarray, dim: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecisions:
+def direction_ranks(basis: np.ndarray, dim: PerPose, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecisions:
     """How many independent directions (rotations, for a twist system) each orthonormal screw basis of a stack holds.
 
     The rank decision of the direction parts ``basis[:, :3]``; the basis is
@@ -440,7 +448,7 @@ def direction_ranks(basis: np.ndarray, dim: np.ndarray, tol: Tolerance = DEFAULT
     return decide_ranks(singular_values(basis[:, :3]), tol, dim)
 
 
-def per_pose(value: int | np.ndarray, count: int) -> np.ndarray:
+def per_pose(value: PerPose, count: int) -> np.ndarray:
     """``value`` (an int when the same at every pose, or an array) as an array of ``count`` values.
 
     Examples
@@ -448,7 +456,7 @@ def per_pose(value: int | np.ndarray, count: int) -> np.ndarray:
     >>> per_pose(3, 2).tolist(), per_pose(np.array([1, 2]), 2).tolist()
     ([3, 3], [1, 2])
     """
-    return np.full(count, value) if type(value) is int else value
+    return value if isinstance(value, np.ndarray) else np.full(count, value)
 
 
 _PATTERNS = np.array([[pattern_of(d - r, r) if r <= d else "" for r in range(7)] for d in range(7)], dtype=object)  # by (DOF, rotations)
