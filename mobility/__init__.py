@@ -56,7 +56,7 @@ from .errors import (
 from .io.loader import load, loads
 from .core.loop_closure import LoopClosure, loop_closure
 from .core.expected import Expected
-from .core.model import Frame, Joint, Mechanism
+from .core.model import Coupling, Frame, Joint, Mechanism
 from .core.result import LimbSystem, Margin, Result, ScrewAxis
 from .core.tolerance import DEFAULT_TOLERANCE, Tolerance
 from . import library
@@ -103,6 +103,7 @@ __all__ = [
     "LoopClosure",
     "Mechanism",
     "Joint",
+    "Coupling",
     "Frame",
     "Expected",
     "Result",

@@ -43,7 +43,7 @@ ALLOWED = {
 
 # Inside the core, data flows by layer: a module imports only modules of lower layers.
 CORE_LAYERS = {
-    "tolerance": 0, "transforms": 0, "frozen": 0,
+    "tolerance": 0, "transforms": 0, "frozen": 0, "couplings": 0,
     "validation": 1, "linalg": 1, "finite_screws": 1,
     "expected": 2,
     "model": 3,

@@ -235,31 +235,32 @@ def test_published_gripper_as_shipped_fails_in_one_line():
     assert "group" in message
 
 
-def test_published_gripper_joint_coupling_is_reported_not_ignored(tmp_path):
+def test_published_gripper_joint_coupling_is_read_as_a_coupling_of_the_two_drivers(tmp_path):
     path = fixed_gripper(tmp_path)
-    with pytest.raises(MechanismFileError) as err:
-        read_robot(path)
-    assert str(err.value) == (
-        f"{path}:132: equality/joint[joint0]: a coupling of joints (left_driver_joint, right_driver_joint) is not supported; "
-        "expected connect or weld; pass --ignore-unsupported (ignore_unsupported=True) to leave it out")
+    m = read_robot(path).mechanism
+    (coupling,) = m.couplings
+    assert coupling.terms == (("left_driver_joint", 1.0), ("right_driver_joint", -1.0))  # polycoef "0 1 0 0 0"
+    model, data = mujoco_compile(path)
+    route = assert_agrees_with_mujoco(m, model, data, kinds=(CONNECT, WELD, JOINT_EQ))  # MuJoCo with the coupling on
+    assert route.mobility == 1 == mobility.loop_closure(m).mobility
 
 
 def test_published_gripper_two_four_bars_closed_by_connect(tmp_path):
     path = fixed_gripper(tmp_path)
-    robot = read_robot(path, ignore_unsupported=True)
+    text = path.read_text().replace('<joint joint1="left_driver_joint"', '<joint active="false" joint1="left_driver_joint"')
+    path.write_text(text)
+    robot = read_robot(path)
     m = robot.mechanism
     assert sorted(j.name for j in m.joints if j.type == "S") == ["connect0", "connect1"]
     assert not any(j.actuated for j in m.joints)  # the actuator drives a tendon
     notes = " | ".join(robot.notes)
-    assert "left out equality/joint[joint0] (line 132)" in notes
+    assert "equality joint joint0 (line 132) is inactive at start: left out" in notes
     assert "tendon split (line 123)" in notes and "actuator fingers_actuator (line 136) drives a tendon" in notes
     r = mobility.analyze(m)
     assert (r.mobility, r.dof, r.pattern) == (2, 1, "1T")  # each finger is a parallelogram: it translates
     model, data = mujoco_compile(path)
     route = assert_agrees_with_mujoco(robot, model, data)
     assert route.mobility == 2
-    # with the coupling MuJoCo finds one fewer freedom: why it may not be dropped silently
-    assert MujocoRoute(model, data, m.end_effector, kinds=(CONNECT, WELD, JOINT_EQ)).mobility == 1
 
 
 # -- welds, free joints, several joints in a body, sites, inactive equalities ---------------
@@ -360,14 +361,15 @@ def test_connect_between_sites_and_inactive_equalities():
     assert mobility.analyze(robot.mechanism).mobility == 3
 
 
-def test_tendon_equality_is_unsupported_and_a_tendon_alone_is_a_note():
+def test_tendon_equality_is_a_coupling_and_a_tendon_alone_is_a_note():
     text = (HAND / "four_bar.xml").read_text().replace(
         "<equality>", '<tendon><fixed name="sum"><joint joint="A" coef="1"/><joint joint="D" coef="1"/></fixed></tendon>\n  <equality>')
     robot = read_robot(_write(text))
     assert any(n.startswith("tendon sum (line") for n in robot.notes)
     coupled = text.replace("</equality>", '<tendon tendon1="sum"/></equality>')
-    with pytest.raises(MechanismFileError, match=r":\d+: equality/tendon\[tendon0\]: a coupling of tendons \(sum\) is not supported"):
-        read_robot(_write(coupled))
+    robot = read_robot(_write(coupled))
+    assert robot.mechanism.couplings[0].terms == (("A", 1.0), ("D", 1.0)) and not any(n.startswith("tendon sum") for n in robot.notes)
+    assert_agrees_with_mujoco(robot, *mujoco_compile(coupled), kinds=(CONNECT, WELD, int(mujoco.mjtEq.mjEQ_TENDON)))
 
 
 # -- choosing ground and end effector --------------------------------------------------------

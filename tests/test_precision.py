@@ -40,15 +40,9 @@ ROUNDED = {
 def mujoco_mobility(path: Path, threshold: float) -> int:
     """``nv`` less the rank of MuJoCo's equality rows of ``efc_J`` at qpos0, singular values counted above ``threshold`` times the largest.
 
-    Joint equalities (couplings, which the mechanism leaves out with
-    ``ignore_unsupported``) are turned off, as in the mechanism.
+    Every equality is on: joint equalities are couplings of the mechanism too.
     """
     model, data = mujoco_compile(path)
-    joint_equalities = [e for e in range(model.neq) if model.eq_type[e] == mujoco.mjtEq.mjEQ_JOINT]
-    if joint_equalities:
-        model.eq_active0[joint_equalities] = 0
-        data = mujoco.MjData(model)
-        mujoco.mj_forward(model, data)
     rows = [i for i in range(data.nefc) if data.efc_type[i] == mujoco.mjtConstraint.mjCNSTR_EQUALITY]
     jac = np.asarray(data.efc_J[: data.nefc * model.nv]).reshape(data.nefc, model.nv)[rows]
     s = np.linalg.svd(jac, compute_uv=False)
@@ -73,14 +67,16 @@ def test_a_file_rounded_to_six_digits_gives_the_designers_mechanism_by_default_a
 
 
 def test_a_published_biped_exported_by_onshape_to_robot_is_decided_at_its_own_precision():
-    # ToddlerBot: six significant digits; knee and neck four-bars closed by welds.  At 1e-9 one of its linkages is
-    # held by its rounding (a singular value of 1e-8, relative); at its precision it moves, as MuJoCo's Jacobian says
-    robot = mobility.read_robot(TODDLERBOT, ignore_unsupported=True)  # its gear couplings (joint equalities) left out
+    # ToddlerBot: six significant digits; knee and neck four-bars closed by welds, nine gear pairs coupled by joint
+    # equalities.  At 1e-9 one of its linkages is held by its rounding (a singular value of 1e-8, relative); at its
+    # precision it moves, as MuJoCo's Jacobian (every equality on) says
+    robot = mobility.read_robot(TODDLERBOT)
     m = robot.mechanism
+    assert len(m.couplings) == 9
     assert m.precision == 1e-05  # a quaternion's six digits: half a unit of the sixth digit, twice
     assert any(n.startswith("the file is precise to about 1.0e-05 of its size (numbers written with 6 significant digits)") for n in robot.notes)
     default, strict = mobility.analyze(m), mobility.analyze(m, tol=STRICT)
-    assert (default.mobility, strict.mobility) == (41, 40)
+    assert (default.mobility, strict.mobility) == (32, 31)  # (41, 40) without the couplings
     assert default.mobility == mujoco_mobility(TODDLERBOT, default.rank_threshold)
     assert strict.mobility == mujoco_mobility(TODDLERBOT, 1e-9)
     assert default.margin.largest_dropped < m.precision and default.margin.smallest_kept > 20 * default.rank_threshold

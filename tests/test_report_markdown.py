@@ -115,7 +115,7 @@ def test_tables_read_back_give_the_analysis(source):
     assert whole["links (ground included)"] == len(m.links)
     assert whole["joints"] == len(m.joints)
     assert whole["joint freedoms"] == sum(j.dof for j in m.joints)
-    assert whole["Grübler–Kutzbach count"] == 6 * (len(m.links) - 1 - len(m.joints)) + sum(j.dof for j in m.joints)
+    assert whole["Grübler–Kutzbach count"] == 6 * (len(m.links) - 1 - len(m.joints)) + sum(j.dof for j in m.joints) - len(m.couplings)  # one per coupling
     assert whole["mobility (screw theory)"] == closure.mobility
     assert whole["redundant constraints"] == whole["mobility (screw theory)"] - whole["Grübler–Kutzbach count"]
     assert whole["idle DOF (end effector still)"] == whole["mobility (screw theory)"] - r.dof

@@ -22,7 +22,7 @@ def agree(m: mobility.Mechanism) -> tuple[int, int]:
     lc = loop_closure(m)
     assert r.mobility == lc.mobility, m.name
     assert r.dof == lc.end_effector_twists.shape[1], m.name
-    assert r.redundant_constraints == 6 * lc.loops - lc.rank, m.name
+    assert r.redundant_constraints == 6 * lc.loops + len(m.couplings) - lc.rank, m.name  # one equation per coupling
     s = joint_screws(m)
     sp = evaluate(decompose(m).root, s.twists[None], s.offsets)
     assert same_subspace(sp.basis[0], lc.end_effector_twists), m.name
@@ -64,7 +64,8 @@ def nodes_agree(m: mobility.Mechanism, r) -> None:
             assert found == (m.joints[node.index].dof, 0)
             continue
         world = m.world_joints
-        part = mobility.Mechanism("part", a, b, tuple(world[i] for i in joints_of(node)))
+        inside = {m.joints[i].name for i in joints_of(node)}
+        part = mobility.Mechanism("part", a, b, tuple(world[i] for i in joints_of(node)), couplings=tuple(c for c in m.couplings if set(c.joints) <= inside))
         lc = loop_closure(part)
         assert (found.dof, found.mobility) == (lc.end_effector_twists.shape[1], lc.mobility), (m.name, node)
     # the detached networks only add to the mobility

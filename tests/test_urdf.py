@@ -185,15 +185,16 @@ MIMIC = """<robot name="gripper">
 </robot>"""
 
 
-def test_mimic_is_reported_not_ignored(tmp_path):
+def test_mimic_is_a_coupling_of_the_two_rates(tmp_path):
     path = write(tmp_path, MIMIC)
-    with pytest.raises(MechanismFileError) as err:
-        read_robot(path)
-    assert str(err.value) == (f"{path}:5: joint[r]/mimic: joint 'r' mimics joint 'l' (a coupling of joints) is not supported; "
-                              "expected independent joints; pass --ignore-unsupported (ignore_unsupported=True) to leave it out")
-    robot = read_robot(path, ignore_unsupported=True)
-    assert any(n.startswith("left out joint[r]/mimic (line 5)") for n in robot.notes)
-    assert mobility.analyze(robot.mechanism).mobility == 2
+    m = read_robot(path).mechanism
+    assert m.couplings[0].terms == (("r", 1.0), ("l", -1.0))
+    assert mobility.analyze(m).mobility == 1 == mobility.loop_closure(m).mobility  # the two fingers move as one
+    assert mobility.analyze(read_robot(write(tmp_path, MIMIC.replace('\n    <mimic joint="l" multiplier="1"/>', ""))).mechanism).mobility == 2
+    for bad, words in (('multiplier="0"', ":5: joint[r]/mimic/@multiplier: expected a non-zero number"), ('multiplier="x"', ":5: joint[r]/mimic/@multiplier: expected a number, got 'x'")):
+        with pytest.raises(MechanismFileError) as err:
+            read_robot(write(tmp_path, MIMIC.replace('multiplier="1"', bad)))
+        assert str(err.value).startswith(f"{path}{words}")
 
 
 # -- bad input --------------------------------------------------------------------------------

@@ -34,7 +34,7 @@ def test_written_files_read_back_to_the_same_joints_at_any_scale(path, exponent)
     m = transformed(mobility.load(path), Transform.identity(), 10.0**exponent)
     back = mobility.loads(mechanism_to_yaml(m))
     size = float(np.sqrt(np.mean([np.sum(np.square(np.asarray(j.point) / 10.0**exponent)) for j in m.world_joints if j.point is not None]))) * 10.0**exponent
-    assert same_joints(m, back, 10.0 * size)  # equal up to round-off, which is written as 0
+    assert same_joints(m, back, 10.0 * size or 10.0**exponent)  # equal up to round-off, which is written as 0 (every point at the origin: the scale's)
     assert same_joints(back, mobility.loads(mechanism_to_yaml(back)))  # and then to the bit
     r, s = mobility.analyze(m), mobility.analyze(back)
     assert (r.dof, r.pattern, r.mobility) == (s.dof, s.pattern, s.mobility)

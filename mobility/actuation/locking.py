@@ -22,7 +22,7 @@ from dataclasses import replace
 from typing import Iterable
 
 from ..core.loop_closure import loop_closure
-from ..core.model import Mechanism, require_mechanism
+from ..core.model import Coupling, Mechanism, require_mechanism
 from ..core.validation import joint_names, require_no_repeats
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import MechanismError
@@ -37,7 +37,9 @@ def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
     the string ``"A"``), as for :func:`~mobility.actuation.check_actuation`.
 
     Joints left joining a link to itself (their links were merged through
-    other locked joints) are removed too: they cannot move.  A merged body
+    other locked joints) are removed too: they cannot move.  A coupling
+    keeps the joints that remain; one left with a single joint holds it
+    still, and that joint is locked as well.  A merged body
     keeps the name of the ground or the end effector when it holds one.
 
     Returns
@@ -58,6 +60,15 @@ def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
     unknown = sorted(names - {j.name for j in mechanism.joints})
     if unknown:
         raise MechanismError("actuated", f"unknown joint {unknown[0]!r}")
+    while True:  # a coupling left with one joint holds it still too: lock it and start again
+        locked, held = _locked(mechanism, names)
+        if not held:
+            return locked
+        names = names | held
+
+
+def _locked(mechanism: Mechanism, names: set[str]) -> tuple[Mechanism | None, set[str]]:
+    """:func:`lock_joints` once, and the joints that a coupling left with them alone holds still (to lock as well)."""
     parent: dict[str, str] = {}
 
     def find(x: str) -> str:
@@ -76,7 +87,7 @@ def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
                     a, b = b, a
                 parent[b] = a
     if find(mechanism.end_effector) == find(mechanism.ground):
-        return None
+        return None, set()
     joints = []
     for j in mechanism.joints:
         if j.name in names:
@@ -84,7 +95,13 @@ def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
         links = (find(j.links[0]), find(j.links[1]))
         if links[0] != links[1]:
             joints.append(j if links == j.links else replace(j, links=links))
-    return mechanism.replace(joints=tuple(joints), expected=None)
+    kept = {j.name for j in joints}
+    terms = [[(n, x) for n, x in c.terms if n in kept] for c in mechanism.couplings]
+    held = {t[0][0] for t in terms if len(t) == 1}
+    if held:
+        return None, held
+    couplings = tuple(Coupling(tuple(n for n, _ in t), tuple(x for _, x in t)) for t in terms if t)
+    return mechanism.replace(joints=tuple(joints), expected=None, couplings=couplings), set()
 
 
 def locked_dof(mechanism: Mechanism, names: Iterable[str], *, tol: Tolerance = DEFAULT_TOLERANCE) -> int:

@@ -185,7 +185,7 @@ def add_mechanism_file(parser: argparse.ArgumentParser, *, file_help: str = MECH
     g.add_argument("--ground", metavar="BODY", action=StoreOnce, help="the fixed body (default: the world or root body)")
     g.add_argument("--end-effector", metavar="BODY", action=StoreOnce, help="the body whose freedom is reported (default: the body farthest from the ground)")
     g.add_argument("--floating", action="store_true", help="keep the 6 freedoms of free/floating joints (default: treat them as fixed)")
-    g.add_argument("--ignore-unsupported", action="store_true", help="leave out joint couplings (mimic, joint/tendon equalities) with a note instead of failing")
+    g.add_argument("--ignore-unsupported", action="store_true", help="leave out what the model cannot express (flex bodies, spatial-tendon or one-joint equalities, some actuators) with a note instead of failing")
     g.add_argument("--close", nargs=2, action="append", metavar=("A", "B"), default=[],
                    help="close a loop: bodies A and B, whose origins coincide, are joined by a spherical joint (repeatable)")
     g.add_argument("--closures", metavar="FILE", action=StoreOnce, help="YAML file of closing joints in the project's format (links are body names)")

@@ -39,7 +39,7 @@ __all__ = ["analyze", "gruebler_kutzbach", "screw_system_in_frame"]
 
 
 def gruebler_kutzbach(mechanism: Mechanism) -> int:
-    """The Grübler–Kutzbach count ``6 (n - 1 - j) + sum f`` of the whole mechanism.
+    """The Grübler–Kutzbach count ``6 (n - 1 - j) + sum f`` of the whole mechanism, less one per coupling of joints.
 
     Examples
     --------
@@ -51,7 +51,7 @@ def gruebler_kutzbach(mechanism: Mechanism) -> int:
 
 
 def _gruebler_kutzbach(mechanism: Mechanism) -> int:
-    return 6 * (len(mechanism.links) - 1 - len(mechanism.joints)) + mechanism.freedom_count
+    return 6 * (len(mechanism.links) - 1 - len(mechanism.joints)) + mechanism.freedom_count - len(mechanism.couplings)
 
 
 def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:

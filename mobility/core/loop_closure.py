@@ -11,7 +11,10 @@ use the series/parallel decomposition:
    already joined links) closes one independent loop:
    ``P_b q' - P_a q' - S_j q'_j = 0`` for a chord ``j`` from ``a`` to ``b``
    (only the joints of the tree path between ``a`` and ``b`` remain);
-3. stacked, these are the loop-closure equations ``K q' = 0``; the mobility is
+3. each coupling of joints (:attr:`Mechanism.couplings`) adds one row on
+   their coordinates (:func:`~mobility.core.couplings.coupling_rows`: the
+   unit columns' coordinates are the natural rates times the twists' norms);
+4. stacked, these are the loop-closure equations ``K q' = 0``; the mobility is
    ``sum f - rank K`` and the end effector's twist system is
    ``P_ee null(K)``.
 
@@ -45,6 +48,7 @@ import numpy as np
 
 from ..errors import RequestError, shown_argument
 from .frozen import ReadOnlyArrays, read_only, read_only_cached_property
+from .couplings import coupling_rows
 from .joint_screws import JointScrews, joint_screws
 from .linalg import svd
 from .model import Mechanism, require_mechanism
@@ -89,8 +93,11 @@ class LoopClosure(ReadOnlyArrays):
     joint_rates : ndarray, shape (sum f, mobility)
         Orthonormal basis of the joint rates that close every loop.
     decision : RankDecision
-    jacobian : ndarray, shape (6 * loops, sum f)
-        Loop-closure equations in normalised coordinates (built on first access).
+    jacobian : ndarray, shape (6 * loops + couplings, sum f)
+        Loop-closure equations in normalised coordinates (built on first
+        access), then one row per coupling.
+    couplings : ndarray, shape (couplings, sum f)
+        The rows of the couplings.
     """
 
     rank: int
@@ -102,6 +109,7 @@ class LoopClosure(ReadOnlyArrays):
     decision: RankDecision
     equations: tuple[Terms, ...] = field(repr=False)
     screws: JointScrews = field(repr=False)
+    couplings: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
 
     @read_only_cached_property
     def world_twists(self) -> np.ndarray:
@@ -121,7 +129,7 @@ class LoopClosure(ReadOnlyArrays):
     @read_only_cached_property
     def jacobian(self) -> np.ndarray:
         """The loop-closure equations ``K`` as one dense matrix (6 rows per loop)."""
-        return _dense(self.equations, self.screws)
+        return np.concatenate([_dense(self.equations, self.screws), self.couplings.reshape(-1, self.screws.twists.shape[1])])
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         super().__setstate__(state)
@@ -163,17 +171,28 @@ def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, me
     for joint, sign in _tree_path(up, depth, mechanism.ground, mechanism.end_effector):
         lo, hi = screws.offsets[joint], screws.offsets[joint + 1]
         ee_map[:, lo:hi] += sign * screws.twists[:, lo:hi]
-    whole = method == "svd" or (method == "auto" and max(6 * len(equations), n) <= WHOLE_SVD_SIZE)
-    if not equations:
+    couplings = _coupling_rows(mechanism, screws)
+    whole = method == "svd" or (method == "auto" and max(6 * len(equations) + len(couplings), n) <= WHOLE_SVD_SIZE)
+    if not equations and not len(couplings):
         decision, rates = RankDecision(0), np.eye(n)
     elif whole:
-        _, s, vt = svd(_dense(equations, screws))
+        _, s, vt = svd(np.concatenate([_dense(equations, screws), couplings]))
         decision = decide_rank(s, tol)
         rates = vt[decision.rank :].T
     else:
-        decision, rates = _chord_by_chord(equations, screws, tol)
+        decision, rates = _chord_by_chord(equations, screws, tol, couplings)
     ee = span_and_reciprocal(ee_map @ rates, tol).basis
-    return LoopClosure(decision.rank, len(equations), n - decision.rank, ee, ee_map, rates, decision, equations, screws)
+    return LoopClosure(decision.rank, len(equations), n - decision.rank, ee, ee_map, rates, decision, equations, screws, couplings)
+
+
+def _coupling_rows(mechanism: Mechanism, screws: JointScrews) -> np.ndarray:
+    """One row on every joint column per coupling of ``mechanism``."""
+    rows = np.zeros((len(mechanism.couplings), screws.twists.shape[1]))
+    index = {j.name: i for i, j in enumerate(mechanism.joints)}
+    for row, coupling in zip(rows, mechanism.couplings):
+        columns = [screws.offsets[index[name]] for name in coupling.joints]
+        row[columns] = coupling_rows(screws.twists[None], columns, coupling.coefficients, mechanism.joints[index[coupling.joints[0]]].type == "P")[0]
+    return rows
 
 
 def _tree_path(up: dict[str, TreeEdge], depth: dict[str, int], a: str, b: str) -> Terms:
@@ -212,14 +231,14 @@ def _dense(equations: tuple[Terms, ...], screws: JointScrews) -> np.ndarray:
     return k
 
 
-def _chord_by_chord(equations: tuple[Terms, ...], screws: JointScrews, tol: Tolerance) -> tuple[RankDecision, np.ndarray]:
-    """Null space of the loop equations, one chord at a time (see the module docstring)."""
+def _chord_by_chord(equations: tuple[Terms, ...], screws: JointScrews, tol: Tolerance, couplings: np.ndarray | None = None) -> tuple[RankDecision, np.ndarray]:
+    """Null space of the loop equations, one chord at a time (see the module docstring), then of the coupling rows, one at a time."""
     n = screws.twists.shape[1]
     row_of: dict[int, int] = {}  # variable -> row of `basis`
     basis = np.zeros((0, 0))  # orthonormal basis of the rates of the variables met so far that close the loops so far
     kept, dropped, rank = 1.0, 0.0, 0
-    for terms in equations:
-        variables, block = _columns(terms, screws)
+    coupled = [] if couplings is None else [(np.flatnonzero(c).tolist(), c[np.flatnonzero(c)][None]) for c in couplings]
+    for variables, block in [_columns(terms, screws) for terms in equations] + coupled:
         new = [v for v in dict.fromkeys(variables) if v not in row_of]
         if new:
             grown = np.zeros((basis.shape[0] + len(new), basis.shape[1] + len(new)))

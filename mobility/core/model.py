@@ -44,6 +44,7 @@ from typing import Any, Iterable, Mapping, Sequence, cast
 import numpy as np
 
 from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
+from .couplings import Coupling, check_couplings
 from .expected import Expected
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
@@ -51,6 +52,7 @@ from .validation import (Vector, _listed, _not_bool, bool_value, integer_value, 
                          require_instance, require_name, require_unique_names, require_vector)
 
 __all__ = [
+    "Coupling",
     "JOINT_TYPES",
     "JOINT_DOF",
     "JOINT_FIELDS",
@@ -407,6 +409,9 @@ class Mechanism:
         mechanism once loaded (the loader fills it; empty for a mechanism
         built in code).  Not part of its value: equal mechanisms may come
         from different files.
+    couplings : tuple of Coupling
+        Linear relations between the rates of one-freedom joints
+        (:mod:`mobility.core.couplings`).
     precision : float or None
         How precise the file's geometry is, relative to the mechanism's
         size (see :mod:`mobility.io.precision`); ``None`` (built in code, a
@@ -444,6 +449,7 @@ class Mechanism:
     expected: Expected | None = None
     source: str = ""
     written_at: Mapping[str, tuple[str, int | None]] = field(default_factory=dict, compare=False, repr=False)
+    couplings: tuple[Coupling, ...] = ()
     precision: float | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -506,6 +512,7 @@ class Mechanism:
             self.world_joints  # noqa: B018 - every joint's geometry must stay finite in the global frame
         if any(j.type == "H" for j in self.joints):
             self._require_resolved_pitches()
+        object.__setattr__(self, "couplings", check_couplings(self.couplings, self.joints))
 
     def _require_resolved_pitches(self) -> None:
         """Refuse a helical pitch so much larger than the joint points' spread that no scale resolves both.

@@ -389,9 +389,11 @@ class Result(ReadOnlyArrays):
         rank = self.joint_freedoms - self.mobility
         redundant = self.redundant_constraints
         loops = "the 1 independent loop imposes" if self.loops == 1 else f"each of the {self.loops} independent loops imposes"
+        coupled = len(getattr(getattr(self.detail, "mechanism", None), "couplings", ()))  # one constraint each (a result rebuilt without its mechanism: none)
+        by_couplings = f" and each of the {coupled} couplings of joints 1" if coupled > 1 else " and the coupling of joints 1" if coupled else ""
         text = (
             f"Grübler–Kutzbach assumes {loops} 6 independent "
-            f"constraints ({6 * self.loops} in all); the loop-closure equations have rank {rank}, so "
+            f"constraints{by_couplings} ({6 * self.loops + coupled} in all); the loop-closure equations have rank {rank}, so "
             f"{redundant} constraint{' is' if redundant == 1 else 's are'} redundant and the mobility is "
             f"{self.gruebler_kutzbach} + {redundant} = {self.mobility}."
         )

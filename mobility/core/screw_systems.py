@@ -14,8 +14,10 @@ two links still):
   (so the intersection of their twist systems); idle = children's idle;
 * bridge: loop closure on the reduced network (unknowns: the twists of its
   inner links and coordinates on each connection's twist system; one vector
-  equation per connection), its twist system the set of target twists of the
-  solutions; idle = children's idle + solutions that leave the target still.
+  equation per connection, and one per coupling of joints that are its
+  edges: :func:`mobility.core.couplings.coupling_rows`), its twist system the
+  set of target twists of the solutions; idle = children's idle + solutions
+  that leave the target still.
 
 The mobility of a network is ``dimension + idle``.  Everything is computed in
 normalised coordinates (:mod:`mobility.core.joint_screws`); every rank
@@ -51,6 +53,7 @@ from typing import Iterator, NamedTuple, Sequence, Union, cast
 
 import numpy as np
 
+from .couplings import coupling_rows
 from .joint_screws import per_object_cache
 from .linalg import left_svds, singular_values
 from .screws import SWAP_ROWS, pattern_of
@@ -357,9 +360,11 @@ def _bridge(node: Bridge, values: list[Systems], twists: np.ndarray, offsets: Se
     inner = [x for x in node.links if x != node.source]
     col_of = {x: 6 * i for i, x in enumerate(inner)}
     n_link = 6 * len(inner)
-    a = np.zeros((count, 6 * len(node.edges), n_link + sum(b.shape[2] for b in bases)))
+    a = np.zeros((count, 6 * len(node.edges) + len(node.couplings), n_link + sum(b.shape[2] for b in bases)))
     c = n_link
+    column_of = []  # of each edge's first coordinate: a coupled joint has one
     for row, ((u, v, _), b) in enumerate(zip(node.edges, bases)):
+        column_of.append(c)
         r = slice(6 * row, 6 * row + 6)
         if v != node.source:
             a[:, r, col_of[v] : col_of[v] + 6] += np.eye(6)
@@ -367,6 +372,9 @@ def _bridge(node: Bridge, values: list[Systems], twists: np.ndarray, offsets: Se
             a[:, r, col_of[u] : col_of[u] + 6] -= np.eye(6)
         a[:, r, c : c + b.shape[2]] = -b
         c += b.shape[2]
+    for row, (slides, terms) in enumerate(node.couplings, start=6 * len(node.edges)):
+        joints = [node.edges[e][2].index for e, _ in terms]  # type: ignore[union-attr]  # a coupled joint is an edge of its own
+        a[:, row, [column_of[e] for e, _ in terms]] = coupling_rows(twists, [offsets[j] for j in joints], [x for _, x in terms], slides)
     real_cols = n_link + sum(real, np.zeros(count, dtype=int))
     _, s, vt = left_svds(a, full_v=True)
     assert vt is not None  # asked for (full_v)

@@ -165,7 +165,7 @@ six-digit files of the tests (a published biped exported by
 onshape-to-robot, ``tests/data/robots/toddlerbot``, and the rounded
 mechanisms of ``tests/data/cad``), the directions the rounding makes have
 singular values of 0.001 to 0.6 times ``p``, and the mechanism's own are
-26 to 300 times ``100 p``."""
+21 to 300 times ``100 p``."""
 
 PRECISION_CEILING = 1e-3
 """The highest rank threshold a file's precision raises the default to.

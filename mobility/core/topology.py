@@ -11,6 +11,12 @@ until one connection remains.  What does not reduce further (every inner link
 has three or more connections, e.g. a tie link between two limbs) becomes a
 :class:`Bridge`, solved later by loop closure; it is never refused.
 
+Coupled joints (:attr:`Mechanism.couplings`) are never merged: each is a
+direct edge of one :class:`Bridge` that holds the whole graph (detached parts
+too, since a coupling may tie them to the rest), the other joints reduced
+around them; the bridge carries the couplings on the positions of its edges
+and is solved by loop closure with one more equation per coupling.
+
 Parts of the graph on no ground-to-end-effector path (blocks of the graph
 that the virtual edge ground–end-effector does not join) cannot change the
 end effector's freedom; they are kept as :attr:`Topology.detached` because
@@ -106,16 +112,20 @@ class Bridge(_Composite):
     """A network that is not series-parallel, between ``source`` and ``target``.
 
     ``edges`` are ``(u, v, node)``: a connection (itself reduced) between
-    links ``u`` and ``v``.
+    links ``u`` and ``v``.  ``couplings`` are ``(slides, ((edge, coefficient),
+    ...))``: a coupling of the mechanism on joints that are edges of this
+    bridge (by position in ``edges``), ``slides`` true for a coupling of P
+    joints (see :mod:`mobility.core.couplings`).
     """
 
     source: str
     target: str
     links: tuple[str, ...]
     edges: tuple[tuple[str, str, "Node"], ...]
+    couplings: tuple[tuple[bool, tuple[tuple[int, float], ...]], ...] = ()
 
     def __post_init__(self) -> None:
-        self._set_hash(("bridge", self.source, self.target, self.links, self.edges))
+        self._set_hash(("bridge", self.source, self.target, self.links, self.edges, self.couplings))
 
 
 Node = Union[JointNode, Series, Parallel, Bridge]
@@ -170,7 +180,8 @@ def _repr_parts(node: Node) -> tuple[str, list[str], str] | str:
     if isinstance(node, Bridge):
         one = "," if len(node.edges) == 1 else ""
         before = [("" if i == 0 else "), ") + f"({u!r}, {v!r}, " for i, (u, v, _) in enumerate(node.edges)]
-        return f"Bridge(source={node.source!r}, target={node.target!r}, links={node.links!r}, edges=(", before, f"){one}))"
+        coupled = f", couplings={node.couplings!r}" if node.couplings else ""
+        return f"Bridge(source={node.source!r}, target={node.target!r}, links={node.links!r}, edges=(", before, f"){one}){coupled})"
     one = "," if len(node.children) == 1 else ""
     return f"{type(node).__name__}(children=(", [""] + [", "] * (len(node.children) - 1), f"{one}))"
 
@@ -188,7 +199,7 @@ def _same_tree(a: Node, b: Node) -> bool:
                 return False
         elif isinstance(x, Bridge):
             assert isinstance(y, Bridge)  # the same type as x (checked above)
-            if (x.source, x.target, x.links) != (y.source, y.target, y.links) or [e[:2] for e in x.edges] != [e[:2] for e in y.edges]:
+            if (x.source, x.target, x.links, x.couplings) != (y.source, y.target, y.links, y.couplings) or [e[:2] for e in x.edges] != [e[:2] for e in y.edges]:
                 return False
             stack.extend(zip((n for _, _, n in x.edges), (n for _, _, n in y.edges)))
         else:
@@ -298,18 +309,46 @@ def joints_of(node: Node) -> list[int]:
 
 
 def decompose(mechanism: Mechanism) -> Topology:
-    """Series/parallel decomposition of ``mechanism``'s joint graph (cached by structure)."""
+    """Series/parallel decomposition of ``mechanism``'s joint graph (cached by structure).
+
+    Examples
+    --------
+    A gear pair: two wheels on the ground, their rates tied, one bridge.
+
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> from mobility.core.couplings import Coupling
+    >>> R = lambda n, a, b: Joint(n, "R", (a, b), axis=(0, 0, 1), point=(0, 0, 0))
+    >>> t = decompose(Mechanism("gears", "g", "b", (R("A", "g", "a"), R("B", "g", "b")), couplings=(Coupling(("A", "B"), (1, 2)),)))
+    >>> t.structure, t.root.couplings
+    ('bridge(g-a: A, g-b: B)', ((False, ((0, 1.0), (1, 2.0))),))
+    """
     signature = tuple((j.name, j.links) for j in mechanism.joints)
-    return _decompose(signature, mechanism.ground, mechanism.end_effector)
+    if not mechanism.couplings:
+        return _decompose(signature, mechanism.ground, mechanism.end_effector)
+    index = {j.name: i for i, j in enumerate(mechanism.joints)}
+    coupled = tuple((mechanism.joints[index[c.joints[0]]].type == "P", tuple((index[n], x) for n, x in c.terms)) for c in mechanism.couplings)
+    return _decompose(signature, mechanism.ground, mechanism.end_effector, coupled)
 
 
 Edge = tuple[str, str, Node]
 
 
+Coupled = tuple[tuple[bool, tuple[tuple[int, float], ...]], ...]
+"""Couplings on joint indices: ``(slides, ((joint, coefficient), ...))`` each."""
+
+
 @lru_cache(maxsize=512)
-def _decompose(signature: tuple[tuple[str, tuple[str, str]], ...], ground: str, end_effector: str) -> Topology:
+def _decompose(signature: tuple[tuple[str, tuple[str, str]], ...], ground: str, end_effector: str, coupled: Coupled = ()) -> Topology:
     edges: list[Edge] = [(a, b, JointNode(i, name)) for i, (name, (a, b)) in enumerate(signature)]
     links = {x for a, b, _ in edges for x in (a, b)}
+    if coupled:  # the whole graph, coupled joints kept as edges: one bridge
+        frozen = {i for _, terms in coupled for i, _ in terms}
+        bridge = _reduce(edges, ground, end_effector, frozen)
+        assert isinstance(bridge, Bridge)  # two or more coupled joints stay apart
+        position = {n.index: k for k, (_, _, n) in enumerate(bridge.edges) if isinstance(n, JointNode) and n.index in frozen}
+        couplings = tuple((slides, tuple((position[i], x) for i, x in terms)) for slides, terms in coupled)
+        whole = Bridge(bridge.source, bridge.target, bridge.links, bridge.edges, couplings)
+        return Topology(whole, (), len(links), len(edges) - len(links) + 1, describe(whole))
     # A graph that reduces whole is one block with the virtual edge ground-end effector
     # (series and parallel steps keep two terminals), so nothing is detached.
     root: Node | None = _reduce(edges, ground, end_effector)
@@ -399,7 +438,7 @@ def _built(item: Any, flipped: bool) -> Node:
     return results[0]
 
 
-def _reduce(edge_list: list[Edge], s: str, t: str) -> Node:
+def _reduce(edge_list: list[Edge], s: str, t: str, frozen: frozenset[int] | set[int] = frozenset()) -> Node:
     """Series/parallel reduction of a two-terminal multigraph.
 
     The steps and their order are those of repeated passes of: merge every
@@ -408,6 +447,7 @@ def _reduce(edge_list: list[Edge], s: str, t: str) -> Node:
     connections (links in order of first appearance).  Each pass visits only
     the groups and links it merges, and a merge only flags orientation, so the
     whole reduction is linear in the number of joints up to the sorting.
+    The edges at the positions ``frozen`` are never merged.
     """
     edges: dict[int, tuple[str, str, Any]] = dict(enumerate(edge_list))
     order: dict[str, int] = {}
@@ -419,7 +459,8 @@ def _reduce(edge_list: list[Edge], s: str, t: str) -> Node:
                 order[x] = len(order)
                 incident[x] = set()
             incident[x].add(k)
-        pairs.setdefault(frozenset((a, b)), {})[k] = None
+        if k not in frozen:
+            pairs.setdefault(frozenset((a, b)), {})[k] = None
     multiple = {key for key, ks in pairs.items() if len(ks) > 1}
     two = {x for x, ks in incident.items() if len(ks) == 2 and x != s and x != t}
     next_id = len(edges)
@@ -473,7 +514,7 @@ def _reduce(edge_list: list[Edge], s: str, t: str) -> Node:
         for x in sorted(two, key=order.__getitem__):
             k1, k2 = sorted(incident[x])
             a, b = other(k1, x), other(k2, x)
-            if a == b:
+            if a == b or k1 in frozen or k2 in frozen:
                 continue  # two connections to one link: merged as parallel first
             # keep the order from the side nearer the source when we can tell
             if b == s or a == t:

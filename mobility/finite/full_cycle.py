@@ -108,7 +108,9 @@ def finite_mobility(
     ------
     RequestError
         When ``steps`` is not 1 to 10 numbers in ``(0, 1]``, ``randoms`` not
-        an integer in ``[0, 1000]``, or ``seed`` not a non-negative integer.
+        an integer in ``[0, 1000]``, or ``seed`` not a non-negative integer;
+        for a mechanism with couplings (:attr:`Mechanism.couplings`), whose
+        joints the moves would not keep coupled.
 
     Examples
     --------
@@ -124,6 +126,9 @@ def finite_mobility(
     ('bifurcation', 2, 1, '1T | 1R')
     """
     mechanism = require_mechanism(mechanism, "finite_mobility")
+    if mechanism.couplings:  # the moves below close loops only: they would let coupled joints turn apart
+        raise RequestError(f"finite_mobility: {mechanism.name!r} couples joints ({', '.join('/'.join(c.joints) for c in mechanism.couplings[:3])}), "
+                           "which the full-cycle moves do not follow yet; expected a mechanism without couplings (its instantaneous answer is mobility.analyze)")
     tol = require_tolerance(tol, "finite_mobility")
     checked = _checked_steps(steps)
     if randoms is not None:

@@ -11,7 +11,10 @@ extensions that never change the meaning of a version-1 file:
   optional frame per copy;
 * joint types may also be written by name (``revolute`` for ``R``...), frames
   may be given by ``axis`` and ``angle`` instead of ``rpy``, and a joint may
-  carry ``actuated: true``.
+  carry ``actuated: true``;
+* ``couplings``: linear relations between the rates of R, P and H joints
+  (:class:`~mobility.core.couplings.Coupling`), each ``{joints: [A, B],
+  coefficients: [1, 2]}`` for ``q'_A + 2 q'_B = 0``.
 
 Every error names the file, the line, the key and what was expected.  The
 loader knows nothing of screws.  What a document may ask is bounded
@@ -45,7 +48,7 @@ from pathlib import Path
 from typing import Any, Callable, Mapping, NamedTuple
 
 from ..core.expected import EXPECTED_KEYS
-from ..core.model import JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Frame, Joint, Mechanism
+from ..core.model import JOINT_DOF, JOINT_FIELDS, JOINT_TYPES, WORLD, Coupling, Frame, Joint, Mechanism
 from ..errors import MechanismError, RequestError, clipped, did_you_mean, shown_argument
 from .expected import read_expected
 from .files import file_name
@@ -56,7 +59,8 @@ from .yaml_source import KeyPath, Positions, format_key, parse_yaml, read_text
 
 __all__ = ["load", "loads", "read_file", "FileRead", "is_robot_description", "read_mechanism", "is_flexure_document", "TOP_LEVEL_KEYS", "JOINT_KEYS"]
 
-TOP_LEVEL_KEYS = ("name", "description", "ground", "end_effector", "units", "frames", "joints", "expected", "parameters", "limbs")
+TOP_LEVEL_KEYS = ("name", "description", "ground", "end_effector", "units", "frames", "joints", "expected", "parameters", "limbs", "couplings")
+COUPLING_KEYS = ("joints", "coefficients")
 JOINT_KEYS = ("name", "type", "links", "frame", "axis", "point", "pitch", "axes", "normal", "actuated")
 LIMB_KEYS = ("copies", "index", "frame", "joints")
 _TYPE_NAMES = {name: letter for letter, name in JOINT_TYPES.items()}
@@ -245,6 +249,7 @@ class _MechanismReader(DocumentReader):
         if not joints:
             raise self.fail(("joints",), "expected at least one joint")
         expected = read_expected(self, doc["expected"], tuple(EXPECTED_KEYS)) if "expected" in doc else None
+        couplings = self.couplings(doc.get("couplings"))
         try:
             mechanism = Mechanism(
                 name=name,
@@ -257,6 +262,7 @@ class _MechanismReader(DocumentReader):
                 expected=expected,
                 source=self.file,
                 written_at={j.name: (format_key(path), self.pos.line(path)) for j, path in zip(joints, sources)},
+                couplings=couplings,
             )
         except MechanismError as exc:
             raise self.fail(self.source_path(exc.key, sources), exc.message) from None
@@ -295,6 +301,28 @@ class _MechanismReader(DocumentReader):
                     notes.append(str(self.fail(path + ("links", k), f"link {clipped(link)!r} is named by this joint only{hint}: "
                                                                      "a misspelt link name makes a link of its own, and another mechanism")))
         return notes
+
+    def couplings(self, value: Any) -> tuple[Coupling, ...]:
+        """The ``couplings`` list: each a record of joint names and as many numbers (expressions allowed)."""
+        if value is None:
+            return ()
+        if not isinstance(value, list):
+            raise self.fail(("couplings",), f"expected a list of couplings, got {describe_value(value)}")
+        out = []
+        for k, raw in enumerate(value):
+            path: KeyPath = ("couplings", k)
+            data = self.record(raw, path, "a coupling", COUPLING_KEYS, COUPLING_KEYS, described="a coupling with joints and coefficients")
+            names, numbers = data["joints"], data["coefficients"]
+            for key, items in (("joints", names), ("coefficients", numbers)):
+                if not isinstance(items, list):
+                    raise self.fail(path + (key,), f"expected a list, got {describe_value(items)}")
+            joints = tuple(self.identifier(n, path + ("joints", i), "a joint name") for i, n in enumerate(names))
+            coefficients = tuple(self.number(x, path + ("coefficients", i), self.names) for i, x in enumerate(numbers))
+            try:
+                out.append(Coupling(joints, coefficients))
+            except MechanismError as exc:
+                raise self.fail(path + parse_key(exc.key), exc.message) from None
+        return tuple(out)
 
     def source_path(self, key: str, sources: list[KeyPath]) -> KeyPath:
         """Key path in the file of a model error key such as ``joints[4].name``."""

@@ -19,9 +19,11 @@ joint's anchor and axis in the global frame, each body's parent.
   (:mod:`mobility.io.mjcf_actuators`); one on a free joint (a six-number
   gear, which no joint freedom expresses) is not supported;
   actuators driving tendons, sites or bodies mark nothing (a note);
-* joint and tendon equalities and deformable (flex) bodies are not supported:
-  each is an error of one line naming its line, unless ``ignore_unsupported``;
-  tendons are not joints: they are listed in a note.
+* joint and fixed-tendon equalities are couplings of joint rates at
+  ``qpos0`` (:mod:`mobility.io.mjcf_couplings`); flex bodies, spatial
+  tendons in an equality and an equality holding one joint still are not
+  supported: each an error of one line, unless ``ignore_unsupported``;
+  a tendon no equality holds is listed in a note.
 
 Geometry is not needed: meshes, height fields, textures and skins are removed
 before compiling (a mesh geom becomes a small sphere), so a file whose mesh
@@ -51,9 +53,11 @@ from ..core.tolerance import DEFAULT_TOLERANCE, characteristic_scale
 from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped, counted, one_line
 from .files import read_capped
 from .mjcf_actuators import actuator_inputs
+from .mjcf_couplings import add_coupling, tendons_held
 from .mjcf_scan import MjcfScan, scan_mjcf
 from .precision import mjcf_rounding
 from .robot_actuators import BallActuator
+from .robot_couplings import TreeCoupling
 from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name, vector_tuple
 from .xml_source import parse_xml
 
@@ -396,9 +400,9 @@ class _MjcfTree:
                                            _line(flexes[0]) if flexes else None))
         self.gap_lengths: list[float] = []  # how far each connect and weld misses at qpos0 (equality_gaps)
         self.gap_angles: list[float] = []
-        closures, welds, more = self.equalities(notes)
+        closures, welds, more, couplings = self.equalities(notes)
         unsupported += more
-        for i in range(m.ntendon):
+        for i in sorted(set(range(m.ntendon)) - tendons_held(self)):
             tname = self.name("mjOBJ_TENDON", i) or f"tendon{i}"
             notes.append(f"tendon {clipped(tname)}{at_line(self.lines['tendon'].get(i))} is not imported: a tendon is not a joint (only an equality on it would constrain the mechanism)")
         for i in range(m.nbody):
@@ -407,7 +411,8 @@ class _MjcfTree:
         name = self.spec.modelname if self.spec.modelname and self.spec.modelname != "MuJoCo Model" else one_line(Path(self.file).stem)  # a file name may hold a line break; a name may not
         version = getattr(mj, "__version__", "")
         return RobotTree(name, self.file, "MJCF", bodies, joints, tuple(closures), tuple(welds), tuple(unsupported), tuple(notes),
-                         pose=f"qpos0, as MuJoCo {version} compiles it".replace("  ", " "), gaps=tuple(self.gap_lengths), angle_gaps=tuple(self.gap_angles))
+                         pose=f"qpos0, as MuJoCo {version} compiles it".replace("  ", " "), gaps=tuple(self.gap_lengths), angle_gaps=tuple(self.gap_angles),
+                         couplings=tuple(couplings))
 
     def body(self, i: int) -> Body:
         """Body ``i`` at ``qpos0``: its parent, origin and rotation in the global frame."""
@@ -443,8 +448,9 @@ class _MjcfTree:
         point = self.finite(d.xpos[body] if kind == "free" else d.xanchor[i], key, line)
         return TreeJoint(name, kind, self.body_names[body], point, axis, actuated, line, actuators)
 
-    def equalities(self, notes: list[str]) -> tuple[list[Closure], list[Weld], list[Unsupported]]:
+    def equalities(self, notes: list[str]) -> tuple[list[Closure], list[Weld], list[Unsupported], list[TreeCoupling]]:
         m, eq = self.m, self.mj.mjtEq
+        couplings: list[TreeCoupling] = []
         closures: list[Closure] = []
         welds: list[Weld] = []
         unsupported: list[Unsupported] = []
@@ -460,9 +466,7 @@ class _MjcfTree:
                 notes.append(f"equality {tag} {clipped(name)}{at_line(line)} is inactive at start: left out")
                 continue
             if tag in ("joint", "tendon"):
-                kind_name = "mjOBJ_JOINT" if tag == "joint" else "mjOBJ_TENDON"
-                objects = [clipped(self.name(kind_name, int(o)) or str(int(o))) for o in (m.eq_obj1id[k], m.eq_obj2id[k]) if o >= 0]
-                unsupported.append(Unsupported(f"equality/{tag}[{clipped(name)}]", f"a coupling of {tag}s ({', '.join(objects)}) is not supported; expected connect or weld", line))
+                add_coupling(self, k, tag, f"equality/{tag}[{clipped(name)}]", line, notes, couplings, unsupported)
                 continue
             if tag == "flex":
                 unsupported.append(Unsupported(f"equality/flex[{clipped(name)}]", "a flex equality is not supported; expected connect or weld", line))
@@ -483,7 +487,7 @@ class _MjcfTree:
             except MechanismError as exc:
                 raise MechanismFileError(f"equality/connect[{clipped(name)}]", exc.message, file=self.file, line=line) from None
             closures.append(Closure(joint, "connect", line))
-        return closures, welds, unsupported
+        return closures, welds, unsupported, couplings
 
     def equality_gaps(self, notes: list[str]) -> dict[int, str]:
         """How far each active connect or weld is from holding at qpos0, where it is; a note when the file turns equalities off.

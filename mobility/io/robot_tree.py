@@ -24,12 +24,13 @@ and :func:`build_mechanism` turns it into a
   becomes three P joints along x, y, z and an S joint;
 * a closing joint (an MJCF ``connect`` is a spherical joint at its anchor)
   joins the links of its two bodies;
+* a coupling of joint rates (an MJCF joint or tendon equality, a URDF
+  ``<mimic>``) couples the model's joints (:mod:`mobility.io.robot_couplings`);
 * the ground is the root body unless named; the end effector, unless named,
   is the body farthest from the ground (in joints), the last one in file
   order when several are as far.
 
-Elements the model cannot express (a coupling of joints, a tendon
-constraint) are listed in :attr:`RobotTree.unsupported`; each is an error of
+Elements the model cannot express (a spatial tendon, a flex body) are listed in :attr:`RobotTree.unsupported`; each is an error of
 one line unless ``ignore_unsupported=True``, when it is left out and said so
 in a note.  Nothing is dropped silently: every choice made for the user
 comes back in :attr:`ImportedRobot.notes`.
@@ -67,6 +68,7 @@ from ..errors import MechanismError, MechanismFileError, clipped, counted, did_y
 from .limits import current_limits
 from .precision import Rounding, file_precision
 from .robot_actuators import BallActuator, ball_chain, ball_chain_names
+from .robot_couplings import TreeCoupling, model_couplings
 
 __all__ = [
     "Body",
@@ -174,8 +176,8 @@ class RobotTree:
         Root first; every parent before its children.
     joints : tuple of TreeJoint
         In file order (the order of a body's joints is root-to-body).
-    closures, welds, unsupported
-        See :class:`Closure`, :class:`Weld`, :class:`Unsupported`.
+    closures, welds, unsupported, couplings
+        See :class:`Closure`, :class:`Weld`, :class:`Unsupported`, :class:`~mobility.io.robot_couplings.TreeCoupling`.
     notes : tuple of str
         What the reader wants the user to know.
     pose : str
@@ -204,6 +206,7 @@ class RobotTree:
     pose: str = "all joint positions zero"
     length_unit: str = "m"
     files: tuple[str, ...] = ()
+    couplings: tuple[TreeCoupling, ...] = ()
     rounding: Rounding | None = None
     gaps: tuple[float, ...] = ()
     angle_gaps: tuple[float, ...] = ()
@@ -329,6 +332,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
 
 
     joints: list[Joint] = []
+    model_name: dict[str, str] = {}  # of each hinge and slide of the tree that the mechanism holds
     used: set[str] = set()
     link_names = set(names.values())
     by_body: dict[str, list[TreeJoint]] = {}
@@ -347,6 +351,8 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
             there = end if k == len(chain) - 1 else unique_name(f"{body}/{j.name}", link_names)
             made = _model_joints(tree, j, here, there, used, link_names)
             joints += made
+            if j.kind in ("hinge", "slide"):
+                model_name[j.name] = made[0].name
             here = there
             if j.kind == "ball" and j.actuators:
                 shown = ", ".join(f"{joint.type} {clipped(joint.name)}{' (actuated)' if joint.actuated else ''}" for joint in made)
@@ -388,9 +394,10 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     if rank > DEFAULT_TOLERANCE.rank:
         notes.append(f"the file is precise to about {precision.value:.1e} of its size ({precision.describe()}): "
                      f"ranks are decided at {rank:.1e}, not finer (--tol decides at another threshold)")
+    couplings = model_couplings(tree.couplings, {j.name: j.kind for j in tree.joints}, model_name, tree.file, joints)
     try:
         mechanism = Mechanism(name=tree.name, ground=ground, end_effector=end_effector, joints=tuple(joints),
-                              description=description, length_unit=tree.length_unit, source=tree.file, precision=precision.value)
+                              description=description, length_unit=tree.length_unit, source=tree.file, precision=precision.value, couplings=couplings)
     except MechanismError as exc:
         raise MechanismFileError(exc.key, exc.message, file=tree.file) from None
     return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files, tuple(closing))

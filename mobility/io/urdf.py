@@ -13,9 +13,10 @@ child frame is the parent frame composed with the origin.
   ``revolute``, ``continuous`` or ``prismatic`` joint; on a ``planar`` or
   ``floating`` joint (several coordinates) it is not supported, on a
   ``fixed`` one it drives nothing (a note);
-* a ``<mimic>`` joint couples two joints, which the model cannot express:
-  an error of one line, or with ``ignore_unsupported`` a note (each joint then
-  counts as free);
+* a ``<mimic joint="leader" multiplier="m" offset="o">`` joint follows
+  ``q = m q_leader + o``: a coupling ``q' - m q'_leader = 0`` of the two rates
+  (:class:`~mobility.core.couplings.Coupling`; the offset moves no rate);
+  both joints must be revolute, continuous or prismatic, alike;
 * a URDF cannot express a closed loop: close loops with ``--close A B`` or a
   side file (:mod:`mobility.io.closures`).
 
@@ -74,6 +75,7 @@ from ..core.transforms import Transform, rotation_from_rpy
 from ..errors import clipped, did_you_mean, one_line
 from .files import file_name
 from .precision import DigitCounter
+from .robot_couplings import TreeCoupling
 from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml, underflow_problem
 
@@ -156,9 +158,16 @@ class _UrdfReader:
         unsupported: list[Unsupported] = []
         notes: list[str] = []
         actuated = self.transmissions(root, {j["name"]: j["type"] for j in joints}, unsupported, notes)
+        couplings: list[TreeCoupling] = []
         for j in joints:
-            if j["mimic"] is not None:
-                unsupported.append(Unsupported(f"joint[{clipped(j['name'])}]/mimic", f"joint {clipped(j['name'])!r} mimics joint {clipped(j['mimic'])!r} (a coupling of joints) is not supported; expected independent joints", self.doc.line(j["element"].find("mimic"))))
+            if j["mimic"] is not None:  # q_follower = multiplier q_leader + offset: the rates, q'_f - multiplier q'_l = 0
+                mimic = j["element"].find("mimic")
+                key = f"joint[{clipped(j['name'])}]/mimic"
+                multiplier = self.number(mimic, "multiplier", f"{key}/@multiplier", 1.0)
+                self.number(mimic, "offset", f"{key}/@offset", 0.0)  # a position offset: no part in the rates, but a number
+                if multiplier == 0.0:
+                    raise self.fail(mimic, f"{key}/@multiplier", f"expected a non-zero number: multiplier 0 holds joint {clipped(j['name'])!r} still, which a coupling of two joints does not express")
+                couplings.append(TreeCoupling(key, (j["name"], j["mimic"]), (1.0, -multiplier), self.doc.line(mimic)))
             kind = URDF_JOINT_KINDS[j["type"]]
             if kind is None:
                 continue
@@ -167,7 +176,7 @@ class _UrdfReader:
             tree_joints.append(TreeJoint(j["name"], kind, j["child"], vector_tuple(frame.translation), axis, j["name"] in actuated, self.doc.line(j["element"])))
         name = root.get("name") or one_line(Path(self.doc.file).stem)  # a file name may hold a line break; a name may not
         return RobotTree(name, self.doc.file, "URDF", bodies, tuple(tree_joints), unsupported=tuple(unsupported), notes=tuple(notes),
-                         rounding=self.digits.rounding())
+                         rounding=self.digits.rounding(), couplings=tuple(couplings))
 
     def links(self, root: ET.Element) -> dict[str, ET.Element]:
         links: dict[str, ET.Element] = {}
@@ -247,6 +256,16 @@ class _UrdfReader:
                 if sub.tag in first:
                     raise self.fail(sub, f"{key}/{sub.tag}", f"a second <{sub.tag}> in the joint (the first on line {self.doc.line(first[sub.tag])}); expected one")
                 first[sub.tag] = sub
+
+    def number(self, el: ET.Element, attribute: str, key: str, default: float) -> float:
+        """One finite number of an attribute (``default`` when it is absent)."""
+        text = el.get(attribute)
+        if text is None:
+            return default
+        word = text.strip(" \t\r\n")
+        if not _NUMBER.fullmatch(word) or not math.isfinite(float(word)):
+            raise self.fail(el, key, f"expected a number, got {clipped(text)!r}")
+        return float(word)
 
     def numbers(self, el: ET.Element | None, attribute: str, key: str, default: tuple[float, float, float]) -> tuple[float, float, float]:
         if el is None or el.get(attribute) is None:

@@ -1,7 +1,7 @@
 """Writing a mechanism file: a :class:`~mobility.core.model.Mechanism` out as YAML text.
 
-The text follows version 1 of the format (plus ``actuated``), one joint per
-line in flow style, every joint in the global frame, and loads back with
+The text follows version 1 of the format (plus ``actuated`` and
+``couplings``), one joint (one coupling) per line in flow style, every joint in the global frame, and loads back with
 :func:`mobility.loads` to the same joints up to round-off: round-off (below
 the policy's ``round_off`` of the mechanism's characteristic length, or of 1
 for a direction) is written as 0, and every number as the shortest decimal
@@ -178,6 +178,10 @@ def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: 
         if j.actuated:
             fields.append("actuated: true")
         lines.append("  - {" + ", ".join(fields) + "}")
+    if mechanism.couplings:
+        lines.append("couplings:")
+        for c in mechanism.couplings:
+            lines.append("  - {joints: [" + ", ".join(yaml_scalar(n) for n in c.joints) + "], coefficients: [" + ", ".join(_number(x, abs(x)) for x in c.coefficients) + "]}")
     if expected:
         lines.append("expected: {" + ", ".join(f"{k}: {yaml_scalar(v)}" for k, v in expected.items()) + "}")
     return "\n".join(lines) + "\n"
