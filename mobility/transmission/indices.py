@@ -103,6 +103,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import combinations
+from math import comb
 from typing import Sequence
 
 import numpy as np
@@ -362,7 +363,11 @@ def _limb_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], po
 
 
 MAX_CHOICES = 64
-"""The most choices (of inputs and of limbs) :func:`transmission_indices` tries in a redundant wrench system."""
+"""The most choices (of inputs and of limbs) :func:`transmission_indices` tries in a redundant wrench system;
+with more, the indices that need a choice are not computed (NaN): their count grows combinatorially."""
+
+MAX_LIMBS_CHOSEN = 12
+"""The most limbs whose subsets :func:`transmission_indices` searches for a square choice (``2**12`` subsets)."""
 
 
 def _best_choice_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], points: np.ndarray, actuation: np.ndarray,
@@ -388,6 +393,8 @@ def _best_choice_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarr
     for d in np.unique(dim[full]).tolist():
         need = 6 - d
         if d == 0 or n < d or (n == d and sum(widths) == need):
+            continue
+        if comb(n, d) > MAX_CHOICES or limbs > MAX_LIMBS_CHOSEN:  # too many choices to try: no index (NaN)
             continue
         groups = [s for k in range(1, limbs + 1) for s in combinations(range(limbs), k) if sum(widths[j] for j in s) == need]
         inputs = list(combinations(range(n), d))
@@ -488,6 +495,8 @@ def transmission_indices(
         if d == 0 or n < d:  # the inputs move no output (a dead centre: the output locked for an instant), or a freedom moves unactuated
             oti[rows] = 0.0
             lti[rows] = 0.0
+            continue
+        if comb(n, d) > MAX_CHOICES:  # too many choices of inputs to try: OTI and LTI not computed (NaN)
             continue
         t = basis[rows][:, :, :d]
         a = actuation[rows]
