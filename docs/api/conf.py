@@ -116,6 +116,8 @@ nitpick_ignore_regex = [
     (r"py:.*", r"(%s)" % "|".join(_BUILTINS)),
     # written as bare names in annotations that Python cannot evaluate (imported for type checking only)
     (r"py:class", r"Path|Figure|Axes"),
+    # a type alias (int or array) that annotations show by its name; documented as data of core.screw_systems
+    (r"py:class", r"PerPose"),
 ]
 
 

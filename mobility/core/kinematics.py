@@ -787,13 +787,13 @@ def newton(
         would reach another assembly, not the nearby one).
     max_iter : int
     polished : float
-    patience : int
-        Steps in a row that do not halve a pose's best residual before it stops.
     accelerate : bool
         Double the step of a pose whose residual shrank by a ratio in
         :data:`LINEAR_RATIO` at the last two steps (Newton at a singular
         root): it removes the leading error term, the same poses in half the
         steps.
+    patience : int
+        Steps in a row that do not halve a pose's best residual before it stops.
 
     Returns
     -------

@@ -60,7 +60,7 @@ from .screws import SWAP_ROWS, pattern_of
 from .tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
 from .topology import Bridge, JointNode, Node, Parallel, Series, Topology
 
-__all__ = ["Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "at_pose", "PoseAnswers", "analyse_poses"]
+__all__ = ["PerPose", "Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "at_pose", "PoseAnswers", "analyse_poses"]
 
 
 PerPose = Union[int, np.ndarray]
@@ -460,7 +460,7 @@ def per_pose(value: PerPose, count: int) -> np.ndarray:
 
 
 def at_pose(value: PerPose, index: int = 0) -> int:
-    """The count of pose ``index`` of a :data:`PerPose` (an int when the same at every pose, or an array).
+    """The count of pose ``index`` of a :data:`~mobility.core.screw_systems.PerPose` (an int when the same at every pose, or an array).
 
     Examples
     --------

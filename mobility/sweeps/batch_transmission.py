@@ -129,7 +129,7 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
     actuated : sequence of str, optional
         The actuated joints (default: those the file marks ``actuated: true``).
     q : array_like, optional
-        Joint variables of the pose, as a row of :attr:`SweepResult.q`
+        Joint variables of the pose, as a row of ``SweepResult.q``
         (closing every loop; default: the file's pose).
     threshold : float
         The good-transmission threshold (``LTI >= threshold``), 0.7 as published.

@@ -3,7 +3,7 @@
 Definitions
 -----------
 Every index here is a **power coefficient** of a unit wrench ``w = [f; m]``
-and a twist ``t = [omega; v]`` taken at a point ``P`` where the wrench acts:
+and a twist ``t = [omega; v]`` taken at a point ``P`` where the wrench acts::
 
     tau_P(w, t) = |w o t| / (|f| |v_P| + |m_P| |omega|),
 
