@@ -124,3 +124,14 @@ def test_analyze_reports_the_closures_of_a_robot_file_in_text_and_json():
                                  "redundant_forces": [{"axis": [0.0, 0.0, 1.0], "point": [4.0, 2.5, 0.0], "pitch": 0.0, "kind": "force"}]}]
     plain = run("mechanisms/four_bar.yaml")
     assert plain.returncode == 0 and "closures" not in plain.stdout  # a mechanism file names no closure
+
+
+def test_the_view_of_a_robot_file_shows_the_advice_on_its_closures(tmp_path):
+    run = lambda *a: subprocess.run([sys.executable, "-m", "mobility", "view", *a], capture_output=True, text=True, timeout=120)  # noqa: E731
+    page = tmp_path / "four_bar.html"
+    assert run(str(HAND / "four_bar.xml"), "-o", str(page)).returncode == 0
+    html = page.read_text(encoding="utf-8")
+    assert "C: 3 rows, 2 independent, 1 redundant" in html and "redundant: force along [0, 0, 1] through [4, 2.5, 0]" in html
+    plain = tmp_path / "plain.html"
+    assert run("mechanisms/four_bar.yaml", "-o", str(plain)).returncode == 0
+    assert "independent, " not in plain.read_text(encoding="utf-8")  # a mechanism file names no closure

@@ -8,6 +8,7 @@ NAME=START:STOP:COUNT`` the poses of a sweep (as ``mobility sweep``, with its
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 
 from ..core.analysis import analyze
 from ..core.model import Mechanism
@@ -15,7 +16,7 @@ from ..errors import RequestError, counted, one_line
 from ..view import MAX_POSES, ViewFrame, mechanism_view, poses_view, sweep_view
 from ..view.page import require_plotly
 from ..io.limits import require_size, require_work
-from ._options import (add_max_poses_option, add_mechanism_file, add_pose_sampler_options, add_tolerance_option, load_mechanism, max_poses_from,
+from ._options import (add_max_poses_option, add_mechanism_file, add_pose_sampler_options, add_tolerance_option, max_poses_from, read_with_notes,
                        require_new_output, require_option_for, sampled_poses, tolerance_from)
 
 ORDER = 31
@@ -67,7 +68,8 @@ def run(args: argparse.Namespace) -> int:
     if args.samples >= MAX_POSES:  # the file's pose and the sampled ones, before any work
         raise RequestError(f"a view shows at most {counted(MAX_POSES, 'pose')}, the file's and {MAX_POSES - 1} sampled; ask for fewer", argument=f"--samples {args.samples}")
     require_plotly()  # before any work
-    mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
+    read = read_with_notes(args, outputs=((args.output, "-o"),))
+    mechanism = read.mechanism
     tol = tolerance_from(args, mechanism.precision)
     if args.vary or args.samples:
         require_size(mechanism, "max_moving_joints", "--vary" if args.vary else "--samples", args.file)
@@ -84,6 +86,11 @@ def run(args: argparse.Namespace) -> int:
         view = poses_view(frames)
     else:
         view = mechanism_view(mechanism, result)
+    if read.closures:  # a robot file's closed loops: the advice of mobility analyze, in the page's header
+        from ..core.closures import closure_advice
+        from ..report.closures import closures_report
+
+        view = replace(view, notes=view.notes + tuple(closures_report(closure_advice(mechanism, read.closures, tol=tol)).splitlines()))
     path = view.write_html(args.output)
     pose_count = f", {counted(len(view.frames), 'pose')}" if len(view.frames) > 1 else ""
     print(one_line(f"wrote {path}: {result.name}, end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility}{pose_count}"))
