@@ -467,7 +467,7 @@ def at_pose(value: PerPose, index: int = 0) -> int:
     >>> at_pose(3), at_pose(np.array([1, 2]), 1)
     (3, 2)
     """
-    return value if type(value) is int else int(value[index])
+    return value if isinstance(value, int) else int(value[index])
 
 
 _PATTERNS = np.array([[pattern_of(d - r, r) if r <= d else "" for r in range(7)] for d in range(7)], dtype=object)  # by (DOF, rotations)
