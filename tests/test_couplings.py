@@ -368,3 +368,17 @@ def test_coupling_rates_are_mujocos_where_the_joints_stand_at_different_distance
     natural = lc.joint_rates * scale[:, None]
     assert np.abs(jac @ natural).max() < 1e-12 * np.abs(natural).max()  # our rates close MuJoCo's rows
     assert route.mobility == natural.shape[1] == 2
+
+
+def test_what_moves_a_coupled_mechanism_to_other_poses_is_refused_in_one_line(capsys):
+    # the position solver closes loops, not couplings: a sweep or sampled poses would let coupled joints turn apart
+    m = mobility.load("mechanisms/gear_pair.yaml")
+    with pytest.raises(mobility.RequestError, match=r"^sweep: 'spur gear pair' couples joints \(A/B\), which the poses of a sweep do not follow yet"):
+        mobility.sweep(m, ["A=0:1:3"])
+    with pytest.raises(mobility.RequestError, match=r"^sample_poses: 'spur gear pair' couples joints \(A/B\)"):
+        mobility.sample_poses(m, 2)
+    from mobility.cli import main
+
+    assert main(["sweep", "mechanisms/gear_pair.yaml", "--vary", "A=0:1:3"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("mobility: sweep: 'spur gear pair' couples joints (A/B)") and len(err.strip().splitlines()) == 1

@@ -39,9 +39,9 @@ from typing import Any, Iterable, Sequence
 
 import numpy as np
 
-from ..errors import MechanismError, did_you_mean, name_list, shown_argument
+from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
 
-__all__ = ["Coupling", "COUPLED_TYPES", "check_couplings", "coupling_rows"]
+__all__ = ["Coupling", "COUPLED_TYPES", "check_couplings", "coupling_rows", "require_no_couplings"]
 
 COUPLED_TYPES = ("R", "P", "H")
 """The joint types a coupling may hold: one freedom, one rate."""
@@ -172,3 +172,29 @@ def coupling_rows(twists: np.ndarray, columns: Sequence[int], coefficients: Sequ
     row = np.sqrt(np.einsum("nij,nij->nj", picked, picked)) * np.asarray(coefficients, dtype=float)
     norm = np.sqrt(np.einsum("nj,nj->n", row, row))[:, None]
     return np.divide(row, norm, out=np.zeros_like(row), where=norm > 0)
+
+
+def require_no_couplings(couplings: Sequence[Coupling], name: str, caller: str, what: str) -> None:
+    """Refuse a coupled mechanism where poses are reached by closing loops only (sweeps, sampled poses, full cycles).
+
+    The position solver (:func:`mobility.core.kinematics.newton`) closes the
+    loops and holds no coupling yet: the poses it reaches could turn coupled
+    joints apart, so a moving analysis of a coupled mechanism is refused
+    rather than answered on poses the mechanism cannot take.
+
+    Raises
+    ------
+    RequestError
+        Naming ``caller``, the mechanism and its first couplings.
+
+    Examples
+    --------
+    >>> require_no_couplings([Coupling(("A", "B"), (1.0, 2.0))], "gears", "sweep", "the poses of a sweep")
+    Traceback (most recent call last):
+    ...
+    mobility.errors.RequestError: sweep: 'gears' couples joints (A/B), which the poses of a sweep do not follow yet (loops are closed, couplings not); the instantaneous answer is mobility.analyze
+    """
+    if couplings:
+        listed = ", ".join("/".join(c.joints) for c in couplings[:3])
+        raise RequestError(f"{name!r} couples joints ({listed}), which {what} do not follow yet (loops are closed, couplings not); "
+                           "the instantaneous answer is mobility.analyze", caller=caller)

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..errors import RequestError, shown_argument
 from .kinematics import kinematics
+from .couplings import require_no_couplings
 from .model import Mechanism, require_mechanism
 from .validation import integer_value, real_value
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
@@ -125,6 +126,7 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
     (3, True)
     """
     mechanism = require_mechanism(mechanism, "sample_poses")
+    require_no_couplings(mechanism.couplings, mechanism.name, "sample_poses", "sampled poses")
     tol = require_tolerance(tol, "sample_poses")
     count = require_pose_count(count)
     h0 = step_value(step)

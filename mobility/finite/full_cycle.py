@@ -53,6 +53,7 @@ from typing import Any, Iterable
 import numpy as np
 
 from ..core.analysis import analyze
+from ..core.couplings import require_no_couplings
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism, require_mechanism
 from ..core.validation import require_integer
@@ -126,9 +127,7 @@ def finite_mobility(
     ('bifurcation', 2, 1, '1T | 1R')
     """
     mechanism = require_mechanism(mechanism, "finite_mobility")
-    if mechanism.couplings:  # the moves below close loops only: they would let coupled joints turn apart
-        raise RequestError(f"finite_mobility: {mechanism.name!r} couples joints ({', '.join('/'.join(c.joints) for c in mechanism.couplings[:3])}), "
-                           "which the full-cycle moves do not follow yet; expected a mechanism without couplings (its instantaneous answer is mobility.analyze)")
+    require_no_couplings(mechanism.couplings, mechanism.name, "finite_mobility", "the full-cycle moves")
     tol = require_tolerance(tol, "finite_mobility")
     checked = _checked_steps(steps)
     if randoms is not None:

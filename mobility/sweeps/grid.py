@@ -44,6 +44,7 @@ from typing import Iterable, Mapping, Union, cast
 
 import numpy as np
 
+from ..core.couplings import require_no_couplings
 from ..core.joint_screws import joint_screws
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism
@@ -389,6 +390,7 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
         rotation coordinates turning more than half a turn), no coordinate at
         all, or a grid above ``max_poses``.
     """
+    require_no_couplings(mechanism.couplings, mechanism.name, "sweep", "the poses of a sweep")
     requests = _requests(vary)
     if not requests:
         raise RequestError("vary: give at least one coordinate to vary, NAME=START:STOP:COUNT")
