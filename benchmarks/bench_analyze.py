@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import statistics
 import sys
 import time
 from pathlib import Path
@@ -39,25 +38,9 @@ from pathlib import Path
 import mobility
 from mobility.core import joint_screws as js_module
 from mobility.core.loop_closure import loop_closure
-from _stats import quartiles
+from _stats import median_time, quartiles, run_times
 
 ROOT = Path(__file__).resolve().parent.parent
-
-
-def run_times(fn, number: int, repeat: int) -> list[float]:
-    """The mean time of ``number`` calls, in seconds, for each of ``repeat`` runs."""
-    runs = []
-    for _ in range(repeat):
-        start = time.process_time()
-        for _ in range(number):
-            fn()
-        runs.append((time.process_time() - start) / number)
-    return runs
-
-
-def median_time(fn, number: int, repeat: int) -> float:
-    """Median over ``repeat`` runs of the mean time of ``number`` calls, in seconds."""
-    return statistics.median(run_times(fn, number, repeat))
 
 
 def rebuilt(m: mobility.Mechanism):

@@ -34,7 +34,7 @@ import mobility
 from mobility.core.joint_screws import joint_screws
 from mobility.core.screw_systems import analyse_poses
 from mobility.core.topology import decompose
-from _stats import quartiles
+from _stats import quartiles, run_times
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -43,15 +43,7 @@ def per_call(fn, repeat: int) -> list[float]:
     """The mean CPU time of one call in each of ``repeat`` runs (calls enough for about 0.2 s a run)."""
     start = time.process_time()
     fn()
-    once = max(time.process_time() - start, 1e-6)
-    number = max(1, int(0.2 / once))
-    runs = []
-    for _ in range(repeat):
-        start = time.process_time()
-        for _ in range(number):
-            fn()
-        runs.append((time.process_time() - start) / number)
-    return runs
+    return run_times(fn, max(1, int(0.2 / max(time.process_time() - start, 1e-6))), repeat)
 
 
 def main() -> None:

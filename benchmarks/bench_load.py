@@ -26,29 +26,16 @@ machines better than the times.
 from __future__ import annotations
 
 import argparse
-import statistics
-import time
 from pathlib import Path
-from typing import Callable
 
 import yaml
 
 import mobility
 from mobility.io.expressions import compile_expression
 from mobility.io.yaml_source import parse_yaml
+from _stats import median_time
 
 ROOT = Path(__file__).resolve().parent.parent
-
-
-def median_time(fn: Callable[[], object], number: int, repeat: int) -> float:
-    """Median over ``repeat`` runs of the mean time of ``number`` calls, in seconds."""
-    runs = []
-    for _ in range(repeat):
-        start = time.process_time()
-        for _ in range(number):
-            fn()
-        runs.append((time.process_time() - start) / number)
-    return statistics.median(runs)
 
 
 def measure(path: Path, number: int, repeat: int) -> dict[str, float]:
