@@ -433,7 +433,8 @@ def direction_ranks(basis: np.ndarray, dim: PerPose, tol: Tolerance = DEFAULT_TO
     The rank decision of the direction parts ``basis[:, :3]``; the basis is
     orthonormal, so its singular values are at most 1 (up to round-off) and
     the threshold is absolute.  The margin tells how close a screw is to
-    becoming a free vector (1.0 when there is no direction to lose).
+    becoming a free vector (1.0 when there is no direction to lose).  The
+    decision of :func:`mobility.core.screws.free_vector_subspace`, pose by pose.
 
     Examples
     --------

@@ -241,7 +241,7 @@ def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, 
     decision : RankDecision
         Rank decision on the direction part: its rank is ``d - k`` and its
         margin tells how close a screw is to becoming a free vector.  The
-        basis is orthonormal, so singular values are at most 1 and the
+        basis is orthonormal, so singular values are at most 1 (up to round-off) and the
         threshold is absolute.
 
     Examples
@@ -255,11 +255,11 @@ def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, 
     if not coefficients:
         if d == 0:
             return RankDecision(0)
-        return _direction_rank(singular_values(basis[:3]), tol)
+        return decide_rank(singular_values(basis[:3]), tol)  # at most 1 (orthonormal basis), up to round-off: the threshold is absolute
     if d == 0:
         return np.zeros((3, 0)), np.zeros((0, 0)), RankDecision(0)
     _, s, vt = svd(basis[:3])
-    decision = _direction_rank(s, tol)
+    decision = decide_rank(s, tol)
     r = decision.rank
     null = vt[r:].T  # coefficients of the pure free vectors
     if null.shape[1]:
@@ -297,10 +297,3 @@ def motion_pattern(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> str
     """
     rotations = free_vector_subspace(basis, tol, coefficients=False).rank
     return pattern_of(basis.shape[1] - rotations, rotations)
-
-
-def _direction_rank(s: np.ndarray, tol: Tolerance) -> RankDecision:
-    """Rank decision on the singular values of the direction part of an orthonormal basis."""
-    dec = decide_rank(np.concatenate([[1.0], s]), tol)  # 1.0 pins the scale: the threshold is absolute
-    r = dec.rank - 1
-    return RankDecision(r, dec.smallest_kept if r else 1.0, dec.largest_dropped)
