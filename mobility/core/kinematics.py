@@ -441,15 +441,43 @@ class Kinematics:
             pose can leave the pose itself off by residual / sigma_min).
         """
         q = self._stack(q)[0][0]
-        n = self.variable_count
+        if constraints is not None:
+            constraints = (np.asarray(constraints[0], dtype=float).reshape(1, -1, self.variable_count), np.asarray(constraints[1], dtype=float).reshape(1, -1))
+        return self.close_each(q[None], constraints=constraints, closure=np.array([tol.closure]), max_iter=max_iter,
+                               max_move=np.inf if max_move is None else max_move)[0]
+
+    def close_each(
+        self,
+        q: np.ndarray,
+        *,
+        closure: np.ndarray,
+        constraints: tuple[np.ndarray, np.ndarray] | None = None,
+        max_iter: int = 40,
+        max_move: np.ndarray | float = np.inf,
+    ) -> tuple[Closure, ...]:
+        """:meth:`close` of each pose of a stack ``q`` ``(N, n)``, every pose with its own equations and thresholds, solved at once.
+
+        ``constraints`` are ``A`` ``(N, k, n)`` and ``b`` ``(N, k)``, one
+        system per pose; ``closure`` ``(N,)`` is each pose's closure threshold
+        (``tol.closure`` of :meth:`close`); ``max_move`` a float or ``(N,)``.
+        Each pose takes the Newton steps it would take alone: one Newton on
+        the stack costs about what one on a single pose does, so moves along
+        many directions and steps cost little more than one.
+        """
+        stack = self._stack(q)[0]
+        count = len(stack)
+        limit = np.broadcast_to(np.asarray(closure, dtype=float), (count,))
         if constraints is None:
-            equations, goals = Equations(exact=True), np.zeros((1, 0))
+            equations, goals = Equations(exact=True), np.zeros((count, 0))
         else:
-            equations = Equations(linear=np.asarray(constraints[0], dtype=float).reshape(-1, n), exact=True)
-            goals = np.asarray(constraints[1], dtype=float).reshape(1, -1)
-        out = newton(self, q[None], goals, equations, tol=tol, max_move=np.inf if max_move is None else max_move, max_iter=max_iter, polished=ROUND_OFF / tol.closure, accelerate=True, patience=CLOSE_STALLED)
-        history = tuple(float(e) for e in out.history[0] if not np.isnan(e))
-        return Closure(out.q[0], float(out.residual[0]), len(history) - 1, bool(out.converged[0]), history)
+            equations, goals = Equations(linear=np.asarray(constraints[0], dtype=float), exact=True), np.asarray(constraints[1], dtype=float)
+        out = newton(self, stack, goals, equations, max_move=max_move, max_iter=max_iter, polished=ROUND_OFF / limit, accelerate=True,
+                     patience=CLOSE_STALLED, closure=limit)
+        closures = []
+        for k in range(count):
+            history = tuple(float(e) for e in out.history[k] if not np.isnan(e))
+            closures.append(Closure(out.q[k], float(out.residual[k]), len(history) - 1, bool(out.converged[k]), history))
+        return tuple(closures)
 
     # -- the moved mechanism -------------------------------------------------------
     def mechanism_at(self, q: np.ndarray) -> Mechanism:
@@ -657,9 +685,10 @@ class Equations:
     components : ndarray of int
         Pose coordinates of the end effector fixed (0..5: x, y, z, rx, ry, rz,
         see :class:`Evaluation`), their values the first columns of the goals.
-    linear : ndarray, shape (k, n), optional
+    linear : ndarray, shape (k, n) or (N, k, n), optional
         Extra linear equations ``A q = b``, ``b`` the last ``k`` columns of
-        the goals.
+        the goals: one ``A`` for every pose, or one per pose of the stack
+        (moves along different directions solved at once).
     exact : bool
         The loops' Jacobian is their exact derivative (the right-trivialised
         one corrected by the inverse differential of the exponential at each
@@ -676,6 +705,10 @@ class Equations:
         """The free variables as a mask of ``n``."""
         return np.ones(n, dtype=bool) if self.free is None else self.free
 
+    def take(self, rows: np.ndarray) -> "Equations":
+        """The equations of the poses ``rows`` of the stack (the same unless each pose has its own linear equations)."""
+        return self if self.linear is None or self.linear.ndim == 2 else _replace(self, linear=self.linear[rows])
+
     def values(self, kin: Kinematics, q: np.ndarray, goals: np.ndarray) -> tuple[np.ndarray, Evaluation]:
         """Every equation's residual ``(m, N)`` at the poses ``q`` ``(N, n)`` and their ``goals``, and the evaluation that gives their Jacobian."""
         evaluation = kin.evaluate(q, self.components)
@@ -684,7 +717,8 @@ class Equations:
         if fixed:
             values[values.shape[0] - fixed :] -= goals[:, :fixed].T
         if self.linear is not None:
-            values = np.concatenate([values, self.linear @ q.T - goals[:, fixed:].T])
+            lhs = self.linear @ q.T if self.linear.ndim == 2 else np.sum(self.linear * q[:, None, :], axis=2).T  # each pose's A q
+            values = np.concatenate([values, lhs - goals[:, fixed:].T])
         return values, evaluation
 
     def jacobians(self, evaluation: Evaluation, rows: np.ndarray | None = None) -> np.ndarray:
@@ -698,7 +732,12 @@ class Equations:
             derivative = dexps(np.asarray(r, dtype=float).T.reshape(-1, 6))  # (N L, 6, 6)
             jac[:, : 6 * loops] = np.linalg.solve(derivative, jac[:, : 6 * loops].reshape(-1, 6, width)).reshape(count, 6 * loops, width)
         if self.linear is not None:
-            jac = np.concatenate([jac, np.broadcast_to(self.linear[:, free], (len(jac),) + self.linear[:, free].shape)], axis=1)
+            linear = self.linear[..., free]
+            if linear.ndim == 2:
+                linear = np.broadcast_to(linear, (len(jac),) + linear.shape)
+            elif rows is not None:
+                linear = linear[rows]
+            jac = np.concatenate([jac, linear], axis=1)
         return np.ascontiguousarray(jac)
 
 
@@ -755,9 +794,10 @@ def newton(
     tol: Tolerance = DEFAULT_TOLERANCE,
     max_move: np.ndarray | float = np.inf,
     max_iter: int = MAX_ITERATIONS,
-    polished: float = POLISHED,
+    polished: np.ndarray | float = POLISHED,
     accelerate: bool = False,
     patience: int = STALLED,
+    closure: np.ndarray | None = None,
 ) -> Closures:
     """Close every loop of a stack of poses by Gauss–Newton with damped minimum-norm steps.
 
@@ -786,7 +826,7 @@ def newton(
         A solve that wanders farther than this from its start has failed (it
         would reach another assembly, not the nearby one).
     max_iter : int
-    polished : float
+    polished : float or ndarray (N,)
     accelerate : bool
         Double the step of a pose whose residual shrank by a ratio in
         :data:`LINEAR_RATIO` at the last two steps (Newton at a singular
@@ -794,6 +834,9 @@ def newton(
         steps.
     patience : int
         Steps in a row that do not halve a pose's best residual before it stops.
+    closure : ndarray (N,), optional
+        The largest residual component of each closed pose, when the poses
+        have their own (default ``tol.closure`` for every pose).
 
     Returns
     -------
@@ -806,6 +849,8 @@ def newton(
     stalled = np.zeros(count, dtype=int)
     active = np.arange(count)
     max_move = np.broadcast_to(np.asarray(max_move, dtype=float), (count,))
+    closed = np.broadcast_to(np.asarray(tol.closure if closure is None else closure, dtype=float), (count,))
+    polished = np.broadcast_to(np.asarray(polished, dtype=float), (count,)) * closed
     free = equations.mask(kin.variable_count)
     movable = bool(free.any())
     history: list[np.ndarray] = []
@@ -816,7 +861,8 @@ def newton(
         for iteration in range(max_iter + 1):
             if active.size == 0:
                 break
-            r, evaluation = equations.values(kin, q[active], goals[active])
+            these = equations.take(active)
+            r, evaluation = these.values(kin, q[active], goals[active])
             err = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(active.size)
             err = np.where(np.isfinite(err), err, np.inf)
             history.append(np.full(count, np.nan))
@@ -828,11 +874,11 @@ def newton(
             best[active[better]] = err[better]
             b, st = best[active], stalled[active]
             # done: near round-off, or closed and no longer gaining (a last step polishes a pose near a singularity)
-            done = (b <= polished * tol.closure) | ((b <= tol.closure) & (st > 0))
+            done = (b <= polished[active]) | ((b <= closed[active]) & (st > 0))
             keep = np.flatnonzero(~done & (st < patience) & (iteration < max_iter) & movable & (r.shape[0] > 0))
             if keep.size == 0:
                 break
-            jac = equations.jacobians(evaluation, keep)
+            jac = these.jacobians(evaluation, keep)
             active, r = active[keep], r[:, keep]
             # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
             # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
@@ -847,7 +893,7 @@ def newton(
             finite = np.all(np.isfinite(moved), axis=1) & (np.linalg.norm(moved - q0[active], axis=1) <= max_move[active])
             q[active[finite]] = moved[finite]
             active = active[finite]
-    return Closures(best_q, best, best <= tol.closure, np.array(history).T)
+    return Closures(best_q, best, best <= closed, np.array(history).T)
 
 
 def min_norm_steps(j: np.ndarray, r: np.ndarray) -> np.ndarray:

@@ -24,7 +24,8 @@ from typing import cast
 import numpy as np
 
 from ..core.analysis import analyze
-from .moves import MovePlan, probe, probe_directions
+from .moves import MovePlan, probe_directions
+from .moves import probes as probe_each
 from .orders import canonical_basis, end_effector_pattern
 from .parameters import MOVING_RANK, SAME_SUBSPACE
 from .results import Branch, Probe, SecondOrder
@@ -162,7 +163,7 @@ def examine_branch(plan: MovePlan, group: TangentGroup, probes: tuple[Probe, ...
     m1, n1 = rep.mobility, rep.tangent
     assert m1 is not None and n1 is not None and rep.q is not None  # the group's probes moved and were examined
     local_plan = plan.local()
-    local = tuple(probe(local_plan, rep.q, "local", d, examine=False) for _, d in probe_directions(canonical_basis(n1), rng, randoms=2, pairs=False))
+    local = probe_each(local_plan, rep.q, [("local", d) for _, d in probe_directions(canonical_basis(n1), rng, randoms=2, pairs=False)], examine=False)
     dim, moves = rank_of_moves(cast("list[np.ndarray]", [p.achieved for p in local if p.moved]))  # a probe that moved has a direction
     nearby = analyze(kin.mechanism_at(rep.q), tol=plan.nearby_tol)  # a pose Newton closed, judged as the moves judge nearby poses
     warning = ""

@@ -62,7 +62,7 @@ from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import RequestError, counted, shown_argument
 from .branches import examine_branch, group_by_tangent
-from .moves import MovePlan, probe, probe_directions
+from .moves import MovePlan, probe_directions, probes
 from .orders import canonical_basis, first_order, second_order
 from .parameters import DEFAULT_STEPS, MAX_RANDOMS, MAX_STEP_COUNT
 from .results import FiniteMobility, Probe, SecondOrder
@@ -197,4 +197,4 @@ def _moves_from_given_pose(plan: MovePlan, basis: np.ndarray, second: SecondOrde
         for d in second.directions.T[:k]:
             candidates += [("second-order", d), ("second-order", -d)]
     q0 = np.zeros(plan.kinematics.variable_count)
-    return tuple(probe(plan, q0, source, d) for source, d in candidates)
+    return probes(plan, q0, candidates)

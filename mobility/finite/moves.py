@@ -25,6 +25,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Sequence
 
 import numpy as np
 
@@ -34,7 +35,7 @@ from .orders import first_order
 from .parameters import INEXACT_ALLOWANCE, MAX_MOVE, NEARBY_NEAR_SINGULAR, NEARBY_RANK
 from .results import Probe
 
-__all__ = ["MovePlan", "probe", "probe_directions"]
+__all__ = ["MovePlan", "probe", "probes", "probe_directions"]
 
 
 @dataclass(frozen=True)
@@ -109,31 +110,68 @@ def probe(plan: MovePlan, q0: np.ndarray, source: str, d: np.ndarray, *, examine
     -------
     Probe
     """
+    return probes(plan, q0, [(source, d)], examine=examine)[0]
+
+
+def probes(plan: MovePlan, q0: np.ndarray, candidates: Sequence[tuple[str, np.ndarray]], *, examine: bool = True) -> tuple[Probe, ...]:
+    """:func:`probe` along each ``(source, direction)`` of ``candidates``, every direction and step re-closed in one Newton solve.
+
+    Each move is what :func:`probe` alone makes of it: the steps of a
+    direction are independent solves (each from ``q0`` plus the step), so
+    they are solved together, and a direction's steps after the first that
+    does not close are dropped from its result, as :func:`probe` stops there.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from mobility.core.kinematics import kinematics
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(1, 0, 0)),))
+    >>> plan = MovePlan.at_given_pose(kinematics(m), (1e-3, 1e-2))
+    >>> [(p.source, p.moved, p.steps) for p in probes(plan, np.zeros(1), [("basis", np.ones(1)), ("basis", -np.ones(1))])]
+    [('basis', True, (0.001, 0.01)), ('basis', True, (0.001, 0.01))]
+    """
+    if not candidates:
+        return ()
     kin = plan.kinematics
+    n, steps = kin.variable_count, plan.steps
     offset = float(np.linalg.norm(q0))  # distance of the start from the given pose
-    residuals, iterations, done = [], [], []
-    achieved = None
-    reached = None
-    for h in plan.steps:
-        target = float(d @ q0) + h
-        closure = kin.close(q0 + h * d, constraints=(d[None, :], np.array([target])), tol=plan.closure_tolerance(offset + h), max_move=MAX_MOVE * h)
-        residuals.append(closure.residual)
-        iterations.append(closure.iterations)
-        done.append(h)
-        if not closure.converged:
-            break
-        chord = closure.q - q0
-        if achieved is None:
-            achieved = chord / np.linalg.norm(chord)
-        if h == plan.probe_step:
-            reached = closure.q
-    moved = len(residuals) == len(plan.steps) and residuals[-1] <= plan.closure_tolerance(offset + plan.steps[-1]).closure
-    if not moved:
-        return Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), False, achieved)
-    if not examine or reached is None:
-        return Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), True, achieved, reached)
-    there = first_order(kin, reached, plan.nearby_tol)
-    return Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), True, achieved, reached, there.mobility, there.dof, there.smallest_kept, there.tangent)
+    starts, rows, targets, limits, moves = [], [], [], [], []
+    for _, d in candidates:
+        along = float(d @ q0)
+        for h in steps:
+            starts.append(q0 + h * d)
+            rows.append(d)
+            targets.append(along + h)
+            limits.append(plan.closure_tolerance(offset + h).closure)
+            moves.append(MAX_MOVE * h)
+    closures = kin.close_each(np.array(starts).reshape(-1, n), constraints=(np.array(rows).reshape(-1, 1, n), np.array(targets).reshape(-1, 1)),
+                              closure=np.array(limits), max_move=np.array(moves))
+    out = []
+    for index, (source, d) in enumerate(candidates):
+        residuals, iterations, done = [], [], []
+        achieved = None
+        reached = None
+        for h, closure in zip(steps, closures[index * len(steps) : (index + 1) * len(steps)]):
+            residuals.append(closure.residual)
+            iterations.append(closure.iterations)
+            done.append(h)
+            if not closure.converged:
+                break
+            chord = closure.q - q0
+            if achieved is None:
+                achieved = chord / np.linalg.norm(chord)
+            if h == plan.probe_step:
+                reached = closure.q
+        moved = len(residuals) == len(steps) and residuals[-1] <= plan.closure_tolerance(offset + steps[-1]).closure
+        if not moved:
+            out.append(Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), False, achieved))
+        elif not examine or reached is None:
+            out.append(Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), True, achieved, reached))
+        else:
+            there = first_order(kin, reached, plan.nearby_tol)
+            out.append(Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), True, achieved, reached, there.mobility, there.dof, there.smallest_kept, there.tangent))
+    return tuple(out)
 
 
 def probe_directions(basis: np.ndarray, rng: np.random.Generator, *, randoms: int, pairs: bool) -> list[tuple[str, np.ndarray]]:
