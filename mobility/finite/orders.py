@@ -35,6 +35,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy.linalg import qr
 
+from ..core.kinematics import CLOSE_STALLED as STALLED
+from ..core.kinematics import ROUND_OFF
 from ..core.kinematics import Kinematics
 from ..core.screws import motion_pattern, span_and_reciprocal
 from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance
@@ -123,11 +125,9 @@ def second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator,
     rank threshold) means small compared with how fast the loops open in
     general; geometry that is special only to ``inexact`` is allowed forms of
     that relative size.  The directions where every form vanishes are searched
-    by Levenberg–Marquardt from the basis directions and ``k + 2`` random
-    starts drawn from ``rng``.
+    by Gauss–Newton (:func:`_unit_zero`) from the basis directions and ``k + 2``
+    random starts drawn from ``rng``.
     """
-    from scipy.optimize import least_squares  # slow to import; needed only here
-
     jac = kin.jacobian(np.zeros(kin.variable_count))
     n = kin.variable_count
     k = tangent.shape[1]
@@ -140,28 +140,59 @@ def second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator,
     reduced = np.einsum("ia,cij,jb->cab", tangent, forms, tangent) / max(scale, 1e-300)
     if float(np.abs(reduced).max(initial=0.0)) <= zero:  # every first-order motion passes
         return SecondOrder(cokernel.shape[1], False, 0.0, np.zeros((n, 0)), tangent, np.zeros((0, k, k)), zero)
-    c = reduced.shape[0]
-    pad = max(0, k - c - 1)  # Levenberg-Marquardt wants as many residuals as unknowns
-
-    def violation(x: np.ndarray) -> np.ndarray:
-        return np.einsum("a,cab,b->c", x, reduced, x)
-
-    def residuals(x: np.ndarray) -> np.ndarray:  # the forms, and |x| = 1
-        return np.concatenate([violation(x), [x @ x - 1.0], np.zeros(pad)])
-
-    def jacobian(x: np.ndarray) -> np.ndarray:
-        return np.vstack([2.0 * np.einsum("cab,b->ca", reduced, x), 2.0 * x[None, :], np.zeros((pad, k))])
-
     starts = list(np.eye(k)) + list(rng.standard_normal((k + 2, k)))
     found: list[np.ndarray] = []
     least = np.inf
-    precision = SOLVER_STOP
     for x0 in starts:
-        sol = least_squares(residuals, x0 / np.linalg.norm(x0), jac=jacobian, method="lm", xtol=precision, ftol=precision, gtol=precision, max_nfev=100 * k)
-        x = sol.x / np.linalg.norm(sol.x)
-        value = float(np.max(np.abs(violation(x))))
+        x, value = _unit_zero(reduced, x0 / np.linalg.norm(x0), SECOND_ORDER_STEPS * k)
         least = min(least, value)
         if value <= zero and all(abs(float(x @ y)) < DISTINCT_LINES for y in found):
             found.append(x)
     directions = tangent @ np.array(found).T if found else np.zeros((n, 0))
     return SecondOrder(cokernel.shape[1], not found, 0.0 if found else least, directions, tangent, reduced, zero)
+
+
+SECOND_ORDER_STEPS = 100
+"""Gauss–Newton steps at most, per first-order freedom, of one search of :func:`_unit_zero`."""
+
+
+def _unit_zero(forms: np.ndarray, x: np.ndarray, steps: int) -> tuple[np.ndarray, float]:
+    """A unit ``x`` where the quadratic forms ``x @ forms[c] @ x`` vanish, by Gauss–Newton from the unit ``x``.
+
+    The equations are the forms and ``|x|^2 = 1``; each step is the
+    least-squares (minimum-norm) solution of their linearisation
+    (:func:`numpy.linalg.lstsq`), as the loops are closed by
+    :func:`mobility.core.kinematics.newton`.  Near a common zero it converges
+    fast (quadratically at a simple one, halving the error at a double one);
+    where there is none, the iterates only wander.  Returned: the iterate
+    (scaled to unit length) with the smallest largest form, and that value.
+    It stops at round-off (a step below :data:`~mobility.core.tolerance.SOLVER_STOP`
+    of ``|x|``, or forms, relative to at most 1, below one ulp of 1), after
+    :data:`~mobility.core.kinematics.CLOSE_STALLED` steps in a row that did not
+    halve the smallest value (no zero near), or after ``steps`` steps.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x, value = _unit_zero(np.array([[[1.0, 0.0], [0.0, -1.0]]]), np.array([0.8, 0.6]), 100)   # x0^2 - x1^2 = 0
+    >>> bool(abs(abs(x[0]) - abs(x[1])) < 1e-12), value < 1e-15
+    (True, True)
+    """
+    def violation(u: np.ndarray) -> np.ndarray:
+        return np.einsum("a,cab,b->c", u, forms, u)
+
+    best, least = x, float(np.abs(violation(x)).max(initial=0.0))
+    stalled = 0
+    for _ in range(steps):
+        residual = np.append(violation(x), x @ x - 1.0)
+        jac = np.vstack([2.0 * np.einsum("cab,b->ca", forms, x), 2.0 * x])
+        step = np.linalg.lstsq(jac, -residual, rcond=None)[0]
+        x = x + step
+        unit = x / np.linalg.norm(x)
+        value = float(np.abs(violation(unit)).max(initial=0.0))
+        stalled = 0 if value < 0.5 * least else stalled + 1
+        if value < least:
+            best, least = unit, value
+        if not np.isfinite(value) or value <= ROUND_OFF or stalled >= STALLED or np.linalg.norm(step) <= SOLVER_STOP * np.linalg.norm(x):
+            break
+    return best, least
