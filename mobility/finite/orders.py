@@ -33,7 +33,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.linalg import qr
 
 from ..core.kinematics import CLOSE_STALLED as STALLED
 from ..core.kinematics import ROUND_OFF
@@ -96,25 +95,46 @@ def _scaled(twists: np.ndarray) -> np.ndarray:
 def canonical_basis(null: np.ndarray) -> np.ndarray:
     """An orthonormal basis of ``span(null)`` that depends only on the subspace.
 
-    Pivoted QR of the projector (frame- and scale-free, since joint variables
-    are), each column's largest entry made positive.
+    Column by column: the joint variable whose unit rate keeps the most of
+    its length when projected on what is left of the subspace (ties, to
+    :data:`TIE` relative, go to the lowest variable), and the basis vector is
+    that projection, normalised; what is left is then the subspace
+    orthogonal to it.  So the first moves tried are the motions nearest to
+    turning or sliding one joint, and the basis is frame- and scale-free
+    (joint variables are).  Each column's largest entry is made positive
+    (ties again to the lowest variable).  These are the pivots and ``Q`` of a
+    column-pivoted QR of the projector, with the ties decided by the index
+    instead of by round-off (a symmetric mechanism has exact ties, which a
+    file moved rigidly would otherwise break another way).
 
     Examples
     --------
     >>> import numpy as np
     >>> c = np.sqrt(0.5)
     >>> a = canonical_basis(np.array([[c], [-c], [0.0]]))
-    >>> bool(np.allclose(a, canonical_basis(-a)))
+    >>> a.round(3).tolist(), bool(np.allclose(a, canonical_basis(-a)))
+    ([[0.707], [-0.707], [0.0]], True)
+    >>> b = canonical_basis(np.linalg.qr(np.array([[1.0, 1.0], [2.0, 0.0], [0.0, 1.0]]))[0])
+    >>> bool(np.allclose(b, canonical_basis(b @ np.array([[0.6, -0.8], [0.8, 0.6]]))))   # any basis of the plane
     True
     """
     k = null.shape[1]
     if k == 0:
         return null
-    proj = null @ null.T
-    qmat, _, _ = qr(proj, pivoting=True)
-    basis = qmat[:, :k]
-    signs = np.sign(basis[np.argmax(np.abs(basis), axis=0), np.arange(k)])
-    return basis * signs
+    rest = null @ null.T  # the projector on what is left of the subspace
+    basis = np.empty((len(rest), k))
+    for i in range(k):
+        lengths = np.einsum("ij,ij->j", rest, rest)  # of each joint's unit rate projected
+        j = int(np.flatnonzero(lengths >= (1.0 - TIE) * lengths.max())[0])
+        basis[:, i] = rest[:, j] / np.sqrt(lengths[j])
+        rest = rest - np.outer(basis[:, i], basis[:, i] @ rest)
+    magnitudes = np.abs(basis)
+    largest = np.argmax(magnitudes >= (1.0 - TIE) * magnitudes.max(axis=0, initial=0.0), axis=0)
+    return basis * np.sign(basis[largest, np.arange(k)])
+
+
+TIE = 1e-9
+"""Two lengths within this fraction of each other are a tie in :func:`canonical_basis` (round-off is ~1e-15)."""
 
 
 def second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator, inexact: float, tol: Tolerance = DEFAULT_TOLERANCE) -> SecondOrder:
@@ -124,7 +144,11 @@ def second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator,
     second-order term (every residual component), so "zero" (the policy's
     rank threshold) means small compared with how fast the loops open in
     general; geometry that is special only to ``inexact`` is allowed forms of
-    that relative size.  The directions where every form vanishes are searched
+    that relative size.  When the whole second-order term itself is that small
+    (its forms are brackets of unit twists, of order 1 in general), the loops
+    do not open to second order along any first-order motion (the Sarrus
+    linkage): every motion passes, and round-off is not measured against
+    round-off.  The directions where every form vanishes are searched
     by Gauss–Newton (:func:`_unit_zero`) from the basis directions and ``k + 2``
     random starts drawn from ``rng``.
     """
@@ -138,7 +162,7 @@ def second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator,
     zero = max(tol.rank, INEXACT_ALLOWANCE * inexact)
     forms = kin.second_order_forms(cokernel) if cokernel.shape[1] else np.zeros((0, n, n))
     reduced = np.einsum("ia,cij,jb->cab", tangent, forms, tangent) / max(scale, 1e-300)
-    if float(np.abs(reduced).max(initial=0.0)) <= zero:  # every first-order motion passes
+    if scale <= zero or float(np.abs(reduced).max(initial=0.0)) <= zero:  # every first-order motion passes
         return SecondOrder(cokernel.shape[1], False, 0.0, np.zeros((n, 0)), tangent, np.zeros((0, k, k)), zero)
     starts = list(np.eye(k)) + list(rng.standard_normal((k + 2, k)))
     found: list[np.ndarray] = []
