@@ -372,6 +372,66 @@ def test_geometry_special_only_to_the_rank_tolerance_counts_as_exact():
         assert (f.verdict, f.instantaneous_dof, f.full_cycle_dof) == (verdict, dof, dof)
 
 
+def test_moves_solved_together_are_the_moves_made_one_by_one():
+    from mobility.finite.moves import MovePlan, probe, probes
+    from mobility.finite.orders import canonical_basis, first_order
+
+    for m in (flat_four_bar(), folded_parallelogram(), tsai_3upu()):
+        kin = kinematics(m)
+        n = kin.variable_count
+        plan = MovePlan.at_given_pose(kin, (1e-3, 1e-2, 5e-2))
+        basis = canonical_basis(first_order(kin, np.zeros(n)).tangent)
+        candidates = [("basis", basis[:, 0]), ("basis", -basis[:, -1]), ("random", basis @ np.full(basis.shape[1], basis.shape[1] ** -0.5))]
+        start = np.zeros(n) if m.name != "four-bar" else 0.01 * basis[:, 0]
+        together = probes(plan, start, candidates)
+        assert len(together) == len(candidates)
+        for p, (source, d) in zip(together, candidates):
+            alone = probe(plan, start, source, d)
+            assert (p.source, p.moved, p.steps, p.iterations, p.mobility, p.dof) == (alone.source, alone.moved, alone.steps, alone.iterations, alone.mobility, alone.dof)
+            assert np.allclose(p.residuals, alone.residuals, rtol=0.0, atol=1e-15)
+        # the flat four-bar stops every move at its first step, as one move alone does
+        if m.name == "flat four-bar":
+            assert all(not p.moved and p.steps == (1e-3,) for p in together)
+
+
+def test_the_library_check_needs_no_scipy():
+    from test_start import heavy, modules_after
+
+    modules = modules_after("from mobility.cli import main\nmain(['check', 'mechanisms'])")
+    assert "mobility.finite.full_cycle" in modules and "mobility.actuation" in modules  # the full-cycle and actuation verdicts ran
+    assert heavy(modules) == {"networkx"}  # the spanning trees; no scipy (pivoted QR, least squares)
+
+
+def test_a_second_order_term_at_round_off_passes_every_motion():
+    # the Sarrus linkage moves on a straight line: its loops do not open to second order at all; measuring the
+    # round-off of the forms against the round-off of the whole term said "obstructed" (by the last bit of the basis)
+    from mobility.finite.orders import canonical_basis, first_order, second_order
+
+    kin = kinematics(mobility.load(MECHANISMS / "sarrus.yaml"))
+    here = first_order(kin, np.zeros(kin.variable_count))
+    for basis in (canonical_basis(here.tangent), here.tangent, -here.tangent, here.tangent + 1e-16):
+        second = second_order(kin, basis / np.linalg.norm(basis), np.random.default_rng(0), here.largest_dropped)
+        assert not second.obstructed and second.least_violation == 0.0
+    f = finite_mobility(mobility.load(MECHANISMS / "sarrus.yaml"))
+    assert f.verdict == "full-cycle" and not f.second_order.obstructed
+
+
+@pytest.mark.parametrize("build", [tsai_3upu, puu4, bennett, folded_parallelogram], ids=["3-UPU", "4-PUU", "bennett", "parallelogram"])
+def test_the_moves_tried_do_not_change_with_scale_or_rigid_motion(build):
+    # joint variables of R, P and U joints do not change with the frame, so neither may the basis the moves start from,
+    # even where a symmetric mechanism ties two joints exactly (the tie goes to the lower variable, not to round-off)
+    from mobility.finite.orders import canonical_basis, first_order
+
+    m = build()
+    bases = []
+    for other in (m, transformed(m, Transform.identity(), 1000.0), transformed(m, _rigid(), 1.0), transformed(m, _rigid(7), 0.01)):
+        kin = kinematics(other)
+        bases.append(canonical_basis(first_order(kin, np.zeros(kin.variable_count)).tangent))
+    assert bases[0].shape[1] >= 1
+    for b in bases[1:]:
+        assert np.abs(b - bases[0]).max() < 1e-9
+
+
 def test_results_are_reproducible_for_a_seed():
     a = finite_mobility(folded_parallelogram(), seed=4)
     b = finite_mobility(folded_parallelogram(), seed=4)

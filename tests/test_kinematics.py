@@ -179,6 +179,29 @@ def test_close_reports_failure_instead_of_raising():
     assert closure.iterations < 40  # it gives up when Newton stops gaining
 
 
+def test_close_each_takes_each_pose_the_steps_it_takes_alone():
+    # one Newton on a stack of starts, each with its own linear equation, threshold and largest move
+    kin = kinematics(MECHANISMS["6-UPS"]())
+    n = kin.variable_count
+    rng = np.random.default_rng(4)
+    tangent = kin.tangent_space(np.zeros(n))
+    directions = tangent @ rng.normal(size=(tangent.shape[1], 5))
+    directions = (directions / np.linalg.norm(directions, axis=0)).T
+    directions[4] = np.eye(n)[0]  # along one joint alone: it does not close (the loops hold it) within the small move
+    steps = np.array([1e-3, 1e-2, 5e-2, 2e-2, 1e-2])
+    closure, moves = np.array([1e-12, 1e-14, 1e-13, 1e-30, 1e-12]), np.array([1.0, 1.0, 1.0, 1.0, 1e-3])
+    starts = steps[:, None] * directions + 1e-4 * rng.normal(size=(5, n))
+    together = kin.close_each(starts, constraints=(directions[:, None, :], steps[:, None]), closure=closure, max_move=moves)
+    assert len(together) == 5
+    for k, c in enumerate(together):
+        alone = kin.close(starts[k], constraints=(directions[k][None, :], steps[k:k + 1]), tol=Tolerance(closure=closure[k]), max_move=moves[k])
+        assert (c.converged, c.iterations) == (alone.converged, alone.iterations)
+        assert np.abs(c.q - alone.q).max() < 1e-12 and abs(c.residual - alone.residual) < 1e-15
+        assert len(c.history) == c.iterations + 1
+    assert [c.converged for c in together] == [True, True, True, False, False]  # 1e-30: beyond floating point
+    assert abs(float(directions[2] @ together[2].q) - 5e-2) < 1e-14  # the pose's own linear equation holds
+
+
 def test_closure_threshold_is_the_policy_s():
     kin = kinematics(MECHANISMS["bennett"]())
     guess = 0.05 * kin.tangent_space(np.zeros(kin.variable_count))[:, 0]
