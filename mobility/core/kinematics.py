@@ -357,19 +357,25 @@ class Kinematics:
         the metric of ``q``) of the joint rates that close every loop to first
         order.
         """
+        return self.rank_decisions(self._stack(q)[0][:1], tol)[0]
+
+    def rank_decisions(self, q: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[tuple[RankDecision, np.ndarray], ...]:
+        """:meth:`rank_decision` at each pose of a stack ``q`` ``(N, n)`` (one Jacobian and one SVD call for the stack)."""
+        stack = self._stack(q)[0]
+        n = self.variable_count
+        if self.loop_count == 0:
+            return tuple((RankDecision(0), np.eye(n)) for _ in stack)
         # + 0.0: a signed zero (the sign of a product's round-off) is a plain zero, whose null space LAPACK completes
         # the same way whatever the file's scale (-0.0 and 0.0 steer its reflections apart)
-        jac = self.loop_jacobian(self._stack(q)[0][0]) + 0.0
-        n = self.variable_count
-        if jac.shape[0] == 0:
-            return RankDecision(0), np.eye(n)
+        jac = np.moveaxis(self.evaluate(stack).jacobian(), -1, 0) + 0.0
         norms = np.linalg.norm(self.twists, axis=0)
         _, s, vt = np.linalg.svd(jac / norms, full_matrices=True)
-        decision = decide_rank(s, tol)
-        null = vt[decision.rank :].T / norms[:, None]  # back to rates of q
-        if null.shape[1]:
-            null = np.linalg.qr(null)[0]
-        return decision, null
+        out = []
+        for sk, vk in zip(s, vt):
+            decision = decide_rank(sk, tol)
+            null = vk[decision.rank :].T / norms[:, None]  # back to rates of q
+            out.append((decision, np.linalg.qr(null)[0] if null.shape[1] else null))
+        return tuple(out)
 
     def tangent_space(self, q: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
         """Orthonormal basis of the first-order motions at ``q`` (null space of the loop Jacobian)."""

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core.kinematics import Kinematics
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
-from .orders import first_order
+from .orders import first_orders
 from .parameters import INEXACT_ALLOWANCE, MAX_MOVE, NEARBY_NEAR_SINGULAR, NEARBY_RANK
 from .results import Probe
 
@@ -147,7 +147,8 @@ def probes(plan: MovePlan, q0: np.ndarray, candidates: Sequence[tuple[str, np.nd
             moves.append(MAX_MOVE * h)
     closures = kin.close_each(np.array(starts).reshape(-1, n), constraints=(np.array(rows).reshape(-1, 1, n), np.array(targets).reshape(-1, 1)),
                               closure=np.array(limits), max_move=np.array(moves))
-    out = []
+    out: list[Probe] = []
+    arrived = []  # (index in out, pose reached with the probe step) of the moves that moved
     for index, (source, d) in enumerate(candidates):
         residuals, iterations, done = [], [], []
         achieved = None
@@ -164,13 +165,12 @@ def probes(plan: MovePlan, q0: np.ndarray, candidates: Sequence[tuple[str, np.nd
             if h == plan.probe_step:
                 reached = closure.q
         moved = len(residuals) == len(steps) and residuals[-1] <= plan.closure_tolerance(offset + steps[-1]).closure
-        if not moved:
-            out.append(Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), False, achieved))
-        elif not examine or reached is None:
-            out.append(Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), True, achieved, reached))
-        else:
-            there = first_order(kin, reached, plan.nearby_tol)
-            out.append(Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), True, achieved, reached, there.mobility, there.dof, there.smallest_kept, there.tangent))
+        out.append(Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), moved, achieved, reached if moved else None))
+        if moved and examine and reached is not None:
+            arrived.append((len(out) - 1, reached))
+    # the first-order motions where the moves arrived, examined together
+    for (index, reached), there in zip(arrived, first_orders(kin, np.array([q for _, q in arrived]).reshape(-1, n), plan.nearby_tol)):
+        out[index] = replace(out[index], mobility=there.mobility, dof=there.dof, margin=there.smallest_kept, tangent=there.tangent)
     return tuple(out)
 
 

@@ -42,7 +42,7 @@ from ..core.tolerance import DEFAULT_TOLERANCE, SOLVER_STOP, Tolerance
 from .parameters import DISTINCT_LINES, INEXACT_ALLOWANCE
 from .results import SecondOrder
 
-__all__ = ["FirstOrder", "first_order", "second_order", "canonical_basis", "end_effector_pattern"]
+__all__ = ["FirstOrder", "first_order", "first_orders", "second_order", "canonical_basis", "end_effector_pattern"]
 
 
 class FirstOrder(NamedTuple):
@@ -82,9 +82,20 @@ def end_effector_pattern(twists: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE)
 
 def first_order(kin: Kinematics, q: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> FirstOrder:
     """Mobility, tangent space, margin and end-effector DOF at the pose ``q``."""
-    decision, null = kin.rank_decision(q, tol)
-    dof = span_and_reciprocal(_scaled(kin.end_effector_jacobian(q) @ null), tol).dim if null.shape[1] else 0
-    return FirstOrder(null.shape[1], null, decision.smallest_kept, decision.largest_dropped, dof)
+    return first_orders(kin, np.asarray(q, dtype=float).reshape(1, -1), tol)[0]
+
+
+def first_orders(kin: Kinematics, q: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[FirstOrder, ...]:
+    """:func:`first_order` at each pose of a stack ``q`` ``(N, n)`` (its Jacobians and SVDs each in one call)."""
+    if len(q) == 0:
+        return ()
+    decisions = kin.rank_decisions(q, tol)
+    twists = kin.end_effector_jacobian(q).reshape(len(q), 6, -1)
+    out = []
+    for (decision, null), ee in zip(decisions, twists):
+        dof = span_and_reciprocal(_scaled(ee @ null), tol).dim if null.shape[1] else 0
+        out.append(FirstOrder(null.shape[1], null, decision.smallest_kept, decision.largest_dropped, dof))
+    return tuple(out)
 
 
 def _scaled(twists: np.ndarray) -> np.ndarray:
