@@ -855,8 +855,11 @@ def newton(
     stalled = np.zeros(count, dtype=int)
     active = np.arange(count)
     max_move = np.broadcast_to(np.asarray(max_move, dtype=float), (count,))
-    closed = np.broadcast_to(np.asarray(tol.closure if closure is None else closure, dtype=float), (count,))
-    polished = np.broadcast_to(np.asarray(polished, dtype=float), (count,)) * closed
+    # the thresholds of "closed" and of "nothing left to gain": one for every pose, or each pose its own
+    per_pose = closure is not None or np.ndim(polished) > 0
+    closed = np.broadcast_to(np.asarray(tol.closure if closure is None else closure, dtype=float), (count if per_pose else 1,))
+    enough = np.asarray(polished, dtype=float) * closed  # no step has anything left to gain below this
+    own_rows = equations.linear is not None and equations.linear.ndim == 3
     free = equations.mask(kin.variable_count)
     movable = bool(free.any())
     history: list[np.ndarray] = []
@@ -867,7 +870,7 @@ def newton(
         for iteration in range(max_iter + 1):
             if active.size == 0:
                 break
-            these = equations.take(active)
+            these = equations.take(active) if own_rows else equations
             r, evaluation = these.values(kin, q[active], goals[active])
             err = np.abs(r).max(axis=0) if r.shape[0] else np.zeros(active.size)
             err = np.where(np.isfinite(err), err, np.inf)
@@ -880,7 +883,8 @@ def newton(
             best[active[better]] = err[better]
             b, st = best[active], stalled[active]
             # done: near round-off, or closed and no longer gaining (a last step polishes a pose near a singularity)
-            done = (b <= polished[active]) | ((b <= closed[active]) & (st > 0))
+            low, high = (enough[active], closed[active]) if per_pose else (enough[0], closed[0])
+            done = (b <= low) | ((b <= high) & (st > 0))
             keep = np.flatnonzero(~done & (st < patience) & (iteration < max_iter) & movable & (r.shape[0] > 0))
             if keep.size == 0:
                 break
