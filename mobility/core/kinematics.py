@@ -41,8 +41,10 @@ moves the mechanism: it is the finite counterpart of
 * **Re-closure** (:func:`newton`): Gauss–Newton with damped minimum-norm
   steps, on every pose of a stack at once, with some variables held
   (:class:`Equations`), pose coordinates of the end effector fixed, or extra
-  linear equations ``A q = b`` (the progress along a direction);
-  :meth:`Kinematics.close` is its stack of one.
+  linear equations ``A q = b`` (the progress along a direction), one system
+  for the whole stack or each pose its own; :meth:`Kinematics.close` is its
+  stack of one, :meth:`Kinematics.close_each` a stack of such solves (the
+  moves of a finite-motion analysis, solved together).
 * **Moved mechanism**: :meth:`Kinematics.mechanism_at` builds a new
   :class:`~mobility.core.model.Mechanism` at the pose ``q``: each joint's geometry
   is carried by the link it belongs to (a ``U`` joint's first axis by

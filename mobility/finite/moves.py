@@ -8,7 +8,11 @@ when the loops close at every step.  A motion that does not exist leaves a
 residual of order ``h^2`` that Newton cannot remove.  At the pose reached with
 the plan's probe step, the first-order motions are examined again
 (:func:`~mobility.finite.orders.first_order`), which is how branches are told
-apart.
+apart.  :func:`probes` makes every move of a run at once: each step of each
+direction is its own solve (from ``q0``, not from the step before), so one
+Newton on the stack of them all
+(:meth:`~mobility.core.kinematics.Kinematics.close_each`) gives each the
+steps it would take alone, and costs about what one move does.
 
 Examples
 --------
