@@ -715,7 +715,7 @@ class Equations:
 
     def take(self, rows: np.ndarray) -> "Equations":
         """The equations of the poses ``rows`` of the stack (the same unless each pose has its own linear equations)."""
-        return self if self.linear is None or self.linear.ndim == 2 else _replace(self, linear=self.linear[rows])
+        return self if self.linear is None or self.linear.ndim == 2 else Equations(self.free, self.components, self.linear[rows], self.exact)
 
     def values(self, kin: Kinematics, q: np.ndarray, goals: np.ndarray) -> tuple[np.ndarray, Evaluation]:
         """Every equation's residual ``(m, N)`` at the poses ``q`` ``(N, n)`` and their ``goals``, and the evaluation that gives their Jacobian."""

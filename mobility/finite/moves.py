@@ -140,17 +140,16 @@ def probes(plan: MovePlan, q0: np.ndarray, candidates: Sequence[tuple[str, np.nd
     kin = plan.kinematics
     n, steps = kin.variable_count, plan.steps
     offset = float(np.linalg.norm(q0))  # distance of the start from the given pose
-    starts, rows, targets, limits, moves = [], [], [], [], []
+    limits = [plan.closure_tolerance(offset + h).closure for h in steps]  # each step's, the same for every direction
+    starts, rows, targets = [], [], []
     for _, d in candidates:
         along = float(d @ q0)
         for h in steps:
             starts.append(q0 + h * d)
             rows.append(d)
             targets.append(along + h)
-            limits.append(plan.closure_tolerance(offset + h).closure)
-            moves.append(MAX_MOVE * h)
     closures = kin.close_each(np.array(starts).reshape(-1, n), constraints=(np.array(rows).reshape(-1, 1, n), np.array(targets).reshape(-1, 1)),
-                              closure=np.array(limits), max_move=np.array(moves))
+                              closure=np.tile(limits, len(candidates)), max_move=np.tile([MAX_MOVE * h for h in steps], len(candidates)))
     out: list[Probe] = []
     arrived = []  # (index in out, pose reached with the probe step) of the moves that moved
     for index, (source, d) in enumerate(candidates):
@@ -168,7 +167,7 @@ def probes(plan: MovePlan, q0: np.ndarray, candidates: Sequence[tuple[str, np.nd
                 achieved = chord / np.linalg.norm(chord)
             if h == plan.probe_step:
                 reached = closure.q
-        moved = len(residuals) == len(steps) and residuals[-1] <= plan.closure_tolerance(offset + steps[-1]).closure
+        moved = len(residuals) == len(steps) and residuals[-1] <= limits[-1]
         out.append(Probe(source, d, tuple(done), tuple(residuals), tuple(iterations), moved, achieved, reached if moved else None))
         if moved and examine and reached is not None:
             arrived.append((len(out) - 1, reached))
