@@ -78,7 +78,7 @@ def test_indices_fall_to_exactly_zero_at_the_singular_poses_of_the_sweep():
     assert np.all(r.lti[others] > 0.5)
 
 
-def _five_bar_with_a_straight_limb(tmp_path) -> mobility.Mechanism:
+def _five_bar_with_a_straight_limb() -> mobility.Mechanism:
     """planar_5r.yaml's link lengths with crank A2B2 and distal link B2P in line (P at full reach of limb 2), B1 from the circles."""
     a2 = np.array([200.0, 0.0])
     crank1, crank2 = math.hypot(-50, 150), math.hypot(60, 140)
@@ -90,20 +90,18 @@ def _five_bar_with_a_straight_limb(tmp_path) -> mobility.Mechanism:
     e = p / d
     b1 = along * e + math.sqrt(crank1**2 - along**2) * np.array([-e[1], e[0]])
     at = lambda v: f"[{float(v[0])!r}, {float(v[1])!r}, 0]"  # noqa: E731
-    path = tmp_path / "five_bar_straight.yaml"
-    path.write_text("name: five-bar, limb 2 straight\nground: ground\nend_effector: distal1\njoints:\n"
-                    "  - {name: A1, type: R, links: [ground, proximal1], axis: [0, 0, 1], point: [0, 0, 0], actuated: true}\n"
-                    f"  - {{name: B1, type: R, links: [proximal1, distal1], axis: [0, 0, 1], point: {at(b1)}}}\n"
-                    f"  - {{name: P, type: R, links: [distal1, distal2], axis: [0, 0, 1], point: {at(p)}}}\n"
-                    f"  - {{name: B2, type: R, links: [distal2, proximal2], axis: [0, 0, 1], point: {at(b2)}}}\n"
-                    "  - {name: A2, type: R, links: [proximal2, ground], axis: [0, 0, 1], point: [200, 0, 0], actuated: true}\n")
-    return mobility.load(path)
+    return mobility.loads("name: five-bar, limb 2 straight\nground: ground\nend_effector: distal1\njoints:\n"
+                          "  - {name: A1, type: R, links: [ground, proximal1], axis: [0, 0, 1], point: [0, 0, 0], actuated: true}\n"
+                          f"  - {{name: B1, type: R, links: [proximal1, distal1], axis: [0, 0, 1], point: {at(b1)}}}\n"
+                          f"  - {{name: P, type: R, links: [distal1, distal2], axis: [0, 0, 1], point: {at(p)}}}\n"
+                          f"  - {{name: B2, type: R, links: [distal2, proximal2], axis: [0, 0, 1], point: {at(b2)}}}\n"
+                          "  - {name: A2, type: R, links: [proximal2, ground], axis: [0, 0, 1], point: [200, 0, 0], actuated: true}\n")
 
 
-def test_five_bar_input_singularity_where_crank_elbow_and_tool_point_fall_in_line_gives_lti_zero(tmp_path):
+def test_five_bar_input_singularity_where_crank_elbow_and_tool_point_fall_in_line_gives_lti_zero():
     # The end effector loses a freedom there (2 inputs, 1 DOF): the best choice of inputs would leave A2 out and
     # report LTI 1; A2's limb is at a serial singularity (ITI = sin of the crank-coupler angle = 0), so LTI is 0.
-    m = _five_bar_with_a_straight_limb(tmp_path)
+    m = _five_bar_with_a_straight_limb()
     t = check_transmission(m)
     assert mobility.analyze(m).dof == 1 and t.iti[1] == 0.0 and t.lti == 0.0 and not t.good
     r = mobility.sweep(m, ["A1=-10:10:3", "B2=-20:20:5"])
@@ -144,7 +142,7 @@ angles = st.floats(-math.pi, math.pi, allow_nan=False)
 
 @settings(max_examples=12, deadline=None)
 @given(scale=st.floats(1e-3, 1e3), a=angles, b=angles, c=angles, shift=st.tuples(*[st.floats(-1e3, 1e3)] * 3),
-       name=st.sampled_from(["3prs_tilted", "actuation_3rps", "planar_5r", "4puu"]))
+       name=st.sampled_from(["3prs_tilted", "actuation_3rps", "planar_5r", "4puu", "crank_rocker_goessner"]))
 def test_indices_are_invariant_to_units_and_frames(scale, a, b, c, shift, name):
     m = load(name)
     base = check_transmission(m)
@@ -154,6 +152,13 @@ def test_indices_are_invariant_to_units_and_frames(scale, a, b, c, shift, name):
         pairs += [*zip(base.iti, moved.iti), *zip(base.oti, moved.oti), *zip(base.cti_limbs, moved.cti_limbs)]
     for x, y in pairs:
         assert (math.isnan(x) and math.isnan(y)) or x == pytest.approx(y, abs=1e-7)
+
+
+@settings(max_examples=8, deadline=None)
+@given(scale=st.floats(1e-3, 1e3), a=angles, b=angles, c=angles, shift=st.tuples(*[st.floats(-1e3, 1e3)] * 3))
+def test_the_input_singularity_stays_exactly_zero_in_any_unit_and_frame(scale, a, b, c, shift):
+    moved = check_transmission(_moved(_five_bar_with_a_straight_limb(), scale, _rotation(a, b, c), np.asarray(shift)))
+    assert moved.lti == 0.0 and moved.iti[1] == 0.0 and moved.iti[0] == pytest.approx(1.0, abs=1e-7)
 
 
 def test_sweep_columns_threshold_and_leaving_them_out():
