@@ -13,7 +13,7 @@ what was searched) is one source with two worked examples:
   its minimal transmission angle, reached with the crank collinear with the
   frame: a = 60, b = 103, c = 94, d = 120 give 35 deg; a = 46.7, b = 116,
   c = 73.9, d = 120 give 37.7 deg.  The bundled files are
-  ``crank_rocker_goessner.yaml`` and ``crank_rocker_goessner_optimal.yaml``.
+  ``crank_rocker_goessner.yaml`` and ``crank_rocker_optimal.yaml``.
 
 The crank's output transmission index is the sine of the transmission angle
 (Wang, Wu, Liu, Mech. Mach. Theory 45 (2010) 1462-1476; checked over a whole
@@ -41,7 +41,7 @@ from mobility.library import path as library_path
 # name, the printed lengths {parameter: (value, half of its last printed digit)}, the printed angle and its half digit
 EXAMPLES = [
     ("crank_rocker_goessner", {"a": (60.0, 0.0), "b": (103.0, 0.5), "c": (94.0, 0.5), "d": (120.0, 0.0)}, 35.0, 0.5),
-    ("crank_rocker_goessner_optimal", {"a": (46.7, 0.05), "b": (116.0, 0.5), "c": (73.9, 0.05), "d": (120.0, 0.0)}, 37.7, 0.05),
+    ("crank_rocker_optimal", {"a": (46.7, 0.05), "b": (116.0, 0.5), "c": (73.9, 0.05), "d": (120.0, 0.0)}, 37.7, 0.05),
 ]
 
 
