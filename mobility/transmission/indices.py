@@ -170,7 +170,8 @@ class BatchTransmission:
     iti, oti : ndarray, shape (N, n)
         Input and output transmission index of each input (NaN for an input
         left out of the best non-redundant choice, or where the end effector
-        has no freedom).
+        has no freedom; at an input singularity with more inputs than
+        freedoms every input's ITI is given, the singular one's 0).
     lti : ndarray, shape (N,)
         Local transmission index ``min(ITI, OTI)``: the distance to an
         actuation singularity (0 there).
