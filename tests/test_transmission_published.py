@@ -5,10 +5,11 @@ both printed, compared within the precision the source gives.  What could be
 read in a stored source (docs/sweeps.md, "Published values reproduced", lists
 what was searched) is one source with two worked examples:
 
-* S. Goessner, crocker.js, the crank-rocker library of his lectures
-  (github.com/goessner/crocker, README.md, "Node Example - Simple
-  Crank-Rocker" and "Node Example - Optimal Crank-Rocker"; after his
-  Getriebelehre - Vektorielle Analyse ebener Mechanismen, 2012).  Each prints
+* S. Goessner, crocker.js 0.8.0 (2016), the crank-rocker library of his
+  lectures (github.com/goessner/crocker and npmjs.com/package/crocker,
+  README.md, "Node Example - Simple Crank-Rocker" and "Node Example - Optimal
+  Crank-Rocker"; the README refers to his book Getriebelehre - Vektorielle
+  Analyse ebener Mechanismen).  Each prints
   the link lengths of a crank-rocker (crank a, coupler b, rocker c, frame d) and
   its minimal transmission angle, reached with the crank collinear with the
   frame: a = 60, b = 103, c = 94, d = 120 give 35 deg; a = 46.7, b = 116,
