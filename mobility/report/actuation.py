@@ -39,15 +39,7 @@ from ..errors import counted
 from ..flexure import FlexureSpaces
 from .text import fmt_number, fmt_vector, screw_text
 
-__all__ = [
-    "actuation_text",
-    "actuation_json",
-    "enumeration_text",
-    "enumeration_json",
-    "flexure_spaces_text",
-    "flexure_text",
-    "flexure_json",
-]
+__all__ = ["actuation_text", "actuation_json", "enumeration_text", "enumeration_json", "flexure_spaces_text", "flexure_text", "flexure_json"]
 
 PoseChecks = Sequence[tuple[str, ActuationCheck]]
 """Further poses of one choice of inputs: ``(label, check)`` pairs."""
