@@ -1,16 +1,9 @@
 """Reports of a :class:`~mobility.sweeps.SweepResult`: a short text summary, CSV and JSON.
 
-Only formatting: the sweep is computed by :func:`mobility.sweep`.
-
-* :func:`sweep_summary`: what ``mobility sweep`` prints: the grid, how many
-  poses were assembled, the poses per answer (DOF, pattern, mobility), the
-  actuation verdicts, the singular poses, where the answer changes and the seams
-  of full turns;
-* :func:`sweep_csv`: a header row naming each varied coordinate (with its
-  unit), then ``dof``, ``pattern``, ``mobility`` and the other columns of
-  :data:`mobility.sweeps.COLUMNS`; one row per pose, empty cells where a pose
-  is not assembled;
-* :func:`sweep_json`: :meth:`SweepResult.to_dict` as JSON.
+:func:`sweep_summary` is what ``mobility sweep`` prints; :func:`sweep_csv` has
+a header naming each varied coordinate (with its unit), then the columns of
+:data:`mobility.sweeps.COLUMNS`, one row per pose, empty cells where a pose is
+not assembled; :func:`sweep_json` is :meth:`SweepResult.to_dict` as JSON.
 
 Examples
 --------

@@ -13,13 +13,10 @@
 * **slices**: the same map at up to :data:`MAX_SLICES` values of the third
   coordinate, the slices holding singular poses first.
 
-matplotlib is optional (``pip install 'mechanism-mobility[plot]'``); figures are built
-without :mod:`matplotlib.pyplot` by the pictures' backend
-(:mod:`mobility.report.plotting.backend`), and
-:func:`~mobility.report.plotting.save_figure` writes them.  Every drawn
-element of an answer carries a ``gid`` (``"mobility:sweep:curve"``, ``"mobility:sweep:map"``,
-``"mobility:sweep:regions"``, ``"mobility:sweep:singular"``,
-``"mobility:sweep:unassembled"``) so that tests can read a picture back.
+Figures are built by :mod:`mobility.report.plotting.backend` (matplotlib,
+optional). Every drawn answer carries a ``gid`` (``"mobility:sweep:curve"``,
+``"mobility:sweep:map"``, ``"mobility:sweep:regions"``, ``"mobility:sweep:singular"``,
+``"mobility:sweep:unassembled"``).
 
 Examples
 --------
@@ -56,10 +53,8 @@ MAX_SLICES = 6
 def colour_of(result: SweepResult) -> tuple[np.ndarray, str]:
     """The quantity a map shows, per pose (NaN where not assembled), and its label.
 
-    With inputs, the actuation conditioning κ; else the rank margin, which at
-    a pose that gains a freedom is that of another rank (the new freedom's
-    singular value is dropped there, not kept): such a pose shows the
-    smallest margin of the map, as the regular answer's margin is zero there.
+    With inputs, the actuation conditioning κ; else the rank margin, a pose that
+    gains a freedom (whose margin is another rank's) shown at the map's smallest.
     """
     if result.actuated:
         return np.where(result.assembled, result.conditioning, np.nan), f"actuation conditioning κ ({', '.join(result.actuated)})"
@@ -111,12 +106,7 @@ def _answers(result: SweepResult) -> tuple[np.ndarray, list[str]]:
 def require_drawable(coordinates: int, what: str = "") -> None:
     """Refuse a picture that cannot be drawn, before the sweep is computed.
 
-    Parameters
-    ----------
-    coordinates : int
-        The number of varied coordinates.
-    what : str
-        Put in front of the message (``"--plot out.png: "``).
+    ``coordinates``: the number of varied coordinates; ``what`` goes in front of the message.
 
     Raises
     ------
@@ -140,9 +130,9 @@ def require_drawable(coordinates: int, what: str = "") -> None:
 def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
     """A picture of ``result``: a curve, a map or slices (see the module docstring).
 
-    The default title is the mechanism's name; it and the coordinates' names
-    are cut to :data:`~mobility.report.plotting.style.MAX_LABEL` characters
-    (``title`` to :data:`~mobility.report.plotting.style.MAX_TITLE`).
+    The default title is the mechanism's name; names are cut to
+    :data:`~mobility.report.plotting.style.MAX_LABEL` characters (``title`` to
+    :data:`~mobility.report.plotting.style.MAX_TITLE`).
 
     Raises
     ------
@@ -305,16 +295,9 @@ def _spread(candidates: list[int], chosen: list[int], count: int, size: int) -> 
 def choose_slices(result: SweepResult, most: int = MAX_SLICES) -> tuple[tuple[int, ...], str]:
     """The values of the third coordinate drawn as slices, and a note saying which.
 
-    Preferred, in turn: the file's pose (when the third coordinate takes
-    it), the values holding singular poses (spread over them when there are
-    more than the room left), then values spread over the range.
-
-    Returns
-    -------
-    slices : tuple of int
-        Indices of the chosen values, in increasing order.
-    note : str
-        Which slices are shown, out of how many (for the figure's title).
+    Preferred, in turn: the file's pose, the values holding singular poses,
+    then values spread over the range. ``slices`` are indices in increasing
+    order; ``note`` says which, out of how many (for the title).
 
     Examples
     --------

@@ -28,15 +28,7 @@ __all__ = ["fmt_number", "fmt_vector", "screw_text", "margin_lines", "text_repor
 def fmt_number(x: float, scale: float = 1.0, digits: int = 6, tol: Tolerance = DEFAULT_TOLERANCE) -> str:
     """A number with ``digits`` significant digits; round-off shown as 0 by the one rule, :func:`~mobility.core.tolerance.clean_numbers`.
 
-    Parameters
-    ----------
-    x : float
-    scale : float
-        The size round-off is relative to (the mechanism's length for a point
-        or a pitch, 1 for a unit direction).
-    digits : int
-    tol : Tolerance
-        Its ``round_off`` is the relative size below which a number is 0.
+    ``scale`` is the size round-off is relative to (the mechanism's length for a point or a pitch, 1 for a unit direction).
     """
     text = f"{clean_numbers(float(x), scale, tol):.{digits}g}"
     return "0" if text in ("-0", "0") else text
@@ -50,15 +42,8 @@ def fmt_vector(v: Any, scale: float = 1.0) -> str:
 def screw_text(a: ScrewAxis, scale: float = 1.0, *, verb: str = "about", pitch_unit: str = "") -> str:
     """A screw axis in words: kind, verb, direction, a point, and the pitch when it is not zero.
 
-    Parameters
-    ----------
-    a : ScrewAxis
-    scale : float
-        The mechanism's length (round-off of the point and the pitch is relative to it).
-    verb : str
-        ``"about"`` for a motion, ``"along"`` for a wrench, ``""`` for none.
-    pitch_unit : str
-        Written after the pitch, e.g. ``" mm/rad"``.
+    ``scale``: the mechanism's length (round-off of point and pitch is relative to it); ``verb``: ``"about"`` for a
+    motion, ``"along"`` for a wrench, ``""`` for none; ``pitch_unit`` is written after the pitch (``" mm/rad"``).
 
     Examples
     --------
@@ -99,14 +84,7 @@ def margin_lines(result: Result) -> list[str]:
 
 
 def text_report(result: Result, *, limbs: bool = False) -> str:
-    """The report printed by ``mobility analyze``.
-
-    Parameters
-    ----------
-    result : Result
-    limbs : bool
-        Also list each limb's twists and constraint wrenches in the limb's frame.
-    """
+    """The report printed by ``mobility analyze`` (``limbs``: also each limb's twists and constraint wrenches, in its frame)."""
     result = require_result(result, "text_report")
     s = result.length_scale
     unit = result.length_unit
@@ -125,12 +103,9 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
     for i, f in enumerate(result.forces):
         pitch = "" if f.pitch == 0 else f"  with couple pitch {fmt_number(f.pitch, s)}"
         out.append(f"    W{k + i + 1}  {f.kind} along {fmt_vector(f.axis)} through {fmt_vector(f.point, s)}{pitch}")
-    out.append("  whole mechanism:")
-    out.append(f"    mobility M = {result.mobility}   (Grübler–Kutzbach count: {result.gruebler_kutzbach})")
-    out.append(
-        f"    redundant constraints: {result.redundant_constraints}   idle DOF: {result.idle_dof}   "
-        f"loops: {result.loops}   links: {result.links}   joints: {result.joints} ({counted(result.joint_freedoms, 'freedom')})"
-    )
+    out += ["  whole mechanism:", f"    mobility M = {result.mobility}   (Grübler–Kutzbach count: {result.gruebler_kutzbach})",
+            f"    redundant constraints: {result.redundant_constraints}   idle DOF: {result.idle_dof}   "
+            f"loops: {result.loops}   links: {result.links}   joints: {result.joints} ({counted(result.joint_freedoms, 'freedom')})"]
     if result.gruebler_kutzbach_explanation:
         out.append("    why G–K differs: " + result.gruebler_kutzbach_explanation)
     if result.idle_dof:
@@ -156,9 +131,7 @@ def json_report(result: Result) -> str:
     Raises
     ------
     AnalysisError
-        When a number of the result is not finite (JSON has no NaN or
-        infinity; the analysis refuses such results first, this is the last
-        guard).
+        When a number of the result is not finite (JSON has no NaN or infinity).
     """
     result = require_result(result, "json_report")
     try:
@@ -170,16 +143,8 @@ def json_report(result: Result) -> str:
 def with_section(report: str, fmt: str, key: str, value: Any, heading: str, section: str) -> str:
     """A report of ``mobility analyze`` in format ``fmt`` with one more section.
 
-    Parameters
-    ----------
-    report : str
-        The report in format ``fmt``.
-    fmt : str
-        ``"json"``: ``value`` is added to the object under ``key``; ``"md"``:
-        ``section`` under the heading ``heading``, in a code block; any other
-        (``"text"``): ``section`` appended.
-    key, value, heading, section
-        The section in each form.
+    ``"json"``: ``value`` is added to the object under ``key``; ``"md"``: ``section`` under the heading
+    ``heading``, in a code block; any other (``"text"``): ``section`` appended.
 
     Examples
     --------
