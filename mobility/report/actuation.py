@@ -1,8 +1,6 @@
 """Reports of actuation assessments and flexure spaces, as text and as JSON (``mobility actuation``).
 
-Only formatting: the answers come from :mod:`mobility.actuation` and
-:mod:`mobility.flexure`.  Each ``*_text`` function gives the lines printed by
-the command line, each ``*_json`` function the JSON object of ``--json``.
+Each ``*_text`` function gives the lines printed, each ``*_json`` the object of ``--json``.
 
 Examples
 --------

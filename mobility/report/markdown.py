@@ -1,9 +1,7 @@
 """A Markdown report of a :class:`~mobility.core.result.Result` (``mobility analyze --format md``).
 
-Tables that paste into a paper, a README or an issue: the end effector's
-freedoms, its constraint wrenches, the whole-mechanism counts (Grübler–Kutzbach
-beside the screw-theory mobility, with the reason they differ) and, for a
-parallel mechanism, one row per limb.  Only formatting happens here.
+Tables that paste into a paper, a README or an issue: freedoms, constraint
+wrenches, the whole-mechanism counts and, for a parallel mechanism, one row per limb.
 
 Examples
 --------

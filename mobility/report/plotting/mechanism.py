@@ -62,25 +62,19 @@ def plot_mechanism(
     ----------
     mechanism : Mechanism
     result : Result, optional
-        Its analysis (of this mechanism at this pose); computed with ``tol``
-        when not given.
+        Its analysis at this pose; computed with ``tol`` when not given.
     constraints : bool
-        Also draw the constraint wrenches on the end effector: force lines
-        (red, ``W``) and couples (purple double arrows, ``C``), numbered as in
-        the text report.
+        Also draw the constraint wrenches: force lines (red, ``W``) and couples
+        (purple double arrows, ``C``), numbered as in the text report.
     views : int or sequence of (elev, azim)
-        Number of viewpoints chosen by
-        :func:`~mobility.report.plotting.views.choose_views`, from 1 to
-        :data:`~mobility.report.plotting.views.MAX_VIEWS` (a Python or numpy
-        integer), or the viewpoints themselves (degrees).
+        Number of viewpoints chosen by :func:`~mobility.report.plotting.views.choose_views`,
+        up to :data:`~mobility.report.plotting.views.MAX_VIEWS`, or the viewpoints themselves (degrees).
     labels : bool
         Write joint names (up to 40 joints).
     legend : bool
     title : str, optional
-        Default: name (cut to :data:`~mobility.report.plotting.style.MAX_LABEL`
-        characters), DOF, pattern and mobility.  Wrapped to the figure's
-        width; cut (``...``) beyond :data:`MAX_TITLE` characters or the lines
-        the figure has room for.
+        Default: name, DOF, pattern and mobility. Wrapped to the figure's width;
+        cut (``...``) beyond :data:`MAX_TITLE` characters or the lines it has room for.
     figsize : (width, height) in inches, optional
         Each from 1 to 30 (:data:`~mobility.report.plotting.backend.FIGSIZE_RANGE`).
     tol : Tolerance
@@ -95,11 +89,7 @@ def plot_mechanism(
     PlottingUnavailableError
         When matplotlib is not installed.
     RequestError
-        When ``result`` is not a :class:`Result` of ``mechanism``,
-        ``views`` is neither a number of views in range nor a list of
-        ``(elev, azim)`` pairs, ``constraints``, ``labels`` or ``legend`` is
-        not a bool, ``title`` not a string (or None), or ``figsize`` not a
-        width and a height in range.
+        When an argument is out of its range (each named), or ``result`` is not a :class:`Result` of ``mechanism``.
     """
     mechanism = require_mechanism(mechanism, "plot_mechanism")
     tol = require_tolerance(tol, "plot_mechanism")
