@@ -72,31 +72,23 @@ class ActuationCheck(ReadOnlyArrays):
 
     Attributes
     ----------
-    name : str
-        Mechanism name.
-    kind : str
-        ``"rigid"`` or ``"flexure"``.
+    name, kind : str
+        The mechanism's name; ``"rigid"`` or ``"flexure"``.
     dof : int
         DOF of the end effector (of the freedom space, for a flexure).
     pattern : str
         Its motion pattern, e.g. ``"1T2R"``.
     inputs : tuple of ActuationInput
-    constraint_couples : ndarray, shape (k, 3)
-        Orthonormal basis of the pure couples among the constraint wrenches.
-    constraint_forces : tuple of ScrewAxis
-        The other constraint wrenches (principal screws).
-    constraint_wrenches : ndarray, shape (6 - dof, 6)
-        Basis of the constraint wrench system (rows ``[f; m]``, global frame).
+    constraint_couples, constraint_forces, constraint_wrenches : ndarray (k, 3), tuple of ScrewAxis, ndarray (6 - dof, 6)
+        The pure couples among the constraint wrenches (orthonormal), the other
+        constraint wrenches (principal screws), and a basis (rows ``[f; m]``, global frame).
     verdict : str
         ``"valid"``, ``"actuation-singular"`` or ``"redundant"``.
     rank : int
         Rank of the actuation and constraint wrenches together.
-    uncontrolled_translations : ndarray, shape (k, 3)
-        Translations the end effector keeps with every input locked.
-    uncontrolled_rotations : tuple of ScrewAxis
-        Rotations (or screw motions) it keeps.
-    uncontrolled_twists : ndarray, shape (6 - rank, 6)
-        Basis of those twists (rows ``[w; v]``, global frame).
+    uncontrolled_translations, uncontrolled_rotations, uncontrolled_twists : ndarray (k, 3), tuple of ScrewAxis, ndarray (6 - rank, 6)
+        What the end effector keeps with every input locked: translations,
+        rotations (or screw motions), and a basis (rows ``[w; v]``, global frame).
     margin : RankDecision
         Of the verdict's rank decision: a small ``smallest_kept`` means near a
         pose where the locked inputs no longer hold the end effector.
