@@ -156,15 +156,8 @@ class Assessment(ReadOnlyArrays):
     actuation_margin: float = 1.0
 
 
-def assess_wrenches(
-    wrenches: Sequence[np.ndarray | None],
-    rates: Sequence[float],
-    twists: np.ndarray,
-    constraints: np.ndarray,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    held: np.ndarray | None = None,
-    transmissions: Sequence[float] | None = None,
-) -> Assessment:
+def assess_wrenches(wrenches: Sequence[np.ndarray | None], rates: Sequence[float], twists: np.ndarray, constraints: np.ndarray,
+                    tol: Tolerance = DEFAULT_TOLERANCE, held: np.ndarray | None = None, transmissions: Sequence[float] | None = None) -> Assessment:
     """Verdict, conditioning and actuation margin of a choice of inputs from its actuation wrenches.
 
     Parameters
@@ -251,18 +244,9 @@ def _conditioning(present: Sequence[tuple[np.ndarray, float]], twists: np.ndarra
     return float(sv[dof - 1] / sv[0]) if sv.size >= dof and sv[0] > 0 else 0.0
 
 
-def assess_inputs(
-    name: str,
-    kind: str,
-    inputs: Sequence[InputWrench],
-    spaces: EndEffectorSpaces,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    *,
-    warnings: Sequence[str] = (),
-    length_unit: str = "",
-    idle_inputs: Sequence[str] | None = None,
-    held: np.ndarray | None = None,
-) -> ActuationCheck:
+def assess_inputs(name: str, kind: str, inputs: Sequence[InputWrench], spaces: EndEffectorSpaces, tol: Tolerance = DEFAULT_TOLERANCE, *,
+                  warnings: Sequence[str] = (), length_unit: str = "", idle_inputs: Sequence[str] | None = None,
+                  held: np.ndarray | None = None) -> ActuationCheck:
     """The full verdict on named inputs, written in the global frame (rigid and flexure alike).
 
     Parameters

@@ -104,17 +104,8 @@ def check_over_poses(mechanism: Mechanism, actuated: Sequence[str] | None, poses
     return tuple(out)
 
 
-def enumerate_actuations(
-    mechanism: Mechanism,
-    *,
-    mode: str = "limb",
-    k: int | None = None,
-    poses: Sequence[Mechanism] = (),
-    samples: int = 0,
-    step: float = DEFAULT_STEP,
-    seed: int = 0,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> Enumeration:
+def enumerate_actuations(mechanism: Mechanism, *, mode: str = "limb", k: int | None = None, poses: Sequence[Mechanism] = (), samples: int = 0,
+                         step: float = DEFAULT_STEP, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> Enumeration:
     """Assess every combination of inputs over several poses, and rank the valid ones.
 
     Candidate inputs are the joints with one freedom (R, P, H) on a path

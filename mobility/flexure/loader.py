@@ -102,18 +102,8 @@ class _FlexureReader(DocumentReader):
         ground = self.identifier(doc["ground"], ("ground",), "a body name")
         end_effector = self.identifier(doc["end_effector"], ("end_effector",), "a body name")
         try:
-            mechanism = FlexureMechanism(
-                name=name,
-                ground=ground,
-                end_effector=end_effector,
-                elements=tuple(elements),
-                actuators=tuple(actuators),
-                description=description,
-                length_unit=length_unit,
-                threshold=threshold,
-                expected=expected,
-                source=self.file,
-            )
+            mechanism = FlexureMechanism(name=name, ground=ground, end_effector=end_effector, elements=tuple(elements), actuators=tuple(actuators),
+                                         description=description, length_unit=length_unit, threshold=threshold, expected=expected, source=self.file)
             compliance_matrix(mechanism)  # sizes or moduli beyond double precision: named here, with their line
             return mechanism
         except MechanismError as exc:
@@ -205,17 +195,7 @@ class _FlexureReader(DocumentReader):
             name = self.identifier(data["name"], path + ("name",), "an element name")
             length, radius = self.number(data["length"], path + ("length",)), self.number(data["radius"], path + ("radius",))
             try:
-                out.append(
-                    Rod(
-                        name,
-                        (bodies[0], bodies[1]),
-                        tuple(tf.apply_point(point)),
-                        tuple(tf.apply_vector(axis)),
-                        length,
-                        radius,
-                        material,
-                    )
-                )
+                out.append(Rod(name, (bodies[0], bodies[1]), tuple(tf.apply_point(point)), tuple(tf.apply_vector(axis)), length, radius, material))
             except MechanismError as exc:
                 raise self.fail(path + parse_key(exc.key), exc.message) from None
         return out

@@ -157,13 +157,8 @@ class JacobianResult(ReadOnlyArrays):
                 "finite_screw": None if self.finite_screw is None else clean_screw(self.finite_screw, length)}
 
 
-def jacobian(
-    mechanism: Mechanism | ParallelModel,
-    q: Sequence[np.ndarray] | None = None,
-    *,
-    actuated: Sequence[str] | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> JacobianResult:
+def jacobian(mechanism: Mechanism | ParallelModel, q: Sequence[np.ndarray] | None = None, *, actuated: Sequence[str] | None = None,
+             tol: Tolerance = DEFAULT_TOLERANCE) -> JacobianResult:
     """The Jacobian of a parallel mechanism by differentiating its limbs' finite screws.
 
     Parameters

@@ -320,10 +320,8 @@ def _require_one_rotation(axes: list[SweepAxis]) -> None:
     if farthest <= 180.0 * (1.0 + SAME_GRID_VALUE):
         return
     names = ", ".join(f"{a.name}={a.start:g}:{a.stop:g}:{a.count}" for a in rotations)
-    raise RequestError(
-        f"--vary {names}: the end effector's rotation vector reaches {farthest:g} deg, more than half a turn, "
-        "where it no longer names one rotation; sweep rotations of at most 180 deg (or drive a joint, whose angle wraps)"
-    )
+    raise RequestError(f"--vary {names}: the end effector's rotation vector reaches {farthest:g} deg, more than half a turn, "
+                       "where it no longer names one rotation; sweep rotations of at most 180 deg (or drive a joint, whose angle wraps)")
 
 
 def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int = DEFAULT_MAX_POSES) -> GridPlan:
@@ -372,10 +370,8 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
             index = names.index(name)
             joint = mechanism.joints[index]
             if joint.type not in DRIVABLE_JOINTS:
-                raise RequestError(
-                    f"{where}: {name} is {'an' if joint.type in ('S', 'E') else 'a'} {joint.type} joint{source}; only R, H, C joints (by their angle, in degrees) "
-                    "and P joints (by their slide) can be swept"
-                )
+                raise RequestError(f"{where}: {name} is {'an' if joint.type in ('S', 'E') else 'a'} {joint.type} joint{source}; only R, H, C joints "
+                                   "(by their angle, in degrees) and P joints (by their slide) can be swept")
             angle = joint.type != "P"
             period = FULL_TURN if joint.type in WRAPPING_JOINTS else 0.0
             axes.append(SweepAxis(name, "joint", "deg" if angle else unit, start, stop, count, int(offsets[index]), math.pi / 180.0 if angle else 1.0 / length, period))
@@ -384,10 +380,8 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
             angle = component >= 3
             axes.append(SweepAxis(name, "pose", "deg" if angle else unit, start, stop, count, component, math.pi / 180.0 if angle else 1.0 / length))
         else:
-            raise RequestError(
-                f"{where}: {name!r} is not a joint{source}; expected one of: {name_list(names)}, "
-                f"or an end-effector pose coordinate ({', '.join(POSE_COORDINATES)})"
-            )
+            raise RequestError(f"{where}: {name!r} is not a joint{source}; expected one of: {name_list(names)}, "
+                               f"or an end-effector pose coordinate ({', '.join(POSE_COORDINATES)})")
     for axis in axes:
         _require_finite(axis, length)
         _require_within_reach(axis, length)

@@ -32,13 +32,7 @@ from .walks import AxisWalk, axis_walk, plan_walks
 __all__ = ["close_grid", "fill"]
 
 
-def close_grid(
-    bk: Kinematics,
-    plan: GridPlan,
-    *,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    run_lines: Callable | None = None,
-) -> GridClosure:
+def close_grid(bk: Kinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE, run_lines: Callable | None = None) -> GridClosure:
     """Close every pose of the grid by continuation, then :func:`fill` what is missing.
 
     Parameters
@@ -146,9 +140,8 @@ def _turned_towards(plan: GridPlan, q: np.ndarray, targets: np.ndarray, goal: np
     return q, targets
 
 
-def _congruent(
-    bk: Kinematics, drive: Drive, plan: GridPlan, walks: tuple[AxisWalk, ...], q: np.ndarray, err: np.ndarray, ok: np.ndarray, tol: Tolerance
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _congruent(bk: Kinematics, drive: Drive, plan: GridPlan, walks: tuple[AxisWalk, ...], q: np.ndarray, err: np.ndarray, ok: np.ndarray,
+               tol: Tolerance) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Missing poses whose driven angle is congruent (modulo a turn) to an assembled pose's on the same line take its pose (in place)."""
     sources, places = [], []
     for axis, walk in enumerate(walks):

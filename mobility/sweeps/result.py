@@ -446,19 +446,14 @@ class SweepResult(ReadOnlyArrays):
         """:meth:`to_dict` without the table (``columns``): what a writer sends before the columns, one at a time."""
         regular = self.regular
         return {
-            "name": self.name,
-            "coordinates": [a.to_dict() for a in self.axes],
-            "shape": list(self.shape),
-            "poses": self.size,
-            "assembled": int(self.assembled.sum()),
-            "actuated": list(self.actuated),
+            "name": self.name, "coordinates": [a.to_dict() for a in self.axes], "shape": list(self.shape), "poses": self.size,
+            "assembled": int(self.assembled.sum()), "actuated": list(self.actuated),
             "counts": [{"dof": d, "pattern": p, "mobility": m, "poses": n} for (d, p, m), n in self.counts().items()],
             "verdicts": self.verdict_counts(),
             "regular": None if regular is None else {"dof": regular[0], "pattern": regular[1], "mobility": regular[2], "verdict": regular[3] or None},
             "singular_poses": [p.to_dict(self.names) for p in self.singular],
             "changes": [{"from": int(a), "to": int(b), "axis": self.names[int(k)]} for a, b, k in self.changes],
-            "seams": [{"from": int(a), "to": int(b)} for a, b in self.seams],
-            "margin_dips": [d.to_dict(self.names) for d in self.dips],
+            "seams": [{"from": int(a), "to": int(b)} for a, b in self.seams], "margin_dips": [d.to_dict(self.names) for d in self.dips],
             **({"transmission": {"good_threshold": self.good_threshold, "good_share": _number(self.good_transmission()),
                                  "lti_min": _number(np.nanmin(self.lti[self.assembled])) if np.isfinite(self.lti[self.assembled]).any() else None,
                                  "cti_min": _number(np.nanmin(self.cti[self.assembled])) if np.isfinite(self.cti[self.assembled]).any() else None}}

@@ -363,20 +363,9 @@ def tqdm_progress() -> Progress:
     return update
 
 
-def sweep(
-    mechanism: Mechanism,
-    vary: VarySpec | Iterable,
-    *,
-    actuated: Sequence[str] | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    max_poses: int = DEFAULT_MAX_POSES,
-    chunk_size: int = DEFAULT_CHUNK_SIZE,
-    scheduler: Any = None,
-    workers: int | None = None,
-    progress: bool | Progress | None = None,
-    transmission: bool = True,
-    good_threshold: float = GOOD_TRANSMISSION,
-) -> SweepResult:
+def sweep(mechanism: Mechanism, vary: VarySpec | Iterable, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE,
+          max_poses: int = DEFAULT_MAX_POSES, chunk_size: int = DEFAULT_CHUNK_SIZE, scheduler: Any = None, workers: int | None = None,
+          progress: bool | Progress | None = None, transmission: bool = True, good_threshold: float = GOOD_TRANSMISSION) -> SweepResult:
     """Mobility, singularities and actuation over a grid of poses.
 
     At every point of the product grid the other joints are solved so that

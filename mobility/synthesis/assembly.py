@@ -70,19 +70,9 @@ def _regular_at_home(joints: Sequence[Joint], origin: np.ndarray, length: float)
     return rank(matrix) == matrix.shape[1]
 
 
-def assemble_pkm(
-    result: SynthesisResult,
-    structure: str,
-    *,
-    other: str = "UPS",
-    copies: int = 4,
-    base_radius: float = 600.0,
-    platform_radius: float = 400.0,
-    height: float = 900.0,
-    twist_deg: float = 60.0,
-    twist_pattern: Sequence[float] = (1.0, 0.0, 1.0, 2.0),
-    name: str | None = None,
-) -> Mechanism:
+def assemble_pkm(result: SynthesisResult, structure: str, *, other: str = "UPS", copies: int = 4, base_radius: float = 600.0,
+                 platform_radius: float = 400.0, height: float = 900.0, twist_deg: float = 60.0,
+                 twist_pattern: Sequence[float] = (1.0, 0.0, 1.0, 2.0), name: str | None = None) -> Mechanism:
     """A PKM of one synthesized limb and ``copies`` 6-DOF limbs, as a :class:`~mobility.core.model.Mechanism`.
 
     The first realisation of ``structure`` (a name in ``result``) is used as

@@ -162,16 +162,8 @@ def _count(value: object, key: str, least: int, most: int | None = None, caller:
     return require_integer(value, f"an integer {expected}", caller=caller, argument=key, low=least, high=most, error=SynthesisError)
 
 
-def synthesize(
-    pattern: MotionPattern | str,
-    *,
-    joints: int | None = None,
-    generic_points: int | None = None,
-    samples: int = 3,
-    verify_samples: int = 2,
-    seed: int = 0,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> SynthesisResult:
+def synthesize(pattern: MotionPattern | str, *, joints: int | None = None, generic_points: int | None = None, samples: int = 3,
+               verify_samples: int = 2, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> SynthesisResult:
     """Enumerate the limbs of R and P joints whose finite motions are the pattern.
 
     Parameters

@@ -76,13 +76,8 @@ class SynthesizedLimb:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "name": self.name,
-            "groups": list(self.groups),
-            "conditions": list(self.conditions),
-            "in_table_1": self.in_table_1,
-            "realizations": [[c.label for c in r] for r in self.realizations],
-        }
+        return {"name": self.name, "groups": list(self.groups), "conditions": list(self.conditions), "in_table_1": self.in_table_1,
+                "realizations": [[c.label for c in r] for r in self.realizations]}
 
 
 def joint_groups(seq: Sequence[CandidateJoint], plane: tuple[str, ...]) -> list[tuple[str, list[CandidateJoint]]]:

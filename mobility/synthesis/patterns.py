@@ -314,12 +314,9 @@ class MotionPattern:
 
 
 def _pattern_2t3r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0))) -> MotionPattern:
-    return MotionPattern(
-        "2T3R",
-        (PatternFactor("rotations", point), PatternFactor("translations", directions=tuple(directions)[:2])),
-        "two translations in the plane of s1, s2, followed by three rotations about the fixed point O "
-        "(Sun et al. 2018): S_f = 2tan(θ/2)[s; O×s] △ t[0; u], u in span(s1, s2)",
-    )
+    return MotionPattern("2T3R", (PatternFactor("rotations", point), PatternFactor("translations", directions=tuple(directions)[:2])),
+                         "two translations in the plane of s1, s2, followed by three rotations about the fixed point O "
+                         "(Sun et al. 2018): S_f = 2tan(θ/2)[s; O×s] △ t[0; u], u in span(s1, s2)")
 
 
 def _pattern_3t(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0), (0, 0, 1))) -> MotionPattern:
@@ -334,22 +331,17 @@ def _pattern_2t1r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] 
     d = [_unit(v) for v in tuple(directions)[:2]]
     if len(d) < 2:
         raise SynthesisError(f"the 2T1R pattern needs two directions, got {len(d)}")
-    return MotionPattern(
-        "2T1R",
-        (PatternFactor("translations", directions=tuple(_vec(v) for v in d)), PatternFactor("rotation", point, (_vec(np.cross(d[0], d[1]), "s1 × s2"),))),
-        "planar motion: rotation about an axis along s1 × s2 through O, followed by translations in the plane of s1, s2",
-    )
+    return MotionPattern("2T1R", (PatternFactor("translations", directions=tuple(_vec(v) for v in d)),
+                                  PatternFactor("rotation", point, (_vec(np.cross(d[0], d[1]), "s1 × s2"),))),
+                         "planar motion: rotation about an axis along s1 × s2 through O, followed by translations in the plane of s1, s2")
 
 
 def _pattern_3t1r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0), (0, 0, 1))) -> MotionPattern:
     d = tuple(directions)[:3]
     if len(d) < 3:
         raise SynthesisError(f"the 3T1R pattern needs three directions, got {len(d)}")
-    return MotionPattern(
-        "3T1R",
-        (PatternFactor("translations", directions=d), PatternFactor("rotation", point, (_vec(d[2]),))),
-        "Schoenflies motion: rotation about an axis along s3 through O, followed by spatial translations",
-    )
+    return MotionPattern("3T1R", (PatternFactor("translations", directions=d), PatternFactor("rotation", point, (_vec(d[2]),))),
+                         "Schoenflies motion: rotation about an axis along s3 through O, followed by spatial translations")
 
 
 PATTERNS = {"2T3R": _pattern_2t3r, "3T": _pattern_3t, "3R": _pattern_3r, "2T1R": _pattern_2t1r, "3T1R": _pattern_3t1r}

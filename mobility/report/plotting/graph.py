@@ -91,13 +91,8 @@ def branch_colors(root: Node, detached: Sequence[Node]) -> dict[int, str]:
     return out
 
 
-def plot_graph(
-    mechanism: Mechanism,
-    result: Result | None = None,
-    *,
-    figsize: tuple[float, float] | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> "Figure":
+def plot_graph(mechanism: Mechanism, result: Result | None = None, *, figsize: tuple[float, float] | None = None,
+               tol: Tolerance = DEFAULT_TOLERANCE) -> "Figure":
     """Draw the joint graph and the series/parallel tree found by :func:`mobility.core.topology.decompose`.
 
     Left: links as nodes, joints as edges labelled ``name (type)``, coloured by

@@ -44,18 +44,9 @@ __all__ = ["plot_mechanism", "MAX_TITLE"]
 
 
 
-def plot_mechanism(
-    mechanism: Mechanism,
-    result: Result | None = None,
-    *,
-    constraints: bool = False,
-    views: int | Sequence[tuple[float, float]] = 2,
-    labels: bool = True,
-    legend: bool = True,
-    title: str | None = None,
-    figsize: tuple[float, float] | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> "Figure":
+def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constraints: bool = False, views: int | Sequence[tuple[float, float]] = 2,
+                   labels: bool = True, legend: bool = True, title: str | None = None, figsize: tuple[float, float] | None = None,
+                   tol: Tolerance = DEFAULT_TOLERANCE) -> "Figure":
     """Draw ``mechanism`` at its pose with the end effector's freedoms (and constraints).
 
     Parameters

@@ -222,14 +222,5 @@ def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
         size = spread if spread > 0 else size
     for arr in (pts, located):
         arr.setflags(write=False)
-    return Sketch(
-        tuple(j.name for j in joints),
-        tuple(j.type for j in joints),
-        pts,
-        located,
-        {k: tuple(v) for k, v in link_joints.items()},
-        centre,
-        size,
-        ee_centre,
-        scale,
-    )
+    return Sketch(tuple(j.name for j in joints), tuple(j.type for j in joints), pts, located, {k: tuple(v) for k, v in link_joints.items()}, centre, size,
+                  ee_centre, scale)

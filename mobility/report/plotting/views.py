@@ -77,15 +77,8 @@ def thinned(points: np.ndarray, limit: int = MAX_CONTEXT_POINTS) -> np.ndarray:
     return points[np.unique(np.linspace(0, len(points) - 1, limit).round().astype(int))]
 
 
-def choose_views(
-    points: np.ndarray,
-    directions: np.ndarray,
-    size: float,
-    count: int = 2,
-    *,
-    separation: float = 60.0,
-    context: np.ndarray | None = None,
-) -> list[tuple[float, float]]:
+def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count: int = 2, *, separation: float = 60.0,
+                 context: np.ndarray | None = None) -> list[tuple[float, float]]:
     """Viewpoints ``(elev, azim)`` in degrees where nothing important overlaps.
 
     Every candidate view on a grid is scored by the pairs of ``points`` ``(n, 3)``
