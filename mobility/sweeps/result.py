@@ -116,7 +116,6 @@ class MarginDip(GridPoint):
     column : str
         ``"smallest_kept"`` (the analysis) or ``"actuation_margin"`` (the actuation verdict).
     margin : float
-        The margin there.
     neighbours : tuple of float
         The margins of its neighbours along ``axis``, where the dip is deepest
         (one at an end of the axis: the singularity may lie beyond it).

@@ -64,24 +64,16 @@ class SynthesisResult:
     pattern : MotionPattern
     joints : int
         Number of one-DOF joints per limb.
-    alphabet : tuple of CandidateJoint
-        The candidate joints that survived the single-joint test.
-    rejected_joints : tuple of CandidateJoint
-        Candidates whose own motion already leaves the pattern.
+    alphabet, rejected_joints : tuple of CandidateJoint
+        The candidate joints that survived the single-joint test; those whose own motion leaves the pattern.
     structures : tuple of SynthesizedLimb
         Limb types found, in order of first discovery.
-    sequences : int
-        Joint sequences kept.
-    candidates_tested : int
-        Rank tests made during the search.
-    verified_samples : int
-        Finite motions fitted by the pattern (sample route), all to the closure tolerance.
+    sequences, candidates_tested, verified_samples : int
+        Joint sequences kept; rank tests made; finite motions fitted by the pattern (the sample route).
     seconds : float
         Wall time of the search and the verification.
-    points : dict
-        Label -> point used (``O``, ``g1``...).
-    directions : dict
-        Label -> direction used (``s1``, ``s2``, ``c``...).
+    points, directions : dict
+        Label -> point (``O``, ``g1``...) and label -> direction (``s1``, ``c``...) used.
     """
 
     pattern: MotionPattern
