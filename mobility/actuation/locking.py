@@ -1,10 +1,8 @@
 """The second route to an actuation verdict: lock the inputs, count what is left.
 
-Locking the chosen joints (:func:`lock_joints`: each removed, its two links
-merged) leaves the end effector with 0 DOF by loop closure
-(:func:`locked_dof`) exactly when the actuation and constraint wrenches span
-six dimensions.  It shares nothing with :mod:`mobility.actuation.assessment`
-but the model, which is what makes it a check.
+Locking the inputs leaves the end effector with 0 DOF by loop closure exactly
+when the actuation and constraint wrenches span six dimensions. It shares
+nothing with :mod:`mobility.actuation.assessment` but the model: a check.
 
 Examples
 --------

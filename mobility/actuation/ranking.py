@@ -1,10 +1,8 @@
 """Combinations of inputs: their type, their verdict over several poses, and their ranking.
 
-A combination is valid only when it is valid at every pose; its
-conditioning is the worst (smallest) over the poses.  Ranked: valid ones
-first by decreasing conditioning, then redundant, then actuation-singular
-ones; counted per type (``3R``, ``2R1P``, ... as Li, Shan, Yu and Ke write
-them, or the geometry of a set of force lines).
+A combination is valid only when valid at every pose; its conditioning is the
+worst over the poses. Counted per type (``3R``, ``2R1P``, ... as Li, Shan, Yu
+and Ke write them, or the geometry of a set of force lines).
 
 Examples
 --------

@@ -112,8 +112,17 @@ class RigidPose:
         An input whose motion its limb's other joints produce (a 7R arm, joints
         in line) has no wrench of its own, yet locking it with the others can
         hold the limb: by the limb's constraint system with every input locked
-        (orthonormal, normalised). ``freedoms``: the inputs ``(joint, freedom)``.
-        Returns ``(6, k)``, or None when no limb needs it.
+        (orthonormal, normalised).
+
+        Parameters
+        ----------
+        freedoms : sequence of (joint, freedom)
+            The inputs.
+
+        Returns
+        -------
+        ndarray, shape (6, k), or None
+            None when every input of every limb has its own wrench (or is on no path).
         """
         lacking = {self.limb_of[j] for j, k in freedoms if j in self.limb_of and self.wrench(j, k)[2] == _DRIVEN_BY_OTHERS}
         if not lacking:

@@ -137,7 +137,17 @@ def compliance_matrix(mechanism: FlexureMechanism) -> np.ndarray:
 def normalised_energy_form(mechanism: FlexureMechanism, compliance: np.ndarray) -> tuple[np.ndarray, Normalisation]:
     """``Q = SWAP C`` in normalised coordinates, symmetrised, and those coordinates (document length unit).
 
-    ``compliance`` is its :func:`compliance_matrix` (SI units); ``q`` is in 1/N.
+    Parameters
+    ----------
+    compliance : ndarray, shape (6, 6)
+        The mechanism's :func:`compliance_matrix` (SI units).
+
+    Returns
+    -------
+    q : ndarray, shape (6, 6)
+        Symmetric, in 1/N.
+    normalisation : Normalisation
+        :meth:`FlexureMechanism.normalisation` (document length unit).
     """
     norm = mechanism.normalisation()
     metres = mechanism.metres

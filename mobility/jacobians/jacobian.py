@@ -14,13 +14,10 @@ so ``$_ij`` is the twist of joint ``j`` of limb ``i`` at the pose.  Then
   those of the platform are their union, and the platform's twist system is
   its reciprocal (for METROM: one force through ``O`` along ``s1 × s2``);
 * the **actuation wrench** of an actuated joint ``(i, j)`` is reciprocal to the
-  limb's other twists but not to ``$_ij``; it is defined up to the limb's
-  constraint wrenches and the one reported is orthogonal to them (normalised
-  coordinates).  Scaled so that ``W ∘ $_ij = 1``, the reciprocal product with
-  the platform twist is the actuated rate: ``W ∘ $_p = q'_ij``;
+  limb's other twists but not to ``$_ij`` (the one orthogonal to the limb's
+  constraint wrenches); scaled so that ``W ∘ $_ij = 1``, ``W ∘ $_p = q'_ij``;
 * the **Jacobian** stacks both: ``J $_p = [q'_a; 0]``, rows ``(SWAP W)^T``;
-  when it is square and regular, the first columns of ``J^-1`` are the
-  platform twists per unit actuated rate.
+  the first columns of a regular ``J^-1`` are the platform twists per unit actuated rate.
 
 Thresholds follow :mod:`mobility.core.tolerance` (normalised coordinates). Any
 scale of the file gives the same answer: the Jacobian is computed on the

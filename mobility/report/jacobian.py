@@ -46,7 +46,10 @@ def _shown(x: float) -> str:
 def jacobian_text(result: JacobianResult, unit: str = "") -> str:
     """The report printed by ``mobility jacobian``: wrenches, the matrix ``J`` and, when regular, ``J^-1``.
 
-    ``unit``: the mechanism's length unit, named in the matrix's heading.
+    Parameters
+    ----------
+    unit : str
+        The mechanism's length unit, named in the matrix's heading.
     """
     length = result.length
     labels = list(result.actuated) + [f"C{k + 1}" for k in range(result.constraint_wrenches.shape[0])]

@@ -1,17 +1,13 @@
 """Pictures of a sweep: a curve (one coordinate), a map (two) or slices of a 3-D grid.
 
-* **curve**: the end effector's DOF and the mobility along the coordinate
-  (steps), and below them the rank margin (smallest kept relative singular
-  value, log scale) and, with inputs, the actuation conditioning; singular
-  poses are marked by red lines, poses that could not be assembled are shaded;
-* **map**: the colour is the actuation conditioning when inputs are chosen,
-  else the rank margin (log10); the regions of each answer (DOF, pattern,
-  mobility, verdict) are outlined, singular poses marked with red crosses,
-  poses not assembled left grey; with the transmission indices the
-  good-transmission workspace (``LTI >= threshold``) is outlined dashed
-  (``"mobility:sweep:good-transmission"``) and a curve shows the LTI;
-* **slices**: the same map at up to :data:`MAX_SLICES` values of the third
-  coordinate, the slices holding singular poses first.
+* **curve**: DOF and mobility (steps) over the rank margin (log scale) and,
+  with inputs, the conditioning and LTI; singular poses red lines, poses not
+  assembled shaded;
+* **map**: colour the conditioning with inputs, else the rank margin (log10);
+  each answer's region outlined, singular poses red crosses, the
+  good-transmission workspace outlined dashed (``"mobility:sweep:good-transmission"``);
+* **slices**: the map at up to :data:`MAX_SLICES` values of the third
+  coordinate, those holding singular poses first.
 
 Figures are built by :mod:`mobility.report.plotting.backend` (matplotlib,
 optional). Every drawn answer carries a ``gid`` (``"mobility:sweep:curve"``,
@@ -106,7 +102,12 @@ def _answers(result: SweepResult) -> tuple[np.ndarray, list[str]]:
 def require_drawable(coordinates: int, what: str = "") -> None:
     """Refuse a picture that cannot be drawn, before the sweep is computed.
 
-    ``coordinates``: the number of varied coordinates; ``what`` goes in front of the message.
+    Parameters
+    ----------
+    coordinates : int
+        The number of varied coordinates.
+    what : str
+        Put in front of the message (``"--plot out.png: "``).
 
     Raises
     ------
@@ -296,8 +297,14 @@ def choose_slices(result: SweepResult, most: int = MAX_SLICES) -> tuple[tuple[in
     """The values of the third coordinate drawn as slices, and a note saying which.
 
     Preferred, in turn: the file's pose, the values holding singular poses,
-    then values spread over the range. ``slices`` are indices in increasing
-    order; ``note`` says which, out of how many (for the title).
+    then values spread over the range.
+
+    Returns
+    -------
+    slices : tuple of int
+        Indices of the chosen values, in increasing order.
+    note : str
+        Which slices are shown, out of how many (for the figure's title).
 
     Examples
     --------

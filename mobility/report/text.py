@@ -28,7 +28,10 @@ __all__ = ["fmt_number", "fmt_vector", "screw_text", "margin_lines", "text_repor
 def fmt_number(x: float, scale: float = 1.0, digits: int = 6, tol: Tolerance = DEFAULT_TOLERANCE) -> str:
     """A number with ``digits`` significant digits; round-off shown as 0 by the one rule, :func:`~mobility.core.tolerance.clean_numbers`.
 
-    ``scale`` is the size round-off is relative to (the mechanism's length for a point or a pitch, 1 for a unit direction).
+    Parameters
+    ----------
+    scale : float
+        The size round-off is relative to (the mechanism's length for a point or a pitch, 1 for a unit direction).
     """
     text = f"{clean_numbers(float(x), scale, tol):.{digits}g}"
     return "0" if text in ("-0", "0") else text
@@ -42,8 +45,14 @@ def fmt_vector(v: Any, scale: float = 1.0) -> str:
 def screw_text(a: ScrewAxis, scale: float = 1.0, *, verb: str = "about", pitch_unit: str = "") -> str:
     """A screw axis in words: kind, verb, direction, a point, and the pitch when it is not zero.
 
-    ``scale``: the mechanism's length (round-off of point and pitch is relative to it); ``verb``: ``"about"`` for a
-    motion, ``"along"`` for a wrench, ``""`` for none; ``pitch_unit`` is written after the pitch (``" mm/rad"``).
+    Parameters
+    ----------
+    scale : float
+        The mechanism's length (round-off of the point and the pitch is relative to it).
+    verb : str
+        ``"about"`` for a motion, ``"along"`` for a wrench, ``""`` for none.
+    pitch_unit : str
+        Written after the pitch, e.g. ``" mm/rad"``.
 
     Examples
     --------
@@ -84,7 +93,13 @@ def margin_lines(result: Result) -> list[str]:
 
 
 def text_report(result: Result, *, limbs: bool = False) -> str:
-    """The report printed by ``mobility analyze`` (``limbs``: also each limb's twists and constraint wrenches, in its frame)."""
+    """The report printed by ``mobility analyze``.
+
+    Parameters
+    ----------
+    limbs : bool
+        Also list each limb's twists and constraint wrenches in the limb's frame.
+    """
     result = require_result(result, "text_report")
     s = result.length_scale
     unit = result.length_unit
@@ -143,8 +158,11 @@ def json_report(result: Result) -> str:
 def with_section(report: str, fmt: str, key: str, value: Any, heading: str, section: str) -> str:
     """A report of ``mobility analyze`` in format ``fmt`` with one more section.
 
-    ``"json"``: ``value`` is added to the object under ``key``; ``"md"``: ``section`` under the heading
-    ``heading``, in a code block; any other (``"text"``): ``section`` appended.
+    Parameters
+    ----------
+    fmt : str
+        ``"json"``: ``value`` is added to the object under ``key``; ``"md"``: ``section`` under the heading
+        ``heading``, in a code block; any other (``"text"``): ``section`` appended.
 
     Examples
     --------

@@ -11,11 +11,10 @@ pose was assembled and what :func:`mobility.analyze` (with inputs,
 * the **changes**: neighbouring assembled grid points whose answers differ;
 * the **seams**: the two ends of a full turn of a joint that no small motion
   joins (:mod:`mobility.sweeps.seams`);
-* the **margin dips**: points of the same answer as their neighbours whose rank
-  margin is at most :data:`~mobility.core.tolerance.MARGIN_DIP` of a
-  neighbour's and no larger than either (at an end of an axis, its one
-  neighbour's): a singularity with the same answer on both sides (type II
-  crossed, constraint passed) may lie between grid points.
+* the **margin dips**: points whose rank margin is at most
+  :data:`~mobility.core.tolerance.MARGIN_DIP` of a neighbour's of the same
+  answer and no larger than either: a singularity with the same answer on both
+  sides (type II crossed, constraint passed) may lie between grid points.
 
 Examples
 --------

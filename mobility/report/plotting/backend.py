@@ -149,7 +149,12 @@ def written_file_name(path: object, what: str) -> Path:
 def picture_path(path: str | Path, what: str = "") -> Path:
     """``path`` as a :class:`~pathlib.Path`, once its suffix names a type :func:`save_figure` writes.
 
-    A command line calls it before any work; ``what`` is written before the path in the message (``"--plot "``).
+    A command line calls it before any work, so that a bad name fails at once.
+
+    Parameters
+    ----------
+    what : str
+        Written before the path in the message (e.g. ``"--plot "``).
 
     Raises
     ------

@@ -1,15 +1,9 @@
 """The picture of a mechanism at its pose with its end effector's freedoms and constraints.
 
-:func:`plot_mechanism` draws the mechanism in 3D (links as thin bodies between
-their joints, one symbol per joint type, the ground and the end effector
-marked) and, on the end effector, the answer of :func:`mobility.analyze`:
-arrows for the translations, axis lines with a rotation mark for the
-rotations (the pitch written where it is not zero) and, on request, the
-constraint wrenches (force lines, couples).  It shows the scene from
-viewpoints chosen by :func:`~mobility.report.plotting.views.choose_views` so
-that no two important points fall on each other and no freedom is seen
-end-on.
-
+:func:`plot_mechanism` draws links, joint symbols and, on the end effector, the
+answer of :func:`mobility.analyze`: arrows for translations, axis lines with a
+rotation mark for rotations and, on request, the constraint wrenches, from
+viewpoints chosen by :func:`~mobility.report.plotting.views.choose_views`.
 Every drawn answer carries a ``gid`` (``"mobility:translation:0"``,
 ``"mobility:rotation-axis:1"``, ``"mobility:force:0"``, ``"mobility:couple:0"``,
 ...), so programs and tests can read the picture back.

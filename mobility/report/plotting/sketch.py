@@ -1,15 +1,9 @@
 """Where each joint is drawn, and the size of the scene (no matplotlib).
 
-A prismatic joint (or a planar joint without a point) has no location in the
-file, so it is drawn between the located joints of its two links, or beside
-the one it has.
-
 A picture is drawn in *drawing units*: the file's lengths times
-:attr:`Sketch.scale`, a power of two (exact, so nothing is rounded) that is 1
-for every mechanism between about a micrometre and a thousand kilometres in
-size, whatever its unit, and brings any other to a size near 1, so that a
-mechanism at 1e200 or 1e-250 is drawn without overflow or underflow
-(:func:`drawing_scale`).
+:attr:`Sketch.scale`, an exact power of two, 1 for every mechanism of an
+everyday size (:func:`drawing_scale`), so one at 1e200 or 1e-250 is drawn
+without overflow or underflow.
 
 Examples
 --------

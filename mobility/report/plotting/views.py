@@ -81,12 +81,18 @@ def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count:
                  context: np.ndarray | None = None) -> list[tuple[float, float]]:
     """Viewpoints ``(elev, azim)`` in degrees where nothing important overlaps.
 
-    Every candidate view on a grid is scored by the pairs of ``points`` ``(n, 3)``
-    within 4 % of ``size`` of each other on the screen (softly, by pairs brought
-    close), and by the unit ``directions`` ``(k, 3)`` seen nearly end-on. The best
-    comes first; each next one is the best at least ``separation`` degrees from
-    those chosen. ``context``: further points to keep apart (the joints), at
-    most :data:`MAX_CONTEXT_POINTS` of them scored.
+    Every candidate view on a grid is scored by the pairs of ``points`` within
+    4 % of ``size`` of each other on the screen (softly, by pairs brought
+    close), and by the ``directions`` seen nearly end-on. The best comes first.
+
+    Parameters
+    ----------
+    directions : ndarray, shape (k, 3)
+        Unit directions that must show their length (arrows, axes).
+    separation : float
+        Smallest angle between two chosen view directions, degrees.
+    context : ndarray, shape (m, 3), optional
+        Further points to keep apart (the joints); at most :data:`MAX_CONTEXT_POINTS` of them are scored.
 
     Examples
     --------
