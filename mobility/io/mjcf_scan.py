@@ -1,58 +1,34 @@
 """An MJCF file, and every file it includes, checked before MuJoCo reads them.
 
-MuJoCo opens the files an MJCF model names (``<include file>``, ``<model
-file>``) and expands ``<replicate>``, ``<flexcomp>`` and ``<composite>``
-itself, with no bound: a named pipe makes it wait for ever, a huge file or
-``count="1000000"`` costs minutes and gigabytes before any joint can be
-counted.  :func:`scan_mjcf` walks the parsed file first (our own XML pass,
-:mod:`mobility.io.xml_source`) and refuses, in one line naming the file and
-the line of the element:
+MuJoCo opens the files a model names (``<include file>``, ``<model file>``) and
+expands ``<replicate>``, ``<flexcomp>`` and ``<composite>`` with no bound: a
+named pipe makes it wait for ever, ``count="1000000"`` costs minutes and
+gigabytes.  :func:`scan_mjcf` walks the parsed file first and refuses, in one
+line naming the file and the element's line:
 
-* an ``<include>`` whose file is missing, not a regular file (a pipe, a
-  directory, a device), included already, nested deeper than the depth
-  limit, or larger than what remains of the size limit (the model and the
-  files it includes are one document); a ``<model>`` asset file likewise
-  when it exists;
-* more joints than the joint limit (each equality, ``<connect>``,
-  ``<weld>`` ..., counted as a joint: MuJoCo's constraint rows grow with
-  them), more elements than the element limit, or more elements made by
-  the ``count`` of ``<replicate>`` and ``<composite>`` than the joint
-  limit, every copy counted (nested replicates multiply), included files
-  counted (see :mod:`mobility.io.limits`); a negative ``count`` (MuJoCo
-  makes no copy of a ``<replicate count="-1">``, silently);
-* a ``<flexcomp>``: a deformable body, not supported, whose points MuJoCo
-  makes into bodies and joints (as many as the vertices of a mesh file it
-  reads, whatever its size, or from a named pipe, for ever);
-* height fields and builtin meshes whose points (``nrow`` x ``ncol``, the
-  resolutions of ``<mesh builtin>`` multiplied) pass the asset limit all
-  together: MuJoCo allocates them as it reads the file (gigabytes for a
-  line of XML), before anything can be left out;
-* a geometric attribute (``pos``, ``quat``, ``axis``, ``euler``, ...), or an
-  actuator's ``gear``, that holds ``nan`` or ``inf``, or a number written
-  non-zero that reads as 0 (``1e-400``, too small for a double: MuJoCo reads
-  it as 0 without a word);
-* a direction that MuJoCo would silently replace (:data:`DIRECTIONS`): MuJoCo
-  normalizes ``quat``, the axis of ``axisangle``, ``zaxis``, a joint's
-  ``axis``, the direction of ``fromto`` and the quaternion of a weld's
-  ``relpose`` by the square root of the sum of their squares, summed in
-  double precision (``mjuu_normvec``).  When that sum overflows (numbers from
-  about ``1e154``) it divides by an infinite norm and uses a zero vector: no
-  rotation (a zero axis for a joint), and no error.  When the sum of a
-  quaternion's squares is below MuJoCo's ``mjEPS`` (``1e-14``: numbers below
-  about ``1e-7``, and numbers whose squares underflow, as ``1e-170``) it leaves
-  the quaternion as written, not normalized, and uses another rotation.
-  Neither is refused when what MuJoCo uses is what was written (a
-  quaternion of no rotation, an ``axisangle`` of angle 0, a ``zaxis`` or
-  ``fromto`` along z).  A direction other than a quaternion with so small a
-  sum is an error of MuJoCo's own ("axis too small").  ``xyaxes`` and ``euler`` are left to
-  MuJoCo: an ``xyaxes`` it cannot normalize is its own error, and Euler
-  angles are not normalized.
+* an ``<include>`` (or existing ``<model>`` file) missing, not a regular file,
+  included already, nested past the depth limit, or past what remains of the
+  size limit (the model and its includes are one document);
+* more joints (each equality counted as one: MuJoCo makes constraint rows for
+  it), elements, or copies made by a ``count`` than the limits
+  (:mod:`mobility.io.limits`), every copy and included file counted; a
+  negative ``count`` (MuJoCo silently makes no copy);
+* a ``<flexcomp>`` (MuJoCo makes bodies and joints of its points);
+* height fields and builtin meshes whose points pass the asset limit all
+  together (MuJoCo allocates them as it reads the file);
+* a geometric attribute or an actuator's ``gear`` holding ``nan``/``inf``, or a
+  number written non-zero that reads as 0 (``1e-400``: MuJoCo reads 0 silently);
+* a direction MuJoCo would silently replace (:data:`DIRECTIONS`).  MuJoCo
+  normalizes ``quat``, ``axisangle``, ``zaxis``, ``axis``, ``fromto`` and a
+  weld's ``relpose`` by the root of the double-precision sum of squares
+  (``mjuu_normvec``): when it overflows (numbers from about ``1e154``) the
+  result is a zero vector, and a quaternion whose sum is below ``mjEPS``
+  (``1e-14``) is left unnormalized, another rotation.  Neither is refused when
+  what MuJoCo uses is what was written; ``xyaxes`` and ``euler`` are left to MuJoCo.
 
-Files are found as MuJoCo finds them: relative to the directory of the model
-file first, then to the directory of the file that includes them.  Every
-file is read as MuJoCo's own XML parser reads it (``parse_xml(...,
-mujoco=True)``): UTF-8, without a ``<!DOCTYPE>``, no tab or line break in a
-``file`` attribute, so that the names checked are the names MuJoCo opens.
+Files are found as MuJoCo finds them (the model's directory first, then the
+including file's) and read as MuJoCo's parser reads them (``parse_xml(...,
+mujoco=True)``), so that the names checked are the names MuJoCo opens.
 
 Examples
 --------
@@ -113,29 +89,21 @@ DIRECTIONS = {
 }
 """Attributes whose direction MuJoCo normalizes, and what it silently uses when their sum of squares overflows.
 
-A ``quat`` (and the quaternion of ``relpose``) whose sum of squares is
-below :data:`MUJOCO_EPS` is refused too: MuJoCo leaves it unnormalized.
-Neither is refused when what MuJoCo uses is what was written (see
-:func:`_overflow_harmless`)."""
+A quaternion whose sum of squares is below :data:`MUJOCO_EPS` is refused too (MuJoCo leaves it unnormalized)."""
 
 _COUNTED = {"replicate", "flexcomp", "composite"}
 _RESOLUTIONS = {"supersphere": (1, 2), "supertorus": (1, 2), "wedge": (2, 1), "plate": (2, 1), "cone": (1, 1)}
-"""Builtin meshes MuJoCo makes as it reads the file: how many of their leading ``params`` are resolutions, and the power of each.
+"""Builtin meshes MuJoCo makes as it reads the file: how many leading ``params`` are resolutions, and the power of their product.
 
-The points it makes grow with the product of the resolutions (a
-supersphere's and a supertorus's one resolution squared: rings and
-segments); ``sphere`` and ``hemisphere`` are bounded by MuJoCo itself (4
-and 10 subdivisions)."""
+``sphere`` and ``hemisphere`` are bounded by MuJoCo itself (4 and 10 subdivisions)."""
 _HEX = re.compile(r"[+-]?0[xX]")
 
 
 @dataclass(frozen=True)
 class MjcfScan:
-    """What the scan found: every ``<include>`` (the including file and the line), the files read (included files, ``<model>`` files) and the counts, copies included.
+    """What the scan found: every ``<include>`` (including file, line), the files read and the counts, copies included.
 
-    ``equalities``, ``world_joints`` and ``world_bodies`` are what the file
-    declares (in the world, copies of ``<replicate>`` counted): the compiled
-    model must keep at least as many (:func:`mobility.io.mjcf.read_mjcf`)."""
+    The compiled model must keep at least ``equalities``, ``world_joints`` and ``world_bodies``."""
 
     includes: tuple[tuple[str, int | None], ...] = ()
     files: tuple[str, ...] = ()
@@ -363,25 +331,16 @@ def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = N
 
     Parameters
     ----------
-    doc : XmlDocument
-        The parsed model file.
     model_dir : str or Path
-        The directory MuJoCo finds included files in (the model file's; the
-        working directory when MuJoCo is given the text).
-    limits : Limits, optional
+        The directory MuJoCo finds included files in (the working directory when MuJoCo is given the text).
     size : int
-        Bytes of the model file, counted against the size limit with the
-        files it includes.
-
-    Returns
-    -------
-    MjcfScan
+        Bytes of the model file, counted against the size limit with its includes.
 
     Raises
     ------
     MechanismFileError
         One line naming the file (the including one for a bad include), the
-        line of the element and the limit or the value.
+        element's line and the limit or the value.
     """
     scanner = _Scanner(str(model_dir) or ".", current_limits(limits), size)
     scanner.seen[os.path.realpath(doc.file)] = "the model file itself"
@@ -470,11 +429,9 @@ def _direction_problem(attribute: str, numbers: list[float]) -> str | None:
 def _overflow_harmless(attribute: str, numbers: list[float], vector: list[float]) -> bool:
     """Whether what MuJoCo uses for a direction whose sum of squares overflows is what was written.
 
-    Dividing by the infinite norm leaves zeros (signed as the numbers were):
-    a zero quaternion is no rotation; an ``axisangle`` then turns by nothing;
-    a zero ``zaxis`` (or ``fromto`` direction) becomes +z, or -z when its
-    last zero is negative.  A zero joint axis and a weld's zero quaternion
-    are never what was written.
+    Dividing by the infinite norm leaves signed zeros: a zero quaternion is no
+    rotation, an ``axisangle`` turns by nothing, a zero ``zaxis`` (``fromto``)
+    becomes +z or -z.  A zero joint axis or weld quaternion never is.
     """
     if attribute == "quat":
         return _no_rotation(vector)
@@ -519,9 +476,8 @@ def _unsupported_flexcomp(doc: XmlDocument, element: Element) -> MechanismFileEr
 def _asset_points(element: Element) -> tuple[int, str] | None:
     """How many points MuJoCo makes for a height field (``nrow`` x ``ncol``) or a builtin mesh as it reads it, and how it was counted.
 
-    ``None`` for anything else (a height field read from a file, which
-    MuJoCo reads only when compiling, and mobility never lets it; numbers
-    MuJoCo refuses itself).
+    ``None`` for anything else (a height field from a file, which MuJoCo reads
+    only when compiling; numbers MuJoCo refuses itself).
 
     Examples
     --------
