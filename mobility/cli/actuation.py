@@ -1,20 +1,10 @@
 """``mobility actuation FILE``: which joints (or linear actuators) may drive a mechanism.
 
-For a mechanism file (YAML, MJCF or URDF; in a robot description the joints
-driven by an actuator are the actuated ones): the actuation wrench of every joint marked
-``actuated: true``, the constraint wrenches and the verdict (valid,
-actuation-singular with the uncontrolled directions, or redundant), with the
-actuation conditioning.  ``--enumerate`` checks every combination of inputs
-(one joint per limb, or ``--mode any --k K``) at the given pose and at further
-poses (``--pose FILE``, ``--samples N``), grouped by type and ranked.
-
-For a flexure document (top-level ``elements``): the compliance eigenvalues,
-the freedom and constraint spaces, and the same verdict for the linear
-actuators marked ``actuated: true`` (``--enumerate``: every set of ``k``
-candidate actuators).
-
-Exit status: 0 when the chosen inputs are valid (with ``--enumerate``: when at
-least one combination is valid), 1 otherwise, 2 on bad input.
+For a mechanism: the actuation wrenches of the actuated joints, the constraint
+wrenches and the verdict; ``--enumerate`` checks every combination of inputs
+at the pose and further poses, grouped and ranked.  For a flexure document:
+its compliance, freedom and constraint spaces and the verdict of its linear
+actuators (``docs/actuation.md``).
 """
 
 from __future__ import annotations

@@ -41,7 +41,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if args.json and args.format not in ("text", "json"):
-        raise RequestError(f"--json and --format {args.format}: choose one output format")
+        raise RequestError("choose one output format", argument=f"--json and --format {args.format}")
     read = read_with_notes(args)
     mechanism = read.mechanism
     tol = tolerance_from(args, mechanism.precision)

@@ -1,11 +1,9 @@
 """``mobility sweep FILE --vary JOINT=START:STOP:COUNT``: mobility, singularity and actuation maps over a grid.
 
-Each ``--vary`` displaces a joint from its value in the file's pose (degrees
-for R, H, C joints, the file's length unit for P joints) or moves the end
-effector (``x y z`` in length, ``rx ry rz`` in degrees); the grid is the
-product of the ranges.  Prints a short summary (``--format csv`` or ``json``
-for the whole table), ``-o`` writes it to a file, ``--plot`` draws a curve,
-a map or slices.  Exit status: 0 on success, 2 on bad input.
+Each ``--vary`` displaces a joint from the file's pose (degrees for R, H, C
+joints, the file's length unit for P) or moves the end effector (``x y z``,
+``rx ry rz`` in degrees); the grid is the product of the ranges
+(``docs/sweeps.md``).
 """
 
 from __future__ import annotations

@@ -1,15 +1,11 @@
 """Writing a mechanism file: a :class:`~mobility.core.model.Mechanism` out as YAML text.
 
-The text follows version 1 of the format (plus ``actuated`` and
-``couplings``), one joint (one coupling) per line in flow style, every joint in the global frame, and loads back with
-:func:`mobility.loads` to the same joints up to round-off: round-off (below
-the policy's ``round_off`` of the mechanism's characteristic length, or of 1
-for a direction) is written as 0, and every number as the shortest decimal
-within a few units of its last place (or of the mechanism's size), so that a
-sum of lengths is written ``0.15``, not ``0.15000000000000002``.  Writing
-what was read gives the same text again, and the second round trip is exact
-to the bit.  Used by ``mobility convert`` and by the type synthesis to write
-the mechanisms it assembles.
+Version 1 of the format (plus ``actuated`` and ``couplings``), one joint per
+line in flow style, in the global frame.  Round-off (below ``round_off`` of
+the characteristic length, or of 1 for a direction) is written as 0, every
+number as the shortest decimal within a few units of its last place (``0.15``,
+not ``0.15000000000000002``): what was read is written again as the same text,
+and the second round trip is exact to the bit.
 
 Examples
 --------
@@ -198,19 +194,10 @@ def _size(mechanism: Mechanism) -> float:
 def require_written_faithfully(mechanism: Mechanism, text: str, where: str) -> None:
     """Read ``text`` (written by :func:`mechanism_to_yaml`) back and refuse it, in one line, unless its joints are ``mechanism``'s.
 
-    The writer writes round-off as 0; a mechanism whose numbers span more
-    than double precision can hold relative to its size would come back as
-    another mechanism, with another answer.  That is refused rather than
-    written.  A joint's geometry may change by :data:`~mobility.core.tolerance.WRITE_DRIFT`
-    (relative to the characteristic length for points and pitches, absolute
-    for unit directions).
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    text : str
-    where : str
-        The file it is for, in a message.
+    Round-off is written as 0: a mechanism whose numbers span more than double
+    precision holds relative to its size would come back another mechanism.  A
+    joint may change by :data:`~mobility.core.tolerance.WRITE_DRIFT` (relative to
+    the characteristic length for points and pitches); ``where`` names the file.
 
     Raises
     ------

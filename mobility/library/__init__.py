@@ -1,13 +1,10 @@
 """The bundled library: the classic mechanisms and the flexure examples, shipped inside the package.
 
-The files live in this folder of the installed package, so they are there
-without a clone: ``mechanisms/`` holds the classic mechanisms (each with
-its ``expected`` block and its source), ``examples/flexure/`` the flexure
-examples (rods joining two bodies).  In a clone of the repository the
-folders ``mechanisms/`` and ``examples/`` at its root are links to these
-two, so every path written there (``mechanisms/3prs.yaml``,
-``examples/flexure/three_rod.yaml``) names the same file.
-``mobility check --library`` checks them all.
+``mechanisms/`` holds the classic mechanisms (each with its ``expected``
+block and its source), ``examples/flexure/`` the flexure examples; in a clone
+the folders of the same names at its root link to them, so
+``mechanisms/3prs.yaml`` names the same file.  ``mobility check --library``
+checks them all.
 
 Examples
 --------
@@ -98,15 +95,10 @@ def paths() -> tuple[Path, ...]:
 def path(name: str) -> Path:
     """The bundled file of a mechanism or flexure example, by its name (``"3prs"``; ``"3prs.yaml"`` too).
 
-    Parameters
-    ----------
-    name : str
-        One of :func:`names` or :func:`flexure_names`, with or without ``.yaml``.
-
     Returns
     -------
     pathlib.Path
-        The file inside the installed package (absolute), ready for :func:`mobility.load`.
+        The file inside the installed package (absolute).
 
     Raises
     ------

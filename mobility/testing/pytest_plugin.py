@@ -1,10 +1,8 @@
 """Check mechanism files from a pytest suite.
 
-Two ways, both running :func:`mobility.testing.check.check_file` on each file (one
-test per file, named after it; a file fails its test when it disagrees with
-its ``expected`` block, has none, or cannot be read).  A flexure document
-among the files is checked as one
-(:func:`mobility.testing.flexure_check.flexure_document`):
+Two ways, both one test per file by :func:`mobility.testing.check.check_file`
+(failing when the file disagrees with its ``expected`` block, has none, or
+cannot be read; a flexure document is checked as one):
 
 1. **One line in a test module** (no plugin needed)::
 
@@ -12,21 +10,16 @@ among the files is checked as one
 
        test_mechanisms = mechanism_tests("mechanisms/")
 
-   Paths are files or folders (every ``*.yaml``/``*.yml`` inside, recursively),
-   relative to the current directory unless absolute.  For your own test
-   function, :func:`mechanism_test_cases` gives the parameters and
-   :func:`assert_mechanism_passes` the assertion::
+   Paths are files or folders (every ``*.yaml``/``*.yml`` inside).  For your
+   own test function::
 
        @pytest.mark.parametrize("path", mechanism_test_cases("mechanisms/"))
        def test_my_designs(path):
            assert_mechanism_passes(path)
 
-2. **As a pytest plugin** that collects mechanism files as test items: it is
-   registered with pytest when :mod:`mobility` is installed (entry point
-   ``pytest11``); say where the files are, on the command line
-   (``--mobility-check mechanisms/``) or in the ini file
-   (``mobility_check = mechanisms``).  Without one of those it collects
-   nothing, so it is harmless.
+2. **As a pytest plugin** (entry point ``pytest11``) collecting mechanism files
+   as test items: ``--mobility-check mechanisms/`` or ``mobility_check =
+   mechanisms`` in the ini file; without them it collects nothing.
 
 Examples
 --------

@@ -1,21 +1,12 @@
 """The scenes of :mod:`mobility.view.scene` as a plotly figure (a plain dict, JSON-ready).
 
-Each glyph becomes up to four traces sharing a legend group (its line, its
-solid parts, its markers, its label), so that one click on its legend entry
-switches the whole glyph; each layer has its own legend (``legend`` for the
-mechanism, ``legend2`` for the freedoms, ``legend3`` for the constraints)
-whose title, clicked, switches the whole layer.  Every trace carries
-``meta = {"layer", "key", "frame"}`` so that programs and tests can read the
-page back.
-
-Several poses (frames) are all in the figure, one pose visible at a time; a
-slider shows one pose after the other and writes its pattern and rank margin
-in the title.  The axes are equal (a cube around every pose) so that
-directions read true and the scene does not jump between poses.
-
-The figure is built as a dict, without the plotting library; plotly only
-validates it (:class:`plotly.graph_objects.Figure`) or writes it
-(:mod:`mobility.view.page`).
+Each glyph is up to four traces in one legend group (one click switches the
+glyph); each layer has its own legend (``legend``, ``legend2``, ``legend3``)
+whose title switches the layer.  Every trace carries ``meta = {"layer", "key",
+"frame"}`` so that programs and tests can read the page back.  Every pose is
+in the figure, one visible at a time on a slider; the axes are a cube around
+every pose, so that directions read true and the scene does not jump.  Built
+without plotly, which only validates or writes it.
 
 Examples
 --------
@@ -75,12 +66,9 @@ def _coords(points: np.ndarray, offset: np.ndarray) -> dict[str, list[float | No
 def axis_ticks(low: float, high: float, drawing: float, count: int = 5, offset: float = 0.0) -> dict[str, list]:
     """Ticks of an axis drawn in drawing units (the file's lengths times ``drawing``, less ``offset``), labelled in the file's units.
 
-    Returns ``{"tickvals": [...], "ticktext": [...]}``: about ``count`` round
-    values of the file (1, 2 or 5 times a power of ten) between ``low`` and
-    ``high`` (drawing units), where they are drawn, and their text, with the
-    digits that tell them apart.  The step is found from logarithms, so a
-    mechanism at 1e200 or 1e-250 gets its ticks without any number leaving
-    the floats.
+    About ``count`` round values (1, 2 or 5 times a power of ten), as
+    ``{"tickvals", "ticktext"}``; the step is found from logarithms, so that a
+    mechanism at 1e200 or 1e-250 gets ticks without leaving the floats.
 
     Examples
     --------
@@ -169,20 +157,9 @@ def _title(result: Result, label: str, frames: int) -> str:
 def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 720, titled: bool = True) -> dict[str, Any]:
     """The plotly figure of one or several poses.
 
-    Parameters
-    ----------
-    frames : sequence of (Scene, Result, str)
-        Each pose's scene, its analysis and its label (shown on the slider).
-    height : int
-        Pixels.
-    titled : bool
-        Whether the figure writes its title (a page whose header says it
-        all leaves it out, and the scene takes its room).
-
-    Returns
-    -------
-    dict
-        ``{"data": [...], "layout": {...}}``, JSON-serialisable.
+    ``frames``: each pose's scene, analysis and slider label; ``titled``: whether
+    the figure writes its title (a page whose header says it all leaves it out).
+    Returns ``{"data": [...], "layout": {...}}``, JSON-serialisable.
     """
     if not frames:
         raise RequestError("a view needs at least one pose")

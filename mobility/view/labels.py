@@ -1,21 +1,13 @@
 """Where the view looks from, how far it zooms, and where each label sits, computed as the browser will draw it.
 
-plotly draws a 3D scene in orthographic projection this way: each axis's
-range maps onto its ``aspectratio`` (in "scene units", centred on the
-middle of the ranges), the camera turns the scene so that it looks along
-``-eye``, and the scene's height is 2 scene units: one scene unit is half
-the scene's height in pixels, whatever the width of the window.  So, from
-the Python side, :class:`Framing` knows where every point of the scene
-lands on the screen in pixels from the scene's centre, and chooses:
-
-- the zoom (the ``aspectratio``, equal scales on the three axes) at which
-  the box of everything drawn fills :data:`FILL` of the scene's height, and
-  of its width for any window at least :data:`WIDEST` times as wide as high;
-- the place of each label (:func:`place_labels`): a plotly scene annotation
-  (text in a box, an SVG element of the page, with a thin leader to the
-  point it names), put beside its point where it covers no other label, as
-  few of the drawn lines as can be, and stays inside the box's outline (the
-  axis tick labels are drawn outside it).
+In plotly's orthographic projection each axis's range maps onto its
+``aspectratio`` (scene units, centred on the ranges' middle), the camera looks
+along ``-eye`` and the scene is 2 scene units high, whatever the window's
+width.  So :class:`Framing` knows where every point lands in pixels and
+chooses the zoom at which everything drawn fills :data:`FILL` of the height
+(and of the width for a window at least :data:`WIDEST` times as wide), and
+:func:`place_labels` puts each label beside its point, covering no other label,
+as few drawn lines as can be, inside the box's outline (the ticks are outside).
 
 Examples
 --------
@@ -195,15 +187,13 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
 
     Parameters
     ----------
-    framing : Framing
     anchors : ndarray, shape (n, 3)
         The point each label names (drawing units).
     texts : list of str
-        The labels, in the order they are placed (earlier ones get the better places).
-    lines : list of ndarray
-        Polylines drawn (drawing units, rows of NaN between pieces): the glyphs of the freedoms and constraints.
-    links : list of ndarray
-        Polylines of the mechanism (links and joints): covering them costs more.
+        The labels, earlier ones getting the better places.
+    lines, links : list of ndarray
+        Polylines drawn (rows of NaN between pieces): the freedoms and
+        constraints, and the mechanism's (covering these costs more).
     width : float
         The narrowest scene's width, pixels: labels stay inside it.
 

@@ -1,28 +1,12 @@
 """What the 3D view draws for one pose, as plain data: glyphs in three layers.
 
-:func:`build_scene` turns a mechanism and its :class:`~mobility.core.result.Result`
-into :class:`Glyph` objects, each one thing a person points at:
-
-``mechanism`` layer
-    the ground, the end effector and the other links (bars between two
-    joints, translucent plates over three or more), one glyph per joint type
-    (markers with the joints' axes), the end effector's centre;
-``freedoms`` layer
-    ``T1..`` translation arrows from the end effector's centre, ``R1..``
-    rotation axes through their points with a circular arrow (a helix too
-    when the pitch is not zero);
-``constraints`` layer
-    ``C1..`` constraint couples (double-headed arrows beside the centre) and
-    ``W..`` constraint forces (lines through their points, with an arrowhead;
-    a small circular arrow too when the wrench has a pitch), numbered as in
-    the text report.
-
-Where each joint is drawn and the size of the scene come from the pictures'
-:func:`mobility.report.plotting.sketch`, so the view and the PNG agree; every
-size of a glyph is a fraction of that size, so a file in metres and the same
-in millimetres look the same.  :func:`viewpoint` chooses where to look from
-with the pictures' :func:`~mobility.report.plotting.choose_views` (no freedom
-seen end-on).
+Each :class:`Glyph` is one thing a person points at, in the ``mechanism``
+layer (links, one glyph per joint type, the end effector's centre), the
+``freedoms`` layer (``T1..`` arrows, ``R1..`` axes, a helix for a pitch) or the
+``constraints`` layer (``C1..`` couples, ``W..`` forces, numbered as in the text
+report).  Joint places and the scene's size come from the pictures'
+:func:`mobility.report.plotting.sketch` (the view and the PNG agree); every
+glyph size is a fraction of that size, so metres and millimetres look the same.
 
 Examples
 --------
@@ -82,38 +66,18 @@ class Glyph(ReadOnlyArrays):
     Attributes
     ----------
     key : str
-        Unique in its scene: ``"T1"``, ``"R2"``, ``"C1"``, ``"W3"``,
-        ``"links:ground"``, ``"joints:R"``, ``"end-effector-centre"``.
-    layer : str
-        One of :data:`LAYERS`.
+        Unique in its scene: ``"T1"``, ``"W3"``, ``"links:ground"``, ``"joints:R"``...
     kind : str
         ``translation``, ``rotation``, ``helical``, ``couple``, ``force``,
         ``wrench``, ``ground``, ``end_effector``, ``link``, ``joint``, ``centre``.
-    name : str
-        The legend's text.
-    color : str
     path : ndarray, shape (n, 3)
-        Polyline (rows of NaN between pieces); may be empty.
-    width : float
-        Line width of the path, pixels.
-    hover : str
-        Hover text of the path and mesh.
+        Polyline (rows of NaN between pieces), ``width`` pixels wide; may be empty.
     mesh : Mesh or None
-        Solid parts (arrowheads, plates).
-    opacity : float
-        Of the mesh.
+        Solid parts (arrowheads, plates), of ``opacity``.
     points : ndarray, shape (k, 3)
-        Markers (joints); may be empty.
-    symbol : str
-        Marker symbol.
-    point_hover : tuple of str
-        Hover text of each marker.
-    label : str
-        Written at ``label_at`` (empty: none).
-    label_at : ndarray, shape (3,) or None
+        Markers (joints), each with its ``point_hover``; may be empty.
     direction : ndarray, shape (3,) or None
-        The unit direction of a freedom or constraint (its axis, or the
-        direction of a free vector).
+        The unit direction of a freedom or constraint.
     """
 
     key: str
