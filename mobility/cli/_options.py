@@ -21,26 +21,9 @@ from ..errors import RequestError, one_line
 from ..io.files import os_problem, require_not_pipe
 from ..io.loader import FileRead, read_file
 
-__all__ = [
-    "add_tolerance_option",
-    "tolerance_from",
-    "add_pose_sampler_options",
-    "sampled_poses",
-    "MECHANISM_FILE_HELP",
-    "add_mechanism_file",
-    "robot_options_from",
-    "read_mechanism",
-    "load_mechanism",
-    "names_from",
-    "MAX_SAMPLES",
-    "require_sampler_options",
-    "require_new_output",
-    "add_max_poses_option",
-    "max_poses_from",
-    "require_option_for",
-    "number_option",
-    "integer_option",
-]
+__all__ = ["add_tolerance_option", "tolerance_from", "add_pose_sampler_options", "sampled_poses", "MECHANISM_FILE_HELP", "add_mechanism_file",
+           "robot_options_from", "read_mechanism", "load_mechanism", "names_from", "MAX_SAMPLES", "require_sampler_options", "require_new_output",
+           "add_max_poses_option", "max_poses_from", "require_option_for", "number_option", "integer_option"]
 
 
 def number_option(text: str) -> float:

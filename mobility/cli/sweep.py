@@ -35,23 +35,15 @@ FORMATS = {"text": _summary_pieces, "csv": sweep_csv_pieces, "json": sweep_json_
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "sweep",
-        help="mobility, singularities and actuation over a grid of poses (joints or end-effector coordinates varied)",
-        description="Vary joints (or the end effector's pose) over a grid, close every loop at every point, and report "
-        "DOF, pattern, mobility, rank margin and, for actuated joints, the actuation verdict and conditioning; "
-        "the summary names the singular poses and where the answer changes.",
-    )
+    p = sub.add_parser("sweep", help="mobility, singularities and actuation over a grid of poses (joints or end-effector coordinates varied)",
+                       description="Vary joints (or the end effector's pose) over a grid, close every loop at every point, and report "
+                       "DOF, pattern, mobility, rank margin and, for actuated joints, the actuation verdict and conditioning; "
+                       "the summary names the singular poses and where the answer changes.")
     add_mechanism_file(p)
-    p.add_argument(
-        "--vary",
-        action="append",
-        required=True,
-        metavar="NAME=START:STOP:COUNT",
-        help="a joint (R/H/C: degrees, P: length) or a pose coordinate x, y, z (length), rx, ry, rz (degrees), "
-        "displaced from the file's pose (a joint moves its links[1] relative to links[0], right-handed about its axis); "
-        "COUNT values, both ends included (repeat for a grid)",
-    )
+    p.add_argument("--vary", action="append", required=True, metavar="NAME=START:STOP:COUNT",
+                   help="a joint (R/H/C: degrees, P: length) or a pose coordinate x, y, z (length), rx, ry, rz (degrees), "
+                   "displaced from the file's pose (a joint moves its links[1] relative to links[0], right-handed about its axis); "
+                   "COUNT values, both ends included (repeat for a grid)")
     p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated); NAME.k names freedom k (from 0) of a multi-freedom joint")
     p.add_argument("--format", choices=sorted(FORMATS), default=None,
                    help="output: a summary, the table as CSV, or JSON (default: what the -o name ends with, .csv or .json, else the summary)")
@@ -90,7 +82,7 @@ def run(args: argparse.Namespace) -> int:
     if args.output == "-":  # the usual name of standard output
         args.output = None
     if args.json and args.format not in (None, "json"):
-        raise RequestError(f"--json and --format {args.format}: choose one output format")
+        raise RequestError("choose one output format", argument=f"--json and --format {args.format}")
     if args.output is not None and Path(args.output).suffix.lower() in PICTURE_FORMATS:
         raise RequestError(f"-o writes the table (text, csv or json); a picture is drawn by --plot {args.output}", argument=f"-o {args.output}")
     require_new_output(args.output, "-o", args.file)
@@ -117,19 +109,8 @@ def run(args: argparse.Namespace) -> int:
             actuated_inputs(mechanism, inputs)
         except MechanismError as exc:
             raise RequestError(exc.message, argument=f"--inputs {args.inputs}") from None
-    result = sweep(
-        mechanism,
-        args.vary,
-        actuated=inputs,
-        tol=tol,
-        max_poses=max_poses_from(args),
-        chunk_size=args.chunk_size,
-        scheduler=args.scheduler,
-        workers=args.workers,
-        progress=_progress_wanted(args.progress),
-        transmission=not args.no_transmission,
-        good_threshold=args.good_transmission,
-    )
+    result = sweep(mechanism, args.vary, actuated=inputs, tol=tol, max_poses=max_poses_from(args), chunk_size=args.chunk_size, scheduler=args.scheduler,
+                   workers=args.workers, progress=_progress_wanted(args.progress), transmission=not args.no_transmission, good_threshold=args.good_transmission)
     fmt = "json" if args.json else args.format or _format_of(args.output)
     pieces = FORMATS[fmt](result)
     if args.output is not None:

@@ -43,23 +43,8 @@ from .precision import Rounding, file_precision
 from .robot_actuators import BallActuator, ball_chain, ball_chain_names
 from .robot_couplings import TreeCoupling, model_couplings
 
-__all__ = [
-    "Body",
-    "TreeJoint",
-    "Closure",
-    "Weld",
-    "Unsupported",
-    "RobotTree",
-    "RobotOptions",
-    "ImportedRobot",
-    "build_mechanism",
-    "JOINT_KINDS",
-    "rotation_tuple",
-    "vector_tuple",
-    "at_line",
-    "unique_name",
-    "model_joint_names",
-]
+__all__ = ["Body", "TreeJoint", "Closure", "Weld", "Unsupported", "RobotTree", "RobotOptions", "ImportedRobot", "build_mechanism", "JOINT_KINDS",
+           "rotation_tuple", "vector_tuple", "at_line", "unique_name", "model_joint_names"]
 
 Vector = tuple[float, float, float]
 Rotation = tuple[Vector, Vector, Vector]

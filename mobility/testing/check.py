@@ -53,20 +53,8 @@ from ..core.result import Result
 from ..core.screws import same_subspace
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, clean_numbers, require_tolerance
 
-__all__ = [
-    "Comparison",
-    "CheckResult",
-    "CheckReport",
-    "COMPARATORS",
-    "STATUSES",
-    "OtherDocument",
-    "check_mechanism",
-    "check_file",
-    "check_paths",
-    "mechanism_files",
-    "compare_translations",
-    "compare_verdict",
-]
+__all__ = ["Comparison", "CheckResult", "CheckReport", "COMPARATORS", "STATUSES", "OtherDocument", "check_mechanism", "check_file", "check_paths",
+           "mechanism_files", "compare_translations", "compare_verdict"]
 
 STATUSES = ("pass", "fail", "missing", "error")
 """The statuses of a checked file, in the order the summary lists them."""
@@ -136,15 +124,8 @@ class CheckResult:
         r = self.result
         if self.found is not None or r is None:
             return self.found
-        return {
-            "dof": r.dof,
-            "pattern": r.pattern,
-            "mobility": r.mobility,
-            "gruebler_kutzbach": r.gruebler_kutzbach,
-            "redundant_constraints": r.redundant_constraints,
-            "idle_dof": r.idle_dof,
-            "translations": clean_numbers(r.translations),
-        }
+        return {key: getattr(r, key) for key in ("dof", "pattern", "mobility", "gruebler_kutzbach", "redundant_constraints", "idle_dof")} | {
+            "translations": clean_numbers(r.translations)}
 
     @property
     def ok(self) -> bool:
@@ -169,15 +150,8 @@ class CheckResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form (one entry of ``mobility check --json``)."""
-        return {
-            "path": self.path,
-            "name": self.name,
-            "kind": self.kind,
-            "status": self.status,
-            "message": self.message,
-            "found": self.found_values(),
-            "comparisons": [c.to_dict() for c in self.comparisons],
-        }
+        return {"path": self.path, "name": self.name, "kind": self.kind, "status": self.status, "message": self.message,
+                "found": self.found_values(), "comparisons": [c.to_dict() for c in self.comparisons]}
 
 
 @dataclass(frozen=True, eq=False)
@@ -218,11 +192,8 @@ class CheckReport:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form of ``mobility check --json``."""
-        return {
-            "results": [r.to_dict() for r in self.results],
-            "summary": {s: self.count(s) for s in STATUSES} | {"total": len(self.results)},
-            "exit_status": self.exit_status,
-        }
+        return {"results": [r.to_dict() for r in self.results], "summary": {s: self.count(s) for s in STATUSES} | {"total": len(self.results)},
+                "exit_status": self.exit_status}
 
 
 class _Subject:
@@ -248,17 +219,11 @@ Comparator = Callable[[_Subject, Any], Comparison]
 """``comparator(subject, expected_value) -> Comparison``."""
 
 
-def _equal(key: str, attribute: str | None = None) -> Comparator:
+def _equal(key: str, finite: bool = False) -> Comparator:
+    """Equality with the screw analysis's ``key``, or (``finite``) the full-cycle analysis's."""
+
     def compare(subject: _Subject, expected: Any) -> Comparison:
-        actual = getattr(subject.result, attribute or key)
-        return Comparison(key, expected, actual, actual == expected)
-
-    return compare
-
-
-def _finite(key: str) -> Comparator:
-    def compare(subject: _Subject, expected: Any) -> Comparison:
-        actual = subject.finite[key]
+        actual = subject.finite[key] if finite else getattr(subject.result, key)
         return Comparison(key, expected, actual, actual == expected)
 
     return compare
@@ -324,18 +289,9 @@ def _actuation(subject: _Subject, expected: Any) -> Comparison:
 
 
 COMPARATORS: dict[str, Comparator] = {
-    "dof": _equal("dof"),
-    "pattern": _equal("pattern"),
-    "translations": _translations,
-    "mobility": _equal("mobility"),
-    "redundant_constraints": _equal("redundant_constraints"),
-    "idle_dof": _equal("idle_dof"),
-    "gruebler_kutzbach": _equal("gruebler_kutzbach"),
-    "full_cycle_dof": _finite("full_cycle_dof"),
-    "full_cycle_mobility": _finite("full_cycle_mobility"),
-    "finite_verdict": _finite("finite_verdict"),
-    "actuation": _actuation,
-}
+    **{key: _equal(key) for key in ("dof", "pattern")}, "translations": _translations,
+    **{key: _equal(key) for key in ("mobility", "redundant_constraints", "idle_dof", "gruebler_kutzbach")},
+    **{key: _equal(key, finite=True) for key in ("full_cycle_dof", "full_cycle_mobility", "finite_verdict")}, "actuation": _actuation}
 """How each ``expected`` key is compared (other modules may register more)."""
 
 

@@ -42,13 +42,7 @@ from ..errors import MechanismCheckFailed
 if TYPE_CHECKING:
     from _pytest._code.code import TerminalRepr  # what pytest's own repr_failure returns besides text
 
-__all__ = [
-    "MechanismCheckFailed",
-    "mechanism_test_cases",
-    "mechanism_tests",
-    "assert_mechanism_passes",
-    "failure_text",
-]
+__all__ = ["MechanismCheckFailed", "mechanism_test_cases", "mechanism_tests", "assert_mechanism_passes", "failure_text"]
 
 
 def _document_checks() -> tuple[OtherDocument, ...]:

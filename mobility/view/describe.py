@@ -28,17 +28,7 @@ from ..core.model import JOINT_TYPES, Joint
 from ..core.result import Result, ScrewAxis
 from ..report.text import fmt_number, fmt_vector
 
-__all__ = [
-    "translation_text",
-    "rotation_text",
-    "couple_text",
-    "force_text",
-    "joint_text",
-    "pose_title",
-    "margin_text",
-    "header_lines",
-    "plotly_text",
-]
+__all__ = ["translation_text", "rotation_text", "couple_text", "force_text", "joint_text", "pose_title", "margin_text", "header_lines", "plotly_text"]
 
 
 def _length(value: Any, scale: float, unit: str) -> str:  # a number, or a vector (a sequence or an array)
