@@ -20,35 +20,19 @@ from ..io.loader import is_robot_description
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
 from ..io.limits import require_size, require_work
-from ._options import (
-    MECHANISM_FILE_HELP,
-    OPTION_SPELLING,
-    add_mechanism_file,
-    add_pose_sampler_options,
-    add_tolerance_option,
-    integer_option,
-    load_mechanism,
-    names_from,
-    number_option,
-    require_option_for,
-    require_sampler_options,
-    read_mechanism,
-    robot_options_from,
-    sampled_poses,
-    tolerance_from,
-)
+from ._options import (MECHANISM_FILE_HELP, OPTION_SPELLING, add_mechanism_file, add_pose_sampler_options, add_tolerance_option, integer_option,
+                       load_mechanism, names_from, number_option, require_option_for, require_sampler_options, read_mechanism, robot_options_from,
+                       sampled_poses, tolerance_from)
 
 ORDER = 30
 EXIT_STATUS = "0 the chosen inputs are valid (with --enumerate: at least one combination is), 1 otherwise, 2 bad input (one line on standard error)"
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "actuation",
-        help="which joints (or linear actuators) may drive the mechanism: actuation wrenches and verdicts",
-        description="Actuation spaces (Li, Shan, Yu, Ke 2021): a choice of inputs is valid when its actuation wrenches "
-        "and the constraint wrenches together span six dimensions.",
-    )
+    p = sub.add_parser("actuation",
+                       help="which joints (or linear actuators) may drive the mechanism: actuation wrenches and verdicts",
+                       description="Actuation spaces (Li, Shan, Yu, Ke 2021): a choice of inputs is valid when its actuation wrenches "
+                       "and the constraint wrenches together span six dimensions.")
     add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + ", or flexure document (YAML)")
     p.add_argument("--enumerate", action="store_true", help="check every combination of inputs, grouped by type and ranked")
     p.add_argument("--mode", choices=ENUMERATION_MODES, default=None, help="enumeration: one joint per limb (default) or any K joints")

@@ -18,21 +18,15 @@ from ..testing.flexure_check import flexure_document
 from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 20
-EXIT_STATUS = (
-    "0 every file passes, 1 a file disagrees with its expected block or has none, "
-    "2 a path or file is bad input (in the table, on its line; it wins over disagreements)"
-)
+EXIT_STATUS = ("0 every file passes, 1 a file disagrees with its expected block or has none, "
+               "2 a path or file is bad input (in the table, on its line; it wins over disagreements)")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "check",
-        help="analyse mechanism files and compare them with their expected blocks (exit 1 on a mismatch)",
-        description=(
-            "Analyse every mechanism file given (folders: every *.yaml/*.yml inside, recursively) and compare "
-            "it with its expected block (a flexure document is checked as one)."
-        ),
-    )
+    p = sub.add_parser("check",
+                       help="analyse mechanism files and compare them with their expected blocks (exit 1 on a mismatch)",
+                       description="Analyse every mechanism file given (folders: every *.yaml/*.yml inside, recursively) and compare "
+                       "it with its expected block (a flexure document is checked as one).")
     p.add_argument("paths", nargs="*", metavar="PATH", help="mechanism files or folders")
     p.add_argument("--library", action="store_true",
                    help="check the library bundled with the package (its classic mechanisms and flexure examples), before any PATH")

@@ -20,12 +20,10 @@ EXIT_STATUS = "0 the Jacobian has rank 6 (the platform is controlled, redundantl
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "jacobian",
-        help="Jacobian of a parallel mechanism (actuation and constraint wrenches) from its finite screws",
-        description="Jacobian by differentiating the limbs' finite screws (Sun et al. 2018, Eq. 26): "
-        "J $ = [actuated rates; 0] for the platform twist $ = [w; v].",
-    )
+    p = sub.add_parser("jacobian",
+                       help="Jacobian of a parallel mechanism (actuation and constraint wrenches) from its finite screws",
+                       description="Jacobian by differentiating the limbs' finite screws (Sun et al. 2018, Eq. 26): "
+                       "J $ = [actuated rates; 0] for the platform twist $ = [w; v].")
     add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + " whose limbs are serial chains")
     p.add_argument("--actuated", default=None, metavar="A,B,...", help="actuated joints (default: those marked actuated: true); NAME.k picks freedom k (from 0, as reports label it) of a multi-DOF joint")
     p.add_argument("--json", action="store_true", help="print one JSON object")

@@ -21,12 +21,10 @@ EXIT_STATUS = "0 a limb type is found, 1 none is, 2 bad input (one line on stand
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "synthesize",
-        help="type synthesis: limbs of R and P joints whose finite motions are a motion pattern",
-        description="Enumerate limbs of R and P joints whose set of finite motions equals PATTERN "
-        "(finite screws, Sun et al. 2018).  Patterns: " + ", ".join(PATTERNS) + ".",
-    )
+    p = sub.add_parser("synthesize",
+                       help="type synthesis: limbs of R and P joints whose finite motions are a motion pattern",
+                       description="Enumerate limbs of R and P joints whose set of finite motions equals PATTERN "
+                       "(finite screws, Sun et al. 2018).  Patterns: " + ", ".join(PATTERNS) + ".")
     p.add_argument("pattern", help="motion pattern: " + ", ".join(PATTERNS))
     p.add_argument("--joints", type=integer_option, default=None, help="one-DOF joints per limb (default: the pattern's dimension)")
     p.add_argument("--point", default="0,0,0", metavar="X,Y,Z", help="the pattern's point O, in mm like the files --write writes (default: %(default)s)")

@@ -39,24 +39,11 @@ __all__ = ["LAYERS", "JOINT_SYMBOLS", "Glyph", "Scene", "build_scene", "viewpoin
 LAYERS = ("mechanism", "freedoms", "constraints")
 """The layers of the view, each switchable on its own."""
 
-JOINT_SYMBOLS = {
-    "R": ("circle", "#ffffff"),
-    "P": ("square", "#ffe08a"),
-    "H": ("diamond", "#c8e6c9"),
-    "C": ("diamond-open", "#7e57c2"),
-    "U": ("cross", "#1e88e5"),
-    "S": ("circle", "#37474f"),
-    "E": ("square-open", "#f4511e"),
-}
+JOINT_SYMBOLS = {"R": ("circle", "#ffffff"), "P": ("square", "#ffe08a"), "H": ("diamond", "#c8e6c9"), "C": ("diamond-open", "#7e57c2"),
+                 "U": ("cross", "#1e88e5"), "S": ("circle", "#37474f"), "E": ("square-open", "#f4511e")}
 """Marker symbol and colour of each joint type (symbols a WebGL 3D scatter can draw)."""
 
-# Sizes of the glyphs, as fractions of the scene's size.
-_ARROW = 0.36
-_HALF_AXIS = 0.45
-_HALF_FORCE = 0.28
-_HEAD = 0.05
-_MARK = 0.055
-_COUPLE_OFFSET = 0.25
+_ARROW, _HALF_AXIS, _HALF_FORCE, _HEAD, _MARK, _COUPLE_OFFSET = 0.36, 0.45, 0.28, 0.05, 0.055, 0.25  # glyph sizes, fractions of the scene's
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,18 +101,14 @@ class Scene(ReadOnlyArrays):
     Attributes
     ----------
     glyphs : tuple of Glyph
-        Mechanism first, then freedoms (translations, rotations), then
-        constraints (couples, forces).
+        Mechanism first, then freedoms, then constraints.
     centre : ndarray, shape (3,)
         The end effector's centre, where free vectors are drawn.
     size : float
         Extent of the mechanism (the unit of every glyph's size).
-    lower, upper : ndarray, shape (3,)
-        Bounds of everything drawn.
     scale : float
-        Drawing units per file unit: every coordinate of the scene is the
-        file's times ``scale`` (1 for every mechanism of an everyday size,
-        see :func:`mobility.report.plotting.sketch.drawing_scale`).
+        Drawing units per file unit (1 for a mechanism of an everyday size,
+        :func:`mobility.report.plotting.sketch.drawing_scale`).
     """
 
     glyphs: tuple[Glyph, ...]
@@ -143,21 +126,9 @@ class Scene(ReadOnlyArrays):
 def build_scene(mechanism: Mechanism, result: Result, drawing: float | None = None) -> Scene:
     """The glyphs of ``mechanism`` at its pose with the freedoms and constraints of ``result``.
 
-    Parameters
-    ----------
-    mechanism : Mechanism
-    result : Result
-        Its analysis (:func:`mobility.analyze`).
-    drawing : float, optional
-        Drawing units per file unit (a power of two; default: the pictures'
-        :func:`~mobility.report.plotting.sketch.drawing_scale`, 1 for every
-        mechanism of an everyday size).  Poses shown together share one.
-
-    Returns
-    -------
-    Scene
-        With ``result.dof`` glyphs in the ``freedoms`` layer and
-        ``6 - result.dof`` in the ``constraints`` layer.
+    ``drawing``: drawing units per file unit (a power of two, shared by poses
+    shown together; default: the pictures' :func:`~mobility.report.plotting.sketch.drawing_scale`).
+    The scene has ``result.dof`` glyphs in ``freedoms``, ``6 - result.dof`` in ``constraints``.
     """
     sk = sketch(mechanism, drawing)
     size, c = sk.size, sk.end_effector_centre
