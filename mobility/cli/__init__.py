@@ -132,12 +132,12 @@ class _GuardedOutput:
             if isinstance(exc, BrokenPipeError):
                 self.reader_gone = True  # drop the rest: the command still runs to its own exit status
                 return None
-            raise RequestError(f"standard output: cannot write it ({os_problem(exc)})") from None
+            raise RequestError(f"cannot write it ({os_problem(exc)})", argument="standard output") from None
 
     def write(self, text: str) -> int:
         if self.stream is None:  # started with standard output closed (`>&-`): Python has none
             self.failed = True
-            raise RequestError("standard output: cannot write it (it is closed)")
+            raise RequestError("cannot write it (it is closed)", argument="standard output")
         self._guarded(self.stream.write, text)
         return len(text)
 

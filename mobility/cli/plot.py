@@ -57,7 +57,8 @@ def run(args: argparse.Namespace) -> int:
         mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
     except MechanismFileError:
         if _is_flexure(args.file):
-            raise PlotFormatError(f"{args.file}: a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures") from None
+            raise PlotFormatError("a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures",
+                                  argument=args.file) from None
         raise
     tol = tolerance_from(args, mechanism.precision)
     result = analyze(mechanism, tol=tol)

@@ -76,7 +76,7 @@ class Limits:
         Poses times joints of what ``--samples`` and ``view --vary`` move and
         analyse one by one; at 5,000 every bundled mechanism can be viewed at
         the 199 sampled poses a view holds (227 poses of the 22-joint H4: 23 s).
-        """
+    """
 
     max_file_bytes: int = 4 * 1024 * 1024
     max_depth: int = 64

@@ -219,19 +219,10 @@ class _MechanismReader(DocumentReader):
         expected = read_expected(self, doc["expected"], tuple(EXPECTED_KEYS)) if "expected" in doc else None
         couplings = self.couplings(doc.get("couplings"))
         try:
-            mechanism = Mechanism(
-                name=name,
-                ground=self.identifier(doc["ground"], ("ground",), "a link name"),
-                end_effector=self.identifier(doc["end_effector"], ("end_effector",), "a link name"),
-                joints=tuple(joints),
-                frames=tuple(frames),
-                description=description,
-                length_unit=length_unit,
-                expected=expected,
-                source=self.file,
-                written_at={j.name: (format_key(path), self.pos.line(path)) for j, path in zip(joints, sources)},
-                couplings=couplings,
-            )
+            mechanism = Mechanism(name=name, ground=self.identifier(doc["ground"], ("ground",), "a link name"),
+                                  end_effector=self.identifier(doc["end_effector"], ("end_effector",), "a link name"), joints=tuple(joints),
+                                  frames=tuple(frames), description=description, length_unit=length_unit, expected=expected, source=self.file,
+                                  written_at={j.name: (format_key(path), self.pos.line(path)) for j, path in zip(joints, sources)}, couplings=couplings)
         except MechanismError as exc:
             raise self.fail(self.source_path(exc.key, sources), exc.message) from None
         for note in dict.fromkeys(self.link_notes(mechanism, sources) + self.angle_notes()):  # a limb's copies: each note once

@@ -1,34 +1,19 @@
 """An MJCF file, and every file it includes, checked before MuJoCo reads them.
 
-MuJoCo opens the files a model names (``<include file>``, ``<model file>``) and
-expands ``<replicate>``, ``<flexcomp>`` and ``<composite>`` with no bound: a
-named pipe makes it wait for ever, ``count="1000000"`` costs minutes and
-gigabytes.  :func:`scan_mjcf` walks the parsed file first and refuses, in one
-line naming the file and the element's line:
-
-* an ``<include>`` (or existing ``<model>`` file) missing, not a regular file,
-  included already, nested past the depth limit, or past what remains of the
-  size limit (the model and its includes are one document);
-* more joints (each equality counted as one: MuJoCo makes constraint rows for
-  it), elements, or copies made by a ``count`` than the limits
-  (:mod:`mobility.io.limits`), every copy and included file counted; a
-  negative ``count`` (MuJoCo silently makes no copy);
-* a ``<flexcomp>`` (MuJoCo makes bodies and joints of its points);
-* height fields and builtin meshes whose points pass the asset limit all
-  together (MuJoCo allocates them as it reads the file);
-* a geometric attribute or an actuator's ``gear`` holding ``nan``/``inf``, or a
-  number written non-zero that reads as 0 (``1e-400``: MuJoCo reads 0 silently);
-* a direction MuJoCo would silently replace (:data:`DIRECTIONS`).  MuJoCo
-  normalizes ``quat``, ``axisangle``, ``zaxis``, ``axis``, ``fromto`` and a
-  weld's ``relpose`` by the root of the double-precision sum of squares
-  (``mjuu_normvec``): when it overflows (numbers from about ``1e154``) the
-  result is a zero vector, and a quaternion whose sum is below ``mjEPS``
-  (``1e-14``) is left unnormalized, another rotation.  Neither is refused when
-  what MuJoCo uses is what was written; ``xyaxes`` and ``euler`` are left to MuJoCo.
-
-Files are found as MuJoCo finds them (the model's directory first, then the
-including file's) and read as MuJoCo's parser reads them (``parse_xml(...,
-mujoco=True)``), so that the names checked are the names MuJoCo opens.
+MuJoCo opens the files a model names and expands ``<replicate>``,
+``<flexcomp>`` and ``<composite>`` with no bound: a named pipe makes it wait for
+ever, ``count="1000000"`` costs minutes and gigabytes.  :func:`scan_mjcf` walks
+the parsed file first, as MuJoCo finds and reads its files, and refuses in one
+line (the list: ``docs/robot-files.md``) an ``<include>`` that is missing, no
+regular file, repeated or past the depth or size limit; counts past the limits
+of :mod:`mobility.io.limits`, every copy counted; a negative ``count``; a
+``<flexcomp>``; too many asset points; ``nan``, ``inf`` or a non-zero number
+that reads as 0 in a geometric attribute; and a direction MuJoCo would
+silently replace (:data:`DIRECTIONS`).  MuJoCo normalizes ``quat``,
+``axisangle``, ``zaxis``, ``axis``, ``fromto`` and a weld's ``relpose`` by the
+root of the double-precision sum of squares (``mjuu_normvec``): when it
+overflows (from about ``1e154``) the result is a zero vector, and a quaternion
+whose sum is below ``mjEPS`` (``1e-14``) stays unnormalized, another rotation.
 
 Examples
 --------
@@ -57,7 +42,7 @@ import os
 import re
 import stat
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from xml.etree.ElementTree import Element
 
@@ -147,8 +132,8 @@ class _Scanner:
     seen: dict[str, str] = field(default_factory=dict)
     includes: list[tuple[str, int | None]] = field(default_factory=list)
     files: list[str] = field(default_factory=list)
-    counts: dict[str, int] = field(default_factory=lambda: {"elements": 0, "joints": 0, "copies": 0, "equalities": 0, "asset_values": 0,
-                                                            "world_joints": 0, "world_bodies": 0})
+    counts: dict[str, int] = field(default_factory=lambda: dict.fromkeys(("elements", "joints", "copies", "equalities", "asset_values",
+                                                                         "world_joints", "world_bodies"), 0))  # MjcfScan's fields
     over: dict[str, _Over] = field(default_factory=dict)
     models: dict[str, tuple[int, int]] = field(default_factory=dict)  # a <model>'s elements and joints, by name: what each <attach> copies
     waiting: dict[str, list[tuple[Element, _Context]]] = field(default_factory=dict)  # <attach>es met before their <model>
@@ -191,8 +176,7 @@ class _Scanner:
         if tag in _COUNTED:
             inner = self.counted(element, where)
         elif tag in ("worldbody", "default", "equality"):
-            inner = _Context(where.doc, where.multiplier, where.factors, tag == "worldbody", where.chain, where.source,
-                             in_equality=tag == "equality", model_dir=where.model_dir)
+            inner = replace(where, in_world=tag == "worldbody", in_equality=tag == "equality")
         return [(child, inner) for child in element]
 
     def asset_values(self, element: Element, where: _Context) -> None:
@@ -230,8 +214,7 @@ class _Scanner:
         if element.tag != "replicate":
             self.count("elements", total * where.multiplier, element, where)
             return where
-        return _Context(where.doc, where.multiplier * total, where.factors + tuple(factors), where.in_world, where.chain, (where.doc, element),
-                        where.in_equality, where.model_dir)
+        return replace(where, multiplier=where.multiplier * total, factors=where.factors + tuple(factors), source=(where.doc, element))
 
     def attached(self, element: Element, where: _Context) -> None:
         """Count the copy of a ``<model>`` that an ``<attach>`` makes (its elements and joints), before MuJoCo makes it."""
@@ -276,8 +259,8 @@ class _Scanner:
             self.models[model_name] = (elements, joints)
             for attach, at in self.waiting.pop(model_name, []):
                 self.attached(attach, at)
-        context = _Context(inner, where.multiplier, where.factors, where.in_world and kind == "include", where.chain + (real,), where.source,
-                           in_equality=where.in_equality and kind == "include", model_dir=model_dir)
+        context = replace(where, doc=inner, in_world=where.in_world and kind == "include", chain=where.chain + (real,),
+                          in_equality=where.in_equality and kind == "include", model_dir=model_dir)
         return [(child, context) for child in inner.root]
 
     def resolve(self, name: str, including: str, model_dir: str) -> str | None:
@@ -346,9 +329,7 @@ def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = N
     scanner.seen[os.path.realpath(doc.file)] = "the model file itself"
     scanner.walk(doc.root, _Context(doc, chain=(os.path.realpath(doc.file),)))
     scanner.raise_first_over()
-    counts = scanner.counts
-    return MjcfScan(tuple(scanner.includes), tuple(scanner.files), counts["elements"], counts["joints"], counts["copies"],
-                    counts["equalities"], counts["asset_values"], counts["world_joints"], counts["world_bodies"])
+    return MjcfScan(tuple(scanner.includes), tuple(scanner.files), **scanner.counts)
 
 
 def _check_numbers(doc: XmlDocument, element: Element) -> None:

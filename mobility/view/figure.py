@@ -45,10 +45,7 @@ SCENE_WIDTH = 0.8
 ELEMENT_ID = "mobility-view"
 """The id of the element that holds the figure in a page."""
 
-_BACKGROUND = "#ffffff"
-_AXIS = "#b0bec5"
-_JOINT_AXES = "#37474f"
-
+_BACKGROUND, _AXIS, _JOINT_AXES = "#ffffff", "#b0bec5", "#37474f"
 
 FAR_FROM_ORIGIN = 100.0
 """A scene whose middle lies farther from the origin than this many half-widths is drawn about its middle:
@@ -96,13 +93,7 @@ def axis_ticks(low: float, high: float, drawing: float, count: int = 5, offset: 
 
 def _glyph_traces(g: Glyph, frame: int, visible: bool, offset: np.ndarray) -> list[dict[str, Any]]:
     """The traces of one glyph, drawn less ``offset``; the first one carries its legend entry."""
-    common = {
-        "legend": LEGENDS[g.layer],
-        "legendgroup": g.key,
-        "name": g.name,
-        "visible": visible,
-        "meta": {"layer": g.layer, "key": g.key, "frame": frame},
-    }
+    common = {"legend": LEGENDS[g.layer], "legendgroup": g.key, "name": g.name, "visible": visible, "meta": {"layer": g.layer, "key": g.key, "frame": frame}}
     traces: list[dict[str, Any]] = []
     if len(g.points):  # first, so that a joint's legend entry shows its marker
         outline = "#263238" if g.kind == "joint" else g.color
@@ -192,10 +183,7 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
     labels = [_annotations(scene, framing, offset, WIDEST * scene_height) for scene, _, _ in frames]
     layout: dict[str, Any] = {
         "title": {"text": _title(first_result, first_label, len(frames)) if titled else "", "x": 0.01, "xanchor": "left", "font": {"size": 16}},
-        "height": height,
-        "margin": margin,
-        "paper_bgcolor": _BACKGROUND,
-        "uirevision": "mobility",
+        "height": height, "margin": margin, "paper_bgcolor": _BACKGROUND, "uirevision": "mobility",
         "scene": {**{f"{n}axis": a for n, a in axis.items()}, "aspectmode": "manual", "aspectratio": dict(zip("xyz", framing.aspect)),
                   "camera": {"eye": dict(zip("xyz", framing.eye)), "up": {"x": 0, "y": 0, "z": 1}, "projection": {"type": "orthographic"}},
                   "annotations": labels[0], "domain": {"x": [0.0, SCENE_WIDTH], "y": [bottom, 1.0]}},
