@@ -219,10 +219,7 @@ def _stderr_or_nothing() -> Any:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status.
-
-    Standard output is flushed before returning, so that a failure to write it is reported here.
-    """
+    """Run the command line; returns the exit status (standard output flushed first, so that a failure to write it is reported)."""
     whole_process = argv is None  # the command is the program: once its output is in place, it ends as it succeeded
     argv = list(sys.argv[1:] if argv is None else argv)
     _escape_what_cannot_be_encoded()

@@ -19,11 +19,7 @@ def _markdown(result, args: argparse.Namespace) -> str:
     return markdown_report(result)
 
 
-FORMATS = {
-    "text": lambda r, a: text_report(r, limbs=a.limbs),
-    "json": lambda r, a: json_report(r),
-    "md": _markdown,
-}
+FORMATS = {"text": lambda r, a: text_report(r, limbs=a.limbs), "json": lambda r, a: json_report(r), "md": _markdown}
 """Output formats: name -> function(result, args) -> str (other modules may add)."""
 
 

@@ -60,17 +60,9 @@ def _choice(choices: tuple[str, ...]) -> Callable[[Any, str], str]:
 
 
 EXPECTED_VALIDATORS: dict[str, Callable[[Any, str], Any]] = {
-    "dof": _integer,
-    "pattern": _pattern,
-    "mobility": _integer,
-    "redundant_constraints": _integer,
-    "idle_dof": _integer,
-    "gruebler_kutzbach": lambda v, k: _integer(v, k, signed=True),
-    "full_cycle_dof": _integer,
-    "full_cycle_mobility": _integer,
-    "finite_verdict": _choice(FINITE_VERDICTS),
-    "actuation": _choice(ACTUATION_VERDICTS),
-}
+    "dof": _integer, "pattern": _pattern, "mobility": _integer, "redundant_constraints": _integer, "idle_dof": _integer,
+    "gruebler_kutzbach": lambda v, k: _integer(v, k, signed=True), "full_cycle_dof": _integer, "full_cycle_mobility": _integer,
+    "finite_verdict": _choice(FINITE_VERDICTS), "actuation": _choice(ACTUATION_VERDICTS)}
 """Validators of the ``expected`` keys (``translations`` is read as a list of vectors)."""
 
 

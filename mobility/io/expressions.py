@@ -38,30 +38,11 @@ from .limits import DEFAULT_LIMITS
 __all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression", "literal_problem", "uses_radians"]
 
 FUNCTIONS: Mapping[str, Callable[..., float]] = {
-    "abs": abs,
-    "acos": math.acos,
-    "acosd": lambda x: math.degrees(math.acos(x)),
-    "asin": math.asin,
-    "asind": lambda x: math.degrees(math.asin(x)),
-    "atan": math.atan,
-    "atan2": math.atan2,
-    "atan2d": lambda y, x: math.degrees(math.atan2(y, x)),
-    "atand": lambda x: math.degrees(math.atan(x)),
-    "cos": math.cos,
-    "cosd": lambda x: math.cos(math.radians(x)),
-    "degrees": math.degrees,
-    "exp": math.exp,
-    "hypot": math.hypot,
-    "log": math.log,
-    "max": max,
-    "min": min,
-    "radians": math.radians,
-    "sin": math.sin,
-    "sind": lambda x: math.sin(math.radians(x)),
-    "sqrt": math.sqrt,
-    "tan": math.tan,
-    "tand": lambda x: math.tan(math.radians(x)),
-}
+    "abs": abs, "acos": math.acos, "acosd": lambda x: math.degrees(math.acos(x)), "asin": math.asin, "asind": lambda x: math.degrees(math.asin(x)),
+    "atan": math.atan, "atan2": math.atan2, "atan2d": lambda y, x: math.degrees(math.atan2(y, x)), "atand": lambda x: math.degrees(math.atan(x)),
+    "cos": math.cos, "cosd": lambda x: math.cos(math.radians(x)), "degrees": math.degrees, "exp": math.exp, "hypot": math.hypot, "log": math.log,
+    "max": max, "min": min, "radians": math.radians, "sin": math.sin, "sind": lambda x: math.sin(math.radians(x)), "sqrt": math.sqrt,
+    "tan": math.tan, "tand": lambda x: math.tan(math.radians(x))}
 """Functions an expression may call."""
 
 CONSTANTS: Mapping[str, float] = {"pi": math.pi, "tau": math.tau, "e": math.e}
@@ -70,14 +51,8 @@ CONSTANTS: Mapping[str, float] = {"pi": math.pi, "tau": math.tau, "e": math.e}
 RESERVED_NAMES = frozenset(CONSTANTS) | frozenset(FUNCTIONS)
 """Names a file may not define (as a parameter or a limb index): the constants and the functions."""
 
-_BINARY: dict[type, Callable[[float, float], Any]] = {
-    ast.Add: operator.add,
-    ast.Sub: operator.sub,
-    ast.Mult: operator.mul,
-    ast.Div: operator.truediv,
-    ast.Pow: operator.pow,
-    ast.Mod: operator.mod,
-}
+_BINARY: dict[type, Callable[[float, float], Any]] = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul, ast.Div: operator.truediv,
+                                                      ast.Pow: operator.pow, ast.Mod: operator.mod}
 _UNARY: dict[type, Callable[[float], float]] = {ast.USub: operator.neg, ast.UAdd: operator.pos}
 
 _NEVER_ZERO = {operator.mul, operator.truediv, operator.pow, math.exp, math.sqrt, math.hypot}

@@ -53,10 +53,8 @@ from .xml_source import XmlDocument, parse_xml, underflow_problem
 
 __all__ = ["scan_mjcf", "MjcfScan", "GEOMETRY_ATTRIBUTES", "DIRECTIONS", "MUJOCO_EPS"]
 
-GEOMETRY_ATTRIBUTES = frozenset({
-    "pos", "quat", "axisangle", "euler", "xyaxes", "zaxis", "axis", "anchor", "ref", "springref",
-    "fromto", "size", "offset", "relpose", "polycoef", "spacing",
-})
+GEOMETRY_ATTRIBUTES = frozenset({"pos", "quat", "axisangle", "euler", "xyaxes", "zaxis", "axis", "anchor", "ref", "springref",
+                                 "fromto", "size", "offset", "relpose", "polycoef", "spacing"})
 """MJCF attributes that place bodies and joints: a ``nan`` or ``inf`` in one is refused at its line.
 
 Others (``range="-inf inf"`` is common) are left to MuJoCo."""
@@ -64,14 +62,8 @@ Others (``range="-inf inf"`` is common) are left to MuJoCo."""
 MUJOCO_EPS = 1e-14
 """MuJoCo's ``mjEPS``: a vector whose sum of squares is below it is not normalized (``mjuu_normvec``)."""
 
-DIRECTIONS = {
-    "quat": "no rotation",
-    "axisangle": "no rotation",
-    "zaxis": "the direction +z or -z",
-    "axis": "a zero axis",
-    "fromto": "the direction +z or -z",
-    "relpose": "a zero quaternion",
-}
+DIRECTIONS = {"quat": "no rotation", "axisangle": "no rotation", "zaxis": "the direction +z or -z", "axis": "a zero axis",
+              "fromto": "the direction +z or -z", "relpose": "a zero quaternion"}
 """Attributes whose direction MuJoCo normalizes, and what it silently uses when their sum of squares overflows.
 
 A quaternion whose sum of squares is below :data:`MUJOCO_EPS` is refused too (MuJoCo leaves it unnormalized)."""

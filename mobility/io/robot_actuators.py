@@ -77,9 +77,7 @@ def ball_chain_axes(axes: Iterable[Iterable[float]]) -> list[Vector]:
 def _chain_order(count: int, actuators: tuple[BallActuator, ...]) -> list[int]:
     """Indices of the chain's joints (``k < count``: actuator ``k``'s R; ``count``: the rest), from the parent to the child.
 
-    An input whose axis is written in the parent's frame comes first, next
-    to the parent; one in the child's frame last, next to the child, so
-    that each axis moves with the body it is written in.
+    Axes written in the parent's frame come first, in the child's last: each moves with the body it is written in.
     """
     rest = [count] if count < 3 else []
     return [k for k, a in enumerate(actuators) if a.in_parent] + rest + [k for k, a in enumerate(actuators) if not a.in_parent]

@@ -50,8 +50,7 @@ _ROOTS = {"mujoco": "mjcf", "robot": "urdf"}
 def robot_format(path: str | Path) -> str | None:
     """``"mjcf"``, ``"urdf"``, or ``None`` for a file that is not a robot description.
 
-    A ``.urdf`` or ``.mjcf`` extension decides; otherwise the first XML
-    element does (``<mujoco>``, ``<robot>``).  YAML files are never read.
+    The extension decides, else the first XML element (YAML files are never read).
     """
     suffix = Path(file_name(path, "robot_format")).suffix.lower()
     if suffix in (".yaml", ".yml"):

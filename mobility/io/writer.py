@@ -228,9 +228,6 @@ def require_written_faithfully(mechanism: Mechanism, text: str, where: str) -> N
             with np.errstate(over="ignore", invalid="ignore"):
                 drift = float(np.max(np.abs(np.subtract(x, y, dtype=float)))) / size if y is not None else np.inf
             if not drift <= WRITE_DRIFT:
-                raise MechanismFileError(
-                    f"joints[{i}].{name}",
-                    f"joint {a.name!r} would not be written faithfully (it changes by {drift:.2g} of the mechanism's size "
-                    "once written with the writer's digits); the mechanism is too small or too large to convert",
-                    file=str(mechanism.source or where),
-                )
+                raise MechanismFileError(f"joints[{i}].{name}", f"joint {a.name!r} would not be written faithfully (it changes by {drift:.2g} of the "
+                                         "mechanism's size once written with the writer's digits); the mechanism is too small or too large to convert",
+                                         file=str(mechanism.source or where))

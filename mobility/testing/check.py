@@ -184,11 +184,7 @@ class CheckReport:
 
     def summary(self) -> str:
         """``'40 passed, 1 failed, 0 without expected block, 0 errors'``."""
-        errors = self.count("error")
-        return (
-            f"{self.count('pass')} passed, {self.count('fail')} failed, "
-            f"{self.count('missing')} without expected block, {counted(errors, 'error')}"
-        )
+        return f"{self.count('pass')} passed, {self.count('fail')} failed, {self.count('missing')} without expected block, {counted(self.count('error'), 'error')}"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form of ``mobility check --json``."""

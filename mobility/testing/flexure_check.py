@@ -46,12 +46,8 @@ def check_flexure(flexure: FlexureMechanism, *, tol: Tolerance = DEFAULT_TOLERAN
         When the spaces cannot be computed.
     """
     spaces = flexure_spaces(flexure, tol=tol)
-    found: dict[str, Any] = {
-        "dof": spaces.dof,
-        "pattern": spaces.pattern,
-        "constraints": 6 - spaces.dof,
-        "translations": clean_numbers(spaces.freedom_translations),
-    }
+    found: dict[str, Any] = {"dof": spaces.dof, "pattern": spaces.pattern, "constraints": 6 - spaces.dof,
+                             "translations": clean_numbers(spaces.freedom_translations)}
     expected = flexure.expected
     items = expected.items() if expected is not None else []
     if not items:
@@ -71,12 +67,7 @@ def check_flexure(flexure: FlexureMechanism, *, tol: Tolerance = DEFAULT_TOLERAN
 
 
 def flexure_document(path: str, data: Any, positions: Positions, tol: Tolerance) -> CheckResult | None:
-    """The check of a parsed flexure document, ``None`` for a document of another kind.
-
-    An :data:`~mobility.testing.check.OtherDocument`: the document is read by
-    the flexure reader, so a bad one is an error naming its file, line and
-    key (raised, and reported by :func:`~mobility.testing.check.check_file`).
-    """
+    """The check of a parsed flexure document (an :data:`~mobility.testing.check.OtherDocument`), ``None`` for another kind; a bad one raises its one-line error."""
     if not is_flexure_document(data):
         return None
     return check_flexure(read_flexure(data, positions, path), tol=tol, path=path)

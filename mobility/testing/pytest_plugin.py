@@ -82,12 +82,7 @@ def assert_mechanism_passes(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERA
 
 
 def mechanism_test_cases(*paths: str | Path) -> list[Any]:
-    """``pytest.param`` objects, one per mechanism file found under ``paths``.
-
-    A path that gives no file (missing, or a folder without mechanism files)
-    still yields one case, which then fails with the reason: a misspelt path
-    cannot pass silently.
-    """
+    """``pytest.param`` objects, one per mechanism file found under ``paths`` (a path that gives none: one case that fails, saying why)."""
     cases = []
     for shown, path, _problem in mechanism_files(paths):
         target = path if path is not None else shown
@@ -96,12 +91,7 @@ def mechanism_test_cases(*paths: str | Path) -> list[Any]:
 
 
 def mechanism_tests(*paths: str | Path, tol: Tolerance = DEFAULT_TOLERANCE) -> Callable[[str], None]:
-    """A parametrized test function checking every mechanism file under ``paths``.
-
-    Assign it to a name starting with ``test`` in a test module::
-
-        test_mechanisms = mechanism_tests("mechanisms/")
-    """
+    """A parametrized test function checking every mechanism file under ``paths`` (assign it to a ``test_...`` name)."""
 
     @pytest.mark.parametrize("mechanism_path", mechanism_test_cases(*paths))
     def test_mechanism_file(mechanism_path: str) -> None:
@@ -127,13 +117,7 @@ def _test_id(shown: str) -> str:
 
 def pytest_addoption(parser: pytest.Parser) -> None:
     group = parser.getgroup("mobility", "mechanism files checked against their expected blocks")
-    group.addoption(
-        "--mobility-check",
-        action="append",
-        default=[],
-        metavar="PATH",
-        help="collect the mechanism files under PATH as tests (repeatable)",
-    )
+    group.addoption("--mobility-check", action="append", default=[], metavar="PATH", help="collect the mechanism files under PATH as tests (repeatable)")
     parser.addini("mobility_check", "mechanism files or folders collected as tests", type="paths", default=[])
 
 

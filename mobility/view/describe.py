@@ -45,10 +45,7 @@ def rotation_text(number: int, axis: ScrewAxis, scale: float, unit: str) -> str:
     """Hover text of the rotational freedom ``R<number>``: axis, point, pitch (length per radian)."""
     per_rad = f" {unit}/rad" if unit else " per rad"
     pitch = "0" if axis.pitch == 0 else fmt_number(axis.pitch, scale) + per_rad
-    return (
-        f"R{number} {axis.kind}<br>axis {fmt_vector(axis.axis)}<br>through {_length(axis.point, scale, unit)}"
-        f"<br>pitch {pitch}"
-    )
+    return f"R{number} {axis.kind}<br>axis {fmt_vector(axis.axis)}<br>through {_length(axis.point, scale, unit)}<br>pitch {pitch}"
 
 
 def couple_text(number: int, direction: np.ndarray) -> str:
@@ -106,10 +103,7 @@ def margin_text(result: Result) -> str:
 def pose_title(result: Result, label: str = "") -> str:
     """One line: name (and pose label), DOF, pattern, mobility and the Grübler–Kutzbach count."""
     where = f" — {label}" if label else ""
-    return (
-        f"{result.name}{where}: end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility} "
-        f"(Grübler–Kutzbach {result.gruebler_kutzbach})"
-    )
+    return f"{result.name}{where}: end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility} (Grübler–Kutzbach {result.gruebler_kutzbach})"
 
 
 def header_lines(results: Sequence[Result], labels: Sequence[str]) -> list[str]:

@@ -48,18 +48,9 @@ def label_size(text: str) -> tuple[float, float]:
 class Framing:
     """The first view of a scene: what the axes span, the zoom, the camera, and where points land in pixels.
 
-    Attributes
-    ----------
-    low, high : tuple of float
-        Each axis's range (drawing units).
-    aspect : tuple of float
-        plotly's ``aspectratio`` (equal scales: proportional to the ranges).
-    right, up : tuple of float
-        The screen's right and up directions in the scene.
-    eye : tuple of float
-        The camera's ``eye`` (scene units, looking at the centre).
-    height : float
-        The scene's height, pixels.
+    ``low``, ``high``: each axis's range (drawing units); ``aspect``: plotly's
+    ``aspectratio``; ``right``, ``up``: the screen's directions in the scene;
+    ``eye``: the camera's (scene units); ``height``: the scene's, pixels.
     """
 
     low: tuple[float, float, float]
@@ -74,9 +65,7 @@ class Framing:
     def about(lower: np.ndarray, upper: np.ndarray, elev_azim: tuple[float, float], height: float, drawn: np.ndarray | None = None) -> "Framing":
         """The framing of everything between ``lower`` and ``upper`` seen from ``elev_azim`` (degrees) in a scene ``height`` pixels high.
 
-        With ``drawn`` (the points drawn, shape (n, 3)), the zoom makes them,
-        rather than the corners of their box, fill :data:`FILL` of the
-        scene, as long as the whole box stays in view.
+        With ``drawn`` (points, shape (n, 3)), they rather than their box's corners fill :data:`FILL`, the box staying in view.
         """
         lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
         extent = upper - lower

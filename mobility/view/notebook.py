@@ -101,9 +101,7 @@ def sweep_mimebundle(sweep: Any, *, rich: bool = True) -> dict[str, Any]:
 def register_display(shell: Any) -> None:
     """Make IPython ``shell`` display every :class:`Result` and sweep result as its view.
 
-    Rich when the shell's front end shows HTML (a notebook), plain text
-    otherwise (a terminal).  The sweep result's class is named, not imported,
-    so the sweeps package loads only when a sweep is made.
+    Rich when the front end shows HTML, plain text in a terminal; the sweeps package is not imported for it.
     """
     formatter = shell.display_formatter
     rich = "text/html" in getattr(formatter, "active_types", ())

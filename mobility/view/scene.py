@@ -265,8 +265,7 @@ def _framed(glyphs: tuple[Glyph, ...], centre: np.ndarray, size: float, drawing:
 def viewpoint(scene: Scene) -> tuple[float, float]:
     """Elevation and azimuth (degrees) from which no freedom or constraint is seen end-on and no labels overlap.
 
-    The pictures' :func:`~mobility.report.plotting.choose_views`, given the
-    joints, the labels and the directions of the freedoms and constraints.
+    The pictures' :func:`~mobility.report.plotting.choose_views`, given joints, labels and directions.
     """
     important = [scene.centre[None]]
     joints = []

@@ -58,14 +58,8 @@ class ViewFrame:
 class View:
     """An interactive 3D view of one or several poses.
 
-    Attributes
-    ----------
-    frames : tuple of ViewFrame
-    scenes : tuple of Scene
-        What is drawn for each frame (:func:`mobility.view.scene.build_scene`).
-    notes : tuple of str
-        What the header says of the poses besides their answers (e.g. the
-        poses of a sweep that are not drawn, and why).
+    ``scenes``: what is drawn for each frame; ``notes``: what the header says of
+    the poses besides their answers (a sweep's poses not drawn, and why).
     """
 
     frames: tuple[ViewFrame, ...]
@@ -120,16 +114,12 @@ class View:
     def write_html(self, path: str | Path) -> Path:
         """Write :meth:`to_html` to ``path``, whole or not at all (:func:`mobility.outputs.atomic_output`); returns the path.
 
-        A failure or an interrupt leaves a page already at ``path`` as it was.
-
         Raises
         ------
         MissingExtraError
             When plotly is not installed.
         RequestError
-            When ``path`` is not a file name (a ``str`` or ``os.PathLike``
-            naming the file as text), or the file cannot be written (the
-            message says why).
+            When ``path`` is not a file name, or the file cannot be written (saying why).
         """
         path = written_file_name(path, "write_html")
         text = self.to_html()
@@ -150,10 +140,7 @@ class View:
         return "\n".join(lines)
 
     def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, Any]:
-        """Jupyter: the figure in the forms plotly's renderers name, none fetching anything; the text report as plain text.
-
-        See :func:`mobility.view.notebook.offline_mimebundle`.
-        """
+        """Jupyter: the figure as :func:`mobility.view.notebook.offline_mimebundle` gives it, the text report as plain text."""
         try:
             figure = self.figure
         except MissingExtraError as exc:
