@@ -1,10 +1,4 @@
-"""``mobility jacobian FILE``: the Jacobian of a parallel mechanism, by differentiating finite screws.
-
-The limbs must be serial chains from the ground to the end effector; the
-actuated joints are those marked ``actuated: true`` in the file, or those named
-with ``--actuated``.  Exit status 0 when the Jacobian has rank 6 (the platform
-is controlled, redundantly or not), 1 when it is singular, 2 on bad input.
-"""
+"""``mobility jacobian FILE``: the Jacobian of a parallel mechanism whose limbs are serial chains, by differentiating finite screws."""
 
 from __future__ import annotations
 
@@ -38,9 +32,9 @@ def run(args: argparse.Namespace) -> int:
     names = names_from(args.actuated, [j.name for j in mechanism.joints], "--actuated")
     try:
         result = jacobian(mechanism, actuated=names, tol=tol)
+    except MechanismFileError:
+        raise
     except MechanismError as exc:
-        if isinstance(exc, MechanismFileError):
-            raise
         raise MechanismFileError(exc.key, exc.message, file=args.file) from None
     print(jacobian_json(result) if args.json else jacobian_text(result, mechanism.length_unit))
     return 1 if result.singular else 0

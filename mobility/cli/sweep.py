@@ -11,13 +11,13 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import IO, Iterable, Iterator
+from typing import IO, Iterable
 
 from ..errors import MechanismError, RequestError, clipped, counted, one_line
 from ..outputs import atomic_output
 from ..report.plotting import FORMATS as PICTURE_FORMATS, picture_path, save_figure
 from ..report.sweep import sweep_csv_pieces, sweep_json_pieces, sweep_summary
-from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, SweepResult, sweep
+from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, sweep
 from ..sweeps.batch_actuation import actuated_inputs
 from ..transmission import GOOD_TRANSMISSION
 from ..io.limits import require_size
@@ -26,11 +26,7 @@ from ._options import add_max_poses_option, add_mechanism_file, integer_option, 
 ORDER = 35
 
 
-def _summary_pieces(result: SweepResult) -> Iterator[str]:
-    yield sweep_summary(result)
-
-
-FORMATS = {"text": _summary_pieces, "csv": sweep_csv_pieces, "json": sweep_json_pieces}
+FORMATS = {"text": lambda result: iter([sweep_summary(result)]), "csv": sweep_csv_pieces, "json": sweep_json_pieces}
 """Output formats: name -> function(result) -> the text in pieces (a table of a million poses is never held whole as text)."""
 
 

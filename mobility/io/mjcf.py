@@ -435,13 +435,10 @@ class _MjcfTree:
     def equality_gaps(self, notes: list[str]) -> dict[int, str]:
         """How far each active connect or weld is from holding at qpos0, where it is; a note when the file turns equalities off.
 
-        ``mj_forward`` at ``qpos0`` gives the constraint rows (``efc_pos``); a
-        connect's or weld's first three are the distance between its points; a
-        weld's frames are compared by :meth:`weld_angle`.  A distance above
-        ``Tolerance.rank`` of the characteristic length of the joints' points (not
-        MuJoCo's ``<statistic extent>``, which a file sets at will), or an angle
-        above ``Tolerance.rank`` radians, is reported.  The rows are made even where
-        ``<option><flag>`` turns equalities off (a note says so).
+        From the first three constraint rows (``efc_pos``) of ``mj_forward`` at
+        ``qpos0`` and :meth:`weld_angle`: above ``Tolerance.rank`` of the joints'
+        characteristic length (not ``<statistic extent>``, which a file sets at
+        will) or radians.  Made even where ``<option><flag>`` turns equalities off.
         """
         m, mj = self.m, self.mj
         kinds = (int(mj.mjtEq.mjEQ_CONNECT), int(mj.mjtEq.mjEQ_WELD))

@@ -220,12 +220,10 @@ class _Groups:
     parent: dict[str, str] = field(default_factory=dict)
 
     def find(self, name: str) -> str:
-        root = name
-        while self.parent[root] != root:
-            root = self.parent[root]
-        while self.parent[name] != root:
-            self.parent[name], name = root, self.parent[name]
-        return root
+        while self.parent[name] != name:  # path halving
+            self.parent[name] = self.parent[self.parent[name]]
+            name = self.parent[name]
+        return name
 
     def union(self, a: str, b: str) -> None:
         ra, rb = self.find(a), self.find(b)

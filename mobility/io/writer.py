@@ -130,20 +130,7 @@ def _vector(v: Iterable[float], scale: float = 1.0) -> str:
 
 
 def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: dict[str, Any] | None = None) -> str:
-    """A mechanism file for ``mechanism``, its joints written in the global frame.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    description : str
-        Written as a folded ``description`` block.
-    expected : dict, optional
-        Written as the ``expected`` block (``mobility check`` compares with it).
-
-    Returns
-    -------
-    str
-    """
+    """A mechanism file for ``mechanism``, its joints in the global frame, ``description`` folded, ``expected`` as its block (see the module's example)."""
     lines = [f"name: {yaml_scalar(mechanism.name)}"]
     if description:
         lines.append("description: >")

@@ -273,10 +273,6 @@ def compare_verdict(key: str, found: Any, expected: Any, inputs: Sequence[str]) 
     return Comparison(key, expected, found, found == expected)
 
 
-def _translations(subject: _Subject, expected: Any) -> Comparison:
-    return compare_translations(subject.result.translations, expected, subject.tol)
-
-
 def _actuation(subject: _Subject, expected: Any) -> Comparison:
     from ..actuation import check_actuation  # imported on demand: most files expect no actuation verdict
 
@@ -285,7 +281,7 @@ def _actuation(subject: _Subject, expected: Any) -> Comparison:
 
 
 COMPARATORS: dict[str, Comparator] = {
-    **{key: _equal(key) for key in ("dof", "pattern")}, "translations": _translations,
+    **{key: _equal(key) for key in ("dof", "pattern")}, "translations": lambda subject, expected: compare_translations(subject.result.translations, expected, subject.tol),
     **{key: _equal(key) for key in ("mobility", "redundant_constraints", "idle_dof", "gruebler_kutzbach")},
     **{key: _equal(key, finite=True) for key in ("full_cycle_dof", "full_cycle_mobility", "finite_verdict")}, "actuation": _actuation}
 """How each ``expected`` key is compared (other modules may register more)."""

@@ -86,7 +86,7 @@ def mechanism_test_cases(*paths: str | Path) -> list[Any]:
     cases = []
     for shown, path, _problem in mechanism_files(paths):
         target = path if path is not None else shown
-        cases.append(pytest.param(str(target), id=_test_id(shown)))
+        cases.append(pytest.param(str(target), id=shown.replace("\\", "/")))
     return cases
 
 
@@ -106,13 +106,7 @@ def mechanism_tests(*paths: str | Path, tol: Tolerance = DEFAULT_TOLERANCE) -> C
     return test_mechanism_file
 
 
-def _test_id(shown: str) -> str:
-    return shown.replace("\\", "/")
-
-
-# ---------------------------------------------------------------------------
 # pytest plugin hooks (active only when loaded as a plugin and configured)
-# ---------------------------------------------------------------------------
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:

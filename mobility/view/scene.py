@@ -149,7 +149,8 @@ def build_scene(mechanism: Mechanism, result: Result, drawing: float | None = No
         glyphs.append(_couple(i, np.asarray(cp, dtype=float), c, size, k))
     for i, f in enumerate(result.forces):
         glyphs.append(_force(k + i, f, size, scale, unit, sk.scale))
-    return _framed(tuple(glyphs), c, size, sk.scale)
+    everything = np.concatenate([g.extent() for g in glyphs])  # the bounds of everything drawn
+    return Scene(tuple(glyphs), c, size, everything.min(axis=0), everything.max(axis=0), sk.scale)
 
 
 def _links(mechanism: Mechanism, sk) -> list[Glyph]:
@@ -254,12 +255,6 @@ def _force(n: int, f, size: float, scale: float, unit: str, drawing: float) -> G
     label = f"W{n + 1}" if f.pitch == 0 else f"W{n + 1} h={f.pitch:.3g}"
     return Glyph(f"W{n + 1}", "constraints", f.kind, f"W{n + 1} {f.kind}", COLORS["force"], path=pieces(*parts), width=6.0,
                  hover=force_text(n + 1, f, scale, unit), mesh=Mesh.merged(*meshes), label=label, label_at=tip + 0.05 * size * d, direction=d)
-
-
-def _framed(glyphs: tuple[Glyph, ...], centre: np.ndarray, size: float, drawing: float) -> Scene:
-    """The scene with the bounds of everything drawn."""
-    everything = np.concatenate([g.extent() for g in glyphs])
-    return Scene(glyphs, centre, size, everything.min(axis=0), everything.max(axis=0), drawing)
 
 
 def viewpoint(scene: Scene) -> tuple[float, float]:

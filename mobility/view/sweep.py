@@ -37,7 +37,6 @@ def sweep_poses(sweep: Any, max_poses: int = MAX_POSES) -> list[int]:
     Examples
     --------
     >>> from types import SimpleNamespace
-    >>> import numpy as np
     >>> s = SimpleNamespace(size=10, assembled=np.arange(10) != 3, singular=(SimpleNamespace(index=7),))
     >>> sweep_poses(s, 4)
     [0, 5, 7, 9]
@@ -56,7 +55,6 @@ def sweep_notes(sweep: Any, shown: int) -> list[str]:
     Examples
     --------
     >>> from types import SimpleNamespace
-    >>> import numpy as np
     >>> sweep_notes(SimpleNamespace(size=25, assembled=np.arange(25) < 14), 14)
     ["14 of the sweep's 25 poses drawn: 11 not assembled (no closed pose reached there)"]
     >>> sweep_notes(SimpleNamespace(size=1000, assembled=np.arange(1000) != 3), 200)
@@ -80,7 +78,6 @@ def transmission_label(sweep: Any, index: int) -> str:
     Examples
     --------
     >>> from types import SimpleNamespace
-    >>> import numpy as np
     >>> transmission_label(SimpleNamespace(has_transmission=True, lti=np.array([0.8123]), cti=np.array([np.nan])), 0)
     ', LTI 0.812'
     """
