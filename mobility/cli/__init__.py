@@ -182,15 +182,8 @@ def _unicode_escapes(exc: UnicodeError) -> tuple[str, int]:
     """
     if not isinstance(exc, UnicodeEncodeError):
         raise exc
-    out = []
-    for char in exc.object[exc.start : exc.end]:
-        code = ord(char)
-        if code > 0xFFFF:
-            code -= 0x10000
-            out.append(f"\\u{0xD800 + (code >> 10):04x}\\u{0xDC00 + (code & 0x3FF):04x}")
-        else:
-            out.append(f"\\u{code:04x}")
-    return "".join(out), exc.end
+    units = exc.object[exc.start : exc.end].encode("utf-16-be", "surrogatepass")  # a pair beyond the BMP, as JSON writes it
+    return "".join(f"\\u{units[i]:02x}{units[i + 1]:02x}" for i in range(0, len(units), 2)), exc.end
 
 
 codecs.register_error(ESCAPE_ERRORS, _unicode_escapes)

@@ -45,8 +45,7 @@ class Limits:
     Parameters
     ----------
     max_file_bytes : int
-        Size of a file (bytes; characters for text given directly).  A file is
-        read with this cap, so a file growing as it is read ends in an error.
+        Size of a file (bytes; characters for text given directly), read with this cap.
     max_depth : int
         Nesting depth of the YAML document, and of an MJCF model's ``<include>``s.
     max_nodes : int
@@ -54,16 +53,13 @@ class Limits:
     max_copies : int
         ``copies`` of all the ``limbs`` patterns together.
     max_joints : int
-        Joints, ``limbs`` expanded (the analysis: about 2 s and 90 MB at 10,000).
-        Also bounds the copies an MJCF ``count`` makes; MJCF equalities count as joints.
+        Joints, ``limbs`` expanded, MJCF copies and equalities counted (the analysis: 2 s, 90 MB at 10,000).
     max_frames : int
         Frames, the one of each limb copy included.
     max_elements : int
-        Elements of an MJCF model, includes and ``<replicate>`` copies counted
-        (MuJoCo's parser slows with their square: 2.5 s for 20,000 elements).
+        Elements of an MJCF model and its includes and copies (MuJoCo's parser: 2.5 s at 20,000).
     max_asset_values : int
-        Points MuJoCo makes for an MJCF model's height fields and builtin meshes
-        as it reads the file, all together (about 140 bytes each).
+        Points MuJoCo makes for an MJCF model's height fields and builtin meshes as it reads it.
     max_expression_length, max_expression_depth : int
         Characters, and nesting depth, of one arithmetic expression.
     max_finite_joints : int
@@ -73,9 +69,8 @@ class Limits:
     max_enumerated_joints : int
         Joints whose inputs ``actuation --enumerate`` searches (square of the joints).
     max_moving_work : int
-        Poses times joints of what ``--samples`` and ``view --vary`` move and
-        analyse one by one; at 5,000 every bundled mechanism can be viewed at
-        the 199 sampled poses a view holds (227 poses of the 22-joint H4: 23 s).
+        Poses times joints that ``--samples`` and ``view --vary`` move and analyse one by one
+        (at 5,000 every bundled mechanism can be viewed at the 199 sampled poses a view holds).
     """
 
     max_file_bytes: int = 4 * 1024 * 1024

@@ -111,12 +111,7 @@ class DigitCounter:
         weight = self._WEIGHT[kind] * scale
         for token in text.split():
             count = significant_digits(token)
-            if count == 0:
-                continue
-            try:
-                value = abs(float(token))
-            except ValueError:  # pragma: no cover - the pattern admits only numbers
-                continue
+            value = abs(float(token)) if count else 0.0  # a count: the pattern holds a number
             if not math.isfinite(value) or value == 0.0:
                 continue
             if count >= 2:

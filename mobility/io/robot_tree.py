@@ -462,8 +462,8 @@ def _model_joints(tree: RobotTree, j: TreeJoint, a: str, b: str, used: set[str],
                 out.append(replace(joint, name=unique_name(joint.name, used), links=(here, there)))
                 here = there
             return out
-        direction = {"R": {"axis": j.axis}, "P": {"axis": j.axis}, "S": {}, "E": {"normal": j.axis}}[kind]
-        return [Joint(unique_name(j.name, used), kind, (a, b), point=j.point, actuated=j.actuated, **direction)]
+        along, normal = (j.axis, None) if kind in ("R", "P") else (None, j.axis if kind == "E" else None)
+        return [Joint(unique_name(j.name, used), kind, (a, b), axis=along, normal=normal, point=j.point, actuated=j.actuated)]
     except MechanismError as exc:
         raise MechanismFileError(f"joint[{clipped(j.name)}]", exc.message if not exc.key else f"{exc.key}: {exc.message}", file=tree.file, line=j.line) from None
 

@@ -29,6 +29,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import textwrap
 from typing import Any, Iterable
 
 import numpy as np
@@ -132,15 +133,9 @@ def _vector(v: Iterable[float], scale: float = 1.0) -> str:
 def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: dict[str, Any] | None = None) -> str:
     """A mechanism file for ``mechanism``, its joints in the global frame, ``description`` folded, ``expected`` as its block (see the module's example)."""
     lines = [f"name: {yaml_scalar(mechanism.name)}"]
-    if description:
-        lines.append("description: >")
-        line = " "
-        for word in description.split():
-            if len(line) + len(word) > 100:
-                lines.append(line.rstrip())
-                line = " "
-            line += " " + word
-        lines.append(line.rstrip())
+    if description:  # folded: lines of at most 101 characters, a longer word alone on its line
+        lines += ["description: >", *textwrap.wrap(" ".join(description.split()), 101, initial_indent="  ", subsequent_indent="  ",
+                                                    break_long_words=False, break_on_hyphens=False)]
     if mechanism.length_unit:
         lines.append(f"units: {{length: {yaml_scalar(mechanism.length_unit)}}}")
     lines += [f"ground: {yaml_scalar(mechanism.ground)}", f"end_effector: {yaml_scalar(mechanism.end_effector)}", "joints:"]

@@ -25,11 +25,6 @@ NOTEBOOK_POSES = 60
 """Poses of a sweep shown in a notebook's slider (each is analysed again to be drawn)."""
 
 
-def _makes_html(renderer: Any) -> bool:
-    """Whether a plotly renderer's output is HTML (its own HTML loads MathJax, and plotly.js, from a CDN)."""
-    return any(c.__name__ in ("HtmlRenderer", "IFrameRenderer") for c in type(renderer).__mro__)
-
-
 def offline_mimebundle(figure: Any) -> dict[str, Any]:
     """The forms of ``figure`` that plotly's default renderers name, none of them fetching anything.
 
@@ -52,7 +47,7 @@ def offline_mimebundle(figure: Any) -> dict[str, Any]:
     bundle: dict[str, Any] = {}
     for name in filter(None, (pio.renderers.default or "").split("+")):
         renderer = pio.renderers[name]
-        if _makes_html(renderer):
+        if any(c.__name__ in ("HtmlRenderer", "IFrameRenderer") for c in type(renderer).__mro__):  # its HTML would load MathJax from a CDN
             bundle["text/html"] = figure_html(fig_dict)
         elif hasattr(renderer, "to_mimebundle"):
             bundle.update(renderer.to_mimebundle(fig_dict))
