@@ -118,9 +118,7 @@ class _GuardedOutput:
     """
 
     def __init__(self, stream: Any) -> None:
-        self.stream = stream
-        self.failed = False
-        self.reader_gone = False
+        self.stream, self.failed, self.reader_gone = stream, False, False
 
     def _guarded(self, action: Any, *args: Any) -> Any:
         if self.reader_gone:

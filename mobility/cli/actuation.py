@@ -1,9 +1,7 @@
 """``mobility actuation FILE``: which joints (or linear actuators) may drive a mechanism.
 
-For a mechanism: the actuation wrenches of the actuated joints, the constraint
-wrenches and the verdict; ``--enumerate`` checks every combination of inputs
-at the pose and further poses, grouped and ranked.  For a flexure document:
-its compliance, freedom and constraint spaces and the verdict of its linear
+The actuation wrenches, constraint wrenches and verdict of the actuated joints
+(``--enumerate``: every combination), or of a flexure document's linear
 actuators (``docs/actuation.md``).
 """
 

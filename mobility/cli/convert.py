@@ -1,8 +1,4 @@
-"""``mobility convert FILE -o FILE.yaml``: a robot description (MJCF, URDF) as a mechanism file.
-
-``-o`` never writes over a file the conversion reads (the input, a closures
-file, a file an MJCF model includes).
-"""
+"""``mobility convert FILE -o FILE.yaml``: a robot description (MJCF, URDF) as a mechanism file, never written over a file it reads."""
 
 from __future__ import annotations
 

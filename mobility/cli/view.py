@@ -1,8 +1,6 @@
 """``mobility view FILE -o FILE.html``: an interactive 3D view of the mechanism, its freedoms and constraints.
 
-``--samples N`` adds poses reached by moving the mechanism, ``--vary
-NAME=START:STOP:COUNT`` the poses of a sweep (as ``mobility sweep``, with its
-``--max-poses`` bound on the grid); a slider walks through them.
+``--samples N`` or ``--vary`` (as ``mobility sweep``) add poses, on a slider.
 """
 
 from __future__ import annotations

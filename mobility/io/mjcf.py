@@ -138,11 +138,7 @@ def _not_utf8(name: str) -> bool:
     >>> _not_utf8("gelenk_\\u00e4.xml"), _not_utf8(b"lat\\xe4.xml".decode("utf-8", "surrogateescape"))
     (False, True)
     """
-    try:
-        name.encode("utf-8")
-    except UnicodeEncodeError:
-        return True
-    return False
+    return any("\ud800" <= char <= "\udfff" for char in name)  # surrogates: the only characters UTF-8 cannot encode
 
 
 @contextmanager

@@ -134,9 +134,7 @@ class _Scanner:
         """Every element under ``root`` (iteratively: a deep file must not exhaust Python's stack)."""
         stack = [(child, context) for child in reversed(list(root))]
         while stack:
-            element, where = stack.pop()
-            children = self.visit(element, where)
-            stack.extend(reversed(children))
+            stack.extend(reversed(self.visit(*stack.pop())))
 
     def visit(self, element: Element, where: _Context) -> list[tuple[Element, _Context]]:
         """Check one element; the elements to visit under it, each with its context."""

@@ -15,8 +15,7 @@ precision, relative to the characteristic length
   (a weld's angle in radians), gaps above :data:`ASSEMBLED` left out (a file
   not assembled there, not rounding).
 
-``None`` when neither says anything; :func:`~mobility.core.tolerance.file_tolerance`
-turns it into the rank threshold.
+:func:`~mobility.core.tolerance.file_tolerance` turns it into the rank threshold.
 
 Examples
 --------

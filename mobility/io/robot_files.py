@@ -63,9 +63,7 @@ def robot_format(path: str | Path) -> str | None:
 def is_robot_file(path: str | Path) -> bool:
     """Whether ``path`` is to be read as a robot description: an XML extension or XML content."""
     suffix = Path(file_name(path, "is_robot_file")).suffix.lower()
-    if suffix in (".yaml", ".yml"):
-        return False
-    return suffix in ROBOT_SUFFIXES or root_tag(path) is not None
+    return suffix not in (".yaml", ".yml") and (suffix in ROBOT_SUFFIXES or root_tag(path) is not None)
 
 
 def read_robot(path: str | Path, options: RobotOptions | None = None, **option_values: Any) -> ImportedRobot:

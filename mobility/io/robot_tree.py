@@ -120,22 +120,11 @@ class Unsupported:
 class RobotTree:
     """A robot description read from a file: bodies, joints, closures, at one pose.
 
-    Attributes
-    ----------
-    format : str
-        ``"MJCF"`` or ``"URDF"``.
-    bodies : tuple of Body
-        Root first; every parent before its children.
-    joints : tuple of TreeJoint
-        In file order (a body's joints root-to-body).
-    pose : str
-        The configuration the geometry is taken at.
-    files : tuple of str
-        The other files read for it (MJCF includes and ``<model>`` files, a closures file).
-    rounding : Rounding or None
-        The digits its numbers are rounded to (:mod:`mobility.io.precision`).
-    gaps, angle_gaps : tuple of float
-        How far each loop closure misses at the pose (``length_unit``), each weld (radians).
+    ``bodies``: root first, every parent before its children; ``joints``: in file
+    order (a body's root-to-body); ``pose``: where the geometry is taken;
+    ``files``: the other files read for it; ``rounding``: the digits of its
+    numbers (:mod:`mobility.io.precision`); ``gaps``, ``angle_gaps``: how far each
+    loop closure (``length_unit``) and weld (radians) misses at the pose.
     """
 
     name: str
@@ -263,9 +252,8 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     link_names = set(names.values())
     by_body: dict[str, list[TreeJoint]] = {}
     for j in tree.joints:
-        if j.kind == "free" and j.body not in kept:
-            continue
-        by_body.setdefault(j.body, []).append(j)
+        if j.kind != "free" or j.body in kept:
+            by_body.setdefault(j.body, []).append(j)
     parents = {b.name: b.parent for b in tree.bodies}
     for body, chain in by_body.items():
         start, end = link(cast(str, parents[body])), link(body)  # a joint's body is not the root: it has a parent

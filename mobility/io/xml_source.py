@@ -78,8 +78,7 @@ def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False
     Raises
     ------
     MechanismFileError
-        When the text is not well-formed XML (the message names line and
-        column), or, with ``mujoco``, when MuJoCo would read it differently.
+        When the text is not well-formed XML (at its line and column), or MuJoCo would read it differently.
     RequestError
         When ``text`` is neither ``str`` nor ``bytes``.
 

@@ -90,12 +90,9 @@ class Positions:
     def line(self, path: KeyPath) -> int | None:
         """Line of ``path``, or of its nearest ancestor that has one."""
         path = tuple(path)
-        while True:
-            if path in self.lines:
-                return self.lines[path]
-            if not path:
-                return None
+        while path and path not in self.lines:
             path = path[:-1]
+        return self.lines.get(path)
 
 
 def read_text(path: str | Path, limits: Limits | None = None) -> str:

@@ -92,21 +92,11 @@ class Comparison:
 class CheckResult:
     """The check of one mechanism (usually one file).
 
-    Attributes
-    ----------
-    path : str
-        The file as given (empty for a mechanism built in code).
-    status : str
-        One of :data:`STATUSES`.
-    comparisons : tuple of Comparison
-        One per key of the ``expected`` block, in the block's order.
-    internal : bool
-        True when the error is a defect of :mod:`mobility`, not bad input (exit status 3, not 2).
-    kind : str
-        ``"mechanism"``, or another document's kind (``"flexure"``: ``result`` is ``None``).
-    found : dict or None
-        What the check of another kind of document found; for a mechanism
-        :meth:`found_values` reads it from ``result``.
+    ``path``: the file as given (empty for a mechanism built in code); ``status``:
+    one of :data:`STATUSES`; ``comparisons``: one per ``expected`` key, in order;
+    ``internal``: the error is a defect of :mod:`mobility`, not bad input (exit
+    status 3, not 2); ``kind``: ``"mechanism"`` or another document's
+    (``"flexure"``, whose ``found`` replaces ``result``).
     """
 
     path: str
@@ -314,13 +304,8 @@ def check_mechanism(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE,
     items = expected.items() if expected is not None else []
     if not items:
         return CheckResult(path, mechanism.name, "missing", (), subject.result)
-    comparisons = []
-    for key, value in items:
-        comparator = COMPARATORS.get(key)
-        if comparator is None:
-            comparisons.append(Comparison(key, value, None, False, "no comparator knows this key"))
-        else:
-            comparisons.append(comparator(subject, value))
+    comparisons = [COMPARATORS[key](subject, value) if key in COMPARATORS else Comparison(key, value, None, False, "no comparator knows this key")
+                   for key, value in items]
     status = "pass" if all(c.ok for c in comparisons) else "fail"
     return CheckResult(path, mechanism.name, status, tuple(comparisons), subject.result)
 

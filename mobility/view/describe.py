@@ -1,9 +1,7 @@
 """The words of the 3D view: hover text of each screw and joint, the title of a pose.
 
-Numbers are written as in the text report (:mod:`mobility.report.text`):
-directions unitless, points in the file's length unit, pitches of twists in
-that unit per radian and of wrenches in that unit; round-off is shown as 0.  Hover text uses ``<br>`` between lines
-(the plotting library's line break).
+Numbers are written as in the text report (:mod:`mobility.report.text`), in
+the file's units (twists' pitches per radian); lines are joined by plotly's ``<br>``.
 
 Examples
 --------

@@ -194,11 +194,9 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
     top = 1.0
     for layer, name in LEGENDS.items():
         entries = len({g.key for s, _, _ in frames for g in s.layer(layer)})
-        layout[name] = {
-            "title": {"text": f"<b>{layer}{counts[layer] if len(frames) == 1 else ''}</b>", "side": "top"},
-            "orientation": "v", "x": SCENE_WIDTH + 0.01, "xanchor": "left", "y": top, "yanchor": "top",
-            "groupclick": "togglegroup", "titleclick": "toggle", "titledoubleclick": "toggleothers", "bgcolor": "rgba(255,255,255,0.8)",
-        }
+        layout[name] = {"title": {"text": f"<b>{layer}{counts[layer] if len(frames) == 1 else ''}</b>", "side": "top"}, "orientation": "v",
+                        "x": SCENE_WIDTH + 0.01, "xanchor": "left", "y": top, "yanchor": "top", "groupclick": "togglegroup", "titleclick": "toggle",
+                        "titledoubleclick": "toggleothers", "bgcolor": "rgba(255,255,255,0.8)"}
         top -= (30 + 29 * entries) / plot_height
     if len(frames) > 1:
         steps = []

@@ -21,10 +21,8 @@ __all__ = ["require_plotly", "page_html", "figure_html", "answer_script", "screw
 PLOTLY_CONFIG = {"displaylogo": False, "responsive": True, "scrollZoom": True}
 """The plotly.js options of the view: no logo, fills its page, the wheel zooms."""
 
-_HELP = (
-    "Drag to rotate, scroll to zoom, right-drag (or shift-drag) to pan; hover a glyph for its numbers. "
-    "Click a legend entry to hide or show it, a legend's title to switch its whole layer."
-)
+_HELP = ("Drag to rotate, scroll to zoom, right-drag (or shift-drag) to pan; hover a glyph for its numbers. "
+         "Click a legend entry to hide or show it, a legend's title to switch its whole layer.")
 
 _STYLE = """
 body { margin: 0; font-family: system-ui, -apple-system, "Segoe UI", Roboto, Helvetica, Arial, sans-serif; color: #263238; background: #fff; }
@@ -44,14 +42,12 @@ aside td.key { font-weight: bold; white-space: nowrap; }
 aside .numbers { font-family: ui-monospace, "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 12px; }
 """
 
-LABELS_SCRIPT = (
-    "var gd = document.getElementById('{plot_id}');\n"
-    "gd.on('plotly_restyle', function () { var shown = {}, update = {}, notes = (gd.layout.scene && gd.layout.scene.annotations) || [];\n"
-    "gd.data.forEach(function (t) { if (t.meta && t.visible === true) { shown[t.meta.key] = true; } });\n"
-    "notes.forEach(function (a, i) { var now = a.visible !== false, want = shown[a.name] === true;\n"
-    "if (now !== want) { update['scene.annotations[' + i + '].visible'] = want; } });\n"
-    "if (Object.keys(update).length) { Plotly.relayout(gd, update); } });"
-)
+LABELS_SCRIPT = ("var gd = document.getElementById('{plot_id}');\n"
+                 "gd.on('plotly_restyle', function () { var shown = {}, update = {}, notes = (gd.layout.scene && gd.layout.scene.annotations) || [];\n"
+                 "gd.data.forEach(function (t) { if (t.meta && t.visible === true) { shown[t.meta.key] = true; } });\n"
+                 "notes.forEach(function (a, i) { var now = a.visible !== false, want = shown[a.name] === true;\n"
+                 "if (now !== want) { update['scene.annotations[' + i + '].visible'] = want; } });\n"
+                 "if (Object.keys(update).length) { Plotly.relayout(gd, update); } });")
 """The script that hides the label of a glyph hidden from its legend, and shows it again with it."""
 
 
@@ -95,12 +91,10 @@ def answer_script(answers: Sequence[str]) -> str:
     text = json.dumps(list(answers), ensure_ascii=True)
     for char in "<>&{}":
         text = text.replace(char, f"\\u{ord(char):04x}")
-    return (
-        f"var gd = document.getElementById('{{plot_id}}'); var answers = {text};\n"
-        "gd.on('plotly_sliderchange', function (e) { var k = e.slider.active;\n"
-        "var p = document.querySelector('header .answer'); if (p && answers[k] !== undefined) { p.textContent = answers[k]; }\n"
-        "document.querySelectorAll('aside .screws').forEach(function (s, i) { s.hidden = i !== k; }); });"
-    )
+    return (f"var gd = document.getElementById('{{plot_id}}'); var answers = {text};\n"
+            "gd.on('plotly_sliderchange', function (e) { var k = e.slider.active;\n"
+            "var p = document.querySelector('header .answer'); if (p && answers[k] !== undefined) { p.textContent = answers[k]; }\n"
+            "document.querySelectorAll('aside .screws').forEach(function (s, i) { s.hidden = i !== k; }); });")
 
 
 def screws_table(scene: Any) -> str:

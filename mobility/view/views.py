@@ -106,9 +106,8 @@ class View:
 
     def to_html(self) -> str:
         """The self-contained page (plotly.js inline; nothing fetched from the network)."""
-        figure = self.figure_dict
-        if len(self.frames) == 1:  # the page's header says it all; several poses keep the title the slider updates
-            figure = build_figure_dict([(s, f.result, f.label) for s, f in zip(self.scenes, self.frames)], titled=False)
+        # one pose: the page's header says it all; several poses keep the title the slider updates
+        figure = self.figure_dict if len(self.frames) > 1 else build_figure_dict([(self.scenes[0], self.frames[0].result, self.frames[0].label)], titled=False)
         return page_html(figure, self.name, self.answers, self.header, [screws_table(s) for s in self.scenes])
 
     def write_html(self, path: str | Path) -> Path:
