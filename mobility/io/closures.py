@@ -110,11 +110,9 @@ def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
     Raises
     ------
     MechanismFileError
-        On a malformed file, an unknown body or frame, or bad joint geometry;
-        the message names the side file, the line and the key.
+        On a malformed file, an unknown body or frame, or bad joint geometry (at its line and key).
     RequestError
-        When ``path`` is not a file name (a ``str`` or ``os.PathLike``; an
-        ``int`` would be read as a file descriptor, and closed).
+        When ``path`` is not a file name.
     """
     file = file_name(path, "closures")
     data, positions = parse_yaml(read_text(path), file)

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import re
 import warnings
+from collections import Counter
 from pathlib import Path
 from typing import Any, Callable, Mapping, NamedTuple
 
@@ -230,10 +231,7 @@ class _MechanismReader(DocumentReader):
         a file with more than :data:`MOST_LINKS_NAMED_ONCE` links named once is
         generated, and not searched.
         """
-        uses: dict[str, int] = {}
-        for j in mechanism.joints:
-            for link in j.links:
-                uses[link] = uses.get(link, 0) + 1
+        uses = Counter(link for j in mechanism.joints for link in j.links)
         ends = (mechanism.ground, mechanism.end_effector)
         once = [link for link, n in uses.items() if n == 1 and link not in ends]
         if not once or len(once) > MOST_LINKS_NAMED_ONCE:
@@ -309,10 +307,7 @@ class _MechanismReader(DocumentReader):
             raise self.fail(path + ("links",), f"expected two link names [a, b], got {describe_value(links)}")
         links = tuple(text(self.identifier(x, path + ("links", k), "a link name"), path + ("links", k)) for k, x in enumerate(links))
         self.fields_of_type(data, jtype, path)
-        fields: dict[str, Any] = {}
-        for key in ("axis", "point", "normal"):
-            if key in data:
-                fields[key] = self.vector(data[key], path + (key,), names)
+        fields: dict[str, Any] = {key: self.vector(data[key], path + (key,), names) for key in ("axis", "point", "normal") if key in data}
         if "pitch" in data:
             fields["pitch"] = self.number(data["pitch"], path + ("pitch",), names)
         if "axes" in data:

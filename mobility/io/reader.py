@@ -344,7 +344,4 @@ def shown_value(value: Any) -> str:
 
 def parse_key(key: str) -> KeyPath:
     """Parse ``joints[3].axes[0]`` into ``("joints", 3, "axes", 0)``."""
-    out: list[str | int] = []
-    for part in re.finditer(r"([^.\[\]]+)|\[(\d+)\]", key):
-        out.append(int(part.group(2)) if part.group(2) is not None else part.group(1))
-    return tuple(out)
+    return tuple(int(part.group(2)) if part.group(2) is not None else part.group(1) for part in re.finditer(r"([^.\[\]]+)|\[(\d+)\]", key))

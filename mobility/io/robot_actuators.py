@@ -98,10 +98,8 @@ def ball_chain_names(name: str, actuators: tuple[BallActuator, ...]) -> list[str
 def ball_chain(name: str, point: Vector, actuators: tuple[BallActuator, ...]) -> list[Joint]:
     """A ball joint driven by ``actuators`` as a chain of joints through ``point``, in chain order, their links still to be set.
 
-    Actuator ``a``'s input is the R joint ``name.a`` (actuated) about its
-    axis of :func:`ball_chain_axes`; the rotations no actuator drives are
-    the U (two) or R (one) joint ``name``.  Each joint's ``links`` are
-    placeholders (``"parent"``, ``"child"``): the caller links the chain.
+    Actuator ``a`` is the actuated R joint ``name.a``; the rotations no actuator drives are the U or R joint
+    ``name``.  The ``links`` are placeholders (``"parent"``, ``"child"``) for the caller to set.
     """
     centre = point
     axes = ball_chain_axes([a.axis for a in actuators])

@@ -112,12 +112,7 @@ def read_text(path: str | Path, limits: Limits | None = None) -> str:
 
 
 def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) -> tuple[Any, Positions]:
-    """Parse one YAML document, keeping the line of every key.
-
-    Returns
-    -------
-    data, positions
-        ``data`` is ``None`` for an empty document.
+    """Parse one YAML document into ``(data, positions)``, keeping the line of every key (``data`` is ``None`` for an empty document).
 
     Raises
     ------

@@ -93,12 +93,7 @@ def paths() -> tuple[Path, ...]:
 
 
 def path(name: str) -> Path:
-    """The bundled file of a mechanism or flexure example, by its name (``"3prs"``; ``"3prs.yaml"`` too).
-
-    Returns
-    -------
-    pathlib.Path
-        The file inside the installed package (absolute).
+    """The bundled file (absolute, inside the installed package) of a mechanism or flexure example, by its name (``"3prs"``; ``"3prs.yaml"`` too).
 
     Raises
     ------

@@ -321,10 +321,8 @@ which kind it is and where each key stands), or ``None`` when ``data`` is not of
 def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE, others: Sequence[OtherDocument] = ()) -> CheckResult:
     """Load, analyse and check one mechanism file; never raises on a bad file.
 
-    A YAML file is parsed once and offered to each of ``others`` in turn (the
-    first that takes it checks it) before it is read as a mechanism; a robot
-    description is loaded by :func:`mobility.io.loader.load`.  A file that
-    cannot be read or analysed gives status ``"error"`` with its one-line message.
+    A YAML file is parsed once and offered to each of ``others`` in turn before it is
+    read as a mechanism.  A file that cannot be read or analysed gives status ``"error"``.
 
     Raises
     ------
@@ -369,14 +367,9 @@ def _path_problem(raw: str | Path) -> tuple[int, str]:
 
 
 def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None, str]]:
-    """Expand ``paths`` into mechanism files.
+    """Expand ``paths`` into ``(shown, path, problem)``: the name to report, as text, and the file (``None`` when ``problem`` says why nothing can be checked there).
 
-    Returns
-    -------
-    list of (shown, path, problem)
-        ``shown``: the name to report, as text; ``path`` is ``None`` when
-        ``problem`` says why nothing can be checked there.  Folders give every
-        ``*.yaml``/``*.yml`` file inside, recursively, sorted.
+    Folders give every ``*.yaml``/``*.yml`` file inside, recursively, sorted.
     """
     out: list[tuple[str, Path | None, str]] = []
     for raw in paths:

@@ -34,11 +34,7 @@ __all__ = ["check_flexure", "flexure_document"]
 def check_flexure(flexure: FlexureMechanism, *, tol: Tolerance = DEFAULT_TOLERANCE, path: str = "") -> CheckResult:
     """Compute a flexure mechanism's spaces and compare them with its ``expected`` block.
 
-    Returns
-    -------
-    CheckResult
-        ``kind`` ``"flexure"``; ``found`` holds ``dof``, ``pattern``,
-        ``constraints``, ``translations`` (and ``actuation`` when expected).
+    The result's ``found`` holds ``dof``, ``pattern``, ``constraints``, ``translations`` (and ``actuation`` when expected).
 
     Raises
     ------

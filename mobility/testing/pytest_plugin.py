@@ -65,14 +65,9 @@ def failure_text(result: CheckResult) -> str:
 
 
 def assert_mechanism_passes(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[CheckResult, ...]:
-    """Check a mechanism file (or every file of a folder); raise :class:`MechanismCheckFailed` unless all pass.
+    """Check a mechanism file (or every file of a folder) and return the results; raise :class:`MechanismCheckFailed` unless all pass.
 
     A missing path or a folder without mechanism files fails too.
-
-    Returns
-    -------
-    tuple of CheckResult
-        The passing results.
     """
     report = check_paths([path], tol=tol, others=_document_checks())
     failed = [r for r in report.results if not r.ok]

@@ -174,7 +174,7 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
     Returns
     -------
     list of (float, float)
-        Offsets (right, down) in pixels, one per label.
+        Offsets (right, down), pixels.
 
     Examples
     --------

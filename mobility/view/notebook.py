@@ -32,12 +32,7 @@ def offline_mimebundle(figure: Any) -> dict[str, Any]:
     MathJax or plotly.js from a CDN, give way to one fragment with plotly.js
     inline (:func:`mobility.view.page.figure_html`); other renderers give their
     own form, those opening a browser none.  The JSON form comes with the HTML
-    too, for viewers of a saved notebook (about 4.8 MB a view).
-
-    Returns
-    -------
-    dict
-        Mime type -> data.
+    too, for viewers of a saved notebook (about 4.8 MB a view).  Returns mime type -> data.
     """
     import plotly.io as pio
 
