@@ -47,7 +47,7 @@ class Limits:
     max_file_bytes : int
         Size of a file (bytes; characters for text given directly), read with this cap.
     max_depth : int
-        Nesting depth of the YAML document, and of an MJCF model's ``<include>``s.
+        Nesting depth of the YAML document, and of an MJCF model's ``<include>`` elements.
     max_nodes : int
         YAML nodes counted with every alias expanded ("billion laughs" stop here).
     max_copies : int
