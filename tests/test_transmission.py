@@ -78,6 +78,41 @@ def test_indices_fall_to_exactly_zero_at_the_singular_poses_of_the_sweep():
     assert np.all(r.lti[others] > 0.5)
 
 
+def _five_bar_with_a_straight_limb() -> mobility.Mechanism:
+    """planar_5r.yaml's link lengths with crank A2B2 and distal link B2P in line (P at full reach of limb 2), B1 from the circles."""
+    a2 = np.array([200.0, 0.0])
+    crank1, crank2 = math.hypot(-50, 150), math.hypot(60, 140)
+    distal1, distal2 = math.hypot(160, 150), math.hypot(-150, 160)
+    u = np.array([math.cos(math.radians(110)), math.sin(math.radians(110))])
+    b2, p = a2 + crank2 * u, a2 + (crank2 + distal2) * u
+    d = float(np.linalg.norm(p))
+    along = (crank1**2 - distal1**2 + d**2) / (2 * d)
+    e = p / d
+    b1 = along * e + math.sqrt(crank1**2 - along**2) * np.array([-e[1], e[0]])
+    at = lambda v: f"[{float(v[0])!r}, {float(v[1])!r}, 0]"  # noqa: E731
+    return mobility.loads("name: five-bar, limb 2 straight\nground: ground\nend_effector: distal1\njoints:\n"
+                          "  - {name: A1, type: R, links: [ground, proximal1], axis: [0, 0, 1], point: [0, 0, 0], actuated: true}\n"
+                          f"  - {{name: B1, type: R, links: [proximal1, distal1], axis: [0, 0, 1], point: {at(b1)}}}\n"
+                          f"  - {{name: P, type: R, links: [distal1, distal2], axis: [0, 0, 1], point: {at(p)}}}\n"
+                          f"  - {{name: B2, type: R, links: [distal2, proximal2], axis: [0, 0, 1], point: {at(b2)}}}\n"
+                          "  - {name: A2, type: R, links: [proximal2, ground], axis: [0, 0, 1], point: [200, 0, 0], actuated: true}\n")
+
+
+def test_five_bar_input_singularity_where_crank_elbow_and_tool_point_fall_in_line_gives_lti_zero():
+    # The end effector loses a freedom there (2 inputs, 1 DOF): the best choice of inputs would leave A2 out and
+    # report LTI 1; A2's limb is at a serial singularity (ITI = sin of the crank-coupler angle = 0), so LTI is 0.
+    m = _five_bar_with_a_straight_limb()
+    t = check_transmission(m)
+    assert mobility.analyze(m).dof == 1 and t.iti[1] == 0.0 and t.lti == 0.0 and not t.good
+    r = mobility.sweep(m, ["A1=-10:10:3", "B2=-20:20:5"])
+    singular = [p.index for p in r.singular]
+    assert singular == [2, 7, 12] and all("loses 1 freedom" in p.reasons[0] for p in r.singular)  # B2 = 0: limb 2 straight
+    assert all(r.lti[i] == 0.0 and r.iti[i] == 0.0 for i in singular)
+    others = np.setdiff1d(np.arange(r.size), singular)
+    elbow = np.radians(r.values[others, 1])
+    assert np.allclose(r.lti[others], np.abs(np.sin(elbow)), atol=1e-9)  # beside it: ITI of A2 = |sin| of the elbow angle
+
+
 def _moved(m: mobility.Mechanism, scale: float, rotation: np.ndarray, shift: np.ndarray) -> mobility.Mechanism:
     """The whole file scaled and moved rigidly (world geometry, no frames)."""
     joints = []
@@ -107,7 +142,7 @@ angles = st.floats(-math.pi, math.pi, allow_nan=False)
 
 @settings(max_examples=12, deadline=None)
 @given(scale=st.floats(1e-3, 1e3), a=angles, b=angles, c=angles, shift=st.tuples(*[st.floats(-1e3, 1e3)] * 3),
-       name=st.sampled_from(["3prs_tilted", "actuation_3rps", "planar_5r", "4puu"]))
+       name=st.sampled_from(["3prs_tilted", "actuation_3rps", "planar_5r", "4puu", "crank_rocker_goessner"]))
 def test_indices_are_invariant_to_units_and_frames(scale, a, b, c, shift, name):
     m = load(name)
     base = check_transmission(m)
@@ -117,6 +152,13 @@ def test_indices_are_invariant_to_units_and_frames(scale, a, b, c, shift, name):
         pairs += [*zip(base.iti, moved.iti), *zip(base.oti, moved.oti), *zip(base.cti_limbs, moved.cti_limbs)]
     for x, y in pairs:
         assert (math.isnan(x) and math.isnan(y)) or x == pytest.approx(y, abs=1e-7)
+
+
+@settings(max_examples=8, deadline=None)
+@given(scale=st.floats(1e-3, 1e3), a=angles, b=angles, c=angles, shift=st.tuples(*[st.floats(-1e3, 1e3)] * 3))
+def test_the_input_singularity_stays_exactly_zero_in_any_unit_and_frame(scale, a, b, c, shift):
+    moved = check_transmission(_moved(_five_bar_with_a_straight_limb(), scale, _rotation(a, b, c), np.asarray(shift)))
+    assert moved.lti == 0.0 and moved.iti[1] == 0.0 and moved.iti[0] == pytest.approx(1.0, abs=1e-7)
 
 
 def test_sweep_columns_threshold_and_leaving_them_out():

@@ -1,9 +1,9 @@
 """Transmission indices against the textbook closed forms of the single-loop linkages, over a whole crank turn.
 
 What this file is, and is not: issue 34 asks for *published numbers* reproduced
-(a geometry, a pose and a printed index value).  None could be read in the
-sources reachable while this was written (see docs/sweeps.md, "Published values
-reproduced"), so no published number is asserted here.  What is asserted is
+(a geometry, a pose and a printed index value); those that could be read in a
+source are compared in test_transmission_published.py (see docs/sweeps.md,
+"Published values reproduced").  No published number is asserted here.  What is asserted is
 the classical definition the indices generalise, computed independently from
 the link lengths alone (law of cosines, no use of the library's kinematics),
 at every pose of a crank turn:

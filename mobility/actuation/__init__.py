@@ -6,26 +6,12 @@ Mechanical Engineering, 2021): a choice of inputs is valid when its actuation
 wrenches are linearly independent of the constraint wrenches of the end
 effector, so that the two together span all six dimensions.
 
-Modules, in the order data flows:
-
-``results``
-    the frozen answers (:class:`ActuationCheck`, :class:`Enumeration`, ...)
-    and the verdicts ``valid``, ``actuation-singular``, ``redundant``.
-``assessment``
-    the algebra shared with flexures: the verdict, the uncontrolled
-    directions and the actuation conditioning ``kappa`` of a set of actuation
-    wrenches against the end effector's twist and constraint systems.
-``ranking``
-    combinations of inputs: type (``2R1P``), verdict over poses, ranking.
-``rigid_pose``
-    the actuation wrench of each joint freedom of a rigid mechanism at a pose.
-``rigid``
-    :func:`check_actuation`, :func:`check_over_poses`,
-    :func:`enumerate_actuations`.
-``locking``
-    the independent second route: :func:`lock_joints`, :func:`locked_dof`.
-
-Flexure mechanisms (:mod:`mobility.flexure`) use ``assessment`` and
+Modules: ``results`` (the frozen answers and the verdicts), ``assessment``
+(the algebra shared with flexures: verdict, uncontrolled directions,
+conditioning ``kappa``), ``ranking`` (combinations over poses), ``rigid_pose``
+(a rigid mechanism's actuation wrenches), ``rigid`` (:func:`check_actuation`,
+:func:`check_over_poses`, :func:`enumerate_actuations`) and ``locking`` (the
+independent second route). :mod:`mobility.flexure` uses ``assessment`` and
 ``ranking`` with linear actuators as inputs.
 
 Examples
@@ -51,37 +37,7 @@ from .results import REDUNDANT, SINGULAR, VALID, VERDICTS, ActuationCheck, Actua
 from .rigid import ENUMERATION_MODES, check_actuation, check_over_poses, enumerate_actuations
 from .rigid_pose import RigidPose
 
-__all__ = [
-    # the rigid route
-    "check_actuation",
-    "check_over_poses",
-    "enumerate_actuations",
-    "ENUMERATION_MODES",
-    "RigidPose",
-    # the second route
-    "lock_joints",
-    "locked_dof",
-    # results
-    "VALID",
-    "SINGULAR",
-    "REDUNDANT",
-    "VERDICTS",
-    "ActuationCheck",
-    "ActuationInput",
-    "Combination",
-    "TypeGroup",
-    "Enumeration",
-    # the shared algebra
-    "EndEffectorSpaces",
-    "InputWrench",
-    "Assessment",
-    "assess_wrenches",
-    "assess_inputs",
-    "MAX_COMBINATIONS",
-    "combination_type",
-    "combinations_count",
-    "limit_combinations",
-    "inputs_per_combination",
-    "combine_poses",
-    "rank_combinations",
-]
+__all__ = ["check_actuation", "check_over_poses", "enumerate_actuations", "ENUMERATION_MODES", "RigidPose", "lock_joints", "locked_dof", "VALID",
+           "SINGULAR", "REDUNDANT", "VERDICTS", "ActuationCheck", "ActuationInput", "Combination", "TypeGroup", "Enumeration", "EndEffectorSpaces",
+           "InputWrench", "Assessment", "assess_wrenches", "assess_inputs", "MAX_COMBINATIONS", "combination_type", "combinations_count",
+           "limit_combinations", "inputs_per_combination", "combine_poses", "rank_combinations"]

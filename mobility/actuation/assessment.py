@@ -1,58 +1,20 @@
 """The actuation-space algebra shared by rigid and flexure mechanisms: verdict and conditioning.
 
-Everything here is in the normalised coordinates of
-:mod:`mobility.core.tolerance`; results are reported in the global frame.
+In the normalised coordinates of :mod:`mobility.core.tolerance`; results are
+reported in the global frame. docs/actuation.md tells the measures in full.
 
-* **verdict** of a choice of ``n`` inputs for an end effector of ``d`` DOF,
-  from the rank ``r`` of the actuation and constraint wrenches together (one
-  rank decision of the tolerance policy):
-
-  - ``valid``: ``r = 6`` and ``n = d``;
-  - ``actuation-singular``: ``r < 6``: with the inputs locked, the end
-    effector can still move along ``6 - r`` directions, the twists reciprocal
-    to all those wrenches (reported as the *uncontrolled* directions);
-  - ``redundant``: ``r = 6`` and ``n > d`` (more inputs than DOF; they must be
-    coordinated or they fight each other, unless each can be set on its own,
-    which a rigid mechanism's loop closure tells: the extra inputs then drive
-    motions that leave the end effector still, a self-motion or a serial
-    singularity, and the explanation says so).
-* **actuation conditioning** ``kappa``: the inverse condition number
-  ``s_min / s_max`` of the ``n x d`` map ``G`` from the end effector's twists
-  to the input rates, ``G[i, k] = (a_i o t_k) / (a_i o $_i)``, where ``t_k`` is
-  an orthonormal basis of the end effector's twist system, ``a_i`` the
-  actuation wrench and ``$_i`` the input's twist with unit rate (its *rate*
-  ``a_i o $_i`` is given with the wrench).  ``G`` does not depend on which
-  representative of ``a_i`` is taken, nor on the unit of length or the
-  placement of the mechanism (normalised coordinates).  ``kappa`` is 1 when
-  a unit twist of the end effector in any direction needs the same input
-  speed and falls to 0 where ``G`` loses rank unevenly; being a ratio, it
-  stays finite where every input's effect vanishes at once (and is 1 for one
-  freedom), so the distance to an actuation singularity is the *actuation
-  margin* below, not ``kappa``.  When the end effector has no
-  freedom (``d = 0``, e.g. a slider-crank's slider at a dead centre) the map
-  is empty and ``kappa`` is 1 by convention: there is nothing to control, and
-  the inputs, which still move the mechanism, are ``redundant`` for the end
-  effector (without fighting: they drive a motion that leaves it still).
+* **verdict** of ``n`` inputs for an end effector of ``d`` DOF, from the rank
+  ``r`` of the actuation and constraint wrenches together: ``valid`` (``r = 6``,
+  ``n = d``), ``actuation-singular`` (``r < 6``: with the inputs locked the end
+  effector still moves along ``6 - r`` *uncontrolled* directions) or
+  ``redundant`` (``r = 6``, ``n > d``).
+* **conditioning** ``kappa = s_min / s_max`` of ``G[i, k] = (a_i o t_k) / (a_i o $_i)``
+  (``t_k`` an orthonormal basis of the end effector's twists, ``a_i`` the
+  actuation wrench, ``$_i`` the input's unit-rate twist); 1 when ``d = 0``.
 * **actuation margin**: the smaller of the verdict's rank margin and the
-  ``d``-th singular value of the ``n x d`` map
-  ``H[i, k] = rho_i (a_i o t_k)``, unit ``a_i`` and the input's
-  *transmission* ``rho_i = |a_i o $_i| / (|a_i| |$_i|)`` (the cosine-like
-  factor of the power its twist puts through its wrench: 0 where the
-  actuation wrench passes through the input's own axis, a serial
-  singularity of its limb, as a four-bar's crank at the toggle that leaves
-  the rocker still).  Every factor is at most 1 in normalised coordinates,
-  so the margin does not change when the mechanism is scaled or moved.  It
-  falls to 0 at both kinds of actuation singularity: where the locked
-  inputs no longer hold the end effector (``H`` loses rank with the verdict's
-  wrenches) and where an input stops driving it (``rho_i = 0``).  It is 0
-  when actuation-singular, and when the end effector has no freedom for
-  inputs to drive (``d = 0``, ``n > 0``); where an input has no actuation
-  wrench of its own (it is held only with the others of its limb) it is the
-  verdict's rank margin.
-
-:func:`assess_wrenches` gives the verdict of bare wrenches (fast, for
-enumerations); :func:`assess_inputs` the full :class:`ActuationCheck` of named
-inputs.
+  ``d``-th singular value of ``H[i, k] = rho_i (a_i o t_k)``, unit ``a_i``,
+  ``rho_i = |a_i o $_i| / (|a_i| |$_i|)``: 0 where the locked inputs no longer
+  hold the end effector or an input stops driving it (and when ``d = 0 < n``).
 
 Examples
 --------
@@ -94,8 +56,7 @@ __all__ = ["EndEffectorSpaces", "InputWrench", "Assessment", "assess_wrenches", 
 class EndEffectorSpaces(ReadOnlyArrays):
     """The end effector's twist and constraint systems, normalised, with the coordinates to report them in.
 
-    Its arrays (the normalisation's centre too) are read-only, also after a
-    pickle round trip or a deep copy: a writable one given is copied.
+    Its arrays (the normalisation's centre too) are read-only, also after a pickle round trip.
 
     Attributes
     ----------
@@ -106,8 +67,7 @@ class EndEffectorSpaces(ReadOnlyArrays):
     normalisation : Normalisation
         From normalised coordinates to the global frame and the document's unit.
     reference : ndarray, shape (3,)
-        Reference point (normalised): reported axes pass through their point
-        nearest to it.
+        Reference point (normalised): reported axes pass through their point nearest to it.
     """
 
     twists: np.ndarray
@@ -148,14 +108,11 @@ class InputWrench(ReadOnlyArrays):
     wrench : ndarray, shape (6,) or None
         Unit actuation wrench, normalised coordinates; ``None`` when there is none.
     rate : float
-        ``a o $`` of the input's twist at unit rate (1 for a force line whose
-        wrench has unit force).
+        ``a o $`` of the input's twist at unit rate (1 for a force line whose wrench has unit force).
     note : str
         Why there is no wrench, if there is none.
     transmission : float
-        ``|a o $| / (|a| |$|)``, in ``[0, 1]``: 0 where the input's twist
-        puts no power through its wrench (the rate of a force line's unit
-        wrench, whose twist is a unit translation along it).
+        ``|a o $| / (|a| |$|)``, in ``[0, 1]`` (default: a force line's, its rate).
     """
 
     name: str
@@ -188,8 +145,7 @@ class Assessment(ReadOnlyArrays):
     in_constraint : tuple of bool
         Per input: it has no wrench, or its wrench lies in the constraint space.
     actuation_margin : float
-        The distance to an actuation singularity (module docstring); 0 when
-        actuation-singular.
+        The distance to an actuation singularity (module docstring).
     """
 
     verdict: str
@@ -200,15 +156,8 @@ class Assessment(ReadOnlyArrays):
     actuation_margin: float = 1.0
 
 
-def assess_wrenches(
-    wrenches: Sequence[np.ndarray | None],
-    rates: Sequence[float],
-    twists: np.ndarray,
-    constraints: np.ndarray,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    held: np.ndarray | None = None,
-    transmissions: Sequence[float] | None = None,
-) -> Assessment:
+def assess_wrenches(wrenches: Sequence[np.ndarray | None], rates: Sequence[float], twists: np.ndarray, constraints: np.ndarray,
+                    tol: Tolerance = DEFAULT_TOLERANCE, held: np.ndarray | None = None, transmissions: Sequence[float] | None = None) -> Assessment:
     """Verdict, conditioning and actuation margin of a choice of inputs from its actuation wrenches.
 
     Parameters
@@ -216,22 +165,15 @@ def assess_wrenches(
     wrenches : sequence of (6,) arrays or None
         Unit actuation wrenches (normalised); ``None`` for an input that has none.
     rates : sequence of float
-        ``a o $`` of each input, in the order of ``wrenches`` (ignored where
-        the wrench is ``None``).
-    twists : ndarray, shape (6, d)
-        Orthonormal basis of the end effector's twist (freedom) system.
-    constraints : ndarray, shape (6, 6 - d)
-        Orthonormal basis of its constraint wrench system.
+        ``a o $`` of each input (ignored where the wrench is ``None``).
+    twists, constraints : ndarray, shape (6, d) and (6, 6 - d)
+        Orthonormal bases of the end effector's twist and constraint wrench systems.
     tol : Tolerance
     held : ndarray, shape (6, k), optional
-        Wrenches that locking the inputs adds beyond their own wrenches (the
-        constraint system of a limb with all its inputs locked, where an
-        input has no wrench of its own:
-        :meth:`~mobility.actuation.rigid_pose.RigidPose.locked_wrenches`).
+        Wrenches that locking the inputs adds beyond their own (a limb's, where
+        an input has none: :meth:`~mobility.actuation.rigid_pose.RigidPose.locked_wrenches`).
     transmissions : sequence of float, optional
-        ``|a o $| / (|a| |$|)`` of each input (:class:`InputWrench`); default:
-        each input's rate, at most 1 (force lines: unit wrenches, unit
-        translations along them).
+        ``|a o $| / (|a| |$|)`` of each input; default: each rate, at most 1 (force lines).
 
     Returns
     -------
@@ -250,15 +192,8 @@ def assess_wrenches(
     read_only(uncontrolled, copy=False)  # computed here for the assessment alone: frozen in place, not copied
     in_constraint = tuple(w is None or _lies_in(w, constraints, tol) for w in wrenches)
     n = len(wrenches)
-    if decision.rank < 6:
-        verdict = SINGULAR
-    elif n > dof:
-        verdict = REDUNDANT
-    else:
-        verdict = VALID
-    conditioning = 0.0
-    if verdict != SINGULAR:
-        conditioning = 1.0 if dof == 0 else _conditioning(present, twists)
+    verdict = SINGULAR if decision.rank < 6 else REDUNDANT if n > dof else VALID
+    conditioning = 0.0 if verdict == SINGULAR else 1.0 if dof == 0 else _conditioning(present, twists)
     rho = [min(abs(float(r)), 1.0) for r in rates] if transmissions is None else [float(t) for t in transmissions]
     margin = _actuation_margin(verdict, decision, [(w, t) for w, t in zip(wrenches, rho) if w is not None], len(wrenches), twists)
     return Assessment(verdict, decision, uncontrolled, conditioning, in_constraint, margin)
@@ -309,18 +244,9 @@ def _conditioning(present: Sequence[tuple[np.ndarray, float]], twists: np.ndarra
     return float(sv[dof - 1] / sv[0]) if sv.size >= dof and sv[0] > 0 else 0.0
 
 
-def assess_inputs(
-    name: str,
-    kind: str,
-    inputs: Sequence[InputWrench],
-    spaces: EndEffectorSpaces,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    *,
-    warnings: Sequence[str] = (),
-    length_unit: str = "",
-    idle_inputs: Sequence[str] | None = None,
-    held: np.ndarray | None = None,
-) -> ActuationCheck:
+def assess_inputs(name: str, kind: str, inputs: Sequence[InputWrench], spaces: EndEffectorSpaces, tol: Tolerance = DEFAULT_TOLERANCE, *,
+                  warnings: Sequence[str] = (), length_unit: str = "", idle_inputs: Sequence[str] | None = None,
+                  held: np.ndarray | None = None) -> ActuationCheck:
     """The full verdict on named inputs, written in the global frame (rigid and flexure alike).
 
     Parameters
@@ -336,11 +262,9 @@ def assess_inputs(
         Warnings to report before those of the assessment.
     length_unit : str
     idle_inputs : sequence of str, optional
-        Given when the inputs can be set independently of one another over
-        the mechanism's motions (a rigid mechanism's loop closure tells):
-        the inputs that move the mechanism without moving the end effector.
-        More inputs than DOF are then not told to fight each other but to
-        drive idle motions (a self-motion, or a serial singularity).
+        Given when the inputs can be set independently (a rigid mechanism's loop
+        closure tells): those that move the mechanism but not the end effector.
+        Extra inputs are then said to drive idle motions, not to fight.
     held : ndarray, shape (6, k), optional
         As for :func:`assess_wrenches`.
 
@@ -370,10 +294,8 @@ def assess_inputs(
         with np.errstate(over="ignore", invalid="ignore"):  # checked here: a number past the largest float is refused, never shown
             world, axis = _wrench_in_world(i.wrench, norm, reference, tol)
         if not (np.all(np.isfinite(world)) and np.all(np.isfinite(axis.point)) and np.isfinite(axis.pitch)):
-            raise AnalysisError(
-                f"the actuation wrench of {i.name!r} lies beyond the largest float in the mechanism's unit "
-                f"(characteristic length {norm.length:.3g}): write the mechanism in a larger length unit"
-            )
+            raise AnalysisError(f"the actuation wrench of {i.name!r} lies beyond the largest float in the mechanism's unit "
+                                f"(characteristic length {norm.length:.3g}): write the mechanism in a larger length unit")
         note = i.note
         if flag:
             useless.append(i.name)
@@ -384,33 +306,15 @@ def assess_inputs(
     translations, rotations, twist_rows = screw_system_in_frame(a.uncontrolled, norm, reference, ("rotation", "helical"), tol)
     warns = list(warnings)
     if a.verdict != SINGULAR and a.decision.smallest_kept < tol.near_singular:
-        warns.append(
-            f"near an actuation singularity: relative singular value {a.decision.smallest_kept:.2e} of the actuation and constraint wrenches"
-        )
+        warns.append(f"near an actuation singularity: relative singular value {a.decision.smallest_kept:.2e} of the actuation and constraint wrenches")
     elif a.verdict != SINGULAR and a.actuation_margin < tol.near_singular:
         warns.append(f"near an actuation singularity: actuation margin {a.actuation_margin:.2e} (the inputs barely drive the end effector, if at all)")
-    return ActuationCheck(
-        name=name,
-        kind=kind,
-        dof=dof,
-        pattern=motion_pattern(spaces.twists, tol),
-        inputs=tuple(out_inputs),
-        constraint_couples=couples,
-        constraint_forces=forces,
-        constraint_wrenches=constraint_rows,
-        verdict=a.verdict,
-        rank=a.decision.rank,
-        uncontrolled_translations=translations,
-        uncontrolled_rotations=rotations,
-        uncontrolled_twists=twist_rows,
-        margin=a.decision,
-        conditioning=a.conditioning,
-        explanation=_explanation(a.verdict, len(inputs), dof, a.decision.rank, useless, idle_inputs),
-        warnings=tuple(warns),
-        length_unit=length_unit,
-        length_scale=norm.size,
-        actuation_margin=a.actuation_margin,
-    )
+    return ActuationCheck(name=name, kind=kind, dof=dof, pattern=motion_pattern(spaces.twists, tol), inputs=tuple(out_inputs),
+                          constraint_couples=couples, constraint_forces=forces, constraint_wrenches=constraint_rows, verdict=a.verdict,
+                          rank=a.decision.rank, uncontrolled_translations=translations, uncontrolled_rotations=rotations,
+                          uncontrolled_twists=twist_rows, margin=a.decision, conditioning=a.conditioning,
+                          explanation=_explanation(a.verdict, len(inputs), dof, a.decision.rank, useless, idle_inputs),
+                          warnings=tuple(warns), length_unit=length_unit, length_scale=norm.size, actuation_margin=a.actuation_margin)
 
 
 def _wrench_in_world(wrench_n: np.ndarray, norm: Normalisation, reference: np.ndarray, tol: Tolerance) -> tuple[np.ndarray, ScrewAxis]:
@@ -441,18 +345,14 @@ def _explanation(verdict: str, n: int, dof: int, rank: int, useless: Sequence[st
     '1 input for 0 DOF, yet the inputs do not fight: each moves the mechanism on its own, and A moves it without moving the end effector (a self-motion of the mechanism, or a serial singularity where the end effector has lost a freedom at this pose)'
     """
     if verdict == VALID:
-        return (
-            f"the {counted(n, 'actuation wrench', 'es')} and the {counted(6 - dof, 'constraint wrench', 'es')} span all six dimensions: "
-            "with the inputs locked the end effector cannot move"
-        )
+        return (f"the {counted(n, 'actuation wrench', 'es')} and the {counted(6 - dof, 'constraint wrench', 'es')} span all six dimensions: "
+                "with the inputs locked the end effector cannot move")
     inputs = f"{counted(n, 'input')} for {dof} DOF"
     if verdict == REDUNDANT and idle_inputs:
         movers = ", ".join(idle_inputs)
-        return (
-            f"{inputs}, yet the inputs do not fight: each moves the mechanism on its own, and {movers} "
-            f"move{'s' if len(idle_inputs) == 1 else ''} it without moving the end effector "
-            "(a self-motion of the mechanism, or a serial singularity where the end effector has lost a freedom at this pose)"
-        )
+        return (f"{inputs}, yet the inputs do not fight: each moves the mechanism on its own, and {movers} "
+                f"move{'s' if len(idle_inputs) == 1 else ''} it without moving the end effector "
+                "(a self-motion of the mechanism, or a serial singularity where the end effector has lost a freedom at this pose)")
     if verdict == REDUNDANT:
         return f"{inputs}: {n - dof} more than needed (they must be coordinated or they fight each other)"
     text = f"actuation and constraint wrenches span only {rank} of 6 dimensions: with the inputs locked the end effector can still move along {counted(6 - rank, 'direction')}"

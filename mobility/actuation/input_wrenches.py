@@ -1,18 +1,14 @@
 """The actuation wrench of one input at a stack of poses: the one computation behind one pose and a sweep.
 
-An input is one freedom of an actuated joint of a limb (a branch of the
-top-level parallel connection, see :mod:`mobility.actuation.rigid_pose`).
-Its *actuation wrench* is reciprocal to every other twist of its limb and
-not to its own: the constraint wrenches of the limb with that freedom locked,
-less the limb's own constraint wrenches (made orthogonal to them in
-coordinates centred where the limb meets the end effector), first left
-singular vector.  When the limb's other joints already produce the freedom's
-motion there is none.  Its *rate* is ``a o $`` with ``$`` the freedom's twist
-at unit angular speed (R, H) or unit speed of one characteristic length (P);
-its *transmission* ``|a o $| / (|a| |$|)``, in ``[0, 1]``.
-
-:class:`~mobility.actuation.rigid_pose.RigidPose` calls it with a stack of one
-pose, the sweeps (:mod:`mobility.sweeps.batch_actuation`) with thousands.
+An input is one freedom of an actuated joint of a limb
+(:mod:`mobility.actuation.rigid_pose`). Its *actuation wrench* is reciprocal to
+every other twist of its limb and not to its own: the limb's constraint
+wrenches with that freedom locked, less the limb's own (orthogonal to them in
+coordinates centred where the limb meets the end effector), first left singular
+vector; none when the limb's other joints already produce the freedom's motion.
+Its *rate* is ``a o $``, ``$`` at unit angular speed (R, H) or one characteristic
+length per unit time (P); its *transmission* ``|a o $| / (|a| |$|)``, in ``[0, 1]``.
+:class:`~mobility.actuation.rigid_pose.RigidPose` calls it with a stack of one pose, the sweeps with thousands.
 
 Examples
 --------
@@ -82,12 +78,7 @@ def shift(points: np.ndarray, screws: np.ndarray, sign: float) -> np.ndarray:
 
 
 def _locked_limb(node: Node, twists: np.ndarray, offsets: Sequence[int], col: int, tol: Tolerance) -> Systems:
-    """The limb's twist system with freedom ``col`` locked.
-
-    Locking sets the freedom's twist to zero; in a limb that is a series of
-    joints the column is simply left out of the stack (the same span and the
-    same non-zero singular values, one SVD column fewer).
-    """
+    """The limb's twist system with freedom ``col`` locked (its twist zero; in a series of joints, the column left out: the same span)."""
     if isinstance(node, Series) and all(type(c) is JointNode for c in node.children):
         joints = cast("tuple[JointNode, ...]", node.children)  # every child is a joint (tested above)
         columns = [c for child in joints for c in range(offsets[child.index], offsets[child.index + 1]) if c != col]
@@ -101,21 +92,10 @@ def _locked_limb(node: Node, twists: np.ndarray, offsets: Sequence[int], col: in
 def input_wrenches(node: Node, limb: Systems, twists: np.ndarray, offsets: Sequence[int], col: int, attach: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> InputWrenches:
     """The actuation wrench, rate and transmission of freedom ``col`` of a limb at every pose.
 
-    Parameters
-    ----------
-    node : Node
-        The limb in the decomposition.
-    limb : Systems
-        Its screw systems at the poses (from :func:`mobility.core.screw_systems.evaluate`).
-    twists : ndarray, shape (N, 6, f)
-        The joint twists of the poses (normalised coordinates).
-    offsets : sequence of int
-        Columns of joint ``j``: ``offsets[j]:offsets[j+1]``.
-    col : int
-        The column of the input's freedom.
-    attach : ndarray, shape (N, 3)
-        Where the limb meets the end effector (normalised coordinates).
-    tol : Tolerance
+    ``node`` is the limb in the decomposition, ``limb`` its screw systems at the poses
+    (:func:`mobility.core.screw_systems.evaluate`), ``twists`` ``(N, 6, f)`` the joint
+    twists (normalised; joint ``j``'s columns ``offsets[j]:offsets[j+1]``), ``attach``
+    ``(N, 3)`` where the limb meets the end effector (normalised).
     """
     count = twists.shape[0]
     others = _locked_limb(node, twists, offsets, col, tol)
@@ -136,9 +116,5 @@ def input_wrenches(node: Node, limb: Systems, twists: np.ndarray, offsets: Seque
     twist[wn > tol.rank] /= wn[wn > tol.rank, None]  # unit angular rate (R, H); P columns are already unit linear rate
     r = np.einsum("ni,ni->n", a[:, SWAP_ROWS], twist)
     a = np.where((r < 0)[:, None], -a, a)
-    return InputWrenches(
-        np.where(has[:, None], a, 0.0),
-        np.where(has, np.abs(r), 1.0),
-        np.where(has, np.minimum(np.abs(r) / np.linalg.norm(twist, axis=1), 1.0), 0.0),
-        has,
-    )
+    return InputWrenches(np.where(has[:, None], a, 0.0), np.where(has, np.abs(r), 1.0),
+                         np.where(has, np.minimum(np.abs(r) / np.linalg.norm(twist, axis=1), 1.0), 0.0), has)

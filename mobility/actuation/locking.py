@@ -1,10 +1,8 @@
 """The second route to an actuation verdict: lock the inputs, count what is left.
 
-Locking the chosen joints (:func:`lock_joints`: each removed, its two links
-merged) leaves the end effector with 0 DOF by loop closure
-(:func:`locked_dof`) exactly when the actuation and constraint wrenches span
-six dimensions.  It shares nothing with :mod:`mobility.actuation.assessment`
-but the model, which is what makes it a check.
+Locking the inputs leaves the end effector with 0 DOF by loop closure exactly
+when the actuation and constraint wrenches span six dimensions. It shares
+nothing with :mod:`mobility.actuation.assessment` but the model: a check.
 
 Examples
 --------
@@ -33,14 +31,10 @@ __all__ = ["lock_joints", "locked_dof"]
 def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
     """The mechanism with the named joints made rigid: each removed, its two links merged.
 
-    ``names`` is a sequence of joint names, each given once (``["A"]``, not
-    the string ``"A"``), as for :func:`~mobility.actuation.check_actuation`.
-
-    Joints left joining a link to itself (their links were merged through
-    other locked joints) are removed too: they cannot move.  A coupling
-    keeps the joints that remain; one left with a single joint holds it
-    still, and that joint is locked as well.  A merged body
-    keeps the name of the ground or the end effector when it holds one.
+    ``names``: joint names, each once (``["A"]``, not ``"A"``). Joints left
+    joining a link to itself are removed too; a coupling left with a single
+    joint holds it still (it is locked as well). A merged body keeps the name
+    of the ground or the end effector when it holds one.
 
     Returns
     -------
@@ -50,8 +44,7 @@ def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
     Raises
     ------
     MechanismError
-        When ``names`` is a string, names a joint twice, or a name is not a
-        joint of the mechanism.
+        When ``names`` is a string, repeats a joint, or names no joint.
     RequestError
         When ``mechanism`` is not a :class:`~mobility.core.model.Mechanism`.
     """

@@ -1,10 +1,8 @@
 """Combinations of inputs: their type, their verdict over several poses, and their ranking.
 
-A combination is valid only when it is valid at every pose; its
-conditioning is the worst (smallest) over the poses.  Ranked: valid ones
-first by decreasing conditioning, then redundant, then actuation-singular
-ones; counted per type (``3R``, ``2R1P``, ... as Li, Shan, Yu and Ke write
-them, or the geometry of a set of force lines).
+A combination is valid only when valid at every pose; its conditioning is the
+worst over the poses. Counted per type (``3R``, ``2R1P``, ... as Li, Shan, Yu
+and Ke write them, or the geometry of a set of force lines).
 
 Examples
 --------
@@ -69,23 +67,19 @@ def _type_key(t: str) -> tuple:
 
 def combine_poses(inputs: tuple[str, ...], type: str, per_pose: Sequence[Assessment]) -> Combination:
     """One combination's verdict over its assessments at several poses (pose 0 first)."""
-    verdicts = [a.verdict for a in per_pose]
-    worst = max(verdicts, key=VERDICTS.index)
-    conditioning = [a.conditioning for a in per_pose]
-    k = first_least(conditioning)
+    verdicts, conditioning = [a.verdict for a in per_pose], [a.conditioning for a in per_pose]
     failures = tuple((i, v) for i, v in enumerate(verdicts) if v != VALID)
     margins = [a.actuation_margin if a.verdict != SINGULAR else np.inf for a in per_pose]
-    m = first_least(margins)
-    margin = float(min(margins[m], 1.0))
-    return Combination(inputs, type, worst, len(per_pose) - len(failures), len(per_pose), float(conditioning[k]), k, failures, margin, m)
+    k, m = first_least(conditioning), first_least(margins)
+    return Combination(inputs, type, max(verdicts, key=VERDICTS.index), len(per_pose) - len(failures), len(per_pose), float(conditioning[k]), k,
+                       failures, float(min(margins[m], 1.0)), m)
 
 
 def rank_combinations(found: Sequence[Combination]) -> tuple[tuple[Combination, ...], tuple[TypeGroup, ...]]:
     """The combinations ranked (best first), and the valid and total counts of each type.
 
-    Conditioning numbers equal to round-off (12 significant digits, the
-    policy's ``round_off``) count as a tie, broken by the input names, so the
-    order does not depend on the last bit of a LAPACK routine.
+    Conditioning numbers equal to round-off (the policy's ``round_off``) tie,
+    broken by the input names: the order does not hang on LAPACK's last bit.
     """
     ranked = sorted(found, key=lambda c: (VERDICTS.index(c.verdict), -_to_round_off(c.conditioning), c.inputs))
     groups: dict[str, list[int]] = {}
@@ -128,8 +122,7 @@ def combinations_count(candidates: int, k: int, advice: str) -> int:
 def inputs_per_combination(k: object, default: int) -> int:
     """``k``, the inputs per combination of an enumeration, checked: ``default`` for None, else a non-negative integer.
 
-    An integer is an ``int`` or a numpy integer; a bool, a float (``3.9``) or
-    a string (``"3"``) is refused rather than rounded or read.
+    A bool, a float (``3.9``) or a string (``"3"``) is refused, not rounded or read.
 
     Raises
     ------

@@ -1,11 +1,6 @@
 """What an actuation assessment answers: frozen results and their JSON form.
 
-:class:`ActuationCheck` is the verdict on one choice of inputs at one pose
-(:func:`mobility.actuation.check_actuation`,
-:func:`mobility.flexure.check_force_lines`), :class:`ActuationInput` one of
-its inputs; :class:`Enumeration` ranks every :class:`Combination` of inputs,
-with a :class:`TypeGroup` count per type.  Numbers go to JSON through
-:func:`mobility.core.tolerance.clean_numbers` (round-off shown as 0).
+Numbers go to JSON through :func:`mobility.core.tolerance.clean_numbers` (round-off shown as 0).
 
 Examples
 --------
@@ -16,7 +11,7 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -25,17 +20,7 @@ from ..core.frozen import ReadOnlyArrays
 from ..core.result import ScrewAxis
 from ..core.tolerance import RankDecision, clean_numbers
 
-__all__ = [
-    "VALID",
-    "SINGULAR",
-    "REDUNDANT",
-    "VERDICTS",
-    "ActuationInput",
-    "ActuationCheck",
-    "Combination",
-    "TypeGroup",
-    "Enumeration",
-]
+__all__ = ["VALID", "SINGULAR", "REDUNDANT", "VERDICTS", "ActuationInput", "ActuationCheck", "Combination", "TypeGroup", "Enumeration"]
 
 VALID = "valid"
 SINGULAR = "actuation-singular"
@@ -55,17 +40,14 @@ class ActuationInput(ReadOnlyArrays):
     kind : str
         Joint type letter, or ``"F"`` for a linear actuator (a force line).
     limb : int or None
-        Index of the limb (0-based) of a joint; ``None`` for a linear actuator or a
-        joint off every ground-to-end-effector path.
+        The joint's limb (0-based); ``None`` for a linear actuator or a joint off every path.
     wrench : ndarray, shape (6,) or None
-        The actuation wrench ``[f; m]`` in the global frame, ``|f| = 1`` (a couple:
-        ``|m| = 1``); ``None`` when the input has none.
+        The actuation wrench ``[f; m]``, global frame, ``|f| = 1`` (a couple: ``|m| = 1``).
     axis : ScrewAxis or None
-        Its line: ``kind`` ``"force"`` (pitch 0), ``"wrench"`` or ``"couple"``
-        (``axis`` is the couple's direction, ``point`` the reference point).
+        Its line: ``"force"`` (pitch 0), ``"wrench"`` or ``"couple"`` (the
+        couple's direction, through the reference point).
     in_constraint_space : bool
-        The wrench is a combination of constraint wrenches: this input cannot
-        move the end effector.
+        The wrench is a combination of constraint wrenches: the input cannot move the end effector.
     note : str
         Why there is no wrench, or why it is useless; empty otherwise.
     """
@@ -80,15 +62,8 @@ class ActuationInput(ReadOnlyArrays):
 
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
         """JSON form; ``scale`` is the length that round-off of points is relative to."""
-        return {
-            "name": self.name,
-            "kind": self.kind,
-            "limb": self.limb,
-            "wrench": None if self.wrench is None else clean_numbers(self.wrench, scale),
-            "axis": None if self.axis is None else self.axis.to_dict(scale),
-            "in_constraint_space": self.in_constraint_space,
-            "note": self.note,
-        }
+        return {"name": self.name, "kind": self.kind, "limb": self.limb, "wrench": None if self.wrench is None else clean_numbers(self.wrench, scale),
+                "axis": None if self.axis is None else self.axis.to_dict(scale), "in_constraint_space": self.in_constraint_space, "note": self.note}
 
 
 @dataclass(frozen=True, eq=False)
@@ -97,38 +72,28 @@ class ActuationCheck(ReadOnlyArrays):
 
     Attributes
     ----------
-    name : str
-        Mechanism name.
-    kind : str
-        ``"rigid"`` or ``"flexure"``.
+    name, kind : str
+        The mechanism's name; ``"rigid"`` or ``"flexure"``.
     dof : int
         DOF of the end effector (of the freedom space, for a flexure).
     pattern : str
         Its motion pattern, e.g. ``"1T2R"``.
     inputs : tuple of ActuationInput
-    constraint_couples : ndarray, shape (k, 3)
-        Orthonormal basis of the pure couples among the constraint wrenches.
-    constraint_forces : tuple of ScrewAxis
-        The other constraint wrenches (principal screws).
-    constraint_wrenches : ndarray, shape (6 - dof, 6)
-        Basis of the constraint wrench system (rows ``[f; m]``, global frame).
+    constraint_couples, constraint_forces, constraint_wrenches : ndarray (k, 3), tuple of ScrewAxis, ndarray (6 - dof, 6)
+        The pure couples among the constraint wrenches (orthonormal), the other
+        constraint wrenches (principal screws), and a basis (rows ``[f; m]``, global frame).
     verdict : str
         ``"valid"``, ``"actuation-singular"`` or ``"redundant"``.
     rank : int
         Rank of the actuation and constraint wrenches together.
-    uncontrolled_translations : ndarray, shape (k, 3)
-        Translations the end effector keeps with every input locked.
-    uncontrolled_rotations : tuple of ScrewAxis
-        Rotations (or screw motions) it keeps.
-    uncontrolled_twists : ndarray, shape (6 - rank, 6)
-        Basis of those twists (rows ``[w; v]``, global frame).
+    uncontrolled_translations, uncontrolled_rotations, uncontrolled_twists : ndarray (k, 3), tuple of ScrewAxis, ndarray (6 - rank, 6)
+        What the end effector keeps with every input locked: translations,
+        rotations (or screw motions), and a basis (rows ``[w; v]``, global frame).
     margin : RankDecision
-        Of the verdict's rank decision (the actuation and constraint
-        wrenches together): a small ``smallest_kept`` means near a pose
-        where the locked inputs no longer hold the end effector.
+        Of the verdict's rank decision: a small ``smallest_kept`` means near a
+        pose where the locked inputs no longer hold the end effector.
     conditioning : float
-        The actuation conditioning ``kappa`` (see :mod:`mobility.actuation`);
-        0 when the verdict is actuation-singular.
+        The actuation conditioning ``kappa``; 0 when actuation-singular.
     explanation : str
         One sentence on the verdict.
     warnings : tuple of str
@@ -136,10 +101,7 @@ class ActuationCheck(ReadOnlyArrays):
     length_scale : float
         For rounding output.
     actuation_margin : float
-        The distance to an actuation singularity (see
-        :mod:`mobility.actuation.assessment`): 0 where the locked inputs do
-        not hold the end effector, and where an input stops driving it (a
-        crank at the toggle of a four-bar whose rocker is driven).
+        The distance to an actuation singularity (:mod:`mobility.actuation.assessment`).
     """
 
     name: str
@@ -171,31 +133,15 @@ class ActuationCheck(ReadOnlyArrays):
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
         s = self.length_scale
-        return {
-            "name": self.name,
-            "kind": self.kind,
-            "dof": self.dof,
-            "pattern": self.pattern,
-            "verdict": self.verdict,
-            "explanation": self.explanation,
-            "rank": self.rank,
-            "conditioning": self.conditioning,
-            "margin": {"smallest_kept": self.margin.smallest_kept, "largest_dropped": self.margin.largest_dropped},
-            "actuation_margin": self.actuation_margin,
-            "inputs": [i.to_dict(s) for i in self.inputs],
-            "constraints": {
-                "couples": clean_numbers(self.constraint_couples),
-                "forces": [f.to_dict(s) for f in self.constraint_forces],
-                "wrenches": clean_numbers(self.constraint_wrenches, s),
-            },
-            "uncontrolled": {
-                "translations": clean_numbers(self.uncontrolled_translations),
-                "rotations": [r.to_dict(s) for r in self.uncontrolled_rotations],
-                "twists": clean_numbers(self.uncontrolled_twists, s),
-            },
-            "warnings": list(self.warnings),
-            "length_unit": self.length_unit,
-        }
+        return {"name": self.name, "kind": self.kind, "dof": self.dof, "pattern": self.pattern, "verdict": self.verdict, "explanation": self.explanation,
+                "rank": self.rank, "conditioning": self.conditioning,
+                "margin": {"smallest_kept": self.margin.smallest_kept, "largest_dropped": self.margin.largest_dropped},
+                "actuation_margin": self.actuation_margin, "inputs": [i.to_dict(s) for i in self.inputs],
+                "constraints": {"couples": clean_numbers(self.constraint_couples), "forces": [f.to_dict(s) for f in self.constraint_forces],
+                                "wrenches": clean_numbers(self.constraint_wrenches, s)},
+                "uncontrolled": {"translations": clean_numbers(self.uncontrolled_translations), "rotations": [r.to_dict(s) for r in self.uncontrolled_rotations],
+                                 "twists": clean_numbers(self.uncontrolled_twists, s)},
+                "warnings": list(self.warnings), "length_unit": self.length_unit}
 
 
 @dataclass(frozen=True)
@@ -207,8 +153,7 @@ class Combination:
     inputs : tuple of str
         Joint (or actuator) names.
     type : str
-        The group it belongs to, e.g. ``"2R1P"`` (see
-        :func:`mobility.actuation.combination_type`).
+        Its group, e.g. ``"2R1P"`` (:func:`mobility.actuation.combination_type`).
     verdict : str
         ``"valid"`` only when valid at every pose; otherwise the worst verdict met.
     valid_poses, poses : int
@@ -220,10 +165,8 @@ class Combination:
     failures : tuple of (int, str)
         ``(pose index, verdict)`` for every pose where it is not valid.
     margin : float
-        Smallest actuation margin over the poses where the verdict is not
-        actuation-singular (the distance to an actuation singularity, which
-        ``conditioning`` does not see when every input's effect vanishes at
-        once, nor with one freedom); at most 1.0, and 1.0 when there is none.
+        Smallest actuation margin over the poses where it is not
+        actuation-singular; at most 1.0, and 1.0 when there is none.
     margin_pose : int
         Index of the pose where it is smallest.
     """
@@ -241,18 +184,7 @@ class Combination:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "inputs": list(self.inputs),
-            "type": self.type,
-            "verdict": self.verdict,
-            "valid_poses": self.valid_poses,
-            "poses": self.poses,
-            "conditioning": self.conditioning,
-            "worst_pose": self.worst_pose,
-            "failures": [list(f) for f in self.failures],
-            "margin": self.margin,
-            "margin_pose": self.margin_pose,
-        }
+        return {f.name: getattr(self, f.name) for f in fields(self)} | {"inputs": list(self.inputs), "failures": [list(f) for f in self.failures]}
 
 
 @dataclass(frozen=True)
@@ -265,7 +197,7 @@ class TypeGroup:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {"type": self.type, "valid": self.valid, "total": self.total}
+        return asdict(self)
 
 
 @dataclass(frozen=True)
@@ -282,11 +214,9 @@ class Enumeration:
     mode : str
         ``"limb"`` (one joint per limb), ``"any"`` (any ``k`` candidates).
     k : int
-        Inputs per combination (``"any"`` mode; otherwise the number of
-        limbs, or the DOF when there are more limbs than DOF).
+        Inputs per combination.
     combinations : tuple of Combination
-        Ranked: valid ones first by decreasing conditioning, then redundant,
-        then actuation-singular ones.
+        Ranked: valid ones by decreasing conditioning, then redundant, then actuation-singular.
     groups : tuple of TypeGroup
         Valid and total counts per type.
     poses : tuple of str
@@ -315,16 +245,6 @@ class Enumeration:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "name": self.name,
-            "kind": self.kind,
-            "dof": self.dof,
-            "pattern": self.pattern,
-            "mode": self.mode,
-            "k": self.k,
-            "limbs": self.limbs,
-            "poses": list(self.poses),
-            "groups": [g.to_dict() for g in self.groups],
-            "combinations": [c.to_dict() for c in self.combinations],
-            "warnings": list(self.warnings),
-        }
+        return {"name": self.name, "kind": self.kind, "dof": self.dof, "pattern": self.pattern, "mode": self.mode, "k": self.k, "limbs": self.limbs,
+                "poses": list(self.poses), "groups": [g.to_dict() for g in self.groups], "combinations": [c.to_dict() for c in self.combinations],
+                "warnings": list(self.warnings)}

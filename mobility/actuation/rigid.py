@@ -1,11 +1,7 @@
 """Actuation of rigid mechanisms: one choice of actuated joints, or every choice, over poses.
 
-:func:`check_actuation` gives the verdict on the joints marked ``actuated``
-(or named) at the mechanism's pose, :func:`check_over_poses` the same at
-further poses, and :func:`enumerate_actuations` assesses every combination
-of one-freedom joints over several poses and ranks them.  The actuation
-wrenches come from :class:`~mobility.actuation.rigid_pose.RigidPose`, the
-verdicts from :mod:`mobility.actuation.assessment`.
+The actuation wrenches come from :class:`~mobility.actuation.rigid_pose.RigidPose`,
+the verdicts from :mod:`mobility.actuation.assessment`.
 
 Examples
 --------
@@ -89,10 +85,7 @@ def check_actuation(mechanism: Mechanism, actuated: Sequence[str] | None = None,
 
 
 def check_over_poses(mechanism: Mechanism, actuated: Sequence[str] | None, poses: Sequence[Mechanism], *, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[ActuationCheck, ...]:
-    """:func:`check_actuation` of one choice at several poses of the same mechanism.
-
-    Each pose must have the same joints (names, types, links), ground and end
-    effector; only the geometry differs.
+    """:func:`check_actuation` of one choice at several poses of the same mechanism (same joints, links, ground and end effector).
 
     Raises
     ------
@@ -111,17 +104,8 @@ def check_over_poses(mechanism: Mechanism, actuated: Sequence[str] | None, poses
     return tuple(out)
 
 
-def enumerate_actuations(
-    mechanism: Mechanism,
-    *,
-    mode: str = "limb",
-    k: int | None = None,
-    poses: Sequence[Mechanism] = (),
-    samples: int = 0,
-    step: float = DEFAULT_STEP,
-    seed: int = 0,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> Enumeration:
+def enumerate_actuations(mechanism: Mechanism, *, mode: str = "limb", k: int | None = None, poses: Sequence[Mechanism] = (), samples: int = 0,
+                         step: float = DEFAULT_STEP, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> Enumeration:
     """Assess every combination of inputs over several poses, and rank the valid ones.
 
     Candidate inputs are the joints with one freedom (R, P, H) on a path
@@ -132,21 +116,15 @@ def enumerate_actuations(
     mechanism : Mechanism
         The given pose (pose 0).
     mode : {"limb", "any"}
-        ``"limb"``: one joint in each limb (the paper's enumeration); with
-        more limbs than DOF (a four-bar seen from its coupler: two limbs, one
-        DOF; the Tricept's four legs, three DOF), one joint in each of DOF
-        limbs, the others passive; ``"any"``: any ``k`` candidates.
+        ``"limb"``: one joint in each limb (the paper's enumeration; with more
+        limbs than DOF, in DOF of them); ``"any"``: any ``k`` candidates.
     k : int, optional
-        Inputs per combination (an ``int`` or a numpy integer).  In
-        ``"any"`` mode, default: the DOF.  In ``"limb"`` mode it is the
-        number of limbs (the DOF, when smaller), fixed
-        by the mode: leave it out (a ``k`` that differs is refused).
+        Inputs per combination; default the DOF. Mode ``"limb"`` fixes it
+        (the number of limbs, or the DOF when smaller): a ``k`` that differs is refused.
     poses : sequence of Mechanism
-        Further poses of the same mechanism (listed by the user).
+        Further poses of the same mechanism.
     samples : int
-        Further poses reached by moving the mechanism, from
-        :func:`mobility.core.poses.sample_poses` (with ``step``, ``seed``
-        and ``tol``).
+        Further poses from :func:`mobility.core.poses.sample_poses` (with ``step``, ``seed``, ``tol``).
     tol : Tolerance
 
     Returns
@@ -156,11 +134,8 @@ def enumerate_actuations(
     Raises
     ------
     RequestError
-        On an unknown mode, a ``k`` that is not a non-negative integer (or,
-        in ``"limb"`` mode, not the number of limbs), a ``samples`` that is
-        not a number of poses, a pose that is not a
-        :class:`~mobility.core.model.Mechanism`, or more than
-        :data:`~mobility.actuation.ranking.MAX_COMBINATIONS` combinations.
+        On an unknown mode, a bad ``k`` or ``samples``, a pose that is not a
+        Mechanism, or more than :data:`~mobility.actuation.ranking.MAX_COMBINATIONS` combinations.
     MechanismError
         When a pose is not one of ``mechanism``.
 
@@ -232,12 +207,7 @@ def enumerate_actuations(
 def _limb_inputs(limbs: int, dof: int) -> int:
     """Inputs per combination of mode ``"limb"``: one in each limb, or in ``dof`` of them when there are more limbs than DOF.
 
-    A mechanism with more limbs than DOF (a four-bar seen from its coupler:
-    two limbs, one DOF; the Tricept's three UPS legs and its passive central
-    UP leg, three DOF; the 4-PUU, three DOF) is driven by one joint in each
-    of ``dof`` limbs, the others passive; one in each limb would make every
-    combination redundant.  With as many limbs as DOF or fewer, every limb
-    gets one input (the paper's enumeration).
+    (A four-bar seen from its coupler, the Tricept: one in each limb would make every combination redundant.)
 
     Examples
     --------
@@ -250,10 +220,8 @@ def _limb_inputs(limbs: int, dof: int) -> int:
 def _limb_combinations(candidates: Sequence[Sequence[int]], k: int) -> int:
     """How many combinations mode ``"limb"`` tries: one candidate in each of ``k`` of the limbs.
 
-    The sum over the ``k``-subsets of limbs of the product of their
-    candidate counts (the elementary symmetric polynomial of degree ``k``),
-    counted limb by limb in exact integers, so that it is known before any
-    subset is listed (70 limbs of two candidates, ``k`` = 3: 437,920).
+    The elementary symmetric polynomial of degree ``k`` of the candidate
+    counts, in exact integers, known before any subset is listed.
 
     Examples
     --------
@@ -300,10 +268,7 @@ def _freedoms(mechanism: Mechanism, names: Sequence[str]) -> list[tuple[int, int
 def _idle_inputs(pose: RigidPose, names: Sequence[str]) -> tuple[str, ...] | None:
     """The inputs that move the mechanism without moving the end effector, when the inputs can be set independently.
 
-    From the loop closure of the whole mechanism: the inputs' rows of its
-    joint-rate basis have full rank when no input's rate is tied to the
-    others' (else None: they fight), and an input whose rate is not zero in
-    some motion that leaves the end effector still drives an idle motion.
+    None when the inputs' rows of the loop closure's joint-rate basis lose rank (their rates are tied: they fight).
 
     Examples
     --------

@@ -1,18 +1,10 @@
 """Actuation wrenches of the joints of a rigid mechanism at one pose.
 
-* **limb**: a branch of the top-level parallel connection between ground and
-  end effector (:func:`mobility.core.topology.decompose`); a mechanism that is
-  not a parallel connection is one limb.
-* **actuation wrench** of an actuated freedom (one per freedom of an actuated
-  joint): a wrench reciprocal to every *other* twist of its limb but not to
-  its own.  It is defined up to the limb's own constraint wrenches; the one
-  given is orthogonal to them in coordinates centred where the limb meets the
-  end effector (for an RPS limb: the force along the leg for P, the force
-  through the S centre normal to the leg in the leg's plane for R).  When the
-  limb's other joints already produce the joint's motion, there is none: the
-  joint cannot be driven on its own.
-* its **rate** ``a o $``: ``$`` is the joint's twist at unit angular speed
-  for R and H, at unit speed of one characteristic length ``L`` for P.
+A **limb** is a branch of the top-level parallel connection between ground and
+end effector (:func:`mobility.core.topology.decompose`; else the whole
+mechanism). The actuation wrench of a freedom and its rate are defined in
+:mod:`mobility.actuation.input_wrenches` (for an RPS limb: the force along the
+leg for P, the force through the S centre normal to the leg in its plane for R).
 
 Examples
 --------
@@ -50,11 +42,6 @@ _DRIVEN_BY_OTHERS = "its motion is produced by the other joints of its limb: it 
 
 class RigidPose:
     """What one pose of a rigid mechanism needs for actuation assessments, computed once.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    tol : Tolerance
 
     Attributes
     ----------
@@ -122,11 +109,10 @@ class RigidPose:
     def locked_wrenches(self, freedoms: Sequence[tuple[int, int]]) -> np.ndarray | None:
         """The wrenches a limb exerts with all its inputs locked, for the limbs where an input has no actuation wrench of its own.
 
-        An input whose motion the other joints of its limb already produce (a
-        limb with a self-motion, such as a 7R arm, or joints in line) has no
-        wrench of its own, yet locking it with the others can still hold the
-        limb: what holds it then is the constraint system of the limb with
-        every input locked (an orthonormal basis, normalised coordinates).
+        An input whose motion its limb's other joints produce (a 7R arm, joints
+        in line) has no wrench of its own, yet locking it with the others can
+        hold the limb: by the limb's constraint system with every input locked
+        (orthonormal, normalised).
 
         Parameters
         ----------
@@ -136,9 +122,7 @@ class RigidPose:
         Returns
         -------
         ndarray, shape (6, k), or None
-            None when every input of every limb has its own wrench (or none
-            because it is not on a path between the ground and the end
-            effector).
+            None when every input of every limb has its own wrench (or is on no path).
         """
         lacking = {self.limb_of[j] for j, k in freedoms if j in self.limb_of and self.wrench(j, k)[2] == _DRIVEN_BY_OTHERS}
         if not lacking:

@@ -1,32 +1,12 @@
 """The ``mobility`` command line.
 
-Each subcommand lives in its own module of this package, found automatically:
-a module with a ``register(subparsers)`` function that adds its parser and
-sets ``run`` (a function ``run(args) -> int`` returning the exit status), and
-an ``ORDER`` number placing it in ``mobility --help`` (and, when the command
-has a verdict, ``EXIT_STATUS``, the statuses its ``--help`` lists).  The command line only
-parses arguments and formats results.
-
-Exit status: 0 success, 1 a check failed, 2 bad input (one line naming file,
-line and key on stderr, never a traceback), 3 an internal error, 130 when
-interrupted (Ctrl-C: one line, ``mobility: interrupted``), 143 when
-terminated (``SIGTERM``: ``mobility: terminated``).  Every output file is
-written whole or not at all (:mod:`mobility.outputs`): an interrupt or a
-failure leaves the previous file as it was; once an output is in place the
-command finishes, and an interrupt after that is dropped.  Standard output
-that cannot be written (a full disk) is bad input too: one line saying why,
-exit status 2; when its reader has gone away (``mobility check designs/ |
-head``) the rest of the output is dropped quietly and the command ends with
-its own status (a failed check still exits 1).  Text that the terminal's
-encoding cannot show is written as a JSON escape (``\u00fc``: a JSON output
-stays JSON), never an error; with standard error closed (``2>&-``) messages are dropped, never
-mixed into the output.
-
-A subcommand module is named after its command (``analyze.py`` registers
-``analyze``), so :func:`main` imports only the module of the command asked
-for: ``mobility analyze`` does not pay for importing the other commands'
-features (scipy.optimize, plotting...).  ``mobility --help``, or a command
-that is not one, builds the whole parser.
+Each subcommand is a module of this package named after it, with
+``register(subparsers)`` (adding its parser and setting ``run(args) -> int``),
+an ``ORDER`` in ``mobility --help`` and, for a command with a verdict,
+``EXIT_STATUS``.  :func:`main` imports only the module of the command asked
+for.  The exit statuses, the whole-or-nothing outputs, a closed or broken
+standard output and the escaping of what the terminal cannot show are
+described in the README.
 """
 
 from __future__ import annotations
@@ -101,10 +81,8 @@ def _command_asked(argv: Sequence[str]) -> list[str] | None:
 def options_given(argv: Sequence[str]) -> frozenset[str]:
     """The destinations (``max_poses``, ``step``...) of the options typed in ``argv``, not left at their defaults.
 
-    ``argv`` is parsed again with every default suppressed, so that an option
-    given with its default value (``--step 0.1``) counts as given: a command
-    refuses an option that its other options would leave unread
-    (:func:`mobility.cli._options.require_option_for`).
+    ``argv`` is parsed again with every default suppressed, so that ``--step 0.1``
+    counts as given even at its default (for :func:`mobility.cli._options.require_option_for`).
 
     Examples
     --------
@@ -134,19 +112,13 @@ def options_given(argv: Sequence[str]) -> frozenset[str]:
 class _GuardedOutput:
     """Standard output for the length of a command: a write or flush that fails is bad input, not an internal error.
 
-    An ``OSError`` (a full disk: ``ENOSPC``) becomes a :class:`RequestError`
-    saying that the output could not be written and why; after a
-    ``BrokenPipeError`` (the reader has gone away) every later write is
-    dropped, so that the command ends with its own exit status.  Either way
-    :attr:`failed` is set.  Every
-    other attribute is the stream's own.  ``stream`` is ``None`` when the
-    process was started with standard output closed: a write is refused.
+    An ``OSError`` (``ENOSPC``) becomes a :class:`RequestError`; after a
+    ``BrokenPipeError`` later writes are dropped, so that the command ends with
+    its own status.  ``stream`` is ``None`` when standard output was closed.
     """
 
     def __init__(self, stream: Any) -> None:
-        self.stream = stream
-        self.failed = False
-        self.reader_gone = False
+        self.stream, self.failed, self.reader_gone = stream, False, False
 
     def _guarded(self, action: Any, *args: Any) -> Any:
         if self.reader_gone:
@@ -158,12 +130,12 @@ class _GuardedOutput:
             if isinstance(exc, BrokenPipeError):
                 self.reader_gone = True  # drop the rest: the command still runs to its own exit status
                 return None
-            raise RequestError(f"standard output: cannot write it ({os_problem(exc)})") from None
+            raise RequestError(f"cannot write it ({os_problem(exc)})", argument="standard output") from None
 
     def write(self, text: str) -> int:
         if self.stream is None:  # started with standard output closed (`>&-`): Python has none
             self.failed = True
-            raise RequestError("standard output: cannot write it (it is closed)")
+            raise RequestError("cannot write it (it is closed)", argument="standard output")
         self._guarded(self.stream.write, text)
         return len(text)
 
@@ -178,10 +150,8 @@ class _GuardedOutput:
 def _discard_stdout() -> None:
     """Point the process's standard output at ``os.devnull`` after a write to it failed.
 
-    What is left in its buffer would otherwise fail again when the
-    interpreter flushes it at exit (a second message, exit status 120); the
-    documentation of :mod:`signal` advises the same for ``SIGPIPE``.  A stream
-    put in place of the process's own (a test's capture) is left alone.
+    Its buffer would otherwise fail again at exit (exit status 120), as the
+    :mod:`signal` documentation warns for ``SIGPIPE``; a test's capture is left alone.
     """
     if sys.stdout is not sys.__stdout__ or sys.stdout is None:
         return
@@ -210,25 +180,15 @@ def _unicode_escapes(exc: UnicodeError) -> tuple[str, int]:
     """
     if not isinstance(exc, UnicodeEncodeError):
         raise exc
-    out = []
-    for char in exc.object[exc.start : exc.end]:
-        code = ord(char)
-        if code > 0xFFFF:
-            code -= 0x10000
-            out.append(f"\\u{0xD800 + (code >> 10):04x}\\u{0xDC00 + (code & 0x3FF):04x}")
-        else:
-            out.append(f"\\u{code:04x}")
-    return "".join(out), exc.end
+    units = exc.object[exc.start : exc.end].encode("utf-16-be", "surrogatepass")  # a pair beyond the BMP, as JSON writes it
+    return "".join(f"\\u{units[i]:02x}{units[i + 1]:02x}" for i in range(0, len(units), 2)), exc.end
 
 
 codecs.register_error(ESCAPE_ERRORS, _unicode_escapes)
 
 
 def _escape_what_cannot_be_encoded() -> None:
-    """Write characters that the standard streams' encoding lacks (``ü`` on an ASCII terminal) as ``\\u00fc``, not an error.
-
-    The escape is JSON's: a JSON output stays valid JSON, and reads back as the characters written.
-    """
+    """Write characters that the standard streams' encoding lacks (``ü`` on an ASCII terminal) as ``\\u00fc`` (JSON's escape), not an error."""
     for stream in (sys.stdout, sys.stderr):
         reconfigure = getattr(stream, "reconfigure", None)
         if reconfigure is not None:
@@ -240,8 +200,7 @@ def _escape_what_cannot_be_encoded() -> None:
 def _stderr_or_nothing() -> Any:
     """Standard error as it is, or a sink when the process was started without one (``2>&-``).
 
-    Python then has ``sys.stderr = None``, and ``print(..., file=None)``
-    would write messages into standard output, mixed into a result.
+    Python then has ``sys.stderr = None``: ``print(..., file=None)`` would write into standard output.
     """
     if sys.stderr is not None:
         yield
@@ -251,12 +210,7 @@ def _stderr_or_nothing() -> Any:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status.
-
-    Standard output is flushed before returning, so that a failure to write
-    it is reported here (:class:`_GuardedOutput`), not at the interpreter's
-    exit.
-    """
+    """Run the command line; returns the exit status (standard output flushed first, so that a failure to write it is reported)."""
     whole_process = argv is None  # the command is the program: once its output is in place, it ends as it succeeded
     argv = list(sys.argv[1:] if argv is None else argv)
     _escape_what_cannot_be_encoded()

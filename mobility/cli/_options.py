@@ -1,13 +1,9 @@
 """Options shared by several subcommands: each ``add_*`` function registers them, its partner reads them back checked.
 
-Every subcommand that reads one mechanism file registers it with
-:func:`add_mechanism_file` (the ``FILE`` argument and the options of robot
-description files: ``--ground``, ``--end-effector``, ``--floating``,
-``--ignore-unsupported``, ``--close A B``, ``--closures FILE``) and reads it
-with :func:`load_mechanism` (or :func:`read_mechanism` for the notes), so
-that YAML, MJCF and URDF files are read the same way by every command.  The
-robot readers are imported only when a robot file is read, so that
-``mobility analyze FILE.yaml`` does not pay for them.
+Every subcommand reading one mechanism file registers it with
+:func:`add_mechanism_file` (``FILE`` and the robot description options) and
+reads it with :func:`load_mechanism`, so that every command reads YAML, MJCF
+and URDF alike.
 """
 
 from __future__ import annotations
@@ -25,26 +21,9 @@ from ..errors import RequestError, one_line
 from ..io.files import os_problem, require_not_pipe
 from ..io.loader import FileRead, read_file
 
-__all__ = [
-    "add_tolerance_option",
-    "tolerance_from",
-    "add_pose_sampler_options",
-    "sampled_poses",
-    "MECHANISM_FILE_HELP",
-    "add_mechanism_file",
-    "robot_options_from",
-    "read_mechanism",
-    "load_mechanism",
-    "names_from",
-    "MAX_SAMPLES",
-    "require_sampler_options",
-    "require_new_output",
-    "add_max_poses_option",
-    "max_poses_from",
-    "require_option_for",
-    "number_option",
-    "integer_option",
-]
+__all__ = ["add_tolerance_option", "tolerance_from", "add_pose_sampler_options", "sampled_poses", "MECHANISM_FILE_HELP", "add_mechanism_file",
+           "robot_options_from", "read_mechanism", "load_mechanism", "names_from", "MAX_SAMPLES", "require_sampler_options", "require_new_output",
+           "add_max_poses_option", "max_poses_from", "require_option_for", "number_option", "integer_option"]
 
 
 def number_option(text: str) -> float:
@@ -69,10 +48,7 @@ def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
 
 
 def tolerance_from(args: argparse.Namespace, precision: float | None = None) -> Tolerance:
-    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol`` (whose range the policy itself checks, ``[inexact, near_singular)``); without it, the default never finer than ``precision``.
-
-    ``precision`` is the file's own (:attr:`~mobility.core.model.Mechanism.precision`):
-    see :func:`~mobility.core.tolerance.file_tolerance`.
+    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol`` (its range checked by the policy); without it, the default never finer than the file's ``precision`` (:func:`~mobility.core.tolerance.file_tolerance`).
 
     Raises
     ------
@@ -92,20 +68,9 @@ def add_pose_sampler_options(
 ) -> None:
     """Add ``--samples N``, ``--step`` and ``--seed``: further poses reached by moving the mechanism.
 
-    The default ``--step`` is :data:`mobility.core.poses.DEFAULT_STEP`, that of
-    :func:`~mobility.core.poses.sample_poses`, for every subcommand.
-
-    Parameters
-    ----------
-    parser : argparse.ArgumentParser
-    samples_help : str
-        What the subcommand does with the poses.
-    samples_group : optional
-        A group of ``parser`` (e.g. mutually exclusive) that ``--samples`` joins.
-    most : int, optional
-        The largest ``--samples`` the help names, when the command allows
-        fewer than :data:`MAX_SAMPLES` (which every command checks) and
-        checks it itself.
+    ``samples_help`` says what the subcommand does with the poses; ``--samples``
+    joins ``samples_group`` if given; ``most`` is the largest ``--samples`` the
+    help names when the command checks a bound below :data:`MAX_SAMPLES` itself.
     """
     from ..core.poses import DEFAULT_STEP, MAX_STEP  # the finite kinematics: imported only by the commands that move
 
@@ -172,14 +137,7 @@ class StoreOnce(argparse.Action):
 
 
 def add_mechanism_file(parser: argparse.ArgumentParser, *, file_help: str = MECHANISM_FILE_HELP) -> None:
-    """Add the ``file`` argument (YAML, MJCF or URDF) and the options of robot description files.
-
-    Parameters
-    ----------
-    parser : argparse.ArgumentParser
-    file_help : str
-        The help of ``file`` (say what else the subcommand reads, if anything).
-    """
+    """Add the ``file`` argument (YAML, MJCF or URDF, helped by ``file_help``) and the options of robot description files."""
     parser.add_argument("file", help=file_help)
     g = parser.add_argument_group("robot description files (MJCF, URDF)")
     g.add_argument("--ground", metavar="BODY", action=StoreOnce, help="the fixed body (default: the world or root body)")
@@ -217,9 +175,6 @@ def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
 def read_mechanism(args: argparse.Namespace, path: str | None = None) -> FileRead:
     """The mechanism of ``path`` (default: ``args.file``), read with the robot options of ``args``, the notes of the reading and the files read.
 
-    The files are the file itself, a URDF's closures side file and the files an
-    MJCF model includes: no output may overwrite one of them.
-
     Raises
     ------
     MechanismFileError
@@ -252,11 +207,8 @@ def read_with_notes(args: argparse.Namespace, path: str | None = None, *, output
 def names_from(text: str | None, known: Collection[str] = (), option: str = "--inputs") -> list[str] | None:
     """The names of a comma-separated option (``--inputs P1, P2``), ``None`` when the option was not given.
 
-    A name may hold commas (a file may call a joint ``"hip,left"``): parts
-    that, joined again by their commas, make one of the ``known`` names
-    (or ``NAME.k``, the k-th freedom of one) are taken as that name, the
-    longest such run first.  An option given with no name in it
-    (``--inputs ''``) is refused, naming ``option``.
+    A name may hold commas (``"hip,left"``): parts that, joined again, make one
+    of the ``known`` names (or ``NAME.k``) are that name, the longest run first.
 
     Examples
     --------
@@ -268,7 +220,7 @@ def names_from(text: str | None, known: Collection[str] = (), option: str = "--i
     if text is None:
         return None
     if not text.replace(",", "").strip():
-        raise RequestError(f"{option} {text!r}: expected one or more joint names, separated by commas")
+        raise RequestError(argument=f"{option} {text!r}", expected="one or more joint names, separated by commas")
     names_set = set(known)
     is_name = lambda candidate: candidate in names_set or candidate.rpartition(".")[0] in names_set  # noqa: E731
     spans: dict[str, set[int]] = {}  # the first part of each name that holds commas -> how many parts it has
@@ -296,18 +248,19 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
     """
     if output is None:
         return
+    where = f"{option} {output}"
     if output.endswith(("/", os.sep)):  # `-o newdir/` would write a file called newdir
-        raise RequestError(f"{option} {output}: expected a file name, not a folder (it ends with {output[-1]})")
+        raise RequestError(argument=where, expected=f"a file name, not a folder (it ends with {output[-1]})")
     if stat.S_ISDIR(require_not_pipe(output, f"a file to write for {option} (writing to a pipe would wait for a reader)")):
-        raise RequestError(f"{option} {output}: is a directory, expected a file to write")
+        raise RequestError("is a directory, expected a file to write", argument=where)
     try:
         os.stat(output)
     except FileNotFoundError:  # a new file: its folder must be there
         folder = os.path.dirname(os.path.abspath(output))
         if not os.path.isdir(folder):
-            raise RequestError(f"{option} {output}: cannot write there: the folder {folder} does not exist") from None
+            raise RequestError(f"cannot write there: the folder {folder} does not exist", argument=where) from None
     except OSError as exc:  # before any work: writing there would fail after it
-        raise RequestError(f"{option} {output}: cannot write there: {os_problem(exc)}") from None
+        raise RequestError(f"cannot write there: {os_problem(exc)}", argument=where) from None
     for given in inputs:
         if given is None:
             continue
@@ -316,14 +269,13 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
         except (OSError, ValueError):
             same = False
         if same:
-            raise RequestError(f"{option} {output}: the same file as {given}, which would be overwritten")
+            raise RequestError(f"the same file as {given}, which would be overwritten", argument=where)
 
 
 def require_option_for(args: argparse.Namespace, dest: str, option: str, needs: str, present: bool, what: str) -> None:
     """Refuse ``option`` typed without ``needs`` (``present`` tells whether that is given): it would be left unread.
 
-    An option is given when :func:`mobility.cli.options_given` found it typed
-    on the command line (``args.given_options``), whatever its value.
+    Given means typed on the command line (``args.given_options``), whatever its value.
 
     Examples
     --------

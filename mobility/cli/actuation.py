@@ -1,20 +1,8 @@
 """``mobility actuation FILE``: which joints (or linear actuators) may drive a mechanism.
 
-For a mechanism file (YAML, MJCF or URDF; in a robot description the joints
-driven by an actuator are the actuated ones): the actuation wrench of every joint marked
-``actuated: true``, the constraint wrenches and the verdict (valid,
-actuation-singular with the uncontrolled directions, or redundant), with the
-actuation conditioning.  ``--enumerate`` checks every combination of inputs
-(one joint per limb, or ``--mode any --k K``) at the given pose and at further
-poses (``--pose FILE``, ``--samples N``), grouped by type and ranked.
-
-For a flexure document (top-level ``elements``): the compliance eigenvalues,
-the freedom and constraint spaces, and the same verdict for the linear
-actuators marked ``actuated: true`` (``--enumerate``: every set of ``k``
-candidate actuators).
-
-Exit status: 0 when the chosen inputs are valid (with ``--enumerate``: when at
-least one combination is valid), 1 otherwise, 2 on bad input.
+The actuation wrenches, constraint wrenches and verdict of the actuated joints
+(``--enumerate``: every combination), or of a flexure document's linear
+actuators (``docs/actuation.md``).
 """
 
 from __future__ import annotations
@@ -30,35 +18,19 @@ from ..io.loader import is_robot_description
 from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
 from ..io.limits import require_size, require_work
-from ._options import (
-    MECHANISM_FILE_HELP,
-    OPTION_SPELLING,
-    add_mechanism_file,
-    add_pose_sampler_options,
-    add_tolerance_option,
-    integer_option,
-    load_mechanism,
-    names_from,
-    number_option,
-    require_option_for,
-    require_sampler_options,
-    read_mechanism,
-    robot_options_from,
-    sampled_poses,
-    tolerance_from,
-)
+from ._options import (MECHANISM_FILE_HELP, OPTION_SPELLING, add_mechanism_file, add_pose_sampler_options, add_tolerance_option, integer_option,
+                       load_mechanism, names_from, number_option, require_option_for, require_sampler_options, read_mechanism, robot_options_from,
+                       sampled_poses, tolerance_from)
 
 ORDER = 30
 EXIT_STATUS = "0 the chosen inputs are valid (with --enumerate: at least one combination is), 1 otherwise, 2 bad input (one line on standard error)"
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "actuation",
-        help="which joints (or linear actuators) may drive the mechanism: actuation wrenches and verdicts",
-        description="Actuation spaces (Li, Shan, Yu, Ke 2021): a choice of inputs is valid when its actuation wrenches "
-        "and the constraint wrenches together span six dimensions.",
-    )
+    p = sub.add_parser("actuation",
+                       help="which joints (or linear actuators) may drive the mechanism: actuation wrenches and verdicts",
+                       description="Actuation spaces (Li, Shan, Yu, Ke 2021): a choice of inputs is valid when its actuation wrenches "
+                       "and the constraint wrenches together span six dimensions.")
     add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + ", or flexure document (YAML)")
     p.add_argument("--enumerate", action="store_true", help="check every combination of inputs, grouped by type and ranked")
     p.add_argument("--mode", choices=ENUMERATION_MODES, default=None, help="enumeration: one joint per limb (default) or any K joints")
@@ -127,9 +99,7 @@ def run(args: argparse.Namespace) -> int:
 def _pose(args: argparse.Namespace, path: str) -> Mechanism:
     """The mechanism of ``--pose path``, read as FILE is, with its robot options.
 
-    A YAML pose of a robot description read with options (``--close``) is
-    refused here, naming the pose: reading it would blame the options, as if
-    they were wrong for FILE.
+    A YAML pose of a robot description read with options is refused here, naming the pose, not the options.
     """
     given = sorted(robot_options_from(args))
     if given and not is_robot_description(path):

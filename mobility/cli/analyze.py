@@ -19,11 +19,7 @@ def _markdown(result, args: argparse.Namespace) -> str:
     return markdown_report(result)
 
 
-FORMATS = {
-    "text": lambda r, a: text_report(r, limbs=a.limbs),
-    "json": lambda r, a: json_report(r),
-    "md": _markdown,
-}
+FORMATS = {"text": lambda r, a: text_report(r, limbs=a.limbs), "json": lambda r, a: json_report(r), "md": _markdown}
 """Output formats: name -> function(result, args) -> str (other modules may add)."""
 
 
@@ -41,7 +37,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if args.json and args.format not in ("text", "json"):
-        raise RequestError(f"--json and --format {args.format}: choose one output format")
+        raise RequestError("choose one output format", argument=f"--json and --format {args.format}")
     read = read_with_notes(args)
     mechanism = read.mechanism
     tol = tolerance_from(args, mechanism.precision)

@@ -1,20 +1,8 @@
 """``mobility check PATH...``: analyse mechanism files and compare them with their ``expected`` blocks.
 
-Prints one table row per file (file, Grübler–Kutzbach count, mobility, DOF,
-pattern, what was expected, verdict) and a summary line, or one JSON object
-with ``--json``.  Exit status: 0 when every file passes; 1 when a file
-disagrees with its ``expected`` block or has none; 2 when a path or file is
-bad input (it appears in the table with its one-line error; bad input wins
-over mismatches); 3 on an internal error.
-
-A flexure document found among the files (``docs/actuation.md``) is read and
-checked as one (:func:`mobility.testing.flexure_check.flexure_document`): its
-errors are the file's errors, and its ``expected`` block is compared with its
-freedom space and actuation verdict.
-
-``--library`` checks the library bundled with the package
-(:func:`mobility.library.folders`: the classic mechanisms and the flexure
-examples), with no clone needed; it may be given with paths of one's own.
+One table row per file and a summary line (or ``--json``); a flexure document
+among the files is checked as one.  ``--library`` checks the library bundled
+with the package (:func:`mobility.library.folders`), with or without paths.
 """
 
 from __future__ import annotations
@@ -30,21 +18,15 @@ from ..testing.flexure_check import flexure_document
 from ._options import add_tolerance_option, tolerance_from
 
 ORDER = 20
-EXIT_STATUS = (
-    "0 every file passes, 1 a file disagrees with its expected block or has none, "
-    "2 a path or file is bad input (in the table, on its line; it wins over disagreements)"
-)
+EXIT_STATUS = ("0 every file passes, 1 a file disagrees with its expected block or has none, "
+               "2 a path or file is bad input (in the table, on its line; it wins over disagreements)")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "check",
-        help="analyse mechanism files and compare them with their expected blocks (exit 1 on a mismatch)",
-        description=(
-            "Analyse every mechanism file given (folders: every *.yaml/*.yml inside, recursively) and compare "
-            "it with its expected block (a flexure document is checked as one)."
-        ),
-    )
+    p = sub.add_parser("check",
+                       help="analyse mechanism files and compare them with their expected blocks (exit 1 on a mismatch)",
+                       description="Analyse every mechanism file given (folders: every *.yaml/*.yml inside, recursively) and compare "
+                       "it with its expected block (a flexure document is checked as one).")
     p.add_argument("paths", nargs="*", metavar="PATH", help="mechanism files or folders")
     p.add_argument("--library", action="store_true",
                    help="check the library bundled with the package (its classic mechanisms and flexure examples), before any PATH")
@@ -56,7 +38,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
     if not args.paths and not args.library:
-        raise RequestError("check: give a mechanism file or folder (PATH), or --library for the bundled library")
+        raise RequestError("give a mechanism file or folder (PATH), or --library for the bundled library", caller="check")
     paths = [*(library.folders() if args.library else ()), *args.paths]
     report = check_paths(paths, tol=tol, others=(flexure_document,))
     print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else check_table(report))

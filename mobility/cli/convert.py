@@ -1,13 +1,4 @@
-"""``mobility convert FILE -o FILE.yaml``: a robot description (MJCF, URDF) as a mechanism file.
-
-The file and the options of robot description files (``--ground``,
-``--end-effector``, ``--floating``, ``--ignore-unsupported``, ``--close A
-B``, ``--closures FILE``) are those every command that reads one mechanism
-file shares (:func:`mobility.cli._options.add_mechanism_file`).  The writer
-is imported only when a file is written.  ``-o`` never writes over a file
-the conversion reads: the input, a closures file, or a file an MJCF model
-includes.
-"""
+"""``mobility convert FILE -o FILE.yaml``: a robot description (MJCF, URDF) as a mechanism file, never written over a file it reads."""
 
 from __future__ import annotations
 
@@ -44,8 +35,8 @@ def run(args: argparse.Namespace) -> int:
     if args.output == "-":  # the usual name of standard output
         args.output = None
     if args.output is not None and (not args.output or Path(args.output).suffix.lower() in ROBOT_SUFFIXES):
-        raise RequestError(f"-o {args.output!r}: expected a name for the YAML file (such as model.yaml), not empty nor with a robot description's extension "
-                           f"({', '.join(sorted(ROBOT_SUFFIXES))}), which would be read back as XML")
+        raise RequestError(argument=f"-o {args.output!r}", expected="a name for the YAML file (such as model.yaml), not empty nor with a robot "
+                           f"description's extension ({', '.join(sorted(ROBOT_SUFFIXES))}), which would be read back as XML")
     require_new_output(args.output, "-o", args.file, args.closures)
     mechanism, notes, files, _ = read_mechanism(args)
     require_new_output(args.output, "-o", *files)  # nor a file the model includes
@@ -75,11 +66,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _write_utf8(text: str) -> None:
-    """Write a YAML document to standard output in UTF-8, YAML's own encoding, whatever the terminal's.
-
-    Escaped for an ASCII terminal (``\\u00fc``), it would not read back: a
-    folded description takes escapes as plain text.
-    """
+    """Write a YAML document to standard output in UTF-8, whatever the terminal's encoding (escaped, a folded description would not read back)."""
     buffer = getattr(sys.stdout, "buffer", None)
     encoding = (getattr(sys.stdout, "encoding", None) or "").lower().replace("-", "").replace("_", "")
     if buffer is None or encoding == "utf8" or text.isascii():

@@ -1,10 +1,4 @@
-"""``mobility jacobian FILE``: the Jacobian of a parallel mechanism, by differentiating finite screws.
-
-The limbs must be serial chains from the ground to the end effector; the
-actuated joints are those marked ``actuated: true`` in the file, or those named
-with ``--actuated``.  Exit status 0 when the Jacobian has rank 6 (the platform
-is controlled, redundantly or not), 1 when it is singular, 2 on bad input.
-"""
+"""``mobility jacobian FILE``: the Jacobian of a parallel mechanism whose limbs are serial chains, by differentiating finite screws."""
 
 from __future__ import annotations
 
@@ -20,12 +14,10 @@ EXIT_STATUS = "0 the Jacobian has rank 6 (the platform is controlled, redundantl
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "jacobian",
-        help="Jacobian of a parallel mechanism (actuation and constraint wrenches) from its finite screws",
-        description="Jacobian by differentiating the limbs' finite screws (Sun et al. 2018, Eq. 26): "
-        "J $ = [actuated rates; 0] for the platform twist $ = [w; v].",
-    )
+    p = sub.add_parser("jacobian",
+                       help="Jacobian of a parallel mechanism (actuation and constraint wrenches) from its finite screws",
+                       description="Jacobian by differentiating the limbs' finite screws (Sun et al. 2018, Eq. 26): "
+                       "J $ = [actuated rates; 0] for the platform twist $ = [w; v].")
     add_mechanism_file(p, file_help=MECHANISM_FILE_HELP + " whose limbs are serial chains")
     p.add_argument("--actuated", default=None, metavar="A,B,...", help="actuated joints (default: those marked actuated: true); NAME.k picks freedom k (from 0, as reports label it) of a multi-DOF joint")
     p.add_argument("--json", action="store_true", help="print one JSON object")
@@ -40,9 +32,9 @@ def run(args: argparse.Namespace) -> int:
     names = names_from(args.actuated, [j.name for j in mechanism.joints], "--actuated")
     try:
         result = jacobian(mechanism, actuated=names, tol=tol)
+    except MechanismFileError:
+        raise
     except MechanismError as exc:
-        if isinstance(exc, MechanismFileError):
-            raise
         raise MechanismFileError(exc.key, exc.message, file=args.file) from None
     print(jacobian_json(result) if args.json else jacobian_text(result, mechanism.length_unit))
     return 1 if result.singular else 0

@@ -13,13 +13,11 @@ ORDER = 30
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "plot",
-        help="draw the mechanism with its end effector's freedoms (or its joint graph) to PNG, SVG or PDF",
-        description="Draw the mechanism at its pose with the end effector's freedoms: arrows for translations, "
-        "axis lines with a rotation mark for rotations (pitch written where non-zero). Needs matplotlib "
-        "(pip install 'mechanism-mobility[plot]').",
-    )
+    p = sub.add_parser("plot",
+                       help="draw the mechanism with its end effector's freedoms (or its joint graph) to PNG, SVG or PDF",
+                       description="Draw the mechanism at its pose with the end effector's freedoms: arrows for translations, "
+                       "axis lines with a rotation mark for rotations (pitch written where non-zero). Needs matplotlib "
+                       "(pip install 'mechanism-mobility[plot]').")
     add_mechanism_file(p)
     p.add_argument("-o", "--output", required=True, help="picture to write; the type follows the suffix: .png, .svg or .pdf")
     p.add_argument("--constraints", action="store_true", help="also draw the constraint wrenches (force lines, couples)")
@@ -59,7 +57,8 @@ def run(args: argparse.Namespace) -> int:
         mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
     except MechanismFileError:
         if _is_flexure(args.file):
-            raise PlotFormatError(f"{args.file}: a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures") from None
+            raise PlotFormatError("a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures",
+                                  argument=args.file) from None
         raise
     tol = tolerance_from(args, mechanism.precision)
     result = analyze(mechanism, tol=tol)

@@ -1,11 +1,9 @@
 """``mobility sweep FILE --vary JOINT=START:STOP:COUNT``: mobility, singularity and actuation maps over a grid.
 
-Each ``--vary`` displaces a joint from its value in the file's pose (degrees
-for R, H, C joints, the file's length unit for P joints) or moves the end
-effector (``x y z`` in length, ``rx ry rz`` in degrees); the grid is the
-product of the ranges.  Prints a short summary (``--format csv`` or ``json``
-for the whole table), ``-o`` writes it to a file, ``--plot`` draws a curve,
-a map or slices.  Exit status: 0 on success, 2 on bad input.
+Each ``--vary`` displaces a joint from the file's pose (degrees for R, H, C
+joints, the file's length unit for P) or moves the end effector (``x y z``,
+``rx ry rz`` in degrees); the grid is the product of the ranges
+(``docs/sweeps.md``).
 """
 
 from __future__ import annotations
@@ -13,13 +11,13 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import IO, Iterable, Iterator
+from typing import IO, Iterable
 
 from ..errors import MechanismError, RequestError, clipped, counted, one_line
 from ..outputs import atomic_output
 from ..report.plotting import FORMATS as PICTURE_FORMATS, picture_path, save_figure
 from ..report.sweep import sweep_csv_pieces, sweep_json_pieces, sweep_summary
-from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, SweepResult, sweep
+from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, sweep
 from ..sweeps.batch_actuation import actuated_inputs
 from ..transmission import GOOD_TRANSMISSION
 from ..io.limits import require_size
@@ -28,32 +26,20 @@ from ._options import add_max_poses_option, add_mechanism_file, integer_option, 
 ORDER = 35
 
 
-def _summary_pieces(result: SweepResult) -> Iterator[str]:
-    yield sweep_summary(result)
-
-
-FORMATS = {"text": _summary_pieces, "csv": sweep_csv_pieces, "json": sweep_json_pieces}
+FORMATS = {"text": lambda result: iter([sweep_summary(result)]), "csv": sweep_csv_pieces, "json": sweep_json_pieces}
 """Output formats: name -> function(result) -> the text in pieces (a table of a million poses is never held whole as text)."""
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "sweep",
-        help="mobility, singularities and actuation over a grid of poses (joints or end-effector coordinates varied)",
-        description="Vary joints (or the end effector's pose) over a grid, close every loop at every point, and report "
-        "DOF, pattern, mobility, rank margin and, for actuated joints, the actuation verdict and conditioning; "
-        "the summary names the singular poses and where the answer changes.",
-    )
+    p = sub.add_parser("sweep", help="mobility, singularities and actuation over a grid of poses (joints or end-effector coordinates varied)",
+                       description="Vary joints (or the end effector's pose) over a grid, close every loop at every point, and report "
+                       "DOF, pattern, mobility, rank margin and, for actuated joints, the actuation verdict and conditioning; "
+                       "the summary names the singular poses and where the answer changes.")
     add_mechanism_file(p)
-    p.add_argument(
-        "--vary",
-        action="append",
-        required=True,
-        metavar="NAME=START:STOP:COUNT",
-        help="a joint (R/H/C: degrees, P: length) or a pose coordinate x, y, z (length), rx, ry, rz (degrees), "
-        "displaced from the file's pose (a joint moves its links[1] relative to links[0], right-handed about its axis); "
-        "COUNT values, both ends included (repeat for a grid)",
-    )
+    p.add_argument("--vary", action="append", required=True, metavar="NAME=START:STOP:COUNT",
+                   help="a joint (R/H/C: degrees, P: length) or a pose coordinate x, y, z (length), rx, ry, rz (degrees), "
+                   "displaced from the file's pose (a joint moves its links[1] relative to links[0], right-handed about its axis); "
+                   "COUNT values, both ends included (repeat for a grid)")
     p.add_argument("--inputs", default=None, help="comma-separated joints whose actuation to check (default: those marked actuated); NAME.k names freedom k (from 0) of a multi-freedom joint")
     p.add_argument("--format", choices=sorted(FORMATS), default=None,
                    help="output: a summary, the table as CSV, or JSON (default: what the -o name ends with, .csv or .json, else the summary)")
@@ -92,7 +78,7 @@ def run(args: argparse.Namespace) -> int:
     if args.output == "-":  # the usual name of standard output
         args.output = None
     if args.json and args.format not in (None, "json"):
-        raise RequestError(f"--json and --format {args.format}: choose one output format")
+        raise RequestError("choose one output format", argument=f"--json and --format {args.format}")
     if args.output is not None and Path(args.output).suffix.lower() in PICTURE_FORMATS:
         raise RequestError(f"-o writes the table (text, csv or json); a picture is drawn by --plot {args.output}", argument=f"-o {args.output}")
     require_new_output(args.output, "-o", args.file)
@@ -119,19 +105,8 @@ def run(args: argparse.Namespace) -> int:
             actuated_inputs(mechanism, inputs)
         except MechanismError as exc:
             raise RequestError(exc.message, argument=f"--inputs {args.inputs}") from None
-    result = sweep(
-        mechanism,
-        args.vary,
-        actuated=inputs,
-        tol=tol,
-        max_poses=max_poses_from(args),
-        chunk_size=args.chunk_size,
-        scheduler=args.scheduler,
-        workers=args.workers,
-        progress=_progress_wanted(args.progress),
-        transmission=not args.no_transmission,
-        good_threshold=args.good_transmission,
-    )
+    result = sweep(mechanism, args.vary, actuated=inputs, tol=tol, max_poses=max_poses_from(args), chunk_size=args.chunk_size, scheduler=args.scheduler,
+                   workers=args.workers, progress=_progress_wanted(args.progress), transmission=not args.no_transmission, good_threshold=args.good_transmission)
     fmt = "json" if args.json else args.format or _format_of(args.output)
     pieces = FORMATS[fmt](result)
     if args.output is not None:

@@ -1,12 +1,7 @@
 """``mobility synthesize PATTERN``: limbs of R and P joints whose finite motions are a motion pattern.
 
-Type synthesis by finite screws (Sun et al. 2018): every serial chain of one-DOF
-joints along the pattern's directions, through its points or generic points,
-in every order, is tested; the chains whose set of finite motions equals the
-pattern are grouped into limb types (S, U, Rc, P1...).  ``--write DIR`` also
-assembles a PKM of each limb type with four 6-DOF limbs and writes it as a
-mechanism file.  Exit status 0 when a limb is found, 1 when none is, 2 on bad
-input.
+Type synthesis by finite screws (Sun et al. 2018, :mod:`mobility.synthesis`);
+``--write DIR`` also writes a PKM of each limb type with four 6-DOF limbs.
 """
 
 from __future__ import annotations
@@ -26,12 +21,10 @@ EXIT_STATUS = "0 a limb type is found, 1 none is, 2 bad input (one line on stand
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "synthesize",
-        help="type synthesis: limbs of R and P joints whose finite motions are a motion pattern",
-        description="Enumerate limbs of R and P joints whose set of finite motions equals PATTERN "
-        "(finite screws, Sun et al. 2018).  Patterns: " + ", ".join(PATTERNS) + ".",
-    )
+    p = sub.add_parser("synthesize",
+                       help="type synthesis: limbs of R and P joints whose finite motions are a motion pattern",
+                       description="Enumerate limbs of R and P joints whose set of finite motions equals PATTERN "
+                       "(finite screws, Sun et al. 2018).  Patterns: " + ", ".join(PATTERNS) + ".")
     p.add_argument("pattern", help="motion pattern: " + ", ".join(PATTERNS))
     p.add_argument("--joints", type=integer_option, default=None, help="one-DOF joints per limb (default: the pattern's dimension)")
     p.add_argument("--point", default="0,0,0", metavar="X,Y,Z", help="the pattern's point O, in mm like the files --write writes (default: %(default)s)")
@@ -62,7 +55,7 @@ def _vector(text: str, what: str) -> tuple[float, float, float]:
 def _require_folder_to_write(folder: str) -> None:
     """A folder that is there, or can be made in one that is (a file, or a missing parent, is refused)."""
     if not folder.strip():
-        raise RequestError(f"--write {folder!r}: expected a folder name")
+        raise RequestError(argument=f"--write {folder!r}", expected="a folder name")
     where = Path(os.path.abspath(folder))
     if where.exists() and not where.is_dir():
         raise RequestError("is a file, expected a folder to write mechanism files in", argument=f"--write {folder}")

@@ -1,8 +1,6 @@
 """``mobility view FILE -o FILE.html``: an interactive 3D view of the mechanism, its freedoms and constraints.
 
-``--samples N`` adds poses reached by moving the mechanism, ``--vary
-NAME=START:STOP:COUNT`` the poses of a sweep (as ``mobility sweep``, with its
-``--max-poses`` bound on the grid); a slider walks through them.
+``--samples N`` or ``--vary`` (as ``mobility sweep``) add poses, on a slider.
 """
 
 from __future__ import annotations
@@ -26,14 +24,12 @@ PAGE_SUFFIXES = (".html", ".htm")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "view",
-        help="write an interactive 3D view (one HTML page, works offline) of the mechanism with its freedoms and constraints",
-        description="Write one self-contained HTML page with the mechanism in 3D: links, joints by type, the end effector, "
-        "its freedoms (translation arrows, rotation axes with their pitch) and constraint wrenches (force lines, couples), "
-        "each layer switchable, hover text with each screw's numbers. Rotate, zoom and pan with the mouse. "
-        "Needs plotly (pip install 'mechanism-mobility[view]').",
-    )
+    p = sub.add_parser("view",
+                       help="write an interactive 3D view (one HTML page, works offline) of the mechanism with its freedoms and constraints",
+                       description="Write one self-contained HTML page with the mechanism in 3D: links, joints by type, the end effector, "
+                       "its freedoms (translation arrows, rotation axes with their pitch) and constraint wrenches (force lines, couples), "
+                       "each layer switchable, hover text with each screw's numbers. Rotate, zoom and pan with the mouse. "
+                       "Needs plotly (pip install 'mechanism-mobility[view]').")
     add_mechanism_file(p)
     p.add_argument("-o", "--output", required=True, help="page to write (a name ending in .html or .htm, in any case)")
     poses = p.add_mutually_exclusive_group()

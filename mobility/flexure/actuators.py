@@ -1,12 +1,9 @@
 """Linear actuators on a flexure: force lines assessed like the actuated joints of a rigid mechanism.
 
-A set of force lines on the end effector is valid when their wrenches and
-the constraint space span six dimensions
-(:mod:`mobility.actuation.assessment`), with the freedom space in the part
-of the end effector's twists.  An input's rate is the speed of its point
-along its line.  Sets are grouped by their geometry (:func:`line_set_type`)
-and ranked as in :func:`mobility.actuation.enumerate_actuations`.  This is
-the flexure half of Li, Shan, Yu and Ke, "Actuation Spaces Synthesis of
+A set of force lines is valid when their wrenches and the constraint space span
+six dimensions (:mod:`mobility.actuation.assessment`, the freedom space as the
+end effector's twists); an input's rate is the speed of its point along its
+line. The flexure half of Li, Shan, Yu and Ke, "Actuation Spaces Synthesis of
 Lower-Mobility Parallel Mechanisms Based on Screw Theory" (Chinese Journal of
 Mechanical Engineering, 2021).
 
@@ -33,17 +30,8 @@ from typing import Sequence
 
 import numpy as np
 
-from ..actuation import (
-    ActuationCheck,
-    Enumeration,
-    InputWrench,
-    assess_inputs,
-    assess_wrenches,
-    combinations_count,
-    combine_poses,
-    inputs_per_combination,
-    rank_combinations,
-)
+from ..actuation import (ActuationCheck, Enumeration, InputWrench, assess_inputs, assess_wrenches, combinations_count, combine_poses,
+                         inputs_per_combination, rank_combinations)
 from ..core.joint_screws import Normalisation
 from ..core.linalg import rank
 from ..core.validation import require_no_repeats
@@ -55,14 +43,8 @@ from .spaces import FlexureSpaces, flexure_spaces
 
 __all__ = ["check_force_lines", "enumerate_force_lines", "line_set_type", "actuation_tolerance"]
 
-def check_force_lines(
-    mechanism: FlexureMechanism,
-    names: Sequence[str] | None = None,
-    *,
-    lines: Sequence[ForceLine] = (),
-    threshold: float | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> ActuationCheck:
+def check_force_lines(mechanism: FlexureMechanism, names: Sequence[str] | None = None, *, lines: Sequence[ForceLine] = (),
+                      threshold: float | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> ActuationCheck:
     """Assess a set of linear actuators (force lines) on a flexure mechanism.
 
     Parameters
@@ -79,9 +61,7 @@ def check_force_lines(
     Returns
     -------
     ActuationCheck
-        ``kind`` ``"flexure"``; the freedom space plays the part of the end
-        effector's twist system and the constraint space that of its
-        constraint wrenches.
+        ``kind`` ``"flexure"``: the freedom and constraint spaces stand for the end effector's twists and constraint wrenches.
 
     Raises
     ------
@@ -95,9 +75,8 @@ def check_force_lines(
     warnings = list(spaces.warnings)
     if not chosen:
         warnings.append("no actuator is chosen (mark actuators with `actuated: true`, or name them)")
-    return assess_inputs(
-        mechanism.name, "flexure", inputs, spaces.normalised, actuation_tolerance(spaces, tol), warnings=warnings, length_unit=mechanism.length_unit
-    )
+    return assess_inputs(mechanism.name, "flexure", inputs, spaces.normalised, actuation_tolerance(spaces, tol), warnings=warnings,
+                         length_unit=mechanism.length_unit)
 
 
 def enumerate_force_lines(mechanism: FlexureMechanism, k: int | None = None, *, threshold: float | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> Enumeration:
@@ -136,15 +115,11 @@ def enumerate_force_lines(mechanism: FlexureMechanism, k: int | None = None, *, 
 def actuation_tolerance(spaces: FlexureSpaces, tol: Tolerance = DEFAULT_TOLERANCE) -> Tolerance:
     """The rank policy of a flexure's actuation assessment, from the gap between its eigenvalue clusters.
 
-    The freedom and constraint spaces of a real flexure (finite stiffness in
-    every direction) are those of an ideal one (infinitely compliant and
-    infinitely stiff directions) only up to relative amounts of the order of
-    ``eps``, the ratio of the relative compliances either side of the
-    threshold (the three-rod flexure's constraint forces meet ``0.6 eps L``
-    away from the point where the rod axes meet).  Rank decisions on those
-    spaces therefore count relative singular values up to ``eps`` as zero
-    (the same for every threshold inside the gap), bounded to
-    ``[tol.rank, 0.1]``, and warn below ten times that.
+    A real flexure's spaces are an ideal one's only up to ``eps``, the ratio of
+    the relative compliances either side of the threshold (the three-rod
+    flexure's constraint forces meet ``0.6 eps L`` from where the rod axes
+    meet): relative singular values up to ``eps`` count as zero (bounded to
+    ``[tol.rank, 0.1]``), and warn below ten times that.
 
     Examples
     --------
@@ -162,9 +137,8 @@ def actuation_tolerance(spaces: FlexureSpaces, tol: Tolerance = DEFAULT_TOLERANC
 def line_set_type(lines: Sequence[ForceLine], *, tol: Tolerance = DEFAULT_TOLERANCE) -> str:
     """Classify a set of force lines: ``parallel``, ``concurrent``, ``coplanar`` or ``general``.
 
-    Decided by the rank policy in coordinates centred on the lines' points
-    and scaled by their spread (so the answer does not depend on units or
-    placement); one line is ``single``.
+    Decided by the rank policy in coordinates centred on the lines' points and
+    scaled by their spread (independent of units and placement); one line is ``single``.
 
     Examples
     --------
@@ -211,11 +185,7 @@ def _select(mechanism: FlexureMechanism, names: Sequence[str] | None) -> list[Fo
 
 
 def _input_wrench(line: ForceLine, norm: Normalisation) -> InputWrench:
-    """A force line as an input: its unit wrench in normalised coordinates, and its rate.
-
-    The input is the speed of the line's point along it, so ``a o $`` is the
-    length of the unit wrench's force part.
-    """
+    """A force line as an input: its unit wrench (normalised) and its rate, the length of its force part (the point's speed)."""
     with np.errstate(over="ignore", invalid="ignore"):  # a line past the largest float: refused by the assessment, by name
         w = norm.from_world(line.wrench())[:, 0]
         w = w * binary_scale(w)  # before squaring: a line however far has a unit wrench

@@ -122,21 +122,16 @@ def compliance_matrix(mechanism: FlexureMechanism) -> np.ndarray:
         if stiff is None or not np.all(np.isfinite(stiff)):
             raise MechanismError(f"elements[{index}]", f"the compliance of {e.name!r} (length {e.length:g}, radius {e.radius:g}, E {e.material.E:g}) "
                                  "is beyond the range of double precision in SI units; expected sizes and moduli a physical flexure can have")
-        ends = [slot.get(b) for b in e.bodies]
-        for i, si in enumerate(ends):
-            if si is None:
-                continue
-            for j, sj in enumerate(ends):
-                if sj is None:
-                    continue
-                h[si : si + 6, sj : sj + 6] += stiff if i == j else -stiff
+        ends = [slot[b] for b in e.bodies if b in slot]  # the ground's end holds nothing to solve for
+        for si in ends:
+            for sj in ends:
+                h[si : si + 6, sj : sj + 6] += stiff if si == sj else -stiff
     try:
         inverse = np.linalg.inv(h)
     except np.linalg.LinAlgError:
         raise MechanismError("elements", "the elements do not hold every body (singular stiffness)") from None
     k = slot[mechanism.end_effector]
-    block = inverse[k : k + 6, k : k + 6]
-    return block @ SWAP
+    return inverse[k : k + 6, k : k + 6] @ SWAP
 
 
 def normalised_energy_form(mechanism: FlexureMechanism, compliance: np.ndarray) -> tuple[np.ndarray, Normalisation]:
@@ -144,9 +139,8 @@ def normalised_energy_form(mechanism: FlexureMechanism, compliance: np.ndarray) 
 
     Parameters
     ----------
-    mechanism : FlexureMechanism
     compliance : ndarray, shape (6, 6)
-        Its :func:`compliance_matrix` (SI units).
+        The mechanism's :func:`compliance_matrix` (SI units).
 
     Returns
     -------

@@ -1,28 +1,10 @@
 """Read flexure documents (YAML) into :class:`~mobility.flexure.model.FlexureMechanism` objects.
 
-A flexure document describes bodies joined by flexure elements instead of
-joints (the format is in ``docs/actuation.md``)::
-
-    name: one wire
-    units: {length: mm, modulus: GPa}
-    ground: base
-    end_effector: stage
-    materials:
-      steel: {E: 200, nu: 0.3}
-    elements:
-      - {name: w1, type: rod, bodies: [base, stage], point: [0, 0, 0], axis: [0, 0, 1],
-         length: 100, radius: 1, material: steel}
-    actuators:
-      - {name: a1, point: [0, 0, 100], direction: [1, 0, 0], actuated: true}
-    expected: {dof: 5, pattern: 2T3R}
-
-It shares ``parameters`` (named numbers and expressions), ``frames`` and the
-angle unit with mechanism files, and gives bad input the same one-line
-``file:line: key: what was expected`` errors.  Its ``expected`` block
-(for ``mobility check``) may hold the keys of
-:data:`~mobility.io.expected.FLEXURE_EXPECTED_KEYS`.  A document is a flexure
-document when it has the top-level key ``elements``
-(:func:`is_flexure_document`).
+A flexure document (the format is in ``docs/actuation.md``) has the top-level
+key ``elements`` (:func:`is_flexure_document`). It shares ``parameters``,
+``frames`` and the angle unit with mechanism files, and gives bad input the
+same one-line ``file:line: key: what was expected`` errors; its ``expected``
+block holds keys of :data:`~mobility.io.expected.FLEXURE_EXPECTED_KEYS`.
 
 Examples
 --------
@@ -120,18 +102,8 @@ class _FlexureReader(DocumentReader):
         ground = self.identifier(doc["ground"], ("ground",), "a body name")
         end_effector = self.identifier(doc["end_effector"], ("end_effector",), "a body name")
         try:
-            mechanism = FlexureMechanism(
-                name=name,
-                ground=ground,
-                end_effector=end_effector,
-                elements=tuple(elements),
-                actuators=tuple(actuators),
-                description=description,
-                length_unit=length_unit,
-                threshold=threshold,
-                expected=expected,
-                source=self.file,
-            )
+            mechanism = FlexureMechanism(name=name, ground=ground, end_effector=end_effector, elements=tuple(elements), actuators=tuple(actuators),
+                                         description=description, length_unit=length_unit, threshold=threshold, expected=expected, source=self.file)
             compliance_matrix(mechanism)  # sizes or moduli beyond double precision: named here, with their line
             return mechanism
         except MechanismError as exc:
@@ -223,17 +195,7 @@ class _FlexureReader(DocumentReader):
             name = self.identifier(data["name"], path + ("name",), "an element name")
             length, radius = self.number(data["length"], path + ("length",)), self.number(data["radius"], path + ("radius",))
             try:
-                out.append(
-                    Rod(
-                        name,
-                        (bodies[0], bodies[1]),
-                        tuple(tf.apply_point(point)),
-                        tuple(tf.apply_vector(axis)),
-                        length,
-                        radius,
-                        material,
-                    )
-                )
+                out.append(Rod(name, (bodies[0], bodies[1]), tuple(tf.apply_point(point)), tuple(tf.apply_vector(axis)), length, radius, material))
             except MechanismError as exc:
                 raise self.fail(path + parse_key(exc.key), exc.message) from None
         return out

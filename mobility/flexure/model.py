@@ -1,10 +1,9 @@
 """Flexure mechanisms as descriptions: materials, rods, force lines and the mechanism.
 
-A flexure mechanism is rigid bodies joined by compliant elements (here:
-slender rods, i.e. wire flexures) instead of joints.  Everything here is a
-frozen, validated description; geometry is in the global frame and the
-document's length unit (:data:`LENGTH_UNITS`), moduli in pascals.  Bad
-values raise :class:`~mobility.errors.MechanismError` naming the key.
+Rigid bodies joined by slender rods (wire flexures) instead of joints; frozen,
+validated descriptions, geometry in the global frame and the document's length
+unit (:data:`LENGTH_UNITS`), moduli in pascals. Bad values raise
+:class:`~mobility.errors.MechanismError` naming the key.
 
 Examples
 --------
@@ -92,8 +91,6 @@ class Material:
 @dataclass(frozen=True)
 class Rod:
     """A slender rod of circular cross-section (a wire flexure) clamped between two bodies.
-
-    Geometry is in the global frame and the document's length unit.
 
     Parameters
     ----------
@@ -230,15 +227,10 @@ class FlexureMechanism:
         require_unique_names(self.actuators, "actuators", "actuator")
         bodies = self.bodies
         require_ground_and_end_effector(self, bodies, "body", "element")
-        reached = {self.ground}
-        changed = True
-        while changed:
-            changed = False
-            for e in self.elements:
-                a, b = e.bodies
-                if (a in reached) != (b in reached):
-                    reached |= {a, b}
-                    changed = True
+        reached, size = {self.ground}, 0
+        while size != len(reached):
+            size = len(reached)
+            reached |= {b for e in self.elements if reached & set(e.bodies) for b in e.bodies}
         missing = sorted(set(bodies) - reached)
         if missing:
             raise MechanismError("elements", f"bodies not connected to the ground {self.ground!r}: {name_list(missing)}")

@@ -1,14 +1,11 @@
 """Freedom and constraint spaces of a flexure mechanism, from the eigen-decomposition of its compliance.
 
-The end effector's compliance ``Q`` in normalised coordinates
-(:func:`mobility.flexure.compliance.normalised_energy_form`) has eigenvalues
-whose ratios to the largest, the *relative compliances* (between 0 and 1),
-depend neither on units nor on placement.  Eigenvectors (wrenches) whose
-relative compliance is at most the *threshold* span the constraint space;
-the others, through ``SWAP``, span the freedom space (the twists reciprocal
-to the constraint space: eigenvectors are orthogonal).  The default threshold
-is :data:`DEFAULT_THRESHOLD`; the result gives every eigenvalue and warns when
-the threshold is not in a clear gap between two clusters.
+The eigenvalues of the end effector's compliance ``Q`` in normalised
+coordinates (:func:`mobility.flexure.compliance.normalised_energy_form`) over
+the largest, the *relative compliances*, depend neither on units nor on
+placement. Eigenvectors (wrenches) at most the *threshold* span the constraint
+space; the others, through ``SWAP``, the freedom space (reciprocal to it). A
+warning says when the threshold is not in a clear gap.
 
 Examples
 --------
@@ -53,15 +50,13 @@ CLEAR_GAP = 10.0
 class FlexureSpaces(ReadOnlyArrays):
     """Freedom and constraint spaces of a flexure mechanism's end effector.
 
-    Its arrays (those of ``normalised`` too) are read-only, also after a
-    pickle round trip or a deep copy.
+    Its arrays (those of ``normalised`` too) are read-only, also after a pickle round trip.
 
     Attributes
     ----------
     name : str
     eigenvalues : ndarray, shape (6,)
-        Relative compliances (eigenvalues of ``Q`` in normalised coordinates
-        over the largest), decreasing.
+        Relative compliances, decreasing.
     largest : float
         The largest eigenvalue of ``Q`` in normalised coordinates (1/N).
     threshold : float
@@ -86,9 +81,8 @@ class FlexureSpaces(ReadOnlyArrays):
         The characteristic length ``L`` used (document unit).
     length_unit : str
     normalised : EndEffectorSpaces
-        The two spaces as orthonormal bases in normalised coordinates, with the
-        reference point (the centroid of the elements' ends on the end
-        effector): what actuators are assessed against.
+        The two spaces, orthonormal, normalised, with the reference point (the
+        centroid of the elements' ends on the end effector): what actuators are assessed against.
     warnings : tuple of str
     """
 
@@ -114,30 +108,14 @@ class FlexureSpaces(ReadOnlyArrays):
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
         s = self.length
-        return {
-            "name": self.name,
-            "kind": "flexure",
-            "eigenvalues": clean_numbers(self.eigenvalues),
-            "largest_eigenvalue_per_newton": self.largest,
-            "threshold": self.threshold,
-            "gap": list(self.gap),
-            "dof": self.dof,
-            "pattern": self.pattern,
-            "freedoms": {
-                "translations": clean_numbers(self.freedom_translations),
-                "rotations": [a.to_dict(s) for a in self.freedom_rotations],
-                "twists": clean_numbers(self.freedom_twists, s),
-            },
-            "constraints": {
-                "couples": clean_numbers(self.constraint_couples),
-                "forces": [a.to_dict(s) for a in self.constraint_forces],
-                "wrenches": clean_numbers(self.constraint_wrenches, s),
-            },
-            "compliance_si": self.compliance.tolist(),
-            "characteristic_length": self.length,
-            "length_unit": self.length_unit,
-            "warnings": list(self.warnings),
-        }
+        return {"name": self.name, "kind": "flexure", "eigenvalues": clean_numbers(self.eigenvalues), "largest_eigenvalue_per_newton": self.largest,
+                "threshold": self.threshold, "gap": list(self.gap), "dof": self.dof, "pattern": self.pattern,
+                "freedoms": {"translations": clean_numbers(self.freedom_translations), "rotations": [a.to_dict(s) for a in self.freedom_rotations],
+                             "twists": clean_numbers(self.freedom_twists, s)},
+                "constraints": {"couples": clean_numbers(self.constraint_couples), "forces": [a.to_dict(s) for a in self.constraint_forces],
+                                "wrenches": clean_numbers(self.constraint_wrenches, s)},
+                "compliance_si": self.compliance.tolist(), "characteristic_length": self.length, "length_unit": self.length_unit,
+                "warnings": list(self.warnings)}
 
 
 def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> FlexureSpaces:
@@ -152,15 +130,10 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
     tol : Tolerance
         Used for the canonical forms of the spaces.
 
-    Returns
-    -------
-    FlexureSpaces
-
     Raises
     ------
     RequestError
-        When ``mechanism`` is not a :class:`FlexureMechanism`, or
-        ``threshold`` is not a number between 0 and 1.
+        When ``mechanism`` is not a :class:`FlexureMechanism`, or ``threshold`` not a number between 0 and 1.
     """
     mechanism = require_flexure(mechanism, "flexure_spaces")
     tol = require_tolerance(tol, "flexure_spaces")
@@ -186,27 +159,7 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
     below = float(relative[dof]) if dof < 6 else 0.0
     warnings = []
     if below > 0 and above < CLEAR_GAP * below:
-        warnings.append(
-            f"the threshold {threshold:g} does not sit in a clear gap: the relative compliances either side are "
-            f"{above:.3g} and {below:.3g} (less than a factor {CLEAR_GAP:g} apart); the split into freedoms and constraints is uncertain"
-        )
-    return FlexureSpaces(
-        name=mechanism.name,
-        eigenvalues=relative,
-        largest=largest,
-        threshold=float(threshold),
-        dof=dof,
-        pattern=motion_pattern(normalised.twists, tol),
-        freedom_translations=translations,
-        freedom_rotations=rotations,
-        freedom_twists=twist_rows,
-        constraint_couples=couples,
-        constraint_forces=forces,
-        constraint_wrenches=wrench_rows,
-        gap=(above, below),
-        compliance=compliance,
-        length=norm.length,
-        length_unit=mechanism.length_unit,
-        normalised=normalised,
-        warnings=tuple(warnings),
-    )
+        warnings.append(f"the threshold {threshold:g} does not sit in a clear gap: the relative compliances either side are "
+                        f"{above:.3g} and {below:.3g} (less than a factor {CLEAR_GAP:g} apart); the split into freedoms and constraints is uncertain")
+    return FlexureSpaces(mechanism.name, relative, largest, float(threshold), dof, motion_pattern(normalised.twists, tol), translations, rotations,
+                         twist_rows, couples, forces, wrench_rows, (above, below), compliance, norm.length, mechanism.length_unit, normalised, tuple(warnings))

@@ -1,23 +1,14 @@
 """Loop closures a robot description cannot express: ``--close A B`` pairs and a side file.
 
-A URDF is a tree, so a closed loop (a four-bar, the rods of a legged robot's
-leg) is written as a tree plus the places where it closes.  Two ways are
-accepted, for URDF and MJCF alike:
-
-* **closing frames**: ``--close A B`` names two bodies (links) whose origins
-  coincide at the pose, the usual convention of robot files that mark where
-  a loop closes; they are joined by a spherical joint at the origin of ``A``
-  (a note gives the distance between the two origins);
-* **a side file** in the project's format: a YAML mapping whose ``joints`` are
-  joints as in a mechanism file, their ``links`` being body names of the
-  robot; a joint's ``frame`` may name a body, whose frame at the pose its
-  geometry is then written in (default: the global frame)::
+For URDF and MJCF alike (``docs/robot-files.md``): ``--close A B`` joins two
+bodies whose origins coincide at the pose by a spherical joint at ``A``'s
+origin (a note gives their distance); a side file holds ``joints`` as in a
+mechanism file, their ``links`` body names, a ``frame`` naming a body whose
+frame at the pose the geometry is written in (default: global)::
 
       # closures of four_bar.urdf
       joints:
         - {name: C, type: R, links: [coupler, rocker], axis: [0, 0, 1], point: [3, 0.5, 0], frame: coupler}
-
-Errors name the file, the line and the key.
 
 Examples
 --------
@@ -53,15 +44,12 @@ CLOSURES_KEYS = ("description", "joints")
 def close_pairs(value: object) -> tuple[tuple[str, str], ...]:
     """``value`` as pairs of body names ``((A, B), ...)``, refusing in one line what is not.
 
-    ``value`` is a list or tuple of pairs, each a list or tuple of two
-    names (``str``); ``None`` is no pair.  A bare pair ``("A", "B")`` is
-    refused rather than read as two pairs of letters.
+    ``None`` is no pair; a bare pair ``("A", "B")`` is refused, not read as two pairs of letters.
 
     Raises
     ------
     RequestError
-        When ``value`` is not a list of pairs of names (key ``close``, or
-        ``close[k]`` for the ``k``-th pair).
+        When ``value`` is not a list of pairs of names (naming ``close`` or ``close[k]``).
 
     Examples
     --------
@@ -122,11 +110,9 @@ def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
     Raises
     ------
     MechanismFileError
-        On a malformed file, an unknown body or frame, or bad joint geometry;
-        the message names the side file, the line and the key.
+        On a malformed file, an unknown body or frame, or bad joint geometry (at its line and key).
     RequestError
-        When ``path`` is not a file name (a ``str`` or ``os.PathLike``; an
-        ``int`` would be read as a file descriptor, and closed).
+        When ``path`` is not a file name.
     """
     file = file_name(path, "closures")
     data, positions = parse_yaml(read_text(path), file)

@@ -1,11 +1,8 @@
 """The ``expected`` block of a document: what a regression check compares an analysis with.
 
-Mechanism files and flexure documents may both carry one; each kind of
-document allows its own keys (:data:`~mobility.core.expected.EXPECTED_KEYS` for
-mechanisms, :data:`FLEXURE_EXPECTED_KEYS` for flexures), and every value is
-checked where it is read (:data:`EXPECTED_VALIDATORS`), so a misspelt key or a
-pattern such as ``"4R"`` is a one-line error at its line, not a check that
-can never pass.
+Each kind of document allows its own keys (:data:`~mobility.core.expected.EXPECTED_KEYS`,
+:data:`FLEXURE_EXPECTED_KEYS`), every value checked where it is read, so that a
+misspelt key or a pattern ``"4R"`` is an error at its line, not a check that can never pass.
 
 Examples
 --------
@@ -63,42 +60,20 @@ def _choice(choices: tuple[str, ...]) -> Callable[[Any, str], str]:
 
 
 EXPECTED_VALIDATORS: dict[str, Callable[[Any, str], Any]] = {
-    "dof": _integer,
-    "pattern": _pattern,
-    "mobility": _integer,
-    "redundant_constraints": _integer,
-    "idle_dof": _integer,
-    "gruebler_kutzbach": lambda v, k: _integer(v, k, signed=True),
-    "full_cycle_dof": _integer,
-    "full_cycle_mobility": _integer,
-    "finite_verdict": _choice(FINITE_VERDICTS),
-    "actuation": _choice(ACTUATION_VERDICTS),
-}
+    "dof": _integer, "pattern": _pattern, "mobility": _integer, "redundant_constraints": _integer, "idle_dof": _integer,
+    "gruebler_kutzbach": lambda v, k: _integer(v, k, signed=True), "full_cycle_dof": _integer, "full_cycle_mobility": _integer,
+    "finite_verdict": _choice(FINITE_VERDICTS), "actuation": _choice(ACTUATION_VERDICTS)}
 """Validators of the ``expected`` keys (``translations`` is read as a list of vectors)."""
 
 
 def read_expected(reader: DocumentReader, value: Any, keys: tuple[str, ...]) -> Expected:
     """The ``expected`` block ``value`` of a document, each key among ``keys`` and each value checked.
 
-    Parameters
-    ----------
-    reader : DocumentReader
-        The document's reader (its errors name file, line and key).
-    value : Any
-        The parsed block.
-    keys : tuple of str
-        The keys this kind of document may expect.
-
-    Returns
-    -------
-    Expected
-
     Raises
     ------
     MechanismFileError
-        On an unknown key or a value of the wrong kind; on ``translations``
-        that are not a basis (a zero direction, or one dependent on those
-        before it), at that direction's line.
+        On an unknown key, a value of the wrong kind, or ``translations`` that
+        are not a basis (at that direction's line).
     """
     path: KeyPath = ("expected",)
     data = reader.mapping(value, path, "expected results")

@@ -1,17 +1,11 @@
 """Safe arithmetic expressions for the ``parameters`` extension of the file format.
 
-A number field of a mechanism file may be a string holding an arithmetic
-expression over the file's parameters.  Only numbers, names, ``+ - * / ** %``,
-parentheses and the functions of :data:`FUNCTIONS` are allowed; nothing else
-of Python is reachable.  Trigonometric functions take radians; the ``...d``
-variants take or give degrees.
-
-An expression is checked once and turned into a flat program (postfix order,
-:func:`compile_expression`, cached by its text), then run on an explicit
-stack: no recursion grows with the expression, its length and nesting depth
-are bounded (:class:`~mobility.io.limits.Limits`), and every intermediate
-value must be a finite real number (``(-8)**(1/3)`` is complex in Python,
-``exp(1000)`` overflows: both are errors, not silent ``nan``).
+Only numbers, names, ``+ - * / ** %``, parentheses and :data:`FUNCTIONS` are
+allowed (trigonometry in radians; the ``...d`` variants in degrees).  An
+expression is compiled once into a flat postfix program (cached) and run on an
+explicit stack: no recursion grows with it, its length and depth are bounded,
+and every intermediate value must be a finite real number (``(-8)**(1/3)``,
+``exp(1000)`` are errors, not a silent ``nan``).
 
 Examples
 --------
@@ -44,30 +38,11 @@ from .limits import DEFAULT_LIMITS
 __all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression", "literal_problem", "uses_radians"]
 
 FUNCTIONS: Mapping[str, Callable[..., float]] = {
-    "abs": abs,
-    "acos": math.acos,
-    "acosd": lambda x: math.degrees(math.acos(x)),
-    "asin": math.asin,
-    "asind": lambda x: math.degrees(math.asin(x)),
-    "atan": math.atan,
-    "atan2": math.atan2,
-    "atan2d": lambda y, x: math.degrees(math.atan2(y, x)),
-    "atand": lambda x: math.degrees(math.atan(x)),
-    "cos": math.cos,
-    "cosd": lambda x: math.cos(math.radians(x)),
-    "degrees": math.degrees,
-    "exp": math.exp,
-    "hypot": math.hypot,
-    "log": math.log,
-    "max": max,
-    "min": min,
-    "radians": math.radians,
-    "sin": math.sin,
-    "sind": lambda x: math.sin(math.radians(x)),
-    "sqrt": math.sqrt,
-    "tan": math.tan,
-    "tand": lambda x: math.tan(math.radians(x)),
-}
+    "abs": abs, "acos": math.acos, "acosd": lambda x: math.degrees(math.acos(x)), "asin": math.asin, "asind": lambda x: math.degrees(math.asin(x)),
+    "atan": math.atan, "atan2": math.atan2, "atan2d": lambda y, x: math.degrees(math.atan2(y, x)), "atand": lambda x: math.degrees(math.atan(x)),
+    "cos": math.cos, "cosd": lambda x: math.cos(math.radians(x)), "degrees": math.degrees, "exp": math.exp, "hypot": math.hypot, "log": math.log,
+    "max": max, "min": min, "radians": math.radians, "sin": math.sin, "sind": lambda x: math.sin(math.radians(x)), "sqrt": math.sqrt,
+    "tan": math.tan, "tand": lambda x: math.tan(math.radians(x))}
 """Functions an expression may call."""
 
 CONSTANTS: Mapping[str, float] = {"pi": math.pi, "tau": math.tau, "e": math.e}
@@ -76,14 +51,8 @@ CONSTANTS: Mapping[str, float] = {"pi": math.pi, "tau": math.tau, "e": math.e}
 RESERVED_NAMES = frozenset(CONSTANTS) | frozenset(FUNCTIONS)
 """Names a file may not define (as a parameter or a limb index): the constants and the functions."""
 
-_BINARY: dict[type, Callable[[float, float], Any]] = {
-    ast.Add: operator.add,
-    ast.Sub: operator.sub,
-    ast.Mult: operator.mul,
-    ast.Div: operator.truediv,
-    ast.Pow: operator.pow,
-    ast.Mod: operator.mod,
-}
+_BINARY: dict[type, Callable[[float, float], Any]] = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul, ast.Div: operator.truediv,
+                                                      ast.Pow: operator.pow, ast.Mod: operator.mod}
 _UNARY: dict[type, Callable[[float], float]] = {ast.USub: operator.neg, ast.UAdd: operator.pos}
 
 _NEVER_ZERO = {operator.mul, operator.truediv, operator.pow, math.exp, math.sqrt, math.hypot}
@@ -104,13 +73,10 @@ Program = tuple[tuple[Any, ...], ...]
 def literal_problem(written: str, value: float) -> str | None:
     """Why the number ``written`` cannot be read as ``value``, its ``float``: it overflows to infinity or underflows to zero; else None.
 
-    The one rule for a number written out, in a YAML value (``1.0e-400``), in
-    an expression (``2 * 1e-400``) and in an MJCF or URDF attribute (decimal,
-    or hexadecimal as ``0x1p-3``): the expression evaluator refuses a product
-    that underflows, so a literal that does is refused too, rather than
-    silently read as 0.  (A subnormal number, ``5e-324``, is what was
-    written, to the precision floats have there.)  The words ``inf`` and
-    ``nan`` are for the caller to refuse.
+    The one rule for a number written out, in YAML, an expression, an MJCF or
+    URDF attribute (hexadecimal too): as the evaluator refuses a product that
+    underflows, a literal that does is refused, not read as 0 (a subnormal is
+    what was written).  ``inf`` and ``nan`` are for the caller to refuse.
 
     Examples
     --------
@@ -163,23 +129,10 @@ def _children(node: ast.AST, text: str, source: str = "") -> tuple[list[ast.AST]
 def compile_expression(text: str, max_length: int = DEFAULT_LIMITS.max_expression_length, max_depth: int = DEFAULT_LIMITS.max_expression_depth) -> Program:
     """Check an expression and turn it into a flat program.
 
-    Parameters
-    ----------
-    text : str
-        The expression.
-    max_length, max_depth : int
-        Its largest length (characters) and nesting depth.
-
-    Returns
-    -------
-    Program
-        The instructions in postfix order (cached by the arguments).
-
     Raises
     ------
     ValueError
-        With a one-line reason: too long, too deep, syntax, or a forbidden
-        construct.
+        With a one-line reason: too long, too deep, syntax, or a forbidden construct.
 
     Examples
     --------
@@ -288,8 +241,7 @@ def uses_radians(text: str, radian_names: frozenset[str] | set[str] = frozenset(
                  max_depth: int = DEFAULT_LIMITS.max_expression_depth) -> bool:
     """True when expression ``text`` is written in radians: it uses ``pi`` or ``tau`` (or a parameter of ``radian_names``) and no function that gives degrees.
 
-    For the warning on an angle of a file read in degrees: ``"2*pi/3*i"`` there
-    is 2.09 degrees, not 120.  ``"degrees(pi/3)"`` is 60 degrees, as meant.
+    For the warning on an angle read in degrees (``"2*pi/3*i"`` is then 2.09 degrees).
 
     Examples
     --------
@@ -305,25 +257,17 @@ def uses_radians(text: str, radian_names: frozenset[str] | set[str] = frozenset(
 def evaluate(text: str, names: Mapping[str, float], *, max_length: int = DEFAULT_LIMITS.max_expression_length, max_depth: int = DEFAULT_LIMITS.max_expression_depth) -> float:
     """Evaluate an arithmetic expression.
 
-    Parameters
-    ----------
-    text : str
-        The expression.
-    names : mapping
-        Values of the parameters it may use (:data:`CONSTANTS` are added).
-    max_length, max_depth : int
-        Bounds on the expression (see :class:`~mobility.io.limits.Limits`).
-
-    Returns
-    -------
-    float
-        A finite number.
+    ``names`` are the parameters' values (:data:`CONSTANTS` are added).
 
     Raises
     ------
     ValueError
-        With a one-line reason: syntax, length or depth over the limit,
-        unknown name, forbidden construct, or a math error such as a division
-        by zero, an overflow or a complex value.
+        With a one-line reason: syntax, a limit passed, an unknown name, a
+        forbidden construct, or a math error (division by zero, overflow, complex).
+
+    Examples
+    --------
+    >>> evaluate("atan2d(1, 1) + r", {"r": 0.5})
+    45.5
     """
     return _run(compile_expression(text, max_length, max_depth), names, text)

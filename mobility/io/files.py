@@ -1,14 +1,7 @@
 """Reading document files within the size limit, whatever they are (a FIFO, ``/dev/zero``, ``/dev/kmsg``, a huge file, a symbolic link loop).
 
-Only a regular file is read: a pipe, a socket, a terminal or any other
-device is refused before it is opened (reading ``/dev/kmsg`` or a FIFO
-waits for ever), and the file is opened without waiting
-(``O_NONBLOCK``) and looked at again once open, so that a pipe put in its
-place in between is refused too.
-
-Also how a path is named in a message: :func:`os_problem` puts an
-``OSError`` in words, :func:`printable_name` escapes the bytes of a file
-name that are not text.
+Only a regular file is read (reading ``/dev/kmsg`` or a FIFO waits for ever);
+:func:`os_problem` and :func:`printable_name` say a path's trouble and name in a message.
 
 Examples
 --------
@@ -33,7 +26,7 @@ import sys
 from pathlib import Path
 from typing import BinaryIO
 
-from ..errors import MechanismFileError, RequestError, clipped, one_line
+from ..errors import MechanismFileError, RequestError, clipped
 from .limits import Limits, current_limits
 
 __all__ = ["read_capped", "open_regular", "file_name", "require_not_pipe", "is_regular_file", "os_problem", "printable_name"]
@@ -42,8 +35,7 @@ __all__ = ["read_capped", "open_regular", "file_name", "require_not_pipe", "is_r
 def os_problem(exc: OSError) -> str:
     """What an ``OSError`` met on a path says, in words for a one-line message.
 
-    A symbolic link loop is named as such (the system's own words, "too many
-    levels of symbolic links", do not say what to look for).
+    A symbolic link loop is named as such (the system's words do not say what to look for).
 
     Examples
     --------
@@ -61,10 +53,8 @@ def os_problem(exc: OSError) -> str:
 def printable_name(name: str | os.PathLike[str]) -> str:
     """``name`` as text that any output takes: the bytes of a file name that the file system's encoding cannot decode shown as ``\\xNN``.
 
-    Python keeps such bytes in a ``str`` as lone surrogates (``os.fsdecode``);
-    written out they make invalid UTF-8 (or fail to encode at all), so every
-    name that a report prints (a path found in a folder, a message quoting it)
-    goes through this first.
+    Python keeps such bytes as lone surrogates (``os.fsdecode``), which written
+    out make invalid UTF-8: every name a report prints goes through this first.
 
     Examples
     --------
@@ -85,8 +75,7 @@ def printable_name(name: str | os.PathLike[str]) -> str:
 def require_not_pipe(path: str | Path, expected: str = "a mechanism file") -> int:
     """The file type bits of ``path`` (0 if it cannot be stat-ed), refusing a pipe or socket without opening it.
 
-    Opening a named pipe waits for a writer, possibly for ever: whatever
-    reads a file asks this first.
+    Opening a named pipe waits for a writer, possibly for ever.
 
     Raises
     ------
@@ -110,23 +99,9 @@ def is_regular_file(path: str | Path) -> bool:
 def file_name(value: object, what: str) -> str:
     """``value`` as the name of a file to read, refusing in one line what is not one.
 
-    A file name is a ``str`` or an ``os.PathLike`` naming the file as text.
-    Anything else is refused before a file is touched: ``open`` would take an
-    ``int`` (or a ``bool``) as a file descriptor of the caller's process,
-    read it and close it.  A NUL character, which no file name holds, is
-    refused too (``open`` would raise a bare ``ValueError``).
-
-    Parameters
-    ----------
-    value : object
-        What the caller passed.
-    what : str
-        The function or argument it was passed to, first in the message (``"load"``, ``"closures"``).
-
-    Returns
-    -------
-    str
-        The file name (``os.fspath(value)``).
+    A ``str`` or an ``os.PathLike`` naming the file as text, without a NUL
+    (``open`` would take an ``int`` for a descriptor of the caller's process,
+    read it and close it).  ``what``: the function or argument, first in the message.
 
     Raises
     ------
@@ -155,7 +130,7 @@ def file_name(value: object, what: str) -> str:
     if not isinstance(name, str):
         raise RequestError(caller=what, expected="a file name (str or Path)", got=type(value).__name__)
     if "\x00" in name:
-        raise RequestError(one_line(f"{what}: expected a file name without a NUL character, got {clipped(name, 80)!r}"))
+        raise RequestError(caller=what, expected="a file name without a NUL character", got=repr(clipped(name, 80)))  # repr: one line
     return name
 
 
@@ -173,17 +148,10 @@ def _not_regular(mode: int) -> str | None:
 def open_regular(path: str | Path, expected: str = "a mechanism file") -> BinaryIO:
     """``path`` opened for reading in binary, when it is a regular file; anything else refused in one line before it is opened.
 
-    A pipe, a socket, a terminal or another device (``/dev/kmsg``, whose
-    reading waits for the kernel's next message) is refused from its
-    ``stat``: opening a FIFO waits for a writer.  The file is then opened
-    with ``O_NONBLOCK`` (opening never waits) and its type checked again on
-    the open descriptor, so that a pipe swapped in between is refused too.
-
-    Parameters
-    ----------
-    path : str or Path
-    expected : str
-        What the file should be, for the message (``"a mechanism file"``).
+    A pipe, a socket or a device is refused from its ``stat``; the file is then
+    opened with ``O_NONBLOCK`` and its type checked again on the descriptor, so
+    that a pipe swapped in between is refused too.  ``expected``: what the file
+    should be, for the message.
 
     Raises
     ------
@@ -221,9 +189,7 @@ def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
     Raises
     ------
     MechanismFileError
-        One line naming the file: missing, a directory, a pipe, a terminal
-        or other device (:func:`open_regular`), unreadable or larger than
-        the limit.
+        As :func:`open_regular`, or when unreadable or larger than the limit.
     """
     cap = current_limits(limits).max_file_bytes
     with open_regular(path) as stream:

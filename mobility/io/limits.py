@@ -1,25 +1,15 @@
 """The limits on what a document may ask of the readers and the commands: one place for every bound.
 
-A mechanism file is input from anywhere, so reading it, and then running any
-command on it, must end quickly and in bounded memory whatever it holds.
-:class:`Limits` gathers every bound: those the readers apply (file size,
-nesting depth, nodes after alias expansion, limb copies, joints, frames,
-expression length and depth) and the sizes of mechanism that the costlier
-commands accept (finite motion, moving the mechanism, enumerating inputs).
-Each error that a limit raises is one line naming the file, the key, the limit
-and the environment variable that raises it.
-
-The defaults are far above any real mechanism (the largest bundled file has 22
-joints, the deepest nests 7 levels) and low enough that every command on a
-file at the limits takes a few seconds and a few hundred MB (measured on two
-cores: ``analyze``, ``check``, ``actuation``, ``jacobian``, ``convert``,
-``plot`` and ``view`` of 5,000 joints take at most 4 s and 230 MB; the
-command-specific limits are where their commands reach about 4 s; the
-budget of poses times joints, ``max_moving_work``, where they reach 4 to
-25 s).  Each limit
-can be raised for a run by an environment variable ``MOBILITY_<FIELD>``
-(``MOBILITY_MAX_JOINTS=20000``), or for one call by passing
-``limits=Limits(...)`` to :func:`mobility.io.loader.load`.
+A mechanism file is input from anywhere, so reading it and running any command
+on it must end quickly and in bounded memory.  Each error a limit raises is one
+line naming the file, the key, the limit and the environment variable
+``MOBILITY_<FIELD>`` that raises it for a run (``limits=Limits(...)`` to
+:func:`mobility.io.loader.load` for one call).  The defaults (the table of
+``docs/file-format.md``) are far above any real mechanism (the largest bundled
+file has 22 joints, the deepest nests 7 levels) and low enough that every
+command at the limits takes a few seconds and a few hundred MB (measured on
+two cores: 5,000 joints at most 4 s and 230 MB; the command-specific limits
+where their commands reach about 4 s; ``max_moving_work`` 4 to 25 s).
 
 Examples
 --------
@@ -55,70 +45,32 @@ class Limits:
     Parameters
     ----------
     max_file_bytes : int
-        Size of a file (bytes; characters for text given directly).  A file is
-        read with this cap, so a file growing as it is read ends in an error,
-        not in a full memory (a device, ``/dev/zero``, is refused before it
-        is opened).
+        Size of a file (bytes; characters for text given directly), read with this cap.
     max_depth : int
-        Nesting depth of the YAML document (a mapping or a list inside
-        another counts one level), and of the ``<include>`` elements of an
-        MJCF model.
+        Nesting depth of the YAML document, and of an MJCF model's ``<include>`` elements.
     max_nodes : int
-        Number of YAML nodes (keys, values, list items), counted with every
-        alias expanded: a chain of aliases that would expand into millions of
-        nodes ("billion laughs") stops here, whatever key holds it.
+        YAML nodes counted with every alias expanded ("billion laughs" stop here).
     max_copies : int
         ``copies`` of all the ``limbs`` patterns together.
     max_joints : int
-        Joints of the mechanism, ``limbs`` expanded.  The analysis grows
-        linearly with them (about 2 s and 90 MB at 10,000); the pictures of
-        ``plot`` and the page of ``view`` a little faster.
+        Joints, ``limbs`` expanded, MJCF copies and equalities counted (the analysis: 2 s, 90 MB at 10,000).
     max_frames : int
-        Frames, the one of each limb copy included.  Chains of ``parent``
-        frames are bounded by ``max_depth``.
+        Frames, the one of each limb copy included.
     max_elements : int
-        Elements of an MJCF model, the files it includes and the copies its
-        ``<replicate>`` elements make counted, checked before MuJoCo reads
-        it: MuJoCo's parser takes time growing with the square of them
-        (2.5 s for 10,000 named bodies, 20,000 elements).  The elements that the ``count``
-        of ``<replicate>``, ``<flexcomp>`` and ``<composite>`` make are
-        bounded by ``max_joints``.  An MJCF model's ``<connect>``, ``<weld>``
-        and other equalities count as joints: MuJoCo's constraint rows grow
-        with them as with the joints.
+        Elements of an MJCF model and its includes and copies (MuJoCo's parser: 2.5 s at 20,000).
     max_asset_values : int
-        Points that MuJoCo makes for the height fields and builtin meshes of
-        an MJCF model as it reads the file, all together, before anything
-        can be left out (a height field's ``nrow`` x ``ncol``, a builtin
-        mesh's resolutions multiplied): about 140 bytes each at most, so
-        that a 150-byte ``<hfield nrow="20000" ncol="20000">`` or ``<mesh
-        builtin="wedge" params="10000 10000 ...">`` (gigabytes) is refused
-        before MuJoCo reads it.
-    max_expression_length : int
-        Characters of one arithmetic expression.
-    max_expression_depth : int
-        Nesting depth of one expression (operators, calls and parentheses).
+        Points MuJoCo makes for an MJCF model's height fields and builtin meshes as it reads it.
+    max_expression_length, max_expression_depth : int
+        Characters, and nesting depth, of one arithmetic expression.
     max_finite_joints : int
-        Joints of a mechanism that ``analyze --finite`` moves: it re-closes
-        every loop by Newton's method with dense matrices, in about as many
-        directions as the mechanism has freedoms, so its time grows about
-        with the fourth power of the joints.
+        Joints ``analyze --finite`` moves (its time grows about with their fourth power).
     max_moving_joints : int
-        Joints of a mechanism that ``sweep``, ``--samples`` (``actuation``,
-        ``view``) and ``view --vary`` move: every pose is closed with dense
-        matrices, whose cost grows with the cube of the joints.
+        Joints ``sweep``, ``--samples`` and ``view --vary`` move (cube of the joints).
     max_enumerated_joints : int
-        Joints of a mechanism whose inputs ``actuation --enumerate``
-        searches: each candidate's actuation wrench is found against its
-        whole limb, so the time grows with the square of the joints.
+        Joints whose inputs ``actuation --enumerate`` searches (square of the joints).
     max_moving_work : int
-        Poses times joints of the poses that ``--samples`` (``actuation``,
-        ``view``) and ``view --vary`` move and analyse one by one (a view
-        draws at most 200 of a grid's poses): each pose is closed, analysed
-        (and drawn) on its own, in time growing about with the joints.  At
-        5,000 (16 poses of a 300-joint chain: ``actuation`` 4 s, ``view`` 7
-        s; 227 poses of the 22-joint H4, whose four loops are closed at each:
-        ``actuation`` 23 s) every bundled mechanism can be viewed at the 199
-        sampled poses a view holds.
+        Poses times joints that ``--samples`` and ``view --vary`` move and analyse one by one
+        (at 5,000 every bundled mechanism can be viewed at the 199 sampled poses a view holds).
     """
 
     max_file_bytes: int = 4 * 1024 * 1024
@@ -197,14 +149,10 @@ def require_size(mechanism: Mechanism, limit: str, what: str, file: str) -> None
 
     Parameters
     ----------
-    mechanism : Mechanism
     limit : str
-        The field of :class:`Limits`: ``"max_finite_joints"``,
-        ``"max_moving_joints"`` or ``"max_enumerated_joints"``.
+        The field of :class:`Limits` (``"max_finite_joints"``).
     what : str
         What the limit is for, as the user asked it (``"--finite"``).
-    file : str
-        The file, named in the message.
 
     Raises
     ------
@@ -221,24 +169,8 @@ def require_size(mechanism: Mechanism, limit: str, what: str, file: str) -> None
 def require_work(mechanism: Mechanism, poses: int, what: str, file: str) -> None:
     """Refuse, in one line, a request to move ``mechanism`` into more poses than :attr:`Limits.max_moving_work` allows for its joints.
 
-    Checked before the work starts (after :func:`require_size`): the product
-    of the poses asked for and the mechanism's joints is what the time and
-    the memory of ``--samples`` and ``view --vary`` grow with.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    poses : int
-        The poses the request moves and analyses one by one.
-    what : str
-        The request, as the user wrote it (``"--samples 1000"``).
-    file : str
-        The file, named in the message.
-
-    Raises
-    ------
-    RequestError
-        ``WHAT: N poses x J joints of FILE = P pose-joints, more than the limit of L (ask for fewer poses, or set MOBILITY_MAX_MOVING_WORK to raise it)``.
+    Checked before the work starts (after :func:`require_size`); ``what`` is
+    the request as the user wrote it (``"--samples 1000"``).
 
     Examples
     --------

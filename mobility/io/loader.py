@@ -1,26 +1,11 @@
 """Read mechanism files (YAML) into :class:`~mobility.core.model.Mechanism` objects.
 
-Implements version 1 of the file format (``docs/file-format.md``) and three
-extensions that never change the meaning of a version-1 file:
-
-* ``parameters``: named numbers, each a number or an expression over the
-  parameters above it; any number field may then be an expression string
-  (see :mod:`mobility.io.expressions`);
-* ``limbs``: a block of joints repeated ``copies`` times, with the copy index
-  available in expressions and ``{...}`` substitutions in names, and an
-  optional frame per copy;
-* joint types may also be written by name (``revolute`` for ``R``...), frames
-  may be given by ``axis`` and ``angle`` instead of ``rpy``, and a joint may
-  carry ``actuated: true``;
-* ``couplings``: linear relations between the rates of R, P and H joints
-  (:class:`~mobility.core.couplings.Coupling`), each ``{joints: [A, B],
-  coefficients: [1, 2]}`` for ``q'_A + 2 q'_B = 0``.
-
-Every error names the file, the line, the key and what was expected.  The
-loader knows nothing of screws.  What a document may ask is bounded
-(:class:`~mobility.io.limits.Limits`: size, depth, nodes, limb copies, joints,
-expressions); the joints a ``limbs`` block would create are counted before
-any is built.
+Version 1 of the file format (``docs/file-format.md``) and its extensions that
+never change the meaning of a version-1 file (``parameters`` and expressions,
+``limbs``, joint types by name, ``axis``/``angle`` frames, ``actuated``,
+``couplings``).  Every error names the file, the line, the key and what was
+expected; what a document may ask is bounded (:mod:`mobility.io.limits`), the
+joints of a ``limbs`` block counted before any is built.
 
 Examples
 --------
@@ -44,6 +29,7 @@ from __future__ import annotations
 
 import re
 import warnings
+from collections import Counter
 from pathlib import Path
 from typing import Any, Callable, Mapping, NamedTuple
 
@@ -89,30 +75,20 @@ def load(path: str | Path, *, limits: Limits | None = None, **robot_options: Any
     Parameters
     ----------
     path : str or Path
-        A YAML file following the format, or a robot description (MJCF,
-        URDF), recognised by extension or content (see
-        :mod:`mobility.io.robot_files`).
+        A YAML mechanism file, or a robot description (MJCF, URDF) recognised
+        by extension or content (:mod:`mobility.io.robot_files`).
     limits : Limits, optional
         Bounds on the document (default: :func:`~mobility.io.limits.current_limits`).
     **robot_options
-        For robot descriptions: ``ground``, ``end_effector``, ``floating``,
-        ``ignore_unsupported``, ``close``, ``closures``
-        (:class:`~mobility.io.robot_tree.RobotOptions`).
-
-    Returns
-    -------
-    Mechanism
+        For robot descriptions: the fields of :class:`~mobility.io.robot_tree.RobotOptions`.
 
     Raises
     ------
     MechanismFileError
-        When the file cannot be read or breaks the format; the message names
-        file, line, key and what was expected.
+        When the file cannot be read or breaks the format (file, line, key, what was expected).
     RequestError
-        When ``path`` is not a file name (a ``str`` or ``os.PathLike``
-        without a NUL character), ``limits`` is not a
-        :class:`~mobility.io.limits.Limits`, or a robot option is unknown, of
-        the wrong type, or given for a mechanism file (YAML).
+        When ``path`` is not a file name, ``limits`` not a ``Limits``, or a
+        robot option is unknown, of the wrong type, or given for a YAML file.
 
     Examples
     --------
@@ -150,9 +126,7 @@ def is_robot_description(path: str | Path) -> bool:
 def read_file(path: str | Path, *, limits: Limits | None = None, spelling: Mapping[str, str] | None = None, **robot_options: Any) -> FileRead:
     """:func:`load`, with the notes of the reading and the files read (the command line's reader).
 
-    ``spelling`` names the robot options as the caller's user wrote them
-    (``{"ground": "--ground"}``) when they are refused for a mechanism file
-    (YAML).
+    ``spelling`` names the robot options as the user wrote them (``{"ground": "--ground"}``), for a refusal.
 
     Examples
     --------
@@ -175,22 +149,13 @@ def read_file(path: str | Path, *, limits: Limits | None = None, spelling: Mappi
     return FileRead(robot.mechanism, tuple(robot.notes), tuple(robot.files) + ((str(closures),) if closures else ()), robot.closures)
 
 
-
-
 def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) -> Mechanism:
     """Load a mechanism from YAML text (see :func:`load`).
 
     Examples
     --------
-    >>> m = loads('''
-    ... name: slider
-    ... ground: g
-    ... end_effector: s
-    ... joints:
-    ...   - {name: p, type: P, links: [g, s], axis: [1, 0, 0]}
-    ... ''')
-    >>> m.name, [j.type for j in m.joints]
-    ('slider', ['P'])
+    >>> loads("{name: slider, ground: g, end_effector: s, joints: [{name: p, type: P, links: [g, s], axis: [1, 0, 0]}]}").name
+    'slider'
     >>> loads(3)
     Traceback (most recent call last):
     mobility.errors.RequestError: loads: expected the text of a mechanism file (str), got int
@@ -214,10 +179,7 @@ def _limits_argument(limits: object) -> Limits:
 
 
 def read_mechanism(data: Any, positions: Positions, file: str = "<string>", *, limits: Limits | None = None) -> Mechanism:
-    """The mechanism of an already parsed document (``data, positions`` from :func:`~mobility.io.yaml_source.parse_yaml`).
-
-    For a caller that reads a YAML file once and decides by its content which
-    kind of document it is (``mobility check``).
+    """The mechanism of an already parsed document (``data, positions`` from :func:`~mobility.io.yaml_source.parse_yaml`), as ``mobility check`` reads it.
 
     Examples
     --------
@@ -251,19 +213,10 @@ class _MechanismReader(DocumentReader):
         expected = read_expected(self, doc["expected"], tuple(EXPECTED_KEYS)) if "expected" in doc else None
         couplings = self.couplings(doc.get("couplings"))
         try:
-            mechanism = Mechanism(
-                name=name,
-                ground=self.identifier(doc["ground"], ("ground",), "a link name"),
-                end_effector=self.identifier(doc["end_effector"], ("end_effector",), "a link name"),
-                joints=tuple(joints),
-                frames=tuple(frames),
-                description=description,
-                length_unit=length_unit,
-                expected=expected,
-                source=self.file,
-                written_at={j.name: (format_key(path), self.pos.line(path)) for j, path in zip(joints, sources)},
-                couplings=couplings,
-            )
+            mechanism = Mechanism(name=name, ground=self.identifier(doc["ground"], ("ground",), "a link name"),
+                                  end_effector=self.identifier(doc["end_effector"], ("end_effector",), "a link name"), joints=tuple(joints),
+                                  frames=tuple(frames), description=description, length_unit=length_unit, expected=expected, source=self.file,
+                                  written_at={j.name: (format_key(path), self.pos.line(path)) for j, path in zip(joints, sources)}, couplings=couplings)
         except MechanismError as exc:
             raise self.fail(self.source_path(exc.key, sources), exc.message) from None
         for note in dict.fromkeys(self.link_notes(mechanism, sources) + self.angle_notes()):  # a limb's copies: each note once
@@ -273,18 +226,12 @@ class _MechanismReader(DocumentReader):
     def link_notes(self, mechanism: Mechanism, sources: list[KeyPath]) -> list[str]:
         """Warnings on link names that look misspelt: a link only one joint names, close to the name of a link the mechanism holds by more.
 
-        A link named once ends a chain; when its name is close to another
-        link's (``slidr`` beside ``slider``), the joint most likely meant that
-        link, and the file describes another mechanism, silently.  Names of a
-        numbered family (``tip1``, ``tip2``) are not taken for misspellings of
-        each other.  A file with more than :data:`MOST_LINKS_NAMED_ONCE` links
-        named once is a generated one, not typed by hand: it is not searched
-        (each search compares a name with every held link's).
+        (``slidr`` beside ``slider``: the file silently describes another
+        mechanism).  A numbered family (``tip1``, ``tip2``) is no misspelling;
+        a file with more than :data:`MOST_LINKS_NAMED_ONCE` links named once is
+        generated, and not searched.
         """
-        uses: dict[str, int] = {}
-        for j in mechanism.joints:
-            for link in j.links:
-                uses[link] = uses.get(link, 0) + 1
+        uses = Counter(link for j in mechanism.joints for link in j.links)
         ends = (mechanism.ground, mechanism.end_effector)
         once = [link for link, n in uses.items() if n == 1 and link not in ends]
         if not once or len(once) > MOST_LINKS_NAMED_ONCE:
@@ -360,10 +307,7 @@ class _MechanismReader(DocumentReader):
             raise self.fail(path + ("links",), f"expected two link names [a, b], got {describe_value(links)}")
         links = tuple(text(self.identifier(x, path + ("links", k), "a link name"), path + ("links", k)) for k, x in enumerate(links))
         self.fields_of_type(data, jtype, path)
-        fields: dict[str, Any] = {}
-        for key in ("axis", "point", "normal"):
-            if key in data:
-                fields[key] = self.vector(data[key], path + (key,), names)
+        fields: dict[str, Any] = {key: self.vector(data[key], path + (key,), names) for key in ("axis", "point", "normal") if key in data}
         if "pitch" in data:
             fields["pitch"] = self.number(data["pitch"], path + ("pitch",), names)
         if "axes" in data:
@@ -383,8 +327,7 @@ class _MechanismReader(DocumentReader):
     def fields_of_type(self, data: Mapping[str, Any], jtype: str, path: KeyPath) -> None:
         """Refuse a geometry field that joint type ``jtype`` does not take, naming the types it belongs to and what this type takes.
 
-        Checked before any field is read, so that ``axes: [0, 0, 1]`` on an R
-        joint is not answered as a malformed pair of U-joint directions.
+        Checked first, so that ``axes: [0, 0, 1]`` on an R joint is not answered as a malformed pair of directions.
 
         Examples
         --------

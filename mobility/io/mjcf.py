@@ -1,36 +1,13 @@
 """Read MuJoCo (MJCF) files as MuJoCo compiles them: bodies, joints and loop closures at ``qpos0``.
 
-MJCF has defaults and classes, frames, ``ref`` positions, ``xyaxes``,
-``zaxis`` and Euler sequences, ``<include>``, ``<replicate>`` and attached
-models: rather than re-implement its compiler, this module asks MuJoCo (the
-``mujoco`` package, the ``mechanism-mobility[mujoco]`` extra) to compile the file, then
-reads the compiled model at the pose ``qpos0`` (``mj_kinematics``): each
-joint's anchor and axis in the global frame, each body's parent.
-
-* joints ``hinge``, ``slide``, ``ball``, ``free`` become R, P, S and a free
-  joint (fixed unless ``--floating``; see :mod:`mobility.io.robot_tree`);
-* an ``<equality><connect>`` is a spherical joint between its two bodies at
-  its anchor (written on ``body1``, or ``site1``); a ``<weld>`` makes its two
-  bodies one rigid link; an equality inactive at start is left out (a note);
-* one actuator is one input, as MuJoCo counts it (``nu``): a hinge or slide
-  an actuator drives (joint transmission) is marked actuated (several on one
-  joint: one input, a note); an actuator on a ball joint is the rotation
-  about its gear's axis, an input of the joint's own
-  (:mod:`mobility.io.mjcf_actuators`); one on a free joint (a six-number
-  gear, which no joint freedom expresses) is not supported;
-  actuators driving tendons, sites or bodies mark nothing (a note);
-* joint and fixed-tendon equalities are couplings of joint rates at
-  ``qpos0`` (:mod:`mobility.io.mjcf_couplings`); flex bodies, spatial
-  tendons in an equality and an equality holding one joint still are not
-  supported: each an error of one line, unless ``ignore_unsupported``;
-  a tendon no equality holds is listed in a note.
-
-Geometry is not needed: meshes, height fields, textures and skins are removed
-before compiling (a mesh geom becomes a small sphere), so a file whose mesh
-files are absent imports.  The file and the files it includes are checked
-before MuJoCo reads them (:mod:`mobility.io.mjcf_scan`); MuJoCo's warnings
-become notes, never printed.  Every error is one line naming the file, the
-line (from MuJoCo where it knows it, never line 0) and the element.
+Rather than re-implement MuJoCo's compiler (defaults, frames, ``<include>``,
+``<replicate>``...), MuJoCo (the ``mechanism-mobility[mujoco]`` extra) compiles
+the file; the compiled model is read at ``qpos0`` (``mj_kinematics``): each
+joint's anchor and axis in the global frame, each body's parent.  How joints,
+equalities and actuators map: ``docs/robot-files.md``.  Meshes, height fields,
+textures and skins are removed before compiling, so a file whose mesh files are
+absent imports.  The files are checked before MuJoCo reads them
+(:mod:`mobility.io.mjcf_scan`); MuJoCo's warnings become notes.
 """
 
 from __future__ import annotations
@@ -89,27 +66,15 @@ def import_mujoco() -> ModuleType:
 def read_mjcf(path: str | Path) -> RobotTree:
     """Read an MJCF file into a :class:`~mobility.io.robot_tree.RobotTree` at ``qpos0``.
 
-    The file and the files it includes are checked first
-    (:func:`~mobility.io.mjcf_scan.scan_mjcf`: files, counts, numbers), so
-    that MuJoCo is never asked to read a pipe or to expand a model without
-    bound.  MuJoCo's warnings become notes; none reaches the terminal.
-
-    Parameters
-    ----------
-    path : str or Path
-
-    Returns
-    -------
-    RobotTree
+    The file and its includes are checked first (:func:`~mobility.io.mjcf_scan.scan_mjcf`),
+    so that MuJoCo is never asked to read a pipe or to expand a model without bound.
 
     Raises
     ------
     MechanismFileError
-        When the file is not well-formed XML, not UTF-8, has a
-        ``<!DOCTYPE>`` (MuJoCo's parser would read it otherwise), is not MJCF,
-        fails a check of :mod:`mobility.io.mjcf_scan`, or MuJoCo cannot
-        compile it (the message names the file and line MuJoCo gives, when
-        it gives one).
+        When the file is not well-formed UTF-8 XML, has a ``<!DOCTYPE>``, is
+        not MJCF, fails a check of :mod:`mobility.io.mjcf_scan`, or MuJoCo
+        cannot compile it (naming the file and line MuJoCo gives).
     MissingExtraError
         When the ``mujoco`` package is not installed.
     """
@@ -149,13 +114,10 @@ def read_mjcf(path: str | Path) -> RobotTree:
 def _reader(mujoco: ModuleType, file: str, raw: bytes, scan: MjcfScan) -> tuple[Any, str | None]:
     """How MuJoCo is to read the file so that it finds its includes beside it, and the name it is given under (``None``: its own).
 
-    MuJoCo picks its XML reader by the name's extension, case-sensitively:
-    a file named ``.xml`` is read by name.  Any other name (``FOUR.XML``,
-    ``arm.mjcf``) is given under a name ending in ``.xml`` in the same
-    folder, its text held in memory (MuJoCo's ``include`` files, looked up
-    before the disk), so that its ``<include>``s are found where a ``.xml``
-    file's would be.  The name is one that no included file has.  An old
-    MuJoCo without that argument: ``(None, None)``.
+    MuJoCo picks its XML reader by the extension, case-sensitively: a file not
+    named ``.xml`` is given under an unused ``.xml`` name in the same folder,
+    its text in memory (MuJoCo's ``include`` argument), so that its
+    ``<include>``s are found.  An old MuJoCo without that argument: ``(None, None)``.
     """
     if file.endswith(".xml"):
         return (lambda: mujoco.MjSpec.from_file(file)), None
@@ -176,11 +138,7 @@ def _not_utf8(name: str) -> bool:
     >>> _not_utf8("gelenk_\\u00e4.xml"), _not_utf8(b"lat\\xe4.xml".decode("utf-8", "surrogateescape"))
     (False, True)
     """
-    try:
-        name.encode("utf-8")
-    except UnicodeEncodeError:
-        return True
-    return False
+    return any("\ud800" <= char <= "\udfff" for char in name)  # surrogates: the only characters UTF-8 cannot encode
 
 
 @contextmanager
@@ -210,9 +168,8 @@ def _mujoco_call(call: Any, file: str, scan: MjcfScan, alias: str | None = None)
 def _mujoco_error(text: str, file: str, scan: MjcfScan) -> MechanismFileError:
     """MuJoCo's message, all of it on one line, with the file and line it names (never line 0).
 
-    MuJoCo gives elements of an included file line 0, and an error inside an
-    included file the line of the ``<include>``: the line is then that of the
-    ``<include>`` in the file that holds it, or left out.
+    MuJoCo gives elements of an included file line 0, and an error inside one
+    the line of the ``<include>``: then the file holding that ``<include>``.
 
     Examples
     --------
@@ -248,11 +205,8 @@ def _where(file: str, line: int, key: str, scan: MjcfScan) -> tuple[str, int | N
 def _require_kept(scan: MjcfScan, model: Any, file: str) -> None:
     """Refuse a model from which MuJoCo dropped, while reading it, an equality, a joint or a body that the file declares.
 
-    MuJoCo drops without a word a ``<connect>`` (or another equality) that
-    names a body or a site inside a ``<replicate>``, which it renames
-    (``rocker`` becomes ``rocker0``): the loop it closed would be open, and
-    the answer wrong.  The scan counted what the file declares (copies
-    included); fewer in the compiled model is an error, never silent.
+    MuJoCo silently drops an equality naming a body or site inside a
+    ``<replicate>`` (which renames it): the loop would be open, the answer wrong.
 
     Examples
     --------
@@ -276,11 +230,8 @@ def _require_kept(scan: MjcfScan, model: Any, file: str) -> None:
 def _without_mass_bounds(spec: Any) -> None:
     """Let a body without mass or inertia compile: kinematics needs neither.
 
-    MuJoCo refuses a moving body whose mass or inertia is below ``mjMINVAL``
-    (a body with no geom and no inertial element).  Where the file sets no
-    bound of its own (``<compiler boundmass/boundinertia>`` zero), a small one
-    is set instead; masses change nothing in the poses, axes and constraint
-    Jacobians read here.
+    MuJoCo refuses a moving body whose mass or inertia is below ``mjMINVAL``;
+    where the file sets no ``<compiler boundmass/boundinertia>``, a small one is set.
     """
     compiler = spec.compiler
     if not compiler.boundmass:
@@ -297,28 +248,19 @@ _SIZES = ("nkey", "nuserdata", "memory", "njmax", "nconmax", "nstack",
 def _without_what_kinematics_ignores(mujoco: ModuleType, spec: Any) -> None:
     """Leave out what MuJoCo would allocate or compute for simulation only: kinematics at ``qpos0`` needs none of it.
 
-    A 100-byte file can otherwise cost minutes or gigabytes when compiled:
-    ``<size nkey="1000000">`` (a million keyframes), ``nuser_jnt`` or
-    ``nuserdata`` of 1e8 (numbers for every joint, for the data),
-    ``memory="100G"``, an actuator's or sensor's history buffer
-    (``nsample``), a sensor of a huge ``dim``, and ``<compiler><lengthrange
-    mode="all" inttotal="1e5">`` (MuJoCo simulates every actuator to find
-    its length range).  The ``<size>`` attributes get MuJoCo's defaults
-    (keyframes written in the file stay), sensors are removed, actuators
-    keep their transmission without history, no length range is computed.
-    ``fusestatic`` is turned off: every body the file names stays a body
-    (fusing a body without joints into its parent changes no kinematics,
-    but would make its name unknown to ``--end-effector``).
+    A 100-byte file could otherwise cost minutes or gigabytes: ``<size
+    nkey="1000000">``, ``nuserdata`` of 1e8, ``memory="100G"``, history buffers
+    (``nsample``), huge sensors, ``<lengthrange mode="all">``.  ``<size>`` gets
+    MuJoCo's defaults, sensors go, actuators keep their transmission without
+    history, no length range is computed; ``fusestatic`` is off so that every
+    body the file names stays one (for ``--end-effector``).
     """
     defaults = mujoco.MjSpec()
     for attribute in _SIZES:
         if hasattr(spec, attribute) and hasattr(defaults, attribute):
             setattr(spec, attribute, getattr(defaults, attribute))
     for sensor in list(getattr(spec, "sensors", [])):
-        if hasattr(spec, "delete"):  # newer MuJoCo; in older ones each element deletes itself
-            spec.delete(sensor)
-        else:
-            sensor.delete()
+        _delete(spec, sensor)
     for actuator in getattr(spec, "actuators", []):
         for attribute in ("delay", "nsample"):
             if hasattr(actuator, attribute):
@@ -342,12 +284,13 @@ def _without_asset_files(mujoco: ModuleType, spec: Any) -> None:
             geom.size = [0.01, 0.0, 0.0]
     for collection in (spec.meshes, spec.hfields, spec.textures, spec.skins):
         for element in list(collection):
-            if hasattr(spec, "delete"):  # newer MuJoCo; in older ones each element deletes itself
-                spec.delete(element)
-            else:
-                element.delete()
+            _delete(spec, element)
     for material in spec.materials:
         material.textures = ["" for _ in material.textures]
+
+
+def _delete(spec: Any, element: Any) -> None:
+    spec.delete(element) if hasattr(spec, "delete") else element.delete()  # in older MuJoCo each element deletes itself
 
 
 def _line(element: Any) -> int | None:
@@ -370,11 +313,7 @@ class _MjcfTree:
         self.body_names = [name or unique_name(f"body{i}", used) for i, name in enumerate(written)]
 
     def element_lines(self, kind: str, elements: Any, in_order: bool) -> dict[int, int | None]:
-        """Line of each element of the spec, by its index in the compiled model.
-
-        Older MuJoCo gives spec elements no ``id``: they are then found by name,
-        or, for the kinds MuJoCo compiles in file order (``in_order``), by position.
-        """
+        """Line of each spec element by its compiled index (older MuJoCo: found by name, or by position when ``in_order``)."""
         out: dict[int, int | None] = {}
         for position, element in enumerate(elements):
             index = getattr(element, "id", None)
@@ -492,20 +431,10 @@ class _MjcfTree:
     def equality_gaps(self, notes: list[str]) -> dict[int, str]:
         """How far each active connect or weld is from holding at qpos0, where it is; a note when the file turns equalities off.
 
-        ``mj_forward`` on new data (at ``qpos0``) gives the constraint rows
-        (``efc_pos``); a connect's or weld's first three are the distance
-        between its two points.  A weld's frames are compared by their
-        rotation: the angle of ``q2^-1 q1 relpose`` (``2 atan2(|v|, |w|)``,
-        in radians; MuJoCo's own rows hold ``sin(angle/2)`` times the
-        ``torquescale``).  A distance above ``Tolerance.rank`` of the
-        mechanism's characteristic length (of its joints' points, as the
-        analysis measures it: not MuJoCo's ``<statistic extent>``, which a
-        file may set at will), or an angle above ``Tolerance.rank`` radians,
-        is reported: a connect between sites that are apart, a weld whose
-        ``relpose`` is not the written pose.  The rows are made even where
-        the file's ``<option><flag>`` turns constraints or equalities off
-        (MuJoCo would then make none): a note says MuJoCo itself would not
-        enforce them.
+        From the first three constraint rows (``efc_pos``) of ``mj_forward`` at
+        ``qpos0`` and :meth:`weld_angle`: above ``Tolerance.rank`` of the joints'
+        characteristic length (not ``<statistic extent>``, which a file sets at
+        will) or radians.  Made even where ``<option><flag>`` turns equalities off.
         """
         m, mj = self.m, self.mj
         kinds = (int(mj.mjtEq.mjEQ_CONNECT), int(mj.mjtEq.mjEQ_WELD))

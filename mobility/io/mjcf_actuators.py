@@ -1,25 +1,12 @@
 """The inputs of a compiled MuJoCo model's actuators: one actuator, one input.
 
-MuJoCo counts one input per actuator (``nu``).  An actuator with a joint
-transmission (``<motor joint>``, ``<general jointinparent>``,
-``<position>``...) drives:
-
-* a hinge or a slide: the joint's rate; the joint is marked actuated.
-  Several actuators on one such joint are one input of the model (its one
-  freedom): a note names them;
-* a ball joint: the rate of rotation about its gear's first three numbers,
-  an axis in the body's frame (``jointinparent``: in the parent's, rotated
-  by the inverse of the joint's rotation, none at ``qpos0``), so
-  ``xmat @ gear[:3]`` in the global frame: a
-  :class:`~mobility.io.robot_actuators.BallActuator`.  An actuator whose
-  axis the ball's earlier actuators already span adds no input (a note);
-  one whose axis is ``0 0 0`` drives nothing (unsupported);
-* a free joint: the rate along its six-number gear (a force and a torque
-  together), which no joint of the model expresses as one input
-  (unsupported: an error of one line unless ``ignore_unsupported``).
-
-Actuators driving tendons, sites, bodies or a slider-crank drive no joint
-(a note).
+An actuator with a joint transmission drives a hinge's or slide's rate
+(several on one joint: one input, a note), or a ball joint's rotation about
+``xmat @ gear[:3]`` in the global frame (``jointinparent`` is the same at
+``qpos0``): a :class:`~mobility.io.robot_actuators.BallActuator`; one whose
+axis earlier ones span adds no input (a note), one of axis ``0 0 0`` is
+unsupported, as is one on a free joint (a six-number gear).  Actuators on
+tendons, sites or bodies drive no joint (a note).
 """
 
 from __future__ import annotations

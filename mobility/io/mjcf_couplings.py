@@ -2,17 +2,11 @@
 
 MuJoCo's ``<equality><joint joint1 joint2 polycoef>`` holds
 ``q1 - q1_0 = c0 + c1 d + c2 d^2 + c3 d^3 + c4 d^4`` with ``d = q2 - q2_0``
-(``q_0`` at ``qpos0``): at ``qpos0`` (``d = 0``) the rates obey
-``q1' - c1 q2' = 0``.  An ``<equality><tendon tendon1 tendon2>`` holds the
-same of two tendon lengths; a fixed tendon's length is ``sum coef_j q_j``,
-so its rate is ``sum coef_j q_j'``: the coupling is
-``sum coef1_j q_j' - c1 sum coef2_k q_k' = 0`` (the first sum alone without
-``tendon2``), a joint in both sums once with its coefficients added.  A
-nonlinear polynomial (a non-zero ``c2``...) acts through its slope at the
-pose, ``c1``: a note says so.  An equality that leaves fewer than two joints
-(no ``joint2``, a zero slope) holds a joint still, which a coupling does not
-express, and a spatial tendon's length is no sum of joint positions: both
-are :class:`~mobility.io.robot_tree.Unsupported`.
+(``q_0`` at ``qpos0``): at ``qpos0`` the rates obey ``q1' - c1 q2' = 0``.  A
+tendon equality holds the same of two fixed tendons' lengths ``sum coef_j q_j``:
+``sum coef1_j q_j' - c1 sum coef2_k q_k' = 0``.  A nonlinear polynomial acts
+through its slope ``c1`` (a note); an equality holding a joint still (fewer
+than two joints) and a spatial tendon are :class:`~mobility.io.robot_tree.Unsupported`.
 """
 
 from __future__ import annotations

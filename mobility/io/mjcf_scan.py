@@ -1,58 +1,19 @@
 """An MJCF file, and every file it includes, checked before MuJoCo reads them.
 
-MuJoCo opens the files an MJCF model names (``<include file>``, ``<model
-file>``) and expands ``<replicate>``, ``<flexcomp>`` and ``<composite>``
-itself, with no bound: a named pipe makes it wait for ever, a huge file or
-``count="1000000"`` costs minutes and gigabytes before any joint can be
-counted.  :func:`scan_mjcf` walks the parsed file first (our own XML pass,
-:mod:`mobility.io.xml_source`) and refuses, in one line naming the file and
-the line of the element:
-
-* an ``<include>`` whose file is missing, not a regular file (a pipe, a
-  directory, a device), included already, nested deeper than the depth
-  limit, or larger than what remains of the size limit (the model and the
-  files it includes are one document); a ``<model>`` asset file likewise
-  when it exists;
-* more joints than the joint limit (each equality, ``<connect>``,
-  ``<weld>`` ..., counted as a joint: MuJoCo's constraint rows grow with
-  them), more elements than the element limit, or more elements made by
-  the ``count`` of ``<replicate>`` and ``<composite>`` than the joint
-  limit, every copy counted (nested replicates multiply), included files
-  counted (see :mod:`mobility.io.limits`); a negative ``count`` (MuJoCo
-  makes no copy of a ``<replicate count="-1">``, silently);
-* a ``<flexcomp>``: a deformable body, not supported, whose points MuJoCo
-  makes into bodies and joints (as many as the vertices of a mesh file it
-  reads, whatever its size, or from a named pipe, for ever);
-* height fields and builtin meshes whose points (``nrow`` x ``ncol``, the
-  resolutions of ``<mesh builtin>`` multiplied) pass the asset limit all
-  together: MuJoCo allocates them as it reads the file (gigabytes for a
-  line of XML), before anything can be left out;
-* a geometric attribute (``pos``, ``quat``, ``axis``, ``euler``, ...), or an
-  actuator's ``gear``, that holds ``nan`` or ``inf``, or a number written
-  non-zero that reads as 0 (``1e-400``, too small for a double: MuJoCo reads
-  it as 0 without a word);
-* a direction that MuJoCo would silently replace (:data:`DIRECTIONS`): MuJoCo
-  normalizes ``quat``, the axis of ``axisangle``, ``zaxis``, a joint's
-  ``axis``, the direction of ``fromto`` and the quaternion of a weld's
-  ``relpose`` by the square root of the sum of their squares, summed in
-  double precision (``mjuu_normvec``).  When that sum overflows (numbers from
-  about ``1e154``) it divides by an infinite norm and uses a zero vector: no
-  rotation (a zero axis for a joint), and no error.  When the sum of a
-  quaternion's squares is below MuJoCo's ``mjEPS`` (``1e-14``: numbers below
-  about ``1e-7``, and numbers whose squares underflow, as ``1e-170``) it leaves
-  the quaternion as written, not normalized, and uses another rotation.
-  Neither is refused when what MuJoCo uses is what was written (a
-  quaternion of no rotation, an ``axisangle`` of angle 0, a ``zaxis`` or
-  ``fromto`` along z).  A direction other than a quaternion with so small a
-  sum is an error of MuJoCo's own ("axis too small").  ``xyaxes`` and ``euler`` are left to
-  MuJoCo: an ``xyaxes`` it cannot normalize is its own error, and Euler
-  angles are not normalized.
-
-Files are found as MuJoCo finds them: relative to the directory of the model
-file first, then to the directory of the file that includes them.  Every
-file is read as MuJoCo's own XML parser reads it (``parse_xml(...,
-mujoco=True)``): UTF-8, without a ``<!DOCTYPE>``, no tab or line break in a
-``file`` attribute, so that the names checked are the names MuJoCo opens.
+MuJoCo opens the files a model names and expands ``<replicate>``,
+``<flexcomp>`` and ``<composite>`` with no bound: a named pipe makes it wait for
+ever, ``count="1000000"`` costs minutes and gigabytes.  :func:`scan_mjcf` walks
+the parsed file first, as MuJoCo finds and reads its files, and refuses in one
+line (the list: ``docs/robot-files.md``) an ``<include>`` that is missing, no
+regular file, repeated or past the depth or size limit; counts past the limits
+of :mod:`mobility.io.limits`, every copy counted; a negative ``count``; a
+``<flexcomp>``; too many asset points; ``nan``, ``inf`` or a non-zero number
+that reads as 0 in a geometric attribute; and a direction MuJoCo would
+silently replace (:data:`DIRECTIONS`).  MuJoCo normalizes ``quat``,
+``axisangle``, ``zaxis``, ``axis``, ``fromto`` and a weld's ``relpose`` by the
+root of the double-precision sum of squares (``mjuu_normvec``): when it
+overflows (from about ``1e154``) the result is a zero vector, and a quaternion
+whose sum is below ``mjEPS`` (``1e-14``) stays unnormalized, another rotation.
 
 Examples
 --------
@@ -81,7 +42,7 @@ import os
 import re
 import stat
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from xml.etree.ElementTree import Element
 
@@ -92,10 +53,8 @@ from .xml_source import XmlDocument, parse_xml, underflow_problem
 
 __all__ = ["scan_mjcf", "MjcfScan", "GEOMETRY_ATTRIBUTES", "DIRECTIONS", "MUJOCO_EPS"]
 
-GEOMETRY_ATTRIBUTES = frozenset({
-    "pos", "quat", "axisangle", "euler", "xyaxes", "zaxis", "axis", "anchor", "ref", "springref",
-    "fromto", "size", "offset", "relpose", "polycoef", "spacing",
-})
+GEOMETRY_ATTRIBUTES = frozenset({"pos", "quat", "axisangle", "euler", "xyaxes", "zaxis", "axis", "anchor", "ref", "springref",
+                                 "fromto", "size", "offset", "relpose", "polycoef", "spacing"})
 """MJCF attributes that place bodies and joints: a ``nan`` or ``inf`` in one is refused at its line.
 
 Others (``range="-inf inf"`` is common) are left to MuJoCo."""
@@ -103,39 +62,25 @@ Others (``range="-inf inf"`` is common) are left to MuJoCo."""
 MUJOCO_EPS = 1e-14
 """MuJoCo's ``mjEPS``: a vector whose sum of squares is below it is not normalized (``mjuu_normvec``)."""
 
-DIRECTIONS = {
-    "quat": "no rotation",
-    "axisangle": "no rotation",
-    "zaxis": "the direction +z or -z",
-    "axis": "a zero axis",
-    "fromto": "the direction +z or -z",
-    "relpose": "a zero quaternion",
-}
+DIRECTIONS = {"quat": "no rotation", "axisangle": "no rotation", "zaxis": "the direction +z or -z", "axis": "a zero axis",
+              "fromto": "the direction +z or -z", "relpose": "a zero quaternion"}
 """Attributes whose direction MuJoCo normalizes, and what it silently uses when their sum of squares overflows.
 
-A ``quat`` (and the quaternion of ``relpose``) whose sum of squares is
-below :data:`MUJOCO_EPS` is refused too: MuJoCo leaves it unnormalized.
-Neither is refused when what MuJoCo uses is what was written (see
-:func:`_overflow_harmless`)."""
+A quaternion whose sum of squares is below :data:`MUJOCO_EPS` is refused too (MuJoCo leaves it unnormalized)."""
 
 _COUNTED = {"replicate", "flexcomp", "composite"}
 _RESOLUTIONS = {"supersphere": (1, 2), "supertorus": (1, 2), "wedge": (2, 1), "plate": (2, 1), "cone": (1, 1)}
-"""Builtin meshes MuJoCo makes as it reads the file: how many of their leading ``params`` are resolutions, and the power of each.
+"""Builtin meshes MuJoCo makes as it reads the file: how many leading ``params`` are resolutions, and the power of their product.
 
-The points it makes grow with the product of the resolutions (a
-supersphere's and a supertorus's one resolution squared: rings and
-segments); ``sphere`` and ``hemisphere`` are bounded by MuJoCo itself (4
-and 10 subdivisions)."""
+``sphere`` and ``hemisphere`` are bounded by MuJoCo itself (4 and 10 subdivisions)."""
 _HEX = re.compile(r"[+-]?0[xX]")
 
 
 @dataclass(frozen=True)
 class MjcfScan:
-    """What the scan found: every ``<include>`` (the including file and the line), the files read (included files, ``<model>`` files) and the counts, copies included.
+    """What the scan found: every ``<include>`` (including file, line), the files read and the counts, copies included.
 
-    ``equalities``, ``world_joints`` and ``world_bodies`` are what the file
-    declares (in the world, copies of ``<replicate>`` counted): the compiled
-    model must keep at least as many (:func:`mobility.io.mjcf.read_mjcf`)."""
+    The compiled model must keep at least ``equalities``, ``world_joints`` and ``world_bodies``."""
 
     includes: tuple[tuple[str, int | None], ...] = ()
     files: tuple[str, ...] = ()
@@ -179,8 +124,8 @@ class _Scanner:
     seen: dict[str, str] = field(default_factory=dict)
     includes: list[tuple[str, int | None]] = field(default_factory=list)
     files: list[str] = field(default_factory=list)
-    counts: dict[str, int] = field(default_factory=lambda: {"elements": 0, "joints": 0, "copies": 0, "equalities": 0, "asset_values": 0,
-                                                            "world_joints": 0, "world_bodies": 0})
+    counts: dict[str, int] = field(default_factory=lambda: dict.fromkeys(("elements", "joints", "copies", "equalities", "asset_values",
+                                                                         "world_joints", "world_bodies"), 0))  # MjcfScan's fields
     over: dict[str, _Over] = field(default_factory=dict)
     models: dict[str, tuple[int, int]] = field(default_factory=dict)  # a <model>'s elements and joints, by name: what each <attach> copies
     waiting: dict[str, list[tuple[Element, _Context]]] = field(default_factory=dict)  # <attach>es met before their <model>
@@ -189,9 +134,7 @@ class _Scanner:
         """Every element under ``root`` (iteratively: a deep file must not exhaust Python's stack)."""
         stack = [(child, context) for child in reversed(list(root))]
         while stack:
-            element, where = stack.pop()
-            children = self.visit(element, where)
-            stack.extend(reversed(children))
+            stack.extend(reversed(self.visit(*stack.pop())))
 
     def visit(self, element: Element, where: _Context) -> list[tuple[Element, _Context]]:
         """Check one element; the elements to visit under it, each with its context."""
@@ -223,8 +166,7 @@ class _Scanner:
         if tag in _COUNTED:
             inner = self.counted(element, where)
         elif tag in ("worldbody", "default", "equality"):
-            inner = _Context(where.doc, where.multiplier, where.factors, tag == "worldbody", where.chain, where.source,
-                             in_equality=tag == "equality", model_dir=where.model_dir)
+            inner = replace(where, in_world=tag == "worldbody", in_equality=tag == "equality")
         return [(child, inner) for child in element]
 
     def asset_values(self, element: Element, where: _Context) -> None:
@@ -262,8 +204,7 @@ class _Scanner:
         if element.tag != "replicate":
             self.count("elements", total * where.multiplier, element, where)
             return where
-        return _Context(where.doc, where.multiplier * total, where.factors + tuple(factors), where.in_world, where.chain, (where.doc, element),
-                        where.in_equality, where.model_dir)
+        return replace(where, multiplier=where.multiplier * total, factors=where.factors + tuple(factors), source=(where.doc, element))
 
     def attached(self, element: Element, where: _Context) -> None:
         """Count the copy of a ``<model>`` that an ``<attach>`` makes (its elements and joints), before MuJoCo makes it."""
@@ -308,8 +249,8 @@ class _Scanner:
             self.models[model_name] = (elements, joints)
             for attach, at in self.waiting.pop(model_name, []):
                 self.attached(attach, at)
-        context = _Context(inner, where.multiplier, where.factors, where.in_world and kind == "include", where.chain + (real,), where.source,
-                           in_equality=where.in_equality and kind == "include", model_dir=model_dir)
+        context = replace(where, doc=inner, in_world=where.in_world and kind == "include", chain=where.chain + (real,),
+                          in_equality=where.in_equality and kind == "include", model_dir=model_dir)
         return [(child, context) for child in inner.root]
 
     def resolve(self, name: str, including: str, model_dir: str) -> str | None:
@@ -363,33 +304,22 @@ def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = N
 
     Parameters
     ----------
-    doc : XmlDocument
-        The parsed model file.
     model_dir : str or Path
-        The directory MuJoCo finds included files in (the model file's; the
-        working directory when MuJoCo is given the text).
-    limits : Limits, optional
+        The directory MuJoCo finds included files in (the working directory when MuJoCo is given the text).
     size : int
-        Bytes of the model file, counted against the size limit with the
-        files it includes.
-
-    Returns
-    -------
-    MjcfScan
+        Bytes of the model file, counted against the size limit with its includes.
 
     Raises
     ------
     MechanismFileError
         One line naming the file (the including one for a bad include), the
-        line of the element and the limit or the value.
+        element's line and the limit or the value.
     """
     scanner = _Scanner(str(model_dir) or ".", current_limits(limits), size)
     scanner.seen[os.path.realpath(doc.file)] = "the model file itself"
     scanner.walk(doc.root, _Context(doc, chain=(os.path.realpath(doc.file),)))
     scanner.raise_first_over()
-    counts = scanner.counts
-    return MjcfScan(tuple(scanner.includes), tuple(scanner.files), counts["elements"], counts["joints"], counts["copies"],
-                    counts["equalities"], counts["asset_values"], counts["world_joints"], counts["world_bodies"])
+    return MjcfScan(tuple(scanner.includes), tuple(scanner.files), **scanner.counts)
 
 
 def _check_numbers(doc: XmlDocument, element: Element) -> None:
@@ -470,11 +400,9 @@ def _direction_problem(attribute: str, numbers: list[float]) -> str | None:
 def _overflow_harmless(attribute: str, numbers: list[float], vector: list[float]) -> bool:
     """Whether what MuJoCo uses for a direction whose sum of squares overflows is what was written.
 
-    Dividing by the infinite norm leaves zeros (signed as the numbers were):
-    a zero quaternion is no rotation; an ``axisangle`` then turns by nothing;
-    a zero ``zaxis`` (or ``fromto`` direction) becomes +z, or -z when its
-    last zero is negative.  A zero joint axis and a weld's zero quaternion
-    are never what was written.
+    Dividing by the infinite norm leaves signed zeros: a zero quaternion is no
+    rotation, an ``axisangle`` turns by nothing, a zero ``zaxis`` (``fromto``)
+    becomes +z or -z.  A zero joint axis or weld quaternion never is.
     """
     if attribute == "quat":
         return _no_rotation(vector)
@@ -519,9 +447,8 @@ def _unsupported_flexcomp(doc: XmlDocument, element: Element) -> MechanismFileEr
 def _asset_points(element: Element) -> tuple[int, str] | None:
     """How many points MuJoCo makes for a height field (``nrow`` x ``ncol``) or a builtin mesh as it reads it, and how it was counted.
 
-    ``None`` for anything else (a height field read from a file, which
-    MuJoCo reads only when compiling, and mobility never lets it; numbers
-    MuJoCo refuses itself).
+    ``None`` for anything else (a height field from a file, which MuJoCo reads
+    only when compiling; numbers MuJoCo refuses itself).
 
     Examples
     --------

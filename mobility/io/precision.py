@@ -1,38 +1,21 @@
 """A file's own precision: from the digits it writes and from how well its loops close.
 
-Files written by CAD exporters (onshape-to-robot, the SolidWorks exporter,
-...) hold about six significant digits: their loops close only to about
-``1e-7`` of their size, and hinge axes the designer drew parallel are
-``1e-6`` apart.  A rank decision finer than that is a decision about the
-rounding, not the mechanism.  This module estimates, where the file enters,
-how precise its geometry is, relative to the mechanism's characteristic
-length (:func:`~mobility.core.tolerance.characteristic_scale`):
+Files written by CAD exporters hold about six significant digits: their loops
+close only to about ``1e-7`` of their size, and a rank decision finer than
+that is about the rounding, not the mechanism (``docs/robot-files.md``).  The
+precision, relative to the characteristic length
+(:func:`~mobility.core.tolerance.characteristic_scale`), is the larger of:
 
-* **from its digits.**  :class:`DigitCounter` reads the numbers that place
-  the joints (a URDF joint's ``origin`` and ``axis``; an MJCF body's, joint's,
-  site's and equality's position and orientation) as written.  The file is
-  *rounded to D significant digits* when the median count of significant
-  digits of its numbers written with two digits or more is ``D >= 5``
-  (:data:`ROUNDED_DIGITS`): an exporter writes almost every number with its
-  full count of digits, a person types short numbers, and a full-precision
-  export writes 15 to 17.  Each number ``x`` of such a file is then known to
-  half a unit of its ``D``-th digit, ``0.5 * 10**(floor(log10|x|) - D + 1)``
-  (``%g`` drops trailing zeros, so ``1.5708`` is ``1.57080``); the
-  precision is the largest of these, a length's divided by the
-  characteristic length, an angle's in radians (a quaternion's component
-  counted twice: it turns by twice its error);
-* **from its loops.**  A loop closure that does not hold at the pose the
-  file gives (an MJCF ``connect`` or ``weld`` apart, a ``--close`` pair whose
-  origins are apart) is an error of the file's geometry of that size: the
-  gap over the characteristic length (a weld's angle in radians) is a lower
-  bound of its precision.  A gap above :data:`ASSEMBLED` of the size is not
-  rounding but a file not assembled at that pose (a note says so already):
-  it is left out of the estimate.
+* **its digits** (:class:`DigitCounter`): when the median count of significant
+  digits of the placing numbers written with two or more is ``D >=``
+  :data:`ROUNDED_DIGITS`, each number ``x`` is known to half a unit of its
+  ``D``-th digit, ``0.5 * 10**(floor(log10|x|) - D + 1)`` (a length divided by
+  the characteristic length, an angle in radians, a quaternion component twice);
+* **its loops**: the largest relative gap of a loop closure at the file's pose
+  (a weld's angle in radians), gaps above :data:`ASSEMBLED` left out (a file
+  not assembled there, not rounding).
 
-The precision is the larger of the two (``None`` when neither says
-anything: a file written by hand, or with full precision, that closes its
-loops exactly).  :func:`~mobility.core.tolerance.file_tolerance` turns it
-into the rank threshold.
+:func:`~mobility.core.tolerance.file_tolerance` turns it into the rank threshold.
 
 Examples
 --------
@@ -64,9 +47,7 @@ __all__ = ["Rounding", "DigitCounter", "MJCF_PLACING", "MJCF_DIGIT_KINDS", "coun
 ROUNDED_DIGITS = 5
 """A file whose numbers have a median of at least this many significant digits is read as rounded to that many.
 
-Numbers typed by hand have one to four (``0.25``, ``1.5``, ``120.5``); an
-exporter writing ``%g`` gives six; a full-precision export 15 to 17 (whose
-rounding is then far below any rank threshold)."""
+Numbers typed by hand have one to four; ``%g`` gives six; a full-precision export 15 to 17."""
 
 ASSEMBLED = 1e-4
 """A loop gap above this fraction of the mechanism's size is a file not assembled at its pose, not rounding: not counted as its precision."""
@@ -99,14 +80,9 @@ def significant_digits(token: str) -> int:
 class Rounding:
     """The digits a file writes its geometry with.
 
-    Attributes
-    ----------
-    digits : int
-        ``D``: the median count of significant digits of its numbers written with two or more.
-    length : float
-        The largest rounding of a length, half a unit of its ``D``-th digit, in the file's length unit.
-    angle : float
-        The largest rounding of an angle (radians) or of a direction's component.
+    ``digits``: ``D``, the median count of significant digits; ``length``,
+    ``angle``: the largest rounding of a length (file's unit), of an angle
+    (radians) or direction component.
     """
 
     digits: int
@@ -117,10 +93,8 @@ class Rounding:
 class DigitCounter:
     """Collects the numbers that place a file's joints, as written, and tells the digits they are rounded to.
 
-    ``kind`` is ``"length"`` (a position), ``"angle"`` (an angle in
-    radians; ``scale`` converts another unit: ``pi / 180`` for degrees),
-    ``"unit"`` (a component of a direction) or ``"quat"`` (a component of a
-    quaternion, which turns by twice its error).
+    ``kind``: ``"length"``, ``"angle"`` (``scale`` converts to radians),
+    ``"unit"`` (direction component) or ``"quat"`` (turns by twice its error).
     """
 
     _WEIGHT = {"length": 1.0, "angle": 1.0, "unit": 1.0, "quat": 2.0}
@@ -136,12 +110,7 @@ class DigitCounter:
         weight = self._WEIGHT[kind] * scale
         for token in text.split():
             count = significant_digits(token)
-            if count == 0:
-                continue
-            try:
-                value = abs(float(token))
-            except ValueError:  # pragma: no cover - the pattern admits only numbers
-                continue
+            value = abs(float(token)) if count else 0.0  # a count: the pattern holds a number
             if not math.isfinite(value) or value == 0.0:
                 continue
             if count >= 2:
@@ -191,8 +160,7 @@ def count_mjcf_digits(digits: DigitCounter, element: Any, angle_scale: float) ->
 def mjcf_rounding(roots: Iterable[Any]) -> Rounding | None:
     """The rounding of the numbers that place an MJCF model's bodies, joints, sites and equalities, in its file and the files it includes.
 
-    ``roots`` are the root elements of the documents; angles are in the
-    unit of ``<compiler angle>`` (MJCF's default: degrees).
+    Angles are in the unit of ``<compiler angle>`` (default: degrees).
 
     Examples
     --------
@@ -217,14 +185,9 @@ def mjcf_rounding(roots: Iterable[Any]) -> Rounding | None:
 class FilePrecision:
     """A file's precision and what it was found from.
 
-    Attributes
-    ----------
-    value : float or None
-        Relative to the mechanism's characteristic length (angles in radians); ``None``: nothing says the file is inexact.
-    digits : int or None
-        The significant digits its numbers are rounded to, if they are.
-    gap : float
-        The largest relative gap of its loop closures at the pose (0.0 when they close, or it has none).
+    ``value``: relative to the characteristic length (``None``: nothing says the
+    file is inexact); ``digits``: the significant digits it is rounded to;
+    ``gap``: the largest relative gap of its loop closures at the pose.
     """
 
     value: float | None
@@ -250,15 +213,7 @@ class FilePrecision:
 def file_precision(rounding: Rounding | None, gaps: Iterable[float], angle_gaps: Iterable[float], points: Iterable[object]) -> FilePrecision:
     """The precision of a file from its rounding and its loops' gaps (absolute lengths, and angles in radians).
 
-    Parameters
-    ----------
-    rounding : Rounding or None
-    gaps : floats
-        The distances by which its loop closures miss, in its length unit.
-    angle_gaps : floats
-        The angles by which its welds miss, in radians.
-    points : iterable of 3-vectors
-        Its joints' points: the characteristic length is theirs.
+    ``points``: its joints' points, whose characteristic length scales the gaps.
 
     Examples
     --------

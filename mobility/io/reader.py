@@ -1,17 +1,9 @@
 """Reading a parsed YAML document with one-line errors: the part every document loader shares.
 
-:class:`DocumentReader` turns values of a parsed document into numbers,
-vectors, names, units, parameters and frames, and every error into a
-:class:`~mobility.errors.MechanismFileError` naming the file, the line and
-the key.  The mechanism loader (:mod:`mobility.io.loader`) and the flexure
-loader build on it.
-
-Numbers are checked where they are read: an integer too large for a float,
-an infinite or NaN value, or an expression that overflows or turns complex is
-an error at its key.  Names of links, joints and frames must be strings
-(``links: [g, true]`` is an error, not a link called ``True``), and a
-parameter may not take the name of a constant or a function of the
-expressions (:data:`~mobility.io.expressions.RESERVED_NAMES`).
+The mechanism and flexure loaders build on :class:`DocumentReader`.  Numbers
+are checked where they are read (finite, an expression neither overflowing nor
+complex); names must be strings (``links: [g, true]`` is an error, not a link
+``True``); a parameter may not take a reserved name of the expressions.
 
 Examples
 --------
@@ -51,14 +43,7 @@ NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 class DocumentReader:
     """Reads the values of one parsed document; every error names file, line and key.
 
-    Parameters
-    ----------
-    file : str
-        The file name used in messages.
-    positions : Positions
-        Lines of the keys, from :func:`~mobility.io.yaml_source.parse_yaml`.
-    limits : Limits, optional
-        Bounds on the document (default: :func:`~mobility.io.limits.current_limits`).
+    ``positions``: the lines of the keys, from :func:`~mobility.io.yaml_source.parse_yaml`.
     """
 
     def __init__(self, file: str, positions: Positions, limits: Limits | None = None) -> None:
@@ -90,21 +75,9 @@ class DocumentReader:
     def record(self, value: Any, path: KeyPath, what: str, allowed: tuple[str, ...], required: Required = (), *, described: str | None = None) -> Mapping[str, Any]:
         """A mapping with only ``allowed`` keys and every ``required`` one: a section or an entry of a list.
 
-        Parameters
-        ----------
-        value : Any
-            The parsed value.
-        path : KeyPath
-            Where it stands (``()``: the whole document).
-        what : str
-            What it is, in messages: ``"a joint"``.
-        allowed : tuple of str
-        required : tuple
-            Each a key, or a tuple of keys of which one is enough.  A missing
-            one is an error at its key path (the first of a tuple, the others
-            named in the message), on the line of the mapping that lacks it.
-        described : str, optional
-            What a mapping is expected to hold, when ``value`` is not one (default ``what``).
+        ``required``: each a key, or a tuple of keys of which one is enough (a
+        missing one is an error at its key path, on the mapping's line);
+        ``described``: what a mapping should hold, when ``value`` is not one.
 
         Examples
         --------
@@ -271,9 +244,8 @@ class DocumentReader:
     def angle_notes(self) -> list[str]:
         """Warnings on the angles of a file read in degrees that look written in radians, each ``file:line: key: what``.
 
-        An angle expression that uses ``pi`` (``"2*pi/3*i"``: 2.09 degrees,
-        not 120), or, when no angle does, every angle at most 2π with one
-        that is not a round number of degrees (``1.5708``).
+        An expression using ``pi`` (``"2*pi/3*i"``), or else every angle at most
+        2π with one not a round number of degrees (``1.5708``).
 
         Examples
         --------
@@ -372,7 +344,4 @@ def shown_value(value: Any) -> str:
 
 def parse_key(key: str) -> KeyPath:
     """Parse ``joints[3].axes[0]`` into ``("joints", 3, "axes", 0)``."""
-    out: list[str | int] = []
-    for part in re.finditer(r"([^.\[\]]+)|\[(\d+)\]", key):
-        out.append(int(part.group(2)) if part.group(2) is not None else part.group(1))
-    return tuple(out)
+    return tuple(int(part.group(2)) if part.group(2) is not None else part.group(1) for part in re.finditer(r"([^.\[\]]+)|\[(\d+)\]", key))

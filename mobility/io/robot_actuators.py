@@ -1,18 +1,11 @@
 """Actuators of robot description files: one actuator is one input.
 
-MuJoCo counts one input per actuator (``nu``).  On a hinge or a slide an
-actuator drives the joint's one freedom, and the joint is marked actuated.
-On a ball joint, an actuator with a joint transmission drives one rotation:
-its input is the angular velocity's component along its gear's first three
-numbers (an axis in the body's frame, or the parent's for
-``jointinparent``), a :class:`BallActuator`.  The joint model actuates a
-joint as a whole, one input per freedom: so a driven ball joint becomes a
-chain of joints through its centre (:func:`ball_chain`), an R joint about
-each actuator's axis, actuated, and a U or an R joint for the rotations no
-actuator drives, chosen so that turning about one R joint changes its own
-actuator's input alone (:func:`ball_chain_axes`).  At the reference pose the
-chain has the ball's three rotations, so mobility and twist systems are
-those of the ball joint.
+An actuator on a ball joint drives one rotation, the angular velocity's
+component along its gear's axis (a :class:`BallActuator`).  The model actuates a
+joint as a whole, so a driven ball joint becomes a chain through its centre
+(:func:`ball_chain`): an actuated R joint per actuator and a U or R joint for
+the rest, each R changing its own input alone (:func:`ball_chain_axes`).  At
+the reference pose the chain has the ball's three rotations: same mobility and twists.
 
 Examples
 --------
@@ -54,14 +47,10 @@ class BallActuator:
 def ball_chain_axes(axes: Iterable[Iterable[float]]) -> list[Vector]:
     """The rotation axes of a ball joint as a chain of joints through its centre, the first ``len(axes)`` driven one each by the given inputs.
 
-    An input ``k`` is the rate of rotation about ``axes[k]`` (the angular
-    velocity's component along it).  The axes ``e`` returned are the dual
-    basis of ``axes`` completed by the directions normal to them: ``axes[i] .
-    e[j]`` is 1 for ``i = j`` and 0 otherwise (up to the length of ``e[j]``,
-    made 1), so that turning about ``e[j]`` changes input ``j`` alone, and
-    the remaining axes (normal to every input's axis) change none.  One
-    input: its own axis, then two axes normal to it (a U joint).  The axes
-    given must be independent, finite and non-zero.
+    The axes ``e`` returned are the dual basis of ``axes`` (``axes[i] . e[j]``
+    zero for ``i != j``, each ``e[j]`` of length 1), completed by directions
+    normal to every input's axis: turning about ``e[j]`` changes input ``j``
+    alone.  The axes given must be independent, finite and non-zero.
 
     Examples
     --------
@@ -88,9 +77,7 @@ def ball_chain_axes(axes: Iterable[Iterable[float]]) -> list[Vector]:
 def _chain_order(count: int, actuators: tuple[BallActuator, ...]) -> list[int]:
     """Indices of the chain's joints (``k < count``: actuator ``k``'s R; ``count``: the rest), from the parent to the child.
 
-    An input whose axis is written in the parent's frame comes first, next
-    to the parent; one in the child's frame last, next to the child, so
-    that each axis moves with the body it is written in.
+    Axes written in the parent's frame come first, in the child's last: each moves with the body it is written in.
     """
     rest = [count] if count < 3 else []
     return [k for k, a in enumerate(actuators) if a.in_parent] + rest + [k for k, a in enumerate(actuators) if not a.in_parent]
@@ -111,10 +98,8 @@ def ball_chain_names(name: str, actuators: tuple[BallActuator, ...]) -> list[str
 def ball_chain(name: str, point: Vector, actuators: tuple[BallActuator, ...]) -> list[Joint]:
     """A ball joint driven by ``actuators`` as a chain of joints through ``point``, in chain order, their links still to be set.
 
-    Actuator ``a``'s input is the R joint ``name.a`` (actuated) about its
-    axis of :func:`ball_chain_axes`; the rotations no actuator drives are
-    the U (two) or R (one) joint ``name``.  Each joint's ``links`` are
-    placeholders (``"parent"``, ``"child"``): the caller links the chain.
+    Actuator ``a`` is the actuated R joint ``name.a``; the rotations no actuator drives are the U or R joint
+    ``name``.  The ``links`` are placeholders (``"parent"``, ``"child"``) for the caller to set.
     """
     centre = point
     axes = ball_chain_axes([a.axis for a in actuators])

@@ -1,11 +1,9 @@
 """Couplings of joint rates in a robot description, and the model's couplings they become.
 
-A reader (:mod:`mobility.io.mjcf`, :mod:`mobility.io.urdf`) lists each
-relation between joint rates it finds (an MJCF joint or tendon equality, a
-URDF ``<mimic>``) as a :class:`TreeCoupling` on the names of the tree's
-joints; :func:`model_couplings` turns them into
-:class:`~mobility.core.model.Coupling` s on the names the model's joints
-took, each error naming the element and its line.
+A reader lists each relation between joint rates (an MJCF joint or tendon
+equality, a URDF ``<mimic>``) as a :class:`TreeCoupling` on the tree's joint
+names; :func:`model_couplings` turns them into :class:`~mobility.core.model.Coupling` s
+on the model's joint names, each error naming the element and its line.
 
 Examples
 --------

@@ -1,13 +1,8 @@
 """Robot description files (MJCF, URDF): recognise them and read them into a mechanism.
 
-:func:`robot_format` tells a robot description from a mechanism file (YAML)
-by its extension or, failing that, by its first element (``<mujoco>`` for
-MJCF, ``<robot>`` for URDF).  :func:`read_robot` reads one -- MJCF through
-MuJoCo (:mod:`mobility.io.mjcf`), URDF with the standard library
-(:mod:`mobility.io.urdf`) -- adds the loop closures asked for
-(:mod:`mobility.io.closures`) and builds the mechanism
-(:mod:`mobility.io.robot_tree`), returning it with the notes of the reading.
-:func:`mobility.load` uses it for such files.
+:func:`robot_format` tells a robot description by its extension, else its
+first element (``<mujoco>``, ``<robot>``); :func:`read_robot` reads one, adds
+the loop closures asked for and builds the mechanism with the notes of the reading.
 
 Examples
 --------
@@ -55,8 +50,7 @@ _ROOTS = {"mujoco": "mjcf", "robot": "urdf"}
 def robot_format(path: str | Path) -> str | None:
     """``"mjcf"``, ``"urdf"``, or ``None`` for a file that is not a robot description.
 
-    A ``.urdf`` or ``.mjcf`` extension decides; otherwise the first XML
-    element does (``<mujoco>``, ``<robot>``).  YAML files are never read.
+    The extension decides, else the first XML element (YAML files are never read).
     """
     suffix = Path(file_name(path, "robot_format")).suffix.lower()
     if suffix in (".yaml", ".yml"):
@@ -69,38 +63,23 @@ def robot_format(path: str | Path) -> str | None:
 def is_robot_file(path: str | Path) -> bool:
     """Whether ``path`` is to be read as a robot description: an XML extension or XML content."""
     suffix = Path(file_name(path, "is_robot_file")).suffix.lower()
-    if suffix in (".yaml", ".yml"):
-        return False
-    return suffix in ROBOT_SUFFIXES or root_tag(path) is not None
+    return suffix not in (".yaml", ".yml") and (suffix in ROBOT_SUFFIXES or root_tag(path) is not None)
 
 
 def read_robot(path: str | Path, options: RobotOptions | None = None, **option_values: Any) -> ImportedRobot:
     """Read an MJCF or URDF file into a mechanism, with the notes of the reading.
 
-    Parameters
-    ----------
-    path : str or Path
-    options : RobotOptions, optional
-    **option_values
-        Fields of :class:`~mobility.io.robot_tree.RobotOptions` (``ground``,
-        ``end_effector``, ``floating``, ``ignore_unsupported``, ``close``,
-        ``closures``), overriding ``options``.
-
-    Returns
-    -------
-    ImportedRobot
+    ``option_values`` are fields of :class:`~mobility.io.robot_tree.RobotOptions`, overriding ``options``.
 
     Raises
     ------
     MechanismFileError
-        When the file is not MJCF or URDF, or cannot be read (one line naming
-        file, line and element).
+        When the file is not MJCF or URDF, or cannot be read (file, line, element).
     MissingExtraError
         For an MJCF file when the ``mujoco`` package is not installed.
     RequestError
-        When ``path`` is not a file name (a ``str`` or ``os.PathLike``); for
-        an unknown option, an option of the wrong type (each is named), or
-        an empty body name for ``ground`` or ``end_effector``.
+        When ``path`` is not a file name, or an option is unknown, of the wrong
+        type, or an empty body name.
     """
     file_name(path, "read_robot")
     options = _options(options, option_values)
@@ -130,13 +109,9 @@ def read_robot(path: str | Path, options: RobotOptions | None = None, **option_v
 def _closures_named_apart(tree: RobotTree) -> RobotTree:
     """The tree with each closing joint named apart from the joints (and the other closing joints), with a note for each renamed.
 
-    A closing joint (an MJCF ``<connect>``, ``--close A B``, a joint of a
-    closures file) may be named like a joint of the file: MuJoCo keeps
-    connects and joints apart, the joint graph cannot.  It gets ``~2``,
-    ``~3``, ... as the made-up names do, and a note says so.  The names the
-    file's joints take (their own, ``.x`` ``.y`` ``.z`` of a free joint's
-    slides, ``joint.actuator`` of a driven ball joint's R joints, and the
-    ``~k`` of a clash among them) are set aside first.
+    MuJoCo keeps connects and joints apart, the joint graph cannot: a clash
+    gets ``~2``, ``~3``, ...  The names the file's joints take (with their
+    ``~k``) are set aside first.
 
     Examples
     --------
@@ -214,5 +189,5 @@ def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptio
         flags[key] = flag is not None and require_bool(flag, argument=key, got=type(flag).__name__)  # None: the default, False
     closures = None if out.closures is None else file_name(out.closures, "closures")
     if closures == "":
-        raise RequestError("closures: an empty file name; expected the name of a closures file (or leave the option out)")
+        raise RequestError("an empty file name; expected the name of a closures file (or leave the option out)", argument="closures")
     return replace(out, close=close_pairs(out.close), closures=closures, floating=flags["floating"], ignore_unsupported=flags["ignore_unsupported"])

@@ -1,39 +1,12 @@
 """A robot description as a tree of bodies, and the joint graph it makes.
 
-Robot description files (MJCF, URDF) describe a *tree*: each body hangs from
-its parent body by zero, one or several joints, and loops are closed apart
-(MJCF ``<connect>`` equalities, a side file of closing joints for URDF).  The
-readers of those formats (:mod:`mobility.io.mjcf`, :mod:`mobility.io.urdf`)
-each produce a :class:`RobotTree` -- bodies with their pose, joints with their
-geometry in the global frame at the reference pose, closing joints, welds --
-and :func:`build_mechanism` turns it into a
-:class:`~mobility.core.model.Mechanism`, the same way for both formats:
-
-* a body with no joint to its parent (URDF ``fixed``, an MJCF body without
-  joints) and bodies joined by a weld form one rigid link, named after its
-  body nearest the root (or after the body named as ground or end effector);
-* a body with several joints (MJCF allows it) hangs by a chain of joints
-  through virtual links named ``body/joint``;
-* ``hinge`` is R, ``slide`` P, ``ball`` S, ``planar`` E; a ball joint
-  driven by actuators is a chain of joints through its centre, an R joint
-  (actuated) about each actuator's axis and a U or R joint for the rest
-  (:mod:`mobility.io.robot_actuators`): one input per actuator; a ``free`` (or URDF
-  ``floating``) joint is treated as fixed unless ``floating=True``, or unless
-  an equality (a weld or a closing joint) ties its body's subtree to a body
-  outside it (the mechanism holds that body: it is no floating base); it then
-  becomes three P joints along x, y, z and an S joint;
-* a closing joint (an MJCF ``connect`` is a spherical joint at its anchor)
-  joins the links of its two bodies;
-* a coupling of joint rates (an MJCF joint or tendon equality, a URDF
-  ``<mimic>``) couples the model's joints (:mod:`mobility.io.robot_couplings`);
-* the ground is the root body unless named; the end effector, unless named,
-  is the body farthest from the ground (in joints), the last one in file
-  order when several are as far.
-
-Elements the model cannot express (a spatial tendon, a flex body) are listed in :attr:`RobotTree.unsupported`; each is an error of
-one line unless ``ignore_unsupported=True``, when it is left out and said so
-in a note.  Nothing is dropped silently: every choice made for the user
-comes back in :attr:`ImportedRobot.notes`.
+The readers of MJCF and URDF (:mod:`mobility.io.mjcf`, :mod:`mobility.io.urdf`)
+each produce a :class:`RobotTree` -- bodies with their pose, joints in the
+global frame at the reference pose, closing joints, welds -- and
+:func:`build_mechanism` turns it into a :class:`~mobility.core.model.Mechanism`
+the same way for both (the rules: ``docs/robot-files.md``).  Elements the
+model cannot express are an error of one line unless ``ignore_unsupported``;
+every choice made for the user comes back in :attr:`ImportedRobot.notes`.
 
 Examples
 --------
@@ -70,23 +43,8 @@ from .precision import Rounding, file_precision
 from .robot_actuators import BallActuator, ball_chain, ball_chain_names
 from .robot_couplings import TreeCoupling, model_couplings
 
-__all__ = [
-    "Body",
-    "TreeJoint",
-    "Closure",
-    "Weld",
-    "Unsupported",
-    "RobotTree",
-    "RobotOptions",
-    "ImportedRobot",
-    "build_mechanism",
-    "JOINT_KINDS",
-    "rotation_tuple",
-    "vector_tuple",
-    "at_line",
-    "unique_name",
-    "model_joint_names",
-]
+__all__ = ["Body", "TreeJoint", "Closure", "Weld", "Unsupported", "RobotTree", "RobotOptions", "ImportedRobot", "build_mechanism", "JOINT_KINDS",
+           "rotation_tuple", "vector_tuple", "at_line", "unique_name", "model_joint_names"]
 
 Vector = tuple[float, float, float]
 Rotation = tuple[Vector, Vector, Vector]
@@ -116,11 +74,8 @@ class Body:
 class TreeJoint:
     """A joint moving ``body`` relative to its parent body, geometry in the global frame.
 
-    ``kind`` is one of :data:`JOINT_KINDS`; ``axis`` is the hinge or slide
-    direction, or the normal of a planar joint; ``point`` the anchor.
-    ``actuated`` marks a hinge or slide driven by an actuator (one input);
-    ``actuators`` are the inputs of a ball joint, one per actuator (a ball
-    joint with none is one S joint, unactuated).
+    ``kind``: one of :data:`JOINT_KINDS`; ``axis``: the hinge or slide direction,
+    or a planar joint's normal; ``actuators``: a ball joint's inputs, one each.
     """
 
     name: str
@@ -165,33 +120,11 @@ class Unsupported:
 class RobotTree:
     """A robot description read from a file: bodies, joints, closures, at one pose.
 
-    Attributes
-    ----------
-    name : str
-    file : str
-        The file, for messages.
-    format : str
-        ``"MJCF"`` or ``"URDF"``.
-    bodies : tuple of Body
-        Root first; every parent before its children.
-    joints : tuple of TreeJoint
-        In file order (the order of a body's joints is root-to-body).
-    closures, welds, unsupported, couplings
-        See :class:`Closure`, :class:`Weld`, :class:`Unsupported`, :class:`~mobility.io.robot_couplings.TreeCoupling`.
-    notes : tuple of str
-        What the reader wants the user to know.
-    pose : str
-        The configuration the geometry is taken at (for the description).
-    length_unit : str
-    files : tuple of str
-        The other files read for it: the files an MJCF model includes (and
-        its ``<model>`` files), a closures file.
-    rounding : Rounding or None
-        The digits its numbers are rounded to (:mod:`mobility.io.precision`).
-    gaps : tuple of float
-        How far each loop closure misses at the pose, in ``length_unit``.
-    angle_gaps : tuple of float
-        How far each weld misses, in radians.
+    ``bodies``: root first, every parent before its children; ``joints``: in file
+    order (a body's root-to-body); ``pose``: where the geometry is taken;
+    ``files``: the other files read for it; ``rounding``: the digits of its
+    numbers (:mod:`mobility.io.precision`); ``gaps``, ``angle_gaps``: how far each
+    loop closure (``length_unit``) and weld (radians) misses at the pose.
     """
 
     name: str
@@ -239,14 +172,11 @@ class RobotOptions:
     floating : bool
         Keep the six freedoms of free / floating joints (default: fixed).
     ignore_unsupported : bool
-        Leave out elements the model cannot express (with a note) instead of
-        failing.
+        Leave out elements the model cannot express (with a note).
     close : tuple of (str, str)
-        Pairs of bodies (links) whose origins coincide, joined by a spherical
-        joint there: the common way to close a loop a URDF cannot express.
+        Pairs of bodies whose origins coincide, joined by a spherical joint there.
     closures : str, optional
-        A side file of closing joints in the project's format (see
-        :mod:`mobility.io.closures`).
+        A side file of closing joints (:mod:`mobility.io.closures`).
     """
 
     ground: str | None = None
@@ -261,9 +191,7 @@ class RobotOptions:
 class ImportedRobot:
     """A mechanism read from a robot description, with the notes of its reading.
 
-    ``files`` are every file read for it: the description first, then the
-    files it includes and a closures file (``mobility convert`` writes over
-    none of them).
+    ``files``: every file read for it, the description first (``mobility convert`` writes over none).
     """
 
     mechanism: Mechanism
@@ -281,12 +209,10 @@ class _Groups:
     parent: dict[str, str] = field(default_factory=dict)
 
     def find(self, name: str) -> str:
-        root = name
-        while self.parent[root] != root:
-            root = self.parent[root]
-        while self.parent[name] != root:
-            self.parent[name], name = root, self.parent[name]
-        return root
+        while self.parent[name] != name:  # path halving
+            self.parent[name] = self.parent[self.parent[name]]
+            name = self.parent[name]
+        return name
 
     def union(self, a: str, b: str) -> None:
         ra, rb = self.find(a), self.find(b)
@@ -295,16 +221,7 @@ class _Groups:
 
 
 def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> ImportedRobot:
-    """The mechanism of a robot tree (see the module docstring for the rules).
-
-    Parameters
-    ----------
-    tree : RobotTree
-    options : RobotOptions, optional
-
-    Returns
-    -------
-    ImportedRobot
+    """The mechanism of a robot tree (the rules: ``docs/robot-files.md``).
 
     Raises
     ------
@@ -327,9 +244,7 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     names = _group_names(tree, groups, [n for n in (ground_body, ee_body) if n])
 
     def link(body: str) -> str:
-        """The name of the rigid link ``body`` belongs to."""
         return names[groups.find(body)]
-
 
     joints: list[Joint] = []
     model_name: dict[str, str] = {}  # of each hinge and slide of the tree that the mechanism holds
@@ -337,9 +252,8 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     link_names = set(names.values())
     by_body: dict[str, list[TreeJoint]] = {}
     for j in tree.joints:
-        if j.kind == "free" and j.body not in kept:
-            continue
-        by_body.setdefault(j.body, []).append(j)
+        if j.kind != "free" or j.body in kept:
+            by_body.setdefault(j.body, []).append(j)
     parents = {b.name: b.parent for b in tree.bodies}
     for body, chain in by_body.items():
         start, end = link(cast(str, parents[body])), link(body)  # a joint's body is not the root: it has a parent
@@ -433,10 +347,8 @@ def unique_name(name: str, used: set[str]) -> str:
 def _free_joints_kept(tree: RobotTree, options: RobotOptions, notes: list[str]) -> set[str]:
     """The bodies whose free joint keeps its six freedoms (a note for each free joint says which way it went).
 
-    All of them with ``floating``; otherwise those an equality (a weld or a
-    closing joint) ties to a body outside their own subtree: such a body is
-    held by the mechanism, not a floating base, and fixing it would lock what
-    it is welded to.
+    All with ``floating``; otherwise those an equality ties to a body outside
+    their subtree (held by the mechanism: fixing it would lock what it is welded to).
     """
     free = {j.body: j for j in tree.joints if j.kind == "free"}
     if options.floating or not free:
@@ -538,14 +450,8 @@ def _model_joints(tree: RobotTree, j: TreeJoint, a: str, b: str, used: set[str],
                 out.append(replace(joint, name=unique_name(joint.name, used), links=(here, there)))
                 here = there
             return out
-        name = unique_name(j.name, used)
-        if kind == "R":
-            return [Joint(name, "R", (a, b), axis=j.axis, point=j.point, actuated=j.actuated)]
-        if kind == "P":
-            return [Joint(name, "P", (a, b), axis=j.axis, point=j.point, actuated=j.actuated)]
-        if kind == "S":
-            return [Joint(name, "S", (a, b), point=j.point, actuated=j.actuated)]
-        return [Joint(name, "E", (a, b), normal=j.axis, point=j.point, actuated=j.actuated)]
+        along, normal = (j.axis, None) if kind in ("R", "P") else (None, j.axis if kind == "E" else None)
+        return [Joint(unique_name(j.name, used), kind, (a, b), axis=along, normal=normal, point=j.point, actuated=j.actuated)]
     except MechanismError as exc:
         raise MechanismFileError(f"joint[{clipped(j.name)}]", exc.message if not exc.key else f"{exc.key}: {exc.message}", file=tree.file, line=j.line) from None
 
@@ -587,11 +493,7 @@ def vector_tuple(v: Iterable[float]) -> Vector:
 
 
 def _refuse_blank_names(tree: RobotTree) -> None:
-    """Refuse a body, joint or closure named by blank characters only, at its line, as the project's format refuses it.
-
-    Such a name shows as nothing in every report, and a converted file
-    holding it would not read back.
-    """
+    """Refuse a body, joint or closure named by blank characters only, at its line (as the project's format does: it would not read back)."""
     named = [("body", b.name, b.line, tree.file) for b in tree.bodies] + [("joint", j.name, j.line, tree.file) for j in tree.joints]
     named += [(c.what, c.joint.name, c.line, c.file or tree.file) for c in tree.closures]
     for what, name, line, file in named:

@@ -1,45 +1,17 @@
 """Read URDF files: links and joints at the zero pose.
 
-A URDF is a tree of links joined by joints; each joint's ``<origin>`` places
-the child link's frame in the parent link's frame (``xyz``, and ``rpy`` with
-``R = Rz(yaw) Ry(pitch) Rx(roll)``), and its ``<axis>`` (default ``1 0 0``) is
-written in the child frame.  At the zero pose (every joint position 0) the
-child frame is the parent frame composed with the origin.
+Each joint's ``<origin>`` places the child frame in the parent's (``xyz``, and
+``rpy`` with ``R = Rz(yaw) Ry(pitch) Rx(roll)``); its ``<axis>`` (default
+``1 0 0``) is in the child frame.  How joints, ``<transmission>`` and
+``<mimic>`` map, and closing loops: ``docs/robot-files.md``.
 
-* ``revolute`` and ``continuous`` joints are R, ``prismatic`` P, ``planar``
-  E (normal = axis), ``floating`` a free joint (fixed unless ``--floating``),
-  ``fixed`` joins its two links into one rigid link;
-* a joint named in a ``<transmission>`` is marked actuated: one input, so a
-  ``revolute``, ``continuous`` or ``prismatic`` joint; on a ``planar`` or
-  ``floating`` joint (several coordinates) it is not supported, on a
-  ``fixed`` one it drives nothing (a note);
-* a ``<mimic joint="leader" multiplier="m" offset="o">`` joint follows
-  ``q = m q_leader + o``: a coupling ``q' - m q'_leader = 0`` of the two rates
-  (:class:`~mobility.core.couplings.Coupling`; the offset moves no rate);
-  both joints must be revolute, continuous or prismatic, alike;
-* a URDF cannot express a closed loop: close loops with ``--close A B`` or a
-  side file (:mod:`mobility.io.closures`).
-
-Numbers are plain ASCII decimals, as MuJoCo's URDF compiler reads them
-(``1``, ``-0.5``, ``.5``, ``1e-3``), separated by spaces, tabs or line
-breaks; what Python's ``float`` alone would take (``1_0``, digits of other
-scripts, a no-break space between numbers) is refused, as are ``nan`` and
-``inf``, and a number written non-zero that reads as 0 (``1e-400``: too
-small for a double).  An element a joint holds once (``<parent>``, ``<axis>``,
-``<origin>``...) is refused when repeated, as MuJoCo refuses it, rather
-than read from its first copy.
-
-Numbers are read in double precision: an ``<axis>`` is normalized by
-``math.hypot`` (no overflow or underflow), and one whose numbers are all
-subnormal (below 2.2e-308, kept with fewer digits than a double) is
-refused.  The file is the only one read, by this module alone: a document
-type declaration's entities are expanded (external ones never fetched), and
-nothing else reads the file otherwise.
-
-The file is parsed with the standard library's XML parser: URDF kinematics
-is a handful of elements and attributes, so no extra package is needed (a
-URDF library would bring meshes and their dependencies), and every error
-names its line.  Geometry (``<visual>``, ``<collision>``, meshes) is not read.
+Numbers are plain ASCII decimals, as MuJoCo's URDF compiler reads them; what
+Python's ``float`` alone would take (``1_0``, other scripts' digits), ``nan``,
+``inf`` and a non-zero number that reads as 0 (``1e-400``) are refused, as is
+an element a joint holds once when repeated (as MuJoCo refuses it).  An
+``<axis>`` is normalized by ``math.hypot``; one of only subnormal numbers is
+refused.  The standard library's XML parser suffices (a URDF library would
+bring meshes and their dependencies); geometry is not read.
 
 Examples
 --------

@@ -1,15 +1,11 @@
 """Writing a mechanism file: a :class:`~mobility.core.model.Mechanism` out as YAML text.
 
-The text follows version 1 of the format (plus ``actuated`` and
-``couplings``), one joint (one coupling) per line in flow style, every joint in the global frame, and loads back with
-:func:`mobility.loads` to the same joints up to round-off: round-off (below
-the policy's ``round_off`` of the mechanism's characteristic length, or of 1
-for a direction) is written as 0, and every number as the shortest decimal
-within a few units of its last place (or of the mechanism's size), so that a
-sum of lengths is written ``0.15``, not ``0.15000000000000002``.  Writing
-what was read gives the same text again, and the second round trip is exact
-to the bit.  Used by ``mobility convert`` and by the type synthesis to write
-the mechanisms it assembles.
+Version 1 of the format (plus ``actuated`` and ``couplings``), one joint per
+line in flow style, in the global frame.  Round-off (below ``round_off`` of
+the characteristic length, or of 1 for a direction) is written as 0, every
+number as the shortest decimal within a few units of its last place (``0.15``,
+not ``0.15000000000000002``): what was read is written again as the same text,
+and the second round trip is exact to the bit.
 
 Examples
 --------
@@ -33,6 +29,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import textwrap
 from typing import Any, Iterable
 
 import numpy as np
@@ -134,30 +131,11 @@ def _vector(v: Iterable[float], scale: float = 1.0) -> str:
 
 
 def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: dict[str, Any] | None = None) -> str:
-    """A mechanism file for ``mechanism``, its joints written in the global frame.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    description : str
-        Written as a folded ``description`` block.
-    expected : dict, optional
-        Written as the ``expected`` block (``mobility check`` compares with it).
-
-    Returns
-    -------
-    str
-    """
+    """A mechanism file for ``mechanism``, its joints in the global frame, ``description`` folded, ``expected`` as its block (see the module's example)."""
     lines = [f"name: {yaml_scalar(mechanism.name)}"]
-    if description:
-        lines.append("description: >")
-        line = " "
-        for word in description.split():
-            if len(line) + len(word) > 100:
-                lines.append(line.rstrip())
-                line = " "
-            line += " " + word
-        lines.append(line.rstrip())
+    if description:  # folded: lines of at most 101 characters, a longer word alone on its line
+        lines += ["description: >", *textwrap.wrap(" ".join(description.split()), 101, initial_indent="  ", subsequent_indent="  ",
+                                                    break_long_words=False, break_on_hyphens=False)]
     if mechanism.length_unit:
         lines.append(f"units: {{length: {yaml_scalar(mechanism.length_unit)}}}")
     lines += [f"ground: {yaml_scalar(mechanism.ground)}", f"end_effector: {yaml_scalar(mechanism.end_effector)}", "joints:"]
@@ -198,19 +176,10 @@ def _size(mechanism: Mechanism) -> float:
 def require_written_faithfully(mechanism: Mechanism, text: str, where: str) -> None:
     """Read ``text`` (written by :func:`mechanism_to_yaml`) back and refuse it, in one line, unless its joints are ``mechanism``'s.
 
-    The writer writes round-off as 0; a mechanism whose numbers span more
-    than double precision can hold relative to its size would come back as
-    another mechanism, with another answer.  That is refused rather than
-    written.  A joint's geometry may change by :data:`~mobility.core.tolerance.WRITE_DRIFT`
-    (relative to the characteristic length for points and pitches, absolute
-    for unit directions).
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    text : str
-    where : str
-        The file it is for, in a message.
+    Round-off is written as 0: a mechanism whose numbers span more than double
+    precision holds relative to its size would come back another mechanism.  A
+    joint may change by :data:`~mobility.core.tolerance.WRITE_DRIFT` (relative to
+    the characteristic length for points and pitches); ``where`` names the file.
 
     Raises
     ------
@@ -241,9 +210,6 @@ def require_written_faithfully(mechanism: Mechanism, text: str, where: str) -> N
             with np.errstate(over="ignore", invalid="ignore"):
                 drift = float(np.max(np.abs(np.subtract(x, y, dtype=float)))) / size if y is not None else np.inf
             if not drift <= WRITE_DRIFT:
-                raise MechanismFileError(
-                    f"joints[{i}].{name}",
-                    f"joint {a.name!r} would not be written faithfully (it changes by {drift:.2g} of the mechanism's size "
-                    "once written with the writer's digits); the mechanism is too small or too large to convert",
-                    file=str(mechanism.source or where),
-                )
+                raise MechanismFileError(f"joints[{i}].{name}", f"joint {a.name!r} would not be written faithfully (it changes by {drift:.2g} of the "
+                                         "mechanism's size once written with the writer's digits); the mechanism is too small or too large to convert",
+                                         file=str(mechanism.source or where))

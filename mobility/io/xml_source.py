@@ -1,20 +1,11 @@
 """XML documents with the line of every element, for one-line error messages.
 
-Robot description files (URDF, MJCF) are XML.  :func:`parse_xml` parses one
-with the standard library (``xml.parsers.expat`` feeding an
-``xml.etree.ElementTree.TreeBuilder``) and keeps the line on which each
-element starts, so that a later error about ``<joint name="knee">`` can name
-its line.  Malformed XML is a :class:`~mobility.errors.MechanismFileError`
-naming the line and column.
-
-MuJoCo reads MJCF with its own XML parser (tinyxml2), which reads UTF-8
-only, skips a document type declaration and reads an entity reference
-(``&name;``) as written, and keeps a tab or a line break in an attribute
-value where XML makes it a space.  ``parse_xml(..., mujoco=True)`` refuses
-what the two parsers would read differently, so that what
-:mod:`mobility.io.mjcf_scan` checks is what MuJoCo opens: a file that is not
-UTF-8, a ``<!DOCTYPE>``, and a ``file`` attribute holding a tab or a line
-break.
+:func:`parse_xml` parses with the standard library (``expat`` feeding an
+``ElementTree.TreeBuilder``) and keeps the line each element starts on.
+MuJoCo's own parser (tinyxml2) reads UTF-8 only, skips a ``<!DOCTYPE>`` (an
+entity ``&name;`` stays as written) and keeps a tab or a line break in an
+attribute where XML reads a space: ``parse_xml(..., mujoco=True)`` refuses
+these, so that what :mod:`mobility.io.mjcf_scan` checks is what MuJoCo opens.
 
 Examples
 --------
@@ -59,13 +50,7 @@ _NAME_ATTRIBUTES = frozenset({"name", "model"})
 class XmlDocument:
     """A parsed XML file: its root element and the line of every element.
 
-    Attributes
-    ----------
-    root : xml.etree.ElementTree.Element
-    file : str
-        The file name used in messages.
-    lines : dict
-        Element -> 1-based line where it starts.
+    ``lines``: element -> 1-based line where it starts; ``file``: the name used in messages.
     """
 
     root: ET.Element
@@ -86,21 +71,14 @@ def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False
 
     Parameters
     ----------
-    text : str or bytes
-    file : str
-        Name used in error messages.
     mujoco : bool
-        Read the text as MuJoCo's XML parser reads it, refusing what it would
-        read differently (see the module docstring): text that is not UTF-8,
-        a document type declaration, a ``file`` attribute holding a tab or a
-        line break.  The encoding an XML declaration names is then ignored,
-        as MuJoCo ignores it.
+        Read the text as MuJoCo's parser does (UTF-8 whatever the declaration
+        says), refusing what it would read differently (see the module docstring).
 
     Raises
     ------
     MechanismFileError
-        When the text is not well-formed XML (the message names line and
-        column), or, with ``mujoco``, when MuJoCo would read it differently.
+        When the text is not well-formed XML (at its line and column), or MuJoCo would read it differently.
     RequestError
         When ``text`` is neither ``str`` nor ``bytes``.
 
@@ -201,16 +179,9 @@ def _raw_value(source: bytes, start: int, name: bytes) -> bytes | None:
 def underflow_problem(words: list[str], values: list[float]) -> str | None:
     """What is wrong with numbers written non-zero that read as 0 (too small for a double: ``1e-400``), or ``None``.
 
-    ``float`` (and MuJoCo's ``strtod``) read such a number as 0 without a
-    word; the readers of MJCF and URDF refuse it in one line, by the rule of
-    mechanism files (:func:`~mobility.io.expressions.literal_problem`).
-
-    Parameters
-    ----------
-    words : list of str
-        The numbers as written (decimal, or hexadecimal as ``0x1p-3``).
-    values : list of float
-        What they read as, one for each word.
+    ``float`` (and MuJoCo's ``strtod``) read it as 0 without a word; ``words``
+    are the numbers as written, ``values`` what each reads as
+    (the rule of :func:`~mobility.io.expressions.literal_problem`).
 
     Examples
     --------
@@ -232,10 +203,9 @@ def read_xml(path: str | Path) -> XmlDocument:
     Raises
     ------
     MechanismFileError
-        When the file cannot be read, is larger than the size limit
-        (:mod:`mobility.io.limits`) or is not well-formed XML.
+        When the file cannot be read, passes the size limit or is not well-formed XML.
     RequestError
-        When ``path`` is not a file name (:func:`~mobility.io.files.file_name`).
+        When ``path`` is not a file name.
     """
     return parse_xml(read_capped(file_name(path, "read_xml")), str(path))
 
@@ -243,20 +213,15 @@ def read_xml(path: str | Path) -> XmlDocument:
 def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
     """The tag of the first element of an XML file, or ``None`` if it is not XML.
 
-    Reads the file in chunks until its first start tag (a long comment or a
-    long attribute may come first), never beyond the size limit: enough to
-    tell a URDF (``<robot>``) from an MJCF (``<mujoco>``) file.  A file that
-    is not a regular file is not opened: a pipe or socket is refused (as
-    :func:`~mobility.io.files.read_capped` refuses it), a directory or a
-    device gives ``None`` (reading it then says what it is).
+    Reads in chunks until the first start tag, never beyond the size limit.
+    A directory or a device gives ``None`` without being opened.
 
     Raises
     ------
     MechanismFileError
         When ``path`` is a named pipe or a socket.
     RequestError
-        When ``path`` is not a file name (an ``int`` would be taken for a
-        file descriptor of the caller's process, and closed).
+        When ``path`` is not a file name (an ``int`` would be taken for a file descriptor).
 
     Examples
     --------

@@ -1,27 +1,14 @@
 """YAML documents with the line of every key, read within bounded time and memory.
 
-:func:`parse_yaml` returns plain Python data (dicts, lists, scalars) and a
-:class:`Positions` table from key paths to 1-based line numbers, so that any
-later error about ``joints[3].axis`` can name its line.
-
-The document is built here from the parser's event stream (libyaml's C parser,
-PyYAML's pure-Python one only when libyaml is absent), in one loop with an
-explicit stack: no recursion grows with the input, and every bound of
-:class:`~mobility.io.limits.Limits` is checked as the nodes arrive, before any
-key is interpreted:
-
-* nesting depth, so a document nested 10,000 levels deep stops at the limit;
-* nodes counted with every alias expanded, so an alias bomb ("billion
-  laughs") stops when its expansion would pass the limit, although the values
-  themselves are shared, as PyYAML shares them;
-* a recursive alias (``&j [*j]``), an undefined alias, a second document, an
-  unknown tag (``!vec [0, 0, 1]``: this format uses plain YAML), a merge key
-  (``<<``), a duplicate key, a collection as a key and a control character
-  are errors.
-
-Mapping keys are kept as the text written (``on:`` is the key ``"on"``, not
-``True``).  Every error is a :class:`~mobility.errors.MechanismFileError`
-with the file, the line and, where there is one, the key.
+:func:`parse_yaml` returns plain data and a :class:`Positions` table from key
+paths to 1-based lines.  The document is built from the parser's events
+(libyaml's, or PyYAML's own), in one loop with an explicit stack, every bound
+of :class:`~mobility.io.limits.Limits` checked as the nodes arrive: depth,
+and nodes with every alias expanded (an alias bomb stops, although values are
+shared as PyYAML shares them).  A recursive or undefined alias, a second
+document, a tag (plain YAML only), a merge key (``<<``), a duplicate key, a
+collection as a key and a control character are errors.  Keys are kept as
+written (``on:`` is ``"on"``, not ``True``).
 
 Examples
 --------
@@ -103,12 +90,9 @@ class Positions:
     def line(self, path: KeyPath) -> int | None:
         """Line of ``path``, or of its nearest ancestor that has one."""
         path = tuple(path)
-        while True:
-            if path in self.lines:
-                return self.lines[path]
-            if not path:
-                return None
+        while path and path not in self.lines:
             path = path[:-1]
+        return self.lines.get(path)
 
 
 def read_text(path: str | Path, limits: Limits | None = None) -> str:
@@ -117,8 +101,7 @@ def read_text(path: str | Path, limits: Limits | None = None) -> str:
     Raises
     ------
     MechanismFileError
-        One line naming the file: missing, a directory, unreadable, larger
-        than the limit, or not UTF-8 (with the line of the first bad byte).
+        As :func:`read_capped`, or not UTF-8 (at the line of the first bad byte).
     """
     raw = read_capped(path, limits)
     try:
@@ -129,21 +112,7 @@ def read_text(path: str | Path, limits: Limits | None = None) -> str:
 
 
 def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) -> tuple[Any, Positions]:
-    """Parse one YAML document, keeping the line of every key.
-
-    Parameters
-    ----------
-    text : str
-        The document.
-    file : str
-        The file name used in messages.
-    limits : Limits, optional
-        Bounds on size, depth and nodes (default: :func:`~mobility.io.limits.current_limits`).
-
-    Returns
-    -------
-    data, positions
-        ``data`` is ``None`` for an empty document.
+    """Parse one YAML document into ``(data, positions)``, keeping the line of every key (``data`` is ``None`` for an empty document).
 
     Raises
     ------
@@ -177,10 +146,8 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
 YAML_DEPTH_BOUND = 1000
 """The most levels a YAML document may nest, whatever :attr:`Limits.max_depth` says.
 
-PyYAML's reader (the pure-Python one that takes over when libyaml refuses
-1,000 open flow collections) spends time growing with the square of the
-depth: a 100 kB file nested 50,000 deep ran past 90 s at 3 GB.  At this
-bound a document is read in about a second."""
+PyYAML's pure-Python reader spends time growing with the square of the depth
+(50,000 deep: past 90 s at 3 GB); at this bound, about a second."""
 
 _LIBYAML_NESTING = "exceeded maximum nesting depth"
 """libyaml's problem when more than its 1,000 flow collections are open at once."""
@@ -388,9 +355,7 @@ _SEXAGESIMAL = re.compile(r"[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+(?:\.[0-9_]*)?")
 def _yaml11_only_number(tag: str, value: str) -> str | None:
     """Why ``value`` is refused as a number, when YAML 1.1 and YAML 1.2 read it differently.
 
-    YAML 1.1 (PyYAML) reads ``010`` as the octal 8 and ``1:30`` as the base-60
-    number 90, where YAML 1.2 and most readers see ten and a string: a value so
-    written is refused rather than silently read as either.
+    YAML 1.1 (PyYAML) reads ``010`` as octal 8 and ``1:30`` as 90, YAML 1.2 as ten and a string.
 
     Examples
     --------

@@ -14,29 +14,17 @@ so ``$_ij`` is the twist of joint ``j`` of limb ``i`` at the pose.  Then
   those of the platform are their union, and the platform's twist system is
   its reciprocal (for METROM: one force through ``O`` along ``s1 × s2``);
 * the **actuation wrench** of an actuated joint ``(i, j)`` is reciprocal to the
-  limb's other twists but not to ``$_ij``; it is defined up to the limb's
-  constraint wrenches and the one reported is orthogonal to them (normalised
-  coordinates).  Scaled so that ``W ∘ $_ij = 1``, the reciprocal product with
-  the platform twist is the actuated rate: ``W ∘ $_p = q'_ij``;
+  limb's other twists but not to ``$_ij`` (the one orthogonal to the limb's
+  constraint wrenches); scaled so that ``W ∘ $_ij = 1``, ``W ∘ $_p = q'_ij``;
 * the **Jacobian** stacks both: ``J $_p = [q'_a; 0]``, rows ``(SWAP W)^T``;
-  when it is square and regular, the first columns of ``J^-1`` are the
-  platform twists per unit actuated rate.
+  the first columns of a regular ``J^-1`` are the platform twists per unit actuated rate.
 
-Rank decisions follow :mod:`mobility.core.tolerance` (normalised coordinates at the
-pose), and so does every other threshold: a pose closes when the limbs agree to
-``Tolerance.closure`` (entries of ``[R; p / L]``), and a wrench whose force is
-round-off next to its moment over the characteristic length ``L``
-(``Tolerance.round_off``) is a couple.
-
-Any scale of the file gives the same answer: the Jacobian is computed on the
-mechanism scaled by the power of two that brings ``L`` near 1
-(:func:`~mobility.core.tolerance.binary_scale`, exact), and the results are
-then written back in the file's units, each part by its own power of the
-length (a force per unit rate of a revolute input is a force per length, a
-moment is not), so a mechanism at 1e200 or 1e-250 gets the matrix of the same
-mechanism at 1, scaled, without overflow, underflow or NaN.  Results are in
-the global frame and the mechanism's length unit.  :mod:`mobility.report.jacobian`
-formats them for people.
+Thresholds follow :mod:`mobility.core.tolerance` (normalised coordinates). Any
+scale of the file gives the same answer: the Jacobian is computed on the
+mechanism scaled exactly by the power of two that brings its characteristic
+length near 1 (:func:`~mobility.core.tolerance.binary_scale`), then written back
+in the file's units, each part by its own power of the length. Results are in
+the global frame and the mechanism's length unit.
 
 Examples
 --------
@@ -76,14 +64,11 @@ from .wrenches import clean_screw, dominant_signs, is_couple, norm, unit_wrench,
 __all__ = ["JacobianResult", "jacobian"]
 
 
-
-
 @dataclass(frozen=True, eq=False)
 class JacobianResult(ReadOnlyArrays):
     """The Jacobian of a parallel mechanism at one pose (global frame, the mechanism's units).
 
-    Its arrays are read-only (copies of writable ones given), also after a
-    pickle round trip or a deep copy.
+    Its arrays are read-only, also after a pickle round trip.
 
     Attributes
     ----------
@@ -103,23 +88,16 @@ class JacobianResult(ReadOnlyArrays):
     platform_twists : ndarray, shape (dof, 6)
         A basis of the platform's twist system (rows ``[ω; v]``).
     twist_map : ndarray or None, shape (6, a)
-        Platform twist per unit actuated rate (first ``a`` columns of
-        ``J^-1``); ``None`` when ``J`` is singular or has more rows than 6
-        (redundant actuation: one rate alone is not a motion, the rates must
-        agree, ``J [w; v] = [rates; 0]``).
+        Platform twist per unit actuated rate (first ``a`` columns of ``J^-1``);
+        ``None`` when ``J`` is singular or has more rows than 6 (redundant actuation).
     rank : int
-        Rank of ``J`` (normalised coordinates), decided on its rows scaled
-        to unit length: a row's length is the input's rate unit (a screw of
-        large pitch gives a short one), which does not change which wrenches
-        span.
+        Rank of ``J`` (normalised coordinates), decided on its rows scaled to unit length.
     condition : float
-        Condition number of ``J`` in normalised coordinates, rows as they
-        are (``inf`` if singular): it does depend on the inputs' rate units.
+        Condition number of ``J`` in normalised coordinates, rows as they are
+        (``inf`` if singular): it depends on the inputs' rate units.
     singular : bool
-        ``J`` has rank below 6: the actuated joints do not control the
-        platform at this pose (too few inputs, or an actuation singularity).
-        A ``J`` of rank 6 with more rows than 6 is regular: the platform is
-        controlled, with :attr:`redundant` inputs to spare.
+        ``J`` has rank below 6: the actuated joints do not control the platform
+        at this pose. Of rank 6 with more rows, it is regular, with :attr:`redundant` inputs to spare.
     limb_twists : tuple of ndarray
         Per limb, the joint twists ``$_ij`` (6 x n_i), derivatives of its finite screw.
     transform : ndarray, shape (4, 4)
@@ -127,9 +105,7 @@ class JacobianResult(ReadOnlyArrays):
     finite_screw : ndarray or None
         Its finite screw ``[w; v]`` (``None`` at a half-turn).
     length : float
-        The characteristic length of the pose (RMS distance of the joint
-        points from their centroid), the scale that lengths, moments and
-        round-off are measured against.
+        The characteristic length of the pose (RMS distance of the joint points from their centroid).
     """
 
     name: str
@@ -169,32 +145,17 @@ class JacobianResult(ReadOnlyArrays):
                 out.append({"kind": kind, "axis": clean_numbers(d), "point": clean_numbers(p, max(length, norm(p))), "pitch": h})
             return out
 
-        return {
-            "name": self.name,
-            "actuated": list(self.actuated),
-            "dof": self.dof,
-            "matrix": screws(self.matrix, moment_first=True),
-            "actuation_wrenches": screws(self.actuation_wrenches),
-            "actuation_axes": axes(self.actuation_wrenches),
-            "constraint_wrenches": screws(self.constraint_wrenches),
-            "constraint_axes": axes(self.constraint_wrenches),
-            "platform_twists": screws(self.platform_twists),
-            "twist_map": None if self.twist_map is None else np.array(screws(self.twist_map.T)).T.tolist(),
-            "rank": self.rank,
-            "condition": self.condition if np.isfinite(self.condition) else None,
-            "singular": self.singular,
-            "redundant": self.redundant,
-            "finite_screw": None if self.finite_screw is None else clean_screw(self.finite_screw, length),
-        }
+        return {"name": self.name, "actuated": list(self.actuated), "dof": self.dof, "matrix": screws(self.matrix, moment_first=True),
+                "actuation_wrenches": screws(self.actuation_wrenches), "actuation_axes": axes(self.actuation_wrenches),
+                "constraint_wrenches": screws(self.constraint_wrenches), "constraint_axes": axes(self.constraint_wrenches),
+                "platform_twists": screws(self.platform_twists),
+                "twist_map": None if self.twist_map is None else np.array(screws(self.twist_map.T)).T.tolist(), "rank": self.rank,
+                "condition": self.condition if np.isfinite(self.condition) else None, "singular": self.singular, "redundant": self.redundant,
+                "finite_screw": None if self.finite_screw is None else clean_screw(self.finite_screw, length)}
 
 
-def jacobian(
-    mechanism: Mechanism | ParallelModel,
-    q: Sequence[np.ndarray] | None = None,
-    *,
-    actuated: Sequence[str] | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> JacobianResult:
+def jacobian(mechanism: Mechanism | ParallelModel, q: Sequence[np.ndarray] | None = None, *, actuated: Sequence[str] | None = None,
+             tol: Tolerance = DEFAULT_TOLERANCE) -> JacobianResult:
     """The Jacobian of a parallel mechanism by differentiating its limbs' finite screws.
 
     Parameters
@@ -220,14 +181,11 @@ def jacobian(
     RequestError
         ``q`` is not one array of finite joint values per limb.
     AnalysisError
-        The limbs do not close at ``q``, or an actuated joint cannot move the
-        platform on its own at this pose (no actuation wrench).
+        The limbs do not close at ``q``, or an actuated joint cannot move the platform on its own.
 
     Examples
     --------
-    The METROM-type 5-axis machine, its five sliders driven: a 6 x 6 map
-    (five actuation rows and the constraint row) of full rank, away from
-    singularity:
+    The METROM-type 5-axis machine, its five sliders driven (five actuation rows and the constraint row):
 
     >>> import mobility
     >>> j = jacobian(mobility.load("mechanisms/metrom.yaml"))
@@ -319,37 +277,19 @@ def _jacobian_near_unit_size(model: ParallelModel, values: tuple[np.ndarray, ...
         fs = None
     for arr in (matrix, act_w, constraints_w, twists_w):
         arr.setflags(write=False)
-    return JacobianResult(
-        model.mechanism.name,
-        model.labels,
-        6 - constraints_n.shape[1],
-        matrix,
-        act_w,
-        constraints_w,
-        twists_w.reshape(-1, 6),
-        twist_map,
-        rank,
-        float(sv[0] / sv[-1]) if not singular and sv[-1] > 0 else float("inf"),
-        singular,
-        limb_twists,
-        screw.transform(),
-        fs,
-        length,
-    )
+    condition = float(sv[0] / sv[-1]) if not singular and sv[-1] > 0 else float("inf")
+    return JacobianResult(model.mechanism.name, model.labels, 6 - constraints_n.shape[1], matrix, act_w, constraints_w, twists_w.reshape(-1, 6),
+                          twist_map, rank, condition, singular, limb_twists, screw.transform(), fs, length)
 
 
 def _in_file_units(unit: JacobianResult, model: ParallelModel, scale: float, tol: Tolerance) -> JacobianResult:
     """The Jacobian ``unit`` of ``model`` scaled by ``scale``, written in the file's units.
 
-    A length ``x`` of the scaled model is ``x / scale`` in the file.  A twist
-    ``[w; v]`` per unit rate becomes ``[w; v / scale]`` per unit angle, and
-    ``scale [w; v / scale]`` per unit length (a P input's rate is a length
-    per time); a wrench ``[f; m]`` with unit product with its joint's twist
-    becomes ``scale [f; m / scale]`` for an angle input, ``[f; m / scale]``
-    for a length input; a unit-force constraint ``[f; m / scale]``, a
-    unit-moment couple ``[scale f; m]``.  Each is computed as written (the
-    large and small factors never meet), so every number is the file's
-    whenever the file's own numbers are representable.
+    A twist ``[w; v]`` per unit rate becomes ``[w; v / scale]`` per unit angle,
+    ``scale [w; v / scale]`` per unit length; an actuation wrench ``[f; m]``
+    becomes ``scale [f; m / scale]`` for an angle input, ``[f; m / scale]`` for
+    a length input; a unit-force constraint ``[f; m / scale]``, a couple
+    ``[scale f; m]``. The large and small factors never meet.
     """
     twist_factor = np.array([1.0, 1.0, 1.0, 1.0 / scale, 1.0 / scale, 1.0 / scale])
     kinds = [model.chains[c].limb.joints[p].kind for c, p in model.actuated]
@@ -369,23 +309,9 @@ def _in_file_units(unit: JacobianResult, model: ParallelModel, scale: float, tol
     screw = None if unit.finite_screw is None else unit.finite_screw * twist_factor
     for arr in (matrix, actuation, constraints):
         arr.setflags(write=False)
-    return JacobianResult(
-        unit.name,
-        unit.actuated,
-        unit.dof,
-        matrix,
-        actuation.reshape(-1, 6),
-        constraints.reshape(-1, 6),
-        (unit.platform_twists * twist_factor).reshape(-1, 6),
-        twist_map,
-        unit.rank,
-        unit.condition,
-        unit.singular,
-        limb_twists,
-        transform,
-        screw,
-        unit.length / scale,
-    )
+    return JacobianResult(unit.name, unit.actuated, unit.dof, matrix, actuation.reshape(-1, 6), constraints.reshape(-1, 6),
+                          (unit.platform_twists * twist_factor).reshape(-1, 6), twist_map, unit.rank, unit.condition, unit.singular,
+                          limb_twists, transform, screw, unit.length / scale)
 
 
 def _meeting_point(chain: Chain, values: np.ndarray) -> np.ndarray:

@@ -1,12 +1,8 @@
 """A parallel mechanism as serial limbs of finite screws, for its Jacobian.
 
-:func:`parallel_model` reads a :class:`~mobility.core.model.Mechanism` whose
-limbs are serial chains from the ground to the platform into a
-:class:`ParallelModel`: one :class:`Chain` per limb (its one-DOF freedoms as
-finite-screw joints, :class:`mobility.core.finite_screws.Limb`), its home
-values, the inverse kinematics that assembles it at a platform displacement,
-and which freedoms are actuated.  :mod:`mobility.jacobians.jacobian`
-differentiates it.
+One :class:`Chain` per limb (its one-DOF freedoms as finite-screw joints,
+:class:`mobility.core.finite_screws.Limb`), the inverse kinematics, and the
+actuated freedoms; :mod:`mobility.jacobians.jacobian` differentiates it.
 
 Examples
 --------
@@ -41,10 +37,8 @@ class Chain:
     Attributes
     ----------
     limb : Limb
-        The freedoms as :class:`~mobility.core.finite_screws.ScrewJoint` in the
-        mechanism's pose (its home), global frame.  A joint met from its
-        ``links[1]`` side has its freedoms in reverse order with their axes
-        reversed, so every chain variable is the joint's own variable.
+        The freedoms at the mechanism's pose, global frame. A joint met from its
+        ``links[1]`` side has its freedoms reversed, axes too: every chain variable is the joint's own.
     joints : tuple of int
         Index in :attr:`Mechanism.joints` of each freedom's joint.
     freedoms : tuple of int
@@ -70,8 +64,7 @@ class ParallelModel:
     actuated : tuple of (int, int)
         ``(chain, position in the chain)`` of each actuated freedom.
     labels : tuple of str
-        Name of each actuated freedom (the joint name; ``name.k`` for freedom
-        ``k``, from 0, of a multi-DOF joint).
+        Name of each actuated freedom (``name.k`` for freedom ``k`` of a multi-DOF joint).
     """
 
     mechanism: Mechanism
@@ -89,10 +82,7 @@ class ParallelModel:
         return self.chains[0].limb.finite_screw(values[0])
 
     def closure_error(self, q: Sequence[np.ndarray]) -> float:
-        """Largest difference between the chains' platform displacements (entries of ``[R; p / L]``).
-
-        The limbs close at ``q`` when it is at most ``Tolerance.closure``.
-        """
+        """Largest difference between the chains' platform displacements (entries of ``[R; p / L]``; closed: at most ``Tolerance.closure``)."""
         length = self.length
         mats = [c.limb.transform(v) for c, v in zip(self.chains, q)]
         return max(max(float(np.max(np.abs(m[:3, :3] - mats[0][:3, :3]))), float(np.max(np.abs(m[:3, 3] - mats[0][:3, 3]))) / length) for m in mats)
@@ -106,11 +96,8 @@ class ParallelModel:
     def assemble(self, displacement: np.ndarray, start: Sequence[np.ndarray] | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[np.ndarray, ...]:
         """Joint values of every chain putting the platform at ``displacement`` (4x4): inverse kinematics.
 
-        Each chain is solved by :func:`scipy.optimize.least_squares` on the
-        entries of ``[R; p / L]`` with the chain's twists as Jacobian, from
-        ``start`` (default: the home pose).  A chain reaches the displacement
-        when no entry of its residual exceeds half of ``tol.closure``, so that
-        any two chains agree to ``tol.closure`` (:meth:`closure_error`).
+        Each chain by :func:`scipy.optimize.least_squares` on ``[R; p / L]`` from
+        ``start`` (default: home), to half of ``tol.closure``, so any two chains agree to ``tol.closure``.
 
         Raises
         ------
@@ -145,12 +132,8 @@ class ParallelModel:
                 return np.concatenate([(t[:3, :3] - target[:3, :3]).ravel(), (t[:3, 3] - target[:3, 3]) / length])
 
             def jac(x: np.ndarray, limb: Limb = limb) -> np.ndarray:
-                t = limb.transform(x)
-                tw = limb.twists(x)
-                cols = []
-                for w, v in zip(tw[:3].T, tw[3:].T):
-                    cols.append(np.concatenate([(skew(w) @ t[:3, :3]).ravel(), (cross(w, t[:3, 3]) + v) / length]))
-                return np.array(cols).T
+                t, tw = limb.transform(x), limb.twists(x)
+                return np.array([np.concatenate([(skew(w) @ t[:3, :3]).ravel(), (cross(w, t[:3, 3]) + v) / length]) for w, v in zip(tw[:3].T, tw[3:].T)]).T
 
             sol = least_squares(residual, x0, jac=jac, method="lm", x_scale="jac", xtol=SOLVER_STOP, ftol=SOLVER_STOP, gtol=SOLVER_STOP)
             if float(np.max(np.abs(sol.fun))) > 0.5 * tol.closure:
@@ -219,10 +202,10 @@ def joint_values(q: Any, chains: Sequence[Chain], key: str = "q") -> tuple[np.nd
         except (TypeError, ValueError, OverflowError):
             raise RequestError(argument=key, expected=f"{expected} (numbers)", got=type(v).__name__) from None
         if array.ndim != 1 or not np.isfinite(array).all():
-            raise RequestError(f"{key}: expected {expected} (finite numbers in a flat list)")
+            raise RequestError(argument=key, expected=f"{expected} (finite numbers in a flat list)")
         values.append(array)
     if len(values) != len(chains) or any(len(v) != len(c.limb) for v, c in zip(values, chains)):
-        raise RequestError(f"{key}: expected {expected}")
+        raise RequestError(argument=key, expected=expected)
     return tuple(values)
 
 
@@ -252,19 +235,15 @@ def parallel_model(mechanism: Mechanism, actuated: Sequence[str] | None = None) 
     Parameters
     ----------
     mechanism : Mechanism
-        Every link other than the ground and the end effector must have
-        exactly two joints (limbs are serial chains).
+        Every link but the ground and the end effector has exactly two joints.
     actuated : sequence of str, optional
-        Names of the actuated joints (``name.k`` picks freedom ``k`` of a
-        multi-DOF joint, from 0, as every report labels it); default: the
-        joints marked ``actuated``.
+        Names of the actuated joints (``name.k``: freedom ``k`` of a multi-DOF
+        joint); default: those marked ``actuated``.
 
     Raises
     ------
     MechanismError
-        When the mechanism is not a set of serial limbs, or an actuated name
-        is unknown, missing or repeated (or ``actuated`` is one string, not a
-        sequence of names).
+        Not a set of serial limbs, or an actuated name unknown, missing or repeated.
     RequestError
         When ``mechanism`` is not a :class:`~mobility.core.model.Mechanism`.
     """

@@ -34,9 +34,7 @@ def norm(v: np.ndarray) -> float:
 def is_couple(wrench: np.ndarray, tol: Tolerance, length: float = 1.0) -> bool:
     """Whether the force part of ``[f; m]`` is round-off next to its moment over ``length``: a pure couple.
 
-    In normalised coordinates (lengths over ``length``) the moment is
-    ``m / length``; the test compares like with like, so it is the same at
-    every scale of the file.
+    Like with like (the moment over ``length``): the same at every scale of the file.
     """
     w = np.asarray(wrench, dtype=float)
     scale = binary_scale(w[:3], w[3:] / length)
@@ -46,13 +44,10 @@ def is_couple(wrench: np.ndarray, tol: Tolerance, length: float = 1.0) -> bool:
 def wrench_axis(wrench: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, length: float = 1.0) -> tuple[str, np.ndarray, np.ndarray, float]:
     """Kind, unit direction, point nearest the origin and pitch of a wrench ``[f; m]``.
 
-    The direction keeps the sign of the force (unlike the canonical bases of
-    :mod:`mobility.core.canonical`, which choose signs for reading).  A force
-    part at round-off next to the moment over ``length`` (the mechanism's
-    characteristic length; ``tol.round_off``) makes a couple; a pitch at
-    round-off next to the larger of ``length`` and the distance of the axis
-    makes a pure force.  Nothing is squared before it is scaled, so wrenches
-    of any magnitude give their axis.
+    The direction keeps the sign of the force. A force part at round-off next
+    to the moment over ``length`` (the characteristic length) makes a couple; a
+    pitch at round-off next to the larger of ``length`` and the axis's distance
+    a pure force. Nothing is squared before it is scaled.
 
     Examples
     --------
@@ -80,11 +75,9 @@ def wrench_axis(wrench: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, length: 
 def clean_screw(screw: np.ndarray, length: float, moment_first: bool = False) -> list[float]:
     """A screw ``[a; b]`` (``b`` a moment or a velocity: ``a`` times a length) as a list, round-off shown as 0.
 
-    Each part is measured against the size of the whole screw in normalised
-    terms, ``max(|a|, |b| / length)``: ``a`` against it, ``b`` against it
-    times ``length``.  So the same screw of a file scaled by any factor
-    shows the same zeros.  ``moment_first``: the screw is written ``[b; a]``
-    (a row of the Jacobian, ``(SWAP W)^T``).
+    Each part against the whole screw's size ``max(|a|, |b| / length)`` (``b``
+    times ``length``): a file scaled by any factor shows the same zeros.
+    ``moment_first``: written ``[b; a]`` (a row of the Jacobian, ``(SWAP W)^T``).
 
     Examples
     --------

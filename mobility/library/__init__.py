@@ -1,13 +1,10 @@
 """The bundled library: the classic mechanisms and the flexure examples, shipped inside the package.
 
-The files live in this folder of the installed package, so they are there
-without a clone: ``mechanisms/`` holds the classic mechanisms (each with
-its ``expected`` block and its source), ``examples/flexure/`` the flexure
-examples (rods joining two bodies).  In a clone of the repository the
-folders ``mechanisms/`` and ``examples/`` at its root are links to these
-two, so every path written there (``mechanisms/3prs.yaml``,
-``examples/flexure/three_rod.yaml``) names the same file.
-``mobility check --library`` checks them all.
+``mechanisms/`` holds the classic mechanisms (each with its ``expected``
+block and its source), ``examples/flexure/`` the flexure examples; in a clone
+the folders of the same names at its root link to them, so
+``mechanisms/3prs.yaml`` names the same file.  ``mobility check --library``
+checks them all.
 
 Examples
 --------
@@ -17,7 +14,7 @@ Examples
 >>> mobility.analyze(mobility.load(mobility.library.path("bennett"))).pattern
 '1R'
 >>> len(names()), names()[:3], flexure_names()
-(61, ('3crr', '3prs', '3prs_tilted'), ('three_rod',))
+(63, ('3crr', '3prs', '3prs_tilted'), ('three_rod',))
 >>> [folder.name for folder in folders()]
 ['mechanisms', 'flexure']
 >>> path("benett")
@@ -25,7 +22,7 @@ Traceback (most recent call last):
     ...
 mobility.errors.RequestError: library.path: no file named 'benett' in the bundled library (did you mean 'bennett'?); \
 names: 3crr, 3prs, 3prs_tilted, 3rps, 3ruu, 3upu_singular, 3upu_wrist, 4puu, 4puu_singular, 4ruu_schoenflies, 6sps, 6ups, \
-... (62 in all)
+... (64 in all)
 """
 
 from __future__ import annotations
@@ -90,23 +87,13 @@ def paths() -> tuple[Path, ...]:
     Examples
     --------
     >>> len(paths()), paths()[-1].name
-    (62, 'three_rod.yaml')
+    (64, 'three_rod.yaml')
     """
     return tuple(MECHANISMS / f"{n}{SUFFIX}" for n in names()) + tuple(FLEXURE / f"{n}{SUFFIX}" for n in flexure_names())
 
 
 def path(name: str) -> Path:
-    """The bundled file of a mechanism or flexure example, by its name (``"3prs"``; ``"3prs.yaml"`` too).
-
-    Parameters
-    ----------
-    name : str
-        One of :func:`names` or :func:`flexure_names`, with or without ``.yaml``.
-
-    Returns
-    -------
-    pathlib.Path
-        The file inside the installed package (absolute), ready for :func:`mobility.load`.
+    """The bundled file (absolute, inside the installed package) of a mechanism or flexure example, by its name (``"3prs"``; ``"3prs.yaml"`` too).
 
     Raises
     ------

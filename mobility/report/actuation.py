@@ -1,8 +1,6 @@
 """Reports of actuation assessments and flexure spaces, as text and as JSON (``mobility actuation``).
 
-Only formatting: the answers come from :mod:`mobility.actuation` and
-:mod:`mobility.flexure`.  Each ``*_text`` function gives the lines printed by
-the command line, each ``*_json`` function the JSON object of ``--json``.
+Each ``*_text`` function gives the lines printed, each ``*_json`` the object of ``--json``.
 
 Examples
 --------
@@ -39,15 +37,7 @@ from ..errors import counted
 from ..flexure import FlexureSpaces
 from .text import fmt_number, fmt_vector, screw_text
 
-__all__ = [
-    "actuation_text",
-    "actuation_json",
-    "enumeration_text",
-    "enumeration_json",
-    "flexure_spaces_text",
-    "flexure_text",
-    "flexure_json",
-]
+__all__ = ["actuation_text", "actuation_json", "enumeration_text", "enumeration_json", "flexure_spaces_text", "flexure_text", "flexure_json"]
 
 PoseChecks = Sequence[tuple[str, ActuationCheck]]
 """Further poses of one choice of inputs: ``(label, check)`` pairs."""
@@ -138,11 +128,8 @@ def enumeration_text(found: Enumeration) -> str:
     """The table of ``--enumerate``: counts per type, then every combination ranked."""
     how = f"any {counted(found.k, 'input')}" if found.mode != "limb" else _limb_choice(found).replace("one joint", "one actuated joint")
     out = [] if found.kind == "flexure" else [found.name]
-    out.append(
-        f"  {found.dof} DOF ({found.pattern}); {how}: {counted(len(found.combinations), 'combination')}, "
-        f"checked at {counted(len(found.poses), 'pose')}"
-    )
-    out.append("  type            valid / total")
+    out += [f"  {found.dof} DOF ({found.pattern}); {how}: {counted(len(found.combinations), 'combination')}, checked at {counted(len(found.poses), 'pose')}",
+            "  type            valid / total"]
     out += [f"  {g.type:<15} {g.valid:>5} / {g.total}" for g in found.groups]
     width = max([len(" ".join(c.inputs)) for c in found.combinations] + [6])
     out.append(f"  {'rank':<5} {'inputs':<{width}}  {'type':<11} {'verdict':<19} {'poses valid':<12} {'worst kappa':<18} worst margin")
@@ -172,14 +159,11 @@ def enumeration_json(found: Enumeration) -> str:
 def flexure_spaces_text(spaces: FlexureSpaces) -> str:
     """The compliance eigenvalues and the freedom and constraint spaces of a flexure."""
     s, unit = spaces.length, spaces.length_unit
-    out = [spaces.name]
-    out.append(f"  compliance eigenvalues, relative to the largest ({spaces.largest:.3g} per N in coordinates scaled by L = {fmt_number(spaces.length)} {unit}):")
-    out.append("    " + "  ".join(f"{v:.3g}" for v in spaces.eigenvalues))
-    out.append(
-        f"  threshold {spaces.threshold:g}: {counted(spaces.dof, 'freedom')} above it, {counted(6 - spaces.dof, 'constraint')} at or below "
-        f"(nearest eigenvalues {spaces.gap[0]:.3g} and {spaces.gap[1]:.3g})"
-    )
-    out.append(f"  freedom space: {spaces.dof} DOF ({spaces.pattern})")
+    out = [spaces.name, f"  compliance eigenvalues, relative to the largest ({spaces.largest:.3g} per N in coordinates scaled by L = {fmt_number(spaces.length)} {unit}):",
+           "    " + "  ".join(f"{v:.3g}" for v in spaces.eigenvalues),
+           f"  threshold {spaces.threshold:g}: {counted(spaces.dof, 'freedom')} above it, {counted(6 - spaces.dof, 'constraint')} at or below "
+           f"(nearest eigenvalues {spaces.gap[0]:.3g} and {spaces.gap[1]:.3g})",
+           f"  freedom space: {spaces.dof} DOF ({spaces.pattern})"]
     out += [f"    translation along {fmt_vector(t)}" for t in spaces.freedom_translations]
     out += [f"    {_motion(r, s, unit)}" for r in spaces.freedom_rotations]
     out.append(f"  constraint space: {counted(6 - spaces.dof, 'wrench', 'es')}")

@@ -1,8 +1,6 @@
 """The table of ``mobility check``: one row per file, then a summary line.
 
-Only formatting: :func:`mobility.testing.check.check_paths` computes the
-:class:`~mobility.testing.check.CheckReport`; its JSON form is
-:meth:`~mobility.testing.check.CheckReport.to_dict`.
+:func:`mobility.testing.check.check_paths` computes the :class:`~mobility.testing.check.CheckReport`.
 
 Examples
 --------

@@ -1,8 +1,6 @@
 """Advice on closures for people: the section ``mobility analyze`` adds for a robot file with closed loops.
 
-Only formatting: :func:`mobility.core.closures.closure_advice` computes; this
-module writes it as text (:func:`closures_report`) and adds it to a report of
-``mobility analyze`` in any of its formats (:func:`with_closures`).
+:func:`mobility.core.closures.closure_advice` computes; this module writes.
 
 Examples
 --------
@@ -53,18 +51,7 @@ def closures_report(advice: Sequence["ClosureAdvice"]) -> str:
 
 
 def with_closures(report: str, fmt: str, advice: Sequence["ClosureAdvice"]) -> str:
-    """A report of ``mobility analyze`` with the advice on closures added (nothing when there is no closure).
-
-    Parameters
-    ----------
-    report : str
-        The report in format ``fmt``.
-    fmt : str
-        ``"json"`` (a ``closures`` key is added to the object), ``"md"`` (a
-        section with the text in a code block); any other (``"text"``): the
-        section appended.
-    advice : sequence of ClosureAdvice
-    """
+    """A report of ``mobility analyze`` in format ``fmt`` with the advice on closures added (key ``closures``: :func:`~mobility.report.text.with_section`; nothing without closures)."""
     if not advice:
         return report
     return with_section(report, fmt, "closures", [a.to_dict() for a in advice], "Closures", closures_report(advice))

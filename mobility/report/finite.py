@@ -1,8 +1,6 @@
 """The finite-motion answer for people: the section printed by ``mobility analyze --finite``.
 
-Only formatting: :func:`mobility.finite.finite_mobility` computes, this
-module writes it as text (:func:`finite_report`) and adds it to a report of
-``mobility analyze`` in any of its formats (:func:`with_finite`).
+:func:`mobility.finite.finite_mobility` computes; this module writes.
 
 Examples
 --------
@@ -29,32 +27,16 @@ __all__ = ["finite_report", "with_finite"]
 
 
 def finite_report(f: "FiniteMobility") -> str:
-    """The text section printed by ``mobility analyze --finite``.
-
-    Parameters
-    ----------
-    f : FiniteMobility
-
-    Returns
-    -------
-    str
-        Lines: the verdict, the instantaneous and full-cycle answers, the
-        moves, the second-order test, each branch, the explanation, warnings.
-    """
-    out = [
-        "finite motion (instantaneous or full-cycle):",
-        f"  verdict: {f.verdict}",
-        f"  instantaneous: DOF {f.instantaneous_dof} ({f.instantaneous_pattern}), mobility {f.instantaneous_mobility}"
-        f"   (distance to a singularity: {f.margin.smallest_kept:.2e})",
-        f"  full-cycle:    DOF {f.full_cycle_dof} ({f.full_cycle_pattern}), mobility {f.full_cycle_mobility}",
-    ]
+    """The text section printed by ``mobility analyze --finite``: verdict, answers, moves, second order, branches, warnings."""
+    out = ["finite motion (instantaneous or full-cycle):", f"  verdict: {f.verdict}",
+           f"  instantaneous: DOF {f.instantaneous_dof} ({f.instantaneous_pattern}), mobility {f.instantaneous_mobility}"
+           f"   (distance to a singularity: {f.margin.smallest_kept:.2e})",
+           f"  full-cycle:    DOF {f.full_cycle_dof} ({f.full_cycle_pattern}), mobility {f.full_cycle_mobility}"]
     if f.instantaneous_only_dof or f.instantaneous_only_mobility:
         out.append(f"  instantaneous only: {f.instantaneous_only_dof} end-effector DOF, {counted(f.instantaneous_only_mobility, 'freedom')} of the mechanism")
     if f.probes:
-        out.append(
-            f"  moves: {f.moved} of {counted(len(f.probes), 'direction')} re-closed at every step ({', '.join(f'{h:g}' for h in f.steps)}; "
-            f"radians, lengths over the characteristic length)"
-        )
+        out.append(f"  moves: {f.moved} of {counted(len(f.probes), 'direction')} re-closed at every step ({', '.join(f'{h:g}' for h in f.steps)}; "
+                   f"radians, lengths over the characteristic length)")
     if f.second_order is not None:
         out.append(f"  second order: {counted(f.second_order.cokernel, 'dependent loop equation')}; {_second_order_text(f.second_order)}")
     out += [f"  branch {i + 1}: {b.describe()}" for i, b in enumerate(f.branches)]
@@ -72,17 +54,7 @@ def _second_order_text(so: "SecondOrder") -> str:
 
 
 def with_finite(report: str, fmt: str, finite: "FiniteMobility") -> str:
-    """A report of ``mobility analyze`` with the finite-motion answer added.
-
-    Parameters
-    ----------
-    report : str
-        The report in format ``fmt``.
-    fmt : str
-        ``"json"`` (a ``finite`` key is added to the object), ``"md"`` (a
-        section with the text in a code block); any other (``"text"``): the
-        section appended.
-    finite : FiniteMobility
+    """A report of ``mobility analyze`` in format ``fmt`` with the finite-motion answer added (key ``finite``: :func:`~mobility.report.text.with_section`).
 
     Examples
     --------

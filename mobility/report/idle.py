@@ -1,17 +1,9 @@
 """What the idle freedoms of a mechanism are, in words: the hint after ``idle DOF`` in the text report.
 
-An idle freedom moves joints and leaves the end effector still.  Where it
-comes from depends on the mechanism, and the hint says which case applies:
-
-* an **S–S rod** (more generally a chain of links between two spherical
-  joints, each link carrying two joints, such as the S–P–S leg of a
-  Gough–Stewart platform) spins about the line through its two centres;
-* a **serial chain** (no loop) with more joint freedoms than its end
-  effector has DOF moves by *self-motion*: a redundant arm, or one whose
-  axes line up at this pose;
-* a **chain off the path** between ground and end effector (a hanging
-  chain) moves alone;
-* otherwise joints inside the loops move against each other.
+An idle freedom moves joints and leaves the end effector still: an **S–S rod**
+(or S–P–S leg) spinning about its centres' line, a *self-motion* of a serial
+chain with more freedoms than DOF, a **chain off the path** moving alone, or
+joints inside the loops moving against each other.
 
 Examples
 --------
@@ -36,10 +28,8 @@ __all__ = ["spherical_chains", "idle_hint"]
 def spherical_chains(mechanism: Mechanism) -> int:
     """The number of chains of links between two spherical joints whose every link carries just those two joints.
 
-    Each such chain (an S–S rod, an S–P–S leg...) turns as one body about the
-    line through its two centres while the rest of the mechanism stays
-    still: one idle freedom each.  The ground and the end effector never
-    belong to one.
+    Each (an S–S rod, an S–P–S leg...) spins about its centres' line: one idle
+    freedom. The ground and the end effector never belong to one.
 
     Examples
     --------
@@ -83,9 +73,7 @@ def _serial(node: Node) -> bool:
 def idle_hint(result: Result) -> str:
     """The words after the count of idle freedoms: which motions of this mechanism they are.
 
-    Reads the mechanism and the series/parallel tree the result carries
-    (:attr:`~mobility.core.result.Result.node_systems`); a result without
-    them gets a hint without example.
+    From the tree the result carries (:attr:`~mobility.core.result.Result.node_systems`; without it, no example).
 
     Examples
     --------

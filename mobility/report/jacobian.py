@@ -1,12 +1,7 @@
 """Reports of a Jacobian (:class:`~mobility.jacobians.JacobianResult`): text and JSON.
 
-Only formatting: no computation happens here.  :func:`jacobian_text` is what
-``mobility jacobian`` prints, :func:`jacobian_json` its ``--json`` object;
-:func:`wrench_line` writes one wrench as its kind and axis.
-
-Every number is shown with round-off as 0 relative to what it is part of
-(:func:`~mobility.jacobians.jacobian.clean_screw`: a moment against its
-force times the mechanism's characteristic length), so a file scaled by any
+Round-off is shown as 0 relative to what a number is part of
+(:func:`~mobility.jacobians.wrenches.clean_screw`), so a file scaled by any
 factor prints the same digits, scaled.
 
 Examples
@@ -34,11 +29,7 @@ __all__ = ["wrench_line", "jacobian_text", "jacobian_json"]
 
 
 def wrench_line(wrench: np.ndarray, length: float) -> str:
-    """A wrench ``[f; m]`` as ``kind  along ... through ...`` (a couple: ``about ...``), lengths rounded against ``length``.
-
-    ``length`` is the mechanism's characteristic length (the couple test and
-    the round-off of the point and the pitch are relative to it).
-    """
+    """A wrench ``[f; m]`` as ``kind  along ... through ...`` (a couple: ``about ...``), against the characteristic ``length``."""
     kind, d, p, h = wrench_axis(wrench, length=length)
     if kind == "couple":
         return f"couple  about {fmt_vector(d)}"
@@ -57,7 +48,6 @@ def jacobian_text(result: JacobianResult, unit: str = "") -> str:
 
     Parameters
     ----------
-    result : JacobianResult
     unit : str
         The mechanism's length unit, named in the matrix's heading.
     """

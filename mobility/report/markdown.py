@@ -1,9 +1,7 @@
 """A Markdown report of a :class:`~mobility.core.result.Result` (``mobility analyze --format md``).
 
-Tables that paste into a paper, a README or an issue: the end effector's
-freedoms, its constraint wrenches, the whole-mechanism counts (Grübler–Kutzbach
-beside the screw-theory mobility, with the reason they differ) and, for a
-parallel mechanism, one row per limb.  Only formatting happens here.
+Tables that paste into a paper, a README or an issue: freedoms, constraint
+wrenches, the whole-mechanism counts and, for a parallel mechanism, one row per limb.
 
 Examples
 --------
@@ -187,20 +185,11 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     out.append("")
     rows = _constraint_rows(result)
     out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}"], rows) if rows else "None: the end effector is free.")
-    out.append("")
-    out.append("## Whole mechanism")
-    out.append("")
-    counts = [
-        ["links (ground included)", "n", result.links],
-        ["joints", "j", result.joints],
-        ["joint freedoms", "Σf", result.joint_freedoms],
-        ["independent loops", "j − n + 1", result.loops],
-        ["Grübler–Kutzbach count", "6(n − 1 − j) + Σf", result.gruebler_kutzbach],
-        ["mobility (screw theory)", "M", result.mobility],
-        ["redundant constraints", "M − G–K", result.redundant_constraints],
-        ["wrenches common to every joint", "", result.common_constraints],
-        ["idle DOF (end effector still)", "M − DOF", result.idle_dof],
-    ]
+    out += ["", "## Whole mechanism", ""]
+    counts = [["links (ground included)", "n", result.links], ["joints", "j", result.joints], ["joint freedoms", "Σf", result.joint_freedoms],
+              ["independent loops", "j − n + 1", result.loops], ["Grübler–Kutzbach count", "6(n − 1 − j) + Σf", result.gruebler_kutzbach],
+              ["mobility (screw theory)", "M", result.mobility], ["redundant constraints", "M − G–K", result.redundant_constraints],
+              ["wrenches common to every joint", "", result.common_constraints], ["idle DOF (end effector still)", "M − DOF", result.idle_dof]]
     out.append(markdown_table(["quantity", "formula", "value"], counts, align="llr"))
     if result.gruebler_kutzbach_explanation:
         out += ["", f"Why Grübler–Kutzbach differs: {md_line(result.gruebler_kutzbach_explanation)}"]

@@ -1,16 +1,9 @@
 """Reports of a :class:`~mobility.sweeps.SweepResult`: a short text summary, CSV and JSON.
 
-Only formatting: the sweep is computed by :func:`mobility.sweep`.
-
-* :func:`sweep_summary`: what ``mobility sweep`` prints: the grid, how many
-  poses were assembled, the poses per answer (DOF, pattern, mobility), the
-  actuation verdicts, the singular poses, where the answer changes and the seams
-  of full turns;
-* :func:`sweep_csv`: a header row naming each varied coordinate (with its
-  unit), then ``dof``, ``pattern``, ``mobility`` and the other columns of
-  :data:`mobility.sweeps.COLUMNS`; one row per pose, empty cells where a pose
-  is not assembled;
-* :func:`sweep_json`: :meth:`SweepResult.to_dict` as JSON.
+:func:`sweep_summary` is what ``mobility sweep`` prints; :func:`sweep_csv` has
+a header naming each varied coordinate (with its unit), then the columns of
+:data:`mobility.sweeps.COLUMNS`, one row per pose, empty cells where a pose is
+not assembled; :func:`sweep_json` is :meth:`SweepResult.to_dict` as JSON.
 
 Examples
 --------
@@ -112,10 +105,8 @@ def sweep_summary(result: SweepResult) -> str:
     left = result.regular[2] - len(result.axes) if result.regular is not None else 0
     if left > 0:
         assert result.regular is not None  # nothing is left without a regular pose
-        out.append(
-            f"  note: {counted(len(result.axes), 'coordinate')} driven for mobility {result.regular[2]}: the other {counted(left, 'freedom')} "
-            f"{'follows' if left == 1 else 'follow'} the solver (the smallest change from the neighbouring pose), so the path across the grid decides {'it' if left == 1 else 'them'}"
-        )
+        out.append(f"  note: {counted(len(result.axes), 'coordinate')} driven for mobility {result.regular[2]}: the other {counted(left, 'freedom')} "
+                   f"{'follows' if left == 1 else 'follow'} the solver (the smallest change from the neighbouring pose), so the path across the grid decides {'it' if left == 1 else 'them'}")
     if result.actuated:
         verdicts = ", ".join(f"{v} at {n:,}" for v, n in result.verdict_counts().items())
         out.append(f"  actuation by {', '.join(result.actuated)}: {verdicts}")
@@ -123,20 +114,16 @@ def sweep_summary(result: SweepResult) -> str:
         if finite.any():
             kappa = result.conditioning[finite]
             worst = int(np.flatnonzero(finite)[first_least(kappa)])
-            out.append(
-                f"    conditioning kappa: median {fmt_number(float(np.median(kappa)), digits=3)}, "
-                f"smallest {fmt_number(float(kappa.min()), digits=3)} at {describe_values(result, result.values[worst])}"
-            )
+            out.append(f"    conditioning kappa: median {fmt_number(float(np.median(kappa)), digits=3)}, "
+                       f"smallest {fmt_number(float(kappa.min()), digits=3)} at {describe_values(result, result.values[worst])}")
         controlled = result.assembled & (result.verdict != SINGULAR)  # at a singular pose the margin is that of a lower rank
         margins = np.where(controlled, result.actuation_margin, np.inf)
         if np.isfinite(margins).any():
             lowest = first_least(margins)
             where = "" if controlled.sum() == result.assembled.sum() else " of the poses not actuation-singular"
             near = int((margins < result.tolerance.near_singular).sum())  # as `mobility actuation` warns at one pose
-            out.append(
-                f"    actuation margin (distance to an actuation singularity): smallest{where} {float(margins[lowest]):.2e} "
-                f"at {describe_values(result, result.values[lowest])}; near an actuation singularity: {near:,}"
-            )
+            out.append(f"    actuation margin (distance to an actuation singularity): smallest{where} {float(margins[lowest]):.2e} "
+                       f"at {describe_values(result, result.values[lowest])}; near an actuation singularity: {near:,}")
         out += transmission_lines(result)
     margin = result.smallest_kept[result.assembled]
     worst = int(np.flatnonzero(result.assembled)[first_least(margin)])
@@ -145,45 +132,38 @@ def sweep_summary(result: SweepResult) -> str:
     singular = result.singular
     if singular:
         out.append(f"  singular poses ({len(singular):,}):")
-        for p in singular[:SUMMARY_SINGULAR_LIMIT]:
-            out.append(f"    {describe_values(result, p.values)}: {'; '.join(p.reasons)}")
-        if len(singular) > SUMMARY_SINGULAR_LIMIT:
-            out.append(f"    ... and {len(singular) - SUMMARY_SINGULAR_LIMIT:,} more (see --format csv or json)")
+        out += _first(singular, SUMMARY_SINGULAR_LIMIT, lambda p: f"    {describe_values(result, p.values)}: {'; '.join(p.reasons)}", " (see --format csv or json)")
     elif result.assembled.all():
         out.append("  singular poses: none on the grid")
     else:  # the edge of the assembled region is where the loops reach a limit: a singular pose, which Newton closes poorly
         missing = int(result.size - result.assembled.sum())
-        out.append(
-            f"  singular poses: none among the assembled poses; the {missing:,} not assembled may hold some "
-            "(where assembly ends the loops reach a limit, itself a singular pose)"
-        )
+        out.append(f"  singular poses: none among the assembled poses; the {missing:,} not assembled may hold some "
+                   "(where assembly ends the loops reach a limit, itself a singular pose)")
     dips = result.dips
     if dips:
         out.append(f"  margin dips ({len(dips):,}): a singularity with the same answer on both sides may lie next to these poses, between grid points; a finer grid there tells")
-        for d in dips[:SUMMARY_SINGULAR_LIMIT]:
-            what = "actuation margin" if d.column == "actuation_margin" else "rank margin"
-            around = ", ".join(f"{m:.2e}" for m in d.neighbours)
-            whose = "its neighbours" if len(d.neighbours) == 2 else "an end of the grid; its neighbour"
-            out.append(f"    {describe_values(result, d.values)}: {what} {d.margin:.2e} ({whose} along {d.axis}: {around})")
-        if len(dips) > SUMMARY_SINGULAR_LIMIT:
-            out.append(f"    ... and {len(dips) - SUMMARY_SINGULAR_LIMIT:,} more (see --format json)")
+        out += _first(dips, SUMMARY_SINGULAR_LIMIT, lambda d: f"    {describe_values(result, d.values)}: "
+                      f"{'actuation margin' if d.column == 'actuation_margin' else 'rank margin'} {d.margin:.2e} "
+                      f"({'its neighbours' if len(d.neighbours) == 2 else 'an end of the grid; its neighbour'} along {d.axis}: "
+                      f"{', '.join(f'{m:.2e}' for m in d.neighbours)})", " (see --format json)")
     changes = result.changes
     classes = result.classes()
     if len(changes):
         out.append(f"  the answer changes between {len(changes):,} pair{'' if len(changes) == 1 else 's'} of neighbouring poses:")
-        for a, b, _ in changes[: SUMMARY_SINGULAR_LIMIT // 2]:
-            out.append(f"    {describe_values(result, result.values[a])} ({_answer(classes[a])}) -> {describe_values(result, result.values[b])} ({_answer(classes[b])})")
-        if len(changes) > SUMMARY_SINGULAR_LIMIT // 2:
-            out.append(f"    ... and {len(changes) - SUMMARY_SINGULAR_LIMIT // 2:,} more")
+        out += _first(changes, SUMMARY_SINGULAR_LIMIT // 2, lambda c: f"    {describe_values(result, result.values[c[0]])} ({_answer(classes[c[0]])}) -> "
+                      f"{describe_values(result, result.values[c[1]])} ({_answer(classes[c[1]])})")
     seams = result.seams
     if len(seams):
         out.append(f"  seams: at {len(seams):,} pair{'' if len(seams) == 1 else 's'} of neighbouring poses a full turn comes back on another pose "
                    "(no small motion joins them: free joints drifted, or another assembly was reached):")
-        for a, b in seams[: SUMMARY_SINGULAR_LIMIT // 2]:
-            out.append(f"    {describe_values(result, result.values[a])} -> {describe_values(result, result.values[b])}")
-        if len(seams) > SUMMARY_SINGULAR_LIMIT // 2:
-            out.append(f"    ... and {len(seams) - SUMMARY_SINGULAR_LIMIT // 2:,} more (see --format json)")
+        out += _first(seams, SUMMARY_SINGULAR_LIMIT // 2, lambda s: f"    {describe_values(result, result.values[s[0]])} -> {describe_values(result, result.values[s[1]])}",
+                      " (see --format json)")
     return "\n".join(out)
+
+
+def _first(items: Any, limit: int, line: Any, more: str = "") -> list[str]:
+    """``line(item)`` for the first ``limit`` items, then how many more there are."""
+    return [line(x) for x in items[:limit]] + ([f"    ... and {len(items) - limit:,} more{more}"] if len(items) > limit else [])
 
 
 def _answer(c: tuple[int, str, int, str] | None) -> str:

@@ -1,25 +1,18 @@
 """Pictures of a sweep: a curve (one coordinate), a map (two) or slices of a 3-D grid.
 
-* **curve**: the end effector's DOF and the mobility along the coordinate
-  (steps), and below them the rank margin (smallest kept relative singular
-  value, log scale) and, with inputs, the actuation conditioning; singular
-  poses are marked by red lines, poses that could not be assembled are shaded;
-* **map**: the colour is the actuation conditioning when inputs are chosen,
-  else the rank margin (log10); the regions of each answer (DOF, pattern,
-  mobility, verdict) are outlined, singular poses marked with red crosses,
-  poses not assembled left grey; with the transmission indices the
-  good-transmission workspace (``LTI >= threshold``) is outlined dashed
-  (``"mobility:sweep:good-transmission"``) and a curve shows the LTI;
-* **slices**: the same map at up to :data:`MAX_SLICES` values of the third
-  coordinate, the slices holding singular poses first.
+* **curve**: DOF and mobility (steps) over the rank margin (log scale) and,
+  with inputs, the conditioning and LTI; singular poses red lines, poses not
+  assembled shaded;
+* **map**: colour the conditioning with inputs, else the rank margin (log10);
+  each answer's region outlined, singular poses red crosses, the
+  good-transmission workspace outlined dashed (``"mobility:sweep:good-transmission"``);
+* **slices**: the map at up to :data:`MAX_SLICES` values of the third
+  coordinate, those holding singular poses first.
 
-matplotlib is optional (``pip install 'mechanism-mobility[plot]'``); figures are built
-without :mod:`matplotlib.pyplot` by the pictures' backend
-(:mod:`mobility.report.plotting.backend`), and
-:func:`~mobility.report.plotting.save_figure` writes them.  Every drawn
-element of an answer carries a ``gid`` (``"mobility:sweep:curve"``, ``"mobility:sweep:map"``,
-``"mobility:sweep:regions"``, ``"mobility:sweep:singular"``,
-``"mobility:sweep:unassembled"``) so that tests can read a picture back.
+Figures are built by :mod:`mobility.report.plotting.backend` (matplotlib,
+optional). Every drawn answer carries a ``gid`` (``"mobility:sweep:curve"``,
+``"mobility:sweep:map"``, ``"mobility:sweep:regions"``, ``"mobility:sweep:singular"``,
+``"mobility:sweep:unassembled"``).
 
 Examples
 --------
@@ -56,10 +49,8 @@ MAX_SLICES = 6
 def colour_of(result: SweepResult) -> tuple[np.ndarray, str]:
     """The quantity a map shows, per pose (NaN where not assembled), and its label.
 
-    With inputs, the actuation conditioning κ; else the rank margin, which at
-    a pose that gains a freedom is that of another rank (the new freedom's
-    singular value is dropped there, not kept): such a pose shows the
-    smallest margin of the map, as the regular answer's margin is zero there.
+    With inputs, the actuation conditioning κ; else the rank margin, a pose that
+    gains a freedom (whose margin is another rank's) shown at the map's smallest.
     """
     if result.actuated:
         return np.where(result.assembled, result.conditioning, np.nan), f"actuation conditioning κ ({', '.join(result.actuated)})"
@@ -140,9 +131,9 @@ def require_drawable(coordinates: int, what: str = "") -> None:
 def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
     """A picture of ``result``: a curve, a map or slices (see the module docstring).
 
-    The default title is the mechanism's name; it and the coordinates' names
-    are cut to :data:`~mobility.report.plotting.style.MAX_LABEL` characters
-    (``title`` to :data:`~mobility.report.plotting.style.MAX_TITLE`).
+    The default title is the mechanism's name; names are cut to
+    :data:`~mobility.report.plotting.style.MAX_LABEL` characters (``title`` to
+    :data:`~mobility.report.plotting.style.MAX_TITLE`).
 
     Raises
     ------
@@ -305,9 +296,8 @@ def _spread(candidates: list[int], chosen: list[int], count: int, size: int) -> 
 def choose_slices(result: SweepResult, most: int = MAX_SLICES) -> tuple[tuple[int, ...], str]:
     """The values of the third coordinate drawn as slices, and a note saying which.
 
-    Preferred, in turn: the file's pose (when the third coordinate takes
-    it), the values holding singular poses (spread over them when there are
-    more than the room left), then values spread over the range.
+    Preferred, in turn: the file's pose, the values holding singular poses,
+    then values spread over the range.
 
     Returns
     -------

@@ -1,8 +1,6 @@
 """Reports of a type synthesis (:class:`~mobility.synthesis.SynthesisResult`): text and JSON.
 
-Only formatting: no synthesis happens here.  :func:`synthesis_text` is what
-``mobility synthesize`` prints, :func:`written_files_text` the lines it adds
-after ``--write``, :func:`synthesis_json` its ``--json`` object.
+:func:`synthesis_text` is what ``mobility synthesize`` prints, :func:`synthesis_json` its ``--json`` object.
 
 Examples
 --------
@@ -59,7 +57,4 @@ def written_files_text(folder: str, written: Sequence[str], skipped: Sequence[st
 
 def synthesis_json(result: SynthesisResult, written: Sequence[str] = (), skipped: Sequence[str] = ()) -> str:
     """The result as one JSON object (``mobility synthesize --json``), with the files written and skipped."""
-    data = result.to_dict()
-    data["written"] = list(written)
-    data["skipped"] = list(skipped)
-    return json.dumps(data, indent=2)
+    return json.dumps(result.to_dict() | {"written": list(written), "skipped": list(skipped)}, indent=2)

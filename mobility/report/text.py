@@ -30,13 +30,8 @@ def fmt_number(x: float, scale: float = 1.0, digits: int = 6, tol: Tolerance = D
 
     Parameters
     ----------
-    x : float
     scale : float
-        The size round-off is relative to (the mechanism's length for a point
-        or a pitch, 1 for a unit direction).
-    digits : int
-    tol : Tolerance
-        Its ``round_off`` is the relative size below which a number is 0.
+        The size round-off is relative to (the mechanism's length for a point or a pitch, 1 for a unit direction).
     """
     text = f"{clean_numbers(float(x), scale, tol):.{digits}g}"
     return "0" if text in ("-0", "0") else text
@@ -52,7 +47,6 @@ def screw_text(a: ScrewAxis, scale: float = 1.0, *, verb: str = "about", pitch_u
 
     Parameters
     ----------
-    a : ScrewAxis
     scale : float
         The mechanism's length (round-off of the point and the pitch is relative to it).
     verb : str
@@ -103,7 +97,6 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
 
     Parameters
     ----------
-    result : Result
     limbs : bool
         Also list each limb's twists and constraint wrenches in the limb's frame.
     """
@@ -125,12 +118,9 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
     for i, f in enumerate(result.forces):
         pitch = "" if f.pitch == 0 else f"  with couple pitch {fmt_number(f.pitch, s)}"
         out.append(f"    W{k + i + 1}  {f.kind} along {fmt_vector(f.axis)} through {fmt_vector(f.point, s)}{pitch}")
-    out.append("  whole mechanism:")
-    out.append(f"    mobility M = {result.mobility}   (Grübler–Kutzbach count: {result.gruebler_kutzbach})")
-    out.append(
-        f"    redundant constraints: {result.redundant_constraints}   idle DOF: {result.idle_dof}   "
-        f"loops: {result.loops}   links: {result.links}   joints: {result.joints} ({counted(result.joint_freedoms, 'freedom')})"
-    )
+    out += ["  whole mechanism:", f"    mobility M = {result.mobility}   (Grübler–Kutzbach count: {result.gruebler_kutzbach})",
+            f"    redundant constraints: {result.redundant_constraints}   idle DOF: {result.idle_dof}   "
+            f"loops: {result.loops}   links: {result.links}   joints: {result.joints} ({counted(result.joint_freedoms, 'freedom')})"]
     if result.gruebler_kutzbach_explanation:
         out.append("    why G–K differs: " + result.gruebler_kutzbach_explanation)
     if result.idle_dof:
@@ -156,9 +146,7 @@ def json_report(result: Result) -> str:
     Raises
     ------
     AnalysisError
-        When a number of the result is not finite (JSON has no NaN or
-        infinity; the analysis refuses such results first, this is the last
-        guard).
+        When a number of the result is not finite (JSON has no NaN or infinity).
     """
     result = require_result(result, "json_report")
     try:
@@ -172,14 +160,9 @@ def with_section(report: str, fmt: str, key: str, value: Any, heading: str, sect
 
     Parameters
     ----------
-    report : str
-        The report in format ``fmt``.
     fmt : str
-        ``"json"``: ``value`` is added to the object under ``key``; ``"md"``:
-        ``section`` under the heading ``heading``, in a code block; any other
-        (``"text"``): ``section`` appended.
-    key, value, heading, section
-        The section in each form.
+        ``"json"``: ``value`` is added to the object under ``key``; ``"md"``: ``section`` under the heading
+        ``heading``, in a code block; any other (``"text"``): ``section`` appended.
 
     Examples
     --------

@@ -1,21 +1,8 @@
 """The actuation verdict and conditioning of one choice of inputs, at many poses at once.
 
-The definitions are those of :mod:`mobility.actuation` (Li, Shan, Yu and Ke,
-2021), on stacks of poses:
-
-* the *actuation wrench* of an input (one freedom of an actuated joint):
-  :func:`mobility.actuation.input_wrenches.input_wrenches`, the computation
-  :func:`mobility.check_actuation` makes at one pose;
-* the *verdict* comes from one rank decision on the end effector's
-  constraint wrenches and the actuation wrenches together: ``valid`` (rank 6,
-  as many inputs as DOF), ``redundant`` (rank 6, more inputs),
-  ``actuation-singular`` (rank below 6);
-* the *conditioning* ``kappa`` is ``s_min / s_max`` of the map from the end
-  effector's twists to the input rates, ``G[i, k] = (a_i o t_k) / (a_i o $_i)``
-  (0 at an actuation singularity).
-
-Each step is the same computation as :func:`mobility.check_actuation` makes
-on that pose, so the verdicts agree (the tests check it on random poses).
+The definitions and each step are those of :mod:`mobility.actuation` (Li,
+Shan, Yu and Ke, 2021) and :func:`mobility.check_actuation` at one pose, on
+stacks of poses, so the verdicts agree (the tests check it on random poses).
 
 Examples
 --------
@@ -93,12 +80,10 @@ class BatchActuation:
     rank : ndarray of int
         Rank of the constraint and actuation wrenches together.
     margin : ndarray of float
-        The actuation margin of :func:`mobility.check_actuation` (0 at an
-        actuation singularity, small near one).
+        The actuation margin of :func:`mobility.check_actuation`.
     conditioning : ndarray of float
     wrenches : ndarray, shape (N, n, 6)
-        The unit actuation wrench of each input (zeros where it has none),
-        for :mod:`mobility.transmission`.
+        The unit actuation wrench of each input (zeros where it has none).
     """
 
     verdict: np.ndarray
@@ -111,14 +96,7 @@ class BatchActuation:
 def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAnswers, inputs: ActuationInputs, tol: Tolerance = DEFAULT_TOLERANCE) -> BatchActuation:
     """The verdict and conditioning of ``inputs`` at every pose of ``posed``.
 
-    Parameters
-    ----------
-    mechanism : Mechanism
-    posed : PosedScrews
-    answers : PoseAnswers
-        :func:`~mobility.core.screw_systems.analyse_poses` of the same poses.
-    inputs : ActuationInputs
-    tol : Tolerance
+    ``answers``: :func:`~mobility.core.screw_systems.analyse_poses` of the same poses.
     """
     count = posed.twists.shape[0]
     root = decompose(mechanism).root
@@ -169,12 +147,7 @@ def actuation_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAn
 
 def _actuation_margin(decision: RankDecisions, wrenches: list[np.ndarray], transmissions: list[np.ndarray], present: np.ndarray,
                       basis: np.ndarray, dof: np.ndarray, regular: np.ndarray) -> np.ndarray:
-    """The actuation margin of :func:`mobility.check_actuation` at every pose: ``s_d`` of ``H[i, k] = rho_i (a_i o t_k)``, at most the rank margin.
-
-    0 where actuation-singular or where the end effector has no freedom for
-    the inputs to drive; the rank margin where an input has no wrench of its
-    own (:mod:`mobility.actuation.assessment`).
-    """
+    """The actuation margin of :func:`mobility.check_actuation` at every pose, with its conventions (:mod:`mobility.actuation.assessment`)."""
     count, n = present.shape
     margin = np.where(regular, decision.smallest_kept, 0.0)
     if n == 0:
@@ -191,11 +164,7 @@ def _actuation_margin(decision: RankDecisions, wrenches: list[np.ndarray], trans
 
 
 def _held(limbs: list, lacking: dict[int, np.ndarray], inputs: ActuationInputs, posed: PosedScrews, tol: Tolerance) -> tuple[list[np.ndarray], np.ndarray]:
-    """The constraint wrenches of each limb with all its inputs locked, at the poses where one of its inputs has no wrench of its own.
-
-    As :meth:`mobility.actuation.rigid_pose.RigidPose.locked_wrenches` at one
-    pose: zero columns at the other poses, and how many columns each pose holds.
-    """
+    """:meth:`mobility.actuation.rigid_pose.RigidPose.locked_wrenches` at the poses where an input has no wrench of its own (zero columns elsewhere), and each pose's count."""
     count = posed.twists.shape[0]
     held, counts = [], np.zeros(count, dtype=int)
     for limb, where in sorted(lacking.items()):

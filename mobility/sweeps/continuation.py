@@ -1,35 +1,16 @@
 """Closing every loop at every point of a grid: continuation along lines.
 
-At a grid point the driven coordinates have given values; the other
-variables are solved so that every loop closes, one continuation step of
-many poses at a time (:mod:`mobility.sweeps.steps`: Newton at the driven
-values, and its retries).
-
-Continuation: the grid is solved one axis at a time, from the file's pose
-(``q = 0``) outwards.  The *anchor* of an axis is its value nearest the
-file's pose; the anchor point is reached from ``q = 0`` (in steps no longer
-than a grid step, by the same continuation as a line, so its predictor keeps
-the file's branch up to a change point); then the first axis is swept from its anchor both ways,
-then every point found is the start of a line along the second axis, and so
-on, each step advancing all lines of an axis at once.  The start of each
-Newton solve is the cubic predictor ``4 q[i-1] - 6 q[i-2] + 4 q[i-3] - q[i-4]``
-(lower orders while fewer points are known: the secant ``2 q[i-1] - q[i-2]``
-after two), which keeps the continuation on its branch through a change
-point and leaves one Newton step to do.  A point that fails is retried
-(:func:`mobility.sweeps.steps._advance`: a wider move, sub-steps from its last
-assembled neighbour, off a fold); the points still missing at
-the end are tried again from any assembled neighbour on any axis
-(:func:`mobility.sweeps.grid_closure.fill`), layer after layer.  A point that cannot
-be assembled stays in the grid with ``assembled`` false and the best
-residual a solve reached there, with the joint variables of that solve (the
-residual of every row is that of its joint variables).
-
-The angle of an R or C joint wraps (:mod:`mobility.sweeps.walks`): its
-anchor is the value nearest the file's pose round the circle, values a whole
-turn apart are solved once, and a range that covers a full turn is walked
-round the circle (up all the way round, so neighbouring poses are joined by
-motion, then down for what the way up could not reach), the driven angle
-continuous along the walk.
+The grid is solved one axis at a time from the file's pose (``q = 0``)
+outwards (docs/sweeps.md tells it step by step): the *anchor* point, the value
+nearest the file's pose on each axis, is reached first; then each axis is
+swept both ways from its anchor, all lines of an axis advancing together. Each
+Newton solve (:mod:`mobility.sweeps.steps`) starts at the cubic predictor
+``4 q[i-1] - 6 q[i-2] + 4 q[i-3] - q[i-4]`` (lower orders while fewer points
+are known), which keeps the branch through a change point. Points still
+missing are tried from any assembled neighbour (:func:`mobility.sweeps.grid_closure.fill`);
+one that cannot be assembled keeps its best attempt and residual. An R or C
+angle wraps: a range covering a full turn is walked round the circle
+(:mod:`mobility.sweeps.walks`).
 
 Examples
 --------
@@ -98,9 +79,8 @@ def close_lines(
     anchor : int
         Index of the anchor point on the lines.
     walk : AxisWalk, optional
-        How to walk the lines' axis (:func:`mobility.sweeps.walks.axis_walk`:
-        round the circle, congruent angles solved once, for an angle that
-        wraps); default: along the lines, both ways from the anchor.
+        How to walk an angle that wraps (:func:`mobility.sweeps.walks.axis_walk`);
+        default: along the lines, both ways from the anchor.
     on_step : callable, optional
         Called with the number of poses done after each step (progress).
 
@@ -161,18 +141,9 @@ def _spread_stops(
 def retarget(
     bk: Kinematics, drive: Drive, q: np.ndarray, residual: np.ndarray, assembled: np.ndarray, targets: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Poses with their driven joint variables set to ``targets`` (the same joint states whole turns away); the residual of every changed assembled pose measured again.
+    """Poses ``(N, n)`` with their driven joint variables set to ``targets`` ``(N, axes)`` (the same joint states whole turns away).
 
-    Parameters
-    ----------
-    q : ndarray, shape (N, n)
-    residual : ndarray, shape (N,)
-    assembled : ndarray of bool, shape (N,)
-    targets : ndarray, shape (N, axes)
-
-    Returns
-    -------
-    q, residual, assembled
+    The residual of every changed assembled pose is measured again; returns ``q, residual, assembled``.
     """
     moved = drive.apply(q, targets)
     changed = np.flatnonzero(np.any(moved != q, axis=1) & assembled)
@@ -202,18 +173,13 @@ def _leg(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Continuation of many lines from their start through ``leg_targets`` ``(B, s, axes)``, in order.
 
-    ``halt`` ``(B, s)``: a line ends for good at a point where it is true
-    (assembled already).  Returns ``q (B, s, n)``, the residuals and
-    ``assembled`` of the points of the leg.
+    ``halt`` ``(B, s)``: a line ends for good where it is true (assembled
+    already). Returns ``q (B, s, n)``, the residuals and ``assembled``.
 
-    A long leg of few lines (a 1-D sweep of a million points is one line: a
-    million Newton solves one after the other) is cut in two levels when its
-    steps are short: every ``k``-th point first (a continuation whose steps
-    are still at most :data:`COARSE_STEP`), then the ``k - 1`` points after
-    each of those, all pieces together, each from its coarse point; about
-    ``2 sqrt(s)`` batched steps instead of ``s``.  With ``halt`` (a walk's
-    second leg, which stops where it meets the first) each line is solved up
-    to its first halting point.  ``levels=False``: one point after the other.
+    A long leg of few lines with short steps is cut in two levels: every
+    ``k``-th point first (steps at most :data:`COARSE_STEP`), then the pieces
+    between, all together: about ``2 sqrt(s)`` batched steps instead of ``s``.
+    ``levels=False``: one point after the other.
     """
     lines, count = leg_targets.shape[:2]
     n = bk.variable_count
@@ -358,8 +324,7 @@ class GridClosure:
 def seed_grid(bk: Kinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE) -> GridClosure:
     """Every point whose last coordinate is at its anchor, by continuation (the starts of the last axis's lines).
 
-    Returns a :class:`GridClosure` over the whole grid where only those
-    points are filled (the others: not assembled, residual infinite).
+    The other points of the :class:`GridClosure` are not assembled, residual infinite.
     """
     drive = Drive.of(plan.axes, bk.variable_count)
     shape, size, n = plan.shape, plan.size, bk.variable_count

@@ -1,28 +1,14 @@
 """What a sweep varies: the grid of drive values, checked against the mechanism.
 
-A sweep varies *coordinates*, each over ``COUNT`` evenly spaced values from
-``START`` to ``STOP`` (both included; ``COUNT = 1`` is the single value
-``START``); the grid is the product of the ranges, first coordinate slowest.
-A coordinate is
-
-* a **joint**, displaced from its value in the file's pose: the angle of an
-  ``R``, ``H`` or ``C`` joint in degrees (a ``C`` joint's slide stays free), the
-  slide of a ``P`` joint in the file's length unit.  ``S``, ``U`` and ``E``
-  joints have several freedoms and cannot be driven by one number;
-* an **end-effector pose coordinate** (a name that is not a joint's):
-  ``x``, ``y``, ``z``, the displacement of the end effector's reference point
-  (the centroid of the points of the joints on it, as in
-  :attr:`mobility.Result.reference_point`) in the file's length unit, and
-  ``rx``, ``ry``, ``rz``, the rotation vector of the end effector from the
-  file's pose, in degrees; all in the file's global frame.  Pose coordinates
-  drive a parallel mechanism by its platform; joints not driven follow.
-
-The angle of an ``R`` or ``C`` joint displaced by 360 degrees is the same
-joint state (:attr:`SweepAxis.period`); the continuation knows it
-(:mod:`mobility.sweeps.walks`).
-
-Inside, every coordinate is dimensionless as in :mod:`mobility.core.kinematics`:
-angles in radians, lengths over the mechanism's characteristic length.
+Each coordinate takes ``COUNT`` evenly spaced values from ``START`` to ``STOP``
+(both included); the grid is their product, first coordinate slowest. A
+coordinate is a **joint** displaced from the file's pose (the angle of an
+``R``, ``H`` or ``C`` joint in degrees, the slide of a ``P`` joint in the
+file's length unit), or an **end-effector pose coordinate** in the file's
+global frame: ``x``, ``y``, ``z``, the displacement of the reference point
+(:attr:`mobility.Result.reference_point`), and ``rx``, ``ry``, ``rz``, the
+rotation vector from the file's pose in degrees. Inside, as in
+:mod:`mobility.core.kinematics`: radians, lengths over the characteristic length.
 
 Examples
 --------
@@ -52,19 +38,8 @@ from ..core.validation import integer_from_text, number_from_text
 from ..core.tolerance import SAME_GRID_VALUE, SWEEP_REACH
 from ..errors import RequestError, clipped, counted, name_list
 
-__all__ = [
-    "POSE_COORDINATES",
-    "DRIVABLE_JOINTS",
-    "WRAPPING_JOINTS",
-    "FULL_TURN",
-    "DEFAULT_MAX_POSES",
-    "SweepAxis",
-    "GridPlan",
-    "VarySpec",
-    "parse_vary",
-    "whole_turns",
-    "plan_grid",
-]
+__all__ = ["POSE_COORDINATES", "DRIVABLE_JOINTS", "WRAPPING_JOINTS", "FULL_TURN", "DEFAULT_MAX_POSES", "SweepAxis", "GridPlan", "VarySpec",
+           "parse_vary", "whole_turns", "plan_grid"]
 
 POSE_COORDINATES = ("x", "y", "z", "rx", "ry", "rz")
 """End-effector pose coordinates, in the order of their components ``[p; r]``."""
@@ -106,18 +81,13 @@ class SweepAxis:
     count : int
         Number of values, both ends included.
     variable : int
-        For a joint: the index of its driven variable in
-        :class:`~mobility.core.kinematics.Kinematics` (the first freedom, the
-        rotation of a ``C`` joint); for a pose coordinate: its component
-        (0..5 for x, y, z, rx, ry, rz).
+        A joint's driven variable in :class:`~mobility.core.kinematics.Kinematics`
+        (a ``C`` joint's rotation); a pose coordinate's component (0..5).
     scale : float
-        Internal value per unit value (radians per degree, or one over the
-        characteristic length).
+        Internal value per unit value (radians per degree, or one over the characteristic length).
     period : float
-        The displacement (user units) that gives the same joint state: 360
-        for the angle of an ``R`` or ``C`` joint; 0 when there is none (the
-        angle of an ``H`` joint, whose slide goes with it, a slide, a pose
-        coordinate).
+        The displacement giving the same joint state: 360 for an ``R`` or ``C``
+        angle; 0 for none (an ``H`` angle, whose slide goes with it, a slide, a pose coordinate).
     """
 
     name: str
@@ -137,11 +107,7 @@ class SweepAxis:
 
     @property
     def extent(self) -> float:
-        """The size the values are shown against (round-off of a value is relative to it): the larger end of the range, 1 for zeros.
-
-        A sweep of a mechanism 1e-250 mm in size over ``P1=0:1e-251:3`` shows
-        ``5e-252``, not 0, whatever the unit.
-        """
+        """The size the values are shown against (round-off is relative to it): the larger end of the range, 1 for zeros."""
         return max(abs(self.start), abs(self.stop)) or 1.0
 
     @property
@@ -166,14 +132,10 @@ class SweepAxis:
     def internal(self) -> np.ndarray:
         """The values as the solver uses them (radians, lengths over the characteristic length).
 
-        An angle that wraps is taken whole turns away where that brings it
-        near the file's pose (the turns removed in degrees, exactly, before
-        the conversion to radians): ``3600000`` degrees is solved as 0, so a
-        closure residual of round-off size stays one.  A range shorter than
-        a turn moves by the anchor's turns as a whole, so the values stay in
-        order; the values of a range that covers a turn each go within half
-        a turn of the anchor (the walk round the circle takes congruent
-        values as one, :mod:`mobility.sweeps.walks`).
+        An angle that wraps loses whole turns (exactly, in degrees) to come near
+        the file's pose: ``3600000`` degrees is solved as 0. A range shorter than
+        a turn moves as a whole, keeping its order; the values of a range that
+        covers a turn each go within half a turn of the anchor (:mod:`mobility.sweeps.walks`).
         """
         values = self.values
         if self.period:  # by remainders, exact at any size (a value of 5e19 degrees is 140 degrees, not the file's pose)
@@ -271,7 +233,7 @@ def parse_vary(spec: str) -> tuple[str, float, float, int]:
     where = f"--vary {spec!r}"
     match = _SPEC.match(spec) if isinstance(spec, str) else None
     if match is None:
-        raise RequestError(f"{where}: expected NAME=START:STOP:COUNT (e.g. O1=0:360:361)")
+        raise RequestError(argument=where, expected="NAME=START:STOP:COUNT (e.g. O1=0:360:361)")
     parts = match["range"].split(":")
     if len(parts) != 3:
         raise RequestError(argument=where, expected="NAME=START:STOP:COUNT", got=f"{counted(len(parts), 'part')} after '='")
@@ -358,10 +320,8 @@ def _require_one_rotation(axes: list[SweepAxis]) -> None:
     if farthest <= 180.0 * (1.0 + SAME_GRID_VALUE):
         return
     names = ", ".join(f"{a.name}={a.start:g}:{a.stop:g}:{a.count}" for a in rotations)
-    raise RequestError(
-        f"--vary {names}: the end effector's rotation vector reaches {farthest:g} deg, more than half a turn, "
-        "where it no longer names one rotation; sweep rotations of at most 180 deg (or drive a joint, whose angle wraps)"
-    )
+    raise RequestError(f"--vary {names}: the end effector's rotation vector reaches {farthest:g} deg, more than half a turn, "
+                       "where it no longer names one rotation; sweep rotations of at most 180 deg (or drive a joint, whose angle wraps)")
 
 
 def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int = DEFAULT_MAX_POSES) -> GridPlan:
@@ -383,12 +343,10 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
     Raises
     ------
     RequestError
-        An unknown name, a joint that cannot be driven by one number (S, U,
-        E), a coordinate given twice, a bad range (one whose values, in
-        radians or over the mechanism's characteristic length, do not fit in
-        a float, or reach beyond :data:`~mobility.core.tolerance.SWEEP_REACH`;
-        rotation coordinates turning more than half a turn), no coordinate at
-        all, or a grid above ``max_poses``.
+        An unknown name, a joint not driven by one number (S, U, E), a
+        coordinate given twice, a range that leaves the floats or reaches beyond
+        :data:`~mobility.core.tolerance.SWEEP_REACH`, rotations past half a
+        turn, no coordinate, or a grid above ``max_poses``.
     """
     require_no_couplings(mechanism.couplings, mechanism.name, "sweep", "the poses of a sweep")
     requests = _requests(vary)
@@ -412,10 +370,8 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
             index = names.index(name)
             joint = mechanism.joints[index]
             if joint.type not in DRIVABLE_JOINTS:
-                raise RequestError(
-                    f"{where}: {name} is {'an' if joint.type in ('S', 'E') else 'a'} {joint.type} joint{source}; only R, H, C joints (by their angle, in degrees) "
-                    "and P joints (by their slide) can be swept"
-                )
+                raise RequestError(f"{where}: {name} is {'an' if joint.type in ('S', 'E') else 'a'} {joint.type} joint{source}; only R, H, C joints "
+                                   "(by their angle, in degrees) and P joints (by their slide) can be swept")
             angle = joint.type != "P"
             period = FULL_TURN if joint.type in WRAPPING_JOINTS else 0.0
             axes.append(SweepAxis(name, "joint", "deg" if angle else unit, start, stop, count, int(offsets[index]), math.pi / 180.0 if angle else 1.0 / length, period))
@@ -424,10 +380,8 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
             angle = component >= 3
             axes.append(SweepAxis(name, "pose", "deg" if angle else unit, start, stop, count, component, math.pi / 180.0 if angle else 1.0 / length))
         else:
-            raise RequestError(
-                f"{where}: {name!r} is not a joint{source}; expected one of: {name_list(names)}, "
-                f"or an end-effector pose coordinate ({', '.join(POSE_COORDINATES)})"
-            )
+            raise RequestError(f"{where}: {name!r} is not a joint{source}; expected one of: {name_list(names)}, "
+                               f"or an end-effector pose coordinate ({', '.join(POSE_COORDINATES)})")
     for axis in axes:
         _require_finite(axis, length)
         _require_within_reach(axis, length)

@@ -1,18 +1,9 @@
 """Closing every pose of a grid: the lines of continuation, then the poses they missed.
 
-:func:`close_grid` closes a whole grid in this process: the starts of the
-lines (:func:`~mobility.sweeps.continuation.seed_grid`), the lines of the
-last axis (:func:`~mobility.sweeps.continuation.close_lines`), then
-:func:`fill`.  :func:`mobility.sweeps.sweep` runs the same stages with the
-lines cut into chunks.
-
-:func:`fill` tries the missing poses again: where a line gave up (two
-failures in a row) a neighbour on another axis may be assembled.  Each
-missing pose is tried from its assembled neighbours on every axis (the two
-ends of an axis whose angles wrap round a full turn are neighbours, the
-angle turned to within half a turn of the pose's), and a pose whose driven
-angle is congruent, modulo a turn, to an assembled pose's (its other
-coordinates equal) takes that pose (:mod:`mobility.sweeps.walks`).
+:func:`close_grid` runs in this process the stages :func:`mobility.sweeps.sweep`
+runs in chunks. :func:`fill` tries each missing pose from its assembled
+neighbours on every axis (the ends of a full turn are neighbours), and a pose
+congruent modulo a turn to an assembled one takes its pose.
 
 Examples
 --------
@@ -41,22 +32,14 @@ from .walks import AxisWalk, axis_walk, plan_walks
 __all__ = ["close_grid", "fill"]
 
 
-def close_grid(
-    bk: Kinematics,
-    plan: GridPlan,
-    *,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    run_lines: Callable | None = None,
-) -> GridClosure:
+def close_grid(bk: Kinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE, run_lines: Callable | None = None) -> GridClosure:
     """Close every pose of the grid by continuation, then :func:`fill` what is missing.
 
     Parameters
     ----------
     run_lines : callable, optional
         ``run_lines(starts_q, starts_ok, lines, anchor) -> (q, residual, ok)``
-        closes the lines of the last axis (default: :func:`close_lines` here,
-        in one batch); :func:`mobility.sweeps.sweep` passes one that cuts them
-        into chunks and runs them where it is told.
+        closes the lines of the last axis (default: :func:`close_lines`, in one batch).
     """
     seeds = seed_grid(bk, plan, tol=tol)
     shape = plan.shape
@@ -157,9 +140,8 @@ def _turned_towards(plan: GridPlan, q: np.ndarray, targets: np.ndarray, goal: np
     return q, targets
 
 
-def _congruent(
-    bk: Kinematics, drive: Drive, plan: GridPlan, walks: tuple[AxisWalk, ...], q: np.ndarray, err: np.ndarray, ok: np.ndarray, tol: Tolerance
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _congruent(bk: Kinematics, drive: Drive, plan: GridPlan, walks: tuple[AxisWalk, ...], q: np.ndarray, err: np.ndarray, ok: np.ndarray,
+               tol: Tolerance) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Missing poses whose driven angle is congruent (modulo a turn) to an assembled pose's on the same line take its pose (in place)."""
     sources, places = [], []
     for axis, walk in enumerate(walks):

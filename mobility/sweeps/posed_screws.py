@@ -1,19 +1,11 @@
 """The joint twists of many poses, each in its own normalised coordinates.
 
 What :func:`mobility.core.joint_screws.joint_screws` gives for one mechanism,
-for every pose of a sweep at once, so that each pose's rank decisions are the
-ones :func:`mobility.analyze` makes on that pose rebuilt as a mechanism
-(:meth:`mobility.core.kinematics.Kinematics.mechanism_at`):
-
-1. each joint's geometry is carried by the link it belongs to (a ``U``
-   joint's first axis by ``links[0]``, its second by ``links[1]``; every other
-   field by ``links[0]``) and written in the global frame;
-2. its elementary freedoms are those of :meth:`mobility.core.model.Joint.freedoms`
-   (an ``S`` joint's rotations about the global x, y, z through its centre;
-   an ``E`` joint's slides chosen from its moved normal);
-3. the centre and characteristic length of *that pose*
-   (:func:`mobility.core.tolerance.characteristic_scales`) give its
-   normalised coordinates, where every freedom becomes a unit twist column.
+for every pose of a sweep at once: each pose's rank decisions are those
+:func:`mobility.analyze` makes on the pose rebuilt as a mechanism. Each joint's
+geometry is carried by its link (a ``U`` joint's second axis by ``links[1]``),
+its freedoms are :meth:`mobility.core.model.Joint.freedoms`, normalised by that
+pose's own centre and length (:func:`mobility.core.tolerance.characteristic_scales`).
 
 Examples
 --------
@@ -131,18 +123,7 @@ def _freedoms(joint_type: str, g: dict, count: int, pitch: float | None) -> list
 
 
 def posed_screws(bk: Kinematics, q: np.ndarray) -> PosedScrews:
-    """Unit joint twists, each pose in its own normalised coordinates.
-
-    Parameters
-    ----------
-    bk : Kinematics
-    q : ndarray, shape (N, n)
-        Joint variables of the poses.
-
-    Returns
-    -------
-    PosedScrews
-    """
+    """Unit joint twists of the poses ``q`` ``(N, n)``, each pose in its own normalised coordinates."""
     mechanism = bk.mechanism
     norm = bk.model.normalisation
     count = len(q)
@@ -162,10 +143,7 @@ def posed_screws(bk: Kinematics, q: np.ndarray) -> PosedScrews:
     ax = np.stack(axes, axis=2)  # (N, 3, f)
     pt = np.stack(points, axis=2)
     tw = unit_twists(np.array(prismatic, dtype=bool), ax, pt - centres[:, :, None], pitch_a, lengths)
-    if on_end_effector:
-        reference = (np.mean(np.stack(on_end_effector, axis=1), axis=1) - centres) / lengths[:, None]
-    else:
-        reference = np.zeros((count, 3))
+    reference = (np.mean(np.stack(on_end_effector, axis=1), axis=1) - centres) / lengths[:, None] if on_end_effector else np.zeros((count, 3))
     named = {j.name: g["point"] for j, g in zip(mechanism.joints, geometry) if "point" in g}
     return PosedScrews(tw, tuple(offsets), centres, lengths, named, reference)
 

@@ -1,31 +1,20 @@
 """The answer of a sweep: one row per grid point, and where the answer changes.
 
-:class:`SweepResult` holds, for every point of the grid (flat, C order: the
-last coordinate varies fastest), whether the pose could be assembled and,
-if so, what :func:`mobility.analyze` says there (DOF, pattern, mobility, the
-margin of its rank decisions) and, when inputs are chosen, what
-:func:`mobility.check_actuation` says (verdict, conditioning).  It also names
+:class:`SweepResult` holds, for every grid point (flat, C order), whether the
+pose was assembled and what :func:`mobility.analyze` (with inputs,
+:func:`mobility.check_actuation`) says there. It also names
 
-* the **regular** answer: the most common ``(dof, pattern, mobility, verdict)``
-  among assembled poses;
-* the **singular poses**: assembled poses where the end effector or the
-  mechanism gains a freedom over the regular answer, where the end effector
-  loses one while the mechanism keeps its mobility (a dead point, such as a
-  slider-crank's dead centres), or where the inputs become
-  actuation-singular (each with its reasons);
-* the **changes**: pairs of neighbouring grid points (along one axis), both
-  assembled, whose answers differ (a singularity between two grid points
-  shows here when the answers on its two sides differ);
-* the **seams**: pairs of grid points round a full turn of a joint, the
-  last stop of the walk and its anchor, that no small motion joins (the turn
-  came back on another pose: :mod:`mobility.sweeps.seams`);
-* the **margin dips**: grid points whose rank margin (of the analysis, or of
-  the actuation verdict) is at most :data:`~mobility.core.tolerance.MARGIN_DIP`
-  of a neighbour's along some axis and no larger than either neighbour's (or,
-  at an end of the axis, than its one neighbour's), the poses having the same
-  answer: where a singularity whose two sides have the same answer (a
-  type-II singularity crossed, a constraint singularity passed) may lie
-  between grid points.
+* the **regular** answer: the most common ``(dof, pattern, mobility, verdict)``;
+* the **singular poses**: where the end effector or the mechanism gains a
+  freedom over it, the end effector loses one while the mechanism keeps its
+  mobility (a dead point), or the inputs become actuation-singular;
+* the **changes**: neighbouring assembled grid points whose answers differ;
+* the **seams**: the two ends of a full turn of a joint that no small motion
+  joins (:mod:`mobility.sweeps.seams`);
+* the **margin dips**: points whose rank margin is at most
+  :data:`~mobility.core.tolerance.MARGIN_DIP` of a neighbour's of the same
+  answer and no larger than either: a singularity with the same answer on both
+  sides (type II crossed, constraint passed) may lie between grid points.
 
 Examples
 --------
@@ -56,24 +45,8 @@ from .grid import SweepAxis
 
 __all__ = ["GridPoint", "SingularPose", "MarginDip", "SweepResult", "COLUMNS", "TRANSMISSION"]
 
-COLUMNS = (
-    "dof",
-    "pattern",
-    "mobility",
-    "assembled",
-    "residual",
-    "smallest_kept",
-    "largest_dropped",
-    "near_singular",
-    "inexact",
-    "verdict",
-    "conditioning",
-    "actuation_margin",
-    "iti",
-    "oti",
-    "lti",
-    "cti",
-)
+COLUMNS = ("dof", "pattern", "mobility", "assembled", "residual", "smallest_kept", "largest_dropped", "near_singular", "inexact",
+           "verdict", "conditioning", "actuation_margin", "iti", "oti", "lti", "cti")
 """Columns of a sweep's table after the varied coordinates (the actuation ones only when inputs are chosen, the transmission ones then too unless left out)."""
 
 TRANSMISSION = ("iti", "oti", "lti", "cti")
@@ -142,13 +115,10 @@ class MarginDip(GridPoint):
     column : str
         ``"smallest_kept"`` (the analysis) or ``"actuation_margin"`` (the actuation verdict).
     margin : float
-        The margin there.
     neighbours : tuple of float
-        The margins of its neighbours along the axis where the dip is deepest
-        (one at an end of the axis, where the margin falls towards the end:
-        the singularity may lie beyond it).
+        The margins of its neighbours along ``axis``, where the dip is deepest
+        (one at an end of the axis: the singularity may lie beyond it).
     axis : str
-        That axis.
     """
 
     column: str
@@ -161,10 +131,8 @@ class MarginDip(GridPoint):
 class SweepResult(ReadOnlyArrays):
     """Every pose of a sweep (arrays of length ``N``, the grid flattened in C order).
 
-    Frozen: its arrays (and those it computes, :attr:`values`,
-    :attr:`changes`) are read-only, also after a pickle round trip; the
-    arrays it is built from are made read-only in place, not copied (the
-    sweep makes them for it).  It compares by identity.
+    Frozen: its arrays (and :attr:`values`, :attr:`changes`) are read-only, made
+    so in place, also after a pickle round trip. It compares by identity.
 
     Attributes
     ----------
@@ -173,11 +141,9 @@ class SweepResult(ReadOnlyArrays):
     axes : tuple of SweepAxis
         The varied coordinates, first varying slowest.
     q : ndarray, shape (N, n)
-        Joint variables of each pose (see :mod:`mobility.core.kinematics`;
-        the best attempt where not assembled, zeros where no solve reached
-        the point).  The angle of a driven R or C joint is the one solved,
-        whole turns away from the grid's value where that brings it near the
-        file's pose (:attr:`SweepAxis.internal`): the same joint state.
+        Joint variables of each pose (:mod:`mobility.core.kinematics`; the best
+        attempt where not assembled, zeros where no solve reached it). A driven
+        R or C angle may be whole turns from the grid's value (:attr:`SweepAxis.internal`).
     assembled : ndarray of bool
     residual : ndarray of float
         Largest loop-closure residual component (dimensionless; infinite where
@@ -189,8 +155,7 @@ class SweepResult(ReadOnlyArrays):
     smallest_kept, largest_dropped : ndarray of float
         The margin of the pose's rank decisions (NaN where not assembled).
     near_singular, inexact : ndarray of bool
-        The margin's warnings (False where not assembled; empty in the CSV,
-        ``null`` in the JSON there).
+        The margin's warnings (False where not assembled; empty in CSV, ``null`` in JSON).
     actuated : tuple of str
         The actuated joints (empty: no actuation columns).
     verdict : ndarray of str
@@ -199,17 +164,13 @@ class SweepResult(ReadOnlyArrays):
         Actuation conditioning ``kappa`` and the margin of the verdict's rank
         decision (NaN where not assembled or no input chosen).
     iti, oti, lti, cti : ndarray of float
-        The transmission indices of :mod:`mobility.transmission` (smallest
-        input and output index over the inputs, local transmission index,
-        constraint transmission index; NaN where not assembled or no index);
-        empty when no input is chosen or the sweep left them out.
+        The transmission indices of :mod:`mobility.transmission` (NaN where not
+        assembled; empty without inputs or when the sweep left them out).
     good_threshold : float
         The good-transmission threshold (``LTI >= good_threshold``; 0.7 as published).
     tolerance : Tolerance
     seams : ndarray of int, shape (k, 2)
-        Pairs of grid points, the last stop and the anchor of a line round a
-        full turn, that no small motion joins: the turn came back on another
-        pose (:mod:`mobility.sweeps.seams`).
+        Pairs of grid points round a full turn that no small motion joins (:mod:`mobility.sweeps.seams`).
     """
 
     mechanism: Mechanism
@@ -330,10 +291,7 @@ class SweepResult(ReadOnlyArrays):
     def classes(self) -> list[tuple[int, str, int, str] | None]:
         """The answer of each pose as one value ``(dof, pattern, mobility, verdict)`` (None where not assembled)."""
         verdict = self.verdict.tolist() if self.actuated else [""] * self.size
-        return [
-            (d, p, m, v) if ok else None
-            for d, p, m, v, ok in zip(self.dof.tolist(), self.pattern.tolist(), self.mobility.tolist(), verdict, self.assembled.tolist())
-        ]
+        return [(d, p, m, v) if ok else None for d, p, m, v, ok in zip(self.dof.tolist(), self.pattern.tolist(), self.mobility.tolist(), verdict, self.assembled.tolist())]
 
     def counts(self) -> dict[tuple[int, str, int], int]:
         """Assembled poses per ``(dof, pattern, mobility)``, most common first."""
@@ -446,8 +404,7 @@ class SweepResult(ReadOnlyArrays):
         Raises
         ------
         RequestError
-            When the point is not on the grid or was not assembled (its joint
-            variables close no loop, so no mechanism has that pose).
+            When the point is not on the grid or was not assembled.
         """
         self._require_index(index, "mechanism_at")
         if not self.assembled[index]:
@@ -469,17 +426,10 @@ class SweepResult(ReadOnlyArrays):
         self._require_index(index, "row")
         out: dict[str, Any] = {n: float(v) for n, v in zip(self.names, self.values[index])}
         ok = bool(self.assembled[index])
-        out.update(
-            dof=int(self.dof[index]) if ok else None,
-            pattern=str(self.pattern[index]) if ok else None,
-            mobility=int(self.mobility[index]) if ok else None,
-            assembled=ok,
-            residual=_number(self.residual[index]),
-            smallest_kept=_number(self.smallest_kept[index]),
-            largest_dropped=_number(self.largest_dropped[index]),
-            near_singular=bool(self.near_singular[index]) if ok else None,
-            inexact=bool(self.inexact[index]) if ok else None,
-        )
+        out.update(dof=int(self.dof[index]) if ok else None, pattern=str(self.pattern[index]) if ok else None, mobility=int(self.mobility[index]) if ok else None,
+                   assembled=ok, residual=_number(self.residual[index]), smallest_kept=_number(self.smallest_kept[index]),
+                   largest_dropped=_number(self.largest_dropped[index]), near_singular=bool(self.near_singular[index]) if ok else None,
+                   inexact=bool(self.inexact[index]) if ok else None)
         if self.actuated:
             out.update(verdict=str(self.verdict[index]) if ok else None, conditioning=_number(self.conditioning[index]), actuation_margin=_number(self.actuation_margin[index]))
         if self.has_transmission:
@@ -494,19 +444,14 @@ class SweepResult(ReadOnlyArrays):
         """:meth:`to_dict` without the table (``columns``): what a writer sends before the columns, one at a time."""
         regular = self.regular
         return {
-            "name": self.name,
-            "coordinates": [a.to_dict() for a in self.axes],
-            "shape": list(self.shape),
-            "poses": self.size,
-            "assembled": int(self.assembled.sum()),
-            "actuated": list(self.actuated),
+            "name": self.name, "coordinates": [a.to_dict() for a in self.axes], "shape": list(self.shape), "poses": self.size,
+            "assembled": int(self.assembled.sum()), "actuated": list(self.actuated),
             "counts": [{"dof": d, "pattern": p, "mobility": m, "poses": n} for (d, p, m), n in self.counts().items()],
             "verdicts": self.verdict_counts(),
             "regular": None if regular is None else {"dof": regular[0], "pattern": regular[1], "mobility": regular[2], "verdict": regular[3] or None},
             "singular_poses": [p.to_dict(self.names) for p in self.singular],
             "changes": [{"from": int(a), "to": int(b), "axis": self.names[int(k)]} for a, b, k in self.changes],
-            "seams": [{"from": int(a), "to": int(b)} for a, b in self.seams],
-            "margin_dips": [d.to_dict(self.names) for d in self.dips],
+            "seams": [{"from": int(a), "to": int(b)} for a, b in self.seams], "margin_dips": [d.to_dict(self.names) for d in self.dips],
             **({"transmission": {"good_threshold": self.good_threshold, "good_share": _number(self.good_transmission()),
                                  "lti_min": _number(np.nanmin(self.lti[self.assembled])) if np.isfinite(self.lti[self.assembled]).any() else None,
                                  "cti_min": _number(np.nanmin(self.cti[self.assembled])) if np.isfinite(self.cti[self.assembled]).any() else None}}
@@ -517,14 +462,11 @@ class SweepResult(ReadOnlyArrays):
     def column_list(self, name: str) -> list:
         """Column ``name`` of :meth:`to_dict`'s table: plain Python values, ``None`` where a pose has no answer (or a number is not finite)."""
         col = self.column(name)
-        if name in ("dof", "mobility"):
-            return [int(v) if ok else None for v, ok in zip(col, self.assembled)]
-        if name in ("pattern", "verdict"):
-            return [str(v) if ok else None for v, ok in zip(col, self.assembled)]
         if name == "assembled":
             return [bool(v) for v in col]
-        if name in ("near_singular", "inexact"):
-            return [bool(v) if ok else None for v, ok in zip(col, self.assembled)]
+        kind = {"dof": int, "mobility": int, "pattern": str, "verdict": str, "near_singular": bool, "inexact": bool}.get(name)
+        if kind is not None:
+            return [kind(v) if ok else None for v, ok in zip(col, self.assembled)]
         if name in self.names:
             extent = next(a.extent for a in self.axes if a.name == name)
             return [_number(v) for v in clean_numbers(np.asarray(col, dtype=float), extent)]

@@ -1,18 +1,9 @@
 """``mobility.sweep``: close and analyse every pose of a grid, in chunks, where it is told.
 
-The work has two stages, each cut into chunks that run independently:
-
-1. **closure** (:mod:`mobility.sweeps.continuation`): the starts of the lines
-   of the last axis are found in-process, the lines closed by continuation in
-   chunks, then the poses still missing tried from their neighbours;
-2. **analysis**: the assembled poses, in chunks, go through :mod:`~mobility.sweeps.posed_screws`,
-   :mod:`~mobility.core.screw_systems` and, when inputs are chosen,
-   :mod:`~mobility.sweeps.batch_actuation` and :mod:`~mobility.sweeps.batch_transmission`.
-
-Chunks run in this process (on ``workers`` threads: the stacked LAPACK calls
-release the GIL), or on a dask.distributed cluster when a scheduler is given
-(``pip install 'mechanism-mobility[dask]'``): a ``distributed.Client``, or the
-address of a running scheduler; within a chunk, in blocks of :data:`BLOCK`.
+Two stages, each in independent chunks: closure (:mod:`mobility.sweeps.continuation`)
+and analysis. Chunks run on ``workers`` threads of this process (the stacked
+LAPACK calls release the GIL) or on a dask.distributed cluster
+(``pip install 'mechanism-mobility[dask]'``); within a chunk, in blocks of :data:`BLOCK`.
 
 Examples
 --------
@@ -109,11 +100,7 @@ _STOP = threading.local()
 
 
 def _stop_if_asked(_: int = 0) -> None:
-    """Raise :class:`KeyboardInterrupt` in a chunk whose sweep was interrupted: its work is dropped at the next step or block, not finished.
-
-    Without it an interrupted sweep waited for every chunk in flight (up to
-    :data:`IN_FLIGHT` per thread, a minute on a busy machine) before it ended.
-    """
+    """Raise :class:`KeyboardInterrupt` in a chunk whose sweep was interrupted: its work is dropped at the next step or block."""
     event = getattr(_STOP, "event", None)
     if event is not None and event.is_set():
         raise KeyboardInterrupt("the sweep was interrupted")
@@ -144,15 +131,7 @@ def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
         block = q[start : start + BLOCK]
         posed = posed_screws(context.bk, block)
         answers = analyse_poses(decompose(context.mechanism), posed.twists, posed.offsets, context.tol)
-        out = {
-            "dof": answers.dof,
-            "pattern": answers.pattern,
-            "mobility": answers.mobility,
-            "smallest_kept": answers.smallest_kept,
-            "largest_dropped": answers.largest_dropped,
-            "near_singular": answers.near_singular,
-            "inexact": answers.inexact,
-        }
+        out = {key: getattr(answers, key) for key in ("dof", "pattern", "mobility", "smallest_kept", "largest_dropped", "near_singular", "inexact")}
         if context.inputs is not None:
             act = actuation_at_poses(context.mechanism, posed, answers, context.inputs, context.tol)
             out.update(verdict=act.verdict, conditioning=act.conditioning, actuation_margin=act.margin)
@@ -164,18 +143,12 @@ def analyse_chunk(context: _Context, q: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> dict[str, np.ndarray]:
-    """Analyse a chunk of assembled grid points (a task): the columns of the table, and the polished poses.
+    """Analyse a chunk of assembled grid points (a task): the columns, and the poses polished.
 
-    ``"polished"`` holds the positions (in ``rows``) of the poses polished,
-    ``"q_polished"`` their joint variables and ``"residual_polished"`` their
-    residuals (the residual column is that of the joint variables kept).
-
-    A pose whose answer rests on a rank decision within the warning band of
-    the tolerance policy (``near_singular`` or ``inexact``: a singular value
-    between ``Tolerance.inexact`` and ``Tolerance.near_singular``, where the
-    round-off of a float64 loop closure can decide it) is polished
-    (:func:`~mobility.sweeps.steps.polish`) and analysed again; the
-    others, almost every pose of a sweep, are not touched.
+    A pose whose rank decision lies in the warning band (``near_singular`` or
+    ``inexact``, where a float64 closure's round-off can decide it) is polished
+    (:func:`~mobility.sweeps.steps.polish`) and analysed again. ``"polished"``
+    holds their positions in ``rows``, ``"q_polished"`` and ``"residual_polished"`` their values.
     """
     columns = analyse_chunk(context, q)
     doubtful = np.flatnonzero(columns["near_singular"] | columns["inexact"]) if columns else np.zeros(0, dtype=int)
@@ -194,11 +167,10 @@ def analyse_grid_chunk(context: _Context, rows: np.ndarray, q: np.ndarray) -> di
 def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE, transmission: bool = True) -> dict[str, np.ndarray]:
     """The sweep's analysis of given poses: the table's columns for joint variables ``q`` ``(N, n)``.
 
-    The poses are taken as they are (no loop closure: ``q`` should close the
-    loops, e.g. rows of :attr:`SweepResult.q`).  Columns: ``dof``,
-    ``pattern``, ``mobility``, ``smallest_kept``, ``largest_dropped``,
-    ``near_singular``, ``inexact`` and, when ``actuated`` names inputs (or
-    the file marks some), ``verdict``, ``conditioning``, ``actuation_margin`` and (unless ``transmission=False``) ``iti``, ``oti``, ``lti``, ``cti``.
+    The poses are taken as they are (``q`` should close the loops, e.g. rows of
+    :attr:`SweepResult.q`). With inputs (``actuated``, or marked in the file),
+    also ``verdict``, ``conditioning``, ``actuation_margin`` and (unless
+    ``transmission=False``) ``iti``, ``oti``, ``lti``, ``cti``.
 
     Examples
     --------
@@ -235,9 +207,7 @@ def _quiet_distributed() -> Iterator[None]:
 def _connect(distributed: Any, address: str) -> Any:
     """A ``distributed.Client`` of the scheduler at ``address``, or a :class:`RequestError` within :data:`CONNECT_SECONDS`.
 
-    The client is made on a daemon thread: a server that accepts the
-    connection and never answers the handshake would otherwise hold the
-    sweep forever (the client's own timeout does not cover that case).
+    Made on a daemon thread: a server that never answers the handshake would hold the sweep forever.
     """
     refused = _refused(address)
     if refused:
@@ -261,11 +231,7 @@ def _connect(distributed: Any, address: str) -> Any:
 
 
 def _refused(address: str) -> str:
-    """Why a TCP scheduler address cannot be connected to at all ('' when it can, or is not plain TCP).
-
-    A port that refuses, or is out of range, is said at once instead of after
-    dask's retries for :data:`CONNECT_SECONDS`.
-    """
+    """Why a TCP scheduler address cannot be connected to ('' when it can, or is not plain TCP), said before dask's retries."""
     parts = urlsplit(address if "://" in address else f"tcp://{address}")
     if parts.scheme != "tcp":
         return ""
@@ -315,23 +281,15 @@ class _Runner:
     def run(self, stage: str, function: Callable, chunks: Iterable[tuple], weights: Sequence[int]) -> Iterator[tuple[int, Any]]:
         """``(i, function(context, *chunk))`` for every chunk, as they finish.
 
-        ``chunks`` is consumed lazily and at most :data:`IN_FLIGHT` chunks per
-        worker are out at a time, so that the memory a sweep holds beyond its
-        table is a few chunks' worth, whatever the grid's size.
+        ``chunks`` is consumed lazily, at most :data:`IN_FLIGHT` per worker out
+        at a time: memory beyond the table stays a few chunks' worth.
         """
-        total = int(sum(weights))
-        done = 0
+        total, done = int(sum(weights)), 0
         if self.progress:
             self.progress(stage, 0, total)
-        if self.client is None and self.workers == 1:
-            for i, chunk in enumerate(chunks):
-                result = function(self.context, *chunk)
-                done += weights[i]
-                if self.progress:
-                    self.progress(stage, done, total)
-                yield i, result
-            return
-        for i, result in self._bounded(function, iter(enumerate(chunks))):
+        serial = self.client is None and self.workers == 1
+        finished = ((i, function(self.context, *chunk)) for i, chunk in enumerate(chunks)) if serial else self._bounded(function, iter(enumerate(chunks)))
+        for i, result in finished:
             done += weights[i]
             if self.progress:
                 self.progress(stage, done, total)
@@ -405,27 +363,14 @@ def tqdm_progress() -> Progress:
     return update
 
 
-def sweep(
-    mechanism: Mechanism,
-    vary: VarySpec | Iterable,
-    *,
-    actuated: Sequence[str] | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    max_poses: int = DEFAULT_MAX_POSES,
-    chunk_size: int = DEFAULT_CHUNK_SIZE,
-    scheduler: Any = None,
-    workers: int | None = None,
-    progress: bool | Progress | None = None,
-    transmission: bool = True,
-    good_threshold: float = GOOD_TRANSMISSION,
-) -> SweepResult:
+def sweep(mechanism: Mechanism, vary: VarySpec | Iterable, *, actuated: Sequence[str] | None = None, tol: Tolerance = DEFAULT_TOLERANCE,
+          max_poses: int = DEFAULT_MAX_POSES, chunk_size: int = DEFAULT_CHUNK_SIZE, scheduler: Any = None, workers: int | None = None,
+          progress: bool | Progress | None = None, transmission: bool = True, good_threshold: float = GOOD_TRANSMISSION) -> SweepResult:
     """Mobility, singularities and actuation over a grid of poses.
 
-    Each varied coordinate (see :mod:`mobility.sweeps.grid`) takes ``COUNT``
-    evenly spaced values; at every point of the product grid the other joints
-    are solved so that every loop closes (continuation from the file's pose),
-    and the pose is analysed as :func:`mobility.analyze` (and, with inputs,
-    :func:`mobility.check_actuation`) would analyse it rebuilt as a mechanism.
+    At every point of the product grid the other joints are solved so that
+    every loop closes (continuation from the file's pose), and the pose is
+    analysed as :func:`mobility.analyze` (with inputs, :func:`mobility.check_actuation`) would.
 
     Parameters
     ----------
@@ -441,10 +386,8 @@ def sweep(
         joints marked ``actuated: true`` (none: no actuation columns).
     tol : Tolerance
         The rank policy and the closure tolerance.
-    max_poses : int
-        Refuse a larger grid.
-    chunk_size : int
-        Poses per chunk of work.
+    max_poses, chunk_size : int
+        Refuse a larger grid; poses per chunk of work.
     scheduler : distributed.Client or str, optional
         Run the chunks on a dask.distributed cluster (a client, or a
         scheduler's address); default: in this process.
@@ -497,7 +440,7 @@ def sweep(
 
 
 def _positive_integer(key: str, value: Any) -> int:
-    """``value`` as an ``int`` when it is a positive integer (an ``int`` or a numpy integer, not a bool), else a :class:`RequestError`."""
+    """``value`` as an ``int`` when it is a positive integer (not a bool), else a :class:`RequestError`."""
     number = integer_value(value)
     if number is None or number < 1:
         raise RequestError(f"{key} must be a positive integer, got {shown_argument(value)}", caller="sweep")
@@ -543,19 +486,9 @@ def _close(context: _Context, runner: _Runner, chunk_size: int) -> GridClosure:
     return fill(context.bk, plan, closure, tol=context.tol)
 
 
-UNANSWERED = {
-    "dof": (-1, int),
-    "pattern": ("", object),
-    "mobility": (-1, int),
-    "smallest_kept": (np.nan, float),
-    "largest_dropped": (np.nan, float),
-    "near_singular": (False, bool),
-    "inexact": (False, bool),
-    "verdict": ("", object),
-    "conditioning": (np.nan, float),
-    "actuation_margin": (np.nan, float),
-    **dict.fromkeys(TRANSMISSION, (np.nan, float)),
-}
+UNANSWERED = {"dof": (-1, int), "pattern": ("", object), "mobility": (-1, int), "smallest_kept": (np.nan, float), "largest_dropped": (np.nan, float),
+              "near_singular": (False, bool), "inexact": (False, bool), "verdict": ("", object), "conditioning": (np.nan, float),
+              "actuation_margin": (np.nan, float), **dict.fromkeys(TRANSMISSION, (np.nan, float))}
 """Each column's value (and type) at a pose that is not analysed (not assembled, or no input chosen)."""
 
 
@@ -578,23 +511,8 @@ def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_siz
 
 
 def _result(context: _Context, closure: GridClosure, columns: dict[str, np.ndarray]) -> SweepResult:
-    actuation: dict[str, Any] = {}
-    if context.inputs is not None:
-        actuation = dict(
-            actuated=context.inputs.names,
-            verdict=columns.pop("verdict"),
-            conditioning=columns.pop("conditioning"),
-            actuation_margin=columns.pop("actuation_margin"),
-        )
-    return SweepResult(
-        mechanism=context.mechanism,
-        axes=context.plan.axes,
-        q=closure.q,
-        assembled=closure.assembled,
-        residual=closure.residual,
-        tolerance=context.tol,
-        good_threshold=GOOD_TRANSMISSION if context.transmission is None else context.transmission,
-        seams=find_seams(context.bk, context.plan, closure.q, closure.assembled, tol=context.tol),
-        **cast("dict[str, Any]", columns),  # the table's columns, each a field of the result
-        **actuation,
-    )
+    actuation: dict[str, Any] = {} if context.inputs is None else {"actuated": context.inputs.names}
+    return SweepResult(mechanism=context.mechanism, axes=context.plan.axes, q=closure.q, assembled=closure.assembled, residual=closure.residual,
+                       tolerance=context.tol, good_threshold=GOOD_TRANSMISSION if context.transmission is None else context.transmission,
+                       seams=find_seams(context.bk, context.plan, closure.q, closure.assembled, tol=context.tol),
+                       **cast("dict[str, Any]", columns), **actuation)  # the table's columns, each a field of the result

@@ -1,23 +1,13 @@
 """Seams: where the walk round a full turn comes back on another assembly.
 
-A range that covers a full turn of an ``R`` or ``C`` joint is walked round the
-circle in one direction (:mod:`mobility.sweeps.walks`), so neighbouring
-poses are joined by motion everywhere but between the last stop of the walk
-and its anchor, where the turn closes.  There a full turn usually comes back
-to the pose it left; it need not: the free joints of a mechanism driven by
-fewer coordinates than its mobility drift along the turn (a planar 5R with
-one crank driven), and a mechanism can leave one assembly for another on the
-way (a crank that turns twice per turn of its output).  The table then holds
-two poses a grid step apart that no small motion joins, which the answers
-alone may not show.
-
-:func:`find_seams` walks from the last stop of each closed line to its
-anchor's drive values (:data:`~mobility.sweeps.steps.RETURN_STEPS` Newton steps,
-:func:`~mobility.sweeps.steps.walk_between`) and compares the pose reached with the anchor's, joint by joint (their
-unit twists in normalised coordinates, so that a link spinning idly is the
-same pose): they differ by more than :data:`~mobility.core.tolerance.SEAM_GAP`
-at a seam.  Only lines walked all the way round are looked at (a line with a
-pose not assembled was joined to its anchor the other way).
+A full turn walked round the circle (:mod:`mobility.sweeps.walks`) need not
+come back to the pose it left: free joints drift (a planar 5R with one crank
+driven), or the mechanism changes assembly on the way. :func:`find_seams` walks
+from the last stop of each line walked all the way round to its anchor's drive
+values (:func:`~mobility.sweeps.steps.walk_between`) and compares the pose
+reached with the anchor's, joint by joint (unit twists in normalised
+coordinates, so a link spinning idly is the same pose): a seam where they
+differ by more than :data:`~mobility.core.tolerance.SEAM_GAP`.
 
 Examples
 --------
@@ -47,20 +37,8 @@ __all__ = ["find_seams"]
 def find_seams(bk: Kinematics, plan: GridPlan, q: np.ndarray, assembled: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
     """The pairs of grid points, ``(last stop, anchor)`` of a line round a full turn, that no small motion joins.
 
-    Parameters
-    ----------
-    bk : Kinematics
-    plan : GridPlan
-    q : ndarray, shape (size, n)
-        The joint variables of every grid point (flat, C order).
-    assembled : ndarray of bool, shape (size,)
-    tol : Tolerance
-
-    Returns
-    -------
-    ndarray of int, shape (k, 2)
-        Flat indices of the two grid points of each seam, in grid order of
-        the lines (none when no axis covers a full turn).
+    ``q`` ``(size, n)`` and ``assembled`` ``(size,)``: every grid point's (flat, C order).
+    Returns the flat indices ``(k, 2)`` of each seam's two points.
     """
     out: list[tuple[int, int]] = []
     drive = Drive.of(plan.axes, bk.variable_count)
@@ -88,12 +66,7 @@ def find_seams(bk: Kinematics, plan: GridPlan, q: np.ndarray, assembled: np.ndar
 
 
 def _pose_gap(bk: Kinematics, q: np.ndarray, other: np.ndarray) -> np.ndarray:
-    """The largest difference between the joint twists of two sets of poses (unit columns, normalised coordinates), per pose.
-
-    The joints' lines, not the links' displacements: a link that spins idly
-    between two spherical joints (a rod of a Delta) turns without moving any
-    joint, and is the same pose.
-    """
+    """The largest difference between the joint twists of two sets of poses (unit columns, normalised coordinates), per pose."""
     with np.errstate(invalid="ignore", over="ignore"):
         a, b = posed_screws(bk, q).twists, posed_screws(bk, other).twists
         gap = np.abs(a - b).max(axis=(1, 2)) if a.shape[2] else np.zeros(len(q))

@@ -1,14 +1,10 @@
 """One continuation step of many poses: Newton at their driven values, and its retries.
 
-At a grid point the driven coordinates have given values (see
-:mod:`mobility.sweeps.grid`): a driven joint's variable is fixed; a pose
-coordinate is one more equation (:class:`Drive`).  The other variables are
-solved so that every loop closes by the one Newton's method of the package
-(:func:`mobility.core.kinematics.newton`, on every pose of a stack at once).
-A pose is *assembled* when every residual component is at most
-``Tolerance.closure`` (radians, lengths over the characteristic length).
-
-A step of a line that fails is retried (:func:`_advance`): a wider move, sub-steps, off a fold.
+A driven joint's variable is fixed; a pose coordinate is one more equation
+(:class:`Drive`); the other variables are solved by the package's one Newton
+(:func:`mobility.core.kinematics.newton`). A pose is *assembled* when every
+residual component is at most ``Tolerance.closure``. A failed step is retried
+(:func:`_advance`): a wider move, sub-steps, off a fold.
 
 Examples
 --------
@@ -45,14 +41,10 @@ class Drive:
 
     Attributes
     ----------
-    joints : ndarray of int
-        Axis positions that drive a joint variable, and
-    variables : ndarray of int
-        the variable each drives.
-    pose : ndarray of int
-        Axis positions that are pose coordinates, and
-    components : ndarray of int
-        the component (0..5) each fixes.
+    joints, variables : ndarray of int
+        Axis positions that drive a joint variable, and the variable each drives.
+    pose, components : ndarray of int
+        Axis positions that are pose coordinates, and the component (0..5) each fixes.
     free : ndarray of bool, shape (n,)
         The variables solved for.
     """
@@ -101,11 +93,7 @@ def newton(
     max_move: np.ndarray | float = np.inf,
     max_iter: int = MAX_ITERATIONS,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Close every loop of many poses at their driven values ``targets`` ``(N, axes)`` (:func:`mobility.core.kinematics.newton`).
-
-    Returns the best iterate of each pose ``(N, n)``, its largest residual
-    component ``(N,)`` and whether it is assembled.
-    """
+    """Close every loop of many poses at their driven values ``targets`` ``(N, axes)``: the best iterates, their residuals, whether assembled."""
     out = close_stack(bk, drive.apply(start, targets), targets[:, drive.pose], drive.equations, tol=tol, max_move=max_move, max_iter=max_iter)
     return out.q, out.residual, out.converged
 
@@ -127,18 +115,12 @@ def _advance(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """One continuation step from assembled poses ``base_q`` (at ``base_t``) to ``targets``, retried in smaller steps.
 
-    A solve may move at most ``10 span + 0.05`` from its start, ``span`` being
-    the predicted move plus the drive's change: farther, it would reach
-    another assembly.  A retry also allows the length of the linearised step
-    from the base pose (:func:`_linear_step_lengths`): where the other joints
-    move many times faster than the driven ones (a poorly conditioned drive,
-    or a line's first step, predicted from one point only), the nearby
-    assembly lies that far.  A step still failing is walked from its base in
-    sub-steps (:func:`_substeps`), then, from a base at a fold, tried off the
-    fold (:func:`_off_a_fold`).
-
-    The residual returned for a pose not assembled is that of the joint
-    variables returned with it: the best a solve reached there.
+    A solve moves at most ``10 span + 0.05`` (``span``: the predicted move plus
+    the drive's change): farther, it would reach another assembly. A retry also
+    allows the linearised step's length (:func:`_linear_step_lengths`; a poorly
+    conditioned drive needs it), then walks in sub-steps (:func:`_substeps`),
+    then tries off a fold (:func:`_off_a_fold`). A pose not assembled keeps
+    the best attempt and its residual.
     """
     with np.errstate(over="ignore", invalid="ignore"):  # an infinite span (a target beyond any size) allows any move
         span = np.linalg.norm(predicted - base_q, axis=1) + np.linalg.norm(targets - base_t, axis=1)
@@ -162,10 +144,7 @@ def _advance(
 
 
 def _keep_better(q: np.ndarray, err: np.ndarray, ok: np.ndarray, rows: np.ndarray, new_q: np.ndarray, new_err: np.ndarray, new_ok: np.ndarray) -> None:
-    """In place: each of ``rows`` (not assembled) takes the new attempt if it assembles, or if it lowers the residual.
-
-    So the residual of a pose not assembled is always that of its joint variables.
-    """
+    """In place: each of ``rows`` (not assembled) takes the new attempt if it assembles, or if it lowers the residual."""
     take = new_ok | (new_err < err[rows])
     q[rows[take]], err[rows[take]] = new_q[take], new_err[take]
     ok[rows[new_ok]] = True
@@ -188,22 +167,12 @@ def _substeps(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Failed steps walked from their base towards their targets in sub-steps, halving a sub-step that fails.
 
-    Each walk starts with half the step.  A sub-step that closes is taken (the
-    next one allowed twice as long, up to half the step); one that fails is
-    tried again half as long from the same pose.  Each sub-step is predicted
-    along the line's predictor (its share of ``predicted - base_q``), or, when
-    the line predicted from one point only (``predicted`` is the base), along
-    the secant of the walk's last sub-step.  A walk gives up at its
-    ``SUBSTEP_HALVINGS + 1``-th failure, so its work is bounded (a target
-    beyond a fold, which no walk reaches, costs a few solves).  Every sub-step is a plain continuation
-    step: its solve may move at most ``10 span + 0.05`` (``span``: its
-    predicted move, its drive's change and its share of the linearised step
-    ``linear``), and the drive moves monotonically from the base to the
-    target, so a walk cannot pass a fold onto the other assembly branch.
-
-    Where the other joints move many times faster than the driven ones (the
-    file's pose near a fold), a grid step can be too long for a first step
-    predicted from one point; the walk reaches the poses a finer grid reaches.
+    Each walk starts with half the step; a sub-step that closes is taken (the
+    next up to twice as long, at most half the step), one that fails is tried
+    half as long. Sub-steps follow the line's predictor, or (predicted from one
+    point) the walk's secant. A walk gives up at its ``SUBSTEP_HALVINGS + 1``-th
+    failure. Each sub-step is a plain continuation step and the drive moves
+    monotonically, so a walk cannot pass a fold onto the other assembly branch.
 
     Returns
     -------
@@ -246,11 +215,8 @@ def _substeps(
 def _linear_step_lengths(bk: Kinematics, drive: Drive, base_q: np.ndarray, targets: np.ndarray, tol: Tolerance) -> np.ndarray:
     """Length of the first Newton step from each assembled ``base_q`` to ``targets`` (the linearised motion), 0 at a fold.
 
-    Where the closure equations keep their rank (``Tolerance.rank``), the
-    step is the tangent of the branch through the base pose, scaled to the
-    drive's change.  Where they lose it (a fold, or a driven coordinate the
-    mechanism cannot change there), the linear equations have no solution and
-    the damped step's length means nothing: 0 is returned.
+    Where the equations lose rank (a fold, or a driven coordinate the mechanism
+    cannot change there) the damped step's length means nothing: 0.
     """
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         start = drive.apply(base_q, targets)
@@ -282,17 +248,12 @@ def _off_a_fold(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Steps that failed from a pose where the drive's Jacobian is singular, tried again off that pose.
 
-    At a fold of the driven coordinates (a leg length at its largest, a
-    dead centre) the nearby poses lie ``sqrt(step)`` away along the motion the
-    drive leaves free to first order, which Newton's minimum-norm step never
-    takes.  From each failed step's base pose, starts at ``+-c sqrt(step)``
-    along each such direction are given to Newton, for each ``c`` of
-    :data:`FOLD_REACH` in turn (all directions and both sides of one ``c``
-    solved together); the first that closes and walks back to the base
-    (:func:`_walks_back`), in the order ``c``, direction, ``+`` side first, is
-    kept.  A base pose whose Jacobian keeps its rank (``Tolerance.rank``) is no
-    fold: nothing is tried, so the continuation never leaves the file's
-    assembly branch across a fold it only approached.
+    At a fold (a leg at its longest, a dead centre) the nearby poses lie
+    ``sqrt(step)`` away along the motion the drive leaves free to first order,
+    which Newton's minimum-norm step never takes. Starts at ``+-c sqrt(step)``
+    along each such direction, for each ``c`` of :data:`FOLD_REACH` in turn,
+    are solved; the first that closes and walks back to the base
+    (:func:`_walks_back`) is kept. A base of full rank is no fold: nothing is tried.
 
     Returns
     -------
@@ -336,11 +297,7 @@ def _off_a_fold(
 
 
 def _folds(sv: np.ndarray, tol: Tolerance) -> tuple[np.ndarray, np.ndarray]:
-    """The rank of each stacked closure Jacobian (singular values ``(N, min(m, free))``) and whether it is a fold.
-
-    A fold: the equations lose rank by the policy's rank decision
-    (``Tolerance.rank``); more variables than equations is no fold by itself.
-    """
+    """The rank of each stacked closure Jacobian (singular values ``(N, min(m, free))``) and whether it is a fold (loses rank)."""
     rank = decide_ranks(sv, tol).rank if sv.shape[1] else np.zeros(len(sv), dtype=int)
     return rank, rank < sv.shape[1]
 
@@ -360,13 +317,9 @@ def walk_between(bk: Kinematics, drive: Drive, q: np.ndarray, start: np.ndarray,
 def _walks_back(bk: Kinematics, drive: Drive, q: np.ndarray, targets: np.ndarray, base_q: np.ndarray, base_t: np.ndarray, tol: Tolerance) -> np.ndarray:
     """Whether each closed pose ``q`` (at ``targets``) lies on a branch through ``base_q``: walking back comes home.
 
-    A pose found off a fold is kept only when continuation from it back to
-    the base's drive values, in :data:`RETURN_STEPS` steps, ends nearer the
-    base than half its distance from it.  On a branch through the base (a
-    fold, a change point) the walk ends at the base; a pose of another
-    assembly, which a start far along a direction the drive leaves free can
-    reach when the driven coordinate cannot change at the base (a rotation of
-    a translational platform), walks back to a pose of its own branch.
+    Continuation back to the base's drive values in :data:`RETURN_STEPS` steps
+    must end nearer the base than half the pose's distance from it; a pose of
+    another assembly walks back to a pose of its own branch.
     """
     cur = walk_between(bk, drive, q, targets, base_t, tol=tol)
     with np.errstate(over="ignore", invalid="ignore"):

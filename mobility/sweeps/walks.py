@@ -1,42 +1,16 @@
 """Angles that wrap: the order in which the continuation visits the values of one axis.
 
-The angle of an ``R`` joint displaced by a whole turn is the same joint
-state, and so is the angle of a ``C`` joint (its slide is free); not the
-angle of an ``H`` joint (its slide goes with its angle), a slide or a pose
-coordinate (:attr:`~mobility.sweeps.grid.SweepAxis.period`).
-
-The continuation (:mod:`mobility.sweeps.continuation`) walks every axis from
-its *anchor*, the value nearest the file's pose, both ways.  On an axis
-whose values wrap:
-
-* the anchor is the value nearest the file's pose round the circle (a
-  displacement of 350 degrees is 10 degrees from it);
-* values congruent modulo a turn (to within
-  :data:`~mobility.core.tolerance.SAME_GRID_VALUE` of a step: ``0`` and
-  ``360``, ``-180`` and ``180``, ``-350`` and ``10``) are one *stop* of the
-  walk, solved once: every value of a stop takes its pose, the driven angle
-  turned by whole turns;
-* when the range covers a full turn (its span plus one step reaches a turn,
-  so that no gap between the values round the circle is longer than a step)
-  the walk is *closed*: its stops are ordered round the circle and the last
-  is a neighbour of the first.  The walk goes up from the anchor all the
-  way round (to the stop before the anchor), then down from the anchor
-  until it meets a stop already assembled: a crank that turns fully is
-  walked in one direction, so neighbouring stops are joined by motion
-  everywhere but between the last stop and the anchor (where a full turn
-  comes back to the file's pose, as it does unless the turn leads to
-  another pose: a seam, :mod:`mobility.sweeps.seams`); a crank that cannot turn fully is walked up to its
-  limit, and the down leg reaches the poses on the other side of the
-  file's pose.  So ``0:360:361`` and ``-180:180:361`` assemble the same
-  poses (the walk of both starts at 0 and goes up first).  Walking up half
-  way and down the other half would meet in the middle, where the two
-  halves can arrive on different branches: a four-bar whose file sits at a
-  change point leaves it on one branch going up and on the other going
-  down.
-
-Inside a walk the driven angle is continuous (``values`` of a closed walk go
-on past a turn), so the predictor and the step size of the continuation
-never see a jump of 360 degrees.
+An ``R`` or ``C`` angle displaced by a whole turn is the same joint state
+(:attr:`~mobility.sweeps.grid.SweepAxis.period`). On such an axis the anchor is
+the value nearest the file's pose round the circle; values congruent modulo a
+turn (to :data:`~mobility.core.tolerance.SAME_GRID_VALUE` of a step) are one
+*stop*, solved once. A range covering a full turn is a *closed* walk: up from
+the anchor all the way round, then down until it meets a stop already
+assembled, so a crank that turns fully is walked in one direction (joined by
+motion everywhere but at the seam, :mod:`mobility.sweeps.seams`), and
+``0:360:361`` and ``-180:180:361`` assemble the same poses. Walking half way
+each way could meet on different branches. The driven angle stays continuous
+along a walk (no jump of 360 degrees for the predictor).
 
 Examples
 --------
@@ -75,11 +49,9 @@ class AxisWalk:
     variable : int
         The joint variable the axis drives (-1 for a pose coordinate).
     stops : ndarray of int, shape (w,)
-        The value (index along the axis) solved at each stop of the walk, in
-        walk order: round the circle for a closed walk, else the axis's own order.
+        The value (index along the axis) solved at each stop, in walk order.
     values : ndarray of float, shape (w,)
-        The internal value driven at each stop, continuous from the first
-        stop to the last (whole turns away from the stop's own value).
+        The internal value driven at each stop, continuous along the walk.
     start : int
         The stop of the anchor.
     closed : bool
@@ -107,14 +79,9 @@ class AxisWalk:
     def legs(self) -> tuple[tuple[np.ndarray, np.ndarray, bool], tuple[np.ndarray, np.ndarray, bool]]:
         """The two legs from the start, up then down: ``(stops, values, halts)`` each.
 
-        A closed walk's up leg goes all the way round (one direction, so
-        the stops it reaches are joined by motion); its down leg serves the
-        stops the up leg could not reach.
-
-        ``stops`` indexes :attr:`stops` in the order the leg visits them,
-        ``values`` are the driven internal values there (continuous from the
-        start's), ``halts``: the leg ends where it meets a stop already
-        assembled (the down leg of a closed walk).
+        ``stops`` indexes :attr:`stops` in visiting order, ``values`` are the
+        driven internal values there, ``halts``: the leg ends where it meets a
+        stop already assembled (the down leg of a closed walk).
         """
         w, s = self.stops.size, self.start
         if self.closed:

@@ -1,22 +1,10 @@
 """Type synthesis of limbs for a motion pattern (e.g. the seven 5-DOF limbs of 2T3R PKMs), by finite screws.
 
-One module per step, in the order the data flows:
-
-``patterns``
-    motion patterns as triangle products of finite-screw factors
-    (:class:`PatternFactor`, :class:`MotionPattern`, :func:`named_pattern`).
-``generic_rank``
-    the dimension of a chain's set of finite motions (generic rank of its twists).
-``limb_types``
-    joints labelled by the pattern's directions and points, and the limb
-    types named from them as in the paper (:class:`SynthesizedLimb`).
-``enumeration``
-    :func:`synthesize`: every chain of R and P joints whose finite motions
-    are the pattern (:class:`SynthesisResult`); :func:`generates` for one chain.
-``assembly``
-    :func:`assemble_pkm`: a parallel mechanism of a synthesized limb and
-    6-DOF limbs; :func:`pkm_document` and :func:`write_pkm_files`: its
-    mechanism file, checked by the analysis.
+Modules, in data-flow order: ``patterns`` (motion patterns as triangle
+products of finite-screw factors), ``generic_rank`` (the dimension of a chain's
+finite motions), ``limb_types`` (limb types named as in the paper),
+``enumeration`` (:func:`synthesize`, :func:`generates`), ``assembly`` (a PKM of a
+synthesized limb and 6-DOF limbs, and its mechanism file).
 
 Examples
 --------
@@ -30,19 +18,5 @@ from .enumeration import SynthesisResult, candidate_joints, generates, synthesiz
 from .limb_types import TABLE_1_2T3R, CandidateJoint, SynthesizedLimb
 from .patterns import PATTERNS, MotionPattern, PatternFactor, named_pattern
 
-__all__ = [
-    "synthesize",
-    "generates",
-    "candidate_joints",
-    "named_pattern",
-    "MotionPattern",
-    "PatternFactor",
-    "PATTERNS",
-    "SynthesisResult",
-    "SynthesizedLimb",
-    "CandidateJoint",
-    "TABLE_1_2T3R",
-    "assemble_pkm",
-    "pkm_document",
-    "write_pkm_files",
-]
+__all__ = ["synthesize", "generates", "candidate_joints", "named_pattern", "MotionPattern", "PatternFactor", "PATTERNS", "SynthesisResult",
+           "SynthesizedLimb", "CandidateJoint", "TABLE_1_2T3R", "assemble_pkm", "pkm_document", "write_pkm_files"]

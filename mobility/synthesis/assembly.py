@@ -1,11 +1,7 @@
 """Parallel mechanisms assembled from synthesized limbs, and their mechanism files.
 
-:func:`assemble_pkm` builds a PKM of one limb type found by
-:func:`~mobility.synthesis.synthesize` and a number of 6-DOF limbs (``UPS`` or
-``SPRR``) as a :class:`~mobility.core.model.Mechanism`; :func:`pkm_document`
-checks it with :func:`mobility.analyze` and writes its mechanism file text
-(by :func:`mobility.io.writer.mechanism_to_yaml`); :func:`write_pkm_files`
-writes one file per limb type.
+:func:`pkm_document` checks a PKM with :func:`mobility.analyze` before writing its
+file (:func:`mobility.io.writer.mechanism_to_yaml`).
 
 Examples
 --------
@@ -74,19 +70,9 @@ def _regular_at_home(joints: Sequence[Joint], origin: np.ndarray, length: float)
     return rank(matrix) == matrix.shape[1]
 
 
-def assemble_pkm(
-    result: SynthesisResult,
-    structure: str,
-    *,
-    other: str = "UPS",
-    copies: int = 4,
-    base_radius: float = 600.0,
-    platform_radius: float = 400.0,
-    height: float = 900.0,
-    twist_deg: float = 60.0,
-    twist_pattern: Sequence[float] = (1.0, 0.0, 1.0, 2.0),
-    name: str | None = None,
-) -> Mechanism:
+def assemble_pkm(result: SynthesisResult, structure: str, *, other: str = "UPS", copies: int = 4, base_radius: float = 600.0,
+                 platform_radius: float = 400.0, height: float = 900.0, twist_deg: float = 60.0,
+                 twist_pattern: Sequence[float] = (1.0, 0.0, 1.0, 2.0), name: str | None = None) -> Mechanism:
     """A PKM of one synthesized limb and ``copies`` 6-DOF limbs, as a :class:`~mobility.core.model.Mechanism`.
 
     The first realisation of ``structure`` (a name in ``result``) is used as
@@ -103,10 +89,7 @@ def assemble_pkm(
     ``height``.  Every 6-DOF limb's P is actuated, and so is the first P of
     the synthesized limb (its last R if it has none; none if it has neither).
 
-    ``copies`` is at least 1, and so few that the PKM has no more joints than
-    a mechanism file may (:attr:`~mobility.io.limits.Limits.max_joints`,
-    ``MOBILITY_MAX_JOINTS``); the lengths are finite and positive, the angles
-    finite.
+    ``copies`` keeps the PKM within :attr:`~mobility.io.limits.Limits.max_joints`.
 
     Raises
     ------
@@ -163,19 +146,14 @@ def assemble_pkm(
         across /= np.linalg.norm(across)
         up = np.array([0.0, 0.0, 1.0])
         k = i + 1
+        leg = Joint(f"P{k}", "P", (f"L{k}a", f"L{k}b"), axis=tuple(b - a), actuated=True)
         if other == "UPS":
-            joints += [
-                Joint(f"U{k}", "U", ("base", f"L{k}a"), point=tuple(a), axes=(tuple(up), tuple(tangent_a))),
-                Joint(f"P{k}", "P", (f"L{k}a", f"L{k}b"), axis=tuple(b - a), actuated=True),
-                Joint(f"S{k}", "S", (f"L{k}b", "platform"), point=tuple(b)),
-            ]
+            joints += [Joint(f"U{k}", "U", ("base", f"L{k}a"), point=tuple(a), axes=(tuple(up), tuple(tangent_a))), leg,
+                       Joint(f"S{k}", "S", (f"L{k}b", "platform"), point=tuple(b))]
         else:
-            joints += [
-                Joint(f"S{k}", "S", ("base", f"L{k}a"), point=tuple(a)),
-                Joint(f"P{k}", "P", (f"L{k}a", f"L{k}b"), axis=tuple(b - a), actuated=True),
-                Joint(f"R{k}a", "R", (f"L{k}b", f"L{k}c"), axis=tuple(across), point=tuple(b)),
-                Joint(f"R{k}b", "R", (f"L{k}c", "platform"), axis=tuple(up), point=tuple(b)),
-            ]
+            joints += [Joint(f"S{k}", "S", ("base", f"L{k}a"), point=tuple(a)), leg,
+                       Joint(f"R{k}a", "R", (f"L{k}b", f"L{k}c"), axis=tuple(across), point=tuple(b)),
+                       Joint(f"R{k}b", "R", (f"L{k}c", "platform"), axis=tuple(up), point=tuple(b))]
     return Mechanism(name or f"{found.name}-{copies}({other})", "base", "platform", tuple(joints))
 
 
@@ -225,13 +203,7 @@ def pkm_document(result: SynthesisResult, structure: str, *, other: str = "UPS",
     """A PKM assembled by :func:`assemble_pkm`, analysed, and its mechanism file text.
 
     The ``expected`` block comes from the synthesis (DOF and pattern of the
-    pattern, mobility the Grübler-Kutzbach count), and :func:`mobility.analyze`
-    must agree before the text is returned.
-
-    Returns
-    -------
-    mechanism : Mechanism
-    text : str
+    pattern, mobility the Grübler-Kutzbach count); :func:`mobility.analyze` must agree.
 
     Raises
     ------
@@ -241,9 +213,6 @@ def pkm_document(result: SynthesisResult, structure: str, *, other: str = "UPS",
     """
     mechanism = assemble_pkm(result, structure, other=other, **geometry)
     found = result.structure(structure)
-    # Expected from the synthesis, not from the analyzer: the limb's finite motions are the pattern, and the
-    # 6-DOF limbs add no constraint, so the platform moves in the pattern; with no redundant constraint the
-    # mobility is the Grübler-Kutzbach count.
     pattern_text = result.pattern.name
     expected = {"dof": result.pattern.dim, "pattern": pattern_text, "mobility": gruebler_kutzbach(mechanism)}
     r = analyze(mechanism)
@@ -271,20 +240,15 @@ def write_pkm_files(result: SynthesisResult, folder: str | Path, *, other: str =
 
     Returns
     -------
-    written : tuple of str
-        The paths written.
-    skipped : tuple of str
-        One line per limb type not assembled: its name and why.
+    written, skipped : tuple of str
+        The paths written; one line per limb type not assembled, with why.
 
     Raises
     ------
     RequestError
-        When ``folder`` cannot be created (its parent must exist) or
-        written (then no file of this call is left: each is written whole,
-        and those written before the error are removed), when a file to
-        write is already there (nothing is overwritten: nothing is written
-        then), or when the chains of
-        ``result`` are shorter than the pattern's dimension (not limbs).
+        When ``folder`` cannot be created or written (then no file of this call
+        is left), a file to write is already there (nothing is written), or the
+        chains of ``result`` are shorter than the pattern's dimension.
     """
     path = Path(folder)
     if result.joints != result.pattern.dim:

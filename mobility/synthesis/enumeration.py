@@ -1,34 +1,22 @@
 """Type synthesis of limbs by finite screws: which serial chains generate a motion pattern?
 
-:func:`synthesize` enumerates serial chains of ``R`` and ``P`` joints whose
-directions come from the pattern's direction set (its translation directions
-and their cross products, :meth:`~mobility.synthesis.patterns.MotionPattern.directions`),
-whose ``R`` axes pass through the pattern's points or through generic points,
-in every order (so every permutation and every replacement the paper uses,
-such as an ``S`` by three ``R`` through ``O``, a ``U`` by two, or a translation
-by a rotation about a parallel axis, is among the candidates; none is written
-in).  It keeps the chains whose set of finite motions *equals* the pattern:
-every motion of the chain lies in the pattern, and the chain's motion has the
-pattern's dimension.  Two routes decide it:
+:func:`synthesize` enumerates chains of ``R`` and ``P`` joints along the
+pattern's directions (:meth:`~mobility.synthesis.patterns.MotionPattern.directions`),
+``R`` axes through the pattern's points or generic points, in every order (so
+the paper's replacements, an ``S`` by three ``R``, a ``U`` by two, are among
+the candidates; none is written in). It keeps the chains whose finite motions
+*equal* the pattern:
 
-1. **rank route (prunes the search).**  For a pattern ``M = G1 △ G2`` made of
-   two subgroups (one factor: ``G1 = G2``), a chain ``L`` (which contains the
-   identity) lies in ``M`` exactly when ``G1 △ L △ G2`` has the dimension of
-   ``M``: that set contains ``M`` (take ``L`` at its identity) and lies in
-   ``G1 M G2 = M`` when ``L ⊂ M``; conversely equal dimension makes the two
-   irreducible images coincide.  Dimensions are generic ranks of the twists
-   (derivatives of the chain's finite screw) at random seeded joint values
-   (:mod:`mobility.synthesis.generic_rank`), decided by
-   :func:`mobility.core.tolerance.decide_rank`.  Every prefix of a valid chain
-   is valid too (set the later joints to zero), which prunes the search.
-2. **sample route (confirms every chain kept).**  Random finite motions of the
-   chain (angles in ``(-π, π)``, slides across the pattern's size) are fitted
-   by the pattern's finite screw with :func:`scipy.optimize.least_squares`;
-   each must fit to the closure tolerance
+1. **rank route (prunes).** For ``M = G1 △ G2``, a chain ``L`` lies in ``M``
+   exactly when ``G1 △ L △ G2`` has the dimension of ``M`` (it contains ``M``,
+   and lies in ``G1 M G2 = M`` when ``L ⊂ M``). Dimensions are generic ranks
+   at seeded random joint values (:mod:`mobility.synthesis.generic_rank`).
+   Every prefix of a valid chain is valid, which prunes the search.
+2. **sample route (confirms).** Random finite motions of each chain kept are
+   fitted by the pattern's finite screw to the closure tolerance
    (:meth:`~mobility.synthesis.patterns.MotionPattern.contains`).
 
-The sequences kept are grouped into limb types named as in the paper
-(:mod:`mobility.synthesis.limb_types`).
+Sequences are grouped into limb types named as in the paper (:mod:`mobility.synthesis.limb_types`).
 
 Examples
 --------
@@ -76,24 +64,16 @@ class SynthesisResult:
     pattern : MotionPattern
     joints : int
         Number of one-DOF joints per limb.
-    alphabet : tuple of CandidateJoint
-        The candidate joints that survived the single-joint test.
-    rejected_joints : tuple of CandidateJoint
-        Candidates whose own motion already leaves the pattern.
+    alphabet, rejected_joints : tuple of CandidateJoint
+        The candidate joints that survived the single-joint test; those whose own motion leaves the pattern.
     structures : tuple of SynthesizedLimb
         Limb types found, in order of first discovery.
-    sequences : int
-        Joint sequences kept.
-    candidates_tested : int
-        Rank tests made during the search.
-    verified_samples : int
-        Finite motions fitted by the pattern (sample route), all to the closure tolerance.
+    sequences, candidates_tested, verified_samples : int
+        Joint sequences kept; rank tests made; finite motions fitted by the pattern (the sample route).
     seconds : float
         Wall time of the search and the verification.
-    points : dict
-        Label -> point used (``O``, ``g1``...).
-    directions : dict
-        Label -> direction used (``s1``, ``s2``, ``c``...).
+    points, directions : dict
+        Label -> point (``O``, ``g1``...) and label -> direction (``s1``, ``c``...) used.
     """
 
     pattern: MotionPattern
@@ -124,22 +104,12 @@ class SynthesisResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "pattern": self.pattern.name,
-            "description": self.pattern.description,
-            "factors": [f.describe() for f in self.pattern.factors],
-            "dim": self.pattern.dim,
-            "joints": self.joints,
-            "points": {k: list(v) for k, v in self.points.items()},
-            "directions": {k: list(v) for k, v in self.directions.items()},
-            "alphabet": [c.label for c in self.alphabet],
-            "rejected_joints": [c.label for c in self.rejected_joints],
-            "structures": [s.to_dict() for s in self.structures],
-            "sequences": self.sequences,
-            "candidates_tested": self.candidates_tested,
-            "verified_samples": self.verified_samples,
-            "seconds": self.seconds,
-        }
+        return {"pattern": self.pattern.name, "description": self.pattern.description, "factors": [f.describe() for f in self.pattern.factors],
+                "dim": self.pattern.dim, "joints": self.joints, "points": {k: list(v) for k, v in self.points.items()},
+                "directions": {k: list(v) for k, v in self.directions.items()}, "alphabet": [c.label for c in self.alphabet],
+                "rejected_joints": [c.label for c in self.rejected_joints], "structures": [s.to_dict() for s in self.structures],
+                "sequences": self.sequences, "candidates_tested": self.candidates_tested, "verified_samples": self.verified_samples,
+                "seconds": self.seconds}
 
 
 def candidate_joints(pattern: MotionPattern, generic_points: int, rng: np.random.Generator) -> tuple[list[CandidateJoint], dict[str, Vector], dict[str, Vector]]:
@@ -151,15 +121,11 @@ def candidate_joints(pattern: MotionPattern, generic_points: int, rng: np.random
     Returns
     -------
     candidates : list of CandidateJoint
-    points : dict
-        Label -> point.
-    directions : dict
-        Label -> direction.
+    points, directions : dict
+        Label -> point, label -> direction.
     """
     directions = pattern.directions()
-    points: list[tuple[str, Vector]] = []
-    for i, p in enumerate(pattern.points):
-        points.append(("O" if i == 0 else f"O{i + 1}", p))
+    points: list[tuple[str, Vector]] = [("O" if i == 0 else f"O{i + 1}", p) for i, p in enumerate(pattern.points)]
     centre = np.mean([p for _, p in points], axis=0) if points else np.zeros(3)
     length = pattern.length
     for k in range(generic_points):
@@ -188,16 +154,8 @@ def _count(value: object, key: str, least: int, most: int | None = None, caller:
     return require_integer(value, f"an integer {expected}", caller=caller, argument=key, low=least, high=most, error=SynthesisError)
 
 
-def synthesize(
-    pattern: MotionPattern | str,
-    *,
-    joints: int | None = None,
-    generic_points: int | None = None,
-    samples: int = 3,
-    verify_samples: int = 2,
-    seed: int = 0,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> SynthesisResult:
+def synthesize(pattern: MotionPattern | str, *, joints: int | None = None, generic_points: int | None = None, samples: int = 3,
+               verify_samples: int = 2, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> SynthesisResult:
     """Enumerate the limbs of R and P joints whose finite motions are the pattern.
 
     Parameters
@@ -205,17 +163,16 @@ def synthesize(
     pattern : MotionPattern or str
         A pattern or a name of :data:`~mobility.synthesis.patterns.PATTERNS` (default geometry).
     joints : int, optional
-        One-DOF joints per limb (default: the pattern's dimension, at most
-        that: fewer give the chains whose motions lie in the pattern, the
-        parts of limbs).
+        One-DOF joints per limb (default and most: the pattern's dimension;
+        fewer give the parts of limbs).
     generic_points : int, optional
         Generic points for R axes off the pattern's points (default: ``joints``;
         at most :data:`MAX_GENERIC_POINTS`).
     samples : int
         Random poses per generic-rank decision (from 1 to :data:`MAX_SAMPLES`).
     verify_samples : int
-        Random finite motions of each kept joint sequence fitted by the pattern
-        (the sample route), at most :data:`MAX_VERIFY_SAMPLES`; 0 skips it.
+        Random finite motions of each kept sequence fitted by the pattern (the
+        sample route), at most :data:`MAX_VERIFY_SAMPLES`; 0 skips it.
     seed : int
         Seed of every random choice (generic points, poses, fit starts).
     tol : Tolerance
@@ -228,21 +185,15 @@ def synthesize(
     Raises
     ------
     SynthesisError
-        For a pattern with more than two factors (the rank route needs
-        ``M = G1 △ G2``), an unknown pattern name, a joint count below 1,
-        or a count of samples, verified samples or generic points out of its
-        range (each count an integer).
+        A pattern of more than two factors, an unknown name, or a count out of its range.
     RequestError
-        For a ``pattern`` neither a :class:`MotionPattern` nor a name, or a
-        ``seed`` not a non-negative integer.
+        A ``pattern`` neither a :class:`MotionPattern` nor a name, or a bad ``seed``.
     AnalysisError
-        When the two routes disagree on a chain (the sample route finds a
-        motion outside the pattern): the rank decisions were too close to call.
+        When the two routes disagree on a chain: a rank decision was too close to call.
 
     Examples
     --------
-    The limbs of three joints whose finite motions are the planar 2T1R
-    pattern (its rotations about one direction, translations across it):
+    The limbs of three joints generating the planar 2T1R pattern:
 
     >>> r = synthesize("2T1R", verify_samples=0)
     >>> len(r.structures), [s.name for s in r.structures[:4]]
@@ -259,9 +210,7 @@ def synthesize(
     tol = require_tolerance(tol, "synthesize")
     if len(pattern.factors) > 2:
         raise SynthesisError("synthesize needs a pattern of one or two factors (M = G1 △ G2)")
-    # The pattern is searched with its points' centre at the origin (the set of limbs does not depend on where the
-    # pattern is): twists of a pattern far from the origin (a point at 1e200) would lose every digit of their
-    # moments; the points found are moved back at the end.
+    # searched with its points' centre at the origin (far from it, twists lose their moments' digits); points moved back at the end
     given = pattern
     centre = np.mean(np.asarray(pattern.points or [(0.0, 0.0, 0.0)], dtype=float), axis=0)
     pattern = pattern.translated(-centre)
@@ -315,26 +264,13 @@ def synthesize(
                 raise AnalysisError(f"the rank route and the sample route disagree on {' '.join(x.label for x in seq)}: a rank decision was too close to call")
             verified += 1
     plane = tuple(f"s{i + 1}" for i in range(len(pattern.translation_directions)))
-    return SynthesisResult(
-        given,
-        n,
-        tuple(alphabet),
-        tuple(rejected),
-        limb_types(found, pattern.name, plane),
-        len(found),
-        tested,
-        verified,
-        time.perf_counter() - start,
-        {label: cast(Vector, tuple(float(x) for x in np.asarray(p) + centre)) for label, p in points.items()},  # 3-vectors
-        directions,
-    )
+    moved_back = {label: cast(Vector, tuple(float(x) for x in np.asarray(p) + centre)) for label, p in points.items()}
+    return SynthesisResult(given, n, tuple(alphabet), tuple(rejected), limb_types(found, pattern.name, plane), len(found), tested, verified,
+                           time.perf_counter() - start, moved_back, directions)
 
 
 def generates(pattern: MotionPattern, joints: Sequence[ScrewJoint], *, samples: int = 3, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
-    """Whether the chain's set of finite motions equals the pattern (rank route).
-
-    True when every motion of the chain lies in the pattern (``G1 △ L △ G2``
-    has the pattern's dimension) and the chain's motion has that dimension.
+    """Whether the chain's set of finite motions equals the pattern (rank route: module docstring).
 
     Examples
     --------

@@ -34,16 +34,10 @@ __all__ = ["chain_twists", "sample_joint_values", "generic_rank"]
 def chain_twists(joints: Sequence[ScrewJoint], q: np.ndarray) -> np.ndarray:
     """Spatial twists of a chain at many poses at once: shape ``(samples, 6, n)``.
 
-    Column ``j`` is the twist of joint ``j`` carried by the joints before it,
-    ``Ad(T_1 ... T_{j-1}) ξ_j``; this equals the derivative of the chain's
-    finite screw mapped by Eq. 5 (:meth:`~mobility.core.finite_screws.Limb.twists`,
-    pinned by a test), only computed for many samples together.
-
-    Parameters
-    ----------
-    joints : sequence of ScrewJoint
-    q : ndarray, shape (samples, n)
-        Joint values, one pose per row.
+    Column ``j`` is joint ``j``'s twist carried by the joints before it,
+    ``Ad(T_1 ... T_{j-1}) ξ_j``: the derivative of the finite screw mapped by
+    Eq. 5 (:meth:`~mobility.core.finite_screws.Limb.twists`, pinned by a test).
+    ``q``: joint values, one pose per row.
     """
     samples, n = q.shape
     rot = np.broadcast_to(np.eye(3), (samples, 3, 3)).copy()
@@ -83,17 +77,7 @@ def sample_joint_values(joints: Sequence[ScrewJoint], rng: np.random.Generator, 
 def generic_rank(joints: Sequence[ScrewJoint], rng: np.random.Generator, samples: int, length: float, tol: Tolerance = DEFAULT_TOLERANCE) -> int:
     """Largest rank of the chain's twists over ``samples`` random poses (normalised coordinates, unit columns).
 
-    Parameters
-    ----------
-    joints : sequence of ScrewJoint
-    rng : numpy.random.Generator
-        Source of the random poses.
-    samples : int
-        Number of poses (at least 1).
-    length : float
-        Characteristic length: lengths are divided by it, slides range over it.
-    tol : Tolerance
-        The rank policy.
+    ``length`` is the characteristic length: lengths are divided by it, slides range over it.
     """
     if not joints:
         return 0

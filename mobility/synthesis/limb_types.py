@@ -76,13 +76,8 @@ class SynthesizedLimb:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "name": self.name,
-            "groups": list(self.groups),
-            "conditions": list(self.conditions),
-            "in_table_1": self.in_table_1,
-            "realizations": [[c.label for c in r] for r in self.realizations],
-        }
+        return {"name": self.name, "groups": list(self.groups), "conditions": list(self.conditions), "in_table_1": self.in_table_1,
+                "realizations": [[c.label for c in r] for r in self.realizations]}
 
 
 def joint_groups(seq: Sequence[CandidateJoint], plane: tuple[str, ...]) -> list[tuple[str, list[CandidateJoint]]]:
@@ -104,23 +99,13 @@ def joint_groups(seq: Sequence[CandidateJoint], plane: tuple[str, ...]) -> list[
             j = i
             while j + 1 < len(seq) and seq[j + 1].joint.kind == "R" and seq[j + 1].point == c.point:
                 j += 1
-            run = list(seq[i : j + 1])
-            while run:
-                take = run[:3]
-                run = run[3:]
-                if len(take) == 3:
-                    out.append(("S", take))
-                elif len(take) == 2:
-                    out.append(("U", take))
-                else:
-                    out.append(("Rc" if take[0].direction == "c" else f"R{take[0].direction}", take))
+            for k in range(i, j + 1, 3):  # three R through one point are an S, two a U
+                take = list(seq[k : min(k + 3, j + 1)])
+                out.append(({3: "S", 2: "U"}.get(len(take)) or ("Rc" if take[0].direction == "c" else f"R{take[0].direction}"), take))
             i = j + 1
         else:
-            if c.direction in plane:
-                p_count += 1
-                out.append((f"P{p_count}", [c]))
-            else:
-                out.append((f"P{c.direction}", [c]))
+            p_count += c.direction in plane
+            out.append((f"P{p_count}" if c.direction in plane else f"P{c.direction}", [c]))
             i += 1
     return out
 

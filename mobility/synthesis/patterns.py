@@ -9,11 +9,7 @@ The 2T3R pattern of Sun et al. (2018) is two translations in the plane of
 
     ``S_f = 2 tan(θ/2) [s; O × s]  △  t [0; u],   u ∈ span(s1, s2)``.
 
-:data:`PATTERNS` names the patterns the command line knows; any product of
-factors can be built in code.  :meth:`MotionPattern.fit` finds the pattern's
-motion nearest a displacement by least squares, and
-:meth:`MotionPattern.contains` decides membership with the closure tolerance
-of :mod:`mobility.core.tolerance`.
+:data:`PATTERNS` names the patterns the command line knows; any product of factors can be built in code.
 
 Examples
 --------
@@ -30,6 +26,7 @@ True
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 from functools import cached_property
@@ -241,12 +238,10 @@ class MotionPattern:
     def directions(self) -> tuple[tuple[str, Vector], ...]:
         """The pattern's direction set with labels.
 
-        The translation directions (``s1, s2, ...``) and the directions of
-        rotation factors (``a1, ...``), then the normalised cross products of
-        every pair (``c`` for ``s1 × s2``, else ``c1, c2, ...``), then, if they
-        do not span space, the coordinate axes that complete them.  A direction
-        parallel to one already in the set is left out; "parallel" and "span"
-        are rank decisions of the tolerance policy.
+        Translation directions (``s1, s2, ...``), rotation axes (``a1, ...``),
+        the cross products of every pair (``c`` for ``s1 × s2``, else ``c1, ...``),
+        then the coordinate axes completing a basis; a direction parallel to one
+        already in the set (a rank decision) is left out.
         """
         out: list[tuple[str, Vector]] = []
 
@@ -271,28 +266,22 @@ class MotionPattern:
 
     def transform(self, x: np.ndarray) -> np.ndarray:
         """4x4 displacement at parameters ``x`` (the factors' parameters, concatenated)."""
-        out = np.eye(4)
-        k = 0
-        for f in self.factors:
-            out = out @ f.transform(np.asarray(x[k : k + f.dim], dtype=float))
-            k += f.dim
-        return out
+        return functools.reduce(np.matmul, (f.transform(x_f) for f, x_f in zip(self.factors, self._split(x))), np.eye(4))
+
+    def _split(self, x: np.ndarray) -> list[np.ndarray]:
+        """``x`` cut into the factors' parameters."""
+        ends = np.cumsum([f.dim for f in self.factors])
+        return [np.asarray(x[e - f.dim : e], dtype=float) for f, e in zip(self.factors, ends)]
 
     def finite_screw(self, x: np.ndarray) -> FiniteScrew:
         """``F_1(x_1) △ F_2(x_2) △ ...`` (homogeneous form)."""
-        out = FiniteScrew.identity()
-        k = 0
-        for f in self.factors:
-            out = out.triangle(f.finite_screw(np.asarray(x[k : k + f.dim], dtype=float)))
-            k += f.dim
-        return out
+        return functools.reduce(FiniteScrew.triangle, (f.finite_screw(x_f) for f, x_f in zip(self.factors, self._split(x))), FiniteScrew.identity())
 
     def fit(self, matrix: np.ndarray, *, starts: int = 6, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[np.ndarray, float]:
         """Parameters of the pattern's motion nearest ``matrix`` and the residual.
 
-        Least squares (:func:`scipy.optimize.least_squares`) on the entries of
-        ``[R; p / L]``, from the identity and then random seeded starts until
-        the residual is within ``tol.closure``.
+        Least squares on the entries of ``[R; p / L]``, from the identity, then
+        seeded random starts until the residual is within ``tol.closure``.
 
         Returns
         -------
@@ -320,22 +309,14 @@ class MotionPattern:
         return best_x, best_r
 
     def contains(self, matrix: np.ndarray, *, starts: int = 6, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
-        """Whether the displacement ``matrix`` belongs to the pattern: it fits to ``tol.closure``.
-
-        The residual is that of :meth:`fit` (entries of ``[R; p / L]``: radians
-        and lengths over the pattern's length), the same measure as a loop
-        closure, so the policy's closure tolerance decides.
-        """
+        """Whether the displacement ``matrix`` belongs to the pattern: :meth:`fit` to ``tol.closure`` (a loop closure's measure)."""
         return self.fit(matrix, starts=starts, seed=seed, tol=tol)[1] <= tol.closure
 
 
 def _pattern_2t3r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0))) -> MotionPattern:
-    return MotionPattern(
-        "2T3R",
-        (PatternFactor("rotations", point), PatternFactor("translations", directions=tuple(directions)[:2])),
-        "two translations in the plane of s1, s2, followed by three rotations about the fixed point O "
-        "(Sun et al. 2018): S_f = 2tan(θ/2)[s; O×s] △ t[0; u], u in span(s1, s2)",
-    )
+    return MotionPattern("2T3R", (PatternFactor("rotations", point), PatternFactor("translations", directions=tuple(directions)[:2])),
+                         "two translations in the plane of s1, s2, followed by three rotations about the fixed point O "
+                         "(Sun et al. 2018): S_f = 2tan(θ/2)[s; O×s] △ t[0; u], u in span(s1, s2)")
 
 
 def _pattern_3t(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0), (0, 0, 1))) -> MotionPattern:
@@ -350,22 +331,17 @@ def _pattern_2t1r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] 
     d = [_unit(v) for v in tuple(directions)[:2]]
     if len(d) < 2:
         raise SynthesisError(f"the 2T1R pattern needs two directions, got {len(d)}")
-    return MotionPattern(
-        "2T1R",
-        (PatternFactor("translations", directions=tuple(_vec(v) for v in d)), PatternFactor("rotation", point, (_vec(np.cross(d[0], d[1]), "s1 × s2"),))),
-        "planar motion: rotation about an axis along s1 × s2 through O, followed by translations in the plane of s1, s2",
-    )
+    return MotionPattern("2T1R", (PatternFactor("translations", directions=tuple(_vec(v) for v in d)),
+                                  PatternFactor("rotation", point, (_vec(np.cross(d[0], d[1]), "s1 × s2"),))),
+                         "planar motion: rotation about an axis along s1 × s2 through O, followed by translations in the plane of s1, s2")
 
 
 def _pattern_3t1r(point: Vector = (0.0, 0.0, 0.0), directions: Sequence[Vector] = ((1, 0, 0), (0, 1, 0), (0, 0, 1))) -> MotionPattern:
     d = tuple(directions)[:3]
     if len(d) < 3:
         raise SynthesisError(f"the 3T1R pattern needs three directions, got {len(d)}")
-    return MotionPattern(
-        "3T1R",
-        (PatternFactor("translations", directions=d), PatternFactor("rotation", point, (_vec(d[2]),))),
-        "Schoenflies motion: rotation about an axis along s3 through O, followed by spatial translations",
-    )
+    return MotionPattern("3T1R", (PatternFactor("translations", directions=d), PatternFactor("rotation", point, (_vec(d[2]),))),
+                         "Schoenflies motion: rotation about an axis along s3 through O, followed by spatial translations")
 
 
 PATTERNS = {"2T3R": _pattern_2t3r, "3T": _pattern_3t, "3R": _pattern_3r, "2T1R": _pattern_2t1r, "3T1R": _pattern_3t1r}

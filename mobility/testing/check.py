@@ -1,42 +1,15 @@
 """Regression checks: analyse mechanisms and compare with their ``expected`` blocks.
 
-A mechanism file may carry an ``expected`` block (see ``docs/file-format.md``).
-:func:`check_file` loads and analyses one file and compares every key of that
-block with the analysis; :func:`check_paths` does it for files and folders
-(every ``*.yaml``/``*.yml`` inside, recursively, sorted) and gathers the
-results in a :class:`CheckReport`, whose :attr:`~CheckReport.exit_status` is
-what ``mobility check`` returns.
-
-How each key is compared:
-
-* ``dof``, ``pattern``, ``mobility``, ``redundant_constraints``, ``idle_dof``,
-  ``gruebler_kutzbach``: equality with the :class:`~mobility.core.result.Result`;
-* ``translations``: as subspaces (same dimension, and stacking the expected
-  and found bases adds no dimension), with the rank policy of
-  :mod:`mobility.core.tolerance`; an empty list means "no translation" (a
-  zero or dependent direction is refused when the file is read: an input
-  error, exit status 2, not a failed check);
-* ``full_cycle_dof``, ``full_cycle_mobility``, ``finite_verdict``: equality
-  with :func:`mobility.finite.finite_mobility`, computed only when one of them
-  is present (it costs more than the screw analysis);
-* ``actuation``: equality with the verdict of
-  :func:`mobility.actuation.check_actuation` for the joints marked
-  ``actuated: true`` (none marked: a mismatch that says so).
-
-Other modules may add keys to :data:`COMPARATORS`.  A key of the block that no
-comparator knows is reported as a mismatch, never silently passed.
-
-Each checked file ends in one of four statuses: ``"pass"``, ``"fail"`` (a key
-disagrees), ``"missing"`` (no ``expected`` block: not a pass) and ``"error"``
-(the file cannot be read or analysed; its one-line message is kept).
-
-A YAML document of another kind (a flexure document, see
-``docs/actuation.md``) is checked by a function given in ``others``
-(:data:`OtherDocument`); ``mobility check`` gives the one for flexures,
-:func:`mobility.testing.flexure_check.flexure_document`.
-Paths and messages are reported as text
-(:func:`mobility.io.files.printable_name`): the bytes of a file name that
-are not UTF-8 appear as ``\\xNN``.
+:func:`check_file` loads and analyses one file and compares every key of its
+``expected`` block (``docs/file-format.md``) with the analysis, by the
+comparator of :data:`COMPARATORS` (how each key is compared:
+``docs/library.md``; a key no comparator knows is a mismatch, never a pass).
+:func:`check_paths` does it for files and folders and gathers a
+:class:`CheckReport`, whose :attr:`~CheckReport.exit_status` is what
+``mobility check`` returns.  Each file ends ``"pass"``, ``"fail"``,
+``"missing"`` (no ``expected`` block) or ``"error"`` (its one-line message
+kept).  A YAML document of another kind (a flexure) is checked by a function
+of ``others`` (:data:`OtherDocument`).
 
 Examples
 --------
@@ -80,20 +53,8 @@ from ..core.result import Result
 from ..core.screws import same_subspace
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale, clean_numbers, require_tolerance
 
-__all__ = [
-    "Comparison",
-    "CheckResult",
-    "CheckReport",
-    "COMPARATORS",
-    "STATUSES",
-    "OtherDocument",
-    "check_mechanism",
-    "check_file",
-    "check_paths",
-    "mechanism_files",
-    "compare_translations",
-    "compare_verdict",
-]
+__all__ = ["Comparison", "CheckResult", "CheckReport", "COMPARATORS", "STATUSES", "OtherDocument", "check_mechanism", "check_file", "check_paths",
+           "mechanism_files", "compare_translations", "compare_verdict"]
 
 STATUSES = ("pass", "fail", "missing", "error")
 """The statuses of a checked file, in the order the summary lists them."""
@@ -105,16 +66,9 @@ MECHANISM_SUFFIXES = (".yaml", ".yml")
 class Comparison:
     """One key of an ``expected`` block compared with what the analysis found.
 
-    Attributes
-    ----------
-    key : str
-    expected : Any
-        The value in the file (translations as a list of 3-lists).
-    actual : Any
-        What was found, in the same form (``None`` when nothing could be found).
-    ok : bool
-    note : str
-        Why a comparison failed when the values alone do not say it.
+    ``expected`` is the file's value (translations as 3-lists), ``actual`` what
+    was found in the same form (``None``: nothing), ``note`` why a comparison
+    failed when the values alone do not say it.
     """
 
     key: str
@@ -138,31 +92,11 @@ class Comparison:
 class CheckResult:
     """The check of one mechanism (usually one file).
 
-    Attributes
-    ----------
-    path : str
-        The file as given (empty for a mechanism built in code).
-    name : str
-        The mechanism's name (empty when the file could not be read).
-    status : str
-        ``"pass"``, ``"fail"``, ``"missing"`` or ``"error"``.
-    comparisons : tuple of Comparison
-        One per key of the ``expected`` block, in the block's order.
-    result : Result or None
-        The analysis (``None`` on error).
-    error : str
-        The one-line error message, when ``status == "error"``.
-    internal : bool
-        True when the error is a defect of :mod:`mobility` rather than bad
-        input (exit status 3 instead of 2).
-    kind : str
-        What the file holds: ``"mechanism"``, or the kind of another
-        document (``"flexure"``), whose analysis is not a
-        :class:`~mobility.core.result.Result` (``result`` is then ``None``).
-    found : dict or None
-        What the check of another kind of document found (a flexure's
-        ``dof``, ``pattern``, ``translations``...); for a mechanism
-        :meth:`found_values` reads it from ``result``.
+    ``path``: the file as given (empty for a mechanism built in code); ``status``:
+    one of :data:`STATUSES`; ``comparisons``: one per ``expected`` key, in order;
+    ``internal``: the error is a defect of :mod:`mobility`, not bad input (exit
+    status 3, not 2); ``kind``: ``"mechanism"`` or another document's
+    (``"flexure"``, whose ``found`` replaces ``result``).
     """
 
     path: str
@@ -180,15 +114,8 @@ class CheckResult:
         r = self.result
         if self.found is not None or r is None:
             return self.found
-        return {
-            "dof": r.dof,
-            "pattern": r.pattern,
-            "mobility": r.mobility,
-            "gruebler_kutzbach": r.gruebler_kutzbach,
-            "redundant_constraints": r.redundant_constraints,
-            "idle_dof": r.idle_dof,
-            "translations": clean_numbers(r.translations),
-        }
+        return {key: getattr(r, key) for key in ("dof", "pattern", "mobility", "gruebler_kutzbach", "redundant_constraints", "idle_dof")} | {
+            "translations": clean_numbers(r.translations)}
 
     @property
     def ok(self) -> bool:
@@ -213,25 +140,15 @@ class CheckResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form (one entry of ``mobility check --json``)."""
-        return {
-            "path": self.path,
-            "name": self.name,
-            "kind": self.kind,
-            "status": self.status,
-            "message": self.message,
-            "found": self.found_values(),
-            "comparisons": [c.to_dict() for c in self.comparisons],
-        }
+        return {"path": self.path, "name": self.name, "kind": self.kind, "status": self.status, "message": self.message,
+                "found": self.found_values(), "comparisons": [c.to_dict() for c in self.comparisons]}
 
 
 @dataclass(frozen=True, eq=False)
 class CheckReport:
     """The checks of several files, with the exit status of ``mobility check``.
 
-    Attributes
-    ----------
-    results : tuple of CheckResult
-        In the order the files were given (folders expanded, sorted).
+    ``results`` are in the order the files were given (folders expanded, sorted).
     """
 
     results: tuple[CheckResult, ...]
@@ -257,19 +174,12 @@ class CheckReport:
 
     def summary(self) -> str:
         """``'40 passed, 1 failed, 0 without expected block, 0 errors'``."""
-        errors = self.count("error")
-        return (
-            f"{self.count('pass')} passed, {self.count('fail')} failed, "
-            f"{self.count('missing')} without expected block, {counted(errors, 'error')}"
-        )
+        return f"{self.count('pass')} passed, {self.count('fail')} failed, {self.count('missing')} without expected block, {counted(self.count('error'), 'error')}"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form of ``mobility check --json``."""
-        return {
-            "results": [r.to_dict() for r in self.results],
-            "summary": {s: self.count(s) for s in STATUSES} | {"total": len(self.results)},
-            "exit_status": self.exit_status,
-        }
+        return {"results": [r.to_dict() for r in self.results], "summary": {s: self.count(s) for s in STATUSES} | {"total": len(self.results)},
+                "exit_status": self.exit_status}
 
 
 class _Subject:
@@ -295,17 +205,11 @@ Comparator = Callable[[_Subject, Any], Comparison]
 """``comparator(subject, expected_value) -> Comparison``."""
 
 
-def _equal(key: str, attribute: str | None = None) -> Comparator:
+def _equal(key: str, finite: bool = False) -> Comparator:
+    """Equality with the screw analysis's ``key``, or (``finite``) the full-cycle analysis's."""
+
     def compare(subject: _Subject, expected: Any) -> Comparison:
-        actual = getattr(subject.result, attribute or key)
-        return Comparison(key, expected, actual, actual == expected)
-
-    return compare
-
-
-def _finite(key: str) -> Comparator:
-    def compare(subject: _Subject, expected: Any) -> Comparison:
-        actual = subject.finite[key]
+        actual = subject.finite[key] if finite else getattr(subject.result, key)
         return Comparison(key, expected, actual, actual == expected)
 
     return compare
@@ -317,9 +221,7 @@ def compare_translations(found: np.ndarray, expected: Any, tol: Tolerance) -> Co
     Raises
     ------
     RequestError
-        When ``expected`` is not a basis (a zero row, or one dependent on
-        those before it): an input error, not a failed check.  A file's
-        ``expected`` block is refused for it when read.
+        When ``expected`` is not a basis (a zero row, or a dependent one): an input error, not a failed check.
 
     Examples
     --------
@@ -361,10 +263,6 @@ def compare_verdict(key: str, found: Any, expected: Any, inputs: Sequence[str]) 
     return Comparison(key, expected, found, found == expected)
 
 
-def _translations(subject: _Subject, expected: Any) -> Comparison:
-    return compare_translations(subject.result.translations, expected, subject.tol)
-
-
 def _actuation(subject: _Subject, expected: Any) -> Comparison:
     from ..actuation import check_actuation  # imported on demand: most files expect no actuation verdict
 
@@ -373,46 +271,31 @@ def _actuation(subject: _Subject, expected: Any) -> Comparison:
 
 
 COMPARATORS: dict[str, Comparator] = {
-    "dof": _equal("dof"),
-    "pattern": _equal("pattern"),
-    "translations": _translations,
-    "mobility": _equal("mobility"),
-    "redundant_constraints": _equal("redundant_constraints"),
-    "idle_dof": _equal("idle_dof"),
-    "gruebler_kutzbach": _equal("gruebler_kutzbach"),
-    "full_cycle_dof": _finite("full_cycle_dof"),
-    "full_cycle_mobility": _finite("full_cycle_mobility"),
-    "finite_verdict": _finite("finite_verdict"),
-    "actuation": _actuation,
-}
+    **{key: _equal(key) for key in ("dof", "pattern")}, "translations": lambda subject, expected: compare_translations(subject.result.translations, expected, subject.tol),
+    **{key: _equal(key) for key in ("mobility", "redundant_constraints", "idle_dof", "gruebler_kutzbach")},
+    **{key: _equal(key, finite=True) for key in ("full_cycle_dof", "full_cycle_mobility", "finite_verdict")}, "actuation": _actuation}
 """How each ``expected`` key is compared (other modules may register more)."""
 
 
 def check_mechanism(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE, path: str = "") -> CheckResult:
     """Analyse ``mechanism`` and compare it with its ``expected`` block.
 
-    Parameters
-    ----------
-    mechanism : Mechanism
-    tol : Tolerance
-        Rank policy of the analysis and of the subspace comparisons.
-    path : str
-        Where the mechanism came from, for the report.
-
-    Returns
-    -------
-    CheckResult
-        Status ``"missing"`` when the mechanism has no ``expected`` block
-        (it is still analysed).
+    ``tol`` is the rank policy of the analysis and of the subspace comparisons;
+    ``path`` where the mechanism came from.  No ``expected`` block: status
+    ``"missing"`` (still analysed).
 
     Raises
     ------
     RequestError
-        When ``mechanism`` is not a :class:`~mobility.core.model.Mechanism`
-        or ``tol`` not a :class:`~mobility.core.tolerance.Tolerance`.
+        When ``mechanism`` is not a Mechanism or ``tol`` not a Tolerance.
     MobilityError
-        When the analysis itself fails (:func:`check_file` turns it into an
-        ``"error"`` result).
+        When the analysis fails (:func:`check_file` makes it an ``"error"`` result).
+
+    Examples
+    --------
+    >>> import mobility
+    >>> check_mechanism(mobility.load("mechanisms/four_bar.yaml")).status
+    'pass'
     """
     mechanism = require_mechanism(mechanism, "check_mechanism")
     tol = require_tolerance(tol, "check_mechanism")
@@ -421,13 +304,8 @@ def check_mechanism(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE,
     items = expected.items() if expected is not None else []
     if not items:
         return CheckResult(path, mechanism.name, "missing", (), subject.result)
-    comparisons = []
-    for key, value in items:
-        comparator = COMPARATORS.get(key)
-        if comparator is None:
-            comparisons.append(Comparison(key, value, None, False, "no comparator knows this key"))
-        else:
-            comparisons.append(comparator(subject, value))
+    comparisons = [COMPARATORS[key](subject, value) if key in COMPARATORS else Comparison(key, value, None, False, "no comparator knows this key")
+                   for key, value in items]
     status = "pass" if all(c.ok for c in comparisons) else "fail"
     return CheckResult(path, mechanism.name, status, tuple(comparisons), subject.result)
 
@@ -443,29 +321,13 @@ which kind it is and where each key stands), or ``None`` when ``data`` is not of
 def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE, others: Sequence[OtherDocument] = ()) -> CheckResult:
     """Load, analyse and check one mechanism file; never raises on a bad file.
 
-    A YAML file is read and parsed once; each of ``others`` is then offered
-    the parsed document before it is read as a mechanism.  Any other file
-    (a robot description) is loaded by :func:`mobility.io.loader.load`.
-
-    Parameters
-    ----------
-    path : str or Path
-    tol : Tolerance
-    others : sequence of OtherDocument
-        Checks of other kinds of YAML documents, tried in turn; the first
-        that takes the document checks it.
-
-    Returns
-    -------
-    CheckResult
-        Status ``"error"`` with the one-line message (file, line, key) when
-        the file cannot be read or analysed.
+    A YAML file is parsed once and offered to each of ``others`` in turn before it is
+    read as a mechanism.  A file that cannot be read or analysed gives status ``"error"``.
 
     Raises
     ------
     RequestError
-        When ``path`` is not a file name (a ``str`` or ``os.PathLike``
-        without a NUL character): no file is named, so no result can be.
+        When ``path`` is not a file name (then no result can name it).
 
     Examples
     --------
@@ -505,16 +367,9 @@ def _path_problem(raw: str | Path) -> tuple[int, str]:
 
 
 def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None, str]]:
-    """Expand ``paths`` into mechanism files.
+    """Expand ``paths`` into ``(shown, path, problem)``: the name to report, as text, and the file (``None`` when ``problem`` says why nothing can be checked there).
 
-    Returns
-    -------
-    list of (shown, path, problem)
-        ``shown`` is the name to report, as text
-        (:func:`~mobility.io.files.printable_name`); ``path`` is ``None`` when
-        ``problem`` says why nothing can be checked there (no such path, a
-        symbolic link loop, an empty folder).  Folders give every
-        ``*.yaml``/``*.yml`` file inside, recursively, sorted by path.
+    Folders give every ``*.yaml``/``*.yml`` file inside, recursively, sorted.
     """
     out: list[tuple[str, Path | None, str]] = []
     for raw in paths:
@@ -539,8 +394,7 @@ def check_paths(paths: Sequence[str | Path], *, tol: Tolerance = DEFAULT_TOLERAN
     Raises
     ------
     RequestError
-        When ``paths`` is not a list (or tuple) of file names; a bare name
-        is refused, not read as a list of its characters.
+        When ``paths`` is not a list (or tuple) of file names (a bare name is not read as its characters).
 
     Examples
     --------

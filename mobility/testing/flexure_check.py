@@ -1,18 +1,10 @@
 """Regression checks of flexure documents: freedom space and actuation verdict against their ``expected`` blocks.
 
-A flexure document (``docs/actuation.md``) may carry an ``expected`` block
-with the keys of :data:`~mobility.io.expected.FLEXURE_EXPECTED_KEYS`:
-
-* ``dof``, ``pattern``: equality with the freedom space of
-  :func:`mobility.flexure.flexure_spaces` (at the document's threshold);
-* ``translations``: the pure translations of the freedom space, compared as
-  subspaces (:func:`~mobility.testing.check.compare_translations`);
-* ``actuation``: the verdict of :func:`mobility.flexure.check_force_lines`
-  for the actuators marked ``actuated: true``.
-
+``dof`` and ``pattern`` are compared with :func:`mobility.flexure.flexure_spaces`,
+``translations`` as subspaces, ``actuation`` with the verdict of
+:func:`mobility.flexure.check_force_lines` for the actuated actuators.
 :func:`flexure_document` is the :data:`~mobility.testing.check.OtherDocument`
-that ``mobility check`` gives :func:`~mobility.testing.check.check_paths`, so
-a folder may hold mechanism files and flexure documents side by side.
+``mobility check`` uses, so that a folder may mix mechanisms and flexures.
 
 Examples
 --------
@@ -42,19 +34,7 @@ __all__ = ["check_flexure", "flexure_document"]
 def check_flexure(flexure: FlexureMechanism, *, tol: Tolerance = DEFAULT_TOLERANCE, path: str = "") -> CheckResult:
     """Compute a flexure mechanism's spaces and compare them with its ``expected`` block.
 
-    Parameters
-    ----------
-    flexure : FlexureMechanism
-    tol : Tolerance
-    path : str
-        Where it came from, for the report.
-
-    Returns
-    -------
-    CheckResult
-        ``kind`` ``"flexure"``; ``found`` holds ``dof``, ``pattern``,
-        ``constraints`` and ``translations`` (and ``actuation`` when the
-        block expects a verdict); status ``"missing"`` without a block.
+    The result's ``found`` holds ``dof``, ``pattern``, ``constraints``, ``translations`` (and ``actuation`` when expected).
 
     Raises
     ------
@@ -62,12 +42,8 @@ def check_flexure(flexure: FlexureMechanism, *, tol: Tolerance = DEFAULT_TOLERAN
         When the spaces cannot be computed.
     """
     spaces = flexure_spaces(flexure, tol=tol)
-    found: dict[str, Any] = {
-        "dof": spaces.dof,
-        "pattern": spaces.pattern,
-        "constraints": 6 - spaces.dof,
-        "translations": clean_numbers(spaces.freedom_translations),
-    }
+    found: dict[str, Any] = {"dof": spaces.dof, "pattern": spaces.pattern, "constraints": 6 - spaces.dof,
+                             "translations": clean_numbers(spaces.freedom_translations)}
     expected = flexure.expected
     items = expected.items() if expected is not None else []
     if not items:
@@ -87,12 +63,7 @@ def check_flexure(flexure: FlexureMechanism, *, tol: Tolerance = DEFAULT_TOLERAN
 
 
 def flexure_document(path: str, data: Any, positions: Positions, tol: Tolerance) -> CheckResult | None:
-    """The check of a parsed flexure document, ``None`` for a document of another kind.
-
-    An :data:`~mobility.testing.check.OtherDocument`: the document is read by
-    the flexure reader, so a bad one is an error naming its file, line and
-    key (raised, and reported by :func:`~mobility.testing.check.check_file`).
-    """
+    """The check of a parsed flexure document (an :data:`~mobility.testing.check.OtherDocument`), ``None`` for another kind; a bad one raises its one-line error."""
     if not is_flexure_document(data):
         return None
     return check_flexure(read_flexure(data, positions, path), tol=tol, path=path)

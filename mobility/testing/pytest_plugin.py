@@ -1,10 +1,8 @@
 """Check mechanism files from a pytest suite.
 
-Two ways, both running :func:`mobility.testing.check.check_file` on each file (one
-test per file, named after it; a file fails its test when it disagrees with
-its ``expected`` block, has none, or cannot be read).  A flexure document
-among the files is checked as one
-(:func:`mobility.testing.flexure_check.flexure_document`):
+Two ways, both one test per file by :func:`mobility.testing.check.check_file`
+(failing when the file disagrees with its ``expected`` block, has none, or
+cannot be read; a flexure document is checked as one):
 
 1. **One line in a test module** (no plugin needed)::
 
@@ -12,21 +10,16 @@ among the files is checked as one
 
        test_mechanisms = mechanism_tests("mechanisms/")
 
-   Paths are files or folders (every ``*.yaml``/``*.yml`` inside, recursively),
-   relative to the current directory unless absolute.  For your own test
-   function, :func:`mechanism_test_cases` gives the parameters and
-   :func:`assert_mechanism_passes` the assertion::
+   Paths are files or folders (every ``*.yaml``/``*.yml`` inside).  For your
+   own test function::
 
        @pytest.mark.parametrize("path", mechanism_test_cases("mechanisms/"))
        def test_my_designs(path):
            assert_mechanism_passes(path)
 
-2. **As a pytest plugin** that collects mechanism files as test items: it is
-   registered with pytest when :mod:`mobility` is installed (entry point
-   ``pytest11``); say where the files are, on the command line
-   (``--mobility-check mechanisms/``) or in the ini file
-   (``mobility_check = mechanisms``).  Without one of those it collects
-   nothing, so it is harmless.
+2. **As a pytest plugin** (entry point ``pytest11``) collecting mechanism files
+   as test items: ``--mobility-check mechanisms/`` or ``mobility_check =
+   mechanisms`` in the ini file; without them it collects nothing.
 
 Examples
 --------
@@ -49,13 +42,7 @@ from ..errors import MechanismCheckFailed
 if TYPE_CHECKING:
     from _pytest._code.code import TerminalRepr  # what pytest's own repr_failure returns besides text
 
-__all__ = [
-    "MechanismCheckFailed",
-    "mechanism_test_cases",
-    "mechanism_tests",
-    "assert_mechanism_passes",
-    "failure_text",
-]
+__all__ = ["MechanismCheckFailed", "mechanism_test_cases", "mechanism_tests", "assert_mechanism_passes", "failure_text"]
 
 
 def _document_checks() -> tuple[OtherDocument, ...]:
@@ -78,14 +65,9 @@ def failure_text(result: CheckResult) -> str:
 
 
 def assert_mechanism_passes(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[CheckResult, ...]:
-    """Check a mechanism file (or every file of a folder); raise :class:`MechanismCheckFailed` unless all pass.
+    """Check a mechanism file (or every file of a folder) and return the results; raise :class:`MechanismCheckFailed` unless all pass.
 
     A missing path or a folder without mechanism files fails too.
-
-    Returns
-    -------
-    tuple of CheckResult
-        The passing results.
     """
     report = check_paths([path], tol=tol, others=_document_checks())
     failed = [r for r in report.results if not r.ok]
@@ -95,26 +77,16 @@ def assert_mechanism_passes(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERA
 
 
 def mechanism_test_cases(*paths: str | Path) -> list[Any]:
-    """``pytest.param`` objects, one per mechanism file found under ``paths``.
-
-    A path that gives no file (missing, or a folder without mechanism files)
-    still yields one case, which then fails with the reason: a misspelt path
-    cannot pass silently.
-    """
+    """``pytest.param`` objects, one per mechanism file found under ``paths`` (a path that gives none: one case that fails, saying why)."""
     cases = []
     for shown, path, _problem in mechanism_files(paths):
         target = path if path is not None else shown
-        cases.append(pytest.param(str(target), id=_test_id(shown)))
+        cases.append(pytest.param(str(target), id=shown.replace("\\", "/")))
     return cases
 
 
 def mechanism_tests(*paths: str | Path, tol: Tolerance = DEFAULT_TOLERANCE) -> Callable[[str], None]:
-    """A parametrized test function checking every mechanism file under ``paths``.
-
-    Assign it to a name starting with ``test`` in a test module::
-
-        test_mechanisms = mechanism_tests("mechanisms/")
-    """
+    """A parametrized test function checking every mechanism file under ``paths`` (assign it to a ``test_...`` name)."""
 
     @pytest.mark.parametrize("mechanism_path", mechanism_test_cases(*paths))
     def test_mechanism_file(mechanism_path: str) -> None:
@@ -129,24 +101,12 @@ def mechanism_tests(*paths: str | Path, tol: Tolerance = DEFAULT_TOLERANCE) -> C
     return test_mechanism_file
 
 
-def _test_id(shown: str) -> str:
-    return shown.replace("\\", "/")
-
-
-# ---------------------------------------------------------------------------
 # pytest plugin hooks (active only when loaded as a plugin and configured)
-# ---------------------------------------------------------------------------
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
     group = parser.getgroup("mobility", "mechanism files checked against their expected blocks")
-    group.addoption(
-        "--mobility-check",
-        action="append",
-        default=[],
-        metavar="PATH",
-        help="collect the mechanism files under PATH as tests (repeatable)",
-    )
+    group.addoption("--mobility-check", action="append", default=[], metavar="PATH", help="collect the mechanism files under PATH as tests (repeatable)")
     parser.addini("mobility_check", "mechanism files or folders collected as tests", type="paths", default=[])
 
 

@@ -44,7 +44,12 @@ With the actuation wrench (transmission wrench screw, TWS) ``a_i`` of input
   after the transmission angle of Tao's 40 deg-140 deg rule: ``cos 45.57 deg = 0.7``, a pressure angle of at most
   45.57 deg, a transmission angle between 44.43 deg and 135.57 deg);
   with more inputs than freedoms (redundant actuation) ``LTI`` is that of the
-  best non-redundant choice of inputs (the largest over the subsets);
+  best non-redundant choice of inputs (the largest over the subsets), unless
+  an input has no transmission wrench of its own at the pose (its limb at a
+  serial singularity, ``ITI = 0``): the inputs then outnumber the freedoms
+  because the end effector lost the freedom that input drove, an input
+  singularity, and ``LTI = 0`` (a five-bar whose crank, elbow and tool point
+  fall in line);
 * ``CTI_j = tau_C(c_j, $_O,j)`` of the constraint wrench ``c_j`` of limb ``j``
   with ``$_O,j`` the twist the end effector gains when every input is locked
   and that limb's constraint is removed (reciprocal to every actuation wrench
@@ -165,7 +170,8 @@ class BatchTransmission:
     iti, oti : ndarray, shape (N, n)
         Input and output transmission index of each input (NaN for an input
         left out of the best non-redundant choice, or where the end effector
-        has no freedom).
+        has no freedom; at an input singularity with more inputs than
+        freedoms every input's ITI is given, the singular one's 0).
     lti : ndarray, shape (N,)
         Local transmission index ``min(ITI, OTI)``: the distance to an
         actuation singularity (0 there).
@@ -513,9 +519,15 @@ def transmission_indices(
             keep[:, s] = o[better]
             oti[rows[better]] = keep
         lti[rows] = best
-    if n and n > 0:
+    # An input with no wrench of its own moves no output (its limb at a serial singularity: ITI = 0).  With no more
+    # inputs than freedoms the minimum already gives 0; with more, the best choice would leave it out, yet the
+    # inputs outnumber the freedoms there because the end effector lost the freedom that input drove: an input
+    # singularity, LTI 0 (a five-bar whose crank, elbow and tool point fall in line).
+    stalled = (n > dim) & ~present.all(axis=1) if n else np.zeros(count, dtype=bool)
+    lti = np.where(stalled, 0.0, lti)
+    if n:
         chosen = ~np.isnan(oti)
-        iti = np.where(chosen | np.isnan(lti)[:, None], iti, np.nan)
+        iti = np.where(chosen | np.isnan(lti)[:, None] | stalled[:, None], iti, np.nan)
     if singular is not None:
         singular = np.asarray(singular, dtype=bool)
         oti = np.where(singular[:, None] & ~np.isnan(oti), 0.0, oti)

@@ -1,9 +1,7 @@
 """The words of the 3D view: hover text of each screw and joint, the title of a pose.
 
-Numbers are written as in the text report (:mod:`mobility.report.text`):
-directions unitless, points in the file's length unit, pitches of twists in
-that unit per radian and of wrenches in that unit; round-off is shown as 0.  Hover text uses ``<br>`` between lines
-(the plotting library's line break).
+Numbers are written as in the text report (:mod:`mobility.report.text`), in
+the file's units (twists' pitches per radian); lines are joined by plotly's ``<br>``.
 
 Examples
 --------
@@ -28,17 +26,7 @@ from ..core.model import JOINT_TYPES, Joint
 from ..core.result import Result, ScrewAxis
 from ..report.text import fmt_number, fmt_vector
 
-__all__ = [
-    "translation_text",
-    "rotation_text",
-    "couple_text",
-    "force_text",
-    "joint_text",
-    "pose_title",
-    "margin_text",
-    "header_lines",
-    "plotly_text",
-]
+__all__ = ["translation_text", "rotation_text", "couple_text", "force_text", "joint_text", "pose_title", "margin_text", "header_lines", "plotly_text"]
 
 
 def _length(value: Any, scale: float, unit: str) -> str:  # a number, or a vector (a sequence or an array)
@@ -55,10 +43,7 @@ def rotation_text(number: int, axis: ScrewAxis, scale: float, unit: str) -> str:
     """Hover text of the rotational freedom ``R<number>``: axis, point, pitch (length per radian)."""
     per_rad = f" {unit}/rad" if unit else " per rad"
     pitch = "0" if axis.pitch == 0 else fmt_number(axis.pitch, scale) + per_rad
-    return (
-        f"R{number} {axis.kind}<br>axis {fmt_vector(axis.axis)}<br>through {_length(axis.point, scale, unit)}"
-        f"<br>pitch {pitch}"
-    )
+    return f"R{number} {axis.kind}<br>axis {fmt_vector(axis.axis)}<br>through {_length(axis.point, scale, unit)}<br>pitch {pitch}"
 
 
 def couple_text(number: int, direction: np.ndarray) -> str:
@@ -116,10 +101,7 @@ def margin_text(result: Result) -> str:
 def pose_title(result: Result, label: str = "") -> str:
     """One line: name (and pose label), DOF, pattern, mobility and the Grübler–Kutzbach count."""
     where = f" — {label}" if label else ""
-    return (
-        f"{result.name}{where}: end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility} "
-        f"(Grübler–Kutzbach {result.gruebler_kutzbach})"
-    )
+    return f"{result.name}{where}: end effector {result.dof} DOF ({result.pattern}), mobility {result.mobility} (Grübler–Kutzbach {result.gruebler_kutzbach})"
 
 
 def header_lines(results: Sequence[Result], labels: Sequence[str]) -> list[str]:

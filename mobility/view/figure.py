@@ -1,21 +1,12 @@
 """The scenes of :mod:`mobility.view.scene` as a plotly figure (a plain dict, JSON-ready).
 
-Each glyph becomes up to four traces sharing a legend group (its line, its
-solid parts, its markers, its label), so that one click on its legend entry
-switches the whole glyph; each layer has its own legend (``legend`` for the
-mechanism, ``legend2`` for the freedoms, ``legend3`` for the constraints)
-whose title, clicked, switches the whole layer.  Every trace carries
-``meta = {"layer", "key", "frame"}`` so that programs and tests can read the
-page back.
-
-Several poses (frames) are all in the figure, one pose visible at a time; a
-slider shows one pose after the other and writes its pattern and rank margin
-in the title.  The axes are equal (a cube around every pose) so that
-directions read true and the scene does not jump between poses.
-
-The figure is built as a dict, without the plotting library; plotly only
-validates it (:class:`plotly.graph_objects.Figure`) or writes it
-(:mod:`mobility.view.page`).
+Each glyph is up to four traces in one legend group (one click switches the
+glyph); each layer has its own legend (``legend``, ``legend2``, ``legend3``)
+whose title switches the layer.  Every trace carries ``meta = {"layer", "key",
+"frame"}`` so that programs and tests can read the page back.  Every pose is
+in the figure, one visible at a time on a slider; the axes are a cube around
+every pose, so that directions read true and the scene does not jump.  Built
+without plotly, which only validates or writes it.
 
 Examples
 --------
@@ -54,10 +45,7 @@ SCENE_WIDTH = 0.8
 ELEMENT_ID = "mobility-view"
 """The id of the element that holds the figure in a page."""
 
-_BACKGROUND = "#ffffff"
-_AXIS = "#b0bec5"
-_JOINT_AXES = "#37474f"
-
+_BACKGROUND, _AXIS, _JOINT_AXES = "#ffffff", "#b0bec5", "#37474f"
 
 FAR_FROM_ORIGIN = 100.0
 """A scene whose middle lies farther from the origin than this many half-widths is drawn about its middle:
@@ -75,12 +63,9 @@ def _coords(points: np.ndarray, offset: np.ndarray) -> dict[str, list[float | No
 def axis_ticks(low: float, high: float, drawing: float, count: int = 5, offset: float = 0.0) -> dict[str, list]:
     """Ticks of an axis drawn in drawing units (the file's lengths times ``drawing``, less ``offset``), labelled in the file's units.
 
-    Returns ``{"tickvals": [...], "ticktext": [...]}``: about ``count`` round
-    values of the file (1, 2 or 5 times a power of ten) between ``low`` and
-    ``high`` (drawing units), where they are drawn, and their text, with the
-    digits that tell them apart.  The step is found from logarithms, so a
-    mechanism at 1e200 or 1e-250 gets its ticks without any number leaving
-    the floats.
+    About ``count`` round values (1, 2 or 5 times a power of ten), as
+    ``{"tickvals", "ticktext"}``; the step is found from logarithms, so that a
+    mechanism at 1e200 or 1e-250 gets ticks without leaving the floats.
 
     Examples
     --------
@@ -108,13 +93,7 @@ def axis_ticks(low: float, high: float, drawing: float, count: int = 5, offset: 
 
 def _glyph_traces(g: Glyph, frame: int, visible: bool, offset: np.ndarray) -> list[dict[str, Any]]:
     """The traces of one glyph, drawn less ``offset``; the first one carries its legend entry."""
-    common = {
-        "legend": LEGENDS[g.layer],
-        "legendgroup": g.key,
-        "name": g.name,
-        "visible": visible,
-        "meta": {"layer": g.layer, "key": g.key, "frame": frame},
-    }
+    common = {"legend": LEGENDS[g.layer], "legendgroup": g.key, "name": g.name, "visible": visible, "meta": {"layer": g.layer, "key": g.key, "frame": frame}}
     traces: list[dict[str, Any]] = []
     if len(g.points):  # first, so that a joint's legend entry shows its marker
         outline = "#263238" if g.kind == "joint" else g.color
@@ -169,20 +148,9 @@ def _title(result: Result, label: str, frames: int) -> str:
 def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 720, titled: bool = True) -> dict[str, Any]:
     """The plotly figure of one or several poses.
 
-    Parameters
-    ----------
-    frames : sequence of (Scene, Result, str)
-        Each pose's scene, its analysis and its label (shown on the slider).
-    height : int
-        Pixels.
-    titled : bool
-        Whether the figure writes its title (a page whose header says it
-        all leaves it out, and the scene takes its room).
-
-    Returns
-    -------
-    dict
-        ``{"data": [...], "layout": {...}}``, JSON-serialisable.
+    ``frames``: each pose's scene, analysis and slider label; ``titled``: whether
+    the figure writes its title (a page whose header says it all leaves it out).
+    Returns ``{"data": [...], "layout": {...}}``, JSON-serialisable.
     """
     if not frames:
         raise RequestError("a view needs at least one pose")
@@ -215,10 +183,7 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
     labels = [_annotations(scene, framing, offset, WIDEST * scene_height) for scene, _, _ in frames]
     layout: dict[str, Any] = {
         "title": {"text": _title(first_result, first_label, len(frames)) if titled else "", "x": 0.01, "xanchor": "left", "font": {"size": 16}},
-        "height": height,
-        "margin": margin,
-        "paper_bgcolor": _BACKGROUND,
-        "uirevision": "mobility",
+        "height": height, "margin": margin, "paper_bgcolor": _BACKGROUND, "uirevision": "mobility",
         "scene": {**{f"{n}axis": a for n, a in axis.items()}, "aspectmode": "manual", "aspectratio": dict(zip("xyz", framing.aspect)),
                   "camera": {"eye": dict(zip("xyz", framing.eye)), "up": {"x": 0, "y": 0, "z": 1}, "projection": {"type": "orthographic"}},
                   "annotations": labels[0], "domain": {"x": [0.0, SCENE_WIDTH], "y": [bottom, 1.0]}},
@@ -229,11 +194,9 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
     top = 1.0
     for layer, name in LEGENDS.items():
         entries = len({g.key for s, _, _ in frames for g in s.layer(layer)})
-        layout[name] = {
-            "title": {"text": f"<b>{layer}{counts[layer] if len(frames) == 1 else ''}</b>", "side": "top"},
-            "orientation": "v", "x": SCENE_WIDTH + 0.01, "xanchor": "left", "y": top, "yanchor": "top",
-            "groupclick": "togglegroup", "titleclick": "toggle", "titledoubleclick": "toggleothers", "bgcolor": "rgba(255,255,255,0.8)",
-        }
+        layout[name] = {"title": {"text": f"<b>{layer}{counts[layer] if len(frames) == 1 else ''}</b>", "side": "top"}, "orientation": "v",
+                        "x": SCENE_WIDTH + 0.01, "xanchor": "left", "y": top, "yanchor": "top", "groupclick": "togglegroup", "titleclick": "toggle",
+                        "titledoubleclick": "toggleothers", "bgcolor": "rgba(255,255,255,0.8)"}
         top -= (30 + 29 * entries) / plot_height
     if len(frames) > 1:
         steps = []

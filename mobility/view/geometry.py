@@ -1,10 +1,8 @@
 """Shapes of the 3D view as plain arrays: arrowheads, arcs, helices, plates.
 
-No plotting library here: every shape is points in the global frame (a
-polyline, pieces separated by a row of NaN, as plotting libraries draw them)
-or a triangle :class:`Mesh`.  The frame about a direction and the points
-along a segment are the pictures' (:mod:`mobility.report.plotting.geometry`),
-so the view and the PNG draw alike.
+Each shape is a polyline in the global frame (pieces separated by a row of NaN)
+or a triangle :class:`Mesh`, built with the pictures' helpers
+(:mod:`mobility.report.plotting.geometry`), so that the view and the PNG draw alike.
 
 Examples
 --------

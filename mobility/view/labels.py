@@ -1,21 +1,13 @@
 """Where the view looks from, how far it zooms, and where each label sits, computed as the browser will draw it.
 
-plotly draws a 3D scene in orthographic projection this way: each axis's
-range maps onto its ``aspectratio`` (in "scene units", centred on the
-middle of the ranges), the camera turns the scene so that it looks along
-``-eye``, and the scene's height is 2 scene units: one scene unit is half
-the scene's height in pixels, whatever the width of the window.  So, from
-the Python side, :class:`Framing` knows where every point of the scene
-lands on the screen in pixels from the scene's centre, and chooses:
-
-- the zoom (the ``aspectratio``, equal scales on the three axes) at which
-  the box of everything drawn fills :data:`FILL` of the scene's height, and
-  of its width for any window at least :data:`WIDEST` times as wide as high;
-- the place of each label (:func:`place_labels`): a plotly scene annotation
-  (text in a box, an SVG element of the page, with a thin leader to the
-  point it names), put beside its point where it covers no other label, as
-  few of the drawn lines as can be, and stays inside the box's outline (the
-  axis tick labels are drawn outside it).
+In plotly's orthographic projection each axis's range maps onto its
+``aspectratio`` (scene units, centred on the ranges' middle), the camera looks
+along ``-eye`` and the scene is 2 scene units high, whatever the window's
+width.  So :class:`Framing` knows where every point lands in pixels and
+chooses the zoom at which everything drawn fills :data:`FILL` of the height
+(and of the width for a window at least :data:`WIDEST` times as wide), and
+:func:`place_labels` puts each label beside its point, covering no other label,
+as few drawn lines as can be, inside the box's outline (the ticks are outside).
 
 Examples
 --------
@@ -56,18 +48,9 @@ def label_size(text: str) -> tuple[float, float]:
 class Framing:
     """The first view of a scene: what the axes span, the zoom, the camera, and where points land in pixels.
 
-    Attributes
-    ----------
-    low, high : tuple of float
-        Each axis's range (drawing units).
-    aspect : tuple of float
-        plotly's ``aspectratio`` (equal scales: proportional to the ranges).
-    right, up : tuple of float
-        The screen's right and up directions in the scene.
-    eye : tuple of float
-        The camera's ``eye`` (scene units, looking at the centre).
-    height : float
-        The scene's height, pixels.
+    ``low``, ``high``: each axis's range (drawing units); ``aspect``: plotly's
+    ``aspectratio``; ``right``, ``up``: the screen's directions in the scene;
+    ``eye``: the camera's (scene units); ``height``: the scene's, pixels.
     """
 
     low: tuple[float, float, float]
@@ -82,9 +65,7 @@ class Framing:
     def about(lower: np.ndarray, upper: np.ndarray, elev_azim: tuple[float, float], height: float, drawn: np.ndarray | None = None) -> "Framing":
         """The framing of everything between ``lower`` and ``upper`` seen from ``elev_azim`` (degrees) in a scene ``height`` pixels high.
 
-        With ``drawn`` (the points drawn, shape (n, 3)), the zoom makes them,
-        rather than the corners of their box, fill :data:`FILL` of the
-        scene, as long as the whole box stays in view.
+        With ``drawn`` (points, shape (n, 3)), they rather than their box's corners fill :data:`FILL`, the box staying in view.
         """
         lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
         extent = upper - lower
@@ -127,26 +108,11 @@ class Framing:
         return self.pixels(corners)
 
 
-def _hull(points: np.ndarray) -> np.ndarray:
-    """The corners of the convex hull of 2D points, in order around it."""
+def _hull_edges(points: np.ndarray) -> np.ndarray:
+    """The edges of the convex hull of 2D points, rows ``(normal, offset)``: ``normal . p + offset`` is minus the depth of ``p`` inside."""
     from scipy.spatial import ConvexHull
 
-    return points[ConvexHull(points).vertices]
-
-
-def _inside(hull: np.ndarray, points: np.ndarray, margin: float) -> np.ndarray:
-    """Whether each point lies inside the convex polygon ``hull`` by at least ``margin`` pixels."""
-    ok = np.ones(len(points), dtype=bool)
-    n = len(hull)
-    area = sum(hull[k][0] * hull[(k + 1) % n][1] - hull[(k + 1) % n][0] * hull[k][1] for k in range(n))
-    sense = 1.0 if area >= 0 else -1.0
-    for k in range(n):
-        a, b = hull[k], hull[(k + 1) % n]
-        edge = b - a
-        length = float(np.hypot(*edge)) or 1.0
-        cross = (edge[0] * (points[:, 1] - a[1]) - edge[1] * (points[:, 0] - a[0])) / length
-        ok &= sense * cross >= margin
-    return ok
+    return ConvexHull(points).equations
 
 
 def _ink(paths: list[np.ndarray], step: float = 3.0) -> np.ndarray:
@@ -195,22 +161,20 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
 
     Parameters
     ----------
-    framing : Framing
     anchors : ndarray, shape (n, 3)
         The point each label names (drawing units).
     texts : list of str
-        The labels, in the order they are placed (earlier ones get the better places).
-    lines : list of ndarray
-        Polylines drawn (drawing units, rows of NaN between pieces): the glyphs of the freedoms and constraints.
-    links : list of ndarray
-        Polylines of the mechanism (links and joints): covering them costs more.
+        The labels, earlier ones getting the better places.
+    lines, links : list of ndarray
+        Polylines drawn (rows of NaN between pieces): the freedoms and
+        constraints, and the mechanism's (covering these costs more).
     width : float
         The narrowest scene's width, pixels: labels stay inside it.
 
     Returns
     -------
     list of (float, float)
-        Offsets (right, down) in pixels, one per label.
+        Offsets (right, down), pixels.
 
     Examples
     --------
@@ -222,7 +186,7 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
     True
     """
     at = framing.pixels(anchors)
-    hull = _hull(framing.outline())
+    edges = _hull_edges(framing.outline())
     half_w, half_h = 0.5 * width, 0.5 * framing.height
     drawn = _InkGrid(_ink([framing.pixels(p) for p in lines]), half_w, half_h)
     bars = _InkGrid(_ink([framing.pixels(p) for p in links]), half_w, half_h)
@@ -241,7 +205,8 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
         away = np.array([x0, y0]) / (np.hypot(x0, y0) or 1.0)  # from the centre outwards
         cost = 0.02 * gaps - 0.5 * (d @ away)
         # outside the box's outline (where the tick labels are) or the scene: never, unless nothing else is left
-        cost += 400.0 * np.count_nonzero(~_inside(hull, corners.reshape(-1, 2), 4.0).reshape(-1, 4), axis=1)
+        inside = np.all(corners.reshape(-1, 2) @ edges[:, :2].T + edges[:, 2] <= -4.0, axis=1)  # by 4 pixels at least
+        cost += 400.0 * np.count_nonzero(~inside.reshape(-1, 4), axis=1)
         cost += 400.0 * np.count_nonzero((np.abs(corners[..., 0]) > half_w - 4) | (np.abs(corners[..., 1]) > half_h - 4), axis=1)
         if len(placed):  # touching or overlapping a placed label: at least 4 pixels apart
             ox = np.minimum(centres[:, None, 0] + 0.5 * w, placed[:, 0] + placed[:, 2]) - np.maximum(centres[:, None, 0] - 0.5 * w, placed[:, 0] - placed[:, 2])

@@ -1,17 +1,11 @@
 """Jupyter shows a :class:`~mobility.core.result.Result` (and a sweep result) as its interactive 3D view.
 
-The core knows nothing of views, so :class:`Result` has no display method of
-its own; instead ``import mobility`` calls :func:`register_display` when it
-runs inside IPython, which registers :func:`result_mimebundle` with IPython's
-mime-bundle formatter.  A rich front end (a notebook kernel) then gets the
-view in the forms plotly's renderers name (:func:`offline_mimebundle`: the
-plotly JSON that JupyterLab, Notebook 7 and VS Code draw, or HTML with
-plotly.js inline; nothing is fetched from the network) and the text report
-as plain text; a terminal gets the text report.  Without plotly the text report is shown
-with the one-line install hint.  A sweep result (:func:`mobility.sweep`) is
-shown the same way, as a slider through up to :data:`NOTEBOOK_POSES` of its
-poses (:func:`mobility.view.sweep.sweep_view`), with its text summary.
-
+The core knows nothing of views: ``import mobility`` inside IPython calls
+:func:`register_display`, which registers :func:`result_mimebundle` with
+IPython's mime-bundle formatter.  A notebook then gets the view in the forms
+plotly's renderers name (:func:`offline_mimebundle`, fetching nothing) and the
+text report as plain text; without plotly, the text with the install hint.  A
+sweep result shows as a slider through up to :data:`NOTEBOOK_POSES` poses.
 Nothing here imports plotly or IPython until it is used.
 """
 
@@ -31,37 +25,14 @@ NOTEBOOK_POSES = 60
 """Poses of a sweep shown in a notebook's slider (each is analysed again to be drawn)."""
 
 
-def _makes_html(renderer: Any) -> bool:
-    """Whether a plotly renderer's output is HTML (its own HTML loads MathJax, and plotly.js, from a CDN)."""
-    return any(c.__name__ in ("HtmlRenderer", "IFrameRenderer") for c in type(renderer).__mro__)
-
-
 def offline_mimebundle(figure: Any) -> dict[str, Any]:
     """The forms of ``figure`` that plotly's default renderers name, none of them fetching anything.
 
-    For each renderer of ``plotly.io.renderers.default`` that returns a mime
-    bundle: the HTML renderers (``notebook``, ``notebook_connected``,
-    ``colab``, ``iframe``...) give way to one HTML fragment with plotly.js
-    inline and no MathJax (:func:`mobility.view.page.figure_html`), where
-    plotly's own would load MathJax (and, connected, plotly.js) from a CDN or
-    write files; every other renderer (``plotly_mimetype``, ``json``,
-    ``png``...) gives its own form.  Renderers that open a browser are not
-    display forms and are left out, as plotly does.
-
-    plotly's JSON form (``plotly_mimetype``, what plotly picks in a Jupyter
-    kernel) comes with that HTML fragment too: only a front end with
-    plotly's extension draws the JSON, while ``jupyter nbconvert --to html``,
-    GitHub and other viewers of a saved notebook draw the HTML (which makes
-    each view in a saved notebook about 4.8 MB: plotly.js is in it).
-
-    Parameters
-    ----------
-    figure : plotly.graph_objects.Figure
-
-    Returns
-    -------
-    dict
-        Mime type -> data.
+    plotly's HTML renderers (``notebook``, ``iframe``...), which would load
+    MathJax or plotly.js from a CDN, give way to one fragment with plotly.js
+    inline (:func:`mobility.view.page.figure_html`); other renderers give their
+    own form, those opening a browser none.  The JSON form comes with the HTML
+    too, for viewers of a saved notebook (about 4.8 MB a view).  Returns mime type -> data.
     """
     import plotly.io as pio
 
@@ -71,7 +42,7 @@ def offline_mimebundle(figure: Any) -> dict[str, Any]:
     bundle: dict[str, Any] = {}
     for name in filter(None, (pio.renderers.default or "").split("+")):
         renderer = pio.renderers[name]
-        if _makes_html(renderer):
+        if any(c.__name__ in ("HtmlRenderer", "IFrameRenderer") for c in type(renderer).__mro__):  # its HTML would load MathJax from a CDN
             bundle["text/html"] = figure_html(fig_dict)
         elif hasattr(renderer, "to_mimebundle"):
             bundle.update(renderer.to_mimebundle(fig_dict))
@@ -84,8 +55,7 @@ def offline_mimebundle(figure: Any) -> dict[str, Any]:
 def result_mimebundle(result: Result, *, rich: bool = True) -> dict[str, Any]:
     """The display of ``result``: the view of its mechanism (``rich``) with the text report as plain text.
 
-    The mechanism is the one the result was computed from (kept by the
-    analysis); a result that does not carry it is shown as text.
+    A result that does not carry its mechanism is shown as text.
 
     Examples
     --------
@@ -121,9 +91,7 @@ def sweep_mimebundle(sweep: Any, *, rich: bool = True) -> dict[str, Any]:
 def register_display(shell: Any) -> None:
     """Make IPython ``shell`` display every :class:`Result` and sweep result as its view.
 
-    Rich when the shell's front end shows HTML (a notebook), plain text
-    otherwise (a terminal).  The sweep result's class is named, not imported,
-    so the sweeps package loads only when a sweep is made.
+    Rich when the front end shows HTML, plain text in a terminal; the sweeps package is not imported for it.
     """
     formatter = shell.display_formatter
     rich = "text/html" in getattr(formatter, "active_types", ())

@@ -1,15 +1,10 @@
 """One self-contained HTML page holding the 3D view: it works offline.
 
-The page embeds plotly.js itself (about 4.8 MB, no script, style sheet or
-font fetched from the network, no MathJax) under a short header: the
-mechanism's name, its DOF, pattern and mobility, the units, the explanation
-of the Grübler–Kutzbach count and the warnings, and how to use the view.
-With several poses the header's answer follows the slider: a short script
-writes the answer of the pose shown.  :func:`figure_html` is the figure
-alone, as offline, for a notebook's HTML output.
-
-plotly is an optional extra (``pip install 'mechanism-mobility[view]'``);
-:func:`require_plotly` says so in one line when it is missing.
+plotly.js is embedded (about 4.8 MB; nothing fetched, no MathJax) under a
+header giving the mechanism's name, its answer (following the slider), units,
+Grübler–Kutzbach explanation, warnings and how to use the view.
+:func:`figure_html` is the figure alone, for a notebook; :func:`require_plotly`
+names the extra when plotly is missing.
 """
 
 from __future__ import annotations
@@ -26,10 +21,8 @@ __all__ = ["require_plotly", "page_html", "figure_html", "answer_script", "screw
 PLOTLY_CONFIG = {"displaylogo": False, "responsive": True, "scrollZoom": True}
 """The plotly.js options of the view: no logo, fills its page, the wheel zooms."""
 
-_HELP = (
-    "Drag to rotate, scroll to zoom, right-drag (or shift-drag) to pan; hover a glyph for its numbers. "
-    "Click a legend entry to hide or show it, a legend's title to switch its whole layer."
-)
+_HELP = ("Drag to rotate, scroll to zoom, right-drag (or shift-drag) to pan; hover a glyph for its numbers. "
+         "Click a legend entry to hide or show it, a legend's title to switch its whole layer.")
 
 _STYLE = """
 body { margin: 0; font-family: system-ui, -apple-system, "Segoe UI", Roboto, Helvetica, Arial, sans-serif; color: #263238; background: #fff; }
@@ -49,14 +42,12 @@ aside td.key { font-weight: bold; white-space: nowrap; }
 aside .numbers { font-family: ui-monospace, "DejaVu Sans Mono", Menlo, Consolas, monospace; font-size: 12px; }
 """
 
-LABELS_SCRIPT = (
-    "var gd = document.getElementById('{plot_id}');\n"
-    "gd.on('plotly_restyle', function () { var shown = {}, update = {}, notes = (gd.layout.scene && gd.layout.scene.annotations) || [];\n"
-    "gd.data.forEach(function (t) { if (t.meta && t.visible === true) { shown[t.meta.key] = true; } });\n"
-    "notes.forEach(function (a, i) { var now = a.visible !== false, want = shown[a.name] === true;\n"
-    "if (now !== want) { update['scene.annotations[' + i + '].visible'] = want; } });\n"
-    "if (Object.keys(update).length) { Plotly.relayout(gd, update); } });"
-)
+LABELS_SCRIPT = ("var gd = document.getElementById('{plot_id}');\n"
+                 "gd.on('plotly_restyle', function () { var shown = {}, update = {}, notes = (gd.layout.scene && gd.layout.scene.annotations) || [];\n"
+                 "gd.data.forEach(function (t) { if (t.meta && t.visible === true) { shown[t.meta.key] = true; } });\n"
+                 "notes.forEach(function (a, i) { var now = a.visible !== false, want = shown[a.name] === true;\n"
+                 "if (now !== want) { update['scene.annotations[' + i + '].visible'] = want; } });\n"
+                 "if (Object.keys(update).length) { Plotly.relayout(gd, update); } });")
 """The script that hides the label of a glyph hidden from its legend, and shows it again with it."""
 
 
@@ -73,16 +64,9 @@ def require_plotly() -> Any:
 def figure_html(figure: dict[str, Any], *, div_id: str | None = None, post_script: Sequence[str] = ()) -> str:
     """The figure as an HTML fragment that fetches nothing: plotly.js inline, no MathJax, no CDN.
 
-    Parameters
-    ----------
-    figure : dict
-        From :func:`mobility.view.figure.figure_dict` (or a plotly figure's dict).
-    div_id : str, optional
-        The id of the figure's element (default: a new random one, so that
-        several figures can share a notebook).
-    post_script : sequence of str
-        Scripts run once the figure is drawn (``{plot_id}`` is the element's
-        id), after :data:`LABELS_SCRIPT`.
+    ``div_id`` defaults to a random one (several figures share a notebook);
+    ``post_script`` runs once the figure is drawn (``{plot_id}``: the element's
+    id), after :data:`LABELS_SCRIPT`.
     """
     pio = require_plotly()
     return pio.to_html(figure, include_plotlyjs=True, include_mathjax=False, full_html=False, div_id=div_id, config=PLOTLY_CONFIG,
@@ -93,10 +77,8 @@ def figure_html(figure: dict[str, Any], *, div_id: str | None = None, post_scrip
 def answer_script(answers: Sequence[str]) -> str:
     """The script that writes, in the header's answer, the answer of the pose the slider shows, and shows its table of screws.
 
-    ``answers[k]`` is the text of pose ``k`` (the order of the slider's
-    steps).  The texts are written as JSON with every ``<``, ``>``, ``&``
-    and brace escaped, so no text can end the script or take the place of
-    ``{plot_id}``.
+    The texts are written as JSON with ``<``, ``>``, ``&`` and braces escaped,
+    so that no text can end the script or stand for ``{plot_id}``.
 
     Examples
     --------
@@ -109,20 +91,16 @@ def answer_script(answers: Sequence[str]) -> str:
     text = json.dumps(list(answers), ensure_ascii=True)
     for char in "<>&{}":
         text = text.replace(char, f"\\u{ord(char):04x}")
-    return (
-        f"var gd = document.getElementById('{{plot_id}}'); var answers = {text};\n"
-        "gd.on('plotly_sliderchange', function (e) { var k = e.slider.active;\n"
-        "var p = document.querySelector('header .answer'); if (p && answers[k] !== undefined) { p.textContent = answers[k]; }\n"
-        "document.querySelectorAll('aside .screws').forEach(function (s, i) { s.hidden = i !== k; }); });"
-    )
+    return (f"var gd = document.getElementById('{{plot_id}}'); var answers = {text};\n"
+            "gd.on('plotly_sliderchange', function (e) { var k = e.slider.active;\n"
+            "var p = document.querySelector('header .answer'); if (p && answers[k] !== undefined) { p.textContent = answers[k]; }\n"
+            "document.querySelectorAll('aside .screws').forEach(function (s, i) { s.hidden = i !== k; }); });")
 
 
 def screws_table(scene: Any) -> str:
     """The freedoms and constraints of a scene as an HTML table: each one's key in its colour, its kind and its numbers.
 
-    The numbers are the hover text's (:mod:`mobility.view.describe`): a
-    direction, or an axis with a point on it and a pitch, in the file's
-    units; the page shows them beside the plot.
+    The numbers are the hover text's (:mod:`mobility.view.describe`), in the file's units.
 
     Examples
     --------
@@ -152,20 +130,12 @@ def page_html(figure: dict[str, Any], title: str, answers: Sequence[str], lines:
 
     Parameters
     ----------
-    figure : dict
-        From :func:`mobility.view.figure.figure_dict`.
-    title : str
-        The mechanism's name (the page's title and heading).
     answers : sequence of str
-        DOF, pattern and mobility of each pose in one line, in the slider's
-        order: the header shows the first, then the one of the pose the slider
-        shows.
+        Each pose's DOF, pattern and mobility in one line, in the slider's order.
     lines : sequence of str
-        Further header lines, true of every pose; those starting with
-        ``warning:`` are shown in red.
+        Further header lines, true of every pose (``warning:`` ones in red).
     tables : sequence of str
-        Each pose's :func:`screws_table`, in the slider's order (the page shows
-        the one of the pose shown); none: no table.
+        Each pose's :func:`screws_table`, in the slider's order (none: no table).
     """
     scripts = [answer_script(answers)] if len(answers) > 1 else []
     body = figure_html(figure, div_id=ELEMENT_ID, post_script=scripts)

@@ -1,28 +1,12 @@
 """What the 3D view draws for one pose, as plain data: glyphs in three layers.
 
-:func:`build_scene` turns a mechanism and its :class:`~mobility.core.result.Result`
-into :class:`Glyph` objects, each one thing a person points at:
-
-``mechanism`` layer
-    the ground, the end effector and the other links (bars between two
-    joints, translucent plates over three or more), one glyph per joint type
-    (markers with the joints' axes), the end effector's centre;
-``freedoms`` layer
-    ``T1..`` translation arrows from the end effector's centre, ``R1..``
-    rotation axes through their points with a circular arrow (a helix too
-    when the pitch is not zero);
-``constraints`` layer
-    ``C1..`` constraint couples (double-headed arrows beside the centre) and
-    ``W..`` constraint forces (lines through their points, with an arrowhead;
-    a small circular arrow too when the wrench has a pitch), numbered as in
-    the text report.
-
-Where each joint is drawn and the size of the scene come from the pictures'
-:func:`mobility.report.plotting.sketch`, so the view and the PNG agree; every
-size of a glyph is a fraction of that size, so a file in metres and the same
-in millimetres look the same.  :func:`viewpoint` chooses where to look from
-with the pictures' :func:`~mobility.report.plotting.choose_views` (no freedom
-seen end-on).
+Each :class:`Glyph` is one thing a person points at, in the ``mechanism``
+layer (links, one glyph per joint type, the end effector's centre), the
+``freedoms`` layer (``T1..`` arrows, ``R1..`` axes, a helix for a pitch) or the
+``constraints`` layer (``C1..`` couples, ``W..`` forces, numbered as in the text
+report).  Joint places and the scene's size come from the pictures'
+:func:`mobility.report.plotting.sketch` (the view and the PNG agree); every
+glyph size is a fraction of that size, so metres and millimetres look the same.
 
 Examples
 --------
@@ -55,24 +39,11 @@ __all__ = ["LAYERS", "JOINT_SYMBOLS", "Glyph", "Scene", "build_scene", "viewpoin
 LAYERS = ("mechanism", "freedoms", "constraints")
 """The layers of the view, each switchable on its own."""
 
-JOINT_SYMBOLS = {
-    "R": ("circle", "#ffffff"),
-    "P": ("square", "#ffe08a"),
-    "H": ("diamond", "#c8e6c9"),
-    "C": ("diamond-open", "#7e57c2"),
-    "U": ("cross", "#1e88e5"),
-    "S": ("circle", "#37474f"),
-    "E": ("square-open", "#f4511e"),
-}
+JOINT_SYMBOLS = {"R": ("circle", "#ffffff"), "P": ("square", "#ffe08a"), "H": ("diamond", "#c8e6c9"), "C": ("diamond-open", "#7e57c2"),
+                 "U": ("cross", "#1e88e5"), "S": ("circle", "#37474f"), "E": ("square-open", "#f4511e")}
 """Marker symbol and colour of each joint type (symbols a WebGL 3D scatter can draw)."""
 
-# Sizes of the glyphs, as fractions of the scene's size.
-_ARROW = 0.36
-_HALF_AXIS = 0.45
-_HALF_FORCE = 0.28
-_HEAD = 0.05
-_MARK = 0.055
-_COUPLE_OFFSET = 0.25
+_ARROW, _HALF_AXIS, _HALF_FORCE, _HEAD, _MARK, _COUPLE_OFFSET = 0.36, 0.45, 0.28, 0.05, 0.055, 0.25  # glyph sizes, fractions of the scene's
 
 
 @dataclass(frozen=True, eq=False)
@@ -82,38 +53,18 @@ class Glyph(ReadOnlyArrays):
     Attributes
     ----------
     key : str
-        Unique in its scene: ``"T1"``, ``"R2"``, ``"C1"``, ``"W3"``,
-        ``"links:ground"``, ``"joints:R"``, ``"end-effector-centre"``.
-    layer : str
-        One of :data:`LAYERS`.
+        Unique in its scene: ``"T1"``, ``"W3"``, ``"links:ground"``, ``"joints:R"``...
     kind : str
         ``translation``, ``rotation``, ``helical``, ``couple``, ``force``,
         ``wrench``, ``ground``, ``end_effector``, ``link``, ``joint``, ``centre``.
-    name : str
-        The legend's text.
-    color : str
     path : ndarray, shape (n, 3)
-        Polyline (rows of NaN between pieces); may be empty.
-    width : float
-        Line width of the path, pixels.
-    hover : str
-        Hover text of the path and mesh.
+        Polyline (rows of NaN between pieces), ``width`` pixels wide; may be empty.
     mesh : Mesh or None
-        Solid parts (arrowheads, plates).
-    opacity : float
-        Of the mesh.
+        Solid parts (arrowheads, plates), of ``opacity``.
     points : ndarray, shape (k, 3)
-        Markers (joints); may be empty.
-    symbol : str
-        Marker symbol.
-    point_hover : tuple of str
-        Hover text of each marker.
-    label : str
-        Written at ``label_at`` (empty: none).
-    label_at : ndarray, shape (3,) or None
+        Markers (joints), each with its ``point_hover``; may be empty.
     direction : ndarray, shape (3,) or None
-        The unit direction of a freedom or constraint (its axis, or the
-        direction of a free vector).
+        The unit direction of a freedom or constraint.
     """
 
     key: str
@@ -150,18 +101,14 @@ class Scene(ReadOnlyArrays):
     Attributes
     ----------
     glyphs : tuple of Glyph
-        Mechanism first, then freedoms (translations, rotations), then
-        constraints (couples, forces).
+        Mechanism first, then freedoms, then constraints.
     centre : ndarray, shape (3,)
         The end effector's centre, where free vectors are drawn.
     size : float
         Extent of the mechanism (the unit of every glyph's size).
-    lower, upper : ndarray, shape (3,)
-        Bounds of everything drawn.
     scale : float
-        Drawing units per file unit: every coordinate of the scene is the
-        file's times ``scale`` (1 for every mechanism of an everyday size,
-        see :func:`mobility.report.plotting.sketch.drawing_scale`).
+        Drawing units per file unit (1 for a mechanism of an everyday size,
+        :func:`mobility.report.plotting.sketch.drawing_scale`).
     """
 
     glyphs: tuple[Glyph, ...]
@@ -179,21 +126,9 @@ class Scene(ReadOnlyArrays):
 def build_scene(mechanism: Mechanism, result: Result, drawing: float | None = None) -> Scene:
     """The glyphs of ``mechanism`` at its pose with the freedoms and constraints of ``result``.
 
-    Parameters
-    ----------
-    mechanism : Mechanism
-    result : Result
-        Its analysis (:func:`mobility.analyze`).
-    drawing : float, optional
-        Drawing units per file unit (a power of two; default: the pictures'
-        :func:`~mobility.report.plotting.sketch.drawing_scale`, 1 for every
-        mechanism of an everyday size).  Poses shown together share one.
-
-    Returns
-    -------
-    Scene
-        With ``result.dof`` glyphs in the ``freedoms`` layer and
-        ``6 - result.dof`` in the ``constraints`` layer.
+    ``drawing``: drawing units per file unit (a power of two, shared by poses
+    shown together; default: the pictures' :func:`~mobility.report.plotting.sketch.drawing_scale`).
+    The scene has ``result.dof`` glyphs in ``freedoms``, ``6 - result.dof`` in ``constraints``.
     """
     sk = sketch(mechanism, drawing)
     size, c = sk.size, sk.end_effector_centre
@@ -214,7 +149,8 @@ def build_scene(mechanism: Mechanism, result: Result, drawing: float | None = No
         glyphs.append(_couple(i, np.asarray(cp, dtype=float), c, size, k))
     for i, f in enumerate(result.forces):
         glyphs.append(_force(k + i, f, size, scale, unit, sk.scale))
-    return _framed(tuple(glyphs), c, size, sk.scale)
+    everything = np.concatenate([g.extent() for g in glyphs])  # the bounds of everything drawn
+    return Scene(tuple(glyphs), c, size, everything.min(axis=0), everything.max(axis=0), sk.scale)
 
 
 def _links(mechanism: Mechanism, sk) -> list[Glyph]:
@@ -321,17 +257,10 @@ def _force(n: int, f, size: float, scale: float, unit: str, drawing: float) -> G
                  hover=force_text(n + 1, f, scale, unit), mesh=Mesh.merged(*meshes), label=label, label_at=tip + 0.05 * size * d, direction=d)
 
 
-def _framed(glyphs: tuple[Glyph, ...], centre: np.ndarray, size: float, drawing: float) -> Scene:
-    """The scene with the bounds of everything drawn."""
-    everything = np.concatenate([g.extent() for g in glyphs])
-    return Scene(glyphs, centre, size, everything.min(axis=0), everything.max(axis=0), drawing)
-
-
 def viewpoint(scene: Scene) -> tuple[float, float]:
     """Elevation and azimuth (degrees) from which no freedom or constraint is seen end-on and no labels overlap.
 
-    The pictures' :func:`~mobility.report.plotting.choose_views`, given the
-    joints, the labels and the directions of the freedoms and constraints.
+    The pictures' :func:`~mobility.report.plotting.choose_views`, given joints, labels and directions.
     """
     important = [scene.centre[None]]
     joints = []

@@ -1,21 +1,12 @@
 """The 3D view of a sweep: a slider through its poses, each with its freedoms, pattern and margin.
 
-:func:`sweep_view` turns a :class:`~mobility.sweeps.SweepResult` into the
-frames of :func:`~mobility.view.views.poses_view`: each assembled grid point
-rebuilt as a mechanism (``SweepResult.mechanism_at``) and analysed, labelled by
-its coordinates.  A sweep larger than a page holds is thinned to evenly
-spaced poses, keeping every singular pose the sweep found, so the slider
-passes through each change of pattern.  The header of the page says how many
-of the sweep's poses are drawn, and why the others are not
-(:func:`sweep_notes`: not assembled, or left out by the thinning).
-
-Each label also gives the pose's local and constraint transmission indices
-when the sweep has them (:mod:`mobility.transmission`).
-
-Only the sweep result's public attributes are used (``size``, ``assembled``,
-``values``, ``singular``, ``mechanism_at``, ``tolerance``, ``axes``,
-``has_transmission``, ``lti``, ``cti``); the
-sweeps package is imported only when a sweep is shown.
+:func:`sweep_view` rebuilds each assembled grid point of a
+:class:`~mobility.sweeps.SweepResult` (``mechanism_at``), analyses it and labels
+it by its coordinates (and transmission indices when the sweep has them).  A
+sweep larger than a page holds is thinned to evenly spaced poses, keeping every
+singular pose, so that the slider passes through each change of pattern; the
+header says how many poses are drawn and why not the others (:func:`sweep_notes`).
+Only the sweep result's public attributes are used.
 
 Examples
 --------
@@ -46,7 +37,6 @@ def sweep_poses(sweep: Any, max_poses: int = MAX_POSES) -> list[int]:
     Examples
     --------
     >>> from types import SimpleNamespace
-    >>> import numpy as np
     >>> s = SimpleNamespace(size=10, assembled=np.arange(10) != 3, singular=(SimpleNamespace(index=7),))
     >>> sweep_poses(s, 4)
     [0, 5, 7, 9]
@@ -65,7 +55,6 @@ def sweep_notes(sweep: Any, shown: int) -> list[str]:
     Examples
     --------
     >>> from types import SimpleNamespace
-    >>> import numpy as np
     >>> sweep_notes(SimpleNamespace(size=25, assembled=np.arange(25) < 14), 14)
     ["14 of the sweep's 25 poses drawn: 11 not assembled (no closed pose reached there)"]
     >>> sweep_notes(SimpleNamespace(size=1000, assembled=np.arange(1000) != 3), 200)
@@ -89,7 +78,6 @@ def transmission_label(sweep: Any, index: int) -> str:
     Examples
     --------
     >>> from types import SimpleNamespace
-    >>> import numpy as np
     >>> transmission_label(SimpleNamespace(has_transmission=True, lti=np.array([0.8123]), cti=np.array([np.nan])), 0)
     ', LTI 0.812'
     """
@@ -102,22 +90,11 @@ def transmission_label(sweep: Any, index: int) -> str:
 def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
     """The view of a sweep's poses with a slider (at most ``max_poses`` of them).
 
-    Parameters
-    ----------
-    sweep : SweepResult
-        From :func:`mobility.sweep`.
-    max_poses : int
-        At most this many poses are drawn, from 1 to :data:`~mobility.view.views.MAX_POSES`.
-
-    Returns
-    -------
-    View
-
     Raises
     ------
     RequestError
-        When ``sweep`` is not a sweep result or no pose of it was assembled,
-        or ``max_poses`` is not an integer from 1 to ``MAX_POSES``.
+        When ``sweep`` is not a sweep result or none of its poses was assembled,
+        or ``max_poses`` is not an integer from 1 to :data:`~mobility.view.views.MAX_POSES`.
     """
     from ..report.sweep import describe_values  # here: the sweeps package loads only when a sweep is shown
 

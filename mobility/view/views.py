@@ -1,15 +1,9 @@
 """The interactive 3D view of a mechanism's freedoms and constraints, for a page or a notebook.
 
-:func:`mechanism_view` shows one pose; :func:`poses_view` shows a sequence of
-poses (a list of :class:`ViewFrame`, or of ``(mechanism, result, label)``
-triples, e.g. from :func:`mobility.sample_poses` or a sweep) with a slider
-that walks through them, the pattern and rank margin of each in the title.
-
-A :class:`View` writes itself as one self-contained HTML page
-(:meth:`View.write_html`, works offline) and shows itself in Jupyter
-(``_repr_mimebundle_``) in the forms plotly's renderers name, each made so
-that it fetches nothing from the network, with the text report as the
-plain-text part, so a front end without plotly shows the text.
+:func:`mechanism_view` shows one pose, :func:`poses_view` several with a slider
+(each pose's pattern and rank margin in the title).  A :class:`View` writes one
+self-contained HTML page (:meth:`View.write_html`) and shows itself in Jupyter,
+fetching nothing from the network, the text report as its plain-text part.
 
 Examples
 --------
@@ -64,14 +58,8 @@ class ViewFrame:
 class View:
     """An interactive 3D view of one or several poses.
 
-    Attributes
-    ----------
-    frames : tuple of ViewFrame
-    scenes : tuple of Scene
-        What is drawn for each frame (:func:`mobility.view.scene.build_scene`).
-    notes : tuple of str
-        What the header says of the poses besides their answers (e.g. the
-        poses of a sweep that are not drawn, and why).
+    ``scenes``: what is drawn for each frame; ``notes``: what the header says of
+    the poses besides their answers (a sweep's poses not drawn, and why).
     """
 
     frames: tuple[ViewFrame, ...]
@@ -118,24 +106,19 @@ class View:
 
     def to_html(self) -> str:
         """The self-contained page (plotly.js inline; nothing fetched from the network)."""
-        figure = self.figure_dict
-        if len(self.frames) == 1:  # the page's header says it all; several poses keep the title the slider updates
-            figure = build_figure_dict([(s, f.result, f.label) for s, f in zip(self.scenes, self.frames)], titled=False)
+        # one pose: the page's header says it all; several poses keep the title the slider updates
+        figure = self.figure_dict if len(self.frames) > 1 else build_figure_dict([(self.scenes[0], self.frames[0].result, self.frames[0].label)], titled=False)
         return page_html(figure, self.name, self.answers, self.header, [screws_table(s) for s in self.scenes])
 
     def write_html(self, path: str | Path) -> Path:
         """Write :meth:`to_html` to ``path``, whole or not at all (:func:`mobility.outputs.atomic_output`); returns the path.
-
-        A failure or an interrupt leaves a page already at ``path`` as it was.
 
         Raises
         ------
         MissingExtraError
             When plotly is not installed.
         RequestError
-            When ``path`` is not a file name (a ``str`` or ``os.PathLike``
-            naming the file as text), or the file cannot be written (the
-            message says why).
+            When ``path`` is not a file name, or the file cannot be written (saying why).
         """
         path = written_file_name(path, "write_html")
         text = self.to_html()
@@ -156,10 +139,7 @@ class View:
         return "\n".join(lines)
 
     def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, Any]:
-        """Jupyter: the figure in the forms plotly's renderers name, none fetching anything; the text report as plain text.
-
-        See :func:`mobility.view.notebook.offline_mimebundle`.
-        """
+        """Jupyter: the figure as :func:`mobility.view.notebook.offline_mimebundle` gives it, the text report as plain text."""
         try:
             figure = self.figure
         except MissingExtraError as exc:
@@ -175,23 +155,18 @@ class View:
 def mechanism_view(mechanism: Mechanism, result: Result | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> View:
     """The 3D view of ``mechanism`` at its pose with its end effector's freedoms and constraints.
 
-    Parameters
-    ----------
-    mechanism : Mechanism
-    result : Result, optional
-        Its analysis (of this mechanism at this pose); computed with ``tol``
-        when not given.
-    tol : Tolerance
-
-    Returns
-    -------
-    View
+    ``result``: its analysis at this pose (computed with ``tol`` when not given).
 
     Raises
     ------
     RequestError
-        When ``result`` is not a :class:`Result` of ``mechanism`` (the
-        mechanism it analysed differs).
+        When ``result`` is not a :class:`Result` of ``mechanism``.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> mechanism_view(mobility.load("mechanisms/four_bar.yaml")).answer
+    'end effector 1 DOF, pattern 1R; mobility 1 (Grübler–Kutzbach count -2)'
     """
     mechanism = require_mechanism(mechanism, "mechanism_view")
     tol = require_tolerance(tol, "mechanism_view")
@@ -221,25 +196,17 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
     Parameters
     ----------
     frames : iterable of ViewFrame or (Mechanism, Result, label)
-        In slider order (for one mechanism, see :func:`mechanism_view`).
+        In slider order.
     max_poses : int
-        Refuse more poses than this, from 1 to :data:`MAX_POSES`: each one is
-        drawn into the page, which grows (about 40 kB a pose) and slows down
-        with every pose.
+        Refuse more poses, from 1 to :data:`MAX_POSES` (each adds about 40 kB to the page).
     notes : iterable of str
-        Further lines of the header, true of every pose (:attr:`View.notes`).
-
-    Returns
-    -------
-    View
+        Further lines of the header, true of every pose.
 
     Raises
     ------
     RequestError
-        When ``frames`` is not an iterable of frames, there is no frame, more
-        than ``max_poses``, or a frame is not a mechanism with its result (the
-        result of analysing that mechanism); when ``max_poses`` is not an
-        integer from 1 to :data:`MAX_POSES`, or ``notes`` not strings.
+        When ``frames`` is no frames, empty, more than ``max_poses``, or a frame
+        is not a mechanism with its own result; or ``max_poses``, ``notes`` bad.
 
     Examples
     --------

@@ -1,31 +1,13 @@
 """Pictures: a mechanism at its pose with its freedoms and constraints, and its joint graph.
 
-:func:`plot_mechanism` draws the mechanism in 3D with the answer of
-:func:`mobility.analyze` on its end effector; :func:`plot_graph` draws the
-joint graph beside the series/parallel tree the analysis reduced it to;
-:func:`save_figure` writes either (or a sweep's picture) as PNG, SVG or PDF.  matplotlib is optional
-(``pip install 'mechanism-mobility[plot]'``), imported only when a picture is drawn.
-
-Modules, each with one job (those marked * need no matplotlib):
-
-``sketch`` *
-    where each joint is drawn, and the size of the scene.
-``views`` *
-    viewpoints where nothing important overlaps.
-``scene`` *
-    where the freedoms and constraint wrenches are drawn.
-``geometry`` * and ``style`` *
-    small vector helpers; joint symbols and colours.
-``glyphs``
-    the 3D drawing primitives (arrows, rotation marks, links, joints).
-``mechanism``, ``graph``
-    the two pictures.
-``backend``
-    matplotlib on demand, figures without pyplot, saving.
+matplotlib is optional (``pip install 'mechanism-mobility[plot]'``), imported
+only when a picture is drawn. ``sketch``, ``views``, ``scene``, ``geometry`` and
+``style`` need no matplotlib (where each joint, viewpoint, freedom and wrench
+is drawn); ``glyphs`` draws the primitives, ``mechanism`` and ``graph`` the two
+pictures, ``backend`` makes figures without pyplot and saves them.
 
 Every drawn answer carries a ``gid`` (``"mobility:translation:0"``,
-``"mobility:rotation-axis:1"``, ``"mobility:force:0"``, ``"mobility:couple:0"``,
-``"mobility:link:<name>"``, ``"mobility:joints:<type>"``, ``"mobility:tree:series"``...),
+``"mobility:force:0"``, ``"mobility:link:<name>"``, ``"mobility:tree:series"``...),
 so programs and tests can read the picture back.
 
 Examples
@@ -45,18 +27,5 @@ from .sketch import Sketch, sketch
 from .style import COLORS, JOINT_STYLE, LIMB_COLORS
 from .views import choose_views
 
-__all__ = [
-    "plot_mechanism",
-    "plot_graph",
-    "save_figure",
-    "picture_path",
-    "FORMATS",
-    "Sketch",
-    "sketch",
-    "choose_views",
-    "Scene",
-    "build_scene",
-    "COLORS",
-    "JOINT_STYLE",
-    "LIMB_COLORS",
-]
+__all__ = ["plot_mechanism", "plot_graph", "save_figure", "picture_path", "FORMATS", "Sketch", "sketch", "choose_views", "Scene", "build_scene",
+           "COLORS", "JOINT_STYLE", "LIMB_COLORS"]

@@ -1,10 +1,9 @@
 """matplotlib, optional: import it on first use, build figures without pyplot, save them.
 
-matplotlib is an optional extra (``pip install 'mechanism-mobility[plot]'``): it is
-imported only when a picture is drawn, and
-:class:`~mobility.errors.PlottingUnavailableError` says how to get it when it
-is missing.  Figures are built without :mod:`matplotlib.pyplot` (no global
-state); one left as a notebook cell's value shows itself as PNG.
+``pip install 'mechanism-mobility[plot]'``; when it is missing,
+:class:`~mobility.errors.PlottingUnavailableError` says so. Figures are built
+without :mod:`matplotlib.pyplot` (no global state); one left as a notebook
+cell's value shows itself as PNG.
 """
 
 from __future__ import annotations
@@ -52,21 +51,14 @@ _FIGURE_CLASS: list[type] = []
 
 
 def _figure_class() -> type:
-    """A :class:`matplotlib.figure.Figure` that shows itself in Jupyter (made on first use).
-
-    The figures are built without :mod:`matplotlib.pyplot`, so no backend
-    registers a display hook for them; ``_repr_png_`` lets IPython show one
-    left as a cell's value whatever the backend.
-    """
+    """A :class:`matplotlib.figure.Figure` that shows itself in Jupyter without pyplot's display hook (made on first use)."""
     if not _FIGURE_CLASS:
         from matplotlib.figure import Figure
 
         class MobilityFigure(Figure):
             """A figure of :mod:`mobility.report.plotting`; displays itself as PNG in Jupyter.
 
-            Its texts are drawn as written: a name such as ``$_$`` is not
-            TeX for matplotlib's mathtext (which would fail on it); only the
-            numbers of the axes' ticks keep mathtext (``10^-2`` on a log scale).
+            Its texts are drawn as written (a name such as ``$_$`` is not TeX); only tick numbers keep mathtext.
             """
 
             def draw(self, renderer: Any) -> None:
@@ -150,7 +142,7 @@ def written_file_name(path: object, what: str) -> Path:
     if not isinstance(name, str):
         raise RequestError(caller=what, expected="a file name (str or Path)", got=type(path).__name__)
     if "\x00" in name:
-        raise RequestError(f"{what}: expected a file name without a NUL character")
+        raise RequestError(caller=what, expected="a file name without a NUL character")
     return Path(name)
 
 
@@ -161,7 +153,6 @@ def picture_path(path: str | Path, what: str = "") -> Path:
 
     Parameters
     ----------
-    path : str or Path
     what : str
         Written before the path in the message (e.g. ``"--plot "``).
 
@@ -194,8 +185,7 @@ _MISSING_GLYPH = re.compile(r"Glyph (\d+) .*missing from (?:current )?font")
 def glyphs_summarised() -> Iterator[None]:
     """Around a drawing: matplotlib's warning for each character its font lacks (a name in Chinese, say) becomes one warning naming them all.
 
-    matplotlib warns once per glyph, with a line of source each; the
-    characters are drawn as boxes.  Other warnings pass through unchanged.
+    The characters are drawn as boxes; other warnings pass through unchanged.
     """
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -215,11 +205,8 @@ def glyphs_summarised() -> Iterator[None]:
 def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background, whole or not at all; returns the path.
 
-    The picture goes to a temporary file beside ``path``, renamed over it once
-    complete (:func:`mobility.outputs.atomic_output`): a failure or an
-    interrupt leaves a picture already at ``path`` as it was.
-
-    ``dpi`` is an integer in :data:`DPI_RANGE` (20 to 600, as ``mobility plot --dpi``).
+    A failure or an interrupt leaves a picture already at ``path`` as it was
+    (:func:`mobility.outputs.atomic_output`). ``dpi``: an integer in :data:`DPI_RANGE`.
 
     Raises
     ------

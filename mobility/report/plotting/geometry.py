@@ -31,10 +31,8 @@ resolution (a millionth of the picture), not a tolerance of the analysis."""
 def perpendiculars(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Two unit vectors completing ``d`` to a right-handed orthonormal frame ``(d, e1, e2)``.
 
-    ``e1`` is ``d`` crossed with the coordinate axis most across ``d``, chosen
-    on the components rounded to a millionth (the drawing resolution of
-    :data:`SAME_POINT`), so round-off in ``d`` does not turn the frame: a
-    direction ``[1e-16, 0, 1]`` is drawn as ``[0, 0, 1]`` is.
+    The axis ``d`` is crossed with is chosen on its components rounded to a
+    millionth (:data:`SAME_POINT`), so round-off in ``d`` does not turn the frame.
     """
     d = np.asarray(d, dtype=float)
     d = d / np.linalg.norm(d)
@@ -46,9 +44,7 @@ def perpendiculars(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def unique_points(p: np.ndarray, eps: float) -> np.ndarray:
     """The points of ``p`` (rows) with those within ``eps`` of an earlier one left out.
 
-    A point is kept when no point kept before it lies within ``eps``; the
-    neighbours within ``eps`` are found with a k-d tree beyond a few points,
-    so thousands of joints on one link take milliseconds.
+    Beyond a few points the neighbours are found with a k-d tree (thousands of joints take milliseconds).
     """
     p = np.asarray(p, dtype=float).reshape(-1, 3)
     if len(p) <= _FEW:
@@ -102,11 +98,9 @@ def helix(centre: np.ndarray, axis: np.ndarray, radius: float, length: float, tu
 def plate_ring(points: np.ndarray, *, flatness: float = FLAT) -> list[int] | None:
     """The indices of ``points`` on their convex outline, in order round it, when they make a plate.
 
-    ``None`` when the points are not nearly coplanar (third singular value
-    above ``flatness`` times the first) or are nearly collinear (second at or
-    below it): such a link is better drawn as bars.  The ring starts at the
-    lowest index and goes towards its lower-numbered neighbour, so it does
-    not depend on the axes of the plane.
+    ``None`` when the points are not nearly coplanar or are nearly collinear
+    (singular values against ``flatness``). The ring starts at the lowest index,
+    towards its lower-numbered neighbour.
 
     Examples
     --------

@@ -107,10 +107,8 @@ def draw_link(ax: Any, name: str, pts: np.ndarray, role: str, size: float) -> No
 def draw_links(ax: Any, mechanism: Mechanism, sk: Sketch) -> None:
     """Every link, by :func:`draw_link`; beyond :data:`LINK_ARTISTS` links, one collection per role.
 
-    matplotlib spends about a millisecond per artist and view, so a mechanism
-    of thousands of links draws each role's bars, spokes and stars as one
-    line collection (gid ``mobility:links:<role>``) and its plates as one
-    polygon collection (``mobility:links:<role>:plates``).
+    (matplotlib spends about a millisecond per artist and view): gids
+    ``mobility:links:<role>`` and ``mobility:links:<role>:plates``.
     """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
@@ -155,8 +153,7 @@ def joint_scale(count: int) -> float:
 def draw_joints(ax: Any, m: Mechanism, sk: Sketch, labels: bool, view: tuple[float, float]) -> None:
     """One scatter per joint type, small axis segments, names (beside each joint on the screen of ``view``).
 
-    Among more than :data:`ROOMY_JOINTS` joints the symbols and segments are
-    smaller (:func:`joint_scale`), so that they do not cover the links.
+    Among more than :data:`ROOMY_JOINTS` joints the symbols are smaller (:func:`joint_scale`).
     """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 

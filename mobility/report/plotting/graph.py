@@ -1,10 +1,7 @@
 """The picture of a mechanism's joint graph beside the series/parallel tree the analysis reduced it to.
 
-:func:`plot_graph` draws the joint graph (links as nodes, joints as edges,
-each limb in its own colour) beside the series/parallel tree, every node of
-the tree labelled with the dimension of its twist system and its idle motions
-as the analysis found them (:attr:`~mobility.core.result.Result.node_systems`:
-nothing is evaluated again), so one can see why the answer is what it is.
+The tree's values are those the analysis found (:attr:`~mobility.core.result.Result.node_systems`):
+nothing is evaluated again.
 """
 
 from __future__ import annotations
@@ -48,14 +45,7 @@ def _children(n: Node) -> list[Node]:
 def tree_layout(root: Node) -> tuple[dict[int, tuple[float, float]], list[tuple[int, int]], dict[int, Node]]:
     """Positions of a tree's nodes: leaves left to right, each parent above the middle of its children.
 
-    Returns
-    -------
-    positions : dict
-        ``id(node) -> (x, y)``, ``y = -depth``.
-    edges : list of (int, int)
-        ``(id(parent), id(child))``.
-    nodes : dict
-        ``id(node) -> node``.
+    Returns ``id(node) -> (x, y)`` (``y = -depth``), the edges ``(id(parent), id(child))`` and ``id(node) -> node``.
 
     Examples
     --------
@@ -101,30 +91,21 @@ def branch_colors(root: Node, detached: Sequence[Node]) -> dict[int, str]:
     return out
 
 
-def plot_graph(
-    mechanism: Mechanism,
-    result: Result | None = None,
-    *,
-    figsize: tuple[float, float] | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> "Figure":
+def plot_graph(mechanism: Mechanism, result: Result | None = None, *, figsize: tuple[float, float] | None = None,
+               tol: Tolerance = DEFAULT_TOLERANCE) -> "Figure":
     """Draw the joint graph and the series/parallel tree found by :func:`mobility.core.topology.decompose`.
 
-    Left: links as nodes (ground and end effector marked), joints as edges
-    labelled ``name (type)``, coloured by branch of the top parallel
-    connection (a limb).  Right: the tree, ``∥`` parallel (twist systems
-    intersect), ``—`` series (twist systems add), ``⊠`` bridge (solved by loop
-    closure), each labelled with the dimension of its twist system (and its
-    idle motions); leaves are the joints.  Beyond :data:`LABELLED_JOINTS`
-    joints, the links and tree nodes are markers (coloured by kind) and
-    the joints lines, without names.
+    Left: links as nodes, joints as edges labelled ``name (type)``, coloured by
+    limb. Right: the tree, ``∥`` parallel (twist systems intersect), ``—``
+    series (they add), ``⊠`` bridge (loop closure), each labelled with the
+    dimension of its twist system (and idle motions). Beyond
+    :data:`LABELLED_JOINTS` joints, markers and lines without names.
 
     Parameters
     ----------
     mechanism : Mechanism
     result : Result, optional
-        Its analysis (the tree and the values drawn; of this mechanism at
-        this pose); computed with ``tol`` when not given.
+        Its analysis at this pose; computed with ``tol`` when not given.
     figsize : (width, height) in inches, optional
         Each from 1 to 30 (:data:`~mobility.report.plotting.backend.FIGSIZE_RANGE`).
     tol : Tolerance
@@ -139,8 +120,7 @@ def plot_graph(
     PlottingUnavailableError
         When matplotlib is not installed.
     RequestError
-        When ``result`` is not a :class:`Result` of ``mechanism``, or
-        ``figsize`` is not a width and a height in range.
+        When ``result`` is not a :class:`Result` of ``mechanism``, or ``figsize`` not a width and a height in range.
     """
     mechanism = require_mechanism(mechanism, "plot_graph")
     tol = require_tolerance(tol, "plot_graph")

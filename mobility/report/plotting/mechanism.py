@@ -1,15 +1,9 @@
 """The picture of a mechanism at its pose with its end effector's freedoms and constraints.
 
-:func:`plot_mechanism` draws the mechanism in 3D (links as thin bodies between
-their joints, one symbol per joint type, the ground and the end effector
-marked) and, on the end effector, the answer of :func:`mobility.analyze`:
-arrows for the translations, axis lines with a rotation mark for the
-rotations (the pitch written where it is not zero) and, on request, the
-constraint wrenches (force lines, couples).  It shows the scene from
-viewpoints chosen by :func:`~mobility.report.plotting.views.choose_views` so
-that no two important points fall on each other and no freedom is seen
-end-on.
-
+:func:`plot_mechanism` draws links, joint symbols and, on the end effector, the
+answer of :func:`mobility.analyze`: arrows for translations, axis lines with a
+rotation mark for rotations and, on request, the constraint wrenches, from
+viewpoints chosen by :func:`~mobility.report.plotting.views.choose_views`.
 Every drawn answer carries a ``gid`` (``"mobility:translation:0"``,
 ``"mobility:rotation-axis:1"``, ``"mobility:force:0"``, ``"mobility:couple:0"``,
 ...), so programs and tests can read the picture back.
@@ -44,43 +38,28 @@ __all__ = ["plot_mechanism", "MAX_TITLE"]
 
 
 
-def plot_mechanism(
-    mechanism: Mechanism,
-    result: Result | None = None,
-    *,
-    constraints: bool = False,
-    views: int | Sequence[tuple[float, float]] = 2,
-    labels: bool = True,
-    legend: bool = True,
-    title: str | None = None,
-    figsize: tuple[float, float] | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> "Figure":
+def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constraints: bool = False, views: int | Sequence[tuple[float, float]] = 2,
+                   labels: bool = True, legend: bool = True, title: str | None = None, figsize: tuple[float, float] | None = None,
+                   tol: Tolerance = DEFAULT_TOLERANCE) -> "Figure":
     """Draw ``mechanism`` at its pose with the end effector's freedoms (and constraints).
 
     Parameters
     ----------
     mechanism : Mechanism
     result : Result, optional
-        Its analysis (of this mechanism at this pose); computed with ``tol``
-        when not given.
+        Its analysis at this pose; computed with ``tol`` when not given.
     constraints : bool
-        Also draw the constraint wrenches on the end effector: force lines
-        (red, ``W``) and couples (purple double arrows, ``C``), numbered as in
-        the text report.
+        Also draw the constraint wrenches: force lines (red, ``W``) and couples
+        (purple double arrows, ``C``), numbered as in the text report.
     views : int or sequence of (elev, azim)
-        Number of viewpoints chosen by
-        :func:`~mobility.report.plotting.views.choose_views`, from 1 to
-        :data:`~mobility.report.plotting.views.MAX_VIEWS` (a Python or numpy
-        integer), or the viewpoints themselves (degrees).
+        Number of viewpoints chosen by :func:`~mobility.report.plotting.views.choose_views`,
+        up to :data:`~mobility.report.plotting.views.MAX_VIEWS`, or the viewpoints themselves (degrees).
     labels : bool
         Write joint names (up to 40 joints).
     legend : bool
     title : str, optional
-        Default: name (cut to :data:`~mobility.report.plotting.style.MAX_LABEL`
-        characters), DOF, pattern and mobility.  Wrapped to the figure's
-        width; cut (``...``) beyond :data:`MAX_TITLE` characters or the lines
-        the figure has room for.
+        Default: name, DOF, pattern and mobility. Wrapped to the figure's width;
+        cut (``...``) beyond :data:`MAX_TITLE` characters or the lines it has room for.
     figsize : (width, height) in inches, optional
         Each from 1 to 30 (:data:`~mobility.report.plotting.backend.FIGSIZE_RANGE`).
     tol : Tolerance
@@ -95,11 +74,7 @@ def plot_mechanism(
     PlottingUnavailableError
         When matplotlib is not installed.
     RequestError
-        When ``result`` is not a :class:`Result` of ``mechanism``,
-        ``views`` is neither a number of views in range nor a list of
-        ``(elev, azim)`` pairs, ``constraints``, ``labels`` or ``legend`` is
-        not a bool, ``title`` not a string (or None), or ``figsize`` not a
-        width and a height in range.
+        When an argument is out of its range (each named), or ``result`` is not a :class:`Result` of ``mechanism``.
     """
     mechanism = require_mechanism(mechanism, "plot_mechanism")
     tol = require_tolerance(tol, "plot_mechanism")

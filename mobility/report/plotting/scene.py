@@ -1,12 +1,8 @@
 """Where the end effector's freedoms and constraints are drawn (no matplotlib).
 
-Free vectors (translations, couples) are drawn at the end effector's centre
-(couples beside it); screws on their axes.  Where a choice is free (which end
-of an axis carries the rotation mark, which way a force arrow points, on which
-side a couple stands), the place farthest from what is already drawn is taken,
-so marks and labels do not fall on each other.  With the view directions (once
-chosen), a couple stands aside in a direction every view shows, not one seen
-end-on.
+Free vectors are drawn at the end effector's centre (couples beside it), screws
+on their axes. Where a choice is free (the end carrying a rotation mark, a force
+arrow's sense, a couple's side), the place farthest from what is drawn is taken.
 
 Examples
 --------
@@ -172,18 +168,8 @@ def build_scene(result: Result, sk: Sketch, constraints: bool, eyes: np.ndarray 
 
     Parameters
     ----------
-    result : Result
-    sk : Sketch
-        Where the joints are drawn and the size of the scene.
-    constraints : bool
-        Also place the constraint forces and couples.
     eyes : ndarray, shape (views, 3), optional
-        View directions, once chosen: couples then stand aside in a
-        direction every view shows.
-
-    Returns
-    -------
-    Scene
+        View directions, once chosen: couples then stand aside in a direction every view shows.
     """
     placer = _Placer(sk)
     translations = tuple(placer.translation(t) for t in result.translations)

@@ -1,15 +1,9 @@
 """Where each joint is drawn, and the size of the scene (no matplotlib).
 
-A prismatic joint (or a planar joint without a point) has no location in the
-file, so it is drawn between the located joints of its two links, or beside
-the one it has.
-
 A picture is drawn in *drawing units*: the file's lengths times
-:attr:`Sketch.scale`, a power of two (exact, so nothing is rounded) that is 1
-for every mechanism between about a micrometre and a thousand kilometres in
-size, whatever its unit, and brings any other to a size near 1, so that a
-mechanism at 1e200 or 1e-250 is drawn without overflow or underflow
-(:func:`drawing_scale`).
+:attr:`Sketch.scale`, an exact power of two, 1 for every mechanism of an
+everyday size (:func:`drawing_scale`), so one at 1e200 or 1e-250 is drawn
+without overflow or underflow.
 
 Examples
 --------
@@ -50,11 +44,9 @@ PLAIN_SIZES = (2.0**-20, 2.0**20)
 def drawing_scale(length: float) -> float:
     """The power of two that lengths are multiplied by in a picture of a mechanism of size ``length``.
 
-    1 when ``length`` lies within :data:`PLAIN_SIZES` (a picture's artists then
-    hold the file's numbers), else the power of two bringing ``length`` near 1
+    1 within :data:`PLAIN_SIZES`, else the power of two bringing ``length`` near 1
     (:func:`~mobility.core.tolerance.binary_scale`): a drawing library squares
-    coordinates (norms, projections), which would overflow at 1e200 and
-    underflow at 1e-250.
+    coordinates, which would overflow at 1e200 and underflow at 1e-250.
 
     Examples
     --------
@@ -101,9 +93,7 @@ ROUND_OFF = DEFAULT_TOLERANCE.round_off
 
 @dataclass(frozen=True, eq=False)
 class Sketch(ReadOnlyArrays):
-    """Where each joint is drawn, and the size of the scene.
-
-    Every length is in drawing units: the file's lengths times ``scale``.
+    """Where each joint is drawn, and the size of the scene (drawing units: the file's lengths times ``scale``).
 
     Attributes
     ----------
@@ -112,21 +102,17 @@ class Sketch(ReadOnlyArrays):
     points : ndarray, shape (J, 3)
         Drawn location of each joint (global frame, drawing units).
     located : ndarray of bool, shape (J,)
-        True where the location comes from the file (``point``); false for a
-        placed prismatic or planar joint.
+        True where the location comes from the file (``point``).
     link_joints : dict
         Link name -> indices of its joints.
     centre : ndarray, shape (3,)
         Centre of the drawn joints.
     size : float
-        Extent of the scene (largest side of the joints' bounding box, or the
-        mechanism's characteristic length when the joints do not spread).
+        Extent of the scene (largest side of the joints' bounding box, or the characteristic length).
     end_effector_centre : ndarray, shape (3,)
-        Centroid of the located joints of the end effector (where its freedoms
-        are drawn); the drawn joints when none is located.
+        Centroid of the end effector's located joints (where its freedoms are drawn).
     scale : float
-        Drawing units per file unit (:func:`drawing_scale`; 1 for every
-        mechanism of an everyday size).
+        Drawing units per file unit (:func:`drawing_scale`).
     """
 
     names: tuple[str, ...]
@@ -147,11 +133,9 @@ class Sketch(ReadOnlyArrays):
 def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
     """Compute where each joint of ``mechanism`` is drawn.
 
-    A joint without a point (prismatic, or planar without ``point``) is drawn
-    midway between the located joints of its two links; when only one of its
-    links has located joints, a quarter of the scene away from them along its
-    axis, on the side away from the end effector; when neither has, after the
-    others are placed, from those.
+    A joint without a point is drawn midway between the located joints of its
+    two links; with only one located, a quarter of the scene from it along its
+    axis, away from the end effector; with neither, from those placed after.
 
     Parameters
     ----------
@@ -232,14 +216,5 @@ def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
         size = spread if spread > 0 else size
     for arr in (pts, located):
         arr.setflags(write=False)
-    return Sketch(
-        tuple(j.name for j in joints),
-        tuple(j.type for j in joints),
-        pts,
-        located,
-        {k: tuple(v) for k, v in link_joints.items()},
-        centre,
-        size,
-        ee_centre,
-        scale,
-    )
+    return Sketch(tuple(j.name for j in joints), tuple(j.type for j in joints), pts, located, {k: tuple(v) for k, v in link_joints.items()}, centre, size,
+                  ee_centre, scale)

@@ -1,14 +1,8 @@
 """Viewpoints where nothing important overlaps (no matplotlib).
 
-Every candidate view ``(elev, azim)`` on a grid is scored by the pairs of
-important points that fall on each other on the screen and by the directions
-seen end-on; :func:`choose_views` takes the best, then the best far enough
-from those chosen.
-
-The cost is bounded whatever the size of the mechanism: the pairs are scored
-a block at a time (memory of :data:`PAIR_BLOCK` pairs times the views), and
-of the *context* points (the joints) at most :data:`MAX_CONTEXT_POINTS`,
-evenly spread over them, take part; the points of the answer always do.
+The cost is bounded whatever the size of the mechanism: pairs are scored
+:data:`PAIR_BLOCK` at a time, and at most :data:`MAX_CONTEXT_POINTS` context
+points (joints) take part; the points of the answer always do.
 """
 
 from __future__ import annotations
@@ -83,42 +77,22 @@ def thinned(points: np.ndarray, limit: int = MAX_CONTEXT_POINTS) -> np.ndarray:
     return points[np.unique(np.linspace(0, len(points) - 1, limit).round().astype(int))]
 
 
-def choose_views(
-    points: np.ndarray,
-    directions: np.ndarray,
-    size: float,
-    count: int = 2,
-    *,
-    separation: float = 60.0,
-    context: np.ndarray | None = None,
-) -> list[tuple[float, float]]:
+def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count: int = 2, *, separation: float = 60.0,
+                 context: np.ndarray | None = None) -> list[tuple[float, float]]:
     """Viewpoints ``(elev, azim)`` in degrees where nothing important overlaps.
 
-    Every candidate view on a grid is scored by the pairs of ``points`` that
-    fall within 4 % of ``size`` of each other on the screen (and softly by
-    pairs brought close), and by the ``directions`` seen nearly end-on.  The
-    best view comes first; each next one is the best at least ``separation``
-    degrees away from those chosen.
+    Every candidate view on a grid is scored by the pairs of ``points`` within
+    4 % of ``size`` of each other on the screen (softly, by pairs brought
+    close), and by the ``directions`` seen nearly end-on. The best comes first.
 
     Parameters
     ----------
-    points : ndarray, shape (n, 3)
     directions : ndarray, shape (k, 3)
         Unit directions that must show their length (arrows, axes).
-    size : float
-        Extent of the scene.
-    count : int
-        Number of views.
     separation : float
         Smallest angle between two chosen view directions, degrees.
     context : ndarray, shape (m, 3), optional
-        Further points that should stay apart too (the joints), scored
-        with ``points``; beyond :data:`MAX_CONTEXT_POINTS` of them, that
-        many evenly spread over them (the same bound applies to ``points``).
-
-    Returns
-    -------
-    list of (elev, azim)
+        Further points to keep apart (the joints); at most :data:`MAX_CONTEXT_POINTS` of them are scored.
 
     Examples
     --------
