@@ -1,14 +1,8 @@
 """Frozen results of an analysis.
 
-A :class:`Result` holds only answers, in the global frame and the file's
-length unit.  Screws are rows: ``twists[i] = [w; v]``, ``wrenches[i] = [f; m]``.
-:meth:`Result.to_dict` gives the JSON form (keys of the file-format spec plus
-the whole-mechanism numbers).
-
-The result classes derive from :class:`~mobility.core.frozen.ReadOnlyArrays`:
-the arrays a result holds, or computes on first access, are read-only, also
-after a pickle round trip or a deep copy (:func:`~mobility.core.frozen.read_only`
-does it for one value).
+Answers only, in the global frame and the file's length unit; screws are
+rows (``twists[i] = [w; v]``, ``wrenches[i] = [f; m]``).  Every array a result
+holds or computes is read-only (:class:`~mobility.core.frozen.ReadOnlyArrays`).
 """
 
 from __future__ import annotations
@@ -37,10 +31,15 @@ __all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultD
 class ScrewAxis(ReadOnlyArrays):
     """A screw axis in the global frame.
 
-    For a twist: a rotation about ``axis`` through ``point`` with ``pitch``
-    (length per radian) of translation along it; for a wrench: a force along
-    ``axis`` with a couple ``pitch`` times it.  ``axis`` and ``point`` are
-    read-only arrays (copies of writable ones given).
+    For a twist, a rotation about ``axis`` through ``point`` with ``pitch``
+    (length per radian) of translation along it; for a wrench, a force along
+    ``axis`` with a couple ``pitch`` times it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ScrewAxis(np.array([0.0, 0.0, 1.0]), np.zeros(3), 0.0, "rotation").to_dict()["axis"]
+    [0.0, 0.0, 1.0]
     """
 
     axis: np.ndarray
@@ -62,16 +61,15 @@ class ScrewAxis(ReadOnlyArrays):
 class Margin:
     """How far the rank decisions of an analysis were from changing.
 
-    Attributes
-    ----------
-    smallest_kept : float
-        Smallest singular value counted as non-zero, relative to the largest
-        of its matrix (normalised coordinates).  Small: near a singularity.
-    largest_dropped : float
-        Largest singular value counted as zero, relative.  Well above round-off:
-        the geometry is only approximately special.
-    near_singular : bool
-    inexact : bool
+    ``smallest_kept``: the smallest singular value counted, relative to the
+    largest of its matrix (small: near a singularity); ``largest_dropped``: the
+    largest counted as zero (well above round-off: geometry only nearly
+    special); ``near_singular`` and ``inexact`` say whether the policy warned.
+
+    Examples
+    --------
+    >>> Margin(0.5, 0.0, False, False).to_dict()["smallest_kept"]
+    0.5
     """
 
     smallest_kept: float
@@ -93,8 +91,8 @@ class Margin:
 class LimbSystem(ReadOnlyArrays):
     """Twist and constraint systems of one limb (a branch of the top parallel connection).
 
-    Everything is written in ``frame`` (the frame all the limb's joints are
-    written in, else ``world``), in the same canonical form as :class:`Result`.
+    Written in ``frame`` (the one all the limb's joints are written in, else
+    ``world``), in the canonical form of :class:`Result`.
     """
 
     structure: str
@@ -126,13 +124,13 @@ class LimbSystem(ReadOnlyArrays):
 class NodeSystem(NamedTuple):
     """What the analysis found at one node of the series/parallel tree.
 
-    Attributes
-    ----------
-    dof : int
-        Dimension of the twist system of the relative motion of the node's
-        two end links (for a joint: its DOF).
-    idle : int
-        Motions of the joints inside the node that leave those two links still.
+    ``dof``: dimension of the twist system between the node's two end links
+    (a joint's DOF); ``idle``: motions inside the node that leave them still.
+
+    Examples
+    --------
+    >>> NodeSystem(2, 1).mobility
+    3
     """
 
     dof: int
@@ -167,10 +165,8 @@ class ResultDetail(Protocol):
 class Result(ReadOnlyArrays):
     """What :func:`mobility.analyze` finds.
 
-    The counts are computed by the analysis; the directions (canonical forms),
-    limb systems and common constraints are computed on first access and then
-    kept (the result never changes: its arrays are read-only).  It pickles
-    (and deep-copies) at any time, with what it has computed so far.  Two
+    The counts come with it; directions, limb systems and common constraints
+    are computed on first access and kept.  It pickles at any time; two
     results are equal only when they are the same object.
 
     Attributes
@@ -430,13 +426,7 @@ class Result(ReadOnlyArrays):
         return text
 
     def _inner_loops(self) -> list[tuple[Node, int, int]]:
-        """``(node, loops, redundant constraints)`` of each outermost sub-network of loops below the top of the tree (a parallelogram in a limb).
-
-        Its redundant constraints are its mobility with one end link held, from
-        :attr:`node_systems`, less its own Grübler–Kutzbach count: they are
-        redundant constraints of the whole mechanism too, the sub-networks
-        sharing no loop.
-        """
+        """``(node, loops, redundant constraints)`` of each outermost sub-network of loops below the top (a parallelogram in a limb): its mobility less its own Grübler–Kutzbach count."""
         root = self.topology.root
         if not isinstance(root, (Series, Parallel)):
             return []
@@ -515,8 +505,6 @@ def require_result(value: object, caller: str) -> Result:
 def require_result_of(mechanism: Mechanism, value: object, caller: str) -> Result:
     """``value`` when it is a :class:`Result` of ``mechanism``, else a :class:`~mobility.errors.RequestError` naming ``caller``.
 
-    :func:`require_result`, then :func:`require_same_mechanism`.
-
     Examples
     --------
     >>> import mobility
@@ -542,9 +530,8 @@ def _same_description(a: object, b: Mechanism) -> bool:
 def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) -> None:
     """A :class:`~mobility.errors.RequestError` naming ``caller`` when ``result`` analysed another mechanism than ``mechanism``.
 
-    The mechanism a result analysed (its ``mechanism``: :attr:`Result.mechanism`)
-    must equal ``mechanism`` (mechanisms compare by value: the same fields,
-    joints and pose; where the file was read from does not count).  A result that does not keep its mechanism is taken as it is.
+    Mechanisms compare by value (fields, joints, pose; not where the file was
+    read from); a result that does not keep its mechanism is taken as it is.
 
     Examples
     --------
