@@ -66,10 +66,6 @@ class ClosureAdvice:
         A basis of the redundant rows ``[f; m]``, couples first.
     length_scale : float
         The mechanism's size (the round-off of numbers written).
-
-    Examples
-    --------
-    See :func:`closure_advice`.
     """
 
     joint: str
