@@ -51,27 +51,10 @@ TERMINAL_CONTROL = re.compile(f"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x84\x86-\x9f{_B
 """Characters a terminal obeys rather than shows: C0 and C1 controls but tab and line breaks (LF, CR, NEL), DEL, bidirectional overrides."""
 
 __all__ = [
-    "MobilityError",
-    "MechanismError",
-    "MechanismFileError",
-    "MechanismCheckFailed",
-    "RequestError",
-    "SynthesisError",
-    "PlotFormatError",
-    "AnalysisError",
-    "HalfTurnError",
-    "MissingExtraError",
-    "PlottingUnavailableError",
-    "name_list",
-    "counted",
-    "did_you_mean",
-    "one_line",
-    "clipped",
-    "shown_argument",
-    "control_character_problem",
-    "name_problem",
-    "TERMINAL_CONTROL",
-    "DISTRIBUTION",
+    "MobilityError", "MechanismError", "MechanismFileError", "MechanismCheckFailed", "RequestError", "SynthesisError",
+    "PlotFormatError", "AnalysisError", "HalfTurnError", "MissingExtraError", "PlottingUnavailableError", "name_list",
+    "counted", "did_you_mean", "one_line", "clipped", "shown_argument", "control_character_problem", "name_problem",
+    "TERMINAL_CONTROL", "DISTRIBUTION"
 ]
 
 DISTRIBUTION = "mechanism-mobility"

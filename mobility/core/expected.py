@@ -23,13 +23,8 @@ from .tolerance import decide_rank
 from .validation import Vector, _listed, integer_value, require_vector
 
 __all__ = [
-    "Expected",
-    "EXPECTED_KEYS",
-    "EXPECTED_PATTERN",
-    "require_expected_integer",
-    "require_expected_pattern",
-    "expected_basis_problem",
-    "independent_of",
+    "Expected", "EXPECTED_KEYS", "EXPECTED_PATTERN", "require_expected_integer", "require_expected_pattern",
+    "expected_basis_problem", "independent_of"
 ]
 
 

@@ -59,15 +59,8 @@ from .tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale
 from .transforms import cross, skew
 
 __all__ = [
-    "finite_screw",
-    "finite_screw_from_transform",
-    "transform_from_finite_screw",
-    "triangle_product",
-    "twist_from_finite_screw_rate",
-    "FiniteScrew",
-    "ScrewJoint",
-    "Limb",
-    "QUATERNION_ROUND_OFF",
+    "finite_screw", "finite_screw_from_transform", "transform_from_finite_screw", "triangle_product",
+    "twist_from_finite_screw_rate", "FiniteScrew", "ScrewJoint", "Limb", "QUATERNION_ROUND_OFF"
 ]
 
 QUATERNION_ROUND_OFF = 64 * np.finfo(float).eps

@@ -44,18 +44,8 @@ from .validation import (Vector, _listed, _not_bool, bool_value, integer_value, 
                          require_instance, require_name, require_unique_names, require_vector)
 
 __all__ = [
-    "Coupling",
-    "JOINT_TYPES",
-    "JOINT_DOF",
-    "JOINT_FIELDS",
-    "Freedom",
-    "FreedomTable",
-    "Joint",
-    "Frame",
-    "Mechanism",
-    "require_mechanism",
-    "joint_freedoms",
-    "WORLD",
+    "Coupling", "JOINT_TYPES", "JOINT_DOF", "JOINT_FIELDS", "Freedom", "FreedomTable", "Joint", "Frame", "Mechanism",
+    "require_mechanism", "joint_freedoms", "WORLD"
 ]
 
 _FAR = sys.float_info.max / 1e8
@@ -68,31 +58,15 @@ JOINT_DOF: Mapping[str, int] = MappingProxyType({"R": 1, "P": 1, "H": 1, "C": 2,
 """Degrees of freedom of each joint type."""
 
 JOINT_TYPES: Mapping[str, str] = MappingProxyType(
-    {
-        "R": "revolute",
-        "P": "prismatic",
-        "H": "helical",
-        "C": "cylindrical",
-        "U": "universal",
-        "S": "spherical",
-        "E": "planar",
-    }
-)
+    {"R": "revolute", "P": "prismatic", "H": "helical", "C": "cylindrical", "U": "universal", "S": "spherical", "E": "planar"})
 """Joint type letters and their names."""
 
 _IDENTITY = np.eye(3)
 _ORTHONORMAL_LIMIT = ORTHONORMAL + 1e-5 * _IDENTITY  # |R R^T - I| entry by entry, as numpy.allclose(R R^T, I, atol=ORTHONORMAL)
 
 # Geometry fields each joint type requires, and those it may also carry.
-_REQUIRED: Mapping[str, tuple[str, ...]] = {
-    "R": ("axis", "point"),
-    "P": ("axis",),
-    "H": ("axis", "point", "pitch"),
-    "C": ("axis", "point"),
-    "U": ("point", "axes"),
-    "S": ("point",),
-    "E": ("normal",),
-}
+_REQUIRED: Mapping[str, tuple[str, ...]] = {"R": ("axis", "point"), "P": ("axis",), "H": ("axis", "point", "pitch"), "C": ("axis", "point"),
+                                             "U": ("point", "axes"), "S": ("point",), "E": ("normal",)}
 _OPTIONAL: Mapping[str, tuple[str, ...]] = {"P": ("point",), "E": ("point",)}
 JOINT_FIELDS: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = MappingProxyType({t: (need, _OPTIONAL.get(t, ())) for t, need in _REQUIRED.items()})
 """Geometry fields each joint type takes: those it requires, and those it may also carry."""

@@ -37,21 +37,9 @@ from .tolerance import DEFAULT_TOLERANCE, SIGN_TIE, RankDecision, Tolerance, dec
 from .transforms import skew
 
 __all__ = [
-    "SWAP",
-    "SWAP_ROWS",
-    "revolute_twist",
-    "prismatic_twist",
-    "helical_twist",
-    "reciprocal_product",
-    "adjoint",
-    "ScrewSpan",
-    "span_and_reciprocal",
-    "reciprocal_system",
-    "intersection",
-    "same_subspace",
-    "free_vector_subspace",
-    "pattern_of",
-    "motion_pattern",
+    "SWAP", "SWAP_ROWS", "revolute_twist", "prismatic_twist", "helical_twist", "reciprocal_product", "adjoint",
+    "ScrewSpan", "span_and_reciprocal", "reciprocal_system", "intersection", "same_subspace", "free_vector_subspace",
+    "pattern_of", "motion_pattern"
 ]
 
 SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])

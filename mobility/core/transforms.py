@@ -32,27 +32,9 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
-    "cross",
-    "skew",
-    "rotation_from_rpy",
-    "rotation_from_axis_angle",
-    "Transform",
-    "twist_matrix",
-    "twist_exp",
-    "displacement_log",
-    "rotation_log",
-    "so3_left_jacobian",
-    "bracket",
-    "dexp",
-    "displacement_logs",
-    "rotation_logs",
-    "dexps",
-    "Motion",
-    "compose",
-    "rotate",
-    "twist_logs",
-    "rotation_logs_last",
-    "inverse_left_jacobian_times",
+    "cross", "skew", "rotation_from_rpy", "rotation_from_axis_angle", "Transform", "twist_matrix", "twist_exp",
+    "displacement_log", "rotation_log", "so3_left_jacobian", "bracket", "dexp", "displacement_logs", "rotation_logs",
+    "dexps", "Motion", "compose", "rotate", "twist_logs", "rotation_logs_last", "inverse_left_jacobian_times"
 ]
 
 
