@@ -40,7 +40,7 @@ from .couplings import Coupling, check_couplings
 from .expected import Expected
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
-from .validation import (Vector, _listed, _not_bool, bool_value, integer_value, number_from_text, real_value, require_graph_names, require_ground_and_end_effector,
+from .validation import (Vector, _listed, _not_bool, integer_value, number_from_text, real_value, require_graph_names, require_ground_and_end_effector,
                          require_instance, require_name, require_unique_names, require_vector)
 
 __all__ = [
@@ -176,10 +176,9 @@ class Joint:
                 raise MechanismError("axes", "the two axes of a U joint must not be parallel")
             object.__setattr__(self, "axes", (a1, a2))
         require_name(self.frame, "frame", "a frame name")
-        actuated = bool_value(self.actuated)
-        if actuated is None:
+        if not isinstance(self.actuated, (bool, np.bool_)):
             raise MechanismError("actuated", f"expected true or false, got {shown_argument(self.actuated)}")
-        object.__setattr__(self, "actuated", actuated)
+        object.__setattr__(self, "actuated", bool(self.actuated))
 
     @property
     def dof(self) -> int:
