@@ -1,17 +1,9 @@
 """Rigid transforms: rotations from roll-pitch-yaw or axis-angle, skew matrices, and the exponential map of SE(3).
 
-Conventions (stated once, pinned by tests):
-
-* ``rpy = [roll, pitch, yaw]`` gives ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``
-  (fixed axes x, y, z, as in URDF), angles in radians here; the loader
-  converts degrees.
-* A transform ``(R, t)`` maps coordinates in a child frame to its parent:
-  ``x_parent = R @ x_child + t``.
-* Twists are ``[w; v]`` (angular part first); :func:`twist_exp` and
-  :func:`displacement_log` map them to 4x4 displacements and back,
-  :func:`dexp` is the differential of the exponential, :func:`bracket` the Lie
-  bracket (the finite kinematics of :mod:`mobility.core.kinematics` is built
-  on them).
+Conventions (pinned by tests): ``rpy`` gives ``R = Rz(yaw) @ Ry(pitch) @
+Rx(roll)`` (fixed axes, as in URDF; radians here, the loader converts
+degrees); a transform ``(R, t)`` maps a child frame to its parent,
+``x_parent = R @ x_child + t``; twists are ``[w; v]``, angular part first.
 
 Examples
 --------
@@ -54,9 +46,8 @@ def skew(v: npt.ArrayLike) -> np.ndarray:
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Cross product of 3-vectors stored along axis 0 (shape ``(3,)`` or ``(3, n)``, broadcast).
 
-    The same numbers as ``np.cross(a, b, axis=0)``, without its axis
-    handling, which costs about twenty times the arithmetic on the tiny arrays
-    of screw theory (``tests/test_screws.py`` pins the equality).
+    The numbers of ``np.cross(a, b, axis=0)`` without its axis handling (twenty
+    times the arithmetic on tiny arrays; ``tests/test_screws.py`` pins them).
 
     Examples
     --------
@@ -75,7 +66,13 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def rotation_from_rpy(rpy: Sequence[float] | np.ndarray) -> np.ndarray:
-    """Rotation matrix ``Rz(yaw) @ Ry(pitch) @ Rx(roll)`` from angles in radians."""
+    """Rotation matrix ``Rz(yaw) @ Ry(pitch) @ Rx(roll)`` from angles in radians.
+
+    Examples
+    --------
+    >>> bool((rotation_from_rpy((0.0, 0.0, 0.0)) == np.eye(3)).all())
+    True
+    """
     r, p, y = (float(a) for a in rpy)
     cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
     return np.array(
@@ -103,7 +100,13 @@ def rotation_from_axis_angle(axis: npt.ArrayLike, angle: float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Transform:
-    """A rigid transform ``x_parent = rotation @ x_child + translation``."""
+    """A rigid transform ``x_parent = rotation @ x_child + translation``.
+
+    Examples
+    --------
+    >>> Transform(np.eye(3), np.array([1.0, 0, 0])).inverse().apply_point((1, 0, 0)).tolist()
+    [0.0, 0.0, 0.0]
+    """
 
     rotation: np.ndarray
     translation: np.ndarray
@@ -295,11 +298,7 @@ _SERIES_DENOMINATORS = np.array([[_FACTORIALS[2 * m + k] for m in range(8)] for 
 
 
 def _coefficients_many(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`_coefficients` of every angle of ``theta`` (1-D): the same series and closed forms, the same roundings.
-
-    The powers are running products and the sums running sums in the order
-    of the scalar loop (``cumprod``, ``cumsum``), so each value is the scalar one.
-    """
+    """:func:`_coefficients` of every angle of ``theta`` (1-D), bit for bit: running products and sums in the scalar loop's order."""
     theta = np.asarray(theta, dtype=float)
     small = theta < 1.0
     steps = np.empty((len(theta), 8))
@@ -377,12 +376,8 @@ def dexps(x: np.ndarray) -> np.ndarray:
 # many displacements, pose index last (the stacked kinematics)
 # ---------------------------------------------------------------------------
 #
-# Every product below is written as elementwise products summed in a fixed
-# order, so that each pose's numbers are the same bits whatever the stack
-# around it: ``einsum`` and ``matmul`` pick their inner loops (and fused
-# multiply-adds) by the arrays' sizes, which made a pose's round-off, and
-# through a Newton solve that cannot close the pose it stops at, depend on how
-# many poses were solved with it (the chunk size of a sweep).
+# Products are elementwise, summed in a fixed order, so a pose's bits do not depend on the stack around it
+# (``einsum`` and ``matmul`` choose inner loops by size, which made a sweep's poses depend on its chunk size).
 
 Motion = tuple[np.ndarray, np.ndarray]
 """Displacements of many poses, pose index last: rotations ``(3, 3, N)`` and translations ``(3, N)``."""
