@@ -8,7 +8,7 @@ holds or computes is read-only (:class:`~mobility.core.frozen.ReadOnlyArrays`).
 from __future__ import annotations
 
 from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from dataclasses import fields as dataclass_fields
 from functools import cached_property
 from types import MappingProxyType
@@ -49,12 +49,7 @@ class ScrewAxis(ReadOnlyArrays):
 
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
         """JSON form: axis, point, pitch, kind."""
-        return {
-            "axis": clean_numbers(self.axis),
-            "point": clean_numbers(self.point, scale),
-            "pitch": clean_numbers(self.pitch, scale),
-            "kind": self.kind,
-        }
+        return {"axis": clean_numbers(self.axis), "point": clean_numbers(self.point, scale), "pitch": clean_numbers(self.pitch, scale), "kind": self.kind}
 
 
 @dataclass(frozen=True)
@@ -79,12 +74,7 @@ class Margin:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "smallest_kept": self.smallest_kept,
-            "largest_dropped": self.largest_dropped,
-            "near_singular": self.near_singular,
-            "inexact": self.inexact,
-        }
+        return asdict(self)
 
 
 @dataclass(frozen=True, eq=False)
@@ -453,32 +443,18 @@ class Result(ReadOnlyArrays):
     def to_dict(self) -> dict[str, Any]:
         """The JSON form: the spec's Result keys plus the whole-mechanism numbers."""
         s = self.length_scale
-        return {
-            "name": self.name,
-            "dof": self.dof,
-            "pattern": self.pattern,
-            "translations": [clean_numbers(t) for t in self.translations],
-            "rotations": [r.to_dict(s) for r in self.rotations],
-            "twists": [clean_numbers(t, s) for t in self.twists],
-            "wrenches": [clean_numbers(w, s) for w in self.wrenches],
-            "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(s) for f in self.forces]},
-            "mobility": self.mobility,
-            "gruebler_kutzbach": self.gruebler_kutzbach,
-            "redundant_constraints": self.redundant_constraints,
-            "idle_dof": self.idle_dof,
-            "loops": self.loops,
-            "links": self.links,
-            "joints": self.joints,
-            "joint_freedoms": self.joint_freedoms,
-            "common_constraints": self.common_constraints,
-            "gruebler_kutzbach_explanation": self.gruebler_kutzbach_explanation,
-            "structure": self.structure,
-            "margin": self.margin.to_dict(),
-            "warnings": list(self.warnings),
-            "limbs": [limb.to_dict(s) for limb in self.limbs],
-            "length_unit": self.length_unit,
-            "reference_point": clean_numbers(self.reference_point, s),
-        } | self._precision_dict()
+        counts = ("mobility", "gruebler_kutzbach", "redundant_constraints", "idle_dof", "loops", "links", "joints", "joint_freedoms",
+                  "common_constraints", "gruebler_kutzbach_explanation", "structure")
+        return (
+            {"name": self.name, "dof": self.dof, "pattern": self.pattern, "translations": [clean_numbers(t) for t in self.translations],
+             "rotations": [r.to_dict(s) for r in self.rotations], "twists": [clean_numbers(t, s) for t in self.twists],
+             "wrenches": [clean_numbers(w, s) for w in self.wrenches],
+             "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(s) for f in self.forces]}}
+            | {key: getattr(self, key) for key in counts}
+            | {"margin": self.margin.to_dict(), "warnings": list(self.warnings), "limbs": [limb.to_dict(s) for limb in self.limbs],
+               "length_unit": self.length_unit, "reference_point": clean_numbers(self.reference_point, s)}
+            | self._precision_dict()
+        )
 
     def _precision_dict(self) -> dict[str, Any]:
         """The ``precision`` key of the JSON form, when the file's precision changes the threshold (absent for an exact file)."""
