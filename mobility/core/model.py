@@ -8,20 +8,7 @@ be written in any named frame (:meth:`Mechanism.world_joints` gives it in
 One module, longer than most, because the rules of the file format read best
 beside the fields they check.
 
-Examples
---------
->>> four_bar = Mechanism(
-...     name="four-bar", ground="ground", end_effector="coupler",
-...     joints=(
-...         Joint("A", "R", ("ground", "crank"), axis=(0, 0, 1), point=(0, 0, 0)),
-...         Joint("B", "R", ("crank", "coupler"), axis=(0, 0, 1), point=(1, 2, 0)),
-...         Joint("C", "R", ("coupler", "rocker"), axis=(0, 0, 1), point=(4, 2.5, 0)),
-...         Joint("D", "R", ("rocker", "ground"), axis=(0, 0, 1), point=(5, 0, 0)),
-...     ))
->>> four_bar.links
-('ground', 'crank', 'coupler', 'rocker')
->>> four_bar.freedom_count
-4
+Example: :class:`Mechanism`.
 """
 
 from __future__ import annotations

@@ -189,31 +189,11 @@ class Result(ReadOnlyArrays):
         The end effector's centre (centroid of its joints' points): axes are
         reported through their point nearest to it, so an axis away from it
         (or a non-zero pitch) shows how rotating moves this point.
-    translations : ndarray, shape (nT, 3)
-        Orthonormal basis of the pure-translation subspace.
-    rotations : tuple of ScrewAxis
-        One per rotational DOF (see :mod:`mobility.core.canonical`); ``kind`` is
-        ``"rotation"`` (pitch 0) or ``"helical"``.
-    twists : ndarray, shape (dof, 6)
-        Basis of the end-effector twist system (translations then rotations).
-    wrenches : ndarray, shape (6 - dof, 6)
-        Basis of the constraint wrench system on the end effector (couples then forces).
-    couples : ndarray, shape (k, 3)
-        Orthonormal basis of the pure couples among the constraint wrenches.
-    forces : tuple of ScrewAxis
-        The other constraint wrenches; ``kind`` ``"force"`` (pitch 0) or ``"wrench"``.
-    limbs : tuple of LimbSystem
-        Each branch of a top-level parallel connection, in its own frame.
-    common_constraints : int
-        Wrenches reciprocal to every joint twist (3 for a planar mechanism).
-    mechanism : Mechanism
-        The mechanism that was analysed.
-    topology : Topology
-        The series/parallel decomposition the analysis used (``structure``
-        writes its root out).
-    node_systems : mapping of Node to NodeSystem
-        DOF and idle count of every node of ``topology`` (its root, the
-        detached networks and the joints), as the analysis found them.
+
+    The screws (:attr:`translations`, :attr:`rotations`, :attr:`twists`,
+    :attr:`couples`, :attr:`forces`, :attr:`wrenches`), :attr:`limbs`,
+    :attr:`common_constraints`, :attr:`mechanism`, :attr:`topology` and
+    :attr:`node_systems` are properties.
 
     Examples
     --------
@@ -256,17 +236,17 @@ class Result(ReadOnlyArrays):
 
     @property
     def translations(self) -> np.ndarray:
-        """Orthonormal basis (rows) of the pure-translation subspace."""
+        """Orthonormal basis (rows, shape (nT, 3)) of the pure-translation subspace."""
         return self._twist_form[0]
 
     @property
     def rotations(self) -> tuple[ScrewAxis, ...]:
-        """One screw axis per rotational DOF."""
+        """One screw axis per rotational DOF (:mod:`mobility.core.canonical`), ``kind`` ``"rotation"`` (pitch 0) or ``"helical"``."""
         return self._twist_form[1]
 
     @property
     def twists(self) -> np.ndarray:
-        """Basis (rows ``[w; v]``) of the end-effector twist system."""
+        """Basis (rows ``[w; v]``, shape (dof, 6)) of the end-effector twist system: translations, then rotations."""
         return self._twist_form[2]
 
     @property
@@ -276,27 +256,27 @@ class Result(ReadOnlyArrays):
 
     @property
     def forces(self) -> tuple[ScrewAxis, ...]:
-        """The constraint wrenches that are not pure couples, as axes."""
+        """The constraint wrenches that are not pure couples, as axes: ``kind`` ``"force"`` (pitch 0) or ``"wrench"``."""
         return self._wrench_form[1]
 
     @property
     def wrenches(self) -> np.ndarray:
-        """Basis (rows ``[f; m]``) of the constraint wrench system."""
+        """Basis (rows ``[f; m]``, shape (6 - dof, 6)) of the constraint wrench system on the end effector: couples, then forces."""
         return self._wrench_form[2]
 
     @read_only_cached_property
     def limbs(self) -> tuple[LimbSystem, ...]:
-        """Twist and constraint systems of each limb, in its own frame."""
+        """Twist and constraint systems of each branch of a top-level parallel connection, in its own frame."""
         return self.detail.limbs()
 
     @cached_property
     def common_constraints(self) -> int:
-        """Number of independent wrenches reciprocal to every joint twist."""
+        """Number of independent wrenches reciprocal to every joint twist (3 for a planar mechanism)."""
         return self.detail.common_constraints()
 
     @property
     def topology(self) -> Topology:
-        """The series/parallel decomposition the analysis used."""
+        """The series/parallel decomposition the analysis used (``structure`` writes its root out)."""
         return self.detail.topology
 
     @property
@@ -310,7 +290,7 @@ class Result(ReadOnlyArrays):
 
     @property
     def node_systems(self) -> Mapping[Node, NodeSystem]:
-        """DOF and idle count of every node of :attr:`topology`, read-only.
+        """DOF and idle count of every node of :attr:`topology` (root, detached networks, joints), read-only.
 
         Examples
         --------
