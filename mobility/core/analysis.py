@@ -64,14 +64,8 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
     The planar four-bar: one rotation of the coupler, though Grübler–Kutzbach
     (spatial) counts -2:
 
-    >>> from mobility.core.model import Joint, Mechanism
-    >>> z = (0, 0, 1)
-    >>> four_bar = Mechanism("four-bar", "ground", "coupler", (
-    ...     Joint("A", "R", ("ground", "crank"), axis=z, point=(0, 0, 0)),
-    ...     Joint("B", "R", ("crank", "coupler"), axis=z, point=(1, 2, 0)),
-    ...     Joint("C", "R", ("coupler", "rocker"), axis=z, point=(4, 2.5, 0)),
-    ...     Joint("D", "R", ("rocker", "ground"), axis=z, point=(5, 0, 0))))
-    >>> r = analyze(four_bar)
+    >>> import mobility
+    >>> r = analyze(mobility.load("mechanisms/four_bar.yaml"))
     >>> r.dof, r.pattern, r.mobility, r.gruebler_kutzbach, r.redundant_constraints
     (1, '1R', 1, -2, 3)
     """
