@@ -95,25 +95,11 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
         )
     norm = screws.normalisation
     result = Result(
-        name=mechanism.name,
-        dof=dof,
-        pattern=pattern_of(dof - rotations, rotations),
-        mobility=mobility,
-        gruebler_kutzbach=gk,
-        redundant_constraints=mobility - gk,
-        idle_dof=mobility - dof,
-        loops=topology.loop_count,
-        links=topology.link_count,
-        joints=len(mechanism.joints),
-        joint_freedoms=mechanism.freedom_count,
-        structure=topology.structure,
-        margin=margin,
-        warnings=tuple(warnings),
-        length_unit=mechanism.length_unit,
-        length_scale=norm.size,
-        reference_point=screws.reference_in_world,
-        detail=_Detail(mechanism, topology, screws, answers, tol),
-    )
+        name=mechanism.name, dof=dof, pattern=pattern_of(dof - rotations, rotations), mobility=mobility, gruebler_kutzbach=gk,
+        redundant_constraints=mobility - gk, idle_dof=mobility - dof, loops=topology.loop_count, links=topology.link_count,
+        joints=len(mechanism.joints), joint_freedoms=mechanism.freedom_count, structure=topology.structure, margin=margin,
+        warnings=tuple(warnings), length_unit=mechanism.length_unit, length_scale=norm.size, reference_point=screws.reference_in_world,
+        detail=_Detail(mechanism, topology, screws, answers, tol))
     if norm.reach > NEAR_LARGEST_FLOAT:
         result.to_dict()  # its axes may lie past the largest float: said here, not when a lazy part is first read
     return result

@@ -83,14 +83,8 @@ class ClosureAdvice:
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON form: name, counts and the redundant directions."""
-        return {
-            "joint": self.joint,
-            "rows": self.rows,
-            "independent": self.independent,
-            "redundant": self.redundant,
-            "redundant_couples": [clean_numbers(c) for c in self.couples],
-            "redundant_forces": [f.to_dict(self.length_scale) for f in self.forces],
-        }
+        return {"joint": self.joint, "rows": self.rows, "independent": self.independent, "redundant": self.redundant,
+                "redundant_couples": [clean_numbers(c) for c in self.couples], "redundant_forces": [f.to_dict(self.length_scale) for f in self.forces]}
 
 
 def closure_advice(mechanism: Mechanism, joints: Iterable[str], *, tol: Tolerance | None = None) -> tuple[ClosureAdvice, ...]:

@@ -189,10 +189,7 @@ def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float
         key,
         f"the joints of link {name!r} ({written}) span {extent[bad[0]] / scale:.3g}, {extent[bad[0]] / length_s:.1e} of the mechanism's size "
         f"{length_s / scale:.3g} (set by joint {far!r} at [{where}]): finer than the analysis can resolve ({RESOLUTION.inexact:.0e} of it); bring the far joints nearer or split the mechanism, "
-        "or, if these joints meet at one point, write the same point for each",
-        file=mechanism.source or "<string>",
-        line=line,
-    )
+        "or, if these joints meet at one point, write the same point for each", file=mechanism.source or "<string>", line=line)
 
 
 def _build(mechanism: Mechanism) -> JointScrews:
@@ -204,10 +201,7 @@ def _build(mechanism: Mechanism) -> JointScrews:
         raise MechanismFileError(
             key,
             f"the joint points are too far apart to compute with: their RMS distance from their centroid exceeds the largest float "
-            f"({sys.float_info.max:.3g}); write the mechanism in a larger length unit",
-            file=mechanism.source or "<string>",
-            line=line,
-        )
+            f"({sys.float_info.max:.3g}); write the mechanism in a larger length unit", file=mechanism.source or "<string>", line=line)
     # every length times the same power of two (exact), so that no product below can overflow
     scale = binary_scale(table.located, pitches)
     centre_s, length_s = centre * scale, length * scale

@@ -444,8 +444,7 @@ class Mechanism:
             f"joints[{index}].pitch",
             f"pitch {largest:.6g} is {largest / spread:.1e} times the spread of the joint points {spread:.3g} (their RMS distance from their centroid): "
             f"beyond {DEFAULT_TOLERANCE.rank**-2:.0e} no scale resolves both the screw's rotation and the points' offsets; "
-            "write the points that are meant to coincide as one point, or bring the pitch and the spread within that ratio",
-        )
+            "write the points that are meant to coincide as one point, or bring the pitch and the spread within that ratio")
 
     def _frames_cannot_overflow(self) -> bool:
         """Whether no joint can leave the floats in the global frame: the cheap bound (origins and points add; rotations keep lengths)."""

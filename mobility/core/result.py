@@ -98,17 +98,11 @@ class LimbSystem(ReadOnlyArrays):
 
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "structure": self.structure,
-            "frame": self.frame,
-            "dof": self.dof,
-            "idle_dof": self.idle_dof,
-            "translations": [clean_numbers(t) for t in self.translations],
-            "rotations": [r.to_dict(scale) for r in self.rotations],
-            "twists": [clean_numbers(t, scale) for t in self.twists],
-            "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(scale) for f in self.forces]},
-            "wrenches": [clean_numbers(w, scale) for w in self.wrenches],
-        }
+        return {"structure": self.structure, "frame": self.frame, "dof": self.dof, "idle_dof": self.idle_dof,
+                "translations": [clean_numbers(t) for t in self.translations], "rotations": [r.to_dict(scale) for r in self.rotations],
+                "twists": [clean_numbers(t, scale) for t in self.twists],
+                "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(scale) for f in self.forces]},
+                "wrenches": [clean_numbers(w, scale) for w in self.wrenches]}
 
 
 class NodeSystem(NamedTuple):
