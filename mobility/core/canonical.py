@@ -85,7 +85,6 @@ def readable_basis(q: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> c = np.sqrt(0.5)
     >>> (readable_basis(np.array([[c, c], [c, -c], [0, 0]])).round(12) + 0.0).tolist()
     [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]

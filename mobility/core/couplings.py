@@ -124,7 +124,6 @@ def coupling_rows(twists: np.ndarray, columns: Sequence[int], coefficients: Sequ
 
     Examples
     --------
-    >>> import numpy as np
     >>> u = np.array([[0, 0, 1, 0, -1, 0], [0, 0, 1, 0, 0, 0]], dtype=float).T[None] / [[2 ** 0.5, 1.0]]
     >>> coupling_rows(u, [0, 1], [1.0, 1.0], False).round(6).tolist()   # a turn 1 away from the centre: |T| = sqrt(2)
     [[0.57735, 0.816497]]

@@ -173,7 +173,6 @@ def transform_from_finite_screw(screw: npt.ArrayLike) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> T = transform_from_finite_screw([0, 0, 2, 0, 0, 0])          # 2 tan(45°) about z
     >>> np.round(T[:3, :3] @ [1, 0, 0], 12) + 0.0
     array([0., 1., 0.])
@@ -197,7 +196,6 @@ def finite_screw_from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOL
 
     Examples
     --------
-    >>> import numpy as np
     >>> S = np.array([0.1, -0.4, 0.3, 1.0, 2.0, -0.5])
     >>> bool(np.allclose(finite_screw_from_transform(transform_from_finite_screw(S)), S))
     True
@@ -219,7 +217,6 @@ def triangle_product(*screws: npt.ArrayLike) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> S = np.array([0.2, 0.0, -0.6, 0.3, 1.0, 0.0])
     >>> bool(np.allclose(triangle_product(S, -S), 0.0))                  # -S is the inverse
     True
@@ -258,7 +255,6 @@ def twist_from_finite_screw_rate(screw: npt.ArrayLike, rate: npt.ArrayLike) -> n
 
     Examples
     --------
-    >>> import numpy as np
     >>> rate = np.array([0.0, 0.0, 1.0, 0.0, -1.0, 0.0])                # d/dθ of 2tan(θ/2)[z; (1,0,0) × z] at 0
     >>> twist_from_finite_screw_rate(np.zeros(6), rate).tolist()
     [0.0, 0.0, 1.0, 0.0, -1.0, 0.0]
@@ -314,7 +310,6 @@ class FiniteScrew:
 
     Examples
     --------
-    >>> import numpy as np
     >>> half = FiniteScrew.from_parameters([0, 0, 1], [1, 0, 0], np.pi)    # half-turn about a z-line
     >>> twice = half.triangle(half)                                        # a full turn: the identity
     >>> bool(np.allclose(twice.vector, 0.0))
@@ -458,7 +453,6 @@ class FiniteScrew:
 
         Examples
         --------
-        >>> import numpy as np
         >>> a = FiniteScrew.from_parameters([0, 0, 1], [1, 0, 0], 0.5)
         >>> b = FiniteScrew.from_transform(a.transform())
         >>> a.isclose(b), a.isclose(FiniteScrew.from_parameters([0, 0, 1], [1, 1e-6, 0], 0.5))
@@ -561,7 +555,6 @@ class Limb:
 
     Examples
     --------
-    >>> import numpy as np
     >>> arm = Limb((ScrewJoint("R", (0, 0, 1)), ScrewJoint("P", (1, 0, 0))))   # R about z, then a slide along x
     >>> T = arm.transform([np.pi / 2, 2.0])
     >>> np.round(T[:3, 3], 12) + 0.0                                       # the slide turned with the R

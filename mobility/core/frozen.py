@@ -52,7 +52,6 @@ def read_only(value: _T, *, copy: bool = True) -> _T:
 
     Examples
     --------
-    >>> import numpy as np
     >>> mine = np.zeros(3)
     >>> kept = read_only((mine, "x"))
     >>> kept[0].flags.writeable, mine.flags.writeable, kept[1]
@@ -87,7 +86,6 @@ def read_only_cached_property(func: Callable[[Any], _T]) -> cached_property:
 
     Examples
     --------
-    >>> import numpy as np
     >>> class Grid:
     ...     @read_only_cached_property
     ...     def values(self):

@@ -139,7 +139,6 @@ def unit_twists(prismatic: np.ndarray, axes: np.ndarray, offsets: np.ndarray, pi
 
     Examples
     --------
-    >>> import numpy as np
     >>> unit_twists(np.array([False]), np.array([[[0.0], [0.0], [1.0]]]), np.array([[[1.0], [0.0], [0.0]]]), np.zeros(1), 1.0)[0, :, 0].round(6).tolist()
     [0.0, 0.0, 0.707107, 0.0, -0.707107, 0.0]
     """

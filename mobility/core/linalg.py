@@ -80,7 +80,6 @@ def left_svds(m: np.ndarray, *, full_v: bool = False) -> tuple[np.ndarray, np.nd
 
     Examples
     --------
-    >>> import numpy as np
     >>> u, s, _ = left_svds(np.stack([np.diag([3.0, 2.0]), np.diag([1.0, 5.0])]))
     >>> s.tolist()
     [[3.0, 2.0], [5.0, 1.0]]

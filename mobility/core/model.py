@@ -264,7 +264,6 @@ class Frame:
         --------
         A yaw of 90 degrees, given in radians:
 
-        >>> import numpy as np
         >>> f = Frame.from_rpy("leg", (1, 0, 0), np.radians([0, 0, 90]))
         >>> [round(float(x), 12) + 0.0 for x in f.transform.apply_point((1, 0, 0))]
         [1.0, 1.0, 0.0]

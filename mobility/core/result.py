@@ -37,7 +37,6 @@ class ScrewAxis(ReadOnlyArrays):
 
     Examples
     --------
-    >>> import numpy as np
     >>> ScrewAxis(np.array([0.0, 0.0, 1.0]), np.zeros(3), 0.0, "rotation").to_dict()["axis"]
     [0.0, 0.0, 1.0]
     """

@@ -87,7 +87,6 @@ class Margins:
 
     Examples
     --------
-    >>> import numpy as np
     >>> m = Margins(2)
     >>> m.add(RankDecisions(np.array([2, 1, 1, 1]), np.array([0.5, 1.0, 0.9, 0.2]), np.array([1e-16, 0.0, 1e-13, 0.0])))
     >>> m.smallest_kept.tolist(), m.largest_dropped.tolist()
@@ -146,7 +145,6 @@ def span(m: np.ndarray, counts: PerPose, tol: Tolerance = DEFAULT_TOLERANCE, mar
 
     Examples
     --------
-    >>> import numpy as np
     >>> z = np.zeros((1, 6, 2)); z[0, 2, 0] = z[0, 2, 1] = 1.0   # one rotation about z, twice
     >>> basis, reciprocal, rank = span(z, np.array([2]))
     >>> rank.tolist(), basis.shape, reciprocal.shape
@@ -397,7 +395,6 @@ def direction_ranks(basis: np.ndarray, dim: PerPose, tol: Tolerance = DEFAULT_TO
 
     Examples
     --------
-    >>> import numpy as np
     >>> cylindrical = np.zeros((1, 6, 2)); cylindrical[0, 2, 0] = cylindrical[0, 5, 1] = 1.0
     >>> direction_ranks(cylindrical, np.array([2])).rank.tolist()
     [1]

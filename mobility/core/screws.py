@@ -74,7 +74,6 @@ def reciprocal_product(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> force_x_through_origin = np.array([1.0, 0, 0, 0, 0, 0])
     >>> float(reciprocal_product(force_x_through_origin, prismatic_twist([1.0, 0, 0])))
     1.0
@@ -95,7 +94,6 @@ def adjoint(rotation: np.ndarray, translation: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> local = revolute_twist([0, 0, 1], [0, 0, 0])
     >>> moved = adjoint(np.eye(3), np.array([1.0, 0, 0])) @ local
     >>> bool(np.allclose(moved, revolute_twist([0, 0, 1], [1, 0, 0])))
@@ -154,7 +152,6 @@ def reciprocal_system(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) ->
 
     Examples
     --------
-    >>> import numpy as np
     >>> planar = np.stack([prismatic_twist([1, 0, 0]), prismatic_twist([0, 1, 0]),
     ...                    revolute_twist([0, 0, 1], [0, 0, 0])], axis=1)
     >>> w = reciprocal_system(planar)
@@ -177,7 +174,6 @@ def same_subspace(a: np.ndarray, b: np.ndarray, tol: Tolerance = DEFAULT_TOLERAN
 
     Examples
     --------
-    >>> import numpy as np
     >>> same_subspace(np.array([[1.0, 0], [0, 1], [0, 0]]), np.array([[1.0], [1.0], [0.0]]))
     False
     """
@@ -201,7 +197,6 @@ def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, 
 
     Examples
     --------
-    >>> import numpy as np
     >>> cyl = np.stack([revolute_twist([0, 0, 1], [1, 0, 0]), prismatic_twist([0, 0, 1])], axis=1)
     >>> free_vector_subspace(span_and_reciprocal(cyl).basis, coefficients=False).rank
     1
@@ -244,7 +239,6 @@ def motion_pattern(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> str
 
     Examples
     --------
-    >>> import numpy as np
     >>> cyl = np.stack([revolute_twist([0, 0, 1], [1, 0, 0]), prismatic_twist([0, 0, 1])], axis=1)
     >>> motion_pattern(span_and_reciprocal(cyl).basis)
     '1T1R'

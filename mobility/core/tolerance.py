@@ -316,7 +316,6 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None, 
 
     Examples
     --------
-    >>> import numpy as np
     >>> c, L = characteristic_scale(np.array([[1.0, 0, 0], [-1.0, 0, 0]]))
     >>> c.tolist(), L
     ([0.0, 0.0, 0.0], 1.0)
@@ -365,7 +364,6 @@ def clean_numbers(value: Any, scale: float = 1.0, tol: Tolerance = DEFAULT_TOLER
 
     Examples
     --------
-    >>> import numpy as np
     >>> clean_numbers(np.array([1.0, -1e-17, 2.5]))
     [1.0, 0.0, 2.5]
     >>> clean_numbers((3e-10, [np.float64(-0.0)]), scale=1000.0)
@@ -433,7 +431,6 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
 
     Examples
     --------
-    >>> import numpy as np
     >>> d = decide_ranks(np.array([[2.0, 1.0, 1e-15], [3.0, 0.0, 0.0]]), counts=np.array([3, 1]))
     >>> d.rank.tolist(), d.smallest_kept.tolist(), d.largest_dropped.tolist()
     ([2, 1], [0.5, 1.0], [5e-16, 0.0])
@@ -468,7 +465,6 @@ def characteristic_scales(points: np.ndarray, lengths: np.ndarray | None = None,
 
     Examples
     --------
-    >>> import numpy as np
     >>> c, L = characteristic_scales(np.array([[[1.0, 0, 0], [-1.0, 0, 0]], [[2.0, 2, 0], [2.0, 2, 0]]]))
     >>> c.tolist(), L.tolist()
     ([[0.0, 0.0, 0.0], [2.0, 2.0, 0.0]], [1.0, 1.0])

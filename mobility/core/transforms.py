@@ -35,7 +35,6 @@ def skew(v: npt.ArrayLike) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> bool(np.allclose(skew([1, 2, 3]) @ [4, 5, 6], np.cross([1, 2, 3], [4, 5, 6])))
     True
     """
@@ -51,7 +50,6 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> cross(np.array([1.0, 0, 0]), np.array([0.0, 1, 0])).tolist()
     [0.0, 0.0, 1.0]
     """
@@ -89,7 +87,6 @@ def rotation_from_axis_angle(axis: npt.ArrayLike, angle: float) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> R = rotation_from_axis_angle(np.array([0.0, 0.0, 1.0]), np.pi / 2)
     >>> np.round(R @ [1.0, 0.0, 0.0], 12) + 0.0
     array([0., 1., 0.])
@@ -166,7 +163,6 @@ def twist_exp(twist: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> g = twist_exp([0, 0, np.pi / 2, 0, 0, 0])   # quarter turn about z through the origin
     >>> np.round(g[:3, :3] @ [1, 0, 0], 12).tolist()
     [0.0, 1.0, 0.0]
@@ -223,7 +219,6 @@ def rotation_log(rot: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> rotation_log(rotation_from_axis_angle(np.array([0.0, 0.6, 0.8]), 0.5)).round(12).tolist()
     [0.0, 0.3, 0.4]
     """
@@ -242,7 +237,6 @@ def displacement_log(g: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> x = np.array([0.1, -0.2, 0.3, 1.0, 2.0, -0.5])
     >>> bool(np.allclose(displacement_log(twist_exp(x)), x))
     True
@@ -328,7 +322,6 @@ def displacement_logs(g: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> x = np.array([[0.1, -0.2, 0.3, 1.0, 2.0, -0.5], [0, 0, 1e-9, 1, 0, 0]])
     >>> bool(np.allclose(displacement_logs(np.array([twist_exp(r) for r in x])), x, rtol=1e-14, atol=1e-15))
     True
@@ -342,7 +335,6 @@ def rotation_logs(rot: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> w = np.array([[0.1, -0.2, 0.3], [0.0, 0.0, 3.1]])
     >>> g = np.stack([twist_exp(np.concatenate([x, [0, 0, 0]])) for x in w])
     >>> bool(np.allclose(rotation_logs(g[:, :3, :3]), w))
@@ -356,7 +348,6 @@ def dexps(x: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> x = np.array([[0.1, -0.2, 0.3, 1.0, 2.0, -0.5], [2.0, 0.0, 1.0, 0.0, 1.0, 0.0]])
     >>> bool(np.allclose(dexps(x), np.stack([dexp(t) for t in x])))
     True
