@@ -160,10 +160,7 @@ def file_tolerance(precision: float | None) -> Tolerance:
     return Tolerance(rank=rank, near_singular=max(DEFAULT_TOLERANCE.near_singular, 10.0 * rank))
 
 
-# ---------------------------------------------------------------------------
-# Fixed constants: checks of a description, solver safeguards and the ties of
-# readable forms.  None of them decides a count; each says why it is the value
-# it is.  They live here so that every number of the kind is in one place.
+# Fixed constants (checks of a description, solver safeguards, ties of readable forms): none decides a count.
 
 PARALLEL_AXES = 1e-9
 """The two axes of a U joint are refused as parallel when the sine of their angle is below this (a check of the description, not a rank decision)."""
@@ -405,9 +402,7 @@ def first_least(values: Any) -> int:
     return int(np.flatnonzero(a <= least + VALUE_TIE * abs(least))[0])
 
 
-# ---------------------------------------------------------------------------
 # the same policy over many matrices at once (sweeps)
-# ---------------------------------------------------------------------------
 
 
 class RankDecisions(NamedTuple):

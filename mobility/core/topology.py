@@ -347,9 +347,7 @@ def _blocks(edges: list[Edge], s: str, t: str) -> list[tuple[list[Edge], bool]]:
     return [(grouped[k], k == main) for k in sorted(grouped)]
 
 
-# ---------------------------------------------------------------------------
 # series/parallel reduction
-# ---------------------------------------------------------------------------
 
 
 class _Merged:

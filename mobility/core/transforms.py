@@ -138,9 +138,7 @@ class Transform:
         return m
 
 
-# ---------------------------------------------------------------------------
 # the exponential map of SE(3), in [w; v] coordinates (angular part first)
-# ---------------------------------------------------------------------------
 
 
 def twist_matrix(twist: np.ndarray) -> np.ndarray:
@@ -280,9 +278,7 @@ def dexp(x: np.ndarray) -> np.ndarray:
     return out
 
 
-# ---------------------------------------------------------------------------
 # the same maps for many twists at once (the loops of a mechanism)
-# ---------------------------------------------------------------------------
 
 
 _TERMS = np.arange(8)
@@ -363,9 +359,7 @@ def dexps(x: np.ndarray) -> np.ndarray:
     return out
 
 
-# ---------------------------------------------------------------------------
 # many displacements, pose index last (the stacked kinematics)
-# ---------------------------------------------------------------------------
 #
 # Products are elementwise, summed in a fixed order, so a pose's bits do not depend on the stack around it
 # (``einsum`` and ``matmul`` choose inner loops by size, which made a sweep's poses depend on its chunk size).
