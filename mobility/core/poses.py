@@ -107,14 +107,9 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
 
     Examples
     --------
-    >>> from mobility.core.model import Joint, Mechanism
-    >>> crank_slider = Mechanism("slider-crank", "g", "s", (
-    ...     Joint("A", "R", ("g", "crank"), axis=(0, 0, 1), point=(0, 0, 0)),
-    ...     Joint("B", "R", ("crank", "rod"), axis=(0, 0, 1), point=(1, 1, 0)),
-    ...     Joint("C", "R", ("rod", "s"), axis=(0, 0, 1), point=(3, 0, 0)),
-    ...     Joint("D", "P", ("s", "g"), axis=(1, 0, 0))))
-    >>> poses = sample_poses(crank_slider, 3, step=0.2, seed=1)
-    >>> len(poses), all(p.joints[0].point == (0.0, 0.0, 0.0) and abs(p.joints[2].point[1]) < 1e-12 for p in poses)
+    >>> import mobility
+    >>> poses = sample_poses(mobility.load("mechanisms/slider_crank.yaml"), 3, step=0.2, seed=1)
+    >>> len(poses), all(p.joints[0].point == (0.0, 0.0, 0.0) and abs(p.joints[2].point[1]) < 1e-9 for p in poses)
     (3, True)
     """
     mechanism = require_mechanism(mechanism, "sample_poses")

@@ -6,14 +6,6 @@ the code below trusts what they return.  A refusal is an error with fields
 :class:`~mobility.errors.RequestError`: caller, argument, expected, got) that
 writes its own message.  :func:`integer_value` and :func:`real_value` are the
 one test of "an integer" and "a real number" the ``require_*`` build on.
-
-Examples
---------
->>> require_vector([0, 0, 2], "axis", direction=True)
-(0.0, 0.0, 1.0)
->>> require_instance(3, str, "label", "str()")
-Traceback (most recent call last):
-mobility.errors.RequestError: label: expected a str (from str() or built in code), got int
 """
 
 from __future__ import annotations
