@@ -136,12 +136,9 @@ class Joint:
                 optional = _OPTIONAL.get(self.type, ())
                 takes = ", ".join(need) + (f", and optionally {', '.join(optional)}" if optional else "")
                 raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {takes})")
-        if self.axis is not None:
-            object.__setattr__(self, "axis", require_vector(self.axis, "axis", direction=True))
-        if self.normal is not None:
-            object.__setattr__(self, "normal", require_vector(self.normal, "normal", direction=True))
-        if self.point is not None:
-            object.__setattr__(self, "point", require_vector(self.point, "point"))
+        for key in ("axis", "normal", "point"):
+            if getattr(self, key) is not None:
+                object.__setattr__(self, key, require_vector(getattr(self, key), key, direction=key != "point"))
         if self.pitch is not None:
             try:
                 pitch = number_from_text(self.pitch) if isinstance(self.pitch, str) else float(_not_bool(self.pitch))
@@ -209,10 +206,9 @@ class Joint:
         changes: dict[str, Any] = {"frame": frame}
         floats = lambda v: tuple(float(x) for x in v)  # noqa: E731
         with np.errstate(over="ignore", invalid="ignore"):  # a point beyond the largest float is refused by the Joint itself
-            if self.axis is not None:
-                changes["axis"] = floats(tf.apply_vector(self.axis))
-            if self.normal is not None:
-                changes["normal"] = floats(tf.apply_vector(self.normal))
+            for key in ("axis", "normal"):
+                if getattr(self, key) is not None:
+                    changes[key] = floats(tf.apply_vector(getattr(self, key)))
             if self.point is not None:
                 changes["point"] = floats(tf.apply_point(self.point))
             if self.axes is not None:
