@@ -550,8 +550,9 @@ def _pure(twist: np.ndarray) -> np.ndarray:
 class Limb:
     """A serial chain of one-DOF joints, base first, in its initial configuration.
 
-    Its finite screw is Eq. 7 (:meth:`finite_screw`); its twists are that
-    finite screw's derivatives (:meth:`twists`).
+    Its finite screw is Eq. 7 (:meth:`finite_screw`), every axis at home: the
+    joint at the end effector acts first, before any other joint has moved it.
+    Its twists are that finite screw's derivatives (:meth:`twists`).
 
     Examples
     --------

@@ -222,7 +222,8 @@ SWEEP_REACH = 1000.0
 """Farthest a sweep drives a coordinate from the file's pose: characteristic lengths, or radians for an angle that does not wrap (an H joint's).
 
 Beyond it double precision cannot close the loops to :attr:`Tolerance.closure`
-(the 3-PRS reaches 1,900 lengths, fails at 4,700).  An R or C angle wraps: no
+(``D`` lengths put round-off ``D * 1e-16`` in every residual; the 3-PRS
+reaches 1,900 lengths, fails at 4,700).  An R or C angle wraps: no
 limit (:attr:`mobility.sweeps.SweepAxis.internal`).
 """
 
