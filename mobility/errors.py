@@ -32,12 +32,10 @@ _UNSHOWN = {"Cc": "a control character", "Cf": "a format character (invisible, o
 TERMINAL_CONTROL = re.compile(f"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x84\x86-\x9f{_BIDI}]")
 """Characters a terminal obeys rather than shows: C0 and C1 controls but tab and line breaks (LF, CR, NEL), DEL, bidirectional overrides."""
 
-__all__ = [
-    "MobilityError", "MechanismError", "MechanismFileError", "MechanismCheckFailed", "RequestError", "SynthesisError",
-    "PlotFormatError", "AnalysisError", "HalfTurnError", "MissingExtraError", "PlottingUnavailableError", "name_list",
-    "counted", "did_you_mean", "one_line", "clipped", "shown_argument", "control_character_problem", "name_problem",
-    "TERMINAL_CONTROL", "DISTRIBUTION"
-]
+__all__ = ["MobilityError", "MechanismError", "MechanismFileError", "MechanismCheckFailed", "RequestError", "SynthesisError",
+           "PlotFormatError", "AnalysisError", "HalfTurnError", "MissingExtraError", "PlottingUnavailableError", "name_list",
+           "counted", "did_you_mean", "one_line", "clipped", "shown_argument", "control_character_problem", "name_problem",
+           "TERMINAL_CONTROL", "DISTRIBUTION"]
 
 DISTRIBUTION = "mechanism-mobility"
 """The name the package is installed by (``mobility`` on the package index is another project); it is imported and run as ``mobility``."""

@@ -22,10 +22,8 @@ from ..errors import MechanismError, shown_argument
 from .tolerance import decide_rank
 from .validation import Vector, _listed, integer_value, require_vector
 
-__all__ = [
-    "Expected", "EXPECTED_KEYS", "EXPECTED_PATTERN", "require_expected_integer", "require_expected_pattern",
-    "expected_basis_problem", "independent_of"
-]
+__all__ = ["Expected", "EXPECTED_KEYS", "EXPECTED_PATTERN", "require_expected_integer", "require_expected_pattern",
+           "expected_basis_problem", "independent_of"]
 
 
 EXPECTED_KEYS: dict[str, str] = {

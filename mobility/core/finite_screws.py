@@ -58,10 +58,8 @@ from ..errors import HalfTurnError, MechanismError, RequestError, shown_argument
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale
 from .transforms import cross, skew
 
-__all__ = [
-    "finite_screw", "finite_screw_from_transform", "transform_from_finite_screw", "triangle_product",
-    "twist_from_finite_screw_rate", "FiniteScrew", "ScrewJoint", "Limb", "QUATERNION_ROUND_OFF"
-]
+__all__ = ["finite_screw", "finite_screw_from_transform", "transform_from_finite_screw", "triangle_product",
+           "twist_from_finite_screw_rate", "FiniteScrew", "ScrewJoint", "Limb", "QUATERNION_ROUND_OFF"]
 
 QUATERNION_ROUND_OFF = 64 * np.finfo(float).eps
 """A component of a unit quaternion at or below this (64 units in the last place) is round-off.
@@ -275,14 +273,8 @@ def _qmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Quaternion product, scalar first."""
     a0, a1, a2, a3 = a
     b0, b1, b2, b3 = b
-    return np.array(
-        [
-            a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
-            a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
-            a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
-            a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
-        ]
-    )
+    return np.array([a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3, a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
+                     a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1, a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0])
 
 
 def _dqmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -30,10 +30,8 @@ from .transforms import Transform, rotation_from_rpy
 from .validation import (Vector, _listed, _not_bool, integer_value, number_from_text, real_value, require_graph_names, require_ground_and_end_effector,
                          require_instance, require_name, require_unique_names, require_vector)
 
-__all__ = [
-    "Coupling", "JOINT_TYPES", "JOINT_DOF", "JOINT_FIELDS", "Freedom", "FreedomTable", "Joint", "Frame", "Mechanism",
-    "require_mechanism", "joint_freedoms", "WORLD"
-]
+__all__ = ["Coupling", "JOINT_TYPES", "JOINT_DOF", "JOINT_FIELDS", "Freedom", "FreedomTable", "Joint", "Frame", "Mechanism",
+           "require_mechanism", "joint_freedoms", "WORLD"]
 
 _FAR = sys.float_info.max / 1e8
 """Coordinates below this cannot overflow when a few are added (the bound of :meth:`Mechanism._frames_cannot_overflow`)."""

@@ -36,11 +36,9 @@ from .linalg import left_svd, rank, singular_values, svd
 from .tolerance import DEFAULT_TOLERANCE, SIGN_TIE, RankDecision, Tolerance, decide_rank
 from .transforms import skew
 
-__all__ = [
-    "SWAP", "SWAP_ROWS", "revolute_twist", "prismatic_twist", "helical_twist", "reciprocal_product", "adjoint",
-    "ScrewSpan", "span_and_reciprocal", "reciprocal_system", "intersection", "same_subspace", "free_vector_subspace",
-    "pattern_of", "motion_pattern"
-]
+__all__ = ["SWAP", "SWAP_ROWS", "revolute_twist", "prismatic_twist", "helical_twist", "reciprocal_product", "adjoint",
+           "ScrewSpan", "span_and_reciprocal", "reciprocal_system", "intersection", "same_subspace", "free_vector_subspace",
+           "pattern_of", "motion_pattern"]
 
 SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
 """The 6x6 matrix of the reciprocal product: ``a o b = a @ SWAP @ b``."""

@@ -23,11 +23,9 @@ from typing import Sequence
 import numpy as np
 import numpy.typing as npt
 
-__all__ = [
-    "cross", "skew", "rotation_from_rpy", "rotation_from_axis_angle", "Transform", "twist_matrix", "twist_exp",
-    "displacement_log", "rotation_log", "so3_left_jacobian", "bracket", "dexp", "displacement_logs", "rotation_logs",
-    "dexps", "Motion", "compose", "rotate", "twist_logs", "rotation_logs_last", "inverse_left_jacobian_times"
-]
+__all__ = ["cross", "skew", "rotation_from_rpy", "rotation_from_axis_angle", "Transform", "twist_matrix", "twist_exp",
+           "displacement_log", "rotation_log", "so3_left_jacobian", "bracket", "dexp", "displacement_logs", "rotation_logs",
+           "dexps", "Motion", "compose", "rotate", "twist_logs", "rotation_logs_last", "inverse_left_jacobian_times"]
 
 
 def skew(v: npt.ArrayLike) -> np.ndarray:
@@ -73,13 +71,9 @@ def rotation_from_rpy(rpy: Sequence[float] | np.ndarray) -> np.ndarray:
     """
     r, p, y = (float(a) for a in rpy)
     cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
-    )
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
 
 
 def rotation_from_axis_angle(axis: npt.ArrayLike, angle: float) -> np.ndarray:
@@ -197,12 +191,8 @@ def _coefficients(theta: float) -> tuple[float, float, float, float]:
             power *= t2
         return a, b, c, d
     s, co = math.sin(theta), math.cos(theta)
-    return (
-        (1.0 - co) / theta**2,
-        (theta - s) / theta**3,
-        (theta**2 + 2.0 * co - 2.0) / (2.0 * theta**4),
-        (2.0 * theta - 3.0 * s + theta * co) / (2.0 * theta**5),
-    )
+    return ((1.0 - co) / theta**2, (theta - s) / theta**3, (theta**2 + 2.0 * co - 2.0) / (2.0 * theta**4),
+            (2.0 * theta - 3.0 * s + theta * co) / (2.0 * theta**5))
 
 
 def so3_left_jacobian(w: np.ndarray) -> np.ndarray:

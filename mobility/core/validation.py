@@ -20,11 +20,9 @@ import numpy as np
 from ..errors import MechanismError, RequestError, name_problem, shown_argument
 from .tolerance import UNIT_ROUND_OFF, binary_scale
 
-__all__ = [
-    "Vector", "require_vector", "require_instance", "require_name", "require_graph_names", "require_unique_names",
-    "require_no_repeats", "require_ground_and_end_effector", "joint_names", "integer_value", "real_value",
-    "require_integer", "require_real", "require_bool", "number_from_text", "integer_from_text"
-]
+__all__ = ["Vector", "require_vector", "require_instance", "require_name", "require_graph_names", "require_unique_names",
+           "require_no_repeats", "require_ground_and_end_effector", "joint_names", "integer_value", "real_value",
+           "require_integer", "require_real", "require_bool", "number_from_text", "integer_from_text"]
 
 _T = TypeVar("_T")
 
