@@ -465,17 +465,10 @@ _KINDS = ("R", "P", "H")
 class ScrewJoint:
     """A one-DOF joint of a serial chain, in the chain's initial configuration (fixed frame).
 
-    Parameters
-    ----------
-    kind : {"R", "P", "H"}
-        Revolute (value: angle), prismatic (value: length along ``axis``) or
-        helical (value: angle; translation ``pitch * angle``).
-    axis, point : 3-vector
-        Direction (normalised here) and a point of the axis (ignored for ``P``).
-    pitch : float
-        Length per radian (``H`` only).
-    label : str
-        A name for reports.
+    ``kind`` is ``"R"`` (value: angle), ``"P"`` (value: length along ``axis``)
+    or ``"H"`` (value: angle; translation ``pitch * angle``, pitch in length per
+    radian); ``axis`` is normalised, ``point`` ignored for ``P``; ``label``
+    names it in reports.
 
     Examples
     --------

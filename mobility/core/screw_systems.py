@@ -21,19 +21,6 @@ that varies over the stack is kept as ``(N, 6, k)`` arrays zero beyond each
 pose's rank (zero columns change no span); a rank the same at every pose gives
 arrays exactly that wide.  Nodes go level by level from the leaves (no
 recursion), and one level's same-shape matrices go to LAPACK as one stack.
-
-Examples
---------
->>> from mobility.core.model import Joint, Mechanism
->>> from mobility.core.topology import decompose
->>> from mobility.core.joint_screws import joint_screws
->>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
->>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
-...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
->>> s = joint_screws(m)
->>> v = evaluate(decompose(m).root, s.twists[None], s.offsets)
->>> v.dim, v.idle, v.basis.shape
-(1, 0, (1, 6, 1))
 """
 
 from __future__ import annotations
@@ -165,6 +152,17 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
     ``twists`` (N, 6, f) are the unit joint twists of each pose in its
     normalised coordinates (a locked freedom a zero column), joint ``j``'s
     columns ``offsets[j]:offsets[j+1]``; ``margins`` collects every decision's.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> from mobility.core.topology import decompose
+    >>> from mobility.core.joint_screws import joint_screws
+    >>> m = mobility.load("mechanisms/four_bar.yaml")
+    >>> s = joint_screws(m)
+    >>> v = evaluate(decompose(m).root, s.twists[None], s.offsets)
+    >>> v.dim, v.idle, v.basis.shape
+    (1, 0, (1, 6, 1))
     """
     count = twists.shape[0]
     if margins is None:
