@@ -4,14 +4,6 @@ A frozen dataclass forbids assigning its fields, not writing into its numpy
 arrays; the results derive from :class:`ReadOnlyArrays` so that every array
 they hold or compute is read-only, also after a pickle round trip or a deep
 copy (numpy unpickles arrays writable).  Numpy and the standard library only.
-
-Examples
---------
->>> import numpy as np
->>> a = read_only(np.arange(3.0))
->>> a[0] = 1.0
-Traceback (most recent call last):
-ValueError: assignment destination is read-only
 """
 
 from __future__ import annotations

@@ -2,14 +2,6 @@
 
 Origin at the mechanism's centre, lengths over its characteristic length
 (:mod:`mobility.core.tolerance`); :class:`Normalisation` maps back.
-
-Examples
---------
->>> from mobility.core.model import Joint, Mechanism
->>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(0, 0, 5)),))
->>> js = joint_screws(m)
->>> js.twists[:, 0].tolist()
-[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
 """
 
 from __future__ import annotations
@@ -125,7 +117,16 @@ def clear_cache(obj: object) -> None:
 
 
 def joint_screws(mechanism: Mechanism) -> JointScrews:
-    """Unit joint twists of ``mechanism`` in normalised coordinates (cached per mechanism)."""
+    """Unit joint twists of ``mechanism`` in normalised coordinates (cached per mechanism).
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(0, 0, 5)),))
+    >>> js = joint_screws(m)
+    >>> js.twists[:, 0].tolist()
+    [0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+    """
     return per_object_cache(mechanism, "joint_screws", lambda: _build(mechanism))
 
 

@@ -10,18 +10,6 @@ effector's twists ``P_ee null(K)``.  ``null(K)`` comes from one SVD up to
 :data:`WHOLE_SVD_SIZE`, beyond it chord by chord on the rates that close the
 loops so far (time and memory grow with the joints, not their square; the
 same counts, the margin the worst over the chords).
-
-Examples
---------
->>> from mobility.core.model import Joint, Mechanism
->>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
->>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
-...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
->>> lc = loop_closure(m)
->>> lc.mobility, lc.rank, lc.loops, lc.end_effector_twists.shape[1]
-(1, 3, 1, 1)
->>> loop_closure(m, method="chords").mobility
-1
 """
 
 from __future__ import annotations
@@ -118,7 +106,11 @@ def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, me
     Examples
     --------
     >>> import mobility
-    >>> loop_closure(mobility.load("mechanisms/four_bar.yaml"), method="chords").mobility
+    >>> four_bar = mobility.load("mechanisms/four_bar.yaml")
+    >>> lc = loop_closure(four_bar)
+    >>> lc.mobility, lc.rank, lc.loops, lc.end_effector_twists.shape[1]
+    (1, 3, 1, 1)
+    >>> loop_closure(four_bar, method="chords").mobility
     1
     """
     mechanism = require_mechanism(mechanism, "loop_closure")

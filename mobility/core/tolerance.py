@@ -13,13 +13,6 @@ The fixed constants that decide no count (checks of a description, solver
 stopping rules, ties of readable forms) stand here too, each with the reason
 for its value.  One module, longer than most, because its point is that every
 number of the kind stands in one place.
-
-Examples
---------
->>> import numpy as np
->>> d = decide_rank(np.array([2.0, 1.0, 1e-15]))
->>> d.rank, d.smallest_kept, d.largest_dropped
-(2, 0.5, 5e-16)
 """
 
 from __future__ import annotations
@@ -255,8 +248,9 @@ def decide_rank(singular_values: np.ndarray | Sequence[float], tol: Tolerance = 
 
     Examples
     --------
-    >>> decide_rank([4.0, 2e-9], Tolerance(rank=1e-10))
-    RankDecision(rank=2, smallest_kept=5e-10, largest_dropped=0.0)
+    >>> d = decide_rank(np.array([2.0, 1.0, 1e-15]))
+    >>> d.rank, d.smallest_kept, d.largest_dropped
+    (2, 0.5, 5e-16)
     """
     return RankDecision(*_decide(singular_values.tolist() if isinstance(singular_values, np.ndarray) else singular_values, tol.rank))
 
