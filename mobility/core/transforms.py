@@ -272,7 +272,7 @@ _SERIES_DENOMINATORS = np.array([[_FACTORIALS[2 * m + k] for m in range(8)] for 
 
 
 def _coefficients_many(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`_coefficients` of every angle of ``theta`` (1-D), bit for bit: running products and sums in the scalar loop's order."""
+    """:func:`_coefficients` of every angle of ``theta`` (1-D): bit for bit below 1 (running products and sums in the scalar loop's order), to round-off above (numpy's closed forms)."""
     theta = np.asarray(theta, dtype=float)
     small = theta < 1.0
     steps = np.empty((len(theta), 8))
