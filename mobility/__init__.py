@@ -17,10 +17,9 @@ Load a mechanism file (or build a :class:`Mechanism` in code) and analyse it:
 >>> r.dof, r.pattern, r.mobility, r.gruebler_kutzbach
 (1, '1R', 1, -2)
 
-The core (loading, analysis, results) is imported with the package.  The
-features built on it (regression checks, finite motion, actuation, flexures,
-finite screws and synthesis, Jacobians, pictures, 3D views) are imported on
-first use of one of their names, so ``import mobility`` stays light:
+The features built on the core (checks, finite motion, actuation, flexures,
+synthesis, Jacobians, pictures, views) are imported on first use of one of
+their names, so ``import mobility`` stays light:
 
 >>> mobility.check_mechanism(m.replace(expected=mobility.Expected(dof=1, pattern="1R"))).status
 'pass'
@@ -95,37 +94,12 @@ _LAZY = {
 }
 
 __all__ = [
-    "analyze",
-    "gruebler_kutzbach",
-    "load",
-    "loads",
-    "loop_closure",
-    "LoopClosure",
-    "Mechanism",
-    "Joint",
-    "Coupling",
-    "Frame",
-    "Expected",
-    "Result",
-    "ScrewAxis",
-    "LimbSystem",
-    "Margin",
-    "Tolerance",
-    "DEFAULT_TOLERANCE",
-    # the bundled library of classic mechanisms and flexure examples (mobility.library.path("3prs"))
-    "library",
+    "analyze", "gruebler_kutzbach", "load", "loads", "loop_closure", "LoopClosure", "Mechanism", "Joint", "Coupling", "Frame",
+    "Expected", "Result", "ScrewAxis", "LimbSystem", "Margin", "Tolerance", "DEFAULT_TOLERANCE",
+    "library",  # the bundled library of classic mechanisms and flexure examples (mobility.library.path("3prs"))
     # every error class of mobility.errors: what the package raises on purpose
-    "MobilityError",
-    "MechanismError",
-    "MechanismFileError",
-    "MechanismCheckFailed",
-    "RequestError",
-    "SynthesisError",
-    "PlotFormatError",
-    "AnalysisError",
-    "HalfTurnError",
-    "MissingExtraError",
-    "PlottingUnavailableError",
+    "MobilityError", "MechanismError", "MechanismFileError", "MechanismCheckFailed", "RequestError", "SynthesisError",
+    "PlotFormatError", "AnalysisError", "HalfTurnError", "MissingExtraError", "PlottingUnavailableError",
     *_LAZY,
 ]
 
@@ -144,11 +118,7 @@ def __dir__() -> list[str]:
 
 
 def _display_results_in_ipython() -> None:
-    """Inside IPython, show a :class:`Result` as its interactive 3D view (text in a terminal).
-
-    The core knows nothing of views: the display is registered from here,
-    with IPython's formatter (:func:`mobility.view.notebook.register_display`).
-    """
+    """Inside IPython, show a :class:`Result` as its interactive 3D view (:func:`mobility.view.notebook.register_display`; the core knows nothing of views)."""
     ipython = sys.modules.get("IPython")
     shell = ipython.get_ipython() if ipython is not None and hasattr(ipython, "get_ipython") else None
     if shell is not None and hasattr(shell, "display_formatter"):

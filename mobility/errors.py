@@ -1,22 +1,9 @@
 """The error hierarchy: every error class of the package is defined here.
 
-Every error the package raises on purpose derives from :class:`MobilityError`;
-the command line prints its message on one line and exits with status 2.
-Each concrete error is also the builtin it refines (``ValueError``,
-``ImportError``, ``ArithmeticError``), so code written against the builtins
-keeps working.
-
-* :class:`MechanismError` -- a mechanism description is invalid;
-  :class:`MechanismFileError` adds the file and line.
-* :class:`MechanismCheckFailed` -- a file did not pass ``mobility check``
-  (raised by the pytest helpers).
-* :class:`RequestError` -- an argument of a function or an option of the
-  command line is out of its range (:class:`SynthesisError`,
-  :class:`PlotFormatError` name two kinds).
-* :class:`AnalysisError` -- an analysis could not be carried out.
-* :class:`HalfTurnError` -- a half-turn has no finite quasi-vector.
-* :class:`MissingExtraError` -- an optional extra is not installed; the
-  message is the ``pip install`` line (:class:`PlottingUnavailableError`).
+Every error the package raises on purpose derives from :class:`MobilityError`
+(the command line prints it on one line and exits with status 2) and from the
+builtin it refines (``ValueError``, ``ImportError``, ``ArithmeticError``), so
+code written against the builtins keeps working.
 
 Examples
 --------
@@ -41,43 +28,17 @@ _BIDI = "\u202a-\u202e\u2066-\u2069"
 """Characters that reorder the text around them on a terminal (bidirectional overrides, "Trojan source")."""
 _UNSHOWN = {"Cc": "a control character", "Cf": "a format character (invisible, or reordering the text)", "Cs": "a lone surrogate",
              "Zl": "a line separator", "Zp": "a paragraph separator"}
-"""The Unicode categories of the characters a message never shows raw and a name never holds, and what each is called.
-
-Controls (C0, C1: tab and line breaks among them), format characters (the
-bidirectional marks and overrides, zero-width characters), lone surrogates
-(bytes of a file name no encoding decodes) and the line and paragraph
-separators U+2028 and U+2029."""
+"""The Unicode categories of the characters a message never shows raw and a name never holds, and what each is called."""
 TERMINAL_CONTROL = re.compile(f"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x84\x86-\x9f{_BIDI}]")
 """Characters a terminal obeys rather than shows: C0 and C1 controls but tab and line breaks (LF, CR, NEL), DEL, bidirectional overrides."""
 
-__all__ = [
-    "MobilityError",
-    "MechanismError",
-    "MechanismFileError",
-    "MechanismCheckFailed",
-    "RequestError",
-    "SynthesisError",
-    "PlotFormatError",
-    "AnalysisError",
-    "HalfTurnError",
-    "MissingExtraError",
-    "PlottingUnavailableError",
-    "name_list",
-    "counted",
-    "did_you_mean",
-    "one_line",
-    "clipped",
-    "shown_argument",
-    "control_character_problem",
-    "name_problem",
-    "TERMINAL_CONTROL",
-    "DISTRIBUTION",
-]
+__all__ = ["MobilityError", "MechanismError", "MechanismFileError", "MechanismCheckFailed", "RequestError", "SynthesisError",
+           "PlotFormatError", "AnalysisError", "HalfTurnError", "MissingExtraError", "PlottingUnavailableError", "name_list",
+           "counted", "did_you_mean", "one_line", "clipped", "shown_argument", "control_character_problem", "name_problem",
+           "TERMINAL_CONTROL", "DISTRIBUTION"]
 
 DISTRIBUTION = "mechanism-mobility"
-"""The name the package is installed by (``pip install mechanism-mobility``); it is imported, and run, as ``mobility``.
-
-Every install hint names it: ``mobility`` on the package index is another, unrelated project."""
+"""The name the package is installed by (``mobility`` on the package index is another project); it is imported and run as ``mobility``."""
 
 
 def counted(n: int, word: str, plural: str = "s", *, grouped: bool = False) -> str:
@@ -95,9 +56,6 @@ def counted(n: int, word: str, plural: str = "s", *, grouped: bool = False) -> s
 
 def name_list(names: Iterable[object], *, most: int = 12, empty: str = "(none)") -> str:
     """Names for a one-line message: the first ``most``, then how many there are in all.
-
-    A message naming every joint of a 5,000-joint mechanism would be one line
-    of 40 kB; this keeps it readable.
 
     Examples
     --------
@@ -132,10 +90,8 @@ def did_you_mean(name: object, names: Iterable[object]) -> str:
 def one_line(text: str) -> str:
     """``text`` safe to print as one terminal line: line breaks, control and format characters shown escaped.
 
-    A message may quote what a user typed (a file name, an option); an escape
-    sequence in it must reach the terminal as text, not as a command, and a
-    line separator (U+2028), a bidirectional override (U+202E) or mark
-    (U+200E) must show as what it is (every character of ``_UNSHOWN``).
+    An escape sequence a user typed must reach the terminal as text, not as a
+    command, and U+2028, U+202E or U+200E must show as what they are.
 
     Examples
     --------
@@ -161,13 +117,9 @@ def _escaped(char: str) -> str:
 def name_problem(text: str, what: str = "a name") -> str | None:
     """What is wrong with the name ``text`` if it holds a character no name may hold, else None.
 
-    The one rule for every name a user chooses (of a link, joint, frame,
-    body, element, actuator, of the mechanism itself), in every format: no
-    control character (tab and line breaks included), no format character
-    (the bidirectional marks and overrides, zero-width characters), no line
-    or paragraph separator (U+2028, U+2029), no lone surrogate.  A name is
-    printed in tables and messages, one line each: such a character would
-    break the line, hide itself or reorder the text around it.
+    The one rule for every name a user chooses, in every format: no control
+    or format character, no line or paragraph separator, no lone surrogate
+    (it would break a table's line, hide itself or reorder the text).
 
     Examples
     --------
@@ -194,11 +146,9 @@ def name_problem(text: str, what: str = "a name") -> str | None:
 def control_character_problem(text: str, where: str, *, also: re.Pattern[str] | None = None) -> str | None:
     """What is wrong with ``text`` if it holds a character a terminal obeys rather than shows, else None.
 
-    Tab and line breaks are allowed; the other C0 and C1 controls, DEL and
-    the bidirectional overrides (``TERMINAL_CONTROL``) are not (an ESC or a CSI in a name would reach
-    the terminal that prints a message quoting it).  The file readers use it
-    for every value a message may quote; ``also`` adds a format's own
-    forbidden characters (YAML's non-printable set).
+    Tab and line breaks are allowed, the rest of ``TERMINAL_CONTROL`` not; the
+    file readers check every value a message may quote, ``also`` adding a
+    format's own forbidden characters (YAML's non-printable set).
 
     Examples
     --------
@@ -233,9 +183,6 @@ def shown_argument(value: object) -> str:
 def clipped(text: object, most: int = 40) -> str:
     """``text`` shortened for a message: at most ``most`` characters, the cut marked by ``...``.
 
-    A value quoted from a file (a name, an attribute) may be megabytes long;
-    an error or a note quotes only its start.
-
     Examples
     --------
     >>> clipped("shoulder")
@@ -250,10 +197,8 @@ def clipped(text: object, most: int = 40) -> str:
 class MobilityError(Exception):
     """Base class of every error raised on purpose by :mod:`mobility`.
 
-    Every error of the package pickles and copies with its message and its
-    attributes (``key``, ``file``, ``line``...), so one raised in a worker
-    process (:mod:`concurrent.futures`, :mod:`multiprocessing`) reaches the
-    caller as it was raised.
+    Every error pickles and copies with its message and attributes, so one
+    raised in a worker process reaches the caller as it was raised.
 
     Examples
     --------
@@ -280,13 +225,13 @@ def _rebuilt(cls: type, args: tuple, state: dict) -> MobilityError:
 class MechanismError(MobilityError, ValueError):
     """A mechanism description is invalid.
 
-    Parameters
-    ----------
-    key : str
-        Path of the offending entry, e.g. ``"joints[3].axis"``; empty for the
-        whole document.
-    message : str
-        What is wrong and what was expected.
+    ``key`` is the path of the offending entry (``"joints[3].axis"``; empty for
+    the whole document), ``message`` what is wrong and what was expected.
+
+    Examples
+    --------
+    >>> str(MechanismError("joints[3].axis", "expected 3 numbers"))
+    'joints[3].axis: expected 3 numbers'
     """
 
     def __init__(self, key: str, message: str) -> None:
@@ -301,16 +246,8 @@ class MechanismError(MobilityError, ValueError):
 class MechanismFileError(MechanismError):
     """A mechanism file is invalid; the message names file, line and key.
 
-    Parameters
-    ----------
-    key : str
-        Key path inside the document (``"joints[3].axis"``).
-    message : str
-        What is wrong and what was expected.
-    file : str
-        Path of the file as the user gave it.
-    line : int or None
-        1-based line number, when known.
+    ``file`` is the path as the user gave it, ``line`` 1-based (``None`` when
+    unknown); see the module's example.
     """
 
     def __init__(self, key: str, message: str, *, file: str = "<string>", line: int | None = None) -> None:
@@ -330,24 +267,10 @@ class MechanismCheckFailed(MobilityError, AssertionError):
 class RequestError(MobilityError, ValueError):
     """An argument of a function, or an option of the command line, is out of its range.
 
-    The error carries what went wrong as fields and writes its message from
-    them: ``caller: argument: expected EXPECTED, got GOT``, each part left out
-    when it is empty, and ``problem`` (what is wrong, in words) where the
-    trouble is not a value out of its range, or after a semicolon, as advice.
-
-    Parameters
-    ----------
-    problem : str
-        What is wrong, when it is not "expected ..., got ..."; a message written whole.
-    caller : str
-        The function or command that refuses (``"analyze"``).
-    argument : str
-        The argument or option refused (``"tol"``, ``"--samples"``).
-    expected : str
-        What it should be (``"a Tolerance"``).
-    got : str
-        What was given, as the message shows it (a clipped ``repr``:
-        :func:`shown_argument`, or a type name).
+    The message is built from the fields: ``caller: argument: expected
+    EXPECTED, got GOT``, empty parts left out, and ``problem`` (in words) where
+    the trouble is not a value out of range, or after a semicolon as advice.
+    ``got`` is shown as given (:func:`shown_argument`, or a type name).
 
     Examples
     --------
@@ -388,17 +311,9 @@ class HalfTurnError(MobilityError, ArithmeticError):
 class MissingExtraError(MobilityError, ImportError):
     """A feature needs an optional extra that is not installed.
 
-    Parameters
-    ----------
-    feature : str
-        What was asked for (``"plotting"``).
-    package : str
-        The package that is missing (``"matplotlib"``).
-    extra : str
-        The extra of the distribution (:data:`DISTRIBUTION`) that installs it (``"plot"``).
-    detail : str
-        More about what failed to import, if anything; left out when it only says that ``package``
-        itself is missing ("No module named 'mujoco'"), which the message says already.
+    ``feature`` was asked for (``"plotting"``), ``package`` is missing, the
+    ``extra`` of :data:`DISTRIBUTION` installs it; ``detail`` says more about
+    the import failure, left out when it only says ``package`` is missing.
     """
 
     def __init__(self, feature: str, package: str, extra: str, detail: str = "") -> None:

@@ -1,20 +1,13 @@
 """Output files written whole or not at all: the one way the package writes a user's file.
 
-:func:`atomic_output` writes to a temporary file in the target's folder
-(``.NAME.XXXXXXXX.tmp``), flushes it to the disk (``fsync``) and only then
-puts it in place of the target with :func:`os.replace`, which is atomic on
-one file system.  On any failure (a full disk, a file-size limit, an error of
-the code writing it) or an interrupt (``SIGINT``; ``SIGTERM`` when the
-command line turns it into one, :func:`terminate_as_interrupt`), the
-temporary file is removed and the previous target, if any, is left as it
-was, byte for byte.  The steps that create, rename and remove the temporary
-file run with ``SIGINT`` and ``SIGTERM`` held back (recorded, then delivered
-after), so that an interrupt cannot fall between them and leave a temporary
-file behind.
-
-A target that exists and is not a regular file (``/dev/null``, a named
-pipe, a terminal) cannot be replaced: it is written in place, as before.
-A symbolic link is followed: the file it points to is replaced.
+:func:`atomic_output` writes ``.NAME.XXXXXXXX.tmp`` beside the target, flushes
+it (``fsync``) and puts it in place with :func:`os.replace` (atomic on one file
+system).  On any failure or interrupt (``SIGINT``; ``SIGTERM`` under
+:func:`terminate_as_interrupt`) the temporary file is removed and the previous
+target left byte for byte; creating, renaming and removing it run with both
+signals held back, so no interrupt can leave it behind.  A target that is not
+a regular file (``/dev/null``, a pipe) is written in place; a symbolic link is
+followed.
 
 Examples
 --------
@@ -56,10 +49,9 @@ _received: list[int] = []
 def held_signals() -> Iterator[None]:
     """:data:`HELD` held back for the duration, then delivered (in the main thread; elsewhere nothing to do: Python runs handlers there only).
 
-    The handlers are swapped for one that only records the signal, rather
-    than the signals blocked: a signal sent to the process can be taken by
-    any of its threads (numpy's among them), and Python then runs the
-    handler in the main thread whatever its mask.
+    The handlers are swapped for a recording one rather than the signals
+    blocked: any thread may take a signal, and Python runs the handler in the
+    main thread whatever its mask.
     """
     previous = _defer()
     try:
@@ -120,20 +112,8 @@ def _temporary(target: str, binary: bool, encoding: str | None) -> tuple[str, IO
 def atomic_output(path: str | os.PathLike[str], *, binary: bool = False, encoding: str = "utf-8") -> Iterator[IO[Any]]:
     """A file handle whose content replaces ``path`` only when the block ends without an exception (see the module docstring).
 
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The file to write (replaced whole; a symbolic link is followed).
-    binary : bool
-        A binary handle (``bytes``) instead of text.
-    encoding : str
-        The text encoding (UTF-8 by default).
-
-    Raises
-    ------
-    OSError
-        What the file system said (creating, writing, flushing or renaming):
-        the previous file is intact and no temporary file remains.
+    ``binary`` gives a ``bytes`` handle.  An :class:`OSError` of the file
+    system leaves the previous file intact and no temporary file.
     """
     target = os.fspath(path)
     if os.path.islink(target):
@@ -182,12 +162,10 @@ _hold: dict[str, Any] = {"active": False, "handlers": None}
 def interrupts_end_at_commit(*, to_the_end: bool = False) -> Iterator[None]:
     """For a command: once an output is in place, ``SIGINT`` and ``SIGTERM`` are held back until the end, then dropped.
 
-    A command whose output is complete then ends as it succeeded (its page
-    in place, exit status 0), never with the status of an interrupt and a
-    complete new file; an interrupt before the output is in place leaves
-    the previous file and ends with the interrupt's status.  With
-    ``to_the_end`` (the command is the process) they stay ignored after the
-    block, until the process exits, instead of getting their handlers back.
+    A complete output then ends as a success (status 0), never as an
+    interrupt; one before the output is in place leaves the previous file and
+    the interrupt's status.  With ``to_the_end`` (the command is the process)
+    they stay ignored after the block instead of getting their handlers back.
     """
     if threading.current_thread() is not threading.main_thread():
         yield

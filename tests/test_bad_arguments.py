@@ -395,6 +395,29 @@ def test_sweep_view_takes_a_numpy_max_poses(four_bar_sweep):
     assert len(mobility.sweep_view(four_bar_sweep, max_poses=np.int64(2)).frames) == 2
 
 
+@pytest.mark.parametrize("arguments, words", [
+    (("four_bar", np.zeros((1, 4))), ("analyse_joint_variables", "expected a Mechanism", "got str")),  # was TypeError: vars()
+    ((None, "abc"), ("q: expected finite real joint variables of shape (N, 4)", "got 'abc'")),  # was ValueError from numpy
+    ((None, np.zeros(4)), ("q:", "got shape (4,)")),  # was ValueError: all input arrays must have the same shape
+    ((None, np.zeros((0, 4))), ("q:", "got shape (0, 4)")),  # was an empty dict
+    ((None, np.full((1, 4), np.nan)), ("q:", "got a NaN or an infinity")),  # was AnalysisError: the SVD did not converge
+])
+def test_analyse_joint_variables_checks_its_arguments_at_the_entry(four_bar, arguments, words):
+    from mobility.sweeps import analyse_joint_variables
+
+    mechanism, q = arguments
+    raises_one_line(lambda: analyse_joint_variables(four_bar if mechanism is None else mechanism, q), RequestError, naming=words, shorter_than=300)
+
+
+@pytest.mark.parametrize("options, words", [({"tol": 3}, ("analyse_joint_variables", "tol", "got int")),  # was AttributeError: no 'rank'
+                                            ({"transmission": "yes"}, ("transmission: expected True or False, got 'yes'",))])  # was taken as True
+def test_analyse_joint_variables_checks_its_options(four_bar, options, words):
+    from mobility.sweeps import analyse_joint_variables
+
+    raises_one_line(lambda: analyse_joint_variables(four_bar, np.zeros((2, 4)), **options), RequestError, naming=words, shorter_than=300)
+    assert analyse_joint_variables(four_bar, np.zeros((2, 4)).tolist())["dof"].tolist() == [1, 1]  # a nested list of numbers is taken
+
+
 # -- 8. synthesis ------------------------------------------------------------------------------------------
 
 
@@ -468,6 +491,17 @@ def test_assemble_pkm_checks_its_arguments_at_the_entry(three_r, options, messag
     from mobility.synthesis import assemble_pkm
 
     raises_one_line(lambda: assemble_pkm(three_r, "S", **options), RequestError, naming=(message,))
+
+
+@pytest.mark.parametrize("arguments, words", [
+    (("3R", "out"), ("write_pkm_files: result: expected a SynthesisResult", "got str")),  # was AttributeError: no 'joints'
+    ((None, 3), ("write_pkm_files: folder: expected a folder name", "got int")),  # was TypeError from pathlib
+])
+def test_write_pkm_files_checks_its_arguments_at_the_entry(three_r, arguments, words):
+    from mobility.synthesis import write_pkm_files
+
+    result, folder = arguments
+    raises_one_line(lambda: write_pkm_files(three_r if result is None else result, folder), RequestError, naming=words, shorter_than=300)
 
 
 def test_assemble_pkm_copies_follow_the_joint_limit(three_r, monkeypatch):

@@ -1,20 +1,8 @@
 """The analysis: mechanism in, :class:`~mobility.core.result.Result` out.
 
-Data flow: model -> topology (series/parallel tree, cached per graph) ->
-joint twists in normalised coordinates (cached per mechanism) -> screw systems
-of the tree -> canonical forms -> result in the global frame.
-
-Examples
---------
->>> import mobility
->>> from mobility.core.model import Joint, Mechanism
->>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
->>> m = Mechanism("four-bar", "ground", "coupler", (
-...     R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "coupler", (1, 2, 0)),
-...     R("C", "coupler", "rocker", (4, 2.5, 0)), R("D", "rocker", "ground", (5, 0, 0))))
->>> r = analyze(m)
->>> r.dof, r.pattern, r.mobility, r.gruebler_kutzbach, r.redundant_constraints
-(1, '1R', 1, -2, 3)
+Model -> topology (cached per graph) -> joint twists in normalised
+coordinates (cached per mechanism) -> screw systems of the tree -> canonical
+forms -> result in the global frame (example: :func:`analyze`).
 """
 
 from __future__ import annotations
@@ -62,30 +50,22 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
     mechanism : Mechanism
         From :func:`mobility.load` or built in code.
     tol : Tolerance, optional
-        Rank-decision policy (relative, dimensionless), used as given.
-        Default: the default policy, never finer than the precision of the
-        mechanism's file (:func:`~mobility.core.tolerance.file_tolerance`).
+        Used as given; by default never finer than the file's precision
+        (:func:`~mobility.core.tolerance.file_tolerance`).
 
     Returns
     -------
     Result
-        Frozen; screws in the global frame and the mechanism's length unit.
-        The counts are computed here; directions, limb systems and common
-        constraints on first access.
+        Frozen; screws in the global frame and the mechanism's length unit
+        (directions, limb systems and common constraints computed on first access).
 
     Examples
     --------
     The planar four-bar: one rotation of the coupler, though Grübler–Kutzbach
     (spatial) counts -2:
 
-    >>> from mobility.core.model import Joint, Mechanism
-    >>> z = (0, 0, 1)
-    >>> four_bar = Mechanism("four-bar", "ground", "coupler", (
-    ...     Joint("A", "R", ("ground", "crank"), axis=z, point=(0, 0, 0)),
-    ...     Joint("B", "R", ("crank", "coupler"), axis=z, point=(1, 2, 0)),
-    ...     Joint("C", "R", ("coupler", "rocker"), axis=z, point=(4, 2.5, 0)),
-    ...     Joint("D", "R", ("rocker", "ground"), axis=z, point=(5, 0, 0))))
-    >>> r = analyze(four_bar)
+    >>> import mobility
+    >>> r = analyze(mobility.load("mechanisms/four_bar.yaml"))
     >>> r.dof, r.pattern, r.mobility, r.gruebler_kutzbach, r.redundant_constraints
     (1, '1R', 1, -2, 3)
     """
@@ -115,25 +95,11 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
         )
     norm = screws.normalisation
     result = Result(
-        name=mechanism.name,
-        dof=dof,
-        pattern=pattern_of(dof - rotations, rotations),
-        mobility=mobility,
-        gruebler_kutzbach=gk,
-        redundant_constraints=mobility - gk,
-        idle_dof=mobility - dof,
-        loops=topology.loop_count,
-        links=topology.link_count,
-        joints=len(mechanism.joints),
-        joint_freedoms=mechanism.freedom_count,
-        structure=topology.structure,
-        margin=margin,
-        warnings=tuple(warnings),
-        length_unit=mechanism.length_unit,
-        length_scale=norm.size,
-        reference_point=screws.reference_in_world,
-        detail=_Detail(mechanism, topology, screws, answers, tol),
-    )
+        name=mechanism.name, dof=dof, pattern=pattern_of(dof - rotations, rotations), mobility=mobility, gruebler_kutzbach=gk,
+        redundant_constraints=mobility - gk, idle_dof=mobility - dof, loops=topology.loop_count, links=topology.link_count,
+        joints=len(mechanism.joints), joint_freedoms=mechanism.freedom_count, structure=topology.structure, margin=margin,
+        warnings=tuple(warnings), length_unit=mechanism.length_unit, length_scale=norm.size, reference_point=screws.reference_in_world,
+        detail=_Detail(mechanism, topology, screws, answers, tol))
     if norm.reach > NEAR_LARGEST_FLOAT:
         result.to_dict()  # its axes may lie past the largest float: said here, not when a lazy part is first read
     return result
@@ -142,8 +108,7 @@ def analyze(mechanism: Mechanism, *, tol: Tolerance | None = None) -> Result:
 class _Detail:
     """The lazily computed parts of a result: canonical forms, limbs, common constraints, the tree's systems.
 
-    It keeps the screw systems the analysis found (the root's, with its
-    children, and each detached network's), so nothing is evaluated twice.
+    It keeps the screw systems the analysis found, so nothing is evaluated twice.
     """
 
     def __init__(self, mechanism: Mechanism, topology: Topology, screws: JointScrews, answers: PoseAnswers, tol: Tolerance) -> None:
@@ -177,12 +142,9 @@ class _Detail:
     def common_motion(self) -> str:
         """What three wrenches common to every joint say of the joints: ``"translation"``, ``"planar"``, ``"spherical"`` or ``""``.
 
-        Three couples: every joint only translates.  A force along ``n`` and
-        the couples normal to it: every joint moves in planes normal to
-        ``n``.  Three forces through one point ``p`` (the moments are
-        ``p x f``): every joint turns about ``p``.  Each is decided on the
-        orthonormal common wrenches (normalised coordinates) by the rank
-        policy; anything else, or another number of common wrenches, is ``""``.
+        Three couples: translation; a force along ``n`` and the couples normal
+        to it: planar; three forces through one point: spherical.  Decided on
+        the orthonormal common wrenches by the rank policy.
         """
         common = span_and_reciprocal(self.screws.twists, self.tol).reciprocal
         if common.shape[1] != 3:
@@ -204,9 +166,7 @@ class _Detail:
     def limbs(self) -> tuple[LimbSystem, ...]:
         """Each branch of a top-level parallel connection, in its own frame.
 
-        The normalised coordinates of a frame at ``(R, t)`` differ from the
-        global ones by the rotation ``diag(R.T, R.T)`` only (the centre moves
-        with the frame), so the canonical form is computed there directly.
+        A frame's normalised coordinates differ from the global ones by ``diag(R.T, R.T)`` only.
         """
         if not isinstance(self.topology.root, Parallel):
             return ()
@@ -229,25 +189,18 @@ class _Detail:
 def screw_system_in_frame(basis: np.ndarray, norm: Normalisation, reference: np.ndarray, kinds: tuple[str, str], tol: Tolerance) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]:
     """Canonical form of a normalised screw system, written in the coordinates of ``norm``.
 
-    Parameters
-    ----------
-    basis : ndarray, shape (6, d)
-        Orthonormal basis of a twist or wrench system in normalised coordinates.
-    norm : Normalisation
-        Maps normalised coordinates to the frame and unit wanted.
-    reference : ndarray, shape (3,)
-        Reference point (normalised coordinates), see :mod:`mobility.core.canonical`.
-    kinds : (str, str)
-        Names of a screw without and with pitch (``("rotation", "helical")``
-        for twists, ``("force", "wrench")`` for wrenches).
+    ``basis`` (6, d) is orthonormal and ``reference`` in normalised
+    coordinates; ``norm`` maps them to the frame and unit wanted; ``kinds``
+    names a screw without and with pitch (``("rotation", "helical")``).
+    Returns the free vectors (k, 3), the axes, and the rows (d, 6) of a basis:
+    free vectors, then the axes' unit screws.
 
-    Returns
-    -------
-    free : ndarray, shape (k, 3)
-        The free vectors (translations or couples), read-only.
-    axes : tuple of ScrewAxis
-    rows : ndarray, shape (d, 6)
-        A basis of the system: free vectors, then the axes' unit screws.
+    Examples
+    --------
+    >>> from mobility.core.joint_screws import Normalisation
+    >>> free, axes, rows = screw_system_in_frame(np.eye(6)[:, 3:], Normalisation(np.zeros(3), 2.0), np.zeros(3), ("rotation", "helical"), Tolerance())
+    >>> free.tolist(), axes, rows.shape
+    ([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], (), (3, 6))
     """
     form = canonical_form(basis, reference, tol)
     free = form.free.T.copy().reshape(-1, 3)

@@ -1,46 +1,20 @@
 """Canonical, readable bases of screw systems: free vectors and principal screws.
 
-A twist system splits into its pure translations (free vectors ``[0; v]``) and
-screws with independent rotation directions; a wrench system, likewise, into
-pure couples and force screws.  The canonical form used everywhere:
+A twist system splits into free vectors (pure translations ``[0; v]``) and
+screws with independent directions; a wrench system into couples and force
+screws.  The canonical form:
 
-1. **free part**: an orthonormal basis of the free vectors, chosen as close to
-   the coordinate axes as the subspace allows (so ``z`` comes out as
-   ``[0, 0, 1]``, not a rotated copy);
-2. **screw part**: for each direction ``w`` of the remaining directions ``W``
-   there is one screw of the system modulo free vectors.  Its representative
-   is the one for which the *reference point* moves (for twists; for wrenches:
-   the moment there) orthogonally to every free vector: the free part is
-   removed at the reference point.
-
-   * Directions orthogonal to every free vector (``W ∩ F⊥``) have an
-     *intrinsic* pitch ``h(w) = w . v / |w|^2`` (adding a free vector cannot
-     change it).  It is a quadratic form on those directions; its eigenvectors
-     are the **principal screws** and its eigenvalues their pitches (Hunt's
-     principal screws).
-   * Every other direction can be given pitch 0 by adding the free vector
-     along its projection on the free subspace; these are reported as pure
-     rotations (pure forces), along axes chosen close to the coordinate axes.
-
-   Where pitches are equal (e.g. all rotations about one point), axes are
-   again chosen close to the coordinate axes.  Each axis is reported through
-   its point nearest the reference point; the offset of that point from the
-   reference point is the parasitic (coupled) motion of the reference point.
-
-The reference point is a property of the mechanism (the centroid of the joint
-points on the end effector), so the form follows the mechanism under rigid
-motion and scaling.
-
-Examples
---------
->>> import numpy as np
->>> from mobility.core.screws import revolute_twist, prismatic_twist, span_and_reciprocal
->>> cyl = np.stack([revolute_twist([0, 0, 1], [1, 0, 0]), prismatic_twist([0, 0, 1])], axis=1)
->>> form = canonical_form(span_and_reciprocal(cyl).basis, np.zeros(3))
->>> form.free.T.round(12).tolist()
-[[0.0, 0.0, 1.0]]
->>> [(a.axis.round(12).tolist(), a.point.round(12).tolist(), round(a.pitch, 12)) for a in form.screws]
-[([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 0.0)]
+1. **free part**: an orthonormal basis as close to the coordinate axes as the
+   subspace allows (``z`` comes out as ``[0, 0, 1]``);
+2. **screw part**: one screw per remaining direction, with the free part
+   removed at the *reference point* (the centroid of the end effector's joint
+   points, so the form follows the mechanism under rigid motion and scaling).
+   Directions orthogonal to every free vector have an intrinsic pitch
+   ``h(w) = w . v / |w|^2``, a quadratic form whose eigenvectors are Hunt's
+   **principal screws**; every other direction is given pitch 0 by a free
+   vector.  Ties go to axes close to the coordinate axes; each axis passes
+   through its point nearest the reference point, whose offset is the
+   parasitic motion there.
 """
 
 from __future__ import annotations
@@ -94,20 +68,12 @@ def _signed(v: np.ndarray) -> np.ndarray:
 def readable_basis(q: np.ndarray) -> np.ndarray:
     """An orthonormal basis of ``span(q)`` made of the projections of coordinate axes.
 
-    Parameters
-    ----------
-    q : ndarray, shape (n, m)
-        Orthonormal columns.
-
-    Returns
-    -------
-    ndarray, shape (n, m)
-        Greedy Gram-Schmidt of the projected axes, largest first, each with its
-        largest component positive, ordered by that component's index.
+    ``q`` has orthonormal columns.  Greedy Gram-Schmidt of the projected axes,
+    largest first, each with its largest component positive, ordered by that
+    component's index.
 
     Examples
     --------
-    >>> import numpy as np
     >>> c = np.sqrt(0.5)
     >>> (readable_basis(np.array([[c, c], [c, -c], [0, 0]])).round(12) + 0.0).tolist()
     [[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]
@@ -131,20 +97,19 @@ def readable_basis(q: np.ndarray) -> np.ndarray:
 def canonical_form(basis: np.ndarray, reference: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> CanonicalForm:
     """Free vectors and principal screws of the system spanned by ``basis``.
 
-    Parameters
-    ----------
-    basis : ndarray, shape (6, d)
-        Orthonormal basis of a twist (or wrench) system.
-    reference : ndarray, shape (3,)
-        Reference point (same coordinates as ``basis``).
-    tol : Tolerance
-        The rank policy (also used to group equal pitches).
+    ``basis`` (6, d) is orthonormal; each axis point is the one nearest
+    ``reference`` (same coordinates), pitches in ``basis``'s length unit;
+    ``tol`` also groups equal pitches.
 
-    Returns
-    -------
-    CanonicalForm
-        Points are on each axis, nearest to ``reference``; pitches are in the
-        length unit of ``basis``.
+    Examples
+    --------
+    >>> from mobility.core.screws import revolute_twist, prismatic_twist, span_and_reciprocal
+    >>> cyl = np.stack([revolute_twist([0, 0, 1], [1, 0, 0]), prismatic_twist([0, 0, 1])], axis=1)
+    >>> form = canonical_form(span_and_reciprocal(cyl).basis, np.zeros(3))
+    >>> form.free.T.round(12).tolist()
+    [[0.0, 0.0, 1.0]]
+    >>> [(a.axis.round(12).tolist(), a.point.round(12).tolist(), round(a.pitch, 12)) for a in form.screws]
+    [([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 0.0)]
     """
     free, coef, decision = free_vector_subspace(basis, tol)
     free = readable_basis(free)

@@ -1,26 +1,14 @@
 """Advice on closures: which constraint rows of a closing joint the rest of the mechanism already imposes.
 
-A simulator closes a loop of a robot with an equality constraint (MuJoCo's
-``connect``, three rows; its ``weld``, six) or a joint added by hand.  When
-the rest of the mechanism already holds some of the directions that
-constraint holds, its rows are dependent: a planar four-bar closed by a
-three-row point constraint has one redundant row, the force along the loop
-plane's normal, and a solver must then cope with a singular constraint
-Jacobian.  This module says, for each closing joint, how many of its rows are
-independent and along which screws the others are redundant, so that a user
-can choose a closure of the right dimension.
-
-The joint's constraint rows are the wrenches reciprocal to its twists
-(:func:`~mobility.core.screws.span_and_reciprocal`): a wrench ``w`` holds the
-relative motion ``t_b - t_a`` of the joint's two links by ``w . t = 0``.  Every
-other joint imposes its own rows on the twists of its links; the unknowns are
-the twists of every link but the ground (the incidence form of loop
-closure).  A combination of the closure's rows is redundant when it lies in
-the row space of the others': the closure's rows are projected off that row
-space, and the rank of what is left is the number of independent rows.  Every
-decision is the one rank policy on orthonormal rows in normalised coordinates
-(an absolute threshold, as :func:`~mobility.core.screws.free_vector_subspace`
-makes it), so it does not depend on the unit or the frame.
+A simulator closes a loop with an equality constraint (MuJoCo's ``connect``,
+three rows; ``weld``, six); rows the rest of the mechanism already imposes
+make its constraint Jacobian singular (a planar four-bar closed by a point
+constraint: the force along the plane's normal).  Each closing joint's rows
+(the wrenches reciprocal to its twists, acting on its two links' twists in
+the incidence form of loop closure) are projected off the other joints' row
+space; the rank of what is left is the number of independent rows.  Ranks
+are decided on orthonormal rows in normalised coordinates (absolute
+threshold), independent of unit and frame.
 
 Examples
 --------
@@ -66,20 +54,18 @@ class ClosureAdvice:
     Attributes
     ----------
     joint : str
-        The closing joint's name.
     rows : int
-        Its constraint rows (6 minus its freedoms: 3 for a point constraint).
+        Its constraint rows (6 minus its freedoms).
     independent : int
         How many of them the rest of the mechanism does not already impose.
     couples : ndarray, shape (k, 3)
-        The redundant rows that are pure couples (unit axes), read-only.
+        The redundant rows that are pure couples (unit axes).
     forces : tuple of ScrewAxis
-        The other redundant rows: forces (``kind`` ``"force"``) or wrenches with
-        a pitch, each on its line (global frame, the mechanism's unit).
+        The other redundant rows, each on its line (global frame).
     wrenches : ndarray, shape (redundant, 6)
-        A basis of the redundant rows ``[f; m]`` (global frame), couples first.
+        A basis of the redundant rows ``[f; m]``, couples first.
     length_scale : float
-        The mechanism's size: numbers below its round-off are written as 0.
+        The mechanism's size (the round-off of numbers written).
     """
 
     joint: str
@@ -97,38 +83,23 @@ class ClosureAdvice:
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON form: name, counts and the redundant directions."""
-        return {
-            "joint": self.joint,
-            "rows": self.rows,
-            "independent": self.independent,
-            "redundant": self.redundant,
-            "redundant_couples": [clean_numbers(c) for c in self.couples],
-            "redundant_forces": [f.to_dict(self.length_scale) for f in self.forces],
-        }
+        return {"joint": self.joint, "rows": self.rows, "independent": self.independent, "redundant": self.redundant,
+                "redundant_couples": [clean_numbers(c) for c in self.couples], "redundant_forces": [f.to_dict(self.length_scale) for f in self.forces]}
 
 
 def closure_advice(mechanism: Mechanism, joints: Iterable[str], *, tol: Tolerance | None = None) -> tuple[ClosureAdvice, ...]:
     """For each joint named, how many of its constraint rows are independent, and the redundant ones.
 
-    Parameters
-    ----------
-    mechanism : Mechanism
-    joints : iterable of str
-        Names of the closing joints (any joints of the mechanism may be asked:
-        a joint on no loop has every row independent).
-    tol : Tolerance, optional
-        The rank policy, used as given.  Default: as :func:`~mobility.analyze`
-        decides, never finer than the precision of the mechanism's file.
+    ``joints`` may name any joints (one on no loop has every row
+    independent); the advice comes in the order asked.  ``tol`` defaults to
+    :func:`~mobility.analyze`'s (never finer than the file's precision).  A
+    name that is not a joint raises :class:`~mobility.errors.RequestError`.
 
-    Returns
-    -------
-    tuple of ClosureAdvice
-        In the order asked.
-
-    Raises
-    ------
-    RequestError
-        When a name is not a joint of the mechanism.
+    Examples
+    --------
+    >>> import mobility
+    >>> [c.redundant for c in closure_advice(mobility.load("mechanisms/four_bar.yaml"), ["D"])]
+    [3]
     """
     mechanism = require_mechanism(mechanism, "closure_advice")
     tol = file_tolerance(mechanism.precision) if tol is None else require_tolerance(tol, "closure_advice")

@@ -1,24 +1,14 @@
 """Coupled joints: linear relations between the rates of one-freedom joints.
 
-A :class:`Coupling` says ``sum_j c_j q'_j = 0`` for the rates ``q'_j`` of two
-or more R, P or H joints, each in its natural unit (radians per second for R
-and H, lengths per second for P): a gear pair (``c = (1, r)`` for a ratio
-``q'_B = -q'_A / r``), a URDF ``<mimic>`` (``q'_follower = m q'_leader``:
-``c = (1, -m)``), the slope of an MJCF joint equality, the coefficients of a
-fixed tendon held by an equality.  The joints of one coupling are all slides
-(P) or all turns (R, H): a relation between a slide and a turn would need a
-length to compare their rates with, which normalised coordinates change
-from pose to pose.
-
-Both routes of the analysis solve the loop-closure equations on unit joint
-twists (:mod:`mobility.core.joint_screws`): the coordinate ``x_j`` of a unit
-column is the joint's rate times the norm ``|T_j|`` of its twist per unit
-rate before it was scaled to unit length (in normalised coordinates).  For a
-turn ``T = [w; v]`` with ``|w| = 1``, so ``|T_j| = 1 / |u_j[:3]|`` of the unit
-column ``u_j``; for a slide ``T = [0; d / L]``, the same ``1 / L`` for every
-slide of the coupling.  :func:`coupling_rows` turns couplings into rows on the
-unit columns from the columns alone: ``c_j |u_j[:3]|`` (turns) or
-``c_j |u_j[3:]|`` (slides), each row scaled to unit length.
+A :class:`Coupling` says ``sum_j c_j q'_j = 0`` for the rates of two or more
+R, P or H joints in their natural units: a gear pair (``c = (1, r)``), a URDF
+``<mimic>`` (``c = (1, -m)``), an MJCF joint equality or fixed tendon.  Its
+joints are all slides (P) or all turns (R, H): comparing a slide's rate with a
+turn's would need a length, which normalised coordinates change from pose to
+pose.  On unit joint twists (:mod:`mobility.core.joint_screws`) a joint's
+coordinate is its rate times its twist's norm ``|T_j|``, which is
+``1 / |u_j[:3]|`` for a turn and the same ``1 / L`` for every slide, so
+:func:`coupling_rows` builds the rows from the unit columns alone.
 
 Examples
 --------
@@ -51,17 +41,9 @@ COUPLED_TYPES = ("R", "P", "H")
 class Coupling:
     """``sum_j coefficients[j] * rate(joints[j]) = 0``, rates in each joint's natural unit.
 
-    Parameters
-    ----------
-    joints : tuple of str
-        Names of two or more distinct R, P or H joints (all slides or all turns).
-    coefficients : tuple of float
-        One finite, non-zero number per joint.
-
-    Raises
-    ------
-    MechanismError
-        With the key (``joints[1]``, ``coefficients[0]``) of the problem.
+    ``joints`` names two or more distinct R, P or H joints (all slides or all
+    turns), ``coefficients`` one finite non-zero number each; a problem raises
+    :class:`~mobility.errors.MechanismError` keyed ``joints[1]``, ``coefficients[0]``...
     """
 
     joints: tuple[str, ...]
@@ -102,12 +84,6 @@ class Coupling:
 def check_couplings(couplings: Any, joints: Sequence[Any]) -> tuple[Coupling, ...]:
     """The couplings of a mechanism, checked against its joints (``name`` and ``type`` of each).
 
-    Raises
-    ------
-    MechanismError
-        Keyed ``couplings[k]...``: not a Coupling, an unknown joint, a joint
-        of more or less than one freedom, slides and turns in one coupling.
-
     Examples
     --------
     >>> from types import SimpleNamespace as J
@@ -142,27 +118,12 @@ def check_couplings(couplings: Any, joints: Sequence[Any]) -> tuple[Coupling, ..
 def coupling_rows(twists: np.ndarray, columns: Sequence[int], coefficients: Sequence[float], slides: bool) -> np.ndarray:
     """One coupling as a row on unit joint twists, at a stack of poses.
 
-    Parameters
-    ----------
-    twists : ndarray, shape (N, 6, f)
-        Unit joint twists (a locked freedom has a zero column, and no part
-        in the row).
-    columns : sequence of int
-        The column of each joint of the coupling.
-    coefficients : sequence of float
-        Its coefficients on the natural rates.
-    slides : bool
-        Whether the joints are slides (P).
-
-    Returns
-    -------
-    ndarray, shape (N, len(columns))
-        ``c_j / |T_j|`` on the unit coordinates, scaled to unit length (a
-        row of zeros where every joint is locked).
+    ``twists`` (N, 6, f) are unit joint twists (a locked freedom a zero
+    column), ``columns`` each joint's column.  Row ``c_j / |T_j|`` on the unit
+    coordinates, scaled to unit length (zeros where every joint is locked).
 
     Examples
     --------
-    >>> import numpy as np
     >>> u = np.array([[0, 0, 1, 0, -1, 0], [0, 0, 1, 0, 0, 0]], dtype=float).T[None] / [[2 ** 0.5, 1.0]]
     >>> coupling_rows(u, [0, 1], [1.0, 1.0], False).round(6).tolist()   # a turn 1 away from the centre: |T| = sqrt(2)
     [[0.57735, 0.816497]]
@@ -177,15 +138,8 @@ def coupling_rows(twists: np.ndarray, columns: Sequence[int], coefficients: Sequ
 def require_no_couplings(couplings: Sequence[Coupling], name: str, caller: str, what: str) -> None:
     """Refuse a coupled mechanism where poses are reached by closing loops only (sweeps, sampled poses, full cycles).
 
-    The position solver (:func:`mobility.core.kinematics.newton`) closes the
-    loops and holds no coupling yet: the poses it reaches could turn coupled
-    joints apart, so a moving analysis of a coupled mechanism is refused
-    rather than answered on poses the mechanism cannot take.
-
-    Raises
-    ------
-    RequestError
-        Naming ``caller``, the mechanism and its first couplings.
+    The position solver (:func:`mobility.core.kinematics.newton`) holds no
+    coupling yet: its poses could turn coupled joints apart.
 
     Examples
     --------

@@ -1,9 +1,8 @@
 """The regression check a mechanism may carry: :class:`Expected`, and the rules of its keys.
 
-A file's ``expected`` block (or ``Mechanism(expected=Expected(...))``) says
-what an analysis of the mechanism must find; :mod:`mobility.testing.check`
-compares.  Each key is checked here once, on construction, by the same rules
-the file reader applies to the block (:mod:`mobility.io.expected`).
+A file's ``expected`` block says what an analysis must find
+(:mod:`mobility.testing.check` compares); the file reader applies these rules
+(:mod:`mobility.io.expected`).
 
 Examples
 --------
@@ -23,15 +22,8 @@ from ..errors import MechanismError, shown_argument
 from .tolerance import decide_rank
 from .validation import Vector, _listed, integer_value, require_vector
 
-__all__ = [
-    "Expected",
-    "EXPECTED_KEYS",
-    "EXPECTED_PATTERN",
-    "require_expected_integer",
-    "require_expected_pattern",
-    "expected_basis_problem",
-    "independent_of",
-]
+__all__ = ["Expected", "EXPECTED_KEYS", "EXPECTED_PATTERN", "require_expected_integer", "require_expected_pattern",
+           "expected_basis_problem", "independent_of"]
 
 
 EXPECTED_KEYS: dict[str, str] = {
@@ -53,19 +45,13 @@ EXPECTED_KEYS: dict[str, str] = {
 EXPECTED_PATTERN = re.compile(r"0|([1-3]T)?([1-3]R)?")
 """An expected motion pattern: ``nT``, ``mR``, ``nTmR`` with ``n, m`` at most 3, or ``0`` (matched whole).
 
-These are the patterns :func:`mobility.analyze` reports, ``"0"`` for no
-motion.  The contract writes a pattern ``{nT}T{nR}R`` with a zero part
-dropped, which for no motion drops both: the empty string ``""`` is
-accepted as the same pattern (:func:`require_expected_pattern` reads it as
-``"0"``).  A twist system of more than 3 dimensions always holds a
-translation, so ``m`` is at most 3 too.
+The contract's ``{nT}T{nR}R`` with zero parts dropped writes no motion as
+``""``, read as ``"0"`` (:func:`require_expected_pattern`).
 """
 
 
 def require_expected_integer(value: Any, key: str, *, signed: bool = False, shown: Callable[[Any], str] | None = None) -> int:
     """An expected count: an integer (Python or numpy, not a bool), non-negative unless ``signed``; else a :class:`MechanismError` naming ``key``.
-
-    ``shown`` writes the value in the message (default: its ``repr``, clipped).
 
     Examples
     --------
@@ -102,12 +88,8 @@ def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str
 def expected_basis_problem(vectors: Sequence[Vector]) -> tuple[int, str] | None:
     """Why ``vectors`` are not a basis of directions (an expected ``translations``): the index of the first bad one and what is wrong; ``None`` when they are one.
 
-    A direction must be non-zero, and each must be independent of those
-    before it (the contract asks for a basis): the rank of the unit
-    directions is decided by the one policy
-    (:func:`~mobility.core.tolerance.decide_rank`), so directions that differ
-    only by round-off are dependent.  An empty list is a basis (of no
-    translation).
+    Each must be non-zero and independent of those before it by the one rank
+    policy (round-off differences are dependent); an empty list is a basis.
 
     Examples
     --------
@@ -150,19 +132,10 @@ _EXPECTED_COUNTS = ("dof", "mobility", "redundant_constraints", "idle_dof")
 class Expected:
     """What a regression check compares an analysis against (all optional).
 
-    Each field is checked on construction, as the same key of a file's
-    ``expected`` block is (:data:`EXPECTED_KEYS`); ``extra`` holds further
-    keys (each compared by its comparator in
-    :data:`mobility.testing.check.COMPARATORS`) and is copied, so the
-    caller's mapping may change afterwards.  Hashable (over the fields and
-    the keys of ``extra``) and picklable, as a :class:`~mobility.core.model.Mechanism` holding it is.
-
-    Raises
-    ------
-    MechanismError
-        Naming the key whose value is of the wrong kind (``translations``
-        that are not a basis: :func:`expected_basis_problem`), or an
-        ``extra`` key that is one of the fields.
+    Each field is checked as the same key of a file's ``expected`` block
+    (:data:`EXPECTED_KEYS`), a bad one raising :class:`~mobility.errors.MechanismError`
+    under its key; ``extra`` holds further keys (compared by
+    :data:`mobility.testing.check.COMPARATORS`), copied.  Hashable and picklable.
 
     Examples
     --------

@@ -1,62 +1,23 @@
 """Finite screws: rigid displacements in the quasi-vector form of Huang, Dai and Sun.
 
-A rigid displacement that rotates by ``θ`` about the line through ``r`` along
-the unit vector ``s`` and translates by ``t`` along it has the *finite screw*
-
-    ``S_f = 2 tan(θ/2) [s; r × s] + t [0; s]``                  (6-vector)
-
-written like a twist, angular part first: ``S_f = [w; v]``.  At ``θ → 0`` it
-becomes ``θ [s; r × s] + t [0; s]``, so the derivative of a finite screw at
-the identity is the instantaneous twist ``[ω; v]`` of :mod:`mobility.core.screws`
-(Eq. 5 of Sun et al., 2018): one convention for both.
-
-Conventions (stated once, pinned by ``tests/test_finite_screws.py``)
---------------------------------------------------------------------
-* **Triangle product order.**  ``S_a △ S_b`` is *displacement b followed by
-  displacement a*, both described in the fixed frame, so its 4x4 matrix is
-  ``T_a @ T_b``: the later displacement stands on the left, as in function
-  composition, the matrix product, the product of exponentials and the way
-  Dai and Huang write the product.  :func:`triangle_product` ``(a, b, c)`` is
-  ``a △ b △ c`` (``c`` first).  In closed form, with ``d = 1 - wa·wb/4``::
-
-      w = (wa + wb + ½ wa × wb) / d
-      v = (va + vb + ½ (wa × vb + va × wb) - ¼ (wa·va) wb - ¼ (wb·vb) wa) / d
-
-  The inverse of ``S_f`` is ``-S_f``.
-* **A limb** (Eq. 7): the finite screw of a serial chain is the triangle
-  product of its joints' finite screws, *the joint next to the base on the
-  left*, each joint written with its axis in the initial (home) configuration
-  of the chain, in the fixed frame: ``S_f = S_1(q1) △ S_2(q2) △ ... △ S_n(qn)``.
-  The joint at the end effector acts first, so every axis it and the joints
-  before it in time move has not moved yet: that is why home axes are right.
-* **Half-turns.**  At ``θ = π`` the factor ``2 tan(θ/2)`` is infinite: the
-  quasi-vector exists for every displacement except the half-turns.  Each
-  displacement is therefore also kept in homogeneous form, the 8 numbers of its
-  unit dual quaternion ``(q, q0)`` (:class:`FiniteScrew`), from which
-  ``S_f = 2 [vec q; vec q0] / scal q``: the quasi-vector is that 8-vector read
-  in projective coordinates, and ``scal q = cos(θ/2)`` is zero exactly at a
-  half-turn.  The triangle product in this form is the dual-quaternion product,
-  bilinear and free of division, so it is exact for half-turns; only reading
-  off ``S_f`` divides, and :attr:`FiniteScrew.vector` raises
-  :class:`HalfTurnError` when ``cos(θ/2)`` is within round-off of zero (no
-  digit of ``tan(θ/2)`` would be right).  The closed form above raises the same
-  error when its result is a half-turn (``d = 0``).  "Within round-off" is a
-  fact of the arithmetic, not a choice of the tolerance policy
-  (:data:`QUATERNION_ROUND_OFF`); the one threshold here that is a choice, how far
-  a matrix may be from a rotation to be read as one, comes from
-  :class:`~mobility.core.tolerance.Tolerance`.
-* Derivative mapping (Eq. 5 at any pose): a path ``S_f(τ)`` has the spatial
-  twist ``$ = d/dΔ [S_f(τ+Δ) △ (-S_f(τ))]`` at ``Δ = 0``, which is
-  :func:`twist_from_finite_screw_rate`; at ``S_f = 0`` it is the identity map.
+A displacement rotating by ``θ`` about the line through ``r`` along the unit
+vector ``s`` and translating by ``t`` along it has the finite screw
+``S_f = 2 tan(θ/2) [s; r × s] + t [0; s]``, angular part first like the twists
+of :mod:`mobility.core.screws`; its derivative at the identity is the twist
+(Eq. 5 of Sun et al., 2018).  The conventions, stated once in
+docs/finite-screws.md and pinned by ``tests/test_finite_screws.py``:
+``S_a △ S_b`` is displacement b followed by a (matrix ``T_a @ T_b``), a limb is
+``S_1(q1) △ ... △ S_n(qn)`` with the base joint on the left and home axes
+(Eq. 7), and the inverse of ``S_f`` is ``-S_f``.  At a half-turn the
+quasi-vector is infinite, so each displacement is also kept as its unit dual
+quaternion (:class:`FiniteScrew`), whose product never divides; only reading
+``S_f`` off raises :class:`~mobility.errors.HalfTurnError`, when ``cos(θ/2)``
+is within round-off (:data:`QUATERNION_ROUND_OFF`, a fact of the arithmetic,
+not a choice of :class:`~mobility.core.tolerance.Tolerance`).
 
 One module, longer than most, because it is one concept that reads better
 whole: the quasi-vector, its homogeneous form and the chains composed from
-them share the dual-quaternion arithmetic, and a chain's twists are the
-derivatives of that arithmetic.
-
-Nothing here knows about files or mechanisms.  Bad arguments raise
-:class:`~mobility.errors.RequestError`; a bad joint or limb description,
-:class:`~mobility.errors.MechanismError`.
+them share the dual-quaternion arithmetic.
 
 References
 ----------
@@ -97,27 +58,14 @@ from ..errors import HalfTurnError, MechanismError, RequestError, shown_argument
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, binary_scale
 from .transforms import cross, skew
 
-__all__ = [
-    "finite_screw",
-    "finite_screw_from_transform",
-    "transform_from_finite_screw",
-    "triangle_product",
-    "twist_from_finite_screw_rate",
-    "FiniteScrew",
-    "ScrewJoint",
-    "Limb",
-    "QUATERNION_ROUND_OFF",
-]
+__all__ = ["finite_screw", "finite_screw_from_transform", "transform_from_finite_screw", "triangle_product",
+           "twist_from_finite_screw_rate", "FiniteScrew", "ScrewJoint", "Limb", "QUATERNION_ROUND_OFF"]
 
 QUATERNION_ROUND_OFF = 64 * np.finfo(float).eps
-"""A component of a unit quaternion at or below this is round-off.
+"""A component of a unit quaternion at or below this (64 units in the last place) is round-off.
 
-``cos(θ/2)`` that small is a half-turn (``tan(θ/2)`` would have no correct
-digit), ``sin(θ/2)`` that small no rotation at all.  This is a fact of double
-precision arithmetic on numbers of size one (64 units in the last place), not a
-choice of the tolerance policy: it says which digits a computation can deliver,
-not which geometry counts as special, so it is not a field of
-:class:`~mobility.core.tolerance.Tolerance`.
+``cos(θ/2)`` that small is a half-turn, ``sin(θ/2)`` that small no rotation:
+which digits double precision delivers, not a choice of the tolerance policy.
 """
 
 
@@ -202,26 +150,10 @@ def _screw(s: npt.ArrayLike, what: str = "screw") -> np.ndarray:
 def finite_screw(axis: Iterable[float], point: Iterable[float], angle: float, translation: float = 0.0) -> np.ndarray:
     """The finite screw ``2 tan(θ/2) [s; r × s] + t [0; s]`` of a screw displacement.
 
-    Parameters
-    ----------
-    axis : 3-vector
-        Direction ``s`` of the screw axis (normalised here).
-    point : 3-vector
-        A point ``r`` on the axis.
-    angle : float
-        Rotation ``θ`` about the axis, radians (right-hand rule about ``s``).
-    translation : float
-        Translation ``t`` along ``s`` (length).
-
-    Returns
-    -------
-    ndarray, shape (6,)
-        ``[w; v]``.
-
-    Raises
-    ------
-    HalfTurnError
-        When ``θ`` is an odd multiple of ``π``.
+    ``axis`` ``s`` (normalised here), ``point`` ``r`` on it, ``angle`` ``θ`` in
+    radians (right-hand rule about ``s``), ``translation`` ``t`` along ``s``.
+    Returns ``[w; v]``; :class:`~mobility.errors.HalfTurnError` when ``θ`` is an
+    odd multiple of ``π``.
 
     Examples
     --------
@@ -239,7 +171,6 @@ def transform_from_finite_screw(screw: npt.ArrayLike) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> T = transform_from_finite_screw([0, 0, 2, 0, 0, 0])          # 2 tan(45°) about z
     >>> np.round(T[:3, :3] @ [1, 0, 0], 12) + 0.0
     array([0., 1., 0.])
@@ -257,23 +188,12 @@ def transform_from_finite_screw(screw: npt.ArrayLike) -> np.ndarray:
 def finite_screw_from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> np.ndarray:
     """The finite screw of the displacement given as a 4x4 homogeneous matrix.
 
-    Parameters
-    ----------
-    matrix : ndarray, shape (4, 4)
-    tol : Tolerance
-        How far from a rigid displacement the matrix may be (see
-        :meth:`FiniteScrew.from_transform`).
-
-    Raises
-    ------
-    HalfTurnError
-        When the rotation is a half-turn (no finite quasi-vector).
-    RequestError
-        When ``matrix`` is not a rigid displacement.
+    ``tol`` says how far from a rigid displacement the matrix may be
+    (:meth:`FiniteScrew.from_transform`); a half-turn raises
+    :class:`~mobility.errors.HalfTurnError`.
 
     Examples
     --------
-    >>> import numpy as np
     >>> S = np.array([0.1, -0.4, 0.3, 1.0, 2.0, -0.5])
     >>> bool(np.allclose(finite_screw_from_transform(transform_from_finite_screw(S)), S))
     True
@@ -284,18 +204,17 @@ def finite_screw_from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOL
 def triangle_product(*screws: npt.ArrayLike) -> np.ndarray:
     """The screw triangle product ``S_1 △ S_2 △ … △ S_k`` of finite screws (``S_k`` acts first).
 
-    ``S_a △ S_b`` is displacement ``b`` followed by displacement ``a`` (fixed
-    frame), i.e. the matrix ``T_a @ T_b``; closed form in the module docstring.
+    ``S_a △ S_b`` is ``b`` then ``a`` (fixed frame, matrix ``T_a @ T_b``); with
+    ``d = 1 - wa·wb/4``::
 
-    Raises
-    ------
-    HalfTurnError
-        When a partial product is a half-turn; compose :class:`FiniteScrew`
-        objects instead, which never divide.
+        w = (wa + wb + ½ wa × wb) / d
+        v = (va + vb + ½ (wa × vb + va × wb) - ¼ (wa·va) wb - ¼ (wb·vb) wa) / d
+
+    A half-turn partial product raises :class:`~mobility.errors.HalfTurnError`
+    (compose :class:`FiniteScrew` objects instead, which never divide).
 
     Examples
     --------
-    >>> import numpy as np
     >>> S = np.array([0.2, 0.0, -0.6, 0.3, 1.0, 0.0])
     >>> bool(np.allclose(triangle_product(S, -S), 0.0))                  # -S is the inverse
     True
@@ -334,7 +253,6 @@ def twist_from_finite_screw_rate(screw: npt.ArrayLike, rate: npt.ArrayLike) -> n
 
     Examples
     --------
-    >>> import numpy as np
     >>> rate = np.array([0.0, 0.0, 1.0, 0.0, -1.0, 0.0])                # d/dθ of 2tan(θ/2)[z; (1,0,0) × z] at 0
     >>> twist_from_finite_screw_rate(np.zeros(6), rate).tolist()
     [0.0, 0.0, 1.0, 0.0, -1.0, 0.0]
@@ -355,14 +273,8 @@ def _qmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Quaternion product, scalar first."""
     a0, a1, a2, a3 = a
     b0, b1, b2, b3 = b
-    return np.array(
-        [
-            a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
-            a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
-            a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
-            a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
-        ]
-    )
+    return np.array([a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3, a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
+                     a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1, a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0])
 
 
 def _dqmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -385,14 +297,11 @@ def _canonical(h: np.ndarray) -> np.ndarray:
 class FiniteScrew:
     """A rigid displacement in homogeneous finite-screw form (exact for half-turns).
 
-    Holds the unit dual quaternion ``(q, q0)`` (8 numbers, scalar parts first,
-    sign fixed); the finite screw is ``2 [vec q; vec q0] / scal q``.  Build it
-    with :meth:`from_vector`, :meth:`from_parameters`, :meth:`from_transform`
-    or :meth:`identity`; compose with :meth:`triangle`.
+    Holds the unit dual quaternion ``(q, q0)`` (scalar parts first, sign
+    fixed); the finite screw is ``2 [vec q; vec q0] / scal q``.
 
     Examples
     --------
-    >>> import numpy as np
     >>> half = FiniteScrew.from_parameters([0, 0, 1], [1, 0, 0], np.pi)    # half-turn about a z-line
     >>> twice = half.triangle(half)                                        # a full turn: the identity
     >>> bool(np.allclose(twice.vector, 0.0))
@@ -446,15 +355,9 @@ class FiniteScrew:
     def from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> "FiniteScrew":
         """From a 4x4 homogeneous matrix of a rigid displacement.
 
-        The matrix is read as a rigid displacement when ``R Rᵀ`` differs from
-        the identity, and the last row from ``[0, 0, 0, 1]``, by at most
-        ``tol.rank`` in every entry (dimensionless numbers: the policy's
-        threshold for what counts as non-zero) and ``det R > 0``.
-
-        Raises
-        ------
-        RequestError
-            When the matrix is not a proper rigid displacement.
+        It is one when ``R Rᵀ`` and the last row differ from the identity and
+        ``[0, 0, 0, 1]`` by at most ``tol.rank`` per entry and ``det R > 0``;
+        else :class:`~mobility.errors.RequestError`.
         """
         try:
             m = np.asarray(matrix, dtype=float)
@@ -479,13 +382,7 @@ class FiniteScrew:
 
     @property
     def vector(self) -> np.ndarray:
-        """The quasi-vector ``[w; v] = 2 tan(θ/2) [s; r × s] + t [0; s]``.
-
-        Raises
-        ------
-        HalfTurnError
-            At a half-turn.
-        """
+        """The quasi-vector ``[w; v] = 2 tan(θ/2) [s; r × s] + t [0; s]`` (:class:`~mobility.errors.HalfTurnError` at a half-turn)."""
         h = self.homogeneous
         if self.is_half_turn:
             raise HalfTurnError("half-turn: 2 tan(θ/2) is infinite, the displacement has no finite quasi-vector")
@@ -493,10 +390,7 @@ class FiniteScrew:
 
     @property
     def direction(self) -> np.ndarray:
-        """``2 [vec q; vec q0]``: the quasi-vector times ``cos(θ/2)``, finite everywhere.
-
-        At a half-turn this is ``2 [s; r × s]``, the line of the half-turn.
-        """
+        """``2 [vec q; vec q0]``: the quasi-vector times ``cos(θ/2)``, finite everywhere (at a half-turn its line ``2 [s; r × s]``)."""
         h = self.homogeneous
         return 2.0 * np.concatenate([h[1:4], h[5:8]])
 
@@ -546,13 +440,11 @@ class FiniteScrew:
     def isclose(self, other: "FiniteScrew", *, length: float = 1.0, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
         """Whether two finite screws are the same displacement (dual quaternions equal up to sign).
 
-        The unit dual quaternions are compared entry by entry, their dual parts
-        (a length) divided by ``length``; equal means no entry differs by more
-        than ``tol.rank``.
+        Equal when no entry differs by more than ``tol.rank``, the dual parts
+        (lengths) divided by ``length``.
 
         Examples
         --------
-        >>> import numpy as np
         >>> a = FiniteScrew.from_parameters([0, 0, 1], [1, 0, 0], 0.5)
         >>> b = FiniteScrew.from_transform(a.transform())
         >>> a.isclose(b), a.isclose(FiniteScrew.from_parameters([0, 0, 1], [1, 1e-6, 0], 0.5))
@@ -573,19 +465,15 @@ _KINDS = ("R", "P", "H")
 class ScrewJoint:
     """A one-DOF joint of a serial chain, in the chain's initial configuration (fixed frame).
 
-    Parameters
-    ----------
-    kind : {"R", "P", "H"}
-        Revolute (value: angle), prismatic (value: length along ``axis``) or
-        helical (value: angle; translation ``pitch * angle``).
-    axis : 3-vector
-        Direction, normalised here.
-    point : 3-vector
-        A point of the axis (ignored for ``P``).
-    pitch : float
-        Length per radian (``H`` only).
-    label : str
-        A name for reports (e.g. the source joint's name).
+    ``kind`` is ``"R"`` (value: angle), ``"P"`` (value: length along ``axis``)
+    or ``"H"`` (value: angle; translation ``pitch * angle``, pitch in length per
+    radian); ``axis`` is normalised, ``point`` ignored for ``P``; ``label``
+    names it in reports.
+
+    Examples
+    --------
+    >>> ScrewJoint("H", (0, 0, 2), pitch=0.1).twist().tolist()
+    [0.0, 0.0, 1.0, 0.0, 0.0, 0.1]
     """
 
     kind: str
@@ -647,13 +535,12 @@ def _pure(twist: np.ndarray) -> np.ndarray:
 class Limb:
     """A serial chain of one-DOF joints, base first, in its initial configuration.
 
-    Its finite screw is Eq. 7, ``S_f(q) = S_1(q1) △ S_2(q2) △ ... △ S_n(qn)``
-    (:meth:`finite_screw`); the twist of its end is the derivative of that
-    finite screw (:meth:`twists`).
+    Its finite screw is Eq. 7 (:meth:`finite_screw`), every axis at home: the
+    joint at the end effector acts first, before any other joint has moved it.
+    Its twists are that finite screw's derivatives (:meth:`twists`).
 
     Examples
     --------
-    >>> import numpy as np
     >>> arm = Limb((ScrewJoint("R", (0, 0, 1)), ScrewJoint("P", (1, 0, 0))))   # R about z, then a slide along x
     >>> T = arm.transform([np.pi / 2, 2.0])
     >>> np.round(T[:3, 3], 12) + 0.0                                       # the slide turned with the R
@@ -696,13 +583,7 @@ class Limb:
         return self.finite_screw(q).transform()
 
     def _raw_rates(self, q: npt.ArrayLike | None) -> tuple[np.ndarray, np.ndarray]:
-        """The dual-quaternion product ``H = H_1 ... H_n`` and its partial derivatives (8 x n).
-
-        By the product rule on the bilinear form, with ``dH_j/dq_j = ½ ξ_j H_j``
-        (``H_j(q) = exp(q ξ_j / 2)``, ``ξ_j`` the joint's unit twist as a pure
-        dual quaternion).  No sign is fixed: the quasi-vector and the twist do
-        not depend on the sign of ``H``.
-        """
+        """``H = H_1 ... H_n`` and its partial derivatives (8 x n), by the product rule with ``dH_j/dq_j = ½ ξ_j H_j`` (sign not fixed)."""
         factors = [f.homogeneous for f in self.factors(q)]
         one = np.array([1.0, 0, 0, 0, 0, 0, 0, 0])
         left = [one]
@@ -718,21 +599,14 @@ class Limb:
         return left[-1], rates
 
     def finite_screw_rates(self, q: npt.ArrayLike | None = None) -> np.ndarray:
-        """Partial derivatives ``∂S_f/∂q_j`` of the quasi-vector (6 x n).
-
-        Raises
-        ------
-        HalfTurnError
-            When the chain's displacement is a half-turn (the quasi-vector is infinite).
-        """
+        """Partial derivatives ``∂S_f/∂q_j`` of the quasi-vector (6 x n); :class:`~mobility.errors.HalfTurnError` at a half-turn."""
         return _quasi_vector_rates(*self._raw_rates(q))[1]
 
     def twists(self, q: npt.ArrayLike | None = None) -> np.ndarray:
         """Joint twists at pose ``q`` (6 x n), as the derivative of the limb's finite screw.
 
         Column ``j`` is :func:`twist_from_finite_screw_rate` ``(S_f, ∂S_f/∂q_j)``
-        (Eqs. 5 and 26).  At a half-turn, where the quasi-vector is infinite,
-        the same derivative is taken in homogeneous form: ``2 vec(dH H*)``.
+        (Eqs. 5 and 26); at a half-turn, ``2 vec(dH H*)``.
         """
         h, dh = self._raw_rates(q)
         n = dh.shape[1]

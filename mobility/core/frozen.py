@@ -1,22 +1,9 @@
 """Read-only arrays for the frozen results: :func:`read_only`, :class:`ReadOnlyArrays`, :func:`read_only_cached_property`.
 
-A frozen dataclass forbids assigning its fields, not writing into the numpy
-arrays it holds.  The result classes of :mod:`mobility` derive from
-:class:`ReadOnlyArrays`, so that every array a result holds, or computes on
-first access (:func:`read_only_cached_property`), is read-only, also after a
-pickle round trip or a deep copy (numpy unpickles arrays writable).
-:func:`read_only` does it for one value.
-
-This module knows nothing of screws or mechanisms (it imports numpy and the
-standard library only), so that every module of the core may use it.
-
-Examples
---------
->>> import numpy as np
->>> a = read_only(np.arange(3.0))
->>> a[0] = 1.0
-Traceback (most recent call last):
-ValueError: assignment destination is read-only
+A frozen dataclass forbids assigning its fields, not writing into its numpy
+arrays; the results derive from :class:`ReadOnlyArrays` so that every array
+they hold or compute is read-only, also after a pickle round trip or a deep
+copy (numpy unpickles arrays writable).  Numpy and the standard library only.
 """
 
 from __future__ import annotations
@@ -50,22 +37,13 @@ def _sealed(array: np.ndarray) -> bool:
 def read_only(value: _T, *, copy: bool = True) -> _T:
     """``value`` with every ndarray in it read-only: an array, or a tuple (named or not) holding some, at any depth.
 
-    Other values are returned as they are (a result dataclass makes its own
-    arrays read-only, see :class:`ReadOnlyArrays`).
-
-    Parameters
-    ----------
-    value : object
-    copy : bool
-        True (for an array the caller may share): an array that something
-        could still write into is replaced by a read-only copy; one that
-        nothing can write into is kept.  False (for arrays just computed or
-        unpickled, which nothing else holds): every array, and every array
-        it is a view of, is made read-only in place.
+    ``copy`` true (an array the caller may share): one that something could
+    still write into is replaced by a read-only copy.  False (arrays just
+    computed or unpickled): every array and every array it views is made
+    read-only in place.  Other values are returned as they are.
 
     Examples
     --------
-    >>> import numpy as np
     >>> mine = np.zeros(3)
     >>> kept = read_only((mine, "x"))
     >>> kept[0].flags.writeable, mine.flags.writeable, kept[1]
@@ -100,7 +78,6 @@ def read_only_cached_property(func: Callable[[Any], _T]) -> cached_property:
 
     Examples
     --------
-    >>> import numpy as np
     >>> class Grid:
     ...     @read_only_cached_property
     ...     def values(self):
@@ -133,13 +110,9 @@ def _may_hold_arrays(cls: type) -> tuple[str, ...]:
 class ReadOnlyArrays:
     """Base of the frozen result dataclasses: every ndarray they hold is read-only, also after a pickle round trip.
 
-    On construction each field goes through :func:`read_only` (an array the
-    caller passed and can still write into is copied); values cached on the
-    instance (:func:`read_only_cached_property`) are made read-only when
-    computed.  Unpickling (numpy unpickles arrays writable) and
-    :func:`copy.deepcopy` make the restored arrays read-only again
-    (``__setstate__``).  A subclass with its own ``__post_init__`` calls
-    this one.
+    Each field goes through :func:`read_only` on construction (a subclass's
+    own ``__post_init__`` calls this one); unpickling and :func:`copy.deepcopy`
+    freeze the restored arrays again (``__setstate__``).
 
     Examples
     --------
@@ -157,9 +130,6 @@ class ReadOnlyArrays:
     >>> again = copy.deepcopy(line)  # a pickle round trip likewise
     >>> again.direction.flags.writeable, again.direction.tolist()
     (False, [0.0, 0.0, 1.0])
-
-    The result classes of :mod:`mobility` (:class:`~mobility.core.result.ScrewAxis`,
-    :class:`~mobility.core.result.Result`...) are built so.
     """
 
     __slots__ = ()

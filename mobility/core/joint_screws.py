@@ -1,18 +1,7 @@
 """Joint twists of a mechanism, in the normalised coordinates of the tolerance policy.
 
-:func:`joint_screws` turns every elementary freedom of every joint (global
-frame) into a unit twist column, after moving the origin to the mechanism's
-centre ``c`` and dividing lengths by its characteristic length ``L`` (see
-:mod:`mobility.core.tolerance`).  :class:`Normalisation` maps screws back to the
-global frame and the file's length unit.
-
-Examples
---------
->>> from mobility.core.model import Joint, Mechanism
->>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(0, 0, 5)),))
->>> js = joint_screws(m)
->>> js.twists[:, 0].tolist()
-[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+Origin at the mechanism's centre, lengths over its characteristic length
+(:mod:`mobility.core.tolerance`); :class:`Normalisation` maps back.
 """
 
 from __future__ import annotations
@@ -85,22 +74,12 @@ class Normalisation:
 class JointScrews:
     """All joint twists of a mechanism as one matrix.
 
-    Attributes
-    ----------
-    twists : ndarray, shape (6, n)
-        Unit twist columns in normalised coordinates, joint after joint, each
-        joint's freedoms in the order of :meth:`~mobility.core.model.Joint.freedoms`.
-    offsets : tuple of int, length J + 1
-        Columns of joint ``j`` are ``offsets[j]:offsets[j+1]``.
-    normalisation : Normalisation
-    reference : ndarray, shape (3,)
-        Reference point in normalised coordinates: the centroid of the points
-        of the joints on the end effector (the mechanism's centre if none).
-        Canonical axes are given through the point nearest to it.
-    columns : tuple of ndarray
-        ``columns[j]`` is the view of ``twists`` holding joint ``j``'s columns.
-    reference_in_world : ndarray, shape (3,)
-        The reference point in the global frame and the file's unit.
+    ``twists`` (6, n) are unit columns, joint after joint in the order of
+    :meth:`~mobility.core.model.Joint.freedoms`, joint ``j``'s
+    ``offsets[j]:offsets[j+1]`` (the view ``columns[j]``).  ``reference`` is the
+    centroid of the end effector's joint points (the centre if none), through
+    whose nearest point canonical axes pass; ``reference_in_world`` the same
+    in the global frame and the file's unit.
     """
 
     twists: np.ndarray
@@ -121,10 +100,8 @@ _CACHE_ATTRIBUTE = "_mobility_cache"
 def per_object_cache(obj: object, key: str, factory: Callable[[], Any]) -> Any:
     """Compute ``factory()`` once per object ``obj`` and key.
 
-    The values are kept in the object's own ``__dict__`` (as
-    :func:`functools.cached_property` does, which works on frozen dataclasses
-    too), so they live and die with it and cost one dictionary look-up, unlike
-    hashing a large frozen description.
+    Kept in the object's own ``__dict__`` (as :func:`functools.cached_property`
+    does): they live and die with it, one look-up, no hashing of a large description.
     """
     cache = vars(obj).get(_CACHE_ATTRIBUTE)
     if cache is None:
@@ -140,33 +117,29 @@ def clear_cache(obj: object) -> None:
 
 
 def joint_screws(mechanism: Mechanism) -> JointScrews:
-    """Unit joint twists of ``mechanism`` in normalised coordinates (cached per mechanism)."""
+    """Unit joint twists of ``mechanism`` in normalised coordinates (cached per mechanism).
+
+    Examples
+    --------
+    >>> from mobility.core.model import Joint, Mechanism
+    >>> m = Mechanism("slide", "g", "s", (Joint("p", "P", ("g", "s"), axis=(0, 0, 5)),))
+    >>> js = joint_screws(m)
+    >>> js.twists[:, 0].tolist()
+    [0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+    """
     return per_object_cache(mechanism, "joint_screws", lambda: _build(mechanism))
 
 
 def unit_twists(prismatic: np.ndarray, axes: np.ndarray, offsets: np.ndarray, pitches: np.ndarray, lengths: np.ndarray | float) -> np.ndarray:
     """Unit twists ``[w; v]`` of elementary freedoms at a stack of poses, in normalised coordinates.
 
-    A turn (pitch ``h``) about ``axis`` through a point at ``offset`` from the
-    centre has ``w = axis``, ``v = (offset x axis + h axis) / length``; a
-    slide has ``w = 0``, ``v = axis``.  Each column is then scaled to unit norm.
-
-    Parameters
-    ----------
-    prismatic : ndarray of bool, shape (f,)
-    axes, offsets : ndarray, shape (N, 3, f)
-        Unit axes, and points less the centre of their pose.
-    pitches : ndarray, shape (f,)
-    lengths : float or ndarray, shape (N,)
-        The characteristic length of each pose.
-
-    Returns
-    -------
-    ndarray, shape (N, 6, f)
+    A turn has ``w = axis``, ``v = (offset x axis + h axis) / length``, a slide
+    ``w = 0``, ``v = axis``; each column then scaled to unit norm.  ``axes`` and
+    ``offsets`` (points less their pose's centre) are (N, 3, f), ``lengths``
+    one per pose; the result is (N, 6, f).
 
     Examples
     --------
-    >>> import numpy as np
     >>> unit_twists(np.array([False]), np.array([[[0.0], [0.0], [1.0]]]), np.array([[[1.0], [0.0], [0.0]]]), np.zeros(1), 1.0)[0, :, 0].round(6).tolist()
     [0.0, 0.0, 0.707107, 0.0, -0.707107, 0.0]
     """
@@ -178,25 +151,16 @@ def unit_twists(prismatic: np.ndarray, axes: np.ndarray, offsets: np.ndarray, pi
 
 
 RESOLUTION = DEFAULT_TOLERANCE
-"""The thresholds of :func:`_refuse_unresolved_links`: written apart beyond ``rank`` of their own
-coordinates, closer than ``inexact`` of the characteristic length (below what a rank decision
-reports).  The default policy's, since the joint twists are tabulated once for every policy."""
+"""The thresholds of :func:`_refuse_unresolved_links` (the default policy's: the twists are tabulated once for every policy)."""
 
 
 def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float) -> None:
     """Refuse a link whose joints are written at distinct points that the analysis cannot tell apart.
 
-    A link whose joint points span less than ``inexact`` of the mechanism's
-    characteristic length (e.g. a four-bar with one pivot at 1e300 and the
-    others near the origin) would be analysed as if its joints met at one
-    point, and no margin could show it: the singular values that would tell
-    are below round-off.  Points that differ only in their last digits (less
-    than ``rank`` of their own size) are taken as written to coincide.
-
-    Raises
-    ------
-    MechanismFileError
-        Naming the link and its joints.
+    Points spanning less than ``inexact`` of the characteristic length (a
+    pivot at 1e300, the rest near the origin) would be analysed as one point,
+    no margin showing it; points apart by less than ``rank`` of their own size
+    are taken as written to coincide.
     """
     table = mechanism.freedom_table
     if len(table.located) < 2:
@@ -225,10 +189,7 @@ def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float
         key,
         f"the joints of link {name!r} ({written}) span {extent[bad[0]] / scale:.3g}, {extent[bad[0]] / length_s:.1e} of the mechanism's size "
         f"{length_s / scale:.3g} (set by joint {far!r} at [{where}]): finer than the analysis can resolve ({RESOLUTION.inexact:.0e} of it); bring the far joints nearer or split the mechanism, "
-        "or, if these joints meet at one point, write the same point for each",
-        file=mechanism.source or "<string>",
-        line=line,
-    )
+        "or, if these joints meet at one point, write the same point for each", file=mechanism.source or "<string>", line=line)
 
 
 def _build(mechanism: Mechanism) -> JointScrews:
@@ -240,10 +201,7 @@ def _build(mechanism: Mechanism) -> JointScrews:
         raise MechanismFileError(
             key,
             f"the joint points are too far apart to compute with: their RMS distance from their centroid exceeds the largest float "
-            f"({sys.float_info.max:.3g}); write the mechanism in a larger length unit",
-            file=mechanism.source or "<string>",
-            line=line,
-        )
+            f"({sys.float_info.max:.3g}); write the mechanism in a larger length unit", file=mechanism.source or "<string>", line=line)
     # every length times the same power of two (exact), so that no product below can overflow
     scale = binary_scale(table.located, pitches)
     centre_s, length_s = centre * scale, length * scale

@@ -1,22 +1,12 @@
 """The singular value decomposition used by every rank decision.
 
-One library routine, :func:`numpy.linalg.svd` (LAPACK's divide-and-conquer
-``dgesdd``), behind three calls that ask for no more than they use:
-
-* :func:`left_svd`: the left singular vectors (all of them) and the singular
-  values, what a span and its reciprocal need; :func:`left_svds` the same for
-  a stack of matrices (the screw-system engine's one call).  The right singular vectors of a
-  wide ``6 x n`` matrix (a long chain, many limbs) are never formed as an
-  ``n x n`` matrix, so the cost grows linearly with ``n``;
-* :func:`svd`: the full decomposition, for null spaces;
-* :func:`singular_values`: the values alone, and :func:`rank`, the policy's
-  rank decision on them.
-
-``scipy.linalg.lapack.dgesvd`` is cheaper per call on these tiny matrices
-(about 3 µs against 8 µs) but importing :mod:`scipy.linalg` costs more than a
-whole ``mobility analyze`` run (see ``benchmarks/bench_start.py``), so numpy's
-routine is used.  A decomposition that does not converge (a matrix holding NaN
-or infinity) raises :class:`~mobility.errors.AnalysisError`.
+:func:`numpy.linalg.svd` (LAPACK ``dgesdd``) behind calls that ask for no
+more than they use: :func:`left_svd` and :func:`left_svds` never form the
+``n x n`` right vectors of a wide ``6 x n`` matrix (cost linear in ``n``).
+SciPy's ``dgesvd`` is faster per call (3 µs against 8 µs), but importing
+:mod:`scipy.linalg` costs more than a whole ``mobility analyze``
+(``benchmarks/bench_start.py``).  No convergence (a NaN or an infinity)
+raises :class:`~mobility.errors.AnalysisError`.
 
 Examples
 --------
@@ -90,7 +80,6 @@ def left_svds(m: np.ndarray, *, full_v: bool = False) -> tuple[np.ndarray, np.nd
 
     Examples
     --------
-    >>> import numpy as np
     >>> u, s, _ = left_svds(np.stack([np.diag([3.0, 2.0]), np.diag([1.0, 5.0])]))
     >>> s.tolist()
     [[3.0, 2.0], [5.0, 1.0]]

@@ -1,42 +1,15 @@
 """The loop-closure route: one constraint Jacobian for the whole joint graph.
 
-An independent second route to the answers of :func:`mobility.analyze`, used
-to cross-check it (tests, benchmarks) and available to users.  It does not
-use the series/parallel decomposition:
-
-1. a spanning tree of the joint graph is grown from the ground (breadth-first);
-   every link's twist is then a linear map of the joint rates along its tree
-   path, ``t_x = P_x q'``;
-2. each joint off the tree (a *chord*, including a second joint between two
-   already joined links) closes one independent loop:
-   ``P_b q' - P_a q' - S_j q'_j = 0`` for a chord ``j`` from ``a`` to ``b``
-   (only the joints of the tree path between ``a`` and ``b`` remain);
-3. each coupling of joints (:attr:`Mechanism.couplings`) adds one row on
-   their coordinates (:func:`~mobility.core.couplings.coupling_rows`: the
-   unit columns' coordinates are the natural rates times the twists' norms);
-4. stacked, these are the loop-closure equations ``K q' = 0``; the mobility is
-   ``sum f - rank K`` and the end effector's twist system is
-   ``P_ee null(K)``.
-
-The null space of ``K`` is found by one SVD of the whole matrix while it is
-small (at most :data:`WHOLE_SVD_SIZE` rows and columns).  A larger ``K`` (a
-ladder of 2,000 loops: 12,000 x 4,000) is solved chord by chord instead: the joint
-rates that close the loops seen so far are kept as an orthonormal basis, and
-each chord's six equations restricted to them are decomposed in turn, so
-time and memory grow with the joints, not their square.  Both give the same
-counts; the margin is then the worst over the chords' decisions.
-
-Examples
---------
->>> from mobility.core.model import Joint, Mechanism
->>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
->>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
-...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
->>> lc = loop_closure(m)
->>> lc.mobility, lc.rank, lc.loops, lc.end_effector_twists.shape[1]
-(1, 3, 1, 1)
->>> loop_closure(m, method="chords").mobility
-1
+A second route to the answers of :func:`mobility.analyze`, without the
+series/parallel decomposition, to cross-check it.  A breadth-first spanning
+tree from the ground makes each link's twist ``t_x = P_x q'``; each chord
+``j`` from ``a`` to ``b`` closes a loop, ``P_b q' - P_a q' - S_j q'_j = 0``;
+each coupling adds a row (:func:`~mobility.core.couplings.coupling_rows`).
+Stacked, ``K q' = 0``: the mobility is ``sum f - rank K`` and the end
+effector's twists ``P_ee null(K)``.  ``null(K)`` comes from one SVD up to
+:data:`WHOLE_SVD_SIZE`, beyond it chord by chord on the rates that close the
+loops so far (time and memory grow with the joints, not their square; the
+same counts, the margin the worst over the chords).
 """
 
 from __future__ import annotations
@@ -59,10 +32,7 @@ from .topology import TreeEdge, spanning_tree
 __all__ = ["LoopClosure", "loop_closure", "WHOLE_SVD_SIZE"]
 
 WHOLE_SVD_SIZE = 300
-"""Largest loop-closure Jacobian (rows ``6 loops`` and columns ``sum f``) decomposed by one SVD
-(``method="auto"``); beyond it the loops are closed chord by chord.  A full SVD costs the cube
-of the size (a 1,200 x 400 Jacobian takes a second, its chords a few milliseconds); every
-bundled mechanism is far below it."""
+"""Largest loop-closure Jacobian (rows and columns) ``method="auto"`` decomposes by one SVD; a 1,200 x 400 one takes a second, its chords milliseconds."""
 
 Terms = tuple[tuple[int, float], ...]
 """One loop's equation: ``(joint, sign)`` pairs, the equation being ``sum sign * S_joint q'_joint = 0``."""
@@ -72,32 +42,21 @@ Terms = tuple[tuple[int, float], ...]
 class LoopClosure(ReadOnlyArrays):
     """Answers of the loop-closure route.
 
-    Its arrays (those of ``screws`` too) are read-only, also after a pickle
-    round trip or a deep copy.
-
     Attributes
     ----------
-    rank : int
-        Rank of ``jacobian``.
-    loops : int
-        Independent loops (chords of the spanning tree).
-    mobility : int
-        ``sum f - rank``.
+    rank, loops, mobility : int
+        Rank of ``jacobian``, chords of the spanning tree, ``sum f - rank``.
     end_effector_twists : ndarray, shape (6, dof)
-        Orthonormal basis of the end effector's twist system, in normalised
-        coordinates (origin at the mechanism's centre, lengths over its
-        characteristic length): to compare with :attr:`mobility.Result.twists`
-        take :attr:`world_twists`.
+        Orthonormal basis of the end effector's twists in normalised
+        coordinates (:attr:`world_twists` compares with :attr:`mobility.Result.twists`).
     end_effector_map : ndarray, shape (6, sum f)
-        Twist of the end effector as a function of the joint rates (tree path).
+        The end effector's twist as a function of the joint rates.
     joint_rates : ndarray, shape (sum f, mobility)
         Orthonormal basis of the joint rates that close every loop.
     decision : RankDecision
     jacobian : ndarray, shape (6 * loops + couplings, sum f)
-        Loop-closure equations in normalised coordinates (built on first
-        access), then one row per coupling.
+        The equations in normalised coordinates, coupling rows last (built on first access).
     couplings : ndarray, shape (couplings, sum f)
-        The rows of the couplings.
     """
 
     rank: int
@@ -141,18 +100,18 @@ class LoopClosure(ReadOnlyArrays):
 def loop_closure(mechanism: Mechanism, tol: Tolerance = DEFAULT_TOLERANCE, *, method: str = "auto") -> LoopClosure:
     """Loop-closure equations of the whole mechanism, their rank and the end effector's twists.
 
-    Parameters
-    ----------
-    mechanism : Mechanism
-    tol : Tolerance
-    method : {"auto", "svd", "chords"}
-        One SVD of the whole Jacobian, chord by chord, or the first while the
-        Jacobian has at most :data:`WHOLE_SVD_SIZE` rows and columns.
+    ``method`` is ``"svd"`` (one SVD of the whole Jacobian), ``"chords"`` or
+    ``"auto"`` (the first up to :data:`WHOLE_SVD_SIZE`).
 
-    Raises
-    ------
-    RequestError
-        For an unknown ``method``.
+    Examples
+    --------
+    >>> import mobility
+    >>> four_bar = mobility.load("mechanisms/four_bar.yaml")
+    >>> lc = loop_closure(four_bar)
+    >>> lc.mobility, lc.rank, lc.loops, lc.end_effector_twists.shape[1]
+    (1, 3, 1, 1)
+    >>> loop_closure(four_bar, method="chords").mobility
+    1
     """
     mechanism = require_mechanism(mechanism, "loop_closure")
     tol = require_tolerance(tol, "loop_closure")

@@ -1,35 +1,14 @@
 """The mechanism model: links, joints and frames, as a frozen description.
 
-A :class:`Mechanism` is only a description (no computed answers): a name, the
-ground and end-effector links, joints (edges of the joint graph, links being
-its nodes) and named frames.  It validates itself on construction and raises
+Joints are the edges of the joint graph, links its nodes; joint geometry may
+be written in any named frame (:meth:`Mechanism.world_joints` gives it in
+``world``).  Each class checks itself on construction and raises
 :class:`~mobility.errors.MechanismError` with the key path of the problem.
 
-Joint geometry may be written in any named frame; :meth:`Mechanism.world_joints`
-gives the same joints in the global frame ``world``.  Each joint type is a set
-of elementary freedoms (:meth:`Joint.freedoms`): rotations about lines,
-translations along directions, screw motions.
+One module, longer than most, because the rules of the file format read best
+beside the fields they check.
 
-One module, longer than most, because each of :class:`Joint`, :class:`Frame`
-and :class:`Mechanism` checks itself on construction (the rules of the file
-format, with the value checkers of :mod:`mobility.core.validation`), and
-those rules read best beside the fields they check.  The regression check a
-mechanism may carry is :class:`~mobility.core.expected.Expected`.
-
-Examples
---------
->>> four_bar = Mechanism(
-...     name="four-bar", ground="ground", end_effector="coupler",
-...     joints=(
-...         Joint("A", "R", ("ground", "crank"), axis=(0, 0, 1), point=(0, 0, 0)),
-...         Joint("B", "R", ("crank", "coupler"), axis=(0, 0, 1), point=(1, 2, 0)),
-...         Joint("C", "R", ("coupler", "rocker"), axis=(0, 0, 1), point=(4, 2.5, 0)),
-...         Joint("D", "R", ("rocker", "ground"), axis=(0, 0, 1), point=(5, 0, 0)),
-...     ))
->>> four_bar.links
-('ground', 'crank', 'coupler', 'rocker')
->>> four_bar.freedom_count
-4
+Example: :class:`Mechanism`.
 """
 
 from __future__ import annotations
@@ -48,23 +27,11 @@ from .couplings import Coupling, check_couplings
 from .expected import Expected
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
-from .validation import (Vector, _listed, _not_bool, bool_value, integer_value, number_from_text, real_value, require_graph_names, require_ground_and_end_effector,
+from .validation import (Vector, _listed, _not_bool, integer_value, number_from_text, real_value, require_graph_names, require_ground_and_end_effector,
                          require_instance, require_name, require_unique_names, require_vector)
 
-__all__ = [
-    "Coupling",
-    "JOINT_TYPES",
-    "JOINT_DOF",
-    "JOINT_FIELDS",
-    "Freedom",
-    "FreedomTable",
-    "Joint",
-    "Frame",
-    "Mechanism",
-    "require_mechanism",
-    "joint_freedoms",
-    "WORLD",
-]
+__all__ = ["Coupling", "JOINT_TYPES", "JOINT_DOF", "JOINT_FIELDS", "Freedom", "FreedomTable", "Joint", "Frame", "Mechanism",
+           "require_mechanism", "joint_freedoms", "WORLD"]
 
 _FAR = sys.float_info.max / 1e8
 """Coordinates below this cannot overflow when a few are added (the bound of :meth:`Mechanism._frames_cannot_overflow`)."""
@@ -76,31 +43,15 @@ JOINT_DOF: Mapping[str, int] = MappingProxyType({"R": 1, "P": 1, "H": 1, "C": 2,
 """Degrees of freedom of each joint type."""
 
 JOINT_TYPES: Mapping[str, str] = MappingProxyType(
-    {
-        "R": "revolute",
-        "P": "prismatic",
-        "H": "helical",
-        "C": "cylindrical",
-        "U": "universal",
-        "S": "spherical",
-        "E": "planar",
-    }
-)
+    {"R": "revolute", "P": "prismatic", "H": "helical", "C": "cylindrical", "U": "universal", "S": "spherical", "E": "planar"})
 """Joint type letters and their names."""
 
 _IDENTITY = np.eye(3)
 _ORTHONORMAL_LIMIT = ORTHONORMAL + 1e-5 * _IDENTITY  # |R R^T - I| entry by entry, as numpy.allclose(R R^T, I, atol=ORTHONORMAL)
 
 # Geometry fields each joint type requires, and those it may also carry.
-_REQUIRED: Mapping[str, tuple[str, ...]] = {
-    "R": ("axis", "point"),
-    "P": ("axis",),
-    "H": ("axis", "point", "pitch"),
-    "C": ("axis", "point"),
-    "U": ("point", "axes"),
-    "S": ("point",),
-    "E": ("normal",),
-}
+_REQUIRED: Mapping[str, tuple[str, ...]] = {"R": ("axis", "point"), "P": ("axis",), "H": ("axis", "point", "pitch"), "C": ("axis", "point"),
+                                             "U": ("point", "axes"), "S": ("point",), "E": ("normal",)}
 _OPTIONAL: Mapping[str, tuple[str, ...]] = {"P": ("point",), "E": ("point",)}
 JOINT_FIELDS: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = MappingProxyType({t: (need, _OPTIONAL.get(t, ())) for t, need in _REQUIRED.items()})
 """Geometry fields each joint type takes: those it requires, and those it may also carry."""
@@ -108,11 +59,12 @@ JOINT_FIELDS: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = MappingPro
 
 @dataclass(frozen=True)
 class Freedom:
-    """One elementary freedom of a joint: a screw motion about a line.
+    """One elementary freedom of a joint: ``"R"`` about the line through ``point`` along ``axis``, ``"P"`` along ``axis``, or ``"H"`` (``pitch`` length per radian).
 
-    ``kind`` is ``"R"`` (rotation about the line through ``point`` along
-    ``axis``), ``"P"`` (translation along ``axis``; ``point`` unused) or ``"H"``
-    (rotation with translation ``pitch`` per radian along the axis).
+    Examples
+    --------
+    >>> Freedom("P", (1.0, 0.0, 0.0)).point
+    (0.0, 0.0, 0.0)
     """
 
     kind: str
@@ -128,19 +80,16 @@ class Joint:
     Parameters
     ----------
     name : str
-        Unique name.
     type : str
-        One of ``R P H C U S E`` (see :data:`JOINT_TYPES`).
+        One of ``R P H C U S E`` (:data:`JOINT_TYPES`).
     links : tuple of two str
-        The links it joins; its motion is that of ``links[1]`` relative to
-        ``links[0]``.
+        Its motion is that of ``links[1]`` relative to ``links[0]``.
     axis, point, pitch, axes, normal
-        Geometry, as the type requires (see the file format), written in
-        ``frame``.  Directions are normalised on construction.
+        Geometry as the type requires (the file format), written in ``frame``;
+        directions are normalised.
     frame : str
-        Name of the frame the geometry is written in (default ``"world"``).
     actuated : bool
-        Whether the joint is driven (used by the actuation analysis).
+        Whether the joint is driven (the actuation analysis).
 
     Examples
     --------
@@ -185,12 +134,9 @@ class Joint:
                 optional = _OPTIONAL.get(self.type, ())
                 takes = ", ".join(need) + (f", and optionally {', '.join(optional)}" if optional else "")
                 raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {takes})")
-        if self.axis is not None:
-            object.__setattr__(self, "axis", require_vector(self.axis, "axis", direction=True))
-        if self.normal is not None:
-            object.__setattr__(self, "normal", require_vector(self.normal, "normal", direction=True))
-        if self.point is not None:
-            object.__setattr__(self, "point", require_vector(self.point, "point"))
+        for key in ("axis", "normal", "point"):
+            if getattr(self, key) is not None:
+                object.__setattr__(self, key, require_vector(getattr(self, key), key, direction=key != "point"))
         if self.pitch is not None:
             try:
                 pitch = number_from_text(self.pitch) if isinstance(self.pitch, str) else float(_not_bool(self.pitch))
@@ -212,10 +158,9 @@ class Joint:
                 raise MechanismError("axes", "the two axes of a U joint must not be parallel")
             object.__setattr__(self, "axes", (a1, a2))
         require_name(self.frame, "frame", "a frame name")
-        actuated = bool_value(self.actuated)
-        if actuated is None:
+        if not isinstance(self.actuated, (bool, np.bool_)):
             raise MechanismError("actuated", f"expected true or false, got {shown_argument(self.actuated)}")
-        object.__setattr__(self, "actuated", actuated)
+        object.__setattr__(self, "actuated", bool(self.actuated))
 
     @property
     def dof(self) -> int:
@@ -259,10 +204,9 @@ class Joint:
         changes: dict[str, Any] = {"frame": frame}
         floats = lambda v: tuple(float(x) for x in v)  # noqa: E731
         with np.errstate(over="ignore", invalid="ignore"):  # a point beyond the largest float is refused by the Joint itself
-            if self.axis is not None:
-                changes["axis"] = floats(tf.apply_vector(self.axis))
-            if self.normal is not None:
-                changes["normal"] = floats(tf.apply_vector(self.normal))
+            for key in ("axis", "normal"):
+                if getattr(self, key) is not None:
+                    changes[key] = floats(tf.apply_vector(getattr(self, key)))
             if self.point is not None:
                 changes["point"] = floats(tf.apply_point(self.point))
             if self.axes is not None:
@@ -274,13 +218,10 @@ class Joint:
 class Frame:
     """A named frame: ``x_parent = rotation @ x_frame + origin``.
 
-    Parameters
-    ----------
-    name : str
-    origin : 3-vector
-    rotation : 3x3 nested tuples (a rotation matrix)
-    parent : str
-        Name of the parent frame (default ``"world"``).
+    Examples
+    --------
+    >>> Frame("tool", origin=(0, 0, 1)).transform.apply_point((1, 0, 0)).tolist()
+    [1.0, 0.0, 1.0]
     """
 
     name: str
@@ -309,31 +250,14 @@ class Frame:
     def from_rpy(name: str, origin: Iterable[float] = (0, 0, 0), rpy: Iterable[float] = (0, 0, 0), parent: str = WORLD) -> "Frame":
         """A frame from roll-pitch-yaw angles **in radians** (``R = Rz(y) Ry(p) Rx(r)``).
 
-        Unlike a mechanism file (``rpy`` in degrees unless ``units.angle``
-        says otherwise), a sweep's angles and ``assemble_pkm(twist_deg=...)``,
-        this function takes **radians**: convert degrees with
-        :func:`numpy.radians`.
-
-        Parameters
-        ----------
-        name : str
-        origin : 3 numbers
-            The frame's origin in its parent.
-        rpy : 3 numbers
-            Roll, pitch and yaw, in radians.
-        parent : str
-            Name of the parent frame (default ``"world"``).
-
-        Raises
-        ------
-        MechanismError
-            When ``origin`` or ``rpy`` is not 3 finite numbers.
+        Unlike a mechanism file (degrees unless ``units.angle`` says otherwise),
+        this takes **radians** (:func:`numpy.radians`).  ``origin`` is in the
+        parent; a bad ``origin`` or ``rpy`` raises :class:`~mobility.errors.MechanismError`.
 
         Examples
         --------
         A yaw of 90 degrees, given in radians:
 
-        >>> import numpy as np
         >>> f = Frame.from_rpy("leg", (1, 0, 0), np.radians([0, 0, 90]))
         >>> [round(float(x), 12) + 0.0 for x in f.transform.apply_point((1, 0, 0))]
         [1.0, 1.0, 0.0]
@@ -352,23 +276,18 @@ class Frame:
 class FreedomTable:
     """The elementary freedoms of every joint, in the global frame, as arrays.
 
-    Row ``k`` is one freedom (see :class:`Freedom`); joint ``j`` owns rows
-    ``offsets[j]:offsets[j + 1]``.
+    Row ``k`` is one :class:`Freedom` (``prismatic``, ``axes``, ``points``,
+    ``pitches``); joint ``j`` owns rows ``offsets[j]:offsets[j + 1]``.
+    ``located`` holds the points of the joints that have one (all but P and
+    point-less E), ``located_joints`` their joint indices and ``located_links``
+    their two links (indices in :attr:`Mechanism.links`);
+    ``end_effector_points`` those on the end effector.
 
-    Attributes
-    ----------
-    prismatic : ndarray of bool, shape (n,)
-    axes, points : ndarray, shape (n, 3)
-    pitches : ndarray, shape (n,)
-    offsets : tuple of int
-    located : ndarray, shape (k, 3)
-        The points of the joints that have one (all but P and point-less E).
-    end_effector_points : ndarray, shape (m, 3)
-        The points of the located joints on the end effector.
-    located_joints : ndarray of int, shape (k,)
-        The index of the joint of each row of ``located``.
-    located_links : ndarray of int, shape (k, 2)
-        The two links of each of those joints, as indices in :attr:`Mechanism.links`.
+    Examples
+    --------
+    >>> m = Mechanism("m", "g", "b", (Joint("c", "C", ("g", "b"), axis=(0, 0, 1), point=(0, 0, 0)),))
+    >>> m.freedom_table.prismatic.tolist(), m.freedom_table.offsets
+    ([False, True], (0, 2))
     """
 
     prismatic: np.ndarray
@@ -388,42 +307,26 @@ class Mechanism:
 
     Parameters
     ----------
-    name : str
-    ground : str
-        The fixed link.
-    end_effector : str
-        The link whose freedom is reported.
+    name, ground, end_effector : str
+        The ground is fixed; the end effector's freedom is reported.
     joints : tuple of Joint
         At least one.
     frames : tuple of Frame
-        Named frames the joints may be written in.
-    description : str
-    length_unit : str
-        A label only (results do not depend on the unit).
+    description, length_unit : str
+        The unit is a label only (results do not depend on it).
     expected : Expected or None
     source : str
         Where it came from (a file path), for messages.
     written_at : mapping of str to (str, int or None)
-        Where the file wrote each joint, by joint name: its key path
-        (``limbs[0].joints[2]``) and 1-based line, for messages about the
-        mechanism once loaded (the loader fills it; empty for a mechanism
-        built in code).  Not part of its value: equal mechanisms may come
-        from different files.
+        By joint name, the key path (``limbs[0].joints[2]``) and 1-based line
+        the file wrote it at, for messages (empty when built in code).
     couplings : tuple of Coupling
-        Linear relations between the rates of one-freedom joints
-        (:mod:`mobility.core.couplings`).
+        Linear relations between joint rates (:mod:`mobility.core.couplings`).
     precision : float or None
-        How precise the file's geometry is, relative to the mechanism's
-        size (see :mod:`mobility.io.precision`); ``None`` (built in code, a
-        file written by hand or with full precision): exact.  When no
-        tolerance is given, ranks are never decided finer than it
-        (:func:`~mobility.core.tolerance.file_tolerance`).  Not part of its value.
-
-    Raises
-    ------
-    MechanismError
-        On duplicate names, unknown or cyclic frames, unknown ground or end
-        effector, or links not connected to the ground.
+        How precise the file's geometry is relative to its size
+        (:mod:`mobility.io.precision`; ``None``: exact); ranks are never decided
+        finer (:func:`~mobility.core.tolerance.file_tolerance`).
+        ``written_at`` and ``precision`` are not part of the value.
 
     Examples
     --------
@@ -517,16 +420,10 @@ class Mechanism:
     def _require_resolved_pitches(self) -> None:
         """Refuse a helical pitch so much larger than the joint points' spread that no scale resolves both.
 
-        The characteristic length of a mechanism with a pitch ``h`` larger
-        than the spread ``d`` of its joint points is ``L = sqrt(d h)``
-        (:func:`~mobility.core.tolerance.characteristic_scale`): the screw
-        turns by ``L / h`` of its motion and the points stand ``d / L``
-        apart, both ``sqrt(d / h)``.  Below
-        :attr:`~mobility.core.tolerance.Tolerance.rank` (``h / d`` above
-        1e16) neither can be told from round-off, and the joint would be
-        counted sometimes as a screw, sometimes as a slider.  The ratio, not
-        the unit, decides: a file scaled by any factor is accepted or
-        refused alike.
+        With pitch ``h`` above the spread ``d`` the length is ``L = sqrt(d h)``
+        (:func:`~mobility.core.tolerance.characteristic_scale`), and the
+        screw's turn and the points' offsets are both ``sqrt(d / h)`` of it:
+        below ``Tolerance.rank`` (``h / d`` above 1e16) round-off.
         """
         table = self.freedom_table
         pitches = np.abs(table.pitches)
@@ -540,15 +437,10 @@ class Mechanism:
             f"joints[{index}].pitch",
             f"pitch {largest:.6g} is {largest / spread:.1e} times the spread of the joint points {spread:.3g} (their RMS distance from their centroid): "
             f"beyond {DEFAULT_TOLERANCE.rank**-2:.0e} no scale resolves both the screw's rotation and the points' offsets; "
-            "write the points that are meant to coincide as one point, or bring the pitch and the spread within that ratio",
-        )
+            "write the points that are meant to coincide as one point, or bring the pitch and the spread within that ratio")
 
     def _frames_cannot_overflow(self) -> bool:
-        """Whether no joint can leave the floats once written in the global frame (a cheap bound; else the exact check).
-
-        A point in the global frame is at most the sum of its coordinates and
-        of the origins of its chain of frames (rotations keep lengths).
-        """
+        """Whether no joint can leave the floats in the global frame: the cheap bound (origins and points add; rotations keep lengths)."""
         origin = max(max(abs(x) for x in f.origin) for f in self.frames)
         point = max((max(abs(x) for x in j.point) for j in self.joints if j.point is not None), default=0.0)
         return 2.0 * (origin * (len(self.frames) + 1) + point) < _FAR
@@ -579,12 +471,12 @@ class Mechanism:
         return sum(j.dof for j in self.joints)
 
     def joint(self, name: str) -> Joint:
-        """The joint called ``name``.
+        """The joint called ``name`` (:class:`~mobility.errors.RequestError` when none is).
 
-        Raises
-        ------
-        RequestError
-            When no joint has that name.
+        Examples
+        --------
+        >>> Mechanism("s", "g", "b", (Joint("p", "P", ("g", "b"), axis=(0, 0, 1)),)).joint("p").type
+        'P'
         """
         for j in self.joints:
             if j.name == name:
@@ -592,12 +484,7 @@ class Mechanism:
         raise RequestError(f"no joint named {name!r}; the joints are {name_list(j.name for j in self.joints)}")
 
     def frame_transform(self, name: str) -> Transform:
-        """Transform from frame ``name`` to the global frame.
-
-        Raises
-        ------
-        RequestError
-            When no frame has that name.
+        """Transform from frame ``name`` to the global frame (:class:`~mobility.errors.RequestError` when none is).
 
         Examples
         --------
@@ -631,11 +518,7 @@ class Mechanism:
 
     @cached_property
     def world_joints(self) -> tuple[Joint, ...]:
-        """The joints with their geometry in the global frame.
-
-        The ``frame`` of each returned joint is ``"world"``; the original
-        frame name stays available in :attr:`joints`.
-        """
+        """The joints with their geometry in the global frame (``frame`` ``"world"``; :attr:`joints` keeps the original)."""
         transforms = self._frame_transforms  # a frame whose origin is not finite is named as such, before any joint
         out = []
         for i, j in enumerate(self.joints):
@@ -682,8 +565,7 @@ class Mechanism:
     def joint_key(self, index: int, key: str = "") -> tuple[str, int | None]:
         """The key path of joint ``index`` (with ``key`` below it, such as ``"point"``) as its file wrote it, and its line.
 
-        A mechanism built in code, or a joint the file did not write, is
-        named by its place in :attr:`joints`, without a line.
+        Otherwise (built in code) its place in :attr:`joints`, without a line.
 
         Examples
         --------
@@ -716,16 +598,10 @@ def require_mechanism(value: object, caller: str) -> Mechanism:
 def joint_freedoms(mechanism: "Mechanism", names: Sequence[str], key: str = "actuated") -> list[tuple[int, int, str]]:
     """``(joint index, freedom, label)`` of every input named: a joint gives each of its freedoms, ``NAME.k`` its freedom ``k``.
 
-    Freedoms are numbered from 0, as every report labels them: the inputs
-    of a spherical joint ``S1`` are ``S1.0``, ``S1.1`` and ``S1.2``, and each of
-    those names is accepted back.  A one-freedom joint's label is its name.
-
-    Raises
-    ------
-    MechanismError
-        When a name is neither a joint nor ``JOINT.k`` of a multi-freedom
-        joint with ``k`` in ``0 .. dof - 1``, or names a freedom twice
-        (``S1`` and ``S1.0``).
+    Freedoms are numbered from 0, as reports label them (``S1.0`` to ``S1.2``);
+    a one-freedom joint's label is its name.  An unknown name, a ``k`` out of
+    range or a freedom named twice raises :class:`~mobility.errors.MechanismError`
+    under ``key``.
 
     Examples
     --------

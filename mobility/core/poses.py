@@ -1,9 +1,7 @@
 """Assembled poses of a mechanism away from its given one, by a seeded random walk.
 
-The poses the actuation check (``mobility actuation --samples``) and the 3D
-view's slider (``mobility view --samples``) look at besides the file's own:
-each step moves along a first-order motion and re-closes every loop with
-:meth:`mobility.core.kinematics.Kinematics.close`.
+The poses ``mobility actuation --samples`` and ``mobility view --samples``
+look at besides the file's own.
 """
 
 from __future__ import annotations
@@ -20,18 +18,16 @@ from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 __all__ = ["sample_poses", "require_pose_count", "require_seed", "step_value", "DEFAULT_STEP", "MAX_STEP", "MAX_SAMPLED_POSES"]
 
 MAX_SAMPLED_POSES = 100_000
-"""Most poses :func:`sample_poses` is asked for (each is a Newton solve and a rebuilt mechanism; the
-command line's ``--samples`` stops at 1,000)."""
+"""Most poses :func:`sample_poses` is asked for (each a Newton solve; ``--samples`` stops at 1,000)."""
 
 DEFAULT_STEP = 0.1
-"""The default step of :func:`sample_poses` (radians; lengths over the characteristic length), also the
-default ``--step`` of ``mobility actuation --samples`` and ``mobility view --samples``."""
+"""The default step of :func:`sample_poses` and ``--step`` (radians; lengths over the characteristic length)."""
 
 MAX_STEP = 1.0
-"""The largest step of a move, that of :func:`sample_poses` and each of the steps of
-:func:`mobility.finite.finite_mobility` (a joint-space distance: a radian, or the characteristic length),
-as the command line's ``--step`` in ``(0, 1]``: a larger move is no step along the motion (Newton from it
-would reach another assembly, and a step of ``1e300`` overflows)."""
+"""The largest step of a move (:func:`sample_poses`, :func:`mobility.finite.finite_mobility`, ``--step``).
+
+A joint-space distance: a radian, or the characteristic length.  A larger
+move is no step along the motion (Newton would reach another assembly)."""
 
 
 def step_value(value: object) -> float | None:
@@ -47,9 +43,9 @@ def step_value(value: object) -> float | None:
 
 
 def require_seed(value: object, key: str = "seed") -> int:
-    """``value`` as the seed of a random choice: a non-negative integer (not a bool, not None); else a :class:`RequestError` naming ``key``.
+    """``value`` as the seed of a random choice: a non-negative integer; else a :class:`RequestError` naming ``key``.
 
-    None is refused: it would draw fresh randomness, and every result of the package is reproducible.
+    None is refused: every result of the package is reproducible.
 
     Examples
     --------
@@ -61,7 +57,7 @@ def require_seed(value: object, key: str = "seed") -> int:
     """
     seed = integer_value(value)
     if seed is None or seed < 0:
-        raise RequestError(f"{key}: expected a non-negative integer, got {shown_argument(value)}")
+        raise RequestError(argument=key, expected="a non-negative integer", got=shown_argument(value))
     return seed
 
 
@@ -78,51 +74,42 @@ def require_pose_count(value: object, key: str = "count") -> int:
     """
     count = integer_value(value)
     if count is None or not 0 <= count <= MAX_SAMPLED_POSES:
-        raise RequestError(f"{key}: expected a number of poses in [0, {MAX_SAMPLED_POSES:,}], got {shown_argument(value)}")
+        raise RequestError(argument=key, expected=f"a number of poses in [0, {MAX_SAMPLED_POSES:,}]", got=shown_argument(value))
     return count
 
 
 def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> list[Mechanism]:
     """Assembled poses reached by moving ``mechanism`` from its given pose.
 
-    A seeded random exploration: each new pose starts from one already
-    reached (the given one included), moves ``step`` along a random
-    first-order motion there and re-closes every loop by Newton; a move that
-    does not close is retried with half the step (down to ``step / 8``) and
-    another direction.  Each accepted pose is rebuilt as a
-    :class:`~mobility.core.model.Mechanism` (joints in the global frame) and the
-    next moves start from it, so the parametrisation never degenerates.
+    Seeded: each pose starts from one already reached, moves ``step`` along a
+    random first-order motion and re-closes every loop by Newton (a move that
+    does not close is retried with half the step, down to ``step / 8``); it is
+    rebuilt as a :class:`~mobility.core.model.Mechanism` in the global frame,
+    so the parametrisation never degenerates.
 
     Parameters
     ----------
     mechanism : Mechanism
     count : int
-        Number of poses wanted.
     step : float
-        Joint-space distance of each move (radians; lengths over the
-        characteristic length), so the same for a scaled or moved file; in
-        ``(0, MAX_STEP]``, ``(0, 1]``.
+        Joint-space distance of each move in ``(0, MAX_STEP]`` (radians;
+        lengths over the characteristic length: the same for a scaled file).
     seed : int
-        Seed of the random directions, a non-negative integer (None is refused).
+        A non-negative integer (None is refused).
     tol : Tolerance
-        The rank policy of the first-order motions and the closure threshold.
+        The rank policy and closure threshold.
 
     Returns
     -------
     list of Mechanism
-        Up to ``count`` poses, each closed to round-off; fewer (possibly none)
-        when the mechanism cannot move from where it is.
+        Up to ``count`` poses closed to round-off; fewer (possibly none) when
+        the mechanism cannot move from where it is.
 
     Examples
     --------
-    >>> from mobility.core.model import Joint, Mechanism
-    >>> crank_slider = Mechanism("slider-crank", "g", "s", (
-    ...     Joint("A", "R", ("g", "crank"), axis=(0, 0, 1), point=(0, 0, 0)),
-    ...     Joint("B", "R", ("crank", "rod"), axis=(0, 0, 1), point=(1, 1, 0)),
-    ...     Joint("C", "R", ("rod", "s"), axis=(0, 0, 1), point=(3, 0, 0)),
-    ...     Joint("D", "P", ("s", "g"), axis=(1, 0, 0))))
-    >>> poses = sample_poses(crank_slider, 3, step=0.2, seed=1)
-    >>> len(poses), all(p.joints[0].point == (0.0, 0.0, 0.0) and abs(p.joints[2].point[1]) < 1e-12 for p in poses)
+    >>> import mobility
+    >>> poses = sample_poses(mobility.load("mechanisms/slider_crank.yaml"), 3, step=0.2, seed=1)
+    >>> len(poses), all(p.joints[0].point == (0.0, 0.0, 0.0) and abs(p.joints[2].point[1]) < 1e-9 for p in poses)
     (3, True)
     """
     mechanism = require_mechanism(mechanism, "sample_poses")
@@ -133,9 +120,9 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
     if h0 is None:
         size = real_value(step) if integer_value(step) is None else integer_value(step)  # an int beyond the floats too
         if size is not None and size > 0:
-            raise RequestError(f"sample_poses: step: expected a joint-space distance in (0, {MAX_STEP:g}] (radians; lengths over "
-                               f"the characteristic length), got {shown_argument(step)}")
-        raise RequestError(f"step: expected a positive joint-space distance, got {shown_argument(step)}")
+            raise RequestError(caller="sample_poses", argument="step", got=shown_argument(step),
+                               expected=f"a joint-space distance in (0, {MAX_STEP:g}] (radians; lengths over the characteristic length)")
+        raise RequestError(argument="step", expected="a positive joint-space distance", got=shown_argument(step))
     step = h0
     rng = np.random.default_rng(require_seed(seed))
     reached: list[Mechanism] = [mechanism]

@@ -1,20 +1,14 @@
 """Frozen results of an analysis.
 
-A :class:`Result` holds only answers, in the global frame and the file's
-length unit.  Screws are rows: ``twists[i] = [w; v]``, ``wrenches[i] = [f; m]``.
-:meth:`Result.to_dict` gives the JSON form (keys of the file-format spec plus
-the whole-mechanism numbers).
-
-The result classes derive from :class:`~mobility.core.frozen.ReadOnlyArrays`:
-the arrays a result holds, or computes on first access, are read-only, also
-after a pickle round trip or a deep copy (:func:`~mobility.core.frozen.read_only`
-does it for one value).
+Answers only, in the global frame and the file's length unit; screws are
+rows (``twists[i] = [w; v]``, ``wrenches[i] = [f; m]``).  Every array a result
+holds or computes is read-only (:class:`~mobility.core.frozen.ReadOnlyArrays`).
 """
 
 from __future__ import annotations
 
 from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from dataclasses import fields as dataclass_fields
 from functools import cached_property
 from types import MappingProxyType
@@ -37,10 +31,14 @@ __all__ = ["ScrewAxis", "Margin", "LimbSystem", "NodeSystem", "Result", "ResultD
 class ScrewAxis(ReadOnlyArrays):
     """A screw axis in the global frame.
 
-    For a twist: a rotation about ``axis`` through ``point`` with ``pitch``
-    (length per radian) of translation along it; for a wrench: a force along
-    ``axis`` with a couple ``pitch`` times it.  ``axis`` and ``point`` are
-    read-only arrays (copies of writable ones given).
+    For a twist, a rotation about ``axis`` through ``point`` with ``pitch``
+    (length per radian) of translation along it; for a wrench, a force along
+    ``axis`` with a couple ``pitch`` times it.
+
+    Examples
+    --------
+    >>> ScrewAxis(np.array([0.0, 0.0, 1.0]), np.zeros(3), 0.0, "rotation").to_dict()["axis"]
+    [0.0, 0.0, 1.0]
     """
 
     axis: np.ndarray
@@ -50,28 +48,22 @@ class ScrewAxis(ReadOnlyArrays):
 
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
         """JSON form: axis, point, pitch, kind."""
-        return {
-            "axis": clean_numbers(self.axis),
-            "point": clean_numbers(self.point, scale),
-            "pitch": clean_numbers(self.pitch, scale),
-            "kind": self.kind,
-        }
+        return {"axis": clean_numbers(self.axis), "point": clean_numbers(self.point, scale), "pitch": clean_numbers(self.pitch, scale), "kind": self.kind}
 
 
 @dataclass(frozen=True)
 class Margin:
     """How far the rank decisions of an analysis were from changing.
 
-    Attributes
-    ----------
-    smallest_kept : float
-        Smallest singular value counted as non-zero, relative to the largest
-        of its matrix (normalised coordinates).  Small: near a singularity.
-    largest_dropped : float
-        Largest singular value counted as zero, relative.  Well above round-off:
-        the geometry is only approximately special.
-    near_singular : bool
-    inexact : bool
+    ``smallest_kept``: the smallest singular value counted, relative to the
+    largest of its matrix (small: near a singularity); ``largest_dropped``: the
+    largest counted as zero (well above round-off: geometry only nearly
+    special); ``near_singular`` and ``inexact`` say whether the policy warned.
+
+    Examples
+    --------
+    >>> Margin(0.5, 0.0, False, False).to_dict()["smallest_kept"]
+    0.5
     """
 
     smallest_kept: float
@@ -81,20 +73,15 @@ class Margin:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "smallest_kept": self.smallest_kept,
-            "largest_dropped": self.largest_dropped,
-            "near_singular": self.near_singular,
-            "inexact": self.inexact,
-        }
+        return asdict(self)
 
 
 @dataclass(frozen=True, eq=False)
 class LimbSystem(ReadOnlyArrays):
     """Twist and constraint systems of one limb (a branch of the top parallel connection).
 
-    Everything is written in ``frame`` (the frame all the limb's joints are
-    written in, else ``world``), in the same canonical form as :class:`Result`.
+    Written in ``frame`` (the one all the limb's joints are written in, else
+    ``world``), in the canonical form of :class:`Result`.
     """
 
     structure: str
@@ -110,29 +97,23 @@ class LimbSystem(ReadOnlyArrays):
 
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "structure": self.structure,
-            "frame": self.frame,
-            "dof": self.dof,
-            "idle_dof": self.idle_dof,
-            "translations": [clean_numbers(t) for t in self.translations],
-            "rotations": [r.to_dict(scale) for r in self.rotations],
-            "twists": [clean_numbers(t, scale) for t in self.twists],
-            "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(scale) for f in self.forces]},
-            "wrenches": [clean_numbers(w, scale) for w in self.wrenches],
-        }
+        return {"structure": self.structure, "frame": self.frame, "dof": self.dof, "idle_dof": self.idle_dof,
+                "translations": [clean_numbers(t) for t in self.translations], "rotations": [r.to_dict(scale) for r in self.rotations],
+                "twists": [clean_numbers(t, scale) for t in self.twists],
+                "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(scale) for f in self.forces]},
+                "wrenches": [clean_numbers(w, scale) for w in self.wrenches]}
 
 
 class NodeSystem(NamedTuple):
     """What the analysis found at one node of the series/parallel tree.
 
-    Attributes
-    ----------
-    dof : int
-        Dimension of the twist system of the relative motion of the node's
-        two end links (for a joint: its DOF).
-    idle : int
-        Motions of the joints inside the node that leave those two links still.
+    ``dof``: dimension of the twist system between the node's two end links
+    (a joint's DOF); ``idle``: motions inside the node that leave them still.
+
+    Examples
+    --------
+    >>> NodeSystem(2, 1).mobility
+    3
     """
 
     dof: int
@@ -167,10 +148,8 @@ class ResultDetail(Protocol):
 class Result(ReadOnlyArrays):
     """What :func:`mobility.analyze` finds.
 
-    The counts are computed by the analysis; the directions (canonical forms),
-    limb systems and common constraints are computed on first access and then
-    kept (the result never changes: its arrays are read-only).  It pickles
-    (and deep-copies) at any time, with what it has computed so far.  Two
+    The counts come with it; directions, limb systems and common constraints
+    are computed on first access and kept.  It pickles at any time; two
     results are equal only when they are the same object.
 
     Attributes
@@ -203,31 +182,11 @@ class Result(ReadOnlyArrays):
         The end effector's centre (centroid of its joints' points): axes are
         reported through their point nearest to it, so an axis away from it
         (or a non-zero pitch) shows how rotating moves this point.
-    translations : ndarray, shape (nT, 3)
-        Orthonormal basis of the pure-translation subspace.
-    rotations : tuple of ScrewAxis
-        One per rotational DOF (see :mod:`mobility.core.canonical`); ``kind`` is
-        ``"rotation"`` (pitch 0) or ``"helical"``.
-    twists : ndarray, shape (dof, 6)
-        Basis of the end-effector twist system (translations then rotations).
-    wrenches : ndarray, shape (6 - dof, 6)
-        Basis of the constraint wrench system on the end effector (couples then forces).
-    couples : ndarray, shape (k, 3)
-        Orthonormal basis of the pure couples among the constraint wrenches.
-    forces : tuple of ScrewAxis
-        The other constraint wrenches; ``kind`` ``"force"`` (pitch 0) or ``"wrench"``.
-    limbs : tuple of LimbSystem
-        Each branch of a top-level parallel connection, in its own frame.
-    common_constraints : int
-        Wrenches reciprocal to every joint twist (3 for a planar mechanism).
-    mechanism : Mechanism
-        The mechanism that was analysed.
-    topology : Topology
-        The series/parallel decomposition the analysis used (``structure``
-        writes its root out).
-    node_systems : mapping of Node to NodeSystem
-        DOF and idle count of every node of ``topology`` (its root, the
-        detached networks and the joints), as the analysis found them.
+
+    The screws (:attr:`translations`, :attr:`rotations`, :attr:`twists`,
+    :attr:`couples`, :attr:`forces`, :attr:`wrenches`), :attr:`limbs`,
+    :attr:`common_constraints`, :attr:`mechanism`, :attr:`topology` and
+    :attr:`node_systems` are properties.
 
     Examples
     --------
@@ -270,17 +229,17 @@ class Result(ReadOnlyArrays):
 
     @property
     def translations(self) -> np.ndarray:
-        """Orthonormal basis (rows) of the pure-translation subspace."""
+        """Orthonormal basis (rows, shape (nT, 3)) of the pure-translation subspace."""
         return self._twist_form[0]
 
     @property
     def rotations(self) -> tuple[ScrewAxis, ...]:
-        """One screw axis per rotational DOF."""
+        """One screw axis per rotational DOF (:mod:`mobility.core.canonical`), ``kind`` ``"rotation"`` (pitch 0) or ``"helical"``."""
         return self._twist_form[1]
 
     @property
     def twists(self) -> np.ndarray:
-        """Basis (rows ``[w; v]``) of the end-effector twist system."""
+        """Basis (rows ``[w; v]``, shape (dof, 6)) of the end-effector twist system: translations, then rotations."""
         return self._twist_form[2]
 
     @property
@@ -290,27 +249,27 @@ class Result(ReadOnlyArrays):
 
     @property
     def forces(self) -> tuple[ScrewAxis, ...]:
-        """The constraint wrenches that are not pure couples, as axes."""
+        """The constraint wrenches that are not pure couples, as axes: ``kind`` ``"force"`` (pitch 0) or ``"wrench"``."""
         return self._wrench_form[1]
 
     @property
     def wrenches(self) -> np.ndarray:
-        """Basis (rows ``[f; m]``) of the constraint wrench system."""
+        """Basis (rows ``[f; m]``, shape (6 - dof, 6)) of the constraint wrench system on the end effector: couples, then forces."""
         return self._wrench_form[2]
 
     @read_only_cached_property
     def limbs(self) -> tuple[LimbSystem, ...]:
-        """Twist and constraint systems of each limb, in its own frame."""
+        """Twist and constraint systems of each branch of a top-level parallel connection, in its own frame."""
         return self.detail.limbs()
 
     @cached_property
     def common_constraints(self) -> int:
-        """Number of independent wrenches reciprocal to every joint twist."""
+        """Number of independent wrenches reciprocal to every joint twist (3 for a planar mechanism)."""
         return self.detail.common_constraints()
 
     @property
     def topology(self) -> Topology:
-        """The series/parallel decomposition the analysis used."""
+        """The series/parallel decomposition the analysis used (``structure`` writes its root out)."""
         return self.detail.topology
 
     @property
@@ -324,7 +283,7 @@ class Result(ReadOnlyArrays):
 
     @property
     def node_systems(self) -> Mapping[Node, NodeSystem]:
-        """DOF and idle count of every node of :attr:`topology`, read-only.
+        """DOF and idle count of every node of :attr:`topology` (root, detached networks, joints), read-only.
 
         Examples
         --------
@@ -430,13 +389,7 @@ class Result(ReadOnlyArrays):
         return text
 
     def _inner_loops(self) -> list[tuple[Node, int, int]]:
-        """``(node, loops, redundant constraints)`` of each outermost sub-network of loops below the top of the tree (a parallelogram in a limb).
-
-        Its redundant constraints are its mobility with one end link held, from
-        :attr:`node_systems`, less its own Grübler–Kutzbach count: they are
-        redundant constraints of the whole mechanism too, the sub-networks
-        sharing no loop.
-        """
+        """``(node, loops, redundant constraints)`` of each outermost sub-network of loops below the top (a parallelogram in a limb): its mobility less its own Grübler–Kutzbach count."""
         root = self.topology.root
         if not isinstance(root, (Series, Parallel)):
             return []
@@ -463,32 +416,18 @@ class Result(ReadOnlyArrays):
     def to_dict(self) -> dict[str, Any]:
         """The JSON form: the spec's Result keys plus the whole-mechanism numbers."""
         s = self.length_scale
-        return {
-            "name": self.name,
-            "dof": self.dof,
-            "pattern": self.pattern,
-            "translations": [clean_numbers(t) for t in self.translations],
-            "rotations": [r.to_dict(s) for r in self.rotations],
-            "twists": [clean_numbers(t, s) for t in self.twists],
-            "wrenches": [clean_numbers(w, s) for w in self.wrenches],
-            "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(s) for f in self.forces]},
-            "mobility": self.mobility,
-            "gruebler_kutzbach": self.gruebler_kutzbach,
-            "redundant_constraints": self.redundant_constraints,
-            "idle_dof": self.idle_dof,
-            "loops": self.loops,
-            "links": self.links,
-            "joints": self.joints,
-            "joint_freedoms": self.joint_freedoms,
-            "common_constraints": self.common_constraints,
-            "gruebler_kutzbach_explanation": self.gruebler_kutzbach_explanation,
-            "structure": self.structure,
-            "margin": self.margin.to_dict(),
-            "warnings": list(self.warnings),
-            "limbs": [limb.to_dict(s) for limb in self.limbs],
-            "length_unit": self.length_unit,
-            "reference_point": clean_numbers(self.reference_point, s),
-        } | self._precision_dict()
+        counts = ("mobility", "gruebler_kutzbach", "redundant_constraints", "idle_dof", "loops", "links", "joints", "joint_freedoms",
+                  "common_constraints", "gruebler_kutzbach_explanation", "structure")
+        return (
+            {"name": self.name, "dof": self.dof, "pattern": self.pattern, "translations": [clean_numbers(t) for t in self.translations],
+             "rotations": [r.to_dict(s) for r in self.rotations], "twists": [clean_numbers(t, s) for t in self.twists],
+             "wrenches": [clean_numbers(w, s) for w in self.wrenches],
+             "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(s) for f in self.forces]}}
+            | {key: getattr(self, key) for key in counts}
+            | {"margin": self.margin.to_dict(), "warnings": list(self.warnings), "limbs": [limb.to_dict(s) for limb in self.limbs],
+               "length_unit": self.length_unit, "reference_point": clean_numbers(self.reference_point, s)}
+            | self._precision_dict()
+        )
 
     def _precision_dict(self) -> dict[str, Any]:
         """The ``precision`` key of the JSON form, when the file's precision changes the threshold (absent for an exact file)."""
@@ -515,8 +454,6 @@ def require_result(value: object, caller: str) -> Result:
 def require_result_of(mechanism: Mechanism, value: object, caller: str) -> Result:
     """``value`` when it is a :class:`Result` of ``mechanism``, else a :class:`~mobility.errors.RequestError` naming ``caller``.
 
-    :func:`require_result`, then :func:`require_same_mechanism`.
-
     Examples
     --------
     >>> import mobility
@@ -542,9 +479,8 @@ def _same_description(a: object, b: Mechanism) -> bool:
 def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) -> None:
     """A :class:`~mobility.errors.RequestError` naming ``caller`` when ``result`` analysed another mechanism than ``mechanism``.
 
-    The mechanism a result analysed (its ``mechanism``: :attr:`Result.mechanism`)
-    must equal ``mechanism`` (mechanisms compare by value: the same fields,
-    joints and pose; where the file was read from does not count).  A result that does not keep its mechanism is taken as it is.
+    Mechanisms compare by value (fields, joints, pose; not where the file was
+    read from); a result that does not keep its mechanism is taken as it is.
 
     Examples
     --------

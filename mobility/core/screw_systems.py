@@ -1,50 +1,26 @@
 """Screw systems of a decomposed mechanism at a stack of poses: the series/parallel route.
 
-The one engine of the package: :func:`mobility.analyze` calls it with a
-stack of one pose, the sweeps with thousands, the actuation checks with the
-joints they lock.  Each node of the :mod:`~mobility.core.topology` tree gets,
-at every pose of the stack, the twist system of the relative motion of its two
-end links and its *idle* count (motions of the joints inside that leave those
-two links still):
+The one engine: :func:`mobility.analyze` calls it with a stack of one pose,
+the sweeps with thousands, the actuation checks with joints locked.  Each
+node of the :mod:`~mobility.core.topology` tree gets, pose by pose, the twist
+system between its two end links and its *idle* count (inner motions that
+leave them still; mobility = dimension + idle):
 
 * joint: the span of its twists, idle 0;
-* series: the span of the children's twists (union of twists);
-  idle = children's idle + (twists stacked - dimension);
-* parallel: the reciprocal of the union of the children's constraint wrenches
-  (so the intersection of their twist systems); idle = children's idle;
-* bridge: loop closure on the reduced network (unknowns: the twists of its
-  inner links and coordinates on each connection's twist system; one vector
-  equation per connection, and one per coupling of joints that are its
-  edges: :func:`mobility.core.couplings.coupling_rows`), its twist system the
-  set of target twists of the solutions; idle = children's idle + solutions
-  that leave the target still.
+* series: the span of the children's twists; idle = children's + (stacked - dimension);
+* parallel: the reciprocal of the union of the children's constraint wrenches;
+  idle = children's;
+* bridge: loop closure on the reduced network (one vector equation per
+  connection, one per coupling: :func:`mobility.core.couplings.coupling_rows`);
+  its system the target twists of the solutions, idle = children's +
+  solutions that leave the target still.
 
-The mobility of a network is ``dimension + idle``.  Everything is computed in
-normalised coordinates (:mod:`mobility.core.joint_screws`); every rank
-decision is the one policy (:func:`~mobility.core.tolerance.decide_ranks`)
-and its margin is kept, pose by pose.
-
-A system whose rank differs from pose to pose is kept as a fixed-shape
-``(N, 6, k)`` array whose columns beyond each pose's rank are zero: zero
-columns change no span and no non-zero singular value, and each decision
-leaves them out of its count.  Where the rank is the same at every pose (one
-pose always) the arrays have exactly the rank's width.  The nodes are taken
-level by level from the leaves (no recursion: a ladder of loops thousands
-deep costs what a flat tree does), and the matrices of one level with the
-same shape (the limbs of a parallel mechanism) go to LAPACK as one stack.
-
-Examples
---------
->>> from mobility.core.model import Joint, Mechanism
->>> from mobility.core.topology import decompose
->>> from mobility.core.joint_screws import joint_screws
->>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p)
->>> m = Mechanism("four-bar", "g", "c", (R("A", "g", "k", (0, 0, 0)), R("B", "k", "c", (1, 2, 0)),
-...                                        R("C", "c", "r", (4, 2.5, 0)), R("D", "r", "g", (5, 0, 0))))
->>> s = joint_screws(m)
->>> v = evaluate(decompose(m).root, s.twists[None], s.offsets)
->>> v.dim, v.idle, v.basis.shape
-(1, 0, (1, 6, 1))
+All in normalised coordinates (:mod:`mobility.core.joint_screws`), every rank
+by :func:`~mobility.core.tolerance.decide_ranks` with its margin kept.  A rank
+that varies over the stack is kept as ``(N, 6, k)`` arrays zero beyond each
+pose's rank (zero columns change no span); a rank the same at every pose gives
+arrays exactly that wide.  Nodes go level by level from the leaves (no
+recursion), and one level's same-shape matrices go to LAPACK as one stack.
 """
 
 from __future__ import annotations
@@ -70,21 +46,15 @@ PerPose = Union[int, np.ndarray]
 class Systems(NamedTuple):
     """Twist system of a node at ``N`` poses (normalised coordinates of each pose).
 
-    Attributes
-    ----------
-    basis : ndarray, shape (N, 6, k)
-        Orthonormal basis of the twist system, columns beyond ``dim`` zero.
-    dim : int or ndarray of int, shape (N,)
-        The dimension at each pose; an int when it is the same at every pose
-        (always for one pose), which broadcasts as the array would, at no
-        cost per pose (:func:`per_pose` gives the array).
-    wrenches : ndarray, shape (N, 6, k')
-        Orthonormal basis of the constraint wrenches (``6 - dim`` columns, then zeros).
-    idle : int or ndarray of int, shape (N,)
-        Motions inside the node that leave its two end links still (an int
-        as ``dim`` is).
-    children : tuple of Systems
-        The values of the composite children (every child for a parallel node).
+    ``basis`` (N, 6, k) and ``wrenches`` (N, 6, k') are orthonormal bases of
+    the twist and constraint systems, zero beyond ``dim`` and ``6 - dim``
+    columns; ``dim`` and ``idle`` are :data:`PerPose` counts; ``children`` the
+    values of the composite children (every child of a parallel node).
+
+    Examples
+    --------
+    >>> Systems(np.zeros((1, 6, 0)), 0, np.eye(6)[None], 2).mobility
+    2
     """
 
     basis: np.ndarray
@@ -104,7 +74,6 @@ class Margins:
 
     Examples
     --------
-    >>> import numpy as np
     >>> m = Margins(2)
     >>> m.add(RankDecisions(np.array([2, 1, 1, 1]), np.array([0.5, 1.0, 0.9, 0.2]), np.array([1e-16, 0.0, 1e-13, 0.0])))
     >>> m.smallest_kept.tolist(), m.largest_dropped.tolist()
@@ -157,23 +126,12 @@ def _split(u: np.ndarray, swapped: np.ndarray, rank: np.ndarray, low: int, high:
 def span(m: np.ndarray, counts: PerPose, tol: Tolerance = DEFAULT_TOLERANCE, margins: Margins | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Span of the columns of each ``m[i]`` and its reciprocal system, by one stacked SVD.
 
-    Parameters
-    ----------
-    m : ndarray, shape (N, 6, k)
-    counts : ndarray of int, shape (N,)
-        The number of columns each matrix has without its zero padding.
-
-    Returns
-    -------
-    span : ndarray, shape (N, 6, max rank)
-        Orthonormal basis, columns beyond each rank zero.
-    reciprocal : ndarray, shape (N, 6, 6 - min rank)
-        Basis of the reciprocal system (``6 - rank`` columns, then zeros).
-    rank : ndarray of int, shape (N,)
+    ``m`` is (N, 6, k), ``counts`` its columns without zero padding.  Returns
+    the span (N, 6, max rank) and reciprocal (N, 6, 6 - min rank) bases, zero
+    beyond each pose's count, and the ranks (N,).
 
     Examples
     --------
-    >>> import numpy as np
     >>> z = np.zeros((1, 6, 2)); z[0, 2, 0] = z[0, 2, 1] = 1.0   # one rotation about z, twice
     >>> basis, reciprocal, rank = span(z, np.array([2]))
     >>> rank.tolist(), basis.shape, reciprocal.shape
@@ -191,19 +149,20 @@ def span(m: np.ndarray, counts: PerPose, tol: Tolerance = DEFAULT_TOLERANCE, mar
 def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolerance = DEFAULT_TOLERANCE, margins: Margins | None = None) -> Systems:
     """Twist system, wrench system and idle count of ``node`` at every pose of a stack.
 
-    Parameters
-    ----------
-    node : Node
-        A node of :func:`mobility.core.topology.decompose`.
-    twists : ndarray, shape (N, 6, f)
-        Unit joint twists of each pose, in its normalised coordinates (a
-        locked freedom has a zero column).
-    offsets : sequence of int
-        Columns of joint ``j``: ``offsets[j]:offsets[j+1]``.
-    tol : Tolerance
-        The rank policy.
-    margins : Margins, optional
-        Collects the margins of every rank decision made.
+    ``twists`` (N, 6, f) are the unit joint twists of each pose in its
+    normalised coordinates (a locked freedom a zero column), joint ``j``'s
+    columns ``offsets[j]:offsets[j+1]``; ``margins`` collects every decision's.
+
+    Examples
+    --------
+    >>> import mobility
+    >>> from mobility.core.topology import decompose
+    >>> from mobility.core.joint_screws import joint_screws
+    >>> m = mobility.load("mechanisms/four_bar.yaml")
+    >>> s = joint_screws(m)
+    >>> v = evaluate(decompose(m).root, s.twists[None], s.offsets)
+    >>> v.dim, v.idle, v.basis.shape
+    (1, 0, (1, 6, 1))
     """
     count = twists.shape[0]
     if margins is None:
@@ -254,10 +213,9 @@ def _stacked(members: list[tuple[Step, list[Systems], np.ndarray, PerPose]], cou
 class Step(NamedTuple):
     """One node of the tree as :func:`evaluate` takes it: its composite children, and where its matrix's joint columns are.
 
-    ``parts`` (joint and series nodes) lists the blocks of the node's matrix in
-    order: a ``slice`` of the joint twist columns (consecutive joints merged
-    into one), or the index in ``children`` of a composite child, whose basis
-    goes there.
+    ``parts`` lists the blocks of a joint or series node's matrix: a ``slice``
+    of joint twist columns (consecutive joints merged), or the index of a
+    composite child in ``children``.
     """
 
     node: Node
@@ -395,8 +353,7 @@ def _bridge(node: Bridge, values: list[Systems], twists: np.ndarray, offsets: Se
 def subtree_values(node: Node, value: Systems) -> Iterator[tuple[Node, Systems | None]]:
     """Every node of the subtree of ``node`` (parents first) with its value from :func:`evaluate`.
 
-    A joint inside a series or a bridge has no value of its own (its twists
-    enter its parent's matrix directly): ``None`` is given for it.
+    A joint inside a series or a bridge has no value of its own: ``None``.
 
     Examples
     --------
@@ -430,15 +387,12 @@ def subtree_values(node: Node, value: Systems) -> Iterator[tuple[Node, Systems |
 def direction_ranks(basis: np.ndarray, dim: PerPose, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecisions:
     """How many independent directions (rotations, for a twist system) each orthonormal screw basis of a stack holds.
 
-    The rank decision of the direction parts ``basis[:, :3]``; the basis is
-    orthonormal, so its singular values are at most 1 (up to round-off) and
-    the threshold is absolute.  The margin tells how close a screw is to
-    becoming a free vector (1.0 when there is no direction to lose).  The
-    decision of :func:`mobility.core.screws.free_vector_subspace`, pose by pose.
+    The rank of the direction parts ``basis[:, :3]`` (singular values at most
+    1: the threshold is absolute), as :func:`mobility.core.screws.free_vector_subspace`
+    decides it; the margin says how near a screw is to a free vector.
 
     Examples
     --------
-    >>> import numpy as np
     >>> cylindrical = np.zeros((1, 6, 2)); cylindrical[0, 2, 0] = cylindrical[0, 5, 1] = 1.0
     >>> direction_ranks(cylindrical, np.array([2])).rank.tolist()
     [1]
@@ -461,7 +415,7 @@ def per_pose(value: PerPose, count: int) -> np.ndarray:
 
 
 def at_pose(value: PerPose, index: int = 0) -> int:
-    """The count of pose ``index`` of a :data:`~mobility.core.screw_systems.PerPose` (an int when the same at every pose, or an array).
+    """The count of pose ``index`` of a :data:`~mobility.core.screw_systems.PerPose`.
 
     Examples
     --------
@@ -477,22 +431,11 @@ _PATTERNS = np.array([[pattern_of(d - r, r) if r <= d else "" for r in range(7)]
 class PoseAnswers(NamedTuple):
     """The counts and margins of :func:`mobility.analyze` at every pose of a stack (arrays of length ``N``).
 
-    Attributes
-    ----------
-    root : Systems
-        The twist system of the ground-to-end-effector network, with its children.
-    detached : tuple of Systems
-        Those of the networks not on a path between ground and end effector.
-    rotations : ndarray of int
-        Rotational freedoms of the end effector.
-    smallest_kept, largest_dropped : ndarray of float
-        The margin over every rank decision of the pose.
-    tol : Tolerance
-        The policy that decided.
-    dof, mobility : ndarray of int
-        End-effector DOF, mobility of the whole mechanism (properties).
-    pattern : ndarray of str
-    near_singular, inexact : ndarray of bool
+    ``root`` is the ground-to-end-effector network's :class:`Systems`,
+    ``detached`` those of networks off that path; ``rotations`` the end
+    effector's rotational freedoms; the margin over every decision of a pose
+    and the ``tol`` that decided.  ``dof``, ``mobility``, ``pattern``,
+    ``near_singular`` and ``inexact`` follow (see :func:`analyse_poses`).
     """
 
     root: Systems

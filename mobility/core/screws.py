@@ -10,12 +10,9 @@ Conventions (stated once, pinned by ``tests/test_screws.py``):
 * a frame at origin ``t`` with rotation ``R`` maps both twists and wrenches by
   the same 6x6 adjoint ``[[R, 0], [skew(t) R, R]]``.
 
-A *screw system* is a linear subspace of R^6, kept as a 6 x r matrix whose
-columns are an orthonormal basis (in the coordinates where it was computed).
-One SVD of the stacked screws gives both the span and its reciprocal system,
-because the reciprocal of ``span(T)`` is ``SWAP @ (span(T))^perp``.
-
-Nothing here knows about files or mechanisms.
+A *screw system* is kept as a 6 x r orthonormal basis; one SVD gives the
+span and its reciprocal, since the reciprocal of ``span(T)`` is
+``SWAP @ (span(T))^perp``.
 
 Examples
 --------
@@ -39,23 +36,9 @@ from .linalg import left_svd, rank, singular_values, svd
 from .tolerance import DEFAULT_TOLERANCE, SIGN_TIE, RankDecision, Tolerance, decide_rank
 from .transforms import skew
 
-__all__ = [
-    "SWAP",
-    "SWAP_ROWS",
-    "revolute_twist",
-    "prismatic_twist",
-    "helical_twist",
-    "reciprocal_product",
-    "adjoint",
-    "ScrewSpan",
-    "span_and_reciprocal",
-    "reciprocal_system",
-    "intersection",
-    "same_subspace",
-    "free_vector_subspace",
-    "pattern_of",
-    "motion_pattern",
-]
+__all__ = ["SWAP", "SWAP_ROWS", "revolute_twist", "prismatic_twist", "helical_twist", "reciprocal_product", "adjoint",
+           "ScrewSpan", "span_and_reciprocal", "reciprocal_system", "intersection", "same_subspace", "free_vector_subspace",
+           "pattern_of", "motion_pattern"]
 
 SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
 """The 6x6 matrix of the reciprocal product: ``a o b = a @ SWAP @ b``."""
@@ -84,13 +67,11 @@ def helical_twist(axis: npt.ArrayLike, point: npt.ArrayLike, pitch: float) -> np
 def reciprocal_product(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Reciprocal product ``a_w . b_v + a_v . b_w`` of screws stored as columns.
 
-    ``a`` and ``b`` are shape ``(6,)`` (one screw) or ``(6, n)`` (``n`` screws);
-    a single screw is paired with every column of the other argument, two
-    ``(6, n)`` arrays column by column (further axes broadcast as numpy does).
+    One screw ``(6,)`` pairs with every column of a ``(6, n)``; two ``(6, n)``
+    pair column by column (further axes broadcast).
 
     Examples
     --------
-    >>> import numpy as np
     >>> force_x_through_origin = np.array([1.0, 0, 0, 0, 0, 0])
     >>> float(reciprocal_product(force_x_through_origin, prismatic_twist([1.0, 0, 0])))
     1.0
@@ -111,7 +92,6 @@ def adjoint(rotation: np.ndarray, translation: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> local = revolute_twist([0, 0, 1], [0, 0, 0])
     >>> moved = adjoint(np.eye(3), np.array([1.0, 0, 0])) @ local
     >>> bool(np.allclose(moved, revolute_twist([0, 0, 1], [1, 0, 0])))
@@ -129,14 +109,9 @@ def adjoint(rotation: np.ndarray, translation: np.ndarray) -> np.ndarray:
 class ScrewSpan:
     """A screw system and its reciprocal, from one SVD.
 
-    Attributes
-    ----------
-    basis : ndarray, shape (6, r)
-        Orthonormal basis of the span.
-    reciprocal : ndarray, shape (6, 6 - r)
-        Basis of the reciprocal system (orthonormal up to the swap).
-    decision : RankDecision
-        The rank decision with its margin.
+    ``basis`` (6, r) is orthonormal, ``reciprocal`` (6, 6 - r) orthonormal up
+    to the swap; ``decision`` the rank decision with its margin (see
+    :func:`span_and_reciprocal`).
     """
 
     basis: np.ndarray
@@ -152,21 +127,14 @@ class ScrewSpan:
 def span_and_reciprocal(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> ScrewSpan:
     """Span of the columns of ``screws`` and the reciprocal system, by one SVD.
 
-    Each basis column is signed so that its first largest component is
-    positive: the sign an SVD routine gives a singular vector is its own
-    choice, and a one-dimensional system (one constraint force) then comes
-    out the same from every routine and every nearby matrix.
+    ``screws`` are columns (6, n), ``n`` may be 0.  Each basis column is
+    signed so that its first largest component is positive, so a
+    one-dimensional system comes out the same from every SVD routine.
 
-    Parameters
-    ----------
-    screws : ndarray, shape (6, n)
-        Screws as columns (``n`` may be 0).
-    tol : Tolerance
-        The rank policy.
-
-    Returns
-    -------
-    ScrewSpan
+    Examples
+    --------
+    >>> span_and_reciprocal(np.eye(6)[:, [2, 2]]).dim
+    1
     """
     m = screws if isinstance(screws, np.ndarray) and screws.ndim == 2 else np.asarray(screws, dtype=float).reshape(6, -1)
     if m.shape[1] == 0:
@@ -182,7 +150,6 @@ def reciprocal_system(screws: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) ->
 
     Examples
     --------
-    >>> import numpy as np
     >>> planar = np.stack([prismatic_twist([1, 0, 0]), prismatic_twist([0, 1, 0]),
     ...                    revolute_twist([0, 0, 1], [0, 0, 0])], axis=1)
     >>> w = reciprocal_system(planar)
@@ -201,12 +168,10 @@ def intersection(a: np.ndarray, b: np.ndarray, tol: Tolerance = DEFAULT_TOLERANC
 def same_subspace(a: np.ndarray, b: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
     """True when the columns of ``a`` and ``b`` span the same subspace.
 
-    Subspaces are compared as subspaces: equal ranks, and stacking them adds
-    no dimension.  Works for any row count (screws, 3-vectors).
+    Equal ranks, and stacking them adds none; any row count (screws, 3-vectors).
 
     Examples
     --------
-    >>> import numpy as np
     >>> same_subspace(np.array([[1.0, 0], [0, 1], [0, 0]]), np.array([[1.0], [1.0], [0.0]]))
     False
     """
@@ -221,32 +186,15 @@ def same_subspace(a: np.ndarray, b: np.ndarray, tol: Tolerance = DEFAULT_TOLERAN
 def free_vector_subspace(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, *, coefficients: bool = True):
     """Split an orthonormal screw basis into its free-vector part and the rest.
 
-    For a twist system the free vectors are the pure translations ``[0; v]``;
-    for a wrench system, the pure couples ``[0; m]``.
-
-    Parameters
-    ----------
-    basis : ndarray, shape (6, d)
-        Orthonormal basis of the system.
-    coefficients : bool
-        When false, only the rank decision is computed and returned.
-
-    Returns
-    -------
-    free : ndarray, shape (3, k)
-        Orthonormal basis of the free vectors (the ``v`` parts).
-    coefficients : ndarray, shape (d, d - k)
-        Coefficients (orthonormal columns) of a complement of the free part:
-        ``basis @ coefficients`` are screws with independent directions.
-    decision : RankDecision
-        Rank decision on the direction part: its rank is ``d - k`` and its
-        margin tells how close a screw is to becoming a free vector.  The
-        basis is orthonormal, so singular values are at most 1 (up to round-off) and the
-        threshold is absolute.
+    The free vectors are a twist system's pure translations ``[0; v]``, a
+    wrench system's pure couples.  Returns ``free`` (3, k), an orthonormal
+    basis of their ``v`` parts; ``coefficients`` (d, d - k), orthonormal, with
+    ``basis @ coefficients`` screws of independent directions; and the rank
+    decision on the direction part (rank ``d - k``, threshold absolute: the
+    basis is orthonormal), alone when ``coefficients`` is false.
 
     Examples
     --------
-    >>> import numpy as np
     >>> cyl = np.stack([revolute_twist([0, 0, 1], [1, 0, 0]), prismatic_twist([0, 0, 1])], axis=1)
     >>> free_vector_subspace(span_and_reciprocal(cyl).basis, coefficients=False).rank
     1
@@ -285,12 +233,10 @@ def pattern_of(translations: int, rotations: int) -> str:
 def motion_pattern(basis: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> str:
     """The motion pattern of an orthonormal twist basis: pure translations, then rotational freedoms.
 
-    ``nT`` is the dimension of the pure translations in the span, ``nR`` the
-    rest; the one rule used by the analysis and every feature.
+    ``nT`` is the dimension of the pure translations, ``nR`` the rest: the one rule of every feature.
 
     Examples
     --------
-    >>> import numpy as np
     >>> cyl = np.stack([revolute_twist([0, 0, 1], [1, 0, 0]), prismatic_twist([0, 0, 1])], axis=1)
     >>> motion_pattern(span_and_reciprocal(cyl).basis)
     '1T1R'

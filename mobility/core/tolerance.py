@@ -1,33 +1,18 @@
 """The one tolerance policy of the package.
 
-Every rank decision in :mod:`mobility` goes through :func:`decide_rank`, on
-matrices written in *normalised coordinates*: lengths divided by the
-mechanism's characteristic length ``L`` and measured from its centre ``c``
-(see :func:`characteristic_scale`).  Screws in those coordinates do not
-change when the file is scaled (every length times ``k``, so ``L`` too) or
-when the whole mechanism is moved rigidly (``c`` moves with it, and a
-rotation of both blocks of a screw leaves singular values unchanged).  A
-singular value counts when it exceeds ``rtol`` times the largest one (and
-``rtol`` in absolute terms, since every column has unit norm, so the largest
-singular value is at least one for a non-empty matrix).
+Every rank decision goes through :func:`decide_rank`, on matrices in
+*normalised coordinates* (lengths over the characteristic length ``L``, from
+the centre ``c``: :func:`characteristic_scale`), so that scaling the file or
+moving the mechanism rigidly changes no count.  A singular value counts when
+it exceeds ``rtol`` times the largest (and ``rtol`` absolutely: columns have
+unit norm).  Each decision records its *margin*, the smallest kept and the
+largest dropped value relative to the largest: near a singularity, or
+geometry only nearly special.  Both are reported, never hidden.
 
-Each decision also records its *margin*: the smallest kept and the largest
-dropped singular value relative to the largest.  A small kept value means the
-pose is close to a singularity where the rank would drop; a dropped value well
-above round-off means the geometry is only nearly special (e.g. coordinates
-typed with few digits).  Both are reported, never hidden.
-
-Below the policy, the fixed constants that decide no count (checks of a
-description, the solvers' stopping rules, ties of the readable forms) are
-kept here too, each with the reason for its value.  One module, longer than
-most, because its point is that every number of the kind stands in one place.
-
-Examples
---------
->>> import numpy as np
->>> d = decide_rank(np.array([2.0, 1.0, 1e-15]))
->>> d.rank, d.smallest_kept, d.largest_dropped
-(2, 0.5, 5e-16)
+The fixed constants that decide no count (checks of a description, solver
+stopping rules, ties of readable forms) stand here too, each with the reason
+for its value.  One module, longer than most, because its point is that every
+number of the kind stands in one place.
 """
 
 from __future__ import annotations
@@ -42,44 +27,18 @@ import numpy as np
 
 from ..errors import RequestError, shown_argument
 
-__all__ = [
-    "first_least",
-    "Tolerance",
-    "DEFAULT_TOLERANCE",
-    "require_tolerance",
-    "PRECISION_FACTOR",
-    "PRECISION_CEILING",
-    "file_tolerance",
-    "PARALLEL_AXES",
-    "ORTHONORMAL",
-    "SIGN_TIE",
-    "COMPONENT_TIE",
-    "NORM_TIE",
-    "COINCIDENT_POINTS",
-    "MARGIN_DIP",
-    "NEWTON_DAMPING",
-    "SOLVER_STOP",
-    "WRITE_DRIFT",
-    "RankDecision",
-    "decide_rank",
-    "binary_scale",
-    "characteristic_scale",
-    "clean_numbers",
-    "RankDecisions",
-    "decide_ranks",
-    "characteristic_scales",
-    "SAME_GRID_VALUE",
-    "SEAM_GAP",
-    "SWEEP_REACH",
-]
+__all__ = ["first_least", "Tolerance", "DEFAULT_TOLERANCE", "require_tolerance", "PRECISION_FACTOR", "PRECISION_CEILING",
+           "file_tolerance", "PARALLEL_AXES", "ORTHONORMAL", "SIGN_TIE", "COMPONENT_TIE", "NORM_TIE", "COINCIDENT_POINTS",
+           "MARGIN_DIP", "NEWTON_DAMPING", "SOLVER_STOP", "WRITE_DRIFT", "RankDecision", "decide_rank", "binary_scale",
+           "characteristic_scale", "clean_numbers", "RankDecisions", "decide_ranks", "characteristic_scales", "SAME_GRID_VALUE",
+           "SEAM_GAP", "SWEEP_REACH"]
 
 
 @dataclass(frozen=True)
 class Tolerance:
     """Every threshold of the package, all relative and dimensionless.
 
-    Each is a real number (a numpy float too, stored as a ``float``); a bool
-    or a string is refused.
+    Each is a real number (stored as a ``float``; a bool or a string is refused).
 
     Parameters
     ----------
@@ -120,7 +79,7 @@ class Tolerance:
                 except OverflowError:  # an integer beyond the floats
                     pass
             if not math.isfinite(number):
-                raise RequestError(f"Tolerance: {name} must be a finite number, got {shown_argument(value)}")
+                raise RequestError(f"{name} must be a finite number, got {shown_argument(value)}", caller="Tolerance")
             object.__setattr__(self, name, number)
         if not (0.0 < self.inexact <= self.rank < self.near_singular < 1.0):
             raise RequestError("tolerances must satisfy 0 < inexact <= rank < near_singular < 1")
@@ -143,52 +102,38 @@ def require_tolerance(value: object, caller: str) -> Tolerance:
     mobility.errors.RequestError: analyze: tol must be a Tolerance (e.g. Tolerance(rank=1e-9)), got float
     """
     if not isinstance(value, Tolerance):
-        raise RequestError(f"{caller}: tol must be a Tolerance (e.g. Tolerance(rank=1e-9)), got {type(value).__name__}")
+        raise RequestError(f"tol must be a Tolerance (e.g. Tolerance(rank=1e-9)), got {type(value).__name__}", caller=caller)
     return value
 
 
 PRECISION_FACTOR = 100.0
 """How many times a file's own precision the rank threshold is raised to (:func:`file_tolerance`).
 
-A file whose numbers are rounded (a CAD export with six significant digits)
-places each joint's axis and point to about its precision ``p`` (relative
-to the mechanism's size; radians).  The errors of the numbers along a loop
-add up: a loop of up to some thirty frames, each placed by a few rounded
-numbers and carrying them over lever arms up to a few times the size (in
-normalised coordinates), misses by up to about ``100 p``; so does the
-singular value of a direction that the designer's mechanism holds exactly
-(parallel axes, axes through one point) but the rounded file does not.  At
-``100 p`` every such direction is dropped, as the designer drew it; a
-direction kept at that threshold is far above anything the rounding can
-make (a freedom or a constraint of the mechanism itself).  On the
-six-digit files of the tests (a published biped exported by
-onshape-to-robot, ``tests/data/robots/toddlerbot``, and the rounded
-mechanisms of ``tests/data/cad``), the directions the rounding makes have
-singular values of 0.001 to 0.6 times ``p``, and the mechanism's own are
-21 to 300 times ``100 p``."""
+A file rounded to precision ``p`` (relative to its size) misses along a loop
+of up to some thirty frames by up to about ``100 p``, and so does a direction
+the designer's mechanism holds exactly (parallel axes, axes through one
+point); at ``100 p`` those are dropped as drawn.  On the six-digit files of the
+tests (``tests/data/robots/toddlerbot``, ``tests/data/cad``) the rounding's
+directions have singular values of 0.001 to 0.6 ``p``, the mechanism's own 21
+to 300 times ``100 p``."""
 
 PRECISION_CEILING = 1e-3
 """The highest rank threshold a file's precision raises the default to.
 
-A file rounded to four digits or fewer, or whose loops close only to a
-part in 10^5, cannot tell a mechanism from its neighbours at all; past
-this threshold a pose within a tenth of a percent of a singularity would be
-called singular.  The report says what precision was found, and ``--tol``
-decides otherwise."""
+Past it a pose within a tenth of a percent of a singularity would be called
+singular; a file that rough (four digits or fewer) cannot tell a mechanism
+from its neighbours anyway.  The report says what precision was found, and
+``--tol`` decides otherwise."""
 
 
 def file_tolerance(precision: float | None) -> Tolerance:
     """The tolerance that decides the ranks of a mechanism when none is given: never finer than its file.
 
-    The default (:data:`DEFAULT_TOLERANCE`) unless :data:`PRECISION_FACTOR`
-    times ``precision`` (the file's own, relative to the mechanism's size,
-    see :mod:`mobility.io.precision`) is above its rank threshold; then the
-    rank threshold is raised to it (to two significant digits), at most to :data:`PRECISION_CEILING`,
-    and the near-singular warning follows, ten times higher.  A file written
-    by hand or with full precision (``precision`` ``None``, or below about
-    1e-10) keeps the default: its answers are exactly those of the default
-    policy.  A tolerance given explicitly (``--tol``, ``tol=``) is used as
-    it is.
+    The default, unless :data:`PRECISION_FACTOR` times ``precision`` (the
+    file's, relative to its size: :mod:`mobility.io.precision`) is above its
+    rank threshold: then the threshold is raised to it (two significant
+    digits, at most :data:`PRECISION_CEILING`) and the near-singular warning
+    to ten times that.  A tolerance given explicitly is used as it is.
 
     Examples
     --------
@@ -206,143 +151,91 @@ def file_tolerance(precision: float | None) -> Tolerance:
     return Tolerance(rank=rank, near_singular=max(DEFAULT_TOLERANCE.near_singular, 10.0 * rank))
 
 
-# ---------------------------------------------------------------------------
-# Fixed constants: checks of a description, solver safeguards and the ties of
-# readable forms.  None of them decides a count; each says why it is the value
-# it is.  They live here so that every number of the kind is in one place.
+# Fixed constants (checks of a description, solver safeguards, ties of readable forms): none decides a count.
 
 PARALLEL_AXES = 1e-9
-"""The two axes of a U joint are refused as parallel when the sine of their
-angle is below this: the joint would have one freedom, not two.  A check of
-the description (nine digits), not a rank decision of the analysis."""
+"""The two axes of a U joint are refused as parallel when the sine of their angle is below this (a check of the description, not a rank decision)."""
 
 ORTHONORMAL = 1e-9
-"""A frame's rotation matrix must be orthonormal to this (entries of
-``R R^T - I``, with ``numpy.isclose``'s relative allowance of 1e-5 on the
-diagonal): rotations written with ten significant digits pass."""
+"""A frame's rotation must be orthonormal to this (entries of ``R R^T - I``, ``numpy.isclose``'s 1e-5 relative on the diagonal): ten digits pass."""
 
 SIGN_TIE = 1e-9
 """Components of a unit column within this of its largest are a tie for :func:`~mobility.core.screws.span_and_reciprocal`'s
 sign rule, broken by the lowest index: a readability choice far above round-off, not a rank decision."""
 
 COMPONENT_TIE = 1e-9
-"""Components of a unit vector within this of the largest are a tie, broken by
-the lowest index (x before y before z): a readability choice, far above the
-round-off of unit vectors (~1e-16) so that round-off never decides it.  Not a
-rank decision: no count depends on it."""
+"""Components of a unit vector within this of the largest are a tie, broken by the lowest index: a readability choice far above round-off."""
 
 COINCIDENT_POINTS = 1e-12
-"""Joint points whose RMS distance from their centroid is below this fraction
-of the centroid's distance from the origin coincide (their spread is the
-round-off of averaging them); only then is a helical pitch the mechanism's
-characteristic length (:func:`characteristic_scale`).  The same size as
-:attr:`Tolerance.round_off`: round-off, not a decision of the analysis."""
+"""Joint points whose RMS distance from their centroid is below this fraction of the centroid's distance from the origin coincide (round-off of averaging; :func:`characteristic_scale`)."""
 
 MARGIN_DIP = 0.5
-"""A sweep's grid point whose rank margin is at most this fraction of a
-neighbour's along an axis (and no larger than either) is a *margin dip*
-(:attr:`mobility.sweeps.SweepResult.dips`).  A margin that falls linearly to
-0 between two grid points is at most 1/3 of its farther neighbour at the
-nearest grid point, wherever the zero lies; 0.5 leaves room for curvature.
-A pointer for refining the grid, not a rank decision: no count depends on it."""
+"""A sweep's grid point whose rank margin is at most this fraction of a neighbour's (and no larger than either) is a *margin dip* (:attr:`mobility.sweeps.SweepResult.dips`).
+
+A margin falling linearly to 0 between grid points is at most 1/3 of its
+farther neighbour at the nearer point; 0.5 leaves room for curvature."""
 
 NORM_TIE = 1e-12
-"""Projections of coordinate axes whose norms are within this of the largest
-are a tie, broken by the lowest index (the same readability choice, for the
-greedy basis of :func:`~mobility.core.canonical.readable_basis`)."""
+"""Projections of coordinate axes whose norms are within this of the largest are a tie, broken by the lowest index (:func:`~mobility.core.canonical.readable_basis`)."""
 
 NEWTON_DAMPING = 1e-14
-"""Damping of Newton's steps (:func:`mobility.core.kinematics.newton`), relative
-to the mean squared row of the Jacobian: far below every kept singular value
-squared, so it only keeps the normal equations of a singular pose solvable, a
-safeguard of the linear solver, not a rank decision; whether loops closed is
-judged by :attr:`Tolerance.closure`."""
+"""Damping of Newton's steps (:func:`mobility.core.kinematics.newton`), relative to the Jacobian's mean squared row.
+
+Far below every kept singular value squared: it only keeps a singular pose's
+normal equations solvable; whether loops closed is :attr:`Tolerance.closure`'s."""
 
 VALUE_TIE = 1e-9
-"""Values within this fraction of the smallest are a tie for :func:`first_least`,
-broken by the first in order: a readability choice far above the round-off
-of margins and conditioning numbers (1e-12 relative seen at mirror poses),
-so that round-off never names the pose.  Not a rank decision: no count
-depends on it."""
+"""Values within this fraction of the smallest are a tie for :func:`first_least` (far above the 1e-12 round-off seen at mirror poses)."""
 
 UNIT_ROUND_OFF = 4 * sys.float_info.epsilon
-"""A direction whose length differs from 1 by at most this (a few units of the
-last place) is already a unit vector and is kept as written, not divided by
-its length again: dividing by a length that round-off puts one unit of the
-last place from 1 would change the last bit, so a direction written to a file
-and read back would not be the same to the bit.  Round-off, not a decision:
-no count depends on it."""
+"""A direction whose length is within this of 1 is kept as written, not divided again (which would change its last bit on each write and read)."""
 
 WRITE_DRIFT = 1e-9
-"""Largest change of a joint's geometry that writing a mechanism file and
-reading it back may make (relative to the characteristic length for points
-and pitches, absolute for unit directions): the written numbers keep many more
-digits than that, so only numbers the writer cannot hold trip it
-(:func:`mobility.io.writer.require_written_faithfully`)."""
+"""Largest change of a joint's geometry a write and read-back of its file may make (relative to ``L`` for points and pitches; :func:`mobility.io.writer.require_written_faithfully`)."""
 
 SAME_GRID_VALUE = 1e-9
 """Two values of a sweep's axis that differ by less than this fraction of its step are one value.
 
-Evenly spaced values carry round-off (``linspace``), and so does an angle
-reduced by whole turns: ``-180`` and ``180`` degrees, or ``0`` and ``360``,
-are one joint state of an R joint.  Used for ties (the value nearest the
-file's pose) and for angles congruent modulo a turn
-(:mod:`mobility.sweeps.walks`).
+Evenly spaced values and angles reduced by whole turns carry round-off
+(``-180`` and ``180`` degrees are one state of an R joint;
+:mod:`mobility.sweeps.walks`).
 """
 
 SEAM_GAP = 1e-3
 """Two solves of one pose farther apart than this are two poses (a seam of a sweep: :mod:`mobility.sweeps.seams`).
 
-The largest difference of the joints' unit twists, in normalised coordinates
-(lines over the characteristic length).  Newton's poses of one assembly
-agree to round-off, or to about the square root of the closure tolerance at
-a change point (1e-6); two assemblies, or a free joint that drifted round a
-turn, differ by much more (a tenth and up in the cases found).
+The largest difference of the joints' unit twists, normalised coordinates.
+Solves of one assembly agree to round-off (1e-6 at a change point); two
+assemblies differ by a tenth and up in the cases found.
 """
 
 SWEEP_REACH = 1000.0
-"""Farthest a sweep drives a coordinate from the file's pose: a slide or a
-translation of the end effector in characteristic lengths, an angle that does
-not wrap (an H joint's) in radians.  Beyond it double precision cannot close
-the loops to :attr:`Tolerance.closure`: lengths of ``D`` characteristic
-lengths carry round-off of about ``D * 1e-16`` into every residual
-component, and Newton's steps there are as ill-conditioned (measured on the
-3-PRS: sweeps reach 1,900 lengths, fail at 4,700).  An angle of an R or C
-joint wraps, so it has no limit (:attr:`mobility.sweeps.SweepAxis.internal`).
+"""Farthest a sweep drives a coordinate from the file's pose: characteristic lengths, or radians for an angle that does not wrap (an H joint's).
+
+Beyond it double precision cannot close the loops to :attr:`Tolerance.closure`
+(``D`` lengths put round-off ``D * 1e-16`` in every residual; the 3-PRS
+reaches 1,900 lengths, fails at 4,700).  An R or C angle wraps: no
+limit (:attr:`mobility.sweeps.SweepAxis.internal`).
 """
 
 NEAR_LARGEST_FLOAT = sys.float_info.max * 2.0**-20
-"""A mechanism reaching this far from the origin (its centre's largest
-coordinate plus its characteristic length) has the lazy parts of its result
-(screw axes, limbs) computed by :func:`mobility.analyze` itself, so that an
-axis whose point lies beyond the largest float is an error of the analysis,
-not of a later read of the result.  Nearer the origin no point of an axis
-can get there (the factor ``2**-20`` leaves room for axes a million
-characteristic lengths from the centre), and the result stays lazy.
+"""A mechanism reaching this far (centre's largest coordinate plus ``L``) has its result's lazy parts computed by :func:`mobility.analyze` itself.
+
+So an axis point beyond the largest float is an error of the analysis, not
+of a later read; nearer, ``2**-20`` leaves room for axes a million ``L`` away.
 """
 
 SOLVER_STOP = 1e-15
-"""``xtol``, ``ftol`` and ``gtol`` of every least-squares search (the inverse
-kinematics of the Jacobians, the fits of motion patterns, the second-order
-search of the finite analysis): iterate until round-off.  It only asks a
-solver to stop where double precision stops improving; whether a result fits
-is then judged by the policy (:attr:`Tolerance.closure`, :func:`decide_rank`).
-"""
+"""``xtol``, ``ftol`` and ``gtol`` of every least-squares search: iterate until round-off; the policy then judges the fit."""
 
 
 class RankDecision(NamedTuple):
-    """The outcome of one rank decision.
+    """The outcome of one rank decision: the ``rank`` kept, and relative to the largest value the ``smallest_kept`` (1.0 when none) and ``largest_dropped`` (0.0 when none).
 
-    Attributes
-    ----------
-    rank : int
-        Number of singular values kept.
-    smallest_kept : float
-        Smallest kept singular value over the largest one (1.0 when nothing is
-        kept, i.e. no risk of losing rank).
-    largest_dropped : float
-        Largest dropped singular value over the largest one (0.0 when nothing
-        is dropped).
+    Examples
+    --------
+    >>> RankDecision(3)
+    RankDecision(rank=3, smallest_kept=1.0, largest_dropped=0.0)
     """
 
     rank: int
@@ -353,16 +246,11 @@ class RankDecision(NamedTuple):
 def decide_rank(singular_values: np.ndarray | Sequence[float], tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecision:
     """Decide the numerical rank from singular values sorted in decreasing order.
 
-    Parameters
-    ----------
-    singular_values : ndarray or sequence of float
-        Singular values in decreasing order, as returned by :func:`numpy.linalg.svd`.
-    tol : Tolerance
-        The policy.
-
-    Returns
-    -------
-    RankDecision
+    Examples
+    --------
+    >>> d = decide_rank(np.array([2.0, 1.0, 1e-15]))
+    >>> d.rank, d.smallest_kept, d.largest_dropped
+    (2, 0.5, 5e-16)
     """
     return RankDecision(*_decide(singular_values.tolist() if isinstance(singular_values, np.ndarray) else singular_values, tol.rank))
 
@@ -382,24 +270,10 @@ def _decide(s: Sequence[float], rtol: float) -> tuple[int, float, float]:
 def binary_scale(*values: Any) -> float:
     """A power of two, ``2**-k``, that brings the largest magnitude among ``values`` into ``[0.5, 1)``.
 
-    Multiplying by a power of two is exact, so a computation made on scaled
-    numbers and scaled back gives the same bits as the plain one whenever the
-    plain one neither overflows nor underflows, and it cannot overflow
-    itself: the one way of normalising before squaring, used for the
-    characteristic length and the joint twists.
-
-    Parameters
-    ----------
-    *values : arrays or floats
-        Finite numbers (non-finite ones are the caller's to refuse).
-
-    Returns
-    -------
-    float
-        1.0 when every value is zero (or there are none).  ``k`` is kept
-        within ``±BINARY_EXPONENT`` so that the scale is a normal float: the
-        largest magnitudes of all (above ``2**1021``) come to below 8, the
-        subnormal ones to about ``2**-53``.
+    Scaling by a power of two is exact: the one way of normalising before
+    squaring, the same bits as the plain computation where that one does not
+    overflow.  1.0 when every value is zero; ``k`` stays within
+    ``±BINARY_EXPONENT`` so the scale is a normal float.
 
     Examples
     --------
@@ -420,39 +294,18 @@ BINARY_EXPONENT = 1021
 def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None, pitches: np.ndarray | None = None) -> tuple[np.ndarray, float]:
     """Centre and characteristic length of a mechanism.
 
-    The centre is the centroid of the joint points; the length is the RMS
-    distance ``d`` of those points from it, or, when all points coincide (to
-    :data:`COINCIDENT_POINTS`), the largest other length given (``lengths``
-    and ``pitches``); 1.0 when there is none.  A helical pitch ``h`` above
-    ``d`` raises the length to ``L = sqrt(d h)``: a screw turns by ``L / h``
-    of its motion and the points stand ``d / L`` apart, both ``sqrt(d / h)``,
-    so both are resolved (above :attr:`Tolerance.rank`) up to ``h / d =
-    1 / rank**2`` (1e16), where ``L = d`` would lose the rotation at 1e8.
-    Both follow the mechanism under scaling and rigid motion, which is what
-    makes the rank decisions invariant.  They are computed on the points
-    scaled by :func:`binary_scale` (nothing is squared before it), so any
-    scale of coordinates gives them to full precision; the length is
-    infinite only when the RMS radius itself exceeds the largest float.
-
-    Parameters
-    ----------
-    points : ndarray, shape (n, 3)
-        Joint points in the global frame.
-    lengths : ndarray, optional
-        Other lengths of the mechanism (absolute values are used), taken
-        only when the points coincide.
-    pitches : ndarray, optional
-        Helical pitches (absolute values are used): taken when the points
-        coincide, and raising the length as above.
-
-    Returns
-    -------
-    centre : ndarray, shape (3,)
-    length : float
+    The centre is the centroid of the joint ``points`` (global frame); the
+    length their RMS distance ``d`` from it, or when they coincide (to
+    :data:`COINCIDENT_POINTS`) the largest of ``lengths`` and ``pitches``
+    (absolute values), else 1.0.  A pitch ``h`` above ``d`` raises it to
+    ``L = sqrt(d h)``: the screw's turn and the points' offsets are then both
+    ``sqrt(d / h)`` of ``L``, resolved up to ``h / d = 1 / rank**2`` (1e16),
+    where ``L = d`` would lose the rotation at 1e8.  Both follow the mechanism
+    under scaling and rigid motion (so the ranks are invariant), computed on
+    :func:`binary_scale`'d points to full precision at any scale.
 
     Examples
     --------
-    >>> import numpy as np
     >>> c, L = characteristic_scale(np.array([[1.0, 0, 0], [-1.0, 0, 0]]))
     >>> c.tolist(), L
     ([0.0, 0.0, 0.0], 1.0)
@@ -496,20 +349,11 @@ def clean_numbers(value: Any, scale: float = 1.0, tol: Tolerance = DEFAULT_TOLER
     """A JSON-ready copy of ``value`` with round-off shown as 0: the one rule for every number shown.
 
     Arrays, tuples and lists become lists, numpy scalars Python numbers; a
-    float whose size is below ``tol.round_off * scale`` becomes ``0.0`` (and
-    ``-0.0`` becomes ``0.0``).  Anything else is returned unchanged.
-
-    Parameters
-    ----------
-    value : float, array, list or tuple (nested)
-    scale : float
-        The size that round-off is relative to (a length scale for points,
-        1 for unit directions).
-    tol : Tolerance
+    float below ``tol.round_off * scale`` (``scale``: a length for points, 1
+    for directions) becomes ``0.0``, as does ``-0.0``; anything else is kept.
 
     Examples
     --------
-    >>> import numpy as np
     >>> clean_numbers(np.array([1.0, -1e-17, 2.5]))
     [1.0, 0.0, 2.5]
     >>> clean_numbers((3e-10, [np.float64(-0.0)]), scale=1000.0)
@@ -532,16 +376,9 @@ def clean_numbers(value: Any, scale: float = 1.0, tol: Tolerance = DEFAULT_TOLER
 def first_least(values: Any) -> int:
     """Index of the first of the smallest values, values within :data:`VALUE_TIE` of the smallest counting as equal.
 
-    Where several poses tie (a symmetric mechanism's margin at mirror poses),
-    the one named is the first in the order given, never the one the last
-    bits of a LAPACK routine favour: mirror poses' margins differ by round-off
-    amplified by the conditioning (1e-12 relative on the parallelogram, and
-    by how much depends on the BLAS kernel the CPU selects).
-
-    Parameters
-    ----------
-    values : array_like of float
-        Not empty; NaN counts as larger than any number.
+    Mirror poses tie by round-off that depends on the BLAS kernel: the pose
+    named is the first given, never the one the last bits favour.  ``values``
+    is not empty; NaN counts as larger than any number.
 
     Examples
     --------
@@ -558,20 +395,11 @@ def first_least(values: Any) -> int:
     return int(np.flatnonzero(a <= least + VALUE_TIE * abs(least))[0])
 
 
-# ---------------------------------------------------------------------------
 # the same policy over many matrices at once (sweeps)
-# ---------------------------------------------------------------------------
 
 
 class RankDecisions(NamedTuple):
-    """Many rank decisions at once: :class:`RankDecision` with arrays for fields.
-
-    Attributes
-    ----------
-    rank : ndarray of int, shape (N,)
-    smallest_kept : ndarray of float, shape (N,)
-    largest_dropped : ndarray of float, shape (N,)
-    """
+    """Many rank decisions at once: :class:`RankDecision` with arrays of shape (N,) for fields (see :func:`decide_ranks`)."""
 
     rank: np.ndarray
     smallest_kept: np.ndarray
@@ -585,26 +413,12 @@ _ROW_BY_ROW = 8
 def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: int | Sequence[int] | np.ndarray | None = None) -> RankDecisions:
     """:func:`decide_rank` of every row of ``singular_values``, vectorised, with the same semantics.
 
-    Parameters
-    ----------
-    singular_values : ndarray, shape (N, k)
-        Each row in decreasing order (as :func:`numpy.linalg.svd` returns a stack).
-    tol : Tolerance
-    counts : int, or sequence or ndarray of int, shape (N,), optional
-        How many leading values of each row are singular values of its
-        matrix (the number of columns of each matrix without the zero columns
-        added to give every matrix of a stack the same shape; a count beyond
-        the row's length means the whole row); the others are ignored, as if
-        the row were shorter.
-
-    Returns
-    -------
-    RankDecisions
-        Row ``i`` equals ``decide_rank(singular_values[i, :counts[i]], tol)``.
+    Row ``i`` is ``decide_rank(singular_values[i, :counts[i]], tol)``: each row
+    in decreasing order, ``counts`` (an int or one per row, default all) the
+    leading values that are its matrix's own (not padding columns).
 
     Examples
     --------
-    >>> import numpy as np
     >>> d = decide_ranks(np.array([[2.0, 1.0, 1e-15], [3.0, 0.0, 0.0]]), counts=np.array([3, 1]))
     >>> d.rank.tolist(), d.smallest_kept.tolist(), d.largest_dropped.tolist()
     ([2, 1], [0.5, 1.0], [5e-16, 0.0])
@@ -634,21 +448,11 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
 def characteristic_scales(points: np.ndarray, lengths: np.ndarray | None = None, pitches: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """:func:`characteristic_scale` of many poses of one mechanism at once.
 
-    Parameters
-    ----------
-    points : ndarray, shape (N, n, 3)
-        The joint points of each pose, global frame.
-    lengths, pitches : ndarray, optional
-        Other lengths and helical pitches of the mechanism (the same for every pose).
-
-    Returns
-    -------
-    centres : ndarray, shape (N, 3)
-    lengths : ndarray, shape (N,)
+    ``points`` has shape (N, n, 3); ``lengths`` and ``pitches`` are the same
+    for every pose.  Returns centres (N, 3) and lengths (N,).
 
     Examples
     --------
-    >>> import numpy as np
     >>> c, L = characteristic_scales(np.array([[[1.0, 0, 0], [-1.0, 0, 0]], [[2.0, 2, 0], [2.0, 2, 0]]]))
     >>> c.tolist(), L.tolist()
     ([[0.0, 0.0, 0.0], [2.0, 2.0, 0.0]], [1.0, 1.0])

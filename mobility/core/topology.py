@@ -1,35 +1,18 @@
 """The joint graph and its series/parallel decomposition between ground and end effector.
 
-Links are nodes and joints are edges of a multigraph (two joints between the
-same links are a loop).  :func:`decompose` reduces the two-terminal network
-between the ground and the end effector by
+Links are nodes and joints edges of a multigraph.  :func:`decompose` merges
+**series** (an inner link with exactly two joints) and **parallel** (several
+connections between two links) until one connection remains; what does not
+reduce (a tie link between two limbs) becomes a :class:`Bridge`, solved by
+loop closure.  Coupled joints are never merged: they are direct edges of one
+bridge holding the whole graph, with one more equation per coupling.  Blocks
+on no ground-to-end-effector path are :attr:`Topology.detached`: they add to
+the mobility, not to the end effector's freedom.
 
-* **series**: a link with exactly two joints, neither terminal, merges them;
-* **parallel**: several connections between the same two links merge;
-
-until one connection remains.  What does not reduce further (every inner link
-has three or more connections, e.g. a tie link between two limbs) becomes a
-:class:`Bridge`, solved later by loop closure; it is never refused.
-
-Coupled joints (:attr:`Mechanism.couplings`) are never merged: each is a
-direct edge of one :class:`Bridge` that holds the whole graph (detached parts
-too, since a coupling may tie them to the rest), the other joints reduced
-around them; the bridge carries the couplings on the positions of its edges
-and is solved by loop closure with one more equation per coupling.
-
-Parts of the graph on no ground-to-end-effector path (blocks of the graph
-that the virtual edge ground–end-effector does not join) cannot change the
-end effector's freedom; they are kept as :attr:`Topology.detached` because
-they still add to the mobility of the whole mechanism.
-
-The decomposition is structural (no geometry) and cached per graph, so a
-sweep over poses of one mechanism pays for it once.  It takes time linear in
-the number of joints (up to a logarithm) and no recursion whose depth grows
-with the mechanism: a chain of 2,000 joints or a ladder of 2,000 loops nests
-as deep as it is long.  Merges keep each connection's orientation as a flag
-and splice nested series (and parallels) only once, when the tree is built;
-:mod:`networkx` (biconnected blocks, breadth-first tree) is imported only when
-a graph does not reduce whole, or for a spanning tree.
+Structural (no geometry), cached per graph, linear in the joints up to a
+logarithm, and without recursion: a ladder of 2,000 loops nests as deep as it
+is long.  :mod:`networkx` is imported only for a graph that does not reduce
+whole, or a spanning tree.
 
 Examples
 --------
@@ -64,9 +47,8 @@ class JointNode:
 class _Composite:
     """Hashing, equality and ``repr`` of a composite node without recursion.
 
-    The hash is computed once, from the children's (already computed) hashes;
-    equality and ``repr`` walk the tree with an explicit stack, so a tree as
-    deep as a 2,000-joint ladder compares and prints like a small one.
+    The hash is computed once from the children's; equality and ``repr`` walk
+    an explicit stack, so a 2,000-joint ladder compares and prints like a small tree.
     """
 
     def _set_hash(self, value: Any) -> None:
@@ -111,11 +93,9 @@ class Parallel(_Composite):
 class Bridge(_Composite):
     """A network that is not series-parallel, between ``source`` and ``target``.
 
-    ``edges`` are ``(u, v, node)``: a connection (itself reduced) between
-    links ``u`` and ``v``.  ``couplings`` are ``(slides, ((edge, coefficient),
-    ...))``: a coupling of the mechanism on joints that are edges of this
-    bridge (by position in ``edges``), ``slides`` true for a coupling of P
-    joints (see :mod:`mobility.core.couplings`).
+    ``edges`` are ``(u, v, node)``, a reduced connection between links ``u`` and
+    ``v``; ``couplings`` are ``(slides, ((edge, coefficient), ...))`` on edge
+    positions, ``slides`` true for P joints (:mod:`mobility.core.couplings`).
     """
 
     source: str
@@ -214,19 +194,10 @@ def _same_tree(a: Node, b: Node) -> bool:
 class Topology:
     """The decomposition of a mechanism's joint graph.
 
-    Attributes
-    ----------
-    root : Node
-        The network between ground and end effector.
-    detached : tuple of Node
-        Networks (blocks) on no ground-to-end-effector path; they count for
-        the mobility only.
-    link_count : int
-        Number of links, ground included.
-    loop_count : int
-        Number of independent loops, ``joints - links + 1``.
-    structure : str
-        :func:`describe` of the root.
+    ``root`` is the network between ground and end effector, ``detached`` the
+    blocks on no path between them (they count for the mobility only);
+    ``link_count`` includes the ground, ``loop_count`` is ``joints - links + 1``,
+    ``structure`` :func:`describe` of the root.
     """
 
     root: Node
@@ -240,9 +211,8 @@ class Topology:
 class TreeEdge:
     """A joint of a spanning tree, met going away from the ground.
 
-    ``forward`` is true when the joint is written from ``parent`` to ``child``
-    (``links == (parent, child)``), so its twists carry the child's motion
-    relative to the parent with a plus sign.
+    ``forward``: written from ``parent`` to ``child``, its twists carry the
+    child's motion relative to the parent with a plus sign.
     """
 
     parent: str
@@ -254,16 +224,9 @@ class TreeEdge:
 def spanning_tree(mechanism: Mechanism) -> tuple[tuple[TreeEdge, ...], tuple[int, ...]]:
     """A breadth-first spanning tree of the joint graph from the ground, and its chords.
 
-    Several joints between the same two links are a loop: the first one
-    written is in the tree, the others are chords.
-
-    Returns
-    -------
-    tree : tuple of TreeEdge
-        In breadth-first order (a parent always comes before its children).
-    chords : tuple of int
-        Indices of the joints off the tree, in file order; each closes one
-        independent loop.
+    The tree is in breadth-first order (parents first); the chords are the
+    indices of the other joints, in file order, each closing one loop (of
+    several joints between two links the first written is in the tree).
 
     Examples
     --------
@@ -384,9 +347,7 @@ def _blocks(edges: list[Edge], s: str, t: str) -> list[tuple[list[Edge], bool]]:
     return [(grouped[k], k == main) for k in sorted(grouped)]
 
 
-# ---------------------------------------------------------------------------
 # series/parallel reduction
-# ---------------------------------------------------------------------------
 
 
 class _Merged:
@@ -441,13 +402,10 @@ def _built(item: Any, flipped: bool) -> Node:
 def _reduce(edge_list: list[Edge], s: str, t: str, frozen: frozenset[int] | set[int] = frozenset()) -> Node:
     """Series/parallel reduction of a two-terminal multigraph.
 
-    The steps and their order are those of repeated passes of: merge every
-    group of connections between the same two links (groups in the order of
-    their first connection), then every inner link with exactly two
-    connections (links in order of first appearance).  Each pass visits only
-    the groups and links it merges, and a merge only flags orientation, so the
-    whole reduction is linear in the number of joints up to the sorting.
-    The edges at the positions ``frozen`` are never merged.
+    Repeated passes merge every parallel group (in the order of its first
+    connection), then every inner link of two connections (in order of first
+    appearance); each pass visits only what it merges, so the reduction is
+    linear up to the sorting.  Edges at positions ``frozen`` are never merged.
     """
     edges: dict[int, tuple[str, str, Any]] = dict(enumerate(edge_list))
     order: dict[str, int] = {}

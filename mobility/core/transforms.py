@@ -1,24 +1,9 @@
 """Rigid transforms: rotations from roll-pitch-yaw or axis-angle, skew matrices, and the exponential map of SE(3).
 
-Conventions (stated once, pinned by tests):
-
-* ``rpy = [roll, pitch, yaw]`` gives ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``
-  (fixed axes x, y, z, as in URDF), angles in radians here; the loader
-  converts degrees.
-* A transform ``(R, t)`` maps coordinates in a child frame to its parent:
-  ``x_parent = R @ x_child + t``.
-* Twists are ``[w; v]`` (angular part first); :func:`twist_exp` and
-  :func:`displacement_log` map them to 4x4 displacements and back,
-  :func:`dexp` is the differential of the exponential, :func:`bracket` the Lie
-  bracket (the finite kinematics of :mod:`mobility.core.kinematics` is built
-  on them).
-
-Examples
---------
->>> import numpy as np
->>> R = rotation_from_rpy((0.0, 0.0, np.pi / 2))
->>> np.round(R @ [1.0, 0.0, 0.0], 12) + 0.0
-array([0., 1., 0.])
+Conventions (pinned by tests): ``rpy`` gives ``R = Rz(yaw) @ Ry(pitch) @
+Rx(roll)`` (fixed axes, as in URDF; radians here, the loader converts
+degrees); a transform ``(R, t)`` maps a child frame to its parent,
+``x_parent = R @ x_child + t``; twists are ``[w; v]``, angular part first.
 """
 
 from __future__ import annotations
@@ -31,29 +16,9 @@ from typing import Sequence
 import numpy as np
 import numpy.typing as npt
 
-__all__ = [
-    "cross",
-    "skew",
-    "rotation_from_rpy",
-    "rotation_from_axis_angle",
-    "Transform",
-    "twist_matrix",
-    "twist_exp",
-    "displacement_log",
-    "rotation_log",
-    "so3_left_jacobian",
-    "bracket",
-    "dexp",
-    "displacement_logs",
-    "rotation_logs",
-    "dexps",
-    "Motion",
-    "compose",
-    "rotate",
-    "twist_logs",
-    "rotation_logs_last",
-    "inverse_left_jacobian_times",
-]
+__all__ = ["cross", "skew", "rotation_from_rpy", "rotation_from_axis_angle", "Transform", "twist_matrix", "twist_exp",
+           "displacement_log", "rotation_log", "so3_left_jacobian", "bracket", "dexp", "displacement_logs", "rotation_logs",
+           "dexps", "Motion", "compose", "rotate", "twist_logs", "rotation_logs_last", "inverse_left_jacobian_times"]
 
 
 def skew(v: npt.ArrayLike) -> np.ndarray:
@@ -61,7 +26,6 @@ def skew(v: npt.ArrayLike) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> bool(np.allclose(skew([1, 2, 3]) @ [4, 5, 6], np.cross([1, 2, 3], [4, 5, 6])))
     True
     """
@@ -72,13 +36,11 @@ def skew(v: npt.ArrayLike) -> np.ndarray:
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Cross product of 3-vectors stored along axis 0 (shape ``(3,)`` or ``(3, n)``, broadcast).
 
-    The same numbers as ``np.cross(a, b, axis=0)``, without its axis
-    handling, which costs about twenty times the arithmetic on the tiny arrays
-    of screw theory (``tests/test_screws.py`` pins the equality).
+    The numbers of ``np.cross(a, b, axis=0)`` without its axis handling (twenty
+    times the arithmetic on tiny arrays; ``tests/test_screws.py`` pins them).
 
     Examples
     --------
-    >>> import numpy as np
     >>> cross(np.array([1.0, 0, 0]), np.array([0.0, 1, 0])).tolist()
     [0.0, 0.0, 1.0]
     """
@@ -93,16 +55,19 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def rotation_from_rpy(rpy: Sequence[float] | np.ndarray) -> np.ndarray:
-    """Rotation matrix ``Rz(yaw) @ Ry(pitch) @ Rx(roll)`` from angles in radians."""
+    """Rotation matrix ``Rz(yaw) @ Ry(pitch) @ Rx(roll)`` from angles in radians.
+
+    Examples
+    --------
+    >>> R = rotation_from_rpy((0.0, 0.0, np.pi / 2))
+    >>> np.round(R @ [1.0, 0.0, 0.0], 12) + 0.0
+    array([0., 1., 0.])
+    """
     r, p, y = (float(a) for a in rpy)
     cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
-    )
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
 
 
 def rotation_from_axis_angle(axis: npt.ArrayLike, angle: float) -> np.ndarray:
@@ -110,7 +75,6 @@ def rotation_from_axis_angle(axis: npt.ArrayLike, angle: float) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> R = rotation_from_axis_angle(np.array([0.0, 0.0, 1.0]), np.pi / 2)
     >>> np.round(R @ [1.0, 0.0, 0.0], 12) + 0.0
     array([0., 1., 0.])
@@ -121,7 +85,13 @@ def rotation_from_axis_angle(axis: npt.ArrayLike, angle: float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Transform:
-    """A rigid transform ``x_parent = rotation @ x_child + translation``."""
+    """A rigid transform ``x_parent = rotation @ x_child + translation``.
+
+    Examples
+    --------
+    >>> Transform(np.eye(3), np.array([1.0, 0, 0])).inverse().apply_point((1, 0, 0)).tolist()
+    [0.0, 0.0, 0.0]
+    """
 
     rotation: np.ndarray
     translation: np.ndarray
@@ -156,9 +126,7 @@ class Transform:
         return m
 
 
-# ---------------------------------------------------------------------------
 # the exponential map of SE(3), in [w; v] coordinates (angular part first)
-# ---------------------------------------------------------------------------
 
 
 def twist_matrix(twist: np.ndarray) -> np.ndarray:
@@ -181,7 +149,6 @@ def twist_exp(twist: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> g = twist_exp([0, 0, np.pi / 2, 0, 0, 0])   # quarter turn about z through the origin
     >>> np.round(g[:3, :3] @ [1, 0, 0], 12).tolist()
     [0.0, 1.0, 0.0]
@@ -218,12 +185,8 @@ def _coefficients(theta: float) -> tuple[float, float, float, float]:
             power *= t2
         return a, b, c, d
     s, co = math.sin(theta), math.cos(theta)
-    return (
-        (1.0 - co) / theta**2,
-        (theta - s) / theta**3,
-        (theta**2 + 2.0 * co - 2.0) / (2.0 * theta**4),
-        (2.0 * theta - 3.0 * s + theta * co) / (2.0 * theta**5),
-    )
+    return ((1.0 - co) / theta**2, (theta - s) / theta**3, (theta**2 + 2.0 * co - 2.0) / (2.0 * theta**4),
+            (2.0 * theta - 3.0 * s + theta * co) / (2.0 * theta**5))
 
 
 def so3_left_jacobian(w: np.ndarray) -> np.ndarray:
@@ -238,7 +201,6 @@ def rotation_log(rot: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> rotation_log(rotation_from_axis_angle(np.array([0.0, 0.6, 0.8]), 0.5)).round(12).tolist()
     [0.0, 0.3, 0.4]
     """
@@ -257,7 +219,6 @@ def displacement_log(g: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> x = np.array([0.1, -0.2, 0.3, 1.0, 2.0, -0.5])
     >>> bool(np.allclose(displacement_log(twist_exp(x)), x))
     True
@@ -301,9 +262,7 @@ def dexp(x: np.ndarray) -> np.ndarray:
     return out
 
 
-# ---------------------------------------------------------------------------
 # the same maps for many twists at once (the loops of a mechanism)
-# ---------------------------------------------------------------------------
 
 
 _TERMS = np.arange(8)
@@ -313,11 +272,7 @@ _SERIES_DENOMINATORS = np.array([[_FACTORIALS[2 * m + k] for m in range(8)] for 
 
 
 def _coefficients_many(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`_coefficients` of every angle of ``theta`` (1-D): the same series and closed forms, the same roundings.
-
-    The powers are running products and the sums running sums in the order
-    of the scalar loop (``cumprod``, ``cumsum``), so each value is the scalar one.
-    """
+    """:func:`_coefficients` of every angle of ``theta`` (1-D): bit for bit below 1 (running products and sums in the scalar loop's order), to round-off above (numpy's closed forms)."""
     theta = np.asarray(theta, dtype=float)
     small = theta < 1.0
     steps = np.empty((len(theta), 8))
@@ -347,7 +302,6 @@ def displacement_logs(g: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> x = np.array([[0.1, -0.2, 0.3, 1.0, 2.0, -0.5], [0, 0, 1e-9, 1, 0, 0]])
     >>> bool(np.allclose(displacement_logs(np.array([twist_exp(r) for r in x])), x, rtol=1e-14, atol=1e-15))
     True
@@ -361,7 +315,6 @@ def rotation_logs(rot: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> w = np.array([[0.1, -0.2, 0.3], [0.0, 0.0, 3.1]])
     >>> g = np.stack([twist_exp(np.concatenate([x, [0, 0, 0]])) for x in w])
     >>> bool(np.allclose(rotation_logs(g[:, :3, :3]), w))
@@ -375,7 +328,6 @@ def dexps(x: np.ndarray) -> np.ndarray:
 
     Examples
     --------
-    >>> import numpy as np
     >>> x = np.array([[0.1, -0.2, 0.3, 1.0, 2.0, -0.5], [2.0, 0.0, 1.0, 0.0, 1.0, 0.0]])
     >>> bool(np.allclose(dexps(x), np.stack([dexp(t) for t in x])))
     True
@@ -391,16 +343,10 @@ def dexps(x: np.ndarray) -> np.ndarray:
     return out
 
 
-# ---------------------------------------------------------------------------
 # many displacements, pose index last (the stacked kinematics)
-# ---------------------------------------------------------------------------
 #
-# Every product below is written as elementwise products summed in a fixed
-# order, so that each pose's numbers are the same bits whatever the stack
-# around it: ``einsum`` and ``matmul`` pick their inner loops (and fused
-# multiply-adds) by the arrays' sizes, which made a pose's round-off, and
-# through a Newton solve that cannot close the pose it stops at, depend on how
-# many poses were solved with it (the chunk size of a sweep).
+# Products are elementwise, summed in a fixed order, so a pose's bits do not depend on the stack around it
+# (``einsum`` and ``matmul`` choose inner loops by size, which made a sweep's poses depend on its chunk size).
 
 Motion = tuple[np.ndarray, np.ndarray]
 """Displacements of many poses, pose index last: rotations ``(3, 3, N)`` and translations ``(3, N)``."""

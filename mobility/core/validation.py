@@ -1,24 +1,11 @@
 """The value checkers of the package: one idiom, ``require_*``, that returns the value checked or raises.
 
 A public function checks each argument once, at its boundary, with these;
-the code below it trusts what they return (a ``float``, an ``int``, a
-normalised direction, a tuple of names).  A refusal is an error with fields
--- :class:`~mobility.errors.MechanismError` (a description's key and what
-is wrong) or :class:`~mobility.errors.RequestError` (caller, argument,
-expected, got) -- which writes its own message.  The ``*_value`` readers
-(:func:`integer_value`, :func:`real_value`, :func:`bool_value`) are the one
-test of "an integer", "a real number" and "a bool", that the ``require_*``
-build on; used directly only where many values are read at once.  A file
-reader, which names a file's line rather than an argument, builds its
-message from the ``*_problem`` helpers of :mod:`mobility.errors`.
-
-Examples
---------
->>> require_vector([0, 0, 2], "axis", direction=True)
-(0.0, 0.0, 1.0)
->>> require_instance(3, str, "label", "str()")
-Traceback (most recent call last):
-mobility.errors.RequestError: label: expected a str (from str() or built in code), got int
+the code below trusts what they return.  A refusal is an error with fields
+(:class:`~mobility.errors.MechanismError`: key and problem;
+:class:`~mobility.errors.RequestError`: caller, argument, expected, got) that
+writes its own message.  :func:`integer_value` and :func:`real_value` are the
+one test of "an integer" and "a real number" the ``require_*`` build on.
 """
 
 from __future__ import annotations
@@ -33,25 +20,9 @@ import numpy as np
 from ..errors import MechanismError, RequestError, name_problem, shown_argument
 from .tolerance import UNIT_ROUND_OFF, binary_scale
 
-__all__ = [
-    "Vector",
-    "require_vector",
-    "require_instance",
-    "require_name",
-    "require_graph_names",
-    "require_unique_names",
-    "require_no_repeats",
-    "require_ground_and_end_effector",
-    "joint_names",
-    "integer_value",
-    "real_value",
-    "bool_value",
-    "require_integer",
-    "require_real",
-    "require_bool",
-    "number_from_text",
-    "integer_from_text",
-]
+__all__ = ["Vector", "require_vector", "require_instance", "require_name", "require_graph_names", "require_unique_names",
+           "require_no_repeats", "require_ground_and_end_effector", "joint_names", "integer_value", "real_value",
+           "require_integer", "require_real", "require_bool", "number_from_text", "integer_from_text"]
 
 _T = TypeVar("_T")
 
@@ -113,9 +84,6 @@ def _listed(value: Any) -> Any:
 def integer_value(value: Any) -> int | None:
     """``value`` as an ``int`` when it is an integer (``int``, a numpy integer, anything with ``__index__``) but not a bool, else None.
 
-    The one test of "an integer" of the API: ``3.0``, ``"3"`` and ``True``
-    are not, ``numpy.int64(3)`` is.
-
     Examples
     --------
     >>> integer_value(np.int64(3)), integer_value(3.0), integer_value("3"), integer_value(True)
@@ -144,17 +112,6 @@ def real_value(value: Any) -> float | None:
     except OverflowError:  # an integer beyond the floats
         return None
     return number if math.isfinite(number) else None
-
-
-def bool_value(value: Any) -> bool | None:
-    """``value`` as a ``bool`` when it is one (``True``, ``False``, ``numpy.True_``...), else None (``1`` and ``"yes"`` are not).
-
-    Examples
-    --------
-    >>> bool_value(np.bool_(True)), bool_value(False), bool_value(1)
-    (True, False, None)
-    """
-    return bool(value) if isinstance(value, (bool, np.bool_)) else None
 
 
 def require_integer(value: Any, expected: str, *, caller: str = "", argument: str = "", low: int | None = None, high: int | None = None,
@@ -193,7 +150,7 @@ def require_real(value: Any, expected: str, *, caller: str = "", argument: str =
 
 
 def require_bool(value: Any, *, caller: str = "", argument: str = "", got: str | None = None) -> bool:
-    """``value`` as a ``bool`` when it is one (:func:`bool_value`), else a :class:`~mobility.errors.RequestError` saying "expected True or False" (``got``: how the value is shown, default its ``repr``).
+    """``value`` as a ``bool`` when it is one (``numpy.True_`` too; not ``1``), else a :class:`~mobility.errors.RequestError` (``got``: how the value is shown, default its ``repr``).
 
     Examples
     --------
@@ -203,10 +160,9 @@ def require_bool(value: Any, *, caller: str = "", argument: str = "", got: str |
     Traceback (most recent call last):
     mobility.errors.RequestError: plot_mechanism: labels: expected True or False, got 1
     """
-    flag = bool_value(value)
-    if flag is None:
+    if not isinstance(value, (bool, np.bool_)):
         raise RequestError(caller=caller, argument=argument, expected="True or False", got=shown_argument(value) if got is None else got)
-    return flag
+    return bool(value)
 
 
 def _not_bool(value: Any) -> Any:
@@ -219,15 +175,9 @@ def _not_bool(value: Any) -> Any:
 def number_from_text(text: str) -> float:
     """The number written in ``text``, as ``float`` reads it, but in ASCII only and without ``_`` (``float`` reads ``"1_0"`` as 10).
 
-    The one reader of a number written as text (an option of the command
-    line, an environment variable, a string given for a number): ``float``
-    alone reads the digits of every script (``"١"`` is 1) and spaces of
-    every kind, which no one types meaning a number.
-
-    Raises
-    ------
-    ValueError
-        When ``text`` holds a character that is not ASCII, or is not a number.
+    The one reader of a number written as text (an option, an environment
+    variable): ``float`` alone reads the digits of every script (``"١"`` is 1).
+    Anything else raises ``ValueError``.
 
     Examples
     --------
@@ -255,10 +205,7 @@ def integer_from_text(text: str) -> int:
 
 
 def _in_ascii(text: str, what: str) -> str:
-    """``text`` when it is ASCII without ``_``, else a ``ValueError`` saying ``what`` (``"a number"``) it should be, in ASCII digits.
-
-    Python's ``float`` and ``int`` read ``"1_0"`` as 10; a file's numbers
-    never hold an underscore, nor do an option's or a variable's.
+    """``text`` when it is ASCII without ``_`` (which ``float`` and ``int`` skip), else a ``ValueError`` saying ``what`` it should be.
 
     Examples
     --------
@@ -308,13 +255,8 @@ def require_graph_names(graph: Any, node: str) -> None:
 def require_name(value: Any, key: str, expected: str) -> None:
     """``value`` must be a name: a non-empty string without control, format or line-break characters (:func:`~mobility.errors.name_problem`).
 
-    Parameters
-    ----------
-    value : Any
-    key : str
-        The key of the error (``"name"``, ``"links[0]"``).
-    expected : str
-        What a name there is, when ``value`` is not a non-empty string (``"a frame name"``).
+    ``key`` is the error's key (``"links[0]"``), ``expected`` what a name there
+    is (``"a frame name"``), said when ``value`` is not a non-empty string.
 
     Examples
     --------

@@ -33,8 +33,8 @@ from urllib.parse import urlsplit
 import numpy as np
 
 from ..core.joint_screws import joint_screws
-from ..core.model import Mechanism
-from ..core.validation import integer_value
+from ..core.model import Mechanism, require_mechanism
+from ..core.validation import integer_value, require_bool
 from ..core.screw_systems import analyse_poses
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..core.topology import decompose
@@ -179,10 +179,29 @@ def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Se
     >>> analyse_joint_variables(m, np.zeros((2, 15)))["pattern"].tolist()
     ['1T2R', '1T2R']
     """
+    caller = "analyse_joint_variables"
+    mechanism = require_mechanism(mechanism, caller)
+    tol = require_tolerance(tol, caller)
+    transmission = require_bool(transmission, caller=caller, argument="transmission")
+    q = _require_joint_variables(q, joint_screws(mechanism).offsets[-1], caller)
     plan = GridPlan((), joint_screws(mechanism).normalisation.length)
     marked = any(j.actuated for j in mechanism.joints)
     inputs = actuated_inputs(mechanism, actuated) if (actuated is not None or marked) else None
-    return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs is not None and inputs.freedoms else None, GOOD_TRANSMISSION if transmission else None), np.asarray(q, dtype=float))
+    return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs is not None and inputs.freedoms else None, GOOD_TRANSMISSION if transmission else None), q)
+
+
+def _require_joint_variables(q: Any, n: int, caller: str) -> np.ndarray:
+    """``q`` as a float array ``(N, n)`` of finite joint variables, ``N >= 1``, else a RequestError naming ``caller``."""
+    expected = f"finite real joint variables of shape (N, {n}), N at least 1"
+    try:
+        array = np.asarray(q, dtype=float)
+    except (TypeError, ValueError):
+        raise RequestError(caller=caller, argument="q", expected=expected, got=shown_argument(q)) from None
+    if array.ndim != 2 or array.shape[0] < 1 or array.shape[1] != n:
+        raise RequestError(caller=caller, argument="q", expected=expected, got=f"shape {array.shape}")
+    if not np.isfinite(array).all():
+        raise RequestError(caller=caller, argument="q", expected=expected, got="a NaN or an infinity")
+    return array
 
 
 CONNECT_SECONDS = 10.0

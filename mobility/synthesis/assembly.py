@@ -250,6 +250,9 @@ def write_pkm_files(result: SynthesisResult, folder: str | Path, *, other: str =
         is left), a file to write is already there (nothing is written), or the
         chains of ``result`` are shorter than the pattern's dimension.
     """
+    result = require_instance(result, SynthesisResult, "write_pkm_files: result", "mobility.synthesize")
+    if not isinstance(folder, (str, os.PathLike)):
+        raise RequestError(caller="write_pkm_files", argument="folder", expected="a folder name (str or path)", got=type(folder).__name__)
     path = Path(folder)
     if result.joints != result.pattern.dim:
         raise RequestError(f"{folder}: a PKM is assembled from limbs of {counted(result.pattern.dim, 'joint')} (the dimension of {result.pattern.name}); "
