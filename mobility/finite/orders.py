@@ -155,11 +155,11 @@ def second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator,
     second-order term (every residual component), so "zero" (the policy's
     rank threshold) means small compared with how fast the loops open in
     general; geometry that is special only to ``inexact`` is allowed forms of
-    that relative size.  When the whole second-order term itself is that small
-    (its forms are brackets of unit twists, of order 1 in general), the loops
-    do not open to second order along any first-order motion (the Sarrus
-    linkage): every motion passes, and round-off is not measured against
-    round-off.  The directions where every form vanishes are searched
+    that relative size.  When the whole second-order term itself is at
+    round-off (below the rank threshold, while its forms, brackets of unit
+    twists, are of order 1 in general), the loops do not open to second order
+    along any first-order motion (the Sarrus linkage): every motion passes,
+    and round-off is not measured against round-off.  The directions where every form vanishes are searched
     by Gauss–Newton (:func:`_unit_zero`) from the basis directions and ``k + 2``
     random starts drawn from ``rng``.
     """
@@ -173,7 +173,7 @@ def second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator,
     zero = max(tol.rank, INEXACT_ALLOWANCE * inexact)
     forms = kin.second_order_forms(cokernel) if cokernel.shape[1] else np.zeros((0, n, n))
     reduced = np.einsum("ia,cij,jb->cab", tangent, forms, tangent) / max(scale, 1e-300)
-    if scale <= zero or float(np.abs(reduced).max(initial=0.0)) <= zero:  # every first-order motion passes
+    if scale <= tol.rank or float(np.abs(reduced).max(initial=0.0)) <= zero:  # every first-order motion passes
         return SecondOrder(cokernel.shape[1], False, 0.0, np.zeros((n, 0)), tangent, np.zeros((0, k, k)), zero)
     starts = list(np.eye(k)) + list(rng.standard_normal((k + 2, k)))
     found: list[np.ndarray] = []
