@@ -18,9 +18,9 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ..errors import MechanismError, shown_argument
+from ..errors import MechanismError, RequestError, shown_argument
 from .tolerance import decide_rank
-from .validation import Vector, _listed, integer_value, require_vector
+from .validation import Vector, _listed, require_integer, require_vector
 
 __all__ = ["Expected", "EXPECTED_KEYS", "EXPECTED_PATTERN", "require_expected_integer", "require_expected_pattern",
            "require_expected_basis", "independent_of"]
@@ -61,10 +61,10 @@ def require_expected_integer(value: Any, key: str, *, signed: bool = False, show
     Traceback (most recent call last):
     mobility.errors.MechanismError: dof: expected a non-negative integer, got '1'
     """
-    number = integer_value(value)
-    if number is None or (not signed and number < 0):
-        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {(shown or shown_argument)(value)}")
-    return number
+    try:
+        return require_integer(value, "", low=None if signed else 0)
+    except RequestError:
+        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {(shown or shown_argument)(value)}") from None
 
 
 def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str] | None = None) -> str:
