@@ -23,7 +23,7 @@ from typing import Any, Iterable, Mapping, Sequence, cast
 import numpy as np
 
 from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
-from .couplings import Coupling, check_couplings
+from .couplings import Coupling, require_couplings
 from .expected import Expected
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
@@ -423,7 +423,7 @@ class Mechanism:
             self.world_joints  # noqa: B018 - every joint's geometry must stay finite in the global frame
         if any(j.type == "H" for j in self.joints):
             self._require_resolved_pitches()
-        object.__setattr__(self, "couplings", check_couplings(self.couplings, self.joints))
+        object.__setattr__(self, "couplings", require_couplings(self.couplings, self.joints))
 
     def _require_resolved_pitches(self) -> None:
         """Refuse a helical pitch so much larger than the joint points' spread that no scale resolves both.
