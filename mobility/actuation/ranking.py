@@ -25,7 +25,7 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-from ..core.validation import integer_value
+from ..core.validation import require_integer
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, first_least
 from ..errors import RequestError, shown_argument
 from .assessment import Assessment
@@ -139,9 +139,10 @@ def inputs_per_combination(k: object, default: int) -> int:
     """
     if k is None:
         return default
-    number = integer_value(k)
-    if number is None:
-        raise RequestError(f"k must be an integer (inputs per combination), got {shown_argument(k)}")
+    try:
+        number = require_integer(k, "")
+    except RequestError:
+        raise RequestError(f"k must be an integer (inputs per combination), got {shown_argument(k)}") from None
     if number < 0:
         raise RequestError(f"k must be non-negative (inputs per combination), got {number}")
     return number

@@ -25,7 +25,7 @@ import warnings
 from typing import Any, NoReturn, Sequence
 
 from ..errors import MobilityError, RequestError, one_line
-from ..io.files import os_problem
+from ..io.files import os_reason
 from ..outputs import interrupting_signal, interrupts_end_at_commit, terminate_as_interrupt
 
 __all__ = ["main", "build_parser", "command_modules", "command_names", "options_given", "SUCCESS_OR_BAD_INPUT"]
@@ -130,7 +130,7 @@ class _GuardedOutput:
             if isinstance(exc, BrokenPipeError):
                 self.reader_gone = True  # drop the rest: the command still runs to its own exit status
                 return None
-            raise RequestError(f"cannot write it ({os_problem(exc)})", argument="standard output") from None
+            raise RequestError(f"cannot write it ({os_reason(exc)})", argument="standard output") from None
 
     def write(self, text: str) -> int:
         if self.stream is None:  # started with standard output closed (`>&-`): Python has none

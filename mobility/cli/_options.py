@@ -18,7 +18,7 @@ from ..core.model import Mechanism
 from ..core.validation import integer_from_text, number_from_text
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, file_tolerance
 from ..errors import RequestError, one_line
-from ..io.files import os_problem, require_not_pipe
+from ..io.files import os_reason, require_not_pipe
 from ..io.loader import FileRead, read_file
 
 __all__ = ["add_tolerance_option", "tolerance_from", "add_pose_sampler_options", "sampled_poses", "MECHANISM_FILE_HELP", "add_mechanism_file",
@@ -260,7 +260,7 @@ def require_new_output(output: str | None, option: str, *inputs: str | None) -> 
         if not os.path.isdir(folder):
             raise RequestError(f"cannot write there: the folder {folder} does not exist", argument=where) from None
     except OSError as exc:  # before any work: writing there would fail after it
-        raise RequestError(f"cannot write there: {os_problem(exc)}", argument=where) from None
+        raise RequestError(f"cannot write there: {os_reason(exc)}", argument=where) from None
     for given in inputs:
         if given is None:
             continue

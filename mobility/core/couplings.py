@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
 
-__all__ = ["Coupling", "COUPLED_TYPES", "check_couplings", "coupling_rows", "require_no_couplings"]
+__all__ = ["Coupling", "COUPLED_TYPES", "require_couplings", "coupling_rows", "require_no_couplings"]
 
 COUPLED_TYPES = ("R", "P", "H")
 """The joint types a coupling may hold: one freedom, one rate."""
@@ -81,13 +81,13 @@ class Coupling:
         return tuple(zip(self.joints, self.coefficients))
 
 
-def check_couplings(couplings: Any, joints: Sequence[Any]) -> tuple[Coupling, ...]:
+def require_couplings(couplings: Any, joints: Sequence[Any]) -> tuple[Coupling, ...]:
     """The couplings of a mechanism, checked against its joints (``name`` and ``type`` of each).
 
     Examples
     --------
     >>> from types import SimpleNamespace as J
-    >>> check_couplings([Coupling(("a", "c"), (1, -1))], [J(name="a", type="R"), J(name="b", type="R")])
+    >>> require_couplings([Coupling(("a", "c"), (1, -1))], [J(name="a", type="R"), J(name="b", type="R")])
     Traceback (most recent call last):
     ...
     mobility.errors.MechanismError: couplings[0].joints[1]: unknown joint 'c'; expected one of: a, b

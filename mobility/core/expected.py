@@ -18,12 +18,12 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ..errors import MechanismError, shown_argument
+from ..errors import MechanismError, RequestError, shown_argument
 from .tolerance import decide_rank
-from .validation import Vector, _listed, integer_value, require_vector
+from .validation import Vector, _listed, require_integer, require_vector
 
 __all__ = ["Expected", "EXPECTED_KEYS", "EXPECTED_PATTERN", "require_expected_integer", "require_expected_pattern",
-           "expected_basis_problem", "independent_of"]
+           "require_expected_basis", "independent_of"]
 
 
 EXPECTED_KEYS: dict[str, str] = {
@@ -61,10 +61,10 @@ def require_expected_integer(value: Any, key: str, *, signed: bool = False, show
     Traceback (most recent call last):
     mobility.errors.MechanismError: dof: expected a non-negative integer, got '1'
     """
-    number = integer_value(value)
-    if number is None or (not signed and number < 0):
-        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {(shown or shown_argument)(value)}")
-    return number
+    try:
+        return require_integer(value, "", low=None if signed else 0)
+    except RequestError:
+        raise MechanismError(key, f"expected {'an integer' if signed else 'a non-negative integer'}, got {(shown or shown_argument)(value)}") from None
 
 
 def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str] | None = None) -> str:
@@ -85,31 +85,30 @@ def require_expected_pattern(value: Any, key: str, *, shown: Callable[[Any], str
     return value
 
 
-def expected_basis_problem(vectors: Sequence[Vector]) -> tuple[int, str] | None:
-    """Why ``vectors`` are not a basis of directions (an expected ``translations``): the index of the first bad one and what is wrong; ``None`` when they are one.
+def require_expected_basis(vectors: Sequence[Vector], key: str) -> tuple[Vector, ...]:
+    """``vectors`` as a tuple when they are a basis of directions (an expected ``translations``), else a :class:`MechanismError` naming ``key[i]``, the first bad one.
 
     Each must be non-zero and independent of those before it by the one rank
     policy (round-off differences are dependent); an empty list is a basis.
 
     Examples
     --------
-    >>> expected_basis_problem([(0.0, 0.0, 1.0), (1.0, 0.0, 0.0)]) is None
-    True
-    >>> expected_basis_problem([(0.0, 0.0, 1.0), (0.0, 0.0, 2.0)])
-    (1, 'linearly dependent on the directions before it; expected a basis (independent directions)')
-    >>> expected_basis_problem([(0.0, 0.0, 0.0)])
-    (0, 'expected a non-zero direction, got [0, 0, 0]')
+    >>> require_expected_basis([(0.0, 0.0, 1.0), (1.0, 0.0, 0.0)], "translations")
+    ((0.0, 0.0, 1.0), (1.0, 0.0, 0.0))
+    >>> require_expected_basis([(0.0, 0.0, 1.0), (0.0, 0.0, 2.0)], "translations")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: translations[1]: linearly dependent on the directions before it; expected a basis (independent directions)
+    >>> require_expected_basis([(0.0, 0.0, 0.0)], "translations")
+    Traceback (most recent call last):
+    mobility.errors.MechanismError: translations[0]: expected a non-zero direction, got [0, 0, 0]
     """
     units: list[Vector] = []
     for i, v in enumerate(vectors):
-        try:
-            unit = require_vector(v, "", direction=True)
-        except MechanismError as exc:
-            return i, exc.message
+        unit = require_vector(v, f"{key}[{i}]", direction=True)
         if not independent_of(units, unit):
-            return i, "linearly dependent on the directions before it; expected a basis (independent directions)"
+            raise MechanismError(f"{key}[{i}]", "linearly dependent on the directions before it; expected a basis (independent directions)")
         units.append(unit)
-    return None
+    return tuple(vectors)
 
 
 def independent_of(directions: Sequence[Vector], direction: Vector) -> bool:
@@ -170,10 +169,7 @@ class Expected:
             if not isinstance(rows, tuple):
                 raise MechanismError("translations", f"expected a list of 3-vectors, got {shown_argument(self.translations)}")
             translations = tuple(require_vector(_listed(v), f"translations[{i}]") for i, v in enumerate(rows))
-            problem = expected_basis_problem(translations)
-            if problem is not None:
-                raise MechanismError(f"translations[{problem[0]}]", problem[1])
-            object.__setattr__(self, "translations", translations)
+            object.__setattr__(self, "translations", require_expected_basis(translations, "translations"))
         if not isinstance(self.extra, Mapping):
             raise MechanismError("extra", f"expected a mapping of further expected keys, got {type(self.extra).__name__}")
         extra = dict(self.extra)  # a copy: the caller's mapping may change afterwards

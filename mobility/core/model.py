@@ -23,12 +23,12 @@ from typing import Any, Iterable, Mapping, Sequence, cast
 import numpy as np
 
 from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
-from .couplings import Coupling, check_couplings
+from .couplings import Coupling, require_couplings
 from .expected import Expected
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
-from .validation import (Vector, _listed, _not_bool, integer_value, number_from_text, real_value, require_graph_names, require_ground_and_end_effector,
-                         require_instance, require_name, require_unique_names, require_vector)
+from .validation import (Vector, _listed, _not_bool, number_from_text, require_graph_names, require_ground_and_end_effector,
+                         require_instance, require_integer, require_name, require_real, require_unique_names, require_vector)
 
 __all__ = ["Coupling", "JOINT_TYPES", "JOINT_DOF", "JOINT_FIELDS", "Freedom", "FreedomTable", "Joint", "Frame", "Mechanism",
            "require_mechanism", "joint_freedoms", "WORLD"]
@@ -357,9 +357,12 @@ class Mechanism:
 
     def __post_init__(self) -> None:
         if self.precision is not None:
-            p = real_value(self.precision)
-            if p is None or p < 0.0:
-                raise MechanismError("precision", f"expected a finite number >= 0 or None, got {self.precision!r}")
+            try:
+                p = require_real(self.precision, "")
+                if p < 0.0:
+                    raise RequestError()
+            except RequestError:
+                raise MechanismError("precision", f"expected a finite number >= 0 or None, got {self.precision!r}") from None
             object.__setattr__(self, "precision", p)
         for key in ("joints", "frames"):
             value = getattr(self, key)
@@ -378,11 +381,16 @@ class Mechanism:
                 raise MechanismError(f"frames[{i}]", f"expected a Frame, got {type(f).__name__}")
         if self.expected is not None and not isinstance(self.expected, Expected):
             raise MechanismError("expected", f"expected an Expected or None, got {type(self.expected).__name__}")
-        if not isinstance(self.written_at, Mapping) or not all(
-            isinstance(k, str) and isinstance(v, tuple) and len(v) == 2 and isinstance(v[0], str) and (v[1] is None or integer_value(v[1]) is not None)
-            for k, v in self.written_at.items()
-        ):
-            raise MechanismError("written_at", "expected a mapping of joint names to (key path, line or None)")
+        try:
+            if not isinstance(self.written_at, Mapping) or not all(
+                isinstance(k, str) and isinstance(v, tuple) and len(v) == 2 and isinstance(v[0], str) for k, v in self.written_at.items()
+            ):
+                raise RequestError()
+            for _, line in self.written_at.values():
+                if line is not None:
+                    require_integer(line, "")
+        except RequestError:
+            raise MechanismError("written_at", "expected a mapping of joint names to (key path, line or None)") from None
         frame_index: dict[str, int] = {}
         for i, f in enumerate(self.frames):
             if f.name == WORLD:
@@ -415,7 +423,7 @@ class Mechanism:
             self.world_joints  # noqa: B018 - every joint's geometry must stay finite in the global frame
         if any(j.type == "H" for j in self.joints):
             self._require_resolved_pitches()
-        object.__setattr__(self, "couplings", check_couplings(self.couplings, self.joints))
+        object.__setattr__(self, "couplings", require_couplings(self.couplings, self.joints))
 
     def _require_resolved_pitches(self) -> None:
         """Refuse a helical pitch so much larger than the joint points' spread that no scale resolves both.

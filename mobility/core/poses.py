@@ -12,10 +12,10 @@ from ..errors import RequestError, shown_argument
 from .kinematics import kinematics
 from .couplings import require_no_couplings
 from .model import Mechanism, require_mechanism
-from .validation import integer_value, real_value
+from .validation import require_integer, require_real
 from .tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 
-__all__ = ["sample_poses", "require_pose_count", "require_seed", "step_value", "DEFAULT_STEP", "MAX_STEP", "MAX_SAMPLED_POSES"]
+__all__ = ["sample_poses", "require_pose_count", "require_seed", "require_step", "step_value", "DEFAULT_STEP", "MAX_STEP", "MAX_SAMPLED_POSES"]
 
 MAX_SAMPLED_POSES = 100_000
 """Most poses :func:`sample_poses` is asked for (each a Newton solve; ``--samples`` stops at 1,000)."""
@@ -30,16 +30,47 @@ A joint-space distance: a radian, or the characteristic length.  A larger
 move is no step along the motion (Newton would reach another assembly)."""
 
 
+def require_step(value: object, caller: str = "sample_poses", argument: str = "step") -> float:
+    """``value`` as a ``float`` when it is a step of a move: a real number (not a bool) in ``(0, MAX_STEP]``, else a :class:`RequestError`.
+
+    Examples
+    --------
+    >>> require_step(np.float32(0.5))
+    0.5
+    >>> require_step(1e300)
+    Traceback (most recent call last):
+    mobility.errors.RequestError: sample_poses: step: expected a joint-space distance in (0, 1] (radians; lengths over the characteristic length), got 1e+300
+    >>> require_step("0.1")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: step: expected a positive joint-space distance, got '0.1'
+    """
+    try:
+        number = require_real(value, "")
+        if 0.0 < number <= MAX_STEP:
+            return number
+    except RequestError:  # not a finite real number: an integer beyond the floats is still a step too large
+        try:
+            number = require_integer(value, "", low=1)
+        except RequestError:
+            number = 0.0
+    if number > 0.0:
+        raise RequestError(caller=caller, argument=argument, got=shown_argument(value),
+                           expected=f"a joint-space distance in (0, {MAX_STEP:g}] (radians; lengths over the characteristic length)")
+    raise RequestError(argument=argument, expected="a positive joint-space distance", got=shown_argument(value))
+
+
 def step_value(value: object) -> float | None:
-    """``value`` as a ``float`` when it is a step of a move: a real number (not a bool) in ``(0, MAX_STEP]``, else None.
+    """:func:`require_step` for a test: ``value`` as a ``float`` when it is a step, else None (kept for the callers of the public name).
 
     Examples
     --------
     >>> step_value(np.float32(0.5)), step_value(0), step_value(1e300), step_value("0.1"), step_value(b"a")
     (0.5, None, None, None, None)
     """
-    number = real_value(value)
-    return number if number is not None and 0.0 < number <= MAX_STEP else None
+    try:
+        return require_step(value)
+    except RequestError:
+        return None
 
 
 def require_seed(value: object, key: str = "seed") -> int:
@@ -55,10 +86,7 @@ def require_seed(value: object, key: str = "seed") -> int:
     Traceback (most recent call last):
     mobility.errors.RequestError: finite_mobility: seed: expected a non-negative integer, got None
     """
-    seed = integer_value(value)
-    if seed is None or seed < 0:
-        raise RequestError(argument=key, expected="a non-negative integer", got=shown_argument(value))
-    return seed
+    return require_integer(value, "a non-negative integer", argument=key, low=0)
 
 
 def require_pose_count(value: object, key: str = "count") -> int:
@@ -72,10 +100,7 @@ def require_pose_count(value: object, key: str = "count") -> int:
     Traceback (most recent call last):
     mobility.errors.RequestError: samples: expected a number of poses in [0, 100,000], got 2.5
     """
-    count = integer_value(value)
-    if count is None or not 0 <= count <= MAX_SAMPLED_POSES:
-        raise RequestError(argument=key, expected=f"a number of poses in [0, {MAX_SAMPLED_POSES:,}]", got=shown_argument(value))
-    return count
+    return require_integer(value, f"a number of poses in [0, {MAX_SAMPLED_POSES:,}]", argument=key, low=0, high=MAX_SAMPLED_POSES)
 
 
 def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> list[Mechanism]:
@@ -116,14 +141,7 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
     require_no_couplings(mechanism.couplings, mechanism.name, "sample_poses", "sampled poses")
     tol = require_tolerance(tol, "sample_poses")
     count = require_pose_count(count)
-    h0 = step_value(step)
-    if h0 is None:
-        size = real_value(step) if integer_value(step) is None else integer_value(step)  # an int beyond the floats too
-        if size is not None and size > 0:
-            raise RequestError(caller="sample_poses", argument="step", got=shown_argument(step),
-                               expected=f"a joint-space distance in (0, {MAX_STEP:g}] (radians; lengths over the characteristic length)")
-        raise RequestError(argument="step", expected="a positive joint-space distance", got=shown_argument(step))
-    step = h0
+    step = require_step(step)
     rng = np.random.default_rng(require_seed(seed))
     reached: list[Mechanism] = [mechanism]
     out: list[Mechanism] = []

@@ -4,8 +4,9 @@ A public function checks each argument once, at its boundary, with these;
 the code below trusts what they return.  A refusal is an error with fields
 (:class:`~mobility.errors.MechanismError`: key and problem;
 :class:`~mobility.errors.RequestError`: caller, argument, expected, got) that
-writes its own message.  :func:`integer_value` and :func:`real_value` are the
-one test of "an integer" and "a real number" the ``require_*`` build on.
+writes its own message.  :func:`require_integer` and :func:`require_real` are
+the one test of "an integer" and "a real number"; a caller with a message of
+its own catches their error and raises its own ``from None``.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from ..errors import MechanismError, RequestError, name_problem, shown_argument
 from .tolerance import UNIT_ROUND_OFF, binary_scale
 
 __all__ = ["Vector", "require_vector", "require_instance", "require_name", "require_graph_names", "require_unique_names",
-           "require_no_repeats", "require_ground_and_end_effector", "joint_names", "integer_value", "real_value",
+           "require_no_repeats", "require_ground_and_end_effector", "joint_names",
            "require_integer", "require_real", "require_bool", "number_from_text", "integer_from_text"]
 
 _T = TypeVar("_T")
@@ -81,42 +82,9 @@ def _listed(value: Any) -> Any:
     return tuple(value) if isinstance(value, Iterable) and not isinstance(value, (str, bytes, Mapping)) else value
 
 
-def integer_value(value: Any) -> int | None:
-    """``value`` as an ``int`` when it is an integer (``int``, a numpy integer, anything with ``__index__``) but not a bool, else None.
-
-    Examples
-    --------
-    >>> integer_value(np.int64(3)), integer_value(3.0), integer_value("3"), integer_value(True)
-    (3, None, None, None)
-    """
-    if isinstance(value, (bool, np.bool_)):
-        return None
-    try:
-        return operator.index(value)
-    except TypeError:
-        return None
-
-
-def real_value(value: Any) -> float | None:
-    """``value`` as a finite ``float`` when it is a real number (``int``, ``float``, a numpy number) but not a bool, else None.
-
-    Examples
-    --------
-    >>> real_value(np.float32(0.5)), real_value(2), real_value("0.1"), real_value(True), real_value(float("nan"))
-    (0.5, 2.0, None, None, None)
-    """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        return None
-    try:
-        number = float(value)
-    except OverflowError:  # an integer beyond the floats
-        return None
-    return number if math.isfinite(number) else None
-
-
 def require_integer(value: Any, expected: str, *, caller: str = "", argument: str = "", low: int | None = None, high: int | None = None,
                     error: type[RequestError] = RequestError) -> int:
-    """``value`` as an ``int`` when it is an integer (:func:`integer_value`) from ``low`` to ``high``, else ``error`` with the fields given.
+    """``value`` as an ``int`` when it is an integer (``int``, a numpy integer, anything with ``__index__``; not a bool) from ``low`` to ``high``, else ``error`` with the fields given.
 
     Examples
     --------
@@ -125,15 +93,23 @@ def require_integer(value: Any, expected: str, *, caller: str = "", argument: st
     >>> require_integer(9, "an integer from 1 to 8", caller="view", argument="max_poses", low=1, high=8)
     Traceback (most recent call last):
     mobility.errors.RequestError: view: max_poses: expected an integer from 1 to 8, got 9
+    >>> require_integer(3.0, "an integer")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: expected an integer, got 3.0
     """
-    number = integer_value(value)
-    if number is None or (low is not None and number < low) or (high is not None and number > high):
-        raise error(caller=caller, argument=argument, expected=expected, got=shown_argument(value))
-    return number
+    if not isinstance(value, (bool, np.bool_)):
+        try:
+            number = operator.index(value)
+        except TypeError:
+            pass
+        else:
+            if (low is None or number >= low) and (high is None or number <= high):
+                return number
+    raise error(caller=caller, argument=argument, expected=expected, got=shown_argument(value))
 
 
 def require_real(value: Any, expected: str, *, caller: str = "", argument: str = "", positive: bool = False) -> float:
-    """``value`` as a finite ``float`` when it is a real number (:func:`real_value`), positive if asked, else a :class:`~mobility.errors.RequestError` with the fields given.
+    """``value`` as a finite ``float`` when it is a real number (``int``, ``float``, a numpy number; not a bool), positive if asked, else a :class:`~mobility.errors.RequestError` with the fields given.
 
     Examples
     --------
@@ -142,11 +118,18 @@ def require_real(value: Any, expected: str, *, caller: str = "", argument: str =
     >>> require_real(True, "a finite number of degrees", caller="assemble_pkm", argument="twist_deg")
     Traceback (most recent call last):
     mobility.errors.RequestError: assemble_pkm: twist_deg: expected a finite number of degrees, got True
+    >>> require_real(10**400, "a finite number")
+    Traceback (most recent call last):
+    mobility.errors.RequestError: expected a finite number, got 1000000000000000000000000000000000000...
     """
-    number = real_value(value)
-    if number is None or (positive and number <= 0.0):
-        raise RequestError(caller=caller, argument=argument, expected=expected, got=shown_argument(value))
-    return number
+    if not isinstance(value, (bool, np.bool_)) and isinstance(value, numbers.Real):
+        try:
+            number = float(value)
+        except OverflowError:  # an integer beyond the floats
+            number = math.inf
+        if math.isfinite(number) and (number > 0.0 or not positive):
+            return number
+    raise RequestError(caller=caller, argument=argument, expected=expected, got=shown_argument(value))
 
 
 def require_bool(value: Any, *, caller: str = "", argument: str = "", got: str | None = None) -> bool:

@@ -57,7 +57,7 @@ from ..core.couplings import require_no_couplings
 from ..core.kinematics import kinematics
 from ..core.model import Mechanism, require_mechanism
 from ..core.validation import require_integer
-from ..core.poses import MAX_STEP, require_seed, step_value
+from ..core.poses import MAX_STEP, require_seed, require_step
 from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import RequestError, counted, shown_argument
@@ -174,11 +174,13 @@ def _checked_steps(steps: Any) -> tuple[float, ...]:
         given = None if isinstance(steps, (str, bytes, bytearray, memoryview)) else list(itertools.islice(steps, MAX_STEP_COUNT + 1))
     except TypeError:  # not iterable
         given = None
-    values = [step_value(h) for h in given or ()]
-    if not given or len(given) > MAX_STEP_COUNT or any(h is None for h in values):
-        raise RequestError(f"finite_mobility: steps: expected positive numbers, each at most {MAX_STEP:g} (joint-space distances), "
-                           f"1 to {MAX_STEP_COUNT} of them, got {shown_argument(steps)}")
-    return tuple(sorted(h for h in values if h is not None))
+    try:
+        if given and len(given) <= MAX_STEP_COUNT:
+            return tuple(sorted(require_step(h) for h in given))
+    except RequestError:
+        pass
+    raise RequestError(f"finite_mobility: steps: expected positive numbers, each at most {MAX_STEP:g} (joint-space distances), "
+                       f"1 to {MAX_STEP_COUNT} of them, got {shown_argument(steps)}")
 
 
 def _route_warnings(k: int, instant: Result) -> list[str]:

@@ -31,7 +31,7 @@ from ..core.analysis import screw_system_in_frame
 from ..core.frozen import ReadOnlyArrays
 from ..core.result import ScrewAxis
 from ..core.screws import SWAP_ROWS, motion_pattern
-from ..core.validation import real_value
+from ..core.validation import require_real
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, clean_numbers, require_tolerance
 from ..errors import RequestError, shown_argument
 from .compliance import compliance_matrix, normalised_energy_form
@@ -139,8 +139,11 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
     tol = require_tolerance(tol, "flexure_spaces")
     if threshold is None:
         threshold = mechanism.threshold if mechanism.threshold is not None else DEFAULT_THRESHOLD
-    elif real_value(threshold) is None:
-        raise RequestError(f"threshold must be a number between 0 and 1, got {shown_argument(threshold)}")
+    else:
+        try:
+            require_real(threshold, "")
+        except RequestError:
+            raise RequestError(f"threshold must be a number between 0 and 1, got {shown_argument(threshold)}") from None
     if not (0.0 < threshold < 1.0):
         raise RequestError(f"threshold must lie between 0 and 1, got {threshold!r}")
     compliance = compliance_matrix(mechanism)

@@ -23,9 +23,9 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-from ..core.expected import Expected, expected_basis_problem, require_expected_integer, require_expected_pattern
+from ..core.expected import Expected, require_expected_basis, require_expected_integer, require_expected_pattern
 from ..errors import MechanismError
-from .reader import DocumentReader, describe_value, shown_value
+from .reader import DocumentReader, describe_value, parse_key, shown_value
 from .yaml_source import KeyPath, format_key
 
 __all__ = ["ACTUATION_VERDICTS", "FINITE_VERDICTS", "EXPECTED_VALIDATORS", "FLEXURE_EXPECTED_KEYS", "read_expected"]
@@ -85,10 +85,10 @@ def read_expected(reader: DocumentReader, value: Any, keys: tuple[str, ...]) -> 
         if key == "translations":
             if not isinstance(raw, list):
                 raise reader.fail(kpath, f"expected a list of 3-vectors, got {describe_value(raw)}")
-            fields[key] = tuple(reader.vector(v, kpath + (i,)) for i, v in enumerate(raw))
-            problem = expected_basis_problem(fields[key])
-            if problem is not None:
-                raise reader.fail(kpath + (problem[0],), problem[1])
+            try:
+                fields[key] = require_expected_basis([reader.vector(v, kpath + (i,)) for i, v in enumerate(raw)], key)
+            except MechanismError as exc:
+                raise reader.fail(path + parse_key(exc.key), exc.message) from None
             continue
         validator = EXPECTED_VALIDATORS.get(key)
         try:

@@ -35,7 +35,7 @@ from typing import Any, Callable, Mapping
 from ..errors import name_list
 from .limits import DEFAULT_LIMITS
 
-__all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression", "literal_problem", "uses_radians"]
+__all__ = ["FUNCTIONS", "CONSTANTS", "RESERVED_NAMES", "evaluate", "compile_expression", "require_literal", "uses_radians"]
 
 FUNCTIONS: Mapping[str, Callable[..., float]] = {
     "abs": abs, "acos": math.acos, "acosd": lambda x: math.degrees(math.acos(x)), "asin": math.asin, "asind": lambda x: math.degrees(math.asin(x)),
@@ -70,8 +70,8 @@ Program = tuple[tuple[Any, ...], ...]
 """A compiled expression: ``(_NUMBER, x)``, ``(_NAME, name)`` or ``(_APPLY, function, arity)``, in postfix order."""
 
 
-def literal_problem(written: str, value: float) -> str | None:
-    """Why the number ``written`` cannot be read as ``value``, its ``float``: it overflows to infinity or underflows to zero; else None.
+def require_literal(written: str, value: float) -> float:
+    """``value``, the ``float`` the number ``written`` reads as, unless it overflows to infinity or underflows to zero; else a ``ValueError`` saying why.
 
     The one rule for a number written out, in YAML, an expression, an MJCF or
     URDF attribute (hexadecimal too): as the evaluator refuses a product that
@@ -80,20 +80,24 @@ def literal_problem(written: str, value: float) -> str | None:
 
     Examples
     --------
-    >>> literal_problem("1e-400", 0.0)
-    "the number '1e-400' underflows: it is below the smallest float (4.94e-324) and would read as 0.0"
-    >>> literal_problem("0.0e-400", 0.0) is None, literal_problem("-0x0p3", -0.0) is None, literal_problem("1e400", math.inf)
-    (True, True, "the number '1e400' is too large for a float (it would read as inf)")
+    >>> require_literal("0.0e-400", 0.0), require_literal("-0x0p3", -0.0)
+    (0.0, -0.0)
+    >>> require_literal("1e-400", 0.0)
+    Traceback (most recent call last):
+    ValueError: the number '1e-400' underflows: it is below the smallest float (4.94e-324) and would read as 0.0
+    >>> require_literal("1e400", math.inf)
+    Traceback (most recent call last):
+    ValueError: the number '1e400' is too large for a float (it would read as inf)
     """
     if math.isinf(value) and any(c.isdigit() for c in written):
-        return f"the number {_shown(written)!r} is too large for a float (it would read as {value!r})"
+        raise ValueError(f"the number {_shown(written)!r} is too large for a float (it would read as {value!r})")
     if value != 0.0:
-        return None
+        return value
     hexadecimal = _HEX_PREFIX.match(written)
     mantissa, digits = (written[hexadecimal.end():].lower().partition("p")[0], "123456789abcdef") if hexadecimal else (written.lower().partition("e")[0], "123456789")
     if any(c in digits for c in mantissa):
-        return f"the number {_shown(written)!r} underflows: it is below the smallest float ({sys.float_info.min * sys.float_info.epsilon:.3g}) and would read as {value!r}"
-    return None
+        raise ValueError(f"the number {_shown(written)!r} underflows: it is below the smallest float ({sys.float_info.min * sys.float_info.epsilon:.3g}) and would read as {value!r}")
+    return value
 
 
 def _children(node: ast.AST, text: str, source: str = "") -> tuple[list[ast.AST], tuple[Any, ...] | None]:
@@ -105,9 +109,11 @@ def _children(node: ast.AST, text: str, source: str = "") -> tuple[list[ast.AST]
             raise ValueError(f"a number in {text!r} is too large") from None
         if not math.isfinite(value):
             raise ValueError(f"a number in {text!r} is too large (not finite)")
-        problem = literal_problem(ast.get_source_segment(source, node) or "", value) if isinstance(node.value, float) and value == 0.0 else None
-        if problem is not None:
-            raise ValueError(f"expression {text!r}: {problem}")
+        if isinstance(node.value, float) and value == 0.0:
+            try:
+                require_literal(ast.get_source_segment(source, node) or "", value)
+            except ValueError as exc:
+                raise ValueError(f"expression {text!r}: {exc}") from None
         return [], (_NUMBER, value)
     if isinstance(node, ast.Name):
         return [], (_NAME, node.id)

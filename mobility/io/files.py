@@ -1,7 +1,7 @@
 """Reading document files within the size limit, whatever they are (a FIFO, ``/dev/zero``, ``/dev/kmsg``, a huge file, a symbolic link loop).
 
 Only a regular file is read (reading ``/dev/kmsg`` or a FIFO waits for ever);
-:func:`os_problem` and :func:`printable_name` say a path's trouble and name in a message.
+:func:`os_reason` and :func:`printable_name` say a path's trouble and name in a message.
 
 Examples
 --------
@@ -29,10 +29,10 @@ from typing import BinaryIO
 from ..errors import MechanismFileError, RequestError, clipped
 from .limits import Limits, current_limits
 
-__all__ = ["read_capped", "open_regular", "file_name", "require_not_pipe", "is_regular_file", "os_problem", "printable_name"]
+__all__ = ["read_capped", "open_regular", "file_name", "require_not_pipe", "is_regular_file", "os_reason", "printable_name"]
 
 
-def os_problem(exc: OSError) -> str:
+def os_reason(exc: OSError) -> str:
     """What an ``OSError`` met on a path says, in words for a one-line message.
 
     A symbolic link loop is named as such (the system's words do not say what to look for).
@@ -40,9 +40,9 @@ def os_problem(exc: OSError) -> str:
     Examples
     --------
     >>> import errno, os
-    >>> os_problem(OSError(errno.ELOOP, os.strerror(errno.ELOOP)))
+    >>> os_reason(OSError(errno.ELOOP, os.strerror(errno.ELOOP)))
     'a symbolic link loop (too many levels of symbolic links)'
-    >>> os_problem(OSError(errno.ENOSPC, "No space left on device"))
+    >>> os_reason(OSError(errno.ENOSPC, "No space left on device"))
     'No space left on device'
     """
     if exc.errno == errno.ELOOP:
@@ -177,8 +177,8 @@ def open_regular(path: str | Path, expected: str = "a mechanism file") -> Binary
         raise MechanismFileError("", "no such file", file=name) from None
     except OSError as exc:
         if exc.errno == errno.ELOOP:
-            raise MechanismFileError("", f"is {os_problem(exc)}, expected {expected}", file=name) from None
-        raise MechanismFileError("", f"cannot read: {os_problem(exc)}", file=name) from None
+            raise MechanismFileError("", f"is {os_reason(exc)}, expected {expected}", file=name) from None
+        raise MechanismFileError("", f"cannot read: {os_reason(exc)}", file=name) from None
     joined = "; " if what.endswith("not a regular file") else ", "
     raise MechanismFileError("", f"{what}{joined}expected {expected}", file=name)
 
@@ -206,7 +206,7 @@ def read_capped(path: str | Path, limits: Limits | None = None) -> bytes:
                 size += len(chunk)
             raw = b"".join(chunks)
         except OSError as exc:
-            raise MechanismFileError("", f"cannot read: {os_problem(exc)}", file=name) from None
+            raise MechanismFileError("", f"cannot read: {os_reason(exc)}", file=name) from None
     if len(raw) > cap:
         raise MechanismFileError("", f"larger than the limit of {cap} bytes for a document (set MOBILITY_MAX_FILE_BYTES to raise it)", file=name)
     return raw

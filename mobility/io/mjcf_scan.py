@@ -49,7 +49,7 @@ from xml.etree.ElementTree import Element
 from ..errors import MechanismFileError, clipped
 from .files import read_capped, require_not_pipe
 from .limits import Limits, current_limits
-from .xml_source import XmlDocument, parse_xml, underflow_problem
+from .xml_source import XmlDocument, parse_xml, require_no_underflow
 
 __all__ = ["scan_mjcf", "MjcfScan", "GEOMETRY_ATTRIBUTES", "DIRECTIONS", "MUJOCO_EPS"]
 
@@ -331,12 +331,14 @@ def _check_numbers(doc: XmlDocument, element: Element) -> None:
         numbers = _numbers(value)
         if numbers is None:
             continue  # not numbers: MuJoCo says what it expected
-        problem = ("expected finite numbers" if not all(math.isfinite(x) for x in numbers) else
-                   underflow_problem(value.split(), numbers) or _direction_problem(attribute, numbers))
-        if problem is not None:
+        try:
+            if not all(math.isfinite(x) for x in numbers):
+                raise ValueError("expected finite numbers")
+            _require_direction(attribute, require_no_underflow(value.split(), numbers))
+        except ValueError as exc:
             name = element.get("name")
             key = f"{clipped(element.tag)}[{clipped(name)}]/@{attribute}" if name else f"{clipped(element.tag)}/@{attribute}"
-            raise doc.fail(element, key, f"{problem}, got {clipped(value)!r}")
+            raise doc.fail(element, key, f"{exc}, got {clipped(value)!r}") from None
 
 
 def _numbers(value: str) -> list[float] | None:
@@ -364,23 +366,25 @@ def _numbers(value: str) -> list[float] | None:
     return out
 
 
-def _direction_problem(attribute: str, numbers: list[float]) -> str | None:
-    """What MuJoCo would silently use instead of the direction in ``numbers``, or ``None`` when it uses what was written (or refuses it itself).
+def _require_direction(attribute: str, numbers: list[float]) -> list[float]:
+    """``numbers`` when MuJoCo uses the direction they write as written (or refuses it itself); else a ``ValueError`` saying what MuJoCo would silently use instead.
 
     Examples
     --------
-    >>> _direction_problem("quat", [1e153, 1e153, 0, 0]) is None
-    True
-    >>> _direction_problem("axis", [1e154, 1e154, 0])
-    'the sum of its squares overflows in double precision: MuJoCo would silently use a zero axis instead; expected smaller numbers (only the direction counts)'
-    >>> _direction_problem("quat", [1e-8, 1e-8, 0, 0])
-    "the sum of its squares, 2e-16, is below MuJoCo's 1e-14: MuJoCo would leave it unnormalized and silently use another rotation; expected larger numbers (only the direction counts)"
-    >>> _direction_problem("quat", [1e200, 0, 0, 0]) is None  # MuJoCo's zero quaternion is no rotation, as written
-    True
+    >>> _require_direction("quat", [1e153, 1e153, 0, 0])
+    [1e+153, 1e+153, 0, 0]
+    >>> _require_direction("axis", [1e154, 1e154, 0])
+    Traceback (most recent call last):
+    ValueError: the sum of its squares overflows in double precision: MuJoCo would silently use a zero axis instead; expected smaller numbers (only the direction counts)
+    >>> _require_direction("quat", [1e-8, 1e-8, 0, 0])
+    Traceback (most recent call last):
+    ValueError: the sum of its squares, 2e-16, is below MuJoCo's 1e-14: MuJoCo would leave it unnormalized and silently use another rotation; expected larger numbers (only the direction counts)
+    >>> _require_direction("quat", [1e200, 0, 0, 0])  # MuJoCo's zero quaternion is no rotation, as written
+    [1e+200, 0, 0, 0]
     """
     sizes = {"quat": 4, "axisangle": 4, "zaxis": 3, "axis": 3, "fromto": 6, "relpose": 7}
     if attribute not in DIRECTIONS or len(numbers) != sizes[attribute]:
-        return None  # MuJoCo says how many numbers it expected
+        return numbers  # MuJoCo says how many numbers it expected
     quaternion = attribute in ("quat", "relpose")
     vector = {"axisangle": numbers[:3], "relpose": numbers[3:],
               "fromto": [a - b for a, b in zip(numbers[:3], numbers[3:])]}.get(attribute, numbers)  # fromto: from - to, as MuJoCo
@@ -388,13 +392,13 @@ def _direction_problem(attribute: str, numbers: list[float]) -> str | None:
     for x in vector:  # summed in MuJoCo's order, so that it overflows or underflows where MuJoCo's does
         squares += x * x
     if squares == math.inf and not _overflow_harmless(attribute, numbers, vector):
-        return (f"the sum of its squares overflows in double precision: MuJoCo would silently use {DIRECTIONS[attribute]} instead; "
-                "expected smaller numbers (only the direction counts)")
+        raise ValueError(f"the sum of its squares overflows in double precision: MuJoCo would silently use {DIRECTIONS[attribute]} instead; "
+                         "expected smaller numbers (only the direction counts)")
     if quaternion and squares < MUJOCO_EPS and any(vector) and not _no_rotation(vector):  # all zero: MuJoCo's own error, or (relpose) the pose at qpos0
         size = f"{squares:.3g}" if squares else "0 (the squares underflow)"
-        return (f"the sum of its squares, {size}, is below MuJoCo's {MUJOCO_EPS:g}: MuJoCo would leave it unnormalized and "
-                "silently use another rotation; expected larger numbers (only the direction counts)")
-    return None
+        raise ValueError(f"the sum of its squares, {size}, is below MuJoCo's {MUJOCO_EPS:g}: MuJoCo would leave it unnormalized and "
+                         "silently use another rotation; expected larger numbers (only the direction counts)")
+    return numbers
 
 
 def _overflow_harmless(attribute: str, numbers: list[float], vector: list[float]) -> bool:

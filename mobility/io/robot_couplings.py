@@ -22,7 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Iterable, Mapping, Sequence
 
-from ..core.model import Coupling, Joint, check_couplings
+from ..core.model import Coupling, Joint, require_couplings
 from ..errors import MechanismError, MechanismFileError, clipped
 
 __all__ = ["TreeCoupling", "model_couplings"]
@@ -61,7 +61,7 @@ def model_couplings(couplings: Iterable[TreeCoupling], kinds: Mapping[str, str],
         except MechanismError as exc:
             raise MechanismFileError(c.key, exc.message, file=file, line=c.line) from None
     try:
-        return check_couplings(out, joints)
+        return require_couplings(out, joints)
     except MechanismError as exc:  # couplings[k]...: the element that wrote it
         c = listed[int(exc.key[len("couplings["):].split("]", 1)[0])]
         raise MechanismFileError(c.key, exc.message, file=file, line=c.line) from None

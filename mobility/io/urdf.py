@@ -49,7 +49,7 @@ from .files import file_name
 from .precision import DigitCounter
 from .robot_couplings import TreeCoupling
 from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
-from .xml_source import XmlDocument, read_xml, underflow_problem
+from .xml_source import XmlDocument, read_xml, require_no_underflow
 
 __all__ = ["read_urdf", "URDF_JOINT_KINDS"]
 
@@ -247,9 +247,10 @@ class _UrdfReader:
         values = [float(x) for x in words] if all(_NUMBER.fullmatch(x) for x in words) else []
         if len(values) != 3 or not all(math.isfinite(v) for v in values):
             raise self.fail(el, key, f"expected 3 numbers, got {clipped(text)!r}")
-        problem = underflow_problem(words, values)
-        if problem is not None:
-            raise self.fail(el, key, f"{problem}, got {clipped(text)!r}")
+        try:
+            require_no_underflow(words, values)
+        except ValueError as exc:
+            raise self.fail(el, key, f"{exc}, got {clipped(text)!r}") from None
         return (values[0], values[1], values[2])
 
     def poses(self, root_link: str, joints: list[dict]) -> tuple[list[str], dict[str, Transform]]:

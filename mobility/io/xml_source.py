@@ -28,11 +28,11 @@ from typing import Any, BinaryIO
 from xml.parsers import expat
 
 from ..errors import MechanismFileError, RequestError, clipped, control_character_problem, name_problem
-from .expressions import literal_problem
+from .expressions import require_literal
 from .files import file_name, is_regular_file, open_regular, read_capped
 from .limits import Limits, current_limits
 
-__all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag", "underflow_problem"]
+__all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag", "require_no_underflow"]
 
 
 _CHUNK = 1 << 16
@@ -176,25 +176,28 @@ def _raw_value(source: bytes, start: int, name: bytes) -> bytes | None:
     return None
 
 
-def underflow_problem(words: list[str], values: list[float]) -> str | None:
-    """What is wrong with numbers written non-zero that read as 0 (too small for a double: ``1e-400``), or ``None``.
+def require_no_underflow(words: list[str], values: list[float]) -> list[float]:
+    """``values`` unless a number written non-zero reads as 0 (too small for a double: ``1e-400``); else a ``ValueError`` saying which.
 
     ``float`` (and MuJoCo's ``strtod``) read it as 0 without a word; ``words``
     are the numbers as written, ``values`` what each reads as
-    (the rule of :func:`~mobility.io.expressions.literal_problem`).
+    (the rule of :func:`~mobility.io.expressions.require_literal`).
 
     Examples
     --------
-    >>> underflow_problem(["0", "0.0e9", "-0x0p3", "1e-310"], [0.0, 0.0, -0.0, 1e-310]) is None
-    True
-    >>> underflow_problem(["1", "-1e-400"], [1.0, -0.0])
-    "the number '-1e-400' underflows: it is below the smallest float (4.94e-324) and would read as -0.0; expected 0 or a larger number"
+    >>> require_no_underflow(["0", "0.0e9", "-0x0p3", "1e-310"], [0.0, 0.0, -0.0, 1e-310])
+    [0.0, 0.0, -0.0, 1e-310]
+    >>> require_no_underflow(["1", "-1e-400"], [1.0, -0.0])
+    Traceback (most recent call last):
+    ValueError: the number '-1e-400' underflows: it is below the smallest float (4.94e-324) and would read as -0.0; expected 0 or a larger number
     """
     for word, value in zip(words, values):
-        problem = literal_problem(word, value) if value == 0.0 else None
-        if problem is not None:
-            return f"{problem}; expected 0 or a larger number"
-    return None
+        if value == 0.0:
+            try:
+                require_literal(word, value)
+            except ValueError as exc:
+                raise ValueError(f"{exc}; expected 0 or a larger number") from None
+    return values
 
 
 def read_xml(path: str | Path) -> XmlDocument:

@@ -35,7 +35,7 @@ from typing import Any
 import yaml
 
 from ..errors import TERMINAL_CONTROL, MechanismFileError, RequestError, clipped, control_character_problem
-from .expressions import literal_problem
+from .expressions import require_literal
 from .files import read_capped
 from .limits import Limits, current_limits
 
@@ -330,9 +330,10 @@ class _Builder:
         except (ValueError, TypeError, AttributeError, OverflowError, KeyError):
             raise self.fail(path, line, f"cannot read {clipped(value)!r} as {_KIND.get(tag, tag)}") from None
         if type(result) is float and (result == 0.0 or math.isinf(result)):
-            problem = literal_problem(value, result)  # 1e-400 would read as 0.0, 1e400 as inf: as the expressions refuse it
-            if problem is not None:
-                raise self.fail(path, line, problem)
+            try:  # 1e-400 would read as 0.0, 1e400 as inf: as the expressions refuse it
+                require_literal(value, result)
+            except ValueError as exc:
+                raise self.fail(path, line, str(exc)) from None
         return result
 
     def require_collection_tag(self, event: Any, path: KeyPath, line: int, is_mapping: bool) -> None:

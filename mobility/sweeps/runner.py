@@ -34,7 +34,7 @@ import numpy as np
 
 from ..core.joint_screws import joint_screws
 from ..core.model import Mechanism, require_mechanism
-from ..core.validation import integer_value, require_bool
+from ..core.validation import require_bool, require_integer
 from ..core.screw_systems import analyse_poses
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..core.topology import decompose
@@ -460,10 +460,10 @@ def sweep(mechanism: Mechanism, vary: VarySpec | Iterable, *, actuated: Sequence
 
 def _positive_integer(key: str, value: Any) -> int:
     """``value`` as an ``int`` when it is a positive integer (not a bool), else a :class:`RequestError`."""
-    number = integer_value(value)
-    if number is None or number < 1:
-        raise RequestError(f"{key} must be a positive integer, got {shown_argument(value)}", caller="sweep")
-    return number
+    try:
+        return require_integer(value, "", low=1)
+    except RequestError:
+        raise RequestError(f"{key} must be a positive integer, got {shown_argument(value)}", caller="sweep") from None
 
 
 def _require_scheduler(scheduler: Any) -> None:

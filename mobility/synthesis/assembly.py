@@ -27,7 +27,7 @@ import numpy as np
 
 from ..core.analysis import analyze, gruebler_kutzbach
 from ..core.model import Joint, Mechanism
-from ..core.validation import real_value, require_instance, require_integer, require_real
+from ..core.validation import require_instance, require_integer, require_real
 from ..core.screws import helical_twist, prismatic_twist
 from ..core.linalg import rank
 from ..errors import RequestError, SynthesisError, counted, name_list, shown_argument
@@ -189,14 +189,15 @@ def _twist_pattern(value: object) -> tuple[float, ...]:
     Traceback (most recent call last):
     mobility.errors.RequestError: assemble_pkm: twist_pattern: expected a non-empty sequence of finite numbers (at most 1000), got ()
     """
-    numbers: list[float | None] = []
-    if isinstance(value, Sequence) and not isinstance(value, (str, bytes)) and len(value) <= 1000:
-        numbers = [real_value(x) for x in value]
-    elif isinstance(value, np.ndarray) and value.ndim == 1 and value.size <= 1000:
-        numbers = [real_value(x) for x in value.tolist()]
-    if not numbers or any(x is None for x in numbers):
+    items = (value if isinstance(value, Sequence) and not isinstance(value, (str, bytes)) and len(value) <= 1000 else
+             value.tolist() if isinstance(value, np.ndarray) and value.ndim == 1 and value.size <= 1000 else ())
+    try:
+        numbers = tuple(require_real(x, "") for x in items)
+    except RequestError:
+        numbers = ()
+    if not numbers:
         raise RequestError(caller="assemble_pkm", argument="twist_pattern", expected="a non-empty sequence of finite numbers (at most 1000)", got=shown_argument(value))
-    return tuple(x for x in numbers if x is not None)
+    return numbers
 
 
 def pkm_document(result: SynthesisResult, structure: str, *, other: str = "UPS", **geometry: Any) -> tuple[Mechanism, str]:

@@ -42,12 +42,12 @@ from typing import Any, Callable, Iterable, Sequence
 import numpy as np
 
 from ..core.analysis import analyze
-from ..errors import MobilityError, RequestError, counted
-from ..io.files import file_name, os_problem, printable_name
+from ..errors import MechanismError, MobilityError, RequestError, counted
+from ..io.files import file_name, os_reason, printable_name
 from ..io.limits import current_limits, require_size
 from ..io.loader import load, read_mechanism
 from ..io.yaml_source import Positions, parse_yaml, read_text
-from ..core.expected import expected_basis_problem
+from ..core.expected import require_expected_basis
 from ..core.model import Mechanism, require_mechanism
 from ..core.result import Result
 from ..core.screws import same_subspace
@@ -234,9 +234,10 @@ def compare_translations(found: np.ndarray, expected: Any, tol: Tolerance) -> Co
     mobility.errors.RequestError: compare_translations: expected[0]: expected a non-zero direction, got [0, 0, 0]
     """
     rows = np.asarray(expected, dtype=float).reshape(-1, 3)
-    problem = expected_basis_problem([(float(x), float(y), float(z)) for x, y, z in rows.tolist()])
-    if problem is not None:
-        raise RequestError(problem[1], caller="compare_translations", argument=f"expected[{problem[0]}]")
+    try:
+        require_expected_basis([(float(x), float(y), float(z)) for x, y, z in rows.tolist()], "expected")
+    except MechanismError as exc:
+        raise RequestError(exc.message, caller="compare_translations", argument=exc.key) from None
     actual = clean_numbers(found)
     scaled = rows * np.array([binary_scale(row) for row in rows]).reshape(-1, 1)  # before squaring: any finite vector has a direction
     unit = scaled / np.linalg.norm(scaled, axis=1)[:, None]
@@ -352,18 +353,18 @@ def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE, others: 
         return CheckResult(name, "", "error", error=printable_name(f"internal error ({type(exc).__name__}: {exc})"), internal=True)
 
 
-def _path_problem(raw: str | Path) -> tuple[int, str]:
-    """The file type bits of ``raw`` and, when it cannot be looked up, why (else ``""``)."""
+def _require_mode(raw: str | Path) -> int:
+    """The file type bits of ``raw``, else a :class:`RequestError` saying why it cannot be looked up."""
     try:
-        return os.stat(raw).st_mode, ""
+        return os.stat(raw).st_mode
     except FileNotFoundError:
-        return 0, "no such file or folder"
+        raise RequestError("no such file or folder") from None
     except OSError as exc:
         if exc.errno == errno.ELOOP:
-            return 0, f"is {os_problem(exc)}, expected a mechanism file or folder"
-        return 0, f"cannot look it up: {os_problem(exc)}"
+            raise RequestError(f"is {os_reason(exc)}, expected a mechanism file or folder") from None
+        raise RequestError(f"cannot look it up: {os_reason(exc)}") from None
     except ValueError as exc:  # a NUL in a name given from Python
-        return 0, f"cannot look it up: {exc}"
+        raise RequestError(f"cannot look it up: {exc}") from None
 
 
 def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None, str]]:
@@ -375,10 +376,12 @@ def mechanism_files(paths: Iterable[str | Path]) -> list[tuple[str, Path | None,
     for raw in paths:
         p = Path(raw)
         shown = printable_name(raw)
-        mode, problem = _path_problem(raw)
-        if problem:
-            out.append((shown, None, f"{shown}: {problem}"))
-        elif stat.S_ISDIR(mode):
+        try:
+            mode = _require_mode(raw)
+        except RequestError as exc:
+            out.append((shown, None, f"{shown}: {exc}"))
+            continue
+        if stat.S_ISDIR(mode):
             found = sorted(f for f in p.rglob("*") if f.suffix.lower() in MECHANISM_SUFFIXES and not f.is_dir())  # a pipe among them is reported on its row, not skipped
             if not found:
                 out.append((shown, None, f"{shown}: no *.yaml mechanism file in this folder"))

@@ -16,7 +16,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
-from ...core.validation import real_value, require_integer
+from ...core.validation import require_integer, require_real
 from ...errors import PlotFormatError, PlottingUnavailableError, RequestError, counted, shown_argument
 from ...outputs import atomic_output
 
@@ -117,13 +117,13 @@ def require_figsize(value: object, caller: str) -> tuple[float, float] | None:
     size = None
     if not isinstance(value, (str, bytes)):
         try:
-            size = [real_value(x) for x in value]  # type: ignore[attr-defined]
-        except TypeError:  # not iterable
+            size = [require_real(x, "") for x in value]  # type: ignore[attr-defined]
+        except (TypeError, RequestError):  # not iterable, not numbers
             size = None
     low, high = FIGSIZE_RANGE
-    if size is None or len(size) != 2 or not all(x is not None and low <= x <= high for x in size):
+    if size is None or len(size) != 2 or not all(low <= x <= high for x in size):
         raise RequestError(caller=caller, argument="figsize", expected=f"None or (width, height) in inches, each from {low:g} to {high:g}", got=shown_argument(value))
-    return (float(size[0]), float(size[1]))  # type: ignore[arg-type]
+    return (float(size[0]), float(size[1]))
 
 
 def written_file_name(path: object, what: str) -> Path:

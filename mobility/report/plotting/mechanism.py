@@ -19,9 +19,9 @@ import numpy as np
 
 from ...core.analysis import analyze
 from ...core.model import Mechanism, require_mechanism
-from ...core.validation import integer_value, require_bool
+from ...core.validation import require_bool, require_integer
 from ...core.result import Result, require_result_of
-from ...errors import RequestError, clipped, shown_argument
+from ...errors import RequestError, clipped
 from ...core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from .backend import new_figure, require_figsize, require_matplotlib
 from .geometry import SAME_POINT, unique_points
@@ -118,16 +118,19 @@ def _views_asked(views: Any) -> tuple[int | None, list[tuple[float, float]]]:
     Traceback (most recent call last):
     mobility.errors.RequestError: plot_mechanism: views: expected a number of views from 1 to 3, or a list of (elev, azim) pairs in degrees, got 0
     """
-    count = integer_value(views)
-    given: list[tuple[float, float]] = []
-    if count is None and not isinstance(views, (str, bytes, bool, np.bool_)):
-        try:
-            given = [(float(e), float(a)) for e, a in views]
-        except (TypeError, ValueError):  # not iterable, not pairs, not numbers
-            given = []
-    if (count is not None and 1 <= count <= MAX_VIEWS) or (given and all(math.isfinite(e) and math.isfinite(a) for e, a in given)):
-        return count, given
-    raise RequestError(caller="plot_mechanism", argument="views", expected=f"a number of views from 1 to {MAX_VIEWS}, or a list of (elev, azim) pairs in degrees", got=shown_argument(views))
+    expected = f"a number of views from 1 to {MAX_VIEWS}, or a list of (elev, azim) pairs in degrees"
+    try:
+        return require_integer(views, expected, caller="plot_mechanism", argument="views", low=1, high=MAX_VIEWS), []
+    except RequestError:
+        given: list[tuple[float, float]] = []
+        if not isinstance(views, (str, bytes, bool, np.bool_)):
+            try:
+                given = [(float(e), float(a)) for e, a in views]
+            except (TypeError, ValueError):  # not iterable, not pairs, not numbers
+                given = []
+        if given and all(math.isfinite(e) and math.isfinite(a) for e, a in given):
+            return None, given
+        raise
 
 
 def _chosen_views(sk: Sketch, answer: np.ndarray, directions: np.ndarray, count: int) -> list[tuple[float, float]]:
