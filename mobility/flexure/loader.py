@@ -43,7 +43,7 @@ from ..core.model import WORLD, Frame
 from ..core.transforms import Transform
 from ..io.expected import FLEXURE_EXPECTED_KEYS, read_expected
 from ..io.files import file_name
-from ..io.loader import is_flexure_document
+from ..io.mechanism_reader import is_flexure_document
 from ..io.yaml_source import KeyPath, Positions, parse_yaml, read_text
 
 __all__ = ["load_flexure", "loads_flexure", "read_flexure", "is_flexure_document", "FLEXURE_KEYS", "ELEMENT_KEYS", "ACTUATOR_KEYS", "ELEMENT_TYPES"]

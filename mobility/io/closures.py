@@ -31,7 +31,7 @@ from ..core.model import WORLD, Joint
 from ..core.transforms import Transform
 from ..errors import MechanismFileError, RequestError, counted, did_you_mean
 from .files import file_name
-from .loader import _MechanismReader
+from .mechanism_reader import MechanismReader
 from .robot_tree import Closure, RobotTree
 from .yaml_source import parse_yaml, read_text
 
@@ -116,7 +116,7 @@ def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
     """
     file = file_name(path, "closures")
     data, positions = parse_yaml(read_text(path), file)
-    reader = _MechanismReader(file, positions)
+    reader = MechanismReader(file, positions)
     doc = reader.record(data, (), "a closures file", CLOSURES_KEYS, ("joints",), described="closing joints: a mapping with joints")
     joints, sources = reader.joints(doc["joints"], ("joints",), {}, None)
     if not joints:

@@ -45,7 +45,8 @@ from ..core.analysis import analyze
 from ..errors import MechanismError, MobilityError, RequestError, counted
 from ..io.files import file_name, os_reason, printable_name
 from ..io.limits import current_limits, require_size
-from ..io.loader import load, read_mechanism
+from ..io.loader import load
+from ..io.mechanism_reader import read_mechanism
 from ..io.yaml_source import Positions, parse_yaml, read_text
 from ..core.expected import require_expected_basis
 from ..core.model import Mechanism, require_mechanism
