@@ -6,13 +6,8 @@ Mechanical Engineering, 2021): a choice of inputs is valid when its actuation
 wrenches are linearly independent of the constraint wrenches of the end
 effector, so that the two together span all six dimensions.
 
-Modules: ``results`` (the frozen answers and the verdicts), ``assessment``
-(the algebra shared with flexures: verdict, uncontrolled directions,
-conditioning ``kappa``), ``ranking`` (combinations over poses), ``rigid_pose``
-(a rigid mechanism's actuation wrenches), ``rigid`` (:func:`check_actuation`,
-:func:`check_over_poses`, :func:`enumerate_actuations`) and ``locking`` (the
-independent second route). :mod:`mobility.flexure` uses ``assessment`` and
-``ranking`` with linear actuators as inputs.
+Its modules, and :mod:`mobility.flexure`'s use of ``assessment`` and
+``ranking``: docs/actuation.md, "Where the code lives".
 
 Examples
 --------
