@@ -168,16 +168,11 @@ def assess_wrenches(wrenches: Sequence[np.ndarray | None], rates: Sequence[float
         ``a o $`` of each input (ignored where the wrench is ``None``).
     twists, constraints : ndarray, shape (6, d) and (6, 6 - d)
         Orthonormal bases of the end effector's twist and constraint wrench systems.
-    tol : Tolerance
     held : ndarray, shape (6, k), optional
         Wrenches that locking the inputs adds beyond their own (a limb's, where
         an input has none: :meth:`~mobility.actuation.rigid_pose.RigidPose.locked_wrenches`).
     transmissions : sequence of float, optional
         ``|a o $| / (|a| |$|)`` of each input; default: each rate, at most 1 (force lines).
-
-    Returns
-    -------
-    Assessment
     """
     dof = twists.shape[1]
     present = [(w, r) for w, r in zip(wrenches, rates) if w is not None]
@@ -256,21 +251,14 @@ def assess_inputs(name: str, kind: str, inputs: Sequence[InputWrench], spaces: E
     kind : str
         ``"rigid"`` or ``"flexure"``.
     inputs : sequence of InputWrench
-    spaces : EndEffectorSpaces
-    tol : Tolerance
     warnings : sequence of str
         Warnings to report before those of the assessment.
-    length_unit : str
     idle_inputs : sequence of str, optional
         Given when the inputs can be set independently (a rigid mechanism's loop
         closure tells): those that move the mechanism but not the end effector.
         Extra inputs are then said to drive idle motions, not to fight.
     held : ndarray, shape (6, k), optional
         As for :func:`assess_wrenches`.
-
-    Returns
-    -------
-    ActuationCheck
 
     Examples
     --------

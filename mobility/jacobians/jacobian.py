@@ -150,11 +150,6 @@ def jacobian(mechanism: Mechanism | ParallelModel, q: Sequence[np.ndarray] | Non
     actuated : sequence of str, optional
         Actuated joint names (default: those marked ``actuated``); only used
         when ``mechanism`` is a :class:`Mechanism`.
-    tol : Tolerance
-
-    Returns
-    -------
-    JacobianResult
 
     Raises
     ------

@@ -70,14 +70,10 @@ def transmission_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: Pos
 
     Parameters
     ----------
-    mechanism : Mechanism
-    posed : PosedScrews
     answers : PoseAnswers
         :func:`~mobility.core.screw_systems.analyse_poses` of the same poses.
     actuation : BatchActuation
         :func:`~mobility.sweeps.batch_actuation.actuation_at_poses` of the same poses and inputs.
-    inputs : ActuationInputs
-    tol : Tolerance
     """
     count = posed.twists.shape[0]
     root = decompose(mechanism).root
@@ -125,7 +121,6 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
 
     Parameters
     ----------
-    mechanism : Mechanism
     actuated : sequence of str, optional
         The actuated joints (default: those the file marks ``actuated: true``).
     q : array_like, optional
@@ -133,11 +128,6 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
         (closing every loop; default: the file's pose).
     threshold : float
         The good-transmission threshold (``LTI >= threshold``), 0.7 as published.
-    tol : Tolerance
-
-    Returns
-    -------
-    TransmissionCheck
 
     Raises
     ------

@@ -329,16 +329,11 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
 
     Parameters
     ----------
-    mechanism : Mechanism
     vary : str, sequence or mapping
         One or more ``"NAME=START:STOP:COUNT"``, ``(name, start, stop, count)``,
         or ``{name: (start, stop, count)}``.
     max_poses : int
         The largest grid accepted.
-
-    Returns
-    -------
-    GridPlan
 
     Raises
     ------

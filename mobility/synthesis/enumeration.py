@@ -178,10 +178,6 @@ def synthesize(pattern: MotionPattern | str, *, joints: int | None = None, gener
     tol : Tolerance
         Rank policy, and the closure tolerance of the sample route.
 
-    Returns
-    -------
-    SynthesisResult
-
     Raises
     ------
     SynthesisError

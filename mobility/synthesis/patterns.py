@@ -174,9 +174,7 @@ class MotionPattern:
 
     Parameters
     ----------
-    name : str
     factors : tuple of PatternFactor
-    description : str
     """
 
     name: str

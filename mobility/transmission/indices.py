@@ -410,11 +410,6 @@ def transmission_indices(
         actuation and constraint wrenches together of rank below 6 (the
         wrench system degenerate): their output and constraint indices are 0
         exactly.
-    tol : Tolerance
-
-    Returns
-    -------
-    BatchTransmission
 
     Examples
     --------
