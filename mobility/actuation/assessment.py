@@ -1,20 +1,9 @@
 """The actuation-space algebra shared by rigid and flexure mechanisms: verdict and conditioning.
 
 In the normalised coordinates of :mod:`mobility.core.tolerance`; results are
-reported in the global frame. docs/actuation.md tells the measures in full.
-
-* **verdict** of ``n`` inputs for an end effector of ``d`` DOF, from the rank
-  ``r`` of the actuation and constraint wrenches together: ``valid`` (``r = 6``,
-  ``n = d``), ``actuation-singular`` (``r < 6``: with the inputs locked the end
-  effector still moves along ``6 - r`` *uncontrolled* directions) or
-  ``redundant`` (``r = 6``, ``n > d``).
-* **conditioning** ``kappa = s_min / s_max`` of ``G[i, k] = (a_i o t_k) / (a_i o $_i)``
-  (``t_k`` an orthonormal basis of the end effector's twists, ``a_i`` the
-  actuation wrench, ``$_i`` the input's unit-rate twist); 1 when ``d = 0``.
-* **actuation margin**: the smaller of the verdict's rank margin and the
-  ``d``-th singular value of ``H[i, k] = rho_i (a_i o t_k)``, unit ``a_i``,
-  ``rho_i = |a_i o $_i| / (|a_i| |$_i|)``: 0 where the locked inputs no longer
-  hold the end effector or an input stops driving it (and when ``d = 0 < n``).
+reported in the global frame.  The verdict (``valid``, ``actuation-singular``,
+``redundant``), the conditioning ``kappa`` and the actuation margin are
+defined in docs/actuation.md, "Definitions".
 
 Examples
 --------
@@ -145,7 +134,7 @@ class Assessment(ReadOnlyArrays):
     in_constraint : tuple of bool
         Per input: it has no wrench, or its wrench lies in the constraint space.
     actuation_margin : float
-        The distance to an actuation singularity (module docstring).
+        The distance to an actuation singularity (docs/actuation.md).
     """
 
     verdict: str
