@@ -239,7 +239,6 @@ def assess_inputs(name: str, kind: str, inputs: Sequence[InputWrench], spaces: E
         The mechanism's name.
     kind : str
         ``"rigid"`` or ``"flexure"``.
-    inputs : sequence of InputWrench
     warnings : sequence of str
         Warnings to report before those of the assessment.
     idle_inputs : sequence of str, optional

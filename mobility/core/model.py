@@ -309,7 +309,6 @@ class Mechanism:
         The ground is fixed; the end effector's freedom is reported.
     joints : tuple of Joint
         At least one.
-    frames : tuple of Frame
     description, length_unit : str
         The unit is a label only (results do not depend on it).
     source : str

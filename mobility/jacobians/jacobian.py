@@ -143,7 +143,6 @@ def jacobian(mechanism: Mechanism | ParallelModel, q: Sequence[np.ndarray] | Non
 
     Parameters
     ----------
-    mechanism : Mechanism or ParallelModel
     q : sequence of arrays, optional
         Joint values per limb (an assembled pose, e.g. from
         :meth:`ParallelModel.assemble`); default: the mechanism's own pose.

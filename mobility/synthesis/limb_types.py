@@ -82,7 +82,6 @@ def joint_groups(seq: Sequence[CandidateJoint], plane: tuple[str, ...]) -> list[
 
     Parameters
     ----------
-    seq : sequence of CandidateJoint
     plane : tuple of str
         Labels of the pattern's translation directions (``s1, s2``): a P along
         one of them is numbered ``P1, P2...``, any other named by its direction.

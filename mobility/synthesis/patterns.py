@@ -166,12 +166,7 @@ class PatternFactor:
 
 @dataclass(frozen=True)
 class MotionPattern:
-    """A set of finite motions ``S_f = F_1 △ F_2 △ … △ F_k`` (``F_k`` acts first).
-
-    Parameters
-    ----------
-    factors : tuple of PatternFactor
-    """
+    """A set of finite motions ``S_f = F_1 △ F_2 △ … △ F_k`` (``F_k`` acts first)."""
 
     name: str
     factors: tuple[PatternFactor, ...]
