@@ -184,7 +184,7 @@ def assess_wrenches(wrenches: Sequence[np.ndarray | None], rates: Sequence[float
 
 
 def _actuation_margin(verdict: str, decision: RankDecision, present: Sequence[tuple[np.ndarray, float]], n: int, twists: np.ndarray) -> float:
-    """The ``d``-th singular value of ``H[i, k] = rho_i (a_i o t_k)`` (module docstring), with its conventions.
+    """The ``d``-th singular value of ``H[i, k] = rho_i (a_i o t_k)`` (docs/actuation.md, "Actuation margin"), with its conventions.
 
     Examples
     --------
