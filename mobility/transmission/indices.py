@@ -368,19 +368,10 @@ def _best_choice_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarr
     return out, done
 
 
-def transmission_indices(
-    actuation: np.ndarray,
-    input_twists: np.ndarray,
-    input_points: np.ndarray,
-    output_points: np.ndarray,
-    basis: np.ndarray,
-    dim: np.ndarray,
-    limb_wrenches: Sequence[np.ndarray] = (),
-    limb_counts: Sequence[np.ndarray] = (),
-    limb_points: np.ndarray | None = None,
-    singular: np.ndarray | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> BatchTransmission:
+def transmission_indices(actuation: np.ndarray, input_twists: np.ndarray, input_points: np.ndarray, output_points: np.ndarray,
+                         basis: np.ndarray, dim: np.ndarray, limb_wrenches: Sequence[np.ndarray] = (),
+                         limb_counts: Sequence[np.ndarray] = (), limb_points: np.ndarray | None = None,
+                         singular: np.ndarray | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> BatchTransmission:
     """The transmission indices of ``N`` poses, from the screw systems of the analysis.
 
     Every screw is in one set of coordinates per pose (the sweep's normalised
