@@ -9,17 +9,18 @@ twist ``t = [omega; v]`` at the point ``P`` where the wrench acts::
 
 the cosine of the pressure angle at ``P`` for a force through ``P``; it does
 not depend on the frame or the length unit, and is 0 exactly when the power
-is.  With the actuation wrench ``a_i`` of input ``i``:
+is.  With the actuation wrench (transmission wrench screw) ``a_i`` of input ``i``:
 
 * ``ITI_i = tau_B(a_i, $_I)``, ``$_I`` the input twist, ``B`` where the limb
   leaves the input link (``lambda_i`` of Wang et al., 2010);
 * ``OTI_i = tau_C(a_i, $_O,i)``, ``$_O,i`` the end effector's twist with every
   other input locked, ``C`` where the limb meets it (``eta_i``, ibid.);
-* ``LTI = min_i min(ITI_i, OTI_i)``; good transmission is ``LTI >= 0.7``
-  (:data:`GOOD_TRANSMISSION`: a pressure angle of at most 45.57 deg);
+* ``LTI = min_i min(ITI_i, OTI_i)``; good transmission is ``LTI >=``
+  :data:`GOOD_TRANSMISSION`;
 * ``CTI_j = tau_C(c_j, $_O,j)`` of limb ``j``'s constraint wrench, ``$_O,j`` the
   twist gained with every input locked and that constraint removed (Liu et
-  al., 2012; Brinker et al., 2018); ``CTI = min_j CTI_j``.
+  al., 2012; Brinker et al., 2018), through the principal pairs of the two
+  systems (whatever basis the analysis chose); ``CTI = min_j CTI_j``.
 
 In a redundant wrench system the best non-redundant choice of inputs and
 whole limbs is taken (at most :data:`MAX_CHOICES` of them; NaN beyond).
@@ -68,7 +69,9 @@ from ..errors import AnalysisError
 __all__ = ["GOOD_TRANSMISSION", "BatchTransmission", "TransmissionCheck", "power_coefficient", "transmission_indices"]
 
 GOOD_TRANSMISSION = 0.7
-"""The published threshold of good transmission: ``LTI >= 0.7`` (Wang et al., 2010)."""
+"""The published threshold of good transmission: ``LTI >= 0.7`` (Wang et al., 2010, after Tao's transmission angles of 40 to 140 deg).
+
+``cos 45.57 deg = 0.7``: a pressure angle of at most 45.57 deg, a transmission angle between 44.43 and 135.57 deg."""
 
 _TINY = 1e-12
 """Below this (relative to the screws' unit size) a denominator is no power at all: the index is 0."""
