@@ -27,7 +27,8 @@ def offline_mimebundle(figure: Any) -> dict[str, Any]:
 
     HTML renderers (``notebook``, ``iframe``...) give way to one fragment with
     plotly.js inline (:func:`mobility.view.page.figure_html`), which also goes
-    along with the JSON form.  Returns mime type -> data.
+    along with the JSON form; other renderers give their own form, those
+    opening a browser none.  Returns mime type -> data.
     """
     import plotly.io as pio
 
