@@ -422,10 +422,8 @@ def transmission_indices(actuation: np.ndarray, input_twists: np.ndarray, input_
     oti = np.full((count, n), np.nan)
     lti = np.full(count, np.nan)
     dim = np.asarray(dim)
-    for d in np.unique(dim).tolist():
+    for d in np.unique(dim).tolist() if n else []:
         rows = np.flatnonzero(dim == d)
-        if n == 0:
-            continue
         if d == 0 or n < d:  # the inputs move no output (a dead centre: the output locked for an instant), or a freedom moves unactuated
             oti[rows] = 0.0
             lti[rows] = 0.0
@@ -456,12 +454,10 @@ def transmission_indices(actuation: np.ndarray, input_twists: np.ndarray, input_
     if n:
         chosen = ~np.isnan(oti)
         iti = np.where(chosen | np.isnan(lti)[:, None] | stalled[:, None], iti, np.nan)
-    if singular is not None:
-        singular = np.asarray(singular, dtype=bool)
-        oti = np.where(singular[:, None] & ~np.isnan(oti), 0.0, oti)
-        lti = np.where(singular & ~np.isnan(lti), 0.0, lti)
+    degenerate = np.zeros(count, dtype=bool) if singular is None else np.asarray(singular, dtype=bool)
+    oti = np.where(degenerate[:, None] & ~np.isnan(oti), 0.0, oti)
+    lti = np.where(degenerate & ~np.isnan(lti), 0.0, lti)
     points = np.zeros((count, len(limb_wrenches), 3)) if limb_points is None else limb_points
-    degenerate = np.zeros(count, dtype=bool) if singular is None else singular
     counts = [np.asarray(c) for c in limb_counts]
     cti_limbs = _limb_index(list(limb_wrenches), counts, points, actuation, present, degenerate, tol)
     chosen, done = _best_choice_index(list(limb_wrenches), counts, points, actuation, present, degenerate, dim)
