@@ -6,28 +6,10 @@ Mechanical Engineering, 2021): a choice of inputs is valid when its actuation
 wrenches are linearly independent of the constraint wrenches of the end
 effector, so that the two together span all six dimensions.
 
-Modules: ``results`` (the frozen answers and the verdicts), ``assessment``
-(the algebra shared with flexures: verdict, uncontrolled directions,
-conditioning ``kappa``), ``ranking`` (combinations over poses), ``rigid_pose``
-(a rigid mechanism's actuation wrenches), ``rigid`` (:func:`check_actuation`,
-:func:`check_over_poses`, :func:`enumerate_actuations`) and ``locking`` (the
-independent second route). :mod:`mobility.flexure` uses ``assessment`` and
-``ranking`` with linear actuators as inputs.
+Its modules, and :mod:`mobility.flexure`'s use of ``assessment`` and
+``ranking``: docs/actuation.md, "Where the code lives".
 
-Examples
---------
->>> from mobility.core.model import Joint, Mechanism
->>> R = lambda n, a, b, p: Joint(n, "R", (a, b), axis=(0, 0, 1), point=p, actuated=(n == "A"))
->>> m = Mechanism("four-bar", "ground", "coupler", (
-...     R("A", "ground", "crank", (0, 0, 0)), R("B", "crank", "coupler", (1, 2, 0)),
-...     R("C", "coupler", "rocker", (4, 2.5, 0)), R("D", "rocker", "ground", (5, 0, 0))))
->>> check = check_actuation(m)
->>> check.verdict, check.dof, [i.name for i in check.inputs]
-('valid', 1, ['A'])
->>> check_actuation(m, ["A", "D"]).verdict
-'redundant'
->>> locked_dof(m, ["A"]), locked_dof(m, [])
-(0, 1)
+Examples: :func:`check_actuation`, :func:`enumerate_actuations`, :func:`locked_dof`.
 """
 
 from .assessment import Assessment, EndEffectorSpaces, InputWrench, assess_inputs, assess_wrenches

@@ -1,20 +1,9 @@
 """The actuation-space algebra shared by rigid and flexure mechanisms: verdict and conditioning.
 
 In the normalised coordinates of :mod:`mobility.core.tolerance`; results are
-reported in the global frame. docs/actuation.md tells the measures in full.
-
-* **verdict** of ``n`` inputs for an end effector of ``d`` DOF, from the rank
-  ``r`` of the actuation and constraint wrenches together: ``valid`` (``r = 6``,
-  ``n = d``), ``actuation-singular`` (``r < 6``: with the inputs locked the end
-  effector still moves along ``6 - r`` *uncontrolled* directions) or
-  ``redundant`` (``r = 6``, ``n > d``).
-* **conditioning** ``kappa = s_min / s_max`` of ``G[i, k] = (a_i o t_k) / (a_i o $_i)``
-  (``t_k`` an orthonormal basis of the end effector's twists, ``a_i`` the
-  actuation wrench, ``$_i`` the input's unit-rate twist); 1 when ``d = 0``.
-* **actuation margin**: the smaller of the verdict's rank margin and the
-  ``d``-th singular value of ``H[i, k] = rho_i (a_i o t_k)``, unit ``a_i``,
-  ``rho_i = |a_i o $_i| / (|a_i| |$_i|)``: 0 where the locked inputs no longer
-  hold the end effector or an input stops driving it (and when ``d = 0 < n``).
+reported in the global frame.  The verdict (``valid``, ``actuation-singular``,
+``redundant``), the conditioning ``kappa`` and the actuation margin are
+defined in docs/actuation.md, "Definitions".
 
 Examples
 --------
@@ -145,7 +134,7 @@ class Assessment(ReadOnlyArrays):
     in_constraint : tuple of bool
         Per input: it has no wrench, or its wrench lies in the constraint space.
     actuation_margin : float
-        The distance to an actuation singularity (module docstring).
+        The distance to an actuation singularity (docs/actuation.md).
     """
 
     verdict: str
@@ -168,16 +157,11 @@ def assess_wrenches(wrenches: Sequence[np.ndarray | None], rates: Sequence[float
         ``a o $`` of each input (ignored where the wrench is ``None``).
     twists, constraints : ndarray, shape (6, d) and (6, 6 - d)
         Orthonormal bases of the end effector's twist and constraint wrench systems.
-    tol : Tolerance
     held : ndarray, shape (6, k), optional
         Wrenches that locking the inputs adds beyond their own (a limb's, where
         an input has none: :meth:`~mobility.actuation.rigid_pose.RigidPose.locked_wrenches`).
     transmissions : sequence of float, optional
         ``|a o $| / (|a| |$|)`` of each input; default: each rate, at most 1 (force lines).
-
-    Returns
-    -------
-    Assessment
     """
     dof = twists.shape[1]
     present = [(w, r) for w, r in zip(wrenches, rates) if w is not None]
@@ -200,7 +184,7 @@ def assess_wrenches(wrenches: Sequence[np.ndarray | None], rates: Sequence[float
 
 
 def _actuation_margin(verdict: str, decision: RankDecision, present: Sequence[tuple[np.ndarray, float]], n: int, twists: np.ndarray) -> float:
-    """The ``d``-th singular value of ``H[i, k] = rho_i (a_i o t_k)`` (module docstring), with its conventions.
+    """The ``d``-th singular value of ``H[i, k] = rho_i (a_i o t_k)`` (docs/actuation.md, "Actuation margin"), with its conventions.
 
     Examples
     --------
@@ -255,22 +239,14 @@ def assess_inputs(name: str, kind: str, inputs: Sequence[InputWrench], spaces: E
         The mechanism's name.
     kind : str
         ``"rigid"`` or ``"flexure"``.
-    inputs : sequence of InputWrench
-    spaces : EndEffectorSpaces
-    tol : Tolerance
     warnings : sequence of str
         Warnings to report before those of the assessment.
-    length_unit : str
     idle_inputs : sequence of str, optional
         Given when the inputs can be set independently (a rigid mechanism's loop
         closure tells): those that move the mechanism but not the end effector.
         Extra inputs are then said to drive idle motions, not to fight.
     held : ndarray, shape (6, k), optional
         As for :func:`assess_wrenches`.
-
-    Returns
-    -------
-    ActuationCheck
 
     Examples
     --------

@@ -1,14 +1,11 @@
 """The actuation wrench of one input at a stack of poses: the one computation behind one pose and a sweep.
 
-An input is one freedom of an actuated joint of a limb
-(:mod:`mobility.actuation.rigid_pose`). Its *actuation wrench* is reciprocal to
-every other twist of its limb and not to its own: the limb's constraint
-wrenches with that freedom locked, less the limb's own (orthogonal to them in
-coordinates centred where the limb meets the end effector), first left singular
-vector; none when the limb's other joints already produce the freedom's motion.
-Its *rate* is ``a o $``, ``$`` at unit angular speed (R, H) or one characteristic
+An input is one freedom of an actuated joint of a limb.  Its *actuation
+wrench* (docs/actuation.md, "Definitions") is the first left singular vector of
+the limb's constraint wrenches with that freedom locked, less the limb's own;
+none when the limb's other joints already produce the freedom's motion.  Its
+*rate* is ``a o $``, ``$`` at unit angular speed (R, H) or one characteristic
 length per unit time (P); its *transmission* ``|a o $| / (|a| |$|)``, in ``[0, 1]``.
-:class:`~mobility.actuation.rigid_pose.RigidPose` calls it with a stack of one pose, the sweeps with thousands.
 
 Examples
 --------

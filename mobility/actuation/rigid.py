@@ -46,16 +46,10 @@ def check_actuation(mechanism: Mechanism, actuated: Sequence[str] | None = None,
 
     Parameters
     ----------
-    mechanism : Mechanism
     actuated : sequence of str, optional
         Joint names; default: the joints marked ``actuated: true``.  Every
         freedom of a multi-DOF joint is one input, labelled ``NAME.k`` (``k``
         from 0), and such a label names that freedom alone.
-    tol : Tolerance
-
-    Returns
-    -------
-    ActuationCheck
 
     Raises
     ------
@@ -125,11 +119,6 @@ def enumerate_actuations(mechanism: Mechanism, *, mode: str = "limb", k: int | N
         Further poses of the same mechanism.
     samples : int
         Further poses from :func:`mobility.core.poses.sample_poses` (with ``step``, ``seed``, ``tol``).
-    tol : Tolerance
-
-    Returns
-    -------
-    Enumeration
 
     Raises
     ------

@@ -1,19 +1,12 @@
 """Finite screws: rigid displacements in the quasi-vector form of Huang, Dai and Sun.
 
-A displacement rotating by ``θ`` about the line through ``r`` along the unit
-vector ``s`` and translating by ``t`` along it has the finite screw
-``S_f = 2 tan(θ/2) [s; r × s] + t [0; s]``, angular part first like the twists
-of :mod:`mobility.core.screws`; its derivative at the identity is the twist
-(Eq. 5 of Sun et al., 2018).  The conventions, stated once in
-docs/finite-screws.md and pinned by ``tests/test_finite_screws.py``:
-``S_a △ S_b`` is displacement b followed by a (matrix ``T_a @ T_b``), a limb is
-``S_1(q1) △ ... △ S_n(qn)`` with the base joint on the left and home axes
-(Eq. 7), and the inverse of ``S_f`` is ``-S_f``.  At a half-turn the
-quasi-vector is infinite, so each displacement is also kept as its unit dual
-quaternion (:class:`FiniteScrew`), whose product never divides; only reading
-``S_f`` off raises :class:`~mobility.errors.HalfTurnError`, when ``cos(θ/2)``
-is within round-off (:data:`QUATERNION_ROUND_OFF`, a fact of the arithmetic,
-not a choice of :class:`~mobility.core.tolerance.Tolerance`).
+Finite screws ``S_f = 2 tan(θ/2) [s; r × s] + t [0; s]`` (angular part first,
+like :mod:`mobility.core.screws`), the triangle product, limbs (Eq. 7) and
+half-turns; the conventions are stated once in docs/finite-screws.md and pinned
+by ``tests/test_finite_screws.py``.  Each displacement is also kept as its unit
+dual quaternion (:class:`FiniteScrew`), whose product never divides; only
+reading ``S_f`` off a half-turn raises :class:`~mobility.errors.HalfTurnError`
+(``cos(θ/2)`` within :data:`QUATERNION_ROUND_OFF`, a fact of the arithmetic).
 
 One module, longer than most, because it is one concept that reads better
 whole: the quasi-vector, its homogeneous form and the chains composed from

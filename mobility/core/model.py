@@ -79,7 +79,6 @@ class Joint:
 
     Parameters
     ----------
-    name : str
     type : str
         One of ``R P H C U S E`` (:data:`JOINT_TYPES`).
     links : tuple of two str
@@ -87,7 +86,6 @@ class Joint:
     axis, point, pitch, axes, normal
         Geometry as the type requires (the file format), written in ``frame``;
         directions are normalised.
-    frame : str
     actuated : bool
         Whether the joint is driven (the actuation analysis).
 
@@ -311,10 +309,8 @@ class Mechanism:
         The ground is fixed; the end effector's freedom is reported.
     joints : tuple of Joint
         At least one.
-    frames : tuple of Frame
     description, length_unit : str
         The unit is a label only (results do not depend on it).
-    expected : Expected or None
     source : str
         Where it came from (a file path), for messages.
     written_at : mapping of str to (str, int or None)

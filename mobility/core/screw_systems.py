@@ -1,10 +1,9 @@
 """Screw systems of a decomposed mechanism at a stack of poses: the series/parallel route.
 
-The one engine: :func:`mobility.analyze` calls it with a stack of one pose,
-the sweeps with thousands, the actuation checks with joints locked.  Each
-node of the :mod:`~mobility.core.topology` tree gets, pose by pose, the twist
-system between its two end links and its *idle* count (inner motions that
-leave them still; mobility = dimension + idle):
+The one engine of :func:`mobility.analyze`, the sweeps and the actuation checks
+(README, "How it works").  Each node of the :mod:`~mobility.core.topology` tree
+gets, pose by pose, the twist system between its two end links and its *idle*
+count (inner motions that leave them still; mobility = dimension + idle):
 
 * joint: the span of its twists, idle 0;
 * series: the span of the children's twists; idle = children's + (stacked - dimension);
@@ -17,10 +16,9 @@ leave them still; mobility = dimension + idle):
 
 All in normalised coordinates (:mod:`mobility.core.joint_screws`), every rank
 by :func:`~mobility.core.tolerance.decide_ranks` with its margin kept.  A rank
-that varies over the stack is kept as ``(N, 6, k)`` arrays zero beyond each
-pose's rank (zero columns change no span); a rank the same at every pose gives
-arrays exactly that wide.  Nodes go level by level from the leaves (no
-recursion), and one level's same-shape matrices go to LAPACK as one stack.
+that varies over the stack pads ``(N, 6, k)`` arrays with zero columns (none
+when it does not; docs/sweeps.md, "How it is fast"); nodes go level by level
+from the leaves (no recursion), one level's same-shape matrices to LAPACK as one stack.
 """
 
 from __future__ import annotations

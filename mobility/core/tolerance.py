@@ -27,11 +27,10 @@ import numpy as np
 
 from ..errors import RequestError, shown_argument
 
-__all__ = ["first_least", "Tolerance", "DEFAULT_TOLERANCE", "require_tolerance", "PRECISION_FACTOR", "PRECISION_CEILING",
-           "file_tolerance", "PARALLEL_AXES", "ORTHONORMAL", "SIGN_TIE", "COMPONENT_TIE", "NORM_TIE", "COINCIDENT_POINTS",
-           "MARGIN_DIP", "NEWTON_DAMPING", "SOLVER_STOP", "WRITE_DRIFT", "RankDecision", "decide_rank", "binary_scale",
-           "characteristic_scale", "clean_numbers", "RankDecisions", "decide_ranks", "characteristic_scales", "SAME_GRID_VALUE",
-           "SEAM_GAP", "SWEEP_REACH"]
+__all__ = ["first_least", "Tolerance", "DEFAULT_TOLERANCE", "require_tolerance", "PRECISION_FACTOR", "PRECISION_CEILING", "file_tolerance",
+           "PARALLEL_AXES", "ORTHONORMAL", "SIGN_TIE", "COMPONENT_TIE", "NORM_TIE", "COINCIDENT_POINTS", "MARGIN_DIP", "NEWTON_DAMPING",
+           "SOLVER_STOP", "WRITE_DRIFT", "RankDecision", "decide_rank", "binary_scale", "characteristic_scale", "clean_numbers",
+           "RankDecisions", "decide_ranks", "characteristic_scales", "SAME_GRID_VALUE", "SEAM_GAP", "SWEEP_REACH"]
 
 
 @dataclass(frozen=True)

@@ -1,30 +1,13 @@
 """Jacobians of parallel mechanisms by differentiating finite screws (Eq. 26 of Sun et al., 2018).
 
-A parallel mechanism whose limbs are serial chains from the ground to the end
-effector (the platform) has one finite screw per limb, the triangle product of
-its joints' finite screws (Eq. 7, :class:`mobility.core.finite_screws.Limb`); at an
-assembled pose they are all the platform's finite screw ``S_f``.
-Differentiating limb ``i``'s product gives the platform twist (Eq. 26)
-
-    ``$_p = Σ_j q'_ij $_ij``,   ``$_ij = twist_from_finite_screw_rate(S_f, ∂S_f/∂q_ij)``
-
-so ``$_ij`` is the twist of joint ``j`` of limb ``i`` at the pose.  Then
-
-* the **constraint wrenches** of limb ``i`` are reciprocal to all its ``$_ij``;
-  those of the platform are their union, and the platform's twist system is
-  its reciprocal (for METROM: one force through ``O`` along ``s1 × s2``);
-* the **actuation wrench** of an actuated joint ``(i, j)`` is reciprocal to the
-  limb's other twists but not to ``$_ij`` (the one orthogonal to the limb's
-  constraint wrenches); scaled so that ``W ∘ $_ij = 1``, ``W ∘ $_p = q'_ij``;
-* the **Jacobian** stacks both: ``J $_p = [q'_a; 0]``, rows ``(SWAP W)^T``;
-  the first columns of a regular ``J^-1`` are the platform twists per unit actuated rate.
-
-Thresholds follow :mod:`mobility.core.tolerance` (normalised coordinates). Any
-scale of the file gives the same answer: the Jacobian is computed on the
-mechanism scaled exactly by the power of two that brings its characteristic
-length near 1 (:func:`~mobility.core.tolerance.binary_scale`), then written back
-in the file's units, each part by its own power of the length. Results are in
-the global frame and the mechanism's length unit.
+Each limb's finite screw (Eq. 7) is the platform's; differentiating it gives
+the joint twists ``$_ij``, the limbs' constraint wrenches (reciprocal to them),
+the actuation wrenches (scaled to ``W ∘ $_ij = 1``) and ``J $_p = [q'_a; 0]``:
+docs/finite-screws.md, "Jacobian by differentiation".  Any scale of the file
+gives the same answer: the Jacobian is computed on the mechanism scaled
+exactly by a power of two (:func:`~mobility.core.tolerance.binary_scale`),
+then written back in the file's units.  Results are in the global frame and
+the mechanism's length unit.
 
 Examples
 --------
@@ -160,18 +143,12 @@ def jacobian(mechanism: Mechanism | ParallelModel, q: Sequence[np.ndarray] | Non
 
     Parameters
     ----------
-    mechanism : Mechanism or ParallelModel
     q : sequence of arrays, optional
         Joint values per limb (an assembled pose, e.g. from
         :meth:`ParallelModel.assemble`); default: the mechanism's own pose.
     actuated : sequence of str, optional
         Actuated joint names (default: those marked ``actuated``); only used
         when ``mechanism`` is a :class:`Mechanism`.
-    tol : Tolerance
-
-    Returns
-    -------
-    JacobianResult
 
     Raises
     ------

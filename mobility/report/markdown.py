@@ -86,7 +86,6 @@ def markdown_table(header: Sequence[str], rows: Iterable[Sequence[object]], alig
 
     Parameters
     ----------
-    header : sequence of str
     rows : iterable of sequences
         Cells, converted with ``str`` and escaped.
     align : str, optional

@@ -1,9 +1,7 @@
 """Reports of a :class:`~mobility.sweeps.SweepResult`: a short text summary, CSV and JSON.
 
-:func:`sweep_summary` is what ``mobility sweep`` prints; :func:`sweep_csv` has
-a header naming each varied coordinate (with its unit), then the columns of
-:data:`mobility.sweeps.COLUMNS`, one row per pose, empty cells where a pose is
-not assembled; :func:`sweep_json` is :meth:`SweepResult.to_dict` as JSON.
+:func:`sweep_summary` is what ``mobility sweep`` prints; :func:`sweep_csv` and
+:func:`sweep_json` (:meth:`SweepResult.to_dict`) its tables (docs/sweeps.md, "Output").
 
 Examples
 --------

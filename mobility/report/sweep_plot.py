@@ -1,18 +1,11 @@
 """Pictures of a sweep: a curve (one coordinate), a map (two) or slices of a 3-D grid.
 
-* **curve**: DOF and mobility (steps) over the rank margin (log scale) and,
-  with inputs, the conditioning and LTI; singular poses red lines, poses not
-  assembled shaded;
-* **map**: colour the conditioning with inputs, else the rank margin (log10);
-  each answer's region outlined, singular poses red crosses, the
-  good-transmission workspace outlined dashed (``"mobility:sweep:good-transmission"``);
-* **slices**: the map at up to :data:`MAX_SLICES` values of the third
-  coordinate, those holding singular poses first.
-
-Figures are built by :mod:`mobility.report.plotting.backend` (matplotlib,
-optional). Every drawn answer carries a ``gid`` (``"mobility:sweep:curve"``,
-``"mobility:sweep:map"``, ``"mobility:sweep:regions"``, ``"mobility:sweep:singular"``,
-``"mobility:sweep:unassembled"``).
+What each picture draws: docs/sweeps.md, "Output" (``--plot``); slices show
+up to :data:`MAX_SLICES` values of the third coordinate.  Figures are built by
+:mod:`mobility.report.plotting.backend` (matplotlib, optional).  Every drawn
+answer carries a ``gid`` (``"mobility:sweep:curve"``, ``"mobility:sweep:map"``,
+``"mobility:sweep:regions"``, ``"mobility:sweep:singular"``,
+``"mobility:sweep:unassembled"``, ``"mobility:sweep:good-transmission"``).
 
 Examples
 --------
@@ -129,7 +122,7 @@ def require_drawable(coordinates: int, what: str = "") -> None:
 
 
 def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
-    """A picture of ``result``: a curve, a map or slices (see the module docstring).
+    """A picture of ``result``: a curve, a map or slices (docs/sweeps.md, "Output").
 
     The default title is the mechanism's name; names are cut to
     :data:`~mobility.report.plotting.style.MAX_LABEL` characters (``title`` to

@@ -1,22 +1,10 @@
 """The transmission indices of :mod:`mobility.transmission` at many poses, from the sweep's screw systems.
 
-The sweep's analysis (:func:`~mobility.core.screw_systems.analyse_poses`:
-the end effector's twist system ``root.basis``/``root.dim`` and each limb's
-constraint wrenches ``root.children[j].wrenches``) and its actuation
-(:func:`~mobility.sweeps.batch_actuation.actuation_at_poses`: the actuation
-wrench of each input) give every screw the indices need; this module only
-finds the points where the wrenches act (where each limb leaves its input
-link and where it meets the end effector) and hands the arrays over.
-
-:func:`check_transmission` is the same at one pose of a mechanism (its file
-pose, or given joint variables).
-
-Examples
---------
->>> import mobility
->>> t = check_transmission(mobility.load("mechanisms/3prs.yaml"))
->>> round(t.lti, 3), round(t.cti, 3), t.good
-(0.943, 1.0, True)
+The analysis (:func:`~mobility.core.screw_systems.analyse_poses`) and the
+actuation (:func:`~mobility.sweeps.batch_actuation.actuation_at_poses`) give
+every screw the indices need; this module finds the points where the wrenches
+act (where each limb leaves its input link and meets the end effector).
+:func:`check_transmission` is the same at one pose of a mechanism.
 """
 
 from __future__ import annotations
@@ -70,14 +58,10 @@ def transmission_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: Pos
 
     Parameters
     ----------
-    mechanism : Mechanism
-    posed : PosedScrews
     answers : PoseAnswers
         :func:`~mobility.core.screw_systems.analyse_poses` of the same poses.
     actuation : BatchActuation
         :func:`~mobility.sweeps.batch_actuation.actuation_at_poses` of the same poses and inputs.
-    inputs : ActuationInputs
-    tol : Tolerance
     """
     count = posed.twists.shape[0]
     root = decompose(mechanism).root
@@ -125,7 +109,6 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
 
     Parameters
     ----------
-    mechanism : Mechanism
     actuated : sequence of str, optional
         The actuated joints (default: those the file marks ``actuated: true``).
     q : array_like, optional
@@ -133,11 +116,6 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
         (closing every loop; default: the file's pose).
     threshold : float
         The good-transmission threshold (``LTI >= threshold``), 0.7 as published.
-    tol : Tolerance
-
-    Returns
-    -------
-    TransmissionCheck
 
     Raises
     ------

@@ -1,13 +1,10 @@
 """What a sweep varies: the grid of drive values, checked against the mechanism.
 
 Each coordinate takes ``COUNT`` evenly spaced values from ``START`` to ``STOP``
-(both included); the grid is their product, first coordinate slowest. A
-coordinate is a **joint** displaced from the file's pose (the angle of an
-``R``, ``H`` or ``C`` joint in degrees, the slide of a ``P`` joint in the
-file's length unit), or an **end-effector pose coordinate** in the file's
-global frame: ``x``, ``y``, ``z``, the displacement of the reference point
-(:attr:`mobility.Result.reference_point`), and ``rx``, ``ry``, ``rz``, the
-rotation vector from the file's pose in degrees. Inside, as in
+(both included); the grid is their product, first coordinate slowest.  A
+coordinate is a joint (degrees, or the file's length unit for a slide) or an
+end-effector pose coordinate ``x`` ... ``rz``, both displaced from the file's
+pose (docs/sweeps.md, "The request").  Inside, as in
 :mod:`mobility.core.kinematics`: radians, lengths over the characteristic length.
 
 Examples
@@ -329,16 +326,11 @@ def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int
 
     Parameters
     ----------
-    mechanism : Mechanism
     vary : str, sequence or mapping
         One or more ``"NAME=START:STOP:COUNT"``, ``(name, start, stop, count)``,
         or ``{name: (start, stop, count)}``.
     max_poses : int
         The largest grid accepted.
-
-    Returns
-    -------
-    GridPlan
 
     Raises
     ------

@@ -2,19 +2,10 @@
 
 :class:`SweepResult` holds, for every grid point (flat, C order), whether the
 pose was assembled and what :func:`mobility.analyze` (with inputs,
-:func:`mobility.check_actuation`) says there. It also names
-
-* the **regular** answer: the most common ``(dof, pattern, mobility, verdict)``;
-* the **singular poses**: where the end effector or the mechanism gains a
-  freedom over it, the end effector loses one while the mechanism keeps its
-  mobility (a dead point), or the inputs become actuation-singular;
-* the **changes**: neighbouring assembled grid points whose answers differ;
-* the **seams**: the two ends of a full turn of a joint that no small motion
-  joins (:mod:`mobility.sweeps.seams`);
-* the **margin dips**: points whose rank margin is at most
-  :data:`~mobility.core.tolerance.MARGIN_DIP` of a neighbour's of the same
-  answer and no larger than either: a singularity with the same answer on both
-  sides (type II crossed, constraint passed) may lie between grid points.
+:func:`mobility.check_actuation`) says there, and names the regular answer,
+the singular poses, the changes, the seams (:mod:`mobility.sweeps.seams`) and
+the margin dips (:data:`~mobility.core.tolerance.MARGIN_DIP`), as
+docs/sweeps.md defines them.
 
 Examples
 --------
@@ -80,7 +71,7 @@ def _listed(value: Any) -> Any:
 
 @dataclass(frozen=True)
 class SingularPose(GridPoint):
-    """A grid point where the answer is singular (see the module docstring).
+    """A grid point where the answer is singular (docs/sweeps.md).
 
     Attributes
     ----------
@@ -365,7 +356,7 @@ class SweepResult(ReadOnlyArrays):
 
     @cached_property
     def dips(self) -> tuple[MarginDip, ...]:
-        """The grid points where a rank margin dips (see the module docstring), in grid order, deepest dip per point and column."""
+        """The grid points where a rank margin dips (docs/sweeps.md), in grid order, deepest dip per point and column."""
         codes = self._class_codes()
         index = np.arange(self.size).reshape(self.shape)
         singular = {p.index for p in self.singular}

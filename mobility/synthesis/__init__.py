@@ -1,10 +1,6 @@
 """Type synthesis of limbs for a motion pattern (e.g. the seven 5-DOF limbs of 2T3R PKMs), by finite screws.
 
-Modules, in data-flow order: ``patterns`` (motion patterns as triangle
-products of finite-screw factors), ``generic_rank`` (the dimension of a chain's
-finite motions), ``limb_types`` (limb types named as in the paper),
-``enumeration`` (:func:`synthesize`, :func:`generates`), ``assembly`` (a PKM of a
-synthesized limb and 6-DOF limbs, and its mechanism file).
+Its modules, in data-flow order: docs/finite-screws.md.
 
 Examples
 --------

@@ -1,22 +1,11 @@
 """Type synthesis of limbs by finite screws: which serial chains generate a motion pattern?
 
 :func:`synthesize` enumerates chains of ``R`` and ``P`` joints along the
-pattern's directions (:meth:`~mobility.synthesis.patterns.MotionPattern.directions`),
-``R`` axes through the pattern's points or generic points, in every order (so
-the paper's replacements, an ``S`` by three ``R``, a ``U`` by two, are among
-the candidates; none is written in). It keeps the chains whose finite motions
-*equal* the pattern:
-
-1. **rank route (prunes).** For ``M = G1 △ G2``, a chain ``L`` lies in ``M``
-   exactly when ``G1 △ L △ G2`` has the dimension of ``M`` (it contains ``M``,
-   and lies in ``G1 M G2 = M`` when ``L ⊂ M``). Dimensions are generic ranks
-   at seeded random joint values (:mod:`mobility.synthesis.generic_rank`).
-   Every prefix of a valid chain is valid, which prunes the search.
-2. **sample route (confirms).** Random finite motions of each chain kept are
-   fitted by the pattern's finite screw to the closure tolerance
-   (:meth:`~mobility.synthesis.patterns.MotionPattern.contains`).
-
-Sequences are grouped into limb types named as in the paper (:mod:`mobility.synthesis.limb_types`).
+pattern's directions, in every order, and keeps those whose finite motions
+*equal* the pattern: the rank route (:mod:`mobility.synthesis.generic_rank`)
+prunes, the sample route (:meth:`~mobility.synthesis.patterns.MotionPattern.contains`)
+confirms; docs/finite-screws.md, "Type synthesis", tells both.  Sequences are
+grouped into limb types named as in the paper (:mod:`mobility.synthesis.limb_types`).
 
 Examples
 --------
@@ -178,10 +167,6 @@ def synthesize(pattern: MotionPattern | str, *, joints: int | None = None, gener
     tol : Tolerance
         Rank policy, and the closure tolerance of the sample route.
 
-    Returns
-    -------
-    SynthesisResult
-
     Raises
     ------
     SynthesisError
@@ -270,7 +255,7 @@ def synthesize(pattern: MotionPattern | str, *, joints: int | None = None, gener
 
 
 def generates(pattern: MotionPattern, joints: Sequence[ScrewJoint], *, samples: int = 3, seed: int = 0, tol: Tolerance = DEFAULT_TOLERANCE) -> bool:
-    """Whether the chain's set of finite motions equals the pattern (rank route: module docstring).
+    """Whether the chain's set of finite motions equals the pattern (the rank route of docs/finite-screws.md).
 
     Examples
     --------

@@ -1,13 +1,10 @@
 """Limb types: joint sequences found by the synthesis, named as in Sun et al. (2018).
 
-Each one-DOF joint of the enumeration is a :class:`CandidateJoint`: a
+Each one-DOF joint of the enumeration is a :class:`CandidateJoint` (a
 :class:`~mobility.core.finite_screws.ScrewJoint` with the labels of its
-direction (``s1``, ``c``...) and point (``O``, ``g1``...).  A joint sequence
-splits into named groups (:func:`joint_groups`): a run of three ``R`` through
-one point is an ``S``, of two a ``U``; an ``R`` whose axis is along ``c = s1 × s2``
-is ``Rc``, any other ``R`` is named by its direction (``Rs1``); ``P`` joints in
-the plane of the pattern's translations are numbered ``P1, P2`` in order of
-appearance.  The sequences with the same group names form one limb type
+direction and point).  :func:`joint_groups` names runs of joints as the paper
+does (docs/finite-screws.md, "Type synthesis": ``S``, ``U``, ``Rc``, ``Rs1``,
+``P1``); the sequences with the same group names form one limb type
 (:class:`SynthesizedLimb`), e.g. ``UP1RcP2``.
 
 Examples
@@ -85,7 +82,6 @@ def joint_groups(seq: Sequence[CandidateJoint], plane: tuple[str, ...]) -> list[
 
     Parameters
     ----------
-    seq : sequence of CandidateJoint
     plane : tuple of str
         Labels of the pattern's translation directions (``s1, s2``): a P along
         one of them is numbered ``P1, P2...``, any other named by its direction.

@@ -1,15 +1,11 @@
 """Motion patterns: sets of finite motions written as triangle products of finite-screw factors.
 
 A *motion pattern* is a set of finite motions ``S_f = F_1 △ F_2 △ ... △ F_k``
-(``F_k`` acts first; see :mod:`mobility.core.finite_screws` for the order), each
-factor a subgroup of displacements (:class:`PatternFactor`): every rotation
-about a point, the rotations about a line, or the translations along a span.
-The 2T3R pattern of Sun et al. (2018) is two translations in the plane of
-``s1, s2`` followed by three rotations about a fixed point ``O``,
-
-    ``S_f = 2 tan(θ/2) [s; O × s]  △  t [0; u],   u ∈ span(s1, s2)``.
-
-:data:`PATTERNS` names the patterns the command line knows; any product of factors can be built in code.
+(``F_k`` acts first), each factor a subgroup of displacements
+(:class:`PatternFactor`); the 2T3R pattern of Sun et al. (2018) and the
+others are in docs/finite-screws.md, "Type synthesis".  :data:`PATTERNS`
+names the patterns the command line knows; any product of factors can be
+built in code.
 
 Examples
 --------
@@ -170,14 +166,7 @@ class PatternFactor:
 
 @dataclass(frozen=True)
 class MotionPattern:
-    """A set of finite motions ``S_f = F_1 △ F_2 △ … △ F_k`` (``F_k`` acts first).
-
-    Parameters
-    ----------
-    name : str
-    factors : tuple of PatternFactor
-    description : str
-    """
+    """A set of finite motions ``S_f = F_1 △ F_2 △ … △ F_k`` (``F_k`` acts first)."""
 
     name: str
     factors: tuple[PatternFactor, ...]

@@ -1,82 +1,31 @@
 """Motion/force and constraint transmission indices on stacks of poses.
 
-Definitions
------------
-Every index here is a **power coefficient** of a unit wrench ``w = [f; m]``
-and a twist ``t = [omega; v]`` taken at a point ``P`` where the wrench acts::
+Definitions, the choice of normalisation, redundancy and the checks against
+textbook closed forms: docs/sweeps.md, "Transmission indices".  In short,
+every index is a **power coefficient** of a unit wrench ``w = [f; m]`` and a
+twist ``t = [omega; v]`` at the point ``P`` where the wrench acts::
 
     tau_P(w, t) = |w o t| / (|f| |v_P| + |m_P| |omega|),
 
-with ``w o t = f . v_P + m_P . omega`` the reciprocal product (the power),
-``v_P`` the velocity of ``P`` and ``m_P`` the moment of ``w`` about ``P``.
-The denominator is the largest power the same force and couple could
-deliver at ``P`` in any direction, so ``tau`` is the cosine of the pressure
-angle at ``P`` when ``w`` is a force through ``P`` (the case of every limb
-here).  This is the normalisation ``|$_T o $|max`` of the potential power of
-Wang, Liu, Wang and Wang (2010) for a force (the largest virtual coefficient
-over the directions of the force at its point of application, after Chen and
-Angeles, 2007), and the pressure-angle cosine of Takeda and Funabashi (1995)
-and Brinker, Corves and Takeda (2018), which those papers show to agree.
+the cosine of the pressure angle at ``P`` for a force through ``P``; it does
+not depend on the frame or the length unit, and is 0 exactly when the power
+is.  With the actuation wrench (transmission wrench screw) ``a_i`` of input ``i``:
 
-Why this normalisation: the reciprocal product is invariant under a change
-of frame (both screws move by the same rigid motion) but has units (power per
-unit force and unit speed: a length when a pitch or a lever arm enters), so a
-raw ``|w o t|`` changes with the length unit and, for unit screws, with the
-point about which moments are taken.  Dividing by the largest value at the
-*same* geometry and the same point of application cancels the unit (the
-numerator and the denominator scale alike) and the frame (norms and dot
-products at a physical point do not see a rigid motion); the index is 0
-exactly when the power is 0, i.e. at the singularity.
+* ``ITI_i = tau_B(a_i, $_I)``, ``$_I`` the input twist, ``B`` where the limb
+  leaves the input link (``lambda_i`` of Wang et al., 2010);
+* ``OTI_i = tau_C(a_i, $_O,i)``, ``$_O,i`` the end effector's twist with every
+  other input locked, ``C`` where the limb meets it (``eta_i``, ibid.);
+* ``LTI = min_i min(ITI_i, OTI_i)``; good transmission is ``LTI >=``
+  :data:`GOOD_TRANSMISSION`;
+* ``CTI_j = tau_C(c_j, $_O,j)`` of limb ``j``'s constraint wrench, ``$_O,j`` the
+  twist gained with every input locked and that constraint removed (Liu et
+  al., 2012; Brinker et al., 2018), through the principal pairs of the two
+  systems (whatever basis the analysis chose); ``CTI = min_j CTI_j``.
 
-With the actuation wrench (transmission wrench screw, TWS) ``a_i`` of input
-``i`` and its input twist ``$_I`` (the unit twist of the actuated freedom):
-
-* ``ITI_i = tau_B(a_i, $_I)``, ``B`` the point where the limb leaves the
-  input link (the joints after the actuated one, on its distal link): the
-  input transmission index ``lambda_i`` of Wang et al. (2010);
-* ``OTI_i = tau_C(a_i, $_O,i)``, ``C`` the point where the limb meets the
-  end effector and ``$_O,i`` the output twist: the end effector's twist
-  (in its twist system, reciprocal to every constraint wrench) reciprocal to
-  every other actuation wrench, the motion input ``i`` alone produces: the
-  output transmission index ``eta_i`` of Wang et al. (2010);
-* ``LTI = min_i min(ITI_i, OTI_i)``, the local transmission index; the
-  *good-transmission workspace* is where ``LTI >= 0.7`` (Wang et al., 2010,
-  after the transmission angle of Tao's 40 deg-140 deg rule: ``cos 45.57 deg = 0.7``, a pressure angle of at most
-  45.57 deg, a transmission angle between 44.43 deg and 135.57 deg);
-  with more inputs than freedoms (redundant actuation) ``LTI`` is that of the
-  best non-redundant choice of inputs (the largest over the subsets), unless
-  an input has no transmission wrench of its own at the pose (its limb at a
-  serial singularity, ``ITI = 0``): the inputs then outnumber the freedoms
-  because the end effector lost the freedom that input drove, an input
-  singularity, and ``LTI = 0`` (a five-bar whose crank, elbow and tool point
-  fall in line);
-* ``CTI_j = tau_C(c_j, $_O,j)`` of the constraint wrench ``c_j`` of limb ``j``
-  with ``$_O,j`` the twist the end effector gains when every input is locked
-  and that limb's constraint is removed (reciprocal to every actuation wrench
-  and every other limb's constraint wrenches): the output constraint index of
-  Liu, Wu and Wang (2012) and the constraint pressure angle of Brinker et al.
-  (2018); ``CTI = min_j CTI_j``.  A limb with several constraint wrenches
-  acts on ``$_O,j`` through the one of its system that does the most work per
-  unit norm at ``C`` (the projection of ``$_O,j`` on the system), whatever
-  basis the analysis chose (the principal pairs of the two systems).  In a
-  redundant wrench system (more inputs than freedoms, or more constraint
-  wrenches than the ``6 - DOF`` needed: the overconstrained 4-PUU, planar
-  limbs in space) no limb's constraint is needed alone; as for ``LTI`` the
-  best non-redundant choice of inputs and whole limbs is taken (the largest
-  least index over the choices, at most :data:`MAX_CHOICES` of them), and a
-  limb left out, or one whose constraints stay redundant, has no index (NaN;
-  ``CTI`` is NaN when no limb has one).
-
-Distance to singularity: ``LTI`` (0 exactly at an actuation singularity:
-an input one, ``ITI = 0``, or an output one, ``OTI = 0``) and ``CTI`` (0
-exactly at a constraint singularity).  Both are Liu-style indices of the whole
-wrench system (actuation and constraint wrenches together), so at a pose
-where that system degenerates, of either kind, every index it involves is 0;
-which kind it is the sweep's counts tell (a constraint singularity gains an
-end-effector freedom, an actuation singularity keeps the DOF).  "Exactly":
-where the rank decisions of :mod:`mobility.core.tolerance` (the same ones as
-the analysis and the actuation verdict) find the system degenerate, the index
-is set to 0, not left at round-off.
+In a redundant wrench system the best non-redundant choice of inputs and
+whole limbs is taken (at most :data:`MAX_CHOICES` of them; NaN beyond).
+Where the rank decisions of :mod:`mobility.core.tolerance` find the wrench
+system degenerate, the index is 0 exactly, not round-off.
 
 Sources
 -------
@@ -120,7 +69,9 @@ from ..errors import AnalysisError
 __all__ = ["GOOD_TRANSMISSION", "BatchTransmission", "TransmissionCheck", "power_coefficient", "transmission_indices"]
 
 GOOD_TRANSMISSION = 0.7
-"""The published threshold of good transmission: ``LTI >= 0.7`` (Wang et al., 2010)."""
+"""The published threshold of good transmission: ``LTI >= 0.7`` (Wang et al., 2010, after Tao's transmission angles of 40 to 140 deg).
+
+``cos 45.57 deg = 0.7``: a pressure angle of at most 45.57 deg, a transmission angle between 44.43 and 135.57 deg."""
 
 _TINY = 1e-12
 """Below this (relative to the screws' unit size) a denominator is no power at all: the index is 0."""
@@ -320,13 +271,10 @@ def _limb_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], po
                 present: np.ndarray, degenerate: np.ndarray, tol: Tolerance) -> np.ndarray:
     """The constraint transmission index of every limb at every pose, ``(N, L)``.
 
-    The twists released by limb ``j`` are those reciprocal to every
-    actuation wrench and every other limb's constraint wrenches (its
-    constraints removed, the inputs locked).  Without redundancy (six
-    wrenches in all, every one present: a 3-PRS, a 3-RPS) they are columns of
-    the adjugate of the square power matrix, one SVD for every limb;
-    otherwise one SVD per limb finds them with the rank decision of the
-    analysis.
+    Without redundancy (six wrenches in all, every one present: a 3-PRS) the
+    released twists are columns of the adjugate of the square power matrix,
+    one SVD for every limb; otherwise one SVD per limb, with the analysis's
+    rank decision.
     """
     count = actuation.shape[0]
     limbs = len(wrenches)
@@ -378,17 +326,11 @@ MAX_LIMBS_CHOSEN = 12
 
 def _best_choice_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], points: np.ndarray, actuation: np.ndarray,
                        present: np.ndarray, degenerate: np.ndarray, dim: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The constraint indices of the best non-redundant choice of inputs and limbs, where the wrench system is redundant.
+    """The constraint indices ``(N, L)`` of the best non-redundant choice of inputs and limbs, and the poses where one was made.
 
-    With more inputs than freedoms, or more constraint wrenches than the
-    ``6 - DOF`` the end effector needs (an overconstrained mechanism: a
-    4-PUU, planar limbs in space), no single limb's constraint is needed
-    alone and Liu's index is not defined.  As for the output index, the
-    sub-mechanism that transmits best is taken: every choice of ``DOF``
-    inputs and of whole limbs with ``6 - DOF`` constraint wrenches in all
-    (a square system), the limbs' indices in it, and the choice whose least
-    index is largest.  Returns the indices ``(N, L)`` (NaN for a limb left
-    out) and the poses where such a choice was made.
+    Every choice of ``DOF`` inputs and of whole limbs with ``6 - DOF``
+    constraint wrenches in all (a square system) is tried; the one whose
+    least index is largest wins (NaN for a limb left out).
     """
     count, n = actuation.shape[0], actuation.shape[1]
     limbs = len(wrenches)
@@ -429,19 +371,10 @@ def _best_choice_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarr
     return out, done
 
 
-def transmission_indices(
-    actuation: np.ndarray,
-    input_twists: np.ndarray,
-    input_points: np.ndarray,
-    output_points: np.ndarray,
-    basis: np.ndarray,
-    dim: np.ndarray,
-    limb_wrenches: Sequence[np.ndarray] = (),
-    limb_counts: Sequence[np.ndarray] = (),
-    limb_points: np.ndarray | None = None,
-    singular: np.ndarray | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> BatchTransmission:
+def transmission_indices(actuation: np.ndarray, input_twists: np.ndarray, input_points: np.ndarray, output_points: np.ndarray,
+                         basis: np.ndarray, dim: np.ndarray, limb_wrenches: Sequence[np.ndarray] = (),
+                         limb_counts: Sequence[np.ndarray] = (), limb_points: np.ndarray | None = None,
+                         singular: np.ndarray | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> BatchTransmission:
     """The transmission indices of ``N`` poses, from the screw systems of the analysis.
 
     Every screw is in one set of coordinates per pose (the sweep's normalised
@@ -471,11 +404,6 @@ def transmission_indices(
         actuation and constraint wrenches together of rank below 6 (the
         wrench system degenerate): their output and constraint indices are 0
         exactly.
-    tol : Tolerance
-
-    Returns
-    -------
-    BatchTransmission
 
     Examples
     --------
@@ -494,10 +422,8 @@ def transmission_indices(
     oti = np.full((count, n), np.nan)
     lti = np.full(count, np.nan)
     dim = np.asarray(dim)
-    for d in np.unique(dim).tolist():
+    for d in np.unique(dim).tolist() if n else []:
         rows = np.flatnonzero(dim == d)
-        if n == 0:
-            continue
         if d == 0 or n < d:  # the inputs move no output (a dead centre: the output locked for an instant), or a freedom moves unactuated
             oti[rows] = 0.0
             lti[rows] = 0.0
@@ -528,12 +454,10 @@ def transmission_indices(
     if n:
         chosen = ~np.isnan(oti)
         iti = np.where(chosen | np.isnan(lti)[:, None] | stalled[:, None], iti, np.nan)
-    if singular is not None:
-        singular = np.asarray(singular, dtype=bool)
-        oti = np.where(singular[:, None] & ~np.isnan(oti), 0.0, oti)
-        lti = np.where(singular & ~np.isnan(lti), 0.0, lti)
+    degenerate = np.zeros(count, dtype=bool) if singular is None else np.asarray(singular, dtype=bool)
+    oti = np.where(degenerate[:, None] & ~np.isnan(oti), 0.0, oti)
+    lti = np.where(degenerate & ~np.isnan(lti), 0.0, lti)
     points = np.zeros((count, len(limb_wrenches), 3)) if limb_points is None else limb_points
-    degenerate = np.zeros(count, dtype=bool) if singular is None else singular
     counts = [np.asarray(c) for c in limb_counts]
     cti_limbs = _limb_index(list(limb_wrenches), counts, points, actuation, present, degenerate, tol)
     chosen, done = _best_choice_index(list(limb_wrenches), counts, points, actuation, present, degenerate, dim)

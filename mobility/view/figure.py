@@ -3,10 +3,8 @@
 Each glyph is up to four traces in one legend group (one click switches the
 glyph); each layer has its own legend (``legend``, ``legend2``, ``legend3``)
 whose title switches the layer.  Every trace carries ``meta = {"layer", "key",
-"frame"}`` so that programs and tests can read the page back.  Every pose is
-in the figure, one visible at a time on a slider; the axes are a cube around
-every pose, so that directions read true and the scene does not jump.  Built
-without plotly, which only validates or writes it.
+"frame"}``; every pose is in the figure, one visible at a time on a slider, in
+a cube around every pose.  Built without plotly, which only validates or writes it.
 
 Examples
 --------

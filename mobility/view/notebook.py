@@ -1,12 +1,9 @@
 """Jupyter shows a :class:`~mobility.core.result.Result` (and a sweep result) as its interactive 3D view.
 
-The core knows nothing of views: ``import mobility`` inside IPython calls
-:func:`register_display`, which registers :func:`result_mimebundle` with
-IPython's mime-bundle formatter.  A notebook then gets the view in the forms
-plotly's renderers name (:func:`offline_mimebundle`, fetching nothing) and the
-text report as plain text; without plotly, the text with the install hint.  A
-sweep result shows as a slider through up to :data:`NOTEBOOK_POSES` poses.
-Nothing here imports plotly or IPython until it is used.
+``import mobility`` inside IPython calls :func:`register_display` (the core
+knows nothing of views); what a notebook then shows, fetching nothing:
+docs/view.md, "In Python and Jupyter" (without plotly: the text report with the
+install hint).  Nothing here imports plotly or IPython until it is used.
 """
 
 from __future__ import annotations
@@ -28,11 +25,10 @@ NOTEBOOK_POSES = 60
 def offline_mimebundle(figure: Any) -> dict[str, Any]:
     """The forms of ``figure`` that plotly's default renderers name, none of them fetching anything.
 
-    plotly's HTML renderers (``notebook``, ``iframe``...), which would load
-    MathJax or plotly.js from a CDN, give way to one fragment with plotly.js
-    inline (:func:`mobility.view.page.figure_html`); other renderers give their
-    own form, those opening a browser none.  The JSON form comes with the HTML
-    too, for viewers of a saved notebook (about 4.8 MB a view).  Returns mime type -> data.
+    HTML renderers (``notebook``, ``iframe``...) give way to one fragment with
+    plotly.js inline (:func:`mobility.view.page.figure_html`), which also goes
+    along with the JSON form; other renderers give their own form, those
+    opening a browser none.  Returns mime type -> data.
     """
     import plotly.io as pio
 

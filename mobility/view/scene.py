@@ -1,12 +1,10 @@
 """What the 3D view draws for one pose, as plain data: glyphs in three layers.
 
-Each :class:`Glyph` is one thing a person points at, in the ``mechanism``
-layer (links, one glyph per joint type, the end effector's centre), the
-``freedoms`` layer (``T1..`` arrows, ``R1..`` axes, a helix for a pitch) or the
-``constraints`` layer (``C1..`` couples, ``W..`` forces, numbered as in the text
-report).  Joint places and the scene's size come from the pictures'
-:func:`mobility.report.plotting.sketch` (the view and the PNG agree); every
-glyph size is a fraction of that size, so metres and millimetres look the same.
+Each :class:`Glyph` is one thing a person points at, in the ``mechanism``,
+``freedoms`` (``T1..``, ``R1..``) or ``constraints`` (``C1..``, ``W..``, numbered
+as in the text report) layer; how the scene is built: docs/view.md, "How it is
+built and tested".  Every glyph size is a fraction of the scene's size, so
+metres and millimetres look the same.
 
 Examples
 --------
