@@ -12,40 +12,12 @@ from typing import Any
 
 from ..core.result import Result
 from ..report.text import text_report
+from .page import offline_mimebundle
 
 __all__ = ["result_mimebundle", "sweep_mimebundle", "register_display", "offline_mimebundle", "NOTEBOOK_POSES"]
 
-PLOTLY_JSON = "application/vnd.plotly.v1+json"
-"""The mime type of plotly's JSON form (what plotly picks in a Jupyter kernel)."""
-
 NOTEBOOK_POSES = 60
 """Poses of a sweep shown in a notebook's slider (each is analysed again to be drawn)."""
-
-
-def offline_mimebundle(figure: Any) -> dict[str, Any]:
-    """The forms of ``figure`` that plotly's default renderers name, none of them fetching anything.
-
-    HTML renderers (``notebook``, ``iframe``...) give way to one fragment with
-    plotly.js inline (:func:`mobility.view.page.figure_html`), which also goes
-    along with the JSON form; other renderers give their own form, those
-    opening a browser none.  Returns mime type -> data.
-    """
-    import plotly.io as pio
-
-    from .page import figure_html
-
-    fig_dict = figure.to_plotly_json()
-    bundle: dict[str, Any] = {}
-    for name in filter(None, (pio.renderers.default or "").split("+")):
-        renderer = pio.renderers[name]
-        if any(c.__name__ in ("HtmlRenderer", "IFrameRenderer") for c in type(renderer).__mro__):  # its HTML would load MathJax from a CDN
-            bundle["text/html"] = figure_html(fig_dict)
-        elif hasattr(renderer, "to_mimebundle"):
-            bundle.update(renderer.to_mimebundle(fig_dict))
-    if PLOTLY_JSON in bundle and "text/html" not in bundle:
-        # only a front end with plotly's extension draws the JSON: the HTML goes along for nbconvert, GitHub and other viewers
-        bundle["text/html"] = figure_html(fig_dict)
-    return bundle
 
 
 def result_mimebundle(result: Result, *, rich: bool = True) -> dict[str, Any]:

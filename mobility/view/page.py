@@ -16,7 +16,7 @@ from typing import Any, Sequence
 from ..errors import MissingExtraError
 from .figure import ELEMENT_ID
 
-__all__ = ["require_plotly", "page_html", "figure_html", "answer_script", "screws_table", "LABELS_SCRIPT", "PLOTLY_CONFIG"]
+__all__ = ["require_plotly", "page_html", "figure_html", "offline_mimebundle", "answer_script", "screws_table", "LABELS_SCRIPT", "PLOTLY_CONFIG"]
 
 PLOTLY_CONFIG = {"displaylogo": False, "responsive": True, "scrollZoom": True}
 """The plotly.js options of the view: no logo, fills its page, the wheel zooms."""
@@ -151,3 +151,32 @@ def page_html(figure: dict[str, Any], title: str, answers: Sequence[str], lines:
         # the table first: the figure, drawn as the page is read, then takes the width left beside it
         + (f"<aside>\n{aside}</aside>\n" if tables else "") + f"<div class=\"figure\">\n{body}\n</div>\n</main>\n</body>\n</html>\n"
     )
+
+
+PLOTLY_JSON = "application/vnd.plotly.v1+json"
+"""The mime type of plotly's JSON form (what plotly picks in a Jupyter kernel)."""
+
+
+def offline_mimebundle(figure: Any) -> dict[str, Any]:
+    """The forms of ``figure`` that plotly's default renderers name, none of them fetching anything.
+
+    HTML renderers (``notebook``, ``iframe``...) give way to one fragment with
+    plotly.js inline (:func:`mobility.view.page.figure_html`), which also goes
+    along with the JSON form; other renderers give their own form, those
+    opening a browser none.  Returns mime type -> data.
+    """
+    import plotly.io as pio
+
+
+    fig_dict = figure.to_plotly_json()
+    bundle: dict[str, Any] = {}
+    for name in filter(None, (pio.renderers.default or "").split("+")):
+        renderer = pio.renderers[name]
+        if any(c.__name__ in ("HtmlRenderer", "IFrameRenderer") for c in type(renderer).__mro__):  # its HTML would load MathJax from a CDN
+            bundle["text/html"] = figure_html(fig_dict)
+        elif hasattr(renderer, "to_mimebundle"):
+            bundle.update(renderer.to_mimebundle(fig_dict))
+    if PLOTLY_JSON in bundle and "text/html" not in bundle:
+        # only a front end with plotly's extension draws the JSON: the HTML goes along for nbconvert, GitHub and other viewers
+        bundle["text/html"] = figure_html(fig_dict)
+    return bundle

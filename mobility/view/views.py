@@ -38,8 +38,7 @@ from ..report.plotting.sketch import drawing_scale
 from ..report.text import text_report
 from .describe import header_lines, margin_text
 from .figure import figure_dict as build_figure_dict
-from .notebook import offline_mimebundle
-from .page import page_html, require_plotly, screws_table
+from .page import offline_mimebundle, page_html, require_plotly, screws_table
 from .scene import Scene, build_scene
 
 __all__ = ["ViewFrame", "View", "mechanism_view", "poses_view", "require_max_poses", "MAX_POSES"]
@@ -139,7 +138,7 @@ class View:
         return "\n".join(lines)
 
     def _repr_mimebundle_(self, include: Any = None, exclude: Any = None) -> dict[str, Any]:
-        """Jupyter: the figure as :func:`mobility.view.notebook.offline_mimebundle` gives it, the text report as plain text."""
+        """Jupyter: the figure as :func:`mobility.view.page.offline_mimebundle` gives it, the text report as plain text."""
         try:
             figure = self.figure
         except MissingExtraError as exc:
