@@ -308,11 +308,14 @@ class _Runner:
             self.progress(stage, 0, total)
         serial = self.client is None and self.workers == 1
         finished = ((i, function(self.context, *chunk)) for i, chunk in enumerate(chunks)) if serial else self._bounded(function, iter(enumerate(chunks)))
-        for i, result in finished:
-            done += weights[i]
-            if self.progress:
-                self.progress(stage, done, total)
-            yield i, result
+        try:
+            for i, result in finished:
+                done += weights[i]
+                if self.progress:
+                    self.progress(stage, done, total)
+                yield i, result
+        finally:  # closed with this generator (an interrupt in its consumer): the chunks in flight stop now, not at exit
+            finished.close()
 
     def _bounded(self, function: Callable, numbered: Iterator[tuple[int, tuple]]) -> Iterator[tuple[int, Any]]:
         limit = IN_FLIGHT * self.workers
@@ -499,9 +502,10 @@ def _close(context: _Context, runner: _Runner, chunk_size: int) -> GridClosure:
     pieces = max(math.ceil(plan.size / chunk_size), runner.workers if len(layout) >= 64 * runner.workers else 1)
     groups = _split(len(layout), pieces)
     chunks = ((q[starts[g]], ok[starts[g]], layout[g], anchor) for g in groups)
-    for i, (lq, lerr, lok) in runner.run("closing loops", close_chunk, chunks, [layout[g].size for g in groups]):
-        lines = layout[groups[i]]
-        q[lines], err[lines], ok[lines] = lq, lerr, lok
+    with contextlib.closing(runner.run("closing loops", close_chunk, chunks, [layout[g].size for g in groups])) as finished:
+        for i, (lq, lerr, lok) in finished:
+            lines = layout[groups[i]]
+            q[lines], err[lines], ok[lines] = lq, lerr, lok
     return fill(context.bk, plan, closure, tol=context.tol)
 
 
@@ -519,13 +523,14 @@ def _analyse(context: _Context, runner: _Runner, closure: GridClosure, chunk_siz
     pieces = max(math.ceil(rows.size / chunk_size), runner.workers if rows.size >= 2 * BLOCK * runner.workers else 1)
     groups = [rows[g] for g in _split(rows.size, pieces)] if rows.size else []
     chunks = ((g, closure.q[g]) for g in groups)
-    for i, result in runner.run("analysing", analyse_grid_chunk, chunks, [g.size for g in groups]):
-        g = groups[i]
-        polished = g[result.pop("polished")]
-        closure.q[polished] = result.pop("q_polished")
-        closure.residual[polished] = result.pop("residual_polished")
-        for key, values in result.items():
-            columns[key][g] = values
+    with contextlib.closing(runner.run("analysing", analyse_grid_chunk, chunks, [g.size for g in groups])) as finished:
+        for i, result in finished:
+            g = groups[i]
+            polished = g[result.pop("polished")]
+            closure.q[polished] = result.pop("q_polished")
+            closure.residual[polished] = result.pop("residual_polished")
+            for key, values in result.items():
+                columns[key][g] = values
     return columns
 
 
