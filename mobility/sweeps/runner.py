@@ -27,7 +27,7 @@ import threading
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Callable, Iterable, Iterator, Sequence, cast
+from typing import Any, Callable, Generator, Iterable, Iterator, Sequence, cast
 from urllib.parse import urlsplit
 
 import numpy as np
@@ -297,7 +297,7 @@ class _Runner:
         if self._owns_client and self.client is not None:
             self.client.close()
 
-    def run(self, stage: str, function: Callable, chunks: Iterable[tuple], weights: Sequence[int]) -> Iterator[tuple[int, Any]]:
+    def run(self, stage: str, function: Callable, chunks: Iterable[tuple], weights: Sequence[int]) -> Generator[tuple[int, Any], None, None]:
         """``(i, function(context, *chunk))`` for every chunk, as they finish.
 
         ``chunks`` is consumed lazily, at most :data:`IN_FLIGHT` per worker out
@@ -317,7 +317,7 @@ class _Runner:
         finally:  # closed with this generator (an interrupt in its consumer): the chunks in flight stop now, not at exit
             finished.close()
 
-    def _bounded(self, function: Callable, numbered: Iterator[tuple[int, tuple]]) -> Iterator[tuple[int, Any]]:
+    def _bounded(self, function: Callable, numbered: Iterator[tuple[int, tuple]]) -> Generator[tuple[int, Any], None, None]:
         limit = IN_FLIGHT * self.workers
         if self.client is not None:
             from dask import distributed
