@@ -181,9 +181,8 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
             d = decide_ranks(s, tol, stack_counts)
             margins.add(d)
             low, high = _extremes(d.rank)
-            swapped = u[:, SWAP_ROWS]
             if low == high:  # one rank at every pose: the spans of the whole stack at once, the rank an int
-                span_, reciprocal = u[:, :, :low], swapped[:, :, low:]
+                span_, reciprocal = u[:, :, :low], u[:, SWAP_ROWS, low:]
                 if len(members) == 1:
                     values[id(members[0][0].node)] = _value(members[0][0].node, members[0][1], span_, reciprocal, low, members[0][3])
                     continue
@@ -193,7 +192,7 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
                     values[id(step.node)] = _value(step.node, kids, span_[rows], reciprocal[rows], low, c)
                 else:  # each node as wide as its own greatest rank
                     rank = d.rank[rows]
-                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], swapped[rows], rank, *_extremes(rank)), rank, c)
+                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], u[rows, SWAP_ROWS], rank, *_extremes(rank)), rank, c)
     return values[id(node)]
 
 
