@@ -87,7 +87,7 @@ from .joint_screws import Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Joint, Mechanism
 from .tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, RankDecision, Tolerance, decide_rank
 from .topology import spanning_tree
-from .transforms import Motion, bracket, compose, dexps, inverse_left_jacobian_times, rotate, rotation_logs_last, skew, stacked_cross, twist_logs
+from .transforms import Motion, bracket, compose, cross, dexps, inverse_left_jacobian_times, rotate, rotation_logs_last, skew, twist_logs
 
 __all__ = [
     "Factor",
@@ -284,7 +284,7 @@ class Kinematics:
             w = rotate(rot, turns[:3])
             variables = chains.variables[start : start + len(part)]
             cols[:3, variables, which] = w
-            cols[3:, variables, which] = stacked_cross(frames[:, 3], w) + rotate(rot, turns[3:])
+            cols[3:, variables, which] = cross(frames[:, 3], w) + rotate(rot, turns[3:])
         return cols[:, :n]
 
     def link_motions(self, q: np.ndarray) -> dict[str, Motion]:
@@ -664,7 +664,7 @@ class Evaluation:
             cols = cols[:, :, 0]
             p, r = pose if rows is None else (pose[0][:, rows], pose[1][:, rows])
             omega = cols[:3]
-            dp = cols[3:] + stacked_cross(omega, p[:, None, :])  # point velocity v + w x p
+            dp = cols[3:] + cross(omega, p[:, None, :])  # point velocity v + w x p
             dr = inverse_left_jacobian_times(r, omega)
             blocks.append(np.concatenate([dp, dr])[self._components])
         if not blocks:
