@@ -3,53 +3,32 @@
 One module, longer than most, because it is one concept that reads better
 whole: the joint variables, the link displacements, the loop residuals, their
 Jacobians and the Newton closure all stand on one spanning tree and one set of
-normalised coordinates, held by one :class:`Kinematics` object.  Every
-method takes the joint variables of one pose, ``q`` of shape ``(n,)``, or of
-a stack of poses, ``(N, n)`` (as SciPy's ``Rotation`` is one rotation or
-many): one pose is a stack of one, and nothing loops over poses.
-
-The screw route (:func:`mobility.analyze`) answers at one pose.  This module
-moves the mechanism: it is the finite counterpart of
-:mod:`mobility.core.loop_closure`, on the same spanning tree of the joint graph.
+normalised coordinates, held by one :class:`Kinematics` object.  Every method
+takes one pose ``q`` ``(n,)`` or a stack ``(N, n)`` (as SciPy's ``Rotation``):
+one pose is a stack of one, and nothing loops over poses.  It is the finite
+counterpart of :mod:`mobility.core.loop_closure`, on the same spanning tree.
 
 * **Joint variables** ``q``: one per elementary freedom
-  (:meth:`~mobility.core.model.Joint.freedoms`), in the order of
-  :func:`~mobility.core.joint_screws.joint_screws` (joint after joint); ``q = 0`` is
-  the given pose.  Rotations are in radians, translations in units of the
-  mechanism's characteristic length ``L`` (see :mod:`mobility.core.tolerance`), so
-  every number here is dimensionless and does not change when the file is
-  scaled or moved rigidly.
-* **Finite motion of a joint** (``links[1]`` relative to ``links[0]``): the
-  product of exponentials of its freedoms, ``exp(q1 x1) exp(q2 x2) ...``,
-  in the order of the freedoms (``U``: the axis on ``links[0]``'s side first;
-  ``S``: rotations about x, y, z; ``E``: two translations, then the rotation).
-  Twists ``x_i`` are taken at the given pose, in normalised coordinates.
-* **Forward kinematics** along a breadth-first spanning tree from the ground:
-  the displacement ``g_L`` of each link (mapping the link's points from the
-  given pose to the moved one, normalised coordinates) is the product of the
-  joint motions on its tree path.  Stacked displacements are held pose index
-  last (:data:`~mobility.core.transforms.Motion`) and multiplied in a fixed
-  order, so each pose's numbers are the same bits whatever the stack around it.
+  (:meth:`~mobility.core.model.Joint.freedoms`), joint after joint; ``q = 0``
+  is the given pose.  Radians, and lengths over the mechanism's
+  characteristic length ``L`` (:mod:`mobility.core.tolerance`): dimensionless,
+  unchanged when the file is scaled or moved rigidly.
+* **A joint's motion** (``links[1]`` relative to ``links[0]``):
+  ``exp(q1 x1) exp(q2 x2) ...`` in the order of its freedoms (``U``: the axis
+  on ``links[0]``'s side first; ``S``: about x, y, z; ``E``: two translations,
+  then the rotation), twists ``x_i`` at the given pose, normalised coordinates.
+* **Forward kinematics**: a link's displacement ``g_L`` is the product of the
+  joint motions on its path of a breadth-first spanning tree from the ground.
+  Stacks are held pose index last (:data:`~mobility.core.transforms.Motion`)
+  and multiplied in a fixed order, so each pose's numbers are the same bits
+  whatever the stack around it.
 * **Loop closure**: each joint off the tree (a *chord*, from ``a`` to ``b``)
-  closes one loop, ``g_a E_c(q_c) g_b^-1 = I``.  The residual of the loop is
-  the matrix logarithm of that product (a twist ``[w; v]``, 6 numbers; the
-  common part of the two tree paths cancels).  Its right-trivialised Jacobian
-  (the joint twists at the moved pose, the same equations as
-  :mod:`mobility.core.loop_closure`) is exact at a closed pose;
-  :meth:`Kinematics.jacobian` corrects it by the inverse of the differential
-  of the exponential, so it is the exact derivative everywhere.
-* **Re-closure** (:func:`newton`): Gauss–Newton with damped minimum-norm
-  steps, on every pose of a stack at once, with some variables held
-  (:class:`Equations`), pose coordinates of the end effector fixed, or extra
-  linear equations ``A q = b`` (the progress along a direction), one system
-  for the whole stack or each pose its own; :meth:`Kinematics.close` is its
-  stack of one, :meth:`Kinematics.close_each` a stack of such solves (the
-  moves of a finite-motion analysis, solved together).
-* **Moved mechanism**: :meth:`Kinematics.mechanism_at` builds a new
-  :class:`~mobility.core.model.Mechanism` at the pose ``q``: each joint's geometry
-  is carried by the link it belongs to (a ``U`` joint's first axis by
-  ``links[0]``, its second by ``links[1]``; every other field by
-  ``links[0]``), written in the global frame.
+  closes one loop, ``g_a E_c(q_c) g_b^-1 = I``; its residual is the logarithm
+  of that product (a twist, 6 numbers).  Its right-trivialised Jacobian is
+  exact at a closed pose; :meth:`Kinematics.jacobian` corrects it by the
+  inverse differential of the exponential, exact everywhere.
+* **Re-closure**: :func:`newton`, on every pose of a stack at once;
+  **moved mechanism**: :meth:`Kinematics.mechanism_at`.
 
 Examples
 --------
@@ -194,7 +173,6 @@ class Kinematics:
     loops: tuple[tuple[Factor, ...], ...] = field(repr=False)
     reference: np.ndarray = field(repr=False)
     _steps: tuple[tuple[str, str, tuple[Factor, ...]], ...] = field(repr=False)
-    _rows: np.ndarray = field(repr=False)  # twists.T
     _axes: np.ndarray = field(repr=False)
     _pitches: np.ndarray = field(repr=False)
     _prismatic: np.ndarray = field(repr=False)
@@ -491,10 +469,11 @@ class Kinematics:
     def mechanism_at(self, q: np.ndarray) -> Mechanism:
         """The mechanism at the pose ``q``, joints written in the global frame.
 
-        Each joint's geometry is carried by the link it belongs to (see the
-        module docstring); names, types, links and ``actuated`` flags are kept,
-        named frames are dropped (they describe the given pose) and so is the
-        ``expected`` block (it describes the given pose too).
+        Each joint's geometry is carried by the link it belongs to (a ``U``
+        joint's first axis by ``links[0]``, its second by ``links[1]``; every
+        other field by ``links[0]``); names, types, links and ``actuated`` flags
+        are kept, named frames and the ``expected`` block (both describe the
+        given pose) dropped.
         """
         g = self.link_displacements(q)
         norm = self.normalisation
@@ -809,15 +788,13 @@ def newton(
 ) -> Closures:
     """Close every loop of a stack of poses by Gauss–Newton with damped minimum-norm steps.
 
-    The step ``J^T (J J^T + mu I)^-1 r`` (:func:`min_norm_steps`) has a
-    damping ``mu`` far below every kept singular value, so a rank-deficient
-    Jacobian (at a change point, or the dependent rows of a planar loop)
-    still gives the minimum-norm step, and the step lies in the row space of
-    ``J``: round-off never drifts a pose along the motions the equations
-    leave free.  A pose is done when its residual is below ``polished *
-    tol.closure``, or closed and no longer halving (a last step polishes a
-    pose near a singularity), or after :data:`STALLED` steps that did not
-    halve it.
+    The step ``J^T (J J^T + mu I)^-1 r`` (:func:`min_norm_steps`), ``mu`` far
+    below every kept singular value, is the minimum-norm step even where
+    ``J`` is rank-deficient (a change point, a planar loop's dependent rows)
+    and lies in ``J``'s row space: round-off never drifts a pose along the
+    motions the equations leave free.  A pose is done when its residual is
+    below ``polished * tol.closure``, or closed and no longer halving, or
+    after ``patience`` steps that did not halve it.
 
     Parameters
     ----------
@@ -892,9 +869,7 @@ def newton(
                 break
             jac = these.jacobians(evaluation, keep)
             active, r = active[keep], r[:, keep]
-            # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
-            # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
-            step = min_norm_steps(jac, r)
+            step = min_norm_steps(jac, r)  # in J's row space (the primal (J^T J + mu I)^-1 J^T r would drift by 1/mu)
             if accelerate and len(history) >= 3:
                 before, last, now = (h[active] for h in history[-3:])
                 low, high = LINEAR_RATIO
@@ -1069,7 +1044,6 @@ def _build(mechanism: Mechanism) -> Kinematics:
         loops=tuple(tuple(loop) for loop in loops),
         reference=norm_reference,
         _steps=tuple((e.parent, e.child, paths[e.child][len(paths[e.parent]) :]) for e in tree_edges),
-        _rows=twists.T.copy(),
         _axes=unit,
         _pitches=np.where(np.array(kinds) == "H", np.einsum("ij,ij->i", w, v), 0.0),
         _prismatic=is_p,
