@@ -25,6 +25,7 @@ import numpy as np
 from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
 from .couplings import Coupling, require_couplings
 from .expected import Expected
+from .frozen import read_only
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
 from .validation import (Vector, _listed, _not_bool, number_from_text, require_graph_names, require_ground_and_end_effector,
@@ -236,12 +237,9 @@ class Frame:
             rot = None
         if rot is None or rot.shape != (3, 3) or not np.isfinite(rot).all():
             raise MechanismError("rotation", "expected a 3x3 matrix of finite numbers")
-        rows = rot.tolist()
-        (a, b, c), (d, e, f), (g, h, i) = rows
-        determinant = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-        if (np.abs(rot @ rot.T - _IDENTITY) > _ORTHONORMAL_LIMIT).any() or determinant < 0:
+        if (np.abs(rot @ rot.T - _IDENTITY) > _ORTHONORMAL_LIMIT).any() or np.linalg.det(rot) < 0:
             raise MechanismError("rotation", "expected a proper rotation matrix")
-        object.__setattr__(self, "rotation", tuple(map(tuple, rows)))
+        object.__setattr__(self, "rotation", tuple(map(tuple, rot.tolist())))
         require_name(self.parent, "parent", "a frame name")
 
     @staticmethod
@@ -422,12 +420,10 @@ class Mechanism:
         object.__setattr__(self, "couplings", require_couplings(self.couplings, self.joints))
 
     def _require_resolved_pitches(self) -> None:
-        """Refuse a helical pitch so much larger than the joint points' spread that no scale resolves both.
+        """Refuse a helical pitch ``h`` so much larger than the joint points' spread ``d`` that no scale resolves both.
 
-        With pitch ``h`` above the spread ``d`` the length is ``L = sqrt(d h)``
-        (:func:`~mobility.core.tolerance.characteristic_scale`), and the
-        screw's turn and the points' offsets are both ``sqrt(d / h)`` of it:
-        below ``Tolerance.rank`` (``h / d`` above 1e16) round-off.
+        The length is then ``L = sqrt(d h)`` (:func:`~mobility.core.tolerance.characteristic_scale`), and the screw's
+        turn and the points' offsets are both ``sqrt(d / h)`` of it: below ``Tolerance.rank`` (``h / d`` above 1e16) round-off.
         """
         table = self.freedom_table
         pitches = np.abs(table.pitches)
@@ -554,12 +550,10 @@ class Mechanism:
                 located_joints.append(index)
                 located_links.append((link_index[j.links[0]], link_index[j.links[1]]))
         ee = [j.point for j in self.world_joints if j.point is not None and self.end_effector in j.links]
-        arrays = [np.array(prismatic), np.array(axes, dtype=float), np.array(points, dtype=float), np.array(pitches, dtype=float),
-                  np.array(located, dtype=float).reshape(-1, 3), np.array(ee, dtype=float).reshape(-1, 3),
-                  np.array(located_joints, dtype=int), np.array(located_links, dtype=int).reshape(-1, 2)]
-        for a in arrays:
-            a.setflags(write=False)
-        p, ax, pt, h, loc, eep, lj, ll = arrays
+        p, ax, pt, h, loc, eep, lj, ll = read_only((
+            np.array(prismatic), np.array(axes, dtype=float), np.array(points, dtype=float), np.array(pitches, dtype=float),
+            np.array(located, dtype=float).reshape(-1, 3), np.array(ee, dtype=float).reshape(-1, 3),
+            np.array(located_joints, dtype=int), np.array(located_links, dtype=int).reshape(-1, 2)), copy=False)
         return FreedomTable(p, ax, pt, h, tuple(offsets), loc, eep, lj, ll)
 
     def __getstate__(self) -> dict[str, Any]:
