@@ -127,8 +127,7 @@ class Kinematics:
 
     Build it with :func:`kinematics`.  All twists and displacements are in the
     normalised coordinates of the tolerance policy (origin at the mechanism's
-    centre, lengths over ``L``).  Every method taking ``q`` takes one pose
-    ``(n,)`` or a stack ``(N, n)`` and answers in kind.
+    centre, lengths over ``L``).
 
     Attributes
     ----------
@@ -504,14 +503,10 @@ POINT_FIXED_IN_BOTH = frozenset("RUS")
 
 
 def _keep_coincident_points(given: Sequence[Joint], moved: list[Joint]) -> tuple[Joint, ...]:
-    """``moved`` with the joints of one link that met at one point in ``given`` meeting there still.
+    """``moved`` with the joints of one link that met at one point in ``given`` meeting there still (the first one's point).
 
-    Each moved point is carried by one of its joint's links, so two joints of
-    a link that met at one point (axes that intersect) may come out apart by
-    round-off of the mechanism's size; near the origin that is far above the
-    round-off of their own tiny coordinates, and the analysis would take them
-    for distinct points it cannot resolve.  A rigid link keeps them together:
-    each takes the moved point of the first joint of the group.
+    Carried by different links, they could come apart by the round-off of the mechanism's size, far above that of
+    coordinates near the origin: the analysis would take them for distinct points it cannot resolve.
     """
     first: dict[tuple, int] = {}
     for index, joint in enumerate(given):
