@@ -985,7 +985,7 @@ def _build(mechanism: Mechanism) -> Kinematics:
     w, v = twists[:3].T, twists[3:].T
     unit = np.where(is_p[:, None], v, w)
     nearest = np.where(is_p[:, None], 0.0, np.cross(w, v))
-    k = np.array([skew(a) for a in unit]).reshape(-1, 3, 3)
+    k = skew(unit).reshape(-1, 3, 3)
 
     # the spanning tree from the ground that mobility.core.loop_closure uses
     tree_edges, chords = spanning_tree(mechanism)

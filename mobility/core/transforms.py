@@ -22,15 +22,19 @@ __all__ = ["cross", "skew", "rotation_from_rpy", "rotation_from_axis_angle", "Tr
 
 
 def skew(v: npt.ArrayLike) -> np.ndarray:
-    """Return the 3x3 matrix ``[v]x`` with ``skew(v) @ u == np.cross(v, u)``.
+    """Return the 3x3 matrix ``[v]x`` with ``skew(v) @ u == np.cross(v, u)`` (of each row of ``v``: ``(k, 3)`` gives ``(k, 3, 3)``).
 
     Examples
     --------
     >>> bool(np.allclose(skew([1, 2, 3]) @ [4, 5, 6], np.cross([1, 2, 3], [4, 5, 6])))
     True
     """
-    x, y, z = np.asarray(v, dtype=float)
-    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    v = np.asarray(v, dtype=float)
+    out = np.zeros(v.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
+    return out
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -246,15 +250,6 @@ def _coefficients_many(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nd
     return tuple(np.where(small, series, form) for series, form in zip((a, b, c, d), closed))
 
 
-def _skews(v: np.ndarray) -> np.ndarray:
-    """:func:`skew` of each row of ``v`` (shape (k, 3)), shape (k, 3, 3)."""
-    out = np.zeros(v.shape[:-1] + (3, 3))
-    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
-    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
-    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
-    return out
-
-
 def displacement_logs(g: np.ndarray) -> np.ndarray:
     """:func:`displacement_log` of each displacement of a stack ``g`` (shape (k, 4, 4)), shape (k, 6).
 
@@ -292,7 +287,7 @@ def dexps(x: np.ndarray) -> np.ndarray:
     """
     x = np.asarray(x, dtype=float)
     _, b, c, d = coefficients = [u[:, None, None] for u in _coefficients_many(np.sqrt(np.einsum("ij,ij->i", x[:, :3], x[:, :3])))]
-    w, v = _skews(x[:, :3]), _skews(x[:, 3:])
+    w, v = skew(x[:, :3]), skew(x[:, 3:])
     ww, wv, vw = w @ w, w @ v, v @ w
     wvw = wv @ w
     out = np.zeros((len(x), 6, 6))
