@@ -223,9 +223,6 @@ class Kinematics:
             raise RequestError(f"expected {n} joint variables, got {q.size}")
         return q.reshape(1, n), True
 
-    def _exponentials(self, q: np.ndarray) -> "_Exponentials":
-        return _Exponentials(self, q.T)
-
     @staticmethod
     def _chain(chains: "_Chains", exps: "_Exponentials") -> tuple[np.ndarray, list[np.ndarray | None]]:
         """Products of ``G`` chains of factors of one length as frames ``[R | t]``, their poses side by side
@@ -267,7 +264,7 @@ class Kinematics:
     def link_motions(self, q: np.ndarray) -> dict[str, Motion]:
         """Displacement of every link, stacked pose index last: rotation ``(3, 3, N)`` and translation ``(3, N)``."""
         q, _ = self._stack(q)
-        exps = self._exponentials(q)
+        exps = _Exponentials(self, q.T)
         frames = {self.mechanism.ground: _identity(exps.count)}
         for parent, child, step in self._steps:
             g = frames[parent]
@@ -323,7 +320,7 @@ class Kinematics:
     def end_effector_jacobian(self, q: np.ndarray) -> np.ndarray:
         """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q`` (``(6, n)``)."""
         stack, single = self._stack(q)
-        exps = self._exponentials(stack)
+        exps = _Exponentials(self, stack.T)
         chains = self._end_effector
         cols = np.moveaxis(self._columns(chains, self._chain(chains, exps)[1], None, exps.count)[:, :, 0], -1, 0)
         return cols[0] if single else cols
@@ -602,7 +599,7 @@ class Evaluation:
 
     def __init__(self, kin: Kinematics, q: np.ndarray, components: np.ndarray | None) -> None:
         self._kin = kin
-        exps = kin._exponentials(q)
+        exps = _Exponentials(kin, q.T)
         self._count = count = exps.count
         blocks: list[np.ndarray] = [np.zeros((6, count))] * kin.loop_count
         # loops of about one length side by side while the stack is small (fewer, larger array operations), else each alone

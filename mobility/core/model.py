@@ -358,21 +358,18 @@ class Mechanism:
             except RequestError:
                 raise MechanismError("precision", f"expected a finite number >= 0 or None, got {self.precision!r}") from None
             object.__setattr__(self, "precision", p)
-        for key in ("joints", "frames"):
+        for key, kind in (("joints", Joint), ("frames", Frame)):
             value = getattr(self, key)
             if isinstance(value, (str, bytes, dict)) or not isinstance(value, Iterable):
-                raise MechanismError(key, f"expected a sequence of {'Joint' if key == 'joints' else 'Frame'}s, got {type(value).__name__}")
+                raise MechanismError(key, f"expected a sequence of {kind.__name__}s, got {type(value).__name__}")
             object.__setattr__(self, key, tuple(value))
+            for i, item in enumerate(getattr(self, key)):
+                if not isinstance(item, kind):
+                    raise MechanismError(f"{key}[{i}]", f"expected a {kind.__name__}, got {type(item).__name__}")
         require_graph_names(self, "link")
         if not self.joints:
             raise MechanismError("joints", "expected at least one joint")
-        for i, j in enumerate(self.joints):
-            if not isinstance(j, Joint):
-                raise MechanismError(f"joints[{i}]", f"expected a Joint, got {type(j).__name__}")
         require_unique_names(self.joints, "joints", "joint")
-        for i, f in enumerate(self.frames):
-            if not isinstance(f, Frame):
-                raise MechanismError(f"frames[{i}]", f"expected a Frame, got {type(f).__name__}")
         if self.expected is not None and not isinstance(self.expected, Expected):
             raise MechanismError("expected", f"expected an Expected or None, got {type(self.expected).__name__}")
         try:
