@@ -814,10 +814,6 @@ def newton(
     closure : ndarray (N,), optional
         The largest residual component of each closed pose, when the poses
         have their own (default ``tol.closure`` for every pose).
-
-    Returns
-    -------
-    Closures
     """
     q0 = np.array(start, dtype=float)
     count = len(q0)
@@ -892,32 +888,15 @@ _EXTENDED = np.finfo(np.longdouble).eps < np.finfo(float).eps
 
 
 def polish(kin: Kinematics, q: np.ndarray, goals: np.ndarray, equations: Equations = Equations()) -> np.ndarray:
-    """Closed poses refined by Newton steps whose residual is evaluated in extended precision.
+    """Closed poses ``q`` ``(N, n)`` (and their :func:`newton` ``goals``) refined by Newton steps whose residual is in extended precision.
 
-    Near a singularity the closure equations are ill-conditioned: with a
-    smallest singular value ``s`` of their Jacobian, the round-off of a
-    float64 residual (about 1e-16) leaves the joint variables uncertain by
-    ``1e-16 / s`` along the near-singular motion, and the screw systems of the
-    pose amplify that again by ``1 / s``.  A parallelogram 0.01 degree from
-    its change point (``s`` about 2e-4) then shows its coupler tilted by 1e-12
-    rad and a pure translation with a rotational part of 1e-8, at the rank
-    tolerance.  Residuals in ``numpy.longdouble`` (on x86 three more digits)
-    take that uncertainty below the float64 rounding of the variables
-    themselves; the steps are solved in float64 (the residual is tiny).  A
-    step that does not lower the extended residual is not taken.  Where
-    ``longdouble`` is float64 (some platforms) nothing changes.
-
-    Parameters
-    ----------
-    q : ndarray, shape (N, n)
-        Closed poses.
-    goals : ndarray, shape (N, c + k)
-        Their goals (:func:`newton`).
-
-    Returns
-    -------
-    ndarray, shape (N, n)
-        The refined poses (float64), the variables not free unchanged.
+    Near a singularity, with a smallest singular value ``s`` of the closure Jacobian, the round-off of a float64
+    residual (1e-16) leaves the variables uncertain by ``1e-16 / s``, which the pose's screw systems amplify again by
+    ``1 / s``: a parallelogram 0.01 degree from its change point (``s`` about 2e-4) shows its coupler tilted by 1e-12
+    rad and a pure translation with a rotational part of 1e-8.  Residuals in ``numpy.longdouble`` (x86: three more
+    digits) take that below the float64 rounding of the variables; the steps are solved in float64, one that does not
+    lower the extended residual is not taken, and where ``longdouble`` is float64 nothing changes.  Returns float64
+    poses, the variables not free unchanged.
     """
     free = equations.mask(kin.variable_count)
     if not _EXTENDED or len(q) == 0 or not free.any():
@@ -943,16 +922,7 @@ def polish(kin: Kinematics, q: np.ndarray, goals: np.ndarray, equations: Equatio
 
 
 def kinematics(mechanism: Mechanism) -> Kinematics:
-    """The product-of-exponentials model of ``mechanism`` at its pose (cached per mechanism).
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-
-    Returns
-    -------
-    Kinematics
-    """
+    """The product-of-exponentials model of ``mechanism`` at its pose (cached per mechanism)."""
     return per_object_cache(mechanism, "kinematics", lambda: _build(mechanism))
 
 
