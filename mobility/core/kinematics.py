@@ -193,11 +193,6 @@ class Kinematics:
         """Number of independent loops (chords)."""
         return len(self.chords)
 
-    @property
-    def model(self) -> "Kinematics":
-        """Itself (the name the stacked screw systems read its normalisation by)."""
-        return self
-
     def variables_of(self, joint: int | str) -> slice:
         """Slice of ``q`` holding the variables of a joint (index or name)."""
         names = [j.name for j in self.mechanism.joints]
