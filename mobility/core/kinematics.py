@@ -785,19 +785,16 @@ def newton(
 
     Parameters
     ----------
-    kin : Kinematics
     start : ndarray, shape (N, n)
         Starting joint variables (the variables not free keep them).
     goals : ndarray, shape (N, c + k)
         Values of the fixed pose coordinates, then right-hand sides of the
         linear equations (:class:`Equations`).
-    equations : Equations
     tol : Tolerance
         ``tol.closure`` is the largest residual component of a closed pose.
     max_move : float or ndarray (N,)
         A solve that wanders farther than this from its start has failed (it
         would reach another assembly, not the nearby one).
-    max_iter : int
     polished : float or ndarray (N,)
     accelerate : bool
         Double the step of a pose whose residual shrank by a ratio in
