@@ -50,11 +50,9 @@ JOINT_TYPES: Mapping[str, str] = MappingProxyType(
 _IDENTITY = np.eye(3)
 _ORTHONORMAL_LIMIT = ORTHONORMAL + 1e-5 * _IDENTITY  # |R R^T - I| entry by entry, as numpy.allclose(R R^T, I, atol=ORTHONORMAL)
 
-# Geometry fields each joint type requires, and those it may also carry.
-_REQUIRED: Mapping[str, tuple[str, ...]] = {"R": ("axis", "point"), "P": ("axis",), "H": ("axis", "point", "pitch"), "C": ("axis", "point"),
-                                             "U": ("point", "axes"), "S": ("point",), "E": ("normal",)}
-_OPTIONAL: Mapping[str, tuple[str, ...]] = {"P": ("point",), "E": ("point",)}
-JOINT_FIELDS: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = MappingProxyType({t: (need, _OPTIONAL.get(t, ())) for t, need in _REQUIRED.items()})
+JOINT_FIELDS: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = MappingProxyType({
+    "R": (("axis", "point"), ()), "P": (("axis",), ("point",)), "H": (("axis", "point", "pitch"), ()), "C": (("axis", "point"), ()),
+    "U": (("point", "axes"), ()), "S": (("point",), ()), "E": (("normal",), ("point",))})
 """Geometry fields each joint type takes: those it requires, and those it may also carry."""
 
 
@@ -123,14 +121,12 @@ class Joint:
         if links[0] == links[1]:
             raise MechanismError("links", f"a joint must join two different links, got {links[0]!r} twice")
         object.__setattr__(self, "links", links)
-        need = _REQUIRED[self.type]
-        allowed = set(need) | set(_OPTIONAL.get(self.type, ()))
+        need, optional = JOINT_FIELDS[self.type]
         for key in ("axis", "point", "pitch", "axes", "normal"):
             value = getattr(self, key)
             if key in need and value is None:
                 raise MechanismError(key, f"missing; a joint of type {self.type} needs {', '.join(need)}")
-            if key not in allowed and value is not None:
-                optional = _OPTIONAL.get(self.type, ())
+            if key not in need + optional and value is not None:
                 takes = ", ".join(need) + (f", and optionally {', '.join(optional)}" if optional else "")
                 raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {takes})")
         for key in ("axis", "normal", "point"):
@@ -175,7 +171,7 @@ class Joint:
         ['R', 'P']
         """
         t = self.type
-        # Each branch reads only the fields its type requires, which __post_init__ checked are set (_REQUIRED).
+        # Each branch reads only the fields its type requires, which __post_init__ checked are set (JOINT_FIELDS).
         axis, point, pitch, axes = cast(Vector, self.axis), cast(Vector, self.point), cast(float, self.pitch), cast("tuple[Vector, Vector]", self.axes)
         if t == "R":
             return (Freedom("R", axis, point),)
