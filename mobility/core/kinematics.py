@@ -744,8 +744,7 @@ POLISHED = 0.1
 """A pose whose residual is below this fraction of ``Tolerance.closure`` needs no further step (a sweep's solves)."""
 
 STALLED = 4
-"""A pose of a sweep stops after this many steps in a row that did not halve its best residual
-(:meth:`Kinematics.close`, one pose at a time, allows :data:`CLOSE_STALLED`)."""
+"""A pose of a sweep stops after this many steps in a row that did not halve its best residual."""
 
 CLOSE_STALLED = 6
 """Steps in a row that do not halve the best residual before :meth:`Kinematics.close` gives up:
