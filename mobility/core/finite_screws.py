@@ -577,10 +577,9 @@ class Limb:
 
     def moved(self, q: npt.ArrayLike) -> "Limb":
         """The same chain with pose ``q`` taken as its new initial configuration (axes carried along)."""
-        values = self._values(q)
         out = []
         acc = np.eye(4)
-        for joint, x in zip(self.joints, values):
+        for joint, x in zip(self.joints, self._values(q)):
             out.append(joint.moved(acc))
             acc = acc @ joint.finite_screw(x).transform()
         return Limb(tuple(out))

@@ -447,10 +447,9 @@ class Mechanism:
         seen = {self.ground}
         todo = [self.ground]
         while todo:
-            for n in neighbours[todo.pop()]:
-                if n not in seen:
-                    seen.add(n)
-                    todo.append(n)
+            new = neighbours[todo.pop()] - seen
+            seen |= new
+            todo.extend(new)
         return set(neighbours) - seen
 
     @cached_property

@@ -282,9 +282,7 @@ def decompose(mechanism: Mechanism) -> Topology:
     ('bridge(g-a: A, g-b: B)', ((False, ((0, 1.0), (1, 2.0))),))
     """
     signature = tuple((j.name, j.links) for j in mechanism.joints)
-    if not mechanism.couplings:
-        return _decompose(signature, mechanism.ground, mechanism.end_effector)
-    index = {j.name: i for i, j in enumerate(mechanism.joints)}
+    index = {j.name: i for i, j in enumerate(mechanism.joints)} if mechanism.couplings else {}
     coupled = tuple((mechanism.joints[index[c.joints[0]]].type == "P", tuple((index[n], x) for n, x in c.terms)) for c in mechanism.couplings)
     return _decompose(signature, mechanism.ground, mechanism.end_effector, coupled)
 
