@@ -165,14 +165,9 @@ def finite_screw_from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOL
 def triangle_product(*screws: npt.ArrayLike) -> np.ndarray:
     """The screw triangle product ``S_1 △ S_2 △ … △ S_k`` of finite screws (``S_k`` acts first).
 
-    ``S_a △ S_b`` is ``b`` then ``a`` (fixed frame, matrix ``T_a @ T_b``); with
-    ``d = 1 - wa·wb/4``::
-
-        w = (wa + wb + ½ wa × wb) / d
-        v = (va + vb + ½ (wa × vb + va × wb) - ¼ (wa·va) wb - ¼ (wb·vb) wa) / d
-
-    A half-turn partial product raises :class:`~mobility.errors.HalfTurnError`
-    (compose :class:`FiniteScrew` objects instead, which never divide).
+    ``S_a △ S_b`` is ``b`` then ``a`` (fixed frame, matrix ``T_a @ T_b``; the formula, and the
+    paper's opposite order, in docs/finite-screws.md).  A half-turn partial product raises
+    :class:`~mobility.errors.HalfTurnError` (compose :class:`FiniteScrew` objects instead, which never divide).
 
     Examples
     --------
