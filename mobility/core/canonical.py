@@ -132,25 +132,23 @@ def canonical_form(basis: np.ndarray, reference: np.ndarray, tol: Tolerance = DE
     else:
         perp, rest = np.eye(r), np.zeros((r, 0))
     out: list[PrincipalScrew] = []
-    if perp.shape[1]:
-        m = perp.T @ qw.T @ a @ perp  # pitch form on W ∩ F⊥
-        pitches, vecs = np.linalg.eigh(0.5 * (m + m.T))
-        start = 0
-        while start < len(pitches):
-            stop = start + 1
-            while stop < len(pitches) and abs(pitches[stop] - pitches[start]) <= tol.near_singular * max(1.0, abs(pitches[start])):
-                stop += 1
-            cluster = qw @ perp @ vecs[:, start:stop]
-            directions = readable_basis(cluster) if stop - start > 1 else np.stack([_signed(cluster[:, 0])], axis=1)
-            for w in directions.T:
-                v = a @ (qw.T @ w)
-                out.append(PrincipalScrew(w, reference + cross(w, v), float(w @ v)))
-            start = stop
-    if rest.shape[1]:
-        for w in readable_basis(qw @ rest).T:
+    m = perp.T @ qw.T @ a @ perp  # pitch form on W ∩ F⊥
+    pitches, vecs = np.linalg.eigh(0.5 * (m + m.T))
+    start = 0
+    while start < len(pitches):
+        stop = start + 1
+        while stop < len(pitches) and abs(pitches[stop] - pitches[start]) <= tol.near_singular * max(1.0, abs(pitches[start])):
+            stop += 1
+        cluster = qw @ perp @ vecs[:, start:stop]
+        directions = readable_basis(cluster) if stop - start > 1 else np.stack([_signed(cluster[:, 0])], axis=1)
+        for w in directions.T:
             v = a @ (qw.T @ w)
-            along = free @ (free.T @ w)
-            v = v - (w @ v) / (along @ along) * along  # a free vector cancels the pitch
-            out.append(PrincipalScrew(w, reference + cross(w, v), 0.0))
+            out.append(PrincipalScrew(w, reference + cross(w, v), float(w @ v)))
+        start = stop
+    for w in readable_basis(qw @ rest).T:
+        v = a @ (qw.T @ w)
+        along = free @ (free.T @ w)
+        v = v - (w @ v) / (along @ along) * along  # a free vector cancels the pitch
+        out.append(PrincipalScrew(w, reference + cross(w, v), 0.0))
     out.sort(key=lambda p: (abs(p.pitch) > tol.rank, _dominant(p.axis)))
     return CanonicalForm(free, tuple(out), decision)

@@ -3,11 +3,6 @@
 A file's ``expected`` block says what an analysis must find
 (:mod:`mobility.testing.check` compares); the file reader applies these rules
 (:mod:`mobility.io.expected`).
-
-Examples
---------
->>> Expected(dof=1, pattern="1R").items()
-[('dof', 1), ('pattern', '1R')]
 """
 
 from __future__ import annotations

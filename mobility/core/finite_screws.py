@@ -8,10 +8,6 @@ dual quaternion (:class:`FiniteScrew`), whose product never divides; only
 reading ``S_f`` off a half-turn raises :class:`~mobility.errors.HalfTurnError`
 (``cos(θ/2)`` within :data:`QUATERNION_ROUND_OFF`, a fact of the arithmetic).
 
-One module, longer than most, because it is one concept that reads better
-whole: the quasi-vector, its homogeneous form and the chains composed from
-them share the dual-quaternion arithmetic.
-
 References
 ----------
 T. Sun, S. Yang, T. Huang, J. S. Dai, "A finite and instantaneous screw based
@@ -41,6 +37,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import reduce
+from itertools import accumulate
 from typing import Iterable
 
 import numpy as np
@@ -55,11 +52,8 @@ __all__ = ["finite_screw", "finite_screw_from_transform", "transform_from_finite
            "twist_from_finite_screw_rate", "FiniteScrew", "ScrewJoint", "Limb", "QUATERNION_ROUND_OFF"]
 
 QUATERNION_ROUND_OFF = 64 * np.finfo(float).eps
-"""A component of a unit quaternion at or below this (64 units in the last place) is round-off.
-
-``cos(θ/2)`` that small is a half-turn, ``sin(θ/2)`` that small no rotation:
-which digits double precision delivers, not a choice of the tolerance policy.
-"""
+"""A component of a unit quaternion at or below this (64 units in the last place) is round-off: ``cos(θ/2)``
+that small is a half-turn, ``sin(θ/2)`` no rotation (what double precision delivers, not a tolerance policy)."""
 
 
 def _unit_or_none(v: Iterable[float]) -> np.ndarray | None:
@@ -74,14 +68,6 @@ def _unit_or_none(v: Iterable[float]) -> np.ndarray | None:
     return a / float(np.linalg.norm(a))
 
 
-def _unit(v: Iterable[float], what: str) -> np.ndarray:
-    """``v`` as a unit vector; :class:`~mobility.errors.RequestError` naming ``what`` otherwise."""
-    a = _unit_or_none(v)
-    if a is None:
-        raise RequestError(caller=what, expected="a non-zero finite direction of 3 numbers", got=_shown(v))
-    return a
-
-
 def _shown(v: object) -> str:
     """A value as the error messages show it (a list for arrays), clipped to one line."""
     if isinstance(v, np.ndarray) and v.size <= 16:
@@ -92,16 +78,7 @@ def _shown(v: object) -> str:
 
 
 def _numbers(value: object, count: int, what: str, expected: str = "") -> np.ndarray:
-    """``value`` as ``count`` finite floats (shape ``(count,)``), else a :class:`~mobility.errors.RequestError` naming ``what``.
-
-    Examples
-    --------
-    >>> _numbers([1, 2, 3], 3, "point").tolist()
-    [1.0, 2.0, 3.0]
-    >>> _numbers([1, float("nan"), 3], 3, "point")
-    Traceback (most recent call last):
-    mobility.errors.RequestError: point: expected 3 finite numbers, got [1, nan, 3]
-    """
+    """``value`` as ``count`` finite floats (shape ``(count,)``), else a :class:`~mobility.errors.RequestError` naming ``what``."""
     expected = expected or f"{count} finite numbers"
     try:
         a = np.asarray(value, dtype=float)
@@ -116,16 +93,7 @@ def _numbers(value: object, count: int, what: str, expected: str = "") -> np.nda
 
 
 def _number(value: object, what: str) -> float:
-    """``value`` as a finite float (a real number, not a string or a bool), else a :class:`~mobility.errors.RequestError` naming ``what``.
-
-    Examples
-    --------
-    >>> _number(2, "angle")
-    2.0
-    >>> _number("2", "angle")
-    Traceback (most recent call last):
-    mobility.errors.RequestError: angle: expected a finite number, got '2'
-    """
+    """``value`` as a finite float (a real number, not a string or a bool), else a :class:`~mobility.errors.RequestError` naming ``what``."""
     if not isinstance(value, (bool, np.bool_, str, bytes, list, tuple, np.ndarray)) or (isinstance(value, np.ndarray) and value.ndim == 0):
         try:
             number = float(value)  # type: ignore[arg-type]
@@ -197,14 +165,9 @@ def finite_screw_from_transform(matrix: np.ndarray, tol: Tolerance = DEFAULT_TOL
 def triangle_product(*screws: npt.ArrayLike) -> np.ndarray:
     """The screw triangle product ``S_1 △ S_2 △ … △ S_k`` of finite screws (``S_k`` acts first).
 
-    ``S_a △ S_b`` is ``b`` then ``a`` (fixed frame, matrix ``T_a @ T_b``); with
-    ``d = 1 - wa·wb/4``::
-
-        w = (wa + wb + ½ wa × wb) / d
-        v = (va + vb + ½ (wa × vb + va × wb) - ¼ (wa·va) wb - ¼ (wb·vb) wa) / d
-
-    A half-turn partial product raises :class:`~mobility.errors.HalfTurnError`
-    (compose :class:`FiniteScrew` objects instead, which never divide).
+    ``S_a △ S_b`` is ``b`` then ``a`` (fixed frame, matrix ``T_a @ T_b``; the formula, and the
+    paper's opposite order, in docs/finite-screws.md).  A half-turn partial product raises
+    :class:`~mobility.errors.HalfTurnError` (compose :class:`FiniteScrew` objects instead, which never divide).
 
     Examples
     --------
@@ -335,7 +298,9 @@ class FiniteScrew:
     @staticmethod
     def from_parameters(axis: Iterable[float], point: Iterable[float], angle: float, translation: float = 0.0) -> "FiniteScrew":
         """Rotation ``angle`` about the line through ``point`` along ``axis``, translation ``translation`` along it."""
-        s = _unit(axis, "axis")
+        s = _unit_or_none(axis)
+        if s is None:
+            raise RequestError(caller="axis", expected="a non-zero finite direction of 3 numbers", got=_shown(axis))
         r = _numbers(point, 3, "point")
         theta = _number(angle, "angle")
         c, sn = np.cos(0.5 * theta), np.sin(0.5 * theta)
@@ -579,13 +544,8 @@ class Limb:
         """``H = H_1 ... H_n`` and its partial derivatives (8 x n), by the product rule with ``dH_j/dq_j = ½ ξ_j H_j`` (sign not fixed)."""
         factors = [f.homogeneous for f in self.factors(q)]
         one = np.array([1.0, 0, 0, 0, 0, 0, 0, 0])
-        left = [one]
-        for f in factors:
-            left.append(_dqmul(left[-1], f))
-        right = [one]
-        for f in reversed(factors):
-            right.append(_dqmul(f, right[-1]))
-        right = right[::-1]  # right[j] = H_j ... H_n (0-based)
+        left = list(accumulate(factors, _dqmul, initial=one))  # left[j] = H_1 ... H_j
+        right = list(accumulate(reversed(factors), lambda acc, f: _dqmul(f, acc), initial=one))[::-1]  # right[j] = H_j ... H_n (0-based)
         rates = np.empty((8, len(factors)))
         for j, (joint, f) in enumerate(zip(self.joints, factors)):
             rates[:, j] = _dqmul(_dqmul(left[j], 0.5 * _dqmul(_pure(joint.twist()), f)), right[j + 1])
@@ -612,10 +572,9 @@ class Limb:
 
     def moved(self, q: npt.ArrayLike) -> "Limb":
         """The same chain with pose ``q`` taken as its new initial configuration (axes carried along)."""
-        values = self._values(q)
         out = []
         acc = np.eye(4)
-        for joint, x in zip(self.joints, values):
+        for joint, x in zip(self.joints, self._values(q)):
             out.append(joint.moved(acc))
             acc = acc @ joint.finite_screw(x).transform()
         return Limb(tuple(out))

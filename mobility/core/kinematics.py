@@ -3,53 +3,32 @@
 One module, longer than most, because it is one concept that reads better
 whole: the joint variables, the link displacements, the loop residuals, their
 Jacobians and the Newton closure all stand on one spanning tree and one set of
-normalised coordinates, held by one :class:`Kinematics` object.  Every
-method takes the joint variables of one pose, ``q`` of shape ``(n,)``, or of
-a stack of poses, ``(N, n)`` (as SciPy's ``Rotation`` is one rotation or
-many): one pose is a stack of one, and nothing loops over poses.
-
-The screw route (:func:`mobility.analyze`) answers at one pose.  This module
-moves the mechanism: it is the finite counterpart of
-:mod:`mobility.core.loop_closure`, on the same spanning tree of the joint graph.
+normalised coordinates, held by one :class:`Kinematics` object.  Every method
+takes one pose ``q`` ``(n,)`` or a stack ``(N, n)`` (as SciPy's ``Rotation``):
+one pose is a stack of one, and nothing loops over poses.  It is the finite
+counterpart of :mod:`mobility.core.loop_closure`, on the same spanning tree.
 
 * **Joint variables** ``q``: one per elementary freedom
-  (:meth:`~mobility.core.model.Joint.freedoms`), in the order of
-  :func:`~mobility.core.joint_screws.joint_screws` (joint after joint); ``q = 0`` is
-  the given pose.  Rotations are in radians, translations in units of the
-  mechanism's characteristic length ``L`` (see :mod:`mobility.core.tolerance`), so
-  every number here is dimensionless and does not change when the file is
-  scaled or moved rigidly.
-* **Finite motion of a joint** (``links[1]`` relative to ``links[0]``): the
-  product of exponentials of its freedoms, ``exp(q1 x1) exp(q2 x2) ...``,
-  in the order of the freedoms (``U``: the axis on ``links[0]``'s side first;
-  ``S``: rotations about x, y, z; ``E``: two translations, then the rotation).
-  Twists ``x_i`` are taken at the given pose, in normalised coordinates.
-* **Forward kinematics** along a breadth-first spanning tree from the ground:
-  the displacement ``g_L`` of each link (mapping the link's points from the
-  given pose to the moved one, normalised coordinates) is the product of the
-  joint motions on its tree path.  Stacked displacements are held pose index
-  last (:data:`~mobility.core.transforms.Motion`) and multiplied in a fixed
-  order, so each pose's numbers are the same bits whatever the stack around it.
+  (:meth:`~mobility.core.model.Joint.freedoms`), joint after joint; ``q = 0``
+  is the given pose.  Radians, and lengths over the mechanism's
+  characteristic length ``L`` (:mod:`mobility.core.tolerance`): dimensionless,
+  unchanged when the file is scaled or moved rigidly.
+* **A joint's motion** (``links[1]`` relative to ``links[0]``):
+  ``exp(q1 x1) exp(q2 x2) ...`` in the order of its freedoms (``U``: the axis
+  on ``links[0]``'s side first; ``S``: about x, y, z; ``E``: two translations,
+  then the rotation), twists ``x_i`` at the given pose, normalised coordinates.
+* **Forward kinematics**: a link's displacement ``g_L`` is the product of the
+  joint motions on its path of a breadth-first spanning tree from the ground.
+  Stacks are held pose index last (:data:`~mobility.core.transforms.Motion`)
+  and multiplied in a fixed order, so each pose's numbers are the same bits
+  whatever the stack around it.
 * **Loop closure**: each joint off the tree (a *chord*, from ``a`` to ``b``)
-  closes one loop, ``g_a E_c(q_c) g_b^-1 = I``.  The residual of the loop is
-  the matrix logarithm of that product (a twist ``[w; v]``, 6 numbers; the
-  common part of the two tree paths cancels).  Its right-trivialised Jacobian
-  (the joint twists at the moved pose, the same equations as
-  :mod:`mobility.core.loop_closure`) is exact at a closed pose;
-  :meth:`Kinematics.jacobian` corrects it by the inverse of the differential
-  of the exponential, so it is the exact derivative everywhere.
-* **Re-closure** (:func:`newton`): Gauss–Newton with damped minimum-norm
-  steps, on every pose of a stack at once, with some variables held
-  (:class:`Equations`), pose coordinates of the end effector fixed, or extra
-  linear equations ``A q = b`` (the progress along a direction), one system
-  for the whole stack or each pose its own; :meth:`Kinematics.close` is its
-  stack of one, :meth:`Kinematics.close_each` a stack of such solves (the
-  moves of a finite-motion analysis, solved together).
-* **Moved mechanism**: :meth:`Kinematics.mechanism_at` builds a new
-  :class:`~mobility.core.model.Mechanism` at the pose ``q``: each joint's geometry
-  is carried by the link it belongs to (a ``U`` joint's first axis by
-  ``links[0]``, its second by ``links[1]``; every other field by
-  ``links[0]``), written in the global frame.
+  closes one loop, ``g_a E_c(q_c) g_b^-1 = I``; its residual is the logarithm
+  of that product (a twist, 6 numbers).  Its right-trivialised Jacobian is
+  exact at a closed pose; :meth:`Kinematics.jacobian` corrects it by the
+  inverse differential of the exponential, exact everywhere.
+* **Re-closure**: :func:`newton`, on every pose of a stack at once;
+  **moved mechanism**: :meth:`Kinematics.mechanism_at`.
 
 Examples
 --------
@@ -87,7 +66,7 @@ from .joint_screws import Normalisation, joint_screws, per_object_cache
 from .model import WORLD, Joint, Mechanism
 from .tolerance import DEFAULT_TOLERANCE, NEWTON_DAMPING, RankDecision, Tolerance, decide_rank
 from .topology import spanning_tree
-from .transforms import Motion, bracket, compose, dexps, inverse_left_jacobian_times, rotate, rotation_logs_last, skew, stacked_cross, twist_logs
+from .transforms import Motion, bracket, compose, cross, dexps, inverse_left_jacobian_times, rotate, rotation_logs_last, skew, twist_logs
 
 __all__ = [
     "Factor",
@@ -148,8 +127,7 @@ class Kinematics:
 
     Build it with :func:`kinematics`.  All twists and displacements are in the
     normalised coordinates of the tolerance policy (origin at the mechanism's
-    centre, lengths over ``L``).  Every method taking ``q`` takes one pose
-    ``(n,)`` or a stack ``(N, n)`` and answers in kind.
+    centre, lengths over ``L``).
 
     Attributes
     ----------
@@ -194,7 +172,6 @@ class Kinematics:
     loops: tuple[tuple[Factor, ...], ...] = field(repr=False)
     reference: np.ndarray = field(repr=False)
     _steps: tuple[tuple[str, str, tuple[Factor, ...]], ...] = field(repr=False)
-    _rows: np.ndarray = field(repr=False)  # twists.T
     _axes: np.ndarray = field(repr=False)
     _pitches: np.ndarray = field(repr=False)
     _prismatic: np.ndarray = field(repr=False)
@@ -215,11 +192,6 @@ class Kinematics:
     def loop_count(self) -> int:
         """Number of independent loops (chords)."""
         return len(self.chords)
-
-    @property
-    def model(self) -> "Kinematics":
-        """Itself (the name the stacked screw systems read its normalisation by)."""
-        return self
 
     def variables_of(self, joint: int | str) -> slice:
         """Slice of ``q`` holding the variables of a joint (index or name)."""
@@ -245,9 +217,6 @@ class Kinematics:
         if q.size != n:
             raise RequestError(f"expected {n} joint variables, got {q.size}")
         return q.reshape(1, n), True
-
-    def _exponentials(self, q: np.ndarray) -> "_Exponentials":
-        return _Exponentials(self, q.T)
 
     @staticmethod
     def _chain(chains: "_Chains", exps: "_Exponentials") -> tuple[np.ndarray, list[np.ndarray | None]]:
@@ -284,13 +253,13 @@ class Kinematics:
             w = rotate(rot, turns[:3])
             variables = chains.variables[start : start + len(part)]
             cols[:3, variables, which] = w
-            cols[3:, variables, which] = stacked_cross(frames[:, 3], w) + rotate(rot, turns[3:])
+            cols[3:, variables, which] = cross(frames[:, 3], w) + rotate(rot, turns[3:])
         return cols[:, :n]
 
     def link_motions(self, q: np.ndarray) -> dict[str, Motion]:
         """Displacement of every link, stacked pose index last: rotation ``(3, 3, N)`` and translation ``(3, N)``."""
         q, _ = self._stack(q)
-        exps = self._exponentials(q)
+        exps = _Exponentials(self, q.T)
         frames = {self.mechanism.ground: _identity(exps.count)}
         for parent, child, step in self._steps:
             g = frames[parent]
@@ -346,7 +315,7 @@ class Kinematics:
     def end_effector_jacobian(self, q: np.ndarray) -> np.ndarray:
         """Twist of the end effector (normalised coordinates, ``[w; v]``) per unit joint rate, at ``q`` (``(6, n)``)."""
         stack, single = self._stack(q)
-        exps = self._exponentials(stack)
+        exps = _Exponentials(self, stack.T)
         chains = self._end_effector
         cols = np.moveaxis(self._columns(chains, self._chain(chains, exps)[1], None, exps.count)[:, :, 0], -1, 0)
         return cols[0] if single else cols
@@ -491,10 +460,11 @@ class Kinematics:
     def mechanism_at(self, q: np.ndarray) -> Mechanism:
         """The mechanism at the pose ``q``, joints written in the global frame.
 
-        Each joint's geometry is carried by the link it belongs to (see the
-        module docstring); names, types, links and ``actuated`` flags are kept,
-        named frames are dropped (they describe the given pose) and so is the
-        ``expected`` block (it describes the given pose too).
+        Each joint's geometry is carried by the link it belongs to (a ``U``
+        joint's first axis by ``links[0]``, its second by ``links[1]``; every
+        other field by ``links[0]``); names, types, links and ``actuated`` flags
+        are kept, named frames and the ``expected`` block (both describe the
+        given pose) dropped.
         """
         g = self.link_displacements(q)
         norm = self.normalisation
@@ -525,14 +495,10 @@ POINT_FIXED_IN_BOTH = frozenset("RUS")
 
 
 def _keep_coincident_points(given: Sequence[Joint], moved: list[Joint]) -> tuple[Joint, ...]:
-    """``moved`` with the joints of one link that met at one point in ``given`` meeting there still.
+    """``moved`` with the joints of one link that met at one point in ``given`` meeting there still (the first one's point).
 
-    Each moved point is carried by one of its joint's links, so two joints of
-    a link that met at one point (axes that intersect) may come out apart by
-    round-off of the mechanism's size; near the origin that is far above the
-    round-off of their own tiny coordinates, and the analysis would take them
-    for distinct points it cannot resolve.  A rigid link keeps them together:
-    each takes the moved point of the first joint of the group.
+    Carried by different links, they could come apart by the round-off of the mechanism's size, far above that of
+    coordinates near the origin: the analysis would take them for distinct points it cannot resolve.
     """
     first: dict[tuple, int] = {}
     for index, joint in enumerate(given):
@@ -628,7 +594,7 @@ class Evaluation:
 
     def __init__(self, kin: Kinematics, q: np.ndarray, components: np.ndarray | None) -> None:
         self._kin = kin
-        exps = kin._exponentials(q)
+        exps = _Exponentials(kin, q.T)
         self._count = count = exps.count
         blocks: list[np.ndarray] = [np.zeros((6, count))] * kin.loop_count
         # loops of about one length side by side while the stack is small (fewer, larger array operations), else each alone
@@ -664,7 +630,7 @@ class Evaluation:
             cols = cols[:, :, 0]
             p, r = pose if rows is None else (pose[0][:, rows], pose[1][:, rows])
             omega = cols[:3]
-            dp = cols[3:] + stacked_cross(omega, p[:, None, :])  # point velocity v + w x p
+            dp = cols[3:] + cross(omega, p[:, None, :])  # point velocity v + w x p
             dr = inverse_left_jacobian_times(r, omega)
             blocks.append(np.concatenate([dp, dr])[self._components])
         if not blocks:
@@ -778,8 +744,7 @@ POLISHED = 0.1
 """A pose whose residual is below this fraction of ``Tolerance.closure`` needs no further step (a sweep's solves)."""
 
 STALLED = 4
-"""A pose of a sweep stops after this many steps in a row that did not halve its best residual
-(:meth:`Kinematics.close`, one pose at a time, allows :data:`CLOSE_STALLED`)."""
+"""A pose of a sweep stops after this many steps in a row that did not halve its best residual."""
 
 CLOSE_STALLED = 6
 """Steps in a row that do not halve the best residual before :meth:`Kinematics.close` gives up:
@@ -809,31 +774,26 @@ def newton(
 ) -> Closures:
     """Close every loop of a stack of poses by Gauss–Newton with damped minimum-norm steps.
 
-    The step ``J^T (J J^T + mu I)^-1 r`` (:func:`min_norm_steps`) has a
-    damping ``mu`` far below every kept singular value, so a rank-deficient
-    Jacobian (at a change point, or the dependent rows of a planar loop)
-    still gives the minimum-norm step, and the step lies in the row space of
-    ``J``: round-off never drifts a pose along the motions the equations
-    leave free.  A pose is done when its residual is below ``polished *
-    tol.closure``, or closed and no longer halving (a last step polishes a
-    pose near a singularity), or after :data:`STALLED` steps that did not
-    halve it.
+    The step ``J^T (J J^T + mu I)^-1 r`` (:func:`min_norm_steps`), ``mu`` far
+    below every kept singular value, is the minimum-norm step even where
+    ``J`` is rank-deficient (a change point, a planar loop's dependent rows)
+    and lies in ``J``'s row space: round-off never drifts a pose along the
+    motions the equations leave free.  A pose is done when its residual is
+    below ``polished * tol.closure``, or closed and no longer halving, or
+    after ``patience`` steps that did not halve it.
 
     Parameters
     ----------
-    kin : Kinematics
     start : ndarray, shape (N, n)
         Starting joint variables (the variables not free keep them).
     goals : ndarray, shape (N, c + k)
         Values of the fixed pose coordinates, then right-hand sides of the
         linear equations (:class:`Equations`).
-    equations : Equations
     tol : Tolerance
         ``tol.closure`` is the largest residual component of a closed pose.
     max_move : float or ndarray (N,)
         A solve that wanders farther than this from its start has failed (it
         would reach another assembly, not the nearby one).
-    max_iter : int
     polished : float or ndarray (N,)
     accelerate : bool
         Double the step of a pose whose residual shrank by a ratio in
@@ -845,10 +805,6 @@ def newton(
     closure : ndarray (N,), optional
         The largest residual component of each closed pose, when the poses
         have their own (default ``tol.closure`` for every pose).
-
-    Returns
-    -------
-    Closures
     """
     q0 = np.array(start, dtype=float)
     count = len(q0)
@@ -892,9 +848,7 @@ def newton(
                 break
             jac = these.jacobians(evaluation, keep)
             active, r = active[keep], r[:, keep]
-            # the damped minimum-norm step J^T (J J^T + mu I)^-1 r: it lies in the row space of J, so round-off
-            # never moves a pose along its free motions (the primal form (J^T J + mu I)^-1 J^T r would, by 1/mu)
-            step = min_norm_steps(jac, r)
+            step = min_norm_steps(jac, r)  # in J's row space (the primal (J^T J + mu I)^-1 J^T r would drift by 1/mu)
             if accelerate and len(history) >= 3:
                 before, last, now = (h[active] for h in history[-3:])
                 low, high = LINEAR_RATIO
@@ -925,32 +879,15 @@ _EXTENDED = np.finfo(np.longdouble).eps < np.finfo(float).eps
 
 
 def polish(kin: Kinematics, q: np.ndarray, goals: np.ndarray, equations: Equations = Equations()) -> np.ndarray:
-    """Closed poses refined by Newton steps whose residual is evaluated in extended precision.
+    """Closed poses ``q`` ``(N, n)`` (and their :func:`newton` ``goals``) refined by Newton steps whose residual is in extended precision.
 
-    Near a singularity the closure equations are ill-conditioned: with a
-    smallest singular value ``s`` of their Jacobian, the round-off of a
-    float64 residual (about 1e-16) leaves the joint variables uncertain by
-    ``1e-16 / s`` along the near-singular motion, and the screw systems of the
-    pose amplify that again by ``1 / s``.  A parallelogram 0.01 degree from
-    its change point (``s`` about 2e-4) then shows its coupler tilted by 1e-12
-    rad and a pure translation with a rotational part of 1e-8, at the rank
-    tolerance.  Residuals in ``numpy.longdouble`` (on x86 three more digits)
-    take that uncertainty below the float64 rounding of the variables
-    themselves; the steps are solved in float64 (the residual is tiny).  A
-    step that does not lower the extended residual is not taken.  Where
-    ``longdouble`` is float64 (some platforms) nothing changes.
-
-    Parameters
-    ----------
-    q : ndarray, shape (N, n)
-        Closed poses.
-    goals : ndarray, shape (N, c + k)
-        Their goals (:func:`newton`).
-
-    Returns
-    -------
-    ndarray, shape (N, n)
-        The refined poses (float64), the variables not free unchanged.
+    Near a singularity, with a smallest singular value ``s`` of the closure Jacobian, the round-off of a float64
+    residual (1e-16) leaves the variables uncertain by ``1e-16 / s``, which the pose's screw systems amplify again by
+    ``1 / s``: a parallelogram 0.01 degree from its change point (``s`` about 2e-4) shows its coupler tilted by 1e-12
+    rad and a pure translation with a rotational part of 1e-8.  Residuals in ``numpy.longdouble`` (x86: three more
+    digits) take that below the float64 rounding of the variables; the steps are solved in float64, one that does not
+    lower the extended residual is not taken, and where ``longdouble`` is float64 nothing changes.  Returns float64
+    poses, the variables not free unchanged.
     """
     free = equations.mask(kin.variable_count)
     if not _EXTENDED or len(q) == 0 or not free.any():
@@ -976,16 +913,7 @@ def polish(kin: Kinematics, q: np.ndarray, goals: np.ndarray, equations: Equatio
 
 
 def kinematics(mechanism: Mechanism) -> Kinematics:
-    """The product-of-exponentials model of ``mechanism`` at its pose (cached per mechanism).
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-
-    Returns
-    -------
-    Kinematics
-    """
+    """The product-of-exponentials model of ``mechanism`` at its pose (cached per mechanism)."""
     return per_object_cache(mechanism, "kinematics", lambda: _build(mechanism))
 
 
@@ -1015,7 +943,7 @@ def _build(mechanism: Mechanism) -> Kinematics:
     w, v = twists[:3].T, twists[3:].T
     unit = np.where(is_p[:, None], v, w)
     nearest = np.where(is_p[:, None], 0.0, np.cross(w, v))
-    k = np.array([skew(a) for a in unit]).reshape(-1, 3, 3)
+    k = skew(unit).reshape(-1, 3, 3)
 
     # the spanning tree from the ground that mobility.core.loop_closure uses
     tree_edges, chords = spanning_tree(mechanism)
@@ -1069,7 +997,6 @@ def _build(mechanism: Mechanism) -> Kinematics:
         loops=tuple(tuple(loop) for loop in loops),
         reference=norm_reference,
         _steps=tuple((e.parent, e.child, paths[e.child][len(paths[e.parent]) :]) for e in tree_edges),
-        _rows=twists.T.copy(),
         _axes=unit,
         _pitches=np.where(np.array(kinds) == "H", np.einsum("ij,ij->i", w, v), 0.0),
         _prismatic=is_p,

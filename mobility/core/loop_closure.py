@@ -190,13 +190,13 @@ def _dense(equations: tuple[Terms, ...], screws: JointScrews) -> np.ndarray:
     return k
 
 
-def _chord_by_chord(equations: tuple[Terms, ...], screws: JointScrews, tol: Tolerance, couplings: np.ndarray | None = None) -> tuple[RankDecision, np.ndarray]:
+def _chord_by_chord(equations: tuple[Terms, ...], screws: JointScrews, tol: Tolerance, couplings: np.ndarray) -> tuple[RankDecision, np.ndarray]:
     """Null space of the loop equations, one chord at a time (see the module docstring), then of the coupling rows, one at a time."""
     n = screws.twists.shape[1]
     row_of: dict[int, int] = {}  # variable -> row of `basis`
     basis = np.zeros((0, 0))  # orthonormal basis of the rates of the variables met so far that close the loops so far
     kept, dropped, rank = 1.0, 0.0, 0
-    coupled = [] if couplings is None else [(np.flatnonzero(c).tolist(), c[np.flatnonzero(c)][None]) for c in couplings]
+    coupled = [(np.flatnonzero(c).tolist(), c[np.flatnonzero(c)][None]) for c in couplings]
     for variables, block in [_columns(terms, screws) for terms in equations] + coupled:
         new = [v for v in dict.fromkeys(variables) if v not in row_of]
         if new:

@@ -25,6 +25,7 @@ import numpy as np
 from ..errors import MechanismError, RequestError, did_you_mean, name_list, shown_argument
 from .couplings import Coupling, require_couplings
 from .expected import Expected
+from .frozen import read_only
 from .tolerance import DEFAULT_TOLERANCE, ORTHONORMAL, PARALLEL_AXES, characteristic_scale
 from .transforms import Transform, rotation_from_rpy
 from .validation import (Vector, _listed, _not_bool, number_from_text, require_graph_names, require_ground_and_end_effector,
@@ -49,11 +50,9 @@ JOINT_TYPES: Mapping[str, str] = MappingProxyType(
 _IDENTITY = np.eye(3)
 _ORTHONORMAL_LIMIT = ORTHONORMAL + 1e-5 * _IDENTITY  # |R R^T - I| entry by entry, as numpy.allclose(R R^T, I, atol=ORTHONORMAL)
 
-# Geometry fields each joint type requires, and those it may also carry.
-_REQUIRED: Mapping[str, tuple[str, ...]] = {"R": ("axis", "point"), "P": ("axis",), "H": ("axis", "point", "pitch"), "C": ("axis", "point"),
-                                             "U": ("point", "axes"), "S": ("point",), "E": ("normal",)}
-_OPTIONAL: Mapping[str, tuple[str, ...]] = {"P": ("point",), "E": ("point",)}
-JOINT_FIELDS: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = MappingProxyType({t: (need, _OPTIONAL.get(t, ())) for t, need in _REQUIRED.items()})
+JOINT_FIELDS: Mapping[str, tuple[tuple[str, ...], tuple[str, ...]]] = MappingProxyType({
+    "R": (("axis", "point"), ()), "P": (("axis",), ("point",)), "H": (("axis", "point", "pitch"), ()), "C": (("axis", "point"), ()),
+    "U": (("point", "axes"), ()), "S": (("point",), ()), "E": (("normal",), ("point",))})
 """Geometry fields each joint type takes: those it requires, and those it may also carry."""
 
 
@@ -122,14 +121,12 @@ class Joint:
         if links[0] == links[1]:
             raise MechanismError("links", f"a joint must join two different links, got {links[0]!r} twice")
         object.__setattr__(self, "links", links)
-        need = _REQUIRED[self.type]
-        allowed = set(need) | set(_OPTIONAL.get(self.type, ()))
+        need, optional = JOINT_FIELDS[self.type]
         for key in ("axis", "point", "pitch", "axes", "normal"):
             value = getattr(self, key)
             if key in need and value is None:
                 raise MechanismError(key, f"missing; a joint of type {self.type} needs {', '.join(need)}")
-            if key not in allowed and value is not None:
-                optional = _OPTIONAL.get(self.type, ())
+            if key not in need + optional and value is not None:
                 takes = ", ".join(need) + (f", and optionally {', '.join(optional)}" if optional else "")
                 raise MechanismError(key, f"not a field of a joint of type {self.type} (it takes {takes})")
         for key in ("axis", "normal", "point"):
@@ -174,7 +171,7 @@ class Joint:
         ['R', 'P']
         """
         t = self.type
-        # Each branch reads only the fields its type requires, which __post_init__ checked are set (_REQUIRED).
+        # Each branch reads only the fields its type requires, which __post_init__ checked are set (JOINT_FIELDS).
         axis, point, pitch, axes = cast(Vector, self.axis), cast(Vector, self.point), cast(float, self.pitch), cast("tuple[Vector, Vector]", self.axes)
         if t == "R":
             return (Freedom("R", axis, point),)
@@ -236,12 +233,9 @@ class Frame:
             rot = None
         if rot is None or rot.shape != (3, 3) or not np.isfinite(rot).all():
             raise MechanismError("rotation", "expected a 3x3 matrix of finite numbers")
-        rows = rot.tolist()
-        (a, b, c), (d, e, f), (g, h, i) = rows
-        determinant = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-        if (np.abs(rot @ rot.T - _IDENTITY) > _ORTHONORMAL_LIMIT).any() or determinant < 0:
+        if (np.abs(rot @ rot.T - _IDENTITY) > _ORTHONORMAL_LIMIT).any() or np.linalg.det(rot) < 0:
             raise MechanismError("rotation", "expected a proper rotation matrix")
-        object.__setattr__(self, "rotation", tuple(map(tuple, rows)))
+        object.__setattr__(self, "rotation", tuple(map(tuple, rot.tolist())))
         require_name(self.parent, "parent", "a frame name")
 
     @staticmethod
@@ -360,21 +354,18 @@ class Mechanism:
             except RequestError:
                 raise MechanismError("precision", f"expected a finite number >= 0 or None, got {self.precision!r}") from None
             object.__setattr__(self, "precision", p)
-        for key in ("joints", "frames"):
+        for key, kind in (("joints", Joint), ("frames", Frame)):
             value = getattr(self, key)
             if isinstance(value, (str, bytes, dict)) or not isinstance(value, Iterable):
-                raise MechanismError(key, f"expected a sequence of {'Joint' if key == 'joints' else 'Frame'}s, got {type(value).__name__}")
+                raise MechanismError(key, f"expected a sequence of {kind.__name__}s, got {type(value).__name__}")
             object.__setattr__(self, key, tuple(value))
+            for i, item in enumerate(getattr(self, key)):
+                if not isinstance(item, kind):
+                    raise MechanismError(f"{key}[{i}]", f"expected a {kind.__name__}, got {type(item).__name__}")
         require_graph_names(self, "link")
         if not self.joints:
             raise MechanismError("joints", "expected at least one joint")
-        for i, j in enumerate(self.joints):
-            if not isinstance(j, Joint):
-                raise MechanismError(f"joints[{i}]", f"expected a Joint, got {type(j).__name__}")
         require_unique_names(self.joints, "joints", "joint")
-        for i, f in enumerate(self.frames):
-            if not isinstance(f, Frame):
-                raise MechanismError(f"frames[{i}]", f"expected a Frame, got {type(f).__name__}")
         if self.expected is not None and not isinstance(self.expected, Expected):
             raise MechanismError("expected", f"expected an Expected or None, got {type(self.expected).__name__}")
         try:
@@ -422,12 +413,10 @@ class Mechanism:
         object.__setattr__(self, "couplings", require_couplings(self.couplings, self.joints))
 
     def _require_resolved_pitches(self) -> None:
-        """Refuse a helical pitch so much larger than the joint points' spread that no scale resolves both.
+        """Refuse a helical pitch ``h`` so much larger than the joint points' spread ``d`` that no scale resolves both.
 
-        With pitch ``h`` above the spread ``d`` the length is ``L = sqrt(d h)``
-        (:func:`~mobility.core.tolerance.characteristic_scale`), and the
-        screw's turn and the points' offsets are both ``sqrt(d / h)`` of it:
-        below ``Tolerance.rank`` (``h / d`` above 1e16) round-off.
+        The length is then ``L = sqrt(d h)`` (:func:`~mobility.core.tolerance.characteristic_scale`), and the screw's
+        turn and the points' offsets are both ``sqrt(d / h)`` of it: below ``Tolerance.rank`` (``h / d`` above 1e16) round-off.
         """
         table = self.freedom_table
         pitches = np.abs(table.pitches)
@@ -458,10 +447,9 @@ class Mechanism:
         seen = {self.ground}
         todo = [self.ground]
         while todo:
-            for n in neighbours[todo.pop()]:
-                if n not in seen:
-                    seen.add(n)
-                    todo.append(n)
+            new = neighbours[todo.pop()] - seen
+            seen |= new
+            todo.extend(new)
         return set(neighbours) - seen
 
     @cached_property
@@ -554,12 +542,10 @@ class Mechanism:
                 located_joints.append(index)
                 located_links.append((link_index[j.links[0]], link_index[j.links[1]]))
         ee = [j.point for j in self.world_joints if j.point is not None and self.end_effector in j.links]
-        arrays = [np.array(prismatic), np.array(axes, dtype=float), np.array(points, dtype=float), np.array(pitches, dtype=float),
-                  np.array(located, dtype=float).reshape(-1, 3), np.array(ee, dtype=float).reshape(-1, 3),
-                  np.array(located_joints, dtype=int), np.array(located_links, dtype=int).reshape(-1, 2)]
-        for a in arrays:
-            a.setflags(write=False)
-        p, ax, pt, h, loc, eep, lj, ll = arrays
+        p, ax, pt, h, loc, eep, lj, ll = read_only((
+            np.array(prismatic), np.array(axes, dtype=float), np.array(points, dtype=float), np.array(pitches, dtype=float),
+            np.array(located, dtype=float).reshape(-1, 3), np.array(ee, dtype=float).reshape(-1, 3),
+            np.array(located_joints, dtype=int), np.array(located_links, dtype=int).reshape(-1, 2)), copy=False)
         return FreedomTable(p, ax, pt, h, tuple(offsets), loc, eep, lj, ll)
 
     def __getstate__(self) -> dict[str, Any]:

@@ -114,8 +114,6 @@ def sample_poses(mechanism: Mechanism, count: int, *, step: float = DEFAULT_STEP
 
     Parameters
     ----------
-    mechanism : Mechanism
-    count : int
     step : float
         Joint-space distance of each move in ``(0, MAX_STEP]`` (radians;
         lengths over the characteristic length: the same for a scaled file).

@@ -179,7 +179,6 @@ def same_subspace(a: np.ndarray, b: np.ndarray, tol: Tolerance = DEFAULT_TOLERAN
     b = np.asarray(b, dtype=float)
     if a.shape[0] != b.shape[0]:
         return False
-
     return rank(a, tol) == rank(b, tol) == rank(np.hstack([a, b]), tol)
 
 

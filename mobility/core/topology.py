@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 from functools import lru_cache
-from typing import Any, Callable, Union, final
+from typing import Any, Callable, NamedTuple, Union, final
 
 from .model import Mechanism
 
@@ -45,11 +45,7 @@ class JointNode:
 
 
 class _Composite:
-    """Hashing, equality and ``repr`` of a composite node without recursion.
-
-    The hash is computed once from the children's; equality and ``repr`` walk
-    an explicit stack, so a 2,000-joint ladder compares and prints like a small tree.
-    """
+    """Hashing (once, from the children's), equality and ``repr`` of a composite node without recursion (a 2,000-joint ladder)."""
 
     def _set_hash(self, value: Any) -> None:
         object.__setattr__(self, "_hash", hash(value))
@@ -286,9 +282,7 @@ def decompose(mechanism: Mechanism) -> Topology:
     ('bridge(g-a: A, g-b: B)', ((False, ((0, 1.0), (1, 2.0))),))
     """
     signature = tuple((j.name, j.links) for j in mechanism.joints)
-    if not mechanism.couplings:
-        return _decompose(signature, mechanism.ground, mechanism.end_effector)
-    index = {j.name: i for i, j in enumerate(mechanism.joints)}
+    index = {j.name: i for i, j in enumerate(mechanism.joints)} if mechanism.couplings else {}
     coupled = tuple((mechanism.joints[index[c.joints[0]]].type == "P", tuple((index[n], x) for n, x in c.terms)) for c in mechanism.couplings)
     return _decompose(signature, mechanism.ground, mechanism.end_effector, coupled)
 
@@ -350,18 +344,15 @@ def _blocks(edges: list[Edge], s: str, t: str) -> list[tuple[list[Edge], bool]]:
 # series/parallel reduction
 
 
-class _Merged:
-    """A connection made by merging others (``kind`` ``"S"`` or ``"P"``), built into a node at the end.
+class _Merged(NamedTuple):
+    """A connection merged from ``parts`` (``kind`` ``"S"`` or ``"P"``), built into a node at the end.
 
     ``parts`` are ``(part, flipped)``: a :class:`JointNode` or another
     ``_Merged``, and whether it runs against this connection's direction.
     """
 
-    __slots__ = ("kind", "parts")
-
-    def __init__(self, kind: str, parts: list[tuple[Any, bool]]) -> None:
-        self.kind = kind
-        self.parts = parts
+    kind: str
+    parts: list[tuple[Any, bool]]
 
 
 def _spliced(kind: str, item: _Merged, flipped: bool) -> list[tuple[Any, bool]]:

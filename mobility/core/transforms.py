@@ -22,15 +22,19 @@ __all__ = ["cross", "skew", "rotation_from_rpy", "rotation_from_axis_angle", "Tr
 
 
 def skew(v: npt.ArrayLike) -> np.ndarray:
-    """Return the 3x3 matrix ``[v]x`` with ``skew(v) @ u == np.cross(v, u)``.
+    """Return the 3x3 matrix ``[v]x`` with ``skew(v) @ u == np.cross(v, u)`` (of each row of ``v``: ``(k, 3)`` gives ``(k, 3, 3)``).
 
     Examples
     --------
     >>> bool(np.allclose(skew([1, 2, 3]) @ [4, 5, 6], np.cross([1, 2, 3], [4, 5, 6])))
     True
     """
-    x, y, z = np.asarray(v, dtype=float)
-    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    v = np.asarray(v, dtype=float)
+    out = np.zeros(v.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
+    return out
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -44,14 +48,7 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     >>> cross(np.array([1.0, 0, 0]), np.array([0.0, 1, 0])).tolist()
     [0.0, 0.0, 1.0]
     """
-    x = a[1] * b[2] - a[2] * b[1]
-    y = a[2] * b[0] - a[0] * b[2]
-    z = a[0] * b[1] - a[1] * b[0]
-    if np.ndim(x) == 0:
-        return np.array((x, y, z))
-    out = np.empty((3,) + np.shape(x))
-    out[0], out[1], out[2] = x, y, z
-    return out
+    return np.array((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]))
 
 
 def rotation_from_rpy(rpy: Sequence[float] | np.ndarray) -> np.ndarray:
@@ -166,27 +163,9 @@ def twist_exp(twist: np.ndarray) -> np.ndarray:
 _FACTORIALS = tuple(float(math.factorial(k)) for k in range(20))
 
 
-def _coefficients(theta: float) -> tuple[float, float, float, float]:
-    """``(1 - cos t)/t^2, (t - sin t)/t^3, (t^2 + 2 cos t - 2)/(2 t^4), (2 t - 3 sin t + t cos t)/(2 t^5)``.
-
-    Their Taylor series below ``t = 1`` (no cancellation), the closed forms above.
-    """
-    if theta < 1.0:
-        t2 = theta * theta
-        a = b = c = d = 0.0
-        power = 1.0
-        f = _FACTORIALS
-        for m in range(8):
-            sign = power if m % 2 == 0 else -power
-            a += sign / f[2 * m + 2]
-            b += sign / f[2 * m + 3]
-            c += sign / f[2 * m + 4]
-            d += sign * (m + 1) / f[2 * m + 5]
-            power *= t2
-        return a, b, c, d
-    s, co = math.sin(theta), math.cos(theta)
-    return ((1.0 - co) / theta**2, (theta - s) / theta**3, (theta**2 + 2.0 * co - 2.0) / (2.0 * theta**4),
-            (2.0 * theta - 3.0 * s + theta * co) / (2.0 * theta**5))
+def _coefficients(theta: float) -> tuple[float, ...]:
+    """:func:`_coefficients_many` of one angle, as floats."""
+    return tuple(float(c[0]) for c in _coefficients_many(np.array([theta])))
 
 
 def so3_left_jacobian(w: np.ndarray) -> np.ndarray:
@@ -204,14 +183,7 @@ def rotation_log(rot: np.ndarray) -> np.ndarray:
     >>> rotation_log(rotation_from_axis_angle(np.array([0.0, 0.6, 0.8]), 0.5)).round(12).tolist()
     [0.0, 0.3, 0.4]
     """
-    axis2 = np.array([rot[2, 1] - rot[1, 2], rot[0, 2] - rot[2, 0], rot[1, 0] - rot[0, 1]])  # 2 sin(t) u
-    sine2 = float(np.linalg.norm(axis2))
-    theta = float(np.arctan2(0.5 * sine2, 0.5 * (np.trace(rot) - 1.0)))
-    if theta > 3.0:
-        from scipy.spatial.transform import Rotation  # near a half turn only; slow to import
-
-        return Rotation.from_matrix(rot).as_rotvec()
-    return axis2 / (2.0 * float(np.sinc(theta / np.pi)))
+    return rotation_logs_last(np.asarray(rot, dtype=float)[..., None])[:, 0]
 
 
 def displacement_log(g: np.ndarray) -> np.ndarray:
@@ -223,10 +195,7 @@ def displacement_log(g: np.ndarray) -> np.ndarray:
     >>> bool(np.allclose(displacement_log(twist_exp(x)), x))
     True
     """
-    g = np.asarray(g, dtype=float)
-    w = rotation_log(g[:3, :3])
-    v = np.linalg.solve(so3_left_jacobian(w), g[:3, 3])
-    return np.concatenate([w, v])
+    return displacement_logs(np.asarray(g, dtype=float)[None])[0]
 
 
 def bracket(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -249,17 +218,7 @@ def dexp(x: np.ndarray) -> np.ndarray:
     of SO(3) and ``Q`` the series ``sum_k sum_(i+j=k-1) W^i V W^j / (k+1)!``
     summed in closed form (Barfoot and Furgale, IEEE T-RO 2014, eq. 102).
     """
-    x = np.asarray(x, dtype=float)
-    a, b, c, d = _coefficients(float(np.linalg.norm(x[:3])))
-    w, v = skew(x[:3]), skew(x[3:])
-    ww, wv, vw, wvw = w @ w, w @ v, v @ w, w @ v @ w
-    jac = np.eye(3) + a * w + b * ww
-    q = 0.5 * v + b * (wv + vw + wvw) + c * (ww @ v + v @ ww - 3.0 * wvw) + d * (wvw @ w + w @ wvw)
-    out = np.zeros((6, 6))
-    out[:3, :3] = jac
-    out[3:, 3:] = jac
-    out[3:, :3] = q
-    return out
+    return dexps(np.asarray(x, dtype=float)[None])[0]
 
 
 # the same maps for many twists at once (the loops of a mechanism)
@@ -272,7 +231,10 @@ _SERIES_DENOMINATORS = np.array([[_FACTORIALS[2 * m + k] for m in range(8)] for 
 
 
 def _coefficients_many(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`_coefficients` of every angle of ``theta`` (1-D): bit for bit below 1 (running products and sums in the scalar loop's order), to round-off above (numpy's closed forms)."""
+    """``(1 - cos t)/t^2, (t - sin t)/t^3, (t^2 + 2 cos t - 2)/(2 t^4), (2 t - 3 sin t + t cos t)/(2 t^5)`` of every angle of ``theta`` (1-D).
+
+    Their Taylor series below ``t = 1`` (no cancellation), the closed forms above.
+    """
     theta = np.asarray(theta, dtype=float)
     small = theta < 1.0
     steps = np.empty((len(theta), 8))
@@ -286,15 +248,6 @@ def _coefficients_many(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nd
     s, co = np.sin(t), np.cos(t)
     closed = ((1.0 - co) / t**2, (t - s) / t**3, (t**2 + 2.0 * co - 2.0) / (2.0 * t**4), (2.0 * t - 3.0 * s + t * co) / (2.0 * t**5))
     return tuple(np.where(small, series, form) for series, form in zip((a, b, c, d), closed))
-
-
-def _skews(v: np.ndarray) -> np.ndarray:
-    """:func:`skew` of each row of ``v`` (shape (k, 3)), shape (k, 3, 3)."""
-    out = np.zeros(v.shape[:-1] + (3, 3))
-    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
-    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
-    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
-    return out
 
 
 def displacement_logs(g: np.ndarray) -> np.ndarray:
@@ -334,7 +287,7 @@ def dexps(x: np.ndarray) -> np.ndarray:
     """
     x = np.asarray(x, dtype=float)
     _, b, c, d = coefficients = [u[:, None, None] for u in _coefficients_many(np.sqrt(np.einsum("ij,ij->i", x[:, :3], x[:, :3])))]
-    w, v = _skews(x[:, :3]), _skews(x[:, 3:])
+    w, v = skew(x[:, :3]), skew(x[:, 3:])
     ww, wv, vw = w @ w, w @ v, v @ w
     wvw = wv @ w
     out = np.zeros((len(x), 6, 6))
@@ -350,11 +303,6 @@ def dexps(x: np.ndarray) -> np.ndarray:
 
 Motion = tuple[np.ndarray, np.ndarray]
 """Displacements of many poses, pose index last: rotations ``(3, 3, N)`` and translations ``(3, N)``."""
-
-
-def stacked_cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Cross product along the first axis (components first)."""
-    return np.array((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]))
 
 
 def stacked_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -418,8 +366,8 @@ def inverse_left_jacobian_times(w: np.ndarray, x: np.ndarray) -> np.ndarray:
     c = _series(np.sqrt(stacked_dot(w, w)), _COT_SERIES, lambda t: (1.0 - 0.5 * t / np.tan(0.5 * t)) / t**2)
     if x.ndim == 3:
         w = w[:, None, :]
-    wx = stacked_cross(w, x)
-    return x - 0.5 * wx + c * stacked_cross(w, wx)
+    wx = cross(w, x)
+    return x - 0.5 * wx + c * cross(w, wx)
 
 
 def twist_logs(g: Motion) -> np.ndarray:

@@ -125,7 +125,7 @@ def _freedoms(joint_type: str, g: dict, count: int, pitch: float | None) -> list
 def posed_screws(bk: Kinematics, q: np.ndarray) -> PosedScrews:
     """Unit joint twists of the poses ``q`` ``(N, n)``, each pose in its own normalised coordinates."""
     mechanism = bk.mechanism
-    norm = bk.model.normalisation
+    norm = bk.normalisation
     count = len(q)
     geometry = joint_geometry(mechanism, bk.link_motions(q), norm.centre, norm.length)
     prismatic, axes, points, pitches, offsets = [], [], [], [], [0]
