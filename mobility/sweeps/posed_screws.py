@@ -61,10 +61,6 @@ class PosedScrews:
     points: dict[str, np.ndarray]
     reference: np.ndarray
 
-    def of_joint(self, index: int) -> np.ndarray:
-        """Twist columns of joint ``index``, ``(N, 6, dof)``."""
-        return self.twists[:, :, self.offsets[index] : self.offsets[index + 1]]
-
     def normalised(self, points: np.ndarray) -> np.ndarray:
         """Global points ``(N, 3)`` in each pose's normalised coordinates."""
         return (points - self.centres) / self.lengths[:, None]
