@@ -149,16 +149,9 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
     names = [j.name for j in mechanism.world_joints]
     labels = tuple("-".join(names[j] for j in joints_of(node)) for node in limbs) if len(limbs) > 1 else ()
     freedoms = [names[j] if sum(1 for jj, _ in inputs.freedoms if jj == j) == 1 else f"{names[j]}.{k}" for j, k in inputs.freedoms]
-    return TransmissionCheck(
-        actuated=tuple(freedoms),
-        iti=tuple(float(x) for x in t.iti[0]),
-        oti=tuple(float(x) for x in t.oti[0]),
-        lti=float(t.lti[0]),
-        limbs=labels,
-        cti_limbs=tuple(float(x) for x in t.cti_limbs[0]) if labels else (),
-        cti=float(t.cti[0]),
-        threshold=threshold,
-    )
+    return TransmissionCheck(actuated=tuple(freedoms), iti=tuple(float(x) for x in t.iti[0]), oti=tuple(float(x) for x in t.oti[0]),
+                             lti=float(t.lti[0]), limbs=labels, cti_limbs=tuple(float(x) for x in t.cti_limbs[0]) if labels else (),
+                             cti=float(t.cti[0]), threshold=threshold)
 
 
 CLOSED = 1e-6
