@@ -107,22 +107,11 @@ class RigidPose:
         return InputWrench(label, self.mechanism.joints[joint].type, self.limb_of.get(joint), wrench, rate, note, transmission)
 
     def locked_wrenches(self, freedoms: Sequence[tuple[int, int]]) -> np.ndarray | None:
-        """The wrenches a limb exerts with all its inputs locked, for the limbs where an input has no actuation wrench of its own.
+        """The constraint wrenches ``(6, k)`` (orthonormal, normalised) of the limbs where an input has no wrench of its own, all inputs locked.
 
-        An input whose motion its limb's other joints produce (a 7R arm, joints
-        in line) has no wrench of its own, yet locking it with the others can
-        hold the limb: by the limb's constraint system with every input locked
-        (orthonormal, normalised).
-
-        Parameters
-        ----------
-        freedoms : sequence of (joint, freedom)
-            The inputs.
-
-        Returns
-        -------
-        ndarray, shape (6, k), or None
-            None when every input of every limb has its own wrench (or is on no path).
+        Such an input (a 7R arm, joints in line) can still hold its limb, locked
+        with the others.  ``freedoms``: the inputs' ``(joint, freedom)``; None when
+        every input of every limb has its own wrench (or is on no path).
         """
         lacking = {self.limb_of[j] for j, k in freedoms if j in self.limb_of and self.wrench(j, k)[2] == _DRIVEN_BY_OTHERS}
         if not lacking:

@@ -86,23 +86,10 @@ class MovePlan:
 
 
 def probe(plan: MovePlan, q0: np.ndarray, source: str, d: np.ndarray, *, examine: bool = True) -> Probe:
-    """Move from ``q0`` along the unit direction ``d`` with each step of ``plan`` (smallest first).
+    """Move from ``q0`` along the unit joint-rate direction ``d`` with each step of ``plan`` (smallest first).
 
-    Parameters
-    ----------
-    plan : MovePlan
-    q0 : ndarray
-        Joint variables of the start (zeros: the given pose).
-    source : str
-        How ``d`` was chosen (kept in the :class:`~mobility.finite.results.Probe`).
-    d : ndarray
-        Unit joint-rate direction.
-    examine : bool
-        Examine the first-order motions at the pose reached with the probe step.
-
-    Returns
-    -------
-    Probe
+    ``source`` says how ``d`` was chosen; ``examine``: examine the first-order
+    motions at the pose reached with the probe step.
     """
     return probes(plan, q0, [(source, d)], examine=examine)[0]
 

@@ -104,17 +104,11 @@ def _scaled(twists: np.ndarray) -> np.ndarray:
 def canonical_basis(null: np.ndarray) -> np.ndarray:
     """An orthonormal basis of ``span(null)`` that depends only on the subspace.
 
-    Column by column: the joint variable whose unit rate keeps the most of
-    its length when projected on what is left of the subspace (ties, to
-    :data:`TIE` relative, go to the lowest variable), and the basis vector is
-    that projection, normalised; what is left is then the subspace
-    orthogonal to it.  So the first moves tried are the motions nearest to
-    turning or sliding one joint, and the basis is frame- and scale-free
-    (joint variables are).  Each column's largest entry is made positive
-    (ties again to the lowest variable).  These are the pivots and ``Q`` of a
-    column-pivoted QR of the projector, with the ties decided by the index
-    instead of by round-off (a symmetric mechanism has exact ties, which a
-    file moved rigidly would otherwise break another way).
+    A column-pivoted QR of the projector, each column's largest entry made
+    positive, with ties (to :data:`TIE` relative) going to the lowest joint
+    variable instead of to round-off (a symmetric mechanism has exact ties,
+    which a file moved rigidly would otherwise break another way).  So the
+    first moves tried are the motions nearest to turning or sliding one joint.
 
     Examples
     --------

@@ -45,23 +45,9 @@ def judge(instant: Result, k: int, branches: list[Branch], probes: tuple[Probe, 
           steps: tuple[float, ...], warnings: list[str], tol: Tolerance) -> FiniteMobility:
     """The verdict from the branches found by the moves.
 
-    Parameters
-    ----------
-    instant : Result
-        The screw route at the given pose.
-    k : int
-        Its first-order mobility (loop-closure route).
-    branches : list of Branch
-        The branches measured; those of dimension 0 are dropped, the others
-        sorted by dimension then DOF, largest first.
-    probes : tuple of Probe
-        The moves from the given pose.
-    second : SecondOrder or None
-    steps : tuple of float
-    warnings : list of str
-        Warnings so far (a copy is extended).
-    tol : Tolerance
-        The policy (its closure threshold is quoted).
+    ``instant`` is the screw route at the given pose, ``k`` the first-order
+    mobility of the loop-closure route.  Branches of dimension 0 are dropped,
+    the others sorted by dimension then DOF, largest first; ``warnings`` is copied, not extended.
     """
     warnings = list(warnings)
     branches = sorted((b for b in branches if b.dimension > 0), key=lambda b: (-b.dimension, -b.dof))

@@ -115,19 +115,9 @@ def compliance_matrix(mechanism: FlexureMechanism) -> np.ndarray:
 
 
 def normalised_energy_form(mechanism: FlexureMechanism, compliance: np.ndarray) -> tuple[np.ndarray, Normalisation]:
-    """``Q = SWAP C`` in normalised coordinates, symmetrised, and those coordinates (document length unit).
+    """``Q = SWAP C`` (1/N) of the :func:`compliance_matrix` ``compliance`` in normalised coordinates, symmetrised.
 
-    Parameters
-    ----------
-    compliance : ndarray, shape (6, 6)
-        The mechanism's :func:`compliance_matrix` (SI units).
-
-    Returns
-    -------
-    q : ndarray, shape (6, 6)
-        Symmetric, in 1/N.
-    normalisation : Normalisation
-        :meth:`FlexureMechanism.normalisation` (document length unit).
+    Returns ``Q`` and those coordinates, :meth:`FlexureMechanism.normalisation` (document length unit).
     """
     norm = mechanism.normalisation()
     metres = mechanism.metres
