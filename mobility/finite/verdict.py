@@ -75,12 +75,10 @@ def _cannot_move_text(instant: Result, k: int, probes: tuple[Probe, ...], second
         order2 = " Some directions pass the second-order test, yet no move along them closes: the obstruction is of higher order."
     else:
         order2 = ""
-    return (
-        f"The screw route finds {counted(k, 'first-order motion')} (end-effector DOF {instant.dof}), but none is a finite motion: "
-        f"in {counted(len(probes), 'direction')}, Newton does not re-close the loops at every step {_steps_text(steps)} "
-        f"(smallest residual left at step {steps[0]:g}: {smallest:.2e}; closed means below {tol.closure:.0e}).{order2} "
-        "The pose cannot move at all."
-    )
+    return (f"The screw route finds {counted(k, 'first-order motion')} (end-effector DOF {instant.dof}), but none is a finite motion: "
+            f"in {counted(len(probes), 'direction')}, Newton does not re-close the loops at every step {_steps_text(steps)} "
+            f"(smallest residual left at step {steps[0]:g}: {smallest:.2e}; closed means below {tol.closure:.0e}).{order2} "
+            "The pose cannot move at all.")
 
 
 def _verdict_text(instant: Result, k: int, branches: list[Branch], probes: tuple[Probe, ...], second: SecondOrder | None, steps: tuple[float, ...]) -> tuple[str, str]:
@@ -91,24 +89,18 @@ def _verdict_text(instant: Result, k: int, branches: list[Branch], probes: tuple
     summary = "; ".join(f"branch {i + 1}: {b.describe()}" for i, b in enumerate(branches))
     numbers = f"{moved} of {counted(len(probes), 'direction')} moved at steps {_steps_text(steps)} (loops re-closed to {worst:.1e} or better)"
     if len(branches) > 1:
-        return "bifurcation", (
-            f"{len(branches)} branches of finite motion meet at this pose (a bifurcation, or change point): {summary}. "
-            f"The {counted(k, 'first-order motion')} of the screw route {'is' if k == 1 else 'are'} the union of their tangents; {numbers}. "
-            f"No single motion has all {counted(k, 'freedom')}: each branch has at most {top.dimension}."
-        )
+        return "bifurcation", (f"{len(branches)} branches of finite motion meet at this pose (a bifurcation, or change point): {summary}. "
+                               f"The {counted(k, 'first-order motion')} of the screw route {'is' if k == 1 else 'are'} the union of their "
+                               f"tangents; {numbers}. No single motion has all {counted(k, 'freedom')}: each branch has at most {top.dimension}.")
     if top.dimension == k and top.dof == instant.dof and top.pattern == instant.pattern:
         return "full-cycle", f"Every first-order motion is a finite one: {numbers}; {summary}. The instantaneous answer holds for finite motion."
     if top.dimension == k and top.dof == instant.dof:
-        return "full-cycle", (
-            f"Every first-order motion is a finite one ({numbers}; {summary}): the DOF {instant.dof} and the mobility {k} hold "
-            f"for finite motion, but not the pattern: {top.pattern} at nearby poses, {instant.pattern} at this one, which is "
-            "special for the kind of the end effector's freedoms (a pattern singularity), not for their number."
-        )
+        return "full-cycle", (f"Every first-order motion is a finite one ({numbers}; {summary}): the DOF {instant.dof} and the mobility {k} hold "
+                              f"for finite motion, but not the pattern: {top.pattern} at nearby poses, {instant.pattern} at this one, which is "
+                              "special for the kind of the end effector's freedoms (a pattern singularity), not for their number.")
     if top.dimension == k and top.dof > instant.dof:
-        return "full-cycle", (
-            f"Every first-order motion is a finite one ({numbers}; {summary}), and the end effector has more DOF at nearby "
-            f"poses ({top.dof}) than at this one ({instant.dof}): the pose is singular for the end effector, not for the mechanism."
-        )
+        return "full-cycle", (f"Every first-order motion is a finite one ({numbers}; {summary}), and the end effector has more DOF at nearby "
+                              f"poses ({top.dof}) than at this one ({instant.dof}): the pose is singular for the end effector, not for the mechanism.")
     text = (f"The finite motion has {top.dimension} of the {counted(k, 'first-order freedom')} and end-effector DOF {top.dof} "
             f"({top.pattern}) instead of {instant.dof} ({instant.pattern}): {numbers}; {summary}.")
     if second is not None and second.directions.shape[1]:

@@ -88,19 +88,13 @@ def transmission_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: Pos
         out_points.append(out)
     n = len(inputs.freedoms)
     wrenches = actuation.wrenches if actuation.wrenches is not None else np.zeros((count, n, 6))
-    return transmission_indices(
-        wrenches,
-        np.stack(twists, axis=2) if twists else np.zeros((count, 6, 0)),
-        np.stack(in_points, axis=1) if in_points else np.zeros((count, 0, 3)),
-        np.stack(out_points, axis=1) if out_points else np.zeros((count, 0, 3)),
-        value.basis,
-        per_pose(value.dim, count),
-        [limb.wrenches for _, limb in limbs] if len(limbs) > 1 else [],
-        [per_pose(6 - limb.dim, count) for _, limb in limbs] if len(limbs) > 1 else [],
-        np.stack(attach, axis=1) if len(limbs) > 1 else None,
-        singular=actuation.rank < 6,
-        tol=tol,
-    )
+    several = len(limbs) > 1  # one limb: no constraint index
+    return transmission_indices(wrenches, np.stack(twists, axis=2) if twists else np.zeros((count, 6, 0)),
+                                np.stack(in_points, axis=1) if in_points else np.zeros((count, 0, 3)),
+                                np.stack(out_points, axis=1) if out_points else np.zeros((count, 0, 3)),
+                                value.basis, per_pose(value.dim, count), [limb.wrenches for _, limb in limbs] if several else [],
+                                [per_pose(6 - limb.dim, count) for _, limb in limbs] if several else [],
+                                np.stack(attach, axis=1) if several else None, singular=actuation.rank < 6, tol=tol)
 
 
 def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = None, *, q: np.ndarray | None = None,
