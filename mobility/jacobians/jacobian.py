@@ -252,8 +252,6 @@ def _jacobian_near_unit_size(model: ParallelModel, values: tuple[np.ndarray, ...
         fs = screw.vector
     except HalfTurnError:
         fs = None
-    for arr in (matrix, act_w, constraints_w, twists_w):
-        arr.setflags(write=False)
     condition = float(sv[0] / sv[-1]) if not singular and sv[-1] > 0 else float("inf")
     return JacobianResult(model.mechanism.name, model.labels, 6 - constraints_n.shape[1], matrix, act_w, constraints_w, twists_w.reshape(-1, 6),
                           twist_map, rank, condition, singular, limb_twists, screw.transform(), fs, length)
@@ -284,8 +282,6 @@ def _in_file_units(unit: JacobianResult, model: ParallelModel, scale: float, tol
     transform = unit.transform.copy()
     transform[:3, 3] /= scale
     screw = None if unit.finite_screw is None else unit.finite_screw * twist_factor
-    for arr in (matrix, actuation, constraints):
-        arr.setflags(write=False)
     return JacobianResult(unit.name, unit.actuated, unit.dof, matrix, actuation.reshape(-1, 6), constraints.reshape(-1, 6),
                           (unit.platform_twists * twist_factor).reshape(-1, 6), twist_map, unit.rank, unit.condition, unit.singular,
                           limb_twists, transform, screw, unit.length / scale)

@@ -1,15 +1,9 @@
 """Regression checks: analyse mechanisms and compare with their ``expected`` blocks.
 
-:func:`check_file` loads and analyses one file and compares every key of its
-``expected`` block (``docs/file-format.md``) with the analysis, by the
-comparator of :data:`COMPARATORS` (how each key is compared:
-``docs/library.md``; a key no comparator knows is a mismatch, never a pass).
-:func:`check_paths` does it for files and folders and gathers a
-:class:`CheckReport`, whose :attr:`~CheckReport.exit_status` is what
-``mobility check`` returns.  Each file ends ``"pass"``, ``"fail"``,
-``"missing"`` (no ``expected`` block) or ``"error"`` (its one-line message
-kept).  A YAML document of another kind (a flexure) is checked by a function
-of ``others`` (:data:`OtherDocument`).
+:func:`check_file` compares every key of a file's ``expected`` block with the
+analysis by the comparator of :data:`COMPARATORS` (docs/library.md; a key no
+comparator knows is a mismatch, never a pass); :func:`check_paths` gathers the
+files and folders of ``mobility check`` in a :class:`CheckReport`.
 
 Examples
 --------
