@@ -73,10 +73,6 @@ def finite_mobility(mechanism: Mechanism, *, steps: Iterable[float] = DEFAULT_ST
     tol : Tolerance
         Rank policy, as for :func:`mobility.analyze`, and the closure threshold.
 
-    Returns
-    -------
-    FiniteMobility
-
     Raises
     ------
     RequestError

@@ -420,10 +420,6 @@ def sweep(mechanism: Mechanism, vary: VarySpec | Iterable, *, actuated: Sequence
     transmission, good_threshold : bool, float
         With inputs, also the indices of :mod:`mobility.transmission` (``False``: not), and their good-transmission threshold (0.7).
 
-    Returns
-    -------
-    SweepResult
-
     Raises
     ------
     RequestError
