@@ -9,7 +9,6 @@ act (where each limb leaves its input link and meets the end effector).
 
 from __future__ import annotations
 
-from collections import deque
 from typing import Sequence
 
 import numpy as np
@@ -18,7 +17,7 @@ from ..core.kinematics import kinematics
 from ..core.model import Mechanism, require_mechanism
 from ..core.screw_systems import PoseAnswers, analyse_poses, per_pose
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..core.topology import Parallel, decompose, joints_of
+from ..core.topology import Parallel, decompose, joints_of, spanning_tree
 from ..errors import RequestError
 from ..transmission import GOOD_TRANSMISSION, BatchTransmission, TransmissionCheck, transmission_indices
 from .batch_actuation import ActuationInputs, BatchActuation, actuated_inputs, actuation_at_poses
@@ -28,20 +27,10 @@ __all__ = ["transmission_at_poses", "transmission_columns", "check_transmission"
 
 
 def _depths(mechanism: Mechanism) -> dict[str, int]:
-    """Each link's distance from the ground in joints."""
-    near: dict[str, list[str]] = {}
-    for j in mechanism.world_joints:
-        a, b = j.links
-        near.setdefault(a, []).append(b)
-        near.setdefault(b, []).append(a)
+    """Each link's distance from the ground in joints (the breadth-first spanning tree lists parents first)."""
     depth = {mechanism.ground: 0}
-    queue = deque([mechanism.ground])
-    while queue:
-        link = queue.popleft()
-        for other in near.get(link, []):
-            if other not in depth:
-                depth[other] = depth[link] + 1
-                queue.append(other)
+    for edge in spanning_tree(mechanism)[0]:
+        depth[edge.child] = depth[edge.parent] + 1
     return depth
 
 
