@@ -172,9 +172,7 @@ def jacobian(mechanism: Mechanism | ParallelModel, q: Sequence[np.ndarray] | Non
     tol = require_tolerance(tol, "jacobian")
     model = mechanism if isinstance(mechanism, ParallelModel) else parallel_model(require_mechanism(mechanism, "jacobian"), actuated)
     values = model.home() if q is None else joint_values(q, model.chains)
-    # the same mechanism at a size near 1: every number below is O(1) whatever the file's scale
-    points = [j.point for c in model.chains for j in c.limb.joints if j.kind != "P"]
-    scale = binary_scale(characteristic_scale(np.array(points, dtype=float).reshape(-1, 3))[1])
+    scale = binary_scale(model.length)  # the same mechanism at a size near 1: every number below is O(1) whatever the file's scale
     unit = _scaled_model(model, scale)
     unit_values = tuple(v * _variable_scales(c, scale) for v, c in zip(values, model.chains))
     if q is not None and unit.closure_error(unit_values) > tol.closure:
