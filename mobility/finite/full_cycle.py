@@ -55,7 +55,6 @@ def finite_mobility(mechanism: Mechanism, *, steps: Iterable[float] = DEFAULT_ST
 
     Parameters
     ----------
-    mechanism : Mechanism
     steps : sequence of float
         Step sizes, dimensionless (radians; lengths over the characteristic
         length), sorted here: 1 to :data:`~mobility.finite.parameters.MAX_STEP_COUNT`

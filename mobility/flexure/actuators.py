@@ -49,14 +49,12 @@ def check_force_lines(mechanism: FlexureMechanism, names: Sequence[str] | None =
 
     Parameters
     ----------
-    mechanism : FlexureMechanism
     names : sequence of str, optional
         Actuators of the document (default: those marked ``actuated: true``).
     lines : sequence of ForceLine
         Further force lines given in code (global frame, document unit).
     threshold : float, optional
         See :func:`~mobility.flexure.spaces.flexure_spaces`.
-    tol : Tolerance
 
     Returns
     -------

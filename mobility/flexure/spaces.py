@@ -123,7 +123,6 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
 
     Parameters
     ----------
-    mechanism : FlexureMechanism
     threshold : float, optional
         Relative compliance above which a direction is a freedom (default: the
         document's ``threshold``, else :data:`DEFAULT_THRESHOLD`).

@@ -43,15 +43,7 @@ def _mean_point(posed: PosedScrews, names: list[str], fallback: np.ndarray) -> n
 
 def transmission_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAnswers, actuation: BatchActuation,
                           inputs: ActuationInputs, tol: Tolerance = DEFAULT_TOLERANCE) -> BatchTransmission:
-    """The transmission indices of ``inputs`` at every pose of ``posed``.
-
-    Parameters
-    ----------
-    answers : PoseAnswers
-        :func:`~mobility.core.screw_systems.analyse_poses` of the same poses.
-    actuation : BatchActuation
-        :func:`~mobility.sweeps.batch_actuation.actuation_at_poses` of the same poses and inputs.
-    """
+    """The transmission indices of ``inputs`` at every pose of ``posed``, from the ``answers`` and ``actuation`` of the same poses."""
     count = posed.twists.shape[0]
     root = decompose(mechanism).root
     value = answers.root

@@ -53,28 +53,12 @@ HOMOTOPY_STEP = 0.1
 def close_lines(bk: Kinematics, drive: Drive, start_q: np.ndarray, start_ok: np.ndarray, line_targets: np.ndarray, anchor: int, *,
                 walk: AxisWalk | None = None, tol: Tolerance = DEFAULT_TOLERANCE,
                 on_step: Callable[[int], None] | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Continuation along many lines at once, from their anchor point outwards.
+    """Continuation along many lines at once, from their anchor point outwards: ``q (B, c, n)``, ``residual`` and ``assembled`` ``(B, c)``.
 
-    Parameters
-    ----------
-    start_q : ndarray, shape (B, n)
-        The assembled pose of each line at its anchor point (if ``start_ok``).
-    start_ok : ndarray of bool, shape (B,)
-    line_targets : ndarray, shape (B, c, axes)
-        Driven values of every point of every line.
-    anchor : int
-        Index of the anchor point on the lines.
-    walk : AxisWalk, optional
-        How to walk an angle that wraps (:func:`mobility.sweeps.walks.axis_walk`);
-        default: along the lines, both ways from the anchor.
-    on_step : callable, optional
-        Called with the number of poses done after each step (progress).
-
-    Returns
-    -------
-    q : ndarray, shape (B, c, n)
-    residual : ndarray, shape (B, c)
-    assembled : ndarray of bool, shape (B, c)
+    ``start_q`` ``(B, n)`` is each line's pose at point ``anchor`` (assembled
+    where ``start_ok``), ``line_targets`` ``(B, c, axes)`` the driven values of
+    every point; ``walk`` walks an angle that wraps (default: both ways along the
+    lines); ``on_step(poses done)`` is called after each step.
     """
     lines, count = line_targets.shape[:2]
     plain = walk is None or walk.plain

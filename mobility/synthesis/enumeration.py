@@ -106,12 +106,7 @@ def candidate_joints(pattern: MotionPattern, generic_points: int, rng: np.random
 
     The points are the pattern's (``O``, ``O2``...) and ``generic_points``
     random ones (``g1, g2...``) within the pattern's length of their centre.
-
-    Returns
-    -------
-    candidates : list of CandidateJoint
-    points, directions : dict
-        Label -> point, label -> direction.
+    Returns the candidates and the label -> point, label -> direction dicts.
     """
     directions = pattern.directions()
     points: list[tuple[str, Vector]] = [("O" if i == 0 else f"O{i + 1}", p) for i, p in enumerate(pattern.points)]
