@@ -1,10 +1,7 @@
 """Actuation wrenches of the joints of a rigid mechanism at one pose.
 
-A **limb** is a branch of the top-level parallel connection between ground and
-end effector (:func:`mobility.core.topology.decompose`; else the whole
-mechanism). The actuation wrench of a freedom and its rate are defined in
-:mod:`mobility.actuation.input_wrenches` (for an RPS limb: the force along the
-leg for P, the force through the S centre normal to the leg in its plane for R).
+Limbs and actuation wrenches as docs/actuation.md, "Definitions", defines them;
+the wrench of a freedom and its rate come from :mod:`mobility.actuation.input_wrenches`.
 
 Examples
 --------

@@ -217,11 +217,9 @@ def _off_a_fold(bk: Kinematics, drive: Drive, base_q: np.ndarray, base_t: np.nda
         _, sv, vt = np.linalg.svd(drive.equations.jacobians(evaluation), full_matrices=True)
         step = np.abs(targets - base_t).max(axis=1)
     free = int(drive.free.sum())
-    # (N, free): where the equations lose rank, the right singular vectors the rank decision drops (with those
-    # beyond the equations' count): motions free to first order.  Only a base pose singular by the policy's own rank decision (a file at a
-    # dead centre) is a fold to leave this way; one merely near a fold (the last grid point before a workspace
-    # boundary) is not: a start across the fold there would land on the other assembly branch and carry it
-    # into the grid
+    # (N, free): the right singular vectors the rank decision drops, motions free to first order.  Only a base singular by the
+    # policy's own rank decision (a file at a dead centre) is a fold to leave this way; from one merely near a fold (the last
+    # grid point before a workspace boundary) a start across it would land on the other assembly branch and carry it into the grid
     rank, fold = _folds(sv, tol)
     singular = fold[:, None] & (np.arange(free)[None, :] >= rank[:, None]) & (np.isfinite(step) & (step > 0))[:, None]
     for reach in FOLD_REACH:
@@ -262,11 +260,9 @@ def walk_between(bk: Kinematics, drive: Drive, q: np.ndarray, start: np.ndarray,
 
 
 def _walks_back(bk: Kinematics, drive: Drive, q: np.ndarray, targets: np.ndarray, base_q: np.ndarray, base_t: np.ndarray, tol: Tolerance) -> np.ndarray:
-    """Whether each closed pose ``q`` (at ``targets``) lies on a branch through ``base_q``: walking back comes home.
+    """Whether each closed pose ``q`` (at ``targets``) lies on a branch through ``base_q``: walked back, it ends nearer the base than half its distance.
 
-    Continuation back to the base's drive values in :data:`RETURN_STEPS` steps
-    must end nearer the base than half the pose's distance from it; a pose of
-    another assembly walks back to a pose of its own branch.
+    A pose of another assembly walks back to a pose of its own branch.
     """
     cur = walk_between(bk, drive, q, targets, base_t, tol=tol)
     with np.errstate(over="ignore", invalid="ignore"):
