@@ -163,15 +163,9 @@ def probe_directions(basis: np.ndarray, rng: np.random.Generator, *, randoms: in
     ['basis', 'basis', 'basis', 'basis', 'pair', 'pair', 'random']
     """
     k = basis.shape[1]
-    out: list[tuple[str, np.ndarray]] = []
-    for i in range(k):
-        out.append(("basis", basis[:, i]))
-        out.append(("basis", -basis[:, i]))
+    out = [("basis", sign * basis[:, i]) for i in range(k) for sign in (1.0, -1.0)]
     if pairs:
-        for i in range(k):
-            for j in range(i + 1, k):
-                for s in (1.0, -1.0):
-                    out.append(("pair", (basis[:, i] + s * basis[:, j]) / np.sqrt(2.0)))
+        out += [("pair", (basis[:, i] + s * basis[:, j]) / np.sqrt(2.0)) for i in range(k) for j in range(i + 1, k) for s in (1.0, -1.0)]
     for _ in range(randoms):
         u = rng.standard_normal(k)
         out.append(("random", basis @ (u / np.linalg.norm(u))))

@@ -124,14 +124,12 @@ def posed_screws(bk: Kinematics, q: np.ndarray) -> PosedScrews:
     norm = bk.model.normalisation
     count = len(q)
     geometry = joint_geometry(mechanism, bk.link_motions(q), norm.centre, norm.length)
-    prismatic, axes, points, pitches, offsets = [], [], [], [], [0]
+    freedoms: list[tuple[bool, np.ndarray, np.ndarray, float]] = []
+    offsets = [0]
     for joint, g in zip(mechanism.world_joints, geometry):
-        for f in _freedoms(joint.type, g, count, joint.pitch):
-            prismatic.append(f[0])
-            axes.append(f[1])
-            points.append(f[2])
-            pitches.append(f[3])
-        offsets.append(len(axes))
+        freedoms += _freedoms(joint.type, g, count, joint.pitch)
+        offsets.append(len(freedoms))
+    prismatic, axes, points, pitches = zip(*freedoms)
     located = [g["point"] for g in geometry if "point" in g]
     on_end_effector = [g["point"] for j, g in zip(mechanism.world_joints, geometry) if "point" in g and mechanism.end_effector in j.links]
     pitch_a = np.array(pitches, dtype=float)
