@@ -36,7 +36,6 @@ from ..core.kinematics import kinematics
 from ..core.model import Mechanism, require_mechanism
 from ..core.validation import require_integer
 from ..core.poses import MAX_STEP, require_seed, require_step
-from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import RequestError, counted, shown_argument
 from .branches import examine_branch, group_by_tangent
@@ -104,7 +103,8 @@ def finite_mobility(mechanism: Mechanism, *, steps: Iterable[float] = DEFAULT_ST
     instant = analyze(mechanism, tol=tol)
     kin = kinematics(mechanism)
     here = first_order(kin, np.zeros(kin.variable_count), tol)
-    warnings = _route_warnings(here.mobility, instant)
+    warnings = [] if here.mobility == instant.mobility else [f"the loop-closure route finds mobility {here.mobility}, the screw route "
+                                                             f"{instant.mobility}: the pose is close to a rank decision"]
     if here.mobility == 0:
         return no_motion(instant, checked, warnings)
     plan = MovePlan.at_given_pose(kin, checked, tol, here.largest_dropped)
@@ -148,13 +148,6 @@ def _checked_steps(steps: Any) -> tuple[float, ...]:
                        f"1 to {MAX_STEP_COUNT} of them, got {shown_argument(steps)}")
 
 
-def _route_warnings(k: int, instant: Result) -> list[str]:
-    """A warning when the loop-closure route and the screw route count different mobilities."""
-    if k == instant.mobility:
-        return []
-    return [f"the loop-closure route finds mobility {k}, the screw route {instant.mobility}: the pose is close to a rank decision"]
-
-
 def _moves_from_given_pose(plan: MovePlan, basis: np.ndarray, second: SecondOrder | None, rng: np.random.Generator, randoms: int | None) -> tuple[Probe, ...]:
     """The moves from the given pose: the basis directions, pairs (up to 3 freedoms), random ones, the second-order ones."""
     k = basis.shape[1]
@@ -163,5 +156,4 @@ def _moves_from_given_pose(plan: MovePlan, basis: np.ndarray, second: SecondOrde
     if second is not None:
         for d in second.directions.T[:k]:
             candidates += [("second-order", d), ("second-order", -d)]
-    q0 = np.zeros(plan.kinematics.variable_count)
-    return probes(plan, q0, candidates)
+    return probes(plan, np.zeros(plan.kinematics.variable_count), candidates)
