@@ -1,13 +1,9 @@
 """Jacobians of parallel mechanisms by differentiating finite screws (Eq. 26 of Sun et al., 2018).
 
-Each limb's finite screw (Eq. 7) is the platform's; differentiating it gives
-the joint twists ``$_ij``, the limbs' constraint wrenches (reciprocal to them),
-the actuation wrenches (scaled to ``W ∘ $_ij = 1``) and ``J $_p = [q'_a; 0]``:
-docs/finite-screws.md, "Jacobian by differentiation".  Any scale of the file
-gives the same answer: the Jacobian is computed on the mechanism scaled
-exactly by a power of two (:func:`~mobility.core.tolerance.binary_scale`),
-then written back in the file's units.  Results are in the global frame and
-the mechanism's length unit.
+The method: docs/finite-screws.md, "Jacobian by differentiation".  Any scale
+of the file gives the same answer: the Jacobian is computed on the mechanism
+scaled exactly by a power of two (:func:`~mobility.core.tolerance.binary_scale`),
+then written back in the file's units and the global frame.
 
 Examples
 --------

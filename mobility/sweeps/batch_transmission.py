@@ -1,10 +1,8 @@
 """The transmission indices of :mod:`mobility.transmission` at many poses, from the sweep's screw systems.
 
-The analysis (:func:`~mobility.core.screw_systems.analyse_poses`) and the
-actuation (:func:`~mobility.sweeps.batch_actuation.actuation_at_poses`) give
-every screw the indices need; this module finds the points where the wrenches
-act (where each limb leaves its input link and meets the end effector).
-:func:`check_transmission` is the same at one pose of a mechanism.
+The analysis and the actuation give every screw the indices need; this module
+finds the points where the wrenches act (where each limb leaves its input link
+and meets the end effector).  :func:`check_transmission` is the same at one pose.
 """
 
 from __future__ import annotations

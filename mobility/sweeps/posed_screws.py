@@ -1,11 +1,10 @@
 """The joint twists of many poses, each in its own normalised coordinates.
 
 What :func:`mobility.core.joint_screws.joint_screws` gives for one mechanism,
-for every pose of a sweep at once: each pose's rank decisions are those
-:func:`mobility.analyze` makes on the pose rebuilt as a mechanism. Each joint's
-geometry is carried by its link (a ``U`` joint's second axis by ``links[1]``),
-its freedoms are :meth:`mobility.core.model.Joint.freedoms`, normalised by that
-pose's own centre and length (:func:`mobility.core.tolerance.characteristic_scales`).
+for every pose of a sweep at once, each pose normalised by its own centre and
+length: its rank decisions are those :func:`mobility.analyze` makes on the pose
+rebuilt as a mechanism.  Each joint's geometry is carried by its link (a ``U``
+joint's second axis by ``links[1]``).
 
 Examples
 --------

@@ -1,11 +1,9 @@
 """The answer of a sweep: one row per grid point, and where the answer changes.
 
-:class:`SweepResult` holds, for every grid point (flat, C order), whether the
-pose was assembled and what :func:`mobility.analyze` (with inputs,
-:func:`mobility.check_actuation`) says there, and names the regular answer,
-the singular poses, the changes, the seams (:mod:`mobility.sweeps.seams`) and
-the margin dips (:data:`~mobility.core.tolerance.MARGIN_DIP`), as
-docs/sweeps.md defines them.
+:class:`SweepResult` holds, for every grid point, whether the pose was
+assembled and what :func:`mobility.analyze` (with inputs, :func:`mobility.check_actuation`)
+says there, and names the regular answer, the singular poses, the changes, the
+seams and the margin dips, as docs/sweeps.md defines them.
 
 Examples
 --------

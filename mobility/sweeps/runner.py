@@ -88,11 +88,8 @@ class _Context:
 
     def __getstate__(self) -> dict:
         state = dict(vars(self))
-        state.pop("bk", None)  # rebuilt where it is used
+        state.pop("bk", None)  # rebuilt where it is used (pickle puts the rest back into __dict__, past the frozen __setattr__)
         return state
-
-    def __setstate__(self, state: dict) -> None:
-        vars(self).update(state)
 
 
 _STOP = threading.local()

@@ -307,11 +307,9 @@ def check_mechanism(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE,
 
 
 OtherDocument = Callable[[str, Any, Positions, Tolerance], "CheckResult | None"]
-"""``check(path, data, positions, tol)``: the check of a YAML document that is not a mechanism file
-(``data`` and ``positions``, the parsed document from :func:`~mobility.io.yaml_source.parse_yaml`, say
-which kind it is and where each key stands), or ``None`` when ``data`` is not of its kind.  It may raise
-:class:`~mobility.errors.MobilityError` for a bad document (reported as the file's error).
-:func:`mobility.testing.flexure_check.flexure_document` is the one for flexure documents."""
+"""``check(path, data, positions, tol)``: the check of a parsed YAML document (:func:`~mobility.io.yaml_source.parse_yaml`)
+that is not a mechanism file, or ``None`` when ``data`` is not of its kind; a bad document raises its
+:class:`~mobility.errors.MobilityError` (:func:`mobility.testing.flexure_check.flexure_document`, for flexures)."""
 
 
 def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE, others: Sequence[OtherDocument] = ()) -> CheckResult:
