@@ -37,6 +37,7 @@ __all__ = ["RigidPose"]
 _NOT_ON_A_PATH = "not on a path between the ground and the end effector"
 _DRIVEN_BY_OTHERS = "its motion is produced by the other joints of its limb: it cannot be driven on its own"
 
+
 class RigidPose:
     """What one pose of a rigid mechanism needs for actuation assessments, computed once.
 
@@ -116,7 +117,9 @@ class RigidPose:
         held = []
         for limb in sorted(lacking):
             columns = [self.screws.offsets[j] + k for j, k in freedoms if self.limb_of.get(j) == limb]
-            held.append(_evaluate(self.limbs[limb][0], _with_freedoms_locked(self.screws, columns), self.screws.offsets, self.tol).wrenches[0])
+            locked = self.screws.twists.copy()
+            locked[:, columns] = 0.0  # those freedoms locked
+            held.append(_evaluate(self.limbs[limb][0], locked, self.screws.offsets, self.tol).wrenches[0])
         return np.concatenate(held, axis=1)
 
     def _actuation_wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str, float]:
@@ -130,12 +133,8 @@ class RigidPose:
             return None, 1.0, _DRIVEN_BY_OTHERS, 0.0
         return w.wrench[0], float(w.rate[0]), "", float(w.transmission[0])
 
+
 def _evaluate(node: Node, twists: np.ndarray, offsets: tuple[int, ...], tol: Tolerance) -> Systems:
     """The screw systems of ``node`` at this one pose (a stack of one)."""
     return evaluate(node, twists[None], offsets, tol)
 
-def _with_freedoms_locked(screws: JointScrews, columns: Sequence[int]) -> np.ndarray:
-    """The joint twists with ``columns`` set to zero (those freedoms locked)."""
-    masked = screws.twists.copy()
-    masked[:, list(columns)] = 0.0
-    return masked

@@ -43,6 +43,7 @@ from .spaces import FlexureSpaces, flexure_spaces
 
 __all__ = ["check_force_lines", "enumerate_force_lines", "line_set_type", "actuation_tolerance"]
 
+
 def check_force_lines(mechanism: FlexureMechanism, names: Sequence[str] | None = None, *, lines: Sequence[ForceLine] = (),
                       threshold: float | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> ActuationCheck:
     """Assess a set of linear actuators (force lines) on a flexure mechanism.

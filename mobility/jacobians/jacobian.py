@@ -45,9 +45,7 @@ __all__ = ["JacobianResult", "jacobian"]
 
 @dataclass(frozen=True, eq=False)
 class JacobianResult(ReadOnlyArrays):
-    """The Jacobian of a parallel mechanism at one pose (global frame, the mechanism's units).
-
-    Its arrays are read-only, also after a pickle round trip.
+    """The Jacobian of a parallel mechanism at one pose (global frame, the mechanism's units; arrays read-only).
 
     Attributes
     ----------
