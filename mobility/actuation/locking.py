@@ -49,7 +49,9 @@ def lock_joints(mechanism: Mechanism, names: Iterable[str]) -> Mechanism | None:
         When ``mechanism`` is not a :class:`~mobility.core.model.Mechanism`.
     """
     mechanism = require_mechanism(mechanism, "lock_joints")
-    names = _lock_names(names)
+    listed = joint_names(names, "actuated")  # a sequence of names (not one string), each given once
+    require_no_repeats(listed, "actuated")
+    names = set(listed)
     unknown = sorted(names - {j.name for j in mechanism.joints})
     if unknown:
         raise MechanismError("actuated", f"unknown joint {unknown[0]!r}")
@@ -118,9 +120,3 @@ def locked_dof(mechanism: Mechanism, names: Iterable[str], *, tol: Tolerance = D
         return 0
     return int(loop_closure(locked, tol).end_effector_twists.shape[1])
 
-
-def _lock_names(names: Iterable[str]) -> set[str]:
-    """The joint names to lock: a sequence of names (not one string), each given once."""
-    listed = joint_names(names, "actuated")
-    require_no_repeats(listed, "actuated")
-    return set(listed)

@@ -20,6 +20,7 @@ Examples
 
 from __future__ import annotations
 
+import re
 from math import comb
 from typing import Iterable, Sequence
 
@@ -55,13 +56,8 @@ def combination_type(kinds: Iterable[str]) -> str:
 def _type_key(t: str) -> tuple:
     """Sort key putting 3R, 2R1P, 1R2P, 3P in the paper's order."""
     counts = dict.fromkeys(_TYPE_ORDER, 0)
-    number = ""
-    for ch in t:
-        if ch.isdigit():
-            number += ch
-        else:
-            counts[ch] = counts.get(ch, 0) + int(number or 0)
-            number = ""
+    for number, kind in re.findall(r"(\d+)(\D)", t):
+        counts[kind] = counts.get(kind, 0) + int(number)
     return tuple(-counts[k] for k in _TYPE_ORDER) + (t,)
 
 

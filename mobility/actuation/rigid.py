@@ -30,7 +30,7 @@ from ..core.screws import motion_pattern
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, decide_rank, require_tolerance
 from ..core.topology import joints_of
 from ..errors import MechanismError, RequestError, counted, shown_argument
-from .assessment import Assessment, InputWrench, assess_inputs, assess_wrenches
+from .assessment import Assessment, assess_inputs, assess_wrenches
 from .ranking import combination_type, combinations_count, combine_poses, inputs_per_combination, limit_combinations, rank_combinations
 from .results import ActuationCheck, Enumeration
 from .rigid_pose import RigidPose
@@ -235,23 +235,15 @@ def _actuated_names(mechanism: Mechanism, actuated: Sequence[str] | None) -> lis
     return [j.name for j in mechanism.joints if j.actuated] if actuated is None else joint_names(actuated, "actuated")
 
 
-def _inputs_of(pose: RigidPose, names: Sequence[str]) -> list[InputWrench]:
-    """An :class:`InputWrench` for every freedom named (a joint: each of its freedoms; ``NAME.k``: freedom ``k``)."""
-    require_no_repeats(names, "actuated")
-    return [pose.input_wrench(j, k, label) for j, k, label in joint_freedoms(pose.mechanism, names)]
-
-
 def _assess_at(pose: RigidPose, names: Sequence[str], warnings: Sequence[str] = ()) -> ActuationCheck:
+    """The check of the inputs named (a joint: each of its freedoms; ``NAME.k``: freedom ``k``) at one pose."""
     m = pose.mechanism
-    inputs = _inputs_of(pose, names)
+    require_no_repeats(names, "actuated")
+    freedoms = joint_freedoms(m, names)
+    inputs = [pose.input_wrench(j, k, label) for j, k, label in freedoms]
     idle = _idle_inputs(pose, names) if len(inputs) > pose.spaces.dof else None
-    held = pose.locked_wrenches(_freedoms(pose.mechanism, names))
+    held = pose.locked_wrenches([(j, k) for j, k, _ in freedoms])
     return assess_inputs(m.name, "rigid", inputs, pose.spaces, pose.tol, warnings=warnings, length_unit=m.length_unit, idle_inputs=idle, held=held)
-
-
-def _freedoms(mechanism: Mechanism, names: Sequence[str]) -> list[tuple[int, int]]:
-    """``(joint, freedom)`` of every input named (known names, checked before)."""
-    return [(j, k) for j, k, _ in joint_freedoms(mechanism, names)]
 
 
 def _idle_inputs(pose: RigidPose, names: Sequence[str]) -> tuple[str, ...] | None:

@@ -1,10 +1,7 @@
 """Actuation wrenches of the joints of a rigid mechanism at one pose.
 
-A **limb** is a branch of the top-level parallel connection between ground and
-end effector (:func:`mobility.core.topology.decompose`; else the whole
-mechanism). The actuation wrench of a freedom and its rate are defined in
-:mod:`mobility.actuation.input_wrenches` (for an RPS limb: the force along the
-leg for P, the force through the S centre normal to the leg in its plane for R).
+Limbs and actuation wrenches as docs/actuation.md, "Definitions", defines them;
+the wrench of a freedom and its rate come from :mod:`mobility.actuation.input_wrenches`.
 
 Examples
 --------
@@ -39,6 +36,7 @@ __all__ = ["RigidPose"]
 
 _NOT_ON_A_PATH = "not on a path between the ground and the end effector"
 _DRIVEN_BY_OTHERS = "its motion is produced by the other joints of its limb: it cannot be driven on its own"
+
 
 class RigidPose:
     """What one pose of a rigid mechanism needs for actuation assessments, computed once.
@@ -107,22 +105,11 @@ class RigidPose:
         return InputWrench(label, self.mechanism.joints[joint].type, self.limb_of.get(joint), wrench, rate, note, transmission)
 
     def locked_wrenches(self, freedoms: Sequence[tuple[int, int]]) -> np.ndarray | None:
-        """The wrenches a limb exerts with all its inputs locked, for the limbs where an input has no actuation wrench of its own.
+        """The constraint wrenches ``(6, k)`` (orthonormal, normalised) of the limbs where an input has no wrench of its own, all inputs locked.
 
-        An input whose motion its limb's other joints produce (a 7R arm, joints
-        in line) has no wrench of its own, yet locking it with the others can
-        hold the limb: by the limb's constraint system with every input locked
-        (orthonormal, normalised).
-
-        Parameters
-        ----------
-        freedoms : sequence of (joint, freedom)
-            The inputs.
-
-        Returns
-        -------
-        ndarray, shape (6, k), or None
-            None when every input of every limb has its own wrench (or is on no path).
+        Such an input (a 7R arm, joints in line) can still hold its limb, locked
+        with the others.  ``freedoms``: the inputs' ``(joint, freedom)``; None when
+        every input of every limb has its own wrench (or is on no path).
         """
         lacking = {self.limb_of[j] for j, k in freedoms if j in self.limb_of and self.wrench(j, k)[2] == _DRIVEN_BY_OTHERS}
         if not lacking:
@@ -130,7 +117,9 @@ class RigidPose:
         held = []
         for limb in sorted(lacking):
             columns = [self.screws.offsets[j] + k for j, k in freedoms if self.limb_of.get(j) == limb]
-            held.append(_evaluate(self.limbs[limb][0], _with_freedoms_locked(self.screws, columns), self.screws.offsets, self.tol).wrenches[0])
+            locked = self.screws.twists.copy()
+            locked[:, columns] = 0.0  # those freedoms locked
+            held.append(_evaluate(self.limbs[limb][0], locked, self.screws.offsets, self.tol).wrenches[0])
         return np.concatenate(held, axis=1)
 
     def _actuation_wrench(self, joint: int, freedom: int) -> tuple[np.ndarray | None, float, str, float]:
@@ -144,12 +133,8 @@ class RigidPose:
             return None, 1.0, _DRIVEN_BY_OTHERS, 0.0
         return w.wrench[0], float(w.rate[0]), "", float(w.transmission[0])
 
+
 def _evaluate(node: Node, twists: np.ndarray, offsets: tuple[int, ...], tol: Tolerance) -> Systems:
     """The screw systems of ``node`` at this one pose (a stack of one)."""
     return evaluate(node, twists[None], offsets, tol)
 
-def _with_freedoms_locked(screws: JointScrews, columns: Sequence[int]) -> np.ndarray:
-    """The joint twists with ``columns`` set to zero (those freedoms locked)."""
-    masked = screws.twists.copy()
-    masked[:, list(columns)] = 0.0
-    return masked

@@ -2,22 +2,9 @@
 
 :func:`finite_mobility` moves the mechanism along its first-order freedoms,
 re-closes every loop and analyses the poses reached.  Modules, in the order
-the algorithm uses them:
-
-``parameters``
-    the algorithm's parameters, each with why it has its value.
-``results``
-    the frozen results: :class:`FiniteMobility`, ``Branch``, ``Probe``, ``SecondOrder``.
-``orders``
-    first and second order at a pose.
-``moves``
-    probing moves: step along a direction, re-close the loops.
-``branches``
-    group the poses reached into branches and measure each.
-``verdict``
-    the verdict and its explanation.
-``full_cycle``
-    :func:`finite_mobility`, the entry point.
+the algorithm uses them (docs/finite.md, "Where the code is"): ``parameters``,
+``results``, ``orders`` (first and second order), ``moves``, ``branches``,
+``verdict`` and ``full_cycle`` (:func:`finite_mobility`, the entry point).
 
 The text report of ``mobility analyze --finite`` is
 :func:`mobility.report.finite.finite_report`.

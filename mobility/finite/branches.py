@@ -1,19 +1,9 @@
 """Branches: group the poses reached by the moves, and measure each branch of finite motion.
 
-1. **Grouping** (:func:`group_by_tangent`).  Poses reached from the given one
-   whose tangent spaces agree (:func:`same_tangent`) belong to the same
-   branch; poses that are still as singular as the given one (first-order
-   mobility ``m1 = k``, e.g. moved along a singular surface) do not tell
-   branches apart and are set aside when others exist.
-2. **Dimension** (:func:`examine_branch`).  From one pose of each branch, the
-   same moves are made again along its tangent space: the number of
-   independent directions that really move is the branch's finite mobility
-   (it can be below ``m1`` where a freedom is infinitesimal everywhere).  The
-   branch's end-effector DOF and pattern come from :func:`mobility.analyze` at
-   that nearby pose (the screw route, so two routes meet); when the moves are
-   fewer than ``m1``, from the branch's exact tangent at the given pose, the
-   common null space of the second-order forms (approximated from the moves
-   if the forms do not single it out, with a warning).
+:func:`group_by_tangent` groups the poses reached by their tangent spaces;
+:func:`examine_branch` repeats the moves from one pose of each branch to count
+its finite mobility and take its DOF and pattern (docs/finite.md, "How it
+decides", steps 5 and 6).
 """
 
 from __future__ import annotations
@@ -69,13 +59,10 @@ def same_tangent(a: np.ndarray, b: np.ndarray) -> bool:
 
 
 def group_by_tangent(probes: tuple[Probe, ...], k: int) -> tuple[list[TangentGroup], int]:
-    """Group the moves that moved by the tangent spaces they reached.
+    """Group the moves that moved by the tangent spaces they reached, each group from its most regular pose.
 
-    Moves are taken from the least singular pose reached (lowest mobility,
-    then most end-effector DOF, then largest margin) so each group starts
-    from its most regular pose: a move that stays on a singular locus of the
-    end effector (a wrist turned about its locked axes) does not stand for a
-    branch whose other poses have more DOF.
+    (Least mobility, then most DOF, then largest margin: a wrist turned about
+    its locked axes does not stand for a branch whose other poses have more DOF.)
 
     Returns
     -------
@@ -139,24 +126,9 @@ def tangent_from_second_order(second: SecondOrder | None, chords: list[np.ndarra
 def examine_branch(plan: MovePlan, group: TangentGroup, probes: tuple[Probe, ...], second: SecondOrder | None, rng: np.random.Generator) -> tuple[Branch, str]:
     """Measure the branch of one group from its first pose.
 
-    Parameters
-    ----------
-    plan : MovePlan
-        The plan of the moves from the given pose (the local moves use
-        :meth:`MovePlan.local`).
-    group : TangentGroup
-    probes : tuple of Probe
-        The moves from the given pose (``group.probes`` indexes them).
-    second : SecondOrder or None
-        The second-order test at the given pose.
-    rng : numpy.random.Generator
-        Draws the random local directions.
-
-    Returns
-    -------
-    branch : Branch
-    warning : str
-        Empty, or why the branch's pattern is only approximate.
+    ``probes`` are the moves from the given pose (``group.probes`` indexes
+    them), ``rng`` draws the random local directions.  Returns the
+    :class:`Branch` and a warning (empty, or why its pattern is only approximate).
     """
     kin = plan.kinematics
     rep = probes[group.probes[0]]

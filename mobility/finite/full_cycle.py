@@ -4,34 +4,12 @@ The screw route (:func:`mobility.analyze`) counts first-order motions.  At a
 singular pose some of them are infinitesimal only (a planar four-bar stretched
 flat), or the pose is where branches of motion meet (a parallelogram four-bar
 folded flat).  :func:`finite_mobility` decides it numerically, on the finite
-kinematics of :mod:`mobility.core.kinematics`, in named steps, each in its own
-module of this package:
-
-1. **first order** (:mod:`~mobility.finite.orders`): the loop Jacobian at the
-   given pose ``q = 0`` gives the instantaneous mobility ``k`` and the tangent
-   space ``N``;
-2. **second order** (:mod:`~mobility.finite.orders`): the quadratic forms
-   that a first-order motion must make vanish to extend to second order; when
-   none can, the pose cannot move at all (a certificate independent of the
-   moves), and the directions that pass are tried first;
-3. **moves** (:mod:`~mobility.finite.moves`): along each direction (the basis
-   of ``N`` and its negatives, sums of pairs, seeded random combinations, the
-   second-order directions) and each step, re-close every loop by Newton; a
-   direction moves when the loops close (the policy's
-   :attr:`~mobility.core.tolerance.Tolerance.closure`) at every step;
-4. **nearby poses** (:mod:`~mobility.finite.branches`): the poses reached
-   are grouped by their tangent spaces into branches;
-5. **branch dimension** (the same module): each branch's finite mobility, DOF
-   and pattern are measured from one of its poses;
-6. **verdict** (:mod:`~mobility.finite.verdict`): ``full-cycle``,
-   ``instantaneous-only``, ``cannot-move`` or ``bifurcation``, with an
-   explanation holding the numbers.
-
-The results are in :mod:`~mobility.finite.results`; the algorithm's parameters,
-with why they have their values, in :mod:`~mobility.finite.parameters`.  Every
-number is dimensionless (radians; lengths over the mechanism's characteristic
-length ``L``), so the steps, and the verdict, are the same for a file scaled
-by 1000 or moved rigidly.
+kinematics of :mod:`mobility.core.kinematics`: first and second order at the
+given pose, moves along the first-order directions re-closed by Newton, the
+poses reached grouped into branches and measured, and the verdict
+(docs/finite.md, "How it decides").  Every number is dimensionless (radians;
+lengths over the characteristic length), so the verdict is the same for a file
+scaled by 1000 or moved rigidly.
 
 Examples
 --------
@@ -58,7 +36,6 @@ from ..core.kinematics import kinematics
 from ..core.model import Mechanism, require_mechanism
 from ..core.validation import require_integer
 from ..core.poses import MAX_STEP, require_seed, require_step
-from ..core.result import Result
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
 from ..errors import RequestError, counted, shown_argument
 from .branches import examine_branch, group_by_tangent
@@ -71,19 +48,12 @@ from .verdict import judge, no_motion
 __all__ = ["finite_mobility"]
 
 
-def finite_mobility(
-    mechanism: Mechanism,
-    *,
-    steps: Iterable[float] = DEFAULT_STEPS,
-    randoms: int | None = None,
-    seed: int = 0,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-) -> FiniteMobility:
+def finite_mobility(mechanism: Mechanism, *, steps: Iterable[float] = DEFAULT_STEPS, randoms: int | None = None, seed: int = 0,
+                    tol: Tolerance = DEFAULT_TOLERANCE) -> FiniteMobility:
     """Decide whether the instantaneous freedom of ``mechanism`` survives a finite motion.
 
     Parameters
     ----------
-    mechanism : Mechanism
     steps : sequence of float
         Step sizes, dimensionless (radians; lengths over the characteristic
         length), sorted here: 1 to :data:`~mobility.finite.parameters.MAX_STEP_COUNT`
@@ -100,10 +70,6 @@ def finite_mobility(
         :func:`~mobility.core.poses.sample_poses`).
     tol : Tolerance
         Rank policy, as for :func:`mobility.analyze`, and the closure threshold.
-
-    Returns
-    -------
-    FiniteMobility
 
     Raises
     ------
@@ -137,7 +103,8 @@ def finite_mobility(
     instant = analyze(mechanism, tol=tol)
     kin = kinematics(mechanism)
     here = first_order(kin, np.zeros(kin.variable_count), tol)
-    warnings = _route_warnings(here.mobility, instant)
+    warnings = [] if here.mobility == instant.mobility else [f"the loop-closure route finds mobility {here.mobility}, the screw route "
+                                                             f"{instant.mobility}: the pose is close to a rank decision"]
     if here.mobility == 0:
         return no_motion(instant, checked, warnings)
     plan = MovePlan.at_given_pose(kin, checked, tol, here.largest_dropped)
@@ -146,10 +113,8 @@ def finite_mobility(
     probes = _moves_from_given_pose(plan, basis, second, rng, randoms)
     groups, set_aside = group_by_tangent(probes, here.mobility)
     if set_aside:
-        warnings.append(
-            f"{counted(set_aside, 'move')} reached poses as singular as the given one "
-            f"(mobility {here.mobility}: a singular locus through the pose); they are not counted as a branch"
-        )
+        warnings.append(f"{counted(set_aside, 'move')} reached poses as singular as the given one "
+                        f"(mobility {here.mobility}: a singular locus through the pose); they are not counted as a branch")
     branches = []
     for group in groups:
         branch, warning = examine_branch(plan, group, probes, second, rng)
@@ -183,13 +148,6 @@ def _checked_steps(steps: Any) -> tuple[float, ...]:
                        f"1 to {MAX_STEP_COUNT} of them, got {shown_argument(steps)}")
 
 
-def _route_warnings(k: int, instant: Result) -> list[str]:
-    """A warning when the loop-closure route and the screw route count different mobilities."""
-    if k == instant.mobility:
-        return []
-    return [f"the loop-closure route finds mobility {k}, the screw route {instant.mobility}: the pose is close to a rank decision"]
-
-
 def _moves_from_given_pose(plan: MovePlan, basis: np.ndarray, second: SecondOrder | None, rng: np.random.Generator, randoms: int | None) -> tuple[Probe, ...]:
     """The moves from the given pose: the basis directions, pairs (up to 3 freedoms), random ones, the second-order ones."""
     k = basis.shape[1]
@@ -198,5 +156,4 @@ def _moves_from_given_pose(plan: MovePlan, basis: np.ndarray, second: SecondOrde
     if second is not None:
         for d in second.directions.T[:k]:
             candidates += [("second-order", d), ("second-order", -d)]
-    q0 = np.zeros(plan.kinematics.variable_count)
-    return probes(plan, q0, candidates)
+    return probes(plan, np.zeros(plan.kinematics.variable_count), candidates)

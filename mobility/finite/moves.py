@@ -1,18 +1,11 @@
 """Probing moves: try to move a mechanism from a pose along a direction, re-closing every loop.
 
-For a direction ``d`` and each step ``h`` of a :class:`MovePlan` (smallest
-first): predict ``q = q0 + h d`` and re-close every loop by Newton with the
-progress fixed, ``d . q = d . q0 + h``
-(:meth:`~mobility.core.kinematics.Kinematics.close`).  The direction *moves*
-when the loops close at every step.  A motion that does not exist leaves a
-residual of order ``h^2`` that Newton cannot remove.  At the pose reached with
-the plan's probe step, the first-order motions are examined again
-(:func:`~mobility.finite.orders.first_order`), which is how branches are told
-apart.  :func:`probes` makes every move of a run at once: each step of each
-direction is its own solve (from ``q0``, not from the step before), so one
-Newton on the stack of them all
-(:meth:`~mobility.core.kinematics.Kinematics.close_each`) gives each the
-steps it would take alone, and costs about what one move does.
+For a direction ``d`` and each step ``h`` of a :class:`MovePlan`: predict
+``q = q0 + h d`` and re-close every loop by Newton with the progress fixed,
+``d . q = d . q0 + h`` (docs/finite.md, "How it decides", step 4).  The
+direction *moves* when the loops close at every step; a motion that does not
+exist leaves a residual of order ``h^2``.  At the pose reached with the probe
+step the first-order motions are examined again, which tells branches apart.
 
 Examples
 --------
@@ -86,33 +79,17 @@ class MovePlan:
     def closure_tolerance(self, distance: float) -> Tolerance:
         """The policy with the residual accepted as closed at ``distance`` (joint space) from the given pose.
 
-        Round-off, or, when the given geometry is special only to ``inexact``,
-        the first-order residual ``~ inexact * distance`` that such geometry
-        leaves: the finite test then treats the geometry as exact, as the rank
-        decision did.  A motion that does not exist leaves a residual of order
-        ``h^2``.
+        Round-off, or the first-order residual ``~ inexact * distance`` that geometry
+        special only to ``inexact`` leaves (treated as exact, as the rank decision did).
         """
         return replace(self.tol, closure=max(self.tol.closure, INEXACT_ALLOWANCE * self.inexact * distance))
 
 
 def probe(plan: MovePlan, q0: np.ndarray, source: str, d: np.ndarray, *, examine: bool = True) -> Probe:
-    """Move from ``q0`` along the unit direction ``d`` with each step of ``plan`` (smallest first).
+    """Move from ``q0`` along the unit joint-rate direction ``d`` with each step of ``plan`` (smallest first).
 
-    Parameters
-    ----------
-    plan : MovePlan
-    q0 : ndarray
-        Joint variables of the start (zeros: the given pose).
-    source : str
-        How ``d`` was chosen (kept in the :class:`~mobility.finite.results.Probe`).
-    d : ndarray
-        Unit joint-rate direction.
-    examine : bool
-        Examine the first-order motions at the pose reached with the probe step.
-
-    Returns
-    -------
-    Probe
+    ``source`` says how ``d`` was chosen; ``examine``: examine the first-order
+    motions at the pose reached with the probe step.
     """
     return probes(plan, q0, [(source, d)], examine=examine)[0]
 
@@ -120,10 +97,9 @@ def probe(plan: MovePlan, q0: np.ndarray, source: str, d: np.ndarray, *, examine
 def probes(plan: MovePlan, q0: np.ndarray, candidates: Sequence[tuple[str, np.ndarray]], *, examine: bool = True) -> tuple[Probe, ...]:
     """:func:`probe` along each ``(source, direction)`` of ``candidates``, every direction and step re-closed in one Newton solve.
 
-    Each move is what :func:`probe` alone makes of it: the steps of a
-    direction are independent solves (each from ``q0`` plus the step), so
-    they are solved together, and a direction's steps after the first that
-    does not close are dropped from its result, as :func:`probe` stops there.
+    Each step of each direction is its own solve (from ``q0``, not from the step before), so one
+    Newton on the stack gives each what :func:`probe` alone makes of it (steps after the first
+    failure dropped), at about the cost of one move.
 
     Examples
     --------
@@ -187,15 +163,9 @@ def probe_directions(basis: np.ndarray, rng: np.random.Generator, *, randoms: in
     ['basis', 'basis', 'basis', 'basis', 'pair', 'pair', 'random']
     """
     k = basis.shape[1]
-    out: list[tuple[str, np.ndarray]] = []
-    for i in range(k):
-        out.append(("basis", basis[:, i]))
-        out.append(("basis", -basis[:, i]))
+    out = [("basis", sign * basis[:, i]) for i in range(k) for sign in (1.0, -1.0)]
     if pairs:
-        for i in range(k):
-            for j in range(i + 1, k):
-                for s in (1.0, -1.0):
-                    out.append(("pair", (basis[:, i] + s * basis[:, j]) / np.sqrt(2.0)))
+        out += [("pair", (basis[:, i] + s * basis[:, j]) / np.sqrt(2.0)) for i in range(k) for j in range(i + 1, k) for s in (1.0, -1.0)]
     for _ in range(randoms):
         u = rng.standard_normal(k)
         out.append(("random", basis @ (u / np.linalg.norm(u))))

@@ -3,12 +3,10 @@
 * :func:`first_order`: the rank of the loop Jacobian at a pose (the tolerance
   policy), its null space (the tangent space: joint rates that close every
   loop to first order) and the end-effector DOF along it.
-* :func:`second_order`: along a first-order motion ``d = N u`` the residual
-  grows like ``t^2/2 B(d, d)``; its part outside the Jacobian's range (the
-  *cokernel*) cannot be corrected, so a finite motion exists in the direction
-  ``u`` only if the quadratic forms ``u @ M_k @ u`` of
-  :meth:`~mobility.core.kinematics.Kinematics.second_order_forms` all vanish.
-  When no unit ``u`` makes them vanish, the pose cannot move at all.
+* :func:`second_order`: along a first-order motion ``d = N u`` the residual's
+  part ``t^2/2 B(d, d)`` outside the Jacobian's range (the *cokernel*) cannot
+  be corrected, so ``u`` extends only where the quadratic forms ``u @ M_k @ u``
+  all vanish; when no unit ``u`` does, the pose cannot move at all.
 * :func:`canonical_basis`: a basis of the tangent space that depends only on
   the subspace, so the moves tried do not depend on how the SVD chose it.
 
@@ -106,17 +104,11 @@ def _scaled(twists: np.ndarray) -> np.ndarray:
 def canonical_basis(null: np.ndarray) -> np.ndarray:
     """An orthonormal basis of ``span(null)`` that depends only on the subspace.
 
-    Column by column: the joint variable whose unit rate keeps the most of
-    its length when projected on what is left of the subspace (ties, to
-    :data:`TIE` relative, go to the lowest variable), and the basis vector is
-    that projection, normalised; what is left is then the subspace
-    orthogonal to it.  So the first moves tried are the motions nearest to
-    turning or sliding one joint, and the basis is frame- and scale-free
-    (joint variables are).  Each column's largest entry is made positive
-    (ties again to the lowest variable).  These are the pivots and ``Q`` of a
-    column-pivoted QR of the projector, with the ties decided by the index
-    instead of by round-off (a symmetric mechanism has exact ties, which a
-    file moved rigidly would otherwise break another way).
+    A column-pivoted QR of the projector, each column's largest entry made
+    positive, with ties (to :data:`TIE` relative) going to the lowest joint
+    variable instead of to round-off (a symmetric mechanism has exact ties,
+    which a file moved rigidly would otherwise break another way).  So the
+    first moves tried are the motions nearest to turning or sliding one joint.
 
     Examples
     --------
@@ -152,16 +144,12 @@ def second_order(kin: Kinematics, tangent: np.ndarray, rng: np.random.Generator,
     """Second-order test of the first-order motions ``tangent`` at ``q = 0``.
 
     The forms projected on the cokernel are measured against the whole
-    second-order term (every residual component), so "zero" (the policy's
-    rank threshold) means small compared with how fast the loops open in
-    general; geometry that is special only to ``inexact`` is allowed forms of
-    that relative size.  When the whole second-order term itself is at
-    round-off (below the rank threshold, while its forms, brackets of unit
-    twists, are of order 1 in general), the loops do not open to second order
-    along any first-order motion (the Sarrus linkage): every motion passes,
-    and round-off is not measured against round-off.  The directions where every form vanishes are searched
-    by Gauss–Newton (:func:`_unit_zero`) from the basis directions and ``k + 2``
-    random starts drawn from ``rng``.
+    second-order term, so "zero" (the policy's rank threshold; more for geometry
+    special only to ``inexact``) means small compared with how fast the loops
+    open in general.  When the whole term is itself at round-off (the Sarrus
+    linkage) every motion passes: round-off is not measured against round-off.
+    The passing directions are searched by :func:`_unit_zero` from the basis
+    directions and ``k + 2`` random starts drawn from ``rng``.
     """
     jac = kin.jacobian(np.zeros(kin.variable_count))
     n = kin.variable_count
@@ -194,15 +182,9 @@ SECOND_ORDER_STEPS = 100
 def _unit_zero(forms: np.ndarray, x: np.ndarray, steps: int) -> tuple[np.ndarray, float]:
     """A unit ``x`` where the quadratic forms ``x @ forms[c] @ x`` vanish, by Gauss–Newton from the unit ``x``.
 
-    The equations are the forms and ``|x|^2 = 1``; each step is the
-    least-squares (minimum-norm) solution of their linearisation
-    (:func:`numpy.linalg.lstsq`), as the loops are closed by
-    :func:`mobility.core.kinematics.newton`.  Near a common zero it converges
-    fast (quadratically at a simple one, halving the error at a double one);
-    where there is none, the iterates only wander.  Returned: the iterate
-    (scaled to unit length) with the smallest largest form, and that value.
-    It stops at round-off (a step below :data:`~mobility.core.tolerance.SOLVER_STOP`
-    of ``|x|``, or forms, relative to at most 1, below one ulp of 1), after
+    The equations are the forms and ``|x|^2 = 1``, each step their minimum-norm
+    least-squares linearised solution.  Returned: the unit iterate with the
+    smallest largest form, and that value.  It stops at round-off, after
     :data:`~mobility.core.kinematics.CLOSE_STALLED` steps in a row that did not
     halve the smallest value (no zero near), or after ``steps`` steps.
 

@@ -14,18 +14,8 @@ characteristic length), so none changes when a file is scaled or moved.
 
 from __future__ import annotations
 
-__all__ = [
-    "DEFAULT_STEPS",
-    "MAX_STEP_COUNT",
-    "MAX_RANDOMS",
-    "SAME_SUBSPACE",
-    "MOVING_RANK",
-    "NEARBY_RANK",
-    "NEARBY_NEAR_SINGULAR",
-    "INEXACT_ALLOWANCE",
-    "MAX_MOVE",
-    "DISTINCT_LINES",
-]
+__all__ = ["DEFAULT_STEPS", "MAX_STEP_COUNT", "MAX_RANDOMS", "SAME_SUBSPACE", "MOVING_RANK", "NEARBY_RANK", "NEARBY_NEAR_SINGULAR",
+           "INEXACT_ALLOWANCE", "MAX_MOVE", "DISTINCT_LINES"]
 
 DEFAULT_STEPS = (1e-3, 1e-2, 5e-2)
 """Step sizes of the moves (joint-space distance).  Small enough that Newton

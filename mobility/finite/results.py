@@ -73,16 +73,8 @@ class Probe(ReadOnlyArrays):
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form (without the joint-variable vectors)."""
-        return {
-            "source": self.source,
-            "steps": list(self.steps),
-            "residuals": list(self.residuals),
-            "iterations": list(self.iterations),
-            "moved": self.moved,
-            "mobility_nearby": self.mobility,
-            "dof_nearby": self.dof,
-            "margin_nearby": self.margin,
-        }
+        return {"source": self.source, "steps": list(self.steps), "residuals": list(self.residuals), "iterations": list(self.iterations),
+                "moved": self.moved, "mobility_nearby": self.mobility, "dof_nearby": self.dof, "margin_nearby": self.margin}
 
 
 @dataclass(frozen=True, eq=False)
@@ -136,10 +128,8 @@ class Branch(ReadOnlyArrays):
         """The branch in words, with the numbers behind it (used in explanations and reports)."""
         text = f"dimension {self.dimension}, end-effector DOF {self.dof} ({self.pattern})"
         if self.source == "nearby pose":
-            return text + (
-                f"; at a pose {self.distance:.3g} away on it, first-order mobility {self.mobility_nearby} "
-                f"and DOF {self.analysis.dof} ({self.analysis.pattern})"
-            )
+            return text + (f"; at a pose {self.distance:.3g} away on it, first-order mobility {self.mobility_nearby} "
+                           f"and DOF {self.analysis.dof} ({self.analysis.pattern})")
         text += f", from the {self.source} at the given pose" if self.source == "second-order forms" else f", from the {self.source}"
         if self.mobility_nearby > self.dimension:
             text += f"; at a pose {self.distance:.3g} away on it the first-order mobility is still {self.mobility_nearby} (a freedom infinitesimal all along)"
@@ -147,19 +137,10 @@ class Branch(ReadOnlyArrays):
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "source": self.source,
-            "dimension": self.dimension,
-            "dof": self.dof,
-            "pattern": self.pattern,
-            "mobility_nearby": self.mobility_nearby,
-            "dof_nearby": self.analysis.dof,
-            "pattern_nearby": self.analysis.pattern,
-            "margin_nearby": self.analysis.margin.smallest_kept,
-            "distance": self.distance,
-            "probes": list(self.probes),
-            "local_moves": [p.to_dict() for p in self.local],
-        }
+        return {"source": self.source, "dimension": self.dimension, "dof": self.dof, "pattern": self.pattern,
+                "mobility_nearby": self.mobility_nearby, "dof_nearby": self.analysis.dof, "pattern_nearby": self.analysis.pattern,
+                "margin_nearby": self.analysis.margin.smallest_kept, "distance": self.distance, "probes": list(self.probes),
+                "local_moves": [p.to_dict() for p in self.local]}
 
 
 @dataclass(frozen=True, eq=False)
@@ -217,12 +198,8 @@ class SecondOrder(ReadOnlyArrays):
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form."""
-        return {
-            "cokernel": self.cokernel,
-            "obstructed": self.obstructed,
-            "least_violation": self.least_violation,
-            "directions_found": int(self.directions.shape[1]),
-        }
+        return {"cokernel": self.cokernel, "obstructed": self.obstructed, "least_violation": self.least_violation,
+                "directions_found": int(self.directions.shape[1])}
 
 
 @dataclass(frozen=True, eq=False)
@@ -301,17 +278,11 @@ class FiniteMobility(ReadOnlyArrays):
     def to_dict(self) -> dict[str, Any]:
         """JSON form (the ``finite`` object of ``mobility analyze --finite --json``)."""
         return {
-            "verdict": self.verdict,
-            "explanation": self.explanation,
+            "verdict": self.verdict, "explanation": self.explanation,
             "instantaneous": {"dof": self.instantaneous_dof, "pattern": self.instantaneous_pattern, "mobility": self.instantaneous_mobility},
             "full_cycle": {"dof": self.full_cycle_dof, "pattern": self.full_cycle_pattern, "mobility": self.full_cycle_mobility},
             "instantaneous_only": {"dof": self.instantaneous_only_dof, "mobility": self.instantaneous_only_mobility},
-            "margin": self.margin.to_dict(),
-            "steps": list(self.steps),
-            "directions_tried": len(self.probes),
-            "directions_moved": self.moved,
+            "margin": self.margin.to_dict(), "steps": list(self.steps), "directions_tried": len(self.probes), "directions_moved": self.moved,
             "second_order": None if self.second_order is None else self.second_order.to_dict(),
-            "branches": [b.to_dict() for b in self.branches],
-            "probes": [p.to_dict() for p in self.probes],
-            "warnings": list(self.warnings),
+            "branches": [b.to_dict() for b in self.branches], "probes": [p.to_dict() for p in self.probes], "warnings": list(self.warnings),
         }

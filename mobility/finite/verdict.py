@@ -25,14 +25,8 @@ __all__ = ["no_motion", "judge"]
 
 def _given_pose(instant: Result, steps: tuple[float, ...]) -> dict[str, Any]:
     """The fields every verdict shares: the instantaneous answer at the given pose."""
-    return dict(
-        name=instant.name,
-        instantaneous_dof=instant.dof,
-        instantaneous_pattern=instant.pattern,
-        instantaneous_mobility=instant.mobility,
-        margin=instant.margin,
-        steps=steps,
-    )
+    return dict(name=instant.name, instantaneous_dof=instant.dof, instantaneous_pattern=instant.pattern,
+                instantaneous_mobility=instant.mobility, margin=instant.margin, steps=steps)
 
 
 def _steps_text(steps: tuple[float, ...]) -> str:
@@ -41,43 +35,19 @@ def _steps_text(steps: tuple[float, ...]) -> str:
 
 def no_motion(instant: Result, steps: tuple[float, ...], warnings: list[str]) -> FiniteMobility:
     """The verdict at a pose without first-order motion: nothing to follow, full-cycle with DOF 0."""
-    text = (
-        "The pose has no first-order motion (mobility 0), so there is nothing to follow: "
-        "the DOF 0 found by the screw route holds for finite motion too (a structure)."
-    )
+    text = ("The pose has no first-order motion (mobility 0), so there is nothing to follow: "
+            "the DOF 0 found by the screw route holds for finite motion too (a structure).")
     return FiniteMobility(verdict="full-cycle", explanation=text, full_cycle_dof=0, full_cycle_pattern="0", full_cycle_mobility=0,
                           branches=(), probes=(), second_order=None, warnings=tuple(warnings), **_given_pose(instant, steps))
 
 
-def judge(
-    instant: Result,
-    k: int,
-    branches: list[Branch],
-    probes: tuple[Probe, ...],
-    second: SecondOrder | None,
-    steps: tuple[float, ...],
-    warnings: list[str],
-    tol: Tolerance,
-) -> FiniteMobility:
+def judge(instant: Result, k: int, branches: list[Branch], probes: tuple[Probe, ...], second: SecondOrder | None,
+          steps: tuple[float, ...], warnings: list[str], tol: Tolerance) -> FiniteMobility:
     """The verdict from the branches found by the moves.
 
-    Parameters
-    ----------
-    instant : Result
-        The screw route at the given pose.
-    k : int
-        Its first-order mobility (loop-closure route).
-    branches : list of Branch
-        The branches measured; those of dimension 0 are dropped, the others
-        sorted by dimension then DOF, largest first.
-    probes : tuple of Probe
-        The moves from the given pose.
-    second : SecondOrder or None
-    steps : tuple of float
-    warnings : list of str
-        Warnings so far (a copy is extended).
-    tol : Tolerance
-        The policy (its closure threshold is quoted).
+    ``instant`` is the screw route at the given pose, ``k`` the first-order
+    mobility of the loop-closure route.  Branches of dimension 0 are dropped,
+    the others sorted by dimension then DOF, largest first; ``warnings`` is copied, not extended.
     """
     warnings = list(warnings)
     branches = sorted((b for b in branches if b.dimension > 0), key=lambda b: (-b.dimension, -b.dof))
@@ -91,37 +61,24 @@ def judge(
     verdict, text = _verdict_text(instant, k, branches, probes, second, steps)
     if verdict != "bifurcation" and len(patterns) > 1:
         warnings.append("branches of equal DOF with different patterns")
-    return FiniteMobility(
-        verdict=verdict,
-        explanation=text,
-        full_cycle_dof=full_dof,
-        full_cycle_pattern=" | ".join(patterns),
-        full_cycle_mobility=top.dimension,
-        branches=tuple(branches),
-        probes=probes,
-        second_order=second,
-        warnings=tuple(warnings),
-        **_given_pose(instant, steps),
-    )
+    return FiniteMobility(verdict=verdict, explanation=text, full_cycle_dof=full_dof, full_cycle_pattern=" | ".join(patterns),
+                          full_cycle_mobility=top.dimension, branches=tuple(branches), probes=probes, second_order=second,
+                          warnings=tuple(warnings), **_given_pose(instant, steps))
 
 
 def _cannot_move_text(instant: Result, k: int, probes: tuple[Probe, ...], second: SecondOrder | None, steps: tuple[float, ...], tol: Tolerance) -> str:
     smallest = min((p.residuals[0] for p in probes), default=float("nan"))
     if second is not None and second.obstructed:
-        order2 = (
-            f" The second-order test agrees: no first-order motion keeps the {counted(second.cokernel, 'dependent loop equation')} "
-            f"closed to second order (least violation {second.least_violation:.2e} relative)."
-        )
+        order2 = (f" The second-order test agrees: no first-order motion keeps the {counted(second.cokernel, 'dependent loop equation')} "
+                  f"closed to second order (least violation {second.least_violation:.2e} relative).")
     elif second is not None:
         order2 = " Some directions pass the second-order test, yet no move along them closes: the obstruction is of higher order."
     else:
         order2 = ""
-    return (
-        f"The screw route finds {counted(k, 'first-order motion')} (end-effector DOF {instant.dof}), but none is a finite motion: "
-        f"in {counted(len(probes), 'direction')}, Newton does not re-close the loops at every step {_steps_text(steps)} "
-        f"(smallest residual left at step {steps[0]:g}: {smallest:.2e}; closed means below {tol.closure:.0e}).{order2} "
-        "The pose cannot move at all."
-    )
+    return (f"The screw route finds {counted(k, 'first-order motion')} (end-effector DOF {instant.dof}), but none is a finite motion: "
+            f"in {counted(len(probes), 'direction')}, Newton does not re-close the loops at every step {_steps_text(steps)} "
+            f"(smallest residual left at step {steps[0]:g}: {smallest:.2e}; closed means below {tol.closure:.0e}).{order2} "
+            "The pose cannot move at all.")
 
 
 def _verdict_text(instant: Result, k: int, branches: list[Branch], probes: tuple[Probe, ...], second: SecondOrder | None, steps: tuple[float, ...]) -> tuple[str, str]:
@@ -132,28 +89,20 @@ def _verdict_text(instant: Result, k: int, branches: list[Branch], probes: tuple
     summary = "; ".join(f"branch {i + 1}: {b.describe()}" for i, b in enumerate(branches))
     numbers = f"{moved} of {counted(len(probes), 'direction')} moved at steps {_steps_text(steps)} (loops re-closed to {worst:.1e} or better)"
     if len(branches) > 1:
-        return "bifurcation", (
-            f"{len(branches)} branches of finite motion meet at this pose (a bifurcation, or change point): {summary}. "
-            f"The {counted(k, 'first-order motion')} of the screw route {'is' if k == 1 else 'are'} the union of their tangents; {numbers}. "
-            f"No single motion has all {counted(k, 'freedom')}: each branch has at most {top.dimension}."
-        )
+        return "bifurcation", (f"{len(branches)} branches of finite motion meet at this pose (a bifurcation, or change point): {summary}. "
+                               f"The {counted(k, 'first-order motion')} of the screw route {'is' if k == 1 else 'are'} the union of their "
+                               f"tangents; {numbers}. No single motion has all {counted(k, 'freedom')}: each branch has at most {top.dimension}.")
     if top.dimension == k and top.dof == instant.dof and top.pattern == instant.pattern:
         return "full-cycle", f"Every first-order motion is a finite one: {numbers}; {summary}. The instantaneous answer holds for finite motion."
     if top.dimension == k and top.dof == instant.dof:
-        return "full-cycle", (
-            f"Every first-order motion is a finite one ({numbers}; {summary}): the DOF {instant.dof} and the mobility {k} hold "
-            f"for finite motion, but not the pattern: {top.pattern} at nearby poses, {instant.pattern} at this one, which is "
-            "special for the kind of the end effector's freedoms (a pattern singularity), not for their number."
-        )
+        return "full-cycle", (f"Every first-order motion is a finite one ({numbers}; {summary}): the DOF {instant.dof} and the mobility {k} hold "
+                              f"for finite motion, but not the pattern: {top.pattern} at nearby poses, {instant.pattern} at this one, which is "
+                              "special for the kind of the end effector's freedoms (a pattern singularity), not for their number.")
     if top.dimension == k and top.dof > instant.dof:
-        return "full-cycle", (
-            f"Every first-order motion is a finite one ({numbers}; {summary}), and the end effector has more DOF at nearby "
-            f"poses ({top.dof}) than at this one ({instant.dof}): the pose is singular for the end effector, not for the mechanism."
-        )
-    text = (
-        f"The finite motion has {top.dimension} of the {counted(k, 'first-order freedom')} and end-effector DOF {top.dof} "
-        f"({top.pattern}) instead of {instant.dof} ({instant.pattern}): {numbers}; {summary}."
-    )
+        return "full-cycle", (f"Every first-order motion is a finite one ({numbers}; {summary}), and the end effector has more DOF at nearby "
+                              f"poses ({top.dof}) than at this one ({instant.dof}): the pose is singular for the end effector, not for the mechanism.")
+    text = (f"The finite motion has {top.dimension} of the {counted(k, 'first-order freedom')} and end-effector DOF {top.dof} "
+            f"({top.pattern}) instead of {instant.dof} ({instant.pattern}): {numbers}; {summary}.")
     if second is not None and second.directions.shape[1]:
         text += f" Second order: {counted(second.directions.shape[1], 'direction line')} pass{'es' if second.directions.shape[1] == 1 else ''}."
     return "instantaneous-only", text

@@ -43,20 +43,19 @@ from .spaces import FlexureSpaces, flexure_spaces
 
 __all__ = ["check_force_lines", "enumerate_force_lines", "line_set_type", "actuation_tolerance"]
 
+
 def check_force_lines(mechanism: FlexureMechanism, names: Sequence[str] | None = None, *, lines: Sequence[ForceLine] = (),
                       threshold: float | None = None, tol: Tolerance = DEFAULT_TOLERANCE) -> ActuationCheck:
     """Assess a set of linear actuators (force lines) on a flexure mechanism.
 
     Parameters
     ----------
-    mechanism : FlexureMechanism
     names : sequence of str, optional
         Actuators of the document (default: those marked ``actuated: true``).
     lines : sequence of ForceLine
         Further force lines given in code (global frame, document unit).
     threshold : float, optional
         See :func:`~mobility.flexure.spaces.flexure_spaces`.
-    tol : Tolerance
 
     Returns
     -------

@@ -1,33 +1,13 @@
 """Compliance of flexure elements and of a flexure mechanism's end effector.
 
-Conventions
------------
-* A compliance matrix ``C`` maps a wrench ``[f; m]`` (N, N m) to the small
-  displacement twist ``[w; v]`` (rad, m) it causes: ``T = C W``.  Twists and
-  wrenches change frame by the same adjoint ``Ad``, so ``C`` does by
-  ``Ad C Ad^-1``.  ``Q = SWAP C`` is symmetric positive definite (the work
-  ``W . SWAP T = W^T Q W``); every eigen-decomposition is of ``Q``.
-* **Rod** (circular cross-section, radius ``r``, length ``l``, Young's modulus
-  ``E``, Poisson's ratio ``nu``, ``G = E / (2 (1 + nu))``; Euler-Bernoulli
-  bending, no shear deformation), clamped on body ``a`` at its start and on
-  body ``b`` at its end; in a frame at its end with ``z`` along the rod, the
-  end's displacement under a wrench applied there is
-  ``v_z = l/(EA) f_z``, ``w_z = l/(GJ) m_z``, and in bending
-  ``v_x = l^3/(3EI) f_x + l^2/(2EI) m_y``, ``w_y = l^2/(2EI) f_x + l/(EI) m_y``
-  (and the same about ``x`` with the signs of ``f_y``, ``m_x`` turned), with
-  ``A = pi r^2``, ``I = pi r^4 / 4``, ``J = pi r^4 / 2``.
-* **Network**: the stiffness of every element (``H = SWAP C^-1 SWAP`` in the
-  energy form) is assembled over the bodies other than the ground, as in a
-  finite-element model; the end effector's compliance is its block of the
-  inverse, times ``SWAP``.  Elements in parallel add stiffnesses, elements in
-  series add compliances, and any other network (bridges) is handled alike.
-* **Non-dimensionalisation** (:func:`normalised_energy_form`): ``Q`` is
-  written in the normalised coordinates of the tolerance policy (origin at
-  the centroid ``c`` of the element end points, lengths divided by their RMS
-  distance ``L`` from it): a wrench ``[f; (m - c x f) / L]`` and a twist
-  ``[w; (v - c x w) / L]``.  Every entry of ``Q`` is then in 1/N; its
-  eigenvalues over the largest do not depend on the unit of length or of
-  modulus, nor on where the mechanism is placed.
+A compliance matrix ``C`` maps a wrench ``[f; m]`` (N, N m) to the small
+displacement twist ``[w; v]`` (rad, m) it causes, ``T = C W``; ``Q = SWAP C``
+is symmetric positive definite (the work ``W^T Q W``) and every
+eigen-decomposition is of ``Q``.  Rods are Euler-Bernoulli beams (no shear
+deformation); the elements' stiffnesses are assembled over the bodies other
+than the ground, as in a finite-element model, so any network works.  The
+formulas and the normalised coordinates: docs/actuation.md, "Compliance" and
+"Non-dimensionalisation and split".
 
 Examples
 --------
@@ -135,19 +115,9 @@ def compliance_matrix(mechanism: FlexureMechanism) -> np.ndarray:
 
 
 def normalised_energy_form(mechanism: FlexureMechanism, compliance: np.ndarray) -> tuple[np.ndarray, Normalisation]:
-    """``Q = SWAP C`` in normalised coordinates, symmetrised, and those coordinates (document length unit).
+    """``Q = SWAP C`` (1/N) of the :func:`compliance_matrix` ``compliance`` in normalised coordinates, symmetrised.
 
-    Parameters
-    ----------
-    compliance : ndarray, shape (6, 6)
-        The mechanism's :func:`compliance_matrix` (SI units).
-
-    Returns
-    -------
-    q : ndarray, shape (6, 6)
-        Symmetric, in 1/N.
-    normalisation : Normalisation
-        :meth:`FlexureMechanism.normalisation` (document length unit).
+    Returns ``Q`` and those coordinates, :meth:`FlexureMechanism.normalisation` (document length unit).
     """
     norm = mechanism.normalisation()
     metres = mechanism.metres

@@ -1,11 +1,8 @@
 """Freedom and constraint spaces of a flexure mechanism, from the eigen-decomposition of its compliance.
 
-The eigenvalues of the end effector's compliance ``Q`` in normalised
-coordinates (:func:`mobility.flexure.compliance.normalised_energy_form`) over
-the largest, the *relative compliances*, depend neither on units nor on
-placement. Eigenvectors (wrenches) at most the *threshold* span the constraint
-space; the others, through ``SWAP``, the freedom space (reciprocal to it). A
-warning says when the threshold is not in a clear gap.
+Eigenvectors (wrenches) of the normalised compliance whose *relative
+compliance* is at most the threshold span the constraint space, the others the
+freedom space (docs/actuation.md, "Non-dimensionalisation and split").
 
 Examples
 --------
@@ -123,7 +120,6 @@ def flexure_spaces(mechanism: FlexureMechanism, threshold: float | None = None, 
 
     Parameters
     ----------
-    mechanism : FlexureMechanism
     threshold : float, optional
         Relative compliance above which a direction is a freedom (default: the
         document's ``threshold``, else :data:`DEFAULT_THRESHOLD`).

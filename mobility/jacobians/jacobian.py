@@ -1,13 +1,9 @@
 """Jacobians of parallel mechanisms by differentiating finite screws (Eq. 26 of Sun et al., 2018).
 
-Each limb's finite screw (Eq. 7) is the platform's; differentiating it gives
-the joint twists ``$_ij``, the limbs' constraint wrenches (reciprocal to them),
-the actuation wrenches (scaled to ``W ∘ $_ij = 1``) and ``J $_p = [q'_a; 0]``:
-docs/finite-screws.md, "Jacobian by differentiation".  Any scale of the file
-gives the same answer: the Jacobian is computed on the mechanism scaled
-exactly by a power of two (:func:`~mobility.core.tolerance.binary_scale`),
-then written back in the file's units.  Results are in the global frame and
-the mechanism's length unit.
+The method: docs/finite-screws.md, "Jacobian by differentiation".  Any scale
+of the file gives the same answer: the Jacobian is computed on the mechanism
+scaled exactly by a power of two (:func:`~mobility.core.tolerance.binary_scale`),
+then written back in the file's units and the global frame.
 
 Examples
 --------
@@ -49,9 +45,7 @@ __all__ = ["JacobianResult", "jacobian"]
 
 @dataclass(frozen=True, eq=False)
 class JacobianResult(ReadOnlyArrays):
-    """The Jacobian of a parallel mechanism at one pose (global frame, the mechanism's units).
-
-    Its arrays are read-only, also after a pickle round trip.
+    """The Jacobian of a parallel mechanism at one pose (global frame, the mechanism's units; arrays read-only).
 
     Attributes
     ----------
@@ -172,9 +166,7 @@ def jacobian(mechanism: Mechanism | ParallelModel, q: Sequence[np.ndarray] | Non
     tol = require_tolerance(tol, "jacobian")
     model = mechanism if isinstance(mechanism, ParallelModel) else parallel_model(require_mechanism(mechanism, "jacobian"), actuated)
     values = model.home() if q is None else joint_values(q, model.chains)
-    # the same mechanism at a size near 1: every number below is O(1) whatever the file's scale
-    points = [j.point for c in model.chains for j in c.limb.joints if j.kind != "P"]
-    scale = binary_scale(characteristic_scale(np.array(points, dtype=float).reshape(-1, 3))[1])
+    scale = binary_scale(model.length)  # the same mechanism at a size near 1: every number below is O(1) whatever the file's scale
     unit = _scaled_model(model, scale)
     unit_values = tuple(v * _variable_scales(c, scale) for v, c in zip(values, model.chains))
     if q is not None and unit.closure_error(unit_values) > tol.closure:
@@ -252,8 +244,6 @@ def _jacobian_near_unit_size(model: ParallelModel, values: tuple[np.ndarray, ...
         fs = screw.vector
     except HalfTurnError:
         fs = None
-    for arr in (matrix, act_w, constraints_w, twists_w):
-        arr.setflags(write=False)
     condition = float(sv[0] / sv[-1]) if not singular and sv[-1] > 0 else float("inf")
     return JacobianResult(model.mechanism.name, model.labels, 6 - constraints_n.shape[1], matrix, act_w, constraints_w, twists_w.reshape(-1, 6),
                           twist_map, rank, condition, singular, limb_twists, screw.transform(), fs, length)
@@ -284,8 +274,6 @@ def _in_file_units(unit: JacobianResult, model: ParallelModel, scale: float, tol
     transform = unit.transform.copy()
     transform[:3, 3] /= scale
     screw = None if unit.finite_screw is None else unit.finite_screw * twist_factor
-    for arr in (matrix, actuation, constraints):
-        arr.setflags(write=False)
     return JacobianResult(unit.name, unit.actuated, unit.dof, matrix, actuation.reshape(-1, 6), constraints.reshape(-1, 6),
                           (unit.platform_twists * twist_factor).reshape(-1, 6), twist_map, unit.rank, unit.condition, unit.singular,
                           limb_twists, transform, screw, unit.length / scale)

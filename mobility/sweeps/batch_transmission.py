@@ -1,15 +1,12 @@
 """The transmission indices of :mod:`mobility.transmission` at many poses, from the sweep's screw systems.
 
-The analysis (:func:`~mobility.core.screw_systems.analyse_poses`) and the
-actuation (:func:`~mobility.sweeps.batch_actuation.actuation_at_poses`) give
-every screw the indices need; this module finds the points where the wrenches
-act (where each limb leaves its input link and meets the end effector).
-:func:`check_transmission` is the same at one pose of a mechanism.
+The analysis and the actuation give every screw the indices need; this module
+finds the points where the wrenches act (where each limb leaves its input link
+and meets the end effector).  :func:`check_transmission` is the same at one pose.
 """
 
 from __future__ import annotations
 
-from collections import deque
 from typing import Sequence
 
 import numpy as np
@@ -18,7 +15,7 @@ from ..core.kinematics import kinematics
 from ..core.model import Mechanism, require_mechanism
 from ..core.screw_systems import PoseAnswers, analyse_poses, per_pose
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance, require_tolerance
-from ..core.topology import Parallel, decompose, joints_of
+from ..core.topology import Parallel, decompose, joints_of, spanning_tree
 from ..errors import RequestError
 from ..transmission import GOOD_TRANSMISSION, BatchTransmission, TransmissionCheck, transmission_indices
 from .batch_actuation import ActuationInputs, BatchActuation, actuated_inputs, actuation_at_poses
@@ -28,20 +25,10 @@ __all__ = ["transmission_at_poses", "transmission_columns", "check_transmission"
 
 
 def _depths(mechanism: Mechanism) -> dict[str, int]:
-    """Each link's distance from the ground in joints."""
-    near: dict[str, list[str]] = {}
-    for j in mechanism.world_joints:
-        a, b = j.links
-        near.setdefault(a, []).append(b)
-        near.setdefault(b, []).append(a)
+    """Each link's distance from the ground in joints (the breadth-first spanning tree lists parents first)."""
     depth = {mechanism.ground: 0}
-    queue = deque([mechanism.ground])
-    while queue:
-        link = queue.popleft()
-        for other in near.get(link, []):
-            if other not in depth:
-                depth[other] = depth[link] + 1
-                queue.append(other)
+    for edge in spanning_tree(mechanism)[0]:
+        depth[edge.child] = depth[edge.parent] + 1
     return depth
 
 
@@ -54,15 +41,7 @@ def _mean_point(posed: PosedScrews, names: list[str], fallback: np.ndarray) -> n
 
 def transmission_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: PoseAnswers, actuation: BatchActuation,
                           inputs: ActuationInputs, tol: Tolerance = DEFAULT_TOLERANCE) -> BatchTransmission:
-    """The transmission indices of ``inputs`` at every pose of ``posed``.
-
-    Parameters
-    ----------
-    answers : PoseAnswers
-        :func:`~mobility.core.screw_systems.analyse_poses` of the same poses.
-    actuation : BatchActuation
-        :func:`~mobility.sweeps.batch_actuation.actuation_at_poses` of the same poses and inputs.
-    """
+    """The transmission indices of ``inputs`` at every pose of ``posed``, from the ``answers`` and ``actuation`` of the same poses."""
     count = posed.twists.shape[0]
     root = decompose(mechanism).root
     value = answers.root
@@ -88,19 +67,13 @@ def transmission_at_poses(mechanism: Mechanism, posed: PosedScrews, answers: Pos
         out_points.append(out)
     n = len(inputs.freedoms)
     wrenches = actuation.wrenches if actuation.wrenches is not None else np.zeros((count, n, 6))
-    return transmission_indices(
-        wrenches,
-        np.stack(twists, axis=2) if twists else np.zeros((count, 6, 0)),
-        np.stack(in_points, axis=1) if in_points else np.zeros((count, 0, 3)),
-        np.stack(out_points, axis=1) if out_points else np.zeros((count, 0, 3)),
-        value.basis,
-        per_pose(value.dim, count),
-        [limb.wrenches for _, limb in limbs] if len(limbs) > 1 else [],
-        [per_pose(6 - limb.dim, count) for _, limb in limbs] if len(limbs) > 1 else [],
-        np.stack(attach, axis=1) if len(limbs) > 1 else None,
-        singular=actuation.rank < 6,
-        tol=tol,
-    )
+    several = len(limbs) > 1  # one limb: no constraint index
+    return transmission_indices(wrenches, np.stack(twists, axis=2) if twists else np.zeros((count, 6, 0)),
+                                np.stack(in_points, axis=1) if in_points else np.zeros((count, 0, 3)),
+                                np.stack(out_points, axis=1) if out_points else np.zeros((count, 0, 3)),
+                                value.basis, per_pose(value.dim, count), [limb.wrenches for _, limb in limbs] if several else [],
+                                [per_pose(6 - limb.dim, count) for _, limb in limbs] if several else [],
+                                np.stack(attach, axis=1) if several else None, singular=actuation.rank < 6, tol=tol)
 
 
 def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = None, *, q: np.ndarray | None = None,
@@ -149,16 +122,9 @@ def check_transmission(mechanism: Mechanism, actuated: Sequence[str] | None = No
     names = [j.name for j in mechanism.world_joints]
     labels = tuple("-".join(names[j] for j in joints_of(node)) for node in limbs) if len(limbs) > 1 else ()
     freedoms = [names[j] if sum(1 for jj, _ in inputs.freedoms if jj == j) == 1 else f"{names[j]}.{k}" for j, k in inputs.freedoms]
-    return TransmissionCheck(
-        actuated=tuple(freedoms),
-        iti=tuple(float(x) for x in t.iti[0]),
-        oti=tuple(float(x) for x in t.oti[0]),
-        lti=float(t.lti[0]),
-        limbs=labels,
-        cti_limbs=tuple(float(x) for x in t.cti_limbs[0]) if labels else (),
-        cti=float(t.cti[0]),
-        threshold=threshold,
-    )
+    return TransmissionCheck(actuated=tuple(freedoms), iti=tuple(float(x) for x in t.iti[0]), oti=tuple(float(x) for x in t.oti[0]),
+                             lti=float(t.lti[0]), limbs=labels, cti_limbs=tuple(float(x) for x in t.cti_limbs[0]) if labels else (),
+                             cti=float(t.cti[0]), threshold=threshold)
 
 
 CLOSED = 1e-6

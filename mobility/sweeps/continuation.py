@@ -1,16 +1,11 @@
 """Closing every loop at every point of a grid: continuation along lines.
 
-The grid is solved one axis at a time from the file's pose (``q = 0``)
-outwards (docs/sweeps.md tells it step by step): the *anchor* point, the value
-nearest the file's pose on each axis, is reached first; then each axis is
-swept both ways from its anchor, all lines of an axis advancing together. Each
-Newton solve (:mod:`mobility.sweeps.steps`) starts at the cubic predictor
-``4 q[i-1] - 6 q[i-2] + 4 q[i-3] - q[i-4]`` (lower orders while fewer points
-are known), which keeps the branch through a change point. Points still
-missing are tried from any assembled neighbour (:func:`mobility.sweeps.grid_closure.fill`);
-one that cannot be assembled keeps its best attempt and residual. An R or C
-angle wraps: a range covering a full turn is walked round the circle
-(:mod:`mobility.sweeps.walks`).
+The grid is solved one axis at a time outwards from the *anchor* point (the
+value nearest the file's pose on each axis), all lines of an axis advancing
+together; each Newton solve (:mod:`mobility.sweeps.steps`) starts at a cubic
+predictor, which keeps the branch through a change point.  docs/sweeps.md tells
+it step by step; :mod:`mobility.sweeps.grid_closure` fills the points missed and
+:mod:`mobility.sweeps.walks` walks an angle round a full turn.
 
 Examples
 --------
@@ -55,40 +50,15 @@ HOMOTOPY_STEP = 0.1
 """Largest step (radians, lengths over the characteristic length) from the file's pose to a grid of one point."""
 
 
-def close_lines(
-    bk: Kinematics,
-    drive: Drive,
-    start_q: np.ndarray,
-    start_ok: np.ndarray,
-    line_targets: np.ndarray,
-    anchor: int,
-    *,
-    walk: AxisWalk | None = None,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    on_step: Callable[[int], None] | None = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Continuation along many lines at once, from their anchor point outwards.
+def close_lines(bk: Kinematics, drive: Drive, start_q: np.ndarray, start_ok: np.ndarray, line_targets: np.ndarray, anchor: int, *,
+                walk: AxisWalk | None = None, tol: Tolerance = DEFAULT_TOLERANCE,
+                on_step: Callable[[int], None] | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Continuation along many lines at once, from their anchor point outwards: ``q (B, c, n)``, ``residual`` and ``assembled`` ``(B, c)``.
 
-    Parameters
-    ----------
-    start_q : ndarray, shape (B, n)
-        The assembled pose of each line at its anchor point (if ``start_ok``).
-    start_ok : ndarray of bool, shape (B,)
-    line_targets : ndarray, shape (B, c, axes)
-        Driven values of every point of every line.
-    anchor : int
-        Index of the anchor point on the lines.
-    walk : AxisWalk, optional
-        How to walk an angle that wraps (:func:`mobility.sweeps.walks.axis_walk`);
-        default: along the lines, both ways from the anchor.
-    on_step : callable, optional
-        Called with the number of poses done after each step (progress).
-
-    Returns
-    -------
-    q : ndarray, shape (B, c, n)
-    residual : ndarray, shape (B, c)
-    assembled : ndarray of bool, shape (B, c)
+    ``start_q`` ``(B, n)`` is each line's pose at point ``anchor`` (assembled
+    where ``start_ok``), ``line_targets`` ``(B, c, axes)`` the driven values of
+    every point; ``walk`` walks an angle that wraps (default: both ways along the
+    lines); ``on_step(poses done)`` is called after each step.
     """
     lines, count = line_targets.shape[:2]
     plain = walk is None or walk.plain
@@ -127,9 +97,8 @@ def close_lines(
     return _spread_stops(bk, drive, walk, q, err, ok, line_targets, tol)
 
 
-def _spread_stops(
-    bk: Kinematics, drive: Drive, walk: AxisWalk, q: np.ndarray, err: np.ndarray, ok: np.ndarray, line_targets: np.ndarray, tol: Tolerance
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _spread_stops(bk: Kinematics, drive: Drive, walk: AxisWalk, q: np.ndarray, err: np.ndarray, ok: np.ndarray, line_targets: np.ndarray,
+                  tol: Tolerance) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Every point of the lines takes the pose of its stop, its driven angle turned by whole turns to its own value."""
     lines, count = line_targets.shape[:2]
     n = q.shape[2]
@@ -138,9 +107,8 @@ def _spread_stops(
     return gq.reshape(lines, count, n), gerr.reshape(lines, count), gok.reshape(lines, count)
 
 
-def retarget(
-    bk: Kinematics, drive: Drive, q: np.ndarray, residual: np.ndarray, assembled: np.ndarray, targets: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def retarget(bk: Kinematics, drive: Drive, q: np.ndarray, residual: np.ndarray, assembled: np.ndarray, targets: np.ndarray, *,
+             tol: Tolerance = DEFAULT_TOLERANCE) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Poses ``(N, n)`` with their driven joint variables set to ``targets`` ``(N, axes)`` (the same joint states whole turns away).
 
     The residual of every changed assembled pose is measured again; returns ``q, residual, assembled``.
@@ -158,28 +126,14 @@ def _unsolved(shape: tuple[int, ...], n: int) -> tuple[np.ndarray, np.ndarray, n
     return np.zeros(shape + (n,)), np.full(shape, np.inf), np.zeros(shape, dtype=bool)
 
 
-def _leg(
-    bk: Kinematics,
-    drive: Drive,
-    start_q: np.ndarray,
-    start_ok: np.ndarray,
-    start_t: np.ndarray,
-    leg_targets: np.ndarray,
-    tol: Tolerance,
-    halt: np.ndarray | None = None,
-    on_step: Callable[[int], None] | None = None,
-    *,
-    levels: bool = True,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Continuation of many lines from their start through ``leg_targets`` ``(B, s, axes)``, in order.
+def _leg(bk: Kinematics, drive: Drive, start_q: np.ndarray, start_ok: np.ndarray, start_t: np.ndarray, leg_targets: np.ndarray,
+         tol: Tolerance, halt: np.ndarray | None = None, on_step: Callable[[int], None] | None = None, *,
+         levels: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Continuation of many lines through ``leg_targets`` ``(B, s, axes)``; a line ends for good where ``halt`` ``(B, s)`` is true.
 
-    ``halt`` ``(B, s)``: a line ends for good where it is true (assembled
-    already). Returns ``q (B, s, n)``, the residuals and ``assembled``.
-
-    A long leg of few lines with short steps is cut in two levels: every
-    ``k``-th point first (steps at most :data:`COARSE_STEP`), then the pieces
-    between, all together: about ``2 sqrt(s)`` batched steps instead of ``s``.
-    ``levels=False``: one point after the other.
+    A long leg of few lines with short steps is cut in two levels (unless
+    ``levels=False``): every ``k``-th point first (steps at most
+    :data:`COARSE_STEP`), then the pieces between, all together: about ``2 sqrt(s)`` batched steps instead of ``s``.
     """
     lines, count = leg_targets.shape[:2]
     n = bk.variable_count

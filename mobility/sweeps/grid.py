@@ -322,15 +322,7 @@ def _require_one_rotation(axes: list[SweepAxis]) -> None:
 
 
 def plan_grid(mechanism: Mechanism, vary: VarySpec | Iterable, *, max_poses: int = DEFAULT_MAX_POSES) -> GridPlan:
-    """Check a sweep request against ``mechanism`` and give its axes.
-
-    Parameters
-    ----------
-    vary : str, sequence or mapping
-        One or more ``"NAME=START:STOP:COUNT"``, ``(name, start, stop, count)``,
-        or ``{name: (start, stop, count)}``.
-    max_poses : int
-        The largest grid accepted.
+    """Check a sweep request (``vary`` and ``max_poses`` as for :func:`mobility.sweeps.sweep`) against ``mechanism`` and give its axes.
 
     Raises
     ------

@@ -18,8 +18,6 @@ Examples
 
 from __future__ import annotations
 
-from typing import Callable
-
 import numpy as np
 
 from ..core.tolerance import DEFAULT_TOLERANCE, Tolerance
@@ -32,15 +30,8 @@ from .walks import AxisWalk, axis_walk, plan_walks
 __all__ = ["close_grid", "fill"]
 
 
-def close_grid(bk: Kinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE, run_lines: Callable | None = None) -> GridClosure:
-    """Close every pose of the grid by continuation, then :func:`fill` what is missing.
-
-    Parameters
-    ----------
-    run_lines : callable, optional
-        ``run_lines(starts_q, starts_ok, lines, anchor) -> (q, residual, ok)``
-        closes the lines of the last axis (default: :func:`close_lines`, in one batch).
-    """
+def close_grid(bk: Kinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLERANCE) -> GridClosure:
+    """Close every pose of the grid by continuation (the lines of the last axis in one batch), then :func:`fill` what is missing."""
     seeds = seed_grid(bk, plan, tol=tol)
     shape = plan.shape
     last = len(shape) - 1
@@ -48,25 +39,14 @@ def close_grid(bk: Kinematics, plan: GridPlan, *, tol: Tolerance = DEFAULT_TOLER
     anchor = anchors(plan)[last]
     starts = layout[:, anchor]
     q, err, ok = seeds.q.copy(), seeds.residual.copy(), seeds.assembled.copy()
-    if run_lines is None:
-        drive = Drive.of(plan.axes, bk.variable_count)
-        lq, lerr, lok = close_lines(bk, drive, q[starts], ok[starts], targets_of(plan, layout), anchor, walk=axis_walk(plan.axes[last], last), tol=tol)
-    else:
-        lq, lerr, lok = run_lines(q[starts], ok[starts], layout, anchor)
+    drive = Drive.of(plan.axes, bk.variable_count)
+    lq, lerr, lok = close_lines(bk, drive, q[starts], ok[starts], targets_of(plan, layout), anchor, walk=axis_walk(plan.axes[last], last), tol=tol)
     q[layout], err[layout], ok[layout] = lq, lerr, lok
     return fill(bk, plan, GridClosure(q, err, ok), tol=tol)
 
 
 def fill(bk: Kinematics, plan: GridPlan, closure: GridClosure, *, tol: Tolerance = DEFAULT_TOLERANCE, max_passes: int | None = None) -> GridClosure:
-    """Try the missing poses again from any assembled neighbour, layer after layer.
-
-    Each pass takes every pose not assembled that has an assembled neighbour
-    (on any axis; the two ends of an axis whose angles wrap round a full
-    turn are neighbours) it was not yet tried from, and solves it from there
-    (the secant predictor when the neighbour's own neighbour on that axis is
-    assembled too), all in one batch; passes go on while they assemble new
-    poses.  A pose whose driven angle is congruent, modulo a turn, to an
-    assembled one's (the rest of its coordinates equal) takes that pose.
+    """Try the missing poses again from any assembled neighbour not yet tried, in batched passes while they assemble new poses.
 
     The arrays of ``closure`` are updated in place (a sweep's grid can be
     large: no copy is made) and returned in a new :class:`GridClosure`.

@@ -1,11 +1,10 @@
 """The joint twists of many poses, each in its own normalised coordinates.
 
 What :func:`mobility.core.joint_screws.joint_screws` gives for one mechanism,
-for every pose of a sweep at once: each pose's rank decisions are those
-:func:`mobility.analyze` makes on the pose rebuilt as a mechanism. Each joint's
-geometry is carried by its link (a ``U`` joint's second axis by ``links[1]``),
-its freedoms are :meth:`mobility.core.model.Joint.freedoms`, normalised by that
-pose's own centre and length (:func:`mobility.core.tolerance.characteristic_scales`).
+for every pose of a sweep at once, each pose normalised by its own centre and
+length: its rank decisions are those :func:`mobility.analyze` makes on the pose
+rebuilt as a mechanism.  Each joint's geometry is carried by its link (a ``U``
+joint's second axis by ``links[1]``).
 
 Examples
 --------
@@ -60,10 +59,6 @@ class PosedScrews:
     lengths: np.ndarray
     points: dict[str, np.ndarray]
     reference: np.ndarray
-
-    def of_joint(self, index: int) -> np.ndarray:
-        """Twist columns of joint ``index``, ``(N, 6, dof)``."""
-        return self.twists[:, :, self.offsets[index] : self.offsets[index + 1]]
 
     def normalised(self, points: np.ndarray) -> np.ndarray:
         """Global points ``(N, 3)`` in each pose's normalised coordinates."""
@@ -128,14 +123,12 @@ def posed_screws(bk: Kinematics, q: np.ndarray) -> PosedScrews:
     norm = bk.normalisation
     count = len(q)
     geometry = joint_geometry(mechanism, bk.link_motions(q), norm.centre, norm.length)
-    prismatic, axes, points, pitches, offsets = [], [], [], [], [0]
+    freedoms: list[tuple[bool, np.ndarray, np.ndarray, float]] = []
+    offsets = [0]
     for joint, g in zip(mechanism.world_joints, geometry):
-        for f in _freedoms(joint.type, g, count, joint.pitch):
-            prismatic.append(f[0])
-            axes.append(f[1])
-            points.append(f[2])
-            pitches.append(f[3])
-        offsets.append(len(axes))
+        freedoms += _freedoms(joint.type, g, count, joint.pitch)
+        offsets.append(len(freedoms))
+    prismatic, axes, points, pitches = zip(*freedoms)
     located = [g["point"] for g in geometry if "point" in g]
     on_end_effector = [g["point"] for j, g in zip(mechanism.world_joints, geometry) if "point" in g and mechanism.end_effector in j.links]
     pitch_a = np.array(pitches, dtype=float)

@@ -1,11 +1,9 @@
 """The answer of a sweep: one row per grid point, and where the answer changes.
 
-:class:`SweepResult` holds, for every grid point (flat, C order), whether the
-pose was assembled and what :func:`mobility.analyze` (with inputs,
-:func:`mobility.check_actuation`) says there, and names the regular answer,
-the singular poses, the changes, the seams (:mod:`mobility.sweeps.seams`) and
-the margin dips (:data:`~mobility.core.tolerance.MARGIN_DIP`), as
-docs/sweeps.md defines them.
+:class:`SweepResult` holds, for every grid point, whether the pose was
+assembled and what :func:`mobility.analyze` (with inputs, :func:`mobility.check_actuation`)
+says there, and names the regular answer, the singular poses, the changes, the
+seams and the margin dips, as docs/sweeps.md defines them.
 
 Examples
 --------
@@ -417,14 +415,9 @@ class SweepResult(ReadOnlyArrays):
         self._require_index(index, "row")
         out: dict[str, Any] = {n: float(v) for n, v in zip(self.names, self.values[index])}
         ok = bool(self.assembled[index])
-        out.update(dof=int(self.dof[index]) if ok else None, pattern=str(self.pattern[index]) if ok else None, mobility=int(self.mobility[index]) if ok else None,
-                   assembled=ok, residual=_number(self.residual[index]), smallest_kept=_number(self.smallest_kept[index]),
-                   largest_dropped=_number(self.largest_dropped[index]), near_singular=bool(self.near_singular[index]) if ok else None,
-                   inexact=bool(self.inexact[index]) if ok else None)
-        if self.actuated:
-            out.update(verdict=str(self.verdict[index]) if ok else None, conditioning=_number(self.conditioning[index]), actuation_margin=_number(self.actuation_margin[index]))
-        if self.has_transmission:
-            out.update({key: _number(getattr(self, key)[index]) for key in TRANSMISSION})
+        for name in self.columns[len(self.names) :]:
+            value, kind = getattr(self, name)[index], _KINDS.get(name)
+            out[name] = bool(value) if name == "assembled" else (kind(value) if ok else None) if kind else _number(value)
         return out
 
     def to_dict(self) -> dict[str, Any]:
@@ -455,13 +448,17 @@ class SweepResult(ReadOnlyArrays):
         col = self.column(name)
         if name == "assembled":
             return [bool(v) for v in col]
-        kind = {"dof": int, "mobility": int, "pattern": str, "verdict": str, "near_singular": bool, "inexact": bool}.get(name)
+        kind = _KINDS.get(name)
         if kind is not None:
             return [kind(v) if ok else None for v, ok in zip(col, self.assembled)]
         if name in self.names:
             extent = next(a.extent for a in self.axes if a.name == name)
             return [_number(v) for v in clean_numbers(np.asarray(col, dtype=float), extent)]
         return [_number(v) for v in col]
+
+
+_KINDS = {"dof": int, "mobility": int, "pattern": str, "verdict": str, "near_singular": bool, "inexact": bool}
+"""The columns of plain values (None where a pose has no answer); the others are numbers."""
 
 
 def _number(x: Any) -> float | None:

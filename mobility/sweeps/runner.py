@@ -88,11 +88,8 @@ class _Context:
 
     def __getstate__(self) -> dict:
         state = dict(vars(self))
-        state.pop("bk", None)  # rebuilt where it is used
+        state.pop("bk", None)  # rebuilt where it is used (pickle puts the rest back into __dict__, past the frozen __setattr__)
         return state
-
-    def __setstate__(self, state: dict) -> None:
-        vars(self).update(state)
 
 
 _STOP = threading.local()
@@ -185,9 +182,8 @@ def analyse_joint_variables(mechanism: Mechanism, q: np.ndarray, *, actuated: Se
     transmission = require_bool(transmission, caller=caller, argument="transmission")
     q = _require_joint_variables(q, joint_screws(mechanism).offsets[-1], caller)
     plan = GridPlan((), joint_screws(mechanism).normalisation.length)
-    marked = any(j.actuated for j in mechanism.joints)
-    inputs = actuated_inputs(mechanism, actuated) if (actuated is not None or marked) else None
-    return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs is not None and inputs.freedoms else None, GOOD_TRANSMISSION if transmission else None), q)
+    inputs = actuated_inputs(mechanism, actuated)  # default: the joints marked actuated (none: no actuation columns)
+    return analyse_chunk(_Context(mechanism, plan, tol, inputs if inputs.freedoms else None, GOOD_TRANSMISSION if transmission else None), q)
 
 
 def _require_joint_variables(q: Any, n: int, caller: str) -> np.ndarray:
@@ -421,10 +417,6 @@ def sweep(mechanism: Mechanism, vary: VarySpec | Iterable, *, actuated: Sequence
     transmission, good_threshold : bool, float
         With inputs, also the indices of :mod:`mobility.transmission` (``False``: not), and their good-transmission threshold (0.7).
 
-    Returns
-    -------
-    SweepResult
-
     Raises
     ------
     RequestError
@@ -446,10 +438,8 @@ def sweep(mechanism: Mechanism, vary: VarySpec | Iterable, *, actuated: Sequence
     _require_scheduler(scheduler)
     _require_progress(progress)
     plan = plan_grid(mechanism, vary, max_poses=max_poses)
-    marked = any(j.actuated for j in mechanism.joints)
-    inputs = actuated_inputs(mechanism, actuated) if (actuated is not None or marked) else None
-    if inputs is not None and not inputs.freedoms:
-        inputs = None
+    chosen = actuated_inputs(mechanism, actuated)  # default: the joints marked actuated
+    inputs = chosen if chosen.freedoms else None
     report = tqdm_progress() if progress is True else (progress or None)
     context = _Context(mechanism, plan, tol, inputs, transmission_threshold(transmission, good_threshold, inputs is not None))
     runner = _Runner(context, scheduler, workers, report)

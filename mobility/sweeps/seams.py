@@ -1,12 +1,10 @@
 """Seams: where the walk round a full turn comes back on another assembly.
 
-A full turn walked round the circle (:mod:`mobility.sweeps.walks`) need not
-come back to the pose it left: free joints drift (a planar 5R with one crank
-driven), or the mechanism changes assembly on the way. :func:`find_seams` walks
-from the last stop of each line walked all the way round to its anchor's drive
-values (:func:`~mobility.sweeps.steps.walk_between`) and compares the pose
-reached with the anchor's, joint by joint (unit twists in normalised
-coordinates, so a link spinning idly is the same pose): a seam where they
+A full turn walked round the circle need not come back to the pose it left:
+free joints drift (a planar 5R with one crank driven), or the mechanism changes
+assembly on the way.  :func:`find_seams` walks on from the last stop of each
+such line to its anchor's drive values and compares the joint twists reached
+with the anchor's (so a link spinning idly is the same pose): a seam where they
 differ by more than :data:`~mobility.core.tolerance.SEAM_GAP`.
 
 Examples

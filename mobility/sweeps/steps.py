@@ -83,16 +83,8 @@ def _evaluate(bk: Kinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) 
     return drive.equations.values(bk, q, targets[:, drive.pose])
 
 
-def newton(
-    bk: Kinematics,
-    drive: Drive,
-    start: np.ndarray,
-    targets: np.ndarray,
-    *,
-    tol: Tolerance = DEFAULT_TOLERANCE,
-    max_move: np.ndarray | float = np.inf,
-    max_iter: int = MAX_ITERATIONS,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def newton(bk: Kinematics, drive: Drive, start: np.ndarray, targets: np.ndarray, *, tol: Tolerance = DEFAULT_TOLERANCE,
+           max_move: np.ndarray | float = np.inf, max_iter: int = MAX_ITERATIONS) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Close every loop of many poses at their driven values ``targets`` ``(N, axes)``: the best iterates, their residuals, whether assembled."""
     out = close_stack(bk, drive.apply(start, targets), targets[:, drive.pose], drive.equations, tol=tol, max_move=max_move, max_iter=max_iter)
     return out.q, out.residual, out.converged
@@ -103,24 +95,12 @@ def polish(bk: Kinematics, drive: Drive, q: np.ndarray, targets: np.ndarray) -> 
     return polish_stack(bk, q, targets[:, drive.pose], drive.equations)
 
 
-def _advance(
-    bk: Kinematics,
-    drive: Drive,
-    base_q: np.ndarray,
-    base_t: np.ndarray,
-    predicted: np.ndarray,
-    targets: np.ndarray,
-    tol: Tolerance,
-    retry: bool,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """One continuation step from assembled poses ``base_q`` (at ``base_t``) to ``targets``, retried in smaller steps.
+def _advance(bk: Kinematics, drive: Drive, base_q: np.ndarray, base_t: np.ndarray, predicted: np.ndarray, targets: np.ndarray,
+             tol: Tolerance, retry: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One continuation step from ``base_q`` (at ``base_t``) to ``targets``; a failure retried wider, in sub-steps, off a fold.
 
     A solve moves at most ``10 span + 0.05`` (``span``: the predicted move plus
-    the drive's change): farther, it would reach another assembly. A retry also
-    allows the linearised step's length (:func:`_linear_step_lengths`; a poorly
-    conditioned drive needs it), then walks in sub-steps (:func:`_substeps`),
-    then tries off a fold (:func:`_off_a_fold`). A pose not assembled keeps
-    the best attempt and its residual.
+    the drive's change): farther, it would reach another assembly.
     """
     with np.errstate(over="ignore", invalid="ignore"):  # an infinite span (a target beyond any size) allows any move
         span = np.linalg.norm(predicted - base_q, axis=1) + np.linalg.norm(targets - base_t, axis=1)
@@ -155,30 +135,12 @@ SUBSTEP_HALVINGS = 4
 failure halves the next sub-step, so the shortest tried is ``2**-(SUBSTEP_HALVINGS + 1)`` of the step (1/32)."""
 
 
-def _substeps(
-    bk: Kinematics,
-    drive: Drive,
-    base_q: np.ndarray,
-    base_t: np.ndarray,
-    predicted: np.ndarray,
-    targets: np.ndarray,
-    linear: np.ndarray,
-    tol: Tolerance,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Failed steps walked from their base towards their targets in sub-steps, halving a sub-step that fails.
+def _substeps(bk: Kinematics, drive: Drive, base_q: np.ndarray, base_t: np.ndarray, predicted: np.ndarray, targets: np.ndarray,
+              linear: np.ndarray, tol: Tolerance) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Failed steps walked towards their targets in sub-steps (half the step at most), halving a sub-step that fails.
 
-    Each walk starts with half the step; a sub-step that closes is taken (the
-    next up to twice as long, at most half the step), one that fails is tried
-    half as long. Sub-steps follow the line's predictor, or (predicted from one
-    point) the walk's secant. A walk gives up at its ``SUBSTEP_HALVINGS + 1``-th
-    failure. Each sub-step is a plain continuation step and the drive moves
-    monotonically, so a walk cannot pass a fold onto the other assembly branch.
-
-    Returns
-    -------
-    q, residual, assembled
-        At the targets: the best attempt at each (its residual infinite and
-        ``q`` the base where no sub-step reached the target).
+    The drive moves monotonically, so a walk cannot pass a fold onto the other
+    assembly branch. Returns the best attempt at each target (the base, residual infinite, where none reached it).
     """
     count = len(base_q)
     cur_q, cur_t = base_q.copy(), base_t.copy()
@@ -238,28 +200,13 @@ FOLD_REACH = (0.3, 1.0, 3.0)
 """Distances tried along a singular direction when a step leaves a fold, in units of ``sqrt(step)``."""
 
 
-def _off_a_fold(
-    bk: Kinematics,
-    drive: Drive,
-    base_q: np.ndarray,
-    base_t: np.ndarray,
-    targets: np.ndarray,
-    tol: Tolerance,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Steps that failed from a pose where the drive's Jacobian is singular, tried again off that pose.
+def _off_a_fold(bk: Kinematics, drive: Drive, base_q: np.ndarray, base_t: np.ndarray, targets: np.ndarray,
+                tol: Tolerance) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Steps that failed from a fold (the drive's Jacobian singular), tried from ``+-c sqrt(step)`` along each free direction.
 
-    At a fold (a leg at its longest, a dead centre) the nearby poses lie
-    ``sqrt(step)`` away along the motion the drive leaves free to first order,
-    which Newton's minimum-norm step never takes. Starts at ``+-c sqrt(step)``
-    along each such direction, for each ``c`` of :data:`FOLD_REACH` in turn,
-    are solved; the first that closes and walks back to the base
-    (:func:`_walks_back`) is kept. A base of full rank is no fold: nothing is tried.
-
-    Returns
-    -------
-    q, residual, assembled
-        The pose kept and its residual; where none is, the base and an
-        infinite residual (the poses refused belong to other assemblies).
+    At a fold the nearby poses lie ``sqrt(step)`` away, where Newton's
+    minimum-norm step never goes. The first start that closes and walks back to
+    the base (:func:`_walks_back`) is kept; elsewhere the base, residual infinite.
     """
     count = len(base_q)
     q, err, ok = base_q.copy(), np.full(count, np.inf), np.zeros(count, dtype=bool)
@@ -270,11 +217,9 @@ def _off_a_fold(
         _, sv, vt = np.linalg.svd(drive.equations.jacobians(evaluation), full_matrices=True)
         step = np.abs(targets - base_t).max(axis=1)
     free = int(drive.free.sum())
-    # (N, free): where the equations lose rank, the right singular vectors the rank decision drops (with those
-    # beyond the equations' count): motions free to first order.  Only a base pose singular by the policy's own rank decision (a file at a
-    # dead centre) is a fold to leave this way; one merely near a fold (the last grid point before a workspace
-    # boundary) is not: a start across the fold there would land on the other assembly branch and carry it
-    # into the grid
+    # (N, free): the right singular vectors the rank decision drops, motions free to first order.  Only a base singular by the
+    # policy's own rank decision (a file at a dead centre) is a fold to leave this way; from one merely near a fold (the last
+    # grid point before a workspace boundary) a start across it would land on the other assembly branch and carry it into the grid
     rank, fold = _folds(sv, tol)
     singular = fold[:, None] & (np.arange(free)[None, :] >= rank[:, None]) & (np.isfinite(step) & (step > 0))[:, None]
     for reach in FOLD_REACH:
@@ -315,11 +260,9 @@ def walk_between(bk: Kinematics, drive: Drive, q: np.ndarray, start: np.ndarray,
 
 
 def _walks_back(bk: Kinematics, drive: Drive, q: np.ndarray, targets: np.ndarray, base_q: np.ndarray, base_t: np.ndarray, tol: Tolerance) -> np.ndarray:
-    """Whether each closed pose ``q`` (at ``targets``) lies on a branch through ``base_q``: walking back comes home.
+    """Whether each closed pose ``q`` (at ``targets``) lies on a branch through ``base_q``: walked back, it ends nearer the base than half its distance.
 
-    Continuation back to the base's drive values in :data:`RETURN_STEPS` steps
-    must end nearer the base than half the pose's distance from it; a pose of
-    another assembly walks back to a pose of its own branch.
+    A pose of another assembly walks back to a pose of its own branch.
     """
     cur = walk_between(bk, drive, q, targets, base_t, tol=tol)
     with np.errstate(over="ignore", invalid="ignore"):

@@ -1,16 +1,12 @@
 """Angles that wrap: the order in which the continuation visits the values of one axis.
 
-An ``R`` or ``C`` angle displaced by a whole turn is the same joint state
-(:attr:`~mobility.sweeps.grid.SweepAxis.period`). On such an axis the anchor is
-the value nearest the file's pose round the circle; values congruent modulo a
-turn (to :data:`~mobility.core.tolerance.SAME_GRID_VALUE` of a step) are one
-*stop*, solved once. A range covering a full turn is a *closed* walk: up from
-the anchor all the way round, then down until it meets a stop already
-assembled, so a crank that turns fully is walked in one direction (joined by
-motion everywhere but at the seam, :mod:`mobility.sweeps.seams`), and
-``0:360:361`` and ``-180:180:361`` assemble the same poses. Walking half way
-each way could meet on different branches. The driven angle stays continuous
-along a walk (no jump of 360 degrees for the predictor).
+An ``R`` or ``C`` angle displaced by a whole turn is the same joint state;
+values congruent modulo a turn are one *stop*, solved once.  A range covering a
+full turn is a *closed* walk: up from the anchor all the way round, then down
+until it meets a stop already assembled, so a crank that turns fully is walked
+in one direction (walking half way each way could meet on different branches),
+and ``0:360:361`` and ``-180:180:361`` assemble the same poses.  The driven
+angle stays continuous along a walk (no jump of 360 degrees for the predictor).
 
 Examples
 --------
@@ -79,9 +75,8 @@ class AxisWalk:
     def legs(self) -> tuple[tuple[np.ndarray, np.ndarray, bool], tuple[np.ndarray, np.ndarray, bool]]:
         """The two legs from the start, up then down: ``(stops, values, halts)`` each.
 
-        ``stops`` indexes :attr:`stops` in visiting order, ``values`` are the
-        driven internal values there, ``halts``: the leg ends where it meets a
-        stop already assembled (the down leg of a closed walk).
+        ``stops`` indexes :attr:`stops` in visiting order, ``values`` are the driven internal
+        values there; ``halts``: the leg ends at a stop already assembled (a closed walk's down leg).
         """
         w, s = self.stops.size, self.start
         if self.closed:
@@ -99,12 +94,11 @@ def axis_walk(axis: SweepAxis, position: int = 0) -> AxisWalk:
     """The walk of one axis (the ``position``-th of its grid): closed, with congruent values merged, when the axis wraps and covers a full turn."""
     count, start = axis.count, axis.anchor
     variable = axis.variable if axis.kind == "joint" else -1
-    step = axis.step
     period = axis.period
     if not axis.covers_turn:
         every = np.arange(count)
         return AxisWalk(position, variable, every, axis.internal, start, False, 0.0, every)
-    tie = SAME_GRID_VALUE * step
+    tie = SAME_GRID_VALUE * axis.step
     values = axis.values
     residue = np.mod(values, period)
     order = np.argsort(residue, kind="stable")

@@ -220,16 +220,14 @@ def pkm_document(result: SynthesisResult, structure: str, *, other: str = "UPS",
     if (r.dof, r.pattern, r.mobility) != (expected["dof"], expected["pattern"], expected["mobility"]):
         raise SynthesisError(f"{structure}: the analyzer finds {r.dof} DOF {r.pattern}, mobility {r.mobility} for the assembled PKM, not {expected}")
     table = " It is one of the seven 5-DOF limbs of Table 1 of that paper." if found.in_table_1 else " It is not in Table 1 of that paper; the enumeration found it."
-    description = (
-        f"A {expected['dof']}-DOF parallel mechanism of one {found.name} limb and {mechanism.name.split('-', 1)[1]} limbs, "
-        f"assembled by mobility.assemble_pkm from the type synthesis of the {result.pattern.name} pattern "
-        f"({result.pattern.description}) after T. Sun, S. Yang, T. Huang, J. S. Dai, 'A Finite and Instantaneous Screw "
-        f"Based Approach for Topology Design and Kinematic Analysis of 5-Axis Parallel Kinematic Machines', Chinese "
-        f"Journal of Mechanical Engineering 31:44 (2018).{table} Conditions of the limb: {'; '.join(found.conditions)}. "
-        f"Dimensions are illustrative (mm). Expected: the limb's finite motions are the {pattern_text} pattern and the "
-        f"6-DOF limbs add no constraint, so the platform has {expected['dof']} DOF, {pattern_text}; the mobility is the "
-        f"Grübler-Kutzbach count (no redundant constraint)."
-    )
+    description = (f"A {expected['dof']}-DOF parallel mechanism of one {found.name} limb and {mechanism.name.split('-', 1)[1]} limbs, "
+                   f"assembled by mobility.assemble_pkm from the type synthesis of the {result.pattern.name} pattern "
+                   f"({result.pattern.description}) after T. Sun, S. Yang, T. Huang, J. S. Dai, 'A Finite and Instantaneous Screw "
+                   f"Based Approach for Topology Design and Kinematic Analysis of 5-Axis Parallel Kinematic Machines', Chinese "
+                   f"Journal of Mechanical Engineering 31:44 (2018).{table} Conditions of the limb: {'; '.join(found.conditions)}. "
+                   f"Dimensions are illustrative (mm). Expected: the limb's finite motions are the {pattern_text} pattern and the "
+                   f"6-DOF limbs add no constraint, so the platform has {expected['dof']} DOF, {pattern_text}; the mobility is the "
+                   f"Grübler-Kutzbach count (no redundant constraint).")
     return mechanism, mechanism_to_yaml(mechanism, description=description, expected=expected)
 
 

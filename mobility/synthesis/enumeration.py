@@ -106,12 +106,7 @@ def candidate_joints(pattern: MotionPattern, generic_points: int, rng: np.random
 
     The points are the pattern's (``O``, ``O2``...) and ``generic_points``
     random ones (``g1, g2...``) within the pattern's length of their centre.
-
-    Returns
-    -------
-    candidates : list of CandidateJoint
-    points, directions : dict
-        Label -> point, label -> direction.
+    Returns the candidates and the label -> point, label -> direction dicts.
     """
     directions = pattern.directions()
     points: list[tuple[str, Vector]] = [("O" if i == 0 else f"O{i + 1}", p) for i, p in enumerate(pattern.points)]
@@ -222,15 +217,12 @@ def synthesize(pattern: MotionPattern | str, *, joints: int | None = None, gener
     rejected = [c for c in candidates if c not in alphabet]
     found: list[tuple[CandidateJoint, ...]] = []
 
-    def generic_index(label: str) -> int:
-        return int(label[1:]) if label.startswith("g") else 0
-
     def extend(prefix: tuple[CandidateJoint, ...], used_generic: int) -> None:
         if len(prefix) == n:
             found.append(prefix)
             return
         for c in alphabet:
-            g = generic_index(c.point)
+            g = int(c.point[1:]) if c.point.startswith("g") else 0
             if g > used_generic + 1:  # generic points are interchangeable: use them in order
                 continue
             chain = tuple(x.joint for x in prefix) + (c.joint,)

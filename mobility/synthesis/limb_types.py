@@ -80,11 +80,8 @@ class SynthesizedLimb:
 def joint_groups(seq: Sequence[CandidateJoint], plane: tuple[str, ...]) -> list[tuple[str, list[CandidateJoint]]]:
     """Split a joint sequence into named groups: runs of R through one point (S, U), Rc, P1, P2...
 
-    Parameters
-    ----------
-    plane : tuple of str
-        Labels of the pattern's translation directions (``s1, s2``): a P along
-        one of them is numbered ``P1, P2...``, any other named by its direction.
+    A P along one of the pattern's translation directions ``plane`` (``s1, s2``)
+    is numbered ``P1, P2...``, any other named by its direction.
     """
     out: list[tuple[str, list[CandidateJoint]]] = []
     i = 0
@@ -107,16 +104,9 @@ def joint_groups(seq: Sequence[CandidateJoint], plane: tuple[str, ...]) -> list[
 
 
 def limb_types(found: Sequence[tuple[CandidateJoint, ...]], pattern_name: str, plane: tuple[str, ...]) -> tuple[SynthesizedLimb, ...]:
-    """Group joint sequences into limb types, in order of first discovery.
+    """Group the joint sequences kept by the enumeration into limb types, in order of first discovery.
 
-    Parameters
-    ----------
-    found : sequence of tuple of CandidateJoint
-        The joint sequences kept by the enumeration.
-    pattern_name : str
-        Name of the pattern (Table 1 is marked for ``"2T3R"`` only).
-    plane : tuple of str
-        Labels of the pattern's translation directions (see :func:`joint_groups`).
+    Table 1 is marked for the pattern ``"2T3R"`` only; ``plane``: as for :func:`joint_groups`.
     """
     by_name: dict[str, list[tuple[tuple[str, ...], tuple[CandidateJoint, ...], list[list[CandidateJoint]]]]] = {}
     for seq in found:

@@ -1,15 +1,9 @@
 """Regression checks: analyse mechanisms and compare with their ``expected`` blocks.
 
-:func:`check_file` loads and analyses one file and compares every key of its
-``expected`` block (``docs/file-format.md``) with the analysis, by the
-comparator of :data:`COMPARATORS` (how each key is compared:
-``docs/library.md``; a key no comparator knows is a mismatch, never a pass).
-:func:`check_paths` does it for files and folders and gathers a
-:class:`CheckReport`, whose :attr:`~CheckReport.exit_status` is what
-``mobility check`` returns.  Each file ends ``"pass"``, ``"fail"``,
-``"missing"`` (no ``expected`` block) or ``"error"`` (its one-line message
-kept).  A YAML document of another kind (a flexure) is checked by a function
-of ``others`` (:data:`OtherDocument`).
+:func:`check_file` compares every key of a file's ``expected`` block with the
+analysis by the comparator of :data:`COMPARATORS` (docs/library.md; a key no
+comparator knows is a mismatch, never a pass); :func:`check_paths` gathers the
+files and folders of ``mobility check`` in a :class:`CheckReport`.
 
 Examples
 --------
@@ -313,11 +307,9 @@ def check_mechanism(mechanism: Mechanism, *, tol: Tolerance = DEFAULT_TOLERANCE,
 
 
 OtherDocument = Callable[[str, Any, Positions, Tolerance], "CheckResult | None"]
-"""``check(path, data, positions, tol)``: the check of a YAML document that is not a mechanism file
-(``data`` and ``positions``, the parsed document from :func:`~mobility.io.yaml_source.parse_yaml`, say
-which kind it is and where each key stands), or ``None`` when ``data`` is not of its kind.  It may raise
-:class:`~mobility.errors.MobilityError` for a bad document (reported as the file's error).
-:func:`mobility.testing.flexure_check.flexure_document` is the one for flexure documents."""
+"""``check(path, data, positions, tol)``: the check of a parsed YAML document (:func:`~mobility.io.yaml_source.parse_yaml`)
+that is not a mechanism file, or ``None`` when ``data`` is not of its kind; a bad document raises its
+:class:`~mobility.errors.MobilityError` (:func:`mobility.testing.flexure_check.flexure_document`, for flexures)."""
 
 
 def check_file(path: str | Path, *, tol: Tolerance = DEFAULT_TOLERANCE, others: Sequence[OtherDocument] = ()) -> CheckResult:

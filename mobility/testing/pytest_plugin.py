@@ -1,25 +1,10 @@
 """Check mechanism files from a pytest suite.
 
-Two ways, both one test per file by :func:`mobility.testing.check.check_file`
-(failing when the file disagrees with its ``expected`` block, has none, or
-cannot be read; a flexure document is checked as one):
-
-1. **One line in a test module** (no plugin needed)::
-
-       from mobility.testing.pytest_plugin import mechanism_tests
-
-       test_mechanisms = mechanism_tests("mechanisms/")
-
-   Paths are files or folders (every ``*.yaml``/``*.yml`` inside).  For your
-   own test function::
-
-       @pytest.mark.parametrize("path", mechanism_test_cases("mechanisms/"))
-       def test_my_designs(path):
-           assert_mechanism_passes(path)
-
-2. **As a pytest plugin** (entry point ``pytest11``) collecting mechanism files
-   as test items: ``--mobility-check mechanisms/`` or ``mobility_check =
-   mechanisms`` in the ini file; without them it collects nothing.
+One test per file by :func:`mobility.testing.check.check_file`, failing when
+the file disagrees with its ``expected`` block, has none, or cannot be read:
+``test_mechanisms = mechanism_tests("mechanisms/")`` in a test module, or the
+plugin (entry point ``pytest11``) with ``--mobility-check mechanisms/``
+(docs/library.md, "In your own pytest suite").
 
 Examples
 --------

@@ -1,31 +1,14 @@
 """Motion/force and constraint transmission indices on stacks of poses.
 
-Definitions, the choice of normalisation, redundancy and the checks against
-textbook closed forms: docs/sweeps.md, "Transmission indices".  In short,
-every index is a **power coefficient** of a unit wrench ``w = [f; m]`` and a
-twist ``t = [omega; v]`` at the point ``P`` where the wrench acts::
-
-    tau_P(w, t) = |w o t| / (|f| |v_P| + |m_P| |omega|),
-
-the cosine of the pressure angle at ``P`` for a force through ``P``; it does
-not depend on the frame or the length unit, and is 0 exactly when the power
-is.  With the actuation wrench (transmission wrench screw) ``a_i`` of input ``i``:
-
-* ``ITI_i = tau_B(a_i, $_I)``, ``$_I`` the input twist, ``B`` where the limb
-  leaves the input link (``lambda_i`` of Wang et al., 2010);
-* ``OTI_i = tau_C(a_i, $_O,i)``, ``$_O,i`` the end effector's twist with every
-  other input locked, ``C`` where the limb meets it (``eta_i``, ibid.);
-* ``LTI = min_i min(ITI_i, OTI_i)``; good transmission is ``LTI >=``
-  :data:`GOOD_TRANSMISSION`;
-* ``CTI_j = tau_C(c_j, $_O,j)`` of limb ``j``'s constraint wrench, ``$_O,j`` the
-  twist gained with every input locked and that constraint removed (Liu et
-  al., 2012; Brinker et al., 2018), through the principal pairs of the two
-  systems (whatever basis the analysis chose); ``CTI = min_j CTI_j``.
-
-In a redundant wrench system the best non-redundant choice of inputs and
-whole limbs is taken (at most :data:`MAX_CHOICES` of them; NaN beyond).
-Where the rank decisions of :mod:`mobility.core.tolerance` find the wrench
-system degenerate, the index is 0 exactly, not round-off.
+Every index is a **power coefficient** of a unit wrench ``w = [f; m]`` and a
+twist ``t = [omega; v]`` at the point ``P`` where the wrench acts,
+``tau_P(w, t) = |w o t| / (|f| |v_P| + |m_P| |omega|)``: ``ITI`` of each
+input's actuation wrench on its input twist, ``OTI`` on the end effector's
+twist with every other input locked, ``LTI = min(ITI, OTI)``, ``CTI`` of each
+limb's constraint wrench on the twist gained without it.  Definitions, the
+choice of normalisation, redundancy (the best non-redundant choice, at most
+:data:`MAX_CHOICES`) and the checks against textbook closed forms:
+docs/sweeps.md, "Transmission indices".
 
 Sources
 -------
