@@ -740,14 +740,17 @@ def test_a_deep_tree_is_evaluated_for_every_pose_without_recursion():
     joints = [mobility.Joint(f"A{i}", "R", ("g", f"l{i}"), axis=z, point=(float(i), 0.0, 0.0)) for i in range(n + 1)]
     joints += [mobility.Joint(f"B{i}", "R", (f"l{i}", f"l{i + 1}"), axis=z, point=(i + 0.5, 1.0 + 0.25 * math.sin(i), 0.0)) for i in range(n)]
     m = mobility.Mechanism("ladder", "g", f"l{n}", tuple(joints))
-    assert n > sys.getrecursionlimit()
-    screws = joint_screws(m)
-    twists = np.broadcast_to(screws.twists, (2, *screws.twists.shape))
-    value = evaluate(decompose(m).root, np.ascontiguousarray(twists), screws.offsets)
-    single = evaluate(decompose(m).root, screws.twists[None], screws.offsets)
+    limit = sys.getrecursionlimit()
+    sys.setrecursionlimit(1000)  # Python's default: a library run earlier in this process (mypy) may have raised it
+    try:
+        assert n > sys.getrecursionlimit()
+        screws = joint_screws(m)
+        twists = np.broadcast_to(screws.twists, (2, *screws.twists.shape))
+        value = evaluate(decompose(m).root, np.ascontiguousarray(twists), screws.offsets)
+        single = evaluate(decompose(m).root, screws.twists[None], screws.offsets)
+    finally:
+        sys.setrecursionlimit(limit)
     assert per_pose(value.dim, 2).tolist() == per_pose(single.dim, 1).tolist() * 2 and per_pose(value.mobility, 2).tolist() == per_pose(single.mobility, 1).tolist() * 2 == [0, 0]
-
-
 
 
 def test_a_type_two_singularity_between_grid_points_is_a_margin_dip():
