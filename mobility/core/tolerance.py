@@ -429,8 +429,10 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     if n <= _ROW_BY_ROW:  # a few rows: the loop of decide_rank costs less than the array operations below
         lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist() if isinstance(counts, np.ndarray) else counts
         rtol = tol.rank
-        by_row = zip(*(_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths))) if n else ((), (), ())
-        return RankDecisions(*(np.array(column, dtype=dtype) for column, dtype in zip(by_row, (int, float, float))))
+        if n == 0:
+            return RankDecisions(np.zeros(0, dtype=int), np.ones(0), np.zeros(0))
+        columns = tuple(zip(*[_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths)]))  # rank (int), kept, dropped
+        return RankDecisions(np.array(columns[0]), np.array(columns[1]), np.array(columns[2]))
     present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.broadcast_to(np.minimum(counts, k), (n,)))[:, None]
     length = present.sum(axis=1)
     if k == 0:
