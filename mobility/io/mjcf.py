@@ -2,12 +2,11 @@
 
 Rather than re-implement MuJoCo's compiler (defaults, frames, ``<include>``,
 ``<replicate>``...), MuJoCo (the ``mechanism-mobility[mujoco]`` extra) compiles
-the file; the compiled model is read at ``qpos0`` (``mj_kinematics``): each
-joint's anchor and axis in the global frame, each body's parent.  How joints,
-equalities and actuators map: ``docs/robot-files.md``.  Meshes, height fields,
-textures and skins are removed before compiling, so a file whose mesh files are
-absent imports.  The files are checked before MuJoCo reads them
-(:mod:`mobility.io.mjcf_scan`); MuJoCo's warnings become notes.
+the file without what kinematics ignores (:func:`_kinematics_only`); the
+compiled model is read at ``qpos0`` (``mj_kinematics``): each joint's anchor
+and axis in the global frame, each body's parent.  How joints, equalities and
+actuators map: ``docs/robot-files.md``.  The files are checked before MuJoCo
+reads them (:mod:`mobility.io.mjcf_scan`); MuJoCo's warnings become notes.
 """
 
 from __future__ import annotations
@@ -66,9 +65,6 @@ def import_mujoco() -> ModuleType:
 def read_mjcf(path: str | Path) -> RobotTree:
     """Read an MJCF file into a :class:`~mobility.io.robot_tree.RobotTree` at ``qpos0``.
 
-    The file and its includes are checked first (:func:`~mobility.io.mjcf_scan.scan_mjcf`),
-    so that MuJoCo is never asked to read a pipe or to expand a model without bound.
-
     Raises
     ------
     MechanismFileError
@@ -89,17 +85,12 @@ def read_mjcf(path: str | Path) -> RobotTree:
     scan = scan_mjcf(doc, folder, size=len(raw))  # includes found beside the file, as MuJoCo finds them for a path
     mujoco = import_mujoco()
     read, alias = _reader(mujoco, file, raw, scan)
-    if read is None:  # an old MuJoCo, given the text: it finds includes from the working directory
-        scan = scan_mjcf(doc, ".", size=len(raw))
-        read = lambda: mujoco.MjSpec.from_string(raw.decode("utf-8"))  # noqa: E731 -- UTF-8: checked
     said: list[str] = []
     with _warnings_into(mujoco, said):
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")  # MuJoCo's compiler warnings become notes
             spec = _mujoco_call(read, file, scan, alias)
-            _without_asset_files(mujoco, spec)
-            _without_mass_bounds(spec)
-            _without_what_kinematics_ignores(mujoco, spec)
+            _kinematics_only(mujoco, spec)
             model = _mujoco_call(spec.compile, file, scan, alias)
             _require_kept(scan, model, file)
             data = mujoco.MjData(model)
@@ -117,12 +108,10 @@ def _reader(mujoco: ModuleType, file: str, raw: bytes, scan: MjcfScan) -> tuple[
     MuJoCo picks its XML reader by the extension, case-sensitively: a file not
     named ``.xml`` is given under an unused ``.xml`` name in the same folder,
     its text in memory (MuJoCo's ``include`` argument), so that its
-    ``<include>``s are found.  An old MuJoCo without that argument: ``(None, None)``.
+    ``<include>``s are found.
     """
     if file.endswith(".xml"):
         return (lambda: mujoco.MjSpec.from_file(file)), None
-    if "include" not in (getattr(mujoco.MjSpec.from_file, "__doc__", "") or ""):
-        return None, None
     taken = {os.path.basename(f) for f in scan.files} | {os.path.basename(file)}
     alias, k = f"{file}.xml", 2
     while os.path.basename(alias) in taken or os.path.lexists(alias):
@@ -131,7 +120,7 @@ def _reader(mujoco: ModuleType, file: str, raw: bytes, scan: MjcfScan) -> tuple[
 
 
 def _not_utf8(name: str) -> bool:
-    """Whether ``name`` holds bytes that were not UTF-8 (Python keeps them as lone surrogates), so that it has no UTF-8 form.
+    """Whether ``name`` holds bytes that were not UTF-8 (Python keeps them as lone surrogates).
 
     Examples
     --------
@@ -144,16 +133,12 @@ def _not_utf8(name: str) -> bool:
 @contextmanager
 def _warnings_into(mujoco: ModuleType, said: list[str]) -> Iterator[None]:
     """MuJoCo's warnings appended to ``said`` instead of printed (and written to ``MUJOCO_LOG.TXT``)."""
-    setter = getattr(mujoco, "set_mju_user_warning", None)
-    if setter is None:  # an old MuJoCo without the hook
-        yield
-        return
-    before = mujoco.get_mju_user_warning() if hasattr(mujoco, "get_mju_user_warning") else None
-    setter(lambda message: said.append(str(message)))
+    before = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(lambda message: said.append(str(message)))
     try:
         yield
     finally:
-        setter(before)
+        mujoco.set_mju_user_warning(before)
 
 
 def _mujoco_call(call: Any, file: str, scan: MjcfScan, alias: str | None = None) -> Any:
@@ -166,10 +151,7 @@ def _mujoco_call(call: Any, file: str, scan: MjcfScan, alias: str | None = None)
 
 
 def _mujoco_error(text: str, file: str, scan: MjcfScan) -> MechanismFileError:
-    """MuJoCo's message, all of it on one line, with the file and line it names (never line 0).
-
-    MuJoCo gives elements of an included file line 0, and an error inside one
-    the line of the ``<include>``: then the file holding that ``<include>``.
+    """MuJoCo's message on one line, with the file and line it names (:func:`_where`).
 
     Examples
     --------
@@ -191,7 +173,8 @@ def _mujoco_error(text: str, file: str, scan: MjcfScan) -> MechanismFileError:
 
 
 def _where(file: str, line: int, key: str, scan: MjcfScan) -> tuple[str, int | None]:
-    """The file and line an error is about: never line 0; an ``<include>``'s line in the file that holds it."""
+    """The file and line an error is about: never line 0 (MuJoCo's line for an element of an included file);
+    for an error inside an included file, the line of its ``<include>`` in the file that holds it."""
     if line <= 0:
         return file, None
     if key != "include":
@@ -203,10 +186,7 @@ def _where(file: str, line: int, key: str, scan: MjcfScan) -> tuple[str, int | N
 
 
 def _require_kept(scan: MjcfScan, model: Any, file: str) -> None:
-    """Refuse a model from which MuJoCo dropped, while reading it, an equality, a joint or a body that the file declares.
-
-    MuJoCo silently drops an equality naming a body or site inside a
-    ``<replicate>`` (which renames it): the loop would be open, the answer wrong.
+    """Refuse a model from which MuJoCo dropped an equality, a joint or a body that the file declares (an open loop, a wrong answer).
 
     Examples
     --------
@@ -227,54 +207,22 @@ def _require_kept(scan: MjcfScan, model: Any, file: str) -> None:
             raise MechanismFileError(key, f"the file declares {noun}, MuJoCo kept {kept}; expected every {key} kept", file=file)
 
 
-def _without_mass_bounds(spec: Any) -> None:
-    """Let a body without mass or inertia compile: kinematics needs neither.
-
-    MuJoCo refuses a moving body whose mass or inertia is below ``mjMINVAL``;
-    where the file sets no ``<compiler boundmass/boundinertia>``, a small one is set.
-    """
-    compiler = spec.compiler
-    if not compiler.boundmass:
-        compiler.boundmass = 1e-6
-    if not compiler.boundinertia:
-        compiler.boundinertia = 1e-12
-
-
 _SIZES = ("nkey", "nuserdata", "memory", "njmax", "nconmax", "nstack",
           *(f"nuser_{kind}" for kind in ("body", "jnt", "geom", "site", "cam", "tendon", "actuator", "sensor")))
 """``<size>`` attributes, set back to MuJoCo's defaults (those of a new spec: their types differ between versions)."""
 
 
-def _without_what_kinematics_ignores(mujoco: ModuleType, spec: Any) -> None:
-    """Leave out what MuJoCo would allocate or compute for simulation only: kinematics at ``qpos0`` needs none of it.
+def _kinematics_only(mujoco: ModuleType, spec: Any) -> None:
+    """Leave out of ``spec`` what kinematics at ``qpos0`` does not need and MuJoCo would read, allocate or check.
 
-    A 100-byte file could otherwise cost minutes or gigabytes: ``<size
-    nkey="1000000">``, ``nuserdata`` of 1e8, ``memory="100G"``, history buffers
-    (``nsample``), huge sensors, ``<lengthrange mode="all">``.  ``<size>`` gets
-    MuJoCo's defaults, sensors go, actuators keep their transmission without
-    history, no length range is computed; ``fusestatic`` is off so that every
+    Meshes, height fields, textures and skins need files on disk (a file whose
+    mesh files are absent imports).  A 100-byte file could cost minutes or
+    gigabytes: ``<size nkey="1000000">``, ``memory="100G"``, history buffers
+    (``nsample``), huge sensors, ``<lengthrange mode="all">``.  A moving body
+    below ``mjMINVAL`` in mass or inertia is refused by MuJoCo: small bounds
+    are set where the file sets none.  ``fusestatic`` is off so that every
     body the file names stays one (for ``--end-effector``).
     """
-    defaults = mujoco.MjSpec()
-    for attribute in _SIZES:
-        if hasattr(spec, attribute) and hasattr(defaults, attribute):
-            setattr(spec, attribute, getattr(defaults, attribute))
-    for sensor in list(getattr(spec, "sensors", [])):
-        _delete(spec, sensor)
-    for actuator in getattr(spec, "actuators", []):
-        for attribute in ("delay", "nsample"):
-            if hasattr(actuator, attribute):
-                setattr(actuator, attribute, 0)
-    compiler = spec.compiler
-    modes = getattr(mujoco, "mjtLRMode", None)
-    if modes is not None and hasattr(compiler, "LRopt"):
-        compiler.LRopt.mode = modes.mjLRMODE_NONE
-    if hasattr(compiler, "fusestatic"):
-        compiler.fusestatic = False
-
-
-def _without_asset_files(mujoco: ModuleType, spec: Any) -> None:
-    """Remove what needs files on disk (meshes, height fields, textures, skins): kinematics needs none of it."""
     kinds = mujoco.mjtGeom
     for geom in spec.geoms:
         if geom.type in (kinds.mjGEOM_MESH, kinds.mjGEOM_HFIELD, kinds.mjGEOM_SDF):
@@ -282,20 +230,25 @@ def _without_asset_files(mujoco: ModuleType, spec: Any) -> None:
             geom.meshname = ""
             geom.hfieldname = ""
             geom.size = [0.01, 0.0, 0.0]
-    for collection in (spec.meshes, spec.hfields, spec.textures, spec.skins):
-        for element in list(collection):
-            _delete(spec, element)
+    for element in [*spec.meshes, *spec.hfields, *spec.textures, *spec.skins, *spec.sensors]:
+        spec.delete(element)
     for material in spec.materials:
         material.textures = ["" for _ in material.textures]
-
-
-def _delete(spec: Any, element: Any) -> None:
-    spec.delete(element) if hasattr(spec, "delete") else element.delete()  # in older MuJoCo each element deletes itself
+    defaults = mujoco.MjSpec()
+    for attribute in _SIZES:
+        setattr(spec, attribute, getattr(defaults, attribute))
+    for actuator in spec.actuators:
+        actuator.delay = actuator.nsample = 0
+    compiler = spec.compiler
+    compiler.boundmass = compiler.boundmass or 1e-6
+    compiler.boundinertia = compiler.boundinertia or 1e-12
+    compiler.LRopt.mode = mujoco.mjtLRMode.mjLRMODE_NONE
+    compiler.fusestatic = False
 
 
 def _line(element: Any) -> int | None:
     """The line of a spec element (``None`` when MuJoCo does not know it: it says line 0 for included files)."""
-    found = _LINE.search(getattr(element, "info", "") or "")
+    found = _LINE.search(element.info)
     return int(found.group(1)) if found and int(found.group(1)) > 0 else None
 
 
@@ -304,24 +257,12 @@ class _MjcfTree:
 
     def __init__(self, mujoco: ModuleType, spec: Any, model: Any, data: Any, file: str) -> None:
         self.mj, self.spec, self.m, self.d, self.file = mujoco, spec, model, data, file
-        self.lines = {kind: self.element_lines(obj, elements, in_order) for kind, obj, elements, in_order in (
-            ("body", "mjOBJ_BODY", spec.bodies, False), ("joint", "mjOBJ_JOINT", spec.joints, False),
-            ("equality", "mjOBJ_EQUALITY", spec.equalities, True), ("tendon", "mjOBJ_TENDON", spec.tendons, True),
-            ("actuator", "mjOBJ_ACTUATOR", spec.actuators, True))}
+        kinds = (("body", spec.bodies), ("joint", spec.joints), ("equality", spec.equalities), ("tendon", spec.tendons),
+                 ("actuator", spec.actuators))
+        self.lines = {kind: {int(e.id): _line(e) for e in elements if e.id >= 0} for kind, elements in kinds}  # by compiled index
         written = [self.name("mjOBJ_BODY", i) for i in range(model.nbody)]
         used = set(filter(None, written))  # an unnamed body's made-up name never takes a real body's
         self.body_names = [name or unique_name(f"body{i}", used) for i, name in enumerate(written)]
-
-    def element_lines(self, kind: str, elements: Any, in_order: bool) -> dict[int, int | None]:
-        """Line of each spec element by its compiled index (older MuJoCo: found by name, or by position when ``in_order``)."""
-        out: dict[int, int | None] = {}
-        for position, element in enumerate(elements):
-            index = getattr(element, "id", None)
-            if index is None or index < 0:
-                index = position if in_order else self.mj.mj_name2id(self.m, getattr(self.mj.mjtObj, kind), element.name) if element.name else -1
-            if index >= 0:
-                out[int(index)] = _line(element)
-        return out
 
     def name(self, kind: str, index: int) -> str:
         return self.mj.mj_id2name(self.m, getattr(self.mj.mjtObj, kind), index) or ""
@@ -334,9 +275,8 @@ class _MjcfTree:
         actuated, balls = actuator_inputs(self, notes, unsupported)
         joints = tuple(self.joint(i, i in actuated, balls.get(i, ())) for i in range(m.njnt))
         if m.nflex:
-            flexes = list(getattr(self.spec, "flexes", []))
             unsupported.append(Unsupported("flex", f"{m.nflex} deformable (flex) bodies are not supported; expected rigid bodies and joints",
-                                           _line(flexes[0]) if flexes else None))
+                                           _line(self.spec.flexes[0]) if self.spec.flexes else None))
         self.gap_lengths: list[float] = []  # how far each connect and weld misses at qpos0 (equality_gaps)
         self.gap_angles: list[float] = []
         closures, welds, more, couplings = self.equalities(notes)
@@ -348,9 +288,8 @@ class _MjcfTree:
             if m.body_mocapid[i] >= 0:
                 notes.append(f"mocap body {clipped(self.body_names[i])}{at_line(self.lines['body'].get(i))} is moved only by the simulation: treated as fixed")
         name = self.spec.modelname if self.spec.modelname and self.spec.modelname != "MuJoCo Model" else one_line(Path(self.file).stem)  # a file name may hold a line break; a name may not
-        version = getattr(mj, "__version__", "")
         return RobotTree(name, self.file, "MJCF", bodies, joints, tuple(closures), tuple(welds), tuple(unsupported), tuple(notes),
-                         pose=f"qpos0, as MuJoCo {version} compiles it".replace("  ", " "), gaps=tuple(self.gap_lengths), angle_gaps=tuple(self.gap_angles),
+                         pose=f"qpos0, as MuJoCo {mj.__version__} compiles it", gaps=tuple(self.gap_lengths), angle_gaps=tuple(self.gap_angles),
                          couplings=tuple(couplings))
 
     def body(self, i: int) -> Body:
