@@ -53,15 +53,10 @@ IDENTITY: Rotation = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 JOINT_KINDS = {"hinge": "R", "slide": "P", "ball": "S", "planar": "E", "free": "free"}
 """Joint kinds of a tree, and the joint type each becomes (``free``: 3 P + S, or fixed)."""
 
-IGNORE_HINT = "pass --ignore-unsupported (ignore_unsupported=True) to leave it out"
-
 
 @dataclass(frozen=True)
 class Body:
-    """A rigid body of the description, with its pose at the reference configuration.
-
-    ``x_world = rotation @ x_body + origin``; ``parent`` is ``None`` for the root.
-    """
+    """A rigid body of the description at the reference pose: ``x_world = rotation @ x_body + origin`` (``parent``: ``None`` for the root)."""
 
     name: str
     parent: str | None
@@ -118,13 +113,10 @@ class Unsupported:
 
 @dataclass(frozen=True)
 class RobotTree:
-    """A robot description read from a file: bodies, joints, closures, at one pose.
+    """A robot description read from a file: bodies (every parent before its children), joints (in file order), closures, at one ``pose``.
 
-    ``bodies``: root first, every parent before its children; ``joints``: in file
-    order (a body's root-to-body); ``pose``: where the geometry is taken;
-    ``files``: the other files read for it; ``rounding``: the digits of its
-    numbers (:mod:`mobility.io.precision`); ``gaps``, ``angle_gaps``: how far each
-    loop closure (``length_unit``) and weld (radians) misses at the pose.
+    ``files``: the other files read for it; ``rounding``: the digits of its numbers (:mod:`mobility.io.precision`);
+    ``gaps``, ``angle_gaps``: how far each loop closure (``length_unit``) and weld (radians) misses at the pose.
     """
 
     name: str
@@ -189,10 +181,7 @@ class RobotOptions:
 
 @dataclass(frozen=True)
 class ImportedRobot:
-    """A mechanism read from a robot description, with the notes of its reading.
-
-    ``files``: every file read for it, the description first (``mobility convert`` writes over none).
-    """
+    """A mechanism read from a robot description, the notes of its reading and every file read for it (the description first)."""
 
     mechanism: Mechanism
     notes: tuple[str, ...] = ()
@@ -234,14 +223,16 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     notes = list(tree.notes)
     for item in tree.unsupported:
         if not options.ignore_unsupported:
-            raise MechanismFileError(item.key, f"{item.message}; {IGNORE_HINT}", file=tree.file, line=item.line)
+            raise MechanismFileError(item.key, f"{item.message}; pass --ignore-unsupported (ignore_unsupported=True) to leave it out", file=tree.file, line=item.line)
         notes.append(f"left out {item.key}{at_line(item.line)}: {item.message}")
 
     ground_body = tree.body(options.ground, "ground").name if options.ground is not None else tree.bodies[0].name
     ee_body = tree.body(options.end_effector, "end_effector").name if options.end_effector is not None else None
     kept = _free_joints_kept(tree, options, notes)
     groups = _rigid_groups(tree, kept, notes)
-    names = _group_names(tree, groups, [n for n in (ground_body, ee_body) if n])
+    names: dict[str, str] = {}  # each rigid link named after the ground or end-effector body in it, else its body nearest the root
+    for body in [n for n in (ground_body, ee_body) if n] + [b.name for b in tree.bodies]:  # parents come first
+        names.setdefault(groups.find(body), body)
 
     def link(body: str) -> str:
         return names[groups.find(body)]
@@ -345,11 +336,8 @@ def unique_name(name: str, used: set[str]) -> str:
 
 
 def _free_joints_kept(tree: RobotTree, options: RobotOptions, notes: list[str]) -> set[str]:
-    """The bodies whose free joint keeps its six freedoms (a note for each free joint says which way it went).
-
-    All with ``floating``; otherwise those an equality ties to a body outside
-    their subtree (held by the mechanism: fixing it would lock what it is welded to).
-    """
+    """The bodies whose free joint keeps its six freedoms, with a note for each: all with ``floating``, else those an equality
+    ties to a body outside their subtree (fixing it would lock what it is welded to)."""
     free = {j.body: j for j in tree.joints if j.kind == "free"}
     if options.floating or not free:
         return set(free)
@@ -402,16 +390,6 @@ def _rigid_groups(tree: RobotTree, kept: set[str], notes: list[str]) -> _Groups:
             notes.append(f"weld {clipped(w.name)}{at_line(w.line)} makes {clipped(w.bodies[0])} and {clipped(w.bodies[1])} one rigid link")
         groups.union(*w.bodies)
     return groups
-
-
-def _group_names(tree: RobotTree, groups: _Groups, preferred: list[str]) -> dict[str, str]:
-    """Name each rigid link after a preferred body in it, else its body nearest the root."""
-    names: dict[str, str] = {}
-    for name in preferred:
-        names.setdefault(groups.find(name), name)
-    for b in tree.bodies:  # parents come first: the first member met is nearest the root
-        names.setdefault(groups.find(b.name), b.name)
-    return names
 
 
 def model_joint_names(j: TreeJoint) -> list[str]:

@@ -24,7 +24,7 @@ import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, BinaryIO
+from typing import Any
 from xml.parsers import expat
 
 from ..errors import MechanismFileError, RequestError, clipped, control_character_problem, name_problem
@@ -35,7 +35,6 @@ from .limits import Limits, current_limits
 __all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag", "require_no_underflow"]
 
 
-_CHUNK = 1 << 16
 _BOM = b"\xef\xbb\xbf"
 _UTF16_BOMS = ((b"\xff\xfe", "utf-16-le"), (b"\xfe\xff", "utf-16-be"))
 _OTHER_BOMS = ((b"\xff\xfe\x00\x00", "UTF-32"), (b"\x00\x00\xfe\xff", "UTF-32"), (b"\xff\xfe", "UTF-16"), (b"\xfe\xff", "UTF-16"))
@@ -245,25 +244,18 @@ def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
         raise StopIteration  # stop at the first element
 
     parser.StartElementHandler = start
+    cap, size = current_limits(limits).max_file_bytes, 0
     try:
         with open_regular(path) as handle:  # without waiting: /proc/kmsg is a regular file whose reading waits
-            _feed_until_found(handle, parser, found, current_limits(limits).max_file_bytes)
+            while size <= cap:
+                chunk = handle.read(min(1 << 16, cap + 1 - size))
+                if not chunk or (size == 0 and not _starts_like_xml(chunk)):  # the end, nothing to read without waiting, or not XML
+                    break
+                size += len(chunk)
+                parser.Parse(chunk, False)
     except (OSError, StopIteration, expat.ExpatError, LookupError, ValueError):
         pass
     return found[0] if found else None
-
-
-def _feed_until_found(handle: BinaryIO, parser: Any, found: list[str], cap: int) -> None:
-    """Give ``parser`` the file in chunks until it finds an element, the file ends, or ``cap`` bytes are read."""
-    size = 0
-    while not found and size <= cap:
-        chunk = handle.read(min(_CHUNK, cap + 1 - size))
-        if not chunk:  # the end, or nothing to read without waiting (None)
-            return
-        if size == 0 and not _starts_like_xml(chunk):
-            return  # not XML
-        size += len(chunk)
-        parser.Parse(chunk, False)
 
 
 def _starts_like_xml(chunk: bytes) -> bool:

@@ -255,7 +255,8 @@ class _Builder:
                 value, size = anchors[event.anchor]
             else:  # a mapping or a sequence starts
                 is_mapping = cls is yaml.MappingStartEvent
-                self.require_collection_tag(event, path, line, is_mapping)
+                if event.tag not in (None, "!", _MAP if is_mapping else _SEQ):
+                    raise self.fail(path, line, _unsupported_tag(event.tag))
                 if len(stack) >= max_depth:
                     how = ("set MOBILITY_MAX_DEPTH to raise it" if max_depth == self.limits.max_depth else
                            "the most a YAML document may nest whatever MOBILITY_MAX_DEPTH says: the reader's time grows with the square of the depth")
@@ -335,12 +336,6 @@ class _Builder:
             except ValueError as exc:
                 raise self.fail(path, line, str(exc)) from None
         return result
-
-    def require_collection_tag(self, event: Any, path: KeyPath, line: int, is_mapping: bool) -> None:
-        tag = event.tag
-        if tag is None or tag == "!" or tag == (_MAP if is_mapping else _SEQ):
-            return
-        raise self.fail(path, line, _unsupported_tag(tag))
 
 
 @lru_cache(maxsize=4096)
