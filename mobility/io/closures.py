@@ -42,9 +42,7 @@ CLOSURES_KEYS = ("description", "joints")
 
 
 def close_pairs(value: object) -> tuple[tuple[str, str], ...]:
-    """``value`` as pairs of body names ``((A, B), ...)``, refusing in one line what is not.
-
-    ``None`` is no pair; a bare pair ``("A", "B")`` is refused, not read as two pairs of letters.
+    """``value`` as pairs of body names ``((A, B), ...)`` (``None``: none; a bare pair ``("A", "B")`` is refused).
 
     Raises
     ------

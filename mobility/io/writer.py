@@ -69,15 +69,8 @@ NOISE_ULPS = 4
 
 
 def _number(x: float, scale: float = 1.0) -> str:
-    """``x`` as the shortest decimal within round-off of it, round-off written as 0; writing what it reads back to gives the same text.
-
-    Round-off below ``tol.round_off`` of ``scale`` is written as 0
-    (:func:`~mobility.core.tolerance.clean_numbers`); the last digits of a
-    sum of lengths (``0.1 + 0.05 = 0.15000000000000002``) are dropped: the
-    shortest decimal within :data:`NOISE_ULPS` units in the last place of
-    the number, or of ``scale``, whichever is larger, is written.  The text
-    is a fixed point: the number it reads back to is written as the same
-    text, so a second round trip is exact to the bit.
+    """``x`` as the shortest decimal within :data:`NOISE_ULPS` units in the last place of ``x`` or of ``scale``, round-off of
+    ``scale`` written as 0 (:func:`~mobility.core.tolerance.clean_numbers`); a fixed point: what it reads back to is written the same.
 
     Examples
     --------
@@ -106,24 +99,21 @@ def _written(x: float, scale: float) -> str:
         if abs(y - x) <= room:
             x = y
             break
-    if x.is_integer() and abs(x) < 2.0**53:
-        return str(int(x))
-    return repr(x)
+    return _integral(x) or repr(x)
+
+
+def _integral(x: float) -> str | None:
+    """``x`` written as an integer when it is one that a double holds exactly (``None`` otherwise)."""
+    return str(int(x)) if x.is_integer() and abs(x) < 2.0**53 else None
 
 
 def _direction(v: Iterable[float]) -> str:
     """A unit direction: each component the shortest decimal within units of its own last place, round-off written as 0, when they still make a vector of unit length (read as written); else to the last bit."""
     exact = [float(x) for x in v]
     short = [_number(x, 0.0) if abs(x) >= DEFAULT_TOLERANCE.round_off else "0" for x in exact]  # within units of its own last place
-    if math.hypot(*exact) == 1.0 and math.hypot(*(float(t) for t in short)) != 1.0:
-        return "[" + ", ".join(_bits(x) for x in exact) + "]"  # shorter digits would be normalised on reading: another vector
+    if math.hypot(*exact) == 1.0 and math.hypot(*(float(t) for t in short)) != 1.0:  # shorter digits would be normalised on reading
+        short = [_integral(x) or repr(x) for x in (clean_numbers(x, 1.0) for x in exact)]  # to the last bit: the same vector
     return "[" + ", ".join(short) + "]"
-
-
-def _bits(x: float) -> str:
-    """``x`` to the last bit, round-off of a unit direction written as 0."""
-    x = clean_numbers(x, 1.0)
-    return str(int(x)) if x.is_integer() and abs(x) < 2.0**53 else repr(x)
 
 
 def _vector(v: Iterable[float], scale: float = 1.0) -> str:
