@@ -24,12 +24,12 @@ from typing import Any, Iterator
 
 import numpy as np
 
+from ..core.expected import independent_of
 from ..core.model import Joint
 from ..core.tolerance import DEFAULT_TOLERANCE, characteristic_scale
+from ..core.validation import require_vector
 from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped, counted, one_line
 from .files import read_capped
-from .mjcf_actuators import actuator_inputs
-from .mjcf_couplings import add_coupling, tendons_held
 from .mjcf_scan import MjcfScan, scan_mjcf
 from .precision import mjcf_rounding
 from .robot_actuators import BallActuator
@@ -272,7 +272,7 @@ class _MjcfTree:
         bodies = tuple(self.body(i) for i in range(m.nbody))
         notes: list[str] = []
         unsupported: list[Unsupported] = []
-        actuated, balls = actuator_inputs(self, notes, unsupported)
+        actuated, balls = self.actuator_inputs(notes, unsupported)
         joints = tuple(self.joint(i, i in actuated, balls.get(i, ())) for i in range(m.njnt))
         if m.nflex:
             unsupported.append(Unsupported("flex", f"{m.nflex} deformable (flex) bodies are not supported; expected rigid bodies and joints",
@@ -281,7 +281,9 @@ class _MjcfTree:
         self.gap_angles: list[float] = []
         closures, welds, more, couplings = self.equalities(notes)
         unsupported += more
-        for i in sorted(set(range(m.ntendon)) - tendons_held(self)):
+        held = {int(o) for k in range(m.neq) if m.eq_active0[k] and int(m.eq_type[k]) == int(mj.mjtEq.mjEQ_TENDON)
+                for o in (m.eq_obj1id[k], m.eq_obj2id[k]) if o >= 0}  # tendons an active tendon equality names
+        for i in sorted(set(range(m.ntendon)) - held):
             tname = self.name("mjOBJ_TENDON", i) or f"tendon{i}"
             notes.append(f"tendon {clipped(tname)}{at_line(self.lines['tendon'].get(i))} is not imported: a tendon is not a joint (only an equality on it would constrain the mechanism)")
         for i in range(m.nbody):
@@ -344,7 +346,11 @@ class _MjcfTree:
                 notes.append(f"equality {tag} {clipped(name)}{at_line(line)} is inactive at start: left out")
                 continue
             if tag in ("joint", "tendon"):
-                add_coupling(self, k, tag, f"equality/{tag}[{clipped(name)}]", line, notes, couplings, unsupported)
+                coupling = self.equality_coupling(k, tag, f"equality/{tag}[{clipped(name)}]", line, notes)
+                if isinstance(coupling, Unsupported):
+                    unsupported.append(coupling)
+                else:
+                    couplings.append(coupling)
                 continue
             if tag == "flex":
                 unsupported.append(Unsupported(f"equality/flex[{clipped(name)}]", "a flex equality is not supported; expected connect or weld", line))
@@ -465,3 +471,115 @@ class _MjcfTree:
             anchor = d.xpos[o1] + rotation @ np.asarray(m.eq_data[k][:3])
         return o1, o2, self.finite(anchor, key, line)
 
+    def actuator_inputs(self, notes: list[str], unsupported: list[Unsupported]) -> tuple[set[int], dict[int, tuple[BallActuator, ...]]]:
+        """The hinges and slides actuators drive, and the inputs of each driven ball joint: one actuator, one input.
+
+        An actuator with a joint transmission drives a hinge's or slide's rate
+        (several on one joint: one input, a note), or a ball joint's rotation about
+        ``xmat @ gear[:3]`` in the global frame (``jointinparent`` is the same at
+        ``qpos0``): a :class:`~mobility.io.robot_actuators.BallActuator`; one whose
+        axis earlier ones span adds no input (a note), one of axis ``0 0 0`` is
+        unsupported, as is one on a free joint (a six-number gear).  Actuators on
+        tendons, sites or bodies drive no joint (a note).
+        """
+        m, trn, types = self.m, self.mj.mjtTrn, self.mj.mjtJoint
+        out: set[int] = set()
+        drivers: dict[int, list[str]] = {}
+        balls: dict[int, list[BallActuator]] = {}
+        for a in range(m.nu):
+            kind = int(m.actuator_trntype[a])
+            aname = self.name("mjOBJ_ACTUATOR", a) or f"actuator{a}"
+            line = self.lines["actuator"].get(a)
+            if kind not in (int(trn.mjTRN_JOINT), int(trn.mjTRN_JOINTINPARENT)):
+                what = {int(trn.mjTRN_TENDON): "a tendon", int(trn.mjTRN_SITE): "a site", int(trn.mjTRN_BODY): "a body",
+                        int(trn.mjTRN_SLIDERCRANK): "a slider-crank"}.get(kind, "no joint")
+                notes.append(f"actuator {clipped(aname)}{at_line(line)} drives {what}, not a joint: no joint is marked actuated for it")
+                continue
+            joint = int(m.actuator_trnid[a][0])
+            jtype, jname, key = int(m.jnt_type[joint]), self.joint_name(joint), f"actuator[{clipped(aname)}]"
+            if jtype == int(types.mjJNT_FREE):
+                unsupported.append(Unsupported(key, f"an actuator on the free joint {clipped(jname)} is not supported: it is one input along its "
+                                               "six-number gear (a force and a torque together), which no joint of the model expresses as one input "
+                                               "(an actuated free joint would be six inputs); expected actuators on hinge, slide or ball joints", line))
+            elif jtype == int(types.mjJNT_BALL):
+                ball = self.ball_actuator(a, aname, joint, kind == int(trn.mjTRN_JOINTINPARENT), line)
+                if ball is None:
+                    unsupported.append(Unsupported(key, f"its gear on the ball joint {clipped(jname)} has 0 0 0 as its first three numbers, the axis it "
+                                                   "turns about: it drives nothing; expected a non-zero axis", line))
+                else:
+                    balls.setdefault(joint, []).append(ball)
+            else:
+                out.add(joint)
+                drivers.setdefault(joint, []).append(f"{clipped(aname)}{at_line(line)}")
+        for joint, names in drivers.items():
+            if len(names) > 1:
+                notes.append(f"actuators {', '.join(names)} all drive joint {clipped(self.joint_name(joint))}: one input (its one freedom), not {len(names)}")
+        return out, {joint: _independent(self.joint_name(joint), inputs, notes) for joint, inputs in balls.items()}
+
+    def ball_actuator(self, a: int, aname: str, joint: int, in_parent: bool, line: int | None) -> BallActuator | None:
+        """The input of actuator ``a`` on a ball joint: its axis in the global frame at ``qpos0`` (``None``: a zero axis)."""
+        gear = np.asarray(self.m.actuator_gear[a][:3], dtype=float)
+        if not np.any(gear):
+            return None
+        body = int(self.m.jnt_bodyid[joint])
+        with np.errstate(all="ignore"):  # an overflow is refused just below, in one line
+            axis = np.asarray(self.d.xmat[body], dtype=float).reshape(3, 3) @ gear
+        key = f"actuator[{clipped(aname)}]/@gear"
+        try:
+            unit = require_vector(self.finite(axis, key, line), key, direction=True)
+        except MechanismError as exc:  # numbers too small to keep a direction
+            raise MechanismFileError(key, exc.message, file=self.file, line=line) from None
+        return BallActuator(aname, unit, in_parent, line)
+
+    def equality_coupling(self, k: int, tag: str, key: str, line: int | None, notes: list[str]) -> TreeCoupling | Unsupported:
+        """Equality ``k`` on joints or fixed tendons as a coupling of joint rates at ``qpos0``.
+
+        ``<equality><joint joint1 joint2 polycoef>`` holds ``q1 - q1_0 = c0 + c1 d
+        + c2 d^2 + c3 d^3 + c4 d^4`` with ``d = q2 - q2_0`` (``q_0`` at ``qpos0``):
+        there the rates obey ``q1' - c1 q2' = 0``.  A tendon equality holds the
+        same of two fixed tendons' lengths ``sum coef_j q_j``.  A nonlinear
+        polynomial acts through its slope ``c1`` (a note); an equality holding a
+        joint still and a spatial tendon are unsupported.
+        """
+        m = self.m
+        first, second = int(m.eq_obj1id[k]), int(m.eq_obj2id[k])
+        poly = [float(x) for x in m.eq_data[k][:5]]
+        kind_name = "mjOBJ_JOINT" if tag == "joint" else "mjOBJ_TENDON"
+        shown = ", ".join(clipped(self.name(kind_name, o) or str(o)) for o in (first, second) if o >= 0)
+        if tag == "joint":
+            terms = {first: 1.0}
+            if second >= 0 and poly[1] != 0.0:
+                terms[second] = terms.get(second, 0.0) - poly[1]
+        else:
+            terms = {}
+            for tendon, sign in ((first, 1.0), (second, -poly[1])):
+                if tendon < 0 or sign == 0.0:
+                    continue
+                start = int(m.tendon_adr[tendon])
+                for w in range(start, start + int(m.tendon_num[tendon])):
+                    if int(m.wrap_type[w]) != int(self.mj.mjtWrap.mjWRAP_JOINT):
+                        return Unsupported(key, f"a coupling of tendons ({shown}) on a spatial tendon is not supported; expected fixed tendons (of joints)", line)
+                    joint = int(m.wrap_objid[w])
+                    terms[joint] = terms.get(joint, 0.0) + sign * float(m.wrap_prm[w])
+        terms = {j: c for j, c in terms.items() if c != 0.0}
+        if len(terms) < 2:
+            held = ", ".join(clipped(self.joint_name(j)) for j in terms) or shown
+            return Unsupported(key, f"an equality of {tag}s ({shown}) that holds {held} still at qpos0 (no second {tag}, or a zero slope) is not supported; "
+                               "expected a coupling of two or more joint rates", line)
+        if any(x != 0.0 for x in poly[2:]):
+            notes.append(f"equality {tag} {clipped(self.name('mjOBJ_EQUALITY', k) or key)}{at_line(line)} is not linear (polycoef {' '.join(f'{x:g}' for x in poly)}): "
+                         f"its coupling acts through its slope at qpos0, {poly[1]:g}, and holds at this pose only")
+        return TreeCoupling(key, tuple(self.joint_name(j) for j in terms), tuple(terms.values()), line)
+
+
+def _independent(joint: str, inputs: list[BallActuator], notes: list[str]) -> tuple[BallActuator, ...]:
+    """The inputs of a ball joint whose axes are independent of those before them; a note for each other one."""
+    kept: list[BallActuator] = []
+    for ball in inputs:
+        if independent_of([k.axis for k in kept], ball.axis):
+            kept.append(ball)
+            continue
+        others = ", ".join(clipped(k.name) for k in kept)
+        notes.append(f"actuator {clipped(ball.name)}{at_line(ball.line)} turns the ball joint {clipped(joint)} about an axis "
+                     f"that actuator{'s' if len(kept) > 1 else ''} {others} already drive{'' if len(kept) > 1 else 's'}: it adds no input")
+    return tuple(kept)
