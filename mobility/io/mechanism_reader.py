@@ -1,9 +1,7 @@
-"""The reader of a parsed mechanism document (YAML, version 1 and its extensions): :class:`MechanismReader`.
+"""The reader of a parsed mechanism document: :class:`MechanismReader`.
 
-It turns the document's keys into :class:`~mobility.core.model.Mechanism`
-fields, each checked once, every error named by file, line and key
-(``docs/file-format.md``); :mod:`mobility.io.loader` parses files and texts
-and hands them here, :mod:`mobility.io.closures` reads closing joints with it.
+It turns the keys of ``docs/file-format.md`` (version 1 and its extensions) into :class:`~mobility.core.model.Mechanism`
+fields, each checked once, every error at its file, line and key.
 
 Examples
 --------
@@ -100,12 +98,10 @@ class MechanismReader(DocumentReader):
         return mechanism
 
     def link_notes(self, mechanism: Mechanism, sources: list[KeyPath]) -> list[str]:
-        """Warnings on link names that look misspelt: a link only one joint names, close to the name of a link the mechanism holds by more.
+        """Warnings on link names that look misspelt (``slidr`` beside ``slider``: another mechanism): a link only one joint
+        names, close to a link named by more and not of its numbered family (``tip1``, ``tip2``).
 
-        (``slidr`` beside ``slider``: the file silently describes another
-        mechanism).  A numbered family (``tip1``, ``tip2``) is no misspelling;
-        a file with more than :data:`MOST_LINKS_NAMED_ONCE` links named once is
-        generated, and not searched.
+        A file with more than :data:`MOST_LINKS_NAMED_ONCE` links named once is generated, and not searched.
         """
         uses = Counter(link for j in mechanism.joints for link in j.links)
         ends = (mechanism.ground, mechanism.end_effector)

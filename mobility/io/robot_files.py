@@ -48,10 +48,7 @@ _ROOTS = {"mujoco": "mjcf", "robot": "urdf"}
 
 
 def robot_format(path: str | Path) -> str | None:
-    """``"mjcf"``, ``"urdf"``, or ``None`` for a file that is not a robot description.
-
-    The extension decides, else the first XML element (YAML files are never read).
-    """
+    """``"mjcf"``, ``"urdf"``, or ``None`` for a file that is not a robot description: by extension, else its first element."""
     suffix = Path(file_name(path, "robot_format")).suffix.lower()
     if suffix in (".yaml", ".yml"):
         return None
@@ -107,11 +104,8 @@ def read_robot(path: str | Path, options: RobotOptions | None = None, **option_v
 
 
 def _closures_named_apart(tree: RobotTree) -> RobotTree:
-    """The tree with each closing joint named apart from the joints (and the other closing joints), with a note for each renamed.
-
-    MuJoCo keeps connects and joints apart, the joint graph cannot: a clash
-    gets ``~2``, ``~3``, ...  The names the file's joints take (with their
-    ``~k``) are set aside first.
+    """The tree with each closing joint named apart from the joints and the other closing joints (``~2``, ``~3``, ...: MuJoCo
+    keeps connects and joints apart, the joint graph cannot), with a note for each renamed.
 
     Examples
     --------
@@ -143,10 +137,8 @@ def _closures_named_apart(tree: RobotTree) -> RobotTree:
 
 
 def require_no_robot_options(path: str | Path, option_values: dict[str, Any], spelling: Mapping[str, str] | None = None) -> None:
-    """Refuse the robot options given for a mechanism file (YAML); options left at their defaults pass.
-
-    ``spelling`` names the options as the caller's user wrote them, in its
-    order (the command line's ``--ground``); by default by keyword, sorted.
+    """Refuse the robot options given for a mechanism file (YAML), options left at their defaults passing; ``spelling`` names
+    them as the caller's user wrote them, in its order (the command line's ``--ground``), else by keyword, sorted.
 
     Raises
     ------

@@ -71,8 +71,7 @@ def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False
     Parameters
     ----------
     mujoco : bool
-        Read the text as MuJoCo's parser does (UTF-8 whatever the declaration
-        says), refusing what it would read differently (see the module docstring).
+        Refuse what MuJoCo's parser would read differently (see the module docstring).
 
     Raises
     ------
@@ -176,11 +175,8 @@ def _raw_value(source: bytes, start: int, name: bytes) -> bytes | None:
 
 
 def require_no_underflow(words: list[str], values: list[float]) -> list[float]:
-    """``values`` unless a number written non-zero reads as 0 (too small for a double: ``1e-400``); else a ``ValueError`` saying which.
-
-    ``float`` (and MuJoCo's ``strtod``) read it as 0 without a word; ``words``
-    are the numbers as written, ``values`` what each reads as
-    (the rule of :func:`~mobility.io.expressions.require_literal`).
+    """``values`` (what ``words`` read as) unless a number written non-zero reads as 0 (``1e-400``; ``float`` and MuJoCo's
+    ``strtod`` say nothing); else a ``ValueError`` saying which (:func:`~mobility.io.expressions.require_literal`).
 
     Examples
     --------
@@ -200,23 +196,13 @@ def require_no_underflow(words: list[str], values: list[float]) -> list[float]:
 
 
 def read_xml(path: str | Path) -> XmlDocument:
-    """Read and parse an XML file (see :func:`parse_xml`).
-
-    Raises
-    ------
-    MechanismFileError
-        When the file cannot be read, passes the size limit or is not well-formed XML.
-    RequestError
-        When ``path`` is not a file name.
-    """
+    """Read and parse an XML file (:func:`~mobility.io.files.read_capped`, then :func:`parse_xml`)."""
     return parse_xml(read_capped(file_name(path, "read_xml")), str(path))
 
 
 def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
-    """The tag of the first element of an XML file, or ``None`` if it is not XML.
-
-    Reads in chunks until the first start tag, never beyond the size limit.
-    A directory or a device gives ``None`` without being opened.
+    """The tag of the first element of an XML file, or ``None`` if it is not XML (or a directory or a device, not opened);
+    read in chunks until the first start tag, never beyond the size limit.
 
     Raises
     ------

@@ -80,10 +80,7 @@ def format_key(path: KeyPath) -> str:
 
 @dataclass
 class Positions:
-    """Line numbers of the nodes of a YAML document, by key path.
-
-    The content reached through an alias has the line of the alias.
-    """
+    """Line numbers of the nodes of a YAML document, by key path (the content reached through an alias: the alias's line)."""
 
     lines: dict[KeyPath, int] = field(default_factory=dict)
 
@@ -96,13 +93,7 @@ class Positions:
 
 
 def read_text(path: str | Path, limits: Limits | None = None) -> str:
-    """The text of a document file, read with the size cap of ``limits`` (:func:`read_capped`).
-
-    Raises
-    ------
-    MechanismFileError
-        As :func:`read_capped`, or not UTF-8 (at the line of the first bad byte).
-    """
+    """The text of a document file, read with the size cap of ``limits`` (:func:`read_capped`), refused if not UTF-8."""
     raw = read_capped(path, limits)
     try:
         return raw.decode("utf-8")
@@ -144,10 +135,8 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
 
 
 YAML_DEPTH_BOUND = 1000
-"""The most levels a YAML document may nest, whatever :attr:`Limits.max_depth` says.
-
-PyYAML's pure-Python reader spends time growing with the square of the depth
-(50,000 deep: past 90 s at 3 GB); at this bound, about a second."""
+"""The most levels a YAML document may nest, whatever :attr:`Limits.max_depth` says: PyYAML's pure-Python reader spends
+time growing with the square of the depth (50,000 deep: past 90 s at 3 GB); at this bound, about a second."""
 
 _LIBYAML_NESTING = "exceeded maximum nesting depth"
 """libyaml's problem when more than its 1,000 flow collections are open at once."""
@@ -349,9 +338,7 @@ _SEXAGESIMAL = re.compile(r"[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+(?:\.[0-9_]*)?")
 
 
 def _yaml11_only_number(tag: str, value: str) -> str | None:
-    """Why ``value`` is refused as a number, when YAML 1.1 and YAML 1.2 read it differently.
-
-    YAML 1.1 (PyYAML) reads ``010`` as octal 8 and ``1:30`` as 90, YAML 1.2 as ten and a string.
+    """Why ``value`` is refused as a number, when YAML 1.1 (PyYAML: ``010`` is 8, ``1:30`` is 90) and YAML 1.2 read it differently.
 
     Examples
     --------
