@@ -67,7 +67,6 @@ def read_mechanism(data: Any, positions: Positions, file: str = "<string>", *, l
 class MechanismReader(DocumentReader):
     """Turns a parsed mechanism document into a Mechanism, translating every error to file:line: key."""
 
-    # -- document ---------------------------------------------------------
     def mechanism(self, data: Any) -> Mechanism:
         if is_flexure_document(data):
             raise self.fail(("elements",), "a flexure document, not a mechanism: read it with mobility.load_flexure (on the command line: mobility actuation)")

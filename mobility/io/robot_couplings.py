@@ -1,9 +1,7 @@
 """Couplings of joint rates in a robot description, and the model's couplings they become.
 
-A reader lists each relation between joint rates (an MJCF joint or tendon
-equality, a URDF ``<mimic>``) as a :class:`TreeCoupling` on the tree's joint
-names; :func:`model_couplings` turns them into :class:`~mobility.core.model.Coupling` s
-on the model's joint names, each error naming the element and its line.
+A reader lists each (an MJCF joint or tendon equality, a URDF ``<mimic>``) as a :class:`TreeCoupling` on the tree's
+joint names; :func:`model_couplings` turns them into :class:`~mobility.core.model.Coupling` s on the model's.
 
 Examples
 --------
