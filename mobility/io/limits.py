@@ -153,11 +153,6 @@ def require_size(mechanism: Mechanism, limit: str, what: str, file: str) -> None
         The field of :class:`Limits` (``"max_finite_joints"``).
     what : str
         What the limit is for, as the user asked it (``"--finite"``).
-
-    Raises
-    ------
-    MechanismFileError
-        ``FILE: joints: N joints are more than the limit of L for WHAT (set MOBILITY_... to raise it)``.
     """
     limits = current_limits()
     bound = getattr(limits, limit)

@@ -33,8 +33,8 @@ from .files import read_capped
 from .mjcf_scan import MjcfScan, scan_mjcf
 from .precision import mjcf_rounding
 from .robot_actuators import BallActuator
-from .robot_couplings import TreeCoupling
-from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name, vector_tuple
+from .robot_tree import (Body, Closure, RobotTree, TreeCoupling, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name,
+                         vector_tuple)
 from .xml_source import parse_xml
 
 __all__ = ["read_mjcf", "import_mujoco"]
@@ -49,13 +49,7 @@ _FINITE = "expected positions and directions whose numbers stay finite (smaller 
 
 
 def import_mujoco() -> ModuleType:
-    """The ``mujoco`` module, or an error saying which extra installs it.
-
-    Raises
-    ------
-    MissingExtraError
-        When the ``mujoco`` package cannot be imported.
-    """
+    """The ``mujoco`` module, or a :class:`~mobility.errors.MissingExtraError` saying which extra installs it."""
     try:
         return import_module("mujoco")
     except ImportError as exc:
@@ -376,10 +370,8 @@ class _MjcfTree:
     def equality_gaps(self, notes: list[str]) -> dict[int, str]:
         """How far each active connect or weld is from holding at qpos0, where it is; a note when the file turns equalities off.
 
-        From the first three constraint rows (``efc_pos``) of ``mj_forward`` at
-        ``qpos0`` and :meth:`weld_angle`: above ``Tolerance.rank`` of the joints'
-        characteristic length (not ``<statistic extent>``, which a file sets at
-        will) or radians.  Made even where ``<option><flag>`` turns equalities off.
+        From the first three constraint rows (``efc_pos``) of ``mj_forward`` and :meth:`weld_angle`: above ``Tolerance.rank``
+        of the joints' characteristic length (not ``<statistic extent>``, which a file sets at will) or radians.
         """
         m, mj = self.m, self.mj
         kinds = (int(mj.mjtEq.mjEQ_CONNECT), int(mj.mjtEq.mjEQ_WELD))

@@ -31,20 +31,19 @@ import math
 from collections import deque
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Iterable, cast
+from typing import Iterable, Mapping, Sequence, cast
 
 import numpy as np
 
-from ..core.model import Joint, Mechanism
+from ..core.model import Coupling, Joint, Mechanism, require_couplings
 from ..core.tolerance import DEFAULT_TOLERANCE, file_tolerance
 from ..errors import MechanismError, MechanismFileError, clipped, counted, did_you_mean
 from .limits import current_limits
 from .precision import Rounding, file_precision
 from .robot_actuators import BallActuator, ball_chain, ball_chain_names
-from .robot_couplings import TreeCoupling, model_couplings
 
-__all__ = ["Body", "TreeJoint", "Closure", "Weld", "Unsupported", "RobotTree", "RobotOptions", "ImportedRobot", "build_mechanism", "JOINT_KINDS",
-           "rotation_tuple", "vector_tuple", "at_line", "unique_name", "model_joint_names"]
+__all__ = ["Body", "TreeJoint", "Closure", "Weld", "Unsupported", "TreeCoupling", "RobotTree", "RobotOptions", "ImportedRobot", "build_mechanism",
+           "model_couplings", "JOINT_KINDS", "rotation_tuple", "vector_tuple", "at_line", "unique_name", "model_joint_names"]
 
 Vector = tuple[float, float, float]
 Rotation = tuple[Vector, Vector, Vector]
@@ -108,6 +107,16 @@ class Unsupported:
 
     key: str
     message: str
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class TreeCoupling:
+    """``sum coefficients[j] * rate(joints[j]) = 0`` on hinges and slides of the tree (by name); ``key`` names the element for messages."""
+
+    key: str
+    joints: tuple[str, ...]
+    coefficients: tuple[float, ...]
     line: int | None = None
 
 
@@ -306,6 +315,45 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     except MechanismError as exc:
         raise MechanismFileError(exc.key, exc.message, file=tree.file) from None
     return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files, tuple(closing))
+
+
+def model_couplings(couplings: Iterable[TreeCoupling], kinds: Mapping[str, str], model_name: Mapping[str, str], file: str, joints: Sequence[Joint]) -> tuple[Coupling, ...]:
+    """The model's couplings of the tree's ``couplings`` (each an MJCF joint or tendon equality, a URDF ``<mimic>``) on its ``joints`` (``model_name`` of each hinge and slide the mechanism holds; ``kinds`` of every tree joint).
+
+    Raises
+    ------
+    MechanismFileError
+        At the element's line: a joint that is no hinge or slide, one the
+        mechanism does not hold (welded still), a malformed coupling, or one
+        of slides and turns together.
+
+    Examples
+    --------
+    >>> slides = [Joint(n, "P", ("g", n), axis=(0, 1, 0)) for n in ("r", "l")]
+    >>> model_couplings((TreeCoupling("joint[r]/mimic", ("r", "l"), (1.0, -1.0), 5),), {"r": "slide", "l": "slide"}, {"r": "r", "l": "l"}, "g.urdf", slides)
+    (Coupling(joints=('r', 'l'), coefficients=(1.0, -1.0)),)
+    >>> model_couplings((TreeCoupling("joint[r]/mimic", ("r", "b"), (1.0, -1.0), 5),), {"r": "slide", "b": "ball"}, {"r": "r"}, "g.urdf", slides)
+    Traceback (most recent call last):
+    ...
+    mobility.errors.MechanismFileError: g.urdf:5: joint[r]/mimic: couples joint 'b', a ball joint, not a hinge or slide; expected hinges and slides that move
+    """
+    out = []
+    listed = tuple(couplings)
+    for c in listed:
+        for name in c.joints:
+            if name not in model_name:
+                kind = kinds.get(name)
+                why = f"a {kind} joint, not a hinge or slide" if kind not in (None, "hinge", "slide") else "a joint the mechanism does not hold (welded or fixed)"
+                raise MechanismFileError(c.key, f"couples joint {clipped(name)!r}, {why}; expected hinges and slides that move", file=file, line=c.line)
+        try:
+            out.append(Coupling(tuple(model_name[n] for n in c.joints), c.coefficients))
+        except MechanismError as exc:
+            raise MechanismFileError(c.key, exc.message, file=file, line=c.line) from None
+    try:
+        return require_couplings(out, joints)
+    except MechanismError as exc:  # couplings[k]...: the element that wrote it
+        c = listed[int(exc.key[len("couplings["):].split("]", 1)[0])]
+        raise MechanismFileError(c.key, exc.message, file=file, line=c.line) from None
 
 
 def at_line(line: int | None) -> str:

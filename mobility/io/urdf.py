@@ -45,8 +45,7 @@ from ..core.transforms import Transform, rotation_from_rpy
 from ..errors import clipped, did_you_mean, one_line
 from .files import file_name
 from .precision import DigitCounter
-from .robot_couplings import TreeCoupling
-from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
+from .robot_tree import Body, RobotTree, TreeCoupling, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml, require_no_underflow
 
 __all__ = ["read_urdf", "URDF_JOINT_KINDS"]
