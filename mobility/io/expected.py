@@ -70,8 +70,7 @@ def read_expected(reader: DocumentReader, value: Any, keys: tuple[str, ...]) -> 
         are not a basis (at that direction's line).
     """
     path: KeyPath = ("expected",)
-    data = reader.mapping(value, path, "expected results")
-    reader.require_known_keys(data, keys, path, "the expected block")
+    data = reader.record(value, path, "the expected block", keys, described="expected results")
     fields: dict[str, Any] = {}
     extra: dict[str, Any] = {}
     for key, raw in data.items():

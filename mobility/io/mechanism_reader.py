@@ -271,8 +271,7 @@ class MechanismReader(DocumentReader):
         lim = self.limits
         for k, raw in enumerate(value):
             path: KeyPath = ("limbs", k)
-            limb = self.mapping(raw, path, "a limb pattern with copies and joints")
-            self.require_known_keys(limb, LIMB_KEYS, path, "a limb pattern")
+            limb = self.record(raw, path, "a limb pattern", LIMB_KEYS, ("joints",), described="a limb pattern with copies and joints")
             copies = limb.get("copies")
             if isinstance(copies, bool) or not isinstance(copies, int) or copies < 1:
                 raise self.fail(path + ("copies",), f"expected a positive integer, got {describe_value(copies)}")
@@ -286,8 +285,6 @@ class MechanismReader(DocumentReader):
                 raise self.fail(path + ("index",), f"{index!r} is a constant or a function of the expressions; choose another name for the index")
             if index in self.names:
                 raise self.fail(path + ("index",), f"{index!r} is already a parameter; choose another name for the index")
-            if "joints" not in limb:
-                raise self.fail(path + ("joints",), "missing required key of a limb pattern")
             if not isinstance(limb["joints"], list):
                 raise self.fail(path + ("joints",), f"expected a list of joints, got {describe_value(limb['joints'])}")
             total += copies * len(limb["joints"])

@@ -174,8 +174,7 @@ class DocumentReader:
     def units(self, value: Any) -> str:
         if value is None:
             return ""
-        units = self.mapping(value, ("units",), "units")
-        self.require_known_keys(units, ("angle", "length"), ("units",), "units")
+        units = self.record(value, ("units",), "units", ("angle", "length"))
         angle = units.get("angle", "deg")
         self.angle_unit_given = "angle" in units
         if angle in ("deg", "degree", "degrees"):
@@ -273,9 +272,9 @@ class DocumentReader:
                                     f"this one turns by only {value:g} deg; if {value:g} rad ({math.degrees(value):.6g} deg) was meant, give units: {{angle: rad}}"))]
 
     def frame(self, name: str, data: Any, path: KeyPath, names: Mapping[str, float]) -> Frame:
-        fdata = self.mapping(data if data is not None else {}, path, "a frame with origin, rpy, parent")
+        allowed = FRAME_KEYS + (("name",) if path[0] == "limbs" else ())
+        fdata = self.record(data if data is not None else {}, path, "a frame", allowed, described="a frame with origin, rpy, parent")
         self.frame_paths.setdefault(name, path)
-        self.require_known_keys(fdata, FRAME_KEYS + (("name",) if path[0] == "limbs" else ()), path, "a frame")
         origin = self.vector(fdata["origin"], path + ("origin",), names) if "origin" in fdata else (0.0, 0.0, 0.0)
         if "rpy" in fdata and ("axis" in fdata or "angle" in fdata):
             raise self.fail(path, "give either rpy or axis and angle, not both")
