@@ -207,16 +207,8 @@ _SIZES = ("nkey", "nuserdata", "memory", "njmax", "nconmax", "nstack",
 
 
 def _kinematics_only(mujoco: ModuleType, spec: Any) -> None:
-    """Leave out of ``spec`` what kinematics at ``qpos0`` does not need and MuJoCo would read, allocate or check.
-
-    Meshes, height fields, textures and skins need files on disk (a file whose
-    mesh files are absent imports).  A 100-byte file could cost minutes or
-    gigabytes: ``<size nkey="1000000">``, ``memory="100G"``, history buffers
-    (``nsample``), huge sensors, ``<lengthrange mode="all">``.  A moving body
-    below ``mjMINVAL`` in mass or inertia is refused by MuJoCo: small bounds
-    are set where the file sets none.  ``fusestatic`` is off so that every
-    body the file names stays one (for ``--end-effector``).
-    """
+    """Leave out of ``spec`` what kinematics at ``qpos0`` does not need and MuJoCo would read, allocate or refuse: asset files,
+    what could cost minutes or gigabytes (``<size nkey="1000000">``), mass bounds; the list and why: ``docs/robot-files.md``."""
     kinds = mujoco.mjtGeom
     for geom in spec.geoms:
         if geom.type in (kinds.mjGEOM_MESH, kinds.mjGEOM_HFIELD, kinds.mjGEOM_SDF):
@@ -464,16 +456,8 @@ class _MjcfTree:
         return o1, o2, self.finite(anchor, key, line)
 
     def actuator_inputs(self, notes: list[str], unsupported: list[Unsupported]) -> tuple[set[int], dict[int, tuple[BallActuator, ...]]]:
-        """The hinges and slides actuators drive, and the inputs of each driven ball joint: one actuator, one input.
-
-        An actuator with a joint transmission drives a hinge's or slide's rate
-        (several on one joint: one input, a note), or a ball joint's rotation about
-        ``xmat @ gear[:3]`` in the global frame (``jointinparent`` is the same at
-        ``qpos0``): a :class:`~mobility.io.robot_actuators.BallActuator`; one whose
-        axis earlier ones span adds no input (a note), one of axis ``0 0 0`` is
-        unsupported, as is one on a free joint (a six-number gear).  Actuators on
-        tendons, sites or bodies drive no joint (a note).
-        """
+        """The hinges and slides actuators drive, and the inputs of each driven ball joint (one actuator, one input; the
+        rules: ``docs/robot-files.md``): about ``xmat @ gear[:3]`` in the global frame, the same for ``jointinparent`` at ``qpos0``."""
         m, trn, types = self.m, self.mj.mjtTrn, self.mj.mjtJoint
         out: set[int] = set()
         drivers: dict[int, list[str]] = {}
@@ -524,15 +508,8 @@ class _MjcfTree:
         return BallActuator(aname, unit, in_parent, line)
 
     def equality_coupling(self, k: int, tag: str, key: str, line: int | None, notes: list[str]) -> TreeCoupling | Unsupported:
-        """Equality ``k`` on joints or fixed tendons as a coupling of joint rates at ``qpos0``.
-
-        ``<equality><joint joint1 joint2 polycoef>`` holds ``q1 - q1_0 = c0 + c1 d
-        + c2 d^2 + c3 d^3 + c4 d^4`` with ``d = q2 - q2_0`` (``q_0`` at ``qpos0``):
-        there the rates obey ``q1' - c1 q2' = 0``.  A tendon equality holds the
-        same of two fixed tendons' lengths ``sum coef_j q_j``.  A nonlinear
-        polynomial acts through its slope ``c1`` (a note); an equality holding a
-        joint still and a spatial tendon are unsupported.
-        """
+        """Equality ``k`` on joints or fixed tendons as a coupling of joint rates at ``qpos0``, through the slope ``polycoef[1]``
+        (``q1' - c1 q2' = 0``; for tendons, of their lengths ``sum coef_j q_j``; ``docs/robot-files.md``)."""
         m = self.m
         first, second = int(m.eq_obj1id[k]), int(m.eq_obj2id[k])
         poly = [float(x) for x in m.eq_data[k][:5]]

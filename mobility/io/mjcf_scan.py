@@ -57,12 +57,8 @@ MUJOCO_EPS = 1e-14
 
 DIRECTIONS = {"quat": "no rotation", "axisangle": "no rotation", "zaxis": "the direction +z or -z", "axis": "a zero axis",
               "fromto": "the direction +z or -z", "relpose": "a zero quaternion"}
-"""Attributes whose direction MuJoCo normalizes, and what it silently uses when their sum of squares overflows.
-
-MuJoCo divides by the root of the double-precision sum of squares
-(``mjuu_normvec``): from about ``1e154`` it overflows and the result is a zero
-vector; a quaternion whose sum is below :data:`MUJOCO_EPS` stays unnormalized,
-another rotation."""
+"""Attributes whose direction MuJoCo normalizes (``mjuu_normvec``), and what it silently uses when their double-precision
+sum of squares overflows (from about ``1e154``); a quaternion whose sum is below :data:`MUJOCO_EPS` stays unnormalized."""
 
 _COUNTED = {"replicate", "flexcomp", "composite"}
 _RESOLUTIONS = {"supersphere": (1, 2), "supertorus": (1, 2), "wedge": (2, 1), "plate": (2, 1), "cone": (1, 1)}

@@ -4,14 +4,9 @@ Files written by CAD exporters hold about six significant digits: their loops cl
 size, and a finer rank decision is about the rounding, not the mechanism (``docs/robot-files.md``).  The precision,
 relative to the characteristic length (:func:`~mobility.core.tolerance.characteristic_scale`), is the larger of:
 
-* **its digits** (:class:`DigitCounter`): when the median count of significant
-  digits of the placing numbers written with two or more is ``D >=``
-  :data:`ROUNDED_DIGITS`, each number ``x`` is known to half a unit of its
-  ``D``-th digit, ``0.5 * 10**(floor(log10|x|) - D + 1)`` (a length divided by
-  the characteristic length, an angle in radians, a quaternion component twice);
-* **its loops**: the largest relative gap of a loop closure at the file's pose
-  (a weld's angle in radians), gaps above :data:`ASSEMBLED` left out (a file
-  not assembled there, not rounding).
+* **its digits** (:class:`DigitCounter`): rounded to ``D >=`` :data:`ROUNDED_DIGITS` digits, each number ``x`` is known to
+  ``0.5 * 10**(floor(log10|x|) - D + 1)`` (a length over the characteristic length, an angle in radians);
+* **its loops**: the largest relative gap of a loop closure at the pose, up to :data:`ASSEMBLED`.
 
 :func:`~mobility.core.tolerance.file_tolerance` turns it into the rank threshold.
 

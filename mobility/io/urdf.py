@@ -1,15 +1,9 @@
 """Read URDF files: links and joints at the zero pose.
 
-Each joint's ``<origin>`` places the child frame in the parent's (``xyz``, and
-``rpy`` with ``R = Rz(yaw) Ry(pitch) Rx(roll)``); its ``<axis>`` (default
-``1 0 0``) is in the child frame.  How joints, ``<transmission>`` and
-``<mimic>`` map, and closing loops: ``docs/robot-files.md``.
-
-Numbers are plain ASCII decimals, as MuJoCo's URDF compiler reads them (not
-``1_0``, other scripts' digits, ``nan``, ``inf`` or an underflow such as
-``1e-400``); a repeated element of a joint is refused, as MuJoCo refuses it.
-The standard library's XML parser suffices (a URDF library would bring meshes
-and their dependencies); geometry is not read.
+Each joint's ``<origin>`` places the child frame in the parent's; its ``<axis>`` (default ``1 0 0``) is in the child
+frame.  How elements map, which numbers are read (as MuJoCo's URDF compiler reads them) and closing loops:
+``docs/robot-files.md``.  The standard library's XML parser suffices (a URDF library would bring meshes and their
+dependencies); geometry is not read.
 
 Examples
 --------

@@ -1,14 +1,10 @@
 """YAML documents with the line of every key, read within bounded time and memory.
 
 :func:`parse_yaml` returns plain data and a :class:`Positions` table from key
-paths to 1-based lines.  The document is built from the parser's events
-(libyaml's, or PyYAML's own), in one loop with an explicit stack, every bound
-of :class:`~mobility.io.limits.Limits` checked as the nodes arrive: depth,
-and nodes with every alias expanded (an alias bomb stops, although values are
-shared as PyYAML shares them).  A recursive or undefined alias, a second
-document, a tag (plain YAML only), a merge key (``<<``), a duplicate key, a
-collection as a key and a control character are errors.  Keys are kept as
-written (``on:`` is ``"on"``, not ``True``).
+paths to 1-based lines.  The document is built from the parser's events (libyaml's, or PyYAML's own), in one loop
+with an explicit stack, every bound of :class:`~mobility.io.limits.Limits` checked as the nodes arrive (an alias bomb
+stops, although values are shared as PyYAML shares them).  What is refused: ``docs/file-format.md`` (Strictness);
+keys are kept as written (``on:`` is ``"on"``, not ``True``).
 
 Examples
 --------
@@ -109,7 +105,7 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
     ------
     MechanismFileError
         On a YAML syntax error (with its line), a limit passed, or any
-        construct listed in the module docstring.
+        construct the format refuses (see the module docstring).
     """
     if not isinstance(text, str):
         raise RequestError(caller="parse_yaml", expected="the text of a document (str)", got=type(text).__name__)
