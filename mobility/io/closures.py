@@ -1,10 +1,8 @@
 """Loop closures a robot description cannot express: ``--close A B`` pairs and a side file.
 
-For URDF and MJCF alike (``docs/robot-files.md``): ``--close A B`` joins two
-bodies whose origins coincide at the pose by a spherical joint at ``A``'s
-origin (a note gives their distance); a side file holds ``joints`` as in a
-mechanism file, their ``links`` body names, a ``frame`` naming a body whose
-frame at the pose the geometry is written in (default: global)::
+For URDF and MJCF alike (``docs/robot-files.md``): ``--close A B`` joins two bodies whose origins coincide by a
+spherical joint at ``A``'s origin; a side file holds ``joints`` as in a mechanism file, their ``links`` body names,
+a ``frame`` naming a body whose frame at the pose the geometry is written in (default: global)::
 
       # closures of four_bar.urdf
       joints:

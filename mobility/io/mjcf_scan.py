@@ -298,20 +298,14 @@ class _Scanner:
 
 
 def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = None, *, size: int = 0) -> MjcfScan:
-    """Check an MJCF document and the files it includes (see the module docstring).
+    """Check an MJCF document and the files it includes (see the module docstring), each refusal one line at the element's.
 
     Parameters
     ----------
     model_dir : str or Path
-        The directory MuJoCo finds included files in (the working directory when MuJoCo is given the text).
+        The directory MuJoCo finds included files in.
     size : int
         Bytes of the model file, counted against the size limit with its includes.
-
-    Raises
-    ------
-    MechanismFileError
-        One line naming the file (the including one for a bad include), the
-        element's line and the limit or the value.
     """
     scanner = _Scanner(str(model_dir) or ".", current_limits(limits), size)
     scanner.seen[os.path.realpath(doc.file)] = "the model file itself"

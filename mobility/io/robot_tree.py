@@ -232,7 +232,8 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     notes = list(tree.notes)
     for item in tree.unsupported:
         if not options.ignore_unsupported:
-            raise MechanismFileError(item.key, f"{item.message}; pass --ignore-unsupported (ignore_unsupported=True) to leave it out", file=tree.file, line=item.line)
+            raise MechanismFileError(item.key, f"{item.message}; pass --ignore-unsupported (ignore_unsupported=True) to leave it out",
+                                     file=tree.file, line=item.line)
         notes.append(f"left out {item.key}{at_line(item.line)}: {item.message}")
 
     ground_body = tree.body(options.ground, "ground").name if options.ground is not None else tree.bodies[0].name

@@ -1,11 +1,8 @@
 """Writing a mechanism file: a :class:`~mobility.core.model.Mechanism` out as YAML text.
 
-Version 1 of the format (plus ``actuated`` and ``couplings``), one joint per
-line in flow style, in the global frame.  Round-off (below ``round_off`` of
-the characteristic length, or of 1 for a direction) is written as 0, every
-number as the shortest decimal within a few units of its last place (``0.15``,
-not ``0.15000000000000002``): what was read is written again as the same text,
-and the second round trip is exact to the bit.
+Version 1 of the format (plus ``actuated`` and ``couplings``), one joint per line in flow style, in the global frame.
+Round-off (below ``round_off`` of the characteristic length, or of 1 for a direction) is written as 0, every number as
+the shortest decimal within a few units of its last place (``0.15``): the second round trip is exact to the bit.
 
 Examples
 --------

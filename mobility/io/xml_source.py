@@ -1,11 +1,9 @@
 """XML documents with the line of every element, for one-line error messages.
 
-:func:`parse_xml` parses with the standard library (``expat`` feeding an
-``ElementTree.TreeBuilder``) and keeps the line each element starts on.
-MuJoCo's own parser (tinyxml2) reads UTF-8 only, skips a ``<!DOCTYPE>`` (an
-entity ``&name;`` stays as written) and keeps a tab or a line break in an
-attribute where XML reads a space: ``parse_xml(..., mujoco=True)`` refuses
-these, so that what :mod:`mobility.io.mjcf_scan` checks is what MuJoCo opens.
+:func:`parse_xml` parses with the standard library (``expat`` feeding an ``ElementTree.TreeBuilder``) and keeps the
+line each element starts on; ``mujoco=True`` refuses what MuJoCo's own parser (tinyxml2) reads otherwise (a non-UTF-8
+file, a ``<!DOCTYPE>``, a tab in a ``file``: ``docs/robot-files.md``), so that :mod:`mobility.io.mjcf_scan` checks
+what MuJoCo opens.
 
 Examples
 --------
