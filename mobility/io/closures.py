@@ -40,12 +40,8 @@ CLOSURES_KEYS = ("description", "joints")
 
 
 def close_pairs(value: object) -> tuple[tuple[str, str], ...]:
-    """``value`` as pairs of body names ``((A, B), ...)`` (``None``: none; a bare pair ``("A", "B")`` is refused).
-
-    Raises
-    ------
-    RequestError
-        When ``value`` is not a list of pairs of names (naming ``close`` or ``close[k]``).
+    """``value`` as pairs of body names ``((A, B), ...)`` (``None``: none), else a :class:`~mobility.errors.RequestError`
+    naming ``close`` or ``close[k]`` (a bare pair ``("A", "B")`` too).
 
     Examples
     --------

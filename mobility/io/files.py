@@ -69,13 +69,8 @@ def printable_name(name: str | os.PathLike[str]) -> str:
 
 
 def require_not_pipe(path: str | Path, expected: str = "a mechanism file") -> int:
-    """The file type bits of ``path`` (0 if it cannot be stat-ed), refusing a pipe or socket without opening it (that waits for a writer).
-
-    Raises
-    ------
-    MechanismFileError
-        When ``path`` is a named pipe (FIFO) or a socket.
-    """
+    """The file type bits of ``path`` (0 if it cannot be stat-ed), a :class:`~mobility.errors.MechanismFileError` for a pipe or
+    socket, without opening it (that waits for a writer)."""
     try:
         kind = os.stat(path).st_mode
     except (OSError, ValueError):
@@ -92,12 +87,7 @@ def is_regular_file(path: str | Path) -> bool:
 
 def file_name(value: object, what: str) -> str:
     """``value`` as the name of a file to read: a ``str`` or ``os.PathLike`` without a NUL (``open`` would take an ``int`` for a
-    descriptor of the caller's, read it and close it); ``what``: the function or argument, first in the message.
-
-    Raises
-    ------
-    RequestError
-        When ``value`` is not a file name.
+    descriptor of the caller's, read it and close it), else a :class:`~mobility.errors.RequestError` naming ``what`` first.
 
     Examples
     --------

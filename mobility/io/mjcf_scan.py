@@ -84,15 +84,6 @@ class MjcfScan:
 
 
 @dataclass
-class _Over:
-    """The first element where a count passed its limit."""
-
-    doc: XmlDocument
-    element: Element
-    factors: tuple[int, ...]
-
-
-@dataclass
 class _Context:
     """Where an element sits: its document, the product of the counts around it, whether it is in the world."""
 
@@ -116,7 +107,7 @@ class _Scanner:
     files: list[str] = field(default_factory=list)
     counts: dict[str, int] = field(default_factory=lambda: dict.fromkeys(("elements", "joints", "copies", "equalities", "asset_values",
                                                                          "world_joints", "world_bodies"), 0))  # MjcfScan's fields
-    over: dict[str, _Over] = field(default_factory=dict)
+    over: dict[str, tuple[XmlDocument, Element, tuple[int, ...]]] = field(default_factory=dict)  # where each count first passed its limit
     models: dict[str, tuple[int, int]] = field(default_factory=dict)  # a <model>'s elements and joints, by name: what each <attach> copies
     waiting: dict[str, list[tuple[Element, _Context]]] = field(default_factory=dict)  # <attach>es met before their <model>
 
@@ -183,7 +174,7 @@ class _Scanner:
         self.counts[what] += amount
         limit = self.limits.max_elements if what == "elements" else self.limits.max_joints
         if self.counts[what] > limit and what not in self.over:
-            self.over[what] = _Over(doc or where.doc, element, where.factors)
+            self.over[what] = (doc or where.doc, element, where.factors)
 
     def counted(self, element: Element, where: _Context) -> _Context:
         """The context inside a ``<replicate>`` (its copies multiply), or the points of a ``<flexcomp>``/``<composite>``."""
@@ -282,7 +273,7 @@ class _Scanner:
         if not self.over:
             return
         what = next(w for w in ("joints", "copies", "elements") if w in self.over)  # the joint limit says most
-        over = self.over[what]
+        doc, element, factors = self.over[what]
         limit_name = "max_elements" if what == "elements" else "max_joints"
         limit = getattr(self.limits, limit_name)
         noun = {"elements": "elements", "joints": "joints", "copies": "elements made by the count of <replicate>, <flexcomp> and <composite>"}[what]
@@ -291,10 +282,10 @@ class _Scanner:
         if what == "joints" and equalities:
             noun = "joints and equalities"
             details += [f"{equalities} of them <connect>, <weld> or other equalities, each counted as a joint"]
-        details += [f"count of <replicate> {' x '.join(map(str, over.factors))}"] if over.factors else []
+        details += [f"count of <replicate> {' x '.join(map(str, factors))}"] if factors else []
         detail = f" ({'; '.join(details)})" if details else ""
-        raise over.doc.fail(over.element, clipped(over.element.tag),
-                            f"{self.counts[what]} {noun}{detail} are more than the limit of {limit} ({self.limits.hint(limit_name)})")
+        raise doc.fail(element, clipped(element.tag),
+                       f"{self.counts[what]} {noun}{detail} are more than the limit of {limit} ({self.limits.hint(limit_name)})")
 
 
 def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = None, *, size: int = 0) -> MjcfScan:
