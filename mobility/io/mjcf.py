@@ -1,12 +1,9 @@
 """Read MuJoCo (MJCF) files as MuJoCo compiles them: bodies, joints and loop closures at ``qpos0``.
 
-Rather than re-implement MuJoCo's compiler (defaults, frames, ``<include>``,
-``<replicate>``...), MuJoCo (the ``mechanism-mobility[mujoco]`` extra) compiles
-the file without what kinematics ignores (:func:`_kinematics_only`); the
-compiled model is read at ``qpos0`` (``mj_kinematics``): each joint's anchor
-and axis in the global frame, each body's parent.  How joints, equalities and
-actuators map: ``docs/robot-files.md``.  The files are checked before MuJoCo
-reads them (:mod:`mobility.io.mjcf_scan`); MuJoCo's warnings become notes.
+Rather than re-implement MuJoCo's compiler (defaults, frames, ``<include>``, ``<replicate>``...), MuJoCo (the
+``mechanism-mobility[mujoco]`` extra) compiles the file, checked first (:mod:`mobility.io.mjcf_scan`), without what
+kinematics ignores; the compiled model is read at ``qpos0`` (``mj_kinematics``).  How joints, equalities and actuators
+map: ``docs/robot-files.md``.  MuJoCo's warnings become notes.
 """
 
 from __future__ import annotations
@@ -99,10 +96,8 @@ def read_mjcf(path: str | Path) -> RobotTree:
 def _reader(mujoco: ModuleType, file: str, raw: bytes, scan: MjcfScan) -> tuple[Any, str | None]:
     """How MuJoCo is to read the file so that it finds its includes beside it, and the name it is given under (``None``: its own).
 
-    MuJoCo picks its XML reader by the extension, case-sensitively: a file not
-    named ``.xml`` is given under an unused ``.xml`` name in the same folder,
-    its text in memory (MuJoCo's ``include`` argument), so that its
-    ``<include>``s are found.
+    MuJoCo picks its XML reader by the extension, case-sensitively: a file not named ``.xml`` is given under an unused
+    ``.xml`` name in the same folder, its text in memory (MuJoCo's ``include`` argument).
     """
     if file.endswith(".xml"):
         return (lambda: mujoco.MjSpec.from_file(file)), None

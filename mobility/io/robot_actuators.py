@@ -93,7 +93,6 @@ def ball_chain(name: str, point: Vector, actuators: tuple[BallActuator, ...]) ->
     """A ball joint driven by ``actuators`` as a chain of joints through ``point``, in chain order: the actuated R joint
     ``name.a`` of each actuator ``a``, the U or R joint ``name`` for the rest; ``links`` are placeholders for the caller to set.
     """
-    centre = point
     axes = ball_chain_axes([a.axis for a in actuators])
     count = len(actuators)
     rest = axes[count:]
@@ -101,9 +100,9 @@ def ball_chain(name: str, point: Vector, actuators: tuple[BallActuator, ...]) ->
     out = []
     for k, joint_name in zip(_chain_order(count, actuators), ball_chain_names(name, actuators)):
         if k < count:
-            out.append(Joint(joint_name, "R", ends, axis=axes[k], point=centre, actuated=True))
+            out.append(Joint(joint_name, "R", ends, axis=axes[k], point=point, actuated=True))
         elif len(rest) == 2:
-            out.append(Joint(joint_name, "U", ends, axes=(rest[0], rest[1]), point=centre))
+            out.append(Joint(joint_name, "U", ends, axes=(rest[0], rest[1]), point=point))
         else:
-            out.append(Joint(joint_name, "R", ends, axis=rest[0], point=centre))
+            out.append(Joint(joint_name, "R", ends, axis=rest[0], point=point))
     return out

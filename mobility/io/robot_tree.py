@@ -1,12 +1,8 @@
 """A robot description as a tree of bodies, and the joint graph it makes.
 
-The readers of MJCF and URDF (:mod:`mobility.io.mjcf`, :mod:`mobility.io.urdf`)
-each produce a :class:`RobotTree` -- bodies with their pose, joints in the
-global frame at the reference pose, closing joints, welds -- and
-:func:`build_mechanism` turns it into a :class:`~mobility.core.model.Mechanism`
-the same way for both (the rules: ``docs/robot-files.md``).  Elements the
-model cannot express are an error of one line unless ``ignore_unsupported``;
-every choice made for the user comes back in :attr:`ImportedRobot.notes`.
+The readers of MJCF and URDF (:mod:`mobility.io.mjcf`, :mod:`mobility.io.urdf`) each produce a :class:`RobotTree`,
+which :func:`build_mechanism` turns into a :class:`~mobility.core.model.Mechanism` the same way for both (the rules:
+``docs/robot-files.md``); every choice made for the user comes back in :attr:`ImportedRobot.notes`.
 
 Examples
 --------

@@ -113,10 +113,6 @@ def _direction(v: Iterable[float]) -> str:
     return "[" + ", ".join(short) + "]"
 
 
-def _vector(v: Iterable[float], scale: float = 1.0) -> str:
-    return "[" + ", ".join(_number(x, scale) for x in v) + "]"
-
-
 def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: dict[str, Any] | None = None) -> str:
     """A mechanism file for ``mechanism``, its joints in the global frame, ``description`` folded, ``expected`` as its block (see the module's example)."""
     lines = [f"name: {yaml_scalar(mechanism.name)}"]
@@ -135,7 +131,7 @@ def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: 
         if j.axes is not None:
             fields.append(f"axes: [{_direction(j.axes[0])}, {_direction(j.axes[1])}]")
         if j.point is not None and j.type != "P":
-            fields.append(f"point: {_vector(j.point, size)}")
+            fields.append(f"point: [{', '.join(_number(x, size) for x in j.point)}]")
         if j.pitch is not None:
             fields.append(f"pitch: {_number(j.pitch, size)}")
         if j.normal is not None:
