@@ -173,7 +173,7 @@ class RobotOptions:
     close : tuple of (str, str)
         Pairs of bodies whose origins coincide, joined by a spherical joint there.
     closures : str, optional
-        A side file of closing joints (:mod:`mobility.io.closures`).
+        A side file of closing joints (:func:`~mobility.io.robot_files.with_closures_file`).
     """
 
     ground: str | None = None
