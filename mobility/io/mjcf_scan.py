@@ -207,8 +207,9 @@ class _Scanner:
         """Check the file of an ``<include>`` or ``<model>``; its elements, to visit in place of the element."""
         doc = where.doc
         name = element.get("file", "")
-        folder = where.model_dir or self.model_dir
-        path = self.resolve(name, doc.file, folder)
+        folders = dict.fromkeys([where.model_dir or self.model_dir, os.path.dirname(doc.file) or "."])  # where MuJoCo looks, in turn
+        candidates = [os.path.join(folder, name) for folder in folders] if name else []
+        path = next((candidate for candidate in candidates if os.path.lexists(candidate)), None)
 
         def fail(message: str) -> MechanismFileError:  # at the element's line in the including file
             return doc.fail(element, kind, f"{clipped(name)!r}: {message}" if name else message)
@@ -216,8 +217,8 @@ class _Scanner:
         if path is None:
             if kind == "model":
                 return []  # MuJoCo says the asset is missing
-            folders = " and ".join(repr(clipped(f, 60)) for f in dict.fromkeys([folder, os.path.dirname(doc.file) or "."]))
-            raise fail(f"no such file (looked in {folders}); expected a file to include")
+            looked = " and ".join(repr(clipped(f, 60)) for f in folders)
+            raise fail(f"no such file (looked in {looked}); expected a file to include")
         self.require_includable(path, fail)
         real = os.path.realpath(path)
         if real in where.chain or (kind == "include" and real in self.seen):
@@ -241,16 +242,6 @@ class _Scanner:
         context = replace(where, doc=inner, in_world=where.in_world and kind == "include", chain=where.chain + (real,),
                           in_equality=where.in_equality and kind == "include", model_dir=model_dir)
         return [(child, context) for child in inner.root]
-
-    def resolve(self, name: str, including: str, model_dir: str) -> str | None:
-        """The path MuJoCo opens for ``name``: in the (sub-)model's directory, else in the including file's; ``None`` if neither exists."""
-        if not name:
-            return None
-        for folder in (model_dir, os.path.dirname(including) or "."):
-            candidate = os.path.join(folder, name)
-            if os.path.lexists(candidate):
-                return candidate
-        return None
 
     def require_includable(self, path: str, fail: Callable[[str], MechanismFileError]) -> None:
         """A regular file, within what remains of the size limit."""
