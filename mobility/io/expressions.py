@@ -55,8 +55,6 @@ _UNARY: dict[type, Callable[[float], float]] = {ast.USub: operator.neg, ast.UAdd
 _NEVER_ZERO = {operator.mul, operator.truediv, operator.pow, math.exp, math.sqrt, math.hypot}
 """Operations whose result is not zero when no argument is: a zero (or a subnormal number) from them is an underflow."""
 
-_SMALLEST_NORMAL = sys.float_info.min
-
 _HEX_PREFIX = re.compile(r"[+-]?0[xX]")
 """How a hexadecimal float (``0x1p-3``, as MuJoCo and ``float.fromhex`` read it) begins."""
 
@@ -220,10 +218,10 @@ def _run(program: Program, names: Mapping[str, float], text: str) -> float:
         result = float(result)
         if not math.isfinite(result):
             raise ValueError(f"expression {_shown(text)!r} is not finite")
-        if abs(result) < _SMALLEST_NORMAL and op[1] in _NEVER_ZERO and args and all(a != 0.0 for a in args):
+        if abs(result) < sys.float_info.min and op[1] in _NEVER_ZERO and args and all(a != 0.0 for a in args):
             what = "an exp" if op[1] is math.exp else "a product, quotient or power"
             hint = "" if op[1] is math.exp else "; write the lengths in a larger unit"
-            raise ValueError(f"expression {_shown(text)!r} underflows: {what} of its numbers is below the smallest float ({_SMALLEST_NORMAL:.3g}){hint}")
+            raise ValueError(f"expression {_shown(text)!r} underflows: {what} of its numbers is below the smallest float ({sys.float_info.min:.3g}){hint}")
         stack.append(result)
     return stack[-1]
 

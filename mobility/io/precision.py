@@ -121,10 +121,6 @@ class DigitCounter:
         return Rounding(digits, largest(self.exponents["length"]), largest(self.exponents["angle"]))
 
 
-_SHOWN_GAP = 1e-12
-"""A gap below this is round-off of the reading itself, not worth a word."""
-
-
 MJCF_PLACING = frozenset({"body", "frame", "joint", "site", "connect", "weld"})
 """Elements whose numbers place joints: counted for the file's precision (geoms, inertias and the rest are not)."""
 
@@ -188,7 +184,7 @@ class FilePrecision:
         parts = []
         if self.digits is not None:
             parts.append(f"numbers written with {self.digits} significant digits")
-        if self.gap > _SHOWN_GAP:
+        if self.gap > 1e-12:  # below: round-off of the reading itself, not worth a word
             parts.append(f"loops closing to {self.gap:.2g} of its size")
         return "; ".join(parts)
 
