@@ -180,14 +180,6 @@ def _shown(text: str) -> str:
 
 
 def _run(program: Program, names: Mapping[str, float], text: str) -> float:
-    if len(program) == 1 and program[0][0] != _APPLY:  # a lone number or name: nothing to compute
-        kind, item = program[0][0], program[0][1]
-        if kind == _NUMBER:
-            return item
-        value = names.get(item, CONSTANTS.get(item))
-        if value is None:
-            raise _unknown_name(item, text, names)
-        return value
     stack: list[float] = []
     for op in program:
         kind = op[0]
