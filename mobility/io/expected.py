@@ -21,6 +21,7 @@ mobility.errors.MechanismFileError: e.yaml:1: expected.mobility: unknown key in 
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any, Callable
 
 from ..core.expected import Expected, require_expected_basis, require_expected_integer, require_expected_pattern
@@ -40,14 +41,7 @@ FLEXURE_EXPECTED_KEYS = ("dof", "pattern", "translations", "actuation")
 """The keys the ``expected`` block of a flexure document may hold (freedom space and actuation)."""
 
 
-def _integer(value: Any, key: str, *, signed: bool = False) -> int:
-    """An expected count, checked as :class:`~mobility.core.expected.Expected` checks it (the value shown as a file's)."""
-    return require_expected_integer(value, key, signed=signed, shown=shown_value)
-
-
-def _pattern(value: Any, key: str) -> str:
-    """An expected pattern (:data:`~mobility.core.expected.EXPECTED_PATTERN`; also an unquoted ``0`` and the contract's ``""``), checked as :class:`~mobility.core.expected.Expected` checks it."""
-    return require_expected_pattern(value, key, shown=shown_value)
+_integer = partial(require_expected_integer, shown=shown_value)  # checked as Expected checks it, the value shown as a file's
 
 
 def _choice(choices: tuple[str, ...]) -> Callable[[Any, str], str]:
@@ -60,8 +54,8 @@ def _choice(choices: tuple[str, ...]) -> Callable[[Any, str], str]:
 
 
 EXPECTED_VALIDATORS: dict[str, Callable[[Any, str], Any]] = {
-    "dof": _integer, "pattern": _pattern, "mobility": _integer, "redundant_constraints": _integer, "idle_dof": _integer,
-    "gruebler_kutzbach": lambda v, k: _integer(v, k, signed=True), "full_cycle_dof": _integer, "full_cycle_mobility": _integer,
+    "dof": _integer, "pattern": partial(require_expected_pattern, shown=shown_value), "mobility": _integer, "redundant_constraints": _integer,
+    "idle_dof": _integer, "gruebler_kutzbach": partial(_integer, signed=True), "full_cycle_dof": _integer, "full_cycle_mobility": _integer,
     "finite_verdict": _choice(FINITE_VERDICTS), "actuation": _choice(ACTUATION_VERDICTS)}
 """Validators of the ``expected`` keys (``translations`` is read as a list of vectors)."""
 
@@ -76,8 +70,7 @@ def read_expected(reader: DocumentReader, value: Any, keys: tuple[str, ...]) -> 
         are not a basis (at that direction's line).
     """
     path: KeyPath = ("expected",)
-    data = reader.mapping(value, path, "expected results")
-    reader.require_known_keys(data, keys, path, "the expected block")
+    data = reader.record(value, path, "the expected block", keys, described="expected results")
     fields: dict[str, Any] = {}
     extra: dict[str, Any] = {}
     for key, raw in data.items():

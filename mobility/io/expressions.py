@@ -1,11 +1,8 @@
 """Safe arithmetic expressions for the ``parameters`` extension of the file format.
 
-Only numbers, names, ``+ - * / ** %``, parentheses and :data:`FUNCTIONS` are
-allowed (trigonometry in radians; the ``...d`` variants in degrees).  An
-expression is compiled once into a flat postfix program (cached) and run on an
-explicit stack: no recursion grows with it, its length and depth are bounded,
-and every intermediate value must be a finite real number (``(-8)**(1/3)``,
-``exp(1000)`` are errors, not a silent ``nan``).
+Only numbers, names, ``+ - * / ** %``, parentheses and :data:`FUNCTIONS` (in radians; the ``...d`` variants in degrees).
+An expression is compiled once into a flat postfix program (cached) run on an explicit stack, its length and depth
+bounded, every intermediate value a finite real number (``(-8)**(1/3)``, ``exp(1000)`` are errors, not a silent ``nan``).
 
 Examples
 --------
@@ -58,13 +55,10 @@ _UNARY: dict[type, Callable[[float], float]] = {ast.USub: operator.neg, ast.UAdd
 _NEVER_ZERO = {operator.mul, operator.truediv, operator.pow, math.exp, math.sqrt, math.hypot}
 """Operations whose result is not zero when no argument is: a zero (or a subnormal number) from them is an underflow."""
 
-_SMALLEST_NORMAL = sys.float_info.min
-
 _HEX_PREFIX = re.compile(r"[+-]?0[xX]")
 """How a hexadecimal float (``0x1p-3``, as MuJoCo and ``float.fromhex`` read it) begins."""
 
-# Instructions of a compiled expression (tuples, so a program is hashable and cacheable).
-_NUMBER, _NAME, _APPLY = 0, 1, 2
+_NUMBER, _NAME, _APPLY = 0, 1, 2  # the instructions of a program (tuples: hashable and cacheable)
 
 Program = tuple[tuple[Any, ...], ...]
 """A compiled expression: ``(_NUMBER, x)``, ``(_NAME, name)`` or ``(_APPLY, function, arity)``, in postfix order."""
@@ -73,10 +67,8 @@ Program = tuple[tuple[Any, ...], ...]
 def require_literal(written: str, value: float) -> float:
     """``value``, the ``float`` the number ``written`` reads as, unless it overflows to infinity or underflows to zero; else a ``ValueError`` saying why.
 
-    The one rule for a number written out, in YAML, an expression, an MJCF or
-    URDF attribute (hexadecimal too): as the evaluator refuses a product that
-    underflows, a literal that does is refused, not read as 0 (a subnormal is
-    what was written).  ``inf`` and ``nan`` are for the caller to refuse.
+    The one rule for a number written out (YAML, an expression, an MJCF or URDF attribute, hexadecimal too), as the
+    evaluator refuses a product that underflows; a subnormal is what was written; ``inf`` and ``nan`` are the caller's.
 
     Examples
     --------
@@ -188,14 +180,6 @@ def _shown(text: str) -> str:
 
 
 def _run(program: Program, names: Mapping[str, float], text: str) -> float:
-    if len(program) == 1 and program[0][0] != _APPLY:  # a lone number or name: nothing to compute
-        kind, item = program[0][0], program[0][1]
-        if kind == _NUMBER:
-            return item
-        value = names.get(item, CONSTANTS.get(item))
-        if value is None:
-            raise _unknown_name(item, text, names)
-        return value
     stack: list[float] = []
     for op in program:
         kind = op[0]
@@ -226,10 +210,10 @@ def _run(program: Program, names: Mapping[str, float], text: str) -> float:
         result = float(result)
         if not math.isfinite(result):
             raise ValueError(f"expression {_shown(text)!r} is not finite")
-        if abs(result) < _SMALLEST_NORMAL and op[1] in _NEVER_ZERO and args and all(a != 0.0 for a in args):
+        if abs(result) < sys.float_info.min and op[1] in _NEVER_ZERO and args and all(a != 0.0 for a in args):
             what = "an exp" if op[1] is math.exp else "a product, quotient or power"
             hint = "" if op[1] is math.exp else "; write the lengths in a larger unit"
-            raise ValueError(f"expression {_shown(text)!r} underflows: {what} of its numbers is below the smallest float ({_SMALLEST_NORMAL:.3g}){hint}")
+            raise ValueError(f"expression {_shown(text)!r} underflows: {what} of its numbers is below the smallest float ({sys.float_info.min:.3g}){hint}")
         stack.append(result)
     return stack[-1]
 
@@ -261,9 +245,7 @@ def uses_radians(text: str, radian_names: frozenset[str] | set[str] = frozenset(
 
 
 def evaluate(text: str, names: Mapping[str, float], *, max_length: int = DEFAULT_LIMITS.max_expression_length, max_depth: int = DEFAULT_LIMITS.max_expression_depth) -> float:
-    """Evaluate an arithmetic expression.
-
-    ``names`` are the parameters' values (:data:`CONSTANTS` are added).
+    """Evaluate an arithmetic expression; ``names`` are the parameters' values (:data:`CONSTANTS` are added).
 
     Raises
     ------

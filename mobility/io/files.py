@@ -33,9 +33,7 @@ __all__ = ["read_capped", "open_regular", "file_name", "require_not_pipe", "is_r
 
 
 def os_reason(exc: OSError) -> str:
-    """What an ``OSError`` met on a path says, in words for a one-line message.
-
-    A symbolic link loop is named as such (the system's words do not say what to look for).
+    """What an ``OSError`` met on a path says, in words for a one-line message (a symbolic link loop named as such).
 
     Examples
     --------
@@ -51,10 +49,8 @@ def os_reason(exc: OSError) -> str:
 
 
 def printable_name(name: str | os.PathLike[str]) -> str:
-    """``name`` as text that any output takes: the bytes of a file name that the file system's encoding cannot decode shown as ``\\xNN``.
-
-    Python keeps such bytes as lone surrogates (``os.fsdecode``), which written
-    out make invalid UTF-8: every name a report prints goes through this first.
+    """``name`` as text that any output takes: the bytes of a file name that the file system's encoding cannot decode (lone
+    surrogates in Python, invalid UTF-8 once written) shown as ``\\xNN``; every name a report prints goes through this.
 
     Examples
     --------
@@ -73,15 +69,8 @@ def printable_name(name: str | os.PathLike[str]) -> str:
 
 
 def require_not_pipe(path: str | Path, expected: str = "a mechanism file") -> int:
-    """The file type bits of ``path`` (0 if it cannot be stat-ed), refusing a pipe or socket without opening it.
-
-    Opening a named pipe waits for a writer, possibly for ever.
-
-    Raises
-    ------
-    MechanismFileError
-        When ``path`` is a named pipe (FIFO) or a socket.
-    """
+    """The file type bits of ``path`` (0 if it cannot be stat-ed), a :class:`~mobility.errors.MechanismFileError` for a pipe or
+    socket, without opening it (that waits for a writer)."""
     try:
         kind = os.stat(path).st_mode
     except (OSError, ValueError):
@@ -97,16 +86,8 @@ def is_regular_file(path: str | Path) -> bool:
 
 
 def file_name(value: object, what: str) -> str:
-    """``value`` as the name of a file to read, refusing in one line what is not one.
-
-    A ``str`` or an ``os.PathLike`` naming the file as text, without a NUL
-    (``open`` would take an ``int`` for a descriptor of the caller's process,
-    read it and close it).  ``what``: the function or argument, first in the message.
-
-    Raises
-    ------
-    RequestError
-        When ``value`` is not a file name.
+    """``value`` as the name of a file to read: a ``str`` or ``os.PathLike`` without a NUL (``open`` would take an ``int`` for a
+    descriptor of the caller's, read it and close it), else a :class:`~mobility.errors.RequestError` naming ``what`` first.
 
     Examples
     --------
@@ -148,10 +129,8 @@ def _not_regular(mode: int) -> str | None:
 def open_regular(path: str | Path, expected: str = "a mechanism file") -> BinaryIO:
     """``path`` opened for reading in binary, when it is a regular file; anything else refused in one line before it is opened.
 
-    A pipe, a socket or a device is refused from its ``stat``; the file is then
-    opened with ``O_NONBLOCK`` and its type checked again on the descriptor, so
-    that a pipe swapped in between is refused too.  ``expected``: what the file
-    should be, for the message.
+    Its type is checked from its ``stat``, then again on the descriptor opened
+    with ``O_NONBLOCK`` (a pipe swapped in between); ``expected``: what the file should be.
 
     Raises
     ------

@@ -1,15 +1,9 @@
 """The limits on what a document may ask of the readers and the commands: one place for every bound.
 
-A mechanism file is input from anywhere, so reading it and running any command
-on it must end quickly and in bounded memory.  Each error a limit raises is one
-line naming the file, the key, the limit and the environment variable
-``MOBILITY_<FIELD>`` that raises it for a run (``limits=Limits(...)`` to
-:func:`mobility.io.loader.load` for one call).  The defaults (the table of
-``docs/file-format.md``) are far above any real mechanism (the largest bundled
-file has 22 joints, the deepest nests 7 levels) and low enough that every
-command at the limits takes a few seconds and a few hundred MB (measured on
-two cores: 5,000 joints at most 4 s and 230 MB; the command-specific limits
-where their commands reach about 4 s; ``max_moving_work`` 4 to 25 s).
+A mechanism file is input from anywhere, so reading it and running any command on it must end quickly and in bounded
+memory.  Each error a limit raises is one line naming the file, the key, the limit and the environment variable
+``MOBILITY_<FIELD>`` that raises it for a run (``limits=Limits(...)`` to :func:`mobility.io.loader.load` for one call).
+The defaults, and what the commands cost at them: ``docs/file-format.md`` (Limits).
 
 Examples
 --------
@@ -153,11 +147,6 @@ def require_size(mechanism: Mechanism, limit: str, what: str, file: str) -> None
         The field of :class:`Limits` (``"max_finite_joints"``).
     what : str
         What the limit is for, as the user asked it (``"--finite"``).
-
-    Raises
-    ------
-    MechanismFileError
-        ``FILE: joints: N joints are more than the limit of L for WHAT (set MOBILITY_... to raise it)``.
     """
     limits = current_limits()
     bound = getattr(limits, limit)

@@ -1,11 +1,7 @@
-"""Read mechanism files (YAML) into :class:`~mobility.core.model.Mechanism` objects.
+"""Read mechanism files into :class:`~mobility.core.model.Mechanism` objects.
 
-Version 1 of the file format (``docs/file-format.md``) and its extensions that
-never change the meaning of a version-1 file (``parameters`` and expressions,
-``limbs``, joint types by name, ``axis``/``angle`` frames, ``actuated``,
-``couplings``).  Every error names the file, the line, the key and what was
-expected; what a document may ask is bounded (:mod:`mobility.io.limits`), the
-joints of a ``limbs`` block counted before any is built.
+YAML (``docs/file-format.md``, read by :mod:`mobility.io.mechanism_reader` within :mod:`mobility.io.limits`), or a robot
+description (:mod:`mobility.io.robot_files`).
 
 Examples
 --------
@@ -80,7 +76,7 @@ class FileRead(NamedTuple):
 
 
 def is_robot_description(path: str | Path) -> bool:
-    """Whether ``path`` is read as a robot description (MJCF, URDF), the one place this is decided: a YAML suffix without importing the robot readers, else by extension or content.
+    """Whether ``path`` is read as a robot description (MJCF, URDF), the one place this is decided (by extension or content).
 
     Examples
     --------

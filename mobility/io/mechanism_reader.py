@@ -1,9 +1,7 @@
-"""The reader of a parsed mechanism document (YAML, version 1 and its extensions): :class:`MechanismReader`.
+"""The reader of a parsed mechanism document: :class:`MechanismReader`.
 
-It turns the document's keys into :class:`~mobility.core.model.Mechanism`
-fields, each checked once, every error named by file, line and key
-(``docs/file-format.md``); :mod:`mobility.io.loader` parses files and texts
-and hands them here, :mod:`mobility.io.closures` reads closing joints with it.
+It turns the keys of ``docs/file-format.md`` (version 1 and its extensions) into :class:`~mobility.core.model.Mechanism`
+fields, each checked once, every error at its file, line and key.
 
 Examples
 --------
@@ -69,7 +67,6 @@ def read_mechanism(data: Any, positions: Positions, file: str = "<string>", *, l
 class MechanismReader(DocumentReader):
     """Turns a parsed mechanism document into a Mechanism, translating every error to file:line: key."""
 
-    # -- document ---------------------------------------------------------
     def mechanism(self, data: Any) -> Mechanism:
         if is_flexure_document(data):
             raise self.fail(("elements",), "a flexure document, not a mechanism: read it with mobility.load_flexure (on the command line: mobility actuation)")
@@ -100,12 +97,10 @@ class MechanismReader(DocumentReader):
         return mechanism
 
     def link_notes(self, mechanism: Mechanism, sources: list[KeyPath]) -> list[str]:
-        """Warnings on link names that look misspelt: a link only one joint names, close to the name of a link the mechanism holds by more.
+        """Warnings on link names that look misspelt (``slidr`` beside ``slider``: another mechanism): a link only one joint
+        names, close to a link named by more and not of its numbered family (``tip1``, ``tip2``).
 
-        (``slidr`` beside ``slider``: the file silently describes another
-        mechanism).  A numbered family (``tip1``, ``tip2``) is no misspelling;
-        a file with more than :data:`MOST_LINKS_NAMED_ONCE` links named once is
-        generated, and not searched.
+        A file with more than :data:`MOST_LINKS_NAMED_ONCE` links named once is generated, and not searched.
         """
         uses = Counter(link for j in mechanism.joints for link in j.links)
         ends = (mechanism.ground, mechanism.end_effector)
@@ -276,8 +271,7 @@ class MechanismReader(DocumentReader):
         lim = self.limits
         for k, raw in enumerate(value):
             path: KeyPath = ("limbs", k)
-            limb = self.mapping(raw, path, "a limb pattern with copies and joints")
-            self.require_known_keys(limb, LIMB_KEYS, path, "a limb pattern")
+            limb = self.record(raw, path, "a limb pattern", LIMB_KEYS, ("joints",), described="a limb pattern with copies and joints")
             copies = limb.get("copies")
             if isinstance(copies, bool) or not isinstance(copies, int) or copies < 1:
                 raise self.fail(path + ("copies",), f"expected a positive integer, got {describe_value(copies)}")
@@ -291,8 +285,6 @@ class MechanismReader(DocumentReader):
                 raise self.fail(path + ("index",), f"{index!r} is a constant or a function of the expressions; choose another name for the index")
             if index in self.names:
                 raise self.fail(path + ("index",), f"{index!r} is already a parameter; choose another name for the index")
-            if "joints" not in limb:
-                raise self.fail(path + ("joints",), "missing required key of a limb pattern")
             if not isinstance(limb["joints"], list):
                 raise self.fail(path + ("joints",), f"expected a list of joints, got {describe_value(limb['joints'])}")
             total += copies * len(limb["joints"])

@@ -1,13 +1,9 @@
 """Read MuJoCo (MJCF) files as MuJoCo compiles them: bodies, joints and loop closures at ``qpos0``.
 
-Rather than re-implement MuJoCo's compiler (defaults, frames, ``<include>``,
-``<replicate>``...), MuJoCo (the ``mechanism-mobility[mujoco]`` extra) compiles
-the file; the compiled model is read at ``qpos0`` (``mj_kinematics``): each
-joint's anchor and axis in the global frame, each body's parent.  How joints,
-equalities and actuators map: ``docs/robot-files.md``.  Meshes, height fields,
-textures and skins are removed before compiling, so a file whose mesh files are
-absent imports.  The files are checked before MuJoCo reads them
-(:mod:`mobility.io.mjcf_scan`); MuJoCo's warnings become notes.
+Rather than re-implement MuJoCo's compiler (defaults, frames, ``<include>``, ``<replicate>``...), MuJoCo (the
+``mechanism-mobility[mujoco]`` extra) compiles the file, checked first (:mod:`mobility.io.mjcf_scan`), without what
+kinematics ignores; the compiled model is read at ``qpos0`` (``mj_kinematics``).  How joints, equalities and actuators
+map: ``docs/robot-files.md``.  MuJoCo's warnings become notes.
 """
 
 from __future__ import annotations
@@ -25,17 +21,17 @@ from typing import Any, Iterator
 
 import numpy as np
 
+from ..core.expected import independent_of
 from ..core.model import Joint
 from ..core.tolerance import DEFAULT_TOLERANCE, characteristic_scale
+from ..core.validation import require_vector
 from ..errors import MechanismError, MechanismFileError, MissingExtraError, clipped, counted, one_line
 from .files import read_capped
-from .mjcf_actuators import actuator_inputs
-from .mjcf_couplings import add_coupling, tendons_held
 from .mjcf_scan import MjcfScan, scan_mjcf
 from .precision import mjcf_rounding
 from .robot_actuators import BallActuator
-from .robot_couplings import TreeCoupling
-from .robot_tree import Body, Closure, RobotTree, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name, vector_tuple
+from .robot_tree import (Body, Closure, RobotTree, TreeCoupling, TreeJoint, Unsupported, Weld, at_line, rotation_tuple, unique_name,
+                         vector_tuple)
 from .xml_source import parse_xml
 
 __all__ = ["read_mjcf", "import_mujoco"]
@@ -50,13 +46,7 @@ _FINITE = "expected positions and directions whose numbers stay finite (smaller 
 
 
 def import_mujoco() -> ModuleType:
-    """The ``mujoco`` module, or an error saying which extra installs it.
-
-    Raises
-    ------
-    MissingExtraError
-        When the ``mujoco`` package cannot be imported.
-    """
+    """The ``mujoco`` module, or a :class:`~mobility.errors.MissingExtraError` saying which extra installs it."""
     try:
         return import_module("mujoco")
     except ImportError as exc:
@@ -65,9 +55,6 @@ def import_mujoco() -> ModuleType:
 
 def read_mjcf(path: str | Path) -> RobotTree:
     """Read an MJCF file into a :class:`~mobility.io.robot_tree.RobotTree` at ``qpos0``.
-
-    The file and its includes are checked first (:func:`~mobility.io.mjcf_scan.scan_mjcf`),
-    so that MuJoCo is never asked to read a pipe or to expand a model without bound.
 
     Raises
     ------
@@ -89,17 +76,12 @@ def read_mjcf(path: str | Path) -> RobotTree:
     scan = scan_mjcf(doc, folder, size=len(raw))  # includes found beside the file, as MuJoCo finds them for a path
     mujoco = import_mujoco()
     read, alias = _reader(mujoco, file, raw, scan)
-    if read is None:  # an old MuJoCo, given the text: it finds includes from the working directory
-        scan = scan_mjcf(doc, ".", size=len(raw))
-        read = lambda: mujoco.MjSpec.from_string(raw.decode("utf-8"))  # noqa: E731 -- UTF-8: checked
     said: list[str] = []
     with _warnings_into(mujoco, said):
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")  # MuJoCo's compiler warnings become notes
             spec = _mujoco_call(read, file, scan, alias)
-            _without_asset_files(mujoco, spec)
-            _without_mass_bounds(spec)
-            _without_what_kinematics_ignores(mujoco, spec)
+            _kinematics_only(mujoco, spec)
             model = _mujoco_call(spec.compile, file, scan, alias)
             _require_kept(scan, model, file)
             data = mujoco.MjData(model)
@@ -114,15 +96,11 @@ def read_mjcf(path: str | Path) -> RobotTree:
 def _reader(mujoco: ModuleType, file: str, raw: bytes, scan: MjcfScan) -> tuple[Any, str | None]:
     """How MuJoCo is to read the file so that it finds its includes beside it, and the name it is given under (``None``: its own).
 
-    MuJoCo picks its XML reader by the extension, case-sensitively: a file not
-    named ``.xml`` is given under an unused ``.xml`` name in the same folder,
-    its text in memory (MuJoCo's ``include`` argument), so that its
-    ``<include>``s are found.  An old MuJoCo without that argument: ``(None, None)``.
+    MuJoCo picks its XML reader by the extension, case-sensitively: a file not named ``.xml`` is given under an unused
+    ``.xml`` name in the same folder, its text in memory (MuJoCo's ``include`` argument).
     """
     if file.endswith(".xml"):
         return (lambda: mujoco.MjSpec.from_file(file)), None
-    if "include" not in (getattr(mujoco.MjSpec.from_file, "__doc__", "") or ""):
-        return None, None
     taken = {os.path.basename(f) for f in scan.files} | {os.path.basename(file)}
     alias, k = f"{file}.xml", 2
     while os.path.basename(alias) in taken or os.path.lexists(alias):
@@ -131,7 +109,7 @@ def _reader(mujoco: ModuleType, file: str, raw: bytes, scan: MjcfScan) -> tuple[
 
 
 def _not_utf8(name: str) -> bool:
-    """Whether ``name`` holds bytes that were not UTF-8 (Python keeps them as lone surrogates), so that it has no UTF-8 form.
+    """Whether ``name`` holds bytes that were not UTF-8 (Python keeps them as lone surrogates).
 
     Examples
     --------
@@ -144,16 +122,12 @@ def _not_utf8(name: str) -> bool:
 @contextmanager
 def _warnings_into(mujoco: ModuleType, said: list[str]) -> Iterator[None]:
     """MuJoCo's warnings appended to ``said`` instead of printed (and written to ``MUJOCO_LOG.TXT``)."""
-    setter = getattr(mujoco, "set_mju_user_warning", None)
-    if setter is None:  # an old MuJoCo without the hook
-        yield
-        return
-    before = mujoco.get_mju_user_warning() if hasattr(mujoco, "get_mju_user_warning") else None
-    setter(lambda message: said.append(str(message)))
+    before = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(lambda message: said.append(str(message)))
     try:
         yield
     finally:
-        setter(before)
+        mujoco.set_mju_user_warning(before)
 
 
 def _mujoco_call(call: Any, file: str, scan: MjcfScan, alias: str | None = None) -> Any:
@@ -166,10 +140,7 @@ def _mujoco_call(call: Any, file: str, scan: MjcfScan, alias: str | None = None)
 
 
 def _mujoco_error(text: str, file: str, scan: MjcfScan) -> MechanismFileError:
-    """MuJoCo's message, all of it on one line, with the file and line it names (never line 0).
-
-    MuJoCo gives elements of an included file line 0, and an error inside one
-    the line of the ``<include>``: then the file holding that ``<include>``.
+    """MuJoCo's message on one line, with the file and line it names (:func:`_where`).
 
     Examples
     --------
@@ -191,7 +162,8 @@ def _mujoco_error(text: str, file: str, scan: MjcfScan) -> MechanismFileError:
 
 
 def _where(file: str, line: int, key: str, scan: MjcfScan) -> tuple[str, int | None]:
-    """The file and line an error is about: never line 0; an ``<include>``'s line in the file that holds it."""
+    """The file and line an error is about: never line 0 (MuJoCo's line for an element of an included file);
+    for an error inside an included file, the line of its ``<include>`` in the file that holds it."""
     if line <= 0:
         return file, None
     if key != "include":
@@ -203,10 +175,7 @@ def _where(file: str, line: int, key: str, scan: MjcfScan) -> tuple[str, int | N
 
 
 def _require_kept(scan: MjcfScan, model: Any, file: str) -> None:
-    """Refuse a model from which MuJoCo dropped, while reading it, an equality, a joint or a body that the file declares.
-
-    MuJoCo silently drops an equality naming a body or site inside a
-    ``<replicate>`` (which renames it): the loop would be open, the answer wrong.
+    """Refuse a model from which MuJoCo dropped an equality, a joint or a body that the file declares (an open loop, a wrong answer).
 
     Examples
     --------
@@ -227,54 +196,14 @@ def _require_kept(scan: MjcfScan, model: Any, file: str) -> None:
             raise MechanismFileError(key, f"the file declares {noun}, MuJoCo kept {kept}; expected every {key} kept", file=file)
 
 
-def _without_mass_bounds(spec: Any) -> None:
-    """Let a body without mass or inertia compile: kinematics needs neither.
-
-    MuJoCo refuses a moving body whose mass or inertia is below ``mjMINVAL``;
-    where the file sets no ``<compiler boundmass/boundinertia>``, a small one is set.
-    """
-    compiler = spec.compiler
-    if not compiler.boundmass:
-        compiler.boundmass = 1e-6
-    if not compiler.boundinertia:
-        compiler.boundinertia = 1e-12
-
-
 _SIZES = ("nkey", "nuserdata", "memory", "njmax", "nconmax", "nstack",
           *(f"nuser_{kind}" for kind in ("body", "jnt", "geom", "site", "cam", "tendon", "actuator", "sensor")))
 """``<size>`` attributes, set back to MuJoCo's defaults (those of a new spec: their types differ between versions)."""
 
 
-def _without_what_kinematics_ignores(mujoco: ModuleType, spec: Any) -> None:
-    """Leave out what MuJoCo would allocate or compute for simulation only: kinematics at ``qpos0`` needs none of it.
-
-    A 100-byte file could otherwise cost minutes or gigabytes: ``<size
-    nkey="1000000">``, ``nuserdata`` of 1e8, ``memory="100G"``, history buffers
-    (``nsample``), huge sensors, ``<lengthrange mode="all">``.  ``<size>`` gets
-    MuJoCo's defaults, sensors go, actuators keep their transmission without
-    history, no length range is computed; ``fusestatic`` is off so that every
-    body the file names stays one (for ``--end-effector``).
-    """
-    defaults = mujoco.MjSpec()
-    for attribute in _SIZES:
-        if hasattr(spec, attribute) and hasattr(defaults, attribute):
-            setattr(spec, attribute, getattr(defaults, attribute))
-    for sensor in list(getattr(spec, "sensors", [])):
-        _delete(spec, sensor)
-    for actuator in getattr(spec, "actuators", []):
-        for attribute in ("delay", "nsample"):
-            if hasattr(actuator, attribute):
-                setattr(actuator, attribute, 0)
-    compiler = spec.compiler
-    modes = getattr(mujoco, "mjtLRMode", None)
-    if modes is not None and hasattr(compiler, "LRopt"):
-        compiler.LRopt.mode = modes.mjLRMODE_NONE
-    if hasattr(compiler, "fusestatic"):
-        compiler.fusestatic = False
-
-
-def _without_asset_files(mujoco: ModuleType, spec: Any) -> None:
-    """Remove what needs files on disk (meshes, height fields, textures, skins): kinematics needs none of it."""
+def _kinematics_only(mujoco: ModuleType, spec: Any) -> None:
+    """Leave out of ``spec`` what kinematics at ``qpos0`` does not need and MuJoCo would read, allocate or refuse: asset files,
+    what could cost minutes or gigabytes (``<size nkey="1000000">``), mass bounds; the list and why: ``docs/robot-files.md``."""
     kinds = mujoco.mjtGeom
     for geom in spec.geoms:
         if geom.type in (kinds.mjGEOM_MESH, kinds.mjGEOM_HFIELD, kinds.mjGEOM_SDF):
@@ -282,20 +211,25 @@ def _without_asset_files(mujoco: ModuleType, spec: Any) -> None:
             geom.meshname = ""
             geom.hfieldname = ""
             geom.size = [0.01, 0.0, 0.0]
-    for collection in (spec.meshes, spec.hfields, spec.textures, spec.skins):
-        for element in list(collection):
-            _delete(spec, element)
+    for element in [*spec.meshes, *spec.hfields, *spec.textures, *spec.skins, *spec.sensors]:
+        spec.delete(element)
     for material in spec.materials:
         material.textures = ["" for _ in material.textures]
-
-
-def _delete(spec: Any, element: Any) -> None:
-    spec.delete(element) if hasattr(spec, "delete") else element.delete()  # in older MuJoCo each element deletes itself
+    defaults = mujoco.MjSpec()
+    for attribute in _SIZES:
+        setattr(spec, attribute, getattr(defaults, attribute))
+    for actuator in spec.actuators:
+        actuator.delay = actuator.nsample = 0
+    compiler = spec.compiler
+    compiler.boundmass = compiler.boundmass or 1e-6
+    compiler.boundinertia = compiler.boundinertia or 1e-12
+    compiler.LRopt.mode = mujoco.mjtLRMode.mjLRMODE_NONE
+    compiler.fusestatic = False
 
 
 def _line(element: Any) -> int | None:
     """The line of a spec element (``None`` when MuJoCo does not know it: it says line 0 for included files)."""
-    found = _LINE.search(getattr(element, "info", "") or "")
+    found = _LINE.search(element.info)
     return int(found.group(1)) if found and int(found.group(1)) > 0 else None
 
 
@@ -304,24 +238,12 @@ class _MjcfTree:
 
     def __init__(self, mujoco: ModuleType, spec: Any, model: Any, data: Any, file: str) -> None:
         self.mj, self.spec, self.m, self.d, self.file = mujoco, spec, model, data, file
-        self.lines = {kind: self.element_lines(obj, elements, in_order) for kind, obj, elements, in_order in (
-            ("body", "mjOBJ_BODY", spec.bodies, False), ("joint", "mjOBJ_JOINT", spec.joints, False),
-            ("equality", "mjOBJ_EQUALITY", spec.equalities, True), ("tendon", "mjOBJ_TENDON", spec.tendons, True),
-            ("actuator", "mjOBJ_ACTUATOR", spec.actuators, True))}
+        kinds = (("body", spec.bodies), ("joint", spec.joints), ("equality", spec.equalities), ("tendon", spec.tendons),
+                 ("actuator", spec.actuators))
+        self.lines = {kind: {int(e.id): _line(e) for e in elements if e.id >= 0} for kind, elements in kinds}  # by compiled index
         written = [self.name("mjOBJ_BODY", i) for i in range(model.nbody)]
         used = set(filter(None, written))  # an unnamed body's made-up name never takes a real body's
         self.body_names = [name or unique_name(f"body{i}", used) for i, name in enumerate(written)]
-
-    def element_lines(self, kind: str, elements: Any, in_order: bool) -> dict[int, int | None]:
-        """Line of each spec element by its compiled index (older MuJoCo: found by name, or by position when ``in_order``)."""
-        out: dict[int, int | None] = {}
-        for position, element in enumerate(elements):
-            index = getattr(element, "id", None)
-            if index is None or index < 0:
-                index = position if in_order else self.mj.mj_name2id(self.m, getattr(self.mj.mjtObj, kind), element.name) if element.name else -1
-            if index >= 0:
-                out[int(index)] = _line(element)
-        return out
 
     def name(self, kind: str, index: int) -> str:
         return self.mj.mj_id2name(self.m, getattr(self.mj.mjtObj, kind), index) or ""
@@ -331,26 +253,26 @@ class _MjcfTree:
         bodies = tuple(self.body(i) for i in range(m.nbody))
         notes: list[str] = []
         unsupported: list[Unsupported] = []
-        actuated, balls = actuator_inputs(self, notes, unsupported)
+        actuated, balls = self.actuator_inputs(notes, unsupported)
         joints = tuple(self.joint(i, i in actuated, balls.get(i, ())) for i in range(m.njnt))
         if m.nflex:
-            flexes = list(getattr(self.spec, "flexes", []))
             unsupported.append(Unsupported("flex", f"{m.nflex} deformable (flex) bodies are not supported; expected rigid bodies and joints",
-                                           _line(flexes[0]) if flexes else None))
+                                           _line(self.spec.flexes[0]) if self.spec.flexes else None))
         self.gap_lengths: list[float] = []  # how far each connect and weld misses at qpos0 (equality_gaps)
         self.gap_angles: list[float] = []
         closures, welds, more, couplings = self.equalities(notes)
         unsupported += more
-        for i in sorted(set(range(m.ntendon)) - tendons_held(self)):
+        held = {int(o) for k in range(m.neq) if m.eq_active0[k] and int(m.eq_type[k]) == int(mj.mjtEq.mjEQ_TENDON)
+                for o in (m.eq_obj1id[k], m.eq_obj2id[k]) if o >= 0}  # tendons an active tendon equality names
+        for i in sorted(set(range(m.ntendon)) - held):
             tname = self.name("mjOBJ_TENDON", i) or f"tendon{i}"
             notes.append(f"tendon {clipped(tname)}{at_line(self.lines['tendon'].get(i))} is not imported: a tendon is not a joint (only an equality on it would constrain the mechanism)")
         for i in range(m.nbody):
             if m.body_mocapid[i] >= 0:
                 notes.append(f"mocap body {clipped(self.body_names[i])}{at_line(self.lines['body'].get(i))} is moved only by the simulation: treated as fixed")
         name = self.spec.modelname if self.spec.modelname and self.spec.modelname != "MuJoCo Model" else one_line(Path(self.file).stem)  # a file name may hold a line break; a name may not
-        version = getattr(mj, "__version__", "")
         return RobotTree(name, self.file, "MJCF", bodies, joints, tuple(closures), tuple(welds), tuple(unsupported), tuple(notes),
-                         pose=f"qpos0, as MuJoCo {version} compiles it".replace("  ", " "), gaps=tuple(self.gap_lengths), angle_gaps=tuple(self.gap_angles),
+                         pose=f"qpos0, as MuJoCo {mj.__version__} compiles it", gaps=tuple(self.gap_lengths), angle_gaps=tuple(self.gap_angles),
                          couplings=tuple(couplings))
 
     def body(self, i: int) -> Body:
@@ -405,7 +327,11 @@ class _MjcfTree:
                 notes.append(f"equality {tag} {clipped(name)}{at_line(line)} is inactive at start: left out")
                 continue
             if tag in ("joint", "tendon"):
-                add_coupling(self, k, tag, f"equality/{tag}[{clipped(name)}]", line, notes, couplings, unsupported)
+                coupling = self.equality_coupling(k, tag, f"equality/{tag}[{clipped(name)}]", line, notes)
+                if isinstance(coupling, Unsupported):
+                    unsupported.append(coupling)
+                else:
+                    couplings.append(coupling)
                 continue
             if tag == "flex":
                 unsupported.append(Unsupported(f"equality/flex[{clipped(name)}]", "a flex equality is not supported; expected connect or weld", line))
@@ -431,10 +357,8 @@ class _MjcfTree:
     def equality_gaps(self, notes: list[str]) -> dict[int, str]:
         """How far each active connect or weld is from holding at qpos0, where it is; a note when the file turns equalities off.
 
-        From the first three constraint rows (``efc_pos``) of ``mj_forward`` at
-        ``qpos0`` and :meth:`weld_angle`: above ``Tolerance.rank`` of the joints'
-        characteristic length (not ``<statistic extent>``, which a file sets at
-        will) or radians.  Made even where ``<option><flag>`` turns equalities off.
+        From the first three constraint rows (``efc_pos``) of ``mj_forward`` and :meth:`weld_angle`: above ``Tolerance.rank``
+        of the joints' characteristic length (not ``<statistic extent>``, which a file sets at will) or radians.
         """
         m, mj = self.m, self.mj
         kinds = (int(mj.mjtEq.mjEQ_CONNECT), int(mj.mjtEq.mjEQ_WELD))
@@ -526,3 +450,100 @@ class _MjcfTree:
             anchor = d.xpos[o1] + rotation @ np.asarray(m.eq_data[k][:3])
         return o1, o2, self.finite(anchor, key, line)
 
+    def actuator_inputs(self, notes: list[str], unsupported: list[Unsupported]) -> tuple[set[int], dict[int, tuple[BallActuator, ...]]]:
+        """The hinges and slides actuators drive, and the inputs of each driven ball joint (one actuator, one input; the
+        rules: ``docs/robot-files.md``): about ``xmat @ gear[:3]`` in the global frame, the same for ``jointinparent`` at ``qpos0``."""
+        m, trn, types = self.m, self.mj.mjtTrn, self.mj.mjtJoint
+        out: set[int] = set()
+        drivers: dict[int, list[str]] = {}
+        balls: dict[int, list[BallActuator]] = {}
+        for a in range(m.nu):
+            kind = int(m.actuator_trntype[a])
+            aname = self.name("mjOBJ_ACTUATOR", a) or f"actuator{a}"
+            line = self.lines["actuator"].get(a)
+            if kind not in (int(trn.mjTRN_JOINT), int(trn.mjTRN_JOINTINPARENT)):
+                what = {int(trn.mjTRN_TENDON): "a tendon", int(trn.mjTRN_SITE): "a site", int(trn.mjTRN_BODY): "a body",
+                        int(trn.mjTRN_SLIDERCRANK): "a slider-crank"}.get(kind, "no joint")
+                notes.append(f"actuator {clipped(aname)}{at_line(line)} drives {what}, not a joint: no joint is marked actuated for it")
+                continue
+            joint = int(m.actuator_trnid[a][0])
+            jtype, jname, key = int(m.jnt_type[joint]), self.joint_name(joint), f"actuator[{clipped(aname)}]"
+            if jtype == int(types.mjJNT_FREE):
+                unsupported.append(Unsupported(key, f"an actuator on the free joint {clipped(jname)} is not supported: it is one input along its "
+                                               "six-number gear (a force and a torque together), which no joint of the model expresses as one input "
+                                               "(an actuated free joint would be six inputs); expected actuators on hinge, slide or ball joints", line))
+            elif jtype == int(types.mjJNT_BALL):
+                ball = self.ball_actuator(a, aname, joint, kind == int(trn.mjTRN_JOINTINPARENT), line)
+                if ball is None:
+                    unsupported.append(Unsupported(key, f"its gear on the ball joint {clipped(jname)} has 0 0 0 as its first three numbers, the axis it "
+                                                   "turns about: it drives nothing; expected a non-zero axis", line))
+                else:
+                    balls.setdefault(joint, []).append(ball)
+            else:
+                out.add(joint)
+                drivers.setdefault(joint, []).append(f"{clipped(aname)}{at_line(line)}")
+        for joint, names in drivers.items():
+            if len(names) > 1:
+                notes.append(f"actuators {', '.join(names)} all drive joint {clipped(self.joint_name(joint))}: one input (its one freedom), not {len(names)}")
+        return out, {joint: _independent(self.joint_name(joint), inputs, notes) for joint, inputs in balls.items()}
+
+    def ball_actuator(self, a: int, aname: str, joint: int, in_parent: bool, line: int | None) -> BallActuator | None:
+        """The input of actuator ``a`` on a ball joint: its axis in the global frame at ``qpos0`` (``None``: a zero axis)."""
+        gear = np.asarray(self.m.actuator_gear[a][:3], dtype=float)
+        if not np.any(gear):
+            return None
+        body = int(self.m.jnt_bodyid[joint])
+        with np.errstate(all="ignore"):  # an overflow is refused just below, in one line
+            axis = np.asarray(self.d.xmat[body], dtype=float).reshape(3, 3) @ gear
+        key = f"actuator[{clipped(aname)}]/@gear"
+        try:
+            unit = require_vector(self.finite(axis, key, line), key, direction=True)
+        except MechanismError as exc:  # numbers too small to keep a direction
+            raise MechanismFileError(key, exc.message, file=self.file, line=line) from None
+        return BallActuator(aname, unit, in_parent, line)
+
+    def equality_coupling(self, k: int, tag: str, key: str, line: int | None, notes: list[str]) -> TreeCoupling | Unsupported:
+        """Equality ``k`` on joints or fixed tendons as a coupling of joint rates at ``qpos0``, through the slope ``polycoef[1]``
+        (``q1' - c1 q2' = 0``; for tendons, of their lengths ``sum coef_j q_j``; ``docs/robot-files.md``)."""
+        m = self.m
+        first, second = int(m.eq_obj1id[k]), int(m.eq_obj2id[k])
+        poly = [float(x) for x in m.eq_data[k][:5]]
+        kind_name = "mjOBJ_JOINT" if tag == "joint" else "mjOBJ_TENDON"
+        shown = ", ".join(clipped(self.name(kind_name, o) or str(o)) for o in (first, second) if o >= 0)
+        if tag == "joint":
+            terms = {first: 1.0}
+            if second >= 0 and poly[1] != 0.0:
+                terms[second] = terms.get(second, 0.0) - poly[1]
+        else:
+            terms = {}
+            for tendon, sign in ((first, 1.0), (second, -poly[1])):
+                if tendon < 0 or sign == 0.0:
+                    continue
+                start = int(m.tendon_adr[tendon])
+                for w in range(start, start + int(m.tendon_num[tendon])):
+                    if int(m.wrap_type[w]) != int(self.mj.mjtWrap.mjWRAP_JOINT):
+                        return Unsupported(key, f"a coupling of tendons ({shown}) on a spatial tendon is not supported; expected fixed tendons (of joints)", line)
+                    joint = int(m.wrap_objid[w])
+                    terms[joint] = terms.get(joint, 0.0) + sign * float(m.wrap_prm[w])
+        terms = {j: c for j, c in terms.items() if c != 0.0}
+        if len(terms) < 2:
+            held = ", ".join(clipped(self.joint_name(j)) for j in terms) or shown
+            return Unsupported(key, f"an equality of {tag}s ({shown}) that holds {held} still at qpos0 (no second {tag}, or a zero slope) is not supported; "
+                               "expected a coupling of two or more joint rates", line)
+        if any(x != 0.0 for x in poly[2:]):
+            notes.append(f"equality {tag} {clipped(self.name('mjOBJ_EQUALITY', k) or key)}{at_line(line)} is not linear (polycoef {' '.join(f'{x:g}' for x in poly)}): "
+                         f"its coupling acts through its slope at qpos0, {poly[1]:g}, and holds at this pose only")
+        return TreeCoupling(key, tuple(self.joint_name(j) for j in terms), tuple(terms.values()), line)
+
+
+def _independent(joint: str, inputs: list[BallActuator], notes: list[str]) -> tuple[BallActuator, ...]:
+    """The inputs of a ball joint whose axes are independent of those before them; a note for each other one."""
+    kept: list[BallActuator] = []
+    for ball in inputs:
+        if independent_of([k.axis for k in kept], ball.axis):
+            kept.append(ball)
+            continue
+        others = ", ".join(clipped(k.name) for k in kept)
+        notes.append(f"actuator {clipped(ball.name)}{at_line(ball.line)} turns the ball joint {clipped(joint)} about an axis "
+                     f"that actuator{'s' if len(kept) > 1 else ''} {others} already drive{'' if len(kept) > 1 else 's'}: it adds no input")
+    return tuple(kept)

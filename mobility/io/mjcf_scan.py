@@ -4,16 +4,10 @@ MuJoCo opens the files a model names and expands ``<replicate>``,
 ``<flexcomp>`` and ``<composite>`` with no bound: a named pipe makes it wait for
 ever, ``count="1000000"`` costs minutes and gigabytes.  :func:`scan_mjcf` walks
 the parsed file first, as MuJoCo finds and reads its files, and refuses in one
-line (the list: ``docs/robot-files.md``) an ``<include>`` that is missing, no
-regular file, repeated or past the depth or size limit; counts past the limits
-of :mod:`mobility.io.limits`, every copy counted; a negative ``count``; a
-``<flexcomp>``; too many asset points; ``nan``, ``inf`` or a non-zero number
-that reads as 0 in a geometric attribute; and a direction MuJoCo would
-silently replace (:data:`DIRECTIONS`).  MuJoCo normalizes ``quat``,
-``axisangle``, ``zaxis``, ``axis``, ``fromto`` and a weld's ``relpose`` by the
-root of the double-precision sum of squares (``mjuu_normvec``): when it
-overflows (from about ``1e154``) the result is a zero vector, and a quaternion
-whose sum is below ``mjEPS`` (``1e-14``) stays unnormalized, another rotation.
+line what ``docs/robot-files.md`` lists: a bad ``<include>``, counts past the
+limits of :mod:`mobility.io.limits` (every copy counted), a ``<flexcomp>``,
+``nan``, ``inf`` or an underflow in a geometric attribute, and a direction
+MuJoCo would silently replace (:data:`DIRECTIONS`).
 
 Examples
 --------
@@ -44,6 +38,7 @@ import stat
 import sys
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Callable
 from xml.etree.ElementTree import Element
 
 from ..errors import MechanismFileError, clipped
@@ -55,32 +50,27 @@ __all__ = ["scan_mjcf", "MjcfScan", "GEOMETRY_ATTRIBUTES", "DIRECTIONS", "MUJOCO
 
 GEOMETRY_ATTRIBUTES = frozenset({"pos", "quat", "axisangle", "euler", "xyaxes", "zaxis", "axis", "anchor", "ref", "springref",
                                  "fromto", "size", "offset", "relpose", "polycoef", "spacing"})
-"""MJCF attributes that place bodies and joints: a ``nan`` or ``inf`` in one is refused at its line.
-
-Others (``range="-inf inf"`` is common) are left to MuJoCo."""
+"""MJCF attributes that place bodies and joints: a ``nan`` or ``inf`` in one is refused (``range="-inf inf"`` is left to MuJoCo)."""
 
 MUJOCO_EPS = 1e-14
 """MuJoCo's ``mjEPS``: a vector whose sum of squares is below it is not normalized (``mjuu_normvec``)."""
 
 DIRECTIONS = {"quat": "no rotation", "axisangle": "no rotation", "zaxis": "the direction +z or -z", "axis": "a zero axis",
               "fromto": "the direction +z or -z", "relpose": "a zero quaternion"}
-"""Attributes whose direction MuJoCo normalizes, and what it silently uses when their sum of squares overflows.
-
-A quaternion whose sum of squares is below :data:`MUJOCO_EPS` is refused too (MuJoCo leaves it unnormalized)."""
+"""Attributes whose direction MuJoCo normalizes (``mjuu_normvec``), and what it silently uses when their double-precision
+sum of squares overflows (from about ``1e154``); a quaternion whose sum is below :data:`MUJOCO_EPS` stays unnormalized."""
 
 _COUNTED = {"replicate", "flexcomp", "composite"}
 _RESOLUTIONS = {"supersphere": (1, 2), "supertorus": (1, 2), "wedge": (2, 1), "plate": (2, 1), "cone": (1, 1)}
-"""Builtin meshes MuJoCo makes as it reads the file: how many leading ``params`` are resolutions, and the power of their product.
-
-``sphere`` and ``hemisphere`` are bounded by MuJoCo itself (4 and 10 subdivisions)."""
+"""Builtin meshes MuJoCo makes as it reads the file: how many leading ``params`` are resolutions, and the power of their product
+(``sphere`` and ``hemisphere`` are bounded by MuJoCo itself)."""
 _HEX = re.compile(r"[+-]?0[xX]")
 
 
 @dataclass(frozen=True)
 class MjcfScan:
-    """What the scan found: every ``<include>`` (including file, line), the files read and the counts, copies included.
-
-    The compiled model must keep at least ``equalities``, ``world_joints`` and ``world_bodies``."""
+    """What the scan found: every ``<include>`` (including file, line), the files read and the counts, copies included
+    (the compiled model must keep at least ``equalities``, ``world_joints`` and ``world_bodies``)."""
 
     includes: tuple[tuple[str, int | None], ...] = ()
     files: tuple[str, ...] = ()
@@ -91,15 +81,6 @@ class MjcfScan:
     asset_values: int = 0
     world_joints: int = 0
     world_bodies: int = 0
-
-
-@dataclass
-class _Over:
-    """The first element where a count passed its limit."""
-
-    doc: XmlDocument
-    element: Element
-    factors: tuple[int, ...]
 
 
 @dataclass
@@ -126,7 +107,7 @@ class _Scanner:
     files: list[str] = field(default_factory=list)
     counts: dict[str, int] = field(default_factory=lambda: dict.fromkeys(("elements", "joints", "copies", "equalities", "asset_values",
                                                                          "world_joints", "world_bodies"), 0))  # MjcfScan's fields
-    over: dict[str, _Over] = field(default_factory=dict)
+    over: dict[str, tuple[XmlDocument, Element, tuple[int, ...]]] = field(default_factory=dict)  # where each count first passed its limit
     models: dict[str, tuple[int, int]] = field(default_factory=dict)  # a <model>'s elements and joints, by name: what each <attach> copies
     waiting: dict[str, list[tuple[Element, _Context]]] = field(default_factory=dict)  # <attach>es met before their <model>
 
@@ -158,8 +139,11 @@ class _Scanner:
             return self.included(element, where, "include")
         if tag == "model" and element.get("file"):
             return self.included(element, where, "model")
-        if tag == "flexcomp":
-            raise _unsupported_flexcomp(where.doc, element)
+        if tag == "flexcomp":  # refused before MuJoCo reads its file or makes its points
+            name = element.get("name")
+            raise where.doc.fail(element, f"flexcomp[{clipped(name)}]" if name else "flexcomp", "a deformable body, not supported (not even "
+                                 "left out: MuJoCo would make bodies and joints of its points, reading its mesh file whatever its size); "
+                                 "expected rigid bodies and joints (remove the <flexcomp>)")
         if tag in ("hfield", "mesh"):
             self.asset_values(element, where)
         inner = where
@@ -190,7 +174,7 @@ class _Scanner:
         self.counts[what] += amount
         limit = self.limits.max_elements if what == "elements" else self.limits.max_joints
         if self.counts[what] > limit and what not in self.over:
-            self.over[what] = _Over(doc or where.doc, element, where.factors)
+            self.over[what] = (doc or where.doc, element, where.factors)
 
     def counted(self, element: Element, where: _Context) -> _Context:
         """The context inside a ``<replicate>`` (its copies multiply), or the points of a ``<flexcomp>``/``<composite>``."""
@@ -223,13 +207,19 @@ class _Scanner:
         """Check the file of an ``<include>`` or ``<model>``; its elements, to visit in place of the element."""
         doc = where.doc
         name = element.get("file", "")
-        path = self.resolve(name, doc.file, where.model_dir or self.model_dir)
-        fail = _failing(doc, element, kind, name)
+        folders = dict.fromkeys([where.model_dir or self.model_dir, os.path.dirname(doc.file) or "."])  # where MuJoCo looks, in turn
+        candidates = [os.path.join(folder, name) for folder in folders] if name else []
+        path = next((candidate for candidate in candidates if os.path.lexists(candidate)), None)
+
+        def fail(message: str) -> MechanismFileError:  # at the element's line in the including file
+            return doc.fail(element, kind, f"{clipped(name)!r}: {message}" if name else message)
+
         if path is None:
             if kind == "model":
                 return []  # MuJoCo says the asset is missing
-            raise fail(f"no such file (looked in {_dirs(where.model_dir or self.model_dir, doc.file)}); expected a file to include")
-        self.require_includable(path, fail, kind)
+            looked = " and ".join(repr(clipped(f, 60)) for f in folders)
+            raise fail(f"no such file (looked in {looked}); expected a file to include")
+        self.require_includable(path, fail)
         real = os.path.realpath(path)
         if real in where.chain or (kind == "include" and real in self.seen):
             first = self.seen.get(real) or "the model file itself"
@@ -253,17 +243,7 @@ class _Scanner:
                           in_equality=where.in_equality and kind == "include", model_dir=model_dir)
         return [(child, context) for child in inner.root]
 
-    def resolve(self, name: str, including: str, model_dir: str) -> str | None:
-        """The path MuJoCo opens for ``name``: in the (sub-)model's directory, else in the including file's; ``None`` if neither exists."""
-        if not name:
-            return None
-        for folder in (model_dir, os.path.dirname(including) or "."):
-            candidate = os.path.join(folder, name)
-            if os.path.lexists(candidate):
-                return candidate
-        return None
-
-    def require_includable(self, path: str, fail, kind: str) -> None:
+    def require_includable(self, path: str, fail: Callable[[str], MechanismFileError]) -> None:
         """A regular file, within what remains of the size limit."""
         try:
             mode = require_not_pipe(path)
@@ -284,7 +264,7 @@ class _Scanner:
         if not self.over:
             return
         what = next(w for w in ("joints", "copies", "elements") if w in self.over)  # the joint limit says most
-        over = self.over[what]
+        doc, element, factors = self.over[what]
         limit_name = "max_elements" if what == "elements" else "max_joints"
         limit = getattr(self.limits, limit_name)
         noun = {"elements": "elements", "joints": "joints", "copies": "elements made by the count of <replicate>, <flexcomp> and <composite>"}[what]
@@ -293,27 +273,21 @@ class _Scanner:
         if what == "joints" and equalities:
             noun = "joints and equalities"
             details += [f"{equalities} of them <connect>, <weld> or other equalities, each counted as a joint"]
-        details += [f"count of <replicate> {' x '.join(map(str, over.factors))}"] if over.factors else []
+        details += [f"count of <replicate> {' x '.join(map(str, factors))}"] if factors else []
         detail = f" ({'; '.join(details)})" if details else ""
-        raise over.doc.fail(over.element, clipped(over.element.tag),
-                            f"{self.counts[what]} {noun}{detail} are more than the limit of {limit} ({self.limits.hint(limit_name)})")
+        raise doc.fail(element, clipped(element.tag),
+                       f"{self.counts[what]} {noun}{detail} are more than the limit of {limit} ({self.limits.hint(limit_name)})")
 
 
 def scan_mjcf(doc: XmlDocument, model_dir: str | Path, limits: Limits | None = None, *, size: int = 0) -> MjcfScan:
-    """Check an MJCF document and the files it includes (see the module docstring).
+    """Check an MJCF document and the files it includes (see the module docstring), each refusal one line at the element's.
 
     Parameters
     ----------
     model_dir : str or Path
-        The directory MuJoCo finds included files in (the working directory when MuJoCo is given the text).
+        The directory MuJoCo finds included files in.
     size : int
         Bytes of the model file, counted against the size limit with its includes.
-
-    Raises
-    ------
-    MechanismFileError
-        One line naming the file (the including one for a bad include), the
-        element's line and the limit or the value.
     """
     scanner = _Scanner(str(model_dir) or ".", current_limits(limits), size)
     scanner.seen[os.path.realpath(doc.file)] = "the model file itself"
@@ -440,14 +414,6 @@ def _negative(token: str) -> bool:
         return False
 
 
-def _unsupported_flexcomp(doc: XmlDocument, element: Element) -> MechanismFileError:
-    """The error for a ``<flexcomp>``, at its line: refused before MuJoCo reads its file or makes its points."""
-    name = element.get("name")
-    key = f"flexcomp[{clipped(name)}]" if name else "flexcomp"
-    return doc.fail(element, key, "a deformable body, not supported (not even left out: MuJoCo would make bodies and joints of its "
-                    "points, reading its mesh file whatever its size); expected rigid bodies and joints (remove the <flexcomp>)")
-
-
 def _asset_points(element: Element) -> tuple[int, str] | None:
     """How many points MuJoCo makes for a height field (``nrow`` x ``ncol``) or a builtin mesh as it reads it, and how it was counted.
 
@@ -515,16 +481,3 @@ def _counts(text: str) -> list[int]:
         return []
     return [v for v in values if v > 0] if all(v >= 0 for v in values) else []
 
-
-def _failing(doc: XmlDocument, element: Element, kind: str, name: str):
-    """An error about the file of an ``<include>``/``<model>``, at its line in the including file."""
-
-    def fail(message: str) -> MechanismFileError:
-        return doc.fail(element, kind, f"{clipped(name)!r}: {message}" if name else message)
-
-    return fail
-
-
-def _dirs(model_dir: str, including: str) -> str:
-    folders = dict.fromkeys([model_dir, os.path.dirname(including) or "."])
-    return " and ".join(repr(clipped(f, 60)) for f in folders)

@@ -1,19 +1,12 @@
 """A file's own precision: from the digits it writes and from how well its loops close.
 
-Files written by CAD exporters hold about six significant digits: their loops
-close only to about ``1e-7`` of their size, and a rank decision finer than
-that is about the rounding, not the mechanism (``docs/robot-files.md``).  The
-precision, relative to the characteristic length
-(:func:`~mobility.core.tolerance.characteristic_scale`), is the larger of:
+Files written by CAD exporters hold about six significant digits: their loops close only to about ``1e-7`` of their
+size, and a finer rank decision is about the rounding, not the mechanism (``docs/robot-files.md``).  The precision,
+relative to the characteristic length (:func:`~mobility.core.tolerance.characteristic_scale`), is the larger of:
 
-* **its digits** (:class:`DigitCounter`): when the median count of significant
-  digits of the placing numbers written with two or more is ``D >=``
-  :data:`ROUNDED_DIGITS`, each number ``x`` is known to half a unit of its
-  ``D``-th digit, ``0.5 * 10**(floor(log10|x|) - D + 1)`` (a length divided by
-  the characteristic length, an angle in radians, a quaternion component twice);
-* **its loops**: the largest relative gap of a loop closure at the file's pose
-  (a weld's angle in radians), gaps above :data:`ASSEMBLED` left out (a file
-  not assembled there, not rounding).
+* **its digits** (:class:`DigitCounter`): rounded to ``D >=`` :data:`ROUNDED_DIGITS` digits, each number ``x`` is known to
+  ``0.5 * 10**(floor(log10|x|) - D + 1)`` (a length over the characteristic length, an angle in radians);
+* **its loops**: the largest relative gap of a loop closure at the pose, up to :data:`ASSEMBLED`.
 
 :func:`~mobility.core.tolerance.file_tolerance` turns it into the rank threshold.
 
@@ -56,10 +49,8 @@ _NUMBER = re.compile(r"^[+-]?(\d*)\.?(\d*)(?:[eE][+-]?\d+)?$")
 
 
 def significant_digits(token: str) -> int:
-    """How many significant digits a number is written with (0 for zero, or for what is not a decimal number).
-
-    Leading zeros are not significant; trailing zeros are after a decimal
-    point (``0.500000`` has six), not in an integer (``500`` has one).
+    """How many significant digits a number is written with (0 for zero, or for what is not a decimal number); trailing
+    zeros count after a decimal point (``0.500000`` has six), not in an integer (``500`` has one).
 
     Examples
     --------
@@ -78,12 +69,8 @@ def significant_digits(token: str) -> int:
 
 @dataclass(frozen=True)
 class Rounding:
-    """The digits a file writes its geometry with.
-
-    ``digits``: ``D``, the median count of significant digits; ``length``,
-    ``angle``: the largest rounding of a length (file's unit), of an angle
-    (radians) or direction component.
-    """
+    """The digits a file writes its geometry with: ``D``, the median count of significant ``digits``, and the largest
+    rounding of a ``length`` (file's unit) and of an ``angle`` (radians) or direction component."""
 
     digits: int
     length: float
@@ -134,10 +121,6 @@ class DigitCounter:
         return Rounding(digits, largest(self.exponents["length"]), largest(self.exponents["angle"]))
 
 
-_SHOWN_GAP = 1e-12
-"""A gap below this is round-off of the reading itself, not worth a word."""
-
-
 MJCF_PLACING = frozenset({"body", "frame", "joint", "site", "connect", "weld"})
 """Elements whose numbers place joints: counted for the file's precision (geoms, inertias and the rest are not)."""
 
@@ -183,12 +166,8 @@ def mjcf_rounding(roots: Iterable[Any]) -> Rounding | None:
 
 @dataclass(frozen=True)
 class FilePrecision:
-    """A file's precision and what it was found from.
-
-    ``value``: relative to the characteristic length (``None``: nothing says the
-    file is inexact); ``digits``: the significant digits it is rounded to;
-    ``gap``: the largest relative gap of its loop closures at the pose.
-    """
+    """A file's precision ``value``, relative to the characteristic length (``None``: nothing says the file is inexact), and
+    what it was found from: the ``digits`` it is rounded to, the largest relative ``gap`` of its loop closures at the pose."""
 
     value: float | None
     digits: int | None = None
@@ -205,7 +184,7 @@ class FilePrecision:
         parts = []
         if self.digits is not None:
             parts.append(f"numbers written with {self.digits} significant digits")
-        if self.gap > _SHOWN_GAP:
+        if self.gap > 1e-12:  # below: round-off of the reading itself, not worth a word
             parts.append(f"loops closing to {self.gap:.2g} of its size")
         return "; ".join(parts)
 

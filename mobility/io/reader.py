@@ -1,9 +1,7 @@
 """Reading a parsed YAML document with one-line errors: the part every document loader shares.
 
-The mechanism and flexure loaders build on :class:`DocumentReader`.  Numbers
-are checked where they are read (finite, an expression neither overflowing nor
-complex); names must be strings (``links: [g, true]`` is an error, not a link
-``True``); a parameter may not take a reserved name of the expressions.
+The mechanism and flexure loaders build on :class:`DocumentReader`.  Numbers are checked where they are read (finite,
+an expression neither overflowing nor complex); names must be strings (``links: [g, true]`` is an error, not a link ``True``).
 
 Examples
 --------
@@ -58,7 +56,6 @@ class DocumentReader:
         self.angles: list[tuple[KeyPath, Any, float]] = []
         """Every angle read (a frame's ``rpy`` component or ``angle``): where, as written, its value in the file's unit."""
 
-    # -- errors -----------------------------------------------------------
     def fail(self, path: KeyPath, message: str) -> MechanismFileError:
         return MechanismFileError(format_key(path), message, file=self.file, line=self.pos.line(path))
 
@@ -73,11 +70,8 @@ class DocumentReader:
         return value
 
     def record(self, value: Any, path: KeyPath, what: str, allowed: tuple[str, ...], required: Required = (), *, described: str | None = None) -> Mapping[str, Any]:
-        """A mapping with only ``allowed`` keys and every ``required`` one: a section or an entry of a list.
-
-        ``required``: each a key, or a tuple of keys of which one is enough (a
-        missing one is an error at its key path, on the mapping's line);
-        ``described``: what a mapping should hold, when ``value`` is not one.
+        """A mapping with only ``allowed`` keys and every ``required`` one (``Required``; a missing one is an error at its key
+        path, on the mapping's line); ``described``: what a mapping should hold, when ``value`` is not one.
 
         Examples
         --------
@@ -122,7 +116,6 @@ class DocumentReader:
             raise self.fail(("description",), f"expected a string, got {describe_value(description)}")
         return name, description
 
-    # -- scalars ----------------------------------------------------------
     def number(self, value: Any, path: KeyPath, names: Mapping[str, float] | None = None) -> float:
         if isinstance(value, bool):
             raise self.fail(path, f"expected a number, got {value!r}")
@@ -181,8 +174,7 @@ class DocumentReader:
     def units(self, value: Any) -> str:
         if value is None:
             return ""
-        units = self.mapping(value, ("units",), "units")
-        self.require_known_keys(units, ("angle", "length"), ("units",), "units")
+        units = self.record(value, ("units",), "units", ("angle", "length"))
         angle = units.get("angle", "deg")
         self.angle_unit_given = "angle" in units
         if angle in ("deg", "degree", "degrees"):
@@ -244,8 +236,7 @@ class DocumentReader:
     def angle_notes(self) -> list[str]:
         """Warnings on the angles of a file read in degrees that look written in radians, each ``file:line: key: what``.
 
-        An expression using ``pi`` (``"2*pi/3*i"``), or else every angle at most
-        2π with one not a round number of degrees (``1.5708``).
+        An expression using ``pi`` (``"2*pi/3*i"``), or else every angle at most 2π with one not a round number of degrees.
 
         Examples
         --------
@@ -281,9 +272,9 @@ class DocumentReader:
                                     f"this one turns by only {value:g} deg; if {value:g} rad ({math.degrees(value):.6g} deg) was meant, give units: {{angle: rad}}"))]
 
     def frame(self, name: str, data: Any, path: KeyPath, names: Mapping[str, float]) -> Frame:
-        fdata = self.mapping(data if data is not None else {}, path, "a frame with origin, rpy, parent")
+        allowed = FRAME_KEYS + (("name",) if path[0] == "limbs" else ())
+        fdata = self.record(data if data is not None else {}, path, "a frame", allowed, described="a frame with origin, rpy, parent")
         self.frame_paths.setdefault(name, path)
-        self.require_known_keys(fdata, FRAME_KEYS + (("name",) if path[0] == "limbs" else ()), path, "a frame")
         origin = self.vector(fdata["origin"], path + ("origin",), names) if "origin" in fdata else (0.0, 0.0, 0.0)
         if "rpy" in fdata and ("axis" in fdata or "angle" in fdata):
             raise self.fail(path, "give either rpy or axis and angle, not both")

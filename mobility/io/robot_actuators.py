@@ -1,11 +1,8 @@
 """Actuators of robot description files: one actuator is one input.
 
-An actuator on a ball joint drives one rotation, the angular velocity's
-component along its gear's axis (a :class:`BallActuator`).  The model actuates a
-joint as a whole, so a driven ball joint becomes a chain through its centre
-(:func:`ball_chain`): an actuated R joint per actuator and a U or R joint for
-the rest, each R changing its own input alone (:func:`ball_chain_axes`).  At
-the reference pose the chain has the ball's three rotations: same mobility and twists.
+An actuator on a ball joint drives one rotation, the angular velocity's component along its gear's axis (a
+:class:`BallActuator`).  The model actuates a joint as a whole, so a driven ball joint becomes a chain through its
+centre (:func:`ball_chain`) with the ball's three rotations at the reference pose: same mobility and twists.
 
 Examples
 --------
@@ -32,11 +29,8 @@ Vector = tuple[float, float, float]
 
 @dataclass(frozen=True)
 class BallActuator:
-    """One input of a ball joint: a rotation about ``axis`` (global frame, at the reference pose), as one actuator drives it.
-
-    ``in_parent``: the axis is written in the parent body's frame (MuJoCo's
-    ``jointinparent``), else in the child's; ``line`` is the actuator's.
-    """
+    """One input of a ball joint: a rotation about ``axis`` (global frame, at the reference pose), as one actuator drives it;
+    ``in_parent``: written in the parent body's frame (MuJoCo's ``jointinparent``), else in the child's."""
 
     name: str
     axis: Vector
@@ -96,12 +90,9 @@ def ball_chain_names(name: str, actuators: tuple[BallActuator, ...]) -> list[str
 
 
 def ball_chain(name: str, point: Vector, actuators: tuple[BallActuator, ...]) -> list[Joint]:
-    """A ball joint driven by ``actuators`` as a chain of joints through ``point``, in chain order, their links still to be set.
-
-    Actuator ``a`` is the actuated R joint ``name.a``; the rotations no actuator drives are the U or R joint
-    ``name``.  The ``links`` are placeholders (``"parent"``, ``"child"``) for the caller to set.
+    """A ball joint driven by ``actuators`` as a chain of joints through ``point``, in chain order: the actuated R joint
+    ``name.a`` of each actuator ``a``, the U or R joint ``name`` for the rest; ``links`` are placeholders for the caller to set.
     """
-    centre = point
     axes = ball_chain_axes([a.axis for a in actuators])
     count = len(actuators)
     rest = axes[count:]
@@ -109,9 +100,9 @@ def ball_chain(name: str, point: Vector, actuators: tuple[BallActuator, ...]) ->
     out = []
     for k, joint_name in zip(_chain_order(count, actuators), ball_chain_names(name, actuators)):
         if k < count:
-            out.append(Joint(joint_name, "R", ends, axis=axes[k], point=centre, actuated=True))
+            out.append(Joint(joint_name, "R", ends, axis=axes[k], point=point, actuated=True))
         elif len(rest) == 2:
-            out.append(Joint(joint_name, "U", ends, axes=(rest[0], rest[1]), point=centre))
+            out.append(Joint(joint_name, "U", ends, axes=(rest[0], rest[1]), point=point))
         else:
-            out.append(Joint(joint_name, "R", ends, axis=rest[0], point=centre))
+            out.append(Joint(joint_name, "R", ends, axis=rest[0], point=point))
     return out

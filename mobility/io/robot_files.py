@@ -1,8 +1,8 @@
 """Robot description files (MJCF, URDF): recognise them and read them into a mechanism.
 
-:func:`robot_format` tells a robot description by its extension, else its
-first element (``<mujoco>``, ``<robot>``); :func:`read_robot` reads one, adds
-the loop closures asked for and builds the mechanism with the notes of the reading.
+:func:`robot_format` tells a robot description by its extension, else its first element (``<mujoco>``, ``<robot>``);
+:func:`read_robot` reads one, adds the loop closures asked for (for URDF and MJCF alike, ``docs/robot-files.md``:
+:func:`with_close_pairs`, :func:`with_closures_file`) and builds the mechanism with the notes of the reading.
 
 Examples
 --------
@@ -30,16 +30,22 @@ from __future__ import annotations
 
 from dataclasses import fields, replace
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Iterable, Mapping
 
+import numpy as np
+
+from ..core.model import WORLD, Joint
+from ..core.transforms import Transform
 from ..core.validation import require_bool
-from ..errors import MechanismFileError, RequestError, clipped
-from .closures import close_pairs, with_close_pairs, with_closures_file
+from ..errors import MechanismFileError, RequestError, clipped, counted, did_you_mean
 from .files import file_name
-from .robot_tree import ImportedRobot, RobotOptions, RobotTree, build_mechanism, model_joint_names, unique_name
+from .mechanism_reader import MechanismReader
+from .robot_tree import Closure, ImportedRobot, RobotOptions, RobotTree, build_mechanism, model_joint_names, unique_name
 from .xml_source import read_xml, root_tag
+from .yaml_source import parse_yaml, read_text
 
-__all__ = ["robot_format", "is_robot_file", "read_robot", "require_no_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES"]
+__all__ = ["robot_format", "is_robot_file", "read_robot", "require_no_robot_options", "RobotOptions", "ImportedRobot", "ROBOT_SUFFIXES",
+           "with_close_pairs", "with_closures_file", "close_pairs", "CLOSURES_KEYS"]
 
 ROBOT_SUFFIXES = {".urdf": "urdf", ".mjcf": "mjcf", ".xml": None}
 """Extensions of robot description files (``.xml``: MJCF or URDF, by its first element)."""
@@ -48,10 +54,7 @@ _ROOTS = {"mujoco": "mjcf", "robot": "urdf"}
 
 
 def robot_format(path: str | Path) -> str | None:
-    """``"mjcf"``, ``"urdf"``, or ``None`` for a file that is not a robot description.
-
-    The extension decides, else the first XML element (YAML files are never read).
-    """
+    """``"mjcf"``, ``"urdf"``, or ``None`` for a file that is not a robot description: by extension, else its first element."""
     suffix = Path(file_name(path, "robot_format")).suffix.lower()
     if suffix in (".yaml", ".yml"):
         return None
@@ -107,11 +110,8 @@ def read_robot(path: str | Path, options: RobotOptions | None = None, **option_v
 
 
 def _closures_named_apart(tree: RobotTree) -> RobotTree:
-    """The tree with each closing joint named apart from the joints (and the other closing joints), with a note for each renamed.
-
-    MuJoCo keeps connects and joints apart, the joint graph cannot: a clash
-    gets ``~2``, ``~3``, ...  The names the file's joints take (with their
-    ``~k``) are set aside first.
+    """The tree with each closing joint named apart from the joints and the other closing joints (``~2``, ``~3``, ...: MuJoCo
+    keeps connects and joints apart, the joint graph cannot), with a note for each renamed.
 
     Examples
     --------
@@ -143,10 +143,8 @@ def _closures_named_apart(tree: RobotTree) -> RobotTree:
 
 
 def require_no_robot_options(path: str | Path, option_values: dict[str, Any], spelling: Mapping[str, str] | None = None) -> None:
-    """Refuse the robot options given for a mechanism file (YAML); options left at their defaults pass.
-
-    ``spelling`` names the options as the caller's user wrote them, in its
-    order (the command line's ``--ground``); by default by keyword, sorted.
+    """Refuse the robot options given for a mechanism file (YAML), options left at their defaults passing; ``spelling`` names
+    them as the caller's user wrote them, in its order (the command line's ``--ground``), else by keyword, sorted.
 
     Raises
     ------
@@ -191,3 +189,111 @@ def _options(options: RobotOptions | None, values: dict[str, Any]) -> RobotOptio
     if closures == "":
         raise RequestError("an empty file name; expected the name of a closures file (or leave the option out)", argument="closures")
     return replace(out, close=close_pairs(out.close), closures=closures, floating=flags["floating"], ignore_unsupported=flags["ignore_unsupported"])
+
+
+CLOSURES_KEYS = ("description", "joints")
+"""Keys of a closures side file."""
+
+
+def close_pairs(value: object) -> tuple[tuple[str, str], ...]:
+    """``value`` as pairs of body names ``((A, B), ...)`` (``None``: none), else a :class:`~mobility.errors.RequestError`
+    naming ``close`` or ``close[k]`` (a bare pair ``("A", "B")`` too).
+
+    Examples
+    --------
+    >>> close_pairs([["a", "b"]])
+    (('a', 'b'),)
+    >>> close_pairs(("a", "b"))
+    Traceback (most recent call last):
+    ...
+    mobility.errors.RequestError: close[0]: expected a pair of body names (A, B), got str (one pair is written [(A, B)])
+    """
+    if value is None:
+        return ()
+    if not isinstance(value, (list, tuple)):
+        raise RequestError(caller="close", expected="a list of pairs of body names [(A, B), ...]", got=type(value).__name__)
+    pairs = []
+    for k, pair in enumerate(value):
+        if isinstance(pair, (list, tuple)) and len(pair) == 2 and all(isinstance(name, str) for name in pair):
+            pairs.append((pair[0], pair[1]))
+            continue
+        if not isinstance(pair, (list, tuple)):
+            got = type(pair).__name__
+            if len(value) == 2 and all(isinstance(name, str) for name in value):
+                got += " (one pair is written [(A, B)])"
+        elif len(pair) != 2:
+            got = f"{len(pair)} item{'s' if len(pair) != 1 else ''}"
+        else:
+            got = f"a pair of {type(pair[0]).__name__} and {type(pair[1]).__name__}"
+        raise RequestError(argument=f"close[{k}]", expected="a pair of body names (A, B)", got=got)
+    return tuple(pairs)
+
+
+def with_close_pairs(tree: RobotTree, pairs: Iterable[tuple[str, str]]) -> RobotTree:
+    """The tree with a spherical joint at the origin of ``A`` for each pair ``(A, B)`` (bodies whose origins coincide).
+
+    Raises
+    ------
+    MechanismFileError
+        When a name is not a body of the tree (key ``close``).
+    RequestError
+        When ``pairs`` is not a list of pairs of names (:func:`close_pairs`).
+
+    Examples
+    --------
+    >>> from mobility.io.robot_tree import Body, TreeJoint
+    >>> tree = RobotTree("two arms", "t.urdf", "URDF", bodies=(
+    ...     Body("base", None), Body("a", "base", origin=(1, 0, 0)), Body("b", "base", origin=(1, 0, 0))))
+    >>> closed = with_close_pairs(tree, [("a", "b")])
+    >>> [(c.joint.type, c.joint.links, c.joint.point) for c in closed.closures]
+    [('S', ('a', 'b'), (1.0, 0.0, 0.0))]
+    """
+    closures, notes, gaps = [], [], []
+    for a, b in close_pairs(pairs):
+        first, second = tree.body(a, "close"), tree.body(b, "close")
+        if first.name == second.name:
+            raise MechanismFileError("close", f"expected two different bodies, got {a!r} twice", file=tree.file)
+        gap = float(np.linalg.norm(np.subtract(first.origin, second.origin)))
+        gaps.append(gap)
+        name = f"close_{a}_{b}"
+        closures.append(Closure(Joint(name, "S", (a, b), point=first.origin), "--close"))
+        notes.append(f"--close {a} {b}: spherical joint {name} at the origin of {a}; the origin of {b} is {gap:.3g} {tree.length_unit} from it")
+    return tree.with_closures(closures, notes=notes, gaps=gaps)
+
+
+def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
+    """The tree with the closing joints of a side file: ``joints`` as in a mechanism file, their ``links`` body names, a
+    ``frame`` naming a body whose frame at the pose the geometry is written in (default: global)::
+
+          # closures of four_bar.urdf
+          joints:
+            - {name: C, type: R, links: [coupler, rocker], axis: [0, 0, 1], point: [3, 0.5, 0], frame: coupler}
+
+    Raises
+    ------
+    MechanismFileError
+        On a malformed file, an unknown body or frame, or bad joint geometry (at its line and key).
+    RequestError
+        When ``path`` is not a file name.
+    """
+    file = file_name(path, "closures")
+    data, positions = parse_yaml(read_text(path), file)
+    reader = MechanismReader(file, positions)
+    doc = reader.record(data, (), "a closures file", CLOSURES_KEYS, ("joints",), described="closing joints: a mapping with joints")
+    joints, sources = reader.joints(doc["joints"], ("joints",), {}, None)
+    if not joints:
+        raise reader.fail(("joints",), "expected at least one closing joint (a closures file that closes nothing is a mistake)")
+    bodies = {b.name: b for b in tree.bodies}
+    closures = []
+    for joint, source in zip(joints, sources):
+        for k, link in enumerate(joint.links):
+            if link not in bodies:
+                known = ", ".join(list(bodies)[:12])
+                raise reader.fail(source + ("links", k), f"no body named {link!r}{did_you_mean(link, bodies)} in {Path(tree.file).name}; expected one of: {known}")
+        if joint.frame != WORLD:
+            if joint.frame not in bodies:
+                raise reader.fail(source + ("frame",), f"unknown frame {joint.frame!r}; expected {WORLD!r} or a body of {Path(tree.file).name}")
+            body = bodies[joint.frame]
+            joint = joint.transformed(Transform(np.array(body.rotation), np.array(body.origin)))
+        closures.append(Closure(joint, "closing joint", positions.line(source), file))
+    return tree.with_closures(closures, notes=[f"{counted(len(closures), 'closing joint')} from {file}"], files=[file])

@@ -1,12 +1,8 @@
 """A robot description as a tree of bodies, and the joint graph it makes.
 
-The readers of MJCF and URDF (:mod:`mobility.io.mjcf`, :mod:`mobility.io.urdf`)
-each produce a :class:`RobotTree` -- bodies with their pose, joints in the
-global frame at the reference pose, closing joints, welds -- and
-:func:`build_mechanism` turns it into a :class:`~mobility.core.model.Mechanism`
-the same way for both (the rules: ``docs/robot-files.md``).  Elements the
-model cannot express are an error of one line unless ``ignore_unsupported``;
-every choice made for the user comes back in :attr:`ImportedRobot.notes`.
+The readers of MJCF and URDF (:mod:`mobility.io.mjcf`, :mod:`mobility.io.urdf`) each produce a :class:`RobotTree`,
+which :func:`build_mechanism` turns into a :class:`~mobility.core.model.Mechanism` the same way for both (the rules:
+``docs/robot-files.md``); every choice made for the user comes back in :attr:`ImportedRobot.notes`.
 
 Examples
 --------
@@ -31,20 +27,19 @@ import math
 from collections import deque
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Iterable, cast
+from typing import Iterable, Mapping, Sequence, cast
 
 import numpy as np
 
-from ..core.model import Joint, Mechanism
+from ..core.model import Coupling, Joint, Mechanism, require_couplings
 from ..core.tolerance import DEFAULT_TOLERANCE, file_tolerance
 from ..errors import MechanismError, MechanismFileError, clipped, counted, did_you_mean
 from .limits import current_limits
 from .precision import Rounding, file_precision
 from .robot_actuators import BallActuator, ball_chain, ball_chain_names
-from .robot_couplings import TreeCoupling, model_couplings
 
-__all__ = ["Body", "TreeJoint", "Closure", "Weld", "Unsupported", "RobotTree", "RobotOptions", "ImportedRobot", "build_mechanism", "JOINT_KINDS",
-           "rotation_tuple", "vector_tuple", "at_line", "unique_name", "model_joint_names"]
+__all__ = ["Body", "TreeJoint", "Closure", "Weld", "Unsupported", "TreeCoupling", "RobotTree", "RobotOptions", "ImportedRobot", "build_mechanism",
+           "model_couplings", "JOINT_KINDS", "rotation_tuple", "vector_tuple", "at_line", "unique_name", "model_joint_names"]
 
 Vector = tuple[float, float, float]
 Rotation = tuple[Vector, Vector, Vector]
@@ -53,15 +48,10 @@ IDENTITY: Rotation = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 JOINT_KINDS = {"hinge": "R", "slide": "P", "ball": "S", "planar": "E", "free": "free"}
 """Joint kinds of a tree, and the joint type each becomes (``free``: 3 P + S, or fixed)."""
 
-IGNORE_HINT = "pass --ignore-unsupported (ignore_unsupported=True) to leave it out"
-
 
 @dataclass(frozen=True)
 class Body:
-    """A rigid body of the description, with its pose at the reference configuration.
-
-    ``x_world = rotation @ x_body + origin``; ``parent`` is ``None`` for the root.
-    """
+    """A rigid body of the description at the reference pose: ``x_world = rotation @ x_body + origin`` (``parent``: ``None`` for the root)."""
 
     name: str
     parent: str | None
@@ -117,14 +107,21 @@ class Unsupported:
 
 
 @dataclass(frozen=True)
-class RobotTree:
-    """A robot description read from a file: bodies, joints, closures, at one pose.
+class TreeCoupling:
+    """``sum coefficients[j] * rate(joints[j]) = 0`` on hinges and slides of the tree (by name); ``key`` names the element for messages."""
 
-    ``bodies``: root first, every parent before its children; ``joints``: in file
-    order (a body's root-to-body); ``pose``: where the geometry is taken;
-    ``files``: the other files read for it; ``rounding``: the digits of its
-    numbers (:mod:`mobility.io.precision`); ``gaps``, ``angle_gaps``: how far each
-    loop closure (``length_unit``) and weld (radians) misses at the pose.
+    key: str
+    joints: tuple[str, ...]
+    coefficients: tuple[float, ...]
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class RobotTree:
+    """A robot description read from a file: bodies (every parent before its children), joints (in file order), closures, at one ``pose``.
+
+    ``files``: the other files read for it; ``rounding``: the digits of its numbers (:mod:`mobility.io.precision`);
+    ``gaps``, ``angle_gaps``: how far each loop closure (``length_unit``) and weld (radians) misses at the pose.
     """
 
     name: str
@@ -176,7 +173,7 @@ class RobotOptions:
     close : tuple of (str, str)
         Pairs of bodies whose origins coincide, joined by a spherical joint there.
     closures : str, optional
-        A side file of closing joints (:mod:`mobility.io.closures`).
+        A side file of closing joints (:func:`~mobility.io.robot_files.with_closures_file`).
     """
 
     ground: str | None = None
@@ -189,10 +186,7 @@ class RobotOptions:
 
 @dataclass(frozen=True)
 class ImportedRobot:
-    """A mechanism read from a robot description, with the notes of its reading.
-
-    ``files``: every file read for it, the description first (``mobility convert`` writes over none).
-    """
+    """A mechanism read from a robot description, the notes of its reading and every file read for it (the description first)."""
 
     mechanism: Mechanism
     notes: tuple[str, ...] = ()
@@ -234,14 +228,17 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     notes = list(tree.notes)
     for item in tree.unsupported:
         if not options.ignore_unsupported:
-            raise MechanismFileError(item.key, f"{item.message}; {IGNORE_HINT}", file=tree.file, line=item.line)
+            raise MechanismFileError(item.key, f"{item.message}; pass --ignore-unsupported (ignore_unsupported=True) to leave it out",
+                                     file=tree.file, line=item.line)
         notes.append(f"left out {item.key}{at_line(item.line)}: {item.message}")
 
     ground_body = tree.body(options.ground, "ground").name if options.ground is not None else tree.bodies[0].name
     ee_body = tree.body(options.end_effector, "end_effector").name if options.end_effector is not None else None
     kept = _free_joints_kept(tree, options, notes)
     groups = _rigid_groups(tree, kept, notes)
-    names = _group_names(tree, groups, [n for n in (ground_body, ee_body) if n])
+    names: dict[str, str] = {}  # each rigid link named after the ground or end-effector body in it, else its body nearest the root
+    for body in [n for n in (ground_body, ee_body) if n] + [b.name for b in tree.bodies]:  # parents come first
+        names.setdefault(groups.find(body), body)
 
     def link(body: str) -> str:
         return names[groups.find(body)]
@@ -317,6 +314,45 @@ def build_mechanism(tree: RobotTree, options: RobotOptions | None = None) -> Imp
     return ImportedRobot(mechanism, tuple(notes), tree.format, (tree.file,) + tree.files, tuple(closing))
 
 
+def model_couplings(couplings: Iterable[TreeCoupling], kinds: Mapping[str, str], model_name: Mapping[str, str], file: str, joints: Sequence[Joint]) -> tuple[Coupling, ...]:
+    """The model's couplings of the tree's ``couplings`` (each an MJCF joint or tendon equality, a URDF ``<mimic>``) on its ``joints`` (``model_name`` of each hinge and slide the mechanism holds; ``kinds`` of every tree joint).
+
+    Raises
+    ------
+    MechanismFileError
+        At the element's line: a joint that is no hinge or slide, one the
+        mechanism does not hold (welded still), a malformed coupling, or one
+        of slides and turns together.
+
+    Examples
+    --------
+    >>> slides = [Joint(n, "P", ("g", n), axis=(0, 1, 0)) for n in ("r", "l")]
+    >>> model_couplings((TreeCoupling("joint[r]/mimic", ("r", "l"), (1.0, -1.0), 5),), {"r": "slide", "l": "slide"}, {"r": "r", "l": "l"}, "g.urdf", slides)
+    (Coupling(joints=('r', 'l'), coefficients=(1.0, -1.0)),)
+    >>> model_couplings((TreeCoupling("joint[r]/mimic", ("r", "b"), (1.0, -1.0), 5),), {"r": "slide", "b": "ball"}, {"r": "r"}, "g.urdf", slides)
+    Traceback (most recent call last):
+    ...
+    mobility.errors.MechanismFileError: g.urdf:5: joint[r]/mimic: couples joint 'b', a ball joint, not a hinge or slide; expected hinges and slides that move
+    """
+    out = []
+    listed = tuple(couplings)
+    for c in listed:
+        for name in c.joints:
+            if name not in model_name:
+                kind = kinds.get(name)
+                why = f"a {kind} joint, not a hinge or slide" if kind not in (None, "hinge", "slide") else "a joint the mechanism does not hold (welded or fixed)"
+                raise MechanismFileError(c.key, f"couples joint {clipped(name)!r}, {why}; expected hinges and slides that move", file=file, line=c.line)
+        try:
+            out.append(Coupling(tuple(model_name[n] for n in c.joints), c.coefficients))
+        except MechanismError as exc:
+            raise MechanismFileError(c.key, exc.message, file=file, line=c.line) from None
+    try:
+        return require_couplings(out, joints)
+    except MechanismError as exc:  # couplings[k]...: the element that wrote it
+        c = listed[int(exc.key[len("couplings["):].split("]", 1)[0])]
+        raise MechanismFileError(c.key, exc.message, file=file, line=c.line) from None
+
+
 def at_line(line: int | None) -> str:
     """`` (line N)`` after what a note names, or nothing when the line is unknown.
 
@@ -345,11 +381,8 @@ def unique_name(name: str, used: set[str]) -> str:
 
 
 def _free_joints_kept(tree: RobotTree, options: RobotOptions, notes: list[str]) -> set[str]:
-    """The bodies whose free joint keeps its six freedoms (a note for each free joint says which way it went).
-
-    All with ``floating``; otherwise those an equality ties to a body outside
-    their subtree (held by the mechanism: fixing it would lock what it is welded to).
-    """
+    """The bodies whose free joint keeps its six freedoms, with a note for each: all with ``floating``, else those an equality
+    ties to a body outside their subtree (fixing it would lock what it is welded to)."""
     free = {j.body: j for j in tree.joints if j.kind == "free"}
     if options.floating or not free:
         return set(free)
@@ -402,16 +435,6 @@ def _rigid_groups(tree: RobotTree, kept: set[str], notes: list[str]) -> _Groups:
             notes.append(f"weld {clipped(w.name)}{at_line(w.line)} makes {clipped(w.bodies[0])} and {clipped(w.bodies[1])} one rigid link")
         groups.union(*w.bodies)
     return groups
-
-
-def _group_names(tree: RobotTree, groups: _Groups, preferred: list[str]) -> dict[str, str]:
-    """Name each rigid link after a preferred body in it, else its body nearest the root."""
-    names: dict[str, str] = {}
-    for name in preferred:
-        names.setdefault(groups.find(name), name)
-    for b in tree.bodies:  # parents come first: the first member met is nearest the root
-        names.setdefault(groups.find(b.name), b.name)
-    return names
 
 
 def model_joint_names(j: TreeJoint) -> list[str]:

@@ -1,17 +1,9 @@
 """Read URDF files: links and joints at the zero pose.
 
-Each joint's ``<origin>`` places the child frame in the parent's (``xyz``, and
-``rpy`` with ``R = Rz(yaw) Ry(pitch) Rx(roll)``); its ``<axis>`` (default
-``1 0 0``) is in the child frame.  How joints, ``<transmission>`` and
-``<mimic>`` map, and closing loops: ``docs/robot-files.md``.
-
-Numbers are plain ASCII decimals, as MuJoCo's URDF compiler reads them; what
-Python's ``float`` alone would take (``1_0``, other scripts' digits), ``nan``,
-``inf`` and a non-zero number that reads as 0 (``1e-400``) are refused, as is
-an element a joint holds once when repeated (as MuJoCo refuses it).  An
-``<axis>`` is normalized by ``math.hypot``; one of only subnormal numbers is
-refused.  The standard library's XML parser suffices (a URDF library would
-bring meshes and their dependencies); geometry is not read.
+Each joint's ``<origin>`` places the child frame in the parent's; its ``<axis>`` (default ``1 0 0``) is in the child
+frame.  How elements map, which numbers are read (as MuJoCo's URDF compiler reads them) and closing loops:
+``docs/robot-files.md``.  The standard library's XML parser suffices (a URDF library would bring meshes and their
+dependencies); geometry is not read.
 
 Examples
 --------
@@ -47,8 +39,7 @@ from ..core.transforms import Transform, rotation_from_rpy
 from ..errors import clipped, did_you_mean, one_line
 from .files import file_name
 from .precision import DigitCounter
-from .robot_couplings import TreeCoupling
-from .robot_tree import Body, RobotTree, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
+from .robot_tree import Body, RobotTree, TreeCoupling, TreeJoint, Unsupported, at_line, rotation_tuple, vector_tuple
 from .xml_source import XmlDocument, read_xml, require_no_underflow
 
 __all__ = ["read_urdf", "URDF_JOINT_KINDS"]
@@ -98,32 +89,29 @@ class _UrdfReader:
         self.doc = doc
         self.digits = DigitCounter()  # the numbers that place the joints, as written
 
-    def fail(self, element: ET.Element | None, key: str, message: str) -> Exception:
-        return self.doc.fail(element, key, message)
-
     def tree(self) -> RobotTree:
         root = self.doc.root
         macro = _xacro_element(root)
         if macro is not None:
-            raise self.fail(macro, macro.tag, "a xacro file; expected a URDF: expand it first (xacro robot.urdf.xacro > robot.urdf)")
+            raise self.doc.fail(macro, macro.tag, "a xacro file; expected a URDF: expand it first (xacro robot.urdf.xacro > robot.urdf)")
         if root.tag != "robot":
-            raise self.fail(root, root.tag, "not a URDF file; expected the root element <robot>")
+            raise self.doc.fail(root, root.tag, "not a URDF file; expected the root element <robot>")
         links = self.links(root)
         joints = self.joints(root, links)
         parent_joint: dict[str, dict] = {}
         for j in joints:
             if j["child"] in parent_joint:
                 first = parent_joint[j["child"]]["name"]
-                raise self.fail(j["element"], f"joint[{clipped(j['name'])}]/child", f"link {clipped(j['child'])!r} already has the parent joint {clipped(first)!r}; expected a tree (close loops with --close or a closures file)")
+                raise self.doc.fail(j["element"], f"joint[{clipped(j['name'])}]/child", f"link {clipped(j['child'])!r} already has the parent joint {clipped(first)!r}; expected a tree (close loops with --close or a closures file)")
             parent_joint[j["child"]] = j
         roots = [name for name in links if name not in parent_joint]
         if len(roots) != 1:
             what = "no root link (the joints form a cycle)" if not roots else f"several root links ({', '.join(clipped(r) for r in roots[:6])})"
-            raise self.fail(root, "robot", f"{what}; expected one link that is no joint's child")
+            raise self.doc.fail(root, "robot", f"{what}; expected one link that is no joint's child")
         order, poses = self.poses(roots[0], joints)
         unreached = [name for name in links if name not in poses]
         if unreached:
-            raise self.fail(links[unreached[0]], f"link[{clipped(unreached[0])}]", "not reached from the root link: the joints form a cycle; expected a tree")
+            raise self.doc.fail(links[unreached[0]], f"link[{clipped(unreached[0])}]", "not reached from the root link: the joints form a cycle; expected a tree")
         bodies = tuple(Body(name, parent_joint[name]["parent"] if name in parent_joint else None, vector_tuple(poses[name].translation),
                             rotation_tuple(poses[name].rotation), self.doc.line(links[name])) for name in order)
         tree_joints: list[TreeJoint] = []
@@ -138,7 +126,7 @@ class _UrdfReader:
                 multiplier = self.number(mimic, "multiplier", f"{key}/@multiplier", 1.0)
                 self.number(mimic, "offset", f"{key}/@offset", 0.0)  # a position offset: no part in the rates, but a number
                 if multiplier == 0.0:
-                    raise self.fail(mimic, f"{key}/@multiplier", f"expected a non-zero number: multiplier 0 holds joint {clipped(j['name'])!r} still, which a coupling of two joints does not express")
+                    raise self.doc.fail(mimic, f"{key}/@multiplier", f"expected a non-zero number: multiplier 0 holds joint {clipped(j['name'])!r} still, which a coupling of two joints does not express")
                 couplings.append(TreeCoupling(key, (j["name"], j["mimic"]), (1.0, -multiplier), self.doc.line(mimic)))
             kind = URDF_JOINT_KINDS[j["type"]]
             if kind is None:
@@ -155,12 +143,12 @@ class _UrdfReader:
         for el in root.findall("link"):
             name = el.get("name")
             if not name:
-                raise self.fail(el, "link", "missing attribute name; expected <link name=\"...\">")
+                raise self.doc.fail(el, "link", "missing attribute name; expected <link name=\"...\">")
             if name in links:
-                raise self.fail(el, f"link[{clipped(name)}]", f"duplicate link name (first on line {self.doc.line(links[name])})")
+                raise self.doc.fail(el, f"link[{clipped(name)}]", f"duplicate link name (first on line {self.doc.line(links[name])})")
             links[name] = el
         if not links:
-            raise self.fail(root, "robot", "no <link>; expected links joined by joints")
+            raise self.doc.fail(root, "robot", "no <link>; expected links joined by joints")
         return links
 
     def joints(self, root: ET.Element, links: dict[str, ET.Element]) -> list[dict]:
@@ -170,36 +158,36 @@ class _UrdfReader:
         for el in root.findall("joint"):
             j = self.joint(el, links)
             if j["name"] in first:
-                raise self.fail(el, f"joint[{clipped(j['name'])}]", f"duplicate joint name (first on line {self.doc.line(first[j['name']])})")
+                raise self.doc.fail(el, f"joint[{clipped(j['name'])}]", f"duplicate joint name (first on line {self.doc.line(first[j['name']])})")
             first[j["name"]] = el
             joints.append(j)
         for j in joints:
             if j["mimic"] is not None and j["mimic"] not in first:
-                raise self.fail(j["element"].find("mimic"), f"joint[{clipped(j['name'])}]/mimic", f"unknown joint {clipped(j['mimic'])!r}; expected a <joint> of this robot")
+                raise self.doc.fail(j["element"].find("mimic"), f"joint[{clipped(j['name'])}]/mimic", f"unknown joint {clipped(j['mimic'])!r}; expected a <joint> of this robot")
         return joints
 
     def joint(self, el: ET.Element, links: dict[str, ET.Element]) -> dict:
         name = el.get("name")
         if not name:
-            raise self.fail(el, "joint", "missing attribute name; expected <joint name=\"...\" type=\"...\">")
+            raise self.doc.fail(el, "joint", "missing attribute name; expected <joint name=\"...\" type=\"...\">")
         key = f"joint[{clipped(name)}]"
         self.require_once(el, key)
         jtype = el.get("type")
         if jtype is None:
-            raise self.fail(el, f"{key}/@type", f"missing attribute type; expected one of {', '.join(URDF_JOINT_KINDS)}")
+            raise self.doc.fail(el, f"{key}/@type", f"missing attribute type; expected one of {', '.join(URDF_JOINT_KINDS)}")
         if jtype not in URDF_JOINT_KINDS:
-            raise self.fail(el, f"{key}/@type", f"unknown joint type {clipped(jtype)!r}; expected one of {', '.join(URDF_JOINT_KINDS)}")
+            raise self.doc.fail(el, f"{key}/@type", f"unknown joint type {clipped(jtype)!r}; expected one of {', '.join(URDF_JOINT_KINDS)}")
         ends = {}
         for end in ("parent", "child"):
             sub = el.find(end)
             link = sub.get("link") if sub is not None else None
             if not link:
-                raise self.fail(sub if sub is not None else el, f"{key}/{end}", f"missing; expected <{end} link=\"...\">")
+                raise self.doc.fail(sub if sub is not None else el, f"{key}/{end}", f"missing; expected <{end} link=\"...\">")
             if link not in links:
-                raise self.fail(sub, f"{key}/{end}", f"unknown link {clipped(link)!r}{did_you_mean(link, links)}; expected a <link> of this robot")
+                raise self.doc.fail(sub, f"{key}/{end}", f"unknown link {clipped(link)!r}{did_you_mean(link, links)}; expected a <link> of this robot")
             ends[end] = link
         if ends["parent"] == ends["child"]:
-            raise self.fail(el, key, f"parent and child are the same link {clipped(ends['parent'])!r}")
+            raise self.doc.fail(el, key, f"parent and child are the same link {clipped(ends['parent'])!r}")
         origin = el.find("origin")
         xyz = self.numbers(origin, "xyz", f"{key}/origin/@xyz", (0.0, 0.0, 0.0))
         rpy = self.numbers(origin, "rpy", f"{key}/origin/@rpy", (0.0, 0.0, 0.0))
@@ -207,15 +195,15 @@ class _UrdfReader:
         for part, attribute, kind in ((origin, "xyz", "length"), (origin, "rpy", "angle"), (el.find("axis"), "xyz", "unit")):
             self.digits.add(part.get(attribute) if part is not None else None, kind)
         if URDF_JOINT_KINDS[jtype] not in (None, "free") and math.hypot(*axis) == 0.0:
-            raise self.fail(el.find("axis"), f"{key}/axis/@xyz", "expected a non-zero direction, got 0 0 0")
+            raise self.doc.fail(el.find("axis"), f"{key}/axis/@xyz", "expected a non-zero direction, got 0 0 0")
         if 0.0 < max(abs(a) for a in axis) < sys.float_info.min:  # subnormal: read with fewer digits than a double holds
             axis_element = el.find("axis")
             assert axis_element is not None  # the default axis is not subnormal: these numbers were read from the element
-            raise self.fail(axis_element, f"{key}/axis/@xyz", f"numbers below {sys.float_info.min:.3g}, the smallest normal double, do not keep "
+            raise self.doc.fail(axis_element, f"{key}/axis/@xyz", f"numbers below {sys.float_info.min:.3g}, the smallest normal double, do not keep "
                             f"their direction in double precision; expected larger numbers (only the direction counts), got {clipped(axis_element.get('xyz', ''))!r}")
         mimic = el.find("mimic")
         if mimic is not None and not mimic.get("joint"):
-            raise self.fail(mimic, f"{key}/mimic", "missing attribute joint; expected <mimic joint=\"...\">")
+            raise self.doc.fail(mimic, f"{key}/mimic", "missing attribute joint; expected <mimic joint=\"...\">")
         return {"name": name, "type": jtype, "element": el, "parent": ends["parent"], "child": ends["child"],
                 "origin": Transform(rotation_from_rpy(rpy), np.array(xyz)), "axis": np.array(axis) / (math.hypot(*axis) or 1.0),
                 "mimic": mimic.get("joint") if mimic is not None else None}
@@ -226,7 +214,7 @@ class _UrdfReader:
         for sub in el:
             if sub.tag in _JOINT_ELEMENTS:
                 if sub.tag in first:
-                    raise self.fail(sub, f"{key}/{sub.tag}", f"a second <{sub.tag}> in the joint (the first on line {self.doc.line(first[sub.tag])}); expected one")
+                    raise self.doc.fail(sub, f"{key}/{sub.tag}", f"a second <{sub.tag}> in the joint (the first on line {self.doc.line(first[sub.tag])}); expected one")
                 first[sub.tag] = sub
 
     def number(self, el: ET.Element, attribute: str, key: str, default: float) -> float:
@@ -236,7 +224,7 @@ class _UrdfReader:
             return default
         word = text.strip(" \t\r\n")
         if not _NUMBER.fullmatch(word) or not math.isfinite(float(word)):
-            raise self.fail(el, key, f"expected a number, got {clipped(text)!r}")
+            raise self.doc.fail(el, key, f"expected a number, got {clipped(text)!r}")
         return float(word)
 
     def numbers(self, el: ET.Element | None, attribute: str, key: str, default: tuple[float, float, float]) -> tuple[float, float, float]:
@@ -246,11 +234,11 @@ class _UrdfReader:
         words = _XML_SPACE.split(text.strip(" \t\r\n"))
         values = [float(x) for x in words] if all(_NUMBER.fullmatch(x) for x in words) else []
         if len(values) != 3 or not all(math.isfinite(v) for v in values):
-            raise self.fail(el, key, f"expected 3 numbers, got {clipped(text)!r}")
+            raise self.doc.fail(el, key, f"expected 3 numbers, got {clipped(text)!r}")
         try:
             require_no_underflow(words, values)
         except ValueError as exc:
-            raise self.fail(el, key, f"{exc}, got {clipped(text)!r}") from None
+            raise self.doc.fail(el, key, f"{exc}, got {clipped(text)!r}") from None
         return (values[0], values[1], values[2])
 
     def poses(self, root_link: str, joints: list[dict]) -> tuple[list[str], dict[str, Transform]]:
@@ -275,18 +263,13 @@ class _UrdfReader:
         with np.errstate(all="ignore"):  # an overflow is refused just below, in one line
             frame = parent.compose(j["origin"])
         if not (np.all(np.isfinite(frame.translation)) and np.all(np.isfinite(frame.rotation))):
-            raise self.fail(j["element"].find("origin") if j["element"].find("origin") is not None else j["element"], f"joint[{clipped(j['name'])}]/origin",
+            raise self.doc.fail(j["element"].find("origin") if j["element"].find("origin") is not None else j["element"], f"joint[{clipped(j['name'])}]/origin",
                             f"the frame of link {clipped(j['child'])!r}, the origins from the root composed, is not finite; expected origins whose sum stays finite")
         return frame
 
     def transmissions(self, root: ET.Element, joint_types: dict[str, str], unsupported: list[Unsupported], notes: list[str]) -> set[str]:
-        """The joints driven by a ``<transmission>``: each a revolute, continuous or prismatic joint, one input.
-
-        A transmission drives one joint coordinate.  On a ``fixed`` joint it
-        drives nothing: a note.  A ``planar`` or ``floating`` joint has no one
-        coordinate (three, six), and marking it actuated would make each of
-        its freedoms an input: unsupported.
-        """
+        """The joints driven by a ``<transmission>`` (one joint coordinate): a note for a ``fixed`` joint, unsupported on a
+        ``planar`` or ``floating`` one (marking it actuated would make each of its freedoms an input)."""
         out: set[str] = set()
         for t in root.findall("transmission"):
             tname = t.get("name", "")
@@ -294,9 +277,9 @@ class _UrdfReader:
                 name = j.get("name")
                 key = f"transmission[{clipped(tname)}]/joint"
                 if not name:
-                    raise self.fail(j, key, "missing attribute name; expected <joint name=\"...\">")
+                    raise self.doc.fail(j, key, "missing attribute name; expected <joint name=\"...\">")
                 if name not in joint_types:
-                    raise self.fail(j, key, f"unknown joint {clipped(name)!r}{did_you_mean(name, joint_types)}; expected a <joint> of this robot")
+                    raise self.doc.fail(j, key, f"unknown joint {clipped(name)!r}{did_you_mean(name, joint_types)}; expected a <joint> of this robot")
                 jtype = joint_types[name]
                 line = self.doc.line(j)
                 if jtype == "fixed":

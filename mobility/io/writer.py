@@ -1,11 +1,8 @@
 """Writing a mechanism file: a :class:`~mobility.core.model.Mechanism` out as YAML text.
 
-Version 1 of the format (plus ``actuated`` and ``couplings``), one joint per
-line in flow style, in the global frame.  Round-off (below ``round_off`` of
-the characteristic length, or of 1 for a direction) is written as 0, every
-number as the shortest decimal within a few units of its last place (``0.15``,
-not ``0.15000000000000002``): what was read is written again as the same text,
-and the second round trip is exact to the bit.
+Version 1 of the format (plus ``actuated`` and ``couplings``), one joint per line in flow style, in the global frame.
+Round-off (below ``round_off`` of the characteristic length, or of 1 for a direction) is written as 0, every number as
+the shortest decimal within a few units of its last place (``0.15``): the second round trip is exact to the bit.
 
 Examples
 --------
@@ -69,15 +66,8 @@ NOISE_ULPS = 4
 
 
 def _number(x: float, scale: float = 1.0) -> str:
-    """``x`` as the shortest decimal within round-off of it, round-off written as 0; writing what it reads back to gives the same text.
-
-    Round-off below ``tol.round_off`` of ``scale`` is written as 0
-    (:func:`~mobility.core.tolerance.clean_numbers`); the last digits of a
-    sum of lengths (``0.1 + 0.05 = 0.15000000000000002``) are dropped: the
-    shortest decimal within :data:`NOISE_ULPS` units in the last place of
-    the number, or of ``scale``, whichever is larger, is written.  The text
-    is a fixed point: the number it reads back to is written as the same
-    text, so a second round trip is exact to the bit.
+    """``x`` as the shortest decimal within :data:`NOISE_ULPS` units in the last place of ``x`` or of ``scale``, round-off of
+    ``scale`` written as 0 (:func:`~mobility.core.tolerance.clean_numbers`); a fixed point: what it reads back to is written the same.
 
     Examples
     --------
@@ -106,28 +96,21 @@ def _written(x: float, scale: float) -> str:
         if abs(y - x) <= room:
             x = y
             break
-    if x.is_integer() and abs(x) < 2.0**53:
-        return str(int(x))
-    return repr(x)
+    return _integral(x) or repr(x)
+
+
+def _integral(x: float) -> str | None:
+    """``x`` written as an integer when it is one that a double holds exactly (``None`` otherwise)."""
+    return str(int(x)) if x.is_integer() and abs(x) < 2.0**53 else None
 
 
 def _direction(v: Iterable[float]) -> str:
     """A unit direction: each component the shortest decimal within units of its own last place, round-off written as 0, when they still make a vector of unit length (read as written); else to the last bit."""
     exact = [float(x) for x in v]
     short = [_number(x, 0.0) if abs(x) >= DEFAULT_TOLERANCE.round_off else "0" for x in exact]  # within units of its own last place
-    if math.hypot(*exact) == 1.0 and math.hypot(*(float(t) for t in short)) != 1.0:
-        return "[" + ", ".join(_bits(x) for x in exact) + "]"  # shorter digits would be normalised on reading: another vector
+    if math.hypot(*exact) == 1.0 and math.hypot(*(float(t) for t in short)) != 1.0:  # shorter digits would be normalised on reading
+        short = [_integral(x) or repr(x) for x in (clean_numbers(x, 1.0) for x in exact)]  # to the last bit: the same vector
     return "[" + ", ".join(short) + "]"
-
-
-def _bits(x: float) -> str:
-    """``x`` to the last bit, round-off of a unit direction written as 0."""
-    x = clean_numbers(x, 1.0)
-    return str(int(x)) if x.is_integer() and abs(x) < 2.0**53 else repr(x)
-
-
-def _vector(v: Iterable[float], scale: float = 1.0) -> str:
-    return "[" + ", ".join(_number(x, scale) for x in v) + "]"
 
 
 def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: dict[str, Any] | None = None) -> str:
@@ -148,7 +131,7 @@ def mechanism_to_yaml(mechanism: Mechanism, *, description: str = "", expected: 
         if j.axes is not None:
             fields.append(f"axes: [{_direction(j.axes[0])}, {_direction(j.axes[1])}]")
         if j.point is not None and j.type != "P":
-            fields.append(f"point: {_vector(j.point, size)}")
+            fields.append(f"point: [{', '.join(_number(x, size) for x in j.point)}]")
         if j.pitch is not None:
             fields.append(f"pitch: {_number(j.pitch, size)}")
         if j.normal is not None:

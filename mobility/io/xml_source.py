@@ -1,11 +1,9 @@
 """XML documents with the line of every element, for one-line error messages.
 
-:func:`parse_xml` parses with the standard library (``expat`` feeding an
-``ElementTree.TreeBuilder``) and keeps the line each element starts on.
-MuJoCo's own parser (tinyxml2) reads UTF-8 only, skips a ``<!DOCTYPE>`` (an
-entity ``&name;`` stays as written) and keeps a tab or a line break in an
-attribute where XML reads a space: ``parse_xml(..., mujoco=True)`` refuses
-these, so that what :mod:`mobility.io.mjcf_scan` checks is what MuJoCo opens.
+:func:`parse_xml` parses with the standard library (``expat`` feeding an ``ElementTree.TreeBuilder``) and keeps the
+line each element starts on; ``mujoco=True`` refuses what MuJoCo's own parser (tinyxml2) reads otherwise (a non-UTF-8
+file, a ``<!DOCTYPE>``, a tab in a ``file``: ``docs/robot-files.md``), so that :mod:`mobility.io.mjcf_scan` checks
+what MuJoCo opens.
 
 Examples
 --------
@@ -24,7 +22,7 @@ import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, BinaryIO
+from typing import Any
 from xml.parsers import expat
 
 from ..errors import MechanismFileError, RequestError, clipped, control_character_problem, name_problem
@@ -35,7 +33,6 @@ from .limits import Limits, current_limits
 __all__ = ["XmlDocument", "parse_xml", "read_xml", "root_tag", "require_no_underflow"]
 
 
-_CHUNK = 1 << 16
 _BOM = b"\xef\xbb\xbf"
 _UTF16_BOMS = ((b"\xff\xfe", "utf-16-le"), (b"\xfe\xff", "utf-16-be"))
 _OTHER_BOMS = ((b"\xff\xfe\x00\x00", "UTF-32"), (b"\x00\x00\xfe\xff", "UTF-32"), (b"\xff\xfe", "UTF-16"), (b"\xfe\xff", "UTF-16"))
@@ -72,8 +69,7 @@ def parse_xml(text: str | bytes, file: str = "<string>", *, mujoco: bool = False
     Parameters
     ----------
     mujoco : bool
-        Read the text as MuJoCo's parser does (UTF-8 whatever the declaration
-        says), refusing what it would read differently (see the module docstring).
+        Refuse what MuJoCo's parser would read differently (see the module docstring).
 
     Raises
     ------
@@ -177,11 +173,8 @@ def _raw_value(source: bytes, start: int, name: bytes) -> bytes | None:
 
 
 def require_no_underflow(words: list[str], values: list[float]) -> list[float]:
-    """``values`` unless a number written non-zero reads as 0 (too small for a double: ``1e-400``); else a ``ValueError`` saying which.
-
-    ``float`` (and MuJoCo's ``strtod``) read it as 0 without a word; ``words``
-    are the numbers as written, ``values`` what each reads as
-    (the rule of :func:`~mobility.io.expressions.require_literal`).
+    """``values`` (what ``words`` read as) unless a number written non-zero reads as 0 (``1e-400``; ``float`` and MuJoCo's
+    ``strtod`` say nothing); else a ``ValueError`` saying which (:func:`~mobility.io.expressions.require_literal`).
 
     Examples
     --------
@@ -201,23 +194,13 @@ def require_no_underflow(words: list[str], values: list[float]) -> list[float]:
 
 
 def read_xml(path: str | Path) -> XmlDocument:
-    """Read and parse an XML file (see :func:`parse_xml`).
-
-    Raises
-    ------
-    MechanismFileError
-        When the file cannot be read, passes the size limit or is not well-formed XML.
-    RequestError
-        When ``path`` is not a file name.
-    """
+    """Read and parse an XML file (:func:`~mobility.io.files.read_capped`, then :func:`parse_xml`)."""
     return parse_xml(read_capped(file_name(path, "read_xml")), str(path))
 
 
 def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
-    """The tag of the first element of an XML file, or ``None`` if it is not XML.
-
-    Reads in chunks until the first start tag, never beyond the size limit.
-    A directory or a device gives ``None`` without being opened.
+    """The tag of the first element of an XML file, or ``None`` if it is not XML (or a directory or a device, not opened);
+    read in chunks until the first start tag, never beyond the size limit.
 
     Raises
     ------
@@ -245,25 +228,18 @@ def root_tag(path: str | Path, limits: Limits | None = None) -> str | None:
         raise StopIteration  # stop at the first element
 
     parser.StartElementHandler = start
+    cap, size = current_limits(limits).max_file_bytes, 0
     try:
         with open_regular(path) as handle:  # without waiting: /proc/kmsg is a regular file whose reading waits
-            _feed_until_found(handle, parser, found, current_limits(limits).max_file_bytes)
+            while size <= cap:
+                chunk = handle.read(min(1 << 16, cap + 1 - size))
+                if not chunk or (size == 0 and not _starts_like_xml(chunk)):  # the end, nothing to read without waiting, or not XML
+                    break
+                size += len(chunk)
+                parser.Parse(chunk, False)
     except (OSError, StopIteration, expat.ExpatError, LookupError, ValueError):
         pass
     return found[0] if found else None
-
-
-def _feed_until_found(handle: BinaryIO, parser: Any, found: list[str], cap: int) -> None:
-    """Give ``parser`` the file in chunks until it finds an element, the file ends, or ``cap`` bytes are read."""
-    size = 0
-    while not found and size <= cap:
-        chunk = handle.read(min(_CHUNK, cap + 1 - size))
-        if not chunk:  # the end, or nothing to read without waiting (None)
-            return
-        if size == 0 and not _starts_like_xml(chunk):
-            return  # not XML
-        size += len(chunk)
-        parser.Parse(chunk, False)
 
 
 def _starts_like_xml(chunk: bytes) -> bool:

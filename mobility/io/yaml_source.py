@@ -1,14 +1,10 @@
 """YAML documents with the line of every key, read within bounded time and memory.
 
 :func:`parse_yaml` returns plain data and a :class:`Positions` table from key
-paths to 1-based lines.  The document is built from the parser's events
-(libyaml's, or PyYAML's own), in one loop with an explicit stack, every bound
-of :class:`~mobility.io.limits.Limits` checked as the nodes arrive: depth,
-and nodes with every alias expanded (an alias bomb stops, although values are
-shared as PyYAML shares them).  A recursive or undefined alias, a second
-document, a tag (plain YAML only), a merge key (``<<``), a duplicate key, a
-collection as a key and a control character are errors.  Keys are kept as
-written (``on:`` is ``"on"``, not ``True``).
+paths to 1-based lines.  The document is built from the parser's events (libyaml's, or PyYAML's own), in one loop
+with an explicit stack, every bound of :class:`~mobility.io.limits.Limits` checked as the nodes arrive (an alias bomb
+stops, although values are shared as PyYAML shares them).  What is refused: ``docs/file-format.md`` (Strictness);
+keys are kept as written (``on:`` is ``"on"``, not ``True``).
 
 Examples
 --------
@@ -80,10 +76,7 @@ def format_key(path: KeyPath) -> str:
 
 @dataclass
 class Positions:
-    """Line numbers of the nodes of a YAML document, by key path.
-
-    The content reached through an alias has the line of the alias.
-    """
+    """Line numbers of the nodes of a YAML document, by key path (the content reached through an alias: the alias's line)."""
 
     lines: dict[KeyPath, int] = field(default_factory=dict)
 
@@ -96,13 +89,7 @@ class Positions:
 
 
 def read_text(path: str | Path, limits: Limits | None = None) -> str:
-    """The text of a document file, read with the size cap of ``limits`` (:func:`read_capped`).
-
-    Raises
-    ------
-    MechanismFileError
-        As :func:`read_capped`, or not UTF-8 (at the line of the first bad byte).
-    """
+    """The text of a document file, read with the size cap of ``limits`` (:func:`read_capped`), refused if not UTF-8."""
     raw = read_capped(path, limits)
     try:
         return raw.decode("utf-8")
@@ -118,7 +105,7 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
     ------
     MechanismFileError
         On a YAML syntax error (with its line), a limit passed, or any
-        construct listed in the module docstring.
+        construct the format refuses (see the module docstring).
     """
     if not isinstance(text, str):
         raise RequestError(caller="parse_yaml", expected="the text of a document (str)", got=type(text).__name__)
@@ -144,10 +131,8 @@ def parse_yaml(text: str, file: str = "<string>", limits: Limits | None = None) 
 
 
 YAML_DEPTH_BOUND = 1000
-"""The most levels a YAML document may nest, whatever :attr:`Limits.max_depth` says.
-
-PyYAML's pure-Python reader spends time growing with the square of the depth
-(50,000 deep: past 90 s at 3 GB); at this bound, about a second."""
+"""The most levels a YAML document may nest, whatever :attr:`Limits.max_depth` says: PyYAML's pure-Python reader spends
+time growing with the square of the depth (50,000 deep: past 90 s at 3 GB); at this bound, about a second."""
 
 _LIBYAML_NESTING = "exceeded maximum nesting depth"
 """libyaml's problem when more than its 1,000 flow collections are open at once."""
@@ -255,7 +240,8 @@ class _Builder:
                 value, size = anchors[event.anchor]
             else:  # a mapping or a sequence starts
                 is_mapping = cls is yaml.MappingStartEvent
-                self.require_collection_tag(event, path, line, is_mapping)
+                if event.tag not in (None, "!", _MAP if is_mapping else _SEQ):
+                    raise self.fail(path, line, _unsupported_tag(event.tag))
                 if len(stack) >= max_depth:
                     how = ("set MOBILITY_MAX_DEPTH to raise it" if max_depth == self.limits.max_depth else
                            "the most a YAML document may nest whatever MOBILITY_MAX_DEPTH says: the reader's time grows with the square of the depth")
@@ -336,12 +322,6 @@ class _Builder:
                 raise self.fail(path, line, str(exc)) from None
         return result
 
-    def require_collection_tag(self, event: Any, path: KeyPath, line: int, is_mapping: bool) -> None:
-        tag = event.tag
-        if tag is None or tag == "!" or tag == (_MAP if is_mapping else _SEQ):
-            return
-        raise self.fail(path, line, _unsupported_tag(tag))
-
 
 @lru_cache(maxsize=4096)
 def _resolve_plain(value: str) -> str:
@@ -354,9 +334,7 @@ _SEXAGESIMAL = re.compile(r"[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+(?:\.[0-9_]*)?")
 
 
 def _yaml11_only_number(tag: str, value: str) -> str | None:
-    """Why ``value`` is refused as a number, when YAML 1.1 and YAML 1.2 read it differently.
-
-    YAML 1.1 (PyYAML) reads ``010`` as octal 8 and ``1:30`` as 90, YAML 1.2 as ten and a string.
+    """Why ``value`` is refused as a number, when YAML 1.1 (PyYAML: ``010`` is 8, ``1:30`` is 90) and YAML 1.2 read it differently.
 
     Examples
     --------
