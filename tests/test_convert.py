@@ -135,6 +135,13 @@ def test_convert_writes_only_a_file_that_reads_back_as_yaml(tmp_path, capsys, mo
     assert status == 0 and mobility.load(tmp_path / "c.txt").end_effector == "coupler"
 
 
+def test_the_files_read_for_a_robot_file_are_each_named_once():
+    from mobility.io.loader import read_file
+
+    read = read_file(HAND / "four_bar.urdf", closures=HAND / "four_bar_closures.yaml", end_effector="coupler")
+    assert read.files == (str(HAND / "four_bar.urdf"), str(HAND / "four_bar_closures.yaml"))
+
+
 @pytest.mark.parametrize("command, output", [("sweep", "c.yaml"), ("view", "c.html"), ("plot", "c.png"), ("convert", "c.yaml")])
 def test_no_command_writes_over_the_closures_file_it_read(tmp_path, capsys, monkeypatch, command, output):
     monkeypatch.chdir(tmp_path)

@@ -111,9 +111,8 @@ def read_file(path: str | Path, *, limits: Limits | None = None, spelling: Mappi
         return FileRead(_read_yaml(read_text(path, limits), str(path), limits), files=(str(path),))
     from .robot_files import read_robot
 
-    robot = read_robot(path, **robot_options)
-    closures = robot_options.get("closures")
-    return FileRead(robot.mechanism, tuple(robot.notes), tuple(robot.files) + ((str(closures),) if closures else ()), robot.closures)
+    robot = read_robot(path, **robot_options)  # its files: the robot file, the files it includes, the closures file
+    return FileRead(robot.mechanism, tuple(robot.notes), tuple(robot.files), robot.closures)
 
 
 def loads(text: str, file: str = "<string>", *, limits: Limits | None = None) -> Mechanism:
