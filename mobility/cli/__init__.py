@@ -110,11 +110,9 @@ def options_given(argv: Sequence[str]) -> frozenset[str]:
 
 
 class _GuardedOutput:
-    """Standard output for the length of a command: a write or flush that fails is bad input, not an internal error.
+    """Standard output for the length of a command: a failed write (``ENOSPC``) is a :class:`RequestError`, not an internal error.
 
-    An ``OSError`` (``ENOSPC``) becomes a :class:`RequestError`; after a
-    ``BrokenPipeError`` later writes are dropped, so that the command ends with
-    its own status.  ``stream`` is ``None`` when standard output was closed.
+    After a ``BrokenPipeError`` later writes are dropped (the command ends with its own status); ``stream`` is None when stdout was closed.
     """
 
     def __init__(self, stream: Any) -> None:
@@ -148,11 +146,8 @@ class _GuardedOutput:
 
 
 def _discard_stdout() -> None:
-    """Point the process's standard output at ``os.devnull`` after a write to it failed.
-
-    Its buffer would otherwise fail again at exit (exit status 120), as the
-    :mod:`signal` documentation warns for ``SIGPIPE``; a test's capture is left alone.
-    """
+    """Point the process's standard output at ``os.devnull`` after a write to it failed (else its buffer fails again at exit, status 120,
+    as the :mod:`signal` documentation warns for ``SIGPIPE``); a test's capture is left alone."""
     if sys.stdout is not sys.__stdout__ or sys.stdout is None:
         return
     try:
@@ -198,10 +193,8 @@ def _escape_what_cannot_be_encoded() -> None:
 
 @contextlib.contextmanager
 def _stderr_or_nothing() -> Any:
-    """Standard error as it is, or a sink when the process was started without one (``2>&-``).
-
-    Python then has ``sys.stderr = None``: ``print(..., file=None)`` would write into standard output.
-    """
+    """Standard error as it is, or a sink when the process was started without one (``2>&-``: ``sys.stderr`` is None, and
+    ``print(..., file=None)`` would write into standard output)."""
     if sys.stderr is not None:
         yield
         return

@@ -19,7 +19,7 @@ from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
 from ..io.limits import require_size, require_work
 from ._options import (MECHANISM_FILE_HELP, OPTION_SPELLING, add_mechanism_file, add_pose_sampler_options, add_tolerance_option, integer_option,
-                       load_mechanism, names_from, number_option, require_option_for, require_sampler_options, read_mechanism, robot_options_from,
+                       names_from, number_option, require_option_for, require_sampler_options, read_mechanism, read_with_notes, robot_options_from,
                        sampled_poses, tolerance_from)
 
 ORDER = 30
@@ -73,7 +73,7 @@ def run(args: argparse.Namespace) -> int:
             return _run_flexure(args, flexure, names_from(args.inputs, [a.name for a in flexure.actuators]), tol)
     if args.threshold is not None:  # it would be ignored: a rigid mechanism has no compliance
         raise RequestError(f"--threshold applies to flexure documents (their compliance), not to the rigid mechanism {args.file}")
-    mechanism = load_mechanism(args)
+    mechanism = read_with_notes(args).mechanism
     tol = tolerance_from(args, mechanism.precision)
     names = names_from(args.inputs, [j.name for j in mechanism.joints])
     if args.enumerate:

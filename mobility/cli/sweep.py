@@ -21,7 +21,7 @@ from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, sweep
 from ..sweeps.batch_actuation import actuated_inputs
 from ..transmission import GOOD_TRANSMISSION
 from ..io.limits import require_size
-from ._options import add_max_poses_option, add_mechanism_file, integer_option, add_tolerance_option, load_mechanism, max_poses_from, names_from, require_new_output, tolerance_from
+from ._options import add_max_poses_option, add_mechanism_file, integer_option, add_tolerance_option, max_poses_from, names_from, read_with_notes, require_new_output, tolerance_from
 
 ORDER = 35
 
@@ -96,7 +96,7 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError("--workers sets the threads of this process; with --scheduler the cluster's workers run the chunks: give one of them")
     if args.workers is not None and not 1 <= args.workers <= MAX_WORKERS:
         raise RequestError(f"--workers must be between 1 and {MAX_WORKERS} (threads of this process; for more, use --scheduler), got {clipped(str(args.workers))}")
-    mechanism = load_mechanism(args, outputs=((args.output, "-o"), (args.plot, "--plot")))
+    mechanism = read_with_notes(args, outputs=((args.output, "-o"), (args.plot, "--plot"))).mechanism
     tol = tolerance_from(args, mechanism.precision)
     require_size(mechanism, "max_moving_joints", "a sweep", args.file)
     inputs = names_from(args.inputs, [j.name for j in mechanism.joints])

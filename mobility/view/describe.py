@@ -18,6 +18,7 @@ Examples
 from __future__ import annotations
 
 import html
+from collections import Counter
 from typing import Any, Sequence
 
 import numpy as np
@@ -60,10 +61,7 @@ def force_text(number: int, axis: ScrewAxis, scale: float, unit: str) -> str:
 
 
 def plotly_text(text: object) -> str:
-    """``text`` as Plotly shows it written: its ``<``, ``>`` and ``&`` as entities (Plotly reads tags in its texts).
-
-    Names of joints, links and mechanisms go through it before they join a
-    hover text or a title, so ``gr<b>o</b>und`` is shown as written, not in bold.
+    """``text`` as Plotly shows it written (``gr<b>o</b>und`` not in bold): its ``<``, ``>`` and ``&`` as entities.
 
     Examples
     --------
@@ -116,9 +114,7 @@ def header_lines(results: Sequence[Result], labels: Sequence[str]) -> list[str]:
             lines.append("why Grübler–Kutzbach differs: " + first.gruebler_kutzbach_explanation)
         lines += [f"warning: {w}" for w in first.warnings]
         return lines
-    counts: dict[str, int] = {}
-    for r in results:
-        counts[r.pattern] = counts.get(r.pattern, 0) + 1
+    counts = Counter(r.pattern for r in results)
     lines.append(f"{len(results)} poses; patterns: " + ", ".join(f"{p} × {n}" for p, n in counts.items()))
     flagged = [lab for r, lab in zip(results, labels) if r.margin.near_singular]
     if flagged:

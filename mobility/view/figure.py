@@ -1,10 +1,8 @@
 """The scenes of :mod:`mobility.view.scene` as a plotly figure (a plain dict, JSON-ready).
 
-Each glyph is up to four traces in one legend group (one click switches the
-glyph); each layer has its own legend (``legend``, ``legend2``, ``legend3``)
-whose title switches the layer.  Every trace carries ``meta = {"layer", "key",
-"frame"}``; every pose is in the figure, one visible at a time on a slider, in
-a cube around every pose.  Built without plotly, which only validates or writes it.
+Each glyph is up to four traces in one legend group; each layer has its own legend whose title
+switches the layer.  Every trace carries ``meta = {"layer", "key", "frame"}``; every pose is in the
+figure, one visible at a time on a slider.  Built without plotly, which only validates or writes it.
 
 Examples
 --------
@@ -197,10 +195,9 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
                         "titledoubleclick": "toggleothers", "bgcolor": "rgba(255,255,255,0.8)"}
         top -= (30 + 29 * entries) / plot_height
     if len(frames) > 1:
-        steps = []
-        for k, (_, result, label) in enumerate(frames):
-            steps.append({"label": plotly_text(label) if label else str(k + 1), "method": "update",
-                          "args": [{"visible": [o == k for o in owner]}, {"title.text": _title(result, label, len(frames)), "scene.annotations": labels[k]}]})
+        steps = [{"label": plotly_text(label) if label else str(k + 1), "method": "update",
+                  "args": [{"visible": [o == k for o in owner]}, {"title.text": _title(result, label, len(frames)), "scene.annotations": labels[k]}]}
+                 for k, (_, result, label) in enumerate(frames)]
         # inset so that the labels of the end steps, centred on them, stay on the page
         layout["sliders"] = [{"active": 0, "steps": steps, "x": 0.05, "len": 0.7, "y": 0.1, "yanchor": "top",
                               "currentvalue": {"prefix": "pose: ", "font": {"size": 13}}, "pad": {"t": 0, "b": 0}}]

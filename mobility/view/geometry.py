@@ -37,12 +37,9 @@ class Mesh(ReadOnlyArrays):
     @staticmethod
     def merged(*meshes: "Mesh") -> "Mesh":
         """One mesh holding all of ``meshes``."""
-        vertices, faces, offset = [], [], 0
-        for m in meshes:
-            vertices.append(m.vertices)
-            faces.append(m.faces + offset)
-            offset += len(m.vertices)
-        return Mesh(np.concatenate(vertices).reshape(-1, 3), np.concatenate(faces).reshape(-1, 3).astype(int))
+        offsets = np.cumsum([0] + [len(m.vertices) for m in meshes])
+        faces = np.concatenate([m.faces + k for m, k in zip(meshes, offsets)])
+        return Mesh(np.concatenate([m.vertices for m in meshes]).reshape(-1, 3), faces.reshape(-1, 3).astype(int))
 
 
 def cone(tip: np.ndarray, direction: np.ndarray, length: float, radius: float, sides: int = 12) -> Mesh:

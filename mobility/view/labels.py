@@ -1,13 +1,9 @@
 """Where the view looks from, how far it zooms, and where each label sits, computed as the browser will draw it.
 
-In plotly's orthographic projection each axis's range maps onto its
-``aspectratio`` (scene units, centred on the ranges' middle), the camera looks
-along ``-eye`` and the scene is 2 scene units high, whatever the window's
-width.  So :class:`Framing` knows where every point lands in pixels and
-chooses the zoom at which everything drawn fills :data:`FILL` of the height
-(and of the width for a window at least :data:`WIDEST` times as wide), and
-:func:`place_labels` puts each label beside its point, covering no other label,
-as few drawn lines as can be, inside the box's outline (the ticks are outside).
+In plotly's orthographic projection each axis's range maps onto its ``aspectratio`` (scene units),
+the camera looks along ``-eye`` and the scene is 2 scene units high, whatever the window's width.
+So :class:`Framing` knows where every point lands in pixels, and :func:`place_labels` puts each
+label beside its point, covering no other label, as few drawn lines as can be, inside the box's outline.
 
 Examples
 --------
@@ -108,13 +104,6 @@ class Framing:
         return self.pixels(corners)
 
 
-def _hull_edges(points: np.ndarray) -> np.ndarray:
-    """The edges of the convex hull of 2D points, rows ``(normal, offset)``: ``normal . p + offset`` is minus the depth of ``p`` inside."""
-    from scipy.spatial import ConvexHull
-
-    return ConvexHull(points).equations
-
-
 def _ink(paths: list[np.ndarray], step: float = 3.0) -> np.ndarray:
     """Points every ``step`` pixels (or closer) along polylines (pixels; rows of NaN break a line), all segments at once."""
     starts, ends = [np.zeros((0, 2))], [np.zeros((0, 2))]
@@ -185,8 +174,10 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
     >>> abs(x1 - x2) > 20 or abs(y1 - y2) > 20   # side by side, not on each other
     True
     """
+    from scipy.spatial import ConvexHull
+
     at = framing.pixels(anchors)
-    edges = _hull_edges(framing.outline())
+    edges = ConvexHull(framing.outline()).equations  # rows (normal, offset): normal . p + offset is minus the depth of p inside
     half_w, half_h = 0.5 * width, 0.5 * framing.height
     drawn = _InkGrid(_ink([framing.pixels(p) for p in lines]), half_w, half_h)
     bars = _InkGrid(_ink([framing.pixels(p) for p in links]), half_w, half_h)

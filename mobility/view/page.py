@@ -64,9 +64,8 @@ def require_plotly() -> Any:
 def figure_html(figure: dict[str, Any], *, div_id: str | None = None, post_script: Sequence[str] = ()) -> str:
     """The figure as an HTML fragment that fetches nothing: plotly.js inline, no MathJax, no CDN.
 
-    ``div_id`` defaults to a random one (several figures share a notebook);
-    ``post_script`` runs once the figure is drawn (``{plot_id}``: the element's
-    id), after :data:`LABELS_SCRIPT`.
+    ``div_id`` defaults to a random one (several figures share a notebook); ``post_script``
+    runs once the figure is drawn (``{plot_id}``: the element's id), after :data:`LABELS_SCRIPT`.
     """
     pio = require_plotly()
     return pio.to_html(figure, include_plotlyjs=True, include_mathjax=False, full_html=False, div_id=div_id, config=PLOTLY_CONFIG,
@@ -98,9 +97,7 @@ def answer_script(answers: Sequence[str]) -> str:
 
 
 def screws_table(scene: Any) -> str:
-    """The freedoms and constraints of a scene as an HTML table: each one's key in its colour, its kind and its numbers.
-
-    The numbers are the hover text's (:mod:`mobility.view.describe`), in the file's units.
+    """The freedoms and constraints of a scene as an HTML table: each one's key in its colour, its kind and its numbers (the hover text's).
 
     Examples
     --------
@@ -158,15 +155,12 @@ PLOTLY_JSON = "application/vnd.plotly.v1+json"
 
 
 def offline_mimebundle(figure: Any) -> dict[str, Any]:
-    """The forms of ``figure`` that plotly's default renderers name, none of them fetching anything.
+    """The forms of ``figure`` (mime type -> data) that plotly's default renderers name, none of them fetching anything.
 
-    HTML renderers (``notebook``, ``iframe``...) give way to one fragment with
-    plotly.js inline (:func:`mobility.view.page.figure_html`), which also goes
-    along with the JSON form; other renderers give their own form, those
-    opening a browser none.  Returns mime type -> data.
+    HTML renderers (``notebook``, ``iframe``...) give way to :func:`figure_html`, which also goes along
+    with the JSON form; other renderers give their own form, those opening a browser none.
     """
     import plotly.io as pio
-
 
     fig_dict = figure.to_plotly_json()
     bundle: dict[str, Any] = {}

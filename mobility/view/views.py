@@ -112,12 +112,7 @@ class View:
     def write_html(self, path: str | Path) -> Path:
         """Write :meth:`to_html` to ``path``, whole or not at all (:func:`mobility.outputs.atomic_output`); returns the path.
 
-        Raises
-        ------
-        MissingExtraError
-            When plotly is not installed.
-        RequestError
-            When ``path`` is not a file name, or the file cannot be written (saying why).
+        A :class:`MissingExtraError` without plotly; a :class:`RequestError` when ``path`` is not a file name or cannot be written.
         """
         path = written_file_name(path, "write_html")
         text = self.to_html()
@@ -154,12 +149,8 @@ class View:
 def mechanism_view(mechanism: Mechanism, result: Result | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> View:
     """The 3D view of ``mechanism`` at its pose with its end effector's freedoms and constraints.
 
-    ``result``: its analysis at this pose (computed with ``tol`` when not given).
-
-    Raises
-    ------
-    RequestError
-        When ``result`` is not a :class:`Result` of ``mechanism``.
+    ``result``: its analysis at this pose (computed with ``tol`` when not given; a
+    :class:`RequestError` when it is not a :class:`Result` of ``mechanism``).
 
     Examples
     --------
@@ -201,11 +192,7 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
     notes : iterable of str
         Further lines of the header, true of every pose.
 
-    Raises
-    ------
-    RequestError
-        When ``frames`` is no frames, empty, more than ``max_poses``, or a frame
-        is not a mechanism with its own result; or ``max_poses``, ``notes`` bad.
+    A :class:`RequestError` for frames that are none, too many, or not a mechanism with its own result, or a bad argument.
 
     Examples
     --------
