@@ -82,20 +82,9 @@ def md_code(text: str) -> str:
 
 
 def markdown_table(header: Sequence[str], rows: Iterable[Sequence[object]], align: str | None = None) -> str:
-    """A GitHub-flavoured Markdown table.
+    """A GitHub-flavoured Markdown table of ``rows`` of cells (converted with ``str`` and escaped), one per column.
 
-    Parameters
-    ----------
-    rows : iterable of sequences
-        Cells, converted with ``str`` and escaped.
-    align : str, optional
-        One letter per column: ``l``, ``r`` or ``c`` (default all left).
-
-    Raises
-    ------
-    RequestError
-        When ``align`` is not one of ``l``, ``r``, ``c`` per column, or a
-        row does not have one cell per column.
+    ``align``: one letter per column, ``l``, ``r`` or ``c`` (default all left); else a :class:`RequestError`.
 
     Examples
     --------
@@ -148,40 +137,21 @@ def _screw_list(axes: Sequence[ScrewAxis], scale: float) -> str:
 
 
 def markdown_report(result: Result, *, limbs: bool = True) -> str:
-    """The analysis as Markdown: a summary, then tables.
-
-    Parameters
-    ----------
-    result : Result
-        From :func:`mobility.analyze`.
-    limbs : bool
-        Add the table of limbs (each in its own frame) when the mechanism has some.
-
-    Returns
-    -------
-    str
-        Markdown text, ending without a newline.
-    """
+    """The analysis as Markdown, ending without a newline: a summary, then tables (``limbs``: also the limbs', each in its own frame)."""
     result = require_result(result, "markdown_report")
     require_bool(limbs, caller="markdown_report", argument="limbs", got=type(limbs).__name__)
     s = result.length_scale
     unit = _unit(result)
-    out = [f"# {md_heading(result.name)}", ""]
     moving = "cannot move (at first order)" if result.dof == 0 else f"has **{result.dof}** DOF, motion pattern **{result.pattern}**"
-    out.append(f"The end effector {moving}; the whole mechanism has mobility **{result.mobility}**.")
-    out.append("")
-    out.append(f"## Freedoms of the end effector ({result.dof})")
-    out.append("")
+    out = [f"# {md_heading(result.name)}", "", f"The end effector {moving}; the whole mechanism has mobility **{result.mobility}**.", "",
+           f"## Freedoms of the end effector ({result.dof})", ""]
     if result.dof:
-        out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}/rad"], _freedom_rows(result)))
-        out.append("")
-        out.append("Translations: an orthonormal basis of the pure translations. Rotations: principal screws (the end effector's centre "
-                   f"is at {fmt_vector(result.reference_point, s)}; each axis is given through its point nearest it).")
+        out += [markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}/rad"], _freedom_rows(result)), "",
+                "Translations: an orthonormal basis of the pure translations. Rotations: principal screws (the end effector's centre "
+                f"is at {fmt_vector(result.reference_point, s)}; each axis is given through its point nearest it)."]
     else:
         out.append("None.")
-    out.append("")
-    out.append(f"## Constraint wrenches on the end effector ({6 - result.dof})")
-    out.append("")
+    out += ["", f"## Constraint wrenches on the end effector ({6 - result.dof})", ""]
     rows = _constraint_rows(result)
     out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}"], rows) if rows else "None: the end effector is free.")
     out += ["", "## Whole mechanism", ""]
@@ -210,7 +180,6 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     if result.precision_summary:
         out += ["", f"Precision: {md_line(result.precision_summary)}."]
     if result.warnings:
-        out.append("")
-        out += [f"> **Warning:** {md_line(w)}" for w in result.warnings]
+        out += ["", *(f"> **Warning:** {md_line(w)}" for w in result.warnings)]
     return "\n".join(out)
 

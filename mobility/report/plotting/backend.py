@@ -8,6 +8,7 @@ cell's value shows itself as PNG.
 
 from __future__ import annotations
 
+import functools
 import io
 import os
 import re
@@ -47,32 +48,28 @@ def require_matplotlib() -> Any:
     return matplotlib
 
 
-_FIGURE_CLASS: list[type] = []
-
-
+@functools.cache
 def _figure_class() -> type:
     """A :class:`matplotlib.figure.Figure` that shows itself in Jupyter without pyplot's display hook (made on first use)."""
-    if not _FIGURE_CLASS:
-        from matplotlib.figure import Figure
+    from matplotlib.figure import Figure
 
-        class MobilityFigure(Figure):
-            """A figure of :mod:`mobility.report.plotting`; displays itself as PNG in Jupyter.
+    class MobilityFigure(Figure):
+        """A figure of :mod:`mobility.report.plotting`; displays itself as PNG in Jupyter.
 
-            Its texts are drawn as written (a name such as ``$_$`` is not TeX); only tick numbers keep mathtext.
-            """
+        Its texts are drawn as written (a name such as ``$_$`` is not TeX); only tick numbers keep mathtext.
+        """
 
-            def draw(self, renderer: Any) -> None:
-                _literal_texts(self)
-                super().draw(renderer)
+        def draw(self, renderer: Any) -> None:
+            _literal_texts(self)
+            super().draw(renderer)
 
-            def _repr_png_(self) -> bytes:
-                buf = io.BytesIO()
-                with glyphs_summarised():
-                    self.savefig(buf, format="png", dpi=90, facecolor="white")
-                return buf.getvalue()
+        def _repr_png_(self) -> bytes:
+            buf = io.BytesIO()
+            with glyphs_summarised():
+                self.savefig(buf, format="png", dpi=90, facecolor="white")
+            return buf.getvalue()
 
-        _FIGURE_CLASS.append(MobilityFigure)
-    return _FIGURE_CLASS[0]
+    return MobilityFigure
 
 
 def _literal_texts(fig: Any) -> None:
@@ -147,21 +144,9 @@ def written_file_name(path: object, what: str) -> Path:
 
 
 def picture_path(path: str | Path, what: str = "") -> Path:
-    """``path`` as a :class:`~pathlib.Path`, once its suffix names a type :func:`save_figure` writes.
+    """``path`` as a :class:`~pathlib.Path`, once its suffix names a type :func:`save_figure` writes (else a :class:`PlotFormatError`).
 
-    A command line calls it before any work, so that a bad name fails at once.
-
-    Parameters
-    ----------
-    what : str
-        Written before the path in the message (e.g. ``"--plot "``).
-
-    Raises
-    ------
-    PlotFormatError
-        For a suffix other than those of :data:`FORMATS`.
-    RequestError
-        When ``path`` is not a file name (:func:`written_file_name`).
+    A command line calls it before any work, so that a bad name fails at once; ``what`` is written before the path in the message.
 
     Examples
     --------
@@ -205,15 +190,8 @@ def glyphs_summarised() -> Iterator[None]:
 def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background, whole or not at all; returns the path.
 
-    A failure or an interrupt leaves a picture already at ``path`` as it was
-    (:func:`mobility.outputs.atomic_output`). ``dpi``: an integer in :data:`DPI_RANGE`.
-
-    Raises
-    ------
-    PlotFormatError
-        For another suffix (:func:`picture_path`).
-    RequestError
-        When ``fig`` is not a figure, ``path`` not a file name, or ``dpi`` not an integer from 20 to 600.
+    A failure or an interrupt leaves a picture already at ``path`` as it was (:func:`mobility.outputs.atomic_output`).
+    ``dpi``: an integer in :data:`DPI_RANGE`; a bad argument is a :class:`RequestError`, another suffix a :class:`PlotFormatError`.
     """
     if not callable(getattr(fig, "savefig", None)):
         raise RequestError(caller="save_figure", expected="a matplotlib Figure", got=type(fig).__name__)

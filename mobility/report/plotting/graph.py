@@ -101,26 +101,9 @@ def plot_graph(mechanism: Mechanism, result: Result | None = None, *, figsize: t
     dimension of its twist system (and idle motions). Beyond
     :data:`LABELLED_JOINTS` joints, markers and lines without names.
 
-    Parameters
-    ----------
-    mechanism : Mechanism
-    result : Result, optional
-        Its analysis at this pose; computed with ``tol`` when not given.
-    figsize : (width, height) in inches, optional
-        Each from 1 to 30 (:data:`~mobility.report.plotting.backend.FIGSIZE_RANGE`).
-    tol : Tolerance
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        Two axes: ``fig.axes[0]`` the joint graph, ``fig.axes[1]`` the tree.
-
-    Raises
-    ------
-    PlottingUnavailableError
-        When matplotlib is not installed.
-    RequestError
-        When ``result`` is not a :class:`Result` of ``mechanism``, or ``figsize`` not a width and a height in range.
+    ``result``: the analysis at this pose (computed with ``tol`` when not given); ``figsize``: inches,
+    each from 1 to 30.  Returns a figure of two axes, ``fig.axes[0]`` the joint graph, ``fig.axes[1]`` the tree.
+    Arguments are checked as :func:`~mobility.report.plotting.plot_mechanism` checks them.
     """
     mechanism = require_mechanism(mechanism, "plot_graph")
     tol = require_tolerance(tol, "plot_graph")

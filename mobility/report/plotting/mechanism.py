@@ -1,9 +1,5 @@
-"""The picture of a mechanism at its pose with its end effector's freedoms and constraints.
+"""The picture of a mechanism at its pose with its end effector's freedoms and constraints (:func:`plot_mechanism`).
 
-:func:`plot_mechanism` draws links, joint symbols and, on the end effector, the
-answer of :func:`mobility.analyze`: arrows for translations, axis lines with a
-rotation mark for rotations and, on request, the constraint wrenches, from
-viewpoints chosen by :func:`~mobility.report.plotting.views.choose_views`.
 Every drawn answer carries a ``gid`` (``"mobility:translation:0"``,
 ``"mobility:rotation-axis:1"``, ``"mobility:force:0"``, ``"mobility:couple:0"``,
 ...), so programs and tests can read the picture back.
@@ -37,7 +33,6 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["plot_mechanism", "MAX_TITLE"]
 
 
-
 def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constraints: bool = False, views: int | Sequence[tuple[float, float]] = 2,
                    labels: bool = True, legend: bool = True, title: str | None = None, figsize: tuple[float, float] | None = None,
                    tol: Tolerance = DEFAULT_TOLERANCE) -> "Figure":
@@ -45,7 +40,6 @@ def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constr
 
     Parameters
     ----------
-    mechanism : Mechanism
     result : Result, optional
         Its analysis at this pose; computed with ``tol`` when not given.
     constraints : bool
@@ -56,25 +50,17 @@ def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constr
         up to :data:`~mobility.report.plotting.views.MAX_VIEWS`, or the viewpoints themselves (degrees).
     labels : bool
         Write joint names (up to 40 joints).
-    legend : bool
     title : str, optional
         Default: name, DOF, pattern and mobility. Wrapped to the figure's width;
         cut (``...``) beyond :data:`MAX_TITLE` characters or the lines it has room for.
     figsize : (width, height) in inches, optional
         Each from 1 to 30 (:data:`~mobility.report.plotting.backend.FIGSIZE_RANGE`).
-    tol : Tolerance
 
     Returns
     -------
     matplotlib.figure.Figure
-        One 3D axes per view, orthographic.
-
-    Raises
-    ------
-    PlottingUnavailableError
-        When matplotlib is not installed.
-    RequestError
-        When an argument is out of its range (each named), or ``result`` is not a :class:`Result` of ``mechanism``.
+        One orthographic 3D axes per view.  A :class:`~mobility.errors.PlottingUnavailableError` without matplotlib,
+        a :class:`RequestError` naming an argument out of its range or a ``result`` not of ``mechanism``.
     """
     mechanism = require_mechanism(mechanism, "plot_mechanism")
     tol = require_tolerance(tol, "plot_mechanism")
@@ -153,9 +139,8 @@ def _view_axes3d(fig: "Figure", k: int, view_list: list[tuple[float, float]], ex
     ax = fig.add_subplot(1, len(view_list), k + 1, projection="3d")
     ax.set_proj_type("ortho")
     ax.view_init(elev=elev, azim=azim)
-    ax.set_xlim(mid[0] - half, mid[0] + half)
-    ax.set_ylim(mid[1] - half, mid[1] + half)
-    ax.set_zlim(mid[2] - half, mid[2] + half)
+    for set_limits, m in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), mid):
+        set_limits(m - half, m + half)
     ax.set_box_aspect((1, 1, 1), zoom=1.25)
     ax.set_axis_off()
     ax.set_title(f"view {k + 1}: elev {elev:g}°, azim {azim:g}°", fontsize=9, color="#455a64")

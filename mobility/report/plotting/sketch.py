@@ -60,12 +60,8 @@ def drawing_scale(length: float) -> float:
     return binary_scale(length)
 
 DRAWING_REACH = 1e150
-"""Farthest from the origin a joint is drawn, in drawing units (where the
-mechanism's size is about 1): a drawing library squares and multiplies
-coordinates (norms, projections, axis ticks), which stays finite up to the
-square root of the largest float.  A joint farther out is refused in one line:
-at such a distance, in the file's own frame, no picture resolves the mechanism.
-"""
+"""Farthest from the origin a joint is drawn, in drawing units (the mechanism's size about 1): a drawing library
+squares coordinates, which stays finite up to the square root of the largest float; no picture resolves a joint farther out."""
 
 
 def _require_drawable(mechanism: Mechanism, joints: tuple, pts: np.ndarray, located: np.ndarray, length: float) -> None:
@@ -136,17 +132,8 @@ def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
     A joint without a point is drawn midway between the located joints of its
     two links; with only one located, a quarter of the scene from it along its
     axis, away from the end effector; with neither, from those placed after.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    scale : float, optional
-        Drawing units per file unit; default :func:`drawing_scale` of the
-        mechanism's characteristic length (poses drawn together share one).
-
-    Returns
-    -------
-    Sketch
+    ``scale``: drawing units per file unit; default :func:`drawing_scale` of the
+    mechanism's characteristic length (poses drawn together share one).
     """
     joints = mechanism.world_joints
     n = len(joints)

@@ -18,10 +18,8 @@ MAX_TITLE = 500
 MAX_LABEL = 40
 """The most characters of a name (a link's, a joint's, a mechanism's, a swept coordinate's) that a picture writes.
 
-A name may be as long as a file allows (megabytes): matplotlib lays out and
-renders every glyph of a text, so one name of 200,000 characters takes
-a minute to draw.  The pictures write its start, the cut marked by ``...``;
-the text reports keep every name whole.
+matplotlib lays out every glyph of a text: a name of 200,000 characters (a file allows megabytes) takes a minute
+to draw.  The pictures write its start, the cut marked by ``...``; the text reports keep every name whole.
 """
 
 

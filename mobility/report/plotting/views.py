@@ -55,9 +55,7 @@ def view_scores(elev: np.ndarray, azim: np.ndarray, points: np.ndarray, directio
                 on_top += np.sum(d2 < 0.04 * size, axis=0)  # points drawn on top of each other
                 close += np.sum(np.exp(-((d2 / (0.08 * size)) ** 2)) * (d2 < 0.5 * block3), axis=0)
                 seen_length += np.sum(d2 / block3, axis=0)
-            bad = bad + on_top
-            bad = bad + close
-            bad = bad + 6.0 * (1.0 - seen_length / len(d))  # foreshortening: a flat scene seen edge-on
+            bad = bad + on_top + close + 6.0 * (1.0 - seen_length / len(d))  # the last: foreshortening, a flat scene seen edge-on
     if len(directions):
         seen = np.sqrt(np.maximum(0.0, 1.0 - (directions @ eye.T) ** 2))  # (directions, views)
         bad = bad + 4.0 * np.sum(seen < 0.35, axis=0) + np.sum(np.maximum(0.0, 0.6 - seen), axis=0)
