@@ -1,12 +1,9 @@
 """The ``mobility`` command line.
 
-Each subcommand is a module of this package named after it, with
-``register(subparsers)`` (adding its parser and setting ``run(args) -> int``),
-an ``ORDER`` in ``mobility --help`` and, for a command with a verdict,
-``EXIT_STATUS``.  :func:`main` imports only the module of the command asked
-for.  The exit statuses, the whole-or-nothing outputs, a closed or broken
-standard output and the escaping of what the terminal cannot show are
-described in the README.
+Each subcommand is a module of this package named after it, with ``register(subparsers)`` (adding its
+parser and setting ``run(args) -> int``), an ``ORDER`` in ``mobility --help`` and, for a command with a
+verdict, ``EXIT_STATUS``.  :func:`main` imports only the module of the command asked for.  The exit
+statuses, outputs and the escaping of what the terminal cannot show are described in the README.
 """
 
 from __future__ import annotations

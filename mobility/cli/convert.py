@@ -28,9 +28,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..core.analysis import analyze
-    from ..io.writer import mechanism_to_yaml, require_written_faithfully
-
     from ..io.robot_files import ROBOT_SUFFIXES
+    from ..io.writer import mechanism_to_yaml, require_written_faithfully
 
     if args.output == "-":  # the usual name of standard output
         args.output = None
@@ -75,5 +74,3 @@ def _write_utf8(text: str) -> None:
     sys.stdout.flush()
     buffer.write(text.encode("utf-8"))
     buffer.flush()
-
-

@@ -9,6 +9,7 @@ joints, the file's length unit for P) or moves the end effector (``x y z``,
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import sys
 from pathlib import Path
 from typing import IO, Iterable
@@ -64,13 +65,7 @@ def _progress_wanted(choice: bool | None) -> bool:
     """An explicit choice, else a bar when stderr is a terminal and tqdm is installed."""
     if choice is not None:
         return choice
-    if not sys.stderr.isatty():
-        return False
-    try:
-        import tqdm  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    return sys.stderr.isatty() and importlib.util.find_spec("tqdm") is not None
 
 
 def run(args: argparse.Namespace) -> int:

@@ -46,7 +46,7 @@ def _vector(text: str, what: str) -> tuple[float, float, float]:
     try:
         parts = [number_option(x) for x in text.split(",")]
     except ValueError:
-        raise SynthesisError(caller=what, expected="three comma-separated numbers", got=repr(text)) from None
+        parts = []
     if len(parts) != 3:
         raise SynthesisError(caller=what, expected="three comma-separated numbers", got=repr(text))
     return (parts[0], parts[1], parts[2])

@@ -69,6 +69,5 @@ def check_table(report: "CheckReport") -> str:
 
     out = [line(HEADER), line(tuple("-" * w for w in widths))]
     out += [line(row) for row in rows]
-    out.append("")
-    out.append(report.summary())
+    out += ["", report.summary()]
     return "\n".join(out)

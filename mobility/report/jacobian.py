@@ -1,8 +1,7 @@
 """Reports of a Jacobian (:class:`~mobility.jacobians.JacobianResult`): text and JSON.
 
-Round-off is shown as 0 relative to what a number is part of
-(:func:`~mobility.jacobians.wrenches.clean_screw`), so a file scaled by any
-factor prints the same digits, scaled.
+Round-off is shown as 0 relative to what a number is part of (:func:`~mobility.jacobians.wrenches.clean_screw`),
+so a file scaled by any factor prints the same digits, scaled.
 
 Examples
 --------
@@ -44,18 +43,11 @@ def _shown(x: float) -> str:
 
 
 def jacobian_text(result: JacobianResult, unit: str = "") -> str:
-    """The report printed by ``mobility jacobian``: wrenches, the matrix ``J`` and, when regular, ``J^-1``.
-
-    Parameters
-    ----------
-    unit : str
-        The mechanism's length unit, named in the matrix's heading.
-    """
+    """The report printed by ``mobility jacobian``: wrenches, the matrix ``J`` (``unit``: named in its heading) and, when regular, ``J^-1``."""
     length = result.length
     labels = list(result.actuated) + [f"C{k + 1}" for k in range(result.constraint_wrenches.shape[0])]
     width = max(len(s) for s in labels) if labels else 2
-    out = [result.name, f"  platform DOF: {result.dof}   actuated: {', '.join(result.actuated)}"]
-    out.append("  constraint wrenches on the platform:")
+    out = [result.name, f"  platform DOF: {result.dof}   actuated: {', '.join(result.actuated)}", "  constraint wrenches on the platform:"]
     out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(labels[len(result.actuated) :], result.constraint_wrenches)] or ["    (none)"]
     out.append("  actuation wrenches (unit reciprocal product with their joint's twist):")
     out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(result.actuated, result.actuation_wrenches)]

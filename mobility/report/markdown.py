@@ -182,4 +182,3 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     if result.warnings:
         out += ["", *(f"> **Warning:** {md_line(w)}" for w in result.warnings)]
     return "\n".join(out)
-

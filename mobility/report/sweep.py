@@ -15,12 +15,11 @@ O1 [deg],dof,pattern,mobility,assembled,residual,smallest_kept,largest_dropped,n
 
 from __future__ import annotations
 
-from collections import Counter
-
 import csv
 import io
 import json
 import math
+from collections import Counter
 from typing import Any, Iterator
 
 import numpy as np

@@ -148,22 +148,10 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
                  width: float) -> list[tuple[float, float]]:
     """Where each label's box centre goes, in pixels from its anchor (plotly's ``ax``, ``ay``), so that labels do not collide.
 
-    Parameters
-    ----------
-    anchors : ndarray, shape (n, 3)
-        The point each label names (drawing units).
-    texts : list of str
-        The labels, earlier ones getting the better places.
-    lines, links : list of ndarray
-        Polylines drawn (rows of NaN between pieces): the freedoms and
-        constraints, and the mechanism's (covering these costs more).
-    width : float
-        The narrowest scene's width, pixels: labels stay inside it.
-
-    Returns
-    -------
-    list of (float, float)
-        Offsets (right, down), pixels.
+    ``anchors``: the point each label names (drawing units); ``texts``: the labels, earlier ones getting the
+    better places; ``lines``, ``links``: polylines drawn (rows of NaN between pieces), the freedoms and
+    constraints, and the mechanism's (covering these costs more); ``width``: the narrowest scene's width
+    (pixels), which labels stay inside.  Returns offsets (right, down) in pixels.
 
     Examples
     --------

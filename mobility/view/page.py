@@ -1,10 +1,8 @@
 """One self-contained HTML page holding the 3D view: it works offline.
 
-plotly.js is embedded (about 4.8 MB; nothing fetched, no MathJax) under a
-header giving the mechanism's name, its answer (following the slider), units,
-Grübler–Kutzbach explanation, warnings and how to use the view.
-:func:`figure_html` is the figure alone, for a notebook; :func:`require_plotly`
-names the extra when plotly is missing.
+plotly.js is embedded (about 4.8 MB; nothing fetched, no MathJax) under a header giving the mechanism's
+name, its answer (following the slider), units, warnings and how to use the view; :func:`figure_html`
+is the figure alone, for a notebook.
 """
 
 from __future__ import annotations
@@ -125,14 +123,8 @@ def screws_table(scene: Any) -> str:
 def page_html(figure: dict[str, Any], title: str, answers: Sequence[str], lines: Sequence[str], tables: Sequence[str] = ()) -> str:
     """The whole page: header, then the figure with plotly.js inline, and beside it the table of its screws.
 
-    Parameters
-    ----------
-    answers : sequence of str
-        Each pose's DOF, pattern and mobility in one line, in the slider's order.
-    lines : sequence of str
-        Further header lines, true of every pose (``warning:`` ones in red).
-    tables : sequence of str
-        Each pose's :func:`screws_table`, in the slider's order (none: no table).
+    ``answers``: each pose's DOF, pattern and mobility in one line, and ``tables``: each pose's :func:`screws_table`
+    (none: no table), in the slider's order; ``lines``: further header lines, true of every pose (``warning:`` ones in red).
     """
     scripts = [answer_script(answers)] if len(answers) > 1 else []
     body = figure_html(figure, div_id=ELEMENT_ID, post_script=scripts)

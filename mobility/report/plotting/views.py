@@ -81,16 +81,9 @@ def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count:
 
     Every candidate view on a grid is scored by the pairs of ``points`` within
     4 % of ``size`` of each other on the screen (softly, by pairs brought
-    close), and by the ``directions`` seen nearly end-on. The best comes first.
-
-    Parameters
-    ----------
-    directions : ndarray, shape (k, 3)
-        Unit directions that must show their length (arrows, axes).
-    separation : float
-        Smallest angle between two chosen view directions, degrees.
-    context : ndarray, shape (m, 3), optional
-        Further points to keep apart (the joints); at most :data:`MAX_CONTEXT_POINTS` of them are scored.
+    close), and by the unit ``directions`` (arrows, axes) seen nearly end-on. The best comes first,
+    each at least ``separation`` degrees from the others.  ``context``: further points to keep apart
+    (the joints), at most :data:`MAX_CONTEXT_POINTS` of them scored.
 
     Examples
     --------
