@@ -114,9 +114,7 @@ def _run_flexure(args: argparse.Namespace, mechanism: FlexureMechanism, names: l
     answer: ActuationCheck | Enumeration
     if args.enumerate:
         answer = enumerate_force_lines(mechanism, args.k, threshold=args.threshold, tol=tol)
-        ok = bool(answer.valid)
     else:
         answer = check_force_lines(mechanism, names, threshold=args.threshold, tol=tol)
-        ok = answer.valid
     print(flexure_json(spaces, answer) if args.json else flexure_text(spaces, answer))
-    return 0 if ok else 1
+    return 0 if answer.valid else 1

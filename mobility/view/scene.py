@@ -260,15 +260,7 @@ def viewpoint(scene: Scene) -> tuple[float, float]:
 
     The pictures' :func:`~mobility.report.plotting.choose_views`, given joints, labels and directions.
     """
-    important = [scene.centre[None]]
-    joints = []
-    directions = []
-    for g in scene.glyphs:
-        if g.layer == "mechanism":
-            joints.append(g.points)
-        else:
-            assert g.label_at is not None  # every glyph of the answer is labelled
-            important.append(g.label_at[None])
-            directions.append(g.direction)
-    context = np.concatenate(joints).reshape(-1, 3)
-    return choose_views(np.concatenate(important), np.array(directions).reshape(-1, 3), scene.size, count=1, context=context)[0]
+    answer = [g for g in scene.glyphs if g.layer != "mechanism"]  # every glyph of the answer is labelled
+    important = np.array([scene.centre, *(g.label_at for g in answer)])
+    context = np.concatenate([g.points for g in scene.glyphs if g.layer == "mechanism"]).reshape(-1, 3)
+    return choose_views(important, np.array([g.direction for g in answer]).reshape(-1, 3), scene.size, count=1, context=context)[0]
