@@ -113,25 +113,6 @@ def _pitch(a: ScrewAxis, scale: float) -> str:
     return "0" if a.pitch == 0 else fmt_number(a.pitch, scale)
 
 
-def _unit(result: Result) -> str:
-    return f" ({result.length_unit})" if result.length_unit else ""
-
-
-def _freedom_rows(result: Result) -> list[list[str]]:
-    s = result.length_scale
-    rows = [[f"T{i + 1}", "translation", fmt_vector(t), "", ""] for i, t in enumerate(result.translations)]
-    rows += [[f"R{i + 1}", a.kind, fmt_vector(a.axis), fmt_vector(a.point, s), _pitch(a, s)] for i, a in enumerate(result.rotations)]
-    return rows
-
-
-def _constraint_rows(result: Result) -> list[list[str]]:
-    s = result.length_scale
-    rows = [[f"C{i + 1}", "couple", fmt_vector(c), "", ""] for i, c in enumerate(result.couples)]
-    k = len(rows)
-    rows += [[f"W{k + i + 1}", f.kind, fmt_vector(f.axis), fmt_vector(f.point, s), _pitch(f, s)] for i, f in enumerate(result.forces)]
-    return rows
-
-
 def _screw_list(axes: Sequence[ScrewAxis], scale: float) -> str:
     return "; ".join(screw_text(a, scale, verb="") for a in axes)
 
@@ -141,18 +122,22 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     result = require_result(result, "markdown_report")
     require_bool(limbs, caller="markdown_report", argument="limbs", got=type(limbs).__name__)
     s = result.length_scale
-    unit = _unit(result)
+    unit = f" ({result.length_unit})" if result.length_unit else ""
     moving = "cannot move (at first order)" if result.dof == 0 else f"has **{result.dof}** DOF, motion pattern **{result.pattern}**"
     out = [f"# {md_heading(result.name)}", "", f"The end effector {moving}; the whole mechanism has mobility **{result.mobility}**.", "",
            f"## Freedoms of the end effector ({result.dof})", ""]
     if result.dof:
-        out += [markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}/rad"], _freedom_rows(result)), "",
+        rows = [[f"T{i + 1}", "translation", fmt_vector(t), "", ""] for i, t in enumerate(result.translations)]
+        rows += [[f"R{i + 1}", a.kind, fmt_vector(a.axis), fmt_vector(a.point, s), _pitch(a, s)] for i, a in enumerate(result.rotations)]
+        out += [markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}/rad"], rows), "",
                 "Translations: an orthonormal basis of the pure translations. Rotations: principal screws (the end effector's centre "
                 f"is at {fmt_vector(result.reference_point, s)}; each axis is given through its point nearest it)."]
     else:
         out.append("None.")
     out += ["", f"## Constraint wrenches on the end effector ({6 - result.dof})", ""]
-    rows = _constraint_rows(result)
+    k = len(result.couples)
+    rows = [[f"C{i + 1}", "couple", fmt_vector(c), "", ""] for i, c in enumerate(result.couples)]
+    rows += [[f"W{k + i + 1}", f.kind, fmt_vector(f.axis), fmt_vector(f.point, s), _pitch(f, s)] for i, f in enumerate(result.forces)]
     out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}"], rows) if rows else "None: the end effector is free.")
     out += ["", "## Whole mechanism", ""]
     counts = [["links (ground included)", "n", result.links], ["joints", "j", result.joints], ["joint freedoms", "Σf", result.joint_freedoms],

@@ -162,9 +162,8 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
             traces = _glyph_traces(g, k, k == 0, offset)
             data += traces
             owner += [k] * len(traces)
-    unit = frames[0][1].length_unit
-    drawing = frames[0][0].scale
     first_scene, first_result, first_label = frames[0]
+    unit, drawing = first_result.length_unit, first_scene.scale
     margin = {"l": 10, "r": 10, "t": 70 if titled else 10, "b": 10}
     bottom = 0.16 if len(frames) > 1 else 0.0  # room for the slider
     scene_height = (1.0 - bottom) * (height - margin["t"] - margin["b"])

@@ -48,21 +48,11 @@ _ARROW, _HALF_AXIS, _HALF_FORCE, _HEAD, _MARK, _COUPLE_OFFSET = 0.36, 0.45, 0.28
 class Glyph(ReadOnlyArrays):
     """One thing drawn: a link group, a joint type, one freedom or one constraint.
 
-    Attributes
-    ----------
-    key : str
-        Unique in its scene: ``"T1"``, ``"W3"``, ``"links:ground"``, ``"joints:R"``...
-    kind : str
-        ``translation``, ``rotation``, ``helical``, ``couple``, ``force``,
-        ``wrench``, ``ground``, ``end_effector``, ``link``, ``joint``, ``centre``.
-    path : ndarray, shape (n, 3)
-        Polyline (rows of NaN between pieces), ``width`` pixels wide; may be empty.
-    mesh : Mesh or None
-        Solid parts (arrowheads, plates), of ``opacity``.
-    points : ndarray, shape (k, 3)
-        Markers (joints), each with its ``point_hover``; may be empty.
-    direction : ndarray, shape (3,) or None
-        The unit direction of a freedom or constraint.
+    ``key``: unique in its scene (``"T1"``, ``"W3"``, ``"links:ground"``, ``"joints:R"``...); ``kind``: ``translation``,
+    ``rotation``, ``helical``, ``couple``, ``force``, ``wrench``, ``ground``, ``end_effector``, ``link``, ``joint`` or
+    ``centre``; ``path``: a polyline (rows of NaN between pieces) ``width`` pixels wide; ``mesh``: solid parts (arrowheads,
+    plates) of ``opacity``; ``points``: markers (joints), each with its ``point_hover``; ``direction``: the unit
+    direction of a freedom or constraint.
     """
 
     key: str
@@ -94,20 +84,9 @@ class Glyph(ReadOnlyArrays):
 
 @dataclass(frozen=True, eq=False)
 class Scene(ReadOnlyArrays):
-    """The glyphs of one pose, the centre and size of the scene, the bounds of what is drawn.
-
-    Attributes
-    ----------
-    glyphs : tuple of Glyph
-        Mechanism first, then freedoms, then constraints.
-    centre : ndarray, shape (3,)
-        The end effector's centre, where free vectors are drawn.
-    size : float
-        Extent of the mechanism (the unit of every glyph's size).
-    scale : float
-        Drawing units per file unit (1 for a mechanism of an everyday size,
-        :func:`mobility.report.plotting.sketch.drawing_scale`).
-    """
+    """The glyphs of one pose (mechanism, then freedoms, then constraints), the bounds of what is drawn, and the
+    end effector's ``centre`` (where free vectors are drawn), the ``size`` of the mechanism (the unit of every glyph's
+    size) and the ``scale`` (:func:`mobility.report.plotting.sketch.drawing_scale`)."""
 
     glyphs: tuple[Glyph, ...]
     centre: np.ndarray

@@ -89,26 +89,12 @@ ROUND_OFF = DEFAULT_TOLERANCE.round_off
 
 @dataclass(frozen=True, eq=False)
 class Sketch(ReadOnlyArrays):
-    """Where each joint is drawn, and the size of the scene (drawing units: the file's lengths times ``scale``).
+    """Where each joint is drawn, and the size of the scene (drawing units: the file's lengths times ``scale``, :func:`drawing_scale`).
 
-    Attributes
-    ----------
-    names, types : tuple of str
-        Joint names and types, in the mechanism's order.
-    points : ndarray, shape (J, 3)
-        Drawn location of each joint (global frame, drawing units).
-    located : ndarray of bool, shape (J,)
-        True where the location comes from the file (``point``).
-    link_joints : dict
-        Link name -> indices of its joints.
-    centre : ndarray, shape (3,)
-        Centre of the drawn joints.
-    size : float
-        Extent of the scene (largest side of the joints' bounding box, or the characteristic length).
-    end_effector_centre : ndarray, shape (3,)
-        Centroid of the end effector's located joints (where its freedoms are drawn).
-    scale : float
-        Drawing units per file unit (:func:`drawing_scale`).
+    ``names``, ``types``, ``points`` (shape (J, 3), global frame) and ``located`` (True where the file gives the
+    ``point``): the joints, in the mechanism's order; ``link_joints``: link name -> indices of its joints;
+    ``centre``: of the drawn joints; ``size``: extent of the scene (largest side of the joints' bounding box,
+    or the characteristic length); ``end_effector_centre``: centroid of the end effector's located joints.
     """
 
     names: tuple[str, ...]
