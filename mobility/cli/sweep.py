@@ -63,9 +63,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def _progress_wanted(choice: bool | None) -> bool:
     """An explicit choice, else a bar when stderr is a terminal and tqdm is installed."""
-    if choice is not None:
-        return choice
-    return sys.stderr.isatty() and importlib.util.find_spec("tqdm") is not None
+    return choice if choice is not None else sys.stderr.isatty() and importlib.util.find_spec("tqdm") is not None
 
 
 def run(args: argparse.Namespace) -> int:

@@ -46,9 +46,7 @@ def verdict_text(r: "CheckResult") -> str:
     """``pass (7 keys)``, ``FAIL: dof 4 (expected 3)``, ``no expected block`` or ``ERROR: file:line: key: ...``."""
     if r.status == "pass":
         return f"pass ({len(r.comparisons)} keys)"
-    if r.status == "missing":
-        return STATUS_WORDS["missing"]
-    return f"{STATUS_WORDS[r.status]}: {r.message}"
+    return STATUS_WORDS["missing"] if r.status == "missing" else f"{STATUS_WORDS[r.status]}: {r.message}"
 
 
 def check_table(report: "CheckReport") -> str:

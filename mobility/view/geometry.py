@@ -63,12 +63,8 @@ def cone(tip: np.ndarray, direction: np.ndarray, length: float, radius: float, s
 def pieces(*polylines: np.ndarray) -> np.ndarray:
     """Polylines joined into one array, a row of NaN between two (a break in the drawn line)."""
     gap = np.full((1, 3), np.nan)
-    out: list[np.ndarray] = []
-    for p in polylines:
-        if out:
-            out.append(gap)
-        out.append(np.asarray(p, dtype=float).reshape(-1, 3))
-    return np.concatenate(out) if out else np.zeros((0, 3))
+    joined = [piece for p in polylines for piece in (gap, np.asarray(p, dtype=float).reshape(-1, 3))][1:]
+    return np.concatenate(joined) if joined else np.zeros((0, 3))
 
 
 def arc(centre: np.ndarray, axis: np.ndarray, radius: float, turn: float = 1.5 * math.pi, samples: int = 33) -> tuple[np.ndarray, np.ndarray]:

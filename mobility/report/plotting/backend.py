@@ -1,9 +1,7 @@
 """matplotlib, optional: import it on first use, build figures without pyplot, save them.
 
-``pip install 'mechanism-mobility[plot]'``; when it is missing,
-:class:`~mobility.errors.PlottingUnavailableError` says so. Figures are built
-without :mod:`matplotlib.pyplot` (no global state); one left as a notebook
-cell's value shows itself as PNG.
+Missing, it is a :class:`~mobility.errors.PlottingUnavailableError`.  Figures are built without
+:mod:`matplotlib.pyplot` (no global state); one left as a notebook cell's value shows itself as PNG.
 """
 
 from __future__ import annotations

@@ -1,8 +1,6 @@
 """Drawing primitives of the 3D pictures (matplotlib): arrows, rotation marks, links, joint symbols, the axes triad.
 
-Every artist carries a ``gid`` (``"mobility:link:<name>"``,
-``"mobility:joints:<type>"``, ``"<gid>:head"`` for an arrowhead...), so
-programs and tests can read a picture back.
+Every artist carries a ``gid`` (``"mobility:joints:<type>"``, ``"<gid>:head"`` for an arrowhead...).
 """
 
 from __future__ import annotations

@@ -180,12 +180,9 @@ def _legend(fig: "Figure", mechanism: Mechanism, sk: Sketch, scene: Scene) -> No
     """One entry per joint type present, the link roles, and each kind of glyph drawn."""
     from matplotlib.lines import Line2D
 
-    handles = []
-    for t in (t for t in JOINT_STYLE if t in sk.types):
-        st = JOINT_STYLE[t]
-        handles.append(Line2D([], [], ls="", marker=st["marker"], markersize=7, markerfacecolor=st["facecolor"], markeredgecolor="white" if t == "S" else "black", label=st["label"]))
-    handles.append(Line2D([], [], color=COLORS["ground"], lw=4, label="ground"))
-    handles.append(Line2D([], [], color=COLORS["end_effector"], lw=3, label="end effector"))
+    handles = [Line2D([], [], ls="", marker=st["marker"], markersize=7, markerfacecolor=st["facecolor"], markeredgecolor="white" if t == "S" else "black",
+                      label=st["label"]) for t, st in JOINT_STYLE.items() if t in sk.types]
+    handles += [Line2D([], [], color=COLORS["ground"], lw=4, label="ground"), Line2D([], [], color=COLORS["end_effector"], lw=3, label="end effector")]
     if any(x not in (mechanism.ground, mechanism.end_effector) for x in sk.link_joints):
         handles.append(Line2D([], [], color=COLORS["link"], lw=2.6, label="link"))
     if scene.translations:

@@ -55,9 +55,7 @@ def drawing_scale(length: float) -> float:
     >>> [0.5 <= drawing_scale(x) * x < 1.0 for x in (1e200, 1e-250)]
     [True, True]
     """
-    if PLAIN_SIZES[0] <= length <= PLAIN_SIZES[1]:
-        return 1.0
-    return binary_scale(length)
+    return 1.0 if PLAIN_SIZES[0] <= length <= PLAIN_SIZES[1] else binary_scale(length)
 
 DRAWING_REACH = 1e150
 """Farthest from the origin a joint is drawn, in drawing units (the mechanism's size about 1): a drawing library

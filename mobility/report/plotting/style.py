@@ -1,8 +1,4 @@
-"""The look of the pictures: one symbol per joint type, one colour per role.
-
-Every picture uses these, so a joint type, a freedom or a constraint looks the
-same in every figure (and in other views that import them).
-"""
+"""The look of the pictures, the same in every figure (and in the 3D view): one symbol per joint type, one colour per role."""
 
 from __future__ import annotations
 

@@ -70,9 +70,7 @@ def thinned(points: np.ndarray, limit: int = MAX_CONTEXT_POINTS) -> np.ndarray:
     >>> thinned(np.arange(30.0).reshape(10, 3), 4)[:, 0].tolist()
     [0.0, 9.0, 18.0, 27.0]
     """
-    if len(points) <= limit:
-        return points
-    return points[np.unique(np.linspace(0, len(points) - 1, limit).round().astype(int))]
+    return points if len(points) <= limit else points[np.unique(np.linspace(0, len(points) - 1, limit).round().astype(int))]
 
 
 def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count: int = 2, *, separation: float = 60.0,
