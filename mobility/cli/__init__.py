@@ -151,11 +151,8 @@ def _discard_stdout() -> None:
         fd = sys.stdout.fileno()
     except (OSError, ValueError):  # no descriptor (io.UnsupportedOperation is both)
         return
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    try:
-        os.dup2(devnull, fd)
-    finally:
-        os.close(devnull)
+    with open(os.devnull, "wb") as devnull:
+        os.dup2(devnull.fileno(), fd)
 
 
 ESCAPE_ERRORS = "mobility.escape"

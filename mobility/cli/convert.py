@@ -10,8 +10,6 @@ from ..errors import MechanismFileError, RequestError, counted, one_line
 from ..outputs import atomic_output
 from ._options import add_mechanism_file, read_mechanism, require_new_output
 
-__all__ = ["register", "run"]
-
 ORDER = 15
 
 

@@ -1,7 +1,5 @@
 """Human-readable and JSON reports of a :class:`~mobility.core.result.Result`.
 
-Only formatting: no analysis happens here.
-
 Examples
 --------
 >>> fmt_number(1.23456789e-17), fmt_number(-0.5), fmt_number(1500.0)

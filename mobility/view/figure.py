@@ -50,10 +50,8 @@ its coordinates, written with 7 significant digits, then keep about 7 digits of 
 
 def _coords(points: np.ndarray, offset: np.ndarray) -> dict[str, list[float | None]]:
     """x, y, z lists of ``points - offset`` with 7 significant digits (NaN, a break in a line, as None)."""
-    out: dict[str, list[float | None]] = {}
-    for name, column in zip("xyz", (np.asarray(points, dtype=float).reshape(-1, 3) - offset).T):
-        out[name] = [None if math.isnan(v) else float(f"{v:.7g}") for v in column]
-    return out
+    columns = (np.asarray(points, dtype=float).reshape(-1, 3) - offset).T
+    return {name: [None if math.isnan(v) else float(f"{v:.7g}") for v in column] for name, column in zip("xyz", columns)}
 
 
 def axis_ticks(low: float, high: float, drawing: float, count: int = 5, offset: float = 0.0) -> dict[str, list]:

@@ -1,10 +1,8 @@
 """What the 3D view draws for one pose, as plain data: glyphs in three layers.
 
-Each :class:`Glyph` is one thing a person points at, in the ``mechanism``,
-``freedoms`` (``T1..``, ``R1..``) or ``constraints`` (``C1..``, ``W..``, numbered
-as in the text report) layer; how the scene is built: docs/view.md, "How it is
-built and tested".  Every glyph size is a fraction of the scene's size, so
-metres and millimetres look the same.
+Each :class:`Glyph` is one thing a person points at, in the ``mechanism``, ``freedoms`` (``T1..``, ``R1..``) or
+``constraints`` (``C1..``, ``W..``, numbered as in the text report) layer (docs/view.md, "How it is built and
+tested").  Every glyph size is a fraction of the scene's size, so metres and millimetres look the same.
 
 Examples
 --------

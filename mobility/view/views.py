@@ -1,9 +1,7 @@
 """The interactive 3D view of a mechanism's freedoms and constraints, for a page or a notebook.
 
-:func:`mechanism_view` shows one pose, :func:`poses_view` several with a slider
-(each pose's pattern and rank margin in the title).  A :class:`View` writes one
-self-contained HTML page (:meth:`View.write_html`) and shows itself in Jupyter,
-fetching nothing from the network, the text report as its plain-text part.
+:func:`mechanism_view` shows one pose, :func:`poses_view` several with a slider.  A :class:`View` writes one
+self-contained HTML page (:meth:`View.write_html`) and shows itself in Jupyter, the text report as its plain-text part.
 
 Examples
 --------

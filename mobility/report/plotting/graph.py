@@ -281,8 +281,7 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str],
         p, e, nodes = tree_layout(root)
         xs = [x for x, _ in p.values()]
         left, right = min(xs), max(xs)
-        for key, (x, y) in p.items():
-            tpos[key] = (x - left + offset, y)
+        tpos.update({key: (x - left + offset, y) for key, (x, y) in p.items()})
         offset += right - left + 2.0
         tree.add_nodes_from(p)
         tree.add_edges_from(e)

@@ -1,9 +1,6 @@
 """Where each joint is drawn, and the size of the scene (no matplotlib).
 
-A picture is drawn in *drawing units*: the file's lengths times
-:attr:`Sketch.scale`, an exact power of two, 1 for every mechanism of an
-everyday size (:func:`drawing_scale`), so one at 1e200 or 1e-250 is drawn
-without overflow or underflow.
+A picture is drawn in *drawing units*: the file's lengths times :attr:`Sketch.scale` (:func:`drawing_scale`).
 
 Examples
 --------
