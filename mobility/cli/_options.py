@@ -151,8 +151,7 @@ def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
                                 ("--closures", args.closures, "a file name")):
         if value == "":
             raise RequestError(argument=option, expected=what, got="an empty one")
-    values = {"ground": args.ground, "end_effector": args.end_effector, "floating": args.floating,
-              "ignore_unsupported": args.ignore_unsupported, "close": tuple(tuple(p) for p in args.close), "closures": args.closures}
+    values = {key: getattr(args, key) for key in OPTION_SPELLING} | {"close": tuple(tuple(p) for p in args.close)}
     return {k: v for k, v in values.items() if v not in (None, False, ())}
 
 
