@@ -24,7 +24,7 @@ import numpy as np
 from ..core.frozen import ReadOnlyArrays
 from ..report.plotting.geometry import FLAT, helix, perpendiculars, plate_ring
 
-__all__ = ["Mesh", "cone", "pieces", "arc", "helix", "plate"]
+__all__ = ["Mesh", "cone", "pieces", "arc", "helix", "plate", "fan"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,9 +93,10 @@ def plate(points: np.ndarray, *, flatness: float = FLAT) -> Mesh | None:
     """
     p = np.asarray(points, dtype=float).reshape(-1, 3)
     order = plate_ring(p, flatness=flatness)
-    if order is None:
-        return None
-    ring = p[order]
+    return None if order is None else fan(p[order])
+
+
+def fan(ring: np.ndarray) -> Mesh:
+    """Triangles fanning out from the first point of ``ring``, a convex polygon in order round it."""
     n = len(ring)
-    faces = np.stack([np.zeros(n - 2, dtype=int), np.arange(1, n - 1), np.arange(2, n)], axis=1)
-    return Mesh(ring, faces)
+    return Mesh(ring, np.stack([np.zeros(n - 2, dtype=int), np.arange(1, n - 1), np.arange(2, n)], axis=1))

@@ -26,9 +26,10 @@ from ..core.model import JOINT_TYPES, Mechanism
 from ..core.frozen import ReadOnlyArrays
 from ..core.result import Result
 from ..report.plotting import COLORS, choose_views, sketch
-from ..report.plotting.geometry import SAME_POINT, perpendiculars, segment_samples, unique_points
+from ..report.plotting.geometry import perpendiculars, segment_samples
+from ..report.plotting.glyphs import link_shape
 from .describe import couple_text, force_text, joint_text, plotly_text, rotation_text, translation_text
-from .geometry import Mesh, arc, cone, helix, pieces, plate
+from .geometry import Mesh, arc, cone, fan, helix, pieces
 
 __all__ = ["LAYERS", "JOINT_SYMBOLS", "Glyph", "Scene", "build_scene", "viewpoint"]
 
@@ -130,31 +131,24 @@ def build_scene(mechanism: Mechanism, result: Result, drawing: float | None = No
 
 def _links(mechanism: Mechanism, sk) -> list[Glyph]:
     """The links, grouped by role (one glyph each for the ground, the end effector and the other links)."""
-    roles: dict[str, list[tuple[str, np.ndarray]]] = {"ground": [], "end_effector": [], "link": []}
-    for link, idx in sk.link_joints.items():
-        role = "ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"
-        roles[role].append((link, unique_points(sk.points[list(idx)], SAME_POINT * sk.size)))
+    roles: dict[str, list[str]] = {"ground": [], "end_effector": [], "link": []}
+    for link in sk.link_joints:
+        roles["ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"].append(link)
     names = {"ground": "ground", "end_effector": "end effector", "link": "links"}
     widths = {"ground": 9.0, "end_effector": 8.0, "link": 6.0}
     out = []
     for role, members in roles.items():
         lines, meshes = [], []
-        for link, pts in members:
-            if len(pts) < 2:
-                continue
-            body = plate(pts) if len(pts) > 2 else None
-            if body is not None:
-                meshes.append(body)
-                lines.append(np.vstack([body.vertices, body.vertices[:1]]))  # its outline
-                inner = [p for p in pts if np.min(np.linalg.norm(body.vertices - p, axis=1)) > SAME_POINT * sk.size]
-                lines += [np.stack([pts.mean(axis=0), p]) for p in inner]
-            elif len(pts) == 2:
-                lines.append(segment_samples(pts[0], pts[1], 9))
-            else:  # a body in space: a star from its centroid
-                lines += [segment_samples(pts.mean(axis=0), p, 5) for p in pts]
+        for link in members:  # drawn as the pictures draw it (link_shape): a plate, a bar or a star
+            kind, ring, segments = link_shape(sk.points[list(sk.link_joints[link])], sk.size)
+            if kind == "plate":
+                meshes.append(fan(ring))
+                lines.append(np.vstack([ring, ring[:1]]))  # its outline
+            # a plate's spokes as they are; a bar and a star's segments sampled, so that a hover finds them anywhere
+            lines += [s if kind == "plate" else segment_samples(s[0], s[1], 9 if kind == "bar" else 5) for s in segments]
         if not lines:
             continue
-        hover = "<br>".join(f"{names[role] if role != 'link' else 'link'} {plotly_text(link)}" for link, _ in members[:12])
+        hover = "<br>".join(f"{names[role] if role != 'link' else 'link'} {plotly_text(link)}" for link in members[:12])
         out.append(Glyph(f"links:{role}", "mechanism", role, names[role], COLORS[role], path=pieces(*lines),
                          width=widths[role], hover=hover, mesh=Mesh.merged(*meshes) if meshes else None, opacity=0.25))
     return out
