@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.frozen import ReadOnlyArrays
-from ..report.plotting.geometry import FLAT, helix, perpendiculars, plate_ring
+from ..report.plotting.geometry import FLAT, arc, helix, perpendiculars, plate_ring
 
 __all__ = ["Mesh", "cone", "pieces", "arc", "helix", "plate", "fan"]
 
@@ -65,14 +65,6 @@ def pieces(*polylines: np.ndarray) -> np.ndarray:
     gap = np.full((1, 3), np.nan)
     joined = [piece for p in polylines for piece in (gap, np.asarray(p, dtype=float).reshape(-1, 3))][1:]
     return np.concatenate(joined) if joined else np.zeros((0, 3))
-
-
-def arc(centre: np.ndarray, axis: np.ndarray, radius: float, turn: float = 1.5 * math.pi, samples: int = 33) -> tuple[np.ndarray, np.ndarray]:
-    """A circular arc about ``axis`` at ``centre`` in the right-hand sense; returns (points, unit tangent at the end)."""
-    e1, e2 = perpendiculars(axis)
-    t = np.linspace(0.0, turn, samples)
-    points = centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
-    return points, -math.sin(turn) * e1 + math.cos(turn) * e2
 
 
 def plate(points: np.ndarray, *, flatness: float = FLAT) -> Mesh | None:

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ...core.model import Mechanism
-from .geometry import SAME_POINT, helix, perpendiculars, plate_ring, unique_points
+from .geometry import SAME_POINT, arc, helix, perpendiculars, plate_ring, unique_points
 from .sketch import Sketch
 from .style import COLORS, JOINT_STYLE, drawn_name
 from .views import view_axes
@@ -52,12 +52,9 @@ def arrow(ax: Any, start: np.ndarray, end: np.ndarray, color: str, gid: str, *, 
 
 def rotation_mark(ax: Any, centre: np.ndarray, axis: np.ndarray, radius: float, color: str, gid: str) -> None:
     """A circular arrow around ``axis`` at ``centre`` (right-hand sense)."""
-    e1, e2 = perpendiculars(axis)
-    t = np.linspace(0.0, 1.5 * math.pi, 40)
-    arc = centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
-    ax.plot(*arc.T, color=color, lw=1.6, gid=gid)
-    tangent = -math.sin(t[-1]) * e1 + math.cos(t[-1]) * e2
-    cone(ax, arc[-1] + 0.35 * radius * tangent, tangent, 0.6 * radius, color, gid + ":head")
+    points, tangent = arc(centre, axis, radius, samples=40)
+    ax.plot(*points.T, color=color, lw=1.6, gid=gid)
+    cone(ax, points[-1] + 0.35 * radius * tangent, tangent, 0.6 * radius, color, gid + ":head")
 
 
 def link_shape(pts: np.ndarray, size: float) -> tuple[str, np.ndarray, list[np.ndarray]]:
