@@ -232,12 +232,10 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
 
 def _notes(notes: object) -> tuple[str, ...]:
     """The ``notes`` of :func:`poses_view`: an iterable of strings (not one string), else a :class:`RequestError`."""
-    listed = None
-    if not isinstance(notes, (str, bytes)):
-        try:
-            listed = tuple(itertools.islice(notes, MAX_POSES + 1))  # type: ignore[call-overload]
-        except TypeError:
-            listed = None
+    try:
+        listed = None if isinstance(notes, (str, bytes)) else tuple(itertools.islice(notes, MAX_POSES + 1))  # type: ignore[call-overload]
+    except TypeError:  # not iterable
+        listed = None
     if listed is None or len(listed) > MAX_POSES or not all(isinstance(n, str) for n in listed):
         raise RequestError(caller="poses_view", argument="notes", expected="a list of lines (strings)", got=shown_argument(notes))
     return listed

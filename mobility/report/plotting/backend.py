@@ -109,12 +109,10 @@ def require_figsize(value: object, caller: str) -> tuple[float, float] | None:
     """
     if value is None:
         return None
-    size = None
-    if not isinstance(value, (str, bytes)):
-        try:
-            size = [require_real(x, "") for x in value]  # type: ignore[attr-defined]
-        except (TypeError, RequestError):  # not iterable, not numbers
-            size = None
+    try:
+        size = None if isinstance(value, (str, bytes)) else [require_real(x, "") for x in value]  # type: ignore[attr-defined]
+    except (TypeError, RequestError):  # not iterable, not numbers
+        size = None
     low, high = FIGSIZE_RANGE
     if size is None or len(size) != 2 or not all(low <= x <= high for x in size):
         raise RequestError(caller=caller, argument="figsize", expected=f"None or (width, height) in inches, each from {low:g} to {high:g}", got=shown_argument(value))

@@ -108,12 +108,10 @@ def _views_asked(views: Any) -> tuple[int | None, list[tuple[float, float]]]:
     try:
         return require_integer(views, expected, caller="plot_mechanism", argument="views", low=1, high=MAX_VIEWS), []
     except RequestError:
-        given: list[tuple[float, float]] = []
-        if not isinstance(views, (str, bytes, bool, np.bool_)):
-            try:
-                given = [(float(e), float(a)) for e, a in views]
-            except (TypeError, ValueError):  # not iterable, not pairs, not numbers
-                given = []
+        try:
+            given = [] if isinstance(views, (str, bytes, bool, np.bool_)) else [(float(e), float(a)) for e, a in views]
+        except (TypeError, ValueError):  # not iterable, not pairs, not numbers
+            given = []
         if given and all(math.isfinite(e) and math.isfinite(a) for e, a in given):
             return None, given
         raise
