@@ -164,11 +164,8 @@ def read_mechanism(args: argparse.Namespace, path: str | None = None) -> FileRea
 
 
 def read_with_notes(args: argparse.Namespace, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> FileRead:
-    """:func:`read_mechanism` of ``args.file``, its notes written to stderr one line each.
-
-    Each ``(output, option)`` of ``outputs`` is refused (:func:`require_new_output`)
-    when it would overwrite a file read for the mechanism.
-    """
+    """:func:`read_mechanism` of ``args.file``, its notes written to stderr one line each; each ``(output, option)``
+    of ``outputs`` is refused (:func:`require_new_output`) when it would overwrite a file read for the mechanism."""
     read = read_mechanism(args)
     for output, option in outputs:
         require_new_output(output, option, *read.files)

@@ -88,10 +88,7 @@ def _literal_texts(fig: Any) -> None:
 
 
 def new_figure(figsize: tuple[float, float], **options: Any) -> "Figure":
-    """An empty figure of ``figsize`` inches (matplotlib must have been imported by :func:`require_matplotlib`).
-
-    ``options`` go to :class:`matplotlib.figure.Figure` (e.g. ``layout="constrained"``).
-    """
+    """An empty figure of ``figsize`` inches, ``options`` going to :class:`matplotlib.figure.Figure` (after :func:`require_matplotlib`)."""
     return _figure_class()(figsize=figsize, **options)
 
 
@@ -164,10 +161,8 @@ _MISSING_GLYPH = re.compile(r"Glyph (\d+) .*missing from (?:current )?font")
 
 @contextmanager
 def glyphs_summarised() -> Iterator[None]:
-    """Around a drawing: matplotlib's warning for each character its font lacks (a name in Chinese, say) becomes one warning naming them all.
-
-    The characters are drawn as boxes; other warnings pass through unchanged.
-    """
+    """Around a drawing: matplotlib's warning for each character its font lacks (drawn as a box) becomes one warning naming them all;
+    other warnings pass through unchanged."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         yield

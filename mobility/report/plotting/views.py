@@ -27,10 +27,7 @@ grid of candidates holds at least three views 60 degrees apart from one another 
 
 
 def view_axes(elev: Any, azim: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Eye direction and screen x, y of orthographic views (matplotlib's elev/azim, degrees).
-
-    Scalars give 3-vectors; arrays of ``n`` views give arrays of shape (n, 3).
-    """
+    """Eye direction and screen x, y of orthographic views (matplotlib's elev/azim, degrees): 3-vectors, or shape (n, 3) for n views."""
     e, a = np.radians(elev), np.radians(azim)
     eye = np.stack([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)], axis=-1)
     sx = np.stack([-np.sin(a), np.cos(a), np.zeros_like(a)], axis=-1)
