@@ -269,6 +269,3 @@ def _run(argv: list[str]) -> int:
         if out.failed:
             _discard_stdout()
 
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
