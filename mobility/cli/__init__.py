@@ -268,4 +268,3 @@ def _run(argv: list[str]) -> int:
     finally:
         if out.failed:
             _discard_stdout()
-
