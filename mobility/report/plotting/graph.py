@@ -298,11 +298,8 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str],
             edge = colors.get(n.index, "#37474f") if isinstance(n, JointNode) else "#546e7a"
             ax.text(*tpos[key], label, ha="center", va="center", fontsize=6.5, gid=f"mobility:tree:{kind}",
                     bbox={"boxstyle": "round,pad=0.45", "fc": NODE_FILL[kind], "ec": edge, "lw": 2.0 if kind == "joint" else 1.0})
-    bridge_edges = {}
-    for key, n in tnodes.items() if labelled else ():  # a bridge's connections join named links: say which
-        if isinstance(n, Bridge):
-            for u, v, child in n.edges:
-                bridge_edges[(key, id(child))] = f"{drawn_name(u)}–{drawn_name(v)}"
+    bridge_edges = {(key, id(child)): f"{drawn_name(u)}–{drawn_name(v)}"  # a bridge's connections join named links: say which
+                    for key, n in tnodes.items() if labelled and isinstance(n, Bridge) for u, v, child in n.edges}
     if bridge_edges:
         nx.draw_networkx_edge_labels(tree, tpos, edge_labels=bridge_edges, ax=ax, font_size=6, label_pos=0.7, rotate=False, bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none"})
     x0, y0 = tpos[id(topo.root)]

@@ -121,12 +121,8 @@ def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
     norm = joint_screws(mechanism).normalisation
     scale = drawing_scale(norm.length) if scale is None else float(scale)
     length = norm.length * scale
-    pts = np.zeros((n, 3))
     located = np.array([j.point is not None for j in joints], dtype=bool)
-    for i, j in enumerate(joints):
-        if j.point is not None:
-            pts[i] = j.point
-    pts *= scale
+    pts = np.array([j.point if j.point is not None else (0.0, 0.0, 0.0) for j in joints], dtype=float).reshape(n, 3) * scale
     _require_drawable(mechanism, joints, pts, located, norm.length)
     link_joints: dict[str, list[int]] = {}
     for i, j in enumerate(joints):
