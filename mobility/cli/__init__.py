@@ -143,8 +143,10 @@ class _GuardedOutput:
 
 
 def _discard_stdout() -> None:
-    """Point the process's standard output at ``os.devnull`` after a write to it failed (else its buffer fails again at exit, status 120,
-    as the :mod:`signal` documentation warns for ``SIGPIPE``); a test's capture is left alone."""
+    """Point the process's standard output at ``os.devnull`` after a write to it failed; a test's capture is left alone.
+
+    Its buffer would otherwise fail again at exit (exit status 120), as the :mod:`signal` documentation warns for ``SIGPIPE``.
+    """
     if sys.stdout is not sys.__stdout__ or sys.stdout is None:
         return
     try:
@@ -187,8 +189,7 @@ def _escape_what_cannot_be_encoded() -> None:
 
 @contextlib.contextmanager
 def _stderr_or_nothing() -> Any:
-    """Standard error as it is, or a sink when the process was started without one (``2>&-``: ``sys.stderr`` is None, and
-    ``print(..., file=None)`` would write into standard output)."""
+    """Standard error as it is, or a sink when the process was started without one (``2>&-``: ``print(file=None)`` writes to stdout)."""
     if sys.stderr is not None:
         yield
         return

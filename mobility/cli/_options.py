@@ -48,8 +48,7 @@ def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
 
 
 def tolerance_from(args: argparse.Namespace, precision: float | None = None) -> Tolerance:
-    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol`` (a :class:`RequestError` naming its range when the policy refuses it);
-    without it, the default never finer than the file's ``precision`` (:func:`~mobility.core.tolerance.file_tolerance`)."""
+    """The :class:`~mobility.core.tolerance.Tolerance` of ``--tol``, else :func:`~mobility.core.tolerance.file_tolerance` of the file's ``precision``."""
     if args.tol is None:
         return file_tolerance(precision)
     try:
@@ -164,8 +163,7 @@ def read_mechanism(args: argparse.Namespace, path: str | None = None) -> FileRea
 
 
 def read_with_notes(args: argparse.Namespace, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> FileRead:
-    """:func:`read_mechanism` of ``args.file``, its notes written to stderr one line each; each ``(output, option)``
-    of ``outputs`` is refused (:func:`require_new_output`) when it would overwrite a file read for the mechanism."""
+    """:func:`read_mechanism` of ``args.file``, its notes on stderr; an ``(output, option)`` of ``outputs`` that would overwrite a file read is refused."""
     read = read_mechanism(args)
     for output, option in outputs:
         require_new_output(output, option, *read.files)

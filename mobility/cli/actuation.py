@@ -97,8 +97,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _pose(args: argparse.Namespace, path: str) -> Mechanism:
-    """The mechanism of ``--pose path``, read as FILE is, with its robot options (a YAML pose of a robot description read
-    with options is refused here, naming the pose, not the options)."""
+    """The mechanism of ``--pose path``, read as FILE is (a YAML pose of a robot description read with options is refused, naming the pose)."""
     given = sorted(robot_options_from(args))
     if given and not is_robot_description(path):
         options = ", ".join(OPTION_SPELLING[k] for k in given)

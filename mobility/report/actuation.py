@@ -56,8 +56,7 @@ def _motion(a: ScrewAxis, scale: float, unit: str) -> str:
 
 
 def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:
-    """The report of one choice of inputs, and its verdict at further poses (a flexure's name, DOF and constraint wrenches
-    are :func:`flexure_spaces_text`'s)."""
+    """The report of one choice of inputs and its verdict at further poses (a flexure's name, DOF and wrenches: :func:`flexure_spaces_text`)."""
     s, unit = check.length_scale, check.length_unit
     rigid = check.kind == "rigid"
     out = [check.name, f"  end effector: {check.dof} DOF ({check.pattern}); constraint wrenches: {6 - check.dof}"] if rigid else []

@@ -83,9 +83,11 @@ class Glyph(ReadOnlyArrays):
 
 @dataclass(frozen=True, eq=False)
 class Scene(ReadOnlyArrays):
-    """The glyphs of one pose (mechanism, then freedoms, then constraints), the bounds of what is drawn, and the
-    end effector's ``centre`` (where free vectors are drawn), the ``size`` of the mechanism (the unit of every glyph's
-    size) and the ``scale`` (:func:`mobility.report.plotting.sketch.drawing_scale`)."""
+    """The glyphs of one pose (mechanism, then freedoms, then constraints) and the bounds of what is drawn.
+
+    ``centre``: the end effector's (where free vectors are drawn); ``size``: the mechanism's (the unit of every glyph's
+    size); ``scale``: :func:`mobility.report.plotting.sketch.drawing_scale`.
+    """
 
     glyphs: tuple[Glyph, ...]
     centre: np.ndarray

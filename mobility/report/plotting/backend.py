@@ -161,8 +161,7 @@ _MISSING_GLYPH = re.compile(r"Glyph (\d+) .*missing from (?:current )?font")
 
 @contextmanager
 def glyphs_summarised() -> Iterator[None]:
-    """Around a drawing: matplotlib's warning for each character its font lacks (drawn as a box) becomes one warning naming them all;
-    other warnings pass through unchanged."""
+    """Around a drawing: matplotlib's warnings of characters its font lacks (drawn as boxes) become one naming them all; others pass through."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         yield

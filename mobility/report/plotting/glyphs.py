@@ -100,8 +100,10 @@ def draw_link(ax: Any, name: str, pts: np.ndarray, role: str, size: float) -> No
 
 
 def draw_links(ax: Any, mechanism: Mechanism, sk: Sketch) -> None:
-    """Every link, by :func:`draw_link`; beyond :data:`LINK_ARTISTS` links (matplotlib spends about a millisecond per artist
-    and view), one collection per role, gids ``mobility:links:<role>`` and ``mobility:links:<role>:plates``."""
+    """Every link by :func:`draw_link`; beyond :data:`LINK_ARTISTS` links (a millisecond per artist and view), one collection per role.
+
+    Their gids: ``mobility:links:<role>`` and ``mobility:links:<role>:plates``.
+    """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
     def role_of(link: str) -> str:
@@ -143,8 +145,7 @@ def joint_scale(count: int) -> float:
 
 
 def draw_joints(ax: Any, m: Mechanism, sk: Sketch, labels: bool, view: tuple[float, float]) -> None:
-    """One scatter per joint type (smaller among more than :data:`ROOMY_JOINTS` joints), small axis segments, and
-    names beside each joint on the screen of ``view``."""
+    """One scatter per joint type (smaller beyond :data:`ROOMY_JOINTS` joints), axis segments, names beside the joints as ``view`` shows them."""
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     joints = m.world_joints
