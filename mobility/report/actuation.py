@@ -66,8 +66,7 @@ def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:
         out.append("  actuation wrenches" + (" (each reciprocal to the other joint twists of its limb):" if rigid else " (the actuators' force lines):"))
     for i in check.inputs:
         where = f"{i.kind}" + (f", limb {i.limb + 1}" if i.limb is not None else "")
-        body = "none" if i.axis is None else _line(i.axis, s, unit)
-        out.append(f"    {i.name:<6} ({where})  {body}")
+        out.append(f"    {i.name:<6} ({where})  {'none' if i.axis is None else _line(i.axis, s, unit)}")
         if i.note:
             out.append(f"           {i.note}")
     if rigid:
@@ -94,8 +93,7 @@ def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:
     out.append(f"  rank margin: smallest kept relative singular value {check.margin.smallest_kept:.2e}")
     out += [f"  warning: {w}" for w in check.warnings]
     if poses:
-        bad = sum(not c.valid for _, c in poses)
-        out.append(f"  other poses: {len(poses) - bad} of {len(poses)} valid")
+        out.append(f"  other poses: {sum(c.valid for _, c in poses)} of {len(poses)} valid")
         out += [f"    {label}: {c.verdict}" + (f", kappa {c.conditioning:.3g}" if c.valid else "") for label, c in poses]
     return "\n".join(out)
 

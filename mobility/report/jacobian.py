@@ -51,12 +51,10 @@ def jacobian_text(result: JacobianResult, unit: str = "") -> str:
     out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(labels[len(result.actuated) :], result.constraint_wrenches)] or ["    (none)"]
     out.append("  actuation wrenches (unit reciprocal product with their joint's twist):")
     out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(result.actuated, result.actuation_wrenches)]
-    units = f" (lengths in {unit})" if unit else ""
-    out.append(f"  Jacobian J: J [w; v] = [actuated rates; 0]{units}")
+    out.append(f"  Jacobian J: J [w; v] = [actuated rates; 0]{f' (lengths in {unit})' if unit else ''}")
     cells = [[_shown(x) for x in clean_screw(row, length, moment_first=True)] for row in result.matrix]
     column = max([12] + [len(c) + 2 for row in cells for c in row])
-    head = "".join(f"{c:>{column}}" for c in ("wx", "wy", "wz", "vx", "vy", "vz"))
-    out.append(f"    {'':<{width}}{head}")
+    out.append(f"    {'':<{width}}" + "".join(f"{c:>{column}}" for c in ("wx", "wy", "wz", "vx", "vy", "vz")))
     for lab, row in zip(labels, cells):
         out.append(f"    {lab:<{width}}" + "".join(f"{c:>{column}}" for c in row))
     rows = result.matrix.shape[0]

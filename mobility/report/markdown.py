@@ -75,8 +75,7 @@ def md_code(text: str) -> str:
     ('`` `x ``', '`A ## B`')
     """
     text = md_line(text)
-    longest = max((len(run) for run in re.findall("`+", text)), default=0)
-    fence = "`" * (longest + 1)
+    fence = "`" * (max((len(run) for run in re.findall("`+", text)), default=0) + 1)  # longer than any run of backticks inside
     pad = " " if text.startswith("`") or text.endswith("`") else ""
     return f"{fence}{pad}{text}{pad}{fence}"
 

@@ -250,8 +250,7 @@ def sweep_json_pieces(result: SweepResult) -> Iterator[str]:
     >>> json.loads("".join(sweep_json_pieces(r))) == r.to_dict()
     True
     """
-    head = json.dumps(result.summary_dict(), indent=1, ensure_ascii=False)
-    yield head[:-2] + ',\n "columns": {'
+    yield json.dumps(result.summary_dict(), indent=1, ensure_ascii=False)[:-2] + ',\n "columns": {'
     for k, name in enumerate(result.columns):
         values = json.dumps(result.column_list(name), indent=1, ensure_ascii=False).replace("\n", "\n  ")
         yield ("," if k else "") + f"\n  {json.dumps(name)}: {values}"

@@ -42,8 +42,7 @@ def translation_text(number: int, direction: np.ndarray) -> str:
 
 def rotation_text(number: int, axis: ScrewAxis, scale: float, unit: str) -> str:
     """Hover text of the rotational freedom ``R<number>``: axis, point, pitch (length per radian)."""
-    per_rad = f" {unit}/rad" if unit else " per rad"
-    pitch = "0" if axis.pitch == 0 else fmt_number(axis.pitch, scale) + per_rad
+    pitch = "0" if axis.pitch == 0 else fmt_number(axis.pitch, scale) + (f" {unit}/rad" if unit else " per rad")
     return f"R{number} {axis.kind}<br>axis {fmt_vector(axis.axis)}<br>through {_length(axis.point, scale, unit)}<br>pitch {pitch}"
 
 

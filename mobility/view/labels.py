@@ -194,8 +194,7 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
             cost += np.sum(near * (1000.0 + 10.0 * np.maximum(ox + 4, 0) * np.maximum(oy + 4, 0)), axis=1)
         for grid, weight in ((drawn, 1.0), (bars, 2.0)):  # the drawn lines under the box, the links' twice
             cost += weight * grid.inside(centres[:, 0] - 0.5 * w - 2, centres[:, 0] + 0.5 * w + 2, centres[:, 1] - 0.5 * h - 2, centres[:, 1] + 0.5 * h + 2)
-        k = int(np.argmin(cost))  # the first of the cheapest
-        best = centres[k] - [x0, y0]
+        best = centres[int(np.argmin(cost))] - [x0, y0]  # the first of the cheapest
         placed = np.vstack([placed, [x0 + best[0], y0 + best[1], 0.5 * w, 0.5 * h]])
         out.append((round(float(best[0]), 1), round(float(best[1]), 1)))
     return out

@@ -126,8 +126,7 @@ def page_html(figure: dict[str, Any], title: str, answers: Sequence[str], lines:
     ``answers``: each pose's DOF, pattern and mobility in one line, and ``tables``: each pose's :func:`screws_table`
     (none: no table), in the slider's order; ``lines``: further header lines, true of every pose (``warning:`` ones in red).
     """
-    scripts = [answer_script(answers)] if len(answers) > 1 else []
-    body = figure_html(figure, div_id=ELEMENT_ID, post_script=scripts)
+    body = figure_html(figure, div_id=ELEMENT_ID, post_script=[answer_script(answers)] if len(answers) > 1 else [])
     paragraphs = "\n".join(
         f'<p class="{"warning" if line.startswith("warning:") else "detail"}">{html.escape(line)}</p>' for line in lines
     )

@@ -89,8 +89,7 @@ def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
     """
     from ..report.sweep import describe_values  # here: the sweeps package loads only when a sweep is shown
 
-    needed = ("assembled", "values", "singular", "mechanism_at", "tolerance", "axes")
-    if not all(hasattr(sweep, a) for a in needed):
+    if not all(hasattr(sweep, a) for a in ("assembled", "values", "singular", "mechanism_at", "tolerance", "axes")):
         raise RequestError(caller="sweep_view", argument="sweep", expected="a sweep result (mobility.sweep)", got=type(sweep).__name__)
     max_poses = require_max_poses(max_poses, "sweep_view")
     indices = sweep_poses(sweep, max_poses)

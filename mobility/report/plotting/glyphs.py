@@ -73,8 +73,7 @@ def link_shape(pts: np.ndarray, size: float) -> tuple[str, np.ndarray, list[np.n
     c = u.mean(axis=0)
     ring = plate_ring(u)
     if ring is not None:
-        outline = set(ring)
-        return "plate", u[ring], [np.stack([c, u[k]]) for k in range(len(u)) if k not in outline]
+        return "plate", u[ring], [np.stack([c, u[k]]) for k in range(len(u)) if k not in ring]
     return "star", np.zeros((0, 3)), [np.stack([c, x]) for x in u]
 
 

@@ -81,8 +81,7 @@ def tree_layout(root: Node) -> tuple[dict[int, tuple[float, float]], list[tuple[
 def branch_colors(root: Node, detached: Sequence[Node]) -> dict[int, str]:
     """Colour of each joint (by index): one per branch of the top node (limb), grey when detached."""
     out: dict[int, str] = {}
-    branches = _children(root) if isinstance(root, (Parallel, Bridge)) else [root]
-    for k, b in enumerate(branches):
+    for k, b in enumerate(_children(root) if isinstance(root, (Parallel, Bridge)) else [root]):
         for i in joints_of(b):
             out[i] = LIMB_COLORS[k % len(LIMB_COLORS)]
     for d in detached:
@@ -119,8 +118,7 @@ def plot_graph(mechanism: Mechanism, result: Result | None = None, *, figsize: t
     colors = branch_colors(topo.root, topo.detached)
     graph = _JointGraph(mechanism, colors)
     leaves = len(joints_of(topo.root)) + sum(len(joints_of(d)) for d in topo.detached)
-    w = max(10.0, min(26.0, 3.2 + 0.55 * max(leaves, 2 * graph.widest_layer)))
-    fig = new_figure(size or (w, 6.4))
+    fig = new_figure(size or (max(10.0, min(26.0, 3.2 + 0.55 * max(leaves, 2 * graph.widest_layer))), 6.4))
     labelled = len(mechanism.joints) <= LABELLED_JOINTS
     graph.draw(fig.add_axes((0.01, 0.08, 0.40, 0.82)), labelled)
     _draw_tree(fig.add_axes((0.43, 0.08, 0.56, 0.82)), r, mechanism, colors, labelled)
@@ -314,8 +312,7 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str],
 
 def _tree_markers(ax: Any, tpos: dict[int, tuple[float, float]], tnodes: dict[int, Node]) -> None:
     """Each node of the tree as a marker filled with its kind's colour, one collection per kind (gid ``mobility:tree:<kind>``)."""
-    kinds = {"joint": JointNode, "series": Series, "parallel": Parallel, "bridge": Bridge}
-    for kind, cls in kinds.items():
+    for kind, cls in {"joint": JointNode, "series": Series, "parallel": Parallel, "bridge": Bridge}.items():
         xy = np.array([tpos[key] for key, n in tnodes.items() if type(n) is cls]).reshape(-1, 2)
         if len(xy):
             art = ax.scatter(xy[:, 0], xy[:, 1], s=14, c=NODE_FILL[kind], edgecolors="#546e7a", linewidths=0.6, zorder=3)

@@ -83,8 +83,7 @@ def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constr
     extent = np.concatenate([important, sk.points])
     fig = new_figure(size or (6.2 * len(view_list), 6.6))
     for k, view in enumerate(view_list):
-        ax = _view_axes3d(fig, k, view_list, extent, sk.size)
-        _draw_view(ax, mechanism, r, sk, scene, bool(labels), view)
+        _draw_view(_view_axes3d(fig, k, view_list, extent, sk.size), mechanism, r, sk, scene, bool(labels), view)
     if legend:
         _legend(fig, mechanism, sk, scene)
     unit = f", lengths in {r.length_unit}" if r.length_unit else ""
