@@ -1,9 +1,4 @@
-"""``mobility actuation FILE``: which joints (or linear actuators) may drive a mechanism.
-
-The actuation wrenches, constraint wrenches and verdict of the actuated joints
-(``--enumerate``: every combination), or of a flexure document's linear
-actuators (``docs/actuation.md``).
-"""
+"""``mobility actuation FILE``: which joints (or a flexure document's linear actuators) may drive a mechanism (docs/actuation.md)."""
 
 from __future__ import annotations
 

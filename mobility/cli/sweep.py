@@ -1,10 +1,4 @@
-"""``mobility sweep FILE --vary JOINT=START:STOP:COUNT``: mobility, singularity and actuation maps over a grid.
-
-Each ``--vary`` displaces a joint from the file's pose (degrees for R, H, C
-joints, the file's length unit for P) or moves the end effector (``x y z``,
-``rx ry rz`` in degrees); the grid is the product of the ranges
-(``docs/sweeps.md``).
-"""
+"""``mobility sweep FILE --vary JOINT=START:STOP:COUNT``: mobility, singularity and actuation maps over a grid (docs/sweeps.md)."""
 
 from __future__ import annotations
 

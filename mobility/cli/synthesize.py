@@ -1,7 +1,6 @@
 """``mobility synthesize PATTERN``: limbs of R and P joints whose finite motions are a motion pattern.
 
-Type synthesis by finite screws (Sun et al. 2018, :mod:`mobility.synthesis`);
-``--write DIR`` also writes a PKM of each limb type with four 6-DOF limbs.
+Type synthesis by finite screws (Sun et al. 2018, :mod:`mobility.synthesis`); ``--write DIR`` also writes PKMs of them.
 """
 
 from __future__ import annotations

@@ -1,6 +1,4 @@
-"""Reports of actuation assessments and flexure spaces, as text and as JSON (``mobility actuation``).
-
-Each ``*_text`` function gives the lines printed, each ``*_json`` the object of ``--json``.
+"""Reports of actuation assessments and flexure spaces, as text and as JSON (``mobility actuation`` and its ``--json``).
 
 Examples
 --------

@@ -1,6 +1,4 @@
-"""The table of ``mobility check``: one row per file, then a summary line.
-
-:func:`mobility.testing.check.check_paths` computes the :class:`~mobility.testing.check.CheckReport`.
+"""The table of ``mobility check`` (:func:`mobility.testing.check.check_paths` computes it): one row per file, then a summary line.
 
 Examples
 --------

@@ -1,7 +1,6 @@
-"""Reports of a :class:`~mobility.sweeps.SweepResult`: a short text summary, CSV and JSON.
+"""Reports of a :class:`~mobility.sweeps.SweepResult` printed by ``mobility sweep``: a short text summary, CSV and JSON.
 
-:func:`sweep_summary` is what ``mobility sweep`` prints; :func:`sweep_csv` and
-:func:`sweep_json` (:meth:`SweepResult.to_dict`) its tables (docs/sweeps.md, "Output").
+What each holds: docs/sweeps.md, "Output".
 
 Examples
 --------
