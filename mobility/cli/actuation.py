@@ -85,8 +85,7 @@ def run(args: argparse.Namespace) -> int:
     extra = check_over_poses(mechanism, names, [_pose(args, p) for p in args.pose], tol=tol) if args.pose else ()
     if args.samples:
         extra = tuple(extra) + check_over_poses(mechanism, names, sampled_poses(args, mechanism), tol=tol)
-    labels = list(args.pose) + [f"sampled pose {i + 1}" for i in range(len(extra) - len(args.pose))]
-    checked = list(zip(labels, extra))
+    checked = list(zip([*args.pose, *(f"sampled pose {i + 1}" for i in range(len(extra) - len(args.pose)))], extra))
     print(actuation_json(check, checked) if args.json else actuation_text(check, checked))
     return 0 if check.valid and all(c.valid for c in extra) else 1
 

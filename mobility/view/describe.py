@@ -1,7 +1,6 @@
 """The words of the 3D view: hover text of each screw and joint, the title of a pose.
 
-Numbers are written as in the text report (:mod:`mobility.report.text`), in
-the file's units (twists' pitches per radian); lines are joined by plotly's ``<br>``.
+Numbers as in the text report (:mod:`mobility.report.text`), in the file's units; lines joined by plotly's ``<br>``.
 
 Examples
 --------
