@@ -67,26 +67,19 @@ def _colour_limits(result: SweepResult, colour: np.ndarray) -> tuple[float, floa
     finite = colour[np.isfinite(colour)]
     if not finite.size:
         return (0.0, 1.0)
-    low, high = float(finite.min()), float(finite.max())
-    if result.actuated:
-        low = 0.0
+    low, high = 0.0 if result.actuated else float(finite.min()), float(finite.max())
     return (low, high if high > low else low + 1.0)
 
 
 def _answers(result: SweepResult) -> tuple[np.ndarray, list[str]]:
     """A code per pose for its answer (-1: not assembled) and a label per code."""
     codes = np.full(result.size, -1)
-    labels: list[str] = []
-    seen: dict = {}
+    seen: dict = {}  # each answer -> its code, in the order of first appearance
     for i, c in enumerate(result.classes()):
-        if c is None:
-            continue
-        if c not in seen:
-            seen[c] = len(seen)
-            dof, pattern, mobility, verdict = c
-            labels.append(f"DOF {dof} {pattern}, M={mobility}" + (f", {verdict}" if verdict else ""))
-        codes[i] = seen[c]
-    return codes, labels
+        if c is not None:
+            codes[i] = seen.setdefault(c, len(seen))
+    return codes, [f"DOF {dof} {pattern}, M={mobility}" + (f", {verdict}" if verdict else "")
+                   for dof, pattern, mobility, verdict in seen]
 
 
 def require_drawable(coordinates: int, what: str = "") -> None:

@@ -188,7 +188,6 @@ def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     p = picture_path(written_file_name(path, "save_figure: path"))
     low, high = DPI_RANGE
     dots = require_integer(dpi, f"an integer from {low} to {high} (dots per inch)", caller="save_figure", argument="dpi", low=low, high=high)
-    with glyphs_summarised():
-        with atomic_output(p, binary=True) as handle:  # the previous picture intact until the new one is whole
-            fig.savefig(handle, format=p.suffix[1:].lower(), dpi=dots, facecolor="white")
+    with glyphs_summarised(), atomic_output(p, binary=True) as handle:  # the previous picture intact until the new one is whole
+        fig.savefig(handle, format=p.suffix[1:].lower(), dpi=dots, facecolor="white")
     return p

@@ -76,11 +76,10 @@ def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constr
     sk = sketch(mechanism)
     scene = build_scene(r, sk, bool(constraints))
     answer = np.concatenate([sk.end_effector_centre[None], *scene.important_points()])
-    important = np.concatenate([sk.points, answer])
     view_list = given if count is None else _chosen_views(sk, answer, scene.directions(), count)
     if scene.couples:  # place the couples again, now that the views are known
         scene = build_scene(r, sk, bool(constraints), eyes=np.array([view_axes(e, a)[0] for e, a in view_list]))
-    extent = np.concatenate([important, sk.points])
+    extent = np.concatenate([sk.points, answer])
     fig = new_figure(size or (6.2 * len(view_list), 6.6))
     for k, view in enumerate(view_list):
         _draw_view(_view_axes3d(fig, k, view_list, extent, sk.size), mechanism, r, sk, scene, bool(labels), view)
