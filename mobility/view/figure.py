@@ -153,13 +153,7 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
     mid, half = 0.5 * (lower + upper), 0.55 * float(np.max(upper - lower))
     # far from the origin for its size, the scene is drawn about its middle (7 digits would not resolve it), ticks in the file's numbers
     offset = mid if float(np.max(np.abs(mid))) > FAR_FROM_ORIGIN * half else np.zeros(3)
-    data: list[dict[str, Any]] = []
-    owner: list[int] = []
-    for k, (scene, _, _) in enumerate(frames):
-        for g in scene.glyphs:
-            traces = _glyph_traces(g, k, k == 0, offset)
-            data += traces
-            owner += [k] * len(traces)
+    data = [t for k, (scene, _, _) in enumerate(frames) for g in scene.glyphs for t in _glyph_traces(g, k, k == 0, offset)]
     first_scene, first_result, first_label = frames[0]
     unit, drawing = first_result.length_unit, first_scene.scale
     margin = {"l": 10, "r": 10, "t": 70 if titled else 10, "b": 10}
@@ -193,7 +187,7 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
         top -= (30 + 29 * entries) / plot_height
     if len(frames) > 1:
         steps = [{"label": plotly_text(label) if label else str(k + 1), "method": "update",
-                  "args": [{"visible": [o == k for o in owner]}, {"title.text": _title(result, label, len(frames)), "scene.annotations": labels[k]}]}
+                  "args": [{"visible": [t["meta"]["frame"] == k for t in data]}, {"title.text": _title(result, label, len(frames)), "scene.annotations": labels[k]}]}
                  for k, (_, result, label) in enumerate(frames)]
         # inset so that the labels of the end steps, centred on them, stay on the page
         layout["sliders"] = [{"active": 0, "steps": steps, "x": 0.05, "len": 0.7, "y": 0.1, "yanchor": "top",

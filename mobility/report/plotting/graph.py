@@ -80,14 +80,9 @@ def tree_layout(root: Node) -> tuple[dict[int, tuple[float, float]], list[tuple[
 
 def branch_colors(root: Node, detached: Sequence[Node]) -> dict[int, str]:
     """Colour of each joint (by index): one per branch of the top node (limb), grey when detached."""
-    out: dict[int, str] = {}
-    for k, b in enumerate(_children(root) if isinstance(root, (Parallel, Bridge)) else [root]):
-        for i in joints_of(b):
-            out[i] = LIMB_COLORS[k % len(LIMB_COLORS)]
-    for d in detached:
-        for i in joints_of(d):
-            out[i] = DETACHED_COLOR
-    return out
+    branches = _children(root) if isinstance(root, (Parallel, Bridge)) else [root]
+    out = {i: LIMB_COLORS[k % len(LIMB_COLORS)] for k, b in enumerate(branches) for i in joints_of(b)}
+    return out | {i: DETACHED_COLOR for d in detached for i in joints_of(d)}
 
 
 def plot_graph(mechanism: Mechanism, result: Result | None = None, *, figsize: tuple[float, float] | None = None,
