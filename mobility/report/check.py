@@ -52,7 +52,8 @@ def check_table(report: "CheckReport") -> str:
     rows = []
     for r in report.results:
         res, f = r.result, r.found or {}
-        found = [str(getattr(res, k) if res is not None else f.get(k, "")) for k in ("gruebler_kutzbach", "mobility", "dof", "pattern")]
+        found = [str(getattr(res, k) if res is not None else f.get(k, ""))
+                 for k in ("gruebler_kutzbach", "mobility", "dof", "pattern")]
         rows.append(tuple(one_line(c) for c in (r.path, *found, expected_text(r), verdict_text(r))))  # a path as typed may hold an escape
     widths = [max(len(h), *(len(row[i]) for row in rows)) if rows else len(h) for i, h in enumerate(HEADER)]
 

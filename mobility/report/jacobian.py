@@ -47,7 +47,8 @@ def jacobian_text(result: JacobianResult, unit: str = "") -> str:
     length = result.length
     labels = list(result.actuated) + [f"C{k + 1}" for k in range(result.constraint_wrenches.shape[0])]
     width = max(len(s) for s in labels) if labels else 2
-    out = [result.name, f"  platform DOF: {result.dof}   actuated: {', '.join(result.actuated)}", "  constraint wrenches on the platform:"]
+    out = [result.name, f"  platform DOF: {result.dof}   actuated: {', '.join(result.actuated)}"]
+    out.append("  constraint wrenches on the platform:")
     out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(labels[len(result.actuated) :], result.constraint_wrenches)] or ["    (none)"]
     out.append("  actuation wrenches (unit reciprocal product with their joint's twist):")
     out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(result.actuated, result.actuation_wrenches)]

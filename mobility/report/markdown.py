@@ -75,7 +75,7 @@ def md_code(text: str) -> str:
     ('`` `x ``', '`A ## B`')
     """
     text = md_line(text)
-    fence = "`" * (max((len(run) for run in re.findall("`+", text)), default=0) + 1)  # longer than any run of backticks inside
+    fence = "`" * (max((len(run) for run in re.findall("`+", text)), default=0) + 1)  # longer than any run inside
     pad = " " if text.startswith("`") or text.endswith("`") else ""
     return f"{fence}{pad}{text}{pad}{fence}"
 
@@ -123,7 +123,8 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     s = result.length_scale
     unit = f" ({result.length_unit})" if result.length_unit else ""
     moving = "cannot move (at first order)" if result.dof == 0 else f"has **{result.dof}** DOF, motion pattern **{result.pattern}**"
-    out = [f"# {md_heading(result.name)}", "", f"The end effector {moving}; the whole mechanism has mobility **{result.mobility}**.", "",
+    out = [f"# {md_heading(result.name)}", "",
+           f"The end effector {moving}; the whole mechanism has mobility **{result.mobility}**.", "",
            f"## Freedoms of the end effector ({result.dof})", ""]
     if result.dof:
         rows = [[f"T{i + 1}", "translation", fmt_vector(t), "", ""] for i, t in enumerate(result.translations)]
