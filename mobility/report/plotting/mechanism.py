@@ -59,8 +59,14 @@ def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constr
     Returns
     -------
     matplotlib.figure.Figure
-        One orthographic 3D axes per view.  A :class:`~mobility.errors.PlottingUnavailableError` without matplotlib,
-        a :class:`RequestError` naming an argument out of its range or a ``result`` not of ``mechanism``.
+        One orthographic 3D axes per view.
+
+    Raises
+    ------
+    PlottingUnavailableError
+        When matplotlib is not installed.
+    RequestError
+        When an argument is out of its range (each named), or ``result`` is not a :class:`Result` of ``mechanism``.
     """
     mechanism = require_mechanism(mechanism, "plot_mechanism")
     tol = require_tolerance(tol, "plot_mechanism")
