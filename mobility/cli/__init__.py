@@ -1,12 +1,9 @@
 """The ``mobility`` command line.
 
-Each subcommand is a module of this package named after it, with
-``register(subparsers)`` (adding its parser and setting ``run(args) -> int``),
-an ``ORDER`` in ``mobility --help`` and, for a command with a verdict,
-``EXIT_STATUS``.  :func:`main` imports only the module of the command asked
-for.  The exit statuses, the whole-or-nothing outputs, a closed or broken
-standard output and the escaping of what the terminal cannot show are
-described in the README.
+Each subcommand is a module of this package named after it, with ``register(subparsers)`` (adding its
+parser and setting ``run(args) -> int``), an ``ORDER`` in ``mobility --help`` and, for a command with a
+verdict, ``EXIT_STATUS``.  :func:`main` imports only the module of the command asked for.  The exit
+statuses, outputs and the escaping of what the terminal cannot show are described in the README.
 """
 
 from __future__ import annotations
@@ -110,11 +107,9 @@ def options_given(argv: Sequence[str]) -> frozenset[str]:
 
 
 class _GuardedOutput:
-    """Standard output for the length of a command: a write or flush that fails is bad input, not an internal error.
+    """Standard output for the length of a command: a failed write (``ENOSPC``) is a :class:`RequestError`, not an internal error.
 
-    An ``OSError`` (``ENOSPC``) becomes a :class:`RequestError`; after a
-    ``BrokenPipeError`` later writes are dropped, so that the command ends with
-    its own status.  ``stream`` is ``None`` when standard output was closed.
+    After a ``BrokenPipeError`` later writes are dropped (the command ends with its own status); ``stream`` is None when stdout was closed.
     """
 
     def __init__(self, stream: Any) -> None:
@@ -148,10 +143,9 @@ class _GuardedOutput:
 
 
 def _discard_stdout() -> None:
-    """Point the process's standard output at ``os.devnull`` after a write to it failed.
+    """Point the process's standard output at ``os.devnull`` after a write to it failed; a test's capture is left alone.
 
-    Its buffer would otherwise fail again at exit (exit status 120), as the
-    :mod:`signal` documentation warns for ``SIGPIPE``; a test's capture is left alone.
+    Its buffer would otherwise fail again at exit (exit status 120), as the :mod:`signal` documentation warns for ``SIGPIPE``.
     """
     if sys.stdout is not sys.__stdout__ or sys.stdout is None:
         return
@@ -159,11 +153,8 @@ def _discard_stdout() -> None:
         fd = sys.stdout.fileno()
     except (OSError, ValueError):  # no descriptor (io.UnsupportedOperation is both)
         return
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    try:
-        os.dup2(devnull, fd)
-    finally:
-        os.close(devnull)
+    with open(os.devnull, "wb") as devnull:
+        os.dup2(devnull.fileno(), fd)
 
 
 ESCAPE_ERRORS = "mobility.escape"
@@ -198,10 +189,7 @@ def _escape_what_cannot_be_encoded() -> None:
 
 @contextlib.contextmanager
 def _stderr_or_nothing() -> Any:
-    """Standard error as it is, or a sink when the process was started without one (``2>&-``).
-
-    Python then has ``sys.stderr = None``: ``print(..., file=None)`` would write into standard output.
-    """
+    """Standard error as it is, or a sink when the process was started without one (``2>&-``: ``print(file=None)`` writes to stdout)."""
     if sys.stderr is not None:
         yield
         return
@@ -281,7 +269,3 @@ def _run(argv: list[str]) -> int:
     finally:
         if out.failed:
             _discard_stdout()
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())

@@ -2,7 +2,7 @@
 
 Every subcommand reading one mechanism file registers it with
 :func:`add_mechanism_file` (``FILE`` and the robot description options) and
-reads it with :func:`load_mechanism`, so that every command reads YAML, MJCF
+reads it with :func:`read_with_notes`, so that every command reads YAML, MJCF
 and URDF alike.
 """
 
@@ -22,7 +22,7 @@ from ..io.files import os_reason, require_not_pipe
 from ..io.loader import FileRead, read_file
 
 __all__ = ["add_tolerance_option", "tolerance_from", "add_pose_sampler_options", "sampled_poses", "MECHANISM_FILE_HELP", "add_mechanism_file",
-           "robot_options_from", "read_mechanism", "load_mechanism", "names_from", "MAX_SAMPLES", "require_sampler_options", "require_new_output",
+           "robot_options_from", "read_mechanism", "read_with_notes", "names_from", "MAX_SAMPLES", "require_sampler_options", "require_new_output",
            "add_max_poses_option", "max_poses_from", "require_option_for", "number_option", "integer_option"]
 
 
@@ -48,13 +48,7 @@ def add_tolerance_option(parser: argparse.ArgumentParser) -> None:
 
 
 def tolerance_from(args: argparse.Namespace, precision: float | None = None) -> Tolerance:
-    """The :class:`~mobility.core.tolerance.Tolerance` asked for by ``--tol`` (its range checked by the policy); without it, the default never finer than the file's ``precision`` (:func:`~mobility.core.tolerance.file_tolerance`).
-
-    Raises
-    ------
-    RequestError
-        Naming ``--tol`` and its range, when the policy refuses it.
-    """
+    """The :class:`~mobility.core.tolerance.Tolerance` of ``--tol``, else :func:`~mobility.core.tolerance.file_tolerance` of the file's ``precision``."""
     if args.tol is None:
         return file_tolerance(precision)
     try:
@@ -63,9 +57,8 @@ def tolerance_from(args: argparse.Namespace, precision: float | None = None) -> 
         raise RequestError(f"--tol must lie in [{DEFAULT_TOLERANCE.inexact:g}, {DEFAULT_TOLERANCE.near_singular:g}), got {args.tol:g}") from None
 
 
-def add_pose_sampler_options(
-    parser: argparse.ArgumentParser, *, samples_help: str, samples_group: argparse._ActionsContainer | None = None, most: int | None = None
-) -> None:
+def add_pose_sampler_options(parser: argparse.ArgumentParser, *, samples_help: str, samples_group: argparse._ActionsContainer | None = None,
+                             most: int | None = None) -> None:
     """Add ``--samples N``, ``--step`` and ``--seed``: further poses reached by moving the mechanism.
 
     ``samples_help`` says what the subcommand does with the poses; ``--samples``
@@ -108,13 +101,7 @@ def require_sampler_options(args: argparse.Namespace) -> None:
 
 
 def sampled_poses(args: argparse.Namespace, mechanism: Mechanism) -> list[Mechanism]:
-    """The poses asked for by ``--samples``, ``--step`` and ``--seed`` (none for ``--samples 0``).
-
-    Raises
-    ------
-    RequestError
-        For a negative ``--samples`` or a ``--step`` that is not positive.
-    """
+    """The poses asked for by ``--samples``, ``--step`` and ``--seed`` (none for ``--samples 0``), checked by :func:`require_sampler_options`."""
     require_sampler_options(args)
     if not args.samples:
         return []
@@ -157,46 +144,27 @@ OPTION_SPELLING = {"ground": "--ground", "end_effector": "--end-effector", "floa
 def robot_options_from(args: argparse.Namespace) -> dict[str, Any]:
     """The robot options given on the command line, as keywords of :func:`mobility.load` (those left at their default are omitted).
 
-    Raises
-    ------
-    RequestError
-        When ``--ground``, ``--end-effector`` or ``--closures`` is given an
-        empty name (which would otherwise read as the option left out).
+    An empty ``--ground``, ``--end-effector`` or ``--closures`` (which would read as the option left out) is a :class:`RequestError`.
     """
     for option, value, what in (("--ground", args.ground, "a body name"), ("--end-effector", args.end_effector, "a body name"),
                                 ("--closures", args.closures, "a file name")):
         if value == "":
             raise RequestError(argument=option, expected=what, got="an empty one")
-    values = {"ground": args.ground, "end_effector": args.end_effector, "floating": args.floating,
-              "ignore_unsupported": args.ignore_unsupported, "close": tuple(tuple(p) for p in args.close), "closures": args.closures}
+    values = {key: getattr(args, key) for key in OPTION_SPELLING} | {"close": tuple(tuple(p) for p in args.close)}
     return {k: v for k, v in values.items() if v not in (None, False, ())}
 
 
 def read_mechanism(args: argparse.Namespace, path: str | None = None) -> FileRead:
     """The mechanism of ``path`` (default: ``args.file``), read with the robot options of ``args``, the notes of the reading and the files read.
 
-    Raises
-    ------
-    MechanismFileError
-        When the file cannot be read (one line naming file, line and key).
-    RequestError
-        When robot options are given for a mechanism file (YAML), named as typed.
+    Robot options given for a mechanism file (YAML) are a :class:`RequestError`, named as typed.
     """
     return read_file(args.file if path is None else path, spelling=OPTION_SPELLING, **robot_options_from(args))
 
 
-def load_mechanism(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> Mechanism:
-    """The mechanism of ``path`` (default: ``args.file``); for a robot description, the notes of the reading go to stderr, one line each.
-
-    Each ``(output, option)`` of ``outputs`` is refused (:func:`require_new_output`)
-    when it would overwrite a file read for the mechanism.
-    """
-    return read_with_notes(args, path, outputs=outputs).mechanism
-
-
-def read_with_notes(args: argparse.Namespace, path: str | None = None, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> FileRead:
-    """:func:`read_mechanism`, its notes written to stderr and its outputs checked as :func:`load_mechanism` does."""
-    read = read_mechanism(args, path)
+def read_with_notes(args: argparse.Namespace, *, outputs: tuple[tuple[str | None, str], ...] = ()) -> FileRead:
+    """:func:`read_mechanism` of ``args.file``, its notes on stderr; an ``(output, option)`` of ``outputs`` that would overwrite a file read is refused."""
+    read = read_mechanism(args)
     for output, option in outputs:
         require_new_output(output, option, *read.files)
     for note in read.notes:

@@ -1,9 +1,4 @@
-"""``mobility actuation FILE``: which joints (or linear actuators) may drive a mechanism.
-
-The actuation wrenches, constraint wrenches and verdict of the actuated joints
-(``--enumerate``: every combination), or of a flexure document's linear
-actuators (``docs/actuation.md``).
-"""
+"""``mobility actuation FILE``: which joints (or a flexure document's linear actuators) may drive a mechanism (docs/actuation.md)."""
 
 from __future__ import annotations
 
@@ -19,7 +14,7 @@ from ..io.yaml_source import parse_yaml, read_text
 from ..report.actuation import actuation_json, actuation_text, enumeration_json, enumeration_text, flexure_json, flexure_text
 from ..io.limits import require_size, require_work
 from ._options import (MECHANISM_FILE_HELP, OPTION_SPELLING, add_mechanism_file, add_pose_sampler_options, add_tolerance_option, integer_option,
-                       load_mechanism, names_from, number_option, require_option_for, require_sampler_options, read_mechanism, robot_options_from,
+                       names_from, number_option, require_option_for, require_sampler_options, read_mechanism, read_with_notes, robot_options_from,
                        sampled_poses, tolerance_from)
 
 ORDER = 30
@@ -73,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
             return _run_flexure(args, flexure, names_from(args.inputs, [a.name for a in flexure.actuators]), tol)
     if args.threshold is not None:  # it would be ignored: a rigid mechanism has no compliance
         raise RequestError(f"--threshold applies to flexure documents (their compliance), not to the rigid mechanism {args.file}")
-    mechanism = load_mechanism(args)
+    mechanism = read_with_notes(args).mechanism
     tol = tolerance_from(args, mechanism.precision)
     names = names_from(args.inputs, [j.name for j in mechanism.joints])
     if args.enumerate:
@@ -90,17 +85,13 @@ def run(args: argparse.Namespace) -> int:
     extra = check_over_poses(mechanism, names, [_pose(args, p) for p in args.pose], tol=tol) if args.pose else ()
     if args.samples:
         extra = tuple(extra) + check_over_poses(mechanism, names, sampled_poses(args, mechanism), tol=tol)
-    labels = list(args.pose) + [f"sampled pose {i + 1}" for i in range(len(extra) - len(args.pose))]
-    checked = list(zip(labels, extra))
+    checked = list(zip([*args.pose, *(f"sampled pose {i + 1}" for i in range(len(extra) - len(args.pose)))], extra))
     print(actuation_json(check, checked) if args.json else actuation_text(check, checked))
     return 0 if check.valid and all(c.valid for c in extra) else 1
 
 
 def _pose(args: argparse.Namespace, path: str) -> Mechanism:
-    """The mechanism of ``--pose path``, read as FILE is, with its robot options.
-
-    A YAML pose of a robot description read with options is refused here, naming the pose, not the options.
-    """
+    """The mechanism of ``--pose path``, read as FILE is (a YAML pose of a robot description read with options is refused, naming the pose)."""
     given = sorted(robot_options_from(args))
     if given and not is_robot_description(path):
         options = ", ".join(OPTION_SPELLING[k] for k in given)
@@ -114,9 +105,7 @@ def _run_flexure(args: argparse.Namespace, mechanism: FlexureMechanism, names: l
     answer: ActuationCheck | Enumeration
     if args.enumerate:
         answer = enumerate_force_lines(mechanism, args.k, threshold=args.threshold, tol=tol)
-        ok = bool(answer.valid)
     else:
         answer = check_force_lines(mechanism, names, threshold=args.threshold, tol=tol)
-        ok = answer.valid
     print(flexure_json(spaces, answer) if args.json else flexure_text(spaces, answer))
-    return 0 if ok else 1
+    return 0 if answer.valid else 1

@@ -1,8 +1,6 @@
 """``mobility check PATH...``: analyse mechanism files and compare them with their ``expected`` blocks.
 
-One table row per file and a summary line (or ``--json``); a flexure document
-among the files is checked as one.  ``--library`` checks the library bundled
-with the package (:func:`mobility.library.folders`), with or without paths.
+A flexure document among the files is checked as one; ``--library`` checks the library bundled with the package.
 """
 
 from __future__ import annotations

@@ -10,8 +10,6 @@ from ..errors import MechanismFileError, RequestError, counted, one_line
 from ..outputs import atomic_output
 from ._options import add_mechanism_file, read_mechanism, require_new_output
 
-__all__ = ["register", "run"]
-
 ORDER = 15
 
 
@@ -28,9 +26,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..core.analysis import analyze
-    from ..io.writer import mechanism_to_yaml, require_written_faithfully
-
     from ..io.robot_files import ROBOT_SUFFIXES
+    from ..io.writer import mechanism_to_yaml, require_written_faithfully
 
     if args.output == "-":  # the usual name of standard output
         args.output = None
@@ -75,5 +72,3 @@ def _write_utf8(text: str) -> None:
     sys.stdout.flush()
     buffer.write(text.encode("utf-8"))
     buffer.flush()
-
-

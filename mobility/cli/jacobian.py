@@ -7,7 +7,7 @@ import argparse
 from ..errors import MechanismError, MechanismFileError
 from ..jacobians import jacobian
 from ..report.jacobian import jacobian_json, jacobian_text
-from ._options import MECHANISM_FILE_HELP, add_mechanism_file, add_tolerance_option, load_mechanism, names_from, tolerance_from
+from ._options import MECHANISM_FILE_HELP, add_mechanism_file, add_tolerance_option, names_from, read_with_notes, tolerance_from
 
 ORDER = 45
 EXIT_STATUS = "0 the Jacobian has rank 6 (the platform is controlled, redundantly or not), 1 it is singular, 2 bad input (one line on standard error)"
@@ -27,7 +27,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     tol = tolerance_from(args)
-    mechanism = load_mechanism(args)
+    mechanism = read_with_notes(args).mechanism
     tol = tolerance_from(args, mechanism.precision)
     names = names_from(args.actuated, [j.name for j in mechanism.joints], "--actuated")
     try:

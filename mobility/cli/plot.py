@@ -7,7 +7,7 @@ import argparse
 from ..core.analysis import analyze
 from ..errors import MechanismFileError, PlotFormatError, RequestError, one_line
 from ..report.plotting.backend import DPI_RANGE
-from ._options import add_mechanism_file, integer_option, add_tolerance_option, load_mechanism, require_new_output, tolerance_from
+from ._options import add_mechanism_file, integer_option, add_tolerance_option, read_with_notes, require_new_output, tolerance_from
 
 ORDER = 30
 
@@ -54,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     if args.graph and drawn:
         raise RequestError(f"{' and '.join(drawn)} draw{'s' if len(drawn) == 1 else ''} on the mechanism, not on the --graph picture")
     try:
-        mechanism = load_mechanism(args, outputs=((args.output, "-o"),))
+        mechanism = read_with_notes(args, outputs=((args.output, "-o"),)).mechanism
     except MechanismFileError:
         if _is_flexure(args.file):
             raise PlotFormatError("a flexure document (bodies joined by elements); `mobility plot` draws mechanisms with joints, see `mobility actuation` for flexures",

@@ -1,14 +1,9 @@
-"""``mobility sweep FILE --vary JOINT=START:STOP:COUNT``: mobility, singularity and actuation maps over a grid.
-
-Each ``--vary`` displaces a joint from the file's pose (degrees for R, H, C
-joints, the file's length unit for P) or moves the end effector (``x y z``,
-``rx ry rz`` in degrees); the grid is the product of the ranges
-(``docs/sweeps.md``).
-"""
+"""``mobility sweep FILE --vary JOINT=START:STOP:COUNT``: mobility, singularity and actuation maps over a grid (docs/sweeps.md)."""
 
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import sys
 from pathlib import Path
 from typing import IO, Iterable
@@ -21,7 +16,7 @@ from ..sweeps import DEFAULT_CHUNK_SIZE, MAX_WORKERS, sweep
 from ..sweeps.batch_actuation import actuated_inputs
 from ..transmission import GOOD_TRANSMISSION
 from ..io.limits import require_size
-from ._options import add_max_poses_option, add_mechanism_file, integer_option, add_tolerance_option, load_mechanism, max_poses_from, names_from, require_new_output, tolerance_from
+from ._options import add_max_poses_option, add_mechanism_file, integer_option, add_tolerance_option, max_poses_from, names_from, read_with_notes, require_new_output, tolerance_from
 
 ORDER = 35
 
@@ -62,15 +57,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def _progress_wanted(choice: bool | None) -> bool:
     """An explicit choice, else a bar when stderr is a terminal and tqdm is installed."""
-    if choice is not None:
-        return choice
-    if not sys.stderr.isatty():
-        return False
-    try:
-        import tqdm  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    return choice if choice is not None else sys.stderr.isatty() and importlib.util.find_spec("tqdm") is not None
 
 
 def run(args: argparse.Namespace) -> int:
@@ -96,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
         raise RequestError("--workers sets the threads of this process; with --scheduler the cluster's workers run the chunks: give one of them")
     if args.workers is not None and not 1 <= args.workers <= MAX_WORKERS:
         raise RequestError(f"--workers must be between 1 and {MAX_WORKERS} (threads of this process; for more, use --scheduler), got {clipped(str(args.workers))}")
-    mechanism = load_mechanism(args, outputs=((args.output, "-o"), (args.plot, "--plot")))
+    mechanism = read_with_notes(args, outputs=((args.output, "-o"), (args.plot, "--plot"))).mechanism
     tol = tolerance_from(args, mechanism.precision)
     require_size(mechanism, "max_moving_joints", "a sweep", args.file)
     inputs = names_from(args.inputs, [j.name for j in mechanism.joints])

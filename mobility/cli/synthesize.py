@@ -1,7 +1,6 @@
 """``mobility synthesize PATTERN``: limbs of R and P joints whose finite motions are a motion pattern.
 
-Type synthesis by finite screws (Sun et al. 2018, :mod:`mobility.synthesis`);
-``--write DIR`` also writes a PKM of each limb type with four 6-DOF limbs.
+Type synthesis by finite screws (Sun et al. 2018, :mod:`mobility.synthesis`); ``--write DIR`` also writes PKMs of them.
 """
 
 from __future__ import annotations
@@ -38,15 +37,11 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(run=run)
 
 
-MAX_VERIFY = MAX_VERIFY_SAMPLES
-"""Largest ``--verify`` (the library's bound on ``verify_samples``)."""
-
-
 def _vector(text: str, what: str) -> tuple[float, float, float]:
     try:
         parts = [number_option(x) for x in text.split(",")]
     except ValueError:
-        raise SynthesisError(caller=what, expected="three comma-separated numbers", got=repr(text)) from None
+        parts = []
     if len(parts) != 3:
         raise SynthesisError(caller=what, expected="three comma-separated numbers", got=repr(text))
     return (parts[0], parts[1], parts[2])
@@ -66,8 +61,8 @@ def _require_folder_to_write(folder: str) -> None:
 def run(args: argparse.Namespace) -> int:
     if args.samples < 1 or args.verify < 0:
         raise RequestError(f"--samples must be at least 1 and --verify not negative, got {args.samples} and {args.verify}")
-    if args.samples > MAX_SAMPLES or args.verify > MAX_VERIFY or args.seed < 0 or (args.joints is not None and not 1 <= args.joints <= 8):
-        raise RequestError(f"--samples must be at most {MAX_SAMPLES}, --verify at most {MAX_VERIFY}, --seed not negative and --joints in [1, 8]; "
+    if args.samples > MAX_SAMPLES or args.verify > MAX_VERIFY_SAMPLES or args.seed < 0 or (args.joints is not None and not 1 <= args.joints <= 8):
+        raise RequestError(f"--samples must be at most {MAX_SAMPLES}, --verify at most {MAX_VERIFY_SAMPLES}, --seed not negative and --joints in [1, 8]; "
                            f"got {args.samples}, {args.verify}, {args.seed} and {args.joints}")
     require_option_for(args, "other", "--other", "--write", args.write is not None, "it chooses the 6-DOF limbs of the PKMs --write assembles")
     directions = None if args.directions is None else [_vector(d, "--directions") for d in args.directions.split(";")]

@@ -1,6 +1,4 @@
-"""Reports of actuation assessments and flexure spaces, as text and as JSON (``mobility actuation``).
-
-Each ``*_text`` function gives the lines printed, each ``*_json`` the object of ``--json``.
+"""Reports of actuation assessments and flexure spaces, as text and as JSON (``mobility actuation`` and its ``--json``).
 
 Examples
 --------
@@ -56,11 +54,7 @@ def _motion(a: ScrewAxis, scale: float, unit: str) -> str:
 
 
 def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:
-    """The report of one choice of inputs, and its verdict at further poses.
-
-    A rigid mechanism's report starts with its name, DOF and constraint
-    wrenches; a flexure's leaves them to :func:`flexure_spaces_text`.
-    """
+    """The report of one choice of inputs and its verdict at further poses (a flexure's name, DOF and wrenches: :func:`flexure_spaces_text`)."""
     s, unit = check.length_scale, check.length_unit
     rigid = check.kind == "rigid"
     out = [check.name, f"  end effector: {check.dof} DOF ({check.pattern}); constraint wrenches: {6 - check.dof}"] if rigid else []
@@ -70,8 +64,7 @@ def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:
         out.append("  actuation wrenches" + (" (each reciprocal to the other joint twists of its limb):" if rigid else " (the actuators' force lines):"))
     for i in check.inputs:
         where = f"{i.kind}" + (f", limb {i.limb + 1}" if i.limb is not None else "")
-        body = "none" if i.axis is None else _line(i.axis, s, unit)
-        out.append(f"    {i.name:<6} ({where})  {body}")
+        out.append(f"    {i.name:<6} ({where})  {'none' if i.axis is None else _line(i.axis, s, unit)}")
         if i.note:
             out.append(f"           {i.note}")
     if rigid:
@@ -98,8 +91,7 @@ def actuation_text(check: ActuationCheck, poses: PoseChecks = ()) -> str:
     out.append(f"  rank margin: smallest kept relative singular value {check.margin.smallest_kept:.2e}")
     out += [f"  warning: {w}" for w in check.warnings]
     if poses:
-        bad = sum(not c.valid for _, c in poses)
-        out.append(f"  other poses: {len(poses) - bad} of {len(poses)} valid")
+        out.append(f"  other poses: {sum(c.valid for _, c in poses)} of {len(poses)} valid")
         out += [f"    {label}: {c.verdict}" + (f", kappa {c.conditioning:.3g}" if c.valid else "") for label, c in poses]
     return "\n".join(out)
 

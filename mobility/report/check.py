@@ -1,6 +1,4 @@
-"""The table of ``mobility check``: one row per file, then a summary line.
-
-:func:`mobility.testing.check.check_paths` computes the :class:`~mobility.testing.check.CheckReport`.
+"""The table of ``mobility check`` (:func:`mobility.testing.check.check_paths` computes it): one row per file, then a summary line.
 
 Examples
 --------
@@ -46,9 +44,7 @@ def verdict_text(r: "CheckResult") -> str:
     """``pass (7 keys)``, ``FAIL: dof 4 (expected 3)``, ``no expected block`` or ``ERROR: file:line: key: ...``."""
     if r.status == "pass":
         return f"pass ({len(r.comparisons)} keys)"
-    if r.status == "missing":
-        return STATUS_WORDS["missing"]
-    return f"{STATUS_WORDS[r.status]}: {r.message}"
+    return STATUS_WORDS["missing"] if r.status == "missing" else f"{STATUS_WORDS[r.status]}: {r.message}"
 
 
 def check_table(report: "CheckReport") -> str:
@@ -56,10 +52,8 @@ def check_table(report: "CheckReport") -> str:
     rows = []
     for r in report.results:
         res, f = r.result, r.found or {}
-        if res is not None:
-            found: tuple[str, ...] = (str(res.gruebler_kutzbach), str(res.mobility), str(res.dof), res.pattern)
-        else:
-            found = tuple(str(f.get(k, "")) for k in ("gruebler_kutzbach", "mobility", "dof", "pattern"))
+        found = [str(getattr(res, k) if res is not None else f.get(k, ""))
+                 for k in ("gruebler_kutzbach", "mobility", "dof", "pattern")]
         rows.append(tuple(one_line(c) for c in (r.path, *found, expected_text(r), verdict_text(r))))  # a path as typed may hold an escape
     widths = [max(len(h), *(len(row[i]) for row in rows)) if rows else len(h) for i, h in enumerate(HEADER)]
 
@@ -69,6 +63,5 @@ def check_table(report: "CheckReport") -> str:
 
     out = [line(HEADER), line(tuple("-" * w for w in widths))]
     out += [line(row) for row in rows]
-    out.append("")
-    out.append(report.summary())
+    out += ["", report.summary()]
     return "\n".join(out)

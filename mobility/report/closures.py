@@ -1,6 +1,4 @@
-"""Advice on closures for people: the section ``mobility analyze`` adds for a robot file with closed loops.
-
-:func:`mobility.core.closures.closure_advice` computes; this module writes.
+"""Advice on closures (:func:`mobility.core.closures.closure_advice`) for people: what ``mobility analyze`` adds for a robot file with loops.
 
 Examples
 --------

@@ -1,6 +1,4 @@
-"""The finite-motion answer for people: the section printed by ``mobility analyze --finite``.
-
-:func:`mobility.finite.finite_mobility` computes; this module writes.
+"""The answer of :func:`mobility.finite.finite_mobility` for people: the section printed by ``mobility analyze --finite``.
 
 Examples
 --------

@@ -1,8 +1,7 @@
 """Reports of a Jacobian (:class:`~mobility.jacobians.JacobianResult`): text and JSON.
 
-Round-off is shown as 0 relative to what a number is part of
-(:func:`~mobility.jacobians.wrenches.clean_screw`), so a file scaled by any
-factor prints the same digits, scaled.
+Round-off is shown as 0 relative to what a number is part of (:func:`~mobility.jacobians.wrenches.clean_screw`),
+so a file scaled by any factor prints the same digits, scaled.
 
 Examples
 --------
@@ -44,13 +43,7 @@ def _shown(x: float) -> str:
 
 
 def jacobian_text(result: JacobianResult, unit: str = "") -> str:
-    """The report printed by ``mobility jacobian``: wrenches, the matrix ``J`` and, when regular, ``J^-1``.
-
-    Parameters
-    ----------
-    unit : str
-        The mechanism's length unit, named in the matrix's heading.
-    """
+    """The report printed by ``mobility jacobian``: wrenches, the matrix ``J`` (``unit``: named in its heading) and, when regular, ``J^-1``."""
     length = result.length
     labels = list(result.actuated) + [f"C{k + 1}" for k in range(result.constraint_wrenches.shape[0])]
     width = max(len(s) for s in labels) if labels else 2
@@ -59,12 +52,10 @@ def jacobian_text(result: JacobianResult, unit: str = "") -> str:
     out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(labels[len(result.actuated) :], result.constraint_wrenches)] or ["    (none)"]
     out.append("  actuation wrenches (unit reciprocal product with their joint's twist):")
     out += [f"    {lab:<{width}}  {wrench_line(w, length)}" for lab, w in zip(result.actuated, result.actuation_wrenches)]
-    units = f" (lengths in {unit})" if unit else ""
-    out.append(f"  Jacobian J: J [w; v] = [actuated rates; 0]{units}")
+    out.append(f"  Jacobian J: J [w; v] = [actuated rates; 0]{f' (lengths in {unit})' if unit else ''}")
     cells = [[_shown(x) for x in clean_screw(row, length, moment_first=True)] for row in result.matrix]
     column = max([12] + [len(c) + 2 for row in cells for c in row])
-    head = "".join(f"{c:>{column}}" for c in ("wx", "wy", "wz", "vx", "vy", "vz"))
-    out.append(f"    {'':<{width}}{head}")
+    out.append(f"    {'':<{width}}" + "".join(f"{c:>{column}}" for c in ("wx", "wy", "wz", "vx", "vy", "vz")))
     for lab, row in zip(labels, cells):
         out.append(f"    {lab:<{width}}" + "".join(f"{c:>{column}}" for c in row))
     rows = result.matrix.shape[0]

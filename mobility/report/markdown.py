@@ -75,27 +75,15 @@ def md_code(text: str) -> str:
     ('`` `x ``', '`A ## B`')
     """
     text = md_line(text)
-    longest = max((len(run) for run in re.findall("`+", text)), default=0)
-    fence = "`" * (longest + 1)
+    fence = "`" * (max((len(run) for run in re.findall("`+", text)), default=0) + 1)  # longer than any run inside
     pad = " " if text.startswith("`") or text.endswith("`") else ""
     return f"{fence}{pad}{text}{pad}{fence}"
 
 
 def markdown_table(header: Sequence[str], rows: Iterable[Sequence[object]], align: str | None = None) -> str:
-    """A GitHub-flavoured Markdown table.
+    """A GitHub-flavoured Markdown table of ``rows`` of cells (converted with ``str`` and escaped), one per column.
 
-    Parameters
-    ----------
-    rows : iterable of sequences
-        Cells, converted with ``str`` and escaped.
-    align : str, optional
-        One letter per column: ``l``, ``r`` or ``c`` (default all left).
-
-    Raises
-    ------
-    RequestError
-        When ``align`` is not one of ``l``, ``r``, ``c`` per column, or a
-        row does not have one cell per column.
+    ``align``: one letter per column, ``l``, ``r`` or ``c`` (default all left); else a :class:`RequestError`.
 
     Examples
     --------
@@ -124,65 +112,32 @@ def _pitch(a: ScrewAxis, scale: float) -> str:
     return "0" if a.pitch == 0 else fmt_number(a.pitch, scale)
 
 
-def _unit(result: Result) -> str:
-    return f" ({result.length_unit})" if result.length_unit else ""
-
-
-def _freedom_rows(result: Result) -> list[list[str]]:
-    s = result.length_scale
-    rows = [[f"T{i + 1}", "translation", fmt_vector(t), "", ""] for i, t in enumerate(result.translations)]
-    rows += [[f"R{i + 1}", a.kind, fmt_vector(a.axis), fmt_vector(a.point, s), _pitch(a, s)] for i, a in enumerate(result.rotations)]
-    return rows
-
-
-def _constraint_rows(result: Result) -> list[list[str]]:
-    s = result.length_scale
-    rows = [[f"C{i + 1}", "couple", fmt_vector(c), "", ""] for i, c in enumerate(result.couples)]
-    k = len(rows)
-    rows += [[f"W{k + i + 1}", f.kind, fmt_vector(f.axis), fmt_vector(f.point, s), _pitch(f, s)] for i, f in enumerate(result.forces)]
-    return rows
-
-
 def _screw_list(axes: Sequence[ScrewAxis], scale: float) -> str:
     return "; ".join(screw_text(a, scale, verb="") for a in axes)
 
 
 def markdown_report(result: Result, *, limbs: bool = True) -> str:
-    """The analysis as Markdown: a summary, then tables.
-
-    Parameters
-    ----------
-    result : Result
-        From :func:`mobility.analyze`.
-    limbs : bool
-        Add the table of limbs (each in its own frame) when the mechanism has some.
-
-    Returns
-    -------
-    str
-        Markdown text, ending without a newline.
-    """
+    """The analysis as Markdown, ending without a newline: a summary, then tables (``limbs``: also the limbs', each in its own frame)."""
     result = require_result(result, "markdown_report")
     require_bool(limbs, caller="markdown_report", argument="limbs", got=type(limbs).__name__)
     s = result.length_scale
-    unit = _unit(result)
-    out = [f"# {md_heading(result.name)}", ""]
+    unit = f" ({result.length_unit})" if result.length_unit else ""
     moving = "cannot move (at first order)" if result.dof == 0 else f"has **{result.dof}** DOF, motion pattern **{result.pattern}**"
-    out.append(f"The end effector {moving}; the whole mechanism has mobility **{result.mobility}**.")
-    out.append("")
-    out.append(f"## Freedoms of the end effector ({result.dof})")
-    out.append("")
+    out = [f"# {md_heading(result.name)}", "",
+           f"The end effector {moving}; the whole mechanism has mobility **{result.mobility}**.", "",
+           f"## Freedoms of the end effector ({result.dof})", ""]
     if result.dof:
-        out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}/rad"], _freedom_rows(result)))
-        out.append("")
-        out.append("Translations: an orthonormal basis of the pure translations. Rotations: principal screws (the end effector's centre "
-                   f"is at {fmt_vector(result.reference_point, s)}; each axis is given through its point nearest it).")
+        rows = [[f"T{i + 1}", "translation", fmt_vector(t), "", ""] for i, t in enumerate(result.translations)]
+        rows += [[f"R{i + 1}", a.kind, fmt_vector(a.axis), fmt_vector(a.point, s), _pitch(a, s)] for i, a in enumerate(result.rotations)]
+        out += [markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}/rad"], rows), "",
+                "Translations: an orthonormal basis of the pure translations. Rotations: principal screws (the end effector's centre "
+                f"is at {fmt_vector(result.reference_point, s)}; each axis is given through its point nearest it)."]
     else:
         out.append("None.")
-    out.append("")
-    out.append(f"## Constraint wrenches on the end effector ({6 - result.dof})")
-    out.append("")
-    rows = _constraint_rows(result)
+    out += ["", f"## Constraint wrenches on the end effector ({6 - result.dof})", ""]
+    k = len(result.couples)
+    rows = [[f"C{i + 1}", "couple", fmt_vector(c), "", ""] for i, c in enumerate(result.couples)]
+    rows += [[f"W{k + i + 1}", f.kind, fmt_vector(f.axis), fmt_vector(f.point, s), _pitch(f, s)] for i, f in enumerate(result.forces)]
     out.append(markdown_table(["", "kind", "direction / axis", f"point on axis{unit}", f"pitch{unit}"], rows) if rows else "None: the end effector is free.")
     out += ["", "## Whole mechanism", ""]
     counts = [["links (ground included)", "n", result.links], ["joints", "j", result.joints], ["joint freedoms", "Σf", result.joint_freedoms],
@@ -210,7 +165,5 @@ def markdown_report(result: Result, *, limbs: bool = True) -> str:
     if result.precision_summary:
         out += ["", f"Precision: {md_line(result.precision_summary)}."]
     if result.warnings:
-        out.append("")
-        out += [f"> **Warning:** {md_line(w)}" for w in result.warnings]
+        out += ["", *(f"> **Warning:** {md_line(w)}" for w in result.warnings)]
     return "\n".join(out)
-

@@ -1,7 +1,6 @@
-"""Reports of a :class:`~mobility.sweeps.SweepResult`: a short text summary, CSV and JSON.
+"""Reports of a :class:`~mobility.sweeps.SweepResult` printed by ``mobility sweep``: a short text summary, CSV and JSON.
 
-:func:`sweep_summary` is what ``mobility sweep`` prints; :func:`sweep_csv` and
-:func:`sweep_json` (:meth:`SweepResult.to_dict`) its tables (docs/sweeps.md, "Output").
+What each holds: docs/sweeps.md, "Output".
 
 Examples
 --------
@@ -15,12 +14,11 @@ O1 [deg],dof,pattern,mobility,assembled,residual,smallest_kept,largest_dropped,n
 
 from __future__ import annotations
 
-from collections import Counter
-
 import csv
 import io
 import json
 import math
+from collections import Counter
 from typing import Any, Iterator
 
 import numpy as np
@@ -251,8 +249,7 @@ def sweep_json_pieces(result: SweepResult) -> Iterator[str]:
     >>> json.loads("".join(sweep_json_pieces(r))) == r.to_dict()
     True
     """
-    head = json.dumps(result.summary_dict(), indent=1, ensure_ascii=False)
-    yield head[:-2] + ',\n "columns": {'
+    yield json.dumps(result.summary_dict(), indent=1, ensure_ascii=False)[:-2] + ',\n "columns": {'
     for k, name in enumerate(result.columns):
         values = json.dumps(result.column_list(name), indent=1, ensure_ascii=False).replace("\n", "\n  ")
         yield ("," if k else "") + f"\n  {json.dumps(name)}: {values}"

@@ -1,11 +1,8 @@
 """Pictures of a sweep: a curve (one coordinate), a map (two) or slices of a 3-D grid.
 
-What each picture draws: docs/sweeps.md, "Output" (``--plot``); slices show
-up to :data:`MAX_SLICES` values of the third coordinate.  Figures are built by
-:mod:`mobility.report.plotting.backend` (matplotlib, optional).  Every drawn
-answer carries a ``gid`` (``"mobility:sweep:curve"``, ``"mobility:sweep:map"``,
-``"mobility:sweep:regions"``, ``"mobility:sweep:singular"``,
-``"mobility:sweep:unassembled"``, ``"mobility:sweep:good-transmission"``).
+What each picture draws: docs/sweeps.md, "Output" (``--plot``).  Every drawn answer
+carries a ``gid`` (``"mobility:sweep:curve"``, ``...:map``, ``...:regions``, ``...:singular``,
+``...:unassembled``, ``...:good-transmission``).
 
 Examples
 --------
@@ -70,44 +67,26 @@ def _colour_limits(result: SweepResult, colour: np.ndarray) -> tuple[float, floa
     finite = colour[np.isfinite(colour)]
     if not finite.size:
         return (0.0, 1.0)
-    low, high = float(finite.min()), float(finite.max())
-    if result.actuated:
-        low = 0.0
+    low, high = 0.0 if result.actuated else float(finite.min()), float(finite.max())
     return (low, high if high > low else low + 1.0)
 
 
 def _answers(result: SweepResult) -> tuple[np.ndarray, list[str]]:
     """A code per pose for its answer (-1: not assembled) and a label per code."""
     codes = np.full(result.size, -1)
-    labels: list[str] = []
-    seen: dict = {}
+    seen: dict = {}  # each answer -> its code, in the order of first appearance
     for i, c in enumerate(result.classes()):
-        if c is None:
-            continue
-        if c not in seen:
-            seen[c] = len(seen)
-            dof, pattern, mobility, verdict = c
-            labels.append(f"DOF {dof} {pattern}, M={mobility}" + (f", {verdict}" if verdict else ""))
-        codes[i] = seen[c]
-    return codes, labels
+        if c is not None:
+            codes[i] = seen.setdefault(c, len(seen))
+    return codes, [f"DOF {dof} {pattern}, M={mobility}" + (f", {verdict}" if verdict else "")
+                   for dof, pattern, mobility, verdict in seen]
 
 
 def require_drawable(coordinates: int, what: str = "") -> None:
-    """Refuse a picture that cannot be drawn, before the sweep is computed.
+    """Refuse a picture of ``coordinates`` varied coordinates that cannot be drawn, before the sweep is computed.
 
-    Parameters
-    ----------
-    coordinates : int
-        The number of varied coordinates.
-    what : str
-        Put in front of the message (``"--plot out.png: "``).
-
-    Raises
-    ------
-    RequestError
-        For more than three coordinates.
-    PlottingUnavailableError
-        When matplotlib is not installed.
+    A :class:`RequestError` for more than three (``what`` put in front of the message), a
+    :class:`~mobility.errors.PlottingUnavailableError` when matplotlib is not installed.
 
     Examples
     --------
@@ -122,18 +101,11 @@ def require_drawable(coordinates: int, what: str = "") -> None:
 
 
 def plot_sweep(result: SweepResult, *, title: str | None = None) -> "Figure":
-    """A picture of ``result``: a curve, a map or slices (docs/sweeps.md, "Output").
+    """A picture of ``result``: a curve, a map or slices (docs/sweeps.md, "Output"), refused as :func:`require_drawable` does.
 
     The default title is the mechanism's name; names are cut to
-    :data:`~mobility.report.plotting.style.MAX_LABEL` characters (``title`` to
+    :data:`~mobility.report.plotting.style.MAX_LABEL` characters (``title``, a str, to
     :data:`~mobility.report.plotting.style.MAX_TITLE`).
-
-    Raises
-    ------
-    RequestError
-        For a sweep of more than three coordinates, or a ``title`` not a str (or None).
-    PlottingUnavailableError
-        When matplotlib is not installed.
     """
     if title is not None and not isinstance(title, str):
         raise RequestError(caller="plot_sweep", argument="title", expected="a str or None", got=type(title).__name__)
@@ -287,17 +259,10 @@ def _spread(candidates: list[int], chosen: list[int], count: int, size: int) -> 
 
 
 def choose_slices(result: SweepResult, most: int = MAX_SLICES) -> tuple[tuple[int, ...], str]:
-    """The values of the third coordinate drawn as slices, and a note saying which.
+    """The indices of the values of the third coordinate drawn as slices (increasing), and a note saying which (for the title).
 
     Preferred, in turn: the file's pose, the values holding singular poses,
     then values spread over the range.
-
-    Returns
-    -------
-    slices : tuple of int
-        Indices of the chosen values, in increasing order.
-    note : str
-        Which slices are shown, out of how many (for the figure's title).
 
     Examples
     --------

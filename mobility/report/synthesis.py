@@ -1,6 +1,4 @@
-"""Reports of a type synthesis (:class:`~mobility.synthesis.SynthesisResult`): text and JSON.
-
-:func:`synthesis_text` is what ``mobility synthesize`` prints, :func:`synthesis_json` its ``--json`` object.
+"""Reports of a type synthesis (:class:`~mobility.synthesis.SynthesisResult`) printed by ``mobility synthesize``: text and JSON.
 
 Examples
 --------

@@ -1,7 +1,5 @@
 """Human-readable and JSON reports of a :class:`~mobility.core.result.Result`.
 
-Only formatting: no analysis happens here.
-
 Examples
 --------
 >>> fmt_number(1.23456789e-17), fmt_number(-0.5), fmt_number(1500.0)
@@ -28,10 +26,7 @@ __all__ = ["fmt_number", "fmt_vector", "screw_text", "margin_lines", "text_repor
 def fmt_number(x: float, scale: float = 1.0, digits: int = 6, tol: Tolerance = DEFAULT_TOLERANCE) -> str:
     """A number with ``digits`` significant digits; round-off shown as 0 by the one rule, :func:`~mobility.core.tolerance.clean_numbers`.
 
-    Parameters
-    ----------
-    scale : float
-        The size round-off is relative to (the mechanism's length for a point or a pitch, 1 for a unit direction).
+    ``scale``: the size round-off is relative to (the mechanism's length for a point or a pitch, 1 for a unit direction).
     """
     text = f"{clean_numbers(float(x), scale, tol):.{digits}g}"
     return "0" if text in ("-0", "0") else text
@@ -43,16 +38,9 @@ def fmt_vector(v: Any, scale: float = 1.0) -> str:
 
 
 def screw_text(a: ScrewAxis, scale: float = 1.0, *, verb: str = "about", pitch_unit: str = "") -> str:
-    """A screw axis in words: kind, verb, direction, a point, and the pitch when it is not zero.
+    """A screw axis in words: kind, ``verb`` (``"about"``, ``"along"`` or none), direction, a point, and the pitch when it is not zero.
 
-    Parameters
-    ----------
-    scale : float
-        The mechanism's length (round-off of the point and the pitch is relative to it).
-    verb : str
-        ``"about"`` for a motion, ``"along"`` for a wrench, ``""`` for none.
-    pitch_unit : str
-        Written after the pitch, e.g. ``" mm/rad"``.
+    ``scale``: the mechanism's length (as for :func:`fmt_number`); ``pitch_unit`` is written after the pitch.
 
     Examples
     --------
@@ -93,13 +81,7 @@ def margin_lines(result: Result) -> list[str]:
 
 
 def text_report(result: Result, *, limbs: bool = False) -> str:
-    """The report printed by ``mobility analyze``.
-
-    Parameters
-    ----------
-    limbs : bool
-        Also list each limb's twists and constraint wrenches in the limb's frame.
-    """
+    """The report printed by ``mobility analyze`` (``limbs``: also each limb's twists and constraint wrenches in the limb's frame)."""
     result = require_result(result, "text_report")
     s = result.length_scale
     unit = result.length_unit
@@ -141,13 +123,7 @@ def text_report(result: Result, *, limbs: bool = False) -> str:
 
 
 def json_report(result: Result) -> str:
-    """The result as one JSON object (``mobility analyze --json``): always valid JSON.
-
-    Raises
-    ------
-    AnalysisError
-        When a number of the result is not finite (JSON has no NaN or infinity).
-    """
+    """The result as one JSON object (``mobility analyze --json``): always valid JSON (an :class:`AnalysisError` for a number not finite)."""
     result = require_result(result, "json_report")
     try:
         return json.dumps(result.to_dict(), indent=2, ensure_ascii=False, allow_nan=False)
@@ -158,11 +134,8 @@ def json_report(result: Result) -> str:
 def with_section(report: str, fmt: str, key: str, value: Any, heading: str, section: str) -> str:
     """A report of ``mobility analyze`` in format ``fmt`` with one more section.
 
-    Parameters
-    ----------
-    fmt : str
-        ``"json"``: ``value`` is added to the object under ``key``; ``"md"``: ``section`` under the heading
-        ``heading``, in a code block; any other (``"text"``): ``section`` appended.
+    ``"json"``: ``value`` is added to the object under ``key``; ``"md"``: ``section`` under the heading
+    ``heading``, in a code block; any other (``"text"``): ``section`` appended.
 
     Examples
     --------

@@ -1,7 +1,6 @@
 """The words of the 3D view: hover text of each screw and joint, the title of a pose.
 
-Numbers are written as in the text report (:mod:`mobility.report.text`), in
-the file's units (twists' pitches per radian); lines are joined by plotly's ``<br>``.
+Numbers as in the text report (:mod:`mobility.report.text`), in the file's units; lines joined by plotly's ``<br>``.
 
 Examples
 --------
@@ -18,6 +17,7 @@ Examples
 from __future__ import annotations
 
 import html
+from collections import Counter
 from typing import Any, Sequence
 
 import numpy as np
@@ -41,8 +41,7 @@ def translation_text(number: int, direction: np.ndarray) -> str:
 
 def rotation_text(number: int, axis: ScrewAxis, scale: float, unit: str) -> str:
     """Hover text of the rotational freedom ``R<number>``: axis, point, pitch (length per radian)."""
-    per_rad = f" {unit}/rad" if unit else " per rad"
-    pitch = "0" if axis.pitch == 0 else fmt_number(axis.pitch, scale) + per_rad
+    pitch = "0" if axis.pitch == 0 else fmt_number(axis.pitch, scale) + (f" {unit}/rad" if unit else " per rad")
     return f"R{number} {axis.kind}<br>axis {fmt_vector(axis.axis)}<br>through {_length(axis.point, scale, unit)}<br>pitch {pitch}"
 
 
@@ -60,10 +59,7 @@ def force_text(number: int, axis: ScrewAxis, scale: float, unit: str) -> str:
 
 
 def plotly_text(text: object) -> str:
-    """``text`` as Plotly shows it written: its ``<``, ``>`` and ``&`` as entities (Plotly reads tags in its texts).
-
-    Names of joints, links and mechanisms go through it before they join a
-    hover text or a title, so ``gr<b>o</b>und`` is shown as written, not in bold.
+    """``text`` as Plotly shows it written (``gr<b>o</b>und`` not in bold): its ``<``, ``>`` and ``&`` as entities.
 
     Examples
     --------
@@ -116,9 +112,7 @@ def header_lines(results: Sequence[Result], labels: Sequence[str]) -> list[str]:
             lines.append("why Grübler–Kutzbach differs: " + first.gruebler_kutzbach_explanation)
         lines += [f"warning: {w}" for w in first.warnings]
         return lines
-    counts: dict[str, int] = {}
-    for r in results:
-        counts[r.pattern] = counts.get(r.pattern, 0) + 1
+    counts = Counter(r.pattern for r in results)
     lines.append(f"{len(results)} poses; patterns: " + ", ".join(f"{p} × {n}" for p, n in counts.items()))
     flagged = [lab for r, lab in zip(results, labels) if r.margin.near_singular]
     if flagged:

@@ -1,10 +1,8 @@
 """The scenes of :mod:`mobility.view.scene` as a plotly figure (a plain dict, JSON-ready).
 
-Each glyph is up to four traces in one legend group (one click switches the
-glyph); each layer has its own legend (``legend``, ``legend2``, ``legend3``)
-whose title switches the layer.  Every trace carries ``meta = {"layer", "key",
-"frame"}``; every pose is in the figure, one visible at a time on a slider, in
-a cube around every pose.  Built without plotly, which only validates or writes it.
+Each glyph is up to four traces in one legend group; each layer has its own legend whose title
+switches the layer.  Every trace carries ``meta = {"layer", "key", "frame"}``; every pose is in the
+figure, one visible at a time on a slider.  Built without plotly, which only validates or writes it.
 
 Examples
 --------
@@ -52,10 +50,8 @@ its coordinates, written with 7 significant digits, then keep about 7 digits of 
 
 def _coords(points: np.ndarray, offset: np.ndarray) -> dict[str, list[float | None]]:
     """x, y, z lists of ``points - offset`` with 7 significant digits (NaN, a break in a line, as None)."""
-    out: dict[str, list[float | None]] = {}
-    for name, column in zip("xyz", (np.asarray(points, dtype=float).reshape(-1, 3) - offset).T):
-        out[name] = [None if math.isnan(v) else float(f"{v:.7g}") for v in column]
-    return out
+    columns = (np.asarray(points, dtype=float).reshape(-1, 3) - offset).T
+    return {name: [None if math.isnan(v) else float(f"{v:.7g}") for v in column] for name, column in zip("xyz", columns)}
 
 
 def axis_ticks(low: float, high: float, drawing: float, count: int = 5, offset: float = 0.0) -> dict[str, list]:
@@ -157,16 +153,9 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
     mid, half = 0.5 * (lower + upper), 0.55 * float(np.max(upper - lower))
     # far from the origin for its size, the scene is drawn about its middle (7 digits would not resolve it), ticks in the file's numbers
     offset = mid if float(np.max(np.abs(mid))) > FAR_FROM_ORIGIN * half else np.zeros(3)
-    data: list[dict[str, Any]] = []
-    owner: list[int] = []
-    for k, (scene, _, _) in enumerate(frames):
-        for g in scene.glyphs:
-            traces = _glyph_traces(g, k, k == 0, offset)
-            data += traces
-            owner += [k] * len(traces)
-    unit = frames[0][1].length_unit
-    drawing = frames[0][0].scale
+    data = [t for k, (scene, _, _) in enumerate(frames) for g in scene.glyphs for t in _glyph_traces(g, k, k == 0, offset)]
     first_scene, first_result, first_label = frames[0]
+    unit, drawing = first_result.length_unit, first_scene.scale
     margin = {"l": 10, "r": 10, "t": 70 if titled else 10, "b": 10}
     bottom = 0.16 if len(frames) > 1 else 0.0  # room for the slider
     scene_height = (1.0 - bottom) * (height - margin["t"] - margin["b"])
@@ -197,10 +186,9 @@ def figure_dict(frames: Sequence[tuple[Scene, Result, str]], *, height: int = 72
                         "titledoubleclick": "toggleothers", "bgcolor": "rgba(255,255,255,0.8)"}
         top -= (30 + 29 * entries) / plot_height
     if len(frames) > 1:
-        steps = []
-        for k, (_, result, label) in enumerate(frames):
-            steps.append({"label": plotly_text(label) if label else str(k + 1), "method": "update",
-                          "args": [{"visible": [o == k for o in owner]}, {"title.text": _title(result, label, len(frames)), "scene.annotations": labels[k]}]})
+        steps = [{"label": plotly_text(label) if label else str(k + 1), "method": "update",
+                  "args": [{"visible": [t["meta"]["frame"] == k for t in data]}, {"title.text": _title(result, label, len(frames)), "scene.annotations": labels[k]}]}
+                 for k, (_, result, label) in enumerate(frames)]
         # inset so that the labels of the end steps, centred on them, stay on the page
         layout["sliders"] = [{"active": 0, "steps": steps, "x": 0.05, "len": 0.7, "y": 0.1, "yanchor": "top",
                               "currentvalue": {"prefix": "pose: ", "font": {"size": 13}}, "pad": {"t": 0, "b": 0}}]

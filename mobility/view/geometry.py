@@ -22,9 +22,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.frozen import ReadOnlyArrays
-from ..report.plotting.geometry import FLAT, helix, perpendiculars, plate_ring
+from ..report.plotting.geometry import FLAT, arc, helix, perpendiculars, plate_ring
 
-__all__ = ["Mesh", "cone", "pieces", "arc", "helix", "plate"]
+__all__ = ["Mesh", "cone", "pieces", "arc", "helix", "plate", "fan"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,12 +37,9 @@ class Mesh(ReadOnlyArrays):
     @staticmethod
     def merged(*meshes: "Mesh") -> "Mesh":
         """One mesh holding all of ``meshes``."""
-        vertices, faces, offset = [], [], 0
-        for m in meshes:
-            vertices.append(m.vertices)
-            faces.append(m.faces + offset)
-            offset += len(m.vertices)
-        return Mesh(np.concatenate(vertices).reshape(-1, 3), np.concatenate(faces).reshape(-1, 3).astype(int))
+        offsets = np.cumsum([0] + [len(m.vertices) for m in meshes])
+        faces = np.concatenate([m.faces + k for m, k in zip(meshes, offsets)])
+        return Mesh(np.concatenate([m.vertices for m in meshes]).reshape(-1, 3), faces.reshape(-1, 3).astype(int))
 
 
 def cone(tip: np.ndarray, direction: np.ndarray, length: float, radius: float, sides: int = 12) -> Mesh:
@@ -66,20 +63,8 @@ def cone(tip: np.ndarray, direction: np.ndarray, length: float, radius: float, s
 def pieces(*polylines: np.ndarray) -> np.ndarray:
     """Polylines joined into one array, a row of NaN between two (a break in the drawn line)."""
     gap = np.full((1, 3), np.nan)
-    out: list[np.ndarray] = []
-    for p in polylines:
-        if out:
-            out.append(gap)
-        out.append(np.asarray(p, dtype=float).reshape(-1, 3))
-    return np.concatenate(out) if out else np.zeros((0, 3))
-
-
-def arc(centre: np.ndarray, axis: np.ndarray, radius: float, turn: float = 1.5 * math.pi, samples: int = 33) -> tuple[np.ndarray, np.ndarray]:
-    """A circular arc about ``axis`` at ``centre`` in the right-hand sense; returns (points, unit tangent at the end)."""
-    e1, e2 = perpendiculars(axis)
-    t = np.linspace(0.0, turn, samples)
-    points = centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
-    return points, -math.sin(turn) * e1 + math.cos(turn) * e2
+    joined = [piece for p in polylines for piece in (gap, np.asarray(p, dtype=float).reshape(-1, 3))][1:]
+    return np.concatenate(joined) if joined else np.zeros((0, 3))
 
 
 def plate(points: np.ndarray, *, flatness: float = FLAT) -> Mesh | None:
@@ -100,9 +85,10 @@ def plate(points: np.ndarray, *, flatness: float = FLAT) -> Mesh | None:
     """
     p = np.asarray(points, dtype=float).reshape(-1, 3)
     order = plate_ring(p, flatness=flatness)
-    if order is None:
-        return None
-    ring = p[order]
+    return None if order is None else fan(p[order])
+
+
+def fan(ring: np.ndarray) -> Mesh:
+    """Triangles fanning out from the first point of ``ring``, a convex polygon in order round it."""
     n = len(ring)
-    faces = np.stack([np.zeros(n - 2, dtype=int), np.arange(1, n - 1), np.arange(2, n)], axis=1)
-    return Mesh(ring, faces)
+    return Mesh(ring, np.stack([np.zeros(n - 2, dtype=int), np.arange(1, n - 1), np.arange(2, n)], axis=1))

@@ -1,13 +1,9 @@
 """Where the view looks from, how far it zooms, and where each label sits, computed as the browser will draw it.
 
-In plotly's orthographic projection each axis's range maps onto its
-``aspectratio`` (scene units, centred on the ranges' middle), the camera looks
-along ``-eye`` and the scene is 2 scene units high, whatever the window's
-width.  So :class:`Framing` knows where every point lands in pixels and
-chooses the zoom at which everything drawn fills :data:`FILL` of the height
-(and of the width for a window at least :data:`WIDEST` times as wide), and
-:func:`place_labels` puts each label beside its point, covering no other label,
-as few drawn lines as can be, inside the box's outline (the ticks are outside).
+In plotly's orthographic projection each axis's range maps onto its ``aspectratio`` (scene units),
+the camera looks along ``-eye`` and the scene is 2 scene units high, whatever the window's width.
+So :class:`Framing` knows where every point lands in pixels, and :func:`place_labels` puts each
+label beside its point, covering no other label, as few drawn lines as can be, inside the box's outline.
 
 Examples
 --------
@@ -108,13 +104,6 @@ class Framing:
         return self.pixels(corners)
 
 
-def _hull_edges(points: np.ndarray) -> np.ndarray:
-    """The edges of the convex hull of 2D points, rows ``(normal, offset)``: ``normal . p + offset`` is minus the depth of ``p`` inside."""
-    from scipy.spatial import ConvexHull
-
-    return ConvexHull(points).equations
-
-
 def _ink(paths: list[np.ndarray], step: float = 3.0) -> np.ndarray:
     """Points every ``step`` pixels (or closer) along polylines (pixels; rows of NaN break a line), all segments at once."""
     starts, ends = [np.zeros((0, 2))], [np.zeros((0, 2))]
@@ -159,22 +148,10 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
                  width: float) -> list[tuple[float, float]]:
     """Where each label's box centre goes, in pixels from its anchor (plotly's ``ax``, ``ay``), so that labels do not collide.
 
-    Parameters
-    ----------
-    anchors : ndarray, shape (n, 3)
-        The point each label names (drawing units).
-    texts : list of str
-        The labels, earlier ones getting the better places.
-    lines, links : list of ndarray
-        Polylines drawn (rows of NaN between pieces): the freedoms and
-        constraints, and the mechanism's (covering these costs more).
-    width : float
-        The narrowest scene's width, pixels: labels stay inside it.
-
-    Returns
-    -------
-    list of (float, float)
-        Offsets (right, down), pixels.
+    ``anchors``: the point each label names (drawing units); ``texts``: the labels, earlier ones getting the
+    better places; ``lines``, ``links``: polylines drawn (rows of NaN between pieces), the freedoms and
+    constraints, and the mechanism's (covering these costs more); ``width``: the narrowest scene's width
+    (pixels), which labels stay inside.  Returns offsets (right, down) in pixels.
 
     Examples
     --------
@@ -185,8 +162,10 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
     >>> abs(x1 - x2) > 20 or abs(y1 - y2) > 20   # side by side, not on each other
     True
     """
+    from scipy.spatial import ConvexHull
+
     at = framing.pixels(anchors)
-    edges = _hull_edges(framing.outline())
+    edges = ConvexHull(framing.outline()).equations  # rows (normal, offset): normal . p + offset is minus the depth of p inside
     half_w, half_h = 0.5 * width, 0.5 * framing.height
     drawn = _InkGrid(_ink([framing.pixels(p) for p in lines]), half_w, half_h)
     bars = _InkGrid(_ink([framing.pixels(p) for p in links]), half_w, half_h)
@@ -215,8 +194,7 @@ def place_labels(framing: Framing, anchors: np.ndarray, texts: list[str], lines:
             cost += np.sum(near * (1000.0 + 10.0 * np.maximum(ox + 4, 0) * np.maximum(oy + 4, 0)), axis=1)
         for grid, weight in ((drawn, 1.0), (bars, 2.0)):  # the drawn lines under the box, the links' twice
             cost += weight * grid.inside(centres[:, 0] - 0.5 * w - 2, centres[:, 0] + 0.5 * w + 2, centres[:, 1] - 0.5 * h - 2, centres[:, 1] + 0.5 * h + 2)
-        k = int(np.argmin(cost))  # the first of the cheapest
-        best = centres[k] - [x0, y0]
+        best = centres[int(np.argmin(cost))] - [x0, y0]  # the first of the cheapest
         placed = np.vstack([placed, [x0 + best[0], y0 + best[1], 0.5 * w, 0.5 * h]])
         out.append((round(float(best[0]), 1), round(float(best[1]), 1)))
     return out

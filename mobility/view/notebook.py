@@ -1,9 +1,8 @@
 """Jupyter shows a :class:`~mobility.core.result.Result` (and a sweep result) as its interactive 3D view.
 
-``import mobility`` inside IPython calls :func:`register_display` (the core
-knows nothing of views); what a notebook then shows, fetching nothing:
-docs/view.md, "In Python and Jupyter" (without plotly: the text report with the
-install hint).  Nothing here imports plotly or IPython until it is used.
+``import mobility`` inside IPython calls :func:`register_display` (the core knows nothing of views); what a
+notebook then shows, fetching nothing: docs/view.md, "In Python and Jupyter".  Nothing here imports plotly or
+IPython until it is used.
 """
 
 from __future__ import annotations

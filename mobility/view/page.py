@@ -1,10 +1,8 @@
 """One self-contained HTML page holding the 3D view: it works offline.
 
-plotly.js is embedded (about 4.8 MB; nothing fetched, no MathJax) under a
-header giving the mechanism's name, its answer (following the slider), units,
-Grübler–Kutzbach explanation, warnings and how to use the view.
-:func:`figure_html` is the figure alone, for a notebook; :func:`require_plotly`
-names the extra when plotly is missing.
+plotly.js is embedded (about 4.8 MB; nothing fetched, no MathJax) under a header giving the mechanism's
+name, its answer (following the slider), units, warnings and how to use the view; :func:`figure_html`
+is the figure alone, for a notebook.
 """
 
 from __future__ import annotations
@@ -64,9 +62,8 @@ def require_plotly() -> Any:
 def figure_html(figure: dict[str, Any], *, div_id: str | None = None, post_script: Sequence[str] = ()) -> str:
     """The figure as an HTML fragment that fetches nothing: plotly.js inline, no MathJax, no CDN.
 
-    ``div_id`` defaults to a random one (several figures share a notebook);
-    ``post_script`` runs once the figure is drawn (``{plot_id}``: the element's
-    id), after :data:`LABELS_SCRIPT`.
+    ``div_id`` defaults to a random one (several figures share a notebook); ``post_script``
+    runs once the figure is drawn (``{plot_id}``: the element's id), after :data:`LABELS_SCRIPT`.
     """
     pio = require_plotly()
     return pio.to_html(figure, include_plotlyjs=True, include_mathjax=False, full_html=False, div_id=div_id, config=PLOTLY_CONFIG,
@@ -98,9 +95,7 @@ def answer_script(answers: Sequence[str]) -> str:
 
 
 def screws_table(scene: Any) -> str:
-    """The freedoms and constraints of a scene as an HTML table: each one's key in its colour, its kind and its numbers.
-
-    The numbers are the hover text's (:mod:`mobility.view.describe`), in the file's units.
+    """The freedoms and constraints of a scene as an HTML table: each one's key in its colour, its kind and its numbers (the hover text's).
 
     Examples
     --------
@@ -128,17 +123,10 @@ def screws_table(scene: Any) -> str:
 def page_html(figure: dict[str, Any], title: str, answers: Sequence[str], lines: Sequence[str], tables: Sequence[str] = ()) -> str:
     """The whole page: header, then the figure with plotly.js inline, and beside it the table of its screws.
 
-    Parameters
-    ----------
-    answers : sequence of str
-        Each pose's DOF, pattern and mobility in one line, in the slider's order.
-    lines : sequence of str
-        Further header lines, true of every pose (``warning:`` ones in red).
-    tables : sequence of str
-        Each pose's :func:`screws_table`, in the slider's order (none: no table).
+    ``answers``: each pose's DOF, pattern and mobility in one line, and ``tables``: each pose's :func:`screws_table`
+    (none: no table), in the slider's order; ``lines``: further header lines, true of every pose (``warning:`` ones in red).
     """
-    scripts = [answer_script(answers)] if len(answers) > 1 else []
-    body = figure_html(figure, div_id=ELEMENT_ID, post_script=scripts)
+    body = figure_html(figure, div_id=ELEMENT_ID, post_script=[answer_script(answers)] if len(answers) > 1 else [])
     paragraphs = "\n".join(
         f'<p class="{"warning" if line.startswith("warning:") else "detail"}">{html.escape(line)}</p>' for line in lines
     )
@@ -158,15 +146,12 @@ PLOTLY_JSON = "application/vnd.plotly.v1+json"
 
 
 def offline_mimebundle(figure: Any) -> dict[str, Any]:
-    """The forms of ``figure`` that plotly's default renderers name, none of them fetching anything.
+    """The forms of ``figure`` (mime type -> data) that plotly's default renderers name, none of them fetching anything.
 
-    HTML renderers (``notebook``, ``iframe``...) give way to one fragment with
-    plotly.js inline (:func:`mobility.view.page.figure_html`), which also goes
-    along with the JSON form; other renderers give their own form, those
-    opening a browser none.  Returns mime type -> data.
+    HTML renderers (``notebook``, ``iframe``...) give way to :func:`figure_html`, which also goes along
+    with the JSON form; other renderers give their own form, those opening a browser none.
     """
     import plotly.io as pio
-
 
     fig_dict = figure.to_plotly_json()
     bundle: dict[str, Any] = {}

@@ -1,10 +1,8 @@
 """What the 3D view draws for one pose, as plain data: glyphs in three layers.
 
-Each :class:`Glyph` is one thing a person points at, in the ``mechanism``,
-``freedoms`` (``T1..``, ``R1..``) or ``constraints`` (``C1..``, ``W..``, numbered
-as in the text report) layer; how the scene is built: docs/view.md, "How it is
-built and tested".  Every glyph size is a fraction of the scene's size, so
-metres and millimetres look the same.
+Each :class:`Glyph` is one thing a person points at, in the ``mechanism``, ``freedoms`` (``T1..``, ``R1..``) or
+``constraints`` (``C1..``, ``W..``, numbered as in the text report) layer (docs/view.md, "How it is built and
+tested").  Every glyph size is a fraction of the scene's size, so metres and millimetres look the same.
 
 Examples
 --------
@@ -28,9 +26,10 @@ from ..core.model import JOINT_TYPES, Mechanism
 from ..core.frozen import ReadOnlyArrays
 from ..core.result import Result
 from ..report.plotting import COLORS, choose_views, sketch
-from ..report.plotting.geometry import SAME_POINT, perpendiculars, segment_samples, unique_points
+from ..report.plotting.geometry import perpendiculars, segment_samples
+from ..report.plotting.glyphs import link_shape
 from .describe import couple_text, force_text, joint_text, plotly_text, rotation_text, translation_text
-from .geometry import Mesh, arc, cone, helix, pieces, plate
+from .geometry import Mesh, arc, cone, fan, helix, pieces
 
 __all__ = ["LAYERS", "JOINT_SYMBOLS", "Glyph", "Scene", "build_scene", "viewpoint"]
 
@@ -48,21 +47,11 @@ _ARROW, _HALF_AXIS, _HALF_FORCE, _HEAD, _MARK, _COUPLE_OFFSET = 0.36, 0.45, 0.28
 class Glyph(ReadOnlyArrays):
     """One thing drawn: a link group, a joint type, one freedom or one constraint.
 
-    Attributes
-    ----------
-    key : str
-        Unique in its scene: ``"T1"``, ``"W3"``, ``"links:ground"``, ``"joints:R"``...
-    kind : str
-        ``translation``, ``rotation``, ``helical``, ``couple``, ``force``,
-        ``wrench``, ``ground``, ``end_effector``, ``link``, ``joint``, ``centre``.
-    path : ndarray, shape (n, 3)
-        Polyline (rows of NaN between pieces), ``width`` pixels wide; may be empty.
-    mesh : Mesh or None
-        Solid parts (arrowheads, plates), of ``opacity``.
-    points : ndarray, shape (k, 3)
-        Markers (joints), each with its ``point_hover``; may be empty.
-    direction : ndarray, shape (3,) or None
-        The unit direction of a freedom or constraint.
+    ``key``: unique in its scene (``"T1"``, ``"W3"``, ``"links:ground"``, ``"joints:R"``...); ``kind``: ``translation``,
+    ``rotation``, ``helical``, ``couple``, ``force``, ``wrench``, ``ground``, ``end_effector``, ``link``, ``joint`` or
+    ``centre``; ``path``: a polyline (rows of NaN between pieces) ``width`` pixels wide; ``mesh``: solid parts (arrowheads,
+    plates) of ``opacity``; ``points``: markers (joints), each with its ``point_hover``; ``direction``: the unit
+    direction of a freedom or constraint.
     """
 
     key: str
@@ -94,19 +83,10 @@ class Glyph(ReadOnlyArrays):
 
 @dataclass(frozen=True, eq=False)
 class Scene(ReadOnlyArrays):
-    """The glyphs of one pose, the centre and size of the scene, the bounds of what is drawn.
+    """The glyphs of one pose (mechanism, then freedoms, then constraints) and the bounds of what is drawn.
 
-    Attributes
-    ----------
-    glyphs : tuple of Glyph
-        Mechanism first, then freedoms, then constraints.
-    centre : ndarray, shape (3,)
-        The end effector's centre, where free vectors are drawn.
-    size : float
-        Extent of the mechanism (the unit of every glyph's size).
-    scale : float
-        Drawing units per file unit (1 for a mechanism of an everyday size,
-        :func:`mobility.report.plotting.sketch.drawing_scale`).
+    ``centre``: the end effector's (where free vectors are drawn); ``size``: the mechanism's (the unit of every glyph's
+    size); ``scale``: :func:`mobility.report.plotting.sketch.drawing_scale`.
     """
 
     glyphs: tuple[Glyph, ...]
@@ -153,31 +133,24 @@ def build_scene(mechanism: Mechanism, result: Result, drawing: float | None = No
 
 def _links(mechanism: Mechanism, sk) -> list[Glyph]:
     """The links, grouped by role (one glyph each for the ground, the end effector and the other links)."""
-    roles: dict[str, list[tuple[str, np.ndarray]]] = {"ground": [], "end_effector": [], "link": []}
-    for link, idx in sk.link_joints.items():
-        role = "ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"
-        roles[role].append((link, unique_points(sk.points[list(idx)], SAME_POINT * sk.size)))
+    roles: dict[str, list[str]] = {"ground": [], "end_effector": [], "link": []}
+    for link in sk.link_joints:
+        roles["ground" if link == mechanism.ground else "end_effector" if link == mechanism.end_effector else "link"].append(link)
     names = {"ground": "ground", "end_effector": "end effector", "link": "links"}
     widths = {"ground": 9.0, "end_effector": 8.0, "link": 6.0}
     out = []
     for role, members in roles.items():
         lines, meshes = [], []
-        for link, pts in members:
-            if len(pts) < 2:
-                continue
-            body = plate(pts) if len(pts) > 2 else None
-            if body is not None:
-                meshes.append(body)
-                lines.append(np.vstack([body.vertices, body.vertices[:1]]))  # its outline
-                inner = [p for p in pts if np.min(np.linalg.norm(body.vertices - p, axis=1)) > SAME_POINT * sk.size]
-                lines += [np.stack([pts.mean(axis=0), p]) for p in inner]
-            elif len(pts) == 2:
-                lines.append(segment_samples(pts[0], pts[1], 9))
-            else:  # a body in space: a star from its centroid
-                lines += [segment_samples(pts.mean(axis=0), p, 5) for p in pts]
+        for link in members:  # drawn as the pictures draw it (link_shape): a plate, a bar or a star
+            kind, ring, segments = link_shape(sk.points[list(sk.link_joints[link])], sk.size)
+            if kind == "plate":
+                meshes.append(fan(ring))
+                lines.append(np.vstack([ring, ring[:1]]))  # its outline
+            # a plate's spokes as they are; a bar and a star's segments sampled, so that a hover finds them anywhere
+            lines += [s if kind == "plate" else segment_samples(s[0], s[1], 9 if kind == "bar" else 5) for s in segments]
         if not lines:
             continue
-        hover = "<br>".join(f"{names[role] if role != 'link' else 'link'} {plotly_text(link)}" for link, _ in members[:12])
+        hover = "<br>".join(f"{names[role] if role != 'link' else 'link'} {plotly_text(link)}" for link in members[:12])
         out.append(Glyph(f"links:{role}", "mechanism", role, names[role], COLORS[role], path=pieces(*lines),
                          width=widths[role], hover=hover, mesh=Mesh.merged(*meshes) if meshes else None, opacity=0.25))
     return out
@@ -260,15 +233,7 @@ def viewpoint(scene: Scene) -> tuple[float, float]:
 
     The pictures' :func:`~mobility.report.plotting.choose_views`, given joints, labels and directions.
     """
-    important = [scene.centre[None]]
-    joints = []
-    directions = []
-    for g in scene.glyphs:
-        if g.layer == "mechanism":
-            joints.append(g.points)
-        else:
-            assert g.label_at is not None  # every glyph of the answer is labelled
-            important.append(g.label_at[None])
-            directions.append(g.direction)
-    context = np.concatenate(joints).reshape(-1, 3)
-    return choose_views(np.concatenate(important), np.array(directions).reshape(-1, 3), scene.size, count=1, context=context)[0]
+    answer = [g for g in scene.glyphs if g.layer != "mechanism"]  # every glyph of the answer is labelled
+    important = np.array([scene.centre, *(g.label_at for g in answer)])
+    context = np.concatenate([g.points for g in scene.glyphs if g.layer == "mechanism"]).reshape(-1, 3)
+    return choose_views(important, np.array([g.direction for g in answer]).reshape(-1, 3), scene.size, count=1, context=context)[0]

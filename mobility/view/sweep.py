@@ -1,12 +1,7 @@
-"""The 3D view of a sweep: a slider through its poses, each with its freedoms, pattern and margin.
+"""The 3D view of a sweep: a slider through its assembled poses (``mechanism_at``), each analysed and labelled by its coordinates.
 
-:func:`sweep_view` rebuilds each assembled grid point of a
-:class:`~mobility.sweeps.SweepResult` (``mechanism_at``), analyses it and labels
-it by its coordinates (and transmission indices when the sweep has them).  A
-sweep larger than a page holds is thinned to evenly spaced poses, keeping every
-singular pose, so that the slider passes through each change of pattern; the
-header says how many poses are drawn and why not the others (:func:`sweep_notes`).
-Only the sweep result's public attributes are used.
+A sweep larger than a page holds is thinned to evenly spaced poses, keeping every
+singular pose, so that the slider passes through each change of pattern (:func:`sweep_notes`).
 
 Examples
 --------
@@ -88,18 +83,13 @@ def transmission_label(sweep: Any, index: int) -> str:
 
 
 def sweep_view(sweep: Any, *, max_poses: int = MAX_POSES) -> View:
-    """The view of a sweep's poses with a slider (at most ``max_poses`` of them).
+    """The view of a sweep's poses with a slider (at most ``max_poses`` of them, from 1 to :data:`~mobility.view.views.MAX_POSES`).
 
-    Raises
-    ------
-    RequestError
-        When ``sweep`` is not a sweep result or none of its poses was assembled,
-        or ``max_poses`` is not an integer from 1 to :data:`~mobility.view.views.MAX_POSES`.
+    A :class:`RequestError` when ``sweep`` is not a sweep result or none of its poses was assembled.
     """
     from ..report.sweep import describe_values  # here: the sweeps package loads only when a sweep is shown
 
-    needed = ("assembled", "values", "singular", "mechanism_at", "tolerance", "axes")
-    if not all(hasattr(sweep, a) for a in needed):
+    if not all(hasattr(sweep, a) for a in ("assembled", "values", "singular", "mechanism_at", "tolerance", "axes")):
         raise RequestError(caller="sweep_view", argument="sweep", expected="a sweep result (mobility.sweep)", got=type(sweep).__name__)
     max_poses = require_max_poses(max_poses, "sweep_view")
     indices = sweep_poses(sweep, max_poses)

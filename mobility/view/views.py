@@ -1,9 +1,7 @@
 """The interactive 3D view of a mechanism's freedoms and constraints, for a page or a notebook.
 
-:func:`mechanism_view` shows one pose, :func:`poses_view` several with a slider
-(each pose's pattern and rank margin in the title).  A :class:`View` writes one
-self-contained HTML page (:meth:`View.write_html`) and shows itself in Jupyter,
-fetching nothing from the network, the text report as its plain-text part.
+:func:`mechanism_view` shows one pose, :func:`poses_view` several with a slider.  A :class:`View` writes one
+self-contained HTML page (:meth:`View.write_html`) and shows itself in Jupyter, the text report as its plain-text part.
 
 Examples
 --------
@@ -112,12 +110,7 @@ class View:
     def write_html(self, path: str | Path) -> Path:
         """Write :meth:`to_html` to ``path``, whole or not at all (:func:`mobility.outputs.atomic_output`); returns the path.
 
-        Raises
-        ------
-        MissingExtraError
-            When plotly is not installed.
-        RequestError
-            When ``path`` is not a file name, or the file cannot be written (saying why).
+        A :class:`MissingExtraError` without plotly; a :class:`RequestError` when ``path`` is not a file name or cannot be written.
         """
         path = written_file_name(path, "write_html")
         text = self.to_html()
@@ -154,12 +147,8 @@ class View:
 def mechanism_view(mechanism: Mechanism, result: Result | None = None, *, tol: Tolerance = DEFAULT_TOLERANCE) -> View:
     """The 3D view of ``mechanism`` at its pose with its end effector's freedoms and constraints.
 
-    ``result``: its analysis at this pose (computed with ``tol`` when not given).
-
-    Raises
-    ------
-    RequestError
-        When ``result`` is not a :class:`Result` of ``mechanism``.
+    ``result``: its analysis at this pose (computed with ``tol`` when not given; a
+    :class:`RequestError` when it is not a :class:`Result` of ``mechanism``).
 
     Examples
     --------
@@ -201,11 +190,7 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
     notes : iterable of str
         Further lines of the header, true of every pose.
 
-    Raises
-    ------
-    RequestError
-        When ``frames`` is no frames, empty, more than ``max_poses``, or a frame
-        is not a mechanism with its own result; or ``max_poses``, ``notes`` bad.
+    A :class:`RequestError` for frames that are none, too many, or not a mechanism with its own result, or a bad argument.
 
     Examples
     --------
@@ -247,12 +232,10 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
 
 def _notes(notes: object) -> tuple[str, ...]:
     """The ``notes`` of :func:`poses_view`: an iterable of strings (not one string), else a :class:`RequestError`."""
-    listed = None
-    if not isinstance(notes, (str, bytes)):
-        try:
-            listed = tuple(itertools.islice(notes, MAX_POSES + 1))  # type: ignore[call-overload]
-        except TypeError:
-            listed = None
+    try:
+        listed = None if isinstance(notes, (str, bytes)) else tuple(itertools.islice(notes, MAX_POSES + 1))  # type: ignore[call-overload]
+    except TypeError:  # not iterable
+        listed = None
     if listed is None or len(listed) > MAX_POSES or not all(isinstance(n, str) for n in listed):
         raise RequestError(caller="poses_view", argument="notes", expected="a list of lines (strings)", got=shown_argument(notes))
     return listed

@@ -1,14 +1,9 @@
 """Pictures: a mechanism at its pose with its freedoms and constraints, and its joint graph.
 
-matplotlib is optional (``pip install 'mechanism-mobility[plot]'``), imported
-only when a picture is drawn. ``sketch``, ``views``, ``scene``, ``geometry`` and
-``style`` need no matplotlib (where each joint, viewpoint, freedom and wrench
-is drawn); ``glyphs`` draws the primitives, ``mechanism`` and ``graph`` the two
-pictures, ``backend`` makes figures without pyplot and saves them.
-
-Every drawn answer carries a ``gid`` (``"mobility:translation:0"``,
-``"mobility:force:0"``, ``"mobility:link:<name>"``, ``"mobility:tree:series"``...),
-so programs and tests can read the picture back.
+matplotlib is optional (``pip install 'mechanism-mobility[plot]'``), imported only when a picture is
+drawn: ``sketch``, ``views``, ``scene``, ``geometry`` and ``style`` (where each thing is drawn) need none.
+Every drawn answer carries a ``gid`` (``"mobility:translation:0"``, ``"mobility:link:<name>"``,
+``"mobility:tree:series"``...), so programs and tests can read the picture back.
 
 Examples
 --------

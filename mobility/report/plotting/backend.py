@@ -1,13 +1,12 @@
 """matplotlib, optional: import it on first use, build figures without pyplot, save them.
 
-``pip install 'mechanism-mobility[plot]'``; when it is missing,
-:class:`~mobility.errors.PlottingUnavailableError` says so. Figures are built
-without :mod:`matplotlib.pyplot` (no global state); one left as a notebook
-cell's value shows itself as PNG.
+Missing, it is a :class:`~mobility.errors.PlottingUnavailableError`.  Figures are built without
+:mod:`matplotlib.pyplot` (no global state); one left as a notebook cell's value shows itself as PNG.
 """
 
 from __future__ import annotations
 
+import functools
 import io
 import os
 import re
@@ -47,32 +46,28 @@ def require_matplotlib() -> Any:
     return matplotlib
 
 
-_FIGURE_CLASS: list[type] = []
-
-
+@functools.cache
 def _figure_class() -> type:
     """A :class:`matplotlib.figure.Figure` that shows itself in Jupyter without pyplot's display hook (made on first use)."""
-    if not _FIGURE_CLASS:
-        from matplotlib.figure import Figure
+    from matplotlib.figure import Figure
 
-        class MobilityFigure(Figure):
-            """A figure of :mod:`mobility.report.plotting`; displays itself as PNG in Jupyter.
+    class MobilityFigure(Figure):
+        """A figure of :mod:`mobility.report.plotting`; displays itself as PNG in Jupyter.
 
-            Its texts are drawn as written (a name such as ``$_$`` is not TeX); only tick numbers keep mathtext.
-            """
+        Its texts are drawn as written (a name such as ``$_$`` is not TeX); only tick numbers keep mathtext.
+        """
 
-            def draw(self, renderer: Any) -> None:
-                _literal_texts(self)
-                super().draw(renderer)
+        def draw(self, renderer: Any) -> None:
+            _literal_texts(self)
+            super().draw(renderer)
 
-            def _repr_png_(self) -> bytes:
-                buf = io.BytesIO()
-                with glyphs_summarised():
-                    self.savefig(buf, format="png", dpi=90, facecolor="white")
-                return buf.getvalue()
+        def _repr_png_(self) -> bytes:
+            buf = io.BytesIO()
+            with glyphs_summarised():
+                self.savefig(buf, format="png", dpi=90, facecolor="white")
+            return buf.getvalue()
 
-        _FIGURE_CLASS.append(MobilityFigure)
-    return _FIGURE_CLASS[0]
+    return MobilityFigure
 
 
 def _literal_texts(fig: Any) -> None:
@@ -93,10 +88,7 @@ def _literal_texts(fig: Any) -> None:
 
 
 def new_figure(figsize: tuple[float, float], **options: Any) -> "Figure":
-    """An empty figure of ``figsize`` inches (matplotlib must have been imported by :func:`require_matplotlib`).
-
-    ``options`` go to :class:`matplotlib.figure.Figure` (e.g. ``layout="constrained"``).
-    """
+    """An empty figure of ``figsize`` inches, ``options`` going to :class:`matplotlib.figure.Figure` (after :func:`require_matplotlib`)."""
     return _figure_class()(figsize=figsize, **options)
 
 
@@ -114,12 +106,10 @@ def require_figsize(value: object, caller: str) -> tuple[float, float] | None:
     """
     if value is None:
         return None
-    size = None
-    if not isinstance(value, (str, bytes)):
-        try:
-            size = [require_real(x, "") for x in value]  # type: ignore[attr-defined]
-        except (TypeError, RequestError):  # not iterable, not numbers
-            size = None
+    try:
+        size = None if isinstance(value, (str, bytes)) else [require_real(x, "") for x in value]  # type: ignore[attr-defined]
+    except (TypeError, RequestError):  # not iterable, not numbers
+        size = None
     low, high = FIGSIZE_RANGE
     if size is None or len(size) != 2 or not all(low <= x <= high for x in size):
         raise RequestError(caller=caller, argument="figsize", expected=f"None or (width, height) in inches, each from {low:g} to {high:g}", got=shown_argument(value))
@@ -147,21 +137,9 @@ def written_file_name(path: object, what: str) -> Path:
 
 
 def picture_path(path: str | Path, what: str = "") -> Path:
-    """``path`` as a :class:`~pathlib.Path`, once its suffix names a type :func:`save_figure` writes.
+    """``path`` as a :class:`~pathlib.Path`, once its suffix names a type :func:`save_figure` writes (else a :class:`PlotFormatError`).
 
-    A command line calls it before any work, so that a bad name fails at once.
-
-    Parameters
-    ----------
-    what : str
-        Written before the path in the message (e.g. ``"--plot "``).
-
-    Raises
-    ------
-    PlotFormatError
-        For a suffix other than those of :data:`FORMATS`.
-    RequestError
-        When ``path`` is not a file name (:func:`written_file_name`).
+    A command line calls it before any work, so that a bad name fails at once; ``what`` is written before the path in the message.
 
     Examples
     --------
@@ -183,10 +161,7 @@ _MISSING_GLYPH = re.compile(r"Glyph (\d+) .*missing from (?:current )?font")
 
 @contextmanager
 def glyphs_summarised() -> Iterator[None]:
-    """Around a drawing: matplotlib's warning for each character its font lacks (a name in Chinese, say) becomes one warning naming them all.
-
-    The characters are drawn as boxes; other warnings pass through unchanged.
-    """
+    """Around a drawing: matplotlib's warnings of characters its font lacks (drawn as boxes) become one naming them all; others pass through."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         yield
@@ -205,22 +180,14 @@ def glyphs_summarised() -> Iterator[None]:
 def save_figure(fig: "Figure", path: str | Path, *, dpi: int = 150) -> Path:
     """Write ``fig`` to ``path`` as PNG, SVG or PDF (by suffix) on a white background, whole or not at all; returns the path.
 
-    A failure or an interrupt leaves a picture already at ``path`` as it was
-    (:func:`mobility.outputs.atomic_output`). ``dpi``: an integer in :data:`DPI_RANGE`.
-
-    Raises
-    ------
-    PlotFormatError
-        For another suffix (:func:`picture_path`).
-    RequestError
-        When ``fig`` is not a figure, ``path`` not a file name, or ``dpi`` not an integer from 20 to 600.
+    A failure or an interrupt leaves a picture already at ``path`` as it was (:func:`mobility.outputs.atomic_output`).
+    ``dpi``: an integer in :data:`DPI_RANGE`; a bad argument is a :class:`RequestError`, another suffix a :class:`PlotFormatError`.
     """
     if not callable(getattr(fig, "savefig", None)):
         raise RequestError(caller="save_figure", expected="a matplotlib Figure", got=type(fig).__name__)
     p = picture_path(written_file_name(path, "save_figure: path"))
     low, high = DPI_RANGE
     dots = require_integer(dpi, f"an integer from {low} to {high} (dots per inch)", caller="save_figure", argument="dpi", low=low, high=high)
-    with glyphs_summarised():
-        with atomic_output(p, binary=True) as handle:  # the previous picture intact until the new one is whole
-            fig.savefig(handle, format=p.suffix[1:].lower(), dpi=dots, facecolor="white")
+    with glyphs_summarised(), atomic_output(p, binary=True) as handle:  # the previous picture intact until the new one is whole
+        fig.savefig(handle, format=p.suffix[1:].lower(), dpi=dots, facecolor="white")
     return p

@@ -21,7 +21,7 @@ from typing import cast
 
 import numpy as np
 
-__all__ = ["SAME_POINT", "FLAT", "perpendiculars", "unique_points", "segment_samples", "helix", "plate_ring"]
+__all__ = ["SAME_POINT", "FLAT", "perpendiculars", "unique_points", "segment_samples", "arc", "helix", "plate_ring"]
 
 SAME_POINT = 1e-6
 """Points closer than this fraction of the scene are drawn as one: a drawing
@@ -71,6 +71,14 @@ def segment_samples(start: np.ndarray, end: np.ndarray, n: int = 7) -> np.ndarra
     """``n`` points evenly along the segment, both ends included (so that a hover finds the line anywhere along it)."""
     start = np.asarray(start, dtype=float)
     return start + np.linspace(0.0, 1.0, n)[:, None] * (np.asarray(end, dtype=float) - start)
+
+
+def arc(centre: np.ndarray, axis: np.ndarray, radius: float, turn: float = 1.5 * math.pi, samples: int = 33) -> tuple[np.ndarray, np.ndarray]:
+    """A circular arc about ``axis`` at ``centre`` in the right-hand sense; returns (points, unit tangent at the end)."""
+    e1, e2 = perpendiculars(axis)
+    t = np.linspace(0.0, turn, samples)
+    points = centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
+    return points, -math.sin(turn) * e1 + math.cos(turn) * e2
 
 
 FLAT = 0.05

@@ -1,8 +1,6 @@
 """Drawing primitives of the 3D pictures (matplotlib): arrows, rotation marks, links, joint symbols, the axes triad.
 
-Every artist carries a ``gid`` (``"mobility:link:<name>"``,
-``"mobility:joints:<type>"``, ``"<gid>:head"`` for an arrowhead...), so
-programs and tests can read a picture back.
+Every artist carries a ``gid`` (``"mobility:joints:<type>"``, ``"<gid>:head"`` for an arrowhead...).
 """
 
 from __future__ import annotations
@@ -13,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ...core.model import Mechanism
-from .geometry import SAME_POINT, helix, perpendiculars, plate_ring, unique_points
+from .geometry import SAME_POINT, arc, helix, perpendiculars, plate_ring, unique_points
 from .sketch import Sketch
 from .style import COLORS, JOINT_STYLE, drawn_name
 from .views import view_axes
@@ -54,12 +52,9 @@ def arrow(ax: Any, start: np.ndarray, end: np.ndarray, color: str, gid: str, *, 
 
 def rotation_mark(ax: Any, centre: np.ndarray, axis: np.ndarray, radius: float, color: str, gid: str) -> None:
     """A circular arrow around ``axis`` at ``centre`` (right-hand sense)."""
-    e1, e2 = perpendiculars(axis)
-    t = np.linspace(0.0, 1.5 * math.pi, 40)
-    arc = centre + radius * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)
-    ax.plot(*arc.T, color=color, lw=1.6, gid=gid)
-    tangent = -math.sin(t[-1]) * e1 + math.cos(t[-1]) * e2
-    cone(ax, arc[-1] + 0.35 * radius * tangent, tangent, 0.6 * radius, color, gid + ":head")
+    points, tangent = arc(centre, axis, radius, samples=40)
+    ax.plot(*points.T, color=color, lw=1.6, gid=gid)
+    cone(ax, points[-1] + 0.35 * radius * tangent, tangent, 0.6 * radius, color, gid + ":head")
 
 
 def link_shape(pts: np.ndarray, size: float) -> tuple[str, np.ndarray, list[np.ndarray]]:
@@ -78,8 +73,7 @@ def link_shape(pts: np.ndarray, size: float) -> tuple[str, np.ndarray, list[np.n
     c = u.mean(axis=0)
     ring = plate_ring(u)
     if ring is not None:
-        outline = set(ring)
-        return "plate", u[ring], [np.stack([c, u[k]]) for k in range(len(u)) if k not in outline]
+        return "plate", u[ring], [np.stack([c, u[k]]) for k in range(len(u)) if k not in ring]
     return "star", np.zeros((0, 3)), [np.stack([c, x]) for x in u]
 
 
@@ -105,10 +99,9 @@ def draw_link(ax: Any, name: str, pts: np.ndarray, role: str, size: float) -> No
 
 
 def draw_links(ax: Any, mechanism: Mechanism, sk: Sketch) -> None:
-    """Every link, by :func:`draw_link`; beyond :data:`LINK_ARTISTS` links, one collection per role.
+    """Every link by :func:`draw_link`; beyond :data:`LINK_ARTISTS` links (a millisecond per artist and view), one collection per role.
 
-    (matplotlib spends about a millisecond per artist and view): gids
-    ``mobility:links:<role>`` and ``mobility:links:<role>:plates``.
+    Their gids: ``mobility:links:<role>`` and ``mobility:links:<role>:plates``.
     """
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
@@ -151,10 +144,7 @@ def joint_scale(count: int) -> float:
 
 
 def draw_joints(ax: Any, m: Mechanism, sk: Sketch, labels: bool, view: tuple[float, float]) -> None:
-    """One scatter per joint type, small axis segments, names (beside each joint on the screen of ``view``).
-
-    Among more than :data:`ROOMY_JOINTS` joints the symbols are smaller (:func:`joint_scale`).
-    """
+    """One scatter per joint type (smaller beyond :data:`ROOMY_JOINTS` joints), axis segments, names beside the joints as ``view`` shows them."""
     from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     joints = m.world_joints

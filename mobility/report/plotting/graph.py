@@ -80,15 +80,9 @@ def tree_layout(root: Node) -> tuple[dict[int, tuple[float, float]], list[tuple[
 
 def branch_colors(root: Node, detached: Sequence[Node]) -> dict[int, str]:
     """Colour of each joint (by index): one per branch of the top node (limb), grey when detached."""
-    out: dict[int, str] = {}
     branches = _children(root) if isinstance(root, (Parallel, Bridge)) else [root]
-    for k, b in enumerate(branches):
-        for i in joints_of(b):
-            out[i] = LIMB_COLORS[k % len(LIMB_COLORS)]
-    for d in detached:
-        for i in joints_of(d):
-            out[i] = DETACHED_COLOR
-    return out
+    out = {i: LIMB_COLORS[k % len(LIMB_COLORS)] for k, b in enumerate(branches) for i in joints_of(b)}
+    return out | {i: DETACHED_COLOR for d in detached for i in joints_of(d)}
 
 
 def plot_graph(mechanism: Mechanism, result: Result | None = None, *, figsize: tuple[float, float] | None = None,
@@ -101,26 +95,9 @@ def plot_graph(mechanism: Mechanism, result: Result | None = None, *, figsize: t
     dimension of its twist system (and idle motions). Beyond
     :data:`LABELLED_JOINTS` joints, markers and lines without names.
 
-    Parameters
-    ----------
-    mechanism : Mechanism
-    result : Result, optional
-        Its analysis at this pose; computed with ``tol`` when not given.
-    figsize : (width, height) in inches, optional
-        Each from 1 to 30 (:data:`~mobility.report.plotting.backend.FIGSIZE_RANGE`).
-    tol : Tolerance
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        Two axes: ``fig.axes[0]`` the joint graph, ``fig.axes[1]`` the tree.
-
-    Raises
-    ------
-    PlottingUnavailableError
-        When matplotlib is not installed.
-    RequestError
-        When ``result`` is not a :class:`Result` of ``mechanism``, or ``figsize`` not a width and a height in range.
+    ``result``: the analysis at this pose (computed with ``tol`` when not given); ``figsize``: inches,
+    each from 1 to 30.  Returns a figure of two axes, ``fig.axes[0]`` the joint graph, ``fig.axes[1]`` the tree.
+    Arguments are checked as :func:`~mobility.report.plotting.plot_mechanism` checks them.
     """
     mechanism = require_mechanism(mechanism, "plot_graph")
     tol = require_tolerance(tol, "plot_graph")
@@ -136,8 +113,7 @@ def plot_graph(mechanism: Mechanism, result: Result | None = None, *, figsize: t
     colors = branch_colors(topo.root, topo.detached)
     graph = _JointGraph(mechanism, colors)
     leaves = len(joints_of(topo.root)) + sum(len(joints_of(d)) for d in topo.detached)
-    w = max(10.0, min(26.0, 3.2 + 0.55 * max(leaves, 2 * graph.widest_layer)))
-    fig = new_figure(size or (w, 6.4))
+    fig = new_figure(size or (max(10.0, min(26.0, 3.2 + 0.55 * max(leaves, 2 * graph.widest_layer))), 6.4))
     labelled = len(mechanism.joints) <= LABELLED_JOINTS
     graph.draw(fig.add_axes((0.01, 0.08, 0.40, 0.82)), labelled)
     _draw_tree(fig.add_axes((0.43, 0.08, 0.56, 0.82)), r, mechanism, colors, labelled)
@@ -298,8 +274,7 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str],
         p, e, nodes = tree_layout(root)
         xs = [x for x, _ in p.values()]
         left, right = min(xs), max(xs)
-        for key, (x, y) in p.items():
-            tpos[key] = (x - left + offset, y)
+        tpos.update({key: (x - left + offset, y) for key, (x, y) in p.items()})
         offset += right - left + 2.0
         tree.add_nodes_from(p)
         tree.add_edges_from(e)
@@ -316,11 +291,8 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str],
             edge = colors.get(n.index, "#37474f") if isinstance(n, JointNode) else "#546e7a"
             ax.text(*tpos[key], label, ha="center", va="center", fontsize=6.5, gid=f"mobility:tree:{kind}",
                     bbox={"boxstyle": "round,pad=0.45", "fc": NODE_FILL[kind], "ec": edge, "lw": 2.0 if kind == "joint" else 1.0})
-    bridge_edges = {}
-    for key, n in tnodes.items() if labelled else ():  # a bridge's connections join named links: say which
-        if isinstance(n, Bridge):
-            for u, v, child in n.edges:
-                bridge_edges[(key, id(child))] = f"{drawn_name(u)}–{drawn_name(v)}"
+    bridge_edges = {(key, id(child)): f"{drawn_name(u)}–{drawn_name(v)}"  # a bridge's connections join named links: say which
+                    for key, n in tnodes.items() if labelled and isinstance(n, Bridge) for u, v, child in n.edges}
     if bridge_edges:
         nx.draw_networkx_edge_labels(tree, tpos, edge_labels=bridge_edges, ax=ax, font_size=6, label_pos=0.7, rotate=False, bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none"})
     x0, y0 = tpos[id(topo.root)]
@@ -335,8 +307,7 @@ def _draw_tree(ax: Any, r: Result, mechanism: Mechanism, colors: dict[int, str],
 
 def _tree_markers(ax: Any, tpos: dict[int, tuple[float, float]], tnodes: dict[int, Node]) -> None:
     """Each node of the tree as a marker filled with its kind's colour, one collection per kind (gid ``mobility:tree:<kind>``)."""
-    kinds = {"joint": JointNode, "series": Series, "parallel": Parallel, "bridge": Bridge}
-    for kind, cls in kinds.items():
+    for kind, cls in {"joint": JointNode, "series": Series, "parallel": Parallel, "bridge": Bridge}.items():
         xy = np.array([tpos[key] for key, n in tnodes.items() if type(n) is cls]).reshape(-1, 2)
         if len(xy):
             art = ax.scatter(xy[:, 0], xy[:, 1], s=14, c=NODE_FILL[kind], edgecolors="#546e7a", linewidths=0.6, zorder=3)

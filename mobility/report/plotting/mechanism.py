@@ -1,9 +1,5 @@
-"""The picture of a mechanism at its pose with its end effector's freedoms and constraints.
+"""The picture of a mechanism at its pose with its end effector's freedoms and constraints (:func:`plot_mechanism`).
 
-:func:`plot_mechanism` draws links, joint symbols and, on the end effector, the
-answer of :func:`mobility.analyze`: arrows for translations, axis lines with a
-rotation mark for rotations and, on request, the constraint wrenches, from
-viewpoints chosen by :func:`~mobility.report.plotting.views.choose_views`.
 Every drawn answer carries a ``gid`` (``"mobility:translation:0"``,
 ``"mobility:rotation-axis:1"``, ``"mobility:force:0"``, ``"mobility:couple:0"``,
 ...), so programs and tests can read the picture back.
@@ -37,7 +33,6 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["plot_mechanism", "MAX_TITLE"]
 
 
-
 def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constraints: bool = False, views: int | Sequence[tuple[float, float]] = 2,
                    labels: bool = True, legend: bool = True, title: str | None = None, figsize: tuple[float, float] | None = None,
                    tol: Tolerance = DEFAULT_TOLERANCE) -> "Figure":
@@ -45,7 +40,6 @@ def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constr
 
     Parameters
     ----------
-    mechanism : Mechanism
     result : Result, optional
         Its analysis at this pose; computed with ``tol`` when not given.
     constraints : bool
@@ -56,18 +50,16 @@ def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constr
         up to :data:`~mobility.report.plotting.views.MAX_VIEWS`, or the viewpoints themselves (degrees).
     labels : bool
         Write joint names (up to 40 joints).
-    legend : bool
     title : str, optional
         Default: name, DOF, pattern and mobility. Wrapped to the figure's width;
         cut (``...``) beyond :data:`MAX_TITLE` characters or the lines it has room for.
     figsize : (width, height) in inches, optional
         Each from 1 to 30 (:data:`~mobility.report.plotting.backend.FIGSIZE_RANGE`).
-    tol : Tolerance
 
     Returns
     -------
     matplotlib.figure.Figure
-        One 3D axes per view, orthographic.
+        One orthographic 3D axes per view.
 
     Raises
     ------
@@ -90,15 +82,13 @@ def plot_mechanism(mechanism: Mechanism, result: Result | None = None, *, constr
     sk = sketch(mechanism)
     scene = build_scene(r, sk, bool(constraints))
     answer = np.concatenate([sk.end_effector_centre[None], *scene.important_points()])
-    important = np.concatenate([sk.points, answer])
     view_list = given if count is None else _chosen_views(sk, answer, scene.directions(), count)
     if scene.couples:  # place the couples again, now that the views are known
         scene = build_scene(r, sk, bool(constraints), eyes=np.array([view_axes(e, a)[0] for e, a in view_list]))
-    extent = np.concatenate([important, sk.points])
+    extent = np.concatenate([sk.points, answer])
     fig = new_figure(size or (6.2 * len(view_list), 6.6))
     for k, view in enumerate(view_list):
-        ax = _view_axes3d(fig, k, view_list, extent, sk.size)
-        _draw_view(ax, mechanism, r, sk, scene, bool(labels), view)
+        _draw_view(_view_axes3d(fig, k, view_list, extent, sk.size), mechanism, r, sk, scene, bool(labels), view)
     if legend:
         _legend(fig, mechanism, sk, scene)
     unit = f", lengths in {r.length_unit}" if r.length_unit else ""
@@ -122,12 +112,10 @@ def _views_asked(views: Any) -> tuple[int | None, list[tuple[float, float]]]:
     try:
         return require_integer(views, expected, caller="plot_mechanism", argument="views", low=1, high=MAX_VIEWS), []
     except RequestError:
-        given: list[tuple[float, float]] = []
-        if not isinstance(views, (str, bytes, bool, np.bool_)):
-            try:
-                given = [(float(e), float(a)) for e, a in views]
-            except (TypeError, ValueError):  # not iterable, not pairs, not numbers
-                given = []
+        try:
+            given = [] if isinstance(views, (str, bytes, bool, np.bool_)) else [(float(e), float(a)) for e, a in views]
+        except (TypeError, ValueError):  # not iterable, not pairs, not numbers
+            given = []
         if given and all(math.isfinite(e) and math.isfinite(a) for e, a in given):
             return None, given
         raise
@@ -153,9 +141,8 @@ def _view_axes3d(fig: "Figure", k: int, view_list: list[tuple[float, float]], ex
     ax = fig.add_subplot(1, len(view_list), k + 1, projection="3d")
     ax.set_proj_type("ortho")
     ax.view_init(elev=elev, azim=azim)
-    ax.set_xlim(mid[0] - half, mid[0] + half)
-    ax.set_ylim(mid[1] - half, mid[1] + half)
-    ax.set_zlim(mid[2] - half, mid[2] + half)
+    for set_limits, m in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), mid):
+        set_limits(m - half, m + half)
     ax.set_box_aspect((1, 1, 1), zoom=1.25)
     ax.set_axis_off()
     ax.set_title(f"view {k + 1}: elev {elev:g}°, azim {azim:g}°", fontsize=9, color="#455a64")
@@ -195,12 +182,9 @@ def _legend(fig: "Figure", mechanism: Mechanism, sk: Sketch, scene: Scene) -> No
     """One entry per joint type present, the link roles, and each kind of glyph drawn."""
     from matplotlib.lines import Line2D
 
-    handles = []
-    for t in (t for t in JOINT_STYLE if t in sk.types):
-        st = JOINT_STYLE[t]
-        handles.append(Line2D([], [], ls="", marker=st["marker"], markersize=7, markerfacecolor=st["facecolor"], markeredgecolor="white" if t == "S" else "black", label=st["label"]))
-    handles.append(Line2D([], [], color=COLORS["ground"], lw=4, label="ground"))
-    handles.append(Line2D([], [], color=COLORS["end_effector"], lw=3, label="end effector"))
+    handles = [Line2D([], [], ls="", marker=st["marker"], markersize=7, markerfacecolor=st["facecolor"], markeredgecolor="white" if t == "S" else "black",
+                      label=st["label"]) for t, st in JOINT_STYLE.items() if t in sk.types]
+    handles += [Line2D([], [], color=COLORS["ground"], lw=4, label="ground"), Line2D([], [], color=COLORS["end_effector"], lw=3, label="end effector")]
     if any(x not in (mechanism.ground, mechanism.end_effector) for x in sk.link_joints):
         handles.append(Line2D([], [], color=COLORS["link"], lw=2.6, label="link"))
     if scene.translations:

@@ -166,10 +166,7 @@ class _Placer:
 def build_scene(result: Result, sk: Sketch, constraints: bool, eyes: np.ndarray | None = None) -> Scene:
     """Place the glyphs of ``result``'s freedoms (and, with ``constraints``, its constraint wrenches).
 
-    Parameters
-    ----------
-    eyes : ndarray, shape (views, 3), optional
-        View directions, once chosen: couples then stand aside in a direction every view shows.
+    Given the view directions ``eyes`` (shape (views, 3)), couples stand aside in a direction every view shows.
     """
     placer = _Placer(sk)
     translations = tuple(placer.translation(t) for t in result.translations)

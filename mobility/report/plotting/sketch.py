@@ -1,9 +1,6 @@
 """Where each joint is drawn, and the size of the scene (no matplotlib).
 
-A picture is drawn in *drawing units*: the file's lengths times
-:attr:`Sketch.scale`, an exact power of two, 1 for every mechanism of an
-everyday size (:func:`drawing_scale`), so one at 1e200 or 1e-250 is drawn
-without overflow or underflow.
+A picture is drawn in *drawing units*: the file's lengths times :attr:`Sketch.scale` (:func:`drawing_scale`).
 
 Examples
 --------
@@ -55,17 +52,11 @@ def drawing_scale(length: float) -> float:
     >>> [0.5 <= drawing_scale(x) * x < 1.0 for x in (1e200, 1e-250)]
     [True, True]
     """
-    if PLAIN_SIZES[0] <= length <= PLAIN_SIZES[1]:
-        return 1.0
-    return binary_scale(length)
+    return 1.0 if PLAIN_SIZES[0] <= length <= PLAIN_SIZES[1] else binary_scale(length)
 
 DRAWING_REACH = 1e150
-"""Farthest from the origin a joint is drawn, in drawing units (where the
-mechanism's size is about 1): a drawing library squares and multiplies
-coordinates (norms, projections, axis ticks), which stays finite up to the
-square root of the largest float.  A joint farther out is refused in one line:
-at such a distance, in the file's own frame, no picture resolves the mechanism.
-"""
+"""Farthest from the origin a joint is drawn, in drawing units (the mechanism's size about 1): a drawing library
+squares coordinates, which stays finite up to the square root of the largest float; no picture resolves a joint farther out."""
 
 
 def _require_drawable(mechanism: Mechanism, joints: tuple, pts: np.ndarray, located: np.ndarray, length: float) -> None:
@@ -93,26 +84,12 @@ ROUND_OFF = DEFAULT_TOLERANCE.round_off
 
 @dataclass(frozen=True, eq=False)
 class Sketch(ReadOnlyArrays):
-    """Where each joint is drawn, and the size of the scene (drawing units: the file's lengths times ``scale``).
+    """Where each joint is drawn, and the size of the scene (drawing units: the file's lengths times ``scale``, :func:`drawing_scale`).
 
-    Attributes
-    ----------
-    names, types : tuple of str
-        Joint names and types, in the mechanism's order.
-    points : ndarray, shape (J, 3)
-        Drawn location of each joint (global frame, drawing units).
-    located : ndarray of bool, shape (J,)
-        True where the location comes from the file (``point``).
-    link_joints : dict
-        Link name -> indices of its joints.
-    centre : ndarray, shape (3,)
-        Centre of the drawn joints.
-    size : float
-        Extent of the scene (largest side of the joints' bounding box, or the characteristic length).
-    end_effector_centre : ndarray, shape (3,)
-        Centroid of the end effector's located joints (where its freedoms are drawn).
-    scale : float
-        Drawing units per file unit (:func:`drawing_scale`).
+    ``names``, ``types``, ``points`` (shape (J, 3), global frame) and ``located`` (True where the file gives the
+    ``point``): the joints, in the mechanism's order; ``link_joints``: link name -> indices of its joints;
+    ``centre``: of the drawn joints; ``size``: extent of the scene (largest side of the joints' bounding box,
+    or the characteristic length); ``end_effector_centre``: centroid of the end effector's located joints.
     """
 
     names: tuple[str, ...]
@@ -136,29 +113,16 @@ def sketch(mechanism: Mechanism, scale: float | None = None) -> Sketch:
     A joint without a point is drawn midway between the located joints of its
     two links; with only one located, a quarter of the scene from it along its
     axis, away from the end effector; with neither, from those placed after.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    scale : float, optional
-        Drawing units per file unit; default :func:`drawing_scale` of the
-        mechanism's characteristic length (poses drawn together share one).
-
-    Returns
-    -------
-    Sketch
+    ``scale``: drawing units per file unit; default :func:`drawing_scale` of the
+    mechanism's characteristic length (poses drawn together share one).
     """
     joints = mechanism.world_joints
     n = len(joints)
     norm = joint_screws(mechanism).normalisation
     scale = drawing_scale(norm.length) if scale is None else float(scale)
     length = norm.length * scale
-    pts = np.zeros((n, 3))
     located = np.array([j.point is not None for j in joints], dtype=bool)
-    for i, j in enumerate(joints):
-        if j.point is not None:
-            pts[i] = j.point
-    pts *= scale
+    pts = np.array([j.point if j.point is not None else (0.0, 0.0, 0.0) for j in joints], dtype=float).reshape(n, 3) * scale
     _require_drawable(mechanism, joints, pts, located, norm.length)
     link_joints: dict[str, list[int]] = {}
     for i, j in enumerate(joints):

@@ -1,8 +1,4 @@
-"""The look of the pictures: one symbol per joint type, one colour per role.
-
-Every picture uses these, so a joint type, a freedom or a constraint looks the
-same in every figure (and in other views that import them).
-"""
+"""The look of the pictures, the same in every figure (and in the 3D view): one symbol per joint type, one colour per role."""
 
 from __future__ import annotations
 
@@ -18,10 +14,8 @@ MAX_TITLE = 500
 MAX_LABEL = 40
 """The most characters of a name (a link's, a joint's, a mechanism's, a swept coordinate's) that a picture writes.
 
-A name may be as long as a file allows (megabytes): matplotlib lays out and
-renders every glyph of a text, so one name of 200,000 characters takes
-a minute to draw.  The pictures write its start, the cut marked by ``...``;
-the text reports keep every name whole.
+matplotlib lays out every glyph of a text: a name of 200,000 characters (a file allows megabytes) takes a minute
+to draw.  The pictures write its start, the cut marked by ``...``; the text reports keep every name whole.
 """
 
 

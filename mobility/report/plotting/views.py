@@ -27,10 +27,7 @@ grid of candidates holds at least three views 60 degrees apart from one another 
 
 
 def view_axes(elev: Any, azim: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Eye direction and screen x, y of orthographic views (matplotlib's elev/azim, degrees).
-
-    Scalars give 3-vectors; arrays of ``n`` views give arrays of shape (n, 3).
-    """
+    """Eye direction and screen x, y of orthographic views (matplotlib's elev/azim, degrees): 3-vectors, or shape (n, 3) for n views."""
     e, a = np.radians(elev), np.radians(azim)
     eye = np.stack([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)], axis=-1)
     sx = np.stack([-np.sin(a), np.cos(a), np.zeros_like(a)], axis=-1)
@@ -55,9 +52,7 @@ def view_scores(elev: np.ndarray, azim: np.ndarray, points: np.ndarray, directio
                 on_top += np.sum(d2 < 0.04 * size, axis=0)  # points drawn on top of each other
                 close += np.sum(np.exp(-((d2 / (0.08 * size)) ** 2)) * (d2 < 0.5 * block3), axis=0)
                 seen_length += np.sum(d2 / block3, axis=0)
-            bad = bad + on_top
-            bad = bad + close
-            bad = bad + 6.0 * (1.0 - seen_length / len(d))  # foreshortening: a flat scene seen edge-on
+            bad = bad + on_top + close + 6.0 * (1.0 - seen_length / len(d))  # the last: foreshortening, a flat scene seen edge-on
     if len(directions):
         seen = np.sqrt(np.maximum(0.0, 1.0 - (directions @ eye.T) ** 2))  # (directions, views)
         bad = bad + 4.0 * np.sum(seen < 0.35, axis=0) + np.sum(np.maximum(0.0, 0.6 - seen), axis=0)
@@ -72,9 +67,7 @@ def thinned(points: np.ndarray, limit: int = MAX_CONTEXT_POINTS) -> np.ndarray:
     >>> thinned(np.arange(30.0).reshape(10, 3), 4)[:, 0].tolist()
     [0.0, 9.0, 18.0, 27.0]
     """
-    if len(points) <= limit:
-        return points
-    return points[np.unique(np.linspace(0, len(points) - 1, limit).round().astype(int))]
+    return points if len(points) <= limit else points[np.unique(np.linspace(0, len(points) - 1, limit).round().astype(int))]
 
 
 def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count: int = 2, *, separation: float = 60.0,
@@ -83,16 +76,9 @@ def choose_views(points: np.ndarray, directions: np.ndarray, size: float, count:
 
     Every candidate view on a grid is scored by the pairs of ``points`` within
     4 % of ``size`` of each other on the screen (softly, by pairs brought
-    close), and by the ``directions`` seen nearly end-on. The best comes first.
-
-    Parameters
-    ----------
-    directions : ndarray, shape (k, 3)
-        Unit directions that must show their length (arrows, axes).
-    separation : float
-        Smallest angle between two chosen view directions, degrees.
-    context : ndarray, shape (m, 3), optional
-        Further points to keep apart (the joints); at most :data:`MAX_CONTEXT_POINTS` of them are scored.
+    close), and by the unit ``directions`` (arrows, axes) seen nearly end-on. The best comes first,
+    each at least ``separation`` degrees from the others.  ``context``: further points to keep apart
+    (the joints), at most :data:`MAX_CONTEXT_POINTS` of them scored.
 
     Examples
     --------
