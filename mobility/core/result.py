@@ -390,11 +390,8 @@ class Result(ReadOnlyArrays):
 
     def _inner_loops(self) -> list[tuple[Node, int, int]]:
         """``(node, loops, redundant constraints)`` of each outermost sub-network of loops below the top (a parallelogram in a limb): its mobility less its own Grübler–Kutzbach count."""
-        root = self.topology.root
-        if not isinstance(root, (Series, Parallel)):
-            return []
-        mechanism = getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: nothing to attribute
-        if mechanism is None:
+        root, mechanism = self.topology.root, getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: nothing to attribute
+        if mechanism is None or not isinstance(root, (Series, Parallel)):
             return []
         systems = self.node_systems
         joints = mechanism.joints
@@ -469,13 +466,6 @@ def require_result_of(mechanism: Mechanism, value: object, caller: str) -> Resul
     return result
 
 
-def _same_description(a: object, b: Mechanism) -> bool:
-    """Whether ``a`` is a mechanism equal to ``b`` but perhaps for where it was read from (one file by two paths, or a copy)."""
-    if not isinstance(a, Mechanism):
-        return False
-    return all(getattr(a, f.name) == getattr(b, f.name) for f in dataclass_fields(Mechanism) if f.compare and f.name != "source")
-
-
 def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) -> None:
     """A :class:`~mobility.errors.RequestError` naming ``caller`` when ``result`` analysed another mechanism than ``mechanism``.
 
@@ -493,7 +483,10 @@ def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) ->
     mobility.errors.RequestError: plot_graph: the result is of another mechanism than 'planar four-bar' (of the same name, with other joints, pose or fields); pass the result of analysing this one, or none
     """
     analysed = getattr(result, "mechanism", None)
-    if analysed is not None and analysed is not mechanism and not _same_description(analysed, mechanism):
+    if analysed is None or analysed is mechanism:
+        return
+    same = (getattr(analysed, f.name) == getattr(mechanism, f.name) for f in dataclass_fields(Mechanism) if f.compare and f.name != "source")
+    if not isinstance(analysed, Mechanism) or not all(same):  # equal but perhaps for where it was read from
         name = clipped(repr(mechanism.name), 60)
         other = clipped(repr(getattr(analysed, "name", analysed)), 60)
         which = f"than {name} (of the same name, with other joints, pose or fields)" if other == name else f"({other}) than {name}"

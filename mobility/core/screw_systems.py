@@ -1,9 +1,8 @@
-"""Screw systems of a decomposed mechanism at a stack of poses: the series/parallel route.
+"""Screw systems of a decomposed mechanism at a stack of poses: the series/parallel route (README, "How it works").
 
-The one engine of :func:`mobility.analyze`, the sweeps and the actuation checks
-(README, "How it works").  Each node of the :mod:`~mobility.core.topology` tree
-gets, pose by pose, the twist system between its two end links and its *idle*
-count (inner motions that leave them still; mobility = dimension + idle):
+Each node of the :mod:`~mobility.core.topology` tree gets, pose by pose, the
+twist system between its two end links and its *idle* count (inner motions
+that leave them still; mobility = dimension + idle):
 
 * joint: the span of its twists, idle 0;
 * series: the span of the children's twists; idle = children's + (stacked - dimension);
@@ -15,10 +14,9 @@ count (inner motions that leave them still; mobility = dimension + idle):
   solutions that leave the target still.
 
 All in normalised coordinates (:mod:`mobility.core.joint_screws`), every rank
-by :func:`~mobility.core.tolerance.decide_ranks` with its margin kept.  A rank
-that varies over the stack pads ``(N, 6, k)`` arrays with zero columns (none
-when it does not; docs/sweeps.md, "How it is fast"); nodes go level by level
-from the leaves (no recursion), one level's same-shape matrices to LAPACK as one stack.
+by :func:`~mobility.core.tolerance.decide_ranks` with its margin kept; a rank
+that varies over the stack pads with zero columns (docs/sweeps.md, "How it is
+fast").  Nodes go level by level from the leaves, one level's same-shape matrices to LAPACK as one stack.
 """
 
 from __future__ import annotations
@@ -32,7 +30,7 @@ from .joint_screws import per_object_cache
 from .linalg import left_svds, singular_values
 from .screws import SWAP_ROWS, pattern_of
 from .tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
-from .topology import Bridge, JointNode, Node, Parallel, Series, Topology
+from .topology import Bridge, JointNode, Node, Parallel, Series, Topology, _children
 
 __all__ = ["PerPose", "Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "at_pose", "PoseAnswers", "analyse_poses"]
 
@@ -270,14 +268,7 @@ def _levels(node: Node) -> list[list[tuple[Node, list[Node]]]]:
 
 def _composite_children(node: Series | Parallel | Bridge) -> list[Node]:
     """The children of ``node`` that get a value of their own (every child of a parallel node)."""
-    if isinstance(node, Parallel):
-        return list(node.children)
-    children = [c for _, _, c in node.edges] if isinstance(node, Bridge) else node.children
-    return [c for c in children if type(c) is not JointNode]
-
-
-def _joint(twists: np.ndarray, offsets: Sequence[int], index: int) -> np.ndarray:
-    return twists[:, :, offsets[index] : offsets[index + 1]]
+    return list(node.children) if isinstance(node, Parallel) else [c for c in _children(node) if type(c) is not JointNode]
 
 
 def _matrix(step: Step, values: list[Systems], twists: np.ndarray) -> tuple[np.ndarray, int | np.ndarray]:
@@ -306,7 +297,7 @@ def _bridge(node: Bridge, values: list[Systems], twists: np.ndarray, offsets: Se
     real: list[PerPose] = []
     for _, _, child in node.edges:
         if type(child) is JointNode:
-            bases.append(_joint(twists, offsets, child.index))
+            bases.append(twists[:, :, offsets[child.index] : offsets[child.index + 1]])
             real.append(offsets[child.index + 1] - offsets[child.index])
         else:
             value = next(composite)
@@ -371,7 +362,7 @@ def subtree_values(node: Node, value: Systems) -> Iterator[tuple[Node, Systems |
         if isinstance(n, JointNode):
             continue
         assert v is not None  # only a joint inside a series or a bridge has no value
-        children = [c for _, _, c in n.edges] if isinstance(n, Bridge) else list(n.children)
+        children = _children(n)
         paired: list[tuple[Node, Systems | None]]
         if isinstance(n, Parallel):  # a parallel node keeps every child's value
             paired = list(zip(children, v.children))

@@ -1,18 +1,10 @@
-"""The one tolerance policy of the package.
+"""The one tolerance policy of the package (README, "How it works").
 
-Every rank decision goes through :func:`decide_rank`, on matrices in
-*normalised coordinates* (lengths over the characteristic length ``L``, from
-the centre ``c``: :func:`characteristic_scale`), so that scaling the file or
-moving the mechanism rigidly changes no count.  A singular value counts when
-it exceeds ``rtol`` times the largest (and ``rtol`` absolutely: columns have
-unit norm).  Each decision records its *margin*, the smallest kept and the
-largest dropped value relative to the largest: near a singularity, or
-geometry only nearly special.  Both are reported, never hidden.
-
-The fixed constants that decide no count (checks of a description, solver
-stopping rules, ties of readable forms) stand here too, each with the reason
-for its value.  One module, longer than most, because its point is that every
-number of the kind stands in one place.
+Every rank decision goes through :func:`decide_rank` or :func:`decide_ranks`,
+on matrices in *normalised coordinates* (:func:`characteristic_scale`), and
+keeps its *margin*.  The fixed constants that decide no count (checks of a
+description, solver stopping rules, ties of readable forms) stand here too,
+each with the reason for its value: every number of the kind in one place.
 """
 
 from __future__ import annotations
@@ -329,9 +321,7 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None, 
         centre /= scale
     if radius / scale > COINCIDENT_POINTS * float(np.abs(centre).max(initial=0.0)):
         return centre, float(_balanced(np.array(radius), pitch * scale)) / scale
-    if other > 0.0:
-        return centre, other
-    return centre, 1.0
+    return centre, other if other > 0.0 else 1.0
 
 
 def _largest(lengths: np.ndarray | None) -> float:
