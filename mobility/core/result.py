@@ -305,8 +305,7 @@ class Result(ReadOnlyArrays):
     @property
     def precision(self) -> float | None:
         """The precision of the mechanism's file, relative to its size (:attr:`Mechanism.precision`); ``None``: exact."""
-        mechanism = getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: exact
-        return None if mechanism is None else mechanism.precision
+        return getattr(getattr(self.detail, "mechanism", None), "precision", None)  # a result rebuilt without its mechanism: exact
 
     @property
     def rank_threshold(self) -> float:
@@ -345,14 +344,13 @@ class Result(ReadOnlyArrays):
         """Why the Grübler–Kutzbach count differs from the mobility (empty when it does not)."""
         if self.redundant_constraints == 0:
             return ""
-        rank = self.joint_freedoms - self.mobility
         redundant = self.redundant_constraints
         loops = "the 1 independent loop imposes" if self.loops == 1 else f"each of the {self.loops} independent loops imposes"
         coupled = len(getattr(getattr(self.detail, "mechanism", None), "couplings", ()))  # one constraint each (a result rebuilt without its mechanism: none)
         by_couplings = f" and each of the {coupled} couplings of joints 1" if coupled > 1 else " and the coupling of joints 1" if coupled else ""
         text = (
             f"Grübler–Kutzbach assumes {loops} 6 independent "
-            f"constraints{by_couplings} ({6 * self.loops + coupled} in all); the loop-closure equations have rank {rank}, so "
+            f"constraints{by_couplings} ({6 * self.loops + coupled} in all); the loop-closure equations have rank {self.joint_freedoms - self.mobility}, so "
             f"{redundant} constraint{' is' if redundant == 1 else 's are'} redundant and the mobility is "
             f"{self.gruebler_kutzbach} + {redundant} = {self.mobility}."
         )
@@ -369,12 +367,11 @@ class Result(ReadOnlyArrays):
                 f"{kind}: {'the loop loses' if self.loops == 1 else 'each loop loses'} {counted(each, 'equation')}."
             )
         rest = self.redundant_constraints - common
-        inner = [(node, loops, redundant - self.common_constraints * loops) for node, loops, redundant in self._inner_loops()]
-        inner = [(node, loops, beyond) for node, loops, beyond in inner if beyond > 0]
-        within = min(sum(beyond for _, _, beyond in inner), rest)
+        inner = self._inner_loops()
+        within = min(sum(beyond for _, beyond in inner), rest)
         if within > 0:
-            shown = [describe(node) for node, _, _ in inner[:3]] + ([f"{len(inner) - 3} more"] if len(inner) > 3 else [])
-            counts = sorted({beyond for _, _, beyond in inner})
+            shown = [describe(node) for node, _ in inner[:3]] + ([f"{len(inner) - 3} more"] if len(inner) > 3 else [])
+            counts = sorted({beyond for _, beyond in inner})
             share = f"{counts[0]} each" if len(counts) == 1 else "between them"
             more = " more" if common else ""
             text += (
@@ -388,14 +385,15 @@ class Result(ReadOnlyArrays):
             text += f" {rest} come{'s' if rest == 1 else ''} from the special geometry of the {other}loops (parallel or intersecting axes, repeated constraints of parallel limbs)."
         return text
 
-    def _inner_loops(self) -> list[tuple[Node, int, int]]:
-        """``(node, loops, redundant constraints)`` of each outermost sub-network of loops below the top (a parallelogram in a limb): its mobility less its own Grübler–Kutzbach count."""
+    def _inner_loops(self) -> list[tuple[Node, int]]:
+        """``(node, redundant)`` of each outermost sub-network of loops below the top (a parallelogram in a limb) with redundant > 0:
+        its mobility less its own Grübler–Kutzbach count and less :attr:`common_constraints` per loop."""
         root, mechanism = self.topology.root, getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: nothing to attribute
         if mechanism is None or not isinstance(root, (Series, Parallel)):
             return []
         systems = self.node_systems
         joints = mechanism.joints
-        out: list[tuple[Node, int, int]] = []
+        out: list[tuple[Node, int]] = []
         stack: deque[Node] = deque(root.children)  # in tree order, without recursion
         while stack:
             node = stack.popleft()
@@ -406,8 +404,9 @@ class Result(ReadOnlyArrays):
                 links = {link for j in members for link in joints[j].links}
                 loops = len(members) - len(links) + 1
                 count = 6 * (len(links) - 1 - len(members)) + sum(joints[j].dof for j in members)
-                if loops > 0:
-                    out.append((node, loops, systems[node].mobility - count))
+                beyond = systems[node].mobility - count - self.common_constraints * loops
+                if loops > 0 and beyond > 0:
+                    out.append((node, beyond))
         return out
 
     def to_dict(self) -> dict[str, Any]:

@@ -235,9 +235,8 @@ def _step(node: Node, children: list[Node], offsets: tuple[int, ...]) -> Step:
     for c in (node,) if type(node) is JointNode else node.children:
         if type(c) is JointNode:
             lo, hi = offsets[c.index], offsets[c.index + 1]
-            last = parts[-1] if parts else None
-            if isinstance(last, slice) and last.stop == lo:
-                parts[-1] = slice(last.start, hi)
+            if parts and isinstance(parts[-1], slice) and parts[-1].stop == lo:  # consecutive joints: one block
+                parts[-1] = slice(parts[-1].start, hi)
             else:
                 parts.append(slice(lo, hi))
         else:

@@ -311,8 +311,7 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None, 
     other = max(_largest(lengths), pitch)
     scale = binary_scale(pts, other)
     if n == 0:
-        centre = np.zeros(3)
-        radius = 0.0
+        centre, radius = np.zeros(3), 0.0
     else:
         scaled = pts * scale
         centre = scaled.sum(axis=0) / n
