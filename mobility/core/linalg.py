@@ -99,8 +99,7 @@ def left_svds(m: np.ndarray, *, full_v: bool = False) -> tuple[np.ndarray, np.nd
         raise AnalysisError(f"the singular value decomposition of a stack of {rows}x{cols} matrices did not converge (it holds a NaN or an infinity)") from None
 
 
-_TRANSPOSE_FROM = 64
-"""Stacks from this size solve the transposed problem of a tall matrix (see :func:`left_svds`)."""
+_TRANSPOSE_FROM = 64  # stacks from this size solve the transposed problem of a tall matrix
 
 
 def singular_values(m: np.ndarray) -> np.ndarray:

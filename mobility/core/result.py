@@ -410,7 +410,7 @@ class Result(ReadOnlyArrays):
         return out
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON form: the spec's Result keys plus the whole-mechanism numbers."""
+        """The JSON form: the spec's Result keys plus the whole-mechanism numbers (``precision`` when the file's would raise the threshold)."""
         s = self.length_scale
         counts = ("mobility", "gruebler_kutzbach", "redundant_constraints", "idle_dof", "loops", "links", "joints", "joint_freedoms",
                   "common_constraints", "gruebler_kutzbach_explanation", "structure")
@@ -422,15 +422,9 @@ class Result(ReadOnlyArrays):
             | {key: getattr(self, key) for key in counts}
             | {"margin": self.margin.to_dict(), "warnings": list(self.warnings), "limbs": [limb.to_dict(s) for limb in self.limbs],
                "length_unit": self.length_unit, "reference_point": clean_numbers(self.reference_point, s)}
-            | self._precision_dict()
+            | ({"precision": {"value": self.precision, "rank_threshold": self.rank_threshold,
+                              "raised": self.rank_threshold == file_tolerance(self.precision).rank}} if self.precision_summary else {})
         )
-
-    def _precision_dict(self) -> dict[str, Any]:
-        """The ``precision`` key of the JSON form, when the file's precision changes the threshold (absent for an exact file)."""
-        if not self.precision_summary:
-            return {}
-        own = file_tolerance(self.precision).rank
-        return {"precision": {"value": self.precision, "rank_threshold": self.rank_threshold, "raised": self.rank_threshold == own}}
 
 
 def require_result(value: object, caller: str) -> Result:

@@ -395,7 +395,6 @@ class RankDecisions(NamedTuple):
 
 
 _ROW_BY_ROW = 8
-"""Up to this many rows, :func:`decide_ranks` decides row by row (the same numbers, less overhead)."""
 
 
 def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: int | Sequence[int] | np.ndarray | None = None) -> RankDecisions:
