@@ -183,11 +183,6 @@ class Result(ReadOnlyArrays):
         reported through their point nearest to it, so an axis away from it
         (or a non-zero pitch) shows how rotating moves this point.
 
-    The screws (:attr:`translations`, :attr:`rotations`, :attr:`twists`,
-    :attr:`couples`, :attr:`forces`, :attr:`wrenches`), :attr:`limbs`,
-    :attr:`common_constraints`, :attr:`mechanism`, :attr:`topology` and
-    :attr:`node_systems` are properties.
-
     Examples
     --------
     >>> import mobility, numpy as np

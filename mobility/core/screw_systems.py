@@ -361,14 +361,9 @@ def subtree_values(node: Node, value: Systems) -> Iterator[tuple[Node, Systems |
         if isinstance(n, JointNode):
             continue
         assert v is not None  # only a joint inside a series or a bridge has no value
-        children = _children(n)
-        paired: list[tuple[Node, Systems | None]]
-        if isinstance(n, Parallel):  # a parallel node keeps every child's value
-            paired = list(zip(children, v.children))
-        else:  # series and bridge nodes keep the values of their composite children only
-            values = iter(v.children)
-            paired = [(c, None if isinstance(c, JointNode) else next(values)) for c in children]
-        stack.extend(reversed(paired))
+        values = iter(v.children)
+        every = isinstance(n, Parallel)  # a parallel node keeps every child's value, others their composite children's only
+        stack.extend(reversed([(c, next(values) if every or not isinstance(c, JointNode) else None) for c in _children(n)]))
 
 
 def direction_ranks(basis: np.ndarray, dim: PerPose, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecisions:
