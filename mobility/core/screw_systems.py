@@ -30,7 +30,7 @@ from .joint_screws import per_object_cache
 from .linalg import left_svds, singular_values
 from .screws import SWAP_ROWS, pattern_of
 from .tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
-from .topology import Bridge, JointNode, Node, Parallel, Series, Topology, _children
+from .topology import Bridge, JointNode, Node, Parallel, Topology, _children
 
 __all__ = ["PerPose", "Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "at_pose", "PoseAnswers", "analyse_poses"]
 
@@ -252,7 +252,7 @@ def _levels(node: Node) -> list[list[tuple[Node, list[Node]]]]:
     stack: list[tuple[Node, bool]] = [(node, False)]
     while stack:
         n, ready = stack.pop()
-        children = [] if type(n) is JointNode else _composite_children(n)
+        children = [c for c in _children(n) if isinstance(n, Parallel) or type(c) is not JointNode]  # with a value: composite, or of a parallel node
         if children and not ready:
             stack.append((n, True))
             stack.extend((c, False) for c in reversed(children))
@@ -263,11 +263,6 @@ def _levels(node: Node) -> list[list[tuple[Node, list[Node]]]]:
             levels.append([])
         levels[h].append((n, children))
     return levels
-
-
-def _composite_children(node: Series | Parallel | Bridge) -> list[Node]:
-    """The children of ``node`` that get a value of their own (every child of a parallel node)."""
-    return list(node.children) if isinstance(node, Parallel) else [c for c in _children(node) if type(c) is not JointNode]
 
 
 def _matrix(step: Step, values: list[Systems], twists: np.ndarray) -> tuple[np.ndarray, int | np.ndarray]:

@@ -9,6 +9,7 @@ each with the reason for its value: every number of the kind in one place.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import numbers
 import sys
@@ -65,10 +66,8 @@ class Tolerance:
             value = getattr(self, name)
             number = math.nan
             if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
-                try:
+                with contextlib.suppress(OverflowError):  # an integer beyond the floats stays NaN
                     number = float(value)
-                except OverflowError:  # an integer beyond the floats
-                    pass
             if not math.isfinite(number):
                 raise RequestError(f"{name} must be a finite number, got {shown_argument(value)}", caller="Tolerance")
             object.__setattr__(self, name, number)
