@@ -33,7 +33,7 @@ __all__ = ["svd", "left_svd", "left_svds", "singular_values", "rank"]
 _decompose = np.linalg.svd
 
 
-def _decomposed(m: np.ndarray, **options: bool) -> Any:
+def _decomposed(m: np.ndarray, **options: Any) -> Any:
     """``numpy.linalg.svd(m, **options)``; an :class:`~mobility.errors.AnalysisError` if it does not converge."""
     try:
         return _decompose(m, **options)

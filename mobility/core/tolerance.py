@@ -416,8 +416,8 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     if n <= _ROW_BY_ROW:  # a few rows: the loop of decide_rank costs less than the array operations below
         lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist() if isinstance(counts, np.ndarray) else counts
         rtol = tol.rank
-        rank, kept, dropped = zip(*(_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths))) if n else ((), (), ())
-        return RankDecisions(np.array(rank, dtype=int), np.array(kept, dtype=float), np.array(dropped, dtype=float))
+        ranks, smallest, largest = zip(*(_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths))) if n else ((), (), ())
+        return RankDecisions(np.array(ranks, dtype=int), np.array(smallest, dtype=float), np.array(largest, dtype=float))
     present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.broadcast_to(np.minimum(counts, k), (n,)))[:, None]
     length = present.sum(axis=1)
     if k == 0:
