@@ -98,10 +98,10 @@ class LimbSystem(ReadOnlyArrays):
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
         """JSON form."""
         return {"structure": self.structure, "frame": self.frame, "dof": self.dof, "idle_dof": self.idle_dof,
-                "translations": [clean_numbers(t) for t in self.translations], "rotations": [r.to_dict(scale) for r in self.rotations],
-                "twists": [clean_numbers(t, scale) for t in self.twists],
-                "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(scale) for f in self.forces]},
-                "wrenches": [clean_numbers(w, scale) for w in self.wrenches]}
+                "translations": clean_numbers(self.translations), "rotations": [r.to_dict(scale) for r in self.rotations],
+                "twists": clean_numbers(self.twists, scale),
+                "constraints": {"couples": clean_numbers(self.couples), "forces": [f.to_dict(scale) for f in self.forces]},
+                "wrenches": clean_numbers(self.wrenches, scale)}
 
 
 class NodeSystem(NamedTuple):
@@ -405,10 +405,10 @@ class Result(ReadOnlyArrays):
         counts = ("mobility", "gruebler_kutzbach", "redundant_constraints", "idle_dof", "loops", "links", "joints", "joint_freedoms",
                   "common_constraints", "gruebler_kutzbach_explanation", "structure")
         return (
-            {"name": self.name, "dof": self.dof, "pattern": self.pattern, "translations": [clean_numbers(t) for t in self.translations],
-             "rotations": [r.to_dict(s) for r in self.rotations], "twists": [clean_numbers(t, s) for t in self.twists],
-             "wrenches": [clean_numbers(w, s) for w in self.wrenches],
-             "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(s) for f in self.forces]}}
+            {"name": self.name, "dof": self.dof, "pattern": self.pattern, "translations": clean_numbers(self.translations),
+             "rotations": [r.to_dict(s) for r in self.rotations], "twists": clean_numbers(self.twists, s),
+             "wrenches": clean_numbers(self.wrenches, s),
+             "constraints": {"couples": clean_numbers(self.couples), "forces": [f.to_dict(s) for f in self.forces]}}
             | {key: getattr(self, key) for key in counts}
             | {"margin": self.margin.to_dict(), "warnings": list(self.warnings), "limbs": [limb.to_dict(s) for limb in self.limbs],
                "length_unit": self.length_unit, "reference_point": clean_numbers(self.reference_point, s)}
