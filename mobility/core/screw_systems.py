@@ -16,7 +16,8 @@ that leave them still; mobility = dimension + idle):
 All in normalised coordinates (:mod:`mobility.core.joint_screws`), every rank
 by :func:`~mobility.core.tolerance.decide_ranks` with its margin kept; a rank
 that varies over the stack pads with zero columns (docs/sweeps.md, "How it is
-fast").  Nodes go level by level from the leaves, one level's same-shape matrices to LAPACK as one stack.
+fast").  Nodes go level by level from the leaves (no recursion), one level's
+same-shape matrices to LAPACK as one stack.
 """
 
 from __future__ import annotations

@@ -35,7 +35,7 @@ class Tolerance:
     Parameters
     ----------
     rank : float
-        A singular value counts when ``s > rank * max(s_max, 1)``.
+        A singular value counts when ``s > rank * max(s_max, 1)`` (absolute below 1: the columns have unit norm).
     near_singular : float
         A kept singular value below ``near_singular * s_max`` marks the pose as
         near-singular (a warning; the count is still given).
