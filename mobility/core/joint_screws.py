@@ -48,18 +48,12 @@ class Normalisation:
     def to_world(self, screws: np.ndarray) -> np.ndarray:
         """Map screws (columns) from normalised to global coordinates."""
         s = np.asarray(screws, dtype=float).reshape(6, -1)
-        out = np.empty_like(s)
-        out[:3] = s[:3]
-        out[3:] = self.length * s[3:] + cross(self.centre[:, None], s[:3])
-        return out
+        return np.concatenate([s[:3], self.length * s[3:] + cross(self.centre[:, None], s[:3])])
 
     def from_world(self, screws: np.ndarray) -> np.ndarray:
         """Map screws (columns) from global to normalised coordinates."""
         s = np.asarray(screws, dtype=float).reshape(6, -1)
-        out = np.empty_like(s)
-        out[:3] = s[:3]
-        out[3:] = (s[3:] - cross(self.centre[:, None], s[:3])) / self.length
-        return out
+        return np.concatenate([s[:3], (s[3:] - cross(self.centre[:, None], s[:3])) / self.length])
 
     def point_to_world(self, p: np.ndarray) -> np.ndarray:
         """Map a point from normalised to global coordinates."""
@@ -150,17 +144,14 @@ def unit_twists(prismatic: np.ndarray, axes: np.ndarray, offsets: np.ndarray, pi
     return tw
 
 
-RESOLUTION = DEFAULT_TOLERANCE
-"""The thresholds of :func:`_refuse_unresolved_links` (the default policy's: the twists are tabulated once for every policy)."""
-
-
 def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float) -> None:
     """Refuse a link whose joints are written at distinct points that the analysis cannot tell apart.
 
     Points spanning less than ``inexact`` of the characteristic length (a
     pivot at 1e300, the rest near the origin) would be analysed as one point,
     no margin showing it; points apart by less than ``rank`` of their own size
-    are taken as written to coincide.
+    are taken as written to coincide.  The default policy's thresholds: the
+    twists are tabulated once for every policy.
     """
     table = mechanism.freedom_table
     if len(table.located) < 2:
@@ -173,11 +164,10 @@ def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float
     low, high = np.minimum.reduceat(points, starts, axis=0), np.maximum.reduceat(points, starts, axis=0)
     extent = (high - low).max(axis=1)
     size = np.maximum(np.abs(low), np.abs(high)).max(axis=1)
-    bad = np.flatnonzero((extent > RESOLUTION.rank * size) & (extent <= RESOLUTION.inexact * length_s))
+    bad = np.flatnonzero((extent > DEFAULT_TOLERANCE.rank * size) & (extent <= DEFAULT_TOLERANCE.inexact * length_s))
     if len(bad) == 0:
         return
     link = int(ids[starts[bad[0]]])
-    name = mechanism.links[link]
     joints = [int(j) for j, links in zip(table.located_joints, table.located_links) if link in links]
     written = ", ".join(mechanism.joints[j].name for j in joints)
     key, line = mechanism.joint_key(joints[0], "point")
@@ -187,8 +177,8 @@ def _refuse_unresolved_links(mechanism: Mechanism, scale: float, length_s: float
     where = ", ".join(f"{x / scale:.3g}" for x in located[farthest])
     raise MechanismFileError(
         key,
-        f"the joints of link {name!r} ({written}) span {extent[bad[0]] / scale:.3g}, {extent[bad[0]] / length_s:.1e} of the mechanism's size "
-        f"{length_s / scale:.3g} (set by joint {far!r} at [{where}]): finer than the analysis can resolve ({RESOLUTION.inexact:.0e} of it); bring the far joints nearer or split the mechanism, "
+        f"the joints of link {mechanism.links[link]!r} ({written}) span {extent[bad[0]] / scale:.3g}, {extent[bad[0]] / length_s:.1e} of the mechanism's size "
+        f"{length_s / scale:.3g} (set by joint {far!r} at [{where}]): finer than the analysis can resolve ({DEFAULT_TOLERANCE.inexact:.0e} of it); bring the far joints nearer or split the mechanism, "
         "or, if these joints meet at one point, write the same point for each", file=mechanism.source or "<string>", line=line)
 
 

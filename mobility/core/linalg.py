@@ -21,6 +21,8 @@ Examples
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ..errors import AnalysisError
@@ -31,8 +33,12 @@ __all__ = ["svd", "left_svd", "left_svds", "singular_values", "rank"]
 _decompose = np.linalg.svd
 
 
-def _not_converged(m: np.ndarray) -> AnalysisError:
-    return AnalysisError(f"the singular value decomposition of a {m.shape[-2]}x{m.shape[-1]} matrix did not converge (it holds a NaN or an infinity)")
+def _decomposed(m: np.ndarray, **options: Any) -> Any:
+    """``numpy.linalg.svd(m, **options)``; an :class:`~mobility.errors.AnalysisError` if it does not converge."""
+    try:
+        return _decompose(m, **options)
+    except np.linalg.LinAlgError:
+        raise AnalysisError(f"the singular value decomposition of a {m.shape[-2]}x{m.shape[-1]} matrix did not converge (it holds a NaN or an infinity)") from None
 
 
 def _as_matrix(m: np.ndarray) -> np.ndarray:
@@ -44,10 +50,7 @@ def svd(m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     m = _as_matrix(m)
     if m.size == 0:
         return np.eye(m.shape[0]), np.zeros(0), np.eye(m.shape[1])
-    try:
-        return _decompose(m)
-    except np.linalg.LinAlgError:
-        raise _not_converged(m) from None
+    return _decomposed(m)
 
 
 def left_svd(m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -60,11 +63,8 @@ def left_svd(m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     rows, cols = m.shape
     if m.size == 0:
         return np.eye(rows), np.zeros(0)
-    try:
-        # a tall matrix needs full_matrices for the complement; a wide one gets a square u without it
-        u, s, _ = _decompose(m, full_matrices=cols < rows)
-    except np.linalg.LinAlgError:
-        raise _not_converged(m) from None
+    # a tall matrix needs full_matrices for the complement; a wide one gets a square u without it
+    u, s, _ = _decomposed(m, full_matrices=cols < rows)
     return u, s
 
 
@@ -99,8 +99,7 @@ def left_svds(m: np.ndarray, *, full_v: bool = False) -> tuple[np.ndarray, np.nd
         raise AnalysisError(f"the singular value decomposition of a stack of {rows}x{cols} matrices did not converge (it holds a NaN or an infinity)") from None
 
 
-_TRANSPOSE_FROM = 64
-"""Stacks from this size solve the transposed problem of a tall matrix (see :func:`left_svds`)."""
+_TRANSPOSE_FROM = 64  # stacks from this size solve the transposed problem of a tall matrix
 
 
 def singular_values(m: np.ndarray) -> np.ndarray:
@@ -108,10 +107,7 @@ def singular_values(m: np.ndarray) -> np.ndarray:
     m = _as_matrix(m)
     if m.size == 0:
         return np.zeros(m.shape[:-2] + (min(m.shape[-2:]),))
-    try:
-        return _decompose(m, compute_uv=False)
-    except np.linalg.LinAlgError:
-        raise _not_converged(m) from None
+    return _decomposed(m, compute_uv=False)
 
 
 def rank(m: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE) -> int:

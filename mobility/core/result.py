@@ -98,10 +98,10 @@ class LimbSystem(ReadOnlyArrays):
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
         """JSON form."""
         return {"structure": self.structure, "frame": self.frame, "dof": self.dof, "idle_dof": self.idle_dof,
-                "translations": [clean_numbers(t) for t in self.translations], "rotations": [r.to_dict(scale) for r in self.rotations],
-                "twists": [clean_numbers(t, scale) for t in self.twists],
-                "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(scale) for f in self.forces]},
-                "wrenches": [clean_numbers(w, scale) for w in self.wrenches]}
+                "translations": clean_numbers(self.translations), "rotations": [r.to_dict(scale) for r in self.rotations],
+                "twists": clean_numbers(self.twists, scale),
+                "constraints": {"couples": clean_numbers(self.couples), "forces": [f.to_dict(scale) for f in self.forces]},
+                "wrenches": clean_numbers(self.wrenches, scale)}
 
 
 class NodeSystem(NamedTuple):
@@ -132,15 +132,10 @@ class ResultDetail(Protocol):
     topology: Topology
 
     def node_systems(self) -> dict[Node, NodeSystem]: ...
-
     def twist_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]: ...
-
     def wrench_form(self) -> tuple[np.ndarray, tuple[ScrewAxis, ...], np.ndarray]: ...
-
     def limbs(self) -> tuple[LimbSystem, ...]: ...
-
     def common_constraints(self) -> int: ...
-
     def common_motion(self) -> str: ...
 
 
@@ -182,11 +177,6 @@ class Result(ReadOnlyArrays):
         The end effector's centre (centroid of its joints' points): axes are
         reported through their point nearest to it, so an axis away from it
         (or a non-zero pitch) shows how rotating moves this point.
-
-    The screws (:attr:`translations`, :attr:`rotations`, :attr:`twists`,
-    :attr:`couples`, :attr:`forces`, :attr:`wrenches`), :attr:`limbs`,
-    :attr:`common_constraints`, :attr:`mechanism`, :attr:`topology` and
-    :attr:`node_systems` are properties.
 
     Examples
     --------
@@ -305,8 +295,7 @@ class Result(ReadOnlyArrays):
     @property
     def precision(self) -> float | None:
         """The precision of the mechanism's file, relative to its size (:attr:`Mechanism.precision`); ``None``: exact."""
-        mechanism = getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: exact
-        return None if mechanism is None else mechanism.precision
+        return getattr(getattr(self.detail, "mechanism", None), "precision", None)  # a result rebuilt without its mechanism: exact
 
     @property
     def rank_threshold(self) -> float:
@@ -345,14 +334,13 @@ class Result(ReadOnlyArrays):
         """Why the Grübler–Kutzbach count differs from the mobility (empty when it does not)."""
         if self.redundant_constraints == 0:
             return ""
-        rank = self.joint_freedoms - self.mobility
         redundant = self.redundant_constraints
         loops = "the 1 independent loop imposes" if self.loops == 1 else f"each of the {self.loops} independent loops imposes"
         coupled = len(getattr(getattr(self.detail, "mechanism", None), "couplings", ()))  # one constraint each (a result rebuilt without its mechanism: none)
         by_couplings = f" and each of the {coupled} couplings of joints 1" if coupled > 1 else " and the coupling of joints 1" if coupled else ""
         text = (
             f"Grübler–Kutzbach assumes {loops} 6 independent "
-            f"constraints{by_couplings} ({6 * self.loops + coupled} in all); the loop-closure equations have rank {rank}, so "
+            f"constraints{by_couplings} ({6 * self.loops + coupled} in all); the loop-closure equations have rank {self.joint_freedoms - self.mobility}, so "
             f"{redundant} constraint{' is' if redundant == 1 else 's are'} redundant and the mobility is "
             f"{self.gruebler_kutzbach} + {redundant} = {self.mobility}."
         )
@@ -369,12 +357,11 @@ class Result(ReadOnlyArrays):
                 f"{kind}: {'the loop loses' if self.loops == 1 else 'each loop loses'} {counted(each, 'equation')}."
             )
         rest = self.redundant_constraints - common
-        inner = [(node, loops, redundant - self.common_constraints * loops) for node, loops, redundant in self._inner_loops()]
-        inner = [(node, loops, beyond) for node, loops, beyond in inner if beyond > 0]
-        within = min(sum(beyond for _, _, beyond in inner), rest)
+        inner = self._inner_loops()
+        within = min(sum(beyond for _, beyond in inner), rest)
         if within > 0:
-            shown = [describe(node) for node, _, _ in inner[:3]] + ([f"{len(inner) - 3} more"] if len(inner) > 3 else [])
-            counts = sorted({beyond for _, _, beyond in inner})
+            shown = [describe(node) for node, _ in inner[:3]] + ([f"{len(inner) - 3} more"] if len(inner) > 3 else [])
+            counts = sorted({beyond for _, beyond in inner})
             share = f"{counts[0]} each" if len(counts) == 1 else "between them"
             more = " more" if common else ""
             text += (
@@ -388,17 +375,15 @@ class Result(ReadOnlyArrays):
             text += f" {rest} come{'s' if rest == 1 else ''} from the special geometry of the {other}loops (parallel or intersecting axes, repeated constraints of parallel limbs)."
         return text
 
-    def _inner_loops(self) -> list[tuple[Node, int, int]]:
-        """``(node, loops, redundant constraints)`` of each outermost sub-network of loops below the top (a parallelogram in a limb): its mobility less its own Grübler–Kutzbach count."""
-        root = self.topology.root
-        if not isinstance(root, (Series, Parallel)):
-            return []
-        mechanism = getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: nothing to attribute
-        if mechanism is None:
+    def _inner_loops(self) -> list[tuple[Node, int]]:
+        """``(node, redundant)`` of each outermost sub-network of loops below the top (a parallelogram in a limb) with redundant > 0:
+        its mobility less its own Grübler–Kutzbach count and less :attr:`common_constraints` per loop."""
+        root, mechanism = self.topology.root, getattr(self.detail, "mechanism", None)  # a result rebuilt without its mechanism: nothing to attribute
+        if mechanism is None or not isinstance(root, (Series, Parallel)):
             return []
         systems = self.node_systems
         joints = mechanism.joints
-        out: list[tuple[Node, int, int]] = []
+        out: list[tuple[Node, int]] = []
         stack: deque[Node] = deque(root.children)  # in tree order, without recursion
         while stack:
             node = stack.popleft()
@@ -409,32 +394,27 @@ class Result(ReadOnlyArrays):
                 links = {link for j in members for link in joints[j].links}
                 loops = len(members) - len(links) + 1
                 count = 6 * (len(links) - 1 - len(members)) + sum(joints[j].dof for j in members)
-                if loops > 0:
-                    out.append((node, loops, systems[node].mobility - count))
+                beyond = systems[node].mobility - count - self.common_constraints * loops
+                if loops > 0 and beyond > 0:
+                    out.append((node, beyond))
         return out
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON form: the spec's Result keys plus the whole-mechanism numbers."""
+        """The JSON form: the spec's Result keys plus the whole-mechanism numbers (``precision`` when the file's would raise the threshold)."""
         s = self.length_scale
         counts = ("mobility", "gruebler_kutzbach", "redundant_constraints", "idle_dof", "loops", "links", "joints", "joint_freedoms",
                   "common_constraints", "gruebler_kutzbach_explanation", "structure")
         return (
-            {"name": self.name, "dof": self.dof, "pattern": self.pattern, "translations": [clean_numbers(t) for t in self.translations],
-             "rotations": [r.to_dict(s) for r in self.rotations], "twists": [clean_numbers(t, s) for t in self.twists],
-             "wrenches": [clean_numbers(w, s) for w in self.wrenches],
-             "constraints": {"couples": [clean_numbers(c) for c in self.couples], "forces": [f.to_dict(s) for f in self.forces]}}
+            {"name": self.name, "dof": self.dof, "pattern": self.pattern, "translations": clean_numbers(self.translations),
+             "rotations": [r.to_dict(s) for r in self.rotations], "twists": clean_numbers(self.twists, s),
+             "wrenches": clean_numbers(self.wrenches, s),
+             "constraints": {"couples": clean_numbers(self.couples), "forces": [f.to_dict(s) for f in self.forces]}}
             | {key: getattr(self, key) for key in counts}
             | {"margin": self.margin.to_dict(), "warnings": list(self.warnings), "limbs": [limb.to_dict(s) for limb in self.limbs],
                "length_unit": self.length_unit, "reference_point": clean_numbers(self.reference_point, s)}
-            | self._precision_dict()
+            | ({"precision": {"value": self.precision, "rank_threshold": self.rank_threshold,
+                              "raised": self.rank_threshold == file_tolerance(self.precision).rank}} if self.precision_summary else {})
         )
-
-    def _precision_dict(self) -> dict[str, Any]:
-        """The ``precision`` key of the JSON form, when the file's precision changes the threshold (absent for an exact file)."""
-        if not self.precision_summary:
-            return {}
-        own = file_tolerance(self.precision).rank
-        return {"precision": {"value": self.precision, "rank_threshold": self.rank_threshold, "raised": self.rank_threshold == own}}
 
 
 def require_result(value: object, caller: str) -> Result:
@@ -469,13 +449,6 @@ def require_result_of(mechanism: Mechanism, value: object, caller: str) -> Resul
     return result
 
 
-def _same_description(a: object, b: Mechanism) -> bool:
-    """Whether ``a`` is a mechanism equal to ``b`` but perhaps for where it was read from (one file by two paths, or a copy)."""
-    if not isinstance(a, Mechanism):
-        return False
-    return all(getattr(a, f.name) == getattr(b, f.name) for f in dataclass_fields(Mechanism) if f.compare and f.name != "source")
-
-
 def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) -> None:
     """A :class:`~mobility.errors.RequestError` naming ``caller`` when ``result`` analysed another mechanism than ``mechanism``.
 
@@ -493,7 +466,10 @@ def require_same_mechanism(mechanism: Mechanism, result: object, caller: str) ->
     mobility.errors.RequestError: plot_graph: the result is of another mechanism than 'planar four-bar' (of the same name, with other joints, pose or fields); pass the result of analysing this one, or none
     """
     analysed = getattr(result, "mechanism", None)
-    if analysed is not None and analysed is not mechanism and not _same_description(analysed, mechanism):
+    if analysed is None or analysed is mechanism:
+        return
+    same = (getattr(analysed, f.name) == getattr(mechanism, f.name) for f in dataclass_fields(Mechanism) if f.compare and f.name != "source")
+    if not isinstance(analysed, Mechanism) or not all(same):  # equal but perhaps for where it was read from
         name = clipped(repr(mechanism.name), 60)
         other = clipped(repr(getattr(analysed, "name", analysed)), 60)
         which = f"than {name} (of the same name, with other joints, pose or fields)" if other == name else f"({other}) than {name}"

@@ -1,9 +1,8 @@
-"""Screw systems of a decomposed mechanism at a stack of poses: the series/parallel route.
+"""Screw systems of a decomposed mechanism at a stack of poses: the series/parallel route (README, "How it works").
 
-The one engine of :func:`mobility.analyze`, the sweeps and the actuation checks
-(README, "How it works").  Each node of the :mod:`~mobility.core.topology` tree
-gets, pose by pose, the twist system between its two end links and its *idle*
-count (inner motions that leave them still; mobility = dimension + idle):
+Each node of the :mod:`~mobility.core.topology` tree gets, pose by pose, the
+twist system between its two end links and its *idle* count (inner motions
+that leave them still; mobility = dimension + idle):
 
 * joint: the span of its twists, idle 0;
 * series: the span of the children's twists; idle = children's + (stacked - dimension);
@@ -15,10 +14,10 @@ count (inner motions that leave them still; mobility = dimension + idle):
   solutions that leave the target still.
 
 All in normalised coordinates (:mod:`mobility.core.joint_screws`), every rank
-by :func:`~mobility.core.tolerance.decide_ranks` with its margin kept.  A rank
-that varies over the stack pads ``(N, 6, k)`` arrays with zero columns (none
-when it does not; docs/sweeps.md, "How it is fast"); nodes go level by level
-from the leaves (no recursion), one level's same-shape matrices to LAPACK as one stack.
+by :func:`~mobility.core.tolerance.decide_ranks` with its margin kept; a rank
+that varies over the stack pads with zero columns (docs/sweeps.md, "How it is
+fast").  Nodes go level by level from the leaves (no recursion), one level's
+same-shape matrices to LAPACK as one stack.
 """
 
 from __future__ import annotations
@@ -32,7 +31,7 @@ from .joint_screws import per_object_cache
 from .linalg import left_svds, singular_values
 from .screws import SWAP_ROWS, pattern_of
 from .tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
-from .topology import Bridge, JointNode, Node, Parallel, Series, Topology
+from .topology import Bridge, JointNode, Node, Parallel, Topology, _children
 
 __all__ = ["PerPose", "Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "at_pose", "PoseAnswers", "analyse_poses"]
 
@@ -237,9 +236,8 @@ def _step(node: Node, children: list[Node], offsets: tuple[int, ...]) -> Step:
     for c in (node,) if type(node) is JointNode else node.children:
         if type(c) is JointNode:
             lo, hi = offsets[c.index], offsets[c.index + 1]
-            last = parts[-1] if parts else None
-            if isinstance(last, slice) and last.stop == lo:
-                parts[-1] = slice(last.start, hi)
+            if parts and isinstance(parts[-1], slice) and parts[-1].stop == lo:  # consecutive joints: one block
+                parts[-1] = slice(parts[-1].start, hi)
             else:
                 parts.append(slice(lo, hi))
         else:
@@ -255,7 +253,7 @@ def _levels(node: Node) -> list[list[tuple[Node, list[Node]]]]:
     stack: list[tuple[Node, bool]] = [(node, False)]
     while stack:
         n, ready = stack.pop()
-        children = [] if type(n) is JointNode else _composite_children(n)
+        children = [c for c in _children(n) if isinstance(n, Parallel) or type(c) is not JointNode]  # with a value: composite, or of a parallel node
         if children and not ready:
             stack.append((n, True))
             stack.extend((c, False) for c in reversed(children))
@@ -266,18 +264,6 @@ def _levels(node: Node) -> list[list[tuple[Node, list[Node]]]]:
             levels.append([])
         levels[h].append((n, children))
     return levels
-
-
-def _composite_children(node: Series | Parallel | Bridge) -> list[Node]:
-    """The children of ``node`` that get a value of their own (every child of a parallel node)."""
-    if isinstance(node, Parallel):
-        return list(node.children)
-    children = [c for _, _, c in node.edges] if isinstance(node, Bridge) else node.children
-    return [c for c in children if type(c) is not JointNode]
-
-
-def _joint(twists: np.ndarray, offsets: Sequence[int], index: int) -> np.ndarray:
-    return twists[:, :, offsets[index] : offsets[index + 1]]
 
 
 def _matrix(step: Step, values: list[Systems], twists: np.ndarray) -> tuple[np.ndarray, int | np.ndarray]:
@@ -306,7 +292,7 @@ def _bridge(node: Bridge, values: list[Systems], twists: np.ndarray, offsets: Se
     real: list[PerPose] = []
     for _, _, child in node.edges:
         if type(child) is JointNode:
-            bases.append(_joint(twists, offsets, child.index))
+            bases.append(twists[:, :, offsets[child.index] : offsets[child.index + 1]])
             real.append(offsets[child.index + 1] - offsets[child.index])
         else:
             value = next(composite)
@@ -371,14 +357,9 @@ def subtree_values(node: Node, value: Systems) -> Iterator[tuple[Node, Systems |
         if isinstance(n, JointNode):
             continue
         assert v is not None  # only a joint inside a series or a bridge has no value
-        children = [c for _, _, c in n.edges] if isinstance(n, Bridge) else list(n.children)
-        paired: list[tuple[Node, Systems | None]]
-        if isinstance(n, Parallel):  # a parallel node keeps every child's value
-            paired = list(zip(children, v.children))
-        else:  # series and bridge nodes keep the values of their composite children only
-            values = iter(v.children)
-            paired = [(c, None if isinstance(c, JointNode) else next(values)) for c in children]
-        stack.extend(reversed(paired))
+        values = iter(v.children)
+        every = isinstance(n, Parallel)  # a parallel node keeps every child's value, others their composite children's only
+        stack.extend(reversed([(c, next(values) if every or not isinstance(c, JointNode) else None) for c in _children(n)]))
 
 
 def direction_ranks(basis: np.ndarray, dim: PerPose, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecisions:

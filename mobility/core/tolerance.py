@@ -1,22 +1,15 @@
-"""The one tolerance policy of the package.
+"""The one tolerance policy of the package (README, "How it works").
 
-Every rank decision goes through :func:`decide_rank`, on matrices in
-*normalised coordinates* (lengths over the characteristic length ``L``, from
-the centre ``c``: :func:`characteristic_scale`), so that scaling the file or
-moving the mechanism rigidly changes no count.  A singular value counts when
-it exceeds ``rtol`` times the largest (and ``rtol`` absolutely: columns have
-unit norm).  Each decision records its *margin*, the smallest kept and the
-largest dropped value relative to the largest: near a singularity, or
-geometry only nearly special.  Both are reported, never hidden.
-
-The fixed constants that decide no count (checks of a description, solver
-stopping rules, ties of readable forms) stand here too, each with the reason
-for its value.  One module, longer than most, because its point is that every
-number of the kind stands in one place.
+Every rank decision goes through :func:`decide_rank` or :func:`decide_ranks`,
+on matrices in *normalised coordinates* (:func:`characteristic_scale`), and
+keeps its *margin*.  The fixed constants that decide no count (checks of a
+description, solver stopping rules, ties of readable forms) stand here too,
+each with the reason for its value: every number of the kind in one place.
 """
 
 from __future__ import annotations
 
+import contextlib
 import math
 import numbers
 import sys
@@ -42,7 +35,7 @@ class Tolerance:
     Parameters
     ----------
     rank : float
-        A singular value counts when ``s > rank * max(s_max, 1)``.
+        A singular value counts when ``s > rank * max(s_max, 1)`` (absolute below 1: the columns have unit norm).
     near_singular : float
         A kept singular value below ``near_singular * s_max`` marks the pose as
         near-singular (a warning; the count is still given).
@@ -73,10 +66,8 @@ class Tolerance:
             value = getattr(self, name)
             number = math.nan
             if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
-                try:
+                with contextlib.suppress(OverflowError):  # an integer beyond the floats stays NaN
                     number = float(value)
-                except OverflowError:  # an integer beyond the floats
-                    pass
             if not math.isfinite(number):
                 raise RequestError(f"{name} must be a finite number, got {shown_argument(value)}", caller="Tolerance")
             object.__setattr__(self, name, number)
@@ -319,8 +310,7 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None, 
     other = max(_largest(lengths), pitch)
     scale = binary_scale(pts, other)
     if n == 0:
-        centre = np.zeros(3)
-        radius = 0.0
+        centre, radius = np.zeros(3), 0.0
     else:
         scaled = pts * scale
         centre = scaled.sum(axis=0) / n
@@ -329,9 +319,7 @@ def characteristic_scale(points: np.ndarray, lengths: np.ndarray | None = None, 
         centre /= scale
     if radius / scale > COINCIDENT_POINTS * float(np.abs(centre).max(initial=0.0)):
         return centre, float(_balanced(np.array(radius), pitch * scale)) / scale
-    if other > 0.0:
-        return centre, other
-    return centre, 1.0
+    return centre, other if other > 0.0 else 1.0
 
 
 def _largest(lengths: np.ndarray | None) -> float:
@@ -406,7 +394,6 @@ class RankDecisions(NamedTuple):
 
 
 _ROW_BY_ROW = 8
-"""Up to this many rows, :func:`decide_ranks` decides row by row (the same numbers, less overhead)."""
 
 
 def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: int | Sequence[int] | np.ndarray | None = None) -> RankDecisions:
@@ -429,10 +416,8 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     if n <= _ROW_BY_ROW:  # a few rows: the loop of decide_rank costs less than the array operations below
         lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist() if isinstance(counts, np.ndarray) else counts
         rtol = tol.rank
-        if n == 0:
-            return RankDecisions(np.zeros(0, dtype=int), np.ones(0), np.zeros(0))
-        columns = tuple(zip(*[_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths)]))  # rank (int), kept, dropped
-        return RankDecisions(np.array(columns[0]), np.array(columns[1]), np.array(columns[2]))
+        ranks, smallest, largest = zip(*(_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths))) if n else ((), (), ())
+        return RankDecisions(np.array(ranks, dtype=int), np.array(smallest, dtype=float), np.array(largest, dtype=float))
     present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.broadcast_to(np.minimum(counts, k), (n,)))[:, None]
     length = present.sum(axis=1)
     if k == 0:
