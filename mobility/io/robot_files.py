@@ -262,8 +262,10 @@ def with_close_pairs(tree: RobotTree, pairs: Iterable[tuple[str, str]]) -> Robot
 
 
 def with_closures_file(tree: RobotTree, path: str | Path) -> RobotTree:
-    """The tree with the closing joints of a side file: ``joints`` as in a mechanism file, their ``links`` body names, a
-    ``frame`` naming a body whose frame at the pose the geometry is written in (default: global)::
+    """The tree with the closing joints of a side file.
+
+    The file holds ``joints`` as in a mechanism file, their ``links`` body names, a ``frame`` naming a body whose
+    frame at the pose the geometry is written in (default: global)::
 
           # closures of four_bar.urdf
           joints:

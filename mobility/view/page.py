@@ -148,7 +148,7 @@ PLOTLY_JSON = "application/vnd.plotly.v1+json"
 def offline_mimebundle(figure: Any) -> dict[str, Any]:
     """The forms of ``figure`` (mime type -> data) that plotly's default renderers name, none of them fetching anything.
 
-    HTML renderers (``notebook``, ``iframe``...) give way to :func:`figure_html`, which also goes along
+    HTML renderers (``notebook``, ``iframe``...) give way to :func:`~mobility.view.page.figure_html`, which also goes along
     with the JSON form; other renderers give their own form, those opening a browser none.
     """
     import plotly.io as pio

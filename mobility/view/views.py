@@ -190,7 +190,10 @@ def poses_view(frames: Iterable[ViewFrame | tuple], *, max_poses: int = MAX_POSE
     notes : iterable of str
         Further lines of the header, true of every pose.
 
-    A :class:`RequestError` for frames that are none, too many, or not a mechanism with its own result, or a bad argument.
+    Raises
+    ------
+    RequestError
+        For frames that are none, too many, or not a mechanism with its own result, or a bad argument.
 
     Examples
     --------

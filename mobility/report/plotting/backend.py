@@ -137,7 +137,7 @@ def written_file_name(path: object, what: str) -> Path:
 
 
 def picture_path(path: str | Path, what: str = "") -> Path:
-    """``path`` as a :class:`~pathlib.Path`, once its suffix names a type :func:`save_figure` writes (else a :class:`PlotFormatError`).
+    """``path`` as a :class:`~pathlib.Path`, once its suffix names a type :func:`save_figure` writes (else a :class:`~mobility.errors.PlotFormatError`).
 
     A command line calls it before any work, so that a bad name fails at once; ``what`` is written before the path in the message.
 

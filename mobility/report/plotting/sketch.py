@@ -84,7 +84,7 @@ ROUND_OFF = DEFAULT_TOLERANCE.round_off
 
 @dataclass(frozen=True, eq=False)
 class Sketch(ReadOnlyArrays):
-    """Where each joint is drawn, and the size of the scene (drawing units: the file's lengths times ``scale``, :func:`drawing_scale`).
+    """Where each joint is drawn, and the size of the scene (drawing units: the file's lengths times ``scale``, :func:`~mobility.report.plotting.sketch.drawing_scale`).
 
     ``names``, ``types``, ``points`` (shape (J, 3), global frame) and ``located`` (True where the file gives the
     ``point``): the joints, in the mechanism's order; ``link_joints``: link name -> indices of its joints;
