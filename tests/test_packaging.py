@@ -73,7 +73,7 @@ def test_the_library_is_inside_the_package_and_the_clone_paths_name_the_same_fil
     package = Path(mobility.__file__).resolve().parent
     assert library.MECHANISMS == package / "library" / "mechanisms" and library.FLEXURE == package / "library" / "examples" / "flexure"
     clone = sorted(p.stem for p in (ROOT / "mechanisms").glob("*.yaml"))
-    assert list(library.names()) == clone and len(clone) == 63
+    assert list(library.names()) == clone and len(clone) == 64
     assert library.flexure_names() == tuple(sorted(p.stem for p in (ROOT / "examples" / "flexure").glob("*.yaml"))) == ("three_rod",)
     for name in library.names():
         assert library.path(name).read_bytes() == (ROOT / "mechanisms" / f"{name}.yaml").read_bytes()
