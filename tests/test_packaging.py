@@ -73,7 +73,7 @@ def test_the_library_is_inside_the_package_and_the_clone_paths_name_the_same_fil
     package = Path(mobility.__file__).resolve().parent
     assert library.MECHANISMS == package / "library" / "mechanisms" and library.FLEXURE == package / "library" / "examples" / "flexure"
     clone = sorted(p.stem for p in (ROOT / "mechanisms").glob("*.yaml"))
-    assert list(library.names()) == clone and len(clone) == 63
+    assert list(library.names()) == clone and len(clone) == 64
     assert library.flexure_names() == tuple(sorted(p.stem for p in (ROOT / "examples" / "flexure").glob("*.yaml"))) == ("three_rod",)
     for name in library.names():
         assert library.path(name).read_bytes() == (ROOT / "mechanisms" / f"{name}.yaml").read_bytes()
@@ -105,7 +105,7 @@ def test_library_path_refuses_what_is_not_one_of_its_names(name, message):
 def test_import_mobility_reaches_the_library():
     child = subprocess.run([sys.executable, "-c", "import mobility; print(mobility.library.path('bennett').name, len(mobility.library.names()))"],
                            capture_output=True, text=True, timeout=120, cwd=ROOT / "docs")
-    assert (child.returncode, child.stdout, child.stderr) == (0, "bennett.yaml 63\n", "")
+    assert (child.returncode, child.stdout, child.stderr) == (0, "bennett.yaml 64\n", "")
     assert "library" in mobility.__all__
 
 
@@ -114,15 +114,15 @@ def test_check_library_checks_every_bundled_file(capsys):
     report = json.loads(out)
     assert (status, err) == (0, "")
     assert [r["path"] for r in report["results"]] == [str(p) for p in library.paths()]
-    assert {r["status"] for r in report["results"]} == {"pass"} and len(report["results"]) == 64
+    assert {r["status"] for r in report["results"]} == {"pass"} and len(report["results"]) == 65
     status, out, _ = run(capsys, "check", "--library")
-    assert status == 0 and out.rstrip().endswith("64 passed, 0 failed, 0 without expected block, 0 errors")
+    assert status == 0 and out.rstrip().endswith("65 passed, 0 failed, 0 without expected block, 0 errors")
 
 
 def test_check_library_with_paths_of_ones_own_and_without_anything(capsys, write_yaml):
     wrong = write_yaml((ROOT / "mechanisms" / "bennett.yaml").read_text().replace("  dof: 1\n", "  dof: 2\n"), "wrong.yaml")
     status, out, _ = run(capsys, "check", "--library", wrong)
-    assert status == 1 and out.rstrip().endswith("64 passed, 1 failed, 0 without expected block, 0 errors")
+    assert status == 1 and out.rstrip().endswith("65 passed, 1 failed, 0 without expected block, 0 errors")
     assert run(capsys, "check") == (2, "", "mobility: check: give a mechanism file or folder (PATH), or --library for the bundled library\n")
 
 
