@@ -14,7 +14,7 @@ Examples
 >>> mobility.analyze(mobility.load(mobility.library.path("bennett"))).pattern
 '1R'
 >>> len(names()), names()[:3], flexure_names()
-(63, ('3crr', '3prs', '3prs_tilted'), ('three_rod',))
+(64, ('3crr', '3prs', '3prs_tilted'), ('three_rod',))
 >>> [folder.name for folder in folders()]
 ['mechanisms', 'flexure']
 >>> path("benett")
@@ -22,7 +22,7 @@ Traceback (most recent call last):
     ...
 mobility.errors.RequestError: library.path: no file named 'benett' in the bundled library (did you mean 'bennett'?); \
 names: 3crr, 3prs, 3prs_tilted, 3rps, 3ruu, 3upu_singular, 3upu_wrist, 4puu, 4puu_singular, 4ruu_schoenflies, 6sps, 6ups, \
-... (64 in all)
+... (65 in all)
 """
 
 from __future__ import annotations
@@ -87,7 +87,7 @@ def paths() -> tuple[Path, ...]:
     Examples
     --------
     >>> len(paths()), paths()[-1].name
-    (64, 'three_rod.yaml')
+    (65, 'three_rod.yaml')
     """
     return tuple(MECHANISMS / f"{n}{SUFFIX}" for n in names()) + tuple(FLEXURE / f"{n}{SUFFIX}" for n in flexure_names())
 
