@@ -30,7 +30,7 @@ from .couplings import coupling_rows
 from .joint_screws import per_object_cache
 from .linalg import left_svds, singular_values
 from .screws import SWAP_ROWS, pattern_of
-from .tolerance import DEFAULT_TOLERANCE, RankDecisions, Tolerance, decide_ranks
+from .tolerance import DEFAULT_TOLERANCE, ROW_BY_ROW, Tolerance, decide_few, decide_ranks
 from .topology import Bridge, JointNode, Node, Parallel, Topology, _children
 
 __all__ = ["PerPose", "Systems", "Margins", "evaluate", "subtree_values", "span", "direction_ranks", "per_pose", "at_pose", "PoseAnswers", "analyse_poses"]
@@ -72,26 +72,28 @@ class Margins:
     Examples
     --------
     >>> m = Margins(2)
-    >>> m.add(RankDecisions(np.array([2, 1, 1, 1]), np.array([0.5, 1.0, 0.9, 0.2]), np.array([1e-16, 0.0, 1e-13, 0.0])))
+    >>> m.add(np.array([0.5, 1.0, 0.9, 0.2]), np.array([1e-16, 0.0, 1e-13, 0.0]))
     >>> m.smallest_kept.tolist(), m.largest_dropped.tolist()
     ([0.5, 0.2], [1e-13, 0.0])
     """
 
     def __init__(self, count: int) -> None:
         self.count = count
-        self._kept: list[np.ndarray] = []
-        self._dropped: list[np.ndarray] = []
+        self._kept: list[np.ndarray | Sequence[float]] = []
+        self._dropped: list[np.ndarray | Sequence[float]] = []
 
-    def add(self, d: RankDecisions) -> None:
-        """Take decisions into account: one per pose, or several stacks of one per pose, stack after stack."""
-        self._kept.append(d.smallest_kept)
-        self._dropped.append(d.largest_dropped)
+    def add(self, kept: np.ndarray | Sequence[float], dropped: np.ndarray | Sequence[float]) -> None:
+        """Take decisions into account, by their smallest kept and largest dropped values: one per pose, or several stacks of one per pose, stack after stack."""
+        self._kept.append(kept)
+        self._dropped.append(dropped)
 
     @property
     def smallest_kept(self) -> np.ndarray:
         """The smallest kept singular value (relative) of each pose, 1.0 where none was kept."""
         if not self._kept:
             return np.ones(self.count)
+        if self.count == 1:  # one pose: the least of a few numbers, in Python (less overhead than joining arrays)
+            return np.array([min([min(_numbers(k)) for k in self._kept])])
         return np.concatenate(self._kept).reshape(-1, self.count).min(axis=0)
 
     @property
@@ -99,7 +101,30 @@ class Margins:
         """The largest dropped singular value (relative) of each pose, 0.0 where none was dropped."""
         if not self._dropped:
             return np.zeros(self.count)
+        if self.count == 1:
+            return np.array([max([max(_numbers(d)) for d in self._dropped])])
         return np.concatenate(self._dropped).reshape(-1, self.count).max(axis=0)
+
+
+def _numbers(values: np.ndarray | Sequence[float]) -> Sequence[float]:
+    return values.tolist() if isinstance(values, np.ndarray) else values
+
+
+def _decided(s: np.ndarray, tol: Tolerance, counts: PerPose | Sequence[int], margins: Margins) -> tuple[PerPose, int, int]:
+    """The ranks of a stack from its singular values ``s`` (an int when every matrix has the same), the least and the greatest; the margins go to ``margins``.
+
+    A few matrices are decided in Python (:func:`~mobility.core.tolerance.decide_few`):
+    at one pose no array is built for numbers read one by one.
+    """
+    if len(s) <= ROW_BY_ROW:
+        ranks, kept, dropped = decide_few(s, tol, counts)
+        margins.add(kept, dropped)
+        low, high = min(ranks), max(ranks)
+        return (low if low == high else np.array(ranks)), low, high
+    d = decide_ranks(s, tol, counts)
+    margins.add(d.smallest_kept, d.largest_dropped)
+    low, high = int(d.rank.min()), int(d.rank.max())
+    return (low if low == high else d.rank), low, high
 
 
 def _extremes(rank: np.ndarray) -> tuple[int, int]:
@@ -137,10 +162,9 @@ def span(m: np.ndarray, counts: PerPose, tol: Tolerance = DEFAULT_TOLERANCE, mar
     if len(m) == 0:
         return np.zeros((0, 6, 0)), np.zeros((0, 6, 0)), np.zeros(0, dtype=int)
     u, s, _ = left_svds(m)
-    d = decide_ranks(s, tol, counts)
-    if margins is not None:
-        margins.add(d)
-    return (*_split(u, u[:, SWAP_ROWS], d.rank, *_extremes(d.rank)), d.rank)
+    rank, low, high = _decided(s, tol, counts, Margins(len(m)) if margins is None else margins)
+    ranks = per_pose(rank, len(m))
+    return (*_split(u, u.take(SWAP_ROWS, axis=1), ranks, low, high), ranks)
 
 
 def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolerance = DEFAULT_TOLERANCE, margins: Margins | None = None) -> Systems:
@@ -177,11 +201,9 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
         for members in same_shape.values():
             stack, stack_counts = _stacked(members, count)
             u, s, _ = left_svds(stack)
-            d = decide_ranks(s, tol, stack_counts)
-            margins.add(d)
-            low, high = _extremes(d.rank)
+            rank, low, high = _decided(s, tol, stack_counts, margins)
             if low == high:  # one rank at every pose: the spans of the whole stack at once, the rank an int
-                span_, reciprocal = u[:, :, :low], u[:, SWAP_ROWS, low:]
+                span_, reciprocal = u[:, :, :low], u.take(SWAP_ROWS, axis=1)[:, :, low:]  # take, then a view: less overhead than fancy indexing
                 if len(members) == 1:
                     values[id(members[0][0].node)] = _value(members[0][0].node, members[0][1], span_, reciprocal, low, members[0][3])
                     continue
@@ -190,8 +212,8 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
                 if low == high:
                     values[id(step.node)] = _value(step.node, kids, span_[rows], reciprocal[rows], low, c)
                 else:  # each node as wide as its own greatest rank
-                    rank = d.rank[rows]
-                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], u[rows, SWAP_ROWS], rank, *_extremes(rank)), rank, c)
+                    own = cast(np.ndarray, rank)[rows]
+                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], u[rows, SWAP_ROWS], own, *_extremes(own)), own, c)
     return values[id(node)]
 
 
@@ -319,15 +341,13 @@ def _bridge(node: Bridge, values: list[Systems], twists: np.ndarray, offsets: Se
     real_cols = n_link + sum(real, np.zeros(count, dtype=int))
     _, s, vt = left_svds(a, full_v=True)
     assert vt is not None  # asked for (full_v)
-    d = decide_ranks(s, tol, real_cols)
-    margins.add(d)
+    rank, low, high = _decided(s, tol, real_cols, margins)
     # the null vectors; a padding column's own (it moves no link) leaves the target's span as it is
-    low, high = _extremes(d.rank)
     solutions = np.swapaxes(vt[:, low:], 1, 2)
     if high != low:
-        solutions = solutions * (np.arange(low, vt.shape[1]) >= d.rank[:, None])[:, None, :]
+        solutions = solutions * (np.arange(low, vt.shape[1]) >= cast(np.ndarray, rank)[:, None])[:, None, :]
     target = solutions[:, col_of[node.target] : col_of[node.target] + 6]
-    real_solutions = real_cols - d.rank
+    real_solutions = real_cols - rank
     basis, wrenches, rank = span(target, real_solutions, tol, margins)
     idle = sum((v.idle for v in values), np.zeros(count, dtype=int)) + real_solutions - rank
     return Systems(basis, rank, wrenches, idle, tuple(values))
@@ -362,23 +382,24 @@ def subtree_values(node: Node, value: Systems) -> Iterator[tuple[Node, Systems |
         stack.extend(reversed([(c, next(values) if every or not isinstance(c, JointNode) else None) for c in _children(n)]))
 
 
-def direction_ranks(basis: np.ndarray, dim: PerPose, tol: Tolerance = DEFAULT_TOLERANCE) -> RankDecisions:
+def direction_ranks(basis: np.ndarray, dim: PerPose, tol: Tolerance = DEFAULT_TOLERANCE, margins: Margins | None = None) -> np.ndarray:
     """How many independent directions (rotations, for a twist system) each orthonormal screw basis of a stack holds.
 
     The rank of the direction parts ``basis[:, :3]`` (singular values at most
     1: the threshold is absolute), as :func:`mobility.core.screws.free_vector_subspace`
-    decides it; the margin says how near a screw is to a free vector.
+    decides it; the margin, which ``margins`` collects, says how near a screw is to a free vector.
 
     Examples
     --------
     >>> cylindrical = np.zeros((1, 6, 2)); cylindrical[0, 2, 0] = cylindrical[0, 5, 1] = 1.0
-    >>> direction_ranks(cylindrical, np.array([2])).rank.tolist()
+    >>> direction_ranks(cylindrical, np.array([2])).tolist()
     [1]
     """
     count = basis.shape[0]
-    if basis.shape[2] == 0:
-        return RankDecisions(np.zeros(count, dtype=int), np.ones(count), np.zeros(count))
-    return decide_ranks(singular_values(basis[:, :3]), tol, dim)
+    if basis.shape[2] == 0:  # no screw: nothing decided
+        return np.zeros(count, dtype=int)
+    rank, _, _ = _decided(singular_values(basis[:, :3]), tol, dim, Margins(count) if margins is None else margins)
+    return per_pose(rank, count)
 
 
 def per_pose(value: PerPose, count: int) -> np.ndarray:
@@ -462,6 +483,5 @@ def analyse_poses(topology: Topology, twists: np.ndarray, offsets: Sequence[int]
     margins = Margins(count)
     root = evaluate(topology.root, twists, offsets, tol, margins)
     detached = tuple(evaluate(n, twists, offsets, tol, margins) for n in topology.detached)
-    rotational = direction_ranks(root.basis, root.dim, tol)
-    margins.add(rotational)
-    return PoseAnswers(root, detached, rotational.rank, margins.smallest_kept, margins.largest_dropped, tol)
+    rotations = direction_ranks(root.basis, root.dim, tol, margins)
+    return PoseAnswers(root, detached, rotations, margins.smallest_kept, margins.largest_dropped, tol)

@@ -23,7 +23,7 @@ from ..errors import RequestError, shown_argument
 __all__ = ["first_least", "Tolerance", "DEFAULT_TOLERANCE", "require_tolerance", "PRECISION_FACTOR", "PRECISION_CEILING", "file_tolerance",
            "PARALLEL_AXES", "ORTHONORMAL", "SIGN_TIE", "COMPONENT_TIE", "NORM_TIE", "COINCIDENT_POINTS", "MARGIN_DIP", "NEWTON_DAMPING",
            "SOLVER_STOP", "WRITE_DRIFT", "RankDecision", "decide_rank", "binary_scale", "characteristic_scale", "clean_numbers",
-           "RankDecisions", "decide_ranks", "characteristic_scales", "SAME_GRID_VALUE", "SEAM_GAP", "SWEEP_REACH"]
+           "RankDecisions", "ROW_BY_ROW", "decide_few", "decide_ranks", "characteristic_scales", "SAME_GRID_VALUE", "SEAM_GAP", "SWEEP_REACH"]
 
 
 @dataclass(frozen=True)
@@ -393,7 +393,26 @@ class RankDecisions(NamedTuple):
     largest_dropped: np.ndarray
 
 
-_ROW_BY_ROW = 8
+ROW_BY_ROW = 8
+"""Up to this many rows, :func:`decide_ranks` loops over them in Python (:func:`decide_few`): less overhead than array operations."""
+
+
+def decide_few(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: int | Sequence[int] | np.ndarray | None = None) -> tuple[tuple[int, ...], tuple[float, ...], tuple[float, ...]]:
+    """:func:`decide_ranks` of a few rows, as tuples of Python numbers: ranks, smallest kept, largest dropped.
+
+    For a stack of a few matrices (one pose) building arrays costs more than
+    deciding, so callers that only read the numbers take them as they are.
+
+    Examples
+    --------
+    >>> decide_few(np.array([[2.0, 1.0, 1e-15], [3.0, 0.0, 0.0]]), counts=[3, 1])
+    ((2, 1), (0.5, 1.0), (5e-16, 0.0))
+    """
+    n, k = singular_values.shape
+    lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist() if isinstance(counts, np.ndarray) else counts
+    rtol = tol.rank
+    decided = [_decide(row[:length], rtol) for row, length in zip(singular_values.tolist(), lengths)]
+    return tuple(zip(*decided)) if decided else ((), (), ())  # type: ignore[return-value]  # three tuples of n
 
 
 def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE, counts: int | Sequence[int] | np.ndarray | None = None) -> RankDecisions:
@@ -413,11 +432,8 @@ def decide_ranks(singular_values: np.ndarray, tol: Tolerance = DEFAULT_TOLERANCE
     """
     s = np.asarray(singular_values, dtype=float)
     n, k = s.shape
-    if n <= _ROW_BY_ROW:  # a few rows: the loop of decide_rank costs less than the array operations below
-        lengths = [k] * n if counts is None else [counts] * n if isinstance(counts, (int, np.integer)) else counts.tolist() if isinstance(counts, np.ndarray) else counts
-        rtol = tol.rank
-        ranks, smallest, largest = zip(*(_decide(row[:length], rtol) for row, length in zip(s.tolist(), lengths))) if n else ((), (), ())
-        return RankDecisions(np.array(ranks, dtype=int), np.array(smallest, dtype=float), np.array(largest, dtype=float))
+    if n <= ROW_BY_ROW:
+        return RankDecisions(*(np.array(x, dtype=t) for x, t in zip(decide_few(s, tol, counts), (int, float, float))))
     present = np.arange(k)[None, :] < (np.full(n, k) if counts is None else np.broadcast_to(np.minimum(counts, k), (n,)))[:, None]
     length = present.sum(axis=1)
     if k == 0:
