@@ -213,7 +213,7 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
                     values[id(step.node)] = _value(step.node, kids, span_[rows], reciprocal[rows], low, c)
                 else:  # each node as wide as its own greatest rank
                     own = cast(np.ndarray, rank)[rows]
-                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], u[rows, SWAP_ROWS], own, *_extremes(own)), own, c)
+                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], u[rows].take(SWAP_ROWS, axis=1), own, *_extremes(own)), own, c)
     return values[id(node)]
 
 
