@@ -111,7 +111,7 @@ def input_wrenches(node: Node, limb: Systems, twists: np.ndarray, offsets: Seque
     twist = twists[:, :, col].copy()
     wn = np.linalg.norm(twist[:, :3], axis=1)
     twist[wn > tol.rank] /= wn[wn > tol.rank, None]  # unit angular rate (R, H); P columns are already unit linear rate
-    r = np.einsum("ni,ni->n", a.take(SWAP_ROWS, axis=1), twist)
+    r = np.einsum("ni,ni->n", a[:, SWAP_ROWS], twist)
     a = np.where((r < 0)[:, None], -a, a)
     return InputWrenches(np.where(has[:, None], a, 0.0), np.where(has, np.abs(r), 1.0),
                          np.where(has, np.minimum(np.abs(r) / np.linalg.norm(twist, axis=1), 1.0), 0.0), has)

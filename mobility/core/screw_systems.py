@@ -135,6 +135,20 @@ def _extremes(rank: np.ndarray) -> tuple[int, int]:
     return min(ranks), max(ranks)
 
 
+def _swapped(u: np.ndarray, low: int = 0) -> np.ndarray:
+    """``u[:, SWAP_ROWS, low:]``, the reciprocal of a stack's span from its left singular vectors, the cheaper way for ``u``'s memory order.
+
+    A C-ordered stack (of a few matrices) takes its rows whole, then views the
+    columns: a third of the overhead of fancy indexing; the transposed
+    problem's ``u`` of a large stack (:func:`~mobility.core.linalg.left_svds`)
+    is a strided view, which fancy indexing gathers faster than ``take``.
+    """
+    strides = u.strides
+    if strides[1] > strides[2]:  # rows apart, columns side by side: C order
+        return u.take(SWAP_ROWS, axis=1)[:, :, low:]
+    return u[:, SWAP_ROWS, low:]
+
+
 def _split(u: np.ndarray, swapped: np.ndarray, rank: np.ndarray, low: int, high: int) -> tuple[np.ndarray, np.ndarray]:
     """The span (first ``rank`` left singular vectors ``u``) and its reciprocal (the rest of ``swapped``, ``u`` with rows swapped) of each matrix of a stack, ranks from ``low`` to ``high``."""
     if low == high:
@@ -164,7 +178,7 @@ def span(m: np.ndarray, counts: PerPose, tol: Tolerance = DEFAULT_TOLERANCE, mar
     u, s, _ = left_svds(m)
     rank, low, high = _decided(s, tol, counts, Margins(len(m)) if margins is None else margins)
     ranks = per_pose(rank, len(m))
-    return (*_split(u, u.take(SWAP_ROWS, axis=1), ranks, low, high), ranks)
+    return (*_split(u, _swapped(u), ranks, low, high), ranks)
 
 
 def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolerance = DEFAULT_TOLERANCE, margins: Margins | None = None) -> Systems:
@@ -203,7 +217,7 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
             u, s, _ = left_svds(stack)
             rank, low, high = _decided(s, tol, stack_counts, margins)
             if low == high:  # one rank at every pose: the spans of the whole stack at once, the rank an int
-                span_, reciprocal = u[:, :, :low], u.take(SWAP_ROWS, axis=1)[:, :, low:]  # take, then a view: less overhead than fancy indexing
+                span_, reciprocal = u[:, :, :low], _swapped(u, low)
                 if len(members) == 1:
                     values[id(members[0][0].node)] = _value(members[0][0].node, members[0][1], span_, reciprocal, low, members[0][3])
                     continue
@@ -213,7 +227,7 @@ def evaluate(node: Node, twists: np.ndarray, offsets: Sequence[int], tol: Tolera
                     values[id(step.node)] = _value(step.node, kids, span_[rows], reciprocal[rows], low, c)
                 else:  # each node as wide as its own greatest rank
                     own = cast(np.ndarray, rank)[rows]
-                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], u[rows].take(SWAP_ROWS, axis=1), own, *_extremes(own)), own, c)
+                    values[id(step.node)] = _value(step.node, kids, *_split(u[rows], _swapped(u[rows]), own, *_extremes(own)), own, c)
     return values[id(node)]
 
 

@@ -241,7 +241,7 @@ def _pair_index(wrenches: np.ndarray, own: np.ndarray, twists: np.ndarray, relea
     zero = np.zeros(3)
     if qc.shape[2] == 1 and qr.shape[2] == 1:
         return power_coefficient(qc[:, :, 0], qr[:, :, 0], zero)
-    u, _, vt = _svd(np.swapaxes(qc, 1, 2) @ qr.take(SWAP_ROWS, axis=1))
+    u, _, vt = _svd(np.swapaxes(qc, 1, 2) @ qr[:, SWAP_ROWS, :])
     pairs = min(qc.shape[2], qr.shape[2])
     c = qc @ u[:, :, :pairs]
     t = qr @ np.swapaxes(vt, 1, 2)[:, :, :pairs]
@@ -269,7 +269,7 @@ def _limb_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], po
     widths = [w.shape[2] for w in wrenches]
     square = a_cols.shape[2] + sum(widths) == 6 and bool(present.all()) and all(bool(np.all(c == k)) for c, k in zip(counts, widths))
     if square:
-        power = np.swapaxes(np.concatenate([a_cols, *wrenches], axis=2).take(SWAP_ROWS, axis=1), 1, 2)  # row l: the power of wrench l on a twist
+        power = np.swapaxes(np.concatenate([a_cols, *wrenches], axis=2)[:, SWAP_ROWS, :], 1, 2)  # row l: the power of wrench l on a twist
         adj = _output_twists(power, np.broadcast_to(np.eye(6), (count, 6, 6)))
         edges = np.cumsum([a_cols.shape[2], *widths])
     for j in range(limbs):
@@ -289,7 +289,7 @@ def _limb_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarray], po
                 u, rank = np.broadcast_to(np.eye(6), (count, 6, 6)), np.zeros(count, dtype=int)
             released = 6 - rank
             low = int(rank.min())
-            released_twists = u.take(SWAP_ROWS, axis=1)[:, :, low:] * (np.arange(low, 6)[None, :] >= rank[:, None])[:, None, :]  # reciprocal to every other wrench
+            released_twists = u[:, SWAP_ROWS, low:] * (np.arange(low, 6)[None, :] >= rank[:, None])[:, None, :]  # reciprocal to every other wrench
             order = np.argsort(np.arange(low, 6)[None, :] < rank[:, None], axis=1, kind="stable")  # each pose's columns first
             released_twists = np.take_along_axis(released_twists, order[:, None, :], axis=2)
         value = _pair_index(wrenches[j], own, released_twists, released, points[:, j])
@@ -338,7 +338,7 @@ def _best_choice_index(wrenches: Sequence[np.ndarray], counts: Sequence[np.ndarr
         for chosen in inputs:
             for group in groups:
                 stack = np.concatenate([a_cols[:, :, list(chosen)]] + [wrenches[j][rows] for j in group], axis=2)
-                adj = _output_twists(np.swapaxes(stack.take(SWAP_ROWS, axis=1), 1, 2), np.broadcast_to(np.eye(6), (rows.size, 6, 6)))
+                adj = _output_twists(np.swapaxes(stack[:, SWAP_ROWS, :], 1, 2), np.broadcast_to(np.eye(6), (rows.size, 6, 6)))
                 edges = np.cumsum([d, *(widths[j] for j in group)])
                 kappa = np.full((rows.size, limbs), np.nan)
                 for k, j in enumerate(group):
@@ -415,7 +415,7 @@ def transmission_indices(actuation: np.ndarray, input_twists: np.ndarray, input_
             continue
         t = basis[rows][:, :, :d]
         a = actuation[rows]
-        g = a.take(SWAP_ROWS, axis=2) @ t
+        g = a[:, :, SWAP_ROWS] @ t
         best = np.full(rows.size, -1.0)
         for subset in combinations(range(n), d):
             s = list(subset)
