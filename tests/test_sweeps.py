@@ -20,12 +20,12 @@ from hypothesis import strategies as st
 import mobility
 from mobility.core.joint_screws import joint_screws
 from mobility.core.kinematics import kinematics
-from mobility.core.tolerance import characteristic_scale, characteristic_scales, decide_rank, decide_ranks
+from mobility.core.tolerance import ROW_BY_ROW, characteristic_scale, characteristic_scales, decide_few, decide_rank, decide_ranks
 from mobility.core.transforms import displacement_log, twist_exp
 from mobility.errors import MechanismError, RequestError
 from mobility.sweeps import SweepResult, plan_grid, sweep
 from mobility.core.transforms import displacement_logs, rotation_logs
-from mobility.core.screw_systems import analyse_poses
+from mobility.core.screw_systems import Margins, analyse_poses
 from mobility.core.topology import decompose
 from mobility.sweeps.steps import Drive, residuals
 from mobility.sweeps.posed_screws import posed_screws
@@ -74,6 +74,41 @@ def test_decide_ranks_is_decide_rank_row_by_row():
     batch = decide_ranks(s, counts=counts)
     for row, count, r, kept, dropped in zip(s, counts, *batch):
         assert tuple(decide_rank(row[:count])) == (r, kept, dropped)
+
+
+def test_a_few_rows_are_decided_as_a_long_stack_is():
+    # up to ROW_BY_ROW rows (one pose's stacks) go row by row in Python (decide_few): the numbers and types of the vectorised route
+    rng = np.random.default_rng(RNG_SEED + 1)
+    s = -np.sort(-np.abs(rng.standard_normal((301, 6))) * 10.0 ** rng.integers(-14, 3, size=(301, 6)), axis=1)
+    s[::5, 3:] = 0.0
+    counts = rng.integers(0, 7, size=301)
+    batch = decide_ranks(s, counts=counts)
+    for start in range(0, 301, ROW_BY_ROW):
+        rows = slice(start, start + ROW_BY_ROW)
+        few = decide_ranks(s[rows], counts=counts[rows])
+        assert [x.tolist() for x in few] == [x[rows].tolist() for x in batch]
+        assert [x.dtype for x in few] == [x.dtype for x in batch]
+        assert decide_few(s[rows], counts=counts[rows]) == tuple(tuple(x[rows].tolist()) for x in batch)
+    same = decide_ranks(s, counts=4)
+    assert decide_few(s[:3], counts=4) == tuple(tuple(x[:3].tolist()) for x in same)
+    assert decide_few(s[:0]) == ((), (), ()) and decide_ranks(s[:0]).rank.dtype == batch.rank.dtype
+
+
+def test_the_margins_of_one_pose_are_those_of_a_stack_of_one():
+    rng = np.random.default_rng(RNG_SEED)
+    one, many = Margins(1), Margins(1)
+    every_kept, every_dropped = [], []
+    for size in (3, 1, 2, 1):
+        kept, dropped = rng.random(size), rng.random(size) * 1e-12
+        one.add(tuple(kept.tolist()), tuple(dropped.tolist()))  # as decide_few gives them
+        many.add(kept, dropped)
+        every_kept += kept.tolist()
+        every_dropped += dropped.tolist()
+        assert one.smallest_kept.tolist() == many.smallest_kept.tolist() == [min(every_kept)]
+        assert one.largest_dropped.tolist() == many.largest_dropped.tolist() == [max(every_dropped)]
+    two = Margins(2)
+    two.add(np.array([0.5, 0.9, 0.3, 0.8]), np.array([0.0, 1e-13, 2e-13, 0.0]))  # two stacks of the two poses
+    assert two.smallest_kept.tolist() == [0.3, 0.8] and two.largest_dropped.tolist() == [2e-13, 1e-13]
 
 
 def test_characteristic_scales_is_characteristic_scale_pose_by_pose():
