@@ -129,7 +129,7 @@ def _decided(s: np.ndarray, tol: Tolerance, counts: PerPose | Sequence[int], mar
 
 def _extremes(rank: np.ndarray) -> tuple[int, int]:
     """The least and the greatest rank of a stack (of a few, in Python: less overhead)."""
-    if len(rank) > 8:
+    if len(rank) > ROW_BY_ROW:
         return int(rank.min()), int(rank.max())
     ranks = rank.tolist()
     return min(ranks), max(ranks)
