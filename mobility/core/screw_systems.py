@@ -110,20 +110,22 @@ def _numbers(values: np.ndarray | Sequence[float]) -> Sequence[float]:
     return values.tolist() if isinstance(values, np.ndarray) else values
 
 
-def _decided(s: np.ndarray, tol: Tolerance, counts: PerPose | Sequence[int], margins: Margins) -> tuple[PerPose, int, int]:
-    """The ranks of a stack from its singular values ``s`` (an int when every matrix has the same), the least and the greatest; the margins go to ``margins``.
+def _decided(s: np.ndarray, tol: Tolerance, counts: PerPose | Sequence[int], margins: Margins | None) -> tuple[PerPose, int, int]:
+    """The ranks of a stack from its singular values ``s`` (an int when every matrix has the same), the least and the greatest; the margins go to ``margins`` if given.
 
     A few matrices are decided in Python (:func:`~mobility.core.tolerance.decide_few`):
     at one pose no array is built for numbers read one by one.
     """
     if len(s) <= ROW_BY_ROW:
         ranks, kept, dropped = decide_few(s, tol, counts)
-        margins.add(kept, dropped)
+        if margins is not None:
+            margins.add(kept, dropped)
         low, high = min(ranks), max(ranks)
         return (low if low == high else np.array(ranks)), low, high
     d = decide_ranks(s, tol, counts)
-    margins.add(d.smallest_kept, d.largest_dropped)
-    low, high = int(d.rank.min()), int(d.rank.max())
+    if margins is not None:
+        margins.add(d.smallest_kept, d.largest_dropped)
+    low, high = _extremes(d.rank)
     return (low if low == high else d.rank), low, high
 
 
@@ -176,7 +178,7 @@ def span(m: np.ndarray, counts: PerPose, tol: Tolerance = DEFAULT_TOLERANCE, mar
     if len(m) == 0:
         return np.zeros((0, 6, 0)), np.zeros((0, 6, 0)), np.zeros(0, dtype=int)
     u, s, _ = left_svds(m)
-    rank, low, high = _decided(s, tol, counts, Margins(len(m)) if margins is None else margins)
+    rank, low, high = _decided(s, tol, counts, margins)
     ranks = per_pose(rank, len(m))
     return (*_split(u, _swapped(u), ranks, low, high), ranks)
 
@@ -412,7 +414,7 @@ def direction_ranks(basis: np.ndarray, dim: PerPose, tol: Tolerance = DEFAULT_TO
     count = basis.shape[0]
     if basis.shape[2] == 0:  # no screw: nothing decided
         return np.zeros(count, dtype=int)
-    rank, _, _ = _decided(singular_values(basis[:, :3]), tol, dim, Margins(count) if margins is None else margins)
+    rank, _, _ = _decided(singular_values(basis[:, :3]), tol, dim, margins)
     return per_pose(rank, count)
 
 
